@@ -1,0 +1,252 @@
+//! Load-chart capacity tables and the manufacturers' rule for reading them.
+//!
+//! A chart is one grid per crane configuration (counterweight, outrigger spread,
+//! working sector): radii down, boom lengths across, capacity in each cell or
+//! nothing where the lift is not permitted. Every value keeps the spreadsheet cell
+//! it came from, so a plan can quote the chart row it relied on.
+//!
+//! **Rule** ([`ChartConfig::lookup`]), as charts state it: never interpolate. For
+//! a radius between two listed radii use the row of the next larger radius; for a
+//! boom between two listed lengths use the column of the next longer boom. A radius
+//! or boom outside the listed range, or a blank cell, is not permitted. The charts
+//! stage refuses grids whose capacity rises with radius, so the next larger radius
+//! is always the smaller (safe) value.
+
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+
+const TOL_M: f64 = 1e-6;
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ChartCell {
+    pub capacity_kg: f64,
+    /// Where the value was read, e.g. `chart.xlsx [Main boom 26.5t!D14]`.
+    pub cell: String,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ChartConfig {
+    /// Configuration name as the chart states it (counterweight, outriggers, sector).
+    pub name: String,
+    /// Ascending boom lengths (m), one per column.
+    pub boom_lengths_m: Vec<f64>,
+    /// Ascending radii (m), one per row.
+    pub radii_m: Vec<f64>,
+    /// Row-major `radii x booms`; `None` where the chart permits no lift.
+    pub cells: Vec<Option<ChartCell>>,
+}
+
+/// A capacity read from the chart, with the row and column that gave it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Capacity {
+    pub capacity_kg: f64,
+    /// Chart column (boom length) used, m.
+    pub boom_m: f64,
+    /// Chart row (radius) used, m.
+    pub radius_m: f64,
+    pub cell: String,
+}
+
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum CapacityError {
+    #[error("chart has no configuration '{0}' (it has: {1})")]
+    UnknownConfig(String, String),
+    #[error("boom length {boom_m:.2} m is longer than the chart's longest boom {max_m:.2} m")]
+    BoomBeyondChart { boom_m: f64, max_m: f64 },
+    #[error("boom length {boom_m:.2} m is shorter than the chart's shortest boom {min_m:.2} m")]
+    BoomBelowChart { boom_m: f64, min_m: f64 },
+    #[error("radius {radius_m:.2} m is less than the chart's smallest radius {min_m:.2} m")]
+    RadiusBelowChart { radius_m: f64, min_m: f64 },
+    #[error("radius {radius_m:.2} m is beyond the chart's largest radius {max_m:.2} m")]
+    RadiusBeyondChart { radius_m: f64, max_m: f64 },
+    #[error("the chart permits no lift at radius {radius_m:.2} m with boom {boom_m:.2} m (blank cell {cell})")]
+    NotPermitted { boom_m: f64, radius_m: f64, cell: String },
+}
+
+impl ChartConfig {
+    pub fn cell(&self, row: usize, col: usize) -> Option<&ChartCell> {
+        self.cells.get(row * self.boom_lengths_m.len() + col).and_then(|c| c.as_ref())
+    }
+
+    /// Capacity at `radius_m` for a boom of `boom_m`, by the rule in the module docs.
+    pub fn lookup(&self, boom_m: f64, radius_m: f64) -> Result<Capacity, CapacityError> {
+        let (Some(&bmin), Some(&bmax)) = (self.boom_lengths_m.first(), self.boom_lengths_m.last()) else {
+            return Err(CapacityError::BoomBeyondChart { boom_m, max_m: 0.0 });
+        };
+        let (Some(&rmin), Some(&rmax)) = (self.radii_m.first(), self.radii_m.last()) else {
+            return Err(CapacityError::RadiusBeyondChart { radius_m, max_m: 0.0 });
+        };
+        if !(boom_m <= bmax + TOL_M) {
+            return Err(CapacityError::BoomBeyondChart { boom_m, max_m: bmax });
+        }
+        if boom_m < bmin - TOL_M {
+            return Err(CapacityError::BoomBelowChart { boom_m, min_m: bmin });
+        }
+        if !(radius_m <= rmax + TOL_M) {
+            return Err(CapacityError::RadiusBeyondChart { radius_m, max_m: rmax });
+        }
+        if radius_m < rmin - TOL_M {
+            return Err(CapacityError::RadiusBelowChart { radius_m, min_m: rmin });
+        }
+        let col = self.boom_lengths_m.iter().position(|&b| b >= boom_m - TOL_M).unwrap_or(self.boom_lengths_m.len() - 1);
+        let row = self.radii_m.iter().position(|&r| r >= radius_m - TOL_M).unwrap_or(self.radii_m.len() - 1);
+        match self.cell(row, col) {
+            Some(c) => Ok(Capacity { capacity_kg: c.capacity_kg, boom_m: self.boom_lengths_m[col], radius_m: self.radii_m[row], cell: c.cell.clone() }),
+            None => Err(CapacityError::NotPermitted {
+                boom_m: self.boom_lengths_m[col],
+                radius_m: self.radii_m[row],
+                cell: format!("row {:.2} m, column {:.2} m", self.radii_m[row], self.boom_lengths_m[col]),
+            }),
+        }
+    }
+}
+
+/// Every configuration of one crane's load chart.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct CapacityTable {
+    pub configs: Vec<ChartConfig>,
+}
+
+/// One row of `capacity.csv`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CapacityRow {
+    pub config: String,
+    pub boom_m: f64,
+    pub radius_m: f64,
+    pub capacity_kg: f64,
+    pub cell: String,
+}
+
+impl CapacityTable {
+    pub fn config(&self, name: &str) -> Result<&ChartConfig, CapacityError> {
+        self.configs.iter().find(|c| c.name == name).ok_or_else(|| {
+            CapacityError::UnknownConfig(name.to_string(), self.configs.iter().map(|c| format!("'{}'", c.name)).collect::<Vec<_>>().join(", "))
+        })
+    }
+
+    /// The long table: one row per permitted cell, in chart order.
+    pub fn rows(&self) -> Vec<CapacityRow> {
+        let mut out = Vec::new();
+        for c in &self.configs {
+            for (ri, r) in c.radii_m.iter().enumerate() {
+                for (bi, b) in c.boom_lengths_m.iter().enumerate() {
+                    if let Some(cell) = c.cell(ri, bi) {
+                        out.push(CapacityRow { config: c.name.clone(), boom_m: *b, radius_m: *r, capacity_kg: cell.capacity_kg, cell: cell.cell.clone() });
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    /// Rebuilds the grids from long rows (as read back from `capacity.csv`).
+    pub fn from_rows(rows: &[CapacityRow]) -> CapacityTable {
+        let mut t = CapacityTable::default();
+        for r in rows {
+            if !t.configs.iter().any(|c| c.name == r.config) {
+                t.configs.push(ChartConfig { name: r.config.clone(), boom_lengths_m: vec![], radii_m: vec![], cells: vec![] });
+            }
+        }
+        for c in &mut t.configs {
+            let mine: Vec<&CapacityRow> = rows.iter().filter(|r| r.config == c.name).collect();
+            let mut booms: Vec<f64> = mine.iter().map(|r| r.boom_m).collect();
+            let mut radii: Vec<f64> = mine.iter().map(|r| r.radius_m).collect();
+            booms.sort_by(f64::total_cmp);
+            booms.dedup();
+            radii.sort_by(f64::total_cmp);
+            radii.dedup();
+            c.cells = vec![None; booms.len() * radii.len()];
+            for r in mine {
+                let bi = booms.iter().position(|&b| b == r.boom_m).unwrap_or(0);
+                let ri = radii.iter().position(|&x| x == r.radius_m).unwrap_or(0);
+                c.cells[ri * booms.len() + bi] = Some(ChartCell { capacity_kg: r.capacity_kg, cell: r.cell.clone() });
+            }
+            c.boom_lengths_m = booms;
+            c.radii_m = radii;
+        }
+        t
+    }
+
+    pub fn write_csv(&self, path: &Path) -> std::io::Result<()> {
+        let mut w = csv::Writer::from_writer(Vec::new());
+        for r in self.rows() {
+            w.serialize(&r).map_err(std::io::Error::other)?;
+        }
+        let bytes = w.into_inner().map_err(|e| std::io::Error::other(e.to_string()))?;
+        crate::artifact::write_atomic(path, &bytes)
+    }
+
+    pub fn read_csv(path: &Path) -> Result<CapacityTable, String> {
+        let mut r = csv::Reader::from_path(path).map_err(|e| format!("{}: {e}", path.display()))?;
+        let mut rows = Vec::new();
+        for (i, rec) in r.deserialize::<CapacityRow>().enumerate() {
+            let row = rec.map_err(|e| format!("{}:{}: {e}", path.display(), i + 2))?;
+            if !(row.capacity_kg.is_finite() && row.capacity_kg >= 0.0 && row.radius_m.is_finite() && row.boom_m.is_finite()) {
+                return Err(format!("{}:{}: capacity, radius and boom must be finite and non-negative", path.display(), i + 2));
+            }
+            rows.push(row);
+        }
+        Ok(CapacityTable::from_rows(&rows))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn chart() -> ChartConfig {
+        // Radii 3, 4, 6 m; booms 12, 20 m. Blank at 3 m with the 20 m boom.
+        let c = |v: f64, r: &str| Some(ChartCell { capacity_kg: v, cell: r.to_string() });
+        ChartConfig {
+            name: "CW 26.5t 360".into(),
+            boom_lengths_m: vec![12.0, 20.0],
+            radii_m: vec![3.0, 4.0, 6.0],
+            cells: vec![c(50000.0, "B2"), None, c(40000.0, "B3"), c(35000.0, "C3"), c(30000.0, "B4"), c(28000.0, "C4")],
+        }
+    }
+
+    #[test]
+    fn exact_cells() {
+        let k = chart().lookup(12.0, 4.0).unwrap();
+        assert_eq!((k.capacity_kg, k.cell.as_str()), (40000.0, "B3"));
+    }
+
+    #[test]
+    fn between_radii_takes_next_larger_radius() {
+        let k = chart().lookup(12.0, 4.5).unwrap();
+        assert_eq!(k.capacity_kg, 30000.0);
+        assert_eq!(k.radius_m, 6.0);
+    }
+
+    #[test]
+    fn between_booms_takes_next_longer_boom() {
+        let k = chart().lookup(15.0, 4.0).unwrap();
+        assert_eq!(k.capacity_kg, 35000.0);
+        assert_eq!(k.boom_m, 20.0);
+    }
+
+    #[test]
+    fn at_and_beyond_last_row() {
+        assert_eq!(chart().lookup(20.0, 6.0).unwrap().capacity_kg, 28000.0);
+        assert!(matches!(chart().lookup(20.0, 6.01), Err(CapacityError::RadiusBeyondChart { .. })));
+        assert!(matches!(chart().lookup(20.5, 5.0), Err(CapacityError::BoomBeyondChart { .. })));
+        assert!(matches!(chart().lookup(12.0, 2.5), Err(CapacityError::RadiusBelowChart { .. })));
+        assert!(matches!(chart().lookup(11.0, 4.0), Err(CapacityError::BoomBelowChart { .. })));
+    }
+
+    #[test]
+    fn blank_cell_not_permitted() {
+        assert!(matches!(chart().lookup(14.0, 3.0), Err(CapacityError::NotPermitted { .. })));
+        assert!(chart().lookup(f64::NAN, 3.0).is_err());
+    }
+
+    #[test]
+    fn csv_roundtrip() {
+        let t = CapacityTable { configs: vec![chart()] };
+        let d = tempfile::tempdir().unwrap();
+        let p = d.path().join("capacity.csv");
+        t.write_csv(&p).unwrap();
+        let back = CapacityTable::read_csv(&p).unwrap();
+        assert_eq!(back, t);
+    }
+}

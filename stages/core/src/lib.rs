@@ -1,0 +1,44 @@
+//! # liftplan-core
+//!
+//! The shared vocabulary of liftplan. Every stage crate depends on this one and on
+//! nothing else of ours; stages exchange data only through the artifact files and
+//! types defined here.
+//!
+//! | module | what it holds |
+//! |---|---|
+//! | [`location`] | file + byte / line / `sheet!cell` places for error messages |
+//! | [`units`] | the SI-inside, units-at-the-edges conversions |
+//! | [`frame`] | site frame, poses, axis-aligned boxes |
+//! | [`obb`] | oriented boxes: crane parts and their exact footprint/height facts |
+//! | [`cloud`] | point clouds (columns) |
+//! | [`mesh`] | triangle meshes with part/group provenance |
+//! | [`crane`] | crane model files, placement, forward and inverse kinematics |
+//! | [`capacity`] | load-chart grids and the never-interpolate-upwards rule |
+//! | [`lift`] | the lift request and its validated form |
+//! | [`artifact`] | checked binary artifact files and atomic writes |
+//! | [`image`] | RGB rasters, PNG output, labels and colour ramps |
+//! | [`rng`] | the seeded random streams |
+//!
+//! ```
+//! use liftplan_core::crane::{builtin, CraneSetup, Placement, LoadShape, LoadPose};
+//! let model = builtin("ltm-1100").unwrap();
+//! let crane = CraneSetup::new(model, Placement { x_m: 0.0, y_m: 0.0, z_m: 0.0, heading_rad: 0.0, boom_length_m: 40.0 }).unwrap();
+//! let load = LoadShape { size_m: [4.0, 2.0, 2.0], cog_m: [0.0; 3], rigging_height_m: 3.0 };
+//! let q = crane.inverse(&LoadPose { x_m: 25.0, y_m: 5.0, z_m: 0.0, yaw_rad: 0.0 }, &load).unwrap();
+//! assert!((crane.load_pose(&q, &load).x_m - 25.0).abs() < 1e-9);
+//! ```
+
+pub mod artifact;
+pub mod capacity;
+pub mod cloud;
+pub mod crane;
+pub mod frame;
+pub mod image;
+pub mod lift;
+pub mod location;
+pub mod mesh;
+pub mod obb;
+pub mod rng;
+pub mod units;
+
+pub use location::{Location, Place};

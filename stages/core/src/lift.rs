@@ -1,0 +1,333 @@
+//! The lift request an engineer writes (`[[lift]]` in `liftplan.toml`) and its
+//! validated form, [`LiftTask`], in SI units.
+//!
+//! Pick and set are given either as load poses (where the load rests: box-centre
+//! plan position, underside height, yaw), solved by inverse kinematics, or as crane
+//! configurations. The gross load the chart must carry is load + rigging + hook
+//! block + configured deductions (ICE-Planner's "total load").
+
+use crate::crane::{Config, CraneModel, CraneSetup, LoadPose, LoadShape, Placement};
+use crate::units::KG_PER_TONNE;
+use serde::{Deserialize, Serialize};
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LoadSpec {
+    #[serde(default = "default_load_name")]
+    pub name: String,
+    pub mass_t: f64,
+    /// Box size along the load's x, y, z.
+    pub size_m: [f64; 3],
+    /// Centre of gravity relative to the box centre.
+    #[serde(default)]
+    pub cog_m: [f64; 3],
+}
+
+fn default_load_name() -> String {
+    "load".into()
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RiggingSpec {
+    #[serde(default)]
+    pub mass_t: f64,
+    /// Hook block underside to the top of the load.
+    #[serde(default = "default_rigging_height")]
+    pub height_m: f64,
+}
+
+impl Default for RiggingSpec {
+    fn default() -> Self {
+        RiggingSpec { mass_t: 0.0, height_m: default_rigging_height() }
+    }
+}
+
+fn default_rigging_height() -> f64 {
+    2.0
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CraneSpec {
+    /// A built-in model name or a file in `cranes/` (without `.toml`).
+    pub model: String,
+    /// Slewing axis in the site frame.
+    pub position_m: [f64; 2],
+    /// Ground level at the slewing axis.
+    #[serde(default)]
+    pub ground_z_m: f64,
+    pub heading_deg: f64,
+    /// Main boom length (luffing cranes).
+    #[serde(default)]
+    pub boom_m: Option<f64>,
+    /// The chart configuration this set-up uses (counterweight, outriggers, sector).
+    pub chart_config: String,
+    /// Extra deductions the chart's notes require (e.g. stowed jib), tonnes.
+    #[serde(default)]
+    pub deductions_t: f64,
+}
+
+/// Pick or set: a load pose (`x_m`, `y_m`, `z_m`, `yaw_deg`) or a configuration
+/// (`swing_deg`, `luff_deg` or `trolley_m`, `hoist_m`, `yaw_deg`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PoseSpec {
+    pub x_m: Option<f64>,
+    pub y_m: Option<f64>,
+    /// Underside of the load.
+    pub z_m: Option<f64>,
+    pub swing_deg: Option<f64>,
+    pub luff_deg: Option<f64>,
+    pub trolley_m: Option<f64>,
+    pub hoist_m: Option<f64>,
+    #[serde(default)]
+    pub yaw_deg: f64,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LiftSpec {
+    pub id: String,
+    #[serde(default)]
+    pub description: String,
+    pub load: LoadSpec,
+    #[serde(default)]
+    pub rigging: RiggingSpec,
+    pub crane: CraneSpec,
+    pub pick: PoseSpec,
+    pub set: PoseSpec,
+    /// Minimum clear distance from every crane part and the load to any obstacle.
+    #[serde(default = "default_clearance")]
+    pub clearance_m: f64,
+    /// Vertical lift-off at the pick and set-down at the set, done hook-only with
+    /// the support surface allowed to touch the load.
+    #[serde(default = "default_liftoff")]
+    pub liftoff_m: f64,
+    /// Capacity reduction applied to every chart value (site rules, wind), percent.
+    #[serde(default)]
+    pub capacity_reduction_pct: f64,
+    /// Utilisation above which the lift is flagged critical, percent.
+    #[serde(default = "default_critical")]
+    pub critical_pct: f64,
+    /// Permitted slewing range relative to the carrier heading, degrees.
+    #[serde(default)]
+    pub swing_range_deg: Option<[f64; 2]>,
+}
+
+fn default_clearance() -> f64 {
+    1.0
+}
+fn default_liftoff() -> f64 {
+    0.5
+}
+fn default_critical() -> f64 {
+    75.0
+}
+
+/// A validated lift: everything in SI, pick and set solved to configurations.
+#[derive(Debug, Clone)]
+pub struct LiftTask {
+    pub id: String,
+    pub description: String,
+    pub crane: CraneSetup,
+    pub chart_config: String,
+    pub load_name: String,
+    pub load: LoadShape,
+    pub load_mass_kg: f64,
+    pub rigging_mass_kg: f64,
+    pub deductions_kg: f64,
+    /// Configurations with the load resting at its pick and set positions.
+    pub pick: Config,
+    pub set: Config,
+    pub pick_pose: LoadPose,
+    pub set_pose: LoadPose,
+    pub clearance_m: f64,
+    pub liftoff_m: f64,
+    pub capacity_reduction_pct: f64,
+    pub critical_pct: f64,
+    pub swing_range_rad: Option<(f64, f64)>,
+}
+
+impl LiftTask {
+    /// Load + rigging + hook block + deductions, in kg.
+    pub fn gross_kg(&self) -> f64 {
+        self.load_mass_kg + self.rigging_mass_kg + self.crane.model.hook.mass_kg + self.deductions_kg
+    }
+
+    /// Capacity after the configured reduction.
+    pub fn effective_capacity_kg(&self, chart_kg: f64) -> f64 {
+        chart_kg * (1.0 - self.capacity_reduction_pct / 100.0)
+    }
+
+    /// Utilisation in percent of the reduced chart capacity.
+    pub fn utilisation_pct(&self, chart_kg: f64) -> f64 {
+        let cap = self.effective_capacity_kg(chart_kg);
+        if cap <= 0.0 { f64::INFINITY } else { 100.0 * self.gross_kg() / cap }
+    }
+
+    /// The configuration lifted `liftoff_m` clear of the pick support.
+    pub fn start(&self) -> Config {
+        Config { hoist_m: self.pick.hoist_m - self.liftoff_m, ..self.pick }
+    }
+
+    /// The configuration `liftoff_m` above the set position.
+    pub fn goal(&self) -> Config {
+        Config { hoist_m: self.set.hoist_m - self.liftoff_m, ..self.set }
+    }
+}
+
+impl LiftSpec {
+    /// Checks the request against the crane model and solves pick and set.
+    pub fn resolve(&self, model: CraneModel) -> Result<LiftTask, String> {
+        let id = &self.id;
+        if id.is_empty() || !id.chars().all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_') {
+            return Err(format!("lift id '{id}' must be letters, digits, '-' or '_' (it names output files)"));
+        }
+        let pos = |name: &str, v: f64| if v.is_finite() && v > 0.0 { Ok(()) } else { Err(format!("lift '{id}': {name} must be positive, found {v}")) };
+        let nonneg = |name: &str, v: f64| if v.is_finite() && v >= 0.0 { Ok(()) } else { Err(format!("lift '{id}': {name} must be zero or positive, found {v}")) };
+        pos("load.mass_t", self.load.mass_t)?;
+        for (i, s) in self.load.size_m.iter().enumerate() {
+            pos(&format!("load.size_m[{i}]"), *s)?;
+        }
+        for (i, c) in self.load.cog_m.iter().enumerate() {
+            if !(c.abs() <= self.load.size_m[i] / 2.0) {
+                return Err(format!("lift '{id}': load.cog_m[{i}] = {c} lies outside the load box"));
+            }
+        }
+        nonneg("rigging.mass_t", self.rigging.mass_t)?;
+        nonneg("rigging.height_m", self.rigging.height_m)?;
+        nonneg("crane.deductions_t", self.crane.deductions_t)?;
+        pos("clearance_m", self.clearance_m)?;
+        nonneg("liftoff_m", self.liftoff_m)?;
+        if !(0.0..100.0).contains(&self.capacity_reduction_pct) {
+            return Err(format!("lift '{id}': capacity_reduction_pct must be in 0..100, found {}", self.capacity_reduction_pct));
+        }
+        if !(self.critical_pct > 0.0 && self.critical_pct <= 100.0) {
+            return Err(format!("lift '{id}': critical_pct must be in (0, 100], found {}", self.critical_pct));
+        }
+        let boom = match (&model.kind, self.crane.boom_m) {
+            (crate::crane::CraneKind::Luffing(_), Some(b)) => b,
+            (crate::crane::CraneKind::Luffing(_), None) => return Err(format!("lift '{id}': crane.boom_m is required for a luffing crane")),
+            (crate::crane::CraneKind::Tower(_), _) => 0.0,
+        };
+        let placement = Placement {
+            x_m: self.crane.position_m[0],
+            y_m: self.crane.position_m[1],
+            z_m: self.crane.ground_z_m,
+            heading_rad: self.crane.heading_deg.to_radians(),
+            boom_length_m: boom,
+        };
+        let crane = CraneSetup::new(model, placement).map_err(|e| format!("lift '{id}': {e}"))?;
+        let load = LoadShape { size_m: self.load.size_m, cog_m: self.load.cog_m, rigging_height_m: self.rigging.height_m };
+        let solve = |which: &str, p: &PoseSpec| -> Result<(Config, LoadPose), String> {
+            let yaw = p.yaw_deg.to_radians();
+            match (p.x_m, p.y_m, p.z_m, p.swing_deg, p.hoist_m) {
+                (Some(x), Some(y), Some(z), None, None) if p.luff_deg.is_none() && p.trolley_m.is_none() => {
+                    let pose = LoadPose { x_m: x, y_m: y, z_m: z, yaw_rad: yaw };
+                    let c = crane.inverse(&pose, &load).map_err(|e| format!("lift '{id}': {which} position cannot be reached: {e}"))?;
+                    Ok((c, pose))
+                }
+                (None, None, None, Some(sw), Some(h)) => {
+                    let radial = match (&crane.model.kind, p.luff_deg, p.trolley_m) {
+                        (crate::crane::CraneKind::Luffing(_), Some(l), None) => l.to_radians(),
+                        (crate::crane::CraneKind::Tower(_), None, Some(t)) => t,
+                        (crate::crane::CraneKind::Luffing(_), _, _) => return Err(format!("lift '{id}': {which} needs luff_deg (and no trolley_m) for a luffing crane")),
+                        (crate::crane::CraneKind::Tower(_), _, _) => return Err(format!("lift '{id}': {which} needs trolley_m (and no luff_deg) for a tower crane")),
+                    };
+                    let c = Config { swing_rad: sw.to_radians(), radial, hoist_m: h, load_yaw_rad: yaw };
+                    if !c.to_array().iter().all(|v| v.is_finite()) {
+                        return Err(format!("lift '{id}': {which} has a non-finite value"));
+                    }
+                    Ok((c, crane.load_pose(&c, &load)))
+                }
+                _ => Err(format!(
+                    "lift '{id}': {which} must give either a load pose (x_m, y_m, z_m, yaw_deg) or a configuration (swing_deg, luff_deg or trolley_m, hoist_m, yaw_deg), not a mix"
+                )),
+            }
+        };
+        let (pick, pick_pose) = solve("pick", &self.pick)?;
+        let (set, set_pose) = solve("set", &self.set)?;
+        let lim = crane.limits();
+        for (which, c) in [("pick", &pick), ("set", &set)] {
+            if c.radial < lim.radial.0 - 1e-9 || c.radial > lim.radial.1 + 1e-9 {
+                return Err(format!("lift '{id}': {which} is outside the crane's {} range", if crane.model.is_tower() { "trolley" } else { "luff" }));
+            }
+            if c.hoist_m - self.liftoff_m < lim.hoist_m.0 - 1e-9 || c.hoist_m > lim.hoist_m.1 + 1e-9 {
+                return Err(format!(
+                    "lift '{id}': {which} needs {:.2} m of rope and lift-off needs {:.2} m less; the crane allows {:.2}..{:.2} m",
+                    c.hoist_m, self.liftoff_m, lim.hoist_m.0, lim.hoist_m.1
+                ));
+            }
+        }
+        let swing_range_rad = match self.swing_range_deg {
+            Some([a, b]) if a < b => Some((a.to_radians(), b.to_radians())),
+            Some(_) => return Err(format!("lift '{id}': swing_range_deg must be [min, max] with min < max")),
+            None => None,
+        };
+        Ok(LiftTask {
+            id: id.clone(),
+            description: self.description.clone(),
+            crane,
+            chart_config: self.crane.chart_config.clone(),
+            load_name: self.load.name.clone(),
+            load,
+            load_mass_kg: self.load.mass_t * KG_PER_TONNE,
+            rigging_mass_kg: self.rigging.mass_t * KG_PER_TONNE,
+            deductions_kg: self.crane.deductions_t * KG_PER_TONNE,
+            pick,
+            set,
+            pick_pose,
+            set_pose,
+            clearance_m: self.clearance_m,
+            liftoff_m: self.liftoff_m,
+            capacity_reduction_pct: self.capacity_reduction_pct,
+            critical_pct: self.critical_pct,
+            swing_range_rad,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn spec() -> LiftSpec {
+        toml::from_str(
+            r#"
+id = "V-101"
+load = { mass_t = 12.5, size_m = [6.0, 3.0, 3.0] }
+rigging = { mass_t = 0.4, height_m = 3.0 }
+crane = { model = "ltm-1100", position_m = [0.0, 0.0], heading_deg = 0.0, boom_m = 40.0, chart_config = "main" }
+pick = { x_m = 20.0, y_m = 5.0, z_m = 0.0, yaw_deg = 0.0 }
+set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
+"#,
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn resolves_and_sums_gross_load() {
+        let t = spec().resolve(crate::crane::builtin("ltm-1100").unwrap()).unwrap();
+        assert!((t.gross_kg() - (12500.0 + 400.0 + 1100.0)).abs() < 1e-9);
+        assert!((t.start().hoist_m - (t.pick.hoist_m - 0.5)).abs() < 1e-12);
+        assert!((t.set_pose.yaw_rad - std::f64::consts::FRAC_PI_2).abs() < 1e-12);
+        assert!((t.utilisation_pct(14000.0) - 100.0 * 14000.0 / 14000.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn rejects_mixed_pose_and_bad_id() {
+        let mut s = spec();
+        s.pick.swing_deg = Some(3.0);
+        assert!(s.resolve(crate::crane::builtin("ltm-1100").unwrap()).unwrap_err().contains("not a mix"));
+        let mut s = spec();
+        s.id = "a b".into();
+        assert!(s.resolve(crate::crane::builtin("ltm-1100").unwrap()).is_err());
+    }
+
+    #[test]
+    fn unknown_field_is_refused() {
+        let e = toml::from_str::<LiftSpec>("id='x'\nlod = 1\n").unwrap_err();
+        assert!(e.to_string().contains("lod"), "{e}");
+    }
+}

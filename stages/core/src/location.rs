@@ -1,0 +1,143 @@
+//! Where in an input something was found: a file plus a byte offset, a line and
+//! column, a spreadsheet cell or a named item.
+//!
+//! Every error about user input carries a [`Location`], so a survey team or a lift
+//! engineer can open the file and go straight to the bad spot. This module only
+//! formats places; it must not open files.
+
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+/// A place inside a file.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Place {
+    /// The file as a whole (it is missing, empty, or of the wrong kind).
+    Whole,
+    /// A byte offset from the start of the file.
+    Byte(u64),
+    /// A 1-based line and optional 1-based column of a text file.
+    Line { line: u64, column: Option<u64> },
+    /// A spreadsheet cell, e.g. sheet `Main boom`, cell `C12`.
+    Cell { sheet: String, cell: String },
+    /// A named element, e.g. a scan inside an E57 file or a group of an RVM file.
+    Item(String),
+}
+
+/// A file and a place inside it.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Location {
+    pub path: PathBuf,
+    pub place: Place,
+}
+
+impl Location {
+    pub fn file(path: impl AsRef<Path>) -> Self {
+        Location { path: path.as_ref().to_path_buf(), place: Place::Whole }
+    }
+    pub fn byte(path: impl AsRef<Path>, offset: u64) -> Self {
+        Location { path: path.as_ref().to_path_buf(), place: Place::Byte(offset) }
+    }
+    pub fn line(path: impl AsRef<Path>, line: u64, column: Option<u64>) -> Self {
+        Location { path: path.as_ref().to_path_buf(), place: Place::Line { line, column } }
+    }
+    pub fn cell(path: impl AsRef<Path>, sheet: &str, cell: &str) -> Self {
+        Location {
+            path: path.as_ref().to_path_buf(),
+            place: Place::Cell { sheet: sheet.to_string(), cell: cell.to_string() },
+        }
+    }
+    pub fn item(path: impl AsRef<Path>, item: impl Into<String>) -> Self {
+        Location { path: path.as_ref().to_path_buf(), place: Place::Item(item.into()) }
+    }
+}
+
+impl fmt::Display for Location {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let p = self.path.display();
+        match &self.place {
+            Place::Whole => write!(f, "{p}"),
+            Place::Byte(o) => write!(f, "{p} at byte {o}"),
+            Place::Line { line, column: Some(c) } => write!(f, "{p}:{line}:{c}"),
+            Place::Line { line, column: None } => write!(f, "{p}:{line}"),
+            Place::Cell { sheet, cell } => write!(f, "{p} [{sheet}!{cell}]"),
+            Place::Item(name) => write!(f, "{p} ({name})"),
+        }
+    }
+}
+
+/// Spreadsheet column letters for a 0-based column index (0 -> `A`, 27 -> `AB`).
+pub fn column_letters(mut col: u32) -> String {
+    let mut out = Vec::new();
+    loop {
+        out.push(b'A' + (col % 26) as u8);
+        if col < 26 {
+            break;
+        }
+        col = col / 26 - 1;
+    }
+    out.reverse();
+    String::from_utf8(out).unwrap_or_default()
+}
+
+/// `A1`-style reference for a 0-based (row, column).
+pub fn cell_ref(row: u32, col: u32) -> String {
+    format!("{}{}", column_letters(col), row + 1)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cell_refs() {
+        assert_eq!(cell_ref(0, 0), "A1");
+        assert_eq!(cell_ref(11, 2), "C12");
+        assert_eq!(column_letters(25), "Z");
+        assert_eq!(column_letters(26), "AA");
+        assert_eq!(column_letters(27), "AB");
+        assert_eq!(column_letters(701), "ZZ");
+        assert_eq!(column_letters(702), "AAA");
+    }
+
+    #[test]
+    fn display() {
+        assert_eq!(Location::byte("a.laz", 12).to_string(), "a.laz at byte 12");
+        assert_eq!(Location::line("p.toml", 3, Some(5)).to_string(), "p.toml:3:5");
+        assert_eq!(Location::cell("c.xlsx", "Main", "B4").to_string(), "c.xlsx [Main!B4]");
+    }
+}
+
+/// 1-based line and column of a byte offset in `text`.
+pub fn line_col(text: &str, offset: usize) -> (u64, u64) {
+    let offset = offset.min(text.len());
+    let before = &text.as_bytes()[..offset];
+    let line = before.iter().filter(|&&b| b == b'\n').count() as u64 + 1;
+    let line_start = before.iter().rposition(|&b| b == b'\n').map(|p| p + 1).unwrap_or(0);
+    let col = String::from_utf8_lossy(&before[line_start..]).chars().count() as u64 + 1;
+    (line, col)
+}
+
+/// Location and message of a TOML parse or schema error, e.g.
+/// `site/liftplan.toml:12:1: unknown field 'voxl', expected one of ...`.
+pub fn toml_error(path: impl AsRef<Path>, text: &str, err: &toml::de::Error) -> (Location, String) {
+    let loc = match err.span() {
+        Some(span) => {
+            let (l, c) = line_col(text, span.start);
+            Location::line(path, l, Some(c))
+        }
+        None => Location::file(path),
+    };
+    (loc, err.message().trim().to_string())
+}
+
+#[cfg(test)]
+mod line_tests {
+    use super::*;
+
+    #[test]
+    fn line_col_counts() {
+        assert_eq!(line_col("ab\ncd\nef", 4), (2, 2));
+        assert_eq!(line_col("ab", 0), (1, 1));
+        assert_eq!(line_col("ab", 99), (1, 3));
+    }
+}

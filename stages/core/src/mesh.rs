@@ -1,0 +1,297 @@
+//! Triangle meshes in the site frame, with the provenance the planner reports.
+//!
+//! Each triangle belongs to a **part**; a part belongs to a named **group** (an RVM
+//! group such as `PIPE-RACK-2`, a glTF node, an OBJ object) and says whether its
+//! triangles bound one convex solid. Depth maps fill convex solids (their column
+//! range over a cell is exact) and keep surfaces of everything else, and a
+//! collision is reported against the group name.
+//!
+//! The plant stage hands meshes to later stages as a `PLANTMSH` artifact
+//! ([`TriMesh::to_artifact_bytes`]); users get the same mesh as binary PLY
+//! ([`TriMesh::write_ply`]).
+
+use crate::artifact::{self, ArtifactError, ByteReader, ByteWriter};
+use crate::frame::{Aabb, Point3, Pose};
+use std::io::Write;
+use std::path::Path;
+
+pub const ARTIFACT_KIND: &str = "PLANTMSH";
+pub const ARTIFACT_VERSION: u32 = 1;
+
+/// A part of a mesh: a run of triangles from one primitive or one mesh object.
+#[derive(Debug, Clone, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub struct MeshPart {
+    /// Index into [`TriMesh::groups`].
+    pub group: u32,
+    /// The part's triangles bound one convex solid.
+    pub convex_solid: bool,
+}
+
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct TriMesh {
+    pub vertices: Vec<[f64; 3]>,
+    pub triangles: Vec<[u32; 3]>,
+    /// Per triangle: index into `parts`.
+    pub part_of: Vec<u32>,
+    pub parts: Vec<MeshPart>,
+    /// Group names (full paths, e.g. `/SITE/ZONE-A/PIPE-RACK-2`).
+    pub groups: Vec<String>,
+}
+
+impl TriMesh {
+    pub fn triangle_count(&self) -> usize {
+        self.triangles.len()
+    }
+
+    pub fn bbox(&self) -> Aabb {
+        Aabb::from_points(&self.vertices)
+    }
+
+    /// Index of the group called `name`, added if new.
+    pub fn group_id(&mut self, name: &str) -> u32 {
+        if let Some(i) = self.groups.iter().position(|g| g == name) {
+            return i as u32;
+        }
+        self.groups.push(name.to_string());
+        (self.groups.len() - 1) as u32
+    }
+
+    /// Adds a part made of `vertices` and `triangles` (indices into `vertices`).
+    pub fn add_part(&mut self, group: u32, convex_solid: bool, vertices: &[[f64; 3]], triangles: &[[u32; 3]]) {
+        if triangles.is_empty() {
+            return;
+        }
+        let base = self.vertices.len() as u32;
+        let part = self.parts.len() as u32;
+        self.parts.push(MeshPart { group, convex_solid });
+        self.vertices.extend_from_slice(vertices);
+        for t in triangles {
+            self.triangles.push([t[0] + base, t[1] + base, t[2] + base]);
+            self.part_of.push(part);
+        }
+    }
+
+    /// Appends another mesh, merging groups by name.
+    pub fn append(&mut self, other: &TriMesh) {
+        let gmap: Vec<u32> = other.groups.iter().map(|g| self.group_id(g)).collect();
+        let vbase = self.vertices.len() as u32;
+        let pbase = self.parts.len() as u32;
+        self.vertices.extend_from_slice(&other.vertices);
+        for p in &other.parts {
+            self.parts.push(MeshPart { group: gmap[p.group as usize], convex_solid: p.convex_solid });
+        }
+        for (t, p) in other.triangles.iter().zip(&other.part_of) {
+            self.triangles.push([t[0] + vbase, t[1] + vbase, t[2] + vbase]);
+            self.part_of.push(p + pbase);
+        }
+    }
+
+    pub fn transform(&mut self, pose: &Pose) {
+        for v in &mut self.vertices {
+            let q = pose * Point3::new(v[0], v[1], v[2]);
+            *v = [q.x, q.y, q.z];
+        }
+    }
+
+    /// Group name of triangle `t`.
+    pub fn group_of_triangle(&self, t: usize) -> &str {
+        let p = self.part_of[t] as usize;
+        &self.groups[self.parts[p].group as usize]
+    }
+
+    /// Total surface area in square metres.
+    pub fn area(&self) -> f64 {
+        self.triangles.iter().map(|t| tri_area(self.v(t[0]), self.v(t[1]), self.v(t[2]))).sum()
+    }
+
+    /// Signed enclosed volume (divergence theorem); meaningful for closed,
+    /// outward-oriented meshes.
+    pub fn signed_volume(&self) -> f64 {
+        self.triangles
+            .iter()
+            .map(|t| {
+                let (a, b, c) = (self.v(t[0]), self.v(t[1]), self.v(t[2]));
+                a.coords.dot(&b.coords.cross(&c.coords)) / 6.0
+            })
+            .sum()
+    }
+
+    fn v(&self, i: u32) -> Point3 {
+        let p = self.vertices[i as usize];
+        Point3::new(p[0], p[1], p[2])
+    }
+
+    /// Checks indices and columns; a mesh from a file must pass before use.
+    pub fn validate(&self) -> Result<(), String> {
+        let nv = self.vertices.len() as u32;
+        if self.part_of.len() != self.triangles.len() {
+            return Err(format!("{} part indices for {} triangles", self.part_of.len(), self.triangles.len()));
+        }
+        for (i, t) in self.triangles.iter().enumerate() {
+            if t.iter().any(|&k| k >= nv) {
+                return Err(format!("triangle {i} refers to a vertex past the {nv} vertices"));
+            }
+        }
+        if let Some(i) = self.part_of.iter().position(|&p| p as usize >= self.parts.len()) {
+            return Err(format!("triangle {i} refers to a missing part"));
+        }
+        if let Some(i) = self.parts.iter().position(|p| p.group as usize >= self.groups.len()) {
+            return Err(format!("part {i} refers to a missing group"));
+        }
+        if let Some(i) = self.vertices.iter().position(|v| v.iter().any(|c| !c.is_finite())) {
+            return Err(format!("vertex {i} is not finite"));
+        }
+        Ok(())
+    }
+
+    pub fn to_artifact_bytes(&self) -> Vec<u8> {
+        let mut w = ByteWriter::new();
+        w.u64(self.groups.len() as u64);
+        for g in &self.groups {
+            w.str(g);
+        }
+        w.u64(self.parts.len() as u64);
+        for p in &self.parts {
+            w.u32(p.group);
+            w.u8(p.convex_solid as u8);
+        }
+        w.u64(self.vertices.len() as u64);
+        for v in &self.vertices {
+            for c in v {
+                w.f64(*c);
+            }
+        }
+        w.u64(self.triangles.len() as u64);
+        for (t, p) in self.triangles.iter().zip(&self.part_of) {
+            w.u32(t[0]);
+            w.u32(t[1]);
+            w.u32(t[2]);
+            w.u32(*p);
+        }
+        artifact::encode(ARTIFACT_KIND, ARTIFACT_VERSION, &w.buf)
+    }
+
+    pub fn write_artifact(&self, path: &Path) -> Result<(), ArtifactError> {
+        artifact::write_atomic(path, &self.to_artifact_bytes())
+            .map_err(|e| ArtifactError::Io(crate::Location::file(path), e))
+    }
+
+    pub fn read_artifact(path: &Path) -> Result<TriMesh, ArtifactError> {
+        let bytes = std::fs::read(path).map_err(|e| ArtifactError::Io(crate::Location::file(path), e))?;
+        Self::from_artifact_bytes(path, &bytes)
+    }
+
+    pub fn from_artifact_bytes(path: &Path, bytes: &[u8]) -> Result<TriMesh, ArtifactError> {
+        let payload = artifact::decode(path, bytes, ARTIFACT_KIND, ARTIFACT_VERSION)?;
+        let mut r = ByteReader::new(path, payload, 32);
+        let ng = r.count(4)?;
+        let mut m = TriMesh::default();
+        for _ in 0..ng {
+            m.groups.push(r.str()?);
+        }
+        let np = r.count(5)?;
+        for _ in 0..np {
+            let group = r.u32()?;
+            let convex_solid = r.u8()? != 0;
+            m.parts.push(MeshPart { group, convex_solid });
+        }
+        let nv = r.count(24)?;
+        m.vertices.reserve(nv);
+        for _ in 0..nv {
+            m.vertices.push([r.f64()?, r.f64()?, r.f64()?]);
+        }
+        let nt = r.count(16)?;
+        m.triangles.reserve(nt);
+        m.part_of.reserve(nt);
+        for _ in 0..nt {
+            m.triangles.push([r.u32()?, r.u32()?, r.u32()?]);
+            m.part_of.push(r.u32()?);
+        }
+        r.finish()?;
+        m.validate().map_err(|e| r.error(e))?;
+        Ok(m)
+    }
+
+    /// Binary little-endian PLY with a `part` and `group` index per face, readable
+    /// by MeshLab, CloudCompare and Blender. Vertices are written as `double` so
+    /// georeferenced coordinates keep their precision.
+    pub fn write_ply(&self, path: &Path) -> std::io::Result<()> {
+        artifact::write_atomic_with(path, |w| {
+            writeln!(w, "ply")?;
+            writeln!(w, "format binary_little_endian 1.0")?;
+            writeln!(w, "comment liftplan merged plant mesh")?;
+            for (i, g) in self.groups.iter().enumerate() {
+                writeln!(w, "comment group {i} {}", g.replace(['\n', '\r'], " "))?;
+            }
+            writeln!(w, "element vertex {}", self.vertices.len())?;
+            writeln!(w, "property double x")?;
+            writeln!(w, "property double y")?;
+            writeln!(w, "property double z")?;
+            writeln!(w, "element face {}", self.triangles.len())?;
+            writeln!(w, "property list uchar uint vertex_indices")?;
+            writeln!(w, "property uint part")?;
+            writeln!(w, "property uint group")?;
+            writeln!(w, "end_header")?;
+            for v in &self.vertices {
+                for c in v {
+                    w.write_all(&c.to_le_bytes())?;
+                }
+            }
+            for (t, p) in self.triangles.iter().zip(&self.part_of) {
+                w.write_all(&[3u8])?;
+                for i in t {
+                    w.write_all(&i.to_le_bytes())?;
+                }
+                w.write_all(&p.to_le_bytes())?;
+                w.write_all(&self.parts[*p as usize].group.to_le_bytes())?;
+            }
+            Ok(())
+        })
+    }
+}
+
+pub fn tri_area(a: Point3, b: Point3, c: Point3) -> f64 {
+    0.5 * (b - a).cross(&(c - a)).norm()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn cube() -> TriMesh {
+        let mut m = TriMesh::default();
+        let g = m.group_id("/CUBE");
+        let v: Vec<[f64; 3]> = (0..8).map(|k| [(k & 1) as f64, ((k >> 1) & 1) as f64, ((k >> 2) & 1) as f64]).collect();
+        let quads = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
+        let mut t = Vec::new();
+        for q in quads {
+            t.push([q[0], q[1], q[2]]);
+            t.push([q[0], q[2], q[3]]);
+        }
+        m.add_part(g, true, &v, &t);
+        m
+    }
+
+    #[test]
+    fn volume_area_roundtrip() {
+        let m = cube();
+        assert!((m.signed_volume() - 1.0).abs() < 1e-12);
+        assert!((m.area() - 6.0).abs() < 1e-12);
+        let d = tempfile::tempdir().unwrap();
+        let p = d.path().join("m.bin");
+        m.write_artifact(&p).unwrap();
+        assert_eq!(TriMesh::read_artifact(&p).unwrap(), m);
+        m.write_ply(&d.path().join("m.ply")).unwrap();
+    }
+
+    #[test]
+    fn append_merges_groups() {
+        let mut a = cube();
+        let b = cube();
+        a.append(&b);
+        assert_eq!(a.groups.len(), 1);
+        assert_eq!(a.triangle_count(), 24);
+        a.validate().unwrap();
+        assert_eq!(a.group_of_triangle(20), "/CUBE");
+    }
+}

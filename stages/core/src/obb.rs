@@ -1,0 +1,373 @@
+//! Oriented bounding boxes: the shape of every crane part and of the load.
+//!
+//! The planner, the C-space and the depth-map queries all see the crane as a few
+//! OBBs (thesis ch. 4.4.1). This module gives the box itself and the exact
+//! geometric facts the depth-map queries need: the box's footprint on the ground
+//! plane and its exact height range above one grid cell. It holds no collision
+//! policy; the independent validator does not use it for its own geometry.
+
+use crate::frame::{Aabb, Mat3, Point3, Vec3};
+
+/// A box with centre `center`, unit axes in the columns of `axes` and half sizes
+/// `half` along those axes, all in the site frame (metres).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Obb {
+    pub center: Point3,
+    pub axes: Mat3,
+    pub half: Vec3,
+}
+
+impl Obb {
+    pub fn new(center: Point3, axes: Mat3, half: Vec3) -> Self {
+        Obb { center, axes, half }
+    }
+
+    pub fn axis_aligned(center: Point3, half: Vec3) -> Self {
+        Obb { center, axes: Mat3::identity(), half }
+    }
+
+    pub fn axis(&self, i: usize) -> Vec3 {
+        self.axes.column(i).into_owned()
+    }
+
+    /// The box grown by `margin` on every side.
+    pub fn expanded(&self, margin: f64) -> Obb {
+        Obb { half: self.half.add_scalar(margin), ..*self }
+    }
+
+    pub fn corners(&self) -> [Point3; 8] {
+        let mut out = [self.center; 8];
+        for (k, c) in out.iter_mut().enumerate() {
+            let sx = if k & 1 == 0 { -1.0 } else { 1.0 };
+            let sy = if k & 2 == 0 { -1.0 } else { 1.0 };
+            let sz = if k & 4 == 0 { -1.0 } else { 1.0 };
+            *c = self.center
+                + self.axis(0) * (sx * self.half.x)
+                + self.axis(1) * (sy * self.half.y)
+                + self.axis(2) * (sz * self.half.z);
+        }
+        out
+    }
+
+    pub fn aabb(&self) -> Aabb {
+        let mut ext = [0.0; 3];
+        for (i, e) in ext.iter_mut().enumerate() {
+            *e = (0..3).map(|j| self.axes[(i, j)].abs() * self.half[j]).sum();
+        }
+        Aabb {
+            min: [self.center.x - ext[0], self.center.y - ext[1], self.center.z - ext[2]],
+            max: [self.center.x + ext[0], self.center.y + ext[1], self.center.z + ext[2]],
+        }
+    }
+
+    /// The point in box coordinates (along the box axes, from its centre).
+    pub fn to_local(&self, p: &Point3) -> Vec3 {
+        self.axes.transpose() * (p - self.center)
+    }
+
+    pub fn contains(&self, p: &Point3) -> bool {
+        let l = self.to_local(p);
+        (0..3).all(|i| l[i].abs() <= self.half[i])
+    }
+
+    /// Squared Euclidean distance from `p` to the solid box (0 inside).
+    pub fn distance_sq_to_point(&self, p: &Point3) -> f64 {
+        let l = self.to_local(p);
+        (0..3).map(|i| (l[i].abs() - self.half[i]).max(0.0).powi(2)).sum()
+    }
+
+    /// Bounding radius about the centre.
+    pub fn radius(&self) -> f64 {
+        self.half.norm()
+    }
+
+    /// Convex hull of the box projected on the ground plane, counter-clockwise.
+    pub fn footprint(&self) -> Vec<[f64; 2]> {
+        let pts: Vec<[f64; 2]> = self.corners().iter().map(|c| [c.x, c.y]).collect();
+        convex_hull_2d(&pts)
+    }
+
+    /// Exact height range of the box inside the vertical column above the
+    /// rectangle `[x0, x1] x [y0, y1]`, or `None` when the box does not reach the
+    /// column.
+    ///
+    /// The intersection of the box and the column is a convex polytope, so its
+    /// lowest and highest points are vertices of it. Those vertices are box corners
+    /// inside the column, crossings of box edges with the column's side planes, and
+    /// crossings of the column's vertical edges with the box; all three are tried.
+    pub fn z_range_over_rect(&self, x0: f64, x1: f64, y0: f64, y1: f64) -> Option<(f64, f64)> {
+        let eps = 1e-9;
+        let inside = |x: f64, y: f64| x >= x0 - eps && x <= x1 + eps && y >= y0 - eps && y <= y1 + eps;
+        let mut lo = f64::INFINITY;
+        let mut hi = f64::NEG_INFINITY;
+        let mut take = |z: f64| {
+            lo = lo.min(z);
+            hi = hi.max(z);
+        };
+        let c = self.corners();
+        for p in &c {
+            if inside(p.x, p.y) {
+                take(p.z);
+            }
+        }
+        // The 12 edges join corners differing in exactly one index bit.
+        for a in 0..8usize {
+            for bit in [1usize, 2, 4] {
+                let b = a | bit;
+                if b == a {
+                    continue;
+                }
+                let (p, q) = (c[a], c[b]);
+                let d = q - p;
+                for (axis, val) in [(0usize, x0), (0, x1), (1, y0), (1, y1)] {
+                    let den = d[axis];
+                    if den.abs() < 1e-15 {
+                        continue;
+                    }
+                    let t = (val - p[axis]) / den;
+                    if !(-eps..=1.0 + eps).contains(&t) {
+                        continue;
+                    }
+                    let r = p + d * t;
+                    if inside(r.x, r.y) {
+                        take(r.z);
+                    }
+                }
+            }
+        }
+        // Vertical column edges through the box, by slab clipping in box coordinates.
+        let ez = self.axes.transpose() * Vec3::z();
+        for (x, y) in [(x0, y0), (x1, y0), (x0, y1), (x1, y1)] {
+            let o = self.to_local(&Point3::new(x, y, self.center.z));
+            let mut t0 = f64::NEG_INFINITY;
+            let mut t1 = f64::INFINITY;
+            let mut hit = true;
+            for i in 0..3 {
+                if ez[i].abs() < 1e-15 {
+                    if o[i].abs() > self.half[i] {
+                        hit = false;
+                        break;
+                    }
+                } else {
+                    let a = (-self.half[i] - o[i]) / ez[i];
+                    let b = (self.half[i] - o[i]) / ez[i];
+                    t0 = t0.max(a.min(b));
+                    t1 = t1.min(a.max(b));
+                }
+            }
+            if hit && t0 <= t1 {
+                take(self.center.z + t0);
+                take(self.center.z + t1);
+            }
+        }
+        (lo <= hi).then_some((lo, hi))
+    }
+
+    /// Separating-axis test between two solid boxes.
+    pub fn intersects(&self, o: &Obb) -> bool {
+        let t = o.center - self.center;
+        let mut axes: Vec<Vec3> = Vec::with_capacity(15);
+        for i in 0..3 {
+            axes.push(self.axis(i));
+            axes.push(o.axis(i));
+        }
+        for i in 0..3 {
+            for j in 0..3 {
+                let c = self.axis(i).cross(&o.axis(j));
+                if c.norm_squared() > 1e-18 {
+                    axes.push(c.normalize());
+                }
+            }
+        }
+        for l in axes {
+            let ra: f64 = (0..3).map(|i| self.half[i] * self.axis(i).dot(&l).abs()).sum();
+            let rb: f64 = (0..3).map(|i| o.half[i] * o.axis(i).dot(&l).abs()).sum();
+            if t.dot(&l).abs() > ra + rb {
+                return false;
+            }
+        }
+        true
+    }
+}
+
+/// Convex hull (Andrew's monotone chain), counter-clockwise, without repeats.
+pub fn convex_hull_2d(points: &[[f64; 2]]) -> Vec<[f64; 2]> {
+    let mut p: Vec<[f64; 2]> = points.to_vec();
+    p.sort_by(|a, b| a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])));
+    p.dedup();
+    if p.len() < 3 {
+        return p;
+    }
+    let cross = |o: [f64; 2], a: [f64; 2], b: [f64; 2]| (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+    let mut hull: Vec<[f64; 2]> = Vec::with_capacity(2 * p.len());
+    for &pt in &p {
+        while hull.len() >= 2 && cross(hull[hull.len() - 2], hull[hull.len() - 1], pt) <= 0.0 {
+            hull.pop();
+        }
+        hull.push(pt);
+    }
+    let lower_len = hull.len() + 1;
+    for &pt in p.iter().rev().skip(1) {
+        while hull.len() >= lower_len && cross(hull[hull.len() - 2], hull[hull.len() - 1], pt) <= 0.0 {
+            hull.pop();
+        }
+        hull.push(pt);
+    }
+    hull.pop();
+    hull
+}
+
+/// The x-range covered by a convex polygon inside the horizontal strip
+/// `y0 <= y <= y1`, or `None` when the polygon misses the strip.
+pub fn strip_x_range(poly: &[[f64; 2]], y0: f64, y1: f64) -> Option<(f64, f64)> {
+    let mut lo = f64::INFINITY;
+    let mut hi = f64::NEG_INFINITY;
+    let n = poly.len();
+    for i in 0..n {
+        let a = poly[i];
+        if a[1] >= y0 && a[1] <= y1 {
+            lo = lo.min(a[0]);
+            hi = hi.max(a[0]);
+        }
+        if n < 2 {
+            continue;
+        }
+        let b = poly[(i + 1) % n];
+        let dy = b[1] - a[1];
+        if dy.abs() < 1e-15 {
+            continue;
+        }
+        for y in [y0, y1] {
+            let t = (y - a[1]) / dy;
+            if (0.0..=1.0).contains(&t) {
+                let x = a[0] + t * (b[0] - a[0]);
+                lo = lo.min(x);
+                hi = hi.max(x);
+            }
+        }
+    }
+    (lo <= hi).then_some((lo, hi))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::frame::rot_z;
+    use proptest::prelude::*;
+
+    /// Lattice samples of the box volume inside the column: every one must lie
+    /// within the exact range.
+    fn lattice_z_range(b: &Obb, x0: f64, x1: f64, y0: f64, y1: f64) -> Option<(f64, f64)> {
+        let n = 16;
+        let mut lo = f64::INFINITY;
+        let mut hi = f64::NEG_INFINITY;
+        for i in 0..=n {
+            for j in 0..=n {
+                for k in 0..=n {
+                    let l = Vec3::new(
+                        (2.0 * i as f64 / n as f64 - 1.0) * b.half.x,
+                        (2.0 * j as f64 / n as f64 - 1.0) * b.half.y,
+                        (2.0 * k as f64 / n as f64 - 1.0) * b.half.z,
+                    );
+                    let p = b.center + b.axes * l;
+                    if p.x >= x0 && p.x <= x1 && p.y >= y0 && p.y <= y1 {
+                        lo = lo.min(p.z);
+                        hi = hi.max(p.z);
+                    }
+                }
+            }
+        }
+        (lo <= hi).then_some((lo, hi))
+    }
+
+    /// Vertical lines on a fine grid over the rectangle, each clipped exactly by
+    /// the box: an independent estimate of the range from inside.
+    fn lines_z_range(b: &Obb, x0: f64, x1: f64, y0: f64, y1: f64) -> Option<(f64, f64)> {
+        let n = 80;
+        let mut lo = f64::INFINITY;
+        let mut hi = f64::NEG_INFINITY;
+        let ez = b.axes.transpose() * Vec3::z();
+        for i in 0..=n {
+            for j in 0..=n {
+                let x = x0 + (x1 - x0) * i as f64 / n as f64;
+                let y = y0 + (y1 - y0) * j as f64 / n as f64;
+                let o = b.to_local(&Point3::new(x, y, b.center.z));
+                let (mut t0, mut t1) = (f64::NEG_INFINITY, f64::INFINITY);
+                let mut ok = true;
+                for a in 0..3 {
+                    if ez[a].abs() < 1e-12 {
+                        ok &= o[a].abs() <= b.half[a];
+                    } else {
+                        let p = (-b.half[a] - o[a]) / ez[a];
+                        let q = (b.half[a] - o[a]) / ez[a];
+                        t0 = t0.max(p.min(q));
+                        t1 = t1.min(p.max(q));
+                    }
+                }
+                if ok && t0 <= t1 {
+                    lo = lo.min(b.center.z + t0);
+                    hi = hi.max(b.center.z + t1);
+                }
+            }
+        }
+        (lo <= hi).then_some((lo, hi))
+    }
+
+    fn tilted(yaw: f64, pitch: f64) -> Mat3 {
+        let ry = nalgebra::Rotation3::from_axis_angle(&Vec3::y_axis(), pitch).into_inner();
+        rot_z(yaw) * ry
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(96))]
+        #[test]
+        fn z_range_contains_every_sample(
+            yaw in -3.2f64..3.2, pitch in -1.5f64..1.5,
+            hx in 0.1f64..3.0, hy in 0.1f64..2.0, hz in 0.1f64..2.0,
+            cx in -2.0f64..2.0, cy in -2.0f64..2.0,
+        ) {
+            let b = Obb::new(Point3::new(cx, cy, 5.0), tilted(yaw, pitch), Vec3::new(hx, hy, hz));
+            let (x0, x1, y0, y1) = (0.0, 0.5, 0.0, 0.5);
+            let exact = b.z_range_over_rect(x0, x1, y0, y1);
+            if let Some((blo, bhi)) = lattice_z_range(&b, x0, x1, y0, y1) {
+                let (lo, hi) = exact.expect("samples inside the column, exact says empty");
+                prop_assert!(lo <= blo + 1e-9 && hi >= bhi - 1e-9);
+            }
+            match (exact, lines_z_range(&b, x0, x1, y0, y1)) {
+                (Some((lo, hi)), Some((llo, lhi))) => {
+                    // The line grid approaches the true extremes from inside.
+                    prop_assert!(lo <= llo + 1e-9 && hi >= lhi - 1e-9);
+                    prop_assert!(llo - lo < 0.05 && hi - lhi < 0.05, "{lo} {hi} vs lines {llo} {lhi}");
+                }
+                (None, None) => {}
+                (e, l) => prop_assert!(false, "exact {e:?} vs lines {l:?}"),
+            }
+        }
+    }
+
+    #[test]
+    fn axis_aligned_column() {
+        let b = Obb::axis_aligned(Point3::new(0.0, 0.0, 2.0), Vec3::new(1.0, 1.0, 1.0));
+        assert_eq!(b.z_range_over_rect(0.2, 0.4, 0.2, 0.4), Some((1.0, 3.0)));
+        assert_eq!(b.z_range_over_rect(1.2, 1.4, 0.2, 0.4), None);
+        assert_eq!(b.z_range_over_rect(-5.0, 5.0, -5.0, 5.0), Some((1.0, 3.0)));
+    }
+
+    #[test]
+    fn sat() {
+        let a = Obb::axis_aligned(Point3::origin(), Vec3::new(1.0, 1.0, 1.0));
+        let b = Obb::new(Point3::new(2.5, 0.0, 0.0), rot_z(0.785), Vec3::new(1.0, 1.0, 1.0));
+        assert!(!a.intersects(&b));
+        let c = Obb::new(Point3::new(2.2, 0.0, 0.0), rot_z(0.785), Vec3::new(1.0, 1.0, 1.0));
+        assert!(a.intersects(&c));
+    }
+
+    #[test]
+    fn hull_and_strip() {
+        let h = convex_hull_2d(&[[0.0, 0.0], [1.0, 0.0], [0.5, 0.5], [1.0, 1.0], [0.0, 1.0]]);
+        assert_eq!(h.len(), 4);
+        let r = strip_x_range(&[[0.0, 0.0], [2.0, 0.0], [0.0, 2.0]], 1.0, 1.5).unwrap();
+        assert!((r.0 - 0.0).abs() < 1e-12 && (r.1 - 1.0).abs() < 1e-12);
+        assert!(strip_x_range(&[[0.0, 0.0], [2.0, 0.0], [0.0, 2.0]], 3.0, 4.0).is_none());
+    }
+}

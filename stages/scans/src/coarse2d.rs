@@ -1,0 +1,266 @@
+//! Pose-free coarse alignment of levelled scans by correlating top views.
+//!
+//! Terrestrial scanners level themselves, so two scans differ by a yaw and a
+//! translation. Vertical surfaces (walls, columns, tank shells: points whose normal
+//! is near horizontal) seen from above form a plan of the site that both scans
+//! share, whatever the viewpoint. For each yaw on a 2° grid the source plan is
+//! rotated and cross-correlated with the target plan (FFT; binary occupancy, so
+//! dense near-scanner areas do not dominate); the best yaws are refined on a finer
+//! grid, and the height offset is the median difference of the two scans' lowest
+//! points per plan cell. ICP then takes this guess to millimetres.
+//!
+//! On repetitive industrial geometry this is far more reliable than local
+//! descriptors, which see the same beam or pipe everywhere.
+
+use crate::register::RegCloud;
+use liftplan_core::frame::{Pose, Vec3};
+use nalgebra as na;
+use rayon::prelude::*;
+use rustfft::num_complex::Complex32;
+use rustfft::{Fft, FftPlanner};
+use std::sync::Arc;
+
+/// Plan-view points of vertical structure, at most `max` (fixed stride).
+pub fn vertical_structure(c: &RegCloud, max: usize) -> Vec<[f64; 2]> {
+    let idx: Vec<usize> = (0..c.pts.len()).filter(|&i| c.normals[i] != [0.0; 3] && c.normals[i][2].abs() < 0.5).collect();
+    let stride = (idx.len() / max.max(1)).max(1);
+    idx.iter().step_by(stride).map(|&i| [c.pts[i][0], c.pts[i][1]]).collect()
+}
+
+struct Plan {
+    n: usize,
+    origin: [f64; 2],
+    cell: f64,
+    spectrum: Vec<Complex32>,
+}
+
+struct Fft2 {
+    n: usize,
+    fwd: Arc<dyn Fft<f32>>,
+    inv: Arc<dyn Fft<f32>>,
+}
+
+impl Fft2 {
+    fn new(n: usize) -> Fft2 {
+        let mut p = FftPlanner::new();
+        Fft2 { n, fwd: p.plan_fft_forward(n), inv: p.plan_fft_inverse(n) }
+    }
+
+    fn run(&self, data: &mut [Complex32], inverse: bool) {
+        let f = if inverse { &self.inv } else { &self.fwd };
+        let n = self.n;
+        for row in data.chunks_mut(n) {
+            f.process(row);
+        }
+        let mut col = vec![Complex32::new(0.0, 0.0); n];
+        for x in 0..n {
+            for y in 0..n {
+                col[y] = data[y * n + x];
+            }
+            f.process(&mut col);
+            for y in 0..n {
+                data[y * n + x] = col[y];
+            }
+        }
+    }
+}
+
+fn raster(pts: &[[f64; 2]], origin: [f64; 2], cell: f64, n: usize, dilate: bool) -> Vec<Complex32> {
+    let mut img = vec![Complex32::new(0.0, 0.0); n * n];
+    let r: i64 = if dilate { 1 } else { 0 };
+    for p in pts {
+        let i = ((p[0] - origin[0]) / cell).floor() as i64;
+        let j = ((p[1] - origin[1]) / cell).floor() as i64;
+        for dj in -r..=r {
+            for di in -r..=r {
+                let (a, b) = (i + di, j + dj);
+                if a >= 0 && b >= 0 && (a as usize) < n && (b as usize) < n {
+                    img[b as usize * n + a as usize] = Complex32::new(1.0, 0.0);
+                }
+            }
+        }
+    }
+    img
+}
+
+fn bbox2(pts: &[[f64; 2]]) -> ([f64; 2], [f64; 2]) {
+    let mut lo = [f64::INFINITY; 2];
+    let mut hi = [f64::NEG_INFINITY; 2];
+    for p in pts {
+        for k in 0..2 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    (lo, hi)
+}
+
+fn rotate(pts: &[[f64; 2]], yaw: f64) -> Vec<[f64; 2]> {
+    let (s, c) = yaw.sin_cos();
+    pts.iter().map(|p| [c * p[0] - s * p[1], s * p[0] + c * p[1]]).collect()
+}
+
+/// Size and origin shared by both images at one resolution.
+fn plan_for(target: &[[f64; 2]], source_radius: f64, cell: f64, fft: &mut Option<Fft2>) -> Plan {
+    let (lo, hi) = bbox2(target);
+    let w = ((hi[0] - lo[0]).max(hi[1] - lo[1]) + 2.0 * source_radius) / cell;
+    let n = ((w.ceil() as usize + 4).div_ceil(16)) * 16;
+    let f = Fft2::new(n);
+    let mut spec = raster(target, lo, cell, n, true);
+    f.run(&mut spec, false);
+    *fft = Some(f);
+    Plan { n, origin: lo, cell, spectrum: spec }
+}
+
+/// The `k` strongest correlation peaks (shift in metres, source to target, and
+/// overlap in cells) for one yaw, at least 3 cells apart.
+fn correlate(plan: &Plan, f: &Fft2, src: &[[f64; 2]], k: usize) -> Vec<([f64; 2], f32)> {
+    let n = plan.n;
+    let (slo, _) = bbox2(src);
+    let mut s = raster(src, slo, plan.cell, n, false);
+    f.run(&mut s, false);
+    for (a, b) in s.iter_mut().zip(&plan.spectrum) {
+        *a = b * a.conj();
+    }
+    f.run(&mut s, true);
+    let norm = (n * n) as f32;
+    let mut peaks: Vec<(usize, f32)> = Vec::with_capacity(k + 1);
+    for (i, v) in s.iter().enumerate() {
+        let v = v.re / norm;
+        if peaks.len() == k && v <= peaks[k - 1].1 {
+            continue;
+        }
+        let (x, y) = ((i % n) as i64, (i / n) as i64);
+        let near = |j: usize| {
+            let (a, b) = ((j % n) as i64, (j / n) as i64);
+            let dx = (x - a).rem_euclid(n as i64).min((a - x).rem_euclid(n as i64));
+            let dy = (y - b).rem_euclid(n as i64).min((b - y).rem_euclid(n as i64));
+            dx <= 3 && dy <= 3
+        };
+        if let Some(p) = peaks.iter().position(|p| near(p.0)) {
+            if v > peaks[p].1 {
+                peaks[p] = (i, v);
+            } else {
+                continue;
+            }
+        } else {
+            peaks.push((i, v));
+        }
+        peaks.sort_by(|a, b| b.1.total_cmp(&a.1));
+        peaks.truncate(k);
+    }
+    peaks
+        .into_iter()
+        .map(|(i, v)| {
+            let (mut tx, mut ty) = ((i % n) as i64, (i / n) as i64);
+            if tx > n as i64 / 2 {
+                tx -= n as i64;
+            }
+            if ty > n as i64 / 2 {
+                ty -= n as i64;
+            }
+            ([plan.origin[0] - slo[0] + tx as f64 * plan.cell, plan.origin[1] - slo[1] + ty as f64 * plan.cell], v)
+        })
+        .collect()
+}
+
+/// Candidate poses (source frame to target frame), best first, with their
+/// correlation scores. `source` and `target` are levelled clouds with normals.
+pub fn align(source: &RegCloud, target: &RegCloud, max_points: usize) -> Vec<(Pose, f32)> {
+    let src = vertical_structure(source, max_points);
+    let tgt = vertical_structure(target, max_points);
+    if src.len() < 50 || tgt.len() < 50 {
+        return vec![];
+    }
+    let radius = src.iter().map(|p| (p[0] * p[0] + p[1] * p[1]).sqrt()).fold(0.0, f64::max);
+    // Centre the source on its own centroid so rotation keeps it compact.
+    let c = src.iter().fold([0.0, 0.0], |a, p| [a[0] + p[0], a[1] + p[1]]);
+    let c = [c[0] / src.len() as f64, c[1] / src.len() as f64];
+    let src_c: Vec<[f64; 2]> = src.iter().map(|p| [p[0] - c[0], p[1] - c[1]]).collect();
+    let r_c = src_c.iter().map(|p| (p[0] * p[0] + p[1] * p[1]).sqrt()).fold(0.0, f64::max);
+    let _ = radius;
+
+    let mut f1 = None;
+    let coarse = plan_for(&tgt, r_c, 1.0, &mut f1);
+    let f1 = f1.unwrap_or_else(|| Fft2::new(coarse.n));
+    let yaws: Vec<f64> = (0..180).map(|k| (k as f64 * 2.0).to_radians()).collect();
+    let scored: Vec<(f64, [f64; 2], f32)> = yaws
+        .par_iter()
+        .map(|&y| {
+            let best = correlate(&coarse, &f1, &rotate(&src_c, y), 1);
+            let (t, s) = best.first().copied().unwrap_or(([0.0; 2], 0.0));
+            (y, t, s)
+        })
+        .collect();
+    // Local maxima over yaw, best first.
+    let mut peaks: Vec<&(f64, [f64; 2], f32)> = (0..scored.len())
+        .filter(|&k| {
+            let prev = scored[(k + scored.len() - 1) % scored.len()].2;
+            let next = scored[(k + 1) % scored.len()].2;
+            scored[k].2 >= prev && scored[k].2 >= next
+        })
+        .map(|k| &scored[k])
+        .collect();
+    peaks.sort_by(|a, b| b.2.total_cmp(&a.2));
+    peaks.truncate(6);
+
+    let mut f2 = None;
+    let fine = plan_for(&tgt, r_c, 0.4, &mut f2);
+    let f2 = f2.unwrap_or_else(|| Fft2::new(fine.n));
+    let mut out: Vec<(Pose, f32)> = peaks
+        .par_iter()
+        .flat_map_iter(|p| {
+            // Best yaw near the peak, then several shifts at that yaw: periodic
+            // structures (rack bays) give several plausible shifts, which the
+            // caller tells apart in 3D.
+            let mut best = (p.0, f32::NEG_INFINITY);
+            for k in -3..=3 {
+                let y = p.0 + (k as f64 * 0.5).to_radians();
+                let s = correlate(&fine, &f2, &rotate(&src_c, y), 1).first().map(|x| x.1).unwrap_or(0.0);
+                if s > best.1 {
+                    best = (y, s);
+                }
+            }
+            let yaw = best.0;
+            let rot = na::UnitQuaternion::from_axis_angle(&Vec3::z_axis(), yaw);
+            let rc = rot * Vec3::new(c[0], c[1], 0.0);
+            correlate(&fine, &f2, &rotate(&src_c, yaw), 5)
+                .into_iter()
+                .map(move |(shift, score)| {
+                    // First subtract the centroid, rotate, then shift.
+                    let t = Vec3::new(shift[0] - rc.x, shift[1] - rc.y, 0.0);
+                    (Pose::from_parts(na::Translation3::from(t), rot), score)
+                })
+                .collect::<Vec<_>>()
+        })
+        .map(|(p, sc)| (with_height(source, target, p), sc))
+        .collect();
+    out.sort_by(|a, b| b.1.total_cmp(&a.1));
+    out
+}
+
+/// Adds the vertical offset: the median, over plan cells both scans see, of the
+/// difference between their lowest points.
+fn with_height(source: &RegCloud, target: &RegCloud, pose: Pose) -> Pose {
+    let cell = 1.0;
+    let mut low: rustc_hash::FxHashMap<(i64, i64), f64> = rustc_hash::FxHashMap::default();
+    for p in &target.pts {
+        let k = ((p[0] / cell).floor() as i64, (p[1] / cell).floor() as i64);
+        let e = low.entry(k).or_insert(f64::INFINITY);
+        *e = e.min(p[2]);
+    }
+    let mut slow: rustc_hash::FxHashMap<(i64, i64), f64> = rustc_hash::FxHashMap::default();
+    for p in &source.pts {
+        let q = pose * na::Point3::new(p[0], p[1], p[2]);
+        let k = ((q.x / cell).floor() as i64, (q.y / cell).floor() as i64);
+        let e = slow.entry(k).or_insert(f64::INFINITY);
+        *e = e.min(q.z);
+    }
+    let mut d: Vec<f64> = slow.iter().filter_map(|(k, z)| low.get(k).map(|t| t - z)).collect();
+    if d.is_empty() {
+        return pose;
+    }
+    d.sort_by(f64::total_cmp);
+    let dz = d[d.len() / 2];
+    Pose::from_parts(na::Translation3::new(pose.translation.x, pose.translation.y, pose.translation.z + dz), pose.rotation)
+}

@@ -1,0 +1,492 @@
+//! # liftplan-scans: stage 1, survey scans to one site cloud
+//!
+//! Reads every scan the survey team dropped in `scans/` (LAS 1.0–1.4, LAZ, PLY,
+//! E57 with several scans per file, PTS/XYZ text), places them in one frame
+//! ([`register`]), thins them ([`subsample`]), classifies the ground
+//! ([`ground`]) and writes:
+//!
+//! | file | what |
+//! |---|---|
+//! | `site.laz` | LAS 1.4, millimetre scale, class 2 = ground, scan id in `point_source_id` |
+//! | `registration.json` | per scan: 4x4 pose, fitness, inlier RMSE, method, warnings |
+//! | `scans.png` | top view coloured by scan |
+//! | `ground.asc` | ground-height grid (ESRI ASCII) |
+//!
+//! The stage reads each scan in chunks and never holds a raw survey in memory:
+//! registration works on voxel-thinned copies, and the final thinning streams the
+//! scans a second time through the chosen filter.
+//!
+//! It must not know about the cache, the project folder or the CLI: it gets file
+//! paths and settings and writes into the folder it is given.
+//!
+//! ```no_run
+//! use liftplan_scans::{run, RunOptions, Settings};
+//! let inputs = vec![std::path::PathBuf::from("scans/north.laz")];
+//! let summary = run(&inputs, &Settings::default(), &RunOptions::default(), std::path::Path::new("out")).unwrap();
+//! println!("{} points", summary.points_out);
+//! ```
+
+pub mod error;
+pub mod coarse2d;
+pub mod features;
+pub mod grid;
+pub mod ground;
+pub mod kdtree;
+pub mod picture;
+pub mod read;
+pub mod register;
+pub mod subsample;
+pub mod write;
+
+use error::{Result, ScanError};
+use liftplan_core::Location;
+use liftplan_core::cloud::{PointCloud, class};
+use liftplan_core::frame::{Aabb, Pose, pose_to_rows};
+use read::ScanInfo;
+use register::{FeatureCloud, RegCloud, RegInput, RegistrationSettings};
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+
+pub use ground::GroundSettings;
+
+/// Stage name, as in `liftplan options` and the cache.
+pub const NAME: &str = "scans";
+/// Part of the cache key: bump when the output for the same input changes.
+pub const VERSION: u32 = 1;
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum RegisterMode {
+    /// Use file/station poses as a start when present, else features; refine by ICP.
+    Auto,
+    /// Take coordinates as they are (scans already share a frame).
+    None,
+    /// Use the poses the files or the station file carry, without refinement.
+    Poses,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SubsampleMethod {
+    Voxel,
+    Spacing,
+    Nth,
+    None,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum VoxelPoint {
+    Centroid,
+    Nearest,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum OnUnregistered {
+    /// Fail the stage: a missing scan means missing obstacles.
+    Fail,
+    /// Leave the scan out and say so in the report.
+    Exclude,
+}
+
+/// `[scans]` in `liftplan.toml`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Settings {
+    /// auto | none | poses
+    pub register: RegisterMode,
+    /// voxel | spacing | nth | none
+    pub subsample: SubsampleMethod,
+    /// Voxel edge for `subsample = "voxel"` (m).
+    pub voxel: f64,
+    /// centroid | nearest (the input point nearest the voxel centroid)
+    pub voxel_point: VoxelPoint,
+    /// Minimum point spacing for `subsample = "spacing"` (m).
+    pub spacing: f64,
+    /// Keep every Nth point for `subsample = "nth"` (the thesis uses 9).
+    pub every_nth: u64,
+    /// Station file with initial poses, relative to the project folder.
+    pub stations: Option<PathBuf>,
+    /// fail | exclude
+    pub on_unregistered: OnUnregistered,
+    pub ground: GroundSettings,
+    pub registration: RegistrationSettings,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings {
+            register: RegisterMode::Auto,
+            subsample: SubsampleMethod::Voxel,
+            voxel: 0.05,
+            voxel_point: VoxelPoint::Centroid,
+            spacing: 0.05,
+            every_nth: 9,
+            stations: None,
+            on_unregistered: OnUnregistered::Fail,
+            ground: GroundSettings::default(),
+            registration: RegistrationSettings::default(),
+        }
+    }
+}
+
+impl Settings {
+    pub fn check(&self) -> std::result::Result<(), String> {
+        match self.subsample {
+            SubsampleMethod::Voxel if !(self.voxel.is_finite() && self.voxel > 0.0) => return Err(format!("voxel must be a positive number of metres, found {}", self.voxel)),
+            SubsampleMethod::Spacing if !(self.spacing.is_finite() && self.spacing > 0.0) => return Err(format!("spacing must be a positive number of metres, found {}", self.spacing)),
+            SubsampleMethod::Nth if self.every_nth == 0 => return Err("every_nth must be 1 or more".into()),
+            _ => {}
+        }
+        self.ground.check()?;
+        self.registration.check()
+    }
+}
+
+/// What `run` needs besides settings.
+pub struct RunOptions<'a> {
+    /// Project seed (registration's RANSAC is seeded from it).
+    pub seed: u64,
+    /// Reports progress: (what, done, total).
+    pub progress: &'a (dyn Fn(&str, u64, u64) + Sync),
+}
+
+impl Default for RunOptions<'_> {
+    fn default() -> Self {
+        RunOptions { seed: 0, progress: &|_, _, _| {} }
+    }
+}
+
+/// One line of the run output per scan.
+#[derive(Debug, Clone, Serialize)]
+pub struct ScanReport {
+    pub file: String,
+    pub name: String,
+    pub format: read::Format,
+    pub points_read: u64,
+    pub points_kept: u64,
+    /// Scan frame to site frame, row-major 4x4.
+    pub pose: [[f64; 4]; 4],
+    pub fitness: f64,
+    pub rmse_m: f64,
+    pub method: String,
+    pub registered: bool,
+    pub warning: Option<String>,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct Summary {
+    pub scans: Vec<ScanReport>,
+    pub points_read: u64,
+    pub points_out: u64,
+    pub ground_points: u64,
+    pub bbox: [f64; 6],
+    pub register: RegisterMode,
+    pub subsample: String,
+}
+
+impl Summary {
+    /// One line per scan for the run output.
+    pub fn lines(&self) -> Vec<String> {
+        self.scans
+            .iter()
+            .map(|s| {
+                let state = if s.registered { format!("fitness {:.0} %, rmse {:.1} mm ({})", 100.0 * s.fitness, 1000.0 * s.rmse_m, s.method) } else { "NOT REGISTERED".into() };
+                format!("{}: {} points read, {} kept, {}", s.name, s.points_read, s.points_kept, state)
+            })
+            .collect()
+    }
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct StationFile {
+    station: Vec<Station>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Station {
+    scan: String,
+    x_m: f64,
+    y_m: f64,
+    #[serde(default)]
+    z_m: f64,
+    #[serde(default)]
+    yaw_deg: f64,
+}
+
+fn read_stations(path: &Path) -> Result<Vec<(String, Pose)>> {
+    let text = std::fs::read_to_string(path).map_err(|e| ScanError::Io(Location::file(path), e))?;
+    let f: StationFile = toml::from_str(&text).map_err(|e| {
+        let (loc, msg) = liftplan_core::location::toml_error(path, &text, &e);
+        ScanError::format(loc, msg)
+    })?;
+    Ok(f.station.into_iter().map(|s| (s.scan, liftplan_core::frame::pose_xyz_yaw(s.x_m, s.y_m, s.z_m, s.yaw_deg.to_radians()))).collect())
+}
+
+/// Lists every scan in `inputs` (files in the given order, scans in file order).
+pub fn list_all(inputs: &[PathBuf]) -> Result<Vec<ScanInfo>> {
+    let mut all = Vec::new();
+    for p in inputs {
+        all.extend(read::list_scans(p)?);
+    }
+    if all.len() > u16::MAX as usize {
+        return Err(ScanError::Settings(format!("{} scans: at most {} are supported", all.len(), u16::MAX)));
+    }
+    Ok(all)
+}
+
+pub fn thin_for_registration(info: &ScanInfo, s: &RegistrationSettings, progress: &(dyn Fn(&str, u64, u64) + Sync)) -> Result<(RegCloud, FeatureCloud, u64)> {
+    let mut g = subsample::VoxelGrid::new(s.icp_voxel_m).map_err(ScanError::Settings)?;
+    let total = info.declared_points.unwrap_or(0);
+    let mut seen = 0u64;
+    let n = read::stream(info, &mut |c| {
+        g.add(c, 0).map_err(|e| ScanError::format(Location::item(&info.path, &info.name), e))?;
+        seen += c.len() as u64;
+        progress(&format!("read {}", info.name), seen, total);
+        Ok(())
+    })?;
+    let fine = g.finish();
+    let normals = features::normals(&fine.xyz, 16, 1.0, 5.0 * s.icp_voxel_m, [0.0; 3]);
+    // Descriptors only serve scans that are not levelled.
+    let coarse = if s.leveled {
+        FeatureCloud::default()
+    } else {
+        let coarse = subsample::voxel_centroids(&fine, s.feature_voxel_m).map_err(ScanError::Settings)?;
+        let cn = features::normals(&coarse.xyz, 16, 3.0 * s.feature_voxel_m, s.feature_voxel_m, [0.0; 3]);
+        let f = features::fpfh(&coarse.xyz, &cn, s.feature_radius_m);
+        FeatureCloud { pts: coarse.xyz, fpfh: f }
+    };
+    Ok((RegCloud { pts: fine.xyz, normals }, coarse, n))
+}
+
+/// Runs the stage; see the crate docs for what it writes into `out_dir`.
+pub fn run(inputs: &[PathBuf], s: &Settings, opts: &RunOptions, out_dir: &Path) -> Result<Summary> {
+    s.check().map_err(ScanError::Settings)?;
+    let scans = list_all(inputs)?;
+    if scans.is_empty() {
+        return Err(ScanError::Settings("no scan files given".into()));
+    }
+    let stations = match &s.stations {
+        Some(p) => read_stations(p)?,
+        None => vec![],
+    };
+    let initial = |info: &ScanInfo| -> Option<Pose> { stations.iter().find(|(n, _)| *n == info.name).map(|(_, p)| *p).or(info.pose) };
+    let names: Vec<String> = scans.iter().map(|x| x.name.clone()).collect();
+    let mut read_counts = vec![0u64; scans.len()];
+
+    let results: Vec<register::RegResult> = match s.register {
+        RegisterMode::None => scans.iter().map(|_| plain_result(Pose::identity(), "none (coordinates as given)")).collect(),
+        RegisterMode::Poses => scans
+            .iter()
+            .map(|x| match initial(x) {
+                Some(p) => plain_result(p, "file or station pose"),
+                None => plain_result(Pose::identity(), "no pose given: coordinates as given"),
+            })
+            .collect(),
+        RegisterMode::Auto => {
+            let mut regs = Vec::with_capacity(scans.len());
+            for (k, info) in scans.iter().enumerate() {
+                let (fine, coarse, n) = thin_for_registration(info, &s.registration, opts.progress)?;
+                read_counts[k] = n;
+                regs.push(RegInput { name: info.name.clone(), fine, coarse, initial: initial(info) });
+            }
+            (opts.progress)("register", 0, 1);
+            let r = register::register_all(&regs, &s.registration, opts.seed);
+            (opts.progress)("register", 1, 1);
+            r
+        }
+    };
+
+    let unregistered: Vec<&register::RegResult> = results.iter().filter(|r| !r.registered).collect();
+    let mut reports: Vec<ScanReport> = scans
+        .iter()
+        .zip(&results)
+        .map(|(info, r)| ScanReport {
+            file: info.path.display().to_string(),
+            name: info.name.clone(),
+            format: info.format,
+            points_read: 0,
+            points_kept: 0,
+            pose: pose_to_rows(&r.pose),
+            fitness: r.fitness,
+            rmse_m: r.rmse_m,
+            method: r.method.clone(),
+            registered: r.registered,
+            warning: r.warning.clone(),
+        })
+        .collect();
+    std::fs::create_dir_all(out_dir).map_err(|e| ScanError::Io(Location::file(out_dir), e))?;
+    write_json(&out_dir.join("registration.json"), &serde_json::json!({ "register": s.register, "scans": reports }))?;
+    if !unregistered.is_empty() && s.on_unregistered == OnUnregistered::Fail {
+        let msgs: Vec<String> = unregistered.iter().filter_map(|r| r.warning.clone()).collect();
+        return Err(ScanError::Registration(format!(
+            "{} (set [scans] on_unregistered = \"exclude\" to leave such scans out, knowing their obstacles will be missing)",
+            msgs.join("; ")
+        )));
+    }
+
+    // Second pass: every registered scan through the thinning filter.
+    let mut cloud = thin(&scans, &results, s, opts, &mut read_counts)?;
+    for (k, r) in reports.iter_mut().enumerate() {
+        r.points_read = read_counts[k];
+        r.points_kept = cloud.scan.iter().filter(|&&sc| sc as usize == k).count() as u64;
+    }
+    let grid = if s.ground.enabled {
+        (opts.progress)("ground", 0, 1);
+        let g = ground::classify(&mut cloud, &s.ground);
+        (opts.progress)("ground", 1, 1);
+        g
+    } else {
+        cloud.class = vec![class::UNCLASSIFIED; cloud.len()];
+        None
+    };
+    (opts.progress)("write site.laz", 0, 1);
+    write::write_las(&out_dir.join("site.laz"), &cloud)?;
+    if let Some(g) = &grid {
+        g.write_asc(&out_dir.join("ground.asc")).map_err(|e| ScanError::Io(Location::file(out_dir.join("ground.asc")), e))?;
+    }
+    picture::top_view(&cloud, &names, 1200).write_png(&out_dir.join("scans.png")).map_err(|e| ScanError::Io(Location::file(out_dir.join("scans.png")), e))?;
+    write_json(&out_dir.join("registration.json"), &serde_json::json!({ "register": s.register, "scans": reports }))?;
+    (opts.progress)("write site.laz", 1, 1);
+    let bbox = cloud.bbox();
+    Ok(Summary {
+        points_read: read_counts.iter().sum(),
+        points_out: cloud.len() as u64,
+        ground_points: cloud.class.iter().filter(|&&c| c == class::GROUND).count() as u64,
+        bbox: if bbox.is_empty() { [0.0; 6] } else { bbox.to_array() },
+        register: s.register,
+        subsample: match s.subsample {
+            SubsampleMethod::Voxel => format!("voxel {} m ({:?})", s.voxel, s.voxel_point).to_lowercase(),
+            SubsampleMethod::Spacing => format!("spacing {} m", s.spacing),
+            SubsampleMethod::Nth => format!("every {}th point", s.every_nth),
+            SubsampleMethod::None => "none".into(),
+        },
+        scans: reports,
+    })
+}
+
+fn plain_result(pose: Pose, method: &str) -> register::RegResult {
+    register::RegResult { pose, fitness: 1.0, rmse_m: 0.0, method: method.into(), registered: true, warning: None }
+}
+
+fn write_json(path: &Path, v: &serde_json::Value) -> Result<()> {
+    let text = serde_json::to_string_pretty(v).unwrap_or_default();
+    liftplan_core::artifact::write_atomic(path, text.as_bytes()).map_err(|e| ScanError::Io(Location::file(path), e))
+}
+
+fn thin(scans: &[ScanInfo], results: &[register::RegResult], s: &Settings, opts: &RunOptions, read_counts: &mut [u64]) -> Result<PointCloud> {
+    enum Filter {
+        Voxel(subsample::VoxelGrid),
+        Spacing(subsample::SpacingFilter),
+        Nth(subsample::EveryNth),
+        All(PointCloud),
+    }
+    let mk = || -> Result<Filter> {
+        Ok(match s.subsample {
+            SubsampleMethod::Voxel => Filter::Voxel(subsample::VoxelGrid::new(s.voxel).map_err(ScanError::Settings)?),
+            SubsampleMethod::Spacing => Filter::Spacing(subsample::SpacingFilter::new(s.spacing).map_err(ScanError::Settings)?),
+            SubsampleMethod::Nth => Filter::Nth(subsample::EveryNth::new(s.every_nth).map_err(ScanError::Settings)?),
+            SubsampleMethod::None => Filter::All(PointCloud::default()),
+        })
+    };
+    let pass = |filter: &mut Filter, nearest: Option<&mut subsample::NearestPicker>, read_counts: &mut [u64]| -> Result<()> {
+        let mut nearest = nearest;
+        for (k, (info, r)) in scans.iter().zip(results).enumerate() {
+            if !r.registered {
+                continue;
+            }
+            if let Filter::Nth(f) = filter {
+                f.next_scan();
+            }
+            let total = info.declared_points.unwrap_or(0);
+            let mut seen = 0u64;
+            let n = read::stream(info, &mut |c| {
+                let mut c = c.clone();
+                c.transform(&r.pose);
+                c.scan = vec![k as u16; c.len()];
+                c.class.clear();
+                let at = |e: String| ScanError::format(Location::item(&info.path, &info.name), e);
+                match (&mut *filter, nearest.as_deref_mut()) {
+                    (_, Some(p)) => p.add(&c, k as u16),
+                    (Filter::Voxel(g), None) => g.add(&c, k as u16).map_err(at)?,
+                    (Filter::Spacing(g), None) => g.add(&c, k as u16).map_err(at)?,
+                    (Filter::Nth(g), None) => g.add(&c, k as u16),
+                    (Filter::All(all), None) => all.append(&c),
+                }
+                seen += c.len() as u64;
+                (opts.progress)(&format!("thin {}", info.name), seen, total);
+                Ok(())
+            })?;
+            read_counts[k] = n;
+        }
+        Ok(())
+    };
+    let mut f = mk()?;
+    pass(&mut f, None, read_counts)?;
+    Ok(match f {
+        Filter::Voxel(g) if s.voxel_point == VoxelPoint::Nearest => {
+            let mut picker = g.into_nearest_picker();
+            let mut dummy = Filter::All(PointCloud::default());
+            pass(&mut dummy, Some(&mut picker), read_counts)?;
+            picker.finish()
+        }
+        Filter::Voxel(g) => g.finish(),
+        Filter::Spacing(g) => g.finish(),
+        Filter::Nth(g) => g.finish(),
+        Filter::All(c) => c,
+    })
+}
+
+/// A summary of a scan file for `liftplan inspect`, from headers where they
+/// suffice and by streaming the points where they do not.
+pub fn inspect(path: &Path) -> Result<serde_json::Value> {
+    let scans = read::list_scans(path)?;
+    let mut total = 0u64;
+    let mut bbox = Aabb::empty();
+    let mut per = Vec::new();
+    for info in &scans {
+        let (n, b) = match (info.declared_points, info.bbox) {
+            (Some(n), Some(b)) => (n, b),
+            _ => {
+                let mut b = Aabb::empty();
+                let n = read::stream(info, &mut |c| {
+                    b = b.union(&c.bbox());
+                    Ok(())
+                })?;
+                (n, b)
+            }
+        };
+        total += n;
+        let site_b = match info.pose {
+            Some(p) if !b.is_empty() => {
+                let mut t = Aabb::empty();
+                for k in 0..8 {
+                    let c = [if k & 1 == 0 { b.min[0] } else { b.max[0] }, if k & 2 == 0 { b.min[1] } else { b.max[1] }, if k & 4 == 0 { b.min[2] } else { b.max[2] }];
+                    let q = p * nalgebra::Point3::new(c[0], c[1], c[2]);
+                    t.grow([q.x, q.y, q.z]);
+                }
+                t
+            }
+            _ => b,
+        };
+        bbox = bbox.union(&site_b);
+        per.push(serde_json::json!({
+            "name": info.name,
+            "points": n,
+            "bbox": if b.is_empty() { serde_json::Value::Null } else { serde_json::json!(b.to_array()) },
+            "pose": info.pose.map(|p| pose_to_rows(&p)),
+            "details": info.details,
+        }));
+    }
+    Ok(serde_json::json!({
+        "kind": "scan",
+        "format": scans.first().map(|s| s.format.name()).unwrap_or("unknown"),
+        "file": path.display().to_string(),
+        "points": total,
+        "bbox": if bbox.is_empty() { serde_json::Value::Null } else { serde_json::json!(bbox.to_array()) },
+        "scans": per,
+    }))
+}

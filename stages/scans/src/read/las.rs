@@ -1,0 +1,293 @@
+//! LAS 1.0–1.4 and LAZ through the `las` and `laz` crates, with a header
+//! pre-check of our own.
+//!
+//! The pre-check reads the public header block, the VLR and EVLR headers and the
+//! LAZ chunk-table header directly and refuses any count or offset the file cannot
+//! hold, before the `las` crate sizes a buffer from them. Real files have odd
+//! headers (padding after the header, extra bytes per point, user VLRs, legacy and
+//! 64-bit point counts that disagree); those are accepted.
+
+use super::{Format, ScanInfo, check_finite, stem, CHUNK_POINTS};
+use crate::error::{Result, ScanError};
+use las::Reader;
+use liftplan_core::Location;
+use liftplan_core::cloud::PointCloud;
+use liftplan_core::frame::Aabb;
+use serde_json::json;
+use std::io::{Read, Seek, SeekFrom};
+use std::path::Path;
+
+/// What the pre-check learned from the raw header.
+#[derive(Debug, Clone)]
+pub struct RawLasHeader {
+    pub version: (u8, u8),
+    pub header_size: u16,
+    pub offset_to_points: u32,
+    pub vlr_count: u32,
+    pub point_format: u8,
+    pub compressed: bool,
+    pub record_length: u16,
+    pub points: u64,
+    pub scale: [f64; 3],
+    pub offset: [f64; 3],
+    pub bbox: Aabb,
+    pub file_len: u64,
+}
+
+const MIN_RECORD: [u16; 11] = [20, 28, 26, 34, 57, 63, 30, 36, 38, 59, 67];
+
+fn le_u16(b: &[u8], o: usize) -> u16 {
+    u16::from_le_bytes([b[o], b[o + 1]])
+}
+fn le_u32(b: &[u8], o: usize) -> u32 {
+    u32::from_le_bytes([b[o], b[o + 1], b[o + 2], b[o + 3]])
+}
+fn le_u64(b: &[u8], o: usize) -> u64 {
+    let mut a = [0u8; 8];
+    a.copy_from_slice(&b[o..o + 8]);
+    u64::from_le_bytes(a)
+}
+fn le_f64(b: &[u8], o: usize) -> f64 {
+    f64::from_bits(le_u64(b, o))
+}
+
+/// Validates the structure of a LAS/LAZ file without trusting any field.
+pub fn precheck(path: &Path) -> Result<RawLasHeader> {
+    let bad = |off: u64, msg: String| ScanError::format(Location::byte(path, off), msg);
+    let mut f = std::fs::File::open(path).map_err(|e| ScanError::Io(Location::file(path), e))?;
+    let file_len = f.metadata().map_err(|e| ScanError::Io(Location::file(path), e))?.len();
+    let mut h = vec![0u8; 375.min(file_len as usize)];
+    f.read_exact(&mut h).map_err(|e| ScanError::Io(Location::file(path), e))?;
+    if h.len() < 227 {
+        return Err(bad(0, format!("file is {file_len} bytes, shorter than a LAS header (227 bytes)")));
+    }
+    if &h[0..4] != b"LASF" {
+        return Err(bad(0, "missing the 'LASF' signature: not a LAS/LAZ file".into()));
+    }
+    let version = (h[24], h[25]);
+    if version.0 != 1 || version.1 > 4 {
+        return Err(bad(24, format!("LAS version {}.{} is not 1.0 to 1.4", version.0, version.1)));
+    }
+    let min_header: u16 = match version.1 {
+        0..=2 => 227,
+        3 => 235,
+        _ => 375,
+    };
+    let header_size = le_u16(&h, 94);
+    if header_size < min_header || header_size as u64 > file_len {
+        return Err(bad(94, format!("header size {header_size} is invalid for LAS {}.{} (expected at least {min_header}, file is {file_len} bytes)", version.0, version.1)));
+    }
+    let offset_to_points = le_u32(&h, 96);
+    if (offset_to_points as u64) < header_size as u64 || offset_to_points as u64 > file_len {
+        return Err(bad(96, format!("offset to point data {offset_to_points} lies outside the file (header {header_size} bytes, file {file_len} bytes)")));
+    }
+    let vlr_count = le_u32(&h, 100);
+    let vlr_space = (offset_to_points - header_size as u32) as u64;
+    if vlr_count as u64 * 54 > vlr_space {
+        return Err(bad(100, format!("{vlr_count} VLRs cannot fit in the {vlr_space} bytes before the point data")));
+    }
+    let format_byte = h[104];
+    let compressed = format_byte & 0x80 != 0 || format_byte & 0x40 != 0;
+    let point_format = format_byte & 0x3f;
+    if point_format > 10 {
+        return Err(bad(104, format!("point data format {point_format} is not 0 to 10")));
+    }
+    let record_length = le_u16(&h, 105);
+    if record_length < MIN_RECORD[point_format as usize] {
+        return Err(bad(105, format!("record length {record_length} is shorter than point format {point_format} needs ({})", MIN_RECORD[point_format as usize])));
+    }
+    let legacy_points = le_u32(&h, 107) as u64;
+    let points = if version.1 >= 4 && h.len() >= 255 {
+        let p64 = le_u64(&h, 247);
+        if p64 != 0 { p64 } else { legacy_points }
+    } else {
+        legacy_points
+    };
+    let scale = [le_f64(&h, 131), le_f64(&h, 139), le_f64(&h, 147)];
+    let offset = [le_f64(&h, 155), le_f64(&h, 163), le_f64(&h, 171)];
+    if scale.iter().any(|s| !s.is_finite() || *s == 0.0) {
+        return Err(bad(131, format!("scale factors {scale:?} must be finite and non-zero")));
+    }
+    if offset.iter().any(|s| !s.is_finite()) {
+        return Err(bad(155, format!("offsets {offset:?} must be finite")));
+    }
+    let (maxx, minx, maxy, miny, maxz, minz) = (le_f64(&h, 179), le_f64(&h, 187), le_f64(&h, 195), le_f64(&h, 203), le_f64(&h, 211), le_f64(&h, 219));
+    let bbox = Aabb { min: [minx, miny, minz], max: [maxx, maxy, maxz] };
+
+    // VLR headers: each must fit before the point data.
+    let mut pos = header_size as u64;
+    let mut laszip: Option<(u64, u16)> = None;
+    for i in 0..vlr_count {
+        if pos + 54 > offset_to_points as u64 {
+            return Err(bad(pos, format!("VLR {i} header runs past the start of the point data")));
+        }
+        let mut vh = [0u8; 54];
+        f.seek(SeekFrom::Start(pos)).and_then(|_| f.read_exact(&mut vh)).map_err(|e| ScanError::Io(Location::byte(path, pos), e))?;
+        let len = le_u16(&vh, 20) as u64;
+        if pos + 54 + len > offset_to_points as u64 {
+            return Err(bad(pos + 20, format!("VLR {i} declares {len} bytes, more than the space before the point data")));
+        }
+        let user = String::from_utf8_lossy(&vh[2..18]).trim_end_matches('\0').to_string();
+        if user == "laszip encoded" && le_u16(&vh, 18) == 22204 {
+            laszip = Some((pos + 54, len as u16));
+        }
+        pos += 54 + len;
+    }
+    if compressed {
+        let Some((lz_at, lz_len)) = laszip else {
+            return Err(bad(104, "point format is marked compressed but the laszip VLR is missing".into()));
+        };
+        if lz_len < 34 {
+            return Err(bad(lz_at, format!("laszip VLR is {lz_len} bytes, shorter than its 34-byte header")));
+        }
+        let mut lz = vec![0u8; lz_len as usize];
+        f.seek(SeekFrom::Start(lz_at)).and_then(|_| f.read_exact(&mut lz)).map_err(|e| ScanError::Io(Location::byte(path, lz_at), e))?;
+        let chunk_size = le_u32(&lz, 12);
+        let num_items = le_u16(&lz, 32) as u64;
+        if 34 + num_items * 6 > lz_len as u64 {
+            return Err(bad(lz_at + 32, format!("laszip VLR lists {num_items} items, more than its {lz_len} bytes hold")));
+        }
+        // Chunk table: an i64 offset at the start of the point data, or at the end.
+        if offset_to_points as u64 + 8 <= file_len {
+            let mut b = [0u8; 8];
+            f.seek(SeekFrom::Start(offset_to_points as u64)).and_then(|_| f.read_exact(&mut b)).map_err(|e| ScanError::Io(Location::byte(path, offset_to_points as u64), e))?;
+            let mut table_at = i64::from_le_bytes(b);
+            if table_at <= offset_to_points as i64 && file_len >= 8 {
+                f.seek(SeekFrom::End(-8)).and_then(|_| f.read_exact(&mut b)).map_err(|e| ScanError::Io(Location::byte(path, file_len - 8), e))?;
+                table_at = i64::from_le_bytes(b);
+            }
+            if table_at > offset_to_points as i64 {
+                let t = table_at as u64;
+                if t + 8 > file_len {
+                    return Err(bad(offset_to_points as u64, format!("LAZ chunk table offset {t} lies beyond the end of the file ({file_len} bytes): the file is truncated")));
+                }
+                let mut tb = [0u8; 8];
+                f.seek(SeekFrom::Start(t)).and_then(|_| f.read_exact(&mut tb)).map_err(|e| ScanError::Io(Location::byte(path, t), e))?;
+                let chunks = le_u32(&tb, 4) as u64;
+                let by_size = file_len / 4;
+                let by_points = if chunk_size != u32::MAX && chunk_size > 0 { points / chunk_size as u64 + 2 } else { u64::MAX };
+                if chunks > by_size.min(by_points) {
+                    return Err(bad(t + 4, format!("LAZ chunk table lists {chunks} chunks, more than {points} points in chunks of {chunk_size} or a {file_len}-byte file can hold")));
+                }
+            }
+        } else {
+            return Err(bad(offset_to_points as u64, "the file ends where the compressed point data should start".into()));
+        }
+    } else {
+        let need = points.checked_mul(record_length as u64).unwrap_or(u64::MAX);
+        let have = file_len - offset_to_points as u64;
+        if need > have {
+            let fits = have / record_length as u64;
+            return Err(bad(offset_to_points as u64, format!("header declares {points} points of {record_length} bytes but the file holds only {fits} (truncated file or wrong point count)")));
+        }
+    }
+    // LAS 1.4 EVLRs must lie inside the file.
+    if version.1 >= 4 && h.len() >= 247 {
+        let evlr_start = le_u64(&h, 235);
+        let evlr_count = le_u32(&h, 243) as u64;
+        if evlr_count > 0 {
+            if evlr_start < offset_to_points as u64 || evlr_start > file_len || evlr_count.saturating_mul(60) > file_len - evlr_start {
+                return Err(bad(235, format!("{evlr_count} EVLRs at byte {evlr_start} do not fit in the {file_len}-byte file")));
+            }
+            let mut p = evlr_start;
+            for i in 0..evlr_count {
+                let mut eh = [0u8; 60];
+                if p + 60 > file_len {
+                    return Err(bad(p, format!("EVLR {i} header runs past the end of the file")));
+                }
+                f.seek(SeekFrom::Start(p)).and_then(|_| f.read_exact(&mut eh)).map_err(|e| ScanError::Io(Location::byte(path, p), e))?;
+                let len = le_u64(&eh, 20);
+                if len > file_len - p - 60 {
+                    return Err(bad(p + 20, format!("EVLR {i} declares {len} bytes, past the end of the file")));
+                }
+                p += 60 + len;
+            }
+        }
+    }
+    Ok(RawLasHeader { version, header_size, offset_to_points, vlr_count, point_format, compressed, record_length, points, scale, offset, bbox, file_len })
+}
+
+fn open(path: &Path) -> Result<Reader> {
+    let file = std::fs::File::open(path).map_err(|e| ScanError::Io(Location::file(path), e))?;
+    let r = std::io::BufReader::with_capacity(1 << 20, file);
+    Reader::new(r).map_err(|e| ScanError::format(Location::file(path), format!("cannot read LAS header: {e}")))
+}
+
+pub(super) fn list(path: &Path, format: Format) -> Result<Vec<ScanInfo>> {
+    let raw = precheck(path)?;
+    let reader = open(path)?;
+    let hdr = reader.header();
+    let fmt = if raw.compressed { Format::Laz } else { Format::Las };
+    if fmt != format {
+        tracing::warn!("{}: extension says {} but the file is {}", path.display(), format.name(), fmt.name());
+    }
+    let mut details = serde_json::Map::new();
+    details.insert("version".into(), json!(format!("{}.{}", raw.version.0, raw.version.1)));
+    details.insert("point_format".into(), json!(raw.point_format));
+    details.insert("compressed".into(), json!(raw.compressed));
+    details.insert("record_length".into(), json!(raw.record_length));
+    details.insert("scale".into(), json!(raw.scale));
+    details.insert("offset".into(), json!(raw.offset));
+    details.insert("vlrs".into(), json!(hdr.vlrs().len()));
+    details.insert("evlrs".into(), json!(hdr.evlrs().len()));
+    details.insert("crs".into(), json!(hdr.has_crs_vlrs()));
+    details.insert("system_identifier".into(), json!(hdr.system_identifier()));
+    details.insert("generating_software".into(), json!(hdr.generating_software()));
+    Ok(vec![ScanInfo {
+        path: path.to_path_buf(),
+        format: fmt,
+        index: 0,
+        name: stem(path),
+        declared_points: Some(raw.points),
+        pose: None,
+        bbox: Some(raw.bbox),
+        details,
+    }])
+}
+
+pub(super) fn stream(info: &ScanInfo, f: &mut dyn FnMut(&PointCloud) -> Result<()>) -> Result<u64> {
+    let raw = precheck(&info.path)?;
+    let mut reader = open(&info.path)?;
+    let declared = raw.points;
+    let mut data = las::PointDataBuilder::new().for_header(reader.header()).build();
+    let has_rgb = reader.header().point_format().has_color;
+    let mut chunk = PointCloud::default();
+    let mut seen = 0u64;
+    loop {
+        let n = match reader.fill_points(CHUNK_POINTS as u64, &mut data) {
+            Ok(n) => n,
+            Err(e) => {
+                return Err(ScanError::format(
+                    Location::item(&info.path, format!("point {seen}")),
+                    format!("cannot decode points after {seen} of the {declared} the header declares: {e} (truncated or corrupt file)"),
+                ));
+            }
+        };
+        if n == 0 {
+            break;
+        }
+        chunk.xyz.clear();
+        chunk.intensity.clear();
+        chunk.rgb.clear();
+        chunk.class.clear();
+        chunk.scan.clear();
+        chunk.xyz.extend(data.x().zip(data.y()).zip(data.z()).map(|((x, y), z)| [x, y, z]));
+        chunk.intensity.extend(data.intensity());
+        chunk.class.extend(data.classification());
+        if has_rgb {
+            if let Some(rgb) = data.rgb() {
+                chunk.rgb.extend(rgb.map(|(r, g, b)| [r, g, b]));
+            }
+        }
+        check_finite(info, &chunk, seen)?;
+        seen += n;
+        f(&chunk)?;
+    }
+    if seen < declared {
+        return Err(ScanError::format(
+            Location::file(&info.path),
+            format!("header declares {declared} points but the data ends after {seen} (truncated file)"),
+        ));
+    }
+    Ok(seen)
+}

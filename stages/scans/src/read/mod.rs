@@ -1,0 +1,134 @@
+//! Scan readers. Each format lists the scans a file holds from its header alone
+//! ([`list_scans`], cheap, for `liftplan inspect`) and streams their points in
+//! chunks ([`stream`]) so no reader ever holds a whole survey in memory.
+//!
+//! Points come out in the file's own frame; a pose the file carries (E57) is
+//! returned in [`ScanInfo::pose`] and applied by registration, never silently.
+//! Readers refuse non-finite coordinates and counts the file cannot hold, naming
+//! the file and the place.
+
+mod e57;
+mod las;
+mod ply;
+mod text;
+
+use crate::error::{Result, ScanError};
+use liftplan_core::Location;
+use liftplan_core::cloud::PointCloud;
+use liftplan_core::frame::{Aabb, Pose};
+use std::path::{Path, PathBuf};
+
+pub use las::precheck as las_precheck;
+
+/// Points per chunk handed to a stream callback.
+pub const CHUNK_POINTS: usize = 500_000;
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Format {
+    Las,
+    Laz,
+    Ply,
+    E57,
+    Pts,
+    Xyz,
+}
+
+impl Format {
+    /// Format from a file extension (case-insensitive); `None` if not a scan.
+    pub fn from_path(path: &Path) -> Option<Format> {
+        let ext = path.extension()?.to_str()?.to_ascii_lowercase();
+        Some(match ext.as_str() {
+            "las" => Format::Las,
+            "laz" => Format::Laz,
+            "ply" => Format::Ply,
+            "e57" => Format::E57,
+            "pts" => Format::Pts,
+            "xyz" | "txt" | "asc" | "csv" => Format::Xyz,
+            _ => return None,
+        })
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Format::Las => "las",
+            Format::Laz => "laz",
+            Format::Ply => "ply",
+            Format::E57 => "e57",
+            Format::Pts => "pts",
+            Format::Xyz => "xyz",
+        }
+    }
+}
+
+/// One scan inside a file, as its header describes it.
+#[derive(Debug, Clone)]
+pub struct ScanInfo {
+    pub path: PathBuf,
+    pub format: Format,
+    /// Index of the scan within the file (E57 holds several).
+    pub index: usize,
+    pub name: String,
+    /// Point count the header declares, if it declares one.
+    pub declared_points: Option<u64>,
+    /// Pose from the scan's frame to the file's common frame, if the file has one.
+    pub pose: Option<Pose>,
+    /// Bounding box from the header, if it has one (in the scan's own frame).
+    pub bbox: Option<Aabb>,
+    /// Format details for `inspect` (version, point format, scale, properties...).
+    pub details: serde_json::Map<String, serde_json::Value>,
+}
+
+/// Lists the scans in a file from its header, reading no points.
+pub fn list_scans(path: &Path) -> Result<Vec<ScanInfo>> {
+    let format = Format::from_path(path)
+        .ok_or_else(|| ScanError::format(Location::file(path), "not a scan file (expected .las, .laz, .ply, .e57, .pts or .xyz)"))?;
+    let meta = std::fs::metadata(path).map_err(|e| ScanError::Io(Location::file(path), e))?;
+    if meta.len() == 0 {
+        return Err(ScanError::format(Location::file(path), "the file is empty"));
+    }
+    match format {
+        Format::Las | Format::Laz => las::list(path, format),
+        Format::Ply => ply::list(path),
+        Format::E57 => e57::list(path),
+        Format::Pts | Format::Xyz => text::list(path, format),
+    }
+}
+
+/// Streams the points of one scan in chunks of at most [`CHUNK_POINTS`], in the
+/// scan's own frame. Returns the number of points delivered.
+pub fn stream(info: &ScanInfo, f: &mut dyn FnMut(&PointCloud) -> Result<()>) -> Result<u64> {
+    match info.format {
+        Format::Las | Format::Laz => las::stream(info, f),
+        Format::Ply => ply::stream(info, f),
+        Format::E57 => e57::stream(info, f),
+        Format::Pts | Format::Xyz => text::stream(info, f),
+    }
+}
+
+/// Reads one scan entirely (for small files and tests).
+pub fn read_all(info: &ScanInfo) -> Result<PointCloud> {
+    let mut all = PointCloud::default();
+    stream(info, &mut |c| {
+        all.append(c);
+        Ok(())
+    })?;
+    Ok(all)
+}
+
+/// Checks a chunk's coordinates; `first_index` is the index of its first point
+/// in the scan, for the error message.
+pub(crate) fn check_finite(info: &ScanInfo, chunk: &PointCloud, first_index: u64) -> Result<()> {
+    if let Some(i) = chunk.xyz.iter().position(|p| !(p[0].is_finite() && p[1].is_finite() && p[2].is_finite())) {
+        return Err(ScanError::format(
+            Location::item(&info.path, format!("{}, point {}", info.name, first_index + i as u64)),
+            format!("coordinate is not a finite number: {:?}", chunk.xyz[i]),
+        ));
+    }
+    Ok(())
+}
+
+/// Scan name from the file stem.
+pub(crate) fn stem(path: &Path) -> String {
+    path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "scan".into())
+}

@@ -1,0 +1,142 @@
+//! PLY point clouds (ascii and binary) through `ply-rs`: x, y, z with optional
+//! intensity (`intensity`, `scalar_intensity`, `reflectance`) and colour
+//! (`red`/`green`/`blue`, 8 or 16 bit). Normals are accepted and ignored.
+
+use super::{ScanInfo, check_finite, stem, CHUNK_POINTS, Format};
+use crate::error::{Result, ScanError};
+use liftplan_core::Location;
+use liftplan_core::cloud::PointCloud;
+use ply_rs::parser::Parser;
+use ply_rs::ply::{DefaultElement, Header, Property, PropertyAccess, PropertyType, ScalarType};
+use serde_json::json;
+use std::io::BufReader;
+use std::path::Path;
+
+#[derive(Default)]
+struct Vertex {
+    xyz: [f64; 3],
+    intensity: f64,
+    rgb: [u16; 3],
+}
+
+fn scalar(p: &Property) -> Option<f64> {
+    Some(match *p {
+        Property::Char(v) => v as f64,
+        Property::UChar(v) => v as f64,
+        Property::Short(v) => v as f64,
+        Property::UShort(v) => v as f64,
+        Property::Int(v) => v as f64,
+        Property::UInt(v) => v as f64,
+        Property::Float(v) => v as f64,
+        Property::Double(v) => v,
+        _ => return None,
+    })
+}
+
+impl PropertyAccess for Vertex {
+    fn new() -> Self {
+        Vertex::default()
+    }
+    fn set_property(&mut self, key: String, p: Property) {
+        let Some(v) = scalar(&p) else { return };
+        let eight_bit = matches!(p, Property::UChar(_) | Property::Char(_));
+        let colour = |v: f64| if eight_bit { (v.clamp(0.0, 255.0) * 257.0) as u16 } else { v.clamp(0.0, 65535.0) as u16 };
+        match key.as_str() {
+            "x" => self.xyz[0] = v,
+            "y" => self.xyz[1] = v,
+            "z" => self.xyz[2] = v,
+            "intensity" | "scalar_intensity" | "reflectance" | "scalar_Intensity" => self.intensity = v,
+            "red" | "r" | "diffuse_red" => self.rgb[0] = colour(v),
+            "green" | "g" | "diffuse_green" => self.rgb[1] = colour(v),
+            "blue" | "b" | "diffuse_blue" => self.rgb[2] = colour(v),
+            _ => {}
+        }
+    }
+}
+
+fn header(path: &Path) -> Result<(Header, BufReader<std::fs::File>)> {
+    let f = std::fs::File::open(path).map_err(|e| ScanError::Io(Location::file(path), e))?;
+    let mut r = BufReader::new(f);
+    let h = Parser::<DefaultElement>::new()
+        .read_header(&mut r)
+        .map_err(|e| ScanError::format(Location::file(path), format!("cannot read PLY header: {e}")))?;
+    Ok((h, r))
+}
+
+struct Layout {
+    has_intensity: bool,
+    has_rgb: bool,
+    intensity_is_float: bool,
+}
+
+fn layout(path: &Path, h: &Header) -> Result<Layout> {
+    let Some(v) = h.elements.get("vertex") else {
+        return Err(ScanError::format(Location::file(path), "PLY has no 'vertex' element"));
+    };
+    for axis in ["x", "y", "z"] {
+        match v.properties.get(axis) {
+            Some(p) if matches!(p.data_type, PropertyType::Scalar(_)) => {}
+            Some(_) => return Err(ScanError::format(Location::file(path), format!("PLY property '{axis}' of element 'vertex' is a list, expected a number"))),
+            None => return Err(ScanError::format(Location::file(path), format!("PLY element 'vertex' has no property '{axis}' (expected x, y and z)"))),
+        }
+    }
+    let intensity = ["intensity", "scalar_intensity", "reflectance", "scalar_Intensity"].iter().find_map(|k| v.properties.get(*k));
+    let has_rgb = ["red", "r", "diffuse_red"].iter().any(|k| v.properties.contains_key(*k));
+    let intensity_is_float = matches!(intensity.map(|p| &p.data_type), Some(PropertyType::Scalar(ScalarType::Float | ScalarType::Double)));
+    Ok(Layout { has_intensity: intensity.is_some(), has_rgb, intensity_is_float })
+}
+
+pub(super) fn list(path: &Path) -> Result<Vec<ScanInfo>> {
+    let (h, _) = header(path)?;
+    layout(path, &h)?;
+    let v = &h.elements["vertex"];
+    let mut details = serde_json::Map::new();
+    details.insert("encoding".into(), json!(format!("{:?}", h.encoding)));
+    details.insert("properties".into(), json!(v.properties.keys().cloned().collect::<Vec<_>>()));
+    details.insert("elements".into(), json!(h.elements.keys().cloned().collect::<Vec<_>>()));
+    Ok(vec![ScanInfo {
+        path: path.to_path_buf(),
+        format: Format::Ply,
+        index: 0,
+        name: stem(path),
+        declared_points: Some(v.count as u64),
+        pose: None,
+        bbox: None,
+        details,
+    }])
+}
+
+pub(super) fn stream(info: &ScanInfo, f: &mut dyn FnMut(&PointCloud) -> Result<()>) -> Result<u64> {
+    let path = &info.path;
+    let (h, mut r) = header(path)?;
+    let lay = layout(path, &h)?;
+    let mut verts: Vec<Vertex> = Vec::new();
+    for (name, def) in &h.elements {
+        if name == "vertex" {
+            verts = Parser::<Vertex>::new().read_payload_for_element(&mut r, def, &h).map_err(|e| {
+                ScanError::format(Location::item(path, "element 'vertex'"), format!("cannot read the {} vertices the header declares: {e}", def.count))
+            })?;
+            break;
+        }
+        Parser::<DefaultElement>::new()
+            .read_payload_for_element(&mut r, def, &h)
+            .map_err(|e| ScanError::format(Location::item(path, format!("element '{name}'")), format!("cannot read: {e}")))?;
+    }
+    // Float intensities are usually 0..1; LAS wants 16 bits.
+    let max_i = verts.iter().map(|v| v.intensity).fold(0.0f64, f64::max);
+    let scale_i = if lay.intensity_is_float && max_i <= 1.0 { 65535.0 } else { 1.0 };
+    let mut seen = 0u64;
+    for part in verts.chunks(CHUNK_POINTS) {
+        let chunk = PointCloud {
+            xyz: part.iter().map(|v| v.xyz).collect(),
+            intensity: if lay.has_intensity { part.iter().map(|v| (v.intensity * scale_i).clamp(0.0, 65535.0) as u16).collect() } else { vec![] },
+            rgb: if lay.has_rgb { part.iter().map(|v| v.rgb).collect() } else { vec![] },
+            class: vec![],
+            scan: vec![],
+        };
+        check_finite(info, &chunk, seen)?;
+        seen += part.len() as u64;
+        f(&chunk)?;
+    }
+    Ok(seen)
+}

@@ -1,0 +1,741 @@
+//! Registration of N scans into one frame.
+//!
+//! 1. **Initial guess**: a pose the file carries (E57) or the station file, else
+//!    none.
+//! 2. **Coarse, pose-free**: terrestrial scanners level themselves (dual-axis
+//!    compensators), so by default (`leveled = true`) two scans differ by a yaw and
+//!    a translation, found by correlating plan views of their vertical structure
+//!    ([`crate::coarse2d`]). For scans that are not levelled (`leveled = false`):
+//!    FPFH descriptors on a thinned copy, mutual nearest neighbours in descriptor
+//!    space, and RANSAC over 3-point Kabsch hypotheses with an edge-length check.
+//! 3. **Fine**: robust (Huber) point-to-plane ICP, coarse-to-fine correspondence
+//!    distances, full 6 DOF.
+//! 4. **Many scans**: the first scan is the reference. The others join the
+//!    growing model greedily (best fitness first), each aligned against the union
+//!    of all scans placed so far; then every scan is re-aligned against all the
+//!    others, so errors do not chain from scan to scan.
+//!
+//! A scan whose best alignment overlaps the model less than `min_fitness` is
+//! reported as not registered; the stage never merges it silently.
+//!
+//! Every reduction is summed in fixed-size blocks in a fixed order, so the result
+//! does not depend on the number of threads.
+
+use crate::features::{Fpfh, FPFH_BINS};
+use liftplan_core::frame::{Pose, Vec3};
+use liftplan_core::rng;
+use nalgebra as na;
+use rayon::prelude::*;
+
+/// A scan thinned for registration, in its own frame.
+#[derive(Debug, Clone, Default)]
+pub struct RegCloud {
+    pub pts: Vec<[f64; 3]>,
+    pub normals: Vec<[f64; 3]>,
+}
+
+/// A coarser copy with descriptors for pose-free alignment.
+#[derive(Debug, Clone, Default)]
+pub struct FeatureCloud {
+    pub pts: Vec<[f64; 3]>,
+    pub fpfh: Vec<Fpfh>,
+}
+
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RegistrationSettings {
+    /// Voxel of the copy ICP aligns (m).
+    pub icp_voxel_m: f64,
+    /// Voxel of the copy descriptors are computed on (m).
+    pub feature_voxel_m: f64,
+    /// Descriptor radius (m).
+    pub feature_radius_m: f64,
+    /// Most source points ICP uses per iteration.
+    pub icp_source_points: usize,
+    /// Correspondence distances of the coarse-to-fine ICP schedule (m).
+    pub icp_distances_m: Vec<f64>,
+    /// A point overlaps the model when its nearest model point is within
+    /// `fit_distance_m` and its distance to that point's plane within
+    /// `fit_residual_m`.
+    pub fit_distance_m: f64,
+    pub fit_residual_m: f64,
+    /// Overlap below which a scan counts as not registered (0..1).
+    pub min_fitness: f64,
+    /// Largest share of a scan's points allowed where another scanner looked
+    /// straight through (0..1); wrong alignments of repetitive plant fail here.
+    pub max_violation: f64,
+    /// Scanners were levelled: coarse hypotheses are yaw + translation.
+    pub leveled: bool,
+    pub ransac_iterations: usize,
+}
+
+impl Default for RegistrationSettings {
+    fn default() -> Self {
+        RegistrationSettings {
+            icp_voxel_m: 0.05,
+            feature_voxel_m: 0.3,
+            feature_radius_m: 1.5,
+            icp_source_points: 60_000,
+            icp_distances_m: vec![1.0, 0.5, 0.25, 0.1],
+            fit_distance_m: 0.25,
+            fit_residual_m: 0.03,
+            min_fitness: 0.02,
+            max_violation: 0.005,
+            leveled: true,
+            ransac_iterations: 20_000,
+        }
+    }
+}
+
+impl RegistrationSettings {
+    pub fn check(&self) -> Result<(), String> {
+        let pos = |n: &str, v: f64| if v.is_finite() && v > 0.0 { Ok(()) } else { Err(format!("registration.{n} must be positive, found {v}")) };
+        pos("icp_voxel_m", self.icp_voxel_m)?;
+        pos("feature_voxel_m", self.feature_voxel_m)?;
+        pos("feature_radius_m", self.feature_radius_m)?;
+        pos("fit_residual_m", self.fit_residual_m)?;
+        pos("fit_distance_m", self.fit_distance_m)?;
+        if self.icp_distances_m.is_empty() || self.icp_distances_m.iter().any(|d| !(d.is_finite() && *d > 0.0)) {
+            return Err("registration.icp_distances_m must be a non-empty list of positive distances".into());
+        }
+        if !(0.0..=1.0).contains(&self.max_violation) {
+            return Err(format!("registration.max_violation must be in 0..1, found {}", self.max_violation));
+        }
+        if !(0.0..=1.0).contains(&self.min_fitness) {
+            return Err(format!("registration.min_fitness must be in 0..1, found {}", self.min_fitness));
+        }
+        if self.icp_source_points < 100 || self.ransac_iterations == 0 {
+            return Err("registration.icp_source_points must be >= 100 and ransac_iterations >= 1".into());
+        }
+        Ok(())
+    }
+}
+
+/// How one scan was placed.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct RegResult {
+    #[serde(serialize_with = "ser_pose")]
+    pub pose: Pose,
+    /// Share of the scan's points with a model point within the fitness distance.
+    pub fitness: f64,
+    /// Point-to-plane RMS distance of those points (m).
+    pub rmse_m: f64,
+    pub method: String,
+    pub registered: bool,
+    pub warning: Option<String>,
+}
+
+fn ser_pose<S: serde::Serializer>(p: &Pose, s: S) -> Result<S::Ok, S::Error> {
+    use serde::Serialize;
+    liftplan_core::frame::pose_to_rows(p).serialize(s)
+}
+
+#[inline]
+fn tf(p: &Pose, x: &[f64; 3]) -> [f64; 3] {
+    let q = p * na::Point3::new(x[0], x[1], x[2]);
+    [q.x, q.y, q.z]
+}
+
+/// Mutual nearest neighbours in descriptor space, from at most `max_src` source
+/// points chosen at a fixed stride.
+pub fn match_features(src: &FeatureCloud, tgt: &FeatureCloud, max_src: usize) -> Vec<(usize, usize)> {
+    let valid = |f: &Fpfh| f.iter().any(|v| *v != 0.0);
+    let stride = (src.pts.len() / max_src.max(1)).max(1);
+    let src_idx: Vec<usize> = (0..src.pts.len()).step_by(stride).filter(|&i| valid(&src.fpfh[i])).collect();
+    let tgt_idx: Vec<usize> = (0..tgt.pts.len()).filter(|&i| valid(&tgt.fpfh[i])).collect();
+    if src_idx.is_empty() || tgt_idx.is_empty() {
+        return vec![];
+    }
+    let d2 = |a: &Fpfh, b: &Fpfh| -> f32 {
+        let mut s = 0.0f32;
+        for k in 0..FPFH_BINS {
+            let d = a[k] - b[k];
+            s += d * d;
+        }
+        s
+    };
+    let nearest = |q: &Fpfh, among: &[usize], set: &[Fpfh]| -> usize {
+        let mut best = (f32::INFINITY, 0usize);
+        for &j in among {
+            let d = d2(q, &set[j]);
+            if d < best.0 {
+                best = (d, j);
+            }
+        }
+        best.1
+    };
+    let fwd: Vec<usize> = src_idx.par_iter().map(|&i| nearest(&src.fpfh[i], &tgt_idx, &tgt.fpfh)).collect();
+    // Reverse check only for the targets that were chosen.
+    let mut chosen: Vec<usize> = fwd.clone();
+    chosen.sort_unstable();
+    chosen.dedup();
+    let back: Vec<(usize, usize)> = chosen.par_iter().map(|&t| (t, nearest(&tgt.fpfh[t], &src_idx, &src.fpfh))).collect();
+    let back_of = |t: usize| back.binary_search_by_key(&t, |x| x.0).ok().map(|k| back[k].1);
+    src_idx.iter().zip(&fwd).filter(|(s, t)| back_of(**t) == Some(**s)).map(|(s, t)| (*s, *t)).collect()
+}
+
+/// Least-squares rigid transform taking `a` onto `b` (Kabsch), or a yaw-only
+/// rotation when `leveled`.
+pub fn fit_rigid(a: &[[f64; 3]], b: &[[f64; 3]], leveled: bool) -> Option<Pose> {
+    let n = a.len();
+    if n < 2 {
+        return None;
+    }
+    let ca = a.iter().fold(Vec3::zeros(), |s, p| s + Vec3::new(p[0], p[1], p[2])) / n as f64;
+    let cb = b.iter().fold(Vec3::zeros(), |s, p| s + Vec3::new(p[0], p[1], p[2])) / n as f64;
+    let rot = if leveled {
+        let (mut sxx, mut sxy) = (0.0, 0.0);
+        for (p, q) in a.iter().zip(b) {
+            let (ax, ay) = (p[0] - ca.x, p[1] - ca.y);
+            let (bx, by) = (q[0] - cb.x, q[1] - cb.y);
+            sxx += ax * bx + ay * by;
+            sxy += ax * by - ay * bx;
+        }
+        na::UnitQuaternion::from_axis_angle(&Vec3::z_axis(), sxy.atan2(sxx))
+    } else {
+        if n < 3 {
+            return None;
+        }
+        let mut h = na::Matrix3::zeros();
+        for (p, q) in a.iter().zip(b) {
+            h += (Vec3::new(p[0], p[1], p[2]) - ca) * (Vec3::new(q[0], q[1], q[2]) - cb).transpose();
+        }
+        let svd = h.svd(true, true);
+        let (u, vt) = (svd.u?, svd.v_t?);
+        let mut d = na::Matrix3::identity();
+        if (vt.transpose() * u.transpose()).determinant() < 0.0 {
+            d[(2, 2)] = -1.0;
+        }
+        let r = vt.transpose() * d * u.transpose();
+        na::UnitQuaternion::from_matrix(&r)
+    };
+    let t = cb - rot * ca;
+    Some(Pose::from_parts(na::Translation3::from(t), rot))
+}
+
+/// RANSAC over feature correspondences: the pose (source to target) with most
+/// correspondences within `eps`, refined on its inliers, and the inlier count.
+pub fn ransac(src: &[[f64; 3]], tgt: &[[f64; 3]], corr: &[(usize, usize)], leveled: bool, eps: f64, iterations: usize, seed: u64) -> Option<(Pose, usize)> {
+    if corr.len() < 3 {
+        return None;
+    }
+    let mut rng = rng::seeded(seed, "ransac");
+    let count = |p: &Pose| corr.iter().filter(|(s, t)| super::grid::dist2(&tf(p, &src[*s]), &tgt[*t]) < eps * eps).count();
+    let mut best: Option<(Pose, usize)> = None;
+    // Hypotheses in fixed-size batches so results are independent of threads.
+    let batch = 256;
+    let mut done = 0;
+    while done < iterations {
+        let m = batch.min(iterations - done);
+        let samples: Vec<[usize; 3]> = (0..m).map(|_| [rng::index(&mut rng, corr.len()), rng::index(&mut rng, corr.len()), rng::index(&mut rng, corr.len())]).collect();
+        let scored: Vec<Option<(Pose, usize)>> = samples
+            .par_iter()
+            .map(|s| {
+                let k = if leveled { 2 } else { 3 };
+                let ids = &s[..k];
+                if ids.iter().enumerate().any(|(i, a)| ids[..i].contains(a)) {
+                    return None;
+                }
+                let a: Vec<[f64; 3]> = ids.iter().map(|&i| src[corr[i].0]).collect();
+                let b: Vec<[f64; 3]> = ids.iter().map(|&i| tgt[corr[i].1]).collect();
+                // Consistency: rigid motions keep distances (and heights when levelled).
+                for i in 0..k {
+                    for j in (i + 1)..k {
+                        let da = super::grid::dist2(&a[i], &a[j]).sqrt();
+                        let db = super::grid::dist2(&b[i], &b[j]).sqrt();
+                        if da < 2.0 * eps || (da - db).abs() > eps.max(0.1 * da) {
+                            return None;
+                        }
+                        if leveled && ((a[i][2] - a[j][2]) - (b[i][2] - b[j][2])).abs() > eps {
+                            return None;
+                        }
+                    }
+                }
+                let p = fit_rigid(&a, &b, leveled)?;
+                Some((p, count(&p)))
+            })
+            .collect();
+        for (p, c) in scored.into_iter().flatten() {
+            if best.as_ref().is_none_or(|b| c > b.1) {
+                best = Some((p, c));
+            }
+        }
+        done += m;
+    }
+    let (p, _) = best?;
+    let inl: Vec<(usize, usize)> = corr.iter().copied().filter(|(s, t)| super::grid::dist2(&tf(&p, &src[*s]), &tgt[*t]) < eps * eps).collect();
+    let a: Vec<[f64; 3]> = inl.iter().map(|c| src[c.0]).collect();
+    let b: Vec<[f64; 3]> = inl.iter().map(|c| tgt[c.1]).collect();
+    let refined = fit_rigid(&a, &b, leveled).unwrap_or(p);
+    let c = count(&refined);
+    Some((refined, c))
+}
+
+/// The model ICP aligns against: points, normals and a k-d tree.
+pub struct Target {
+    pub pts: Vec<[f64; 3]>,
+    pub normals: Vec<[f64; 3]>,
+    grid: crate::kdtree::KdTree,
+}
+
+impl Target {
+    pub fn new(pts: Vec<[f64; 3]>, normals: Vec<[f64; 3]>) -> Target {
+        let grid = crate::kdtree::KdTree::new(&pts);
+        Target { pts, normals, grid }
+    }
+}
+
+const BLOCK: usize = 4096;
+
+/// Robust point-to-plane ICP from `init`; returns the refined pose.
+///
+/// A pair counts only if the two normals agree (within about 45 degrees): the
+/// front and back faces of a thin column or wall, seen from opposite sides, must
+/// not be pulled together.
+pub fn icp(src: &RegCloud, target: &Target, init: Pose, distances: &[f64]) -> Pose {
+    let mut pose = init;
+    for &d in distances {
+        let grid = &target.grid;
+        let huber = (d / 20.0).max(0.01);
+        for _ in 0..50 {
+            let blocks: Vec<(na::Matrix6<f64>, na::Vector6<f64>, usize)> = (0..src.pts.len().div_ceil(BLOCK))
+                .into_par_iter()
+                .map(|b| {
+                    let mut h = na::Matrix6::zeros();
+                    let mut g = na::Vector6::zeros();
+                    let mut n = 0;
+                    for k in b * BLOCK..((b + 1) * BLOCK).min(src.pts.len()) {
+                        let p = tf(&pose, &src.pts[k]);
+                        let Some((j, _)) = grid.nearest(&p, d) else { continue };
+                        let nq = target.normals[j as usize];
+                        if nq == [0.0; 3] || !compatible(&pose, &src.normals[k], &nq) {
+                            continue;
+                        }
+                        let q = target.pts[j as usize];
+                        let nv = Vec3::new(nq[0], nq[1], nq[2]);
+                        let pv = Vec3::new(p[0], p[1], p[2]);
+                        let r = (pv - Vec3::new(q[0], q[1], q[2])).dot(&nv);
+                        let w = if r.abs() <= huber { 1.0 } else { huber / r.abs() };
+                        let c = pv.cross(&nv);
+                        let jrow = na::Vector6::new(c.x, c.y, c.z, nv.x, nv.y, nv.z);
+                        h += w * jrow * jrow.transpose();
+                        g += w * r * jrow;
+                        n += 1;
+                    }
+                    (h, g, n)
+                })
+                .collect();
+            let (mut h, mut g, mut n) = (na::Matrix6::zeros(), na::Vector6::zeros(), 0usize);
+            for b in &blocks {
+                h += b.0;
+                g += b.1;
+                n += b.2;
+            }
+            if n < 6 {
+                break;
+            }
+            for i in 0..6 {
+                h[(i, i)] += 1e-9 * (1.0 + h[(i, i)]);
+            }
+            let Some(x) = h.cholesky().map(|c| c.solve(&(-g))) else { break };
+            let rot = na::UnitQuaternion::from_scaled_axis(Vec3::new(x[0], x[1], x[2]));
+            let step = Pose::from_parts(na::Translation3::new(x[3], x[4], x[5]), rot);
+            pose = step * pose;
+            if Vec3::new(x[0], x[1], x[2]).norm() < 1e-7 && Vec3::new(x[3], x[4], x[5]).norm() < 1e-6 {
+                break;
+            }
+        }
+    }
+    pose
+}
+
+/// Overlap and residual of a pose: the share of source points whose nearest
+/// model point lies within `d` and whose distance to that point's plane is under
+/// `max_residual`, and the RMS plane distance of those points. Measured along
+/// normals, so it does not depend on how densely either scan sampled a surface.
+pub fn evaluate(src: &RegCloud, target: &Target, pose: &Pose, d: f64, max_residual: f64) -> (f64, f64) {
+    if src.pts.is_empty() {
+        return (0.0, 0.0);
+    }
+    let grid = &target.grid;
+    let blocks: Vec<(usize, f64)> = (0..src.pts.len().div_ceil(BLOCK))
+        .into_par_iter()
+        .map(|b| {
+            let mut n = 0;
+            let mut s2 = 0.0;
+            for k in b * BLOCK..((b + 1) * BLOCK).min(src.pts.len()) {
+                let p = tf(pose, &src.pts[k]);
+                if let Some((j, d2)) = grid.nearest(&p, d) {
+                    let nq = target.normals[j as usize];
+                    if nq != [0.0; 3] && !compatible(pose, &src.normals[k], &nq) {
+                        continue;
+                    }
+                    let q = target.pts[j as usize];
+                    let r = if nq == [0.0; 3] { d2.sqrt() } else { (p[0] - q[0]) * nq[0] + (p[1] - q[1]) * nq[1] + (p[2] - q[2]) * nq[2] };
+                    if r.abs() <= max_residual {
+                        n += 1;
+                        s2 += r * r;
+                    }
+                }
+            }
+            (n, s2)
+        })
+        .collect();
+    let n: usize = blocks.iter().map(|b| b.0).sum();
+    let s2: f64 = blocks.iter().map(|b| b.1).sum();
+    (n as f64 / src.pts.len() as f64, if n > 0 { (s2 / n as f64).sqrt() } else { 0.0 })
+}
+
+/// Whether a source normal (rotated by `pose`) and a target normal agree.
+#[inline]
+fn compatible(pose: &Pose, ns: &[f64; 3], nt: &[f64; 3]) -> bool {
+    if *ns == [0.0; 3] {
+        return true;
+    }
+    let r = pose.rotation * Vec3::new(ns[0], ns[1], ns[2]);
+    r.x * nt[0] + r.y * nt[1] + r.z * nt[2] > 0.7
+}
+
+/// One scan as registration sees it.
+pub struct RegInput {
+    pub name: String,
+    pub fine: RegCloud,
+    pub coarse: FeatureCloud,
+    /// Pose the file or station file gives, if any.
+    pub initial: Option<Pose>,
+}
+
+/// Whether a scan's own frame has the scanner at its origin (true for scans
+/// exported in scanner coordinates, false for georeferenced exports): only then
+/// can its points say where the scanner looked through.
+fn scanner_at_origin(c: &RegCloud) -> bool {
+    let b = liftplan_core::frame::Aabb::from_points(&c.pts);
+    !b.is_empty() && b.min[0] < 0.0 && b.max[0] > 0.0 && b.min[1] < 0.0 && b.max[1] > 0.0 && b.min[2] < 0.0 && b.max[2] > 0.0
+}
+
+fn subset(c: &RegCloud, idx: &[usize], max: usize) -> RegCloud {
+    let stride = (idx.len() / max.max(1)).max(1);
+    let pick: Vec<usize> = idx.iter().step_by(stride).copied().collect();
+    RegCloud { pts: pick.iter().map(|&i| c.pts[i]).collect(), normals: pick.iter().map(|&i| c.normals[i]).collect() }
+}
+
+/// At most `max` points, spread evenly over normal directions (normal-space
+/// sampling, Rusinkiewicz & Levoy 2001): the few walls and columns that pin a
+/// scan along a long rack weigh as much as the acres of ground that only pin its
+/// height. Points without a normal come last.
+fn sample(c: &RegCloud, max: usize) -> RegCloud {
+    let mut bins: Vec<Vec<usize>> = vec![Vec::new(); 12 * 5 + 1];
+    for (i, n) in c.normals.iter().enumerate() {
+        let b = if *n == [0.0; 3] {
+            60
+        } else {
+            let az = n[1].atan2(n[0]).rem_euclid(std::f64::consts::TAU);
+            let el = n[2].clamp(-1.0, 1.0).asin() + std::f64::consts::FRAC_PI_2;
+            let ia = ((az / std::f64::consts::TAU * 12.0) as usize).min(11);
+            let ie = ((el / std::f64::consts::PI * 5.0) as usize).min(4);
+            ie * 12 + ia
+        };
+        bins[b].push(i);
+    }
+    let mut pick = Vec::with_capacity(max.min(c.pts.len()));
+    let mut cursor = vec![0usize; bins.len()];
+    // Within a bin, walk at a stride so picks spread over the scan.
+    let strides: Vec<usize> = bins.iter().map(|b| (b.len() / (max / 60).max(1)).max(1)).collect();
+    'fill: while pick.len() < max {
+        let mut any = false;
+        for b in 0..60 {
+            let k = cursor[b];
+            let len = bins[b].len();
+            if k / strides[b] < len && k < len * strides[b] {
+                let idx = (k * strides[b]) % len + (k * strides[b]) / len;
+                if idx < len {
+                    pick.push(bins[b][idx]);
+                    any = true;
+                    if pick.len() >= max {
+                        break 'fill;
+                    }
+                }
+                cursor[b] += 1;
+            }
+        }
+        if !any {
+            break;
+        }
+    }
+    let mut k = 0;
+    while pick.len() < max && k < bins[60].len() {
+        pick.push(bins[60][k]);
+        k += 1;
+    }
+    pick.sort_unstable();
+    pick.dedup();
+    RegCloud { pts: pick.iter().map(|&i| c.pts[i]).collect(), normals: pick.iter().map(|&i| c.normals[i]).collect() }
+}
+
+/// The points that pin a pose down: those whose normal is not near vertical.
+/// Flat ground overlaps under any in-plane shift, so a fitness measured on all
+/// points cannot tell a right alignment from a wrong one on a flat site.
+fn structure(c: &RegCloud, max: usize) -> RegCloud {
+    let idx: Vec<usize> = (0..c.pts.len()).filter(|&i| c.normals[i] != [0.0; 3] && c.normals[i][2].abs() < 0.9).collect();
+    if idx.len() < 200 {
+        return sample(c, max);
+    }
+    subset(c, &idx, max)
+}
+
+fn model_of(inputs: &[RegInput], poses: &[Option<Pose>], except: Option<usize>) -> Target {
+    let mut pts = Vec::new();
+    let mut nrm = Vec::new();
+    for (i, inp) in inputs.iter().enumerate() {
+        let (Some(p), true) = (poses[i], Some(i) != except) else { continue };
+        pts.extend(inp.fine.pts.iter().map(|x| tf(&p, x)));
+        nrm.extend(inp.fine.normals.iter().map(|n| {
+            let v = p.rotation * Vec3::new(n[0], n[1], n[2]);
+            [v.x, v.y, v.z]
+        }));
+    }
+    Target::new(pts, nrm)
+}
+
+/// Places every scan in the frame of the first; see the module docs.
+pub fn register_all(inputs: &[RegInput], s: &RegistrationSettings, seed: u64) -> Vec<RegResult> {
+    let n = inputs.len();
+    if n == 0 {
+        return vec![];
+    }
+    let mut poses: Vec<Option<Pose>> = vec![None; n];
+    let mut results: Vec<Option<RegResult>> = vec![None; n];
+    let fit_d = s.fit_distance_m;
+    let fit_r = s.fit_residual_m;
+    let reference_pose = inputs[0].initial.unwrap_or_else(Pose::identity);
+    poses[0] = Some(reference_pose);
+    results[0] = Some(RegResult { pose: reference_pose, fitness: 1.0, rmse_m: 0.0, method: "reference".into(), registered: true, warning: None });
+    let srcs: Vec<RegCloud> = inputs.iter().map(|i| sample(&i.fine, s.icp_source_points)).collect();
+    let quick: Vec<RegCloud> = inputs.iter().map(|i| sample(&i.fine, s.icp_source_points / 4)).collect();
+    let checks: Vec<RegCloud> = inputs.iter().map(|i| structure(&i.fine, s.icp_source_points / 4)).collect();
+    let images: Vec<Option<RangeImage>> = inputs.iter().map(|i| scanner_at_origin(&i.fine).then(|| RangeImage::new(&i.fine.pts, 0.5))).collect();
+    let quick_levels = &s.icp_distances_m[..s.icp_distances_m.len().min(2)];
+    // Pairwise coarse transforms (scan j's frame to scan i's frame) with their
+    // RANSAC inlier counts, computed once per pair (scans that are not levelled).
+    let mut coarse: std::collections::HashMap<(usize, usize), Option<(Pose, usize)>> = std::collections::HashMap::new();
+    let eps = 1.5 * s.feature_voxel_m;
+    let mut plan_guess: std::collections::HashMap<usize, (usize, Vec<(Pose, f32)>)> = std::collections::HashMap::new();
+    loop {
+        let pending: Vec<usize> = (0..n).filter(|&j| poses[j].is_none()).collect();
+        if pending.is_empty() {
+            break;
+        }
+        let model = model_of(inputs, &poses, None);
+        let model_cloud = RegCloud { pts: model.pts.clone(), normals: model.normals.clone() };
+        let seen: Vec<(&RangeImage, Pose)> = (0..n).filter_map(|i| Some((images[i].as_ref()?, poses[i]?))).collect();
+        // (scan, pose, fitness, violation, method)
+        let mut best: Option<(usize, Pose, f64, f64, String)> = None;
+        let mut closest: Vec<(f64, f64)> = vec![(0.0, 1.0); n];
+        for &j in &pending {
+            let mut candidates: Vec<(Pose, String)> = Vec::new();
+            if let Some(p) = inputs[j].initial {
+                candidates.push((p, "file pose + ICP".into()));
+            }
+            if s.leveled {
+                let stale = plan_guess.get(&j).is_none_or(|g| g.0 != model.pts.len());
+                if stale {
+                    let t = std::time::Instant::now();
+                    plan_guess.insert(j, (model.pts.len(), crate::coarse2d::align(&inputs[j].fine, &model_cloud, 30_000)));
+                    tracing::debug!("align {j}: {:?}", t.elapsed());
+                }
+                // Rank the plan-view guesses in 3D: overlap of structure, less
+                // seen-through space. Heights and visibility tell apart shifts
+                // that look alike from above.
+                let guesses = &plan_guess[&j].1;
+                let scores: Vec<f64> = guesses
+                    .par_iter()
+                    .map(|(p, _)| evaluate(&checks[j], &model, p, 0.5, 0.25).0 - 10.0 * free_space_violations(&quick[j], p, &seen))
+                    .collect();
+                let mut order: Vec<usize> = (0..guesses.len()).collect();
+                order.sort_by(|&a, &b| scores[b].total_cmp(&scores[a]));
+                for &k in order.iter().take(4) {
+                    candidates.push((guesses[k].0, "plan-view correlation + ICP".into()));
+                }
+            } else {
+                for i in 0..n {
+                    let Some(pi) = poses[i] else { continue };
+                    let c = coarse.entry((j, i)).or_insert_with(|| {
+                        let corr = match_features(&inputs[j].coarse, &inputs[i].coarse, 4000);
+                        ransac(&inputs[j].coarse.pts, &inputs[i].coarse.pts, &corr, false, eps, s.ransac_iterations, seed ^ ((j as u64) << 32 | i as u64))
+                    });
+                    if let Some((t, _)) = c {
+                        candidates.push((pi * *t, format!("features (to {}) + ICP", inputs[i].name)));
+                    }
+                }
+            }
+            let t = std::time::Instant::now();
+            for (init, method) in candidates {
+                let p = icp(&quick[j], &model, init, quick_levels);
+                let (fit, _) = evaluate(&checks[j], &model, &p, fit_d, fit_r);
+                let viol = free_space_violations(&quick[j], &p, &seen);
+                if fit - 10.0 * viol > closest[j].0 - 10.0 * closest[j].1 {
+                    closest[j] = (fit, viol);
+                }
+                let ok = fit >= s.min_fitness && viol <= s.max_violation;
+                if ok && best.as_ref().is_none_or(|b| fit - 10.0 * viol > b.2 - 10.0 * b.3) {
+                    best = Some((j, p, fit, viol, method));
+                }
+            }
+            tracing::debug!("candidates {j}: {:?}", t.elapsed());
+        }
+        match best {
+            Some((j, p, _, _, method)) => {
+                let p = icp(&srcs[j], &model, p, &s.icp_distances_m);
+                let (fit, rmse) = evaluate(&checks[j], &model, &p, fit_d, fit_r);
+                poses[j] = Some(p);
+                results[j] = Some(RegResult { pose: p, fitness: fit, rmse_m: rmse, method, registered: true, warning: None });
+            }
+            None => {
+                for &j in &pending {
+                    let (fit, viol) = closest[j];
+                    results[j] = Some(RegResult {
+                        pose: inputs[j].initial.unwrap_or_else(Pose::identity),
+                        fitness: fit,
+                        rmse_m: 0.0,
+                        method: "none".into(),
+                        registered: false,
+                        warning: Some(format!(
+                            "scan '{}' does not register: its best alignment overlaps the other scans by {:.1} % (at least {:.1} % required) and puts {:.1} % of its points where another scanner saw through (at most {:.1} % allowed); it is not merged",
+                            inputs[j].name,
+                            100.0 * fit,
+                            100.0 * s.min_fitness,
+                            100.0 * viol,
+                            100.0 * s.max_violation
+                        )),
+                    });
+                }
+                break;
+            }
+        }
+    }
+    // Global refinement: each scan against all the others.
+    let fine = &s.icp_distances_m[s.icp_distances_m.len().saturating_sub(2)..];
+    {
+        for j in 1..n {
+            let Some(pj) = poses[j] else { continue };
+            let others = model_of(inputs, &poses, Some(j));
+            if others.pts.is_empty() {
+                continue;
+            }
+            poses[j] = Some(icp(&srcs[j], &others, pj, fine));
+        }
+    }
+    for j in 1..n {
+        if let (Some(p), Some(r)) = (poses[j], results[j].as_mut()) {
+            let others = model_of(inputs, &poses, Some(j));
+            let (fit, rmse) = evaluate(&checks[j], &others, &p, fit_d, fit_r);
+            r.pose = p;
+            r.fitness = fit;
+            r.rmse_m = rmse;
+        }
+    }
+    results.into_iter().map(|r| r.unwrap_or(RegResult { pose: Pose::identity(), fitness: 0.0, rmse_m: 0.0, method: "none".into(), registered: false, warning: None })).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn kabsch_recovers_a_transform() {
+        let t = liftplan_core::frame::pose_xyz_yaw(3.0, -2.0, 0.5, 1.1);
+        let a: Vec<[f64; 3]> = (0..20).map(|i| { let x = i as f64; [x.sin() * 4.0, (x * 1.7).cos() * 3.0, (x * 0.3).sin()] }).collect();
+        let b: Vec<[f64; 3]> = a.iter().map(|p| tf(&t, p)).collect();
+        for leveled in [true, false] {
+            let p = fit_rigid(&a, &b, leveled).unwrap();
+            assert!((p.translation.vector - t.translation.vector).norm() < 1e-9);
+            assert!(p.rotation.angle_to(&t.rotation) < 1e-9);
+        }
+    }
+}
+
+/// What a scanner saw, as the nearest range per direction bin, in the scan's
+/// own frame (scanner at the origin). Used to reject alignments that put points
+/// where the scanner looked straight through: a wrong alignment of repetitive
+/// geometry can overlap well, but it cannot avoid floating in seen-through space.
+pub struct RangeImage {
+    bin_rad: f64,
+    naz: usize,
+    nel: usize,
+    near: Vec<f32>,
+}
+
+impl RangeImage {
+    pub fn new(pts: &[[f64; 3]], bin_deg: f64) -> RangeImage {
+        let bin_rad = bin_deg.to_radians();
+        let naz = (std::f64::consts::TAU / bin_rad).ceil() as usize;
+        let nel = (std::f64::consts::PI / bin_rad).ceil() as usize + 1;
+        let mut near = vec![f32::INFINITY; naz * nel];
+        let mut im = RangeImage { bin_rad, naz, nel, near: vec![] };
+        for p in pts {
+            if let Some((k, r)) = im.bin(p) {
+                near[k] = near[k].min(r as f32);
+            }
+        }
+        im.near = near;
+        im
+    }
+
+    #[inline]
+    fn bin(&self, p: &[f64; 3]) -> Option<(usize, f64)> {
+        let r = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
+        if r < 0.5 {
+            return None;
+        }
+        let az = p[1].atan2(p[0]).rem_euclid(std::f64::consts::TAU);
+        let el = (p[2] / r).clamp(-1.0, 1.0).asin() + std::f64::consts::FRAC_PI_2;
+        let i = ((az / self.bin_rad) as usize).min(self.naz - 1);
+        let j = ((el / self.bin_rad) as usize).min(self.nel - 1);
+        Some((j * self.naz + i, r))
+    }
+
+    /// Whether a point (in this scan's frame) lies clearly in front of everything
+    /// the scanner saw around its direction.
+    #[inline]
+    pub fn sees_through(&self, p: &[f64; 3]) -> bool {
+        let Some((k, r)) = self.bin(p) else { return false };
+        let (i, j) = (k % self.naz, k / self.naz);
+        let mut nearest = f32::INFINITY;
+        for dj in -1i64..=1 {
+            let jj = j as i64 + dj;
+            if jj < 0 || jj >= self.nel as i64 {
+                continue;
+            }
+            for di in -1i64..=1 {
+                let ii = (i as i64 + di).rem_euclid(self.naz as i64) as usize;
+                nearest = nearest.min(self.near[jj as usize * self.naz + ii]);
+            }
+        }
+        nearest.is_finite() && (r as f32) < nearest - (0.3 + 0.02 * r as f32)
+    }
+}
+
+/// Share of `src` points (placed by `pose`) that some scan in `seen` (its range
+/// image and its pose) saw straight through.
+pub fn free_space_violations(src: &RegCloud, pose: &Pose, seen: &[(&RangeImage, Pose)]) -> f64 {
+    if src.pts.is_empty() || seen.is_empty() {
+        return 0.0;
+    }
+    let inv: Vec<(&RangeImage, Pose)> = seen.iter().map(|(im, p)| (*im, p.inverse())).collect();
+    let bad: usize = (0..src.pts.len().div_ceil(BLOCK))
+        .into_par_iter()
+        .map(|b| {
+            let mut n = 0;
+            for k in b * BLOCK..((b + 1) * BLOCK).min(src.pts.len()) {
+                let q = tf(pose, &src.pts[k]);
+                if inv.iter().any(|(im, pi)| im.sees_through(&tf(pi, &q))) {
+                    n += 1;
+                }
+            }
+            n
+        })
+        .collect::<Vec<_>>()
+        .iter()
+        .sum();
+    bad as f64 / src.pts.len() as f64
+}
