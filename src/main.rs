@@ -1,1 +1,318 @@
-fn main() {}
+//! # liftplan
+//!
+//! Turns a site capture (laser scans, plant CAD, a crane load chart, a lift
+//! request) into a checked crane lift plan. This binary owns the project folder,
+//! the stage graph and its cache, watch mode and progress; the stages live in
+//! `stages/*` and know nothing of these.
+//!
+//! Exit codes: 0 ok, 1 a stage failed, 2 usage or project-file error.
+
+mod cache;
+mod inspect;
+mod pipeline;
+mod progress;
+mod project;
+mod stages;
+mod watch;
+
+use anyhow::{Context, Result};
+use clap::{Parser, Subcommand};
+use pipeline::{RunOptions, Status};
+use progress::Progress;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(name = "liftplan", version, about = "Crane lift planning from laser scans, plant models and load charts", long_about = None)]
+#[command(after_help = "Start with `liftplan demo` to build and run an example project end to end.")]
+struct Cli {
+    /// More log output (-v info, -vv debug).
+    #[arg(short, long, action = clap::ArgAction::Count, global = true)]
+    verbose: u8,
+    /// No progress output.
+    #[arg(short, long, global = true)]
+    quiet: bool,
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Create a project folder: a commented liftplan.toml and the input folders.
+    #[command(after_help = "Example:\n  liftplan init site-a\n  cp survey/*.laz site-a/scans/\n  liftplan run site-a")]
+    Init {
+        /// Folder to create (or fill, if it exists without a liftplan.toml).
+        dir: PathBuf,
+    },
+    /// Run the pipeline; stages whose inputs did not change are reused ("fresh").
+    #[command(after_help = "Examples:\n  liftplan run site-a\n  liftplan run site-a --until scans --json\n  liftplan run site-a --force scans")]
+    Run {
+        /// Project folder (default: the current folder).
+        dir: Option<PathBuf>,
+        /// Stop after this stage.
+        #[arg(long, value_name = "STAGE")]
+        until: Option<String>,
+        /// Rerun this stage even if it is fresh (repeatable).
+        #[arg(long, value_name = "STAGE")]
+        force: Vec<String>,
+        /// Print one JSON object with every stage's status, key, time and outputs.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Show each stage as fresh or stale, and why; runs nothing.
+    #[command(after_help = "Example:\n  liftplan status site-a")]
+    Status {
+        dir: Option<PathBuf>,
+        #[arg(long)]
+        json: bool,
+    },
+    /// Watch the project and rerun affected stages when inputs change.
+    #[command(after_help = "Example:\n  liftplan watch site-a     # then drop new scans into site-a/scans/")]
+    Watch { dir: Option<PathBuf> },
+    /// Write the demo project and run it end to end.
+    #[command(after_help = "Example:\n  liftplan demo            # into ./liftplan-demo\n  liftplan demo /tmp/demo")]
+    Demo {
+        /// Folder for the demo project (default: liftplan-demo).
+        dir: Option<PathBuf>,
+        /// Angular step of the simulated scanners in degrees (smaller is denser).
+        #[arg(long, default_value_t = 0.25)]
+        scan_step: f64,
+    },
+    /// Summarise any input file liftplan reads (scans, plant models, charts).
+    #[command(after_help = "Examples:\n  liftplan inspect scans/north.laz\n  liftplan inspect scans/site.e57 --json")]
+    Inspect {
+        file: PathBuf,
+        #[arg(long)]
+        json: bool,
+    },
+    /// Remove the cache (.liftplan/) and out/ of a project.
+    #[command(after_help = "Example:\n  liftplan clean site-a")]
+    Clean { dir: Option<PathBuf> },
+    /// List every stage and its settings with their defaults.
+    #[command(after_help = "Example:\n  liftplan options scans")]
+    Options {
+        /// Only this stage.
+        stage: Option<String>,
+    },
+    /// Run the scans stage on loose files.
+    #[command(after_help = "Example:\n  liftplan scans a.laz b.e57 -o site.laz --voxel 0.05 --json")]
+    Scans {
+        #[arg(required = true)]
+        inputs: Vec<PathBuf>,
+        /// Output LAS/LAZ file.
+        #[arg(short, long)]
+        output: PathBuf,
+        /// Voxel edge in metres.
+        #[arg(long)]
+        voxel: Option<f64>,
+        /// auto | none | poses
+        #[arg(long)]
+        register: Option<String>,
+        /// Print the registration report as JSON.
+        #[arg(long)]
+        json: bool,
+    },
+}
+
+fn project_dir(dir: Option<PathBuf>) -> PathBuf {
+    dir.unwrap_or_else(|| PathBuf::from("."))
+}
+
+fn load(dir: &Path) -> Result<project::Project, ExitCode> {
+    project::Project::load(dir).map_err(|e| {
+        eprintln!("error: {e}");
+        ExitCode::from(2)
+    })
+}
+
+fn print_report(rep: &pipeline::RunReport, json: bool, progress: &Progress) {
+    if json {
+        println!("{}", serde_json::to_string(rep).unwrap_or_default());
+        return;
+    }
+    for s in &rep.stages {
+        let status = format!("{:?}", s.status).to_lowercase();
+        let extra = match (&s.error, &s.reason) {
+            (Some(e), _) => format!(": {e}"),
+            (None, Some(r)) => format!(" ({r})"),
+            _ => String::new(),
+        };
+        progress.line(&format!("{:>9} {:<6} {:6.2}s{}", s.name, status, s.seconds, extra));
+        for l in &s.lines {
+            progress.line(&format!("          {l}"));
+        }
+    }
+}
+
+fn real_main() -> Result<ExitCode> {
+    let cli = Cli::parse();
+    let level = match (cli.quiet, cli.verbose) {
+        (true, _) => tracing::Level::ERROR,
+        (false, 0) => tracing::Level::WARN,
+        (false, 1) => tracing::Level::INFO,
+        _ => tracing::Level::DEBUG,
+    };
+    tracing_subscriber::fmt().with_max_level(level).with_writer(std::io::stderr).with_target(false).init();
+    let progress = Progress::new(cli.quiet);
+    match cli.command {
+        Command::Init { dir } => {
+            project::init(&dir)?;
+            println!("created {}: put scans in scans/, plant models in plant/, load charts in charts/, then `liftplan run {}`", dir.display(), dir.display());
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Run { dir, until, force, json } => {
+            let dir = project_dir(dir);
+            let p = match load(&dir) {
+                Ok(p) => p,
+                Err(c) => return Ok(c),
+            };
+            let rep = match pipeline::run(&p, &RunOptions { until, force }, &progress) {
+                Ok(r) => r,
+                Err(e) => {
+                    eprintln!("error: {e:#}");
+                    return Ok(ExitCode::from(2));
+                }
+            };
+            print_report(&rep, json, &progress);
+            Ok(if rep.ok { ExitCode::SUCCESS } else { ExitCode::from(1) })
+        }
+        Command::Status { dir, json } => {
+            let dir = project_dir(dir);
+            let p = match load(&dir) {
+                Ok(p) => p,
+                Err(c) => return Ok(c),
+            };
+            let st = pipeline::status(&p)?;
+            if json {
+                println!("{}", serde_json::to_string(&st)?);
+            } else {
+                for s in &st {
+                    println!("{:>9} {:<7} {}", s.name, s.state, s.why.join("; "));
+                }
+            }
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Watch { dir } => {
+            let dir = project_dir(dir);
+            if let Err(c) = load(&dir) {
+                return Ok(c);
+            }
+            let stop = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
+            let s2 = stop.clone();
+            ctrlc::set_handler(move || s2.store(true, std::sync::atomic::Ordering::SeqCst)).context("installing the Ctrl-C handler")?;
+            watch::watch(&dir, &progress, stop)?;
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Demo { dir, scan_step } => {
+            let dir = dir.unwrap_or_else(|| PathBuf::from("liftplan-demo"));
+            if dir.join(project::FILE).exists() {
+                progress.line(&format!("{} already holds a project: running it again", dir.display()));
+            } else {
+                progress.line(&format!("writing the demo project into {}", dir.display()));
+                liftplan_fixtures::demo::write_project(&dir, &liftplan_fixtures::demo::DemoOptions { scan_step_deg: scan_step }).map_err(anyhow::Error::msg)?;
+            }
+            let p = match load(&dir) {
+                Ok(p) => p,
+                Err(c) => return Ok(c),
+            };
+            let rep = pipeline::run(&p, &RunOptions { until: None, force: vec![] }, &progress)?;
+            print_report(&rep, false, &progress);
+            if rep.ok {
+                println!("demo finished: outputs in {}", p.out_dir().display());
+            }
+            Ok(if rep.ok { ExitCode::SUCCESS } else { ExitCode::from(1) })
+        }
+        Command::Inspect { file, json } => {
+            let v = match inspect::inspect(&file) {
+                Ok(v) => v,
+                Err(e) => {
+                    eprintln!("error: {e:#}");
+                    return Ok(ExitCode::from(1));
+                }
+            };
+            if json {
+                println!("{}", serde_json::to_string(&v)?);
+            } else {
+                print!("{}", inspect::human(&v));
+            }
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Clean { dir } => {
+            let dir = project_dir(dir);
+            if !dir.join(project::FILE).exists() {
+                eprintln!("error: {} is not a liftplan project (no {})", dir.display(), project::FILE);
+                return Ok(ExitCode::from(2));
+            }
+            for sub in [".liftplan", "out"] {
+                let p = dir.join(sub);
+                if p.exists() {
+                    std::fs::remove_dir_all(&p).with_context(|| format!("removing {}", p.display()))?;
+                }
+            }
+            println!("removed the cache and outputs of {}", dir.display());
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Options { stage } => {
+            let all = [(liftplan_scans::NAME, toml::to_string_pretty(&serde_json::json!({ "scans": liftplan_scans::Settings::default() }))?)];
+            for (name, text) in all.iter().filter(|(n, _)| stage.as_deref().is_none_or(|s| s == *n)) {
+                println!("# stage {name}\n{text}");
+            }
+            if let Some(s) = stage {
+                if !all.iter().any(|(n, _)| *n == s) {
+                    eprintln!("error: no stage '{s}' (stages: {})", pipeline::stage_names().join(", "));
+                    return Ok(ExitCode::from(2));
+                }
+            }
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Scans { inputs, output, voxel, register, json } => {
+            let mut s = liftplan_scans::Settings::default();
+            if let Some(v) = voxel {
+                s.voxel = v;
+            }
+            if let Some(r) = register {
+                s.register = serde_json::from_value(serde_json::Value::String(r.clone())).map_err(|_| anyhow::anyhow!("--register {r}: expected auto, none or poses"))?;
+            }
+            let tmp = tempdir_near(&output)?;
+            let report = |what: &str, d: u64, t: u64| progress.report("scans", what, d, t);
+            let res = liftplan_scans::run(&inputs, &s, &liftplan_scans::RunOptions { seed: 0, progress: &report }, &tmp);
+            let out = match res {
+                Ok(sum) => {
+                    std::fs::rename(tmp.join("site.laz"), &output).or_else(|_| std::fs::copy(tmp.join("site.laz"), &output).map(|_| ()))?;
+                    if json {
+                        println!("{}", std::fs::read_to_string(tmp.join("registration.json"))?);
+                    } else {
+                        for l in sum.lines() {
+                            println!("{l}");
+                        }
+                        println!("wrote {} ({} points)", output.display(), sum.points_out);
+                    }
+                    ExitCode::SUCCESS
+                }
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    ExitCode::from(1)
+                }
+            };
+            let _ = std::fs::remove_dir_all(&tmp);
+            Ok(out)
+        }
+    }
+}
+
+fn tempdir_near(output: &Path) -> Result<PathBuf> {
+    let parent = output.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let d = parent.join(format!(".liftplan-scans-{}", std::process::id()));
+    std::fs::create_dir_all(&d)?;
+    Ok(d)
+}
+
+fn main() -> ExitCode {
+    match real_main() {
+        Ok(c) => c,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::from(1)
+        }
+    }
+}

@@ -34,7 +34,7 @@ pub fn top_view(cloud: &PointCloud, names: &[String], max_px: u32) -> Image {
     let y = ih as f64 - 25.0;
     im.line(20.0, y, 20.0 + bar * scale, y, 3.0, [0, 0, 0]);
     im.text(20, (y + 6.0) as i64, &format!("{bar} M"), 1, [0, 0, 0]);
-    let mut x = 120i64;
+    let mut x = 40 + (bar * scale) as i64 + Image::text_width(&format!("{bar} M"), 1);
     for (k, n) in names.iter().enumerate().take(10) {
         im.fill_rect(x, (y - 3.0) as i64, x + 8, (y + 5.0) as i64, category(k));
         im.text(x + 11, (y - 3.0) as i64, n, 1, [0, 0, 0]);

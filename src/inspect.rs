@@ -1,0 +1,39 @@
+//! `liftplan inspect FILE`: a summary of any input file, picked by extension,
+//! like `pdal info`.
+
+use anyhow::{Result, bail};
+use std::path::Path;
+
+pub fn inspect(path: &Path) -> Result<serde_json::Value> {
+    if !path.exists() {
+        bail!("{}: no such file", path.display());
+    }
+    let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
+    if crate::stages::SCAN_EXTS.contains(&ext.as_str()) {
+        return Ok(liftplan_scans::inspect(path)?);
+    }
+    bail!("{}: liftplan does not read .{ext} files (scans: {})", path.display(), crate::stages::SCAN_EXTS.join(", "))
+}
+
+/// A few readable lines for the terminal.
+pub fn human(v: &serde_json::Value) -> String {
+    let mut s = String::new();
+    if let Some(obj) = v.as_object() {
+        for (k, val) in obj {
+            match val {
+                serde_json::Value::Array(a) if a.iter().all(|x| x.is_number()) => {
+                    s.push_str(&format!("{k}: [{}]\n", a.iter().map(|x| x.to_string()).collect::<Vec<_>>().join(", ")));
+                }
+                serde_json::Value::Array(a) => {
+                    s.push_str(&format!("{k}:\n"));
+                    for item in a {
+                        s.push_str(&format!("  - {}\n", serde_json::to_string(item).unwrap_or_default()));
+                    }
+                }
+                serde_json::Value::Object(_) => s.push_str(&format!("{k}: {}\n", serde_json::to_string(val).unwrap_or_default())),
+                other => s.push_str(&format!("{k}: {}\n", other.as_str().map(String::from).unwrap_or_else(|| other.to_string()))),
+            }
+        }
+    }
+    s
+}

@@ -1,0 +1,353 @@
+//! The stage graph and the make-style runner.
+//!
+//! Each stage declares the project files it reads, the settings that affect it
+//! and the upstream output files it reads. Its key is blake3 over its name, code
+//! version and the content hashes of all of those; a key already in the cache is
+//! `fresh` and nothing runs. Because downstream keys hash upstream *output files*,
+//! a stage that reruns but writes the same bytes does not make its downstream
+//! stale (early cut-off).
+
+use crate::cache::{self, Cache, FileHashes, Manifest};
+use crate::progress::Progress;
+use crate::project::Project;
+use anyhow::{Result, anyhow};
+use serde::Serialize;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// What a stage run gets.
+pub struct Ctx<'a> {
+    pub project: &'a Project,
+    /// Project files this stage reads, sorted.
+    pub inputs: &'a [PathBuf],
+    /// Cache folders of the upstream stages that produced output.
+    pub upstream: &'a BTreeMap<&'static str, (PathBuf, Manifest)>,
+    /// Folder the stage writes its outputs into.
+    pub out: &'a Path,
+    pub progress: &'a Progress,
+}
+
+impl Ctx<'_> {
+    /// Path of an upstream output, if that stage produced it.
+    pub fn upstream_file(&self, stage: &str, file: &str) -> Option<PathBuf> {
+        let (dir, m) = self.upstream.get(stage)?;
+        m.outputs.contains_key(file).then(|| dir.join(file))
+    }
+
+    pub fn report(&self, stage: &str) -> impl Fn(&str, u64, u64) + Sync + '_ {
+        let stage = stage.to_string();
+        move |what: &str, done: u64, total: u64| self.progress.report(&stage, what, done, total)
+    }
+}
+
+/// What a stage run produced.
+pub struct Produced {
+    /// Output file names inside `Ctx::out`, published to `out/`.
+    pub outputs: Vec<String>,
+    pub summary: serde_json::Value,
+    /// Human lines for the run output (one per scan, per lift...).
+    pub lines: Vec<String>,
+}
+
+pub struct StageDef {
+    pub name: &'static str,
+    pub version: u32,
+    pub about: &'static str,
+    /// Project files the stage reads.
+    pub inputs: fn(&Project) -> Result<Vec<PathBuf>>,
+    /// The settings that affect the stage, as JSON.
+    pub settings: fn(&Project) -> serde_json::Value,
+    /// Upstream outputs it reads: (stage, file name or "*").
+    pub reads: &'static [(&'static str, &'static str)],
+    /// Whether there is anything to do; otherwise the stage is skipped.
+    pub applicable: fn(&Project, &[PathBuf], &BTreeMap<&'static str, (PathBuf, Manifest)>) -> bool,
+    pub run: fn(&Ctx) -> Result<Produced>,
+}
+
+pub fn stages() -> Vec<StageDef> {
+    vec![crate::stages::scans()]
+}
+
+pub fn stage_names() -> Vec<&'static str> {
+    stages().iter().map(|s| s.name).collect()
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Status {
+    Ran,
+    Fresh,
+    Failed,
+    Skipped,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct StageReport {
+    pub name: String,
+    pub status: Status,
+    pub key: Option<String>,
+    pub seconds: f64,
+    pub outputs: Vec<String>,
+    /// Output files rewritten in out/ by this run.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub published: Vec<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub error: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub reason: Option<String>,
+    #[serde(skip)]
+    pub lines: Vec<String>,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct RunReport {
+    pub stages: Vec<StageReport>,
+    pub ok: bool,
+}
+
+pub struct RunOptions {
+    pub until: Option<String>,
+    pub force: Vec<String>,
+}
+
+fn matches(pattern: &str, name: &str) -> bool {
+    pattern == "*" || pattern == name
+}
+
+/// The key inputs of a stage: files, settings, upstream outputs.
+fn key_inputs(
+    def: &StageDef,
+    project: &Project,
+    files: &[PathBuf],
+    hashes: &mut FileHashes,
+    upstream: &BTreeMap<&'static str, (PathBuf, Manifest)>,
+) -> Result<(BTreeMap<String, String>, serde_json::Value)> {
+    let mut inputs = BTreeMap::new();
+    for f in files {
+        let rel = f.strip_prefix(&project.dir).unwrap_or(f).to_string_lossy().into_owned();
+        inputs.insert(format!("file:{rel}"), hashes.hash(f)?);
+    }
+    let settings = (def.settings)(project);
+    inputs.insert("settings".into(), blake3::hash(settings.to_string().as_bytes()).to_hex().to_string());
+    for (stage, pat) in def.reads {
+        match upstream.get(stage) {
+            Some((_, m)) => {
+                let mut any = false;
+                for (name, h) in &m.outputs {
+                    if matches(pat, name) {
+                        inputs.insert(format!("upstream:{stage}/{name}"), h.clone());
+                        any = true;
+                    }
+                }
+                if !any {
+                    inputs.insert(format!("upstream:{stage}/{pat}"), "absent".into());
+                }
+            }
+            None => {
+                inputs.insert(format!("upstream:{stage}/{pat}"), "absent".into());
+            }
+        }
+    }
+    Ok((inputs, settings))
+}
+
+/// Runs the stages in order; see the module docs.
+pub fn run(project: &Project, opts: &RunOptions, progress: &Progress) -> Result<RunReport> {
+    let defs = stages();
+    let names: Vec<&str> = defs.iter().map(|d| d.name).collect();
+    if let Some(u) = &opts.until {
+        if !names.contains(&u.as_str()) {
+            return Err(anyhow!("--until {u}: no such stage (stages: {})", names.join(", ")));
+        }
+    }
+    for f in &opts.force {
+        if !names.contains(&f.as_str()) {
+            return Err(anyhow!("--force {f}: no such stage (stages: {})", names.join(", ")));
+        }
+    }
+    let cache = Cache::new(&project.state_dir());
+    cache.sweep();
+    let mut hashes = FileHashes::load(&project.state_dir());
+    let mut upstream: BTreeMap<&'static str, (PathBuf, Manifest)> = BTreeMap::new();
+    let mut reports = Vec::new();
+    let mut failed = false;
+    let mut past_until = false;
+    for def in &defs {
+        let mut rep = StageReport { name: def.name.into(), status: Status::Skipped, key: None, seconds: 0.0, outputs: vec![], published: vec![], error: None, reason: None, lines: vec![] };
+        if failed {
+            rep.reason = Some("an earlier stage failed".into());
+            reports.push(rep);
+            continue;
+        }
+        if past_until {
+            rep.reason = Some("after --until".into());
+            reports.push(rep);
+            continue;
+        }
+        let t0 = Instant::now();
+        let outcome = (|| -> Result<()> {
+            let files = (def.inputs)(project)?;
+            if !(def.applicable)(project, &files, &upstream) {
+                rep.reason = Some("nothing to do (no inputs)".into());
+                return Ok(());
+            }
+            let (inputs, settings) = key_inputs(def, project, &files, &mut hashes, &upstream)?;
+            let key = cache::key(def.name, def.version, &inputs);
+            rep.key = Some(key.clone());
+            let forced = opts.force.iter().any(|f| f == def.name);
+            let m = match cache.lookup(def.name, &key).filter(|_| !forced) {
+                Some(m) => {
+                    rep.status = Status::Fresh;
+                    m
+                }
+                None => {
+                    let tmp = cache.temp_dir(def.name)?;
+                    let ctx = Ctx { project, inputs: &files, upstream: &upstream, out: &tmp, progress };
+                    let produced = match (def.run)(&ctx) {
+                        Ok(p) => p,
+                        Err(e) => {
+                            let _ = std::fs::remove_dir_all(&tmp);
+                            return Err(e);
+                        }
+                    };
+                    let m = Manifest {
+                        stage: def.name.into(),
+                        version: def.version,
+                        key: key.clone(),
+                        inputs,
+                        settings,
+                        outputs: produced.outputs.iter().map(|o| (o.clone(), String::new())).collect(),
+                        summary: produced.summary,
+                        lines: produced.lines,
+                        seconds: t0.elapsed().as_secs_f64(),
+                    };
+                    let m = cache.commit(&tmp, m).inspect_err(|_| {
+                        let _ = std::fs::remove_dir_all(&tmp);
+                    })?;
+                    rep.status = Status::Ran;
+                    m
+                }
+            };
+            let dir = cache.entry_dir(def.name, &key);
+            rep.published = cache::publish(&project.out_dir(), &dir, &m)?;
+            rep.outputs = m.outputs.keys().map(|o| format!("out/{o}")).collect();
+            rep.lines = m.lines.clone();
+            upstream.insert(def.name, (dir, m));
+            Ok(())
+        })();
+        rep.seconds = t0.elapsed().as_secs_f64();
+        if let Err(e) = outcome {
+            rep.status = Status::Failed;
+            rep.error = Some(format!("{e:#}"));
+            failed = true;
+        }
+        if opts.until.as_deref() == Some(def.name) {
+            past_until = true;
+        }
+        reports.push(rep);
+    }
+    hashes.save(&project.state_dir())?;
+    let report = RunReport { ok: !failed, stages: reports };
+    cache.record_run(&serde_json::json!({
+        "liftplan": env!("CARGO_PKG_VERSION"),
+        "finished_unix": std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map(|d| d.as_secs()).unwrap_or(0),
+        "stage_versions": defs.iter().map(|d| (d.name, d.version)).collect::<BTreeMap<_, _>>(),
+        "report": report,
+    }))?;
+    Ok(report)
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct StageStatus {
+    pub name: String,
+    /// fresh | stale | skipped
+    pub state: String,
+    pub key: Option<String>,
+    pub why: Vec<String>,
+}
+
+/// Each stage fresh or stale, and why; runs nothing.
+pub fn status(project: &Project) -> Result<Vec<StageStatus>> {
+    let cache = Cache::new(&project.state_dir());
+    let mut hashes = FileHashes::load(&project.state_dir());
+    let mut upstream: BTreeMap<&'static str, (PathBuf, Manifest)> = BTreeMap::new();
+    let mut stale_upstream: Vec<&str> = Vec::new();
+    let mut out = Vec::new();
+    for def in stages() {
+        let files = (def.inputs)(project)?;
+        if !(def.applicable)(project, &files, &upstream) && stale_upstream.is_empty() {
+            out.push(StageStatus { name: def.name.into(), state: "skipped".into(), key: None, why: vec!["nothing to do (no inputs)".into()] });
+            continue;
+        }
+        let blocked: Vec<&str> = def.reads.iter().map(|r| r.0).filter(|s| stale_upstream.contains(s)).collect();
+        if !blocked.is_empty() {
+            out.push(StageStatus { name: def.name.into(), state: "stale".into(), key: None, why: blocked.iter().map(|s| format!("upstream stage {s} is stale")).collect() });
+            stale_upstream.push(def.name);
+            continue;
+        }
+        let (inputs, settings) = key_inputs(&def, project, &files, &mut hashes, &upstream)?;
+        let key = cache::key(def.name, def.version, &inputs);
+        if let Some(m) = cache.lookup(def.name, &key) {
+            upstream.insert(def.name, (cache.entry_dir(def.name, &key), m));
+            out.push(StageStatus { name: def.name.into(), state: "fresh".into(), key: Some(key), why: vec![] });
+            continue;
+        }
+        let why = match cache.last(def.name) {
+            None => vec!["never ran".into()],
+            Some(last) => explain(&last, def.version, &inputs, &settings),
+        };
+        stale_upstream.push(def.name);
+        out.push(StageStatus { name: def.name.into(), state: "stale".into(), key: Some(key), why });
+    }
+    hashes.save(&project.state_dir())?;
+    Ok(out)
+}
+
+fn explain(last: &Manifest, version: u32, inputs: &BTreeMap<String, String>, settings: &serde_json::Value) -> Vec<String> {
+    let mut why = Vec::new();
+    if last.version != version {
+        why.push(format!("stage code changed (version {} -> {version})", last.version));
+    }
+    for (k, v) in inputs {
+        if k == "settings" {
+            continue;
+        }
+        match last.inputs.get(k) {
+            None => why.push(format!("{} added", k.trim_start_matches("file:"))),
+            Some(old) if old != v => why.push(format!("{} changed", k.trim_start_matches("file:"))),
+            _ => {}
+        }
+    }
+    for k in last.inputs.keys() {
+        if k != "settings" && !inputs.contains_key(k) {
+            why.push(format!("{} removed", k.trim_start_matches("file:")));
+        }
+    }
+    diff_settings("", &last.settings, settings, &mut why);
+    if why.is_empty() {
+        why.push("its cached result is missing".into());
+    }
+    why
+}
+
+fn diff_settings(prefix: &str, a: &serde_json::Value, b: &serde_json::Value, why: &mut Vec<String>) {
+    match (a, b) {
+        (serde_json::Value::Object(x), serde_json::Value::Object(y)) => {
+            for (k, vb) in y {
+                let p = if prefix.is_empty() { k.clone() } else { format!("{prefix}.{k}") };
+                match x.get(k) {
+                    Some(va) => diff_settings(&p, va, vb, why),
+                    None => why.push(format!("setting {p} added")),
+                }
+            }
+            for k in x.keys() {
+                if !y.contains_key(k) {
+                    why.push(format!("setting {prefix}.{k} removed"));
+                }
+            }
+        }
+        _ if a != b => why.push(format!("setting {prefix} changed ({a} -> {b})")),
+        _ => {}
+    }
+}

@@ -1,0 +1,88 @@
+//! Progress on stderr: indicatif bars when stderr is a terminal, otherwise plain
+//! lines at most once per second per task, so logs stay readable in CI.
+
+use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
+use std::collections::HashMap;
+use std::io::IsTerminal;
+use std::sync::Mutex;
+use std::time::{Duration, Instant};
+
+pub struct Progress {
+    quiet: bool,
+    tty: bool,
+    multi: MultiProgress,
+    bars: Mutex<HashMap<String, ProgressBar>>,
+    /// Plain mode: when each task last printed; terminal mode: when it started.
+    last_line: Mutex<HashMap<String, Instant>>,
+}
+
+impl Progress {
+    pub fn new(quiet: bool) -> Progress {
+        Progress {
+            quiet,
+            tty: std::io::stderr().is_terminal(),
+            multi: MultiProgress::new(),
+            bars: Mutex::new(HashMap::new()),
+            last_line: Mutex::new(HashMap::new()),
+        }
+    }
+
+    /// Reports `done` of `total` units of `what` in `stage` (total 0: unknown).
+    pub fn report(&self, stage: &str, what: &str, done: u64, total: u64) {
+        if self.quiet {
+            return;
+        }
+        let key = format!("{stage}: {what}");
+        if self.tty {
+            let mut bars = self.bars.lock().unwrap_or_else(|e| e.into_inner());
+            // Only tasks lasting over a second get a bar.
+            if !bars.contains_key(&key) {
+                let mut seen = self.last_line.lock().unwrap_or_else(|e| e.into_inner());
+                let first = *seen.entry(key.clone()).or_insert_with(Instant::now);
+                if first.elapsed() < Duration::from_secs(1) || (total > 0 && done >= total) {
+                    return;
+                }
+            }
+            let bar = bars.entry(key.clone()).or_insert_with(|| {
+                let b = self.multi.add(if total > 0 { ProgressBar::new(total) } else { ProgressBar::new_spinner() });
+                b.set_style(ProgressStyle::with_template("{prefix:>10} {wide_msg} [{bar:30}] {percent:>3}%").unwrap_or_else(|_| ProgressStyle::default_bar()).progress_chars("=> "));
+                b.set_prefix(stage.to_string());
+                b.set_message(what.to_string());
+                b
+            });
+            if total > 0 {
+                bar.set_length(total);
+            }
+            bar.set_position(done.min(total.max(done)));
+            if total > 0 && done >= total {
+                bar.finish_and_clear();
+                bars.remove(&key);
+            }
+        } else {
+            let mut last = self.last_line.lock().unwrap_or_else(|e| e.into_inner());
+            let now = Instant::now();
+            let finished = total > 0 && done >= total;
+            let due = last.get(&key).is_none_or(|t| now.duration_since(*t) >= Duration::from_secs(1));
+            if due && !finished && done > 0 {
+                if total > 0 {
+                    eprintln!("{key} {:.0}%", 100.0 * done as f64 / total as f64);
+                } else {
+                    eprintln!("{key} {done}");
+                }
+                last.insert(key, now);
+            }
+        }
+    }
+
+    /// A line of stage output (not a progress update).
+    pub fn line(&self, text: &str) {
+        if self.quiet {
+            return;
+        }
+        if self.tty {
+            let _ = self.multi.println(text);
+        } else {
+            eprintln!("{text}");
+        }
+    }
+}

@@ -1,0 +1,298 @@
+//! The project folder and `liftplan.toml`.
+//!
+//! The file is parsed raw with serde (`deny_unknown_fields` everywhere, so a typo
+//! is an error with line and column, not a silently ignored setting), then
+//! validated: paths must stay inside the project folder unless
+//! `[paths] allow_outside = true`, stage settings must be in range, lifts must
+//! name a crane that exists.
+
+use anyhow::{Context, Result, anyhow, bail};
+use liftplan_core::lift::LiftSpec;
+use liftplan_core::location::{Location, toml_error};
+use serde::{Deserialize, Serialize};
+use std::path::{Component, Path, PathBuf};
+
+pub const FILE: &str = "liftplan.toml";
+
+/// A project-file error: where, and what. Exit code 2.
+#[derive(Debug)]
+pub struct ProjectError {
+    pub location: Location,
+    pub message: String,
+}
+
+impl std::fmt::Display for ProjectError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}: {}", self.location, self.message)
+    }
+}
+
+impl std::error::Error for ProjectError {}
+
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct ProjectMeta {
+    pub name: String,
+    /// Seed of every random stream (registration, planner).
+    pub seed: u64,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Paths {
+    /// Allow paths outside the project folder (absolute or with `..`).
+    pub allow_outside: bool,
+    pub scans: PathBuf,
+    pub plant: PathBuf,
+    pub charts: PathBuf,
+    pub cranes: PathBuf,
+}
+
+impl Default for Paths {
+    fn default() -> Self {
+        Paths { allow_outside: false, scans: "scans".into(), plant: "plant".into(), charts: "charts".into(), cranes: "cranes".into() }
+    }
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct WatchSettings {
+    /// Quiet time after the last change before a run starts (ms).
+    pub settle_ms: u64,
+    /// How long to wait for a file that does not parse yet to be completed (s).
+    pub parse_wait_s: u64,
+}
+
+impl Default for WatchSettings {
+    fn default() -> Self {
+        WatchSettings { settle_ms: 1000, parse_wait_s: 10 }
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum GpuUse {
+    #[default]
+    Auto,
+    Never,
+    Require,
+}
+
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct GpuSettings {
+    /// auto | never | require
+    #[serde(rename = "use")]
+    pub use_: GpuUse,
+}
+
+/// `liftplan.toml` as written.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawProject {
+    #[serde(default)]
+    pub project: ProjectMeta,
+    #[serde(default)]
+    pub paths: Paths,
+    #[serde(default)]
+    pub scans: liftplan_scans::Settings,
+    #[serde(default)]
+    pub gpu: GpuSettings,
+    #[serde(default)]
+    pub watch: WatchSettings,
+    #[serde(default)]
+    pub lift: Vec<LiftSpec>,
+}
+
+/// A validated project.
+#[derive(Debug, Clone)]
+pub struct Project {
+    pub dir: PathBuf,
+    pub file: PathBuf,
+    pub raw: RawProject,
+}
+
+impl Project {
+    pub fn load(dir: &Path) -> std::result::Result<Project, ProjectError> {
+        let file = dir.join(FILE);
+        let text = std::fs::read_to_string(&file).map_err(|e| ProjectError {
+            location: Location::file(&file),
+            message: if e.kind() == std::io::ErrorKind::NotFound {
+                format!("no {FILE} here (run `liftplan init {}` to create a project)", dir.display())
+            } else {
+                e.to_string()
+            },
+        })?;
+        let raw: RawProject = toml::from_str(&text).map_err(|e| {
+            let (location, message) = toml_error(&file, &text, &e);
+            ProjectError { location, message }
+        })?;
+        let p = Project { dir: dir.to_path_buf(), file: file.clone(), raw };
+        p.validate(&text)?;
+        Ok(p)
+    }
+
+    /// Line of the first occurrence of `needle` in the file, for error places.
+    fn locate(&self, text: &str, needle: &str) -> Location {
+        match text.find(needle) {
+            Some(off) => {
+                let (l, c) = liftplan_core::location::line_col(text, off);
+                Location::line(&self.file, l, Some(c))
+            }
+            None => Location::file(&self.file),
+        }
+    }
+
+    fn validate(&self, text: &str) -> std::result::Result<(), ProjectError> {
+        let err = |needle: &str, message: String| ProjectError { location: self.locate(text, needle), message };
+        let p = &self.raw.paths;
+        for (key, path) in [("scans", &p.scans), ("plant", &p.plant), ("charts", &p.charts), ("cranes", &p.cranes)] {
+            self.check_inside(path).map_err(|m| err(&format!("{key} ="), format!("[paths] {key}: {m}")))?;
+            let full = self.dir.join(path);
+            if !full.is_dir() {
+                return Err(err(&format!("{key} ="), format!("[paths] {key}: folder {} does not exist", full.display())));
+            }
+        }
+        if let Some(st) = &self.raw.scans.stations {
+            self.check_inside(st).map_err(|m| err("stations", format!("[scans] stations: {m}")))?;
+            if !self.dir.join(st).is_file() {
+                return Err(err("stations", format!("[scans] stations: file {} does not exist", self.dir.join(st).display())));
+            }
+        }
+        self.raw.scans.check().map_err(|m| err("[scans]", format!("[scans] {m}")))?;
+        let mut ids = std::collections::HashSet::new();
+        for l in &self.raw.lift {
+            if !ids.insert(l.id.clone()) {
+                return Err(err(&format!("\"{}\"", l.id), format!("lift id '{}' is used twice", l.id)));
+            }
+            let model = self.crane_model(&l.crane.model).map_err(|e| err(&l.crane.model, format!("lift '{}': {e:#}", l.id)))?;
+            l.resolve(model).map_err(|m| err(&format!("\"{}\"", l.id), m))?;
+        }
+        Ok(())
+    }
+
+    /// Refuses absolute paths and `..` unless `allow_outside`.
+    pub fn check_inside(&self, p: &Path) -> std::result::Result<(), String> {
+        if self.raw.paths.allow_outside {
+            return Ok(());
+        }
+        if p.is_absolute() || p.components().any(|c| matches!(c, Component::ParentDir | Component::Prefix(_) | Component::RootDir)) {
+            return Err(format!("'{}' leaves the project folder; write it relative to the project, or set [paths] allow_outside = true", p.display()));
+        }
+        Ok(())
+    }
+
+    pub fn path(&self, rel: &Path) -> PathBuf {
+        self.dir.join(rel)
+    }
+
+    /// A crane model: a file `cranes/<name>.toml` if present, else a built-in.
+    pub fn crane_model(&self, name: &str) -> Result<liftplan_core::crane::CraneModel> {
+        if name.contains(['/', '\\']) || name.contains("..") {
+            bail!("crane model '{name}' must be a built-in name or a file name in the cranes folder");
+        }
+        let file = self.path(&self.raw.paths.cranes).join(format!("{name}.toml"));
+        if file.is_file() {
+            return liftplan_core::crane::CraneModel::from_file(&file).map_err(|e| anyhow!("{e}"));
+        }
+        liftplan_core::crane::builtin(name).map_err(|e| anyhow!("{e}; no file {} either", file.display()))
+    }
+
+    /// Files in a project folder with one of `exts`, sorted by name.
+    pub fn files(&self, folder: &Path, exts: &[&str]) -> Result<Vec<PathBuf>> {
+        let dir = self.path(folder);
+        let mut out = Vec::new();
+        let rd = std::fs::read_dir(&dir).with_context(|| format!("reading {}", dir.display()))?;
+        for e in rd {
+            let e = e?;
+            let p = e.path();
+            let name = e.file_name().to_string_lossy().into_owned();
+            if name.starts_with('.') || !p.is_file() {
+                continue;
+            }
+            let ext = p.extension().and_then(|x| x.to_str()).unwrap_or("").to_ascii_lowercase();
+            if exts.contains(&ext.as_str()) {
+                out.push(p);
+            }
+        }
+        out.sort();
+        Ok(out)
+    }
+
+    pub fn state_dir(&self) -> PathBuf {
+        self.dir.join(".liftplan")
+    }
+
+    pub fn out_dir(&self) -> PathBuf {
+        self.dir.join("out")
+    }
+}
+
+/// The commented `liftplan.toml` that `init` writes.
+pub const TEMPLATE: &str = r#"# liftplan project file. Paths are relative to this folder.
+# Every section is optional; the values shown are the defaults.
+
+[project]
+name = "my site"
+seed = 1                  # seed of every random stream: same inputs + seed = same plan
+
+[paths]
+allow_outside = false     # allow paths outside this folder (absolute, or with ..)
+scans = "scans"           # *.las *.laz *.ply *.e57 *.pts *.xyz from the survey team
+plant = "plant"           # *.rvm (+ .att) plant exports, *.obj *.ply *.stl *.gltf *.glb meshes
+charts = "charts"         # *.xlsx *.xls *.xlsb *.ods load charts
+cranes = "cranes"         # crane geometry files (<name>.toml); built in: ltm-1100, ac-700, tower-hh-60
+
+[scans]
+register = "auto"         # auto | none | poses
+subsample = "voxel"       # voxel | spacing | nth | none
+voxel = 0.05              # voxel edge, m
+voxel_point = "centroid"  # centroid | nearest
+spacing = 0.05            # minimum point spacing for subsample = "spacing", m
+every_nth = 9             # keep every Nth point for subsample = "nth"
+# stations = "stations.toml"   # initial scanner poses: [[station]] scan, x_m, y_m, z_m, yaw_deg
+on_unregistered = "fail"  # fail | exclude
+
+[scans.ground]
+enabled = true
+cell_m = 1.0
+slope = 0.15
+window_m = 18.0
+threshold_m = 0.5
+scalar = 1.25
+
+[gpu]
+use = "auto"              # auto | never | require
+
+[watch]
+settle_ms = 1000          # quiet time after the last change before a rerun
+parse_wait_s = 10         # how long to wait for a dropped file to become readable
+
+# A lift: uncomment and edit.
+# [[lift]]
+# id = "V-101"
+# description = "Vessel from trailer onto its foundation"
+# load = { name = "vessel V-101", mass_t = 12.0, size_m = [8.0, 3.0, 3.0], cog_m = [0.0, 0.0, 0.0] }
+# rigging = { mass_t = 0.4, height_m = 4.0 }
+# crane = { model = "ltm-1100", position_m = [0.0, 0.0], ground_z_m = 0.0, heading_deg = 0.0, boom_m = 40.0, chart_config = "main boom, 360 deg" }
+# pick = { x_m = 6.0, y_m = -16.0, z_m = 1.2, yaw_deg = 90.0 }
+# set = { x_m = 30.0, y_m = 2.0, z_m = 1.2, yaw_deg = 0.0 }
+# clearance_m = 1.0
+"#;
+
+/// Creates a project folder with the template and the input folders.
+pub fn init(dir: &Path) -> Result<()> {
+    let file = dir.join(FILE);
+    if file.exists() {
+        bail!("{} already exists; not overwriting it", file.display());
+    }
+    for sub in ["scans", "plant", "charts", "cranes"] {
+        std::fs::create_dir_all(dir.join(sub)).with_context(|| format!("creating {}", dir.join(sub).display()))?;
+    }
+    liftplan_core::artifact::write_atomic(&file, TEMPLATE.as_bytes()).with_context(|| format!("writing {}", file.display()))?;
+    let example = dir.join("cranes").join("example-ltm-1100.toml");
+    if let Some(text) = liftplan_core::crane::builtin_text("ltm-1100") {
+        liftplan_core::artifact::write_atomic(&example, text.as_bytes())?;
+    }
+    Ok(())
+}

@@ -1,0 +1,46 @@
+//! The binary's glue for each stage: which project files and settings it reads,
+//! and how its crate is called. Stage crates know nothing of the project, the
+//! cache or the CLI; everything project-shaped is resolved here.
+
+use crate::pipeline::{Ctx, Produced, StageDef};
+use crate::project::Project;
+use anyhow::Result;
+use std::path::PathBuf;
+
+pub const SCAN_EXTS: &[&str] = &["las", "laz", "ply", "e57", "pts", "xyz", "txt", "asc", "csv"];
+
+pub fn scans() -> StageDef {
+    StageDef {
+        name: liftplan_scans::NAME,
+        version: liftplan_scans::VERSION,
+        about: "read, register, thin and ground-classify the survey scans",
+        inputs: |p: &Project| {
+            let mut files = p.files(&p.raw.paths.scans, SCAN_EXTS)?;
+            if let Some(st) = &p.raw.scans.stations {
+                files.push(p.path(st));
+            }
+            Ok(files)
+        },
+        settings: |p: &Project| serde_json::json!({ "scans": p.raw.scans, "seed": p.raw.project.seed }),
+        reads: &[],
+        applicable: |p, files, _| files.iter().any(|f| !p.raw.scans.stations.as_ref().is_some_and(|s| p.path(s) == *f)),
+        run: run_scans,
+    }
+}
+
+fn run_scans(ctx: &Ctx) -> Result<Produced> {
+    let p = ctx.project;
+    let mut s = p.raw.scans.clone();
+    let station_file = s.stations.as_ref().map(|st| p.path(st));
+    s.stations = station_file.clone();
+    let scan_files: Vec<PathBuf> = ctx.inputs.iter().filter(|f| Some(*f) != station_file.as_ref()).cloned().collect();
+    let report = ctx.report("scans");
+    let summary = liftplan_scans::run(&scan_files, &s, &liftplan_scans::RunOptions { seed: p.raw.project.seed, progress: &report }, ctx.out)?;
+    let mut outputs = vec!["site.laz".to_string(), "registration.json".into(), "scans.png".into()];
+    if ctx.out.join("ground.asc").exists() {
+        outputs.push("ground.asc".into());
+    }
+    let mut lines = summary.lines();
+    lines.push(format!("site cloud: {} points ({}), {} ground", summary.points_out, summary.subsample, summary.ground_points));
+    Ok(Produced { outputs, summary: serde_json::to_value(&summary)?, lines })
+}

@@ -1,0 +1,153 @@
+//! `liftplan watch`: rerun the affected stages when inputs change.
+//!
+//! A burst of changes is gathered until the project has been quiet for
+//! `[watch] settle_ms`; a changed file must also keep its size between two looks
+//! and, for scans, parse its header, before a run starts (a copy in progress is
+//! waited for up to `parse_wait_s`). A failing run is logged and reported; the
+//! last good outputs stay in `out/` and the watcher keeps going. Ctrl-C stops it
+//! between runs.
+
+use crate::pipeline::{self, RunOptions, Status};
+use crate::progress::Progress;
+use crate::project::Project;
+use anyhow::{Context, Result};
+use notify::event::{AccessKind, AccessMode, ModifyKind};
+use notify::{EventKind, RecursiveMode, Watcher};
+use std::collections::BTreeSet;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
+
+fn log(dir: &Path, msg: &str) {
+    let logdir = dir.join(".liftplan").join("log");
+    let _ = std::fs::create_dir_all(&logdir);
+    let t = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map(|d| d.as_secs_f64()).unwrap_or(0.0);
+    if let Ok(mut f) = std::fs::OpenOptions::new().create(true).append(true).open(logdir.join("watch.log")) {
+        let _ = writeln!(f, "{t:.3} {msg}");
+    }
+    eprintln!("[watch] {msg}");
+}
+
+fn relevant(dir: &Path, p: &Path) -> bool {
+    let Ok(rel) = p.strip_prefix(dir) else { return false };
+    let first = rel.components().next().map(|c| c.as_os_str().to_string_lossy().into_owned()).unwrap_or_default();
+    if first == ".liftplan" || first == "out" {
+        return false;
+    }
+    let name = p.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    !name.starts_with('.') && !name.ends_with('~')
+}
+
+fn run_once(dir: &Path, progress: &Progress) {
+    let project = match Project::load(dir) {
+        Ok(p) => p,
+        Err(e) => {
+            log(dir, &format!("project file error, keeping the last outputs: {e}"));
+            return;
+        }
+    };
+    match pipeline::run(&project, &RunOptions { until: None, force: vec![] }, progress) {
+        Ok(rep) => {
+            let s: Vec<String> = rep.stages.iter().map(|s| format!("{}={:?}", s.name, s.status).to_lowercase()).collect();
+            if rep.ok {
+                log(dir, &format!("run ok: {}", s.join(" ")));
+            } else {
+                let err = rep.stages.iter().find(|s| s.status == Status::Failed).and_then(|s| s.error.clone()).unwrap_or_default();
+                log(dir, &format!("run failed, last good outputs kept in out/: {} | {err}", s.join(" ")));
+            }
+        }
+        Err(e) => log(dir, &format!("run failed, last good outputs kept in out/: {e:#}")),
+    }
+}
+
+/// Whether a changed file is complete enough to use: same size twice, and a scan
+/// whose header parses.
+fn ready(p: &Path) -> Result<(), String> {
+    let s1 = std::fs::metadata(p).map(|m| m.len()).map_err(|e| e.to_string())?;
+    std::thread::sleep(Duration::from_millis(150));
+    let s2 = std::fs::metadata(p).map(|m| m.len()).map_err(|e| e.to_string())?;
+    if s1 != s2 {
+        return Err("still growing".into());
+    }
+    let ext = p.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
+    if crate::stages::SCAN_EXTS.contains(&ext.as_str()) {
+        liftplan_scans::read::list_scans(p).map_err(|e| e.to_string())?;
+        if matches!(ext.as_str(), "las" | "laz") {
+            liftplan_scans::read::las_precheck(p).map_err(|e| e.to_string())?;
+        }
+    }
+    Ok(())
+}
+
+pub fn watch(dir: &Path, progress: &Progress, stop: Arc<AtomicBool>) -> Result<()> {
+    // Events arrive with absolute, resolved paths.
+    let dir = &std::fs::canonicalize(dir).with_context(|| format!("resolving {}", dir.display()))?;
+    let project = Project::load(dir).map_err(|e| anyhow::anyhow!("{e}"))?;
+    let settle = Duration::from_millis(project.raw.watch.settle_ms.max(50));
+    let parse_wait = Duration::from_secs(project.raw.watch.parse_wait_s);
+    let (tx, rx) = std::sync::mpsc::channel();
+    let mut watcher = notify::recommended_watcher(move |res: notify::Result<notify::Event>| {
+        if let Ok(ev) = res {
+            let _ = tx.send(ev);
+        }
+    })
+    .context("starting the file watcher")?;
+    watcher.watch(dir, RecursiveMode::Recursive).with_context(|| format!("watching {}", dir.display()))?;
+    log(dir, &format!("watching {} (Ctrl-C to stop)", dir.display()));
+    run_once(dir, progress);
+    let mut changed: BTreeSet<PathBuf> = BTreeSet::new();
+    let mut last_event = Instant::now();
+    let mut waiting_since: Option<Instant> = None;
+    while !stop.load(Ordering::SeqCst) {
+        match rx.recv_timeout(Duration::from_millis(100)) {
+            Ok(ev) => {
+                // Our own runs read the inputs; only writes, creations, renames and
+                // removals are changes.
+                let write = match ev.kind {
+                    EventKind::Create(_) | EventKind::Remove(_) => true,
+                    EventKind::Modify(ModifyKind::Metadata(_)) => false,
+                    EventKind::Modify(_) => true,
+                    EventKind::Access(AccessKind::Close(AccessMode::Write)) => true,
+                    _ => false,
+                };
+                if write {
+                    for p in ev.paths {
+                        if relevant(dir, &p) {
+                            changed.insert(p);
+                            last_event = Instant::now();
+                        }
+                    }
+                }
+            }
+            Err(std::sync::mpsc::RecvTimeoutError::Timeout) => {}
+            Err(std::sync::mpsc::RecvTimeoutError::Disconnected) => break,
+        }
+        if changed.is_empty() || last_event.elapsed() < settle {
+            continue;
+        }
+        let not_ready: Vec<(PathBuf, String)> = changed.iter().filter(|p| p.is_file()).filter_map(|p| ready(p).err().map(|e| (p.clone(), e))).collect();
+        if !not_ready.is_empty() {
+            let since = *waiting_since.get_or_insert_with(Instant::now);
+            if since.elapsed() < parse_wait {
+                if since.elapsed() < Duration::from_millis(200) {
+                    for (p, e) in &not_ready {
+                        log(dir, &format!("waiting for {}: {e}", p.display()));
+                    }
+                }
+                continue;
+            }
+            for (p, e) in &not_ready {
+                log(dir, &format!("{} is still not readable after {:?}: {e}; running anyway so the problem is reported", p.display(), parse_wait));
+            }
+        }
+        waiting_since = None;
+        let names: Vec<String> = changed.iter().map(|p| p.strip_prefix(dir).unwrap_or(p).display().to_string()).collect();
+        log(dir, &format!("changed: {}", names.join(", ")));
+        changed.clear();
+        run_once(dir, progress);
+    }
+    log(dir, "stopped");
+    Ok(())
+}

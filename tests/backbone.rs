@@ -1,0 +1,185 @@
+//! The pipeline backbone: project folder, cached stages, out/ refresh, errors.
+
+use crate::util::*;
+
+#[test]
+fn init_drop_laz_run_gives_thinned_cloud_then_all_fresh() {
+    let t = tempfile::tempdir().unwrap();
+    let dir = t.path().join("site-a");
+    project_with_scan(&dir, 300);
+    let rep = run_json(&dir);
+    assert_eq!(rep["ok"], true);
+    let scans = stage(&rep, "scans");
+    assert_eq!(scans["status"], "ran");
+    assert!(scans["key"].as_str().unwrap().len() >= 32);
+    let outputs: Vec<&str> = scans["outputs"].as_array().unwrap().iter().map(|o| o.as_str().unwrap()).collect();
+    assert!(outputs.contains(&"out/site.laz"), "{outputs:?}");
+
+    // The thinned cloud holds one point per occupied 5 cm voxel of the input.
+    let input = liftplan_scans::read::read_all(&liftplan_scans::read::list_scans(&dir.join("scans/north.laz")).unwrap()[0]).unwrap();
+    let expected = voxel_count(&input.xyz, 0.05);
+    assert_eq!(read_las_count(&dir.join("out/site.laz")) as usize, expected);
+
+    // Second run: every stage fresh, no file in out/ rewritten.
+    let before = out_stamps(&dir);
+    let rep2 = run_json(&dir);
+    for s in rep2["stages"].as_array().unwrap() {
+        assert!(s["status"] == "fresh" || s["status"] == "skipped", "{s}");
+    }
+    assert_eq!(stage(&rep2, "scans")["key"], scans["key"]);
+    assert_eq!(out_stamps(&dir), before);
+    // Each run is recorded.
+    assert!(dir.join(".liftplan/runs/2.json").exists());
+}
+
+#[test]
+fn touch_keeps_fresh_and_changing_voxel_reruns() {
+    let t = tempfile::tempdir().unwrap();
+    let dir = t.path().join("p");
+    project_with_scan(&dir, 200);
+    let first = run_json(&dir);
+    // Rewrite the scan with the same bytes: new mtime, same content.
+    let f = dir.join("scans/north.laz");
+    let bytes = std::fs::read(&f).unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(20));
+    std::fs::write(&f, &bytes).unwrap();
+    let st = ok(&["status", dir.to_str().unwrap(), "--json"]);
+    let st: serde_json::Value = serde_json::from_slice(&st.stdout).unwrap();
+    assert_eq!(st[0]["state"], "fresh", "{st}");
+    let again = run_json(&dir);
+    assert_eq!(stage(&again, "scans")["status"], "fresh");
+
+    set_toml(&dir, "voxel = 0.05", "voxel = 0.1");
+    let st = ok(&["status", dir.to_str().unwrap()]);
+    let text = String::from_utf8_lossy(&st.stdout);
+    assert!(text.contains("stale") && text.contains("voxel"), "{text}");
+    let rerun = run_json(&dir);
+    assert_eq!(stage(&rerun, "scans")["status"], "ran");
+    assert_ne!(stage(&rerun, "scans")["key"], stage(&first, "scans")["key"]);
+    let n = read_las_count(&dir.join("out/site.laz")) as usize;
+    let input = liftplan_scans::read::read_all(&liftplan_scans::read::list_scans(&f).unwrap()[0]).unwrap();
+    assert_eq!(n, voxel_count(&input.xyz, 0.1));
+}
+
+#[test]
+fn killed_run_leaves_no_trusted_partial_result() {
+    use std::process::{Command, Stdio};
+    let t = tempfile::tempdir().unwrap();
+    let dir = t.path().join("k");
+    project_with_scan(&dir, 1500);
+    let mut child = Command::new(bin()).args(["run", dir.to_str().unwrap(), "-q"]).stdout(Stdio::null()).stderr(Stdio::null()).spawn().unwrap();
+    // Wait until the scans stage is working in its temporary folder, then kill.
+    let cache = dir.join(".liftplan/cache/scans");
+    let start = std::time::Instant::now();
+    loop {
+        let busy = std::fs::read_dir(&cache).map(|r| r.flatten().any(|e| e.file_name().to_string_lossy().starts_with(".tmp-"))).unwrap_or(false);
+        if busy || start.elapsed().as_secs() > 60 {
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    std::thread::sleep(std::time::Duration::from_millis(150));
+    unsafe {
+        libc::kill(child.id() as i32, libc::SIGKILL);
+    }
+    let status = child.wait().unwrap();
+    assert!(!status.success());
+    // Nothing trusted: no finished cache entry, no published output.
+    let entries: Vec<String> = std::fs::read_dir(&cache).unwrap().flatten().map(|e| e.file_name().to_string_lossy().into_owned()).filter(|n| !n.starts_with('.')).collect();
+    assert!(entries.is_empty(), "a killed run left cache entries {entries:?}");
+    assert!(!dir.join("out/site.laz").exists());
+    let st = ok(&["status", dir.to_str().unwrap(), "--json"]);
+    assert!(String::from_utf8_lossy(&st.stdout).contains("stale"));
+
+    // The next run produces the same output as an undisturbed run.
+    let rep = run_json(&dir);
+    assert_eq!(stage(&rep, "scans")["status"], "ran");
+    let clean = t.path().join("clean");
+    ok(&["init", clean.to_str().unwrap()]);
+    std::fs::copy(dir.join("scans/north.laz"), clean.join("scans/north.laz")).unwrap();
+    run_json(&clean);
+    let a = std::fs::read(dir.join("out/site.laz")).unwrap();
+    let b = std::fs::read(clean.join("out/site.laz")).unwrap();
+    assert!(a == b, "outputs after a killed run differ from a clean run");
+    // The killed run's temporary folder was swept.
+    assert!(!std::fs::read_dir(&cache).unwrap().flatten().any(|e| e.file_name().to_string_lossy().starts_with(".tmp-")));
+}
+
+fn expect_project_error(dir: &std::path::Path, needle: &str, line: usize) {
+    let o = liftplan(&["run", dir.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2), "{}", String::from_utf8_lossy(&o.stderr));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains(needle), "expected '{needle}' in: {err}");
+    assert!(err.contains(&format!("liftplan.toml:{line}:")), "expected line {line} in: {err}");
+    assert!(!err.contains("panicked"), "{err}");
+}
+
+#[test]
+fn bad_project_files_name_line_and_column() {
+    let t = tempfile::tempdir().unwrap();
+    let dir = t.path().join("bad");
+    ok(&["init", dir.to_str().unwrap()]);
+    let f = dir.join("liftplan.toml");
+    std::fs::write(&f, "[project]\nname = \"x\"\n\n[scans]\nvoxl = 0.05\n").unwrap();
+    expect_project_error(&dir, "voxl", 5);
+    std::fs::write(&f, "[scans]\nvoxel = \"fine\"\n").unwrap();
+    expect_project_error(&dir, "invalid type", 2);
+    std::fs::write(&f, "[paths]\nscans = \"surveys\"\n").unwrap();
+    expect_project_error(&dir, "does not exist", 2);
+    std::fs::write(&f, "[paths]\nscans = \"../elsewhere\"\n").unwrap();
+    expect_project_error(&dir, "leaves the project folder", 2);
+    std::fs::write(&f, "[paths]\nallow_outside = true\nscans = \"../bad/scans\"\n").unwrap();
+    let o = liftplan(&["run", dir.to_str().unwrap(), "-q"]);
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    std::fs::write(&f, "[scans]\nvoxel = -1.0\n").unwrap();
+    expect_project_error(&dir, "voxel must be a positive", 1);
+    std::fs::write(&f, "this is not toml").unwrap();
+    let o = liftplan(&["run", dir.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    // Usage errors are exit code 2 as well.
+    assert_eq!(liftplan(&["run", "--frobnicate"]).status.code(), Some(2));
+    assert_eq!(liftplan(&["run", dir.to_str().unwrap(), "--until", "nosuch"]).status.code(), Some(2));
+}
+
+#[test]
+fn bad_scan_fails_the_stage_naming_the_file() {
+    let t = tempfile::tempdir().unwrap();
+    let dir = t.path().join("b");
+    project_with_scan(&dir, 100);
+    let good = std::fs::read(dir.join("scans/north.laz")).unwrap();
+    std::fs::write(dir.join("scans/south.laz"), &good[..good.len() / 2]).unwrap();
+    let o = liftplan(&["run", dir.to_str().unwrap(), "--json", "-q"]);
+    assert_eq!(o.status.code(), Some(1));
+    let rep: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let s = stage(&rep, "scans");
+    assert_eq!(s["status"], "failed");
+    assert!(s["error"].as_str().unwrap().contains("south.laz"), "{s}");
+    assert!(!dir.join("out/site.laz").exists());
+}
+
+#[test]
+fn inspect_scan_prints_summary_json() {
+    let t = tempfile::tempdir().unwrap();
+    let f = t.path().join("a.laz");
+    write_scan(&f, &small_scan(3, 50));
+    let o = ok(&["inspect", f.to_str().unwrap(), "--json"]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["kind"], "scan");
+    assert_eq!(v["format"], "laz");
+    assert_eq!(v["points"], 2500);
+    assert_eq!(v["bbox"].as_array().unwrap().len(), 6);
+    let o = liftplan(&["inspect", t.path().join("nope.laz").to_str().unwrap()]);
+    assert!(!o.status.success());
+}
+
+#[test]
+fn clean_and_version() {
+    let t = tempfile::tempdir().unwrap();
+    let dir = t.path().join("c");
+    project_with_scan(&dir, 50);
+    run_json(&dir);
+    ok(&["clean", dir.to_str().unwrap()]);
+    assert!(!dir.join(".liftplan").exists() && !dir.join("out").exists());
+    let v = ok(&["--version"]);
+    assert!(String::from_utf8_lossy(&v.stdout).starts_with("liftplan "));
+}
