@@ -77,10 +77,14 @@ impl Cache {
     /// folder into place.
     pub fn commit(&self, tmp: &Path, mut m: Manifest) -> Result<Manifest> {
         for name in m.outputs.clone().keys() {
-            let h = liftplan_core::artifact::hash_file(&tmp.join(name)).with_context(|| format!("stage {} did not write {name}", m.stage))?;
+            let h = liftplan_core::artifact::hash_file(&tmp.join(name))
+                .with_context(|| format!("stage {} did not write {name}", m.stage))?;
             m.outputs.insert(name.clone(), h.to_hex().to_string());
         }
-        liftplan_core::artifact::write_atomic(&tmp.join("manifest.json"), serde_json::to_string_pretty(&m)?.as_bytes())?;
+        liftplan_core::artifact::write_atomic(
+            &tmp.join("manifest.json"),
+            serde_json::to_string_pretty(&m)?.as_bytes(),
+        )?;
         let dest = self.entry_dir(&m.stage, &m.key);
         if dest.exists() {
             // A forced rerun replaces the old entry.
@@ -91,7 +95,10 @@ impl Cache {
         std::fs::rename(tmp, &dest).with_context(|| format!("moving {} into place", dest.display()))?;
         let last = self.root.join("last");
         std::fs::create_dir_all(&last)?;
-        liftplan_core::artifact::write_atomic(&last.join(format!("{}.json", m.stage)), serde_json::to_string_pretty(&m)?.as_bytes())?;
+        liftplan_core::artifact::write_atomic(
+            &last.join(format!("{}.json", m.stage)),
+            serde_json::to_string_pretty(&m)?.as_bytes(),
+        )?;
         Ok(m)
     }
 
@@ -103,9 +110,13 @@ impl Cache {
 
     /// Removes folders left by killed runs.
     pub fn sweep(&self) {
-        let Ok(stages) = std::fs::read_dir(self.root.join("cache")) else { return };
+        let Ok(stages) = std::fs::read_dir(self.root.join("cache")) else {
+            return;
+        };
         for s in stages.flatten() {
-            let Ok(entries) = std::fs::read_dir(s.path()) else { continue };
+            let Ok(entries) = std::fs::read_dir(s.path()) else {
+                continue;
+            };
             for e in entries.flatten() {
                 let n = e.file_name().to_string_lossy().into_owned();
                 if n.starts_with(".tmp-") || n.contains(".old-") {
@@ -147,18 +158,32 @@ pub struct FileHashes {
 
 fn stamp(meta: &std::fs::Metadata) -> String {
     use std::os::unix::fs::MetadataExt;
-    format!("{}:{}.{}:{}.{}:{}", meta.len(), meta.mtime(), meta.mtime_nsec(), meta.ctime(), meta.ctime_nsec(), meta.ino())
+    format!(
+        "{}:{}.{}:{}.{}:{}",
+        meta.len(),
+        meta.mtime(),
+        meta.mtime_nsec(),
+        meta.ctime(),
+        meta.ctime_nsec(),
+        meta.ino()
+    )
 }
 
 impl FileHashes {
     pub fn load(state_dir: &Path) -> FileHashes {
-        std::fs::read_to_string(state_dir.join("hashes.json")).ok().and_then(|t| serde_json::from_str(&t).ok()).unwrap_or_default()
+        std::fs::read_to_string(state_dir.join("hashes.json"))
+            .ok()
+            .and_then(|t| serde_json::from_str(&t).ok())
+            .unwrap_or_default()
     }
 
     pub fn save(&self, state_dir: &Path) -> Result<()> {
         if self.dirty {
             std::fs::create_dir_all(state_dir)?;
-            liftplan_core::artifact::write_atomic(&state_dir.join("hashes.json"), serde_json::to_string(self)?.as_bytes())?;
+            liftplan_core::artifact::write_atomic(
+                &state_dir.join("hashes.json"),
+                serde_json::to_string(self)?.as_bytes(),
+            )?;
         }
         Ok(())
     }
@@ -167,12 +192,15 @@ impl FileHashes {
         let meta = std::fs::metadata(path).with_context(|| format!("reading {}", path.display()))?;
         let s = stamp(&meta);
         let k = path.to_string_lossy().into_owned();
-        if let Some((st, h)) = self.entries.get(&k) {
-            if *st == s {
-                return Ok(h.clone());
-            }
+        if let Some((st, h)) = self.entries.get(&k)
+            && *st == s
+        {
+            return Ok(h.clone());
         }
-        let h = liftplan_core::artifact::hash_file(path).with_context(|| format!("reading {}", path.display()))?.to_hex().to_string();
+        let h = liftplan_core::artifact::hash_file(path)
+            .with_context(|| format!("reading {}", path.display()))?
+            .to_hex()
+            .to_string();
         self.entries.insert(k, (s, h.clone()));
         self.dirty = true;
         Ok(h)
@@ -199,7 +227,8 @@ pub fn key(stage: &str, version: u32, inputs: &BTreeMap<String, String>) -> Stri
 pub fn publish(out_dir: &Path, entry_dir: &Path, m: &Manifest) -> Result<Vec<String>> {
     std::fs::create_dir_all(out_dir)?;
     let man_path = out_dir.join(".manifest.json");
-    let mut man: BTreeMap<String, String> = std::fs::read_to_string(&man_path).ok().and_then(|t| serde_json::from_str(&t).ok()).unwrap_or_default();
+    let mut man: BTreeMap<String, String> =
+        std::fs::read_to_string(&man_path).ok().and_then(|t| serde_json::from_str(&t).ok()).unwrap_or_default();
     let mut written = Vec::new();
     for (name, hash) in &m.outputs {
         let dest = out_dir.join(name);
@@ -209,8 +238,13 @@ pub fn publish(out_dir: &Path, entry_dir: &Path, m: &Manifest) -> Result<Vec<Str
         if let Some(parent) = dest.parent() {
             std::fs::create_dir_all(parent)?;
         }
-        let tmp = dest.with_file_name(format!(".{}.tmp-{}", dest.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default(), std::process::id()));
-        std::fs::copy(entry_dir.join(name), &tmp).with_context(|| format!("copying {name} to {}", out_dir.display()))?;
+        let tmp = dest.with_file_name(format!(
+            ".{}.tmp-{}",
+            dest.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default(),
+            std::process::id()
+        ));
+        std::fs::copy(entry_dir.join(name), &tmp)
+            .with_context(|| format!("copying {name} to {}", out_dir.display()))?;
         std::fs::rename(&tmp, &dest)?;
         man.insert(name.clone(), hash.clone());
         written.push(name.clone());

@@ -30,8 +30,13 @@ pub fn human(v: &serde_json::Value) -> String {
                         s.push_str(&format!("  - {}\n", serde_json::to_string(item).unwrap_or_default()));
                     }
                 }
-                serde_json::Value::Object(_) => s.push_str(&format!("{k}: {}\n", serde_json::to_string(val).unwrap_or_default())),
-                other => s.push_str(&format!("{k}: {}\n", other.as_str().map(String::from).unwrap_or_else(|| other.to_string()))),
+                serde_json::Value::Object(_) => {
+                    s.push_str(&format!("{k}: {}\n", serde_json::to_string(val).unwrap_or_default()))
+                }
+                other => s.push_str(&format!(
+                    "{k}: {}\n",
+                    other.as_str().map(String::from).unwrap_or_else(|| other.to_string())
+                )),
             }
         }
     }

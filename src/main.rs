@@ -17,7 +17,7 @@ mod watch;
 
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
-use pipeline::{RunOptions, Status};
+use pipeline::RunOptions;
 use progress::Progress;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -45,7 +45,9 @@ enum Command {
         dir: PathBuf,
     },
     /// Run the pipeline; stages whose inputs did not change are reused ("fresh").
-    #[command(after_help = "Examples:\n  liftplan run site-a\n  liftplan run site-a --until scans --json\n  liftplan run site-a --force scans")]
+    #[command(
+        after_help = "Examples:\n  liftplan run site-a\n  liftplan run site-a --until scans --json\n  liftplan run site-a --force scans"
+    )]
     Run {
         /// Project folder (default: the current folder).
         dir: Option<PathBuf>,
@@ -157,7 +159,11 @@ fn real_main() -> Result<ExitCode> {
     match cli.command {
         Command::Init { dir } => {
             project::init(&dir)?;
-            println!("created {}: put scans in scans/, plant models in plant/, load charts in charts/, then `liftplan run {}`", dir.display(), dir.display());
+            println!(
+                "created {}: put scans in scans/, plant models in plant/, load charts in charts/, then `liftplan run {}`",
+                dir.display(),
+                dir.display()
+            );
             Ok(ExitCode::SUCCESS)
         }
         Command::Run { dir, until, force, json } => {
@@ -199,7 +205,8 @@ fn real_main() -> Result<ExitCode> {
             }
             let stop = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
             let s2 = stop.clone();
-            ctrlc::set_handler(move || s2.store(true, std::sync::atomic::Ordering::SeqCst)).context("installing the Ctrl-C handler")?;
+            ctrlc::set_handler(move || s2.store(true, std::sync::atomic::Ordering::SeqCst))
+                .context("installing the Ctrl-C handler")?;
             watch::watch(&dir, &progress, stop)?;
             Ok(ExitCode::SUCCESS)
         }
@@ -209,7 +216,11 @@ fn real_main() -> Result<ExitCode> {
                 progress.line(&format!("{} already holds a project: running it again", dir.display()));
             } else {
                 progress.line(&format!("writing the demo project into {}", dir.display()));
-                liftplan_fixtures::demo::write_project(&dir, &liftplan_fixtures::demo::DemoOptions { scan_step_deg: scan_step }).map_err(anyhow::Error::msg)?;
+                liftplan_fixtures::demo::write_project(
+                    &dir,
+                    &liftplan_fixtures::demo::DemoOptions { scan_step_deg: scan_step },
+                )
+                .map_err(anyhow::Error::msg)?;
             }
             let p = match load(&dir) {
                 Ok(p) => p,
@@ -253,15 +264,23 @@ fn real_main() -> Result<ExitCode> {
             Ok(ExitCode::SUCCESS)
         }
         Command::Options { stage } => {
-            let all = [(liftplan_scans::NAME, toml::to_string_pretty(&serde_json::json!({ "scans": liftplan_scans::Settings::default() }))?)];
-            for (name, text) in all.iter().filter(|(n, _)| stage.as_deref().is_none_or(|s| s == *n)) {
-                println!("# stage {name}\n{text}");
+            let defs = pipeline::stages();
+            let settings = |name: &str| -> Result<String> {
+                Ok(match name {
+                    liftplan_scans::NAME => {
+                        toml::to_string_pretty(&std::collections::BTreeMap::from([("scans", liftplan_scans::Settings::default())]))?
+                    }
+                    _ => String::new(),
+                })
+            };
+            if let Some(s) = &stage
+                && !defs.iter().any(|d| d.name == s)
+            {
+                eprintln!("error: no stage '{s}' (stages: {})", pipeline::stage_names().join(", "));
+                return Ok(ExitCode::from(2));
             }
-            if let Some(s) = stage {
-                if !all.iter().any(|(n, _)| *n == s) {
-                    eprintln!("error: no stage '{s}' (stages: {})", pipeline::stage_names().join(", "));
-                    return Ok(ExitCode::from(2));
-                }
+            for d in defs.iter().filter(|d| stage.as_deref().is_none_or(|s| s == d.name)) {
+                println!("# stage {} (version {}): {}\n{}", d.name, d.version, d.about, settings(d.name)?);
             }
             Ok(ExitCode::SUCCESS)
         }
@@ -271,14 +290,17 @@ fn real_main() -> Result<ExitCode> {
                 s.voxel = v;
             }
             if let Some(r) = register {
-                s.register = serde_json::from_value(serde_json::Value::String(r.clone())).map_err(|_| anyhow::anyhow!("--register {r}: expected auto, none or poses"))?;
+                s.register = serde_json::from_value(serde_json::Value::String(r.clone()))
+                    .map_err(|_| anyhow::anyhow!("--register {r}: expected auto, none or poses"))?;
             }
             let tmp = tempdir_near(&output)?;
             let report = |what: &str, d: u64, t: u64| progress.report("scans", what, d, t);
-            let res = liftplan_scans::run(&inputs, &s, &liftplan_scans::RunOptions { seed: 0, progress: &report }, &tmp);
+            let res =
+                liftplan_scans::run(&inputs, &s, &liftplan_scans::RunOptions { seed: 0, progress: &report }, &tmp);
             let out = match res {
                 Ok(sum) => {
-                    std::fs::rename(tmp.join("site.laz"), &output).or_else(|_| std::fs::copy(tmp.join("site.laz"), &output).map(|_| ()))?;
+                    std::fs::rename(tmp.join("site.laz"), &output)
+                        .or_else(|_| std::fs::copy(tmp.join("site.laz"), &output).map(|_| ()))?;
                     if json {
                         println!("{}", std::fs::read_to_string(tmp.join("registration.json"))?);
                     } else {

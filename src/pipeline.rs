@@ -22,12 +22,14 @@ pub struct Ctx<'a> {
     /// Project files this stage reads, sorted.
     pub inputs: &'a [PathBuf],
     /// Cache folders of the upstream stages that produced output.
+    #[allow(dead_code)]
     pub upstream: &'a BTreeMap<&'static str, (PathBuf, Manifest)>,
     /// Folder the stage writes its outputs into.
     pub out: &'a Path,
     pub progress: &'a Progress,
 }
 
+#[allow(dead_code)] // used by the stages that read upstream artifacts
 impl Ctx<'_> {
     /// Path of an upstream output, if that stage produced it.
     pub fn upstream_file(&self, stage: &str, file: &str) -> Option<PathBuf> {
@@ -156,10 +158,10 @@ fn key_inputs(
 pub fn run(project: &Project, opts: &RunOptions, progress: &Progress) -> Result<RunReport> {
     let defs = stages();
     let names: Vec<&str> = defs.iter().map(|d| d.name).collect();
-    if let Some(u) = &opts.until {
-        if !names.contains(&u.as_str()) {
-            return Err(anyhow!("--until {u}: no such stage (stages: {})", names.join(", ")));
-        }
+    if let Some(u) = &opts.until
+        && !names.contains(&u.as_str())
+    {
+        return Err(anyhow!("--until {u}: no such stage (stages: {})", names.join(", ")));
     }
     for f in &opts.force {
         if !names.contains(&f.as_str()) {
@@ -174,7 +176,17 @@ pub fn run(project: &Project, opts: &RunOptions, progress: &Progress) -> Result<
     let mut failed = false;
     let mut past_until = false;
     for def in &defs {
-        let mut rep = StageReport { name: def.name.into(), status: Status::Skipped, key: None, seconds: 0.0, outputs: vec![], published: vec![], error: None, reason: None, lines: vec![] };
+        let mut rep = StageReport {
+            name: def.name.into(),
+            status: Status::Skipped,
+            key: None,
+            seconds: 0.0,
+            outputs: vec![],
+            published: vec![],
+            error: None,
+            reason: None,
+            lines: vec![],
+        };
         if failed {
             rep.reason = Some("an earlier stage failed".into());
             reports.push(rep);
@@ -277,12 +289,22 @@ pub fn status(project: &Project) -> Result<Vec<StageStatus>> {
     for def in stages() {
         let files = (def.inputs)(project)?;
         if !(def.applicable)(project, &files, &upstream) && stale_upstream.is_empty() {
-            out.push(StageStatus { name: def.name.into(), state: "skipped".into(), key: None, why: vec!["nothing to do (no inputs)".into()] });
+            out.push(StageStatus {
+                name: def.name.into(),
+                state: "skipped".into(),
+                key: None,
+                why: vec!["nothing to do (no inputs)".into()],
+            });
             continue;
         }
         let blocked: Vec<&str> = def.reads.iter().map(|r| r.0).filter(|s| stale_upstream.contains(s)).collect();
         if !blocked.is_empty() {
-            out.push(StageStatus { name: def.name.into(), state: "stale".into(), key: None, why: blocked.iter().map(|s| format!("upstream stage {s} is stale")).collect() });
+            out.push(StageStatus {
+                name: def.name.into(),
+                state: "stale".into(),
+                key: None,
+                why: blocked.iter().map(|s| format!("upstream stage {s} is stale")).collect(),
+            });
             stale_upstream.push(def.name);
             continue;
         }
@@ -304,7 +326,12 @@ pub fn status(project: &Project) -> Result<Vec<StageStatus>> {
     Ok(out)
 }
 
-fn explain(last: &Manifest, version: u32, inputs: &BTreeMap<String, String>, settings: &serde_json::Value) -> Vec<String> {
+fn explain(
+    last: &Manifest,
+    version: u32,
+    inputs: &BTreeMap<String, String>,
+    settings: &serde_json::Value,
+) -> Vec<String> {
     let mut why = Vec::new();
     if last.version != version {
         why.push(format!("stage code changed (version {} -> {version})", last.version));

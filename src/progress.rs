@@ -45,7 +45,11 @@ impl Progress {
             }
             let bar = bars.entry(key.clone()).or_insert_with(|| {
                 let b = self.multi.add(if total > 0 { ProgressBar::new(total) } else { ProgressBar::new_spinner() });
-                b.set_style(ProgressStyle::with_template("{prefix:>10} {wide_msg} [{bar:30}] {percent:>3}%").unwrap_or_else(|_| ProgressStyle::default_bar()).progress_chars("=> "));
+                b.set_style(
+                    ProgressStyle::with_template("{prefix:>10} {wide_msg} [{bar:30}] {percent:>3}%")
+                        .unwrap_or_else(|_| ProgressStyle::default_bar())
+                        .progress_chars("=> "),
+                );
                 b.set_prefix(stage.to_string());
                 b.set_message(what.to_string());
                 b

@@ -50,7 +50,13 @@ pub struct Paths {
 
 impl Default for Paths {
     fn default() -> Self {
-        Paths { allow_outside: false, scans: "scans".into(), plant: "plant".into(), charts: "charts".into(), cranes: "cranes".into() }
+        Paths {
+            allow_outside: false,
+            scans: "scans".into(),
+            plant: "plant".into(),
+            charts: "charts".into(),
+            cranes: "cranes".into(),
+        }
     }
 }
 
@@ -150,13 +156,19 @@ impl Project {
             self.check_inside(path).map_err(|m| err(&format!("{key} ="), format!("[paths] {key}: {m}")))?;
             let full = self.dir.join(path);
             if !full.is_dir() {
-                return Err(err(&format!("{key} ="), format!("[paths] {key}: folder {} does not exist", full.display())));
+                return Err(err(
+                    &format!("{key} ="),
+                    format!("[paths] {key}: folder {} does not exist", full.display()),
+                ));
             }
         }
         if let Some(st) = &self.raw.scans.stations {
             self.check_inside(st).map_err(|m| err("stations", format!("[scans] stations: {m}")))?;
             if !self.dir.join(st).is_file() {
-                return Err(err("stations", format!("[scans] stations: file {} does not exist", self.dir.join(st).display())));
+                return Err(err(
+                    "stations",
+                    format!("[scans] stations: file {} does not exist", self.dir.join(st).display()),
+                ));
             }
         }
         self.raw.scans.check().map_err(|m| err("[scans]", format!("[scans] {m}")))?;
@@ -165,7 +177,8 @@ impl Project {
             if !ids.insert(l.id.clone()) {
                 return Err(err(&format!("\"{}\"", l.id), format!("lift id '{}' is used twice", l.id)));
             }
-            let model = self.crane_model(&l.crane.model).map_err(|e| err(&l.crane.model, format!("lift '{}': {e:#}", l.id)))?;
+            let model =
+                self.crane_model(&l.crane.model).map_err(|e| err(&l.crane.model, format!("lift '{}': {e:#}", l.id)))?;
             l.resolve(model).map_err(|m| err(&format!("\"{}\"", l.id), m))?;
         }
         Ok(())
@@ -176,8 +189,13 @@ impl Project {
         if self.raw.paths.allow_outside {
             return Ok(());
         }
-        if p.is_absolute() || p.components().any(|c| matches!(c, Component::ParentDir | Component::Prefix(_) | Component::RootDir)) {
-            return Err(format!("'{}' leaves the project folder; write it relative to the project, or set [paths] allow_outside = true", p.display()));
+        if p.is_absolute()
+            || p.components().any(|c| matches!(c, Component::ParentDir | Component::Prefix(_) | Component::RootDir))
+        {
+            return Err(format!(
+                "'{}' leaves the project folder; write it relative to the project, or set [paths] allow_outside = true",
+                p.display()
+            ));
         }
         Ok(())
     }
@@ -289,7 +307,8 @@ pub fn init(dir: &Path) -> Result<()> {
     for sub in ["scans", "plant", "charts", "cranes"] {
         std::fs::create_dir_all(dir.join(sub)).with_context(|| format!("creating {}", dir.join(sub).display()))?;
     }
-    liftplan_core::artifact::write_atomic(&file, TEMPLATE.as_bytes()).with_context(|| format!("writing {}", file.display()))?;
+    liftplan_core::artifact::write_atomic(&file, TEMPLATE.as_bytes())
+        .with_context(|| format!("writing {}", file.display()))?;
     let example = dir.join("cranes").join("example-ltm-1100.toml");
     if let Some(text) = liftplan_core::crane::builtin_text("ltm-1100") {
         liftplan_core::artifact::write_atomic(&example, text.as_bytes())?;

@@ -35,12 +35,20 @@ fn run_scans(ctx: &Ctx) -> Result<Produced> {
     s.stations = station_file.clone();
     let scan_files: Vec<PathBuf> = ctx.inputs.iter().filter(|f| Some(*f) != station_file.as_ref()).cloned().collect();
     let report = ctx.report("scans");
-    let summary = liftplan_scans::run(&scan_files, &s, &liftplan_scans::RunOptions { seed: p.raw.project.seed, progress: &report }, ctx.out)?;
+    let summary = liftplan_scans::run(
+        &scan_files,
+        &s,
+        &liftplan_scans::RunOptions { seed: p.raw.project.seed, progress: &report },
+        ctx.out,
+    )?;
     let mut outputs = vec!["site.laz".to_string(), "registration.json".into(), "scans.png".into()];
     if ctx.out.join("ground.asc").exists() {
         outputs.push("ground.asc".into());
     }
     let mut lines = summary.lines();
-    lines.push(format!("site cloud: {} points ({}), {} ground", summary.points_out, summary.subsample, summary.ground_points));
+    lines.push(format!(
+        "site cloud: {} points ({}), {} ground",
+        summary.points_out, summary.subsample, summary.ground_points
+    ));
     Ok(Produced { outputs, summary: serde_json::to_value(&summary)?, lines })
 }

@@ -31,7 +31,9 @@ fn log(dir: &Path, msg: &str) {
 }
 
 fn relevant(dir: &Path, p: &Path) -> bool {
-    let Ok(rel) = p.strip_prefix(dir) else { return false };
+    let Ok(rel) = p.strip_prefix(dir) else {
+        return false;
+    };
     let first = rel.components().next().map(|c| c.as_os_str().to_string_lossy().into_owned()).unwrap_or_default();
     if first == ".liftplan" || first == "out" {
         return false;
@@ -50,11 +52,17 @@ fn run_once(dir: &Path, progress: &Progress) {
     };
     match pipeline::run(&project, &RunOptions { until: None, force: vec![] }, progress) {
         Ok(rep) => {
-            let s: Vec<String> = rep.stages.iter().map(|s| format!("{}={:?}", s.name, s.status).to_lowercase()).collect();
+            let s: Vec<String> =
+                rep.stages.iter().map(|s| format!("{}={:?}", s.name, s.status).to_lowercase()).collect();
             if rep.ok {
                 log(dir, &format!("run ok: {}", s.join(" ")));
             } else {
-                let err = rep.stages.iter().find(|s| s.status == Status::Failed).and_then(|s| s.error.clone()).unwrap_or_default();
+                let err = rep
+                    .stages
+                    .iter()
+                    .find(|s| s.status == Status::Failed)
+                    .and_then(|s| s.error.clone())
+                    .unwrap_or_default();
                 log(dir, &format!("run failed, last good outputs kept in out/: {} | {err}", s.join(" ")));
             }
         }
@@ -127,7 +135,8 @@ pub fn watch(dir: &Path, progress: &Progress, stop: Arc<AtomicBool>) -> Result<(
         if changed.is_empty() || last_event.elapsed() < settle {
             continue;
         }
-        let not_ready: Vec<(PathBuf, String)> = changed.iter().filter(|p| p.is_file()).filter_map(|p| ready(p).err().map(|e| (p.clone(), e))).collect();
+        let not_ready: Vec<(PathBuf, String)> =
+            changed.iter().filter(|p| p.is_file()).filter_map(|p| ready(p).err().map(|e| (p.clone(), e))).collect();
         if !not_ready.is_empty() {
             let since = *waiting_since.get_or_insert_with(Instant::now);
             if since.elapsed() < parse_wait {
@@ -139,11 +148,19 @@ pub fn watch(dir: &Path, progress: &Progress, stop: Arc<AtomicBool>) -> Result<(
                 continue;
             }
             for (p, e) in &not_ready {
-                log(dir, &format!("{} is still not readable after {:?}: {e}; running anyway so the problem is reported", p.display(), parse_wait));
+                log(
+                    dir,
+                    &format!(
+                        "{} is still not readable after {:?}: {e}; running anyway so the problem is reported",
+                        p.display(),
+                        parse_wait
+                    ),
+                );
             }
         }
         waiting_since = None;
-        let names: Vec<String> = changed.iter().map(|p| p.strip_prefix(dir).unwrap_or(p).display().to_string()).collect();
+        let names: Vec<String> =
+            changed.iter().map(|p| p.strip_prefix(dir).unwrap_or(p).display().to_string()).collect();
         log(dir, &format!("changed: {}", names.join(", ")));
         changed.clear();
         run_once(dir, progress);

@@ -16,7 +16,9 @@ fn init_drop_laz_run_gives_thinned_cloud_then_all_fresh() {
     assert!(outputs.contains(&"out/site.laz"), "{outputs:?}");
 
     // The thinned cloud holds one point per occupied 5 cm voxel of the input.
-    let input = liftplan_scans::read::read_all(&liftplan_scans::read::list_scans(&dir.join("scans/north.laz")).unwrap()[0]).unwrap();
+    let input =
+        liftplan_scans::read::read_all(&liftplan_scans::read::list_scans(&dir.join("scans/north.laz")).unwrap()[0])
+            .unwrap();
     let expected = voxel_count(&input.xyz, 0.05);
     assert_eq!(read_las_count(&dir.join("out/site.laz")) as usize, expected);
 
@@ -67,12 +69,19 @@ fn killed_run_leaves_no_trusted_partial_result() {
     let t = tempfile::tempdir().unwrap();
     let dir = t.path().join("k");
     project_with_scan(&dir, 1500);
-    let mut child = Command::new(bin()).args(["run", dir.to_str().unwrap(), "-q"]).stdout(Stdio::null()).stderr(Stdio::null()).spawn().unwrap();
+    let mut child = Command::new(bin())
+        .args(["run", dir.to_str().unwrap(), "-q"])
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
     // Wait until the scans stage is working in its temporary folder, then kill.
     let cache = dir.join(".liftplan/cache/scans");
     let start = std::time::Instant::now();
     loop {
-        let busy = std::fs::read_dir(&cache).map(|r| r.flatten().any(|e| e.file_name().to_string_lossy().starts_with(".tmp-"))).unwrap_or(false);
+        let busy = std::fs::read_dir(&cache)
+            .map(|r| r.flatten().any(|e| e.file_name().to_string_lossy().starts_with(".tmp-")))
+            .unwrap_or(false);
         if busy || start.elapsed().as_secs() > 60 {
             break;
         }
@@ -85,7 +94,12 @@ fn killed_run_leaves_no_trusted_partial_result() {
     let status = child.wait().unwrap();
     assert!(!status.success());
     // Nothing trusted: no finished cache entry, no published output.
-    let entries: Vec<String> = std::fs::read_dir(&cache).unwrap().flatten().map(|e| e.file_name().to_string_lossy().into_owned()).filter(|n| !n.starts_with('.')).collect();
+    let entries: Vec<String> = std::fs::read_dir(&cache)
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| !n.starts_with('.'))
+        .collect();
     assert!(entries.is_empty(), "a killed run left cache entries {entries:?}");
     assert!(!dir.join("out/site.laz").exists());
     let st = ok(&["status", dir.to_str().unwrap(), "--json"]);
@@ -102,7 +116,9 @@ fn killed_run_leaves_no_trusted_partial_result() {
     let b = std::fs::read(clean.join("out/site.laz")).unwrap();
     assert!(a == b, "outputs after a killed run differ from a clean run");
     // The killed run's temporary folder was swept.
-    assert!(!std::fs::read_dir(&cache).unwrap().flatten().any(|e| e.file_name().to_string_lossy().starts_with(".tmp-")));
+    assert!(
+        !std::fs::read_dir(&cache).unwrap().flatten().any(|e| e.file_name().to_string_lossy().starts_with(".tmp-"))
+    );
 }
 
 fn expect_project_error(dir: &std::path::Path, needle: &str, line: usize) {

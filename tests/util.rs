@@ -14,7 +14,12 @@ pub fn liftplan(args: &[&str]) -> Output {
 
 pub fn ok(args: &[&str]) -> Output {
     let o = liftplan(args);
-    assert!(o.status.success(), "liftplan {args:?} failed:\n{}\n{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
+    assert!(
+        o.status.success(),
+        "liftplan {args:?} failed:\n{}\n{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    );
     o
 }
 
@@ -24,7 +29,12 @@ pub fn run_json(dir: &Path) -> serde_json::Value {
 }
 
 pub fn stage<'a>(report: &'a serde_json::Value, name: &str) -> &'a serde_json::Value {
-    report["stages"].as_array().unwrap().iter().find(|s| s["name"] == name).unwrap_or_else(|| panic!("no stage {name} in {report}"))
+    report["stages"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|s| s["name"] == name)
+        .unwrap_or_else(|| panic!("no stage {name} in {report}"))
 }
 
 /// A small synthetic scan: a sloped ground patch with a box on it, in a scanner
@@ -56,7 +66,10 @@ pub fn read_las_count(path: &Path) -> u64 {
 
 /// Voxel count by the documented definition, for comparing with the stage.
 pub fn voxel_count(points: &[[f64; 3]], v: f64) -> usize {
-    let mut keys: Vec<(i64, i64, i64)> = points.iter().map(|p| ((p[0] / v).floor() as i64, (p[1] / v).floor() as i64, (p[2] / v).floor() as i64)).collect();
+    let mut keys: Vec<(i64, i64, i64)> = points
+        .iter()
+        .map(|p| ((p[0] / v).floor() as i64, (p[1] / v).floor() as i64, (p[2] / v).floor() as i64))
+        .collect();
     keys.sort_unstable();
     keys.dedup();
     keys.len()

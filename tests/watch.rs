@@ -46,7 +46,12 @@ fn watch_slow_copy_corrupt_drop_and_fix() {
     let bytes = std::fs::read(&src).unwrap();
 
     let log = std::fs::File::create(t.path().join("watch.err")).unwrap();
-    let child = Command::new(bin()).args(["watch", dir.to_str().unwrap(), "-q"]).stdout(Stdio::null()).stderr(log).spawn().unwrap();
+    let child = Command::new(bin())
+        .args(["watch", dir.to_str().unwrap(), "-q"])
+        .stdout(Stdio::null())
+        .stderr(log)
+        .spawn()
+        .unwrap();
     // Kill the watcher whatever happens to this test.
     struct Guard(std::process::Child);
     impl Drop for Guard {

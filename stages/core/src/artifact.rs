@@ -66,7 +66,14 @@ pub fn encode(kind: &str, version: u32, payload: &[u8]) -> Vec<u8> {
 pub fn decode<'a>(path: &Path, bytes: &'a [u8], kind: &str, version: u32) -> Result<&'a [u8], ArtifactError> {
     let bad = |off: u64, msg: String| ArtifactError::Format(Location::byte(path, off), msg);
     if bytes.len() < HEADER_LEN + CHECKSUM_LEN {
-        return Err(bad(0, format!("file is {} bytes, too short for a liftplan artifact (expected at least {})", bytes.len(), HEADER_LEN + CHECKSUM_LEN)));
+        return Err(bad(
+            0,
+            format!(
+                "file is {} bytes, too short for a liftplan artifact (expected at least {})",
+                bytes.len(),
+                HEADER_LEN + CHECKSUM_LEN
+            ),
+        ));
     }
     if &bytes[0..8] != MAGIC {
         return Err(bad(0, "not a liftplan artifact (magic LIFTPLAN missing)".into()));
@@ -260,7 +267,8 @@ impl<'a> ByteReader<'a> {
         let n = self.u32()? as usize;
         let at = self.offset();
         let b = self.take(n)?;
-        String::from_utf8(b.to_vec()).map_err(|_| ArtifactError::Format(Location::byte(self.path, at), "string is not UTF-8".into()))
+        String::from_utf8(b.to_vec())
+            .map_err(|_| ArtifactError::Format(Location::byte(self.path, at), "string is not UTF-8".into()))
     }
     /// A count of `elem_size`-byte elements that must fit in what is left.
     pub fn count(&mut self, elem_size: usize) -> Result<usize, ArtifactError> {
@@ -268,7 +276,10 @@ impl<'a> ByteReader<'a> {
         let need = n.checked_mul(elem_size as u64);
         match need {
             Some(b) if b <= self.remaining() as u64 => Ok(n as usize),
-            _ => Err(self.error(format!("count {n} of {elem_size}-byte items exceeds the {} bytes left", self.remaining()))),
+            _ => {
+                Err(self
+                    .error(format!("count {n} of {elem_size}-byte items exceeds the {} bytes left", self.remaining())))
+            }
         }
     }
     pub fn f32s(&mut self) -> Result<Vec<f32>, ArtifactError> {

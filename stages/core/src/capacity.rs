@@ -88,10 +88,16 @@ impl ChartConfig {
         if radius_m < rmin - TOL_M {
             return Err(CapacityError::RadiusBelowChart { radius_m, min_m: rmin });
         }
-        let col = self.boom_lengths_m.iter().position(|&b| b >= boom_m - TOL_M).unwrap_or(self.boom_lengths_m.len() - 1);
+        let col =
+            self.boom_lengths_m.iter().position(|&b| b >= boom_m - TOL_M).unwrap_or(self.boom_lengths_m.len() - 1);
         let row = self.radii_m.iter().position(|&r| r >= radius_m - TOL_M).unwrap_or(self.radii_m.len() - 1);
         match self.cell(row, col) {
-            Some(c) => Ok(Capacity { capacity_kg: c.capacity_kg, boom_m: self.boom_lengths_m[col], radius_m: self.radii_m[row], cell: c.cell.clone() }),
+            Some(c) => Ok(Capacity {
+                capacity_kg: c.capacity_kg,
+                boom_m: self.boom_lengths_m[col],
+                radius_m: self.radii_m[row],
+                cell: c.cell.clone(),
+            }),
             None => Err(CapacityError::NotPermitted {
                 boom_m: self.boom_lengths_m[col],
                 radius_m: self.radii_m[row],
@@ -120,7 +126,10 @@ pub struct CapacityRow {
 impl CapacityTable {
     pub fn config(&self, name: &str) -> Result<&ChartConfig, CapacityError> {
         self.configs.iter().find(|c| c.name == name).ok_or_else(|| {
-            CapacityError::UnknownConfig(name.to_string(), self.configs.iter().map(|c| format!("'{}'", c.name)).collect::<Vec<_>>().join(", "))
+            CapacityError::UnknownConfig(
+                name.to_string(),
+                self.configs.iter().map(|c| format!("'{}'", c.name)).collect::<Vec<_>>().join(", "),
+            )
         })
     }
 
@@ -131,7 +140,13 @@ impl CapacityTable {
             for (ri, r) in c.radii_m.iter().enumerate() {
                 for (bi, b) in c.boom_lengths_m.iter().enumerate() {
                     if let Some(cell) = c.cell(ri, bi) {
-                        out.push(CapacityRow { config: c.name.clone(), boom_m: *b, radius_m: *r, capacity_kg: cell.capacity_kg, cell: cell.cell.clone() });
+                        out.push(CapacityRow {
+                            config: c.name.clone(),
+                            boom_m: *b,
+                            radius_m: *r,
+                            capacity_kg: cell.capacity_kg,
+                            cell: cell.cell.clone(),
+                        });
                     }
                 }
             }
@@ -144,7 +159,12 @@ impl CapacityTable {
         let mut t = CapacityTable::default();
         for r in rows {
             if !t.configs.iter().any(|c| c.name == r.config) {
-                t.configs.push(ChartConfig { name: r.config.clone(), boom_lengths_m: vec![], radii_m: vec![], cells: vec![] });
+                t.configs.push(ChartConfig {
+                    name: r.config.clone(),
+                    boom_lengths_m: vec![],
+                    radii_m: vec![],
+                    cells: vec![],
+                });
             }
         }
         for c in &mut t.configs {
@@ -181,8 +201,16 @@ impl CapacityTable {
         let mut rows = Vec::new();
         for (i, rec) in r.deserialize::<CapacityRow>().enumerate() {
             let row = rec.map_err(|e| format!("{}:{}: {e}", path.display(), i + 2))?;
-            if !(row.capacity_kg.is_finite() && row.capacity_kg >= 0.0 && row.radius_m.is_finite() && row.boom_m.is_finite()) {
-                return Err(format!("{}:{}: capacity, radius and boom must be finite and non-negative", path.display(), i + 2));
+            if !(row.capacity_kg.is_finite()
+                && row.capacity_kg >= 0.0
+                && row.radius_m.is_finite()
+                && row.boom_m.is_finite())
+            {
+                return Err(format!(
+                    "{}:{}: capacity, radius and boom must be finite and non-negative",
+                    path.display(),
+                    i + 2
+                ));
             }
             rows.push(row);
         }

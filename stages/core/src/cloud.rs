@@ -5,7 +5,7 @@
 //! exactly as long as `xyz`. Readers and filters live in the scans stage; this
 //! module only holds the data and the operations every stage needs.
 
-use crate::frame::{Aabb, Pose, Point3};
+use crate::frame::{Aabb, Point3, Pose};
 
 /// LAS classification codes used by liftplan (ASPRS LAS 1.4, table 17).
 pub mod class {

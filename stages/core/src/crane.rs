@@ -240,14 +240,22 @@ impl CraneModel {
         let missing = |sec: &str| err(&format!("kind = \"{}\" needs a [{sec}] section", r.kind));
         let foreign = |present: &[(&str, bool)], other: &str| -> Result<(), CraneError> {
             match present.iter().find(|p| p.1) {
-                Some((sec, _)) => Err(err(&format!("section [{sec}] belongs to a {other} crane, not kind = \"{}\"", r.kind))),
+                Some((sec, _)) => {
+                    Err(err(&format!("section [{sec}] belongs to a {other} crane, not kind = \"{}\"", r.kind)))
+                }
                 None => Ok(()),
             }
         };
         let kind = match r.kind.as_str() {
             "luffing" => {
                 foreign(
-                    &[("mast", r.mast.is_some()), ("jib", r.jib.is_some()), ("counter_jib", r.counter_jib.is_some()), ("trolley", r.trolley.is_some()), ("cab", r.cab.is_some())],
+                    &[
+                        ("mast", r.mast.is_some()),
+                        ("jib", r.jib.is_some()),
+                        ("counter_jib", r.counter_jib.is_some()),
+                        ("trolley", r.trolley.is_some()),
+                        ("cab", r.cab.is_some()),
+                    ],
                     "tower",
                 )?;
                 CraneKind::Luffing(LuffingCrane {
@@ -261,7 +269,13 @@ impl CraneModel {
             }
             "tower" => {
                 foreign(
-                    &[("carrier", r.carrier.is_some()), ("outriggers", r.outriggers.is_some()), ("superstructure", r.superstructure.is_some()), ("cockpit", r.cockpit.is_some()), ("boom", r.boom.is_some())],
+                    &[
+                        ("carrier", r.carrier.is_some()),
+                        ("outriggers", r.outriggers.is_some()),
+                        ("superstructure", r.superstructure.is_some()),
+                        ("cockpit", r.cockpit.is_some()),
+                        ("boom", r.boom.is_some()),
+                    ],
                     "luffing",
                 )?;
                 CraneKind::Tower(TowerCrane {
@@ -273,7 +287,9 @@ impl CraneModel {
                     trolley: r.trolley.ok_or_else(|| missing("trolley"))?,
                 })
             }
-            other => return Err(err(&format!("kind = \"{other}\": expected \"luffing\" or \"tower\""))),
+            other => {
+                return Err(err(&format!("kind = \"{other}\": expected \"luffing\" or \"tower\"")));
+            }
         };
         let m = CraneModel { name: r.name, source: r.source, kind, hook: r.hook, speeds: r.speeds };
         m.check().map_err(|e| err(&e))?;
@@ -282,7 +298,13 @@ impl CraneModel {
 
     /// Sanity of dimensions: positive sizes, ordered ranges, finite numbers.
     fn check(&self) -> Result<(), String> {
-        let pos = |name: &str, v: f64| if v.is_finite() && v > 0.0 { Ok(()) } else { Err(format!("{name} must be a positive number of metres, found {v}")) };
+        let pos = |name: &str, v: f64| {
+            if v.is_finite() && v > 0.0 {
+                Ok(())
+            } else {
+                Err(format!("{name} must be a positive number of metres, found {v}"))
+            }
+        };
         let boxp = |name: &str, b: &BoxPart| -> Result<(), String> {
             pos(&format!("{name}.length_m"), b.length_m)?;
             pos(&format!("{name}.width_m"), b.width_m)?;
@@ -317,7 +339,10 @@ impl CraneModel {
                 if l.boom.max_length_m < l.boom.min_length_m {
                     return Err("boom.max_length_m is below boom.min_length_m".into());
                 }
-                if !(l.boom.luff_min_deg >= -5.0 && l.boom.luff_max_deg <= 89.0 && l.boom.luff_min_deg < l.boom.luff_max_deg) {
+                if !(l.boom.luff_min_deg >= -5.0
+                    && l.boom.luff_max_deg <= 89.0
+                    && l.boom.luff_min_deg < l.boom.luff_max_deg)
+                {
                     return Err("boom luff range must lie within -5..89 degrees, min below max".into());
                 }
             }
@@ -332,7 +357,10 @@ impl CraneModel {
                 boxp("cab", &t.cab)?;
                 pos("trolley.length_m", t.trolley.length_m)?;
                 pos("speeds.trolley_m_s", self.speeds.trolley_m_s)?;
-                if !(t.jib.trolley_min_m >= 0.0 && t.jib.trolley_min_m < t.jib.trolley_max_m && t.jib.trolley_max_m <= t.jib.length_m) {
+                if !(t.jib.trolley_min_m >= 0.0
+                    && t.jib.trolley_min_m < t.jib.trolley_max_m
+                    && t.jib.trolley_max_m <= t.jib.length_m)
+                {
                     return Err("jib trolley range must satisfy 0 <= trolley_min_m < trolley_max_m <= length_m".into());
                 }
             }
@@ -433,7 +461,12 @@ impl PartKind {
     pub fn dependence(self) -> Dependence {
         match self {
             PartKind::Carrier | PartKind::Outriggers | PartKind::Mast => Dependence::Fixed,
-            PartKind::Superstructure | PartKind::Cockpit | PartKind::Counterweight | PartKind::Jib | PartKind::CounterJib | PartKind::Cab => Dependence::Swing,
+            PartKind::Superstructure
+            | PartKind::Cockpit
+            | PartKind::Counterweight
+            | PartKind::Jib
+            | PartKind::CounterJib
+            | PartKind::Cab => Dependence::Swing,
             PartKind::Boom | PartKind::Trolley => Dependence::SwingRadial,
             PartKind::Rope | PartKind::HookBlock | PartKind::Load => Dependence::Full,
         }
@@ -493,7 +526,9 @@ pub struct JointLimits {
 pub enum IkError {
     #[error("the hook would be {radius_m:.2} m from the slewing axis; this crane reaches {min_m:.2} to {max_m:.2} m")]
     OutOfReach { radius_m: f64, min_m: f64, max_m: f64 },
-    #[error("the load would need {hoist_m:.2} m of rope; the crane allows {min_m:.2} to {max_m:.2} m (load too high or too low for this boom position)")]
+    #[error(
+        "the load would need {hoist_m:.2} m of rope; the crane allows {min_m:.2} to {max_m:.2} m (load too high or too low for this boom position)"
+    )]
     RopeOutOfRange { hoist_m: f64, min_m: f64, max_m: f64 },
 }
 
@@ -577,7 +612,9 @@ impl CraneSetup {
                 radial: (l.boom.luff_min_deg.to_radians(), l.boom.luff_max_deg.to_radians()),
                 hoist_m: hoist,
             },
-            CraneKind::Tower(t) => JointLimits { swing_rad: None, radial: (t.jib.trolley_min_m, t.jib.trolley_max_m), hoist_m: hoist },
+            CraneKind::Tower(t) => {
+                JointLimits { swing_rad: None, radial: (t.jib.trolley_min_m, t.jib.trolley_max_m), hoist_m: hoist }
+            }
         }
     }
 
@@ -655,23 +692,51 @@ impl CraneSetup {
                 ))
             }
             (CraneKind::Tower(t), PartKind::Mast) => {
-                let b = BoxPart { length_m: t.mast.width_m, width_m: t.mast.width_m, height_m: t.mast.height_m, center_x_m: 0.0, center_y_m: 0.0, base_z_m: 0.0 };
+                let b = BoxPart {
+                    length_m: t.mast.width_m,
+                    width_m: t.mast.width_m,
+                    height_m: t.mast.height_m,
+                    center_x_m: 0.0,
+                    center_y_m: 0.0,
+                    base_z_m: 0.0,
+                };
                 Some(place_box(&b, &fixed))
             }
             (CraneKind::Tower(t), PartKind::Jib) => {
-                let b = BoxPart { length_m: t.jib.length_m, width_m: t.jib.width_m, height_m: t.jib.depth_m, center_x_m: t.jib.length_m / 2.0, center_y_m: 0.0, base_z_m: t.mast.height_m };
+                let b = BoxPart {
+                    length_m: t.jib.length_m,
+                    width_m: t.jib.width_m,
+                    height_m: t.jib.depth_m,
+                    center_x_m: t.jib.length_m / 2.0,
+                    center_y_m: 0.0,
+                    base_z_m: t.mast.height_m,
+                };
                 Some(place_box(&b, &slew))
             }
             (CraneKind::Tower(t), PartKind::CounterJib) => {
                 let g = &t.counter_jib;
-                let b = BoxPart { length_m: g.length_m, width_m: g.width_m, height_m: g.depth_m, center_x_m: -g.length_m / 2.0, center_y_m: 0.0, base_z_m: t.mast.height_m };
+                let b = BoxPart {
+                    length_m: g.length_m,
+                    width_m: g.width_m,
+                    height_m: g.depth_m,
+                    center_x_m: -g.length_m / 2.0,
+                    center_y_m: 0.0,
+                    base_z_m: t.mast.height_m,
+                };
                 Some(place_box(&b, &slew))
             }
             (CraneKind::Tower(t), PartKind::Counterweight) => Some(place_box(&t.counterweight, &slew)),
             (CraneKind::Tower(t), PartKind::Cab) => Some(place_box(&t.cab, &slew)),
             (CraneKind::Tower(t), PartKind::Trolley) => {
                 let tr = &t.trolley;
-                let b = BoxPart { length_m: tr.length_m, width_m: tr.width_m, height_m: tr.height_m, center_x_m: c.radial, center_y_m: 0.0, base_z_m: t.mast.height_m - tr.height_m };
+                let b = BoxPart {
+                    length_m: tr.length_m,
+                    width_m: tr.width_m,
+                    height_m: tr.height_m,
+                    center_x_m: c.radial,
+                    center_y_m: 0.0,
+                    base_z_m: t.mast.height_m - tr.height_m,
+                };
                 Some(place_box(&b, &slew))
             }
             _ => None,
@@ -737,7 +802,11 @@ impl CraneSetup {
             }
             CraneKind::Tower(t) => {
                 if !(radius >= t.jib.trolley_min_m - 1e-9 && radius <= t.jib.trolley_max_m + 1e-9) {
-                    return Err(IkError::OutOfReach { radius_m: radius, min_m: t.jib.trolley_min_m, max_m: t.jib.trolley_max_m });
+                    return Err(IkError::OutOfReach {
+                        radius_m: radius,
+                        min_m: t.jib.trolley_min_m,
+                        max_m: t.jib.trolley_max_m,
+                    });
                 }
                 radius
             }
@@ -785,7 +854,10 @@ mod tests {
             let p = LoadPose { x_m: x, y_m: y, z_m: z, yaw_rad: yaw };
             let q = c.inverse(&p, &load()).unwrap();
             let back = c.load_pose(&q, &load());
-            assert!((back.x_m - x).abs() < 1e-9 && (back.y_m - y).abs() < 1e-9 && (back.z_m - z).abs() < 1e-9, "{back:?}");
+            assert!(
+                (back.x_m - x).abs() < 1e-9 && (back.y_m - y).abs() < 1e-9 && (back.z_m - z).abs() < 1e-9,
+                "{back:?}"
+            );
             assert!((back.yaw_rad - yaw).abs() < 1e-12);
         }
     }
@@ -816,7 +888,8 @@ mod tests {
     #[test]
     fn tower_roundtrip() {
         let m = builtin("tower-hh-60").unwrap();
-        let c = CraneSetup::new(m, Placement { x_m: 0.0, y_m: 0.0, z_m: 0.0, heading_rad: 0.0, boom_length_m: 0.0 }).unwrap();
+        let c = CraneSetup::new(m, Placement { x_m: 0.0, y_m: 0.0, z_m: 0.0, heading_rad: 0.0, boom_length_m: 0.0 })
+            .unwrap();
         let p = LoadPose { x_m: 20.0, y_m: 25.0, z_m: 3.0, yaw_rad: 1.0 };
         let q = c.inverse(&p, &load()).unwrap();
         let back = c.load_pose(&q, &load());
@@ -838,7 +911,8 @@ mod tests {
 
     #[test]
     fn bad_files_name_the_line() {
-        let e = CraneModel::from_toml(Path::new("c.toml"), "name = \"x\"\nkind = \"luffing\"\nbogus = 1\n").unwrap_err();
+        let e =
+            CraneModel::from_toml(Path::new("c.toml"), "name = \"x\"\nkind = \"luffing\"\nbogus = 1\n").unwrap_err();
         assert!(e.to_string().contains("c.toml:"), "{e}");
         let text = builtin_text("ltm-1100").unwrap().replace("kind = \"luffing\"", "kind = \"crawler\"");
         let e = CraneModel::from_toml(Path::new("c.toml"), &text).unwrap_err();

@@ -67,11 +67,7 @@ impl Aabb {
     }
 
     pub fn center(&self) -> [f64; 3] {
-        [
-            0.5 * (self.min[0] + self.max[0]),
-            0.5 * (self.min[1] + self.max[1]),
-            0.5 * (self.min[2] + self.max[2]),
-        ]
+        [0.5 * (self.min[0] + self.max[0]), 0.5 * (self.min[1] + self.max[1]), 0.5 * (self.min[2] + self.max[2])]
     }
 
     /// `[minx, miny, minz, maxx, maxy, maxz]`, the order `inspect --json` prints.
@@ -88,10 +84,7 @@ pub fn rot_z(yaw_rad: f64) -> Mat3 {
 
 /// A pose from a translation and a yaw about Z.
 pub fn pose_xyz_yaw(x: f64, y: f64, z: f64, yaw_rad: f64) -> Pose {
-    Pose::from_parts(
-        na::Translation3::new(x, y, z),
-        na::UnitQuaternion::from_axis_angle(&Vec3::z_axis(), yaw_rad),
-    )
+    Pose::from_parts(na::Translation3::new(x, y, z), na::UnitQuaternion::from_axis_angle(&Vec3::z_axis(), yaw_rad))
 }
 
 /// A 4x4 row-major matrix as written in registration.json.
@@ -108,9 +101,7 @@ pub fn pose_to_rows(p: &Pose) -> [[f64; 4]; 4] {
 
 /// The inverse of [`pose_to_rows`]; the rotation part is re-orthonormalised.
 pub fn pose_from_rows(r: &[[f64; 4]; 4]) -> Pose {
-    let rot = Mat3::new(
-        r[0][0], r[0][1], r[0][2], r[1][0], r[1][1], r[1][2], r[2][0], r[2][1], r[2][2],
-    );
+    let rot = Mat3::new(r[0][0], r[0][1], r[0][2], r[1][0], r[1][1], r[1][2], r[2][0], r[2][1], r[2][2]);
     let q = na::UnitQuaternion::from_matrix(&rot);
     Pose::from_parts(na::Translation3::new(r[0][3], r[1][3], r[2][3]), q)
 }

@@ -112,7 +112,13 @@ impl Image {
             for (row, bits) in g.iter().enumerate() {
                 for col in 0..5 {
                     if bits & (0x10 >> col) != 0 {
-                        self.fill_rect(cx + col * scale, y + row as i64 * scale, cx + (col + 1) * scale, y + (row as i64 + 1) * scale, c);
+                        self.fill_rect(
+                            cx + col * scale,
+                            y + row as i64 * scale,
+                            cx + (col + 1) * scale,
+                            y + (row as i64 + 1) * scale,
+                            c,
+                        );
                     }
                 }
             }
@@ -184,8 +190,16 @@ pub fn ramp(t: f64) -> Rgb {
 /// Distinct colours for categories (scan ids, groups).
 pub fn category(i: usize) -> Rgb {
     const P: [Rgb; 10] = [
-        [31, 119, 180], [255, 127, 14], [44, 160, 44], [214, 39, 40], [148, 103, 189],
-        [140, 86, 75], [227, 119, 194], [127, 127, 127], [188, 189, 34], [23, 190, 207],
+        [31, 119, 180],
+        [255, 127, 14],
+        [44, 160, 44],
+        [214, 39, 40],
+        [148, 103, 189],
+        [140, 86, 75],
+        [227, 119, 194],
+        [127, 127, 127],
+        [188, 189, 34],
+        [23, 190, 207],
     ];
     P[i % P.len()]
 }

@@ -184,8 +184,20 @@ impl LiftSpec {
         if id.is_empty() || !id.chars().all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_') {
             return Err(format!("lift id '{id}' must be letters, digits, '-' or '_' (it names output files)"));
         }
-        let pos = |name: &str, v: f64| if v.is_finite() && v > 0.0 { Ok(()) } else { Err(format!("lift '{id}': {name} must be positive, found {v}")) };
-        let nonneg = |name: &str, v: f64| if v.is_finite() && v >= 0.0 { Ok(()) } else { Err(format!("lift '{id}': {name} must be zero or positive, found {v}")) };
+        let pos = |name: &str, v: f64| {
+            if v.is_finite() && v > 0.0 {
+                Ok(())
+            } else {
+                Err(format!("lift '{id}': {name} must be positive, found {v}"))
+            }
+        };
+        let nonneg = |name: &str, v: f64| {
+            if v.is_finite() && v >= 0.0 {
+                Ok(())
+            } else {
+                Err(format!("lift '{id}': {name} must be zero or positive, found {v}"))
+            }
+        };
         pos("load.mass_t", self.load.mass_t)?;
         for (i, s) in self.load.size_m.iter().enumerate() {
             pos(&format!("load.size_m[{i}]"), *s)?;
@@ -201,14 +213,19 @@ impl LiftSpec {
         pos("clearance_m", self.clearance_m)?;
         nonneg("liftoff_m", self.liftoff_m)?;
         if !(0.0..100.0).contains(&self.capacity_reduction_pct) {
-            return Err(format!("lift '{id}': capacity_reduction_pct must be in 0..100, found {}", self.capacity_reduction_pct));
+            return Err(format!(
+                "lift '{id}': capacity_reduction_pct must be in 0..100, found {}",
+                self.capacity_reduction_pct
+            ));
         }
         if !(self.critical_pct > 0.0 && self.critical_pct <= 100.0) {
             return Err(format!("lift '{id}': critical_pct must be in (0, 100], found {}", self.critical_pct));
         }
         let boom = match (&model.kind, self.crane.boom_m) {
             (crate::crane::CraneKind::Luffing(_), Some(b)) => b,
-            (crate::crane::CraneKind::Luffing(_), None) => return Err(format!("lift '{id}': crane.boom_m is required for a luffing crane")),
+            (crate::crane::CraneKind::Luffing(_), None) => {
+                return Err(format!("lift '{id}': crane.boom_m is required for a luffing crane"));
+            }
             (crate::crane::CraneKind::Tower(_), _) => 0.0,
         };
         let placement = Placement {
@@ -219,21 +236,32 @@ impl LiftSpec {
             boom_length_m: boom,
         };
         let crane = CraneSetup::new(model, placement).map_err(|e| format!("lift '{id}': {e}"))?;
-        let load = LoadShape { size_m: self.load.size_m, cog_m: self.load.cog_m, rigging_height_m: self.rigging.height_m };
+        let load =
+            LoadShape { size_m: self.load.size_m, cog_m: self.load.cog_m, rigging_height_m: self.rigging.height_m };
         let solve = |which: &str, p: &PoseSpec| -> Result<(Config, LoadPose), String> {
             let yaw = p.yaw_deg.to_radians();
             match (p.x_m, p.y_m, p.z_m, p.swing_deg, p.hoist_m) {
                 (Some(x), Some(y), Some(z), None, None) if p.luff_deg.is_none() && p.trolley_m.is_none() => {
                     let pose = LoadPose { x_m: x, y_m: y, z_m: z, yaw_rad: yaw };
-                    let c = crane.inverse(&pose, &load).map_err(|e| format!("lift '{id}': {which} position cannot be reached: {e}"))?;
+                    let c = crane
+                        .inverse(&pose, &load)
+                        .map_err(|e| format!("lift '{id}': {which} position cannot be reached: {e}"))?;
                     Ok((c, pose))
                 }
                 (None, None, None, Some(sw), Some(h)) => {
                     let radial = match (&crane.model.kind, p.luff_deg, p.trolley_m) {
                         (crate::crane::CraneKind::Luffing(_), Some(l), None) => l.to_radians(),
                         (crate::crane::CraneKind::Tower(_), None, Some(t)) => t,
-                        (crate::crane::CraneKind::Luffing(_), _, _) => return Err(format!("lift '{id}': {which} needs luff_deg (and no trolley_m) for a luffing crane")),
-                        (crate::crane::CraneKind::Tower(_), _, _) => return Err(format!("lift '{id}': {which} needs trolley_m (and no luff_deg) for a tower crane")),
+                        (crate::crane::CraneKind::Luffing(_), _, _) => {
+                            return Err(format!(
+                                "lift '{id}': {which} needs luff_deg (and no trolley_m) for a luffing crane"
+                            ));
+                        }
+                        (crate::crane::CraneKind::Tower(_), _, _) => {
+                            return Err(format!(
+                                "lift '{id}': {which} needs trolley_m (and no luff_deg) for a tower crane"
+                            ));
+                        }
                     };
                     let c = Config { swing_rad: sw.to_radians(), radial, hoist_m: h, load_yaw_rad: yaw };
                     if !c.to_array().iter().all(|v| v.is_finite()) {
@@ -251,7 +279,10 @@ impl LiftSpec {
         let lim = crane.limits();
         for (which, c) in [("pick", &pick), ("set", &set)] {
             if c.radial < lim.radial.0 - 1e-9 || c.radial > lim.radial.1 + 1e-9 {
-                return Err(format!("lift '{id}': {which} is outside the crane's {} range", if crane.model.is_tower() { "trolley" } else { "luff" }));
+                return Err(format!(
+                    "lift '{id}': {which} is outside the crane's {} range",
+                    if crane.model.is_tower() { "trolley" } else { "luff" }
+                ));
             }
             if c.hoist_m - self.liftoff_m < lim.hoist_m.0 - 1e-9 || c.hoist_m > lim.hoist_m.1 + 1e-9 {
                 return Err(format!(
@@ -262,7 +293,9 @@ impl LiftSpec {
         }
         let swing_range_rad = match self.swing_range_deg {
             Some([a, b]) if a < b => Some((a.to_radians(), b.to_radians())),
-            Some(_) => return Err(format!("lift '{id}': swing_range_deg must be [min, max] with min < max")),
+            Some(_) => {
+                return Err(format!("lift '{id}': swing_range_deg must be [min, max] with min < max"));
+            }
             None => None,
         };
         Ok(LiftTask {

@@ -47,9 +47,18 @@ mod tests {
 
     #[test]
     fn reproducible_and_distinct() {
-        let a: Vec<f64> = { let mut r = seeded(7, "lift-1"); (0..4).map(|_| unit(&mut r)).collect() };
-        let b: Vec<f64> = { let mut r = seeded(7, "lift-1"); (0..4).map(|_| unit(&mut r)).collect() };
-        let c: Vec<f64> = { let mut r = seeded(7, "lift-2"); (0..4).map(|_| unit(&mut r)).collect() };
+        let a: Vec<f64> = {
+            let mut r = seeded(7, "lift-1");
+            (0..4).map(|_| unit(&mut r)).collect()
+        };
+        let b: Vec<f64> = {
+            let mut r = seeded(7, "lift-1");
+            (0..4).map(|_| unit(&mut r)).collect()
+        };
+        let c: Vec<f64> = {
+            let mut r = seeded(7, "lift-2");
+            (0..4).map(|_| unit(&mut r)).collect()
+        };
         assert_eq!(a, b);
         assert_ne!(a, c);
         assert!(a.iter().all(|v| (0.0..1.0).contains(v)));

@@ -105,7 +105,7 @@ mod tests {
 
     #[test]
     fn conversions() {
-        assert!((MassUnit::Lb.to_kg() * 2204.622_621_8 - 1000.0).abs() < 1e-6);
+        assert!((MassUnit::Lb.to_kg() * 2_204.622_621_8 - 1000.0).abs() < 1e-6);
         assert!((LengthUnit::Ft.to_m() - 0.3048).abs() < 1e-12);
         assert!((wrap_pi(3.0 * std::f64::consts::PI) - std::f64::consts::PI).abs() < 1e-12);
         assert!((wrap_pi(-0.5) + 0.5).abs() < 1e-12);

@@ -22,7 +22,8 @@ use std::sync::Arc;
 
 /// Plan-view points of vertical structure, at most `max` (fixed stride).
 pub fn vertical_structure(c: &RegCloud, max: usize) -> Vec<[f64; 2]> {
-    let idx: Vec<usize> = (0..c.pts.len()).filter(|&i| c.normals[i] != [0.0; 3] && c.normals[i][2].abs() < 0.5).collect();
+    let idx: Vec<usize> =
+        (0..c.pts.len()).filter(|&i| c.normals[i] != [0.0; 3] && c.normals[i][2].abs() < 0.5).collect();
     let stride = (idx.len() / max.max(1)).max(1);
     idx.iter().step_by(stride).map(|&i| [c.pts[i][0], c.pts[i][1]]).collect()
 }
@@ -262,5 +263,8 @@ fn with_height(source: &RegCloud, target: &RegCloud, pose: Pose) -> Pose {
     }
     d.sort_by(f64::total_cmp);
     let dz = d[d.len() / 2];
-    Pose::from_parts(na::Translation3::new(pose.translation.x, pose.translation.y, pose.translation.z + dz), pose.rotation)
+    Pose::from_parts(
+        na::Translation3::new(pose.translation.x, pose.translation.y, pose.translation.z + dz),
+        pose.rotation,
+    )
 }

@@ -36,7 +36,11 @@ pub fn normals(pts: &[[f64; 3]], k: usize, max_radius: f64, cell: f64, viewpoint
                 cov += d * d.transpose();
             }
             let eig = SymmetricEigen::new(cov);
-            let (imin, lmin) = eig.eigenvalues.iter().enumerate().fold((0, f64::INFINITY), |acc, (i, &v)| if v < acc.1 { (i, v) } else { acc });
+            let (imin, lmin) = eig
+                .eigenvalues
+                .iter()
+                .enumerate()
+                .fold((0, f64::INFINITY), |acc, (i, &v)| if v < acc.1 { (i, v) } else { acc });
             // Surface variation (Pauly et al. 2002): edges, corners and clutter
             // have no reliable normal.
             let sum: f64 = eig.eigenvalues.iter().sum();

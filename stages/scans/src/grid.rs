@@ -169,7 +169,12 @@ mod tests {
 
     #[test]
     fn knn_matches_brute_force() {
-        let pts: Vec<[f64; 3]> = (0..800).map(|i| { let t = i as f64; [(t * 0.37).sin() * 5.0, (t * 0.71).cos() * 5.0, (t * 0.13).sin()] }).collect();
+        let pts: Vec<[f64; 3]> = (0..800)
+            .map(|i| {
+                let t = i as f64;
+                [(t * 0.37).sin() * 5.0, (t * 0.71).cos() * 5.0, (t * 0.13).sin()]
+            })
+            .collect();
         let g = Grid::new(&pts, 0.3);
         let mut out = Vec::new();
         for q in [[0.0, 0.0, 0.0], [2.0, -1.0, 0.5], [9.0, 9.0, 0.0]] {
@@ -183,10 +188,20 @@ mod tests {
 
     #[test]
     fn nearest_matches_brute_force() {
-        let pts: Vec<[f64; 3]> = (0..500).map(|i| { let t = i as f64; [(t * 0.37).sin() * 5.0, (t * 0.71).cos() * 5.0, (t * 0.13).sin()] }).collect();
+        let pts: Vec<[f64; 3]> = (0..500)
+            .map(|i| {
+                let t = i as f64;
+                [(t * 0.37).sin() * 5.0, (t * 0.71).cos() * 5.0, (t * 0.13).sin()]
+            })
+            .collect();
         let g = Grid::new(&pts, 1.0);
         for q in [[0.0, 0.0, 0.0], [2.0, -1.0, 0.5], [4.9, 4.9, 0.0]] {
-            let want = pts.iter().enumerate().map(|(i, p)| (i as u32, dist2(&q, p))).filter(|x| x.1 <= 1.0).min_by(|a, b| a.1.total_cmp(&b.1));
+            let want = pts
+                .iter()
+                .enumerate()
+                .map(|(i, p)| (i as u32, dist2(&q, p)))
+                .filter(|x| x.1 <= 1.0)
+                .min_by(|a, b| a.1.total_cmp(&b.1));
             assert_eq!(g.nearest_within(&q, 1.0).map(|x| x.0), want.map(|x| x.0));
             let g2 = Grid::new(&pts, 0.2);
             assert_eq!(g2.nearest(&q, 1.0).map(|x| x.0), want.map(|x| x.0));

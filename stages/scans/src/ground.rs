@@ -40,7 +40,12 @@ impl Default for GroundSettings {
 
 impl GroundSettings {
     pub fn check(&self) -> Result<(), String> {
-        for (n, v) in [("cell_m", self.cell_m), ("slope", self.slope), ("window_m", self.window_m), ("threshold_m", self.threshold_m)] {
+        for (n, v) in [
+            ("cell_m", self.cell_m),
+            ("slope", self.slope),
+            ("window_m", self.window_m),
+            ("threshold_m", self.threshold_m),
+        ] {
             if !(v.is_finite() && v > 0.0) {
                 return Err(format!("ground.{n} must be positive, found {v}"));
             }
@@ -82,16 +87,27 @@ impl HeightGrid {
         let j1 = (j0 + 1).min(self.ny - 1);
         let tx = (fx - i0 as f64).clamp(0.0, 1.0);
         let ty = (fy - j0 as f64).clamp(0.0, 1.0);
-        let v = self.at(i0, j0) * (1.0 - tx) * (1.0 - ty) + self.at(i1, j0) * tx * (1.0 - ty) + self.at(i0, j1) * (1.0 - tx) * ty + self.at(i1, j1) * tx * ty;
+        let v = self.at(i0, j0) * (1.0 - tx) * (1.0 - ty)
+            + self.at(i1, j0) * tx * (1.0 - ty)
+            + self.at(i0, j1) * (1.0 - tx) * ty
+            + self.at(i1, j1) * tx * ty;
         v.is_finite().then_some(v)
     }
 
     /// ESRI ASCII grid (north row first), NODATA = -9999.
     pub fn write_asc(&self, path: &Path) -> std::io::Result<()> {
         let mut s = String::new();
-        s.push_str(&format!("ncols {}\nnrows {}\nxllcorner {}\nyllcorner {}\ncellsize {}\nNODATA_value -9999\n", self.nx, self.ny, self.x0, self.y0, self.cell_m));
+        s.push_str(&format!(
+            "ncols {}\nnrows {}\nxllcorner {}\nyllcorner {}\ncellsize {}\nNODATA_value -9999\n",
+            self.nx, self.ny, self.x0, self.y0, self.cell_m
+        ));
         for j in (0..self.ny).rev() {
-            let row: Vec<String> = (0..self.nx).map(|i| { let v = self.at(i, j); if v.is_finite() { format!("{v:.3}") } else { "-9999".into() } }).collect();
+            let row: Vec<String> = (0..self.nx)
+                .map(|i| {
+                    let v = self.at(i, j);
+                    if v.is_finite() { format!("{v:.3}") } else { "-9999".into() }
+                })
+                .collect();
             s.push_str(&row.join(" "));
             s.push('\n');
         }
@@ -105,7 +121,9 @@ impl HeightGrid {
         for _ in 0..6 {
             let (n, l) = lines.next().ok_or_else(|| format!("{}: header ends early", path.display()))?;
             let mut it = l.split_whitespace();
-            let (Some(k), Some(v)) = (it.next(), it.next()) else { return Err(format!("{}:{}: expected 'key value'", path.display(), n + 1)) };
+            let (Some(k), Some(v)) = (it.next(), it.next()) else {
+                return Err(format!("{}:{}: expected 'key value'", path.display(), n + 1));
+            };
             let v: f64 = v.parse().map_err(|_| format!("{}:{}: '{v}' is not a number", path.display(), n + 1))?;
             hdr.insert(k.to_ascii_lowercase(), v);
         }
@@ -216,10 +234,10 @@ pub fn classify(cloud: &mut PointCloud, s: &GroundSettings) -> Option<HeightGrid
     };
     let mut zmin = vec![f64::NAN; nx * ny];
     for p in &cloud.xyz {
-        if let Some(k) = cell_of(p) {
-            if !(zmin[k] <= p[2]) {
-                zmin[k] = p[2];
-            }
+        if let Some(k) = cell_of(p)
+            && !(zmin[k] <= p[2])
+        {
+            zmin[k] = p[2];
         }
     }
     let measured: Vec<bool> = zmin.iter().map(|v| v.is_finite()).collect();
@@ -256,7 +274,9 @@ pub fn classify(cloud: &mut PointCloud, s: &GroundSettings) -> Option<HeightGrid
         .xyz
         .iter()
         .map(|p| {
-            let (Some(k), Some(g)) = (cell_of(p), grid.sample(p[0], p[1])) else { return class::UNCLASSIFIED };
+            let (Some(k), Some(g)) = (cell_of(p), grid.sample(p[0], p[1])) else {
+                return class::UNCLASSIFIED;
+            };
             let tol = s.threshold_m + s.scalar * slope_at(k % nx, k / nx) * c;
             if (p[2] - g).abs() <= tol { class::GROUND } else { class::UNCLASSIFIED }
         })

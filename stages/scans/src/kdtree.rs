@@ -55,10 +55,12 @@ impl KdTree {
         }
         let mid = s + (e - s) / 2;
         let pts = &self.pts;
-        self.idx[s..e].select_nth_unstable_by(mid - s, |&a, &b| pts[a as usize][axis].total_cmp(&pts[b as usize][axis]).then(a.cmp(&b)));
+        self.idx[s..e].select_nth_unstable_by(mid - s, |&a, &b| {
+            pts[a as usize][axis].total_cmp(&pts[b as usize][axis]).then(a.cmp(&b))
+        });
         let split = self.pts[self.idx[mid] as usize][axis];
         let left = self.nodes.len() as u32;
-        self.nodes.push(Node { axis: 0, split: 0.0, left: u32::MAX, start: start, end: mid as u32 });
+        self.nodes.push(Node { axis: 0, split: 0.0, left: u32::MAX, start, end: mid as u32 });
         self.nodes.push(Node { axis: 0, split: 0.0, left: u32::MAX, start: mid as u32, end });
         self.nodes[node] = Node { axis: axis as u8, split, left, start, end };
         self.build(left as usize);
@@ -114,12 +116,22 @@ mod tests {
 
     #[test]
     fn matches_brute_force() {
-        let pts: Vec<[f64; 3]> = (0..3000).map(|i| { let t = i as f64; [(t * 0.37).sin() * 20.0 * (t * 0.001).cos(), (t * 0.71).cos() * 5.0, (t * 0.13).sin()] }).collect();
+        let pts: Vec<[f64; 3]> = (0..3000)
+            .map(|i| {
+                let t = i as f64;
+                [(t * 0.37).sin() * 20.0 * (t * 0.001).cos(), (t * 0.71).cos() * 5.0, (t * 0.13).sin()]
+            })
+            .collect();
         let t = KdTree::new(&pts);
         for k in 0..200 {
             let q = [(k as f64 * 1.3).sin() * 22.0, (k as f64 * 0.7).cos() * 6.0, (k as f64).sin()];
             for r in [0.05, 0.5, 100.0] {
-                let want = pts.iter().enumerate().map(|(i, p)| (i as u32, (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2))).filter(|x| x.1 <= r * r).min_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)));
+                let want = pts
+                    .iter()
+                    .enumerate()
+                    .map(|(i, p)| (i as u32, (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)))
+                    .filter(|x| x.1 <= r * r)
+                    .min_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)));
                 assert_eq!(t.nearest(&q, r), want);
             }
         }

@@ -26,8 +26,8 @@
 //! println!("{} points", summary.points_out);
 //! ```
 
-pub mod error;
 pub mod coarse2d;
+pub mod error;
 pub mod features;
 pub mod grid;
 pub mod ground;
@@ -134,9 +134,15 @@ impl Default for Settings {
 impl Settings {
     pub fn check(&self) -> std::result::Result<(), String> {
         match self.subsample {
-            SubsampleMethod::Voxel if !(self.voxel.is_finite() && self.voxel > 0.0) => return Err(format!("voxel must be a positive number of metres, found {}", self.voxel)),
-            SubsampleMethod::Spacing if !(self.spacing.is_finite() && self.spacing > 0.0) => return Err(format!("spacing must be a positive number of metres, found {}", self.spacing)),
-            SubsampleMethod::Nth if self.every_nth == 0 => return Err("every_nth must be 1 or more".into()),
+            SubsampleMethod::Voxel if !(self.voxel.is_finite() && self.voxel > 0.0) => {
+                return Err(format!("voxel must be a positive number of metres, found {}", self.voxel));
+            }
+            SubsampleMethod::Spacing if !(self.spacing.is_finite() && self.spacing > 0.0) => {
+                return Err(format!("spacing must be a positive number of metres, found {}", self.spacing));
+            }
+            SubsampleMethod::Nth if self.every_nth == 0 => {
+                return Err("every_nth must be 1 or more".into());
+            }
             _ => {}
         }
         self.ground.check()?;
@@ -192,7 +198,11 @@ impl Summary {
         self.scans
             .iter()
             .map(|s| {
-                let state = if s.registered { format!("fitness {:.0} %, rmse {:.1} mm ({})", 100.0 * s.fitness, 1000.0 * s.rmse_m, s.method) } else { "NOT REGISTERED".into() };
+                let state = if s.registered {
+                    format!("fitness {:.0} %, rmse {:.1} mm ({})", 100.0 * s.fitness, 1000.0 * s.rmse_m, s.method)
+                } else {
+                    "NOT REGISTERED".into()
+                };
                 format!("{}: {} points read, {} kept, {}", s.name, s.points_read, s.points_kept, state)
             })
             .collect()
@@ -223,7 +233,10 @@ fn read_stations(path: &Path) -> Result<Vec<(String, Pose)>> {
         let (loc, msg) = liftplan_core::location::toml_error(path, &text, &e);
         ScanError::format(loc, msg)
     })?;
-    Ok(f.station.into_iter().map(|s| (s.scan, liftplan_core::frame::pose_xyz_yaw(s.x_m, s.y_m, s.z_m, s.yaw_deg.to_radians()))).collect())
+    Ok(f.station
+        .into_iter()
+        .map(|s| (s.scan, liftplan_core::frame::pose_xyz_yaw(s.x_m, s.y_m, s.z_m, s.yaw_deg.to_radians())))
+        .collect())
 }
 
 /// Lists every scan in `inputs` (files in the given order, scans in file order).
@@ -238,7 +251,11 @@ pub fn list_all(inputs: &[PathBuf]) -> Result<Vec<ScanInfo>> {
     Ok(all)
 }
 
-pub fn thin_for_registration(info: &ScanInfo, s: &RegistrationSettings, progress: &(dyn Fn(&str, u64, u64) + Sync)) -> Result<(RegCloud, FeatureCloud, u64)> {
+pub fn thin_for_registration(
+    info: &ScanInfo,
+    s: &RegistrationSettings,
+    progress: &(dyn Fn(&str, u64, u64) + Sync),
+) -> Result<(RegCloud, FeatureCloud, u64)> {
     let mut g = subsample::VoxelGrid::new(s.icp_voxel_m).map_err(ScanError::Settings)?;
     let total = info.declared_points.unwrap_or(0);
     let mut seen = 0u64;
@@ -273,12 +290,16 @@ pub fn run(inputs: &[PathBuf], s: &Settings, opts: &RunOptions, out_dir: &Path) 
         Some(p) => read_stations(p)?,
         None => vec![],
     };
-    let initial = |info: &ScanInfo| -> Option<Pose> { stations.iter().find(|(n, _)| *n == info.name).map(|(_, p)| *p).or(info.pose) };
+    let initial = |info: &ScanInfo| -> Option<Pose> {
+        stations.iter().find(|(n, _)| *n == info.name).map(|(_, p)| *p).or(info.pose)
+    };
     let names: Vec<String> = scans.iter().map(|x| x.name.clone()).collect();
     let mut read_counts = vec![0u64; scans.len()];
 
     let results: Vec<register::RegResult> = match s.register {
-        RegisterMode::None => scans.iter().map(|_| plain_result(Pose::identity(), "none (coordinates as given)")).collect(),
+        RegisterMode::None => {
+            scans.iter().map(|_| plain_result(Pose::identity(), "none (coordinates as given)")).collect()
+        }
         RegisterMode::Poses => scans
             .iter()
             .map(|x| match initial(x) {
@@ -346,9 +367,12 @@ pub fn run(inputs: &[PathBuf], s: &Settings, opts: &RunOptions, out_dir: &Path) 
     (opts.progress)("write site.laz", 0, 1);
     write::write_las(&out_dir.join("site.laz"), &cloud)?;
     if let Some(g) = &grid {
-        g.write_asc(&out_dir.join("ground.asc")).map_err(|e| ScanError::Io(Location::file(out_dir.join("ground.asc")), e))?;
+        g.write_asc(&out_dir.join("ground.asc"))
+            .map_err(|e| ScanError::Io(Location::file(out_dir.join("ground.asc")), e))?;
     }
-    picture::top_view(&cloud, &names, 1200).write_png(&out_dir.join("scans.png")).map_err(|e| ScanError::Io(Location::file(out_dir.join("scans.png")), e))?;
+    picture::top_view(&cloud, &names, 1200)
+        .write_png(&out_dir.join("scans.png"))
+        .map_err(|e| ScanError::Io(Location::file(out_dir.join("scans.png")), e))?;
     write_json(&out_dir.join("registration.json"), &serde_json::json!({ "register": s.register, "scans": reports }))?;
     (opts.progress)("write site.laz", 1, 1);
     let bbox = cloud.bbox();
@@ -377,7 +401,13 @@ fn write_json(path: &Path, v: &serde_json::Value) -> Result<()> {
     liftplan_core::artifact::write_atomic(path, text.as_bytes()).map_err(|e| ScanError::Io(Location::file(path), e))
 }
 
-fn thin(scans: &[ScanInfo], results: &[register::RegResult], s: &Settings, opts: &RunOptions, read_counts: &mut [u64]) -> Result<PointCloud> {
+fn thin(
+    scans: &[ScanInfo],
+    results: &[register::RegResult],
+    s: &Settings,
+    opts: &RunOptions,
+    read_counts: &mut [u64],
+) -> Result<PointCloud> {
     enum Filter {
         Voxel(subsample::VoxelGrid),
         Spacing(subsample::SpacingFilter),
@@ -387,43 +417,46 @@ fn thin(scans: &[ScanInfo], results: &[register::RegResult], s: &Settings, opts:
     let mk = || -> Result<Filter> {
         Ok(match s.subsample {
             SubsampleMethod::Voxel => Filter::Voxel(subsample::VoxelGrid::new(s.voxel).map_err(ScanError::Settings)?),
-            SubsampleMethod::Spacing => Filter::Spacing(subsample::SpacingFilter::new(s.spacing).map_err(ScanError::Settings)?),
+            SubsampleMethod::Spacing => {
+                Filter::Spacing(subsample::SpacingFilter::new(s.spacing).map_err(ScanError::Settings)?)
+            }
             SubsampleMethod::Nth => Filter::Nth(subsample::EveryNth::new(s.every_nth).map_err(ScanError::Settings)?),
             SubsampleMethod::None => Filter::All(PointCloud::default()),
         })
     };
-    let pass = |filter: &mut Filter, nearest: Option<&mut subsample::NearestPicker>, read_counts: &mut [u64]| -> Result<()> {
-        let mut nearest = nearest;
-        for (k, (info, r)) in scans.iter().zip(results).enumerate() {
-            if !r.registered {
-                continue;
-            }
-            if let Filter::Nth(f) = filter {
-                f.next_scan();
-            }
-            let total = info.declared_points.unwrap_or(0);
-            let mut seen = 0u64;
-            let n = read::stream(info, &mut |c| {
-                let mut c = c.clone();
-                c.transform(&r.pose);
-                c.scan = vec![k as u16; c.len()];
-                c.class.clear();
-                let at = |e: String| ScanError::format(Location::item(&info.path, &info.name), e);
-                match (&mut *filter, nearest.as_deref_mut()) {
-                    (_, Some(p)) => p.add(&c, k as u16),
-                    (Filter::Voxel(g), None) => g.add(&c, k as u16).map_err(at)?,
-                    (Filter::Spacing(g), None) => g.add(&c, k as u16).map_err(at)?,
-                    (Filter::Nth(g), None) => g.add(&c, k as u16),
-                    (Filter::All(all), None) => all.append(&c),
+    let pass =
+        |filter: &mut Filter, nearest: Option<&mut subsample::NearestPicker>, read_counts: &mut [u64]| -> Result<()> {
+            let mut nearest = nearest;
+            for (k, (info, r)) in scans.iter().zip(results).enumerate() {
+                if !r.registered {
+                    continue;
                 }
-                seen += c.len() as u64;
-                (opts.progress)(&format!("thin {}", info.name), seen, total);
-                Ok(())
-            })?;
-            read_counts[k] = n;
-        }
-        Ok(())
-    };
+                if let Filter::Nth(f) = filter {
+                    f.next_scan();
+                }
+                let total = info.declared_points.unwrap_or(0);
+                let mut seen = 0u64;
+                let n = read::stream(info, &mut |c| {
+                    let mut c = c.clone();
+                    c.transform(&r.pose);
+                    c.scan = vec![k as u16; c.len()];
+                    c.class.clear();
+                    let at = |e: String| ScanError::format(Location::item(&info.path, &info.name), e);
+                    match (&mut *filter, nearest.as_deref_mut()) {
+                        (_, Some(p)) => p.add(&c, k as u16),
+                        (Filter::Voxel(g), None) => g.add(&c, k as u16).map_err(at)?,
+                        (Filter::Spacing(g), None) => g.add(&c, k as u16).map_err(at)?,
+                        (Filter::Nth(g), None) => g.add(&c, k as u16),
+                        (Filter::All(all), None) => all.append(&c),
+                    }
+                    seen += c.len() as u64;
+                    (opts.progress)(&format!("thin {}", info.name), seen, total);
+                    Ok(())
+                })?;
+                read_counts[k] = n;
+            }
+            Ok(())
+        };
     let mut f = mk()?;
     pass(&mut f, None, read_counts)?;
     Ok(match f {
@@ -464,7 +497,11 @@ pub fn inspect(path: &Path) -> Result<serde_json::Value> {
             Some(p) if !b.is_empty() => {
                 let mut t = Aabb::empty();
                 for k in 0..8 {
-                    let c = [if k & 1 == 0 { b.min[0] } else { b.max[0] }, if k & 2 == 0 { b.min[1] } else { b.max[1] }, if k & 4 == 0 { b.min[2] } else { b.max[2] }];
+                    let c = [
+                        if k & 1 == 0 { b.min[0] } else { b.max[0] },
+                        if k & 2 == 0 { b.min[1] } else { b.max[1] },
+                        if k & 4 == 0 { b.min[2] } else { b.max[2] },
+                    ];
                     let q = p * nalgebra::Point3::new(c[0], c[1], c[2]);
                     t.grow([q.x, q.y, q.z]);
                 }

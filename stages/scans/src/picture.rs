@@ -6,7 +6,8 @@ use liftplan_core::image::{Image, category};
 
 pub fn top_view(cloud: &PointCloud, names: &[String], max_px: u32) -> Image {
     let bb = cloud.bbox();
-    let (w, h) = if bb.is_empty() { (1.0, 1.0) } else { ((bb.max[0] - bb.min[0]).max(1e-3), (bb.max[1] - bb.min[1]).max(1e-3)) };
+    let (w, h) =
+        if bb.is_empty() { (1.0, 1.0) } else { ((bb.max[0] - bb.min[0]).max(1e-3), (bb.max[1] - bb.min[1]).max(1e-3)) };
     let scale = (max_px as f64 - 40.0) / w.max(h);
     let iw = (w * scale) as u32 + 40;
     let ih = (h * scale) as u32 + 60;

@@ -21,7 +21,7 @@
 //! Every reduction is summed in fixed-size blocks in a fixed order, so the result
 //! does not depend on the number of threads.
 
-use crate::features::{Fpfh, FPFH_BINS};
+use crate::features::{FPFH_BINS, Fpfh};
 use liftplan_core::frame::{Pose, Vec3};
 use liftplan_core::rng;
 use nalgebra as na;
@@ -89,7 +89,9 @@ impl Default for RegistrationSettings {
 
 impl RegistrationSettings {
     pub fn check(&self) -> Result<(), String> {
-        let pos = |n: &str, v: f64| if v.is_finite() && v > 0.0 { Ok(()) } else { Err(format!("registration.{n} must be positive, found {v}")) };
+        let pos = |n: &str, v: f64| {
+            if v.is_finite() && v > 0.0 { Ok(()) } else { Err(format!("registration.{n} must be positive, found {v}")) }
+        };
         pos("icp_voxel_m", self.icp_voxel_m)?;
         pos("feature_voxel_m", self.feature_voxel_m)?;
         pos("feature_radius_m", self.feature_radius_m)?;
@@ -169,7 +171,8 @@ pub fn match_features(src: &FeatureCloud, tgt: &FeatureCloud, max_src: usize) ->
     let mut chosen: Vec<usize> = fwd.clone();
     chosen.sort_unstable();
     chosen.dedup();
-    let back: Vec<(usize, usize)> = chosen.par_iter().map(|&t| (t, nearest(&tgt.fpfh[t], &src_idx, &src.fpfh))).collect();
+    let back: Vec<(usize, usize)> =
+        chosen.par_iter().map(|&t| (t, nearest(&tgt.fpfh[t], &src_idx, &src.fpfh))).collect();
     let back_of = |t: usize| back.binary_search_by_key(&t, |x| x.0).ok().map(|k| back[k].1);
     src_idx.iter().zip(&fwd).filter(|(s, t)| back_of(**t) == Some(**s)).map(|(s, t)| (*s, *t)).collect()
 }
@@ -215,19 +218,32 @@ pub fn fit_rigid(a: &[[f64; 3]], b: &[[f64; 3]], leveled: bool) -> Option<Pose> 
 
 /// RANSAC over feature correspondences: the pose (source to target) with most
 /// correspondences within `eps`, refined on its inliers, and the inlier count.
-pub fn ransac(src: &[[f64; 3]], tgt: &[[f64; 3]], corr: &[(usize, usize)], leveled: bool, eps: f64, iterations: usize, seed: u64) -> Option<(Pose, usize)> {
+pub fn ransac(
+    src: &[[f64; 3]],
+    tgt: &[[f64; 3]],
+    corr: &[(usize, usize)],
+    leveled: bool,
+    eps: f64,
+    iterations: usize,
+    seed: u64,
+) -> Option<(Pose, usize)> {
     if corr.len() < 3 {
         return None;
     }
     let mut rng = rng::seeded(seed, "ransac");
-    let count = |p: &Pose| corr.iter().filter(|(s, t)| super::grid::dist2(&tf(p, &src[*s]), &tgt[*t]) < eps * eps).count();
+    let count =
+        |p: &Pose| corr.iter().filter(|(s, t)| super::grid::dist2(&tf(p, &src[*s]), &tgt[*t]) < eps * eps).count();
     let mut best: Option<(Pose, usize)> = None;
     // Hypotheses in fixed-size batches so results are independent of threads.
     let batch = 256;
     let mut done = 0;
     while done < iterations {
         let m = batch.min(iterations - done);
-        let samples: Vec<[usize; 3]> = (0..m).map(|_| [rng::index(&mut rng, corr.len()), rng::index(&mut rng, corr.len()), rng::index(&mut rng, corr.len())]).collect();
+        let samples: Vec<[usize; 3]> = (0..m)
+            .map(|_| {
+                [rng::index(&mut rng, corr.len()), rng::index(&mut rng, corr.len()), rng::index(&mut rng, corr.len())]
+            })
+            .collect();
         let scored: Vec<Option<(Pose, usize)>> = samples
             .par_iter()
             .map(|s| {
@@ -263,7 +279,8 @@ pub fn ransac(src: &[[f64; 3]], tgt: &[[f64; 3]], corr: &[(usize, usize)], level
         done += m;
     }
     let (p, _) = best?;
-    let inl: Vec<(usize, usize)> = corr.iter().copied().filter(|(s, t)| super::grid::dist2(&tf(&p, &src[*s]), &tgt[*t]) < eps * eps).collect();
+    let inl: Vec<(usize, usize)> =
+        corr.iter().copied().filter(|(s, t)| super::grid::dist2(&tf(&p, &src[*s]), &tgt[*t]) < eps * eps).collect();
     let a: Vec<[f64; 3]> = inl.iter().map(|c| src[c.0]).collect();
     let b: Vec<[f64; 3]> = inl.iter().map(|c| tgt[c.1]).collect();
     let refined = fit_rigid(&a, &b, leveled).unwrap_or(p);
@@ -306,7 +323,9 @@ pub fn icp(src: &RegCloud, target: &Target, init: Pose, distances: &[f64]) -> Po
                     let mut n = 0;
                     for k in b * BLOCK..((b + 1) * BLOCK).min(src.pts.len()) {
                         let p = tf(&pose, &src.pts[k]);
-                        let Some((j, _)) = grid.nearest(&p, d) else { continue };
+                        let Some((j, _)) = grid.nearest(&p, d) else {
+                            continue;
+                        };
                         let nq = target.normals[j as usize];
                         if nq == [0.0; 3] || !compatible(&pose, &src.normals[k], &nq) {
                             continue;
@@ -337,7 +356,9 @@ pub fn icp(src: &RegCloud, target: &Target, init: Pose, distances: &[f64]) -> Po
             for i in 0..6 {
                 h[(i, i)] += 1e-9 * (1.0 + h[(i, i)]);
             }
-            let Some(x) = h.cholesky().map(|c| c.solve(&(-g))) else { break };
+            let Some(x) = h.cholesky().map(|c| c.solve(&(-g))) else {
+                break;
+            };
             let rot = na::UnitQuaternion::from_scaled_axis(Vec3::new(x[0], x[1], x[2]));
             let step = Pose::from_parts(na::Translation3::new(x[3], x[4], x[5]), rot);
             pose = step * pose;
@@ -371,7 +392,11 @@ pub fn evaluate(src: &RegCloud, target: &Target, pose: &Pose, d: f64, max_residu
                         continue;
                     }
                     let q = target.pts[j as usize];
-                    let r = if nq == [0.0; 3] { d2.sqrt() } else { (p[0] - q[0]) * nq[0] + (p[1] - q[1]) * nq[1] + (p[2] - q[2]) * nq[2] };
+                    let r = if nq == [0.0; 3] {
+                        d2.sqrt()
+                    } else {
+                        (p[0] - q[0]) * nq[0] + (p[1] - q[1]) * nq[1] + (p[2] - q[2]) * nq[2]
+                    };
                     if r.abs() <= max_residual {
                         n += 1;
                         s2 += r * r;
@@ -410,7 +435,13 @@ pub struct RegInput {
 /// can its points say where the scanner looked through.
 fn scanner_at_origin(c: &RegCloud) -> bool {
     let b = liftplan_core::frame::Aabb::from_points(&c.pts);
-    !b.is_empty() && b.min[0] < 0.0 && b.max[0] > 0.0 && b.min[1] < 0.0 && b.max[1] > 0.0 && b.min[2] < 0.0 && b.max[2] > 0.0
+    !b.is_empty()
+        && b.min[0] < 0.0
+        && b.max[0] > 0.0
+        && b.min[1] < 0.0
+        && b.max[1] > 0.0
+        && b.min[2] < 0.0
+        && b.max[2] > 0.0
 }
 
 fn subset(c: &RegCloud, idx: &[usize], max: usize) -> RegCloud {
@@ -476,7 +507,8 @@ fn sample(c: &RegCloud, max: usize) -> RegCloud {
 /// Flat ground overlaps under any in-plane shift, so a fitness measured on all
 /// points cannot tell a right alignment from a wrong one on a flat site.
 fn structure(c: &RegCloud, max: usize) -> RegCloud {
-    let idx: Vec<usize> = (0..c.pts.len()).filter(|&i| c.normals[i] != [0.0; 3] && c.normals[i][2].abs() < 0.9).collect();
+    let idx: Vec<usize> =
+        (0..c.pts.len()).filter(|&i| c.normals[i] != [0.0; 3] && c.normals[i][2].abs() < 0.9).collect();
     if idx.len() < 200 {
         return sample(c, max);
     }
@@ -487,7 +519,9 @@ fn model_of(inputs: &[RegInput], poses: &[Option<Pose>], except: Option<usize>) 
     let mut pts = Vec::new();
     let mut nrm = Vec::new();
     for (i, inp) in inputs.iter().enumerate() {
-        let (Some(p), true) = (poses[i], Some(i) != except) else { continue };
+        let (Some(p), true) = (poses[i], Some(i) != except) else {
+            continue;
+        };
         pts.extend(inp.fine.pts.iter().map(|x| tf(&p, x)));
         nrm.extend(inp.fine.normals.iter().map(|n| {
             let v = p.rotation * Vec3::new(n[0], n[1], n[2]);
@@ -509,11 +543,19 @@ pub fn register_all(inputs: &[RegInput], s: &RegistrationSettings, seed: u64) ->
     let fit_r = s.fit_residual_m;
     let reference_pose = inputs[0].initial.unwrap_or_else(Pose::identity);
     poses[0] = Some(reference_pose);
-    results[0] = Some(RegResult { pose: reference_pose, fitness: 1.0, rmse_m: 0.0, method: "reference".into(), registered: true, warning: None });
+    results[0] = Some(RegResult {
+        pose: reference_pose,
+        fitness: 1.0,
+        rmse_m: 0.0,
+        method: "reference".into(),
+        registered: true,
+        warning: None,
+    });
     let srcs: Vec<RegCloud> = inputs.iter().map(|i| sample(&i.fine, s.icp_source_points)).collect();
     let quick: Vec<RegCloud> = inputs.iter().map(|i| sample(&i.fine, s.icp_source_points / 4)).collect();
     let checks: Vec<RegCloud> = inputs.iter().map(|i| structure(&i.fine, s.icp_source_points / 4)).collect();
-    let images: Vec<Option<RangeImage>> = inputs.iter().map(|i| scanner_at_origin(&i.fine).then(|| RangeImage::new(&i.fine.pts, 0.5))).collect();
+    let images: Vec<Option<RangeImage>> =
+        inputs.iter().map(|i| scanner_at_origin(&i.fine).then(|| RangeImage::new(&i.fine.pts, 0.5))).collect();
     let quick_levels = &s.icp_distances_m[..s.icp_distances_m.len().min(2)];
     // Pairwise coarse transforms (scan j's frame to scan i's frame) with their
     // RANSAC inlier counts, computed once per pair (scans that are not levelled).
@@ -540,7 +582,8 @@ pub fn register_all(inputs: &[RegInput], s: &RegistrationSettings, seed: u64) ->
                 let stale = plan_guess.get(&j).is_none_or(|g| g.0 != model.pts.len());
                 if stale {
                     let t = std::time::Instant::now();
-                    plan_guess.insert(j, (model.pts.len(), crate::coarse2d::align(&inputs[j].fine, &model_cloud, 30_000)));
+                    plan_guess
+                        .insert(j, (model.pts.len(), crate::coarse2d::align(&inputs[j].fine, &model_cloud, 30_000)));
                     tracing::debug!("align {j}: {:?}", t.elapsed());
                 }
                 // Rank the plan-view guesses in 3D: overlap of structure, less
@@ -549,7 +592,9 @@ pub fn register_all(inputs: &[RegInput], s: &RegistrationSettings, seed: u64) ->
                 let guesses = &plan_guess[&j].1;
                 let scores: Vec<f64> = guesses
                     .par_iter()
-                    .map(|(p, _)| evaluate(&checks[j], &model, p, 0.5, 0.25).0 - 10.0 * free_space_violations(&quick[j], p, &seen))
+                    .map(|(p, _)| {
+                        evaluate(&checks[j], &model, p, 0.5, 0.25).0 - 10.0 * free_space_violations(&quick[j], p, &seen)
+                    })
                     .collect();
                 let mut order: Vec<usize> = (0..guesses.len()).collect();
                 order.sort_by(|&a, &b| scores[b].total_cmp(&scores[a]));
@@ -561,7 +606,15 @@ pub fn register_all(inputs: &[RegInput], s: &RegistrationSettings, seed: u64) ->
                     let Some(pi) = poses[i] else { continue };
                     let c = coarse.entry((j, i)).or_insert_with(|| {
                         let corr = match_features(&inputs[j].coarse, &inputs[i].coarse, 4000);
-                        ransac(&inputs[j].coarse.pts, &inputs[i].coarse.pts, &corr, false, eps, s.ransac_iterations, seed ^ ((j as u64) << 32 | i as u64))
+                        ransac(
+                            &inputs[j].coarse.pts,
+                            &inputs[i].coarse.pts,
+                            &corr,
+                            false,
+                            eps,
+                            s.ransac_iterations,
+                            seed ^ ((j as u64) << 32 | i as u64),
+                        )
                     });
                     if let Some((t, _)) = c {
                         candidates.push((pi * *t, format!("features (to {}) + ICP", inputs[i].name)));
@@ -588,7 +641,8 @@ pub fn register_all(inputs: &[RegInput], s: &RegistrationSettings, seed: u64) ->
                 let p = icp(&srcs[j], &model, p, &s.icp_distances_m);
                 let (fit, rmse) = evaluate(&checks[j], &model, &p, fit_d, fit_r);
                 poses[j] = Some(p);
-                results[j] = Some(RegResult { pose: p, fitness: fit, rmse_m: rmse, method, registered: true, warning: None });
+                results[j] =
+                    Some(RegResult { pose: p, fitness: fit, rmse_m: rmse, method, registered: true, warning: None });
             }
             None => {
                 for &j in &pending {
@@ -634,24 +688,19 @@ pub fn register_all(inputs: &[RegInput], s: &RegistrationSettings, seed: u64) ->
             r.rmse_m = rmse;
         }
     }
-    results.into_iter().map(|r| r.unwrap_or(RegResult { pose: Pose::identity(), fitness: 0.0, rmse_m: 0.0, method: "none".into(), registered: false, warning: None })).collect()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn kabsch_recovers_a_transform() {
-        let t = liftplan_core::frame::pose_xyz_yaw(3.0, -2.0, 0.5, 1.1);
-        let a: Vec<[f64; 3]> = (0..20).map(|i| { let x = i as f64; [x.sin() * 4.0, (x * 1.7).cos() * 3.0, (x * 0.3).sin()] }).collect();
-        let b: Vec<[f64; 3]> = a.iter().map(|p| tf(&t, p)).collect();
-        for leveled in [true, false] {
-            let p = fit_rigid(&a, &b, leveled).unwrap();
-            assert!((p.translation.vector - t.translation.vector).norm() < 1e-9);
-            assert!(p.rotation.angle_to(&t.rotation) < 1e-9);
-        }
-    }
+    results
+        .into_iter()
+        .map(|r| {
+            r.unwrap_or(RegResult {
+                pose: Pose::identity(),
+                fitness: 0.0,
+                rmse_m: 0.0,
+                method: "none".into(),
+                registered: false,
+                warning: None,
+            })
+        })
+        .collect()
 }
 
 /// What a scanner saw, as the nearest range per direction bin, in the scan's
@@ -698,7 +747,9 @@ impl RangeImage {
     /// the scanner saw around its direction.
     #[inline]
     pub fn sees_through(&self, p: &[f64; 3]) -> bool {
-        let Some((k, r)) = self.bin(p) else { return false };
+        let Some((k, r)) = self.bin(p) else {
+            return false;
+        };
         let (i, j) = (k % self.naz, k / self.naz);
         let mut nearest = f32::INFINITY;
         for dj in -1i64..=1 {
@@ -738,4 +789,26 @@ pub fn free_space_violations(src: &RegCloud, pose: &Pose, seen: &[(&RangeImage, 
         .iter()
         .sum();
     bad as f64 / src.pts.len() as f64
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn kabsch_recovers_a_transform() {
+        let t = liftplan_core::frame::pose_xyz_yaw(3.0, -2.0, 0.5, 1.1);
+        let a: Vec<[f64; 3]> = (0..20)
+            .map(|i| {
+                let x = i as f64;
+                [x.sin() * 4.0, (x * 1.7).cos() * 3.0, (x * 0.3).sin()]
+            })
+            .collect();
+        let b: Vec<[f64; 3]> = a.iter().map(|p| tf(&t, p)).collect();
+        for leveled in [true, false] {
+            let p = fit_rigid(&a, &b, leveled).unwrap();
+            assert!((p.translation.vector - t.translation.vector).norm() < 1e-9);
+            assert!(p.rotation.angle_to(&t.rotation) < 1e-9);
+        }
+    }
 }

@@ -84,7 +84,9 @@ impl VoxelGrid {
                 let mut m: FxHashMap<Key, Acc> = FxHashMap::default();
                 for i in lo..hi {
                     let p = &c.xyz[i];
-                    let k = key(p, inv).ok_or_else(|| format!("point {:?} is too far from the origin for a {} m voxel grid", p, 1.0 / inv))?;
+                    let k = key(p, inv).ok_or_else(|| {
+                        format!("point {:?} is too far from the origin for a {} m voxel grid", p, 1.0 / inv)
+                    })?;
                     let e = m.entry(k).or_insert(Acc {
                         sum: [0.0; 3],
                         n: 0,
@@ -132,13 +134,27 @@ impl VoxelGrid {
     pub fn finish(self) -> PointCloud {
         let mut items: Vec<(Key, Acc)> = self.map.into_iter().collect();
         items.par_sort_unstable_by(|a, b| order(&a.0, &b.0));
-        let mut out = PointCloud::default();
-        out.xyz = items.iter().map(|(_, a)| { let n = a.n as f64; [a.sum[0] / n, a.sum[1] / n, a.sum[2] / n] }).collect();
+        let mut out = PointCloud {
+            xyz: items
+                .iter()
+                .map(|(_, a)| {
+                    let n = a.n as f64;
+                    [a.sum[0] / n, a.sum[1] / n, a.sum[2] / n]
+                })
+                .collect(),
+            ..Default::default()
+        };
         if self.has_intensity {
             out.intensity = items.iter().map(|(_, a)| (a.isum / a.n as u64) as u16).collect();
         }
         if self.has_rgb {
-            out.rgb = items.iter().map(|(_, a)| { let n = a.n as u64; [(a.rgb[0] / n) as u16, (a.rgb[1] / n) as u16, (a.rgb[2] / n) as u16] }).collect();
+            out.rgb = items
+                .iter()
+                .map(|(_, a)| {
+                    let n = a.n as u64;
+                    [(a.rgb[0] / n) as u16, (a.rgb[1] / n) as u16, (a.rgb[2] / n) as u16]
+                })
+                .collect();
         }
         out.scan = items.iter().map(|(_, a)| a.scan).collect();
         out
@@ -176,17 +192,25 @@ impl NearestPicker {
     pub fn add(&mut self, c: &PointCloud, scan_id: u16) {
         for (i, p) in c.xyz.iter().enumerate() {
             let Some(k) = key(p, self.inv) else { continue };
-            let Some(e) = self.map.get_mut(&k) else { continue };
+            let Some(e) = self.map.get_mut(&k) else {
+                continue;
+            };
             let d2 = (p[0] - e.centroid[0]).powi(2) + (p[1] - e.centroid[1]).powi(2) + (p[2] - e.centroid[2]).powi(2);
             if d2 < e.best_d2 {
                 e.best_d2 = d2;
-                e.best = Some((*p, c.intensity.get(i).copied().unwrap_or(0), c.rgb.get(i).copied().unwrap_or([0; 3]), c.scan.get(i).copied().unwrap_or(scan_id)));
+                e.best = Some((
+                    *p,
+                    c.intensity.get(i).copied().unwrap_or(0),
+                    c.rgb.get(i).copied().unwrap_or([0; 3]),
+                    c.scan.get(i).copied().unwrap_or(scan_id),
+                ));
             }
         }
     }
 
     pub fn finish(self) -> PointCloud {
-        let mut items: Vec<(Key, ([f64; 3], u16, [u16; 3], u16))> = self.map.into_iter().filter_map(|(k, p)| p.best.map(|b| (k, b))).collect();
+        let mut items: Vec<(Key, ([f64; 3], u16, [u16; 3], u16))> =
+            self.map.into_iter().filter_map(|(k, p)| p.best.map(|b| (k, b))).collect();
         items.par_sort_unstable_by(|a, b| order(&a.0, &b.0));
         let mut out = PointCloud { xyz: items.iter().map(|x| x.1.0).collect(), ..Default::default() };
         if self.has_intensity {
@@ -213,7 +237,12 @@ impl SpacingFilter {
         if !(spacing_m.is_finite() && spacing_m > 0.0) {
             return Err(format!("spacing must be a positive number of metres, found {spacing_m}"));
         }
-        Ok(SpacingFilter { d: spacing_m, d2: spacing_m * spacing_m, cells: FxHashMap::default(), kept: PointCloud::default() })
+        Ok(SpacingFilter {
+            d: spacing_m,
+            d2: spacing_m * spacing_m,
+            cells: FxHashMap::default(),
+            kept: PointCloud::default(),
+        })
     }
 
     pub fn add(&mut self, c: &PointCloud, scan_id: u16) -> Result<(), String> {
@@ -287,7 +316,7 @@ impl EveryNth {
     }
 
     pub fn add(&mut self, c: &PointCloud, scan_id: u16) {
-        let idx: Vec<usize> = (0..c.len()).filter(|i| (self.counter + *i as u64) % self.n == 0).collect();
+        let idx: Vec<usize> = (0..c.len()).filter(|i| (self.counter + *i as u64).is_multiple_of(self.n)).collect();
         self.counter += c.len() as u64;
         let mut s = c.select(&idx);
         if s.scan.is_empty() {
@@ -329,7 +358,11 @@ mod tests {
             .values()
             .map(|g| {
                 let n = g.len() as f64;
-                [g.iter().map(|p| p[0]).sum::<f64>() / n, g.iter().map(|p| p[1]).sum::<f64>() / n, g.iter().map(|p| p[2]).sum::<f64>() / n]
+                [
+                    g.iter().map(|p| p[0]).sum::<f64>() / n,
+                    g.iter().map(|p| p[1]).sum::<f64>() / n,
+                    g.iter().map(|p| p[2]).sum::<f64>() / n,
+                ]
             })
             .collect()
     }
@@ -356,7 +389,10 @@ mod tests {
 
     #[test]
     fn nearest_picks_input_points() {
-        let c = PointCloud { xyz: vec![[0.1, 0.1, 0.1], [0.2, 0.2, 0.2], [0.9, 0.9, 0.9], [1.5, 0.0, 0.0]], ..Default::default() };
+        let c = PointCloud {
+            xyz: vec![[0.1, 0.1, 0.1], [0.2, 0.2, 0.2], [0.9, 0.9, 0.9], [1.5, 0.0, 0.0]],
+            ..Default::default()
+        };
         let mut g = VoxelGrid::new(1.0).unwrap();
         g.add(&c, 3).unwrap();
         let mut p = g.into_nearest_picker();
@@ -368,7 +404,12 @@ mod tests {
 
     #[test]
     fn spacing_keeps_no_close_pairs() {
-        let xyz: Vec<[f64; 3]> = (0..2000).map(|i| { let t = i as f64 * 0.7315; [t.sin() * 3.0, (t * 1.3).cos() * 3.0, (t * 0.1).sin()] }).collect();
+        let xyz: Vec<[f64; 3]> = (0..2000)
+            .map(|i| {
+                let t = i as f64 * 0.7315;
+                [t.sin() * 3.0, (t * 1.3).cos() * 3.0, (t * 0.1).sin()]
+            })
+            .collect();
         let mut f = SpacingFilter::new(0.3).unwrap();
         f.add(&PointCloud { xyz, ..Default::default() }, 0).unwrap();
         let k = f.finish();
@@ -384,7 +425,10 @@ mod tests {
     #[test]
     fn every_nth_counts_across_chunks() {
         let mut f = EveryNth::new(3).unwrap();
-        let c = |a: f64, b: f64| PointCloud { xyz: (0..5).map(|i| [a + i as f64 * b, 0.0, 0.0]).collect(), ..Default::default() };
+        let c = |a: f64, b: f64| PointCloud {
+            xyz: (0..5).map(|i| [a + i as f64 * b, 0.0, 0.0]).collect(),
+            ..Default::default()
+        };
         f.add(&c(0.0, 1.0), 0);
         f.add(&c(5.0, 1.0), 0);
         let k = f.finish();

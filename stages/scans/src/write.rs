@@ -16,12 +16,15 @@ pub fn write_las(path: &Path, cloud: &PointCloud) -> Result<()> {
     let compressed = path.extension().and_then(|e| e.to_str()).map(|e| e.eq_ignore_ascii_case("laz")).unwrap_or(false);
     let mut b = Builder::from((1, 4));
     b.version = Version::new(1, 4);
-    b.point_format = las::point::Format::new(if cloud.rgb.is_empty() { 6 } else { 7 }).map_err(|e| ScanError::format(loc(), e.to_string()))?;
+    b.point_format = las::point::Format::new(if cloud.rgb.is_empty() { 6 } else { 7 })
+        .map_err(|e| ScanError::format(loc(), e.to_string()))?;
     b.point_format.is_compressed = compressed;
     b.generating_software = format!("liftplan {}", env!("CARGO_PKG_VERSION"));
     b.system_identifier = "liftplan scans stage".into();
     let bb = cloud.bbox();
-    let off = |i: usize| if bb.is_empty() { 0.0 } else { (bb.min[i]).floor() };
+    let off = |i: usize| {
+        if bb.is_empty() { 0.0 } else { (bb.min[i]).floor() }
+    };
     b.transforms = Vector {
         x: Transform { scale: 0.001, offset: off(0) },
         y: Transform { scale: 0.001, offset: off(1) },
@@ -30,7 +33,11 @@ pub fn write_las(path: &Path, cloud: &PointCloud) -> Result<()> {
     let header = b.into_header().map_err(|e| ScanError::format(loc(), e.to_string()))?;
     let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
     std::fs::create_dir_all(dir).map_err(|e| ScanError::Io(loc(), e))?;
-    let tmp = dir.join(format!(".{}.tmp-{}", path.file_name().map(|n| n.to_string_lossy()).unwrap_or_default(), std::process::id()));
+    let tmp = dir.join(format!(
+        ".{}.tmp-{}",
+        path.file_name().map(|n| n.to_string_lossy()).unwrap_or_default(),
+        std::process::id()
+    ));
     let result = (|| -> std::result::Result<(), String> {
         let file = std::fs::File::create(&tmp).map_err(|e| e.to_string())?;
         let mut w = Writer::new(BufWriter::with_capacity(1 << 20, file), header).map_err(|e| e.to_string())?;
@@ -38,7 +45,8 @@ pub fn write_las(path: &Path, cloud: &PointCloud) -> Result<()> {
             let p = cloud.xyz[i];
             let mut pt = Point { x: p[0], y: p[1], z: p[2], ..Default::default() };
             pt.intensity = cloud.intensity.get(i).copied().unwrap_or(0);
-            pt.classification = las::point::Classification::new(cloud.class.get(i).copied().unwrap_or(1)).unwrap_or(las::point::Classification::Unclassified);
+            pt.classification = las::point::Classification::new(cloud.class.get(i).copied().unwrap_or(1))
+                .unwrap_or(las::point::Classification::Unclassified);
             pt.point_source_id = cloud.scan.get(i).copied().unwrap_or(0);
             pt.return_number = 1;
             pt.number_of_returns = 1;

@@ -7,7 +7,7 @@
 //! headers (padding after the header, extra bytes per point, user VLRs, legacy and
 //! 64-bit point counts that disagree); those are accepted.
 
-use super::{Format, ScanInfo, check_finite, stem, CHUNK_POINTS};
+use super::{CHUNK_POINTS, Format, ScanInfo, check_finite, stem};
 use crate::error::{Result, ScanError};
 use las::Reader;
 use liftplan_core::Location;
@@ -75,11 +75,22 @@ pub fn precheck(path: &Path) -> Result<RawLasHeader> {
     };
     let header_size = le_u16(&h, 94);
     if header_size < min_header || header_size as u64 > file_len {
-        return Err(bad(94, format!("header size {header_size} is invalid for LAS {}.{} (expected at least {min_header}, file is {file_len} bytes)", version.0, version.1)));
+        return Err(bad(
+            94,
+            format!(
+                "header size {header_size} is invalid for LAS {}.{} (expected at least {min_header}, file is {file_len} bytes)",
+                version.0, version.1
+            ),
+        ));
     }
     let offset_to_points = le_u32(&h, 96);
     if (offset_to_points as u64) < header_size as u64 || offset_to_points as u64 > file_len {
-        return Err(bad(96, format!("offset to point data {offset_to_points} lies outside the file (header {header_size} bytes, file {file_len} bytes)")));
+        return Err(bad(
+            96,
+            format!(
+                "offset to point data {offset_to_points} lies outside the file (header {header_size} bytes, file {file_len} bytes)"
+            ),
+        ));
     }
     let vlr_count = le_u32(&h, 100);
     let vlr_space = (offset_to_points - header_size as u32) as u64;
@@ -94,7 +105,13 @@ pub fn precheck(path: &Path) -> Result<RawLasHeader> {
     }
     let record_length = le_u16(&h, 105);
     if record_length < MIN_RECORD[point_format as usize] {
-        return Err(bad(105, format!("record length {record_length} is shorter than point format {point_format} needs ({})", MIN_RECORD[point_format as usize])));
+        return Err(bad(
+            105,
+            format!(
+                "record length {record_length} is shorter than point format {point_format} needs ({})",
+                MIN_RECORD[point_format as usize]
+            ),
+        ));
     }
     let legacy_points = le_u32(&h, 107) as u64;
     let points = if version.1 >= 4 && h.len() >= 255 {
@@ -111,7 +128,8 @@ pub fn precheck(path: &Path) -> Result<RawLasHeader> {
     if offset.iter().any(|s| !s.is_finite()) {
         return Err(bad(155, format!("offsets {offset:?} must be finite")));
     }
-    let (maxx, minx, maxy, miny, maxz, minz) = (le_f64(&h, 179), le_f64(&h, 187), le_f64(&h, 195), le_f64(&h, 203), le_f64(&h, 211), le_f64(&h, 219));
+    let (maxx, minx, maxy, miny, maxz, minz) =
+        (le_f64(&h, 179), le_f64(&h, 187), le_f64(&h, 195), le_f64(&h, 203), le_f64(&h, 211), le_f64(&h, 219));
     let bbox = Aabb { min: [minx, miny, minz], max: [maxx, maxy, maxz] };
 
     // VLR headers: each must fit before the point data.
@@ -122,10 +140,15 @@ pub fn precheck(path: &Path) -> Result<RawLasHeader> {
             return Err(bad(pos, format!("VLR {i} header runs past the start of the point data")));
         }
         let mut vh = [0u8; 54];
-        f.seek(SeekFrom::Start(pos)).and_then(|_| f.read_exact(&mut vh)).map_err(|e| ScanError::Io(Location::byte(path, pos), e))?;
+        f.seek(SeekFrom::Start(pos))
+            .and_then(|_| f.read_exact(&mut vh))
+            .map_err(|e| ScanError::Io(Location::byte(path, pos), e))?;
         let len = le_u16(&vh, 20) as u64;
         if pos + 54 + len > offset_to_points as u64 {
-            return Err(bad(pos + 20, format!("VLR {i} declares {len} bytes, more than the space before the point data")));
+            return Err(bad(
+                pos + 20,
+                format!("VLR {i} declares {len} bytes, more than the space before the point data"),
+            ));
         }
         let user = String::from_utf8_lossy(&vh[2..18]).trim_end_matches('\0').to_string();
         if user == "laszip encoded" && le_u16(&vh, 18) == 22204 {
@@ -141,44 +164,74 @@ pub fn precheck(path: &Path) -> Result<RawLasHeader> {
             return Err(bad(lz_at, format!("laszip VLR is {lz_len} bytes, shorter than its 34-byte header")));
         }
         let mut lz = vec![0u8; lz_len as usize];
-        f.seek(SeekFrom::Start(lz_at)).and_then(|_| f.read_exact(&mut lz)).map_err(|e| ScanError::Io(Location::byte(path, lz_at), e))?;
+        f.seek(SeekFrom::Start(lz_at))
+            .and_then(|_| f.read_exact(&mut lz))
+            .map_err(|e| ScanError::Io(Location::byte(path, lz_at), e))?;
         let chunk_size = le_u32(&lz, 12);
         let num_items = le_u16(&lz, 32) as u64;
         if 34 + num_items * 6 > lz_len as u64 {
-            return Err(bad(lz_at + 32, format!("laszip VLR lists {num_items} items, more than its {lz_len} bytes hold")));
+            return Err(bad(
+                lz_at + 32,
+                format!("laszip VLR lists {num_items} items, more than its {lz_len} bytes hold"),
+            ));
         }
         // Chunk table: an i64 offset at the start of the point data, or at the end.
         if offset_to_points as u64 + 8 <= file_len {
             let mut b = [0u8; 8];
-            f.seek(SeekFrom::Start(offset_to_points as u64)).and_then(|_| f.read_exact(&mut b)).map_err(|e| ScanError::Io(Location::byte(path, offset_to_points as u64), e))?;
+            f.seek(SeekFrom::Start(offset_to_points as u64))
+                .and_then(|_| f.read_exact(&mut b))
+                .map_err(|e| ScanError::Io(Location::byte(path, offset_to_points as u64), e))?;
             let mut table_at = i64::from_le_bytes(b);
             if table_at <= offset_to_points as i64 && file_len >= 8 {
-                f.seek(SeekFrom::End(-8)).and_then(|_| f.read_exact(&mut b)).map_err(|e| ScanError::Io(Location::byte(path, file_len - 8), e))?;
+                f.seek(SeekFrom::End(-8))
+                    .and_then(|_| f.read_exact(&mut b))
+                    .map_err(|e| ScanError::Io(Location::byte(path, file_len - 8), e))?;
                 table_at = i64::from_le_bytes(b);
             }
             if table_at > offset_to_points as i64 {
                 let t = table_at as u64;
                 if t + 8 > file_len {
-                    return Err(bad(offset_to_points as u64, format!("LAZ chunk table offset {t} lies beyond the end of the file ({file_len} bytes): the file is truncated")));
+                    return Err(bad(
+                        offset_to_points as u64,
+                        format!(
+                            "LAZ chunk table offset {t} lies beyond the end of the file ({file_len} bytes): the file is truncated"
+                        ),
+                    ));
                 }
                 let mut tb = [0u8; 8];
-                f.seek(SeekFrom::Start(t)).and_then(|_| f.read_exact(&mut tb)).map_err(|e| ScanError::Io(Location::byte(path, t), e))?;
+                f.seek(SeekFrom::Start(t))
+                    .and_then(|_| f.read_exact(&mut tb))
+                    .map_err(|e| ScanError::Io(Location::byte(path, t), e))?;
                 let chunks = le_u32(&tb, 4) as u64;
                 let by_size = file_len / 4;
-                let by_points = if chunk_size != u32::MAX && chunk_size > 0 { points / chunk_size as u64 + 2 } else { u64::MAX };
+                let by_points =
+                    if chunk_size != u32::MAX && chunk_size > 0 { points / chunk_size as u64 + 2 } else { u64::MAX };
                 if chunks > by_size.min(by_points) {
-                    return Err(bad(t + 4, format!("LAZ chunk table lists {chunks} chunks, more than {points} points in chunks of {chunk_size} or a {file_len}-byte file can hold")));
+                    return Err(bad(
+                        t + 4,
+                        format!(
+                            "LAZ chunk table lists {chunks} chunks, more than {points} points in chunks of {chunk_size} or a {file_len}-byte file can hold"
+                        ),
+                    ));
                 }
             }
         } else {
-            return Err(bad(offset_to_points as u64, "the file ends where the compressed point data should start".into()));
+            return Err(bad(
+                offset_to_points as u64,
+                "the file ends where the compressed point data should start".into(),
+            ));
         }
     } else {
-        let need = points.checked_mul(record_length as u64).unwrap_or(u64::MAX);
+        let need = points.saturating_mul(record_length as u64);
         let have = file_len - offset_to_points as u64;
         if need > have {
             let fits = have / record_length as u64;
-            return Err(bad(offset_to_points as u64, format!("header declares {points} points of {record_length} bytes but the file holds only {fits} (truncated file or wrong point count)")));
+            return Err(bad(
+                offset_to_points as u64,
+                format!(
+                    "header declares {points} points of {record_length} bytes but the file holds only {fits} (truncated file or wrong point count)"
+                ),
+            ));
         }
     }
     // LAS 1.4 EVLRs must lie inside the file.
@@ -186,8 +239,14 @@ pub fn precheck(path: &Path) -> Result<RawLasHeader> {
         let evlr_start = le_u64(&h, 235);
         let evlr_count = le_u32(&h, 243) as u64;
         if evlr_count > 0 {
-            if evlr_start < offset_to_points as u64 || evlr_start > file_len || evlr_count.saturating_mul(60) > file_len - evlr_start {
-                return Err(bad(235, format!("{evlr_count} EVLRs at byte {evlr_start} do not fit in the {file_len}-byte file")));
+            if evlr_start < offset_to_points as u64
+                || evlr_start > file_len
+                || evlr_count.saturating_mul(60) > file_len - evlr_start
+            {
+                return Err(bad(
+                    235,
+                    format!("{evlr_count} EVLRs at byte {evlr_start} do not fit in the {file_len}-byte file"),
+                ));
             }
             let mut p = evlr_start;
             for i in 0..evlr_count {
@@ -195,7 +254,9 @@ pub fn precheck(path: &Path) -> Result<RawLasHeader> {
                 if p + 60 > file_len {
                     return Err(bad(p, format!("EVLR {i} header runs past the end of the file")));
                 }
-                f.seek(SeekFrom::Start(p)).and_then(|_| f.read_exact(&mut eh)).map_err(|e| ScanError::Io(Location::byte(path, p), e))?;
+                f.seek(SeekFrom::Start(p))
+                    .and_then(|_| f.read_exact(&mut eh))
+                    .map_err(|e| ScanError::Io(Location::byte(path, p), e))?;
                 let len = le_u64(&eh, 20);
                 if len > file_len - p - 60 {
                     return Err(bad(p + 20, format!("EVLR {i} declares {len} bytes, past the end of the file")));
@@ -204,7 +265,20 @@ pub fn precheck(path: &Path) -> Result<RawLasHeader> {
             }
         }
     }
-    Ok(RawLasHeader { version, header_size, offset_to_points, vlr_count, point_format, compressed, record_length, points, scale, offset, bbox, file_len })
+    Ok(RawLasHeader {
+        version,
+        header_size,
+        offset_to_points,
+        vlr_count,
+        point_format,
+        compressed,
+        record_length,
+        points,
+        scale,
+        offset,
+        bbox,
+        file_len,
+    })
 }
 
 fn open(path: &Path) -> Result<Reader> {
@@ -259,7 +333,9 @@ pub(super) fn stream(info: &ScanInfo, f: &mut dyn FnMut(&PointCloud) -> Result<(
             Err(e) => {
                 return Err(ScanError::format(
                     Location::item(&info.path, format!("point {seen}")),
-                    format!("cannot decode points after {seen} of the {declared} the header declares: {e} (truncated or corrupt file)"),
+                    format!(
+                        "cannot decode points after {seen} of the {declared} the header declares: {e} (truncated or corrupt file)"
+                    ),
                 ));
             }
         };
@@ -274,10 +350,8 @@ pub(super) fn stream(info: &ScanInfo, f: &mut dyn FnMut(&PointCloud) -> Result<(
         chunk.xyz.extend(data.x().zip(data.y()).zip(data.z()).map(|((x, y), z)| [x, y, z]));
         chunk.intensity.extend(data.intensity());
         chunk.class.extend(data.classification());
-        if has_rgb {
-            if let Some(rgb) = data.rgb() {
-                chunk.rgb.extend(rgb.map(|(r, g, b)| [r, g, b]));
-            }
+        if has_rgb && let Some(rgb) = data.rgb() {
+            chunk.rgb.extend(rgb.map(|(r, g, b)| [r, g, b]));
         }
         check_finite(info, &chunk, seen)?;
         seen += n;

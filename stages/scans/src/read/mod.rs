@@ -81,8 +81,9 @@ pub struct ScanInfo {
 
 /// Lists the scans in a file from its header, reading no points.
 pub fn list_scans(path: &Path) -> Result<Vec<ScanInfo>> {
-    let format = Format::from_path(path)
-        .ok_or_else(|| ScanError::format(Location::file(path), "not a scan file (expected .las, .laz, .ply, .e57, .pts or .xyz)"))?;
+    let format = Format::from_path(path).ok_or_else(|| {
+        ScanError::format(Location::file(path), "not a scan file (expected .las, .laz, .ply, .e57, .pts or .xyz)")
+    })?;
     let meta = std::fs::metadata(path).map_err(|e| ScanError::Io(Location::file(path), e))?;
     if meta.len() == 0 {
         return Err(ScanError::format(Location::file(path), "the file is empty"));

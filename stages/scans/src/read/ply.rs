@@ -2,7 +2,7 @@
 //! intensity (`intensity`, `scalar_intensity`, `reflectance`) and colour
 //! (`red`/`green`/`blue`, 8 or 16 bit). Normals are accepted and ignored.
 
-use super::{ScanInfo, check_finite, stem, CHUNK_POINTS, Format};
+use super::{CHUNK_POINTS, Format, ScanInfo, check_finite, stem};
 use crate::error::{Result, ScanError};
 use liftplan_core::Location;
 use liftplan_core::cloud::PointCloud;
@@ -40,7 +40,9 @@ impl PropertyAccess for Vertex {
     fn set_property(&mut self, key: String, p: Property) {
         let Some(v) = scalar(&p) else { return };
         let eight_bit = matches!(p, Property::UChar(_) | Property::Char(_));
-        let colour = |v: f64| if eight_bit { (v.clamp(0.0, 255.0) * 257.0) as u16 } else { v.clamp(0.0, 65535.0) as u16 };
+        let colour = |v: f64| {
+            if eight_bit { (v.clamp(0.0, 255.0) * 257.0) as u16 } else { v.clamp(0.0, 65535.0) as u16 }
+        };
         match key.as_str() {
             "x" => self.xyz[0] = v,
             "y" => self.xyz[1] = v,
@@ -76,13 +78,25 @@ fn layout(path: &Path, h: &Header) -> Result<Layout> {
     for axis in ["x", "y", "z"] {
         match v.properties.get(axis) {
             Some(p) if matches!(p.data_type, PropertyType::Scalar(_)) => {}
-            Some(_) => return Err(ScanError::format(Location::file(path), format!("PLY property '{axis}' of element 'vertex' is a list, expected a number"))),
-            None => return Err(ScanError::format(Location::file(path), format!("PLY element 'vertex' has no property '{axis}' (expected x, y and z)"))),
+            Some(_) => {
+                return Err(ScanError::format(
+                    Location::file(path),
+                    format!("PLY property '{axis}' of element 'vertex' is a list, expected a number"),
+                ));
+            }
+            None => {
+                return Err(ScanError::format(
+                    Location::file(path),
+                    format!("PLY element 'vertex' has no property '{axis}' (expected x, y and z)"),
+                ));
+            }
         }
     }
-    let intensity = ["intensity", "scalar_intensity", "reflectance", "scalar_Intensity"].iter().find_map(|k| v.properties.get(*k));
+    let intensity =
+        ["intensity", "scalar_intensity", "reflectance", "scalar_Intensity"].iter().find_map(|k| v.properties.get(*k));
     let has_rgb = ["red", "r", "diffuse_red"].iter().any(|k| v.properties.contains_key(*k));
-    let intensity_is_float = matches!(intensity.map(|p| &p.data_type), Some(PropertyType::Scalar(ScalarType::Float | ScalarType::Double)));
+    let intensity_is_float =
+        matches!(intensity.map(|p| &p.data_type), Some(PropertyType::Scalar(ScalarType::Float | ScalarType::Double)));
     Ok(Layout { has_intensity: intensity.is_some(), has_rgb, intensity_is_float })
 }
 
@@ -114,13 +128,16 @@ pub(super) fn stream(info: &ScanInfo, f: &mut dyn FnMut(&PointCloud) -> Result<(
     for (name, def) in &h.elements {
         if name == "vertex" {
             verts = Parser::<Vertex>::new().read_payload_for_element(&mut r, def, &h).map_err(|e| {
-                ScanError::format(Location::item(path, "element 'vertex'"), format!("cannot read the {} vertices the header declares: {e}", def.count))
+                ScanError::format(
+                    Location::item(path, "element 'vertex'"),
+                    format!("cannot read the {} vertices the header declares: {e}", def.count),
+                )
             })?;
             break;
         }
-        Parser::<DefaultElement>::new()
-            .read_payload_for_element(&mut r, def, &h)
-            .map_err(|e| ScanError::format(Location::item(path, format!("element '{name}'")), format!("cannot read: {e}")))?;
+        Parser::<DefaultElement>::new().read_payload_for_element(&mut r, def, &h).map_err(|e| {
+            ScanError::format(Location::item(path, format!("element '{name}'")), format!("cannot read: {e}"))
+        })?;
     }
     // Float intensities are usually 0..1; LAS wants 16 bits.
     let max_i = verts.iter().map(|v| v.intensity).fold(0.0f64, f64::max);
@@ -129,7 +146,11 @@ pub(super) fn stream(info: &ScanInfo, f: &mut dyn FnMut(&PointCloud) -> Result<(
     for part in verts.chunks(CHUNK_POINTS) {
         let chunk = PointCloud {
             xyz: part.iter().map(|v| v.xyz).collect(),
-            intensity: if lay.has_intensity { part.iter().map(|v| (v.intensity * scale_i).clamp(0.0, 65535.0) as u16).collect() } else { vec![] },
+            intensity: if lay.has_intensity {
+                part.iter().map(|v| (v.intensity * scale_i).clamp(0.0, 65535.0) as u16).collect()
+            } else {
+                vec![]
+            },
             rgb: if lay.has_rgb { part.iter().map(|v| v.rgb).collect() } else { vec![] },
             class: vec![],
             scan: vec![],

@@ -8,7 +8,7 @@
 //!
 //! Lines stream through a buffered reader; a bad line is refused with its number.
 
-use super::{Format, ScanInfo, stem, CHUNK_POINTS};
+use super::{CHUNK_POINTS, Format, ScanInfo, stem};
 use crate::error::{Result, ScanError};
 use liftplan_core::Location;
 use liftplan_core::cloud::PointCloud;
@@ -22,7 +22,16 @@ pub(super) fn list(path: &Path, format: Format) -> Result<Vec<ScanInfo>> {
     let declared = if format == Format::Pts { first.trim().parse::<u64>().ok() } else { None };
     let mut details = serde_json::Map::new();
     details.insert("first_line".into(), serde_json::json!(first.trim_end().chars().take(80).collect::<String>()));
-    Ok(vec![ScanInfo { path: path.to_path_buf(), format, index: 0, name: stem(path), declared_points: declared, pose: None, bbox: None, details }])
+    Ok(vec![ScanInfo {
+        path: path.to_path_buf(),
+        format,
+        index: 0,
+        name: stem(path),
+        declared_points: declared,
+        pose: None,
+        bbox: None,
+        details,
+    }])
 }
 
 trait TakeLine {
@@ -34,7 +43,11 @@ impl<R: BufRead> TakeLine for R {
     fn take_line(&mut self, s: &mut String, path: &Path) -> Result<usize> {
         s.clear();
         let mut buf = Vec::new();
-        let n = self.by_ref().take(65_536).read_until(b'\n', &mut buf).map_err(|e| ScanError::Io(Location::file(path), e))?;
+        let n = self
+            .by_ref()
+            .take(65_536)
+            .read_until(b'\n', &mut buf)
+            .map_err(|e| ScanError::Io(Location::file(path), e))?;
         if n == 65_536 && buf.last() != Some(&b'\n') {
             return Err(ScanError::format(Location::file(path), "a line is longer than 64 KiB: not a text point file"));
         }
@@ -82,24 +95,36 @@ pub(super) fn stream(info: &ScanInfo, f: &mut dyn FnMut(&PointCloud) -> Result<(
             if seen == 0 && columns.is_none() {
                 continue; // a header line of column names
             }
-            return Err(ScanError::format(Location::line(path, lineno, None), format!("expected numbers 'x y z ...', found '{}'", t.chars().take(60).collect::<String>())));
+            return Err(ScanError::format(
+                Location::line(path, lineno, None),
+                format!("expected numbers 'x y z ...', found '{}'", t.chars().take(60).collect::<String>()),
+            ));
         }
         if pts && seen == 0 && columns.is_none() && vals.len() == 1 {
             declared = Some(vals[0] as u64);
             continue;
         }
         if vals.len() < 3 {
-            return Err(ScanError::format(Location::line(path, lineno, None), format!("expected at least 3 numbers (x y z), found {}", vals.len())));
+            return Err(ScanError::format(
+                Location::line(path, lineno, None),
+                format!("expected at least 3 numbers (x y z), found {}", vals.len()),
+            ));
         }
         match columns {
             None => columns = Some(vals.len()),
             Some(c) if c != vals.len() => {
-                return Err(ScanError::format(Location::line(path, lineno, None), format!("expected {c} values like the lines before, found {}", vals.len())));
+                return Err(ScanError::format(
+                    Location::line(path, lineno, None),
+                    format!("expected {c} values like the lines before, found {}", vals.len()),
+                ));
             }
             _ => {}
         }
         if !vals[..3].iter().all(|v| v.is_finite()) {
-            return Err(ScanError::format(Location::line(path, lineno, None), format!("coordinate is not a finite number: '{}'", t.chars().take(60).collect::<String>())));
+            return Err(ScanError::format(
+                Location::line(path, lineno, None),
+                format!("coordinate is not a finite number: '{}'", t.chars().take(60).collect::<String>()),
+            ));
         }
         let c = vals.len();
         chunk.xyz.push([vals[0], vals[1], vals[2]]);
@@ -107,7 +132,9 @@ pub(super) fn stream(info: &ScanInfo, f: &mut dyn FnMut(&PointCloud) -> Result<(
         match c {
             4 | 7 => {
                 let i = if pts { vals[3] + 2048.0 } else { vals[3] };
-                chunk.intensity.push((if i <= 1.0 && !pts { i * 65535.0 } else { i * 16.0 }).clamp(0.0, 65535.0) as u16);
+                chunk
+                    .intensity
+                    .push((if i <= 1.0 && !pts { i * 65535.0 } else { i * 16.0 }).clamp(0.0, 65535.0) as u16);
                 if c == 7 {
                     chunk.rgb.push([(vals[4] * 257.0) as u16, (vals[5] * 257.0) as u16, (vals[6] * 257.0) as u16]);
                 }
@@ -128,10 +155,10 @@ pub(super) fn stream(info: &ScanInfo, f: &mut dyn FnMut(&PointCloud) -> Result<(
     if seen == 0 {
         return Err(ScanError::format(Location::file(path), "no points found"));
     }
-    if let Some(d) = declared {
-        if d != seen {
-            tracing::warn!("{}: first line declares {d} points, file holds {seen}", path.display());
-        }
+    if let Some(d) = declared
+        && d != seen
+    {
+        tracing::warn!("{}: first line declares {d} points, file holds {seen}", path.display());
     }
     Ok(seen)
 }
