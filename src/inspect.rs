@@ -12,7 +12,15 @@ pub fn inspect(path: &Path) -> Result<serde_json::Value> {
     if crate::stages::SCAN_EXTS.contains(&ext.as_str()) {
         return Ok(liftplan_scans::inspect(path)?);
     }
-    bail!("{}: liftplan does not read .{ext} files (scans: {})", path.display(), crate::stages::SCAN_EXTS.join(", "))
+    if liftplan_plant::EXTS.contains(&ext.as_str()) {
+        return Ok(liftplan_plant::inspect(path, &liftplan_plant::Settings::default())?);
+    }
+    bail!(
+        "{}: liftplan does not read .{ext} files (scans: {}; plant: {})",
+        path.display(),
+        crate::stages::SCAN_EXTS.join(", "),
+        liftplan_plant::EXTS.join(", ")
+    )
 }
 
 /// A few readable lines for the terminal.

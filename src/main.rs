@@ -96,6 +96,23 @@ enum Command {
         /// Only this stage.
         stage: Option<String>,
     },
+    /// Run the plant stage on loose files: RVM exports and meshes to one PLY.
+    #[command(
+        after_help = "Example:\n  liftplan plant unit-12.rvm pipe-bridge.glb -o plant.ply --tolerance 0.01 --json"
+    )]
+    Plant {
+        #[arg(required = true)]
+        inputs: Vec<PathBuf>,
+        /// Output PLY file.
+        #[arg(short, long)]
+        output: PathBuf,
+        /// Chord tolerance in metres.
+        #[arg(long)]
+        tolerance: Option<f64>,
+        /// Print plant.json.
+        #[arg(long)]
+        json: bool,
+    },
     /// Run the scans stage on loose files.
     #[command(after_help = "Example:\n  liftplan scans a.laz b.e57 -o site.laz --voxel 0.05 --json")]
     Scans {
@@ -267,9 +284,14 @@ fn real_main() -> Result<ExitCode> {
             let defs = pipeline::stages();
             let settings = |name: &str| -> Result<String> {
                 Ok(match name {
-                    liftplan_scans::NAME => {
-                        toml::to_string_pretty(&std::collections::BTreeMap::from([("scans", liftplan_scans::Settings::default())]))?
-                    }
+                    liftplan_plant::NAME => toml::to_string_pretty(&std::collections::BTreeMap::from([(
+                        "plant",
+                        liftplan_plant::Settings::default(),
+                    )]))?,
+                    liftplan_scans::NAME => toml::to_string_pretty(&std::collections::BTreeMap::from([(
+                        "scans",
+                        liftplan_scans::Settings::default(),
+                    )]))?,
                     _ => String::new(),
                 })
             };
@@ -283,6 +305,36 @@ fn real_main() -> Result<ExitCode> {
                 println!("# stage {} (version {}): {}\n{}", d.name, d.version, d.about, settings(d.name)?);
             }
             Ok(ExitCode::SUCCESS)
+        }
+        Command::Plant { inputs, output, tolerance, json } => {
+            let mut s = liftplan_plant::Settings::default();
+            if let Some(t) = tolerance {
+                s.tolerance = t;
+            }
+            let tmp = tempdir_near(&output)?;
+            let report = |what: &str, d: u64, t: u64| progress.report("plant", what, d, t);
+            let res = liftplan_plant::run(&inputs, &s, &tmp, &report);
+            let code = match res {
+                Ok(sum) => {
+                    std::fs::rename(tmp.join("plant.ply"), &output)
+                        .or_else(|_| std::fs::copy(tmp.join("plant.ply"), &output).map(|_| ()))?;
+                    if json {
+                        println!("{}", std::fs::read_to_string(tmp.join("plant.json"))?);
+                    } else {
+                        for l in sum.lines() {
+                            println!("{l}");
+                        }
+                        println!("wrote {}", output.display());
+                    }
+                    ExitCode::SUCCESS
+                }
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    ExitCode::from(1)
+                }
+            };
+            let _ = std::fs::remove_dir_all(&tmp);
+            Ok(code)
         }
         Command::Scans { inputs, output, voxel, register, json } => {
             let mut s = liftplan_scans::Settings::default();

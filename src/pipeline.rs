@@ -68,7 +68,7 @@ pub struct StageDef {
 }
 
 pub fn stages() -> Vec<StageDef> {
-    vec![crate::stages::scans()]
+    vec![crate::stages::scans(), crate::stages::plant()]
 }
 
 pub fn stage_names() -> Vec<&'static str> {

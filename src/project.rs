@@ -103,6 +103,8 @@ pub struct RawProject {
     #[serde(default)]
     pub scans: liftplan_scans::Settings,
     #[serde(default)]
+    pub plant: liftplan_plant::Settings,
+    #[serde(default)]
     pub gpu: GpuSettings,
     #[serde(default)]
     pub watch: WatchSettings,
@@ -172,6 +174,7 @@ impl Project {
             }
         }
         self.raw.scans.check().map_err(|m| err("[scans]", format!("[scans] {m}")))?;
+        self.raw.plant.check().map_err(|m| err("[plant]", format!("[plant] {m}")))?;
         let mut ids = std::collections::HashSet::new();
         for l in &self.raw.lift {
             if !ids.insert(l.id.clone()) {
@@ -278,6 +281,19 @@ slope = 0.15
 window_m = 18.0
 threshold_m = 0.5
 scalar = 1.25
+
+[plant]
+tolerance = 0.01          # chord tolerance of the RVM tessellation, m
+cull_caps = true          # leave out end caps hidden inside connected primitives
+unit = "m"                # unit of OBJ/PLY/STL files (glTF is always m)
+up_axis = "z"             # z | y, for OBJ/PLY/STL files (glTF is always Y-up)
+include = []              # keep only groups matching these names (* and ? wildcards)
+exclude = []              # leave out groups, e.g. the item being lifted: ["/V-101*"]
+exclude_where = []        # leave out by attribute, e.g. ["Purpose=TEMP*"]
+insulation = true         # keep insulation volumes
+obstructions = true       # keep obstruction volumes
+translate_m = [0.0, 0.0, 0.0]   # place the model in the site frame: rotate about Z, then translate
+rotate_z_deg = 0.0
 
 [gpu]
 use = "auto"              # auto | never | require

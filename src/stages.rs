@@ -52,3 +52,32 @@ fn run_scans(ctx: &Ctx) -> Result<Produced> {
     ));
     Ok(Produced { outputs, summary: serde_json::to_value(&summary)?, lines })
 }
+
+pub fn plant() -> StageDef {
+    StageDef {
+        name: liftplan_plant::NAME,
+        version: liftplan_plant::VERSION,
+        about: "tessellate PDMS/E3D RVM exports and read BIM meshes into one plant mesh",
+        inputs: |p: &Project| {
+            let mut exts: Vec<&str> = liftplan_plant::EXTS.to_vec();
+            exts.push("att");
+            p.files(&p.raw.paths.plant, &exts)
+        },
+        settings: |p: &Project| serde_json::json!({ "plant": p.raw.plant }),
+        reads: &[],
+        applicable: |_, files, _| files.iter().any(|f| !f.extension().is_some_and(|e| e.eq_ignore_ascii_case("att"))),
+        run: run_plant,
+    }
+}
+
+fn run_plant(ctx: &Ctx) -> Result<Produced> {
+    let files: Vec<PathBuf> =
+        ctx.inputs.iter().filter(|f| !f.extension().is_some_and(|e| e.eq_ignore_ascii_case("att"))).cloned().collect();
+    let report = ctx.report("plant");
+    let summary = liftplan_plant::run(&files, &ctx.project.raw.plant, ctx.out, &report)?;
+    Ok(Produced {
+        outputs: vec!["plant.mesh".into(), "plant.ply".into(), "plant.json".into()],
+        summary: serde_json::to_value(&summary)?,
+        lines: summary.lines(),
+    })
+}

@@ -71,6 +71,29 @@ impl TriMesh {
         }
     }
 
+    /// Adds several parts that share one vertex array: `part_of[k]` indexes
+    /// `convex` for triangle `k`.
+    pub fn add_parts(
+        &mut self,
+        group: u32,
+        convex: &[bool],
+        vertices: &[[f64; 3]],
+        triangles: &[[u32; 3]],
+        part_of: &[u32],
+    ) {
+        if triangles.is_empty() {
+            return;
+        }
+        let base = self.vertices.len() as u32;
+        let pbase = self.parts.len() as u32;
+        self.parts.extend(convex.iter().map(|&c| MeshPart { group, convex_solid: c }));
+        self.vertices.extend_from_slice(vertices);
+        for (t, p) in triangles.iter().zip(part_of) {
+            self.triangles.push([t[0] + base, t[1] + base, t[2] + base]);
+            self.part_of.push(pbase + p);
+        }
+    }
+
     /// Appends another mesh, merging groups by name.
     pub fn append(&mut self, other: &TriMesh) {
         let gmap: Vec<u32> = other.groups.iter().map(|g| self.group_id(g)).collect();
@@ -83,6 +106,34 @@ impl TriMesh {
         for (t, p) in other.triangles.iter().zip(&other.part_of) {
             self.triangles.push([t[0] + vbase, t[1] + vbase, t[2] + vbase]);
             self.part_of.push(p + pbase);
+        }
+    }
+
+    /// Drops vertices no triangle uses (parts are added with their whole vertex
+    /// arrays) and renumbers the rest, keeping their order.
+    pub fn compact(&mut self) {
+        let mut used = vec![false; self.vertices.len()];
+        for t in &self.triangles {
+            for &i in t {
+                used[i as usize] = true;
+            }
+        }
+        if used.iter().all(|u| *u) {
+            return;
+        }
+        let mut map = vec![u32::MAX; self.vertices.len()];
+        let mut out = Vec::with_capacity(self.vertices.len());
+        for (i, v) in self.vertices.iter().enumerate() {
+            if used[i] {
+                map[i] = out.len() as u32;
+                out.push(*v);
+            }
+        }
+        self.vertices = out;
+        for t in &mut self.triangles {
+            for i in t.iter_mut() {
+                *i = map[*i as usize];
+            }
         }
     }
 

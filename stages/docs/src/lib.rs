@@ -1,0 +1,3 @@
+//! # liftplan-docs
+
+pub mod render;

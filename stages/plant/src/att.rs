@@ -1,0 +1,119 @@
+//! Reader for the `.att` attribute files PDMS writes beside an RVM export.
+//!
+//! ```text
+//! CADC_Attributes_File v1.0 , start: NEW , end: END , name_end: := , sep: &end&
+//! NEW /SITE-A
+//!     Type:=  SITE &end& Owner:= /*
+//!   NEW /PIPE-RACK-2
+//!     ...
+//!   END
+//! END
+//! ```
+//!
+//! The first line names the keywords; blocks nest like the RVM groups and are
+//! matched to them by name. Text is Latin-1 (bytes map one to one to chars).
+
+use crate::error::{PlantError, Result};
+use liftplan_core::Location;
+use std::collections::HashMap;
+use std::path::Path;
+
+/// Attributes by group name, in file order.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Attributes {
+    pub by_group: HashMap<String, Vec<(String, String)>>,
+}
+
+impl Attributes {
+    pub fn get(&self, group: &str, key: &str) -> Option<&str> {
+        self.by_group.get(group)?.iter().find(|(k, _)| k.eq_ignore_ascii_case(key)).map(|(_, v)| v.as_str())
+    }
+}
+
+pub fn parse(path: &Path, bytes: &[u8]) -> Result<Attributes> {
+    let text: String = bytes.iter().map(|&c| c as char).collect();
+    let mut lines = text.lines().enumerate();
+    let (_, first) = lines.next().ok_or_else(|| PlantError::at(Location::file(path), "the attribute file is empty"))?;
+    if !first.starts_with("CADC_Attributes_File") {
+        return Err(PlantError::at(
+            Location::line(path, 1, Some(1)),
+            "expected 'CADC_Attributes_File' on the first line",
+        ));
+    }
+    let mut start = "NEW".to_string();
+    let mut end = "END".to_string();
+    let mut name_end = ":=".to_string();
+    let mut sep = "&end&".to_string();
+    for part in first.split(',') {
+        if let Some((k, v)) = part.split_once(':') {
+            let v = v.trim().to_string();
+            match k.trim() {
+                "start" if !v.is_empty() => start = v,
+                "end" if !v.is_empty() => end = v,
+                "name_end" if !v.is_empty() => name_end = v,
+                "sep" if !v.is_empty() => sep = v,
+                _ => {}
+            }
+        }
+    }
+    let mut out = Attributes::default();
+    let mut stack: Vec<String> = Vec::new();
+    for (n, line) in lines {
+        let t = line.trim();
+        if t.is_empty() {
+            continue;
+        }
+        if let Some(rest) = t.strip_prefix(&start).filter(|r| r.is_empty() || r.starts_with(char::is_whitespace)) {
+            let name = rest.trim().to_string();
+            out.by_group.entry(name.clone()).or_default();
+            stack.push(name);
+            continue;
+        }
+        if t == end {
+            if stack.pop().is_none() {
+                return Err(PlantError::at(
+                    Location::line(path, n as u64 + 1, Some(1)),
+                    format!("'{end}' without a matching '{start}'"),
+                ));
+            }
+            continue;
+        }
+        let Some(group) = stack.last() else {
+            return Err(PlantError::at(
+                Location::line(path, n as u64 + 1, Some(1)),
+                format!("attribute outside any '{start}' block"),
+            ));
+        };
+        let list = out.by_group.entry(group.clone()).or_default();
+        for item in t.split(sep.as_str()) {
+            if let Some((k, v)) = item.split_once(name_end.as_str()) {
+                list.push((k.trim().to_string(), v.trim().to_string()));
+            }
+        }
+    }
+    if let Some(open) = stack.last() {
+        tracing::warn!("{}: block '{open}' is not closed with '{end}'", path.display());
+    }
+    Ok(out)
+}
+
+pub fn read(path: &Path) -> Result<Attributes> {
+    let bytes = std::fs::read(path).map_err(|e| PlantError::Io(Location::file(path), e))?;
+    parse(path, &bytes)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn nested_blocks_and_separators() {
+        let t = b"CADC_Attributes_File v1.0 , start: NEW , end: END , name_end: := , sep: &end&\nNEW /A\n Type:= SITE &end& Owner:= /*\n NEW /B\n  Type:= ZONE\n END\nEND\n";
+        let a = parse(Path::new("x.att"), t).unwrap();
+        assert_eq!(a.get("/A", "type"), Some("SITE"));
+        assert_eq!(a.get("/A", "Owner"), Some("/*"));
+        assert_eq!(a.get("/B", "Type"), Some("ZONE"));
+        let e = parse(Path::new("x.att"), b"CADC_Attributes_File v1.0\nEND\n").unwrap_err();
+        assert!(e.to_string().contains("x.att:2:1"), "{e}");
+    }
+}

@@ -1,0 +1,506 @@
+//! # liftplan-plant: stage 2, plant models to one triangle mesh
+//!
+//! Reads PDMS/E3D binary RVM exports ([`rvm`], with their `.att` attribute files,
+//! [`att`]) and BIM meshes (OBJ, PLY, STL, glTF/GLB; [`mesh_io`]), tessellates
+//! RVM primitives within a chord tolerance ([`tess`]), leaves out what the
+//! selection excludes (the item being lifted, insulation, temporary works),
+//! places the result in the site frame and writes:
+//!
+//! | file | what |
+//! |---|---|
+//! | `plant.mesh` | the merged mesh for later stages (a checked liftplan artifact) |
+//! | `plant.ply` | the same mesh as binary PLY, with part and group per face |
+//! | `plant.json` | counts per primitive kind, triangles, vertices, bbox, tolerance, excluded groups |
+//!
+//! Each RVM group becomes a mesh group named like the group; a collision is later
+//! reported against that name. The stage never sees the cache or the CLI.
+//!
+//! IFC is not read: export the model from the BIM tool as glTF or OBJ.
+
+pub mod att;
+pub mod error;
+pub mod mesh_io;
+pub mod rvm;
+pub mod tess;
+
+use error::{PlantError, Result};
+use liftplan_core::Location;
+use liftplan_core::frame::Aabb;
+use liftplan_core::mesh::TriMesh;
+use liftplan_core::units::LengthUnit;
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+pub const NAME: &str = "plant";
+pub const VERSION: u32 = 1;
+
+/// File extensions the stage reads.
+pub const EXTS: &[&str] = &["rvm", "obj", "ply", "stl", "gltf", "glb", "ifc"];
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum UpAxis {
+    Z,
+    Y,
+}
+
+/// `[plant]` in `liftplan.toml`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Settings {
+    /// Chord tolerance of the tessellation (m).
+    pub tolerance: f64,
+    /// Leave out end caps that a connected primitive covers.
+    pub cull_caps: bool,
+    /// Unit of OBJ/PLY/STL files (glTF is always metres).
+    pub unit: LengthUnit,
+    /// Up axis of OBJ/PLY/STL files (glTF is always Y-up).
+    pub up_axis: UpAxis,
+    /// Keep only groups whose name (or an ancestor's) matches one of these
+    /// patterns (`*` and `?` wildcards); empty keeps everything.
+    pub include: Vec<String>,
+    /// Leave out groups whose name (or an ancestor's) matches.
+    pub exclude: Vec<String>,
+    /// Leave out groups whose attribute matches, e.g. `"Type=INSU"`, `"Purpose=TEMP*"`.
+    pub exclude_where: Vec<String>,
+    /// Keep insulation volumes (RVM INSU chunks).
+    pub insulation: bool,
+    /// Keep obstruction volumes (RVM OBST chunks).
+    pub obstructions: bool,
+    /// Placement of the model in the site frame: rotation about Z, then this
+    /// translation (m).
+    pub translate_m: [f64; 3],
+    pub rotate_z_deg: f64,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings {
+            tolerance: 0.01,
+            cull_caps: true,
+            unit: LengthUnit::M,
+            up_axis: UpAxis::Z,
+            include: vec![],
+            exclude: vec![],
+            exclude_where: vec![],
+            insulation: true,
+            obstructions: true,
+            translate_m: [0.0; 3],
+            rotate_z_deg: 0.0,
+        }
+    }
+}
+
+impl Settings {
+    pub fn check(&self) -> std::result::Result<(), String> {
+        if !(self.tolerance.is_finite() && self.tolerance >= 1e-5) {
+            return Err(format!("tolerance must be at least 0.00001 m, found {}", self.tolerance));
+        }
+        if !self.translate_m.iter().all(|v| v.is_finite()) || !self.rotate_z_deg.is_finite() {
+            return Err("translate_m and rotate_z_deg must be finite".into());
+        }
+        for w in &self.exclude_where {
+            if !w.contains('=') {
+                return Err(format!("exclude_where entry '{w}' must look like 'Attribute=value'"));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Case-insensitive glob with `*` and `?`.
+pub fn glob(pattern: &str, text: &str) -> bool {
+    let p: Vec<char> = pattern.to_lowercase().chars().collect();
+    let t: Vec<char> = text.to_lowercase().chars().collect();
+    let (mut i, mut j, mut star, mut mark) = (0usize, 0usize, None::<usize>, 0usize);
+    while j < t.len() {
+        if i < p.len() && (p[i] == '?' || p[i] == t[j]) {
+            i += 1;
+            j += 1;
+        } else if i < p.len() && p[i] == '*' {
+            star = Some(i);
+            mark = j;
+            i += 1;
+        } else if let Some(s) = star {
+            i = s + 1;
+            mark += 1;
+            j = mark;
+        } else {
+            return false;
+        }
+    }
+    while i < p.len() && p[i] == '*' {
+        i += 1;
+    }
+    i == p.len()
+}
+
+/// What the stage did, for `plant.json` and the run output.
+#[derive(Debug, Clone, Default, Serialize)]
+pub struct Summary {
+    pub files: Vec<String>,
+    pub groups: usize,
+    pub primitives: BTreeMap<String, usize>,
+    pub triangles: usize,
+    pub vertices: usize,
+    pub bbox: [f64; 6],
+    pub tolerance_m: f64,
+    /// Largest distance from any face to its analytic surface (m).
+    pub max_error_m: f64,
+    pub caps_culled: usize,
+    pub excluded_groups: Vec<String>,
+    pub lines_skipped: usize,
+}
+
+impl Summary {
+    pub fn lines(&self) -> Vec<String> {
+        let prims: usize = self.primitives.values().sum();
+        let mut v = vec![format!(
+            "{} files, {} groups, {prims} primitives -> {} triangles (tolerance {} m, {} caps culled)",
+            self.files.len(),
+            self.groups,
+            self.triangles,
+            self.tolerance_m,
+            self.caps_culled
+        )];
+        if !self.excluded_groups.is_empty() {
+            let shown: Vec<&str> = self.excluded_groups.iter().take(5).map(|s| s.as_str()).collect();
+            v.push(format!(
+                "excluded {} groups: {}{}",
+                self.excluded_groups.len(),
+                shown.join(", "),
+                if self.excluded_groups.len() > 5 { ", ..." } else { "" }
+            ));
+        }
+        v
+    }
+}
+
+/// A circular end of a primitive in model coordinates, for cap culling.
+struct End {
+    prim: usize,
+    which: usize,
+    center: [f64; 3],
+    normal: [f64; 3],
+    radius: f64,
+}
+
+fn circular_ends(prims: &[(&rvm::Primitive, usize)]) -> Vec<End> {
+    use rvm::Shape;
+    let mut ends = Vec::new();
+    for (i, (p, _)) in prims.iter().enumerate() {
+        let m = &p.matrix;
+        let s = tess::matrix_scale(m);
+        let dir = |v: [f64; 3]| {
+            let a = tess::transform(m, v);
+            let o = tess::transform(m, [0.0; 3]);
+            let d = [a[0] - o[0], a[1] - o[1], a[2] - o[2]];
+            let n = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt().max(1e-30);
+            [d[0] / n, d[1] / n, d[2] / n]
+        };
+        let mut push = |which: usize, c: [f64; 3], n: [f64; 3], r: f64| {
+            ends.push(End { prim: i, which, center: tess::transform(m, c), normal: dir(n), radius: r * s })
+        };
+        match &p.shape {
+            Shape::Cylinder { radius, height } => {
+                let (r, h) = (*radius as f64, *height as f64);
+                push(0, [0.0, 0.0, -h / 2.0], [0.0, 0.0, -1.0], r);
+                push(1, [0.0, 0.0, h / 2.0], [0.0, 0.0, 1.0], r);
+            }
+            Shape::Snout { radius_b, radius_t, height, offset, bshear, tshear }
+                if bshear.iter().chain(tshear).all(|a| a.abs() < 1e-6) =>
+            {
+                let (ox, oy, h) = (offset[0] as f64 / 2.0, offset[1] as f64 / 2.0, *height as f64);
+                push(0, [-ox, -oy, -h / 2.0], [0.0, 0.0, -1.0], *radius_b as f64);
+                push(1, [ox, oy, h / 2.0], [0.0, 0.0, 1.0], *radius_t as f64);
+            }
+            Shape::CircularTorus { offset, radius, angle } => {
+                let (o, a) = (*offset as f64, *angle as f64);
+                push(0, [o, 0.0, 0.0], [0.0, -1.0, 0.0], *radius as f64);
+                push(1, [o * a.cos(), o * a.sin(), 0.0], [-a.sin(), a.cos(), 0.0], *radius as f64);
+            }
+            _ => {}
+        }
+    }
+    ends
+}
+
+/// Caps to emit per primitive: an end is left open when another primitive's end
+/// sits on it (within a millimetre), faces the other way and has about the same
+/// radius, so the cap would be hidden inside the joint.
+fn caps_for(prims: &[(&rvm::Primitive, usize)]) -> (Vec<tess::Caps>, usize) {
+    let ends = circular_ends(prims);
+    let mut caps = vec![[true, true]; prims.len()];
+    let key =
+        |c: &[f64; 3]| [(c[0] * 1000.0).round() as i64, (c[1] * 1000.0).round() as i64, (c[2] * 1000.0).round() as i64];
+    let mut grid: std::collections::HashMap<[i64; 3], Vec<usize>> = std::collections::HashMap::new();
+    for (k, e) in ends.iter().enumerate() {
+        grid.entry(key(&e.center)).or_default().push(k);
+    }
+    let mut culled = 0;
+    for (k, e) in ends.iter().enumerate() {
+        let c = key(&e.center);
+        let mut hidden = false;
+        'n: for dx in -1..=1 {
+            for dy in -1..=1 {
+                for dz in -1..=1 {
+                    for &o in grid.get(&[c[0] + dx, c[1] + dy, c[2] + dz]).into_iter().flatten() {
+                        let f = &ends[o];
+                        if o == k || f.prim == e.prim {
+                            continue;
+                        }
+                        let d2: f64 = (0..3).map(|i| (e.center[i] - f.center[i]).powi(2)).sum();
+                        let dot: f64 = (0..3).map(|i| e.normal[i] * f.normal[i]).sum();
+                        if d2 < 1e-6 && dot < -0.99 && e.radius <= 1.05 * f.radius {
+                            hidden = true;
+                            break 'n;
+                        }
+                    }
+                }
+            }
+        }
+        if hidden {
+            caps[e.prim][e.which] = false;
+            culled += 1;
+        }
+    }
+    (caps, culled)
+}
+
+/// Converts an RVM file (with attributes, if any) into a mesh.
+pub fn rvm_to_mesh(
+    file: &rvm::RvmFile,
+    attrs: Option<&att::Attributes>,
+    s: &Settings,
+    summary: &mut Summary,
+) -> TriMesh {
+    // Decide per group whether it is kept, walking the hierarchy.
+    let mut kept: Vec<(&rvm::Primitive, usize)> = Vec::new();
+    let mut group_names: Vec<String> = Vec::new();
+    fn matches_where(attrs: Option<&att::Attributes>, group: &str, rules: &[String]) -> bool {
+        let Some(a) = attrs else { return false };
+        rules.iter().any(|r| {
+            let (k, v) = r.split_once('=').unwrap_or((r, "*"));
+            a.get(group, k.trim()).is_some_and(|val| glob(v.trim(), val))
+        })
+    }
+    fn go<'a>(
+        g: &'a rvm::Group,
+        ancestors_ok: Option<bool>,
+        attrs: Option<&att::Attributes>,
+        s: &Settings,
+        kept: &mut Vec<(&'a rvm::Primitive, usize)>,
+        names: &mut Vec<String>,
+        excluded: &mut Vec<String>,
+    ) {
+        if s.exclude.iter().any(|p| glob(p, &g.name)) || matches_where(attrs, &g.name, &s.exclude_where) {
+            excluded.push(g.name.clone());
+            return;
+        }
+        // `None`: no include pattern matched yet on the way down.
+        let included =
+            if s.include.is_empty() || ancestors_ok == Some(true) || s.include.iter().any(|p| glob(p, &g.name)) {
+                Some(true)
+            } else {
+                ancestors_ok
+            };
+        if included == Some(true) && !g.primitives.is_empty() {
+            let id = names.len();
+            names.push(g.name.clone());
+            for p in &g.primitives {
+                let role_ok = match p.role {
+                    rvm::Role::Primitive => true,
+                    rvm::Role::Insulation => s.insulation,
+                    rvm::Role::Obstruction => s.obstructions,
+                };
+                if role_ok {
+                    kept.push((p, id));
+                }
+            }
+        }
+        for c in &g.children {
+            go(c, included, attrs, s, kept, names, excluded);
+        }
+    }
+    for g in &file.groups {
+        go(g, None, attrs, s, &mut kept, &mut group_names, &mut summary.excluded_groups);
+    }
+    summary.groups += file.group_count();
+    for (k, n) in file.primitive_counts() {
+        *summary.primitives.entry(k.name().to_string()).or_insert(0) += n;
+    }
+    let (caps, culled) = if s.cull_caps { caps_for(&kept) } else { (vec![[true, true]; kept.len()], 0) };
+    summary.caps_culled += culled;
+    let tol = s.tolerance;
+    let tessellated: Vec<Option<(tess::Tess, usize, [f32; 12])>> = kept
+        .par_iter()
+        .zip(caps.par_iter())
+        .map(|((p, g), c)| {
+            let scale = tess::matrix_scale(&p.matrix).max(1e-12);
+            tess::tessellate(p, tol / scale, *c).map(|t| (t, *g, p.matrix))
+        })
+        .collect();
+    let mut mesh = TriMesh::default();
+    let gids: Vec<u32> = group_names.iter().map(|n| mesh.group_id(n)).collect();
+    for item in tessellated {
+        let Some((t, g, m)) = item else {
+            summary.lines_skipped += 1;
+            continue;
+        };
+        let verts: Vec<[f64; 3]> = t.vertices.iter().map(|v| tess::transform(&m, *v)).collect();
+        // One mesh part per primitive part (torus segments are parts of their own).
+        mesh.add_parts(gids[g], &t.convex, &verts, &t.triangles, &t.part);
+    }
+    mesh
+}
+
+/// Reads one plant file into a mesh in model coordinates.
+pub fn read_file(path: &Path, s: &Settings, summary: &mut Summary) -> Result<TriMesh> {
+    let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
+    let imp = mesh_io::Import { scale: s.unit.to_m(), y_up: s.up_axis == UpAxis::Y };
+    let m = match ext.as_str() {
+        "rvm" => {
+            let f = rvm::read(path)?;
+            let att_path = path.with_extension("att");
+            let attrs = if att_path.exists() {
+                Some(att::read(&att_path)?)
+            } else {
+                if !s.exclude_where.is_empty() {
+                    tracing::warn!(
+                        "{}: no attribute file {} beside it; exclude_where cannot apply",
+                        path.display(),
+                        att_path.display()
+                    );
+                }
+                None
+            };
+            rvm_to_mesh(&f, attrs.as_ref(), s, summary)
+        }
+        "obj" => mesh_io::read_obj(path, imp)?,
+        "ply" => mesh_io::read_ply(path, imp)?,
+        "stl" => mesh_io::read_stl(path, imp)?,
+        "gltf" | "glb" => mesh_io::read_gltf(path)?,
+        "ifc" => {
+            return Err(PlantError::at(
+                Location::file(path),
+                "IFC is not read by liftplan: export the model from your BIM tool as glTF (.glb) or OBJ and put that in plant/",
+            ));
+        }
+        other => {
+            return Err(PlantError::at(
+                Location::file(path),
+                format!("unknown plant file type .{other} (expected {})", EXTS[..6].join(", ")),
+            ));
+        }
+    };
+    if ext != "rvm" {
+        summary.groups += m.groups.len();
+        // Selection applies to mesh objects too.
+        let m = select_mesh(m, s, summary);
+        return Ok(m);
+    }
+    Ok(m)
+}
+
+fn select_mesh(m: TriMesh, s: &Settings, summary: &mut Summary) -> TriMesh {
+    let keep: Vec<bool> = m
+        .groups
+        .iter()
+        .map(|g| {
+            let inc = s.include.is_empty() || s.include.iter().any(|p| glob(p, g));
+            let exc = s.exclude.iter().any(|p| glob(p, g));
+            if exc {
+                summary.excluded_groups.push(g.clone());
+            }
+            inc && !exc
+        })
+        .collect();
+    if keep.iter().all(|k| *k) {
+        return m;
+    }
+    let mut out = TriMesh::default();
+    for (pi, part) in m.parts.iter().enumerate() {
+        if !keep[part.group as usize] {
+            continue;
+        }
+        let tris: Vec<[u32; 3]> =
+            m.triangles.iter().zip(&m.part_of).filter(|(_, p)| **p as usize == pi).map(|(t, _)| *t).collect();
+        let g = out.group_id(&m.groups[part.group as usize]);
+        out.add_part(g, part.convex_solid, &m.vertices, &tris);
+    }
+    out.compact();
+    out
+}
+
+/// Runs the stage on `inputs`, writing into `out_dir`.
+pub fn run(
+    inputs: &[PathBuf],
+    s: &Settings,
+    out_dir: &Path,
+    progress: &(dyn Fn(&str, u64, u64) + Sync),
+) -> Result<Summary> {
+    s.check().map_err(PlantError::Settings)?;
+    let mut summary = Summary { tolerance_m: s.tolerance, ..Default::default() };
+    let mut mesh = TriMesh::default();
+    for (k, p) in inputs.iter().enumerate() {
+        progress(
+            &format!("read {}", p.file_name().map(|n| n.to_string_lossy()).unwrap_or_default()),
+            k as u64,
+            inputs.len() as u64,
+        );
+        let m = read_file(p, s, &mut summary)?;
+        mesh.append(&m);
+        summary.files.push(p.display().to_string());
+    }
+    progress("read", inputs.len() as u64, inputs.len() as u64);
+    let pose = liftplan_core::frame::pose_xyz_yaw(
+        s.translate_m[0],
+        s.translate_m[1],
+        s.translate_m[2],
+        s.rotate_z_deg.to_radians(),
+    );
+    mesh.transform(&pose);
+    summary.triangles = mesh.triangle_count();
+    summary.vertices = mesh.vertices.len();
+    let bb: Aabb = mesh.bbox();
+    summary.bbox = if bb.is_empty() { [0.0; 6] } else { bb.to_array() };
+    summary.max_error_m = s.tolerance;
+    std::fs::create_dir_all(out_dir).map_err(|e| PlantError::Io(Location::file(out_dir), e))?;
+    mesh.write_artifact(&out_dir.join("plant.mesh"))
+        .map_err(|e| PlantError::at(Location::file(out_dir.join("plant.mesh")), e.to_string()))?;
+    mesh.write_ply(&out_dir.join("plant.ply"))
+        .map_err(|e| PlantError::Io(Location::file(out_dir.join("plant.ply")), e))?;
+    let json = serde_json::to_string_pretty(&summary).unwrap_or_default();
+    liftplan_core::artifact::write_atomic(&out_dir.join("plant.json"), json.as_bytes())
+        .map_err(|e| PlantError::Io(Location::file(out_dir.join("plant.json")), e))?;
+    Ok(summary)
+}
+
+/// `liftplan inspect` of a plant file.
+pub fn inspect(path: &Path, s: &Settings) -> Result<serde_json::Value> {
+    let mut summary = Summary { tolerance_m: s.tolerance, ..Default::default() };
+    let m = read_file(path, s, &mut summary)?;
+    let bb = m.bbox();
+    let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
+    let mut v = serde_json::json!({
+        "kind": "plant",
+        "format": ext,
+        "file": path.display().to_string(),
+        "groups": summary.groups,
+        "primitives": summary.primitives,
+        "triangles": m.triangle_count(),
+        "vertices": m.vertices.len(),
+        "bbox": if bb.is_empty() { serde_json::Value::Null } else { serde_json::json!(bb.to_array()) },
+        "tolerance_m": s.tolerance,
+    });
+    if ext == "rvm" {
+        let f = rvm::read(path)?;
+        v["model"] = serde_json::json!(f.model);
+        v["project"] = serde_json::json!(f.project);
+        v["info"] = serde_json::json!(f.info);
+        v["attributes_file"] = serde_json::json!(path.with_extension("att").exists());
+    }
+    Ok(v)
+}

@@ -1,0 +1,630 @@
+//! Tessellation of RVM primitives with a chord tolerance.
+//!
+//! Every vertex lies on the primitive's analytic surface. Segment counts come
+//! from the tolerance and the primitive's size in metres (its radius times the
+//! scale of its matrix): a chord subtending `theta` on a circle of radius `r`
+//! deviates from it by the sagitta `r (1 - cos(theta / 2))`, so
+//! `theta = 2 acos(1 - tol / r)`. On doubly curved surfaces (sphere, dishes,
+//! circular torus) a flat triangle bulges from the surface by up to twice its
+//! edge sagitta, so the angle is divided by sqrt 2 there. Solids are closed and
+//! their triangles face outwards; caps that a connected primitive hides can be
+//! left out ([`Caps`]).
+//!
+//! Each closed convex primitive is one convex part; tori are split into one part
+//! per segment, each of which is (up to the tolerance) convex, so depth maps may
+//! fill parts between their lowest and highest surfaces. Facet groups are
+//! surfaces.
+
+use crate::rvm::{Polygon, Primitive, Shape};
+use std::f64::consts::{FRAC_PI_2, PI, TAU};
+
+/// Which end caps to emit: [bottom/start, top/end].
+pub type Caps = [bool; 2];
+
+/// A tessellated primitive in its local frame (file units) plus its parts.
+#[derive(Debug, Clone, Default)]
+pub struct Tess {
+    pub vertices: Vec<[f64; 3]>,
+    pub triangles: Vec<[u32; 3]>,
+    /// Per triangle: which part of this primitive it belongs to.
+    pub part: Vec<u32>,
+    /// Per part: whether it bounds a convex solid.
+    pub convex: Vec<bool>,
+}
+
+impl Tess {
+    fn vertex(&mut self, p: [f64; 3]) -> u32 {
+        self.vertices.push(p);
+        (self.vertices.len() - 1) as u32
+    }
+    fn tri(&mut self, a: u32, b: u32, c: u32, part: u32) {
+        self.triangles.push([a, b, c]);
+        self.part.push(part);
+    }
+    fn quad(&mut self, a: u32, b: u32, c: u32, d: u32, part: u32) {
+        self.tri(a, b, c, part);
+        self.tri(a, c, d, part);
+    }
+    /// A closed ring of vertex indices as a fan (convex planar polygon); `flip`
+    /// reverses the winding.
+    fn disc(&mut self, ring: &[u32], flip: bool, part: u32) {
+        for i in 1..ring.len().saturating_sub(1) {
+            if flip {
+                self.tri(ring[0], ring[i + 1], ring[i], part);
+            } else {
+                self.tri(ring[0], ring[i], ring[i + 1], part);
+            }
+        }
+    }
+}
+
+/// Segments needed for `arc` radians of a circle of radius `r_m` (metres) within
+/// `tol_m`; at least `min`.
+pub fn segments(arc: f64, r_m: f64, tol_m: f64, min: usize) -> usize {
+    if !(r_m > 0.0) || !(arc > 0.0) {
+        return min;
+    }
+    let x = 1.0 - tol_m / r_m;
+    if x <= -1.0 {
+        return min;
+    }
+    let theta = 2.0 * x.acos();
+    ((arc / theta).ceil() as usize).clamp(min, 4096)
+}
+
+/// Scale of a 3x4 matrix: the largest column length (file units to metres).
+pub fn matrix_scale(m: &[f32; 12]) -> f64 {
+    (0..3)
+        .map(|c| ((m[3 * c] as f64).powi(2) + (m[3 * c + 1] as f64).powi(2) + (m[3 * c + 2] as f64).powi(2)).sqrt())
+        .fold(0.0, f64::max)
+}
+
+/// Applies a 3x4 column-major matrix.
+pub fn transform(m: &[f32; 12], p: [f64; 3]) -> [f64; 3] {
+    let c = |i: usize| m[i] as f64;
+    [
+        c(0) * p[0] + c(3) * p[1] + c(6) * p[2] + c(9),
+        c(1) * p[0] + c(4) * p[1] + c(7) * p[2] + c(10),
+        c(2) * p[0] + c(5) * p[1] + c(8) * p[2] + c(11),
+    ]
+}
+
+/// Tessellates a primitive in its local frame; `tol_local` is the tolerance in
+/// file units (metres divided by the matrix scale). Returns `None` for shapes
+/// without a surface (lines).
+pub fn tessellate(p: &Primitive, tol_local: f64, caps: Caps) -> Option<Tess> {
+    let t = match &p.shape {
+        Shape::Box { lengths } => boxed(lengths.map(|v| v as f64 / 2.0)),
+        Shape::Pyramid { bottom, top, offset, height } => pyramid(*bottom, *top, *offset, *height),
+        Shape::Cylinder { radius, height } => {
+            snout(*radius as f64, *radius as f64, *height as f64, [0.0; 2], [0.0; 2], [0.0; 2], tol_local, caps)
+        }
+        Shape::Snout { radius_b, radius_t, height, offset, bshear, tshear } => snout(
+            *radius_b as f64,
+            *radius_t as f64,
+            *height as f64,
+            offset.map(|v| v as f64),
+            bshear.map(|v| v as f64),
+            tshear.map(|v| v as f64),
+            tol_local,
+            caps,
+        ),
+        Shape::Sphere { diameter } => sphere_cap(*diameter as f64 / 2.0, PI, 0.0, 1.0, tol_local),
+        Shape::EllipticalDish { base_radius, height } => {
+            let r = *base_radius as f64;
+            let scale_z = if r > 0.0 { *height as f64 / r } else { 0.0 };
+            sphere_cap(r, FRAC_PI_2, 0.0, scale_z, tol_local)
+        }
+        Shape::SphericalDish { base_radius, height } => {
+            let (rc, h) = (*base_radius as f64, *height as f64);
+            if !(h > 0.0) {
+                sphere_cap(rc, 0.0, 0.0, 1.0, tol_local)
+            } else {
+                let rs = (rc * rc + h * h) / (2.0 * h);
+                let mut arc = (rc / rs).clamp(-1.0, 1.0).asin();
+                if rc < h {
+                    arc = PI - arc;
+                }
+                sphere_cap(rs, arc, h - rs, 1.0, tol_local)
+            }
+        }
+        Shape::CircularTorus { offset, radius, angle } => {
+            circular_torus(*offset as f64, *radius as f64, *angle as f64, tol_local, caps)
+        }
+        Shape::RectangularTorus { inner_radius, outer_radius, height, angle } => rectangular_torus(
+            *inner_radius as f64,
+            *outer_radius as f64,
+            *height as f64,
+            *angle as f64,
+            tol_local,
+            caps,
+        ),
+        Shape::FacetGroup { polygons } => facets(polygons),
+        Shape::Line { .. } => return None,
+    };
+    Some(t)
+}
+
+fn boxed(h: [f64; 3]) -> Tess {
+    let mut t = Tess { convex: vec![true], ..Default::default() };
+    let v: Vec<u32> = (0..8)
+        .map(|k| {
+            t.vertex([
+                if k & 1 == 0 { -h[0] } else { h[0] },
+                if k & 2 == 0 { -h[1] } else { h[1] },
+                if k & 4 == 0 { -h[2] } else { h[2] },
+            ])
+        })
+        .collect();
+    for q in [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]] {
+        t.quad(v[q[0]], v[q[1]], v[q[2]], v[q[3]], 0);
+    }
+    t
+}
+
+fn pyramid(bottom: [f32; 2], top: [f32; 2], offset: [f32; 2], height: f32) -> Tess {
+    let (bx, by) = (bottom[0] as f64 / 2.0, bottom[1] as f64 / 2.0);
+    let (tx, ty) = (top[0] as f64 / 2.0, top[1] as f64 / 2.0);
+    let (ox, oy) = (offset[0] as f64 / 2.0, offset[1] as f64 / 2.0);
+    let h2 = height as f64 / 2.0;
+    let mut t = Tess { convex: vec![true], ..Default::default() };
+    let b: Vec<u32> =
+        [(-bx, -by), (bx, -by), (bx, by), (-bx, by)].iter().map(|(x, y)| t.vertex([x - ox, y - oy, -h2])).collect();
+    let u: Vec<u32> =
+        [(-tx, -ty), (tx, -ty), (tx, ty), (-tx, ty)].iter().map(|(x, y)| t.vertex([x + ox, y + oy, h2])).collect();
+    for i in 0..4 {
+        let j = (i + 1) % 4;
+        t.quad(b[i], b[j], u[j], u[i], 0);
+    }
+    t.quad(b[3], b[2], b[1], b[0], 0);
+    t.quad(u[0], u[1], u[2], u[3], 0);
+    t
+}
+
+/// Snout (cylinder when radii are equal and there is no offset or shear).
+fn snout(rb: f64, rt: f64, h: f64, offset: [f64; 2], bshear: [f64; 2], tshear: [f64; 2], tol: f64, caps: Caps) -> Tess {
+    let n = segments(TAU, rb.max(rt), tol, 3);
+    let (ox, oy) = (offset[0] / 2.0, offset[1] / 2.0);
+    let (mb, mt) = ([bshear[0].tan(), bshear[1].tan()], [tshear[0].tan(), tshear[1].tan()]);
+    let mut t = Tess { convex: vec![true], ..Default::default() };
+    let mut bot = Vec::with_capacity(n);
+    let mut topr = Vec::with_capacity(n);
+    for i in 0..n {
+        let a = TAU * i as f64 / n as f64;
+        let (c, s) = (a.cos(), a.sin());
+        bot.push(t.vertex([rb * c - ox, rb * s - oy, -h / 2.0 + mb[0] * rb * c + mb[1] * rb * s]));
+        topr.push(t.vertex([rt * c + ox, rt * s + oy, h / 2.0 + mt[0] * rt * c + mt[1] * rt * s]));
+    }
+    for i in 0..n {
+        let j = (i + 1) % n;
+        t.quad(bot[i], bot[j], topr[j], topr[i], 0);
+    }
+    if caps[0] && rb > 0.0 {
+        t.disc(&bot, true, 0);
+    }
+    if caps[1] && rt > 0.0 {
+        t.disc(&topr, false, 0);
+    }
+    t
+}
+
+/// A sphere-based shape: the part of a sphere of radius `r` within `arc` of its
+/// top pole, centre at z = `shift_z`, z scaled by `scale_z`, closed by a flat base
+/// when `arc` < pi (dishes).
+fn sphere_cap(r: f64, arc: f64, shift_z: f64, scale_z: f64, tol: f64) -> Tess {
+    let mut t = Tess { convex: vec![true], ..Default::default() };
+    if !(r > 0.0) || !(arc > 0.0) {
+        return t;
+    }
+    let reff = r * scale_z.max(1.0);
+    let n_lon = segments(TAU * std::f64::consts::SQRT_2, reff, tol, 3);
+    let full = arc >= PI - 1e-9;
+    let n_lat = segments(arc * std::f64::consts::SQRT_2, reff, tol, if full { 2 } else { 1 });
+    let top = t.vertex([0.0, 0.0, r * scale_z + shift_z]);
+    let mut prev: Vec<u32> = vec![top];
+    for k in 1..=n_lat {
+        let th = arc * k as f64 / n_lat as f64;
+        if full && k == n_lat {
+            let bottom = t.vertex([0.0, 0.0, -r * scale_z + shift_z]);
+            for i in 0..prev.len() {
+                let j = (i + 1) % prev.len();
+                t.tri(prev[j], prev[i], bottom, 0);
+            }
+            return t;
+        }
+        let ring: Vec<u32> = (0..n_lon)
+            .map(|i| {
+                let a = TAU * i as f64 / n_lon as f64;
+                t.vertex([r * th.sin() * a.cos(), r * th.sin() * a.sin(), r * scale_z * th.cos() + shift_z])
+            })
+            .collect();
+        if prev.len() == 1 {
+            for i in 0..n_lon {
+                t.tri(prev[0], ring[i], ring[(i + 1) % n_lon], 0);
+            }
+        } else {
+            for i in 0..n_lon {
+                let j = (i + 1) % n_lon;
+                t.quad(prev[i], ring[i], ring[j], prev[j], 0);
+            }
+        }
+        prev = ring;
+    }
+    // Flat base closing a dish.
+    t.disc(&prev, true, 0);
+    t
+}
+
+fn circular_torus(offset: f64, radius: f64, angle: f64, tol: f64, caps: Caps) -> Tess {
+    let mut t = Tess::default();
+    let n_u = segments(angle * std::f64::consts::SQRT_2, offset + radius, tol, 1);
+    let n_v = segments(TAU * std::f64::consts::SQRT_2, radius, tol, 3);
+    let rings: Vec<Vec<u32>> = (0..=n_u)
+        .map(|k| {
+            let u = angle * k as f64 / n_u as f64;
+            (0..n_v)
+                .map(|i| {
+                    let v = TAU * i as f64 / n_v as f64;
+                    let w = offset + radius * v.cos();
+                    t.vertex([w * u.cos(), w * u.sin(), radius * v.sin()])
+                })
+                .collect()
+        })
+        .collect();
+    for k in 0..n_u {
+        t.convex.push(true);
+        for i in 0..n_v {
+            let j = (i + 1) % n_v;
+            t.quad(rings[k][i], rings[k + 1][i], rings[k + 1][j], rings[k][j], k as u32);
+        }
+    }
+    let closed = angle >= TAU - 1e-6;
+    if !closed && radius > 0.0 {
+        if caps[0] {
+            t.disc(&rings[0], false, 0);
+        }
+        if caps[1] {
+            t.disc(&rings[n_u], true, (n_u - 1) as u32);
+        }
+    }
+    t
+}
+
+fn rectangular_torus(ri: f64, ro: f64, h: f64, angle: f64, tol: f64, caps: Caps) -> Tess {
+    let mut t = Tess::default();
+    let n_u = segments(angle, ro, tol, 1);
+    let corners = [(ro, -h / 2.0), (ri, -h / 2.0), (ri, h / 2.0), (ro, h / 2.0)];
+    let rings: Vec<[u32; 4]> = (0..=n_u)
+        .map(|k| {
+            let u = angle * k as f64 / n_u as f64;
+            corners.map(|(r, z)| t.vertex([r * u.cos(), r * u.sin(), z]))
+        })
+        .collect();
+    for k in 0..n_u {
+        t.convex.push(true);
+        for c in 0..4 {
+            let d = (c + 1) % 4;
+            t.quad(rings[k][c], rings[k][d], rings[k + 1][d], rings[k + 1][c], k as u32);
+        }
+    }
+    if angle < TAU - 1e-6 {
+        if caps[0] {
+            let r = rings[0];
+            t.quad(r[0], r[3], r[2], r[1], 0);
+        }
+        if caps[1] {
+            let r = rings[n_u];
+            t.quad(r[0], r[1], r[2], r[3], (n_u - 1) as u32);
+        }
+    }
+    t
+}
+
+/// Polygons with holes: projected on their own plane (Newell normal) and cut
+/// into triangles by ear clipping.
+fn facets(polys: &[Polygon]) -> Tess {
+    let mut t = Tess { convex: vec![false], ..Default::default() };
+    let mut ec = earcut::Earcut::<f64>::new();
+    let mut out: Vec<u32> = Vec::new();
+    for poly in polys {
+        let contours: Vec<&Vec<([f32; 3], [f32; 3])>> = poly.contours.iter().filter(|c| c.len() >= 3).collect();
+        if contours.is_empty() {
+            continue;
+        }
+        let pts: Vec<[f64; 3]> = contours.iter().flat_map(|c| c.iter().map(|(p, _)| p.map(|v| v as f64))).collect();
+        if contours.len() == 1 && pts.len() == 3 {
+            let a = t.vertex(pts[0]);
+            let b = t.vertex(pts[1]);
+            let c = t.vertex(pts[2]);
+            t.tri(a, b, c, 0);
+            continue;
+        }
+        // Newell normal of the outer contour picks the projection plane.
+        let outer = contours[0];
+        let mut n = [0.0f64; 3];
+        for i in 0..outer.len() {
+            let (p, q) = (outer[i].0.map(|v| v as f64), outer[(i + 1) % outer.len()].0.map(|v| v as f64));
+            n[0] += (p[1] - q[1]) * (p[2] + q[2]);
+            n[1] += (p[2] - q[2]) * (p[0] + q[0]);
+            n[2] += (p[0] - q[0]) * (p[1] + q[1]);
+        }
+        let drop = (0..3).max_by(|&a, &b| n[a].abs().total_cmp(&n[b].abs())).unwrap_or(2);
+        let (i0, i1) = match drop {
+            0 => (1, 2),
+            1 => (2, 0),
+            _ => (0, 1),
+        };
+        let flat: Vec<[f64; 2]> = pts.iter().map(|p| [p[i0], p[i1]]).collect();
+        let mut holes: Vec<u32> = Vec::new();
+        let mut acc = 0u32;
+        for c in &contours[..contours.len() - 1] {
+            acc += c.len() as u32;
+            holes.push(acc);
+        }
+        ec.earcut(flat.iter().copied(), &holes, &mut out);
+        let base = t.vertices.len() as u32;
+        t.vertices.extend_from_slice(&pts);
+        // Face every triangle the way the contour winds (its Newell normal).
+        for tri in out.chunks(3) {
+            if tri.len() == 3 {
+                let (p, q, r) = (pts[tri[0] as usize], pts[tri[1] as usize], pts[tri[2] as usize]);
+                let u = [q[0] - p[0], q[1] - p[1], q[2] - p[2]];
+                let v = [r[0] - p[0], r[1] - p[1], r[2] - p[2]];
+                let c = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
+                let (a, b, c2) = (base + tri[0], base + tri[1], base + tri[2]);
+                if c[0] * n[0] + c[1] * n[1] + c[2] * n[2] < 0.0 { t.tri(a, c2, b, 0) } else { t.tri(a, b, c2, 0) }
+            }
+        }
+    }
+    t
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::rvm::{Primitive, Role, Shape};
+    use proptest::prelude::*;
+
+    const IDENTITY: [f32; 12] = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0];
+
+    fn prim(shape: Shape) -> Primitive {
+        Primitive { role: Role::Primitive, matrix: IDENTITY, bbox_local: [0.0; 6], shape, offset: 0 }
+    }
+
+    fn volume(t: &Tess) -> f64 {
+        t.triangles
+            .iter()
+            .map(|tr| {
+                let (a, b, c) = (t.vertices[tr[0] as usize], t.vertices[tr[1] as usize], t.vertices[tr[2] as usize]);
+                (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
+                    + a[2] * (b[0] * c[1] - b[1] * c[0]))
+                    / 6.0
+            })
+            .sum()
+    }
+
+    fn area(t: &Tess) -> f64 {
+        t.triangles
+            .iter()
+            .map(|tr| {
+                let (a, b, c) = (t.vertices[tr[0] as usize], t.vertices[tr[1] as usize], t.vertices[tr[2] as usize]);
+                let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+                let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
+                let x = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
+                0.5 * (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]).sqrt()
+            })
+            .sum()
+    }
+
+    /// Largest distance from sampled points of every triangle (and every vertex)
+    /// to the analytic surface, given by `dist`.
+    fn max_error(t: &Tess, dist: &dyn Fn([f64; 3]) -> f64) -> f64 {
+        let mut worst: f64 = 0.0;
+        const N: usize = 6;
+        for tr in &t.triangles {
+            let (a, b, c) = (t.vertices[tr[0] as usize], t.vertices[tr[1] as usize], t.vertices[tr[2] as usize]);
+            for i in 0..=N {
+                for j in 0..=(N - i) {
+                    let (u, v) = (i as f64 / N as f64, j as f64 / N as f64);
+                    let w = 1.0 - u - v;
+                    let p = [
+                        a[0] * w + b[0] * u + c[0] * v,
+                        a[1] * w + b[1] * u + c[1] * v,
+                        a[2] * w + b[2] * u + c[2] * v,
+                    ];
+                    worst = worst.max(dist(p));
+                }
+            }
+        }
+        worst
+    }
+
+    fn cyl_dist(r: f64, h: f64) -> impl Fn([f64; 3]) -> f64 {
+        move |p: [f64; 3]| {
+            let rho = (p[0] * p[0] + p[1] * p[1]).sqrt();
+            let side = if p[2].abs() <= h / 2.0 + 1e-9 { (rho - r).abs() } else { f64::INFINITY };
+            let cap = if rho <= r + 1e-9 { (p[2].abs() - h / 2.0).abs() } else { f64::INFINITY };
+            side.min(cap)
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(40))]
+
+        #[test]
+        fn cylinder_within_tolerance(r in 0.0f64..3.0, h in 0.0f64..5.0, tol in 0.001f64..0.2) {
+            let t = tessellate(&prim(Shape::Cylinder { radius: r as f32, height: h as f32 }), tol, [true, true]).unwrap();
+            let (r, h) = (r as f32 as f64, h as f32 as f64);
+            prop_assert!(max_error(&t, &cyl_dist(r, h)) <= tol * 1.0001 + 1e-6);
+            for v in &t.vertices {
+                prop_assert!(cyl_dist(r, h)(*v) < 1e-6);
+            }
+        }
+
+        #[test]
+        fn sphere_within_tolerance(d in 0.0f64..6.0, tol in 0.001f64..0.2) {
+            let t = tessellate(&prim(Shape::Sphere { diameter: d as f32 }), tol, [true, true]).unwrap();
+            let r = d as f32 as f64 / 2.0;
+            let dist = |p: [f64; 3]| ((p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt() - r).abs();
+            prop_assert!(max_error(&t, &dist) <= tol * 1.0001 + 1e-6);
+        }
+
+        #[test]
+        fn torus_within_tolerance(big in 0.2f64..3.0, small_frac in 0.0f64..0.9, angle in 0.01f64..6.28, tol in 0.001f64..0.2) {
+            let r = big * small_frac;
+            let t = tessellate(&prim(Shape::CircularTorus { offset: big as f32, radius: r as f32, angle: angle as f32 }), tol, [true, true]).unwrap();
+            let (big, r, angle) = (big as f32 as f64, r as f32 as f64, angle as f32 as f64);
+            let dist = |p: [f64; 3]| {
+                let u = p[1].atan2(p[0]).rem_euclid(TAU);
+                let rho = (p[0] * p[0] + p[1] * p[1]).sqrt();
+                let tube = if u <= angle + 1e-6 || angle >= TAU - 1e-6 { (((rho - big).powi(2) + p[2].powi(2)).sqrt() - r).abs() } else { f64::INFINITY };
+                // End caps: discs in the planes at u = 0 and u = angle.
+                let cap = |a: f64| {
+                    let (c, s) = (a.cos(), a.sin());
+                    let along = p[0] * c + p[1] * s;
+                    let off = -p[0] * s + p[1] * c;
+                    let radial = ((along - big).powi(2) + p[2].powi(2)).sqrt();
+                    if radial <= r + 1e-9 { off.abs() } else { f64::INFINITY }
+                };
+                tube.min(cap(0.0)).min(cap(angle))
+            };
+            prop_assert!(max_error(&t, &dist) <= tol * 1.0001 + 1e-6);
+        }
+
+        #[test]
+        fn dishes_within_tolerance(rb in 0.01f64..3.0, hf in 0.01f64..1.5, tol in 0.001f64..0.2) {
+            let h = rb * hf;
+            let t = tessellate(&prim(Shape::SphericalDish { base_radius: rb as f32, height: h as f32 }), tol, [true, true]).unwrap();
+            let (rc, h) = (rb as f32 as f64, h as f32 as f64);
+            let rs = (rc * rc + h * h) / (2.0 * h);
+            let dist = |p: [f64; 3]| {
+                let rho = (p[0] * p[0] + p[1] * p[1]).sqrt();
+                let dome = if p[2] >= -1e-9 { ((p[0] * p[0] + p[1] * p[1] + (p[2] - (h - rs)).powi(2)).sqrt() - rs).abs() } else { f64::INFINITY };
+                let base = if rho <= rc + 1e-6 { p[2].abs() } else { f64::INFINITY };
+                dome.min(base)
+            };
+            prop_assert!(max_error(&t, &dist) <= tol * 1.0001 + 1e-6);
+        }
+    }
+
+    fn close(a: f64, b: f64, rel: f64) -> bool {
+        (a - b).abs() <= rel * b.abs().max(1e-12)
+    }
+
+    #[test]
+    fn volumes_and_areas_converge() {
+        let pi = PI;
+        type Case = (Shape, f64, Option<f64>);
+        let cases: Vec<Case> = vec![
+            (Shape::Box { lengths: [1.0, 2.0, 3.0] }, 6.0, Some(22.0)),
+            (
+                Shape::Pyramid { bottom: [2.0, 2.0], top: [1.0, 1.0], offset: [0.3, 0.0], height: 3.0 },
+                3.0 / 6.0 * (4.0 + 4.0 * 2.25 + 1.0),
+                None,
+            ),
+            (Shape::Cylinder { radius: 1.0, height: 2.0 }, pi * 2.0, Some(2.0 * pi * 2.0 + 2.0 * pi)),
+            (
+                Shape::Snout {
+                    radius_b: 1.0,
+                    radius_t: 0.5,
+                    height: 2.0,
+                    offset: [0.4, 0.2],
+                    bshear: [0.0; 2],
+                    tshear: [0.0; 2],
+                },
+                pi * 2.0 / 3.0 * (1.0 + 0.5 + 0.25),
+                None,
+            ),
+            (Shape::Sphere { diameter: 2.0 }, 4.0 / 3.0 * pi, Some(4.0 * pi)),
+            (Shape::EllipticalDish { base_radius: 1.0, height: 0.5 }, 2.0 / 3.0 * pi * 0.5, None),
+            (
+                Shape::SphericalDish { base_radius: 1.0, height: 0.4 },
+                {
+                    let rs: f64 = (1.0 + 0.16) / 0.8;
+                    pi * 0.16 * (3.0 * rs - 0.4) / 3.0
+                },
+                None,
+            ),
+            (
+                Shape::CircularTorus { offset: 2.0, radius: 0.5, angle: FRAC_PI_2 as f32 },
+                pi * 0.25 * 2.0 * FRAC_PI_2,
+                Some(2.0 * pi * 0.5 * 2.0 * FRAC_PI_2 + 2.0 * pi * 0.25),
+            ),
+            (
+                Shape::RectangularTorus { inner_radius: 1.0, outer_radius: 2.0, height: 0.5, angle: PI as f32 },
+                PI / 2.0 * 3.0 * 0.5,
+                Some(PI * 2.0 * 0.5 + PI * 1.0 * 0.5 + 2.0 * PI / 2.0 * 3.0 + 2.0 * 0.5),
+            ),
+        ];
+        for (shape, v_exact, a_exact) in cases {
+            let mut last_err = f64::INFINITY;
+            for tol in [0.1, 0.01, 0.001, 0.0001] {
+                let t = tessellate(&prim(shape.clone()), tol, [true, true]).unwrap();
+                let v = volume(&t);
+                assert!(v > 0.0, "{shape:?}: triangles must face outwards (volume {v})");
+                let err = (v - v_exact).abs() / v_exact;
+                assert!(err <= last_err + 1e-12, "{shape:?}: error grew from {last_err} to {err} at tol {tol}");
+                last_err = err;
+                // The faces lie within `tol` of the surface, so the volume between
+                // them is at most the area times `tol`.
+                assert!(
+                    (v - v_exact).abs() <= tol * area(&t) + 1e-12,
+                    "{shape:?}: volume {v} vs {v_exact} at tol {tol}"
+                );
+                if tol == 0.0001 {
+                    if let Some(a) = a_exact {
+                        assert!(close(area(&t), a, 1e-3), "{shape:?}: area {} vs {a}", area(&t));
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn degenerate_shapes_do_not_panic() {
+        for shape in [
+            Shape::Cylinder { radius: 0.0, height: 1.0 },
+            Shape::Cylinder { radius: 1.0, height: 0.0 },
+            Shape::Sphere { diameter: 0.0 },
+            Shape::CircularTorus { offset: 1.0, radius: 0.0, angle: 1.0 },
+            Shape::CircularTorus { offset: 1.0, radius: 0.5, angle: 1e-6 },
+            Shape::SphericalDish { base_radius: 1.0, height: 0.0 },
+            Shape::EllipticalDish { base_radius: 0.0, height: 1.0 },
+            Shape::RectangularTorus { inner_radius: 1.0, outer_radius: 1.0, height: 0.0, angle: 0.0 },
+            Shape::Snout {
+                radius_b: 0.0,
+                radius_t: 0.0,
+                height: 0.0,
+                offset: [0.0; 2],
+                bshear: [0.0; 2],
+                tshear: [0.0; 2],
+            },
+            Shape::Pyramid { bottom: [0.0; 2], top: [0.0; 2], offset: [0.0; 2], height: 0.0 },
+            Shape::Box { lengths: [0.0; 3] },
+            Shape::FacetGroup { polygons: vec![] },
+        ] {
+            let t = tessellate(&prim(shape.clone()), 0.01, [true, true]).unwrap();
+            assert!(t.vertices.iter().all(|v| v.iter().all(|c| c.is_finite())), "{shape:?}");
+            assert!(t.triangles.iter().all(|tr| tr.iter().all(|&i| (i as usize) < t.vertices.len())), "{shape:?}");
+        }
+        assert!(tessellate(&prim(Shape::Line { a: 0.0, b: 1.0 }), 0.01, [true, true]).is_none());
+    }
+
+    #[test]
+    fn facet_polygon_with_hole() {
+        let v = |x: f32, y: f32| ([x, y, 0.0], [0.0, 0.0, 1.0]);
+        let poly = Polygon {
+            contours: vec![
+                vec![v(0.0, 0.0), v(4.0, 0.0), v(4.0, 4.0), v(0.0, 4.0)],
+                vec![v(1.0, 1.0), v(1.0, 3.0), v(3.0, 3.0), v(3.0, 1.0)],
+            ],
+        };
+        let t = tessellate(&prim(Shape::FacetGroup { polygons: vec![poly] }), 0.01, [true, true]).unwrap();
+        assert!((area(&t) - 12.0).abs() < 1e-9, "{}", area(&t));
+        // Every triangle faces +z like the outer contour.
+        for tr in &t.triangles {
+            let (a, b, c) = (t.vertices[tr[0] as usize], t.vertices[tr[1] as usize], t.vertices[tr[2] as usize]);
+            assert!((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]) > 0.0);
+        }
+    }
+}
