@@ -35,12 +35,7 @@ fn check_finite(path: &Path, m: &TriMesh) -> Result<()> {
 }
 
 pub fn read_obj(path: &Path, imp: Import) -> Result<TriMesh> {
-    let opts = tobj::LoadOptions {
-        triangulate: true,
-        single_index: true,
-        ignore_points: true,
-        ignore_lines: true,
-    };
+    let opts = tobj::LoadOptions { triangulate: true, single_index: true, ignore_points: true, ignore_lines: true };
     let file = std::fs::File::open(path).map_err(|e| PlantError::Io(Location::file(path), e))?;
     let mut r = std::io::BufReader::new(file);
     let (models, _) = tobj::load_obj_buf(&mut r, &opts, |_| Err(tobj::LoadError::OpenFileFailed))

@@ -470,7 +470,7 @@ mod tests {
         }
 
         #[test]
-        fn torus_within_tolerance(big in 0.2f64..3.0, small_frac in 0.0f64..0.9, angle in 0.01f64..6.28, tol in 0.001f64..0.2) {
+        fn torus_within_tolerance(big in 0.2f64..3.0, small_frac in 0.0f64..0.9, angle in 0.01f64..6.2, tol in 0.001f64..0.2) {
             let r = big * small_frac;
             let t = tessellate(&prim(Shape::CircularTorus { offset: big as f32, radius: r as f32, angle: angle as f32 }), tol, [true, true]).unwrap();
             let (big, r, angle) = (big as f32 as f64, r as f32 as f64, angle as f32 as f64);
@@ -571,10 +571,10 @@ mod tests {
                     (v - v_exact).abs() <= tol * area(&t) + 1e-12,
                     "{shape:?}: volume {v} vs {v_exact} at tol {tol}"
                 );
-                if tol == 0.0001 {
-                    if let Some(a) = a_exact {
-                        assert!(close(area(&t), a, 1e-3), "{shape:?}: area {} vs {a}", area(&t));
-                    }
+                if tol == 0.0001
+                    && let Some(a) = a_exact
+                {
+                    assert!(close(area(&t), a, 1e-3), "{shape:?}: area {} vs {a}", area(&t));
                 }
             }
         }
