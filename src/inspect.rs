@@ -12,14 +12,18 @@ pub fn inspect(path: &Path) -> Result<serde_json::Value> {
     if crate::stages::SCAN_EXTS.contains(&ext.as_str()) {
         return Ok(liftplan_scans::inspect(path)?);
     }
+    if liftplan_charts::EXTS.contains(&ext.as_str()) {
+        return Ok(liftplan_charts::inspect(path)?);
+    }
     if liftplan_plant::EXTS.contains(&ext.as_str()) {
         return Ok(liftplan_plant::inspect(path, &liftplan_plant::Settings::default())?);
     }
     bail!(
-        "{}: liftplan does not read .{ext} files (scans: {}; plant: {})",
+        "{}: liftplan does not read .{ext} files (scans: {}; plant: {}; charts: {})",
         path.display(),
         crate::stages::SCAN_EXTS.join(", "),
-        liftplan_plant::EXTS.join(", ")
+        liftplan_plant::EXTS.join(", "),
+        liftplan_charts::EXTS.join(", ")
     )
 }
 

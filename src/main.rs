@@ -113,6 +113,24 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Read a load chart into a capacity table; optionally look up one point.
+    #[command(
+        after_help = "Examples:\n  liftplan chart ac700.xlsx -o capacity.csv\n  liftplan chart ac700.xlsx -o capacity.csv --config \"Main boom 360\" --lookup boom=40,radius=29"
+    )]
+    Chart {
+        input: PathBuf,
+        /// Output CSV (config, boom_m, radius_m, capacity_kg, cell).
+        #[arg(short, long)]
+        output: PathBuf,
+        /// Capacity at a point: boom=B,radius=R (metres).
+        #[arg(long, value_name = "boom=B,radius=R")]
+        lookup: Option<String>,
+        /// Configuration for --lookup (default: the only one).
+        #[arg(long)]
+        config: Option<String>,
+        #[arg(long)]
+        json: bool,
+    },
     /// Run the scans stage on loose files.
     #[command(after_help = "Example:\n  liftplan scans a.laz b.e57 -o site.laz --voxel 0.05 --json")]
     Scans {
@@ -303,6 +321,74 @@ fn real_main() -> Result<ExitCode> {
             }
             for d in defs.iter().filter(|d| stage.as_deref().is_none_or(|s| s == d.name)) {
                 println!("# stage {} (version {}): {}\n{}", d.name, d.version, d.about, settings(d.name)?);
+            }
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Chart { input, output, lookup, config, json } => {
+            let (configs, reports) = match liftplan_charts::read_chart(&input, &liftplan_charts::Settings::default()) {
+                Ok(x) => x,
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    return Ok(ExitCode::from(1));
+                }
+            };
+            let table = liftplan_core::capacity::CapacityTable { configs };
+            table.write_csv(&output).with_context(|| format!("writing {}", output.display()))?;
+            let mut result = serde_json::json!({ "configs": reports, "rows": table.rows().len(), "output": output.display().to_string() });
+            if let Some(q) = lookup {
+                let mut boom = None;
+                let mut radius = None;
+                for kv in q.split(',') {
+                    match kv.split_once('=') {
+                        Some(("boom", v)) => boom = v.trim().parse::<f64>().ok(),
+                        Some(("radius", v)) => radius = v.trim().parse::<f64>().ok(),
+                        _ => {}
+                    }
+                }
+                let (Some(b), Some(r)) = (boom, radius) else {
+                    eprintln!("error: --lookup expects boom=B,radius=R in metres, got '{q}'");
+                    return Ok(ExitCode::from(2));
+                };
+                let cfg = match &config {
+                    Some(name) => table.config(name).map_err(|e| anyhow::anyhow!("{e}"))?,
+                    None if table.configs.len() == 1 => &table.configs[0],
+                    None => {
+                        eprintln!(
+                            "error: the chart has {} configurations; name one with --config ({})",
+                            table.configs.len(),
+                            table.configs.iter().map(|c| format!("'{}'", c.name)).collect::<Vec<_>>().join(", ")
+                        );
+                        return Ok(ExitCode::from(2));
+                    }
+                };
+                match cfg.lookup(b, r) {
+                    Ok(c) => {
+                        if !json {
+                            println!(
+                                "{:.3} t at boom {b} m, radius {r} m (chart row {} m, column {} m, cell {})",
+                                c.capacity_kg / 1000.0,
+                                c.radius_m,
+                                c.boom_m,
+                                c.cell
+                            );
+                        }
+                        result["lookup"] = serde_json::to_value(&c)?;
+                    }
+                    Err(e) => {
+                        if !json {
+                            println!("not permitted: {e}");
+                        }
+                        result["lookup"] = serde_json::json!({ "error": e.to_string() });
+                    }
+                }
+            } else if !json {
+                for r in &reports {
+                    println!("'{}': {} booms x {} radii [{}!{}]", r.name, r.boom_lengths, r.radii, r.sheet, r.range);
+                }
+                println!("wrote {} ({} rows)", output.display(), table.rows().len());
+            }
+            if json {
+                println!("{}", serde_json::to_string(&result)?);
             }
             Ok(ExitCode::SUCCESS)
         }

@@ -68,7 +68,7 @@ pub struct StageDef {
 }
 
 pub fn stages() -> Vec<StageDef> {
-    vec![crate::stages::scans(), crate::stages::plant()]
+    vec![crate::stages::scans(), crate::stages::plant(), crate::stages::charts()]
 }
 
 pub fn stage_names() -> Vec<&'static str> {

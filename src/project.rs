@@ -105,6 +105,8 @@ pub struct RawProject {
     #[serde(default)]
     pub plant: liftplan_plant::Settings,
     #[serde(default)]
+    pub charts: liftplan_charts::Settings,
+    #[serde(default)]
     pub gpu: GpuSettings,
     #[serde(default)]
     pub watch: WatchSettings,
@@ -185,6 +187,25 @@ impl Project {
             l.resolve(model).map_err(|m| err(&format!("\"{}\"", l.id), m))?;
         }
         Ok(())
+    }
+
+    /// Every lift, validated against its crane model.
+    pub fn lifts(&self) -> Result<Vec<liftplan_core::lift::LiftTask>> {
+        self.raw.lift.iter().map(|l| l.resolve(self.crane_model(&l.crane.model)?).map_err(anyhow::Error::msg)).collect()
+    }
+
+    /// Crane files the lifts use (for the stages' inputs).
+    pub fn crane_files(&self) -> Vec<PathBuf> {
+        let mut v: Vec<PathBuf> = self
+            .raw
+            .lift
+            .iter()
+            .map(|l| self.path(&self.raw.paths.cranes).join(format!("{}.toml", l.crane.model)))
+            .filter(|p| p.is_file())
+            .collect();
+        v.sort();
+        v.dedup();
+        v
     }
 
     /// Refuses absolute paths and `..` unless `allow_outside`.
@@ -294,6 +315,15 @@ insulation = true         # keep insulation volumes
 obstructions = true       # keep obstruction volumes
 translate_m = [0.0, 0.0, 0.0]   # place the model in the site frame: rotate about Z, then translate
 rotate_z_deg = 0.0
+
+# [[charts.table]]         # describe a chart grid that detection gets wrong
+# file = "chart.xlsx"
+# sheet = "Main boom"
+# config = "main boom 360"  # the name lifts use in crane.chart_config
+# across = "C6:P6"          # boom lengths (radii if transposed = true)
+# down = "B7:B45"           # radii (boom lengths if transposed = true)
+# length_unit = "m"         # m | ft
+# capacity_unit = "t"       # t | kg | lb | kips
 
 [gpu]
 use = "auto"              # auto | never | require

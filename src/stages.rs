@@ -81,3 +81,34 @@ fn run_plant(ctx: &Ctx) -> Result<Produced> {
         lines: summary.lines(),
     })
 }
+
+pub fn charts() -> StageDef {
+    StageDef {
+        name: liftplan_charts::NAME,
+        version: liftplan_charts::VERSION,
+        about: "read load charts into a capacity table and check each lift against it",
+        inputs: |p: &Project| {
+            let mut files = p.files(&p.raw.paths.charts, liftplan_charts::EXTS)?;
+            files.extend(p.crane_files());
+            Ok(files)
+        },
+        // Lifts are part of the settings: lifts.json depends on their loads.
+        settings: |p: &Project| serde_json::json!({ "charts": p.raw.charts, "lifts": p.raw.lift }),
+        reads: &[],
+        applicable: |p, files, _| files.iter().any(|f| !f.starts_with(p.path(&p.raw.paths.cranes))),
+        run: run_charts,
+    }
+}
+
+fn run_charts(ctx: &Ctx) -> Result<Produced> {
+    let p = ctx.project;
+    let cranes = p.path(&p.raw.paths.cranes);
+    let files: Vec<PathBuf> = ctx.inputs.iter().filter(|f| !f.starts_with(&cranes)).cloned().collect();
+    let lifts = p.lifts()?;
+    let summary = liftplan_charts::run(&files, &p.raw.charts, &lifts, ctx.out)?;
+    Ok(Produced {
+        outputs: vec!["capacity.csv".into(), "chart.json".into(), "lifts.json".into()],
+        summary: serde_json::to_value(&summary)?,
+        lines: summary.lines(),
+    })
+}

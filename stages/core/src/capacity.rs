@@ -68,8 +68,15 @@ impl ChartConfig {
         self.cells.get(row * self.boom_lengths_m.len() + col).and_then(|c| c.as_ref())
     }
 
+    /// Whether the chart has one capacity column that holds for any boom (a tower
+    /// crane's jib, or a chart that lists no boom lengths); stored as boom 0.
+    pub fn boom_independent(&self) -> bool {
+        self.boom_lengths_m == [0.0]
+    }
+
     /// Capacity at `radius_m` for a boom of `boom_m`, by the rule in the module docs.
     pub fn lookup(&self, boom_m: f64, radius_m: f64) -> Result<Capacity, CapacityError> {
+        let boom_m = if self.boom_independent() { 0.0 } else { boom_m };
         let (Some(&bmin), Some(&bmax)) = (self.boom_lengths_m.first(), self.boom_lengths_m.last()) else {
             return Err(CapacityError::BoomBeyondChart { boom_m, max_m: 0.0 });
         };

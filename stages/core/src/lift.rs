@@ -364,3 +364,92 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         assert!(e.to_string().contains("lod"), "{e}");
     }
 }
+
+/// Where the chart lets this lift go: the radial joint intervals (luff angle or
+/// trolley radius) over which the reduced chart capacity at the working radius
+/// carries the gross load.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ChartLimits {
+    pub gross_kg: f64,
+    /// Radial intervals, ascending, in the crane's radial unit (rad or m).
+    pub intervals: Vec<(f64, f64)>,
+    /// Step the intervals were resolved with (same unit).
+    pub step: f64,
+}
+
+impl ChartLimits {
+    pub fn contains(&self, radial: f64) -> bool {
+        self.intervals.iter().any(|(a, b)| radial >= *a - 1e-12 && radial <= *b + 1e-12)
+    }
+
+    /// The interval holding `radial`, if any.
+    pub fn interval_of(&self, radial: f64) -> Option<(f64, f64)> {
+        self.intervals.iter().copied().find(|(a, b)| radial >= *a - 1e-12 && radial <= *b + 1e-12)
+    }
+}
+
+/// The capacity of a lift's crane at a configuration's working radius, with
+/// utilisation.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CapacityCheck {
+    pub radius_m: f64,
+    pub capacity: crate::capacity::Capacity,
+    /// Chart capacity after the configured reduction (kg).
+    pub effective_kg: f64,
+    pub utilisation_pct: f64,
+}
+
+impl LiftTask {
+    /// Capacity and utilisation at a radial joint value, or why the chart forbids it.
+    pub fn check_capacity(
+        &self,
+        chart: &crate::capacity::ChartConfig,
+        radial: f64,
+    ) -> Result<CapacityCheck, crate::capacity::CapacityError> {
+        let r = self.crane.radius_m(radial);
+        let boom = if self.crane.model.is_tower() { 0.0 } else { self.crane.placement.boom_length_m };
+        let c = chart.lookup(boom, r)?;
+        let eff = self.effective_capacity_kg(c.capacity_kg);
+        Ok(CapacityCheck {
+            radius_m: r,
+            utilisation_pct: self.utilisation_pct(c.capacity_kg),
+            effective_kg: eff,
+            capacity: c,
+        })
+    }
+
+    /// The radial ranges where the chart carries the gross load, resolved at
+    /// `step` (rad for luffing cranes, m for tower cranes) within the crane's own
+    /// radial limits. Each interval's ends are sampled points that pass; between
+    /// samples the next-larger-radius rule of the chart keeps the answer safe
+    /// only if the chart rows are no further apart than the step in radius, so
+    /// the planner re-checks capacity at every configuration it uses.
+    pub fn chart_limits(&self, chart: &crate::capacity::ChartConfig, step: f64) -> ChartLimits {
+        let (lo, hi) = self.crane.limits().radial;
+        let n = (((hi - lo) / step).ceil() as usize).max(1);
+        let gross = self.gross_kg();
+        let mut intervals: Vec<(f64, f64)> = Vec::new();
+        let mut open: Option<f64> = None;
+        let mut last_ok = lo;
+        for k in 0..=n {
+            let x = (lo + step * k as f64).min(hi);
+            let ok = self.check_capacity(chart, x).map(|c| c.effective_kg >= gross).unwrap_or(false);
+            match (ok, open) {
+                (true, None) => {
+                    open = Some(x);
+                    last_ok = x;
+                }
+                (true, Some(_)) => last_ok = x,
+                (false, Some(a)) => {
+                    intervals.push((a, last_ok));
+                    open = None;
+                }
+                (false, None) => {}
+            }
+        }
+        if let Some(a) = open {
+            intervals.push((a, last_ok));
+        }
+        ChartLimits { gross_kg: gross, intervals, step }
+    }
+}

@@ -1,0 +1,617 @@
+//! Finding load-chart grids in manufacturer-style sheets and reading them.
+//!
+//! A grid is a row of boom lengths across (strictly increasing numbers in
+//! adjacent columns) over a column of radii down (strictly increasing numbers in
+//! the column just left of them), with capacities in between: blank, '-' or text
+//! cells where the lift is not permitted. Title rows, merged headers and notes
+//! around it are allowed. A chart may be transposed (radii across); the labels
+//! beside the numbers ("Radius", "Ausladung", "Boom length", ...) decide. One
+//! sheet may hold several grids, one per configuration; a grid of a single
+//! capacity column under a text header is a chart that does not depend on boom
+//! length (tower crane jibs).
+//!
+//! Units come from the words around the grid (m/ft, t/kg/lb/kips); where none is
+//! found, metres and tonnes are assumed and a warning says so. Values like
+//! `12,5` are read with a warning; `12.5t` is read if `t` is the grid's unit and
+//! refused otherwise; a grid whose capacity rises with radius is refused with the
+//! cell that rises.
+
+use crate::sheet::{Sheet, Val};
+use liftplan_core::capacity::{ChartCell, ChartConfig};
+use liftplan_core::location::cell_ref;
+use liftplan_core::units::{LengthUnit, MassUnit};
+
+/// Where a grid sits in its sheet.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Grid {
+    /// Row of the values across (booms, or radii when transposed).
+    pub header_row: u32,
+    pub value_cols: Vec<u32>,
+    /// Column of the values down (radii, or booms when transposed).
+    pub label_col: u32,
+    pub rows: Vec<u32>,
+    /// Radii run across and booms down.
+    pub transposed: bool,
+    /// A single capacity column that holds for any boom.
+    pub boom_independent: bool,
+    pub title: String,
+}
+
+impl Grid {
+    pub fn range(&self) -> String {
+        let last_col = *self.value_cols.last().unwrap_or(&self.label_col);
+        let last_row = *self.rows.last().unwrap_or(&self.header_row);
+        format!("{}:{}", cell_ref(self.header_row, self.label_col), cell_ref(last_row, last_col))
+    }
+}
+
+fn strictly_increasing(v: &[f64]) -> bool {
+    v.windows(2).all(|w| w[1] > w[0])
+}
+
+/// Rows of `sheet` (sorted, unique).
+fn rows_of(sheet: &Sheet) -> Vec<u32> {
+    let mut r: Vec<u32> = sheet.cells.keys().map(|k| k.0).collect();
+    r.dedup();
+    r
+}
+
+/// Numbers down a column from `start`, strictly increasing and positive,
+/// allowing up to two text rows (unit lines) right at the start.
+fn increasing_down(sheet: &Sheet, col: u32, start: u32) -> Vec<u32> {
+    let mut rows = Vec::new();
+    let mut r = start;
+    let mut skipped = 0;
+    let mut last = f64::NEG_INFINITY;
+    loop {
+        match sheet.get(r, col) {
+            Some(Val::Num(v)) if *v > 0.0 && *v > last => {
+                rows.push(r);
+                last = *v;
+            }
+            Some(Val::Text(_)) | None if rows.is_empty() && skipped < 2 => skipped += 1,
+            _ => break,
+        }
+        r += 1;
+    }
+    rows
+}
+
+fn block_density(sheet: &Sheet, rows: &[u32], cols: &[u32]) -> f64 {
+    let mut n = 0usize;
+    for &r in rows {
+        for &c in cols {
+            // Charts pasted from PDFs often hold numbers as text.
+            match sheet.get(r, c) {
+                Some(Val::Num(_)) => n += 1,
+                Some(Val::Text(t)) if t.trim().starts_with(|ch: char| ch.is_ascii_digit()) => n += 1,
+                _ => {}
+            }
+        }
+    }
+    n as f64 / (rows.len() * cols.len()).max(1) as f64
+}
+
+fn words(text: &str) -> Vec<String> {
+    text.to_lowercase().split(|c: char| !c.is_alphanumeric()).filter(|w| !w.is_empty()).map(String::from).collect()
+}
+
+pub fn says_radius(text: &str) -> bool {
+    let t = text.to_lowercase();
+    ["radius", "radii", "reach", "ausladung", "portée", "portee", "radio", "raggio", "working radius"]
+        .iter()
+        .any(|k| t.contains(k))
+}
+
+pub fn says_boom(text: &str) -> bool {
+    let t = text.to_lowercase();
+    ["boom", "length", "ausleger", "jib", "flèche", "fleche", "pluma", "mast", "hauptausleger"]
+        .iter()
+        .any(|k| t.contains(k))
+}
+
+/// Finds the grids in a sheet, largest first, without overlaps.
+pub fn find_grids(sheet: &Sheet) -> Vec<Grid> {
+    let mut cands: Vec<Grid> = Vec::new();
+    for r in rows_of(sheet) {
+        let nums: Vec<(u32, f64)> = sheet
+            .cells
+            .range((r, 0)..=(r, u32::MAX))
+            .filter_map(|((_, c), v)| if let Val::Num(x) = v { Some((*c, *x)) } else { None })
+            .collect();
+        let mut i = 0;
+        while i < nums.len() {
+            let mut j = i + 1;
+            while j < nums.len() && nums[j].0 == nums[j - 1].0 + 1 && nums[j].1 > nums[j - 1].1 {
+                j += 1;
+            }
+            let run: Vec<(u32, f64)> = nums[i..j].to_vec();
+            i = j;
+            if run.len() < 2 || run[0].1 <= 0.0 || run[0].0 == 0 {
+                continue;
+            }
+            let label_col = run[0].0 - 1;
+            let rows = increasing_down(sheet, label_col, r + 1);
+            if rows.len() < 2 {
+                continue;
+            }
+            let cols: Vec<u32> = run.iter().map(|x| x.0).collect();
+            if block_density(sheet, &rows, &cols) < 0.25 {
+                continue;
+            }
+            cands.push(Grid {
+                header_row: r,
+                value_cols: cols,
+                label_col,
+                rows,
+                transposed: false,
+                boom_independent: false,
+                title: String::new(),
+            });
+        }
+    }
+    // Single-column charts: increasing radii with one capacity column to the right
+    // under a text (or empty) header.
+    let mut cols: Vec<u32> = sheet.cells.keys().map(|k| k.1).collect();
+    cols.sort_unstable();
+    cols.dedup();
+    for &c in &cols {
+        for r in rows_of(sheet) {
+            if matches!(sheet.get(r, c), Some(Val::Num(_))) {
+                continue;
+            }
+            let rows = increasing_down(sheet, c, r + 1);
+            if rows.len() < 3 || rows.first() != Some(&(r + 1)) {
+                continue;
+            }
+            let vc = c + 1;
+            if matches!(sheet.get(r, vc), Some(Val::Num(_))) {
+                continue;
+            }
+            if block_density(sheet, &rows, &[vc]) < 0.5 {
+                continue;
+            }
+            cands.push(Grid {
+                header_row: r,
+                value_cols: vec![vc],
+                label_col: c,
+                rows,
+                transposed: false,
+                boom_independent: true,
+                title: String::new(),
+            });
+        }
+    }
+    cands.sort_by_key(|g| std::cmp::Reverse(g.rows.len() * g.value_cols.len()));
+    let mut out: Vec<Grid> = Vec::new();
+    for g in cands {
+        let rect = |g: &Grid| {
+            (
+                g.header_row,
+                *g.rows.last().unwrap_or(&g.header_row),
+                g.label_col,
+                *g.value_cols.last().unwrap_or(&g.label_col),
+            )
+        };
+        let (a0, a1, b0, b1) = rect(&g);
+        if out.iter().any(|o| {
+            let (c0, c1, d0, d1) = rect(o);
+            a0 <= c1 && c0 <= a1 && b0 <= d1 && d0 <= b1
+        }) {
+            continue;
+        }
+        out.push(g);
+    }
+    for g in &mut out {
+        let last = *g.value_cols.last().unwrap_or(&g.label_col);
+        let row_label = format!(
+            "{} {}",
+            sheet.text_in(g.header_row, g.header_row, 0, g.label_col),
+            sheet.text_in(g.header_row.saturating_sub(2), g.header_row.saturating_sub(1), g.value_cols[0], last)
+        );
+        let col_label = sheet.text_in(g.header_row.saturating_sub(3), g.header_row, g.label_col, g.label_col);
+        g.transposed = !g.boom_independent
+            && ((says_radius(&row_label) && !says_radius(&col_label))
+                || (says_boom(&col_label) && !says_boom(&row_label)));
+        g.title = title_above(sheet, g);
+        g.rows.sort_unstable();
+    }
+    out.sort_by_key(|g| (g.header_row, g.label_col));
+    out
+}
+
+fn title_above(sheet: &Sheet, g: &Grid) -> String {
+    let last = *g.value_cols.last().unwrap_or(&g.label_col);
+    let lo = g.label_col.saturating_sub(1);
+    for r in (g.header_row.saturating_sub(6)..g.header_row).rev() {
+        for ((_, c), v) in sheet.cells.range((r, lo)..=(r, last)) {
+            let _ = c;
+            if let Val::Text(t) = v {
+                let t = t.trim();
+                if t.len() >= 4 && !(says_boom(t) && t.len() < 30) && !(says_radius(t) && t.len() < 30) {
+                    return t.to_string();
+                }
+            }
+        }
+    }
+    String::new()
+}
+
+/// Units read from the words around a grid.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct Units {
+    pub radius: LengthUnit,
+    pub boom: LengthUnit,
+    pub capacity: MassUnit,
+    /// What was found, for chart.json.
+    pub found: Vec<String>,
+    pub assumed: bool,
+}
+
+fn length_in(text: &str) -> Vec<LengthUnit> {
+    let mut v = Vec::new();
+    for w in words(text) {
+        let u = match w.as_str() {
+            "m" | "meter" | "meters" | "metre" | "metres" => LengthUnit::M,
+            "ft" | "feet" | "foot" => LengthUnit::Ft,
+            _ => continue,
+        };
+        if !v.contains(&u) {
+            v.push(u);
+        }
+    }
+    v
+}
+
+fn mass_in(text: &str) -> Vec<MassUnit> {
+    let lower = text.to_lowercase();
+    let mut v = Vec::new();
+    if lower.contains("1000 lb") || lower.contains("1,000 lb") || lower.contains("1000lb") {
+        v.push(MassUnit::Kips);
+    }
+    for w in words(text) {
+        let u = match w.as_str() {
+            "t" | "to" | "tonne" | "tonnes" | "mt" => MassUnit::T,
+            "kg" | "kilogram" | "kilograms" => MassUnit::Kg,
+            "lb" | "lbs" | "pound" | "pounds" if v.contains(&MassUnit::Kips) => continue,
+            "lb" | "lbs" | "pound" | "pounds" => MassUnit::Lb,
+            "kip" | "kips" => MassUnit::Kips,
+            "ton" | "tons" => MassUnit::ShortTon,
+            _ => continue,
+        };
+        if !v.contains(&u) {
+            v.push(u);
+        }
+    }
+    v
+}
+
+/// Reads the units around `g`. Errors (cell, message) on mixed mass units.
+pub fn units(sheet: &Sheet, g: &Grid) -> Result<Units, (String, String)> {
+    let last = *g.value_cols.last().unwrap_or(&g.label_col);
+    let corner = cell_ref(g.header_row, g.label_col);
+    let window = sheet.text_in(g.header_row.saturating_sub(6), g.header_row, g.label_col.saturating_sub(1), last);
+    let row_label = format!(
+        "{} {}",
+        sheet.text_in(g.header_row, g.header_row, 0, g.label_col),
+        sheet.text_in(g.header_row.saturating_sub(2), g.header_row.saturating_sub(1), g.value_cols[0], last)
+    );
+    let col_label = sheet.text_in(g.header_row.saturating_sub(3), g.header_row, g.label_col, g.label_col);
+    let mut found = Vec::new();
+    let masses = mass_in(&window);
+    // "ton(s)" next to metric words is a metric tonne.
+    let masses: Vec<MassUnit> = if masses.contains(&MassUnit::ShortTon) && !length_in(&window).contains(&LengthUnit::Ft)
+    {
+        masses.into_iter().map(|m| if m == MassUnit::ShortTon { MassUnit::T } else { m }).fold(
+            Vec::new(),
+            |mut a, m| {
+                if !a.contains(&m) {
+                    a.push(m)
+                }
+                a
+            },
+        )
+    } else {
+        masses
+    };
+    if masses.len() > 1 {
+        return Err((
+            corner,
+            format!(
+                "the chart header mentions more than one mass unit ({}); say which with an explicit [[charts.table]] mapping",
+                masses.iter().map(|m| m.name()).collect::<Vec<_>>().join(", ")
+            ),
+        ));
+    }
+    let all_len = length_in(&window);
+    let pick_len = |label: &str| -> Option<LengthUnit> {
+        let l = length_in(label);
+        if l.len() == 1 {
+            Some(l[0])
+        } else if all_len.len() == 1 {
+            Some(all_len[0])
+        } else {
+            None
+        }
+    };
+    let (radius_label, boom_label) = if g.transposed { (&row_label, &col_label) } else { (&col_label, &row_label) };
+    let radius = pick_len(radius_label);
+    let boom = pick_len(boom_label);
+    let mut assumed = false;
+    if let Some(m) = masses.first() {
+        found.push(format!("capacity in {}", m.name()));
+    } else {
+        assumed = true;
+    }
+    if let Some(r) = radius {
+        found.push(format!("radius in {}", r.name()));
+    } else {
+        assumed = true;
+    }
+    Ok(Units {
+        radius: radius.unwrap_or(LengthUnit::M),
+        boom: boom.or(radius).unwrap_or(LengthUnit::M),
+        capacity: masses.first().copied().unwrap_or(MassUnit::T),
+        found,
+        assumed,
+    })
+}
+
+/// A capacity cell's value: `Ok(None)` for "not permitted".
+pub fn parse_capacity(
+    v: Option<&Val>,
+    unit: MassUnit,
+    warnings: &mut Vec<String>,
+    at: &str,
+) -> Result<Option<f64>, String> {
+    let t = match v {
+        None => return Ok(None),
+        Some(Val::Num(x)) => {
+            return if x.is_finite() && *x > 0.0 {
+                Ok(Some(*x))
+            } else if *x == 0.0 {
+                Ok(None)
+            } else {
+                Err(format!("capacity {x} is not a positive number"))
+            };
+        }
+        Some(Val::Text(t)) => t.trim(),
+    };
+    const NOT_PERMITTED: [&str; 10] = ["", "-", "–", "—", "*", "n/a", "na", "x", "/", "--"];
+    if NOT_PERMITTED.contains(&t.to_lowercase().as_str()) {
+        return Ok(None);
+    }
+    // Footnote marks: "8.4*", "8.4¹", "8.4 (2)".
+    let mut s: &str = t;
+    if s.ends_with(')')
+        && let Some(i) = s.rfind('(')
+        && s[i + 1..s.len() - 1].chars().all(|c| c.is_ascii_digit())
+        && i > 0
+    {
+        s = s[..i].trim_end();
+    }
+    let s = s.trim_end_matches(['*', '¹', '²', '³', '⁴', '⁵']).trim_end().to_string();
+    if s != t {
+        warnings.push(format!("{at}: footnote mark dropped from '{t}'"));
+    }
+    // Split a trailing unit.
+    let num_end = s
+        .char_indices()
+        .find(|(_, c)| !(c.is_ascii_digit() || *c == '.' || *c == ',' || *c == ' ' || *c == '\u{a0}'))
+        .map(|(i, _)| i)
+        .unwrap_or(s.len());
+    let (num, suffix) = (s[..num_end].trim(), s[num_end..].trim());
+    if !suffix.is_empty() {
+        let units = mass_in(suffix);
+        match units.first() {
+            Some(u) if *u == unit => {}
+            Some(u) => {
+                return Err(format!("'{t}' is in {}, but the chart's capacities are in {}", u.name(), unit.name()));
+            }
+            None => return Err(format!("cannot read '{t}' as a capacity (expected a number in {})", unit.name())),
+        }
+    }
+    let clean: String = num.chars().filter(|c| *c != ' ' && *c != '\u{a0}').collect();
+    let value = if clean.matches(',').count() == 1
+        && !clean.contains('.')
+        && clean.split(',').nth(1).is_some_and(|d| d.len() != 3)
+    {
+        warnings.push(format!("{at}: read '{t}' as {}", clean.replace(',', ".")));
+        clean.replace(',', ".").parse::<f64>()
+    } else {
+        clean.replace(',', "").parse::<f64>()
+    };
+    match value {
+        Ok(x) if x > 0.0 && x.is_finite() => Ok(Some(x)),
+        Ok(_) => Ok(None),
+        Err(_) => Err(format!("cannot read '{t}' as a capacity (expected a number in {})", unit.name())),
+    }
+}
+
+/// Reads a located grid into a chart configuration. Errors are (cell, message).
+pub fn read_grid(
+    sheet: &Sheet,
+    g: &Grid,
+    u: &Units,
+    file_label: &str,
+    name: &str,
+    warnings: &mut Vec<String>,
+) -> Result<ChartConfig, (String, String)> {
+    let at = |r: u32, c: u32| format!("{}!{}", sheet.name, cell_ref(r, c));
+    // Values across the header and down the label column.
+    let across: Vec<f64> = if g.boom_independent {
+        vec![0.0]
+    } else {
+        g.value_cols.iter().map(|&c| sheet.num(g.header_row, c).unwrap_or(f64::NAN)).collect()
+    };
+    let down: Vec<f64> = g.rows.iter().map(|&r| sheet.num(r, g.label_col).unwrap_or(f64::NAN)).collect();
+    if !g.boom_independent && !strictly_increasing(&across) {
+        return Err((at(g.header_row, g.value_cols[0]), "header values must increase from left to right".into()));
+    }
+    if !strictly_increasing(&down) {
+        return Err((at(g.rows[0], g.label_col), "values down the first column must increase".into()));
+    }
+    let (radii_raw, booms_raw) =
+        if g.transposed { (across.clone(), down.clone()) } else { (down.clone(), across.clone()) };
+    let radii_m: Vec<f64> = radii_raw.iter().map(|r| r * u.radius.to_m()).collect();
+    let booms_m: Vec<f64> = booms_raw.iter().map(|b| b * u.boom.to_m()).collect();
+    let mut cells = vec![None; radii_m.len() * booms_m.len()];
+    for (ri, _) in radii_m.iter().enumerate() {
+        for (bi, _) in booms_m.iter().enumerate() {
+            let (row, col) = if g.transposed {
+                (g.rows[bi], g.value_cols[ri])
+            } else {
+                (g.rows[ri], g.value_cols[if g.boom_independent { 0 } else { bi }])
+            };
+            let here = at(row, col);
+            let v = parse_capacity(sheet.get(row, col), u.capacity, warnings, &here).map_err(|m| (here.clone(), m))?;
+            cells[ri * booms_m.len() + bi] =
+                v.map(|x| ChartCell { capacity_kg: x * u.capacity.to_kg(), cell: format!("{file_label} [{here}]") });
+        }
+    }
+    // Capacity must not rise with radius.
+    for bi in 0..booms_m.len() {
+        let mut prev: Option<(f64, usize)> = None;
+        for ri in 0..radii_m.len() {
+            if let Some(c) = &cells[ri * booms_m.len() + bi] {
+                if let Some((p, pri)) = prev
+                    && c.capacity_kg > p * (1.0 + 1e-9)
+                {
+                    let cell = c.cell.rsplit('[').next().unwrap_or("").trim_end_matches(']').to_string();
+                    return Err((
+                        cell,
+                        format!(
+                            "capacity rises with radius: {:.3} t at {:.2} m is more than {:.3} t at {:.2} m (boom {:.2} m); a load chart never does, check the cell or the layout",
+                            c.capacity_kg / 1000.0,
+                            radii_m[ri],
+                            p / 1000.0,
+                            radii_m[pri],
+                            booms_m[bi]
+                        ),
+                    ));
+                }
+                prev = Some((c.capacity_kg, ri));
+            }
+        }
+    }
+    Ok(ChartConfig { name: name.to_string(), boom_lengths_m: booms_m, radii_m, cells })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::collections::BTreeMap;
+
+    fn sheet(rows: &[&[&str]]) -> Sheet {
+        let mut cells = BTreeMap::new();
+        for (r, row) in rows.iter().enumerate() {
+            for (c, v) in row.iter().enumerate() {
+                if v.is_empty() {
+                    continue;
+                }
+                let val = match v.parse::<f64>() {
+                    Ok(x) => Val::Num(x),
+                    Err(_) => Val::Text(v.to_string()),
+                };
+                cells.insert((r as u32, c as u32), val);
+            }
+        }
+        Sheet { name: "Main".into(), cells }
+    }
+
+    #[test]
+    fn finds_a_manufacturer_grid() {
+        let s = sheet(&[
+            &["Lifting capacities in t", "", "", ""],
+            &["Counterweight 26.5 t, 360 deg", "", "", ""],
+            &["Radius (m)", "Boom length (m)", "", ""],
+            &["", "12", "20", "28"],
+            &["3", "50", "", ""],
+            &["4", "40", "35", ""],
+            &["6", "30", "28", "20"],
+            &["Notes: 1) hook block weight must be deducted", "", "", ""],
+        ]);
+        let g = find_grids(&s);
+        assert_eq!(g.len(), 1, "{g:?}");
+        let g = &g[0];
+        assert!(!g.transposed);
+        assert_eq!(g.rows, vec![4, 5, 6]);
+        let u = units(&s, g).unwrap();
+        assert_eq!((u.radius, u.capacity), (LengthUnit::M, MassUnit::T));
+        let mut w = vec![];
+        let c = read_grid(&s, g, &u, "c.xlsx", "main", &mut w).unwrap();
+        assert_eq!(c.boom_lengths_m, vec![12.0, 20.0, 28.0]);
+        assert_eq!(c.lookup(20.0, 4.0).unwrap().capacity_kg, 35000.0);
+        assert!(c.lookup(20.0, 3.0).is_err());
+        assert!(c.lookup(20.0, 4.0).unwrap().cell.contains("Main!C6"));
+    }
+
+    #[test]
+    fn refuses_rising_capacity_with_the_cell() {
+        let s = sheet(&[&["Radius m", "Boom m", ""], &["", "12", "20"], &["3", "50", "30"], &["4", "55", "28"]]);
+        let g = &find_grids(&s)[0];
+        let u = units(&s, g).unwrap();
+        let e = read_grid(&s, g, &u, "c.xlsx", "x", &mut vec![]).unwrap_err();
+        assert_eq!(e.0, "Main!B4");
+        assert!(e.1.contains("rises with radius"), "{}", e.1);
+    }
+
+    #[test]
+    fn typos_read_or_refused_with_the_cell() {
+        let mut w = vec![];
+        assert_eq!(parse_capacity(Some(&Val::Text("12,5".into())), MassUnit::T, &mut w, "S!C3").unwrap(), Some(12.5));
+        assert!(w[0].contains("S!C3"));
+        assert_eq!(parse_capacity(Some(&Val::Text("12.5t".into())), MassUnit::T, &mut w, "S!C4").unwrap(), Some(12.5));
+        assert!(
+            parse_capacity(Some(&Val::Text("12.5kg".into())), MassUnit::T, &mut w, "S!C5").unwrap_err().contains("kg")
+        );
+        assert!(parse_capacity(Some(&Val::Text("heavy".into())), MassUnit::T, &mut w, "S!C6").is_err());
+        assert_eq!(parse_capacity(Some(&Val::Text("—".into())), MassUnit::T, &mut w, "S!C7").unwrap(), None);
+        assert_eq!(parse_capacity(Some(&Val::Text("8.4*".into())), MassUnit::T, &mut w, "S!C8").unwrap(), Some(8.4));
+        assert_eq!(
+            parse_capacity(Some(&Val::Text("12,500".into())), MassUnit::Lb, &mut w, "S!C9").unwrap(),
+            Some(12500.0)
+        );
+    }
+
+    #[test]
+    fn transposed_and_mixed_units() {
+        let s = sheet(&[
+            &["Boom length (ft)", "Radius (ft)", "", ""],
+            &["", "10", "15", "20"],
+            &["40", "100", "80", "60"],
+            &["60", "90", "70", "50"],
+            &["Capacities in lb", "", "", ""],
+        ]);
+        let g = &find_grids(&s)[0];
+        assert!(g.transposed, "{g:?}");
+        let s2 = sheet(&[
+            &["Capacity t or kg", "", ""],
+            &["Radius m", "", ""],
+            &["", "12", "20"],
+            &["3", "50", "30"],
+            &["4", "45", "28"],
+        ]);
+        let g2 = &find_grids(&s2)[0];
+        assert!(units(&s2, g2).is_err());
+    }
+
+    #[test]
+    fn single_column_tower_chart() {
+        let s = sheet(&[
+            &["Jib 60 m", ""],
+            &["Radius (m)", "Capacity (t)"],
+            &["3", "12"],
+            &["20", "12"],
+            &["30", "8.1"],
+            &["60", "3.2"],
+        ]);
+        let g = find_grids(&s);
+        assert_eq!(g.len(), 1, "{g:?}");
+        assert!(g[0].boom_independent);
+        let u = units(&s, &g[0]).unwrap();
+        let c = read_grid(&s, &g[0], &u, "t.xlsx", "jib", &mut vec![]).unwrap();
+        assert!(c.boom_independent());
+        assert_eq!(c.lookup(55.0, 25.0).unwrap().capacity_kg, 8100.0);
+    }
+}

@@ -1,0 +1,376 @@
+//! # liftplan-charts: stage 3, load charts to capacity tables
+//!
+//! Reads the crane rental's load charts (xlsx, xlsm, xlsb, xls, ods) with
+//! `calamine`, finds the chart grids in them ([`detect`]) or follows an explicit
+//! mapping, and writes:
+//!
+//! | file | what |
+//! |---|---|
+//! | `capacity.csv` | config, boom_m, radius_m, capacity_kg, cell: every permitted chart cell in kg and m |
+//! | `chart.json` | per configuration: file, sheet, range, grid size, units found, warnings |
+//! | `lifts.json` | per lift: gross load, capacity and utilisation at pick and set, the radial ranges the chart permits, critical flag |
+//!
+//! Every value keeps the `sheet!cell` it came from, so the lift plan can quote the
+//! chart row it relied on. The capacity rule itself (never interpolate upwards)
+//! lives in `liftplan_core::capacity`.
+//!
+//! `capacity.csv` depends only on the charts; `lifts.json` also on the lifts, so
+//! a changed load mass changes `lifts.json` and leaves stages that read only the
+//! capacity table fresh.
+
+pub mod detect;
+pub mod error;
+pub mod sheet;
+
+use error::{ChartError, Result};
+use liftplan_core::Location;
+use liftplan_core::capacity::{CapacityTable, ChartConfig};
+use liftplan_core::lift::{CapacityCheck, ChartLimits, LiftTask};
+use liftplan_core::units::{LengthUnit, MassUnit};
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+
+pub const NAME: &str = "charts";
+pub const VERSION: u32 = 1;
+pub const EXTS: &[&str] = &["xlsx", "xlsm", "xlsb", "xls", "ods"];
+
+/// An explicit description of one chart grid, for layouts detection gets wrong.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TableMapping {
+    /// Workbook file name in the charts folder.
+    pub file: String,
+    pub sheet: String,
+    /// Configuration name lifts refer to.
+    pub config: String,
+    /// Cells holding the values across, e.g. "C6:P6" (boom lengths, or radii
+    /// when `transposed`).
+    pub across: String,
+    /// Cells holding the values down, e.g. "B7:B45".
+    pub down: String,
+    #[serde(default)]
+    pub transposed: bool,
+    pub length_unit: Option<LengthUnit>,
+    pub capacity_unit: Option<MassUnit>,
+}
+
+/// `[charts]` in `liftplan.toml`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[serde(deny_unknown_fields, default)]
+pub struct Settings {
+    /// Explicit grids; a sheet named here is not searched automatically.
+    pub table: Vec<TableMapping>,
+}
+
+/// Parses "C6:P6" into ((row0, col0), (row1, col1)).
+pub fn parse_range(s: &str) -> Option<((u32, u32), (u32, u32))> {
+    fn cell(c: &str) -> Option<(u32, u32)> {
+        let c = c.trim().trim_start_matches('$');
+        let split = c.find(|ch: char| ch.is_ascii_digit())?;
+        let (letters, digits) = c.split_at(split);
+        let letters = letters.trim_end_matches('$');
+        if letters.is_empty() || !letters.chars().all(|ch| ch.is_ascii_alphabetic()) {
+            return None;
+        }
+        let mut col: u32 = 0;
+        for ch in letters.to_ascii_uppercase().chars() {
+            col = col.checked_mul(26)?.checked_add(ch as u32 - 'A' as u32 + 1)?;
+        }
+        let row: u32 = digits.parse().ok()?;
+        (row >= 1 && col >= 1).then(|| (row - 1, col - 1))
+    }
+    let (a, b) = s.split_once(':').unwrap_or((s, s));
+    let (a, b) = (cell(a)?, cell(b)?);
+    Some(((a.0.min(b.0), a.1.min(b.1)), (a.0.max(b.0), a.1.max(b.1))))
+}
+
+/// One configuration found, for `chart.json`.
+#[derive(Debug, Clone, Serialize)]
+pub struct ConfigReport {
+    pub name: String,
+    pub file: String,
+    pub sheet: String,
+    pub range: String,
+    pub transposed: bool,
+    pub boom_lengths: usize,
+    pub radii: usize,
+    pub permitted_cells: usize,
+    pub units: detect::Units,
+    pub title: String,
+    pub warnings: Vec<String>,
+}
+
+fn grid_from_mapping(path: &Path, m: &TableMapping) -> Result<detect::Grid> {
+    let bad = |what: &str| {
+        ChartError::Format(Location::cell(path, &m.sheet, what), format!("not a cell range like 'C6:P6': '{what}'"))
+    };
+    let (a0, a1) = parse_range(&m.across).ok_or_else(|| bad(&m.across))?;
+    let (d0, d1) = parse_range(&m.down).ok_or_else(|| bad(&m.down))?;
+    if a0.0 != a1.0 {
+        return Err(ChartError::Format(
+            Location::cell(path, &m.sheet, &m.across),
+            "the 'across' range must be one row".into(),
+        ));
+    }
+    if d0.1 != d1.1 {
+        return Err(ChartError::Format(
+            Location::cell(path, &m.sheet, &m.down),
+            "the 'down' range must be one column".into(),
+        ));
+    }
+    Ok(detect::Grid {
+        header_row: a0.0,
+        value_cols: (a0.1..=a1.1).collect(),
+        label_col: d0.1,
+        rows: (d0.0..=d1.0).collect(),
+        transposed: m.transposed,
+        boom_independent: false,
+        title: m.config.clone(),
+    })
+}
+
+/// Reads one workbook: its configurations and what was found.
+pub fn read_chart(path: &Path, s: &Settings) -> Result<(Vec<ChartConfig>, Vec<ConfigReport>)> {
+    let sheets = sheet::read_workbook(path)?;
+    let file_name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    let mut configs = Vec::new();
+    let mut reports = Vec::new();
+    for sh in &sheets {
+        let mapped: Vec<&TableMapping> = s.table.iter().filter(|t| t.file == file_name && t.sheet == sh.name).collect();
+        let mut grids: Vec<(detect::Grid, Option<&TableMapping>)> = Vec::new();
+        if mapped.is_empty() {
+            grids.extend(detect::find_grids(sh).into_iter().map(|g| (g, None)));
+        } else {
+            for m in mapped {
+                grids.push((grid_from_mapping(path, m)?, Some(m)));
+            }
+        }
+        let single = grids.len() == 1;
+        for (k, (g, mapping)) in grids.iter().enumerate() {
+            let name = match mapping {
+                Some(m) => m.config.clone(),
+                None if single => sh.name.clone(),
+                None if !g.title.is_empty() => format!("{} / {}", sh.name, g.title),
+                None => format!("{} #{}", sh.name, k + 1),
+            };
+            let mut units = detect::units(sh, g)
+                .map_err(|(cell, msg)| ChartError::Format(Location::cell(path, &sh.name, &cell), msg))?;
+            if let Some(m) = mapping {
+                if let Some(l) = m.length_unit {
+                    units.radius = l;
+                    units.boom = l;
+                    units.assumed = false;
+                }
+                if let Some(c) = m.capacity_unit {
+                    units.capacity = c;
+                }
+            }
+            let mut warnings = Vec::new();
+            if units.assumed && mapping.is_none() {
+                warnings.push(format!(
+                    "{}: no unit found around the grid at {}; assumed radius in {} and capacity in {}",
+                    sh.name,
+                    g.range(),
+                    units.radius.name(),
+                    units.capacity.name()
+                ));
+            }
+            let c = detect::read_grid(sh, g, &units, &file_name, &name, &mut warnings).map_err(|(cell, msg)| {
+                let cell = cell.split_once('!').map(|x| x.1.to_string()).unwrap_or(cell);
+                ChartError::Format(Location::cell(path, &sh.name, &cell), msg)
+            })?;
+            reports.push(ConfigReport {
+                name: name.clone(),
+                file: file_name.clone(),
+                sheet: sh.name.clone(),
+                range: g.range(),
+                transposed: g.transposed,
+                boom_lengths: c.boom_lengths_m.len(),
+                radii: c.radii_m.len(),
+                permitted_cells: c.cells.iter().filter(|x| x.is_some()).count(),
+                units,
+                title: g.title.clone(),
+                warnings,
+            });
+            configs.push(c);
+        }
+    }
+    if configs.is_empty() {
+        return Err(ChartError::Format(
+            Location::file(path),
+            "no load-chart grid found: expected boom lengths across a row and radii down the column left of them (or describe the grid with [[charts.table]])".into(),
+        ));
+    }
+    Ok((configs, reports))
+}
+
+/// A lift as the chart sees it, for `lifts.json`.
+#[derive(Debug, Clone, Serialize)]
+pub struct LiftReport {
+    pub id: String,
+    pub chart_config: String,
+    pub gross_kg: f64,
+    pub capacity_reduction_pct: f64,
+    pub pick: Option<CapacityCheck>,
+    pub set: Option<CapacityCheck>,
+    pub pick_error: Option<String>,
+    pub set_error: Option<String>,
+    pub limits: ChartLimits,
+    /// The same intervals in degrees of luff (luffing) or metres of trolley (tower).
+    pub intervals_display: Vec<(f64, f64)>,
+    pub max_utilisation_pct: f64,
+    pub critical: bool,
+    pub critical_pct: f64,
+}
+
+/// Radial resolution of the chart limits: 0.05 degrees of luff, or 5 cm of trolley.
+pub fn limit_step(task: &LiftTask) -> f64 {
+    if task.crane.model.is_tower() { 0.05 } else { 0.05f64.to_radians() }
+}
+
+pub fn lift_report(task: &LiftTask, table: &CapacityTable) -> Result<LiftReport> {
+    let cfg = table.config(&task.chart_config).map_err(|e| ChartError::Lift(task.id.clone(), e.to_string()))?;
+    let pick = task.check_capacity(cfg, task.pick.radial);
+    let set = task.check_capacity(cfg, task.set.radial);
+    let limits = task.chart_limits(cfg, limit_step(task));
+    let tower = task.crane.model.is_tower();
+    let disp = |x: f64| if tower { x } else { x.to_degrees() };
+    let utils: Vec<f64> = [&pick, &set].iter().filter_map(|r| r.as_ref().ok().map(|c| c.utilisation_pct)).collect();
+    let max_u = utils.iter().copied().fold(0.0, f64::max);
+    Ok(LiftReport {
+        id: task.id.clone(),
+        chart_config: task.chart_config.clone(),
+        gross_kg: task.gross_kg(),
+        capacity_reduction_pct: task.capacity_reduction_pct,
+        pick_error: pick.as_ref().err().map(|e| e.to_string()),
+        set_error: set.as_ref().err().map(|e| e.to_string()),
+        pick: pick.ok(),
+        set: set.ok(),
+        intervals_display: limits.intervals.iter().map(|(a, b)| (disp(*a), disp(*b))).collect(),
+        limits,
+        max_utilisation_pct: max_u,
+        critical: max_u > task.critical_pct,
+        critical_pct: task.critical_pct,
+    })
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct Summary {
+    pub files: Vec<String>,
+    pub configs: Vec<ConfigReport>,
+    pub rows: usize,
+    pub lifts: Vec<LiftReport>,
+}
+
+impl Summary {
+    pub fn lines(&self) -> Vec<String> {
+        let mut v: Vec<String> = self
+            .configs
+            .iter()
+            .map(|c| {
+                format!(
+                    "'{}': {} booms x {} radii from {} [{}!{}] ({})",
+                    c.name,
+                    c.boom_lengths,
+                    c.radii,
+                    c.file,
+                    c.sheet,
+                    c.range,
+                    c.units.found.join(", ")
+                )
+            })
+            .collect();
+        for c in &self.configs {
+            v.extend(c.warnings.iter().map(|w| format!("warning: {w}")));
+        }
+        for l in &self.lifts {
+            let pick = l
+                .pick
+                .as_ref()
+                .map(|c| format!("{:.0} % at {:.1} m", c.utilisation_pct, c.radius_m))
+                .unwrap_or_else(|| format!("NOT PERMITTED ({})", l.pick_error.clone().unwrap_or_default()));
+            let set = l
+                .set
+                .as_ref()
+                .map(|c| format!("{:.0} % at {:.1} m", c.utilisation_pct, c.radius_m))
+                .unwrap_or_else(|| format!("NOT PERMITTED ({})", l.set_error.clone().unwrap_or_default()));
+            v.push(format!(
+                "lift {}: gross {:.2} t, pick {pick}, set {set}{}",
+                l.id,
+                l.gross_kg / 1000.0,
+                if l.critical { " - CRITICAL LIFT" } else { "" }
+            ));
+        }
+        v
+    }
+}
+
+/// Runs the stage: reads `inputs`, checks `lifts` against the charts, writes into `out_dir`.
+pub fn run(inputs: &[PathBuf], s: &Settings, lifts: &[LiftTask], out_dir: &Path) -> Result<Summary> {
+    let mut table = CapacityTable::default();
+    let mut reports = Vec::new();
+    for p in inputs {
+        let (configs, reps) = read_chart(p, s)?;
+        for c in configs {
+            if table.configs.iter().any(|o| o.name == c.name) {
+                return Err(ChartError::Format(
+                    Location::file(p),
+                    format!(
+                        "configuration '{}' is defined twice; rename a sheet or use [[charts.table]] names",
+                        c.name
+                    ),
+                ));
+            }
+            table.configs.push(c);
+        }
+        reports.extend(reps);
+    }
+    for m in &s.table {
+        if !inputs.iter().any(|p| p.file_name().is_some_and(|n| n.to_string_lossy() == m.file)) {
+            return Err(ChartError::Settings(format!(
+                "table '{}' names file '{}', which is not in the charts folder",
+                m.config, m.file
+            )));
+        }
+    }
+    let lift_reports = lifts.iter().map(|t| lift_report(t, &table)).collect::<Result<Vec<_>>>()?;
+    std::fs::create_dir_all(out_dir).map_err(|e| ChartError::Io(Location::file(out_dir), e))?;
+    table
+        .write_csv(&out_dir.join("capacity.csv"))
+        .map_err(|e| ChartError::Io(Location::file(out_dir.join("capacity.csv")), e))?;
+    let summary = Summary {
+        files: inputs.iter().map(|p| p.display().to_string()).collect(),
+        rows: table.rows().len(),
+        configs: reports,
+        lifts: lift_reports,
+    };
+    let write = |name: &str, v: serde_json::Value| -> Result<()> {
+        let p = out_dir.join(name);
+        liftplan_core::artifact::write_atomic(&p, serde_json::to_string_pretty(&v).unwrap_or_default().as_bytes())
+            .map_err(|e| ChartError::Io(Location::file(&p), e))
+    };
+    write("chart.json", serde_json::json!({ "files": summary.files, "configs": summary.configs }))?;
+    write("lifts.json", serde_json::json!({ "lifts": summary.lifts }))?;
+    Ok(summary)
+}
+
+/// `liftplan inspect` of a chart workbook.
+pub fn inspect(path: &Path) -> Result<serde_json::Value> {
+    let (configs, reports) = read_chart(path, &Settings::default())?;
+    Ok(serde_json::json!({
+        "kind": "chart",
+        "format": path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase(),
+        "file": path.display().to_string(),
+        "configs": reports.iter().zip(&configs).map(|(r, c)| serde_json::json!({
+            "name": r.name,
+            "sheet": r.sheet,
+            "range": r.range,
+            "booms": r.boom_lengths,
+            "radii": r.radii,
+            "boom_lengths_m": c.boom_lengths_m,
+            "radius_range_m": [c.radii_m.first(), c.radii_m.last()],
+            "units": r.units,
+            "warnings": r.warnings,
+        })).collect::<Vec<_>>(),
+    }))
+}

@@ -1,0 +1,139 @@
+//! Workbooks (xlsx, xlsm, xlsb, xls, ods) read into sparse sheets of numbers and
+//! text, through `calamine`.
+//!
+//! xlsx and xlsb sheets are streamed cell by cell and capped at
+//! [`MAX_CELLS`], so a sheet that declares a huge used range cannot drive an
+//! allocation; xls and ods are read through calamine's dense ranges.
+
+use crate::error::{ChartError, Result};
+use calamine::{Data, DataRef, Reader};
+use liftplan_core::Location;
+use std::collections::BTreeMap;
+use std::path::Path;
+
+pub const MAX_CELLS: usize = 2_000_000;
+
+#[derive(Debug, Clone, PartialEq)]
+pub enum Val {
+    Num(f64),
+    Text(String),
+}
+
+#[derive(Debug, Clone, Default)]
+pub struct Sheet {
+    pub name: String,
+    /// (row, column), 0-based.
+    pub cells: BTreeMap<(u32, u32), Val>,
+}
+
+impl Sheet {
+    pub fn get(&self, r: u32, c: u32) -> Option<&Val> {
+        self.cells.get(&(r, c))
+    }
+
+    pub fn num(&self, r: u32, c: u32) -> Option<f64> {
+        match self.get(r, c) {
+            Some(Val::Num(v)) => Some(*v),
+            _ => None,
+        }
+    }
+
+    pub fn text(&self, r: u32, c: u32) -> Option<&str> {
+        match self.get(r, c) {
+            Some(Val::Text(t)) => Some(t.as_str()),
+            _ => None,
+        }
+    }
+
+    /// All text in the rectangle, joined with spaces (for unit and label search).
+    pub fn text_in(&self, r0: u32, r1: u32, c0: u32, c1: u32) -> String {
+        let mut out = String::new();
+        for ((r, c), v) in self.cells.range((r0, 0)..=(r1, u32::MAX)) {
+            if *c >= c0 && *c <= c1 {
+                if let Val::Text(t) = v {
+                    out.push_str(t);
+                    out.push(' ');
+                }
+                let _ = r;
+            }
+        }
+        out
+    }
+}
+
+fn from_data(d: &Data) -> Option<Val> {
+    match d {
+        Data::Int(i) => Some(Val::Num(*i as f64)),
+        Data::Float(f) => Some(Val::Num(*f)),
+        Data::String(s) if !s.trim().is_empty() => Some(Val::Text(s.clone())),
+        Data::Bool(_)
+        | Data::DateTime(_)
+        | Data::DateTimeIso(_)
+        | Data::DurationIso(_)
+        | Data::Error(_)
+        | Data::String(_)
+        | Data::Empty => None,
+    }
+}
+
+fn from_ref(d: &DataRef) -> Option<Val> {
+    match d {
+        DataRef::Int(i) => Some(Val::Num(*i as f64)),
+        DataRef::Float(f) => Some(Val::Num(*f)),
+        DataRef::String(s) if !s.trim().is_empty() => Some(Val::Text(s.clone())),
+        DataRef::SharedString(s) if !s.trim().is_empty() => Some(Val::Text(s.to_string())),
+        _ => None,
+    }
+}
+
+/// Reads every sheet of a workbook.
+pub fn read_workbook(path: &Path) -> Result<Vec<Sheet>> {
+    let bad = |msg: String| ChartError::Format(Location::file(path), msg);
+    let mut wb = calamine::open_workbook_auto(path).map_err(|e| bad(format!("cannot open the workbook: {e}")))?;
+    let names = wb.sheet_names().to_vec();
+    let mut out = Vec::new();
+    for name in names {
+        let mut sheet = Sheet { name: name.clone(), cells: BTreeMap::new() };
+        let too_many = || bad(format!("sheet '{name}' has more than {MAX_CELLS} cells; a load chart never does"));
+        match &mut wb {
+            calamine::Sheets::Xlsx(x) => {
+                let mut r = x.worksheet_cells_reader(&name).map_err(|e| bad(format!("sheet '{name}': {e}")))?;
+                while let Some(cell) = r.next_cell().map_err(|e| bad(format!("sheet '{name}': {e}")))? {
+                    if let Some(v) = from_ref(cell.get_value()) {
+                        sheet.cells.insert(cell.get_position(), v);
+                        if sheet.cells.len() > MAX_CELLS {
+                            return Err(too_many());
+                        }
+                    }
+                }
+            }
+            calamine::Sheets::Xlsb(x) => {
+                let mut r = x.worksheet_cells_reader(&name).map_err(|e| bad(format!("sheet '{name}': {e}")))?;
+                while let Some(cell) = r.next_cell().map_err(|e| bad(format!("sheet '{name}': {e}")))? {
+                    if let Some(v) = from_ref(cell.get_value()) {
+                        sheet.cells.insert(cell.get_position(), v);
+                        if sheet.cells.len() > MAX_CELLS {
+                            return Err(too_many());
+                        }
+                    }
+                }
+            }
+            other => {
+                let range = other.worksheet_range(&name).map_err(|e| bad(format!("sheet '{name}': {e}")))?;
+                let (r0, c0) = range.start().unwrap_or((0, 0));
+                for (r, row) in range.rows().enumerate() {
+                    for (c, d) in row.iter().enumerate() {
+                        if let Some(v) = from_data(d) {
+                            sheet.cells.insert((r0 + r as u32, c0 + c as u32), v);
+                            if sheet.cells.len() > MAX_CELLS {
+                                return Err(too_many());
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        out.push(sheet);
+    }
+    Ok(out)
+}

@@ -1,0 +1,257 @@
+//! Load charts in real workbook files: layouts, units, typos, refusals.
+
+use liftplan_charts::{Settings, TableMapping, read_chart};
+use liftplan_core::units::{KG_PER_LB, M_PER_FT};
+use rust_xlsxwriter::Workbook;
+use std::path::Path;
+
+#[test]
+fn demo_chart_has_two_configurations_with_cells() {
+    let d = tempfile::tempdir().unwrap();
+    let p = d.path().join("ac700.xlsx");
+    liftplan_fixtures::chart::write_demo_chart(&p).unwrap();
+    let (configs, reports) = read_chart(&p, &Settings::default()).unwrap();
+    assert_eq!(configs.len(), 2);
+    assert_eq!(configs[0].name, "Main boom 360");
+    assert_eq!(configs[0].boom_lengths_m, liftplan_fixtures::chart::DEMO_BOOMS_M.to_vec());
+    assert_eq!(configs[0].radii_m, liftplan_fixtures::chart::demo_radii_m());
+    assert!(reports[0].warnings.is_empty(), "{:?}", reports[0].warnings);
+    assert_eq!(reports[0].units.found, vec!["capacity in t", "radius in m"]);
+    // Between boom lengths and radii: the next longer boom and next larger radius.
+    let c = configs[0].lookup(40.0, 29.0).unwrap();
+    let want = liftplan_fixtures::chart::demo_capacity_t(30.0, 41.8, 1.0).unwrap();
+    assert!((c.capacity_kg - want * 1000.0).abs() < 1e-6, "{c:?} vs {want}");
+    assert_eq!((c.boom_m, c.radius_m), (41.8, 30.0));
+    assert!(c.cell.starts_with("ac700.xlsx [Main boom 360!"), "{}", c.cell);
+    // Beyond the last row: not permitted.
+    assert!(configs[0].lookup(40.0, 57.0).is_err());
+}
+
+/// The same physical chart in feet and pounds.
+fn write_grid(
+    path: &Path,
+    header: &str,
+    radius_label: &str,
+    booms: &[f64],
+    radii: &[f64],
+    value: impl Fn(f64, f64) -> Option<String>,
+    transposed: bool,
+) {
+    let mut wb = Workbook::new();
+    let ws = wb.add_worksheet().set_name("Chart").unwrap();
+    ws.write_string(0, 0, header).unwrap();
+    if transposed {
+        ws.write_string(2, 0, "Boom length").unwrap();
+        ws.write_string(2, 1, radius_label).unwrap();
+        for (j, r) in radii.iter().enumerate() {
+            ws.write_number(3, 1 + j as u16, *r).unwrap();
+        }
+        for (i, b) in booms.iter().enumerate() {
+            ws.write_number(4 + i as u32, 0, *b).unwrap();
+            for (j, r) in radii.iter().enumerate() {
+                match value(*r, *b) {
+                    Some(v) => ws.write_string(4 + i as u32, 1 + j as u16, v).unwrap(),
+                    None => ws.write_string(4 + i as u32, 1 + j as u16, "-").unwrap(),
+                };
+            }
+        }
+    } else {
+        ws.write_string(2, 0, radius_label).unwrap();
+        ws.write_string(2, 1, "Boom length").unwrap();
+        for (j, b) in booms.iter().enumerate() {
+            ws.write_number(3, 1 + j as u16, *b).unwrap();
+        }
+        for (i, r) in radii.iter().enumerate() {
+            ws.write_number(4 + i as u32, 0, *r).unwrap();
+            for (j, b) in booms.iter().enumerate() {
+                match value(*r, *b) {
+                    Some(v) => ws.write_string(4 + i as u32, 1 + j as u16, v).unwrap(),
+                    None => ws.write_string(4 + i as u32, 1 + j as u16, "").unwrap(),
+                };
+            }
+        }
+    }
+    wb.save(path).unwrap();
+}
+
+fn cap_t(r_m: f64, b_m: f64) -> Option<f64> {
+    (r_m < b_m - 2.0).then(|| 400.0 / (r_m + 2.0) * (30.0 / b_m))
+}
+
+#[test]
+fn feet_and_pounds_give_the_same_table() {
+    let d = tempfile::tempdir().unwrap();
+    let booms_m = [20.0, 30.0, 40.0];
+    let radii_m = [4.0, 6.0, 10.0, 16.0, 24.0];
+    let metric = d.path().join("metric.xlsx");
+    write_grid(
+        &metric,
+        "Capacities in t",
+        "Radius (m)",
+        &booms_m,
+        &radii_m,
+        |r, b| cap_t(r, b).map(|c| format!("{c}")),
+        false,
+    );
+    let imperial = d.path().join("imperial.xlsx");
+    let booms_ft: Vec<f64> = booms_m.iter().map(|b| b / M_PER_FT).collect();
+    let radii_ft: Vec<f64> = radii_m.iter().map(|r| r / M_PER_FT).collect();
+    write_grid(
+        &imperial,
+        "Capacities in lbs",
+        "Radius (ft)",
+        &booms_ft,
+        &radii_ft,
+        |r, b| cap_t(r * M_PER_FT, b * M_PER_FT).map(|c| format!("{}", c * 1000.0 / KG_PER_LB)),
+        false,
+    );
+    let (m, _) = read_chart(&metric, &Settings::default()).unwrap();
+    let (i, rep) = read_chart(&imperial, &Settings::default()).unwrap();
+    assert_eq!(rep[0].units.found, vec!["capacity in lb", "radius in ft"]);
+    assert_eq!(m[0].radii_m.len(), i[0].radii_m.len());
+    for (a, b) in m[0].radii_m.iter().zip(&i[0].radii_m) {
+        assert!((a - b).abs() < 1e-9);
+    }
+    for (a, b) in m[0].cells.iter().zip(&i[0].cells) {
+        match (a, b) {
+            (Some(a), Some(b)) => assert!(
+                (a.capacity_kg - b.capacity_kg).abs() < 1e-6 * a.capacity_kg,
+                "{} vs {}",
+                a.capacity_kg,
+                b.capacity_kg
+            ),
+            (None, None) => {}
+            other => panic!("{other:?}"),
+        }
+    }
+}
+
+#[test]
+fn transposed_layout_is_recognised() {
+    let d = tempfile::tempdir().unwrap();
+    let p = d.path().join("t.xlsx");
+    write_grid(
+        &p,
+        "Capacities in t",
+        "Radius (m)",
+        &[20.0, 30.0],
+        &[4.0, 6.0, 10.0],
+        |r, b| cap_t(r, b).map(|c| format!("{c}")),
+        true,
+    );
+    let (c, rep) = read_chart(&p, &Settings::default()).unwrap();
+    assert!(rep[0].transposed);
+    assert_eq!(c[0].boom_lengths_m, vec![20.0, 30.0]);
+    assert_eq!(c[0].radii_m, vec![4.0, 6.0, 10.0]);
+    assert!((c[0].lookup(30.0, 5.0).unwrap().capacity_kg - cap_t(6.0, 30.0).unwrap() * 1000.0).abs() < 1e-6);
+}
+
+#[test]
+fn bad_cells_are_refused_with_sheet_and_cell() {
+    let d = tempfile::tempdir().unwrap();
+    let p = d.path().join("bad.xlsx");
+    write_grid(
+        &p,
+        "Capacities in t",
+        "Radius (m)",
+        &[20.0, 30.0],
+        &[4.0, 6.0, 10.0],
+        |r, b| Some(if (r, b) == (6.0, 30.0) { "heavy".into() } else { format!("{}", cap_t(r, b)?) }),
+        false,
+    );
+    let e = read_chart(&p, &Settings::default()).unwrap_err().to_string();
+    assert!(e.contains("bad.xlsx [Chart!C6]") && e.contains("heavy"), "{e}");
+
+    let p = d.path().join("rise.xlsx");
+    write_grid(
+        &p,
+        "Capacities in t",
+        "Radius (m)",
+        &[20.0, 30.0],
+        &[4.0, 6.0, 10.0],
+        |r, b| Some(if (r, b) == (10.0, 20.0) { "99".into() } else { format!("{}", cap_t(r, b)?) }),
+        false,
+    );
+    let e = read_chart(&p, &Settings::default()).unwrap_err().to_string();
+    assert!(e.contains("[Chart!B7]") && e.contains("rises with radius"), "{e}");
+
+    let p = d.path().join("typo.xlsx");
+    write_grid(
+        &p,
+        "Capacities in t",
+        "Radius (m)",
+        &[20.0, 30.0],
+        &[4.0, 6.0, 10.0],
+        |r, b| {
+            let c = cap_t(r, b)?;
+            Some(if (r, b) == (6.0, 20.0) {
+                format!("{c:.1}").replace('.', ",")
+            } else if (r, b) == (4.0, 30.0) {
+                format!("{c:.1}t")
+            } else {
+                format!("{c:.1}")
+            })
+        },
+        false,
+    );
+    let (c, rep) = read_chart(&p, &Settings::default()).unwrap();
+    assert!(rep[0].warnings.iter().any(|w| w.contains("Chart!B6")), "{:?}", rep[0].warnings);
+    assert!(
+        (c[0].lookup(20.0, 6.0).unwrap().capacity_kg - (cap_t(6.0, 20.0).unwrap() * 10.0).round() * 100.0).abs() < 1e-6
+    );
+
+    let p = d.path().join("kg.xlsx");
+    write_grid(
+        &p,
+        "Capacities in t",
+        "Radius (m)",
+        &[20.0, 30.0],
+        &[4.0, 6.0, 10.0],
+        |r, b| {
+            let c = cap_t(r, b)?;
+            Some(if (r, b) == (6.0, 30.0) { format!("{} kg", c * 1000.0) } else { format!("{c}") })
+        },
+        false,
+    );
+    let e = read_chart(&p, &Settings::default()).unwrap_err().to_string();
+    assert!(e.contains("[Chart!C6]") && e.contains("kg"), "{e}");
+}
+
+#[test]
+fn explicit_mapping_wins() {
+    let d = tempfile::tempdir().unwrap();
+    let p = d.path().join("odd.xlsx");
+    // No labels or units at all: detection would assume; the mapping says ft/kips.
+    let mut wb = Workbook::new();
+    let ws = wb.add_worksheet().set_name("S").unwrap();
+    for (j, b) in [50.0, 80.0].iter().enumerate() {
+        ws.write_number(1, 3 + j as u16, *b).unwrap();
+    }
+    for (i, r) in [10.0, 20.0, 30.0].iter().enumerate() {
+        ws.write_number(2 + i as u32, 2, *r).unwrap();
+        for j in 0..2 {
+            ws.write_number(2 + i as u32, 3 + j, 100.0 - 20.0 * i as f64 - 10.0 * j as f64).unwrap();
+        }
+    }
+    wb.save(&p).unwrap();
+    let s = Settings {
+        table: vec![TableMapping {
+            file: "odd.xlsx".into(),
+            sheet: "S".into(),
+            config: "mapped".into(),
+            across: "D2:E2".into(),
+            down: "C3:C5".into(),
+            transposed: false,
+            length_unit: Some(liftplan_core::units::LengthUnit::Ft),
+            capacity_unit: Some(liftplan_core::units::MassUnit::Kips),
+        }],
+    };
+    let (c, _) = read_chart(&p, &s).unwrap();
+    assert_eq!(c[0].name, "mapped");
+    assert!((c[0].radii_m[0] - 10.0 * M_PER_FT).abs() < 1e-12);
+    assert!(
+        (c[0].lookup(50.0 * M_PER_FT, 10.0 * M_PER_FT).unwrap().capacity_kg - 100.0 * 1000.0 * KG_PER_LB).abs() < 1e-6
+    );
+    let (_, auto) = read_chart(&p, &Settings::default()).unwrap();
+    assert!(!auto[0].warnings.is_empty(), "detection must say it assumed units");
+}
