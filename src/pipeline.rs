@@ -68,7 +68,13 @@ pub struct StageDef {
 }
 
 pub fn stages() -> Vec<StageDef> {
-    vec![crate::stages::scans(), crate::stages::plant(), crate::stages::charts()]
+    vec![
+        crate::stages::scans(),
+        crate::stages::plant(),
+        crate::stages::charts(),
+        crate::stages::depthmap(),
+        crate::stages::plan(),
+    ]
 }
 
 pub fn stage_names() -> Vec<&'static str> {

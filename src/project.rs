@@ -107,6 +107,12 @@ pub struct RawProject {
     #[serde(default)]
     pub charts: liftplan_charts::Settings,
     #[serde(default)]
+    pub depthmap: liftplan_depthmap::Settings,
+    #[serde(default)]
+    pub plan: liftplan_plan::Settings,
+    #[serde(default)]
+    pub docs: liftplan_docs::Settings,
+    #[serde(default)]
     pub gpu: GpuSettings,
     #[serde(default)]
     pub watch: WatchSettings,
@@ -177,6 +183,8 @@ impl Project {
         }
         self.raw.scans.check().map_err(|m| err("[scans]", format!("[scans] {m}")))?;
         self.raw.plant.check().map_err(|m| err("[plant]", format!("[plant] {m}")))?;
+        self.raw.depthmap.check().map_err(|m| err("[depthmap]", format!("[depthmap] {m}")))?;
+        self.raw.plan.check().map_err(|m| err("[plan]", m))?;
         let mut ids = std::collections::HashSet::new();
         for l in &self.raw.lift {
             if !ids.insert(l.id.clone()) {
@@ -324,6 +332,52 @@ rotate_z_deg = 0.0
 # down = "B7:B45"           # radii (boom lengths if transposed = true)
 # length_unit = "m"         # m | ft
 # capacity_unit = "t"       # t | kg | lb | kips
+
+[depthmap]
+cell_m = 0.25             # plan cell of the multi-level depth map, m
+mode = "multi"            # multi | single (2.5D: everything under a cell's top is solid)
+point_radius_m = 0.05     # space each scan point occupies, m
+merge_gap_m = 0.1         # surfaces of one object closer than this merge, m
+extent = []               # [xmin, ymin, xmax, ymax]; empty: all inputs + margin_m
+margin_m = 10.0
+
+[plan]
+planner = "mspga"         # mspga | ali-ga | rrt-connect | prm
+landing_margin_m = 0.5    # landing zones: load footprint at pick/set grown by this, m
+landing_clearance_m = 0.2 # clearance of hook and load over a landing zone, m
+support_m = 0.05          # obstacles this close under the load at pick/set are its supports, m
+validator_sample_m = 0.05 # validator: largest crane-point movement between samples, m
+
+[plan.ga]                 # Cai 2016, Table 4.10
+population = 100
+string_length = 6
+crossover_rate = 0.15
+mutation_rate = 0.75
+small_scale = 0.016
+large_scale = 0.16
+max_generations = 400
+stall_generations = 120
+lambda1 = 1000.0
+lambda2 = 10.0
+swing_margin_deg = 20.0
+
+[plan.ga.weights]         # motion cost per unit (Cai Table 4.13)
+swing_per_deg = 1.0
+luff_per_deg = 1.5
+hoist_per_cm = 0.06
+rotate_per_deg = 1.0
+
+[plan.cspace]
+swing_step_deg = 0.5
+luff_step_deg = 0.5
+trolley_step_m = 0.25
+strategy = "hybrid"       # hybrid | online | full
+sample_m = 0.3            # online checks: largest hook/load movement per exactly checked piece, m
+full_hoist_step_m = 0.5
+
+[docs]
+paper = "a4"              # a4 | letter
+step_pictures = true      # one page per step with its picture
 
 [gpu]
 use = "auto"              # auto | never | require

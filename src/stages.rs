@@ -112,3 +112,81 @@ fn run_charts(ctx: &Ctx) -> Result<Produced> {
         lines: summary.lines(),
     })
 }
+
+/// The lifts' load boxes at pick, cut out of the site cloud (the scanned load
+/// must not block its own lift). Grown by 0.3 m for scan noise and rigging.
+fn exclusions(p: &Project) -> Vec<liftplan_core::obb::Obb> {
+    p.lifts().map(|l| liftplan_plan::load_exclusions(&l, 0.3)).unwrap_or_default()
+}
+
+pub fn depthmap() -> StageDef {
+    StageDef {
+        name: liftplan_depthmap::NAME,
+        version: liftplan_depthmap::VERSION,
+        about: "rasterise the site cloud and the plant mesh into a multi-level depth map",
+        inputs: |_| Ok(vec![]),
+        // The load boxes cut out of the cloud depend on the lifts' geometry (not their mass).
+        settings: |p: &Project| {
+            let cut: Vec<_> = exclusions(p)
+                .iter()
+                .map(|b| (b.center.coords.as_slice().to_vec(), b.half.as_slice().to_vec(), b.axes.as_slice().to_vec()))
+                .collect();
+            serde_json::json!({ "depthmap": p.raw.depthmap, "exclude": cut })
+        },
+        reads: &[("scans", "site.laz"), ("plant", "plant.mesh")],
+        applicable: |_, _, up| up.contains_key("scans") || up.contains_key("plant"),
+        run: run_depthmap,
+    }
+}
+
+fn run_depthmap(ctx: &Ctx) -> Result<Produced> {
+    let cloud = ctx.upstream_file("scans", "site.laz");
+    let mesh = ctx.upstream_file("plant", "plant.mesh");
+    let summary = liftplan_depthmap::run(
+        cloud.as_deref(),
+        mesh.as_deref(),
+        &exclusions(ctx.project),
+        &ctx.project.raw.depthmap,
+        ctx.out,
+    )?;
+    Ok(Produced {
+        outputs: vec!["site.mdm".into(), "depthmap.png".into(), "depthmap.json".into()],
+        summary: serde_json::to_value(&summary)?,
+        lines: summary.lines(),
+    })
+}
+
+pub fn plan() -> StageDef {
+    StageDef {
+        name: liftplan_plan::NAME,
+        version: liftplan_plan::VERSION,
+        about: "plan each lift (MSPGA on the hybrid C-space) and validate it independently",
+        inputs: |p: &Project| Ok(p.crane_files()),
+        settings: |p: &Project| serde_json::json!({ "plan": p.raw.plan, "lifts": p.raw.lift, "seed": p.raw.project.seed }),
+        reads: &[("depthmap", "site.mdm"), ("scans", "site.laz"), ("plant", "plant.mesh"), ("charts", "capacity.csv")],
+        applicable: |p, _, up| !p.raw.lift.is_empty() && up.contains_key("depthmap"),
+        run: run_plan,
+    }
+}
+
+fn run_plan(ctx: &Ctx) -> Result<Produced> {
+    let p = ctx.project;
+    let tasks = p.lifts()?;
+    let map = ctx.upstream_file("depthmap", "site.mdm").ok_or_else(|| anyhow::anyhow!("no depth map"))?;
+    let summary = liftplan_plan::run(
+        &tasks,
+        &map,
+        ctx.upstream_file("plant", "plant.mesh").as_deref(),
+        ctx.upstream_file("scans", "site.laz").as_deref(),
+        ctx.upstream_file("charts", "capacity.csv").as_deref(),
+        &p.raw.plan,
+        p.raw.project.seed,
+        ctx.out,
+    )?;
+    let mut outputs = vec!["plan.json".to_string()];
+    for t in &tasks {
+        outputs.push(format!("{}.steps.csv", t.id));
+        outputs.push(format!("{}.cspace.png", t.id));
+    }
+    Ok(Produced { outputs, summary: serde_json::to_value(&summary)?, lines: summary.lines() })
+}

@@ -1,0 +1,772 @@
+//! # liftplan-cspace: stage 4b, the hybrid configuration space
+//!
+//! Cai (2016, §4.4) observes that a crane's body and boom depend only on swing
+//! and the radial joint (luff angle or trolley radius), so their collisions can
+//! be precomputed once on a 2D grid, while the hanging parts (rope, hook block,
+//! load) depend on all four joints and are checked online. This crate builds that
+//! grid ([`CSpace`]) and the [`Checker`] every planner in `liftplan-plan` asks.
+//!
+//! Every table entry is *conservative for its whole cell*: a part is tested at
+//! the cell centre, grown by the clearance plus a bound on how far any of its
+//! points can move within the cell (rotation by half a swing step moves a point
+//! at radius R by at most R·Δs/2, and so on). A cell marked free is free for
+//! every configuration inside it; a configuration in a cell marked blocked may
+//! still be free, which only costs the planner a little room.
+//!
+//! Per cell the grid also holds the longest rope (`max_hoist`) at which a
+//! vertical cylinder around the hook line, wide enough for the load at any yaw
+//! plus the clearance, is clear of the depth map. Most hoist and rotation checks
+//! are then a single comparison; the rest are exact box queries against the
+//! depth map, sampled so finely that consecutive samples' grown boxes cover the
+//! swept volume (bounded-displacement sampling, see [`Checker::motion`]).
+//!
+//! Three strategies are built for the benchmark of issue 7: `hybrid` (the
+//! above), `online` (no tables: every question is answered by box queries) and
+//! `full` (hybrid plus the load envelope at every rope length of a hoist grid,
+//! so that hoisting and rotation never query the map during planning).
+//!
+//! What this crate must not do: plan, or decide that a plan is safe. The
+//! validator in `liftplan-plan` re-checks every plan with its own geometry.
+
+pub mod picture;
+
+use liftplan_core::capacity::ChartConfig;
+use liftplan_core::crane::Config;
+use liftplan_core::crane::{CraneSetup, Dependence, LoadShape, PartKind};
+use liftplan_core::lift::LiftTask;
+use liftplan_core::obb::Obb;
+use liftplan_depthmap::mdm::{Interval, Mdm, OBJ_GROUND};
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+use std::f64::consts::TAU;
+
+pub const NAME: &str = "cspace";
+pub const VERSION: u32 = 1;
+
+/// How collision questions are answered (for the strategy benchmark).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum Strategy {
+    #[default]
+    Hybrid,
+    Online,
+    Full,
+}
+
+/// `[cspace]` in `liftplan.toml`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Settings {
+    /// Swing resolution (degrees).
+    pub swing_step_deg: f64,
+    /// Luff resolution of a mobile crane (degrees).
+    pub luff_step_deg: f64,
+    /// Trolley resolution of a tower crane (m).
+    pub trolley_step_m: f64,
+    pub strategy: Strategy,
+    /// Largest movement of any point of the hanging parts over one online-checked piece of a move (m).
+    pub sample_m: f64,
+    /// Rope-length resolution of the `full` strategy's hoist grid (m).
+    pub full_hoist_step_m: f64,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings {
+            swing_step_deg: 0.5,
+            luff_step_deg: 0.5,
+            trolley_step_m: 0.25,
+            strategy: Strategy::Hybrid,
+            sample_m: 0.3,
+            full_hoist_step_m: 0.5,
+        }
+    }
+}
+
+impl Settings {
+    pub fn check(&self) -> Result<(), String> {
+        let ok = |v: f64, lo: f64, hi: f64| v.is_finite() && v >= lo && v <= hi;
+        if !ok(self.swing_step_deg, 0.05, 10.0) || !ok(self.luff_step_deg, 0.05, 10.0) {
+            return Err("[cspace] swing_step_deg and luff_step_deg must be between 0.05 and 10 degrees".into());
+        }
+        if !ok(self.trolley_step_m, 0.01, 5.0)
+            || !ok(self.sample_m, 0.005, 1.0)
+            || !ok(self.full_hoist_step_m, 0.05, 10.0)
+        {
+            return Err("[cspace] trolley_step_m (0.01..5), sample_m (0.005..1) and full_hoist_step_m (0.05..10) are out of range".into());
+        }
+        Ok(())
+    }
+}
+
+/// Why a configuration or a move is not allowed.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Blocked {
+    /// What is wrong: "collision", "clearance", "capacity", "internal clearance", "joint limit".
+    pub reason: String,
+    /// The crane part concerned (for collisions).
+    pub part: Option<PartKind>,
+    /// The obstacle (object name from the depth map) for collisions.
+    pub object: Option<String>,
+    pub at: Config,
+}
+
+impl std::fmt::Display for Blocked {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let c = &self.at;
+        write!(f, "{}", self.reason)?;
+        if let Some(p) = self.part {
+            write!(f, ": {}", p.name())?;
+        }
+        if let Some(o) = &self.object {
+            write!(f, " meets {o}")?;
+        }
+        write!(
+            f,
+            " at swing {:.1}°, radial {:.3}, hoist {:.2} m, load yaw {:.1}°",
+            c.swing_rad.to_degrees(),
+            c.radial,
+            c.hoist_m,
+            c.load_yaw_rad.to_degrees()
+        )
+    }
+}
+
+/// A blocked table entry: which part and which object.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct CellHit {
+    pub part: PartKind,
+    pub obj: u32,
+}
+
+/// The precomputed tables.
+#[derive(Debug, Clone)]
+pub struct CSpace {
+    pub strategy: Strategy,
+    /// Swing columns over a full turn (rad, relative to the crane heading).
+    pub ns: u32,
+    pub swing_step: f64,
+    /// Radial rows from `radial0` in steps of `radial_step` (rad or m).
+    pub nr: u32,
+    pub radial0: f64,
+    pub radial_step: f64,
+    /// Swing-only parts, per swing column (empty for `online`).
+    pub swing_hits: Vec<Option<CellHit>>,
+    /// Boom / trolley, per cell `k * ns + i` (empty for `online`).
+    pub cell_hits: Vec<Option<CellHit>>,
+    /// Longest clear rope per cell (m), `-inf` where none (empty for `online`).
+    pub max_hoist: Vec<f32>,
+    /// `full` only: per cell, bit b set when the load envelope collides at rope
+    /// lengths in [hoist0 + b·step, hoist0 + (b+1)·step].
+    pub hoist_bits: Vec<u64>,
+    pub hoist0: f64,
+    pub hoist_step: f64,
+    /// Chart capacity (kg, before the reduction) at the row's largest radius;
+    /// `None` where the chart does not permit a lift.
+    pub row_capacity_kg: Vec<Option<f64>>,
+    /// Chart cell of that capacity, for the report.
+    pub row_chart_cell: Vec<String>,
+    /// Shortest rope that keeps the load clear of the boom (internal clearance), per row.
+    pub row_min_hoist: Vec<f64>,
+    pub build_ms: f64,
+}
+
+/// The things a build needs.
+pub struct Problem<'a> {
+    pub task: &'a LiftTask,
+    pub chart: Option<&'a ChartConfig>,
+    pub map: &'a Mdm,
+}
+
+/// Horizontal distance of the farthest corner of a box from the slewing axis.
+fn reach(crane: &CraneSetup, b: &Obb) -> f64 {
+    let o = crane.slew_center();
+    b.corners().iter().map(|p| ((p.x - o.x).powi(2) + (p.y - o.y).powi(2)).sqrt()).fold(0.0, f64::max)
+}
+
+/// Longest distance of a box corner from a point.
+fn far_from(b: &Obb, p: &liftplan_core::frame::Point3) -> f64 {
+    b.corners().iter().map(|c| (c - p).norm()).fold(0.0, f64::max)
+}
+
+fn is_luffing(crane: &CraneSetup) -> bool {
+    !crane.model.is_tower()
+}
+
+/// Is an obstacle relevant to a part? The carrier, outriggers and mast stand on
+/// the ground, and the body's underside swings over it: the scanned ground is
+/// not an obstacle for them (the crane's set-up check covers the ground).
+fn counts_for(part: PartKind, iv: &Interval) -> bool {
+    !(iv.obj == OBJ_GROUND && matches!(part.dependence(), Dependence::Fixed | Dependence::Swing))
+}
+
+impl CSpace {
+    /// Builds the tables for a lift.
+    pub fn build(p: &Problem, s: &Settings) -> CSpace {
+        let t0 = std::time::Instant::now();
+        let task = p.task;
+        let crane = &task.crane;
+        let lim = crane.limits();
+        let swing_step = s.swing_step_deg.to_radians();
+        let ns = (TAU / swing_step).round().max(8.0) as u32;
+        let swing_step = TAU / ns as f64;
+        let radial_step = if is_luffing(crane) { s.luff_step_deg.to_radians() } else { s.trolley_step_m };
+        let nr = (((lim.radial.1 - lim.radial.0) / radial_step).ceil() as u32).max(1);
+        let mut cs = CSpace {
+            strategy: s.strategy,
+            ns,
+            swing_step,
+            nr,
+            radial0: lim.radial.0,
+            radial_step,
+            swing_hits: vec![],
+            cell_hits: vec![],
+            max_hoist: vec![],
+            hoist_bits: vec![],
+            hoist0: lim.hoist_m.0,
+            hoist_step: s.full_hoist_step_m,
+            row_capacity_kg: vec![],
+            row_chart_cell: vec![],
+            row_min_hoist: vec![],
+            build_ms: 0.0,
+        };
+        // Rows: chart capacity and internal clearance (cheap, every strategy).
+        for k in 0..nr {
+            let (a, b) = cs.row_range(k);
+            // The largest radius of the row is where the chart is most restrictive.
+            let worst = if is_luffing(crane) { a } else { b };
+            let cap = p.chart.and_then(|c| task.check_capacity(c, worst).ok());
+            cs.row_chart_cell.push(cap.as_ref().map(|c| c.capacity.cell.clone()).unwrap_or_default());
+            cs.row_capacity_kg.push(match p.chart {
+                Some(_) => cap.map(|c| c.capacity.capacity_kg),
+                None => Some(f64::INFINITY),
+            });
+            cs.row_min_hoist.push(min_hoist_for_internal_clearance(crane, &task.load, b.max(a)).max(lim.hoist_m.0));
+        }
+        if s.strategy == Strategy::Online {
+            cs.build_ms = t0.elapsed().as_secs_f64() * 1e3;
+            return cs;
+        }
+        let clearance = task.clearance_m;
+        let load = task.load;
+        let swing_parts: Vec<PartKind> =
+            crane.part_kinds().iter().copied().filter(|k| k.dependence() == Dependence::Swing).collect();
+        let radial_parts: Vec<PartKind> =
+            crane.part_kinds().iter().copied().filter(|k| k.dependence() == Dependence::SwingRadial).collect();
+        let mid_r = 0.5 * (lim.radial.0 + lim.radial.1);
+        cs.swing_hits = (0..ns)
+            .into_par_iter()
+            .map(|i| {
+                let c =
+                    Config { swing_rad: cs.swing_center(i), radial: mid_r, hoist_m: lim.hoist_m.0, load_yaw_rad: 0.0 };
+                swing_parts.iter().find_map(|&k| {
+                    let b = crane.part(k, &c, &load)?;
+                    let grow = clearance + reach(crane, &b) * swing_step / 2.0;
+                    p.map
+                        .hit_where(&b.expanded(grow), |iv| counts_for(k, iv))
+                        .map(|h| CellHit { part: k, obj: h.interval.obj })
+                })
+            })
+            .collect();
+        let cells: Vec<(Option<CellHit>, f32)> = (0..nr * ns)
+            .into_par_iter()
+            .map(|idx| {
+                let (i, k) = (idx % ns, idx / ns);
+                let c = Config {
+                    swing_rad: cs.swing_center(i),
+                    radial: cs.row_center(k),
+                    hoist_m: lim.hoist_m.0,
+                    load_yaw_rad: 0.0,
+                };
+                let hit = radial_parts.iter().find_map(|&kind| {
+                    let b = crane.part(kind, &c, &load)?;
+                    let grow = clearance + cs.cell_motion(crane, &b);
+                    p.map
+                        .hit_where(&b.expanded(grow), |iv| counts_for(kind, iv))
+                        .map(|h| CellHit { part: kind, obj: h.interval.obj })
+                });
+                (hit, cs.cell_max_hoist(p, i, k))
+            })
+            .collect();
+        cs.cell_hits = cells.iter().map(|c| c.0).collect();
+        cs.max_hoist = cells.iter().map(|c| c.1).collect();
+        if s.strategy == Strategy::Full {
+            cs.hoist_bits = cs.build_hoist_bits(p, s);
+        }
+        cs.build_ms = t0.elapsed().as_secs_f64() * 1e3;
+        cs
+    }
+
+    /// Swing value at the centre of column `i` (rad, in [0, 2π)).
+    pub fn swing_center(&self, i: u32) -> f64 {
+        (i as f64 + 0.5) * self.swing_step
+    }
+
+    pub fn row_center(&self, k: u32) -> f64 {
+        self.radial0 + (k as f64 + 0.5) * self.radial_step
+    }
+
+    pub fn row_range(&self, k: u32) -> (f64, f64) {
+        (self.radial0 + k as f64 * self.radial_step, self.radial0 + (k + 1) as f64 * self.radial_step)
+    }
+
+    /// Column of a swing value (any real angle).
+    pub fn col(&self, swing_rad: f64) -> u32 {
+        ((swing_rad.rem_euclid(TAU) / self.swing_step).floor() as u32).min(self.ns - 1)
+    }
+
+    /// Row of a radial value, `None` outside the crane's range.
+    pub fn row(&self, radial: f64) -> Option<u32> {
+        let k = ((radial - self.radial0) / self.radial_step).floor();
+        if k < -1e-9 || !k.is_finite() {
+            return None;
+        }
+        let k = k.max(0.0) as u32;
+        if k < self.nr {
+            Some(k)
+        } else if (radial - (self.radial0 + self.nr as f64 * self.radial_step)).abs() < 1e-9 {
+            Some(self.nr - 1)
+        } else {
+            None
+        }
+    }
+
+    /// Bound on how far any point of a swing+radial part moves within a cell
+    /// from its position at the cell centre.
+    fn cell_motion(&self, crane: &CraneSetup, b: &Obb) -> f64 {
+        let swing = reach(crane, b) * self.swing_step / 2.0;
+        let radial = match &crane.model.kind {
+            // Luffing rotates the boom about its pivot; every point of it is
+            // within (distance to the slewing base + pivot offset) of the pivot.
+            liftplan_core::crane::CraneKind::Luffing(l) => {
+                let far = far_from(b, &crane.slew_center()) + l.boom.pivot_x_m.hypot(l.boom.pivot_z_m);
+                far * self.radial_step / 2.0
+            }
+            liftplan_core::crane::CraneKind::Tower(_) => self.radial_step / 2.0,
+        };
+        swing + radial
+    }
+
+    /// Bound on how far the rope sheave moves within a cell (m).
+    fn sheave_motion(&self, crane: &CraneSetup, radial: f64) -> f64 {
+        let (_, r) = crane.sheave_height_and_radius(radial);
+        let swing = r * self.swing_step / 2.0;
+        let radial_m = if is_luffing(crane) {
+            crane.placement.boom_length_m * self.radial_step / 2.0
+        } else {
+            self.radial_step / 2.0
+        };
+        swing + radial_m
+    }
+
+    /// Radius of the vertical cylinder around the hook line that holds hook block
+    /// and load at any yaw.
+    fn envelope_radius(task: &LiftTask) -> f64 {
+        task.load.yaw_invariant_radius().max(task.crane.model.hook.width_m * std::f64::consts::FRAC_1_SQRT_2)
+    }
+
+    /// Sheave to load underside, less the rope (m).
+    fn hang_below_rope(task: &LiftTask) -> f64 {
+        task.crane.model.hook.height_m + task.load.rigging_height_m + task.load.size_m[2]
+    }
+
+    fn cell_max_hoist(&self, p: &Problem, i: u32, k: u32) -> f32 {
+        let task = p.task;
+        let crane = &task.crane;
+        let c = Config { swing_rad: self.swing_center(i), radial: self.row_center(k), hoist_m: 0.0, load_yaw_rad: 0.0 };
+        let sheave = crane.sheave(&c);
+        let motion = self.sheave_motion(crane, c.radial);
+        let r = Self::envelope_radius(task) + task.clearance_m + motion;
+        let z_lo = sheave.z - motion;
+        let z_hi = (sheave.z + motion) as f32;
+        let top = highest_below(p.map, sheave.x - r, sheave.x + r, sheave.y - r, sheave.y + r, z_hi);
+        if top == f32::NEG_INFINITY {
+            return f32::INFINITY;
+        }
+        (z_lo - top as f64 - task.clearance_m - Self::hang_below_rope(task)) as f32
+    }
+
+    fn build_hoist_bits(&self, p: &Problem, s: &Settings) -> Vec<u64> {
+        let task = p.task;
+        let crane = &task.crane;
+        let lim = crane.limits();
+        let nh = (((lim.hoist_m.1 - lim.hoist_m.0) / s.full_hoist_step_m).ceil() as usize).min(64);
+        (0..self.nr * self.ns)
+            .into_par_iter()
+            .map(|idx| {
+                let (i, k) = (idx % self.ns, idx / self.ns);
+                let mut bits = 0u64;
+                let c0 = Config {
+                    swing_rad: self.swing_center(i),
+                    radial: self.row_center(k),
+                    hoist_m: 0.0,
+                    load_yaw_rad: 0.0,
+                };
+                let sheave = crane.sheave(&c0);
+                let motion = self.sheave_motion(crane, c0.radial);
+                let r = Self::envelope_radius(task) + task.clearance_m + motion;
+                for b in 0..nh {
+                    let h_lo = lim.hoist_m.0 + b as f64 * s.full_hoist_step_m;
+                    let h_hi = h_lo + s.full_hoist_step_m;
+                    // Cylinder from the sheave down to the load underside at the longest rope.
+                    let bottom = sheave.z - motion - h_hi - Self::hang_below_rope(task) - task.clearance_m;
+                    let column = Obb::axis_aligned(
+                        liftplan_core::frame::Point3::new(sheave.x, sheave.y, 0.5 * (bottom + sheave.z + motion)),
+                        liftplan_core::frame::Vec3::new(r, r, 0.5 * (sheave.z + motion - bottom)),
+                    );
+                    if p.map.collides(&column) {
+                        bits |= 1 << b;
+                    }
+                    let _ = h_lo;
+                }
+                bits
+            })
+            .collect()
+    }
+}
+
+/// Highest top of intervals starting below `z_max` over a plan rectangle.
+pub fn highest_below(map: &Mdm, xa: f64, xb: f64, ya: f64, yb: f64, z_max: f32) -> f32 {
+    let fast = map.max_top_in(xa, xb, ya, yb);
+    if fast < z_max {
+        return fast;
+    }
+    let s = map.spec;
+    let mut top = f32::NEG_INFINITY;
+    for j in s.rows_between(ya, yb) {
+        for i in s.cols_between(xa, xb) {
+            for iv in map.cell(i, j) {
+                if iv.zlo < z_max {
+                    top = top.max(iv.zhi);
+                }
+            }
+        }
+    }
+    top
+}
+
+/// Shortest rope at which the load's bounding sphere stays clear of the boom
+/// (Cai eqs. 4.31-4.32): the load hangs `d` below the boom head, so its centre
+/// is `d·cos(luff)` from the boom's axis; that must exceed the sphere radius
+/// plus half the boom depth. A tower crane's jib is level above the hook: the
+/// rope limits suffice.
+pub fn min_hoist_for_internal_clearance(crane: &CraneSetup, load: &LoadShape, luff_max: f64) -> f64 {
+    match &crane.model.kind {
+        liftplan_core::crane::CraneKind::Luffing(l) => {
+            let need = load.bounding_radius() + l.boom.depth_m / 2.0;
+            let d = need / luff_max.cos().max(0.05);
+            d - crane.model.hook.height_m - load.rigging_height_m - load.size_m[2] / 2.0
+        }
+        liftplan_core::crane::CraneKind::Tower(_) => f64::NEG_INFINITY,
+    }
+}
+
+/// A crane joint, for single-joint moves.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Joint {
+    Swing,
+    Radial,
+    Hoist,
+    Rotate,
+}
+
+impl Joint {
+    pub fn index(self) -> usize {
+        match self {
+            Joint::Swing => 0,
+            Joint::Radial => 1,
+            Joint::Hoist => 2,
+            Joint::Rotate => 3,
+        }
+    }
+}
+
+/// A plan-view convex polygon over which the load may come closer to obstacles
+/// (the landing zones at pick and set, where it must meet its supports).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct LandingZone {
+    pub polygon: Vec<[f64; 2]>,
+    pub clearance_m: f64,
+}
+
+impl LandingZone {
+    /// Zone over a load box's footprint grown by `margin_m`.
+    pub fn around(load_box: &Obb, margin_m: f64, clearance_m: f64) -> LandingZone {
+        let grown = load_box.expanded(margin_m);
+        LandingZone { polygon: grown.footprint(), clearance_m }
+    }
+
+    /// Does the zone hold the whole footprint of `b`?
+    pub fn holds(&self, b: &Obb) -> bool {
+        b.footprint().iter().all(|p| inside_convex(&self.polygon, p))
+    }
+}
+
+fn inside_convex(poly: &[[f64; 2]], p: &[f64; 2]) -> bool {
+    let n = poly.len();
+    if n < 3 {
+        return false;
+    }
+    let mut sign = 0.0;
+    for k in 0..n {
+        let a = poly[k];
+        let b = poly[(k + 1) % n];
+        let cr = (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]);
+        if cr.abs() < 1e-12 {
+            continue;
+        }
+        if sign == 0.0 {
+            sign = cr.signum();
+        } else if cr.signum() != sign {
+            return false;
+        }
+    }
+    true
+}
+
+/// Counters of what the checker did (for the strategy benchmark).
+#[derive(Debug, Default)]
+pub struct Counters {
+    pub lookups: std::sync::atomic::AtomicU64,
+    pub box_queries: std::sync::atomic::AtomicU64,
+}
+
+/// The collision, clearance, capacity and internal-clearance checker the
+/// planners share.
+pub struct Checker<'a> {
+    pub cs: &'a CSpace,
+    pub map: &'a Mdm,
+    pub task: &'a LiftTask,
+    pub landing: Vec<LandingZone>,
+    pub sample_m: f64,
+    pub counters: Counters,
+}
+
+impl<'a> Checker<'a> {
+    pub fn new(cs: &'a CSpace, map: &'a Mdm, task: &'a LiftTask, landing: Vec<LandingZone>, sample_m: f64) -> Self {
+        Checker { cs, map, task, landing, sample_m, counters: Counters::default() }
+    }
+
+    fn count(&self, box_query: bool) {
+        use std::sync::atomic::Ordering::Relaxed;
+        if box_query {
+            self.counters.box_queries.fetch_add(1, Relaxed);
+        } else {
+            self.counters.lookups.fetch_add(1, Relaxed);
+        }
+    }
+
+    fn blocked(&self, reason: &str, part: Option<PartKind>, obj: Option<u32>, at: &Config) -> Blocked {
+        Blocked {
+            reason: reason.into(),
+            part,
+            object: obj.map(|o| self.map.objects.get(o as usize).cloned().unwrap_or_else(|| format!("object {o}"))),
+            at: *at,
+        }
+    }
+
+    /// Joint ranges, chart capacity and internal clearance at one configuration.
+    pub fn limits_ok(&self, c: &Config) -> Result<(), Blocked> {
+        let lim = self.task.crane.limits();
+        let Some(k) = self.cs.row(c.radial) else {
+            return Err(self.blocked("joint limit (radial)", None, None, c));
+        };
+        if !(c.hoist_m >= lim.hoist_m.0 - 1e-9 && c.hoist_m <= lim.hoist_m.1 + 1e-9) {
+            return Err(self.blocked("joint limit (rope length)", None, None, c));
+        }
+        if let Some((a, b)) = self.task.swing_range_rad
+            && !(c.swing_rad >= a - 1e-9 && c.swing_rad <= b + 1e-9)
+        {
+            return Err(self.blocked("joint limit (permitted swing range)", None, None, c));
+        }
+        self.row_ok(k, c)?;
+        if c.hoist_m < self.cs.row_min_hoist[k as usize] - 1e-9 {
+            return Err(self.blocked("internal clearance (load too close to the boom)", Some(PartKind::Load), None, c));
+        }
+        Ok(())
+    }
+
+    fn row_ok(&self, k: u32, c: &Config) -> Result<(), Blocked> {
+        match self.cs.row_capacity_kg[k as usize] {
+            Some(cap) if self.task.effective_capacity_kg(cap) >= self.task.gross_kg() => Ok(()),
+            _ => Err(self.blocked("capacity (outside the load chart or over capacity)", None, None, c)),
+        }
+    }
+
+    /// Body and boom at one configuration (tables, or box queries online).
+    fn structure_ok(&self, c: &Config) -> Result<(), Blocked> {
+        let cs = self.cs;
+        if cs.strategy != Strategy::Online {
+            self.count(false);
+            let i = cs.col(c.swing_rad);
+            let k = cs.row(c.radial).unwrap_or(0);
+            if let Some(h) = cs.swing_hits[i as usize] {
+                return Err(self.blocked("collision", Some(h.part), Some(h.obj), c));
+            }
+            if let Some(h) = cs.cell_hits[(k * cs.ns + i) as usize] {
+                return Err(self.blocked("collision", Some(h.part), Some(h.obj), c));
+            }
+            return Ok(());
+        }
+        let crane = &self.task.crane;
+        for &kind in crane.part_kinds() {
+            if matches!(kind.dependence(), Dependence::Swing | Dependence::SwingRadial) {
+                let Some(b) = crane.part(kind, c, &self.task.load) else { continue };
+                self.count(true);
+                if let Some(h) = self.map.hit_where(&b.expanded(self.task.clearance_m), |iv| counts_for(kind, iv)) {
+                    return Err(self.blocked("collision", Some(kind), Some(h.interval.obj), c));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Rope, hook block and load at one configuration, each box grown by the
+    /// clearance (less inside a landing zone) plus `grow`.
+    fn hanging_exact(&self, c: &Config, grow: f64) -> Result<(), Blocked> {
+        let crane = &self.task.crane;
+        let load_box = crane.load_obb(c, &self.task.load);
+        let clearance =
+            self.landing.iter().find(|z| z.holds(&load_box)).map(|z| z.clearance_m).unwrap_or(self.task.clearance_m);
+        for kind in [PartKind::Load, PartKind::HookBlock, PartKind::Rope] {
+            let Some(b) = crane.part(kind, c, &self.task.load) else { continue };
+            self.count(true);
+            if let Some(h) = self.map.hit(&b.expanded(clearance + grow)) {
+                return Err(self.blocked("collision", Some(kind), Some(h.interval.obj), c));
+            }
+        }
+        Ok(())
+    }
+
+    /// Can the hanging parts' check at rope lengths up to `h_max` in the cell of
+    /// `c` be answered from the tables?
+    fn hanging_lookup(&self, c: &Config, h_max: f64) -> bool {
+        let cs = self.cs;
+        match cs.strategy {
+            Strategy::Online => false,
+            Strategy::Hybrid => {
+                self.count(false);
+                let (i, k) = (cs.col(c.swing_rad), cs.row(c.radial).unwrap_or(0));
+                h_max <= cs.max_hoist[(k * cs.ns + i) as usize] as f64
+            }
+            Strategy::Full => {
+                self.count(false);
+                let (i, k) = (cs.col(c.swing_rad), cs.row(c.radial).unwrap_or(0));
+                let idx = (k * cs.ns + i) as usize;
+                if h_max <= cs.max_hoist[idx] as f64 {
+                    return true;
+                }
+                let b_hi = ((h_max - cs.hoist0) / cs.hoist_step).floor() as i64;
+                if !(0..64).contains(&b_hi) {
+                    return false;
+                }
+                // Longer ropes hang lower: the column test at bucket b covers every
+                // shorter rope too, so one bit decides.
+                cs.hoist_bits[idx] & (1 << b_hi) == 0
+            }
+        }
+    }
+
+    /// Everything at one configuration: limits, capacity, internal clearance,
+    /// body, boom and the hanging parts.
+    pub fn config(&self, c: &Config) -> Result<(), Blocked> {
+        self.limits_ok(c)?;
+        self.structure_ok(c)?;
+        if self.hanging_lookup(c, c.hoist_m) {
+            return Ok(());
+        }
+        self.hanging_exact(c, 0.0)
+    }
+
+    /// A single-joint move from `from` to the joint value `to`, continuously.
+    ///
+    /// Table answers cover whole cells, so a move is checked cell by cell along
+    /// its path. Where a table cannot answer, the move is sampled so that no
+    /// point of the hanging parts moves more than `sample_m` between samples;
+    /// each sample's boxes are grown by `sample_m / 2`, so together they cover
+    /// the swept volume.
+    pub fn motion(&self, from: &Config, joint: Joint, to: f64) -> Result<(), Blocked> {
+        let mut a = from.to_array();
+        let v0 = a[joint.index()];
+        if (to - v0).abs() < 1e-12 {
+            return self.config(from);
+        }
+        let cs = self.cs;
+        let crane = &self.task.crane;
+        // Cell boundaries crossed (swing and radial moves change cells).
+        let step = match joint {
+            Joint::Swing => cs.swing_step,
+            Joint::Radial => cs.radial_step,
+            _ => f64::INFINITY,
+        };
+        // Per-sample displacement bound of the hanging parts per unit of the joint.
+        let lever = match joint {
+            Joint::Swing => {
+                crane.radius_m(from.radial)
+                    + self.task.load.bounding_radius()
+                    + self.task.load.cog_m[0].hypot(self.task.load.cog_m[1])
+            }
+            Joint::Radial => {
+                if is_luffing(crane) {
+                    crane.placement.boom_length_m
+                } else {
+                    1.0
+                }
+            }
+            Joint::Hoist => 1.0,
+            Joint::Rotate => self.task.load.bounding_radius() * 2.0,
+        };
+        // Coarse sub-steps of at most one cell: consecutive samples lie in the
+        // same or neighbouring cells, so every cell the move crosses is looked up.
+        let n = if step.is_finite() { (((to - v0).abs() / step).ceil() as usize).max(1) } else { 1 };
+        let mut prev = v0;
+        for s in 0..=n {
+            let v = v0 + (to - v0) * s as f64 / n as f64;
+            a[joint.index()] = v;
+            let c = Config::from_array(a);
+            self.limits_ok(&c)?;
+            self.structure_ok(&c)?;
+            if s == 0 {
+                continue;
+            }
+            let h_max = if joint == Joint::Hoist { v.max(prev) } else { c.hoist_m };
+            let cp = self.with(&a, joint, prev);
+            if self.hanging_lookup(&c, h_max) && self.hanging_lookup(&cp, h_max) {
+                prev = v;
+                continue;
+            }
+            // The tables cannot vouch for this sub-step: cut it into m pieces over
+            // which the hanging parts move at most `sample_m`, and check each
+            // piece's midpoint with the boxes grown by half the piece's movement.
+            // Every configuration of the piece is then inside the grown boxes.
+            let travel = (v - prev).abs() * lever;
+            let m = ((travel / self.sample_m).ceil() as usize).max(1);
+            let grow = travel / m as f64 / 2.0;
+            for t in 0..m {
+                let x = prev + (v - prev) * (t as f64 + 0.5) / m as f64;
+                self.hanging_exact(&self.with(&a, joint, x), grow)?;
+            }
+            prev = v;
+        }
+        Ok(())
+    }
+
+    fn with(&self, a: &[f64; 4], joint: Joint, v: f64) -> Config {
+        let mut b = *a;
+        b[joint.index()] = v;
+        Config::from_array(b)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn convex_inside() {
+        let sq = vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+        assert!(inside_convex(&sq, &[0.5, 0.5]));
+        assert!(!inside_convex(&sq, &[1.5, 0.5]));
+    }
+}

@@ -1,0 +1,294 @@
+//! # liftplan-depthmap: stage 4a, the site as multi-level depth maps
+//!
+//! Rasterises the registered site cloud (points) and the plant mesh (triangles)
+//! into one [`mdm::Mdm`] and answers box queries against it ([`query`]).
+//!
+//! | file | what |
+//! |---|---|
+//! | `site.mdm` | the depth map (liftplan artifact: grid, objects, CSR intervals) |
+//! | `depthmap.png` | top view: height of the highest obstacle per cell |
+//! | `depthmap.json` | grid, counts, timings |
+
+pub mod mdm;
+pub mod picture;
+pub mod query;
+
+use liftplan_core::Location;
+use liftplan_core::cloud::class;
+use liftplan_core::mesh::TriMesh;
+use liftplan_core::obb::Obb;
+use mdm::{GridSpec, LocalPoints, Mdm, Mode, Raw};
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+
+pub const NAME: &str = "depthmap";
+pub const VERSION: u32 = 1;
+
+#[derive(Debug, thiserror::Error)]
+pub enum DepthError {
+    #[error("{0}: {1}")]
+    Input(Location, String),
+    #[error("[depthmap] {0}")]
+    Settings(String),
+    #[error("{0}")]
+    Gpu(String),
+}
+
+pub type Result<T> = std::result::Result<T, DepthError>;
+
+/// `[depthmap]` in `liftplan.toml`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Settings {
+    /// Cell edge (m).
+    pub cell_m: f64,
+    /// multi | single (2.5D: everything below the top of a cell is occupied).
+    pub mode: Mode,
+    /// Half height and plan radius each scan point occupies (m).
+    pub point_radius_m: f64,
+    /// Surface intervals of one object closer than this merge (m).
+    pub merge_gap_m: f64,
+    /// Plan extent [xmin, ymin, xmax, ymax] (m); empty: all inputs plus `margin_m`.
+    pub extent: Vec<f64>,
+    pub margin_m: f64,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings {
+            cell_m: 0.25,
+            mode: Mode::Multi,
+            point_radius_m: 0.05,
+            merge_gap_m: 0.1,
+            extent: vec![],
+            margin_m: 10.0,
+        }
+    }
+}
+
+/// Grids above this many cells are refused (a typo in the cell size).
+pub const MAX_CELLS: u64 = 64_000_000;
+
+impl Settings {
+    pub fn check(&self) -> std::result::Result<(), String> {
+        if !(self.cell_m.is_finite() && self.cell_m >= 0.01) {
+            return Err(format!("cell_m must be at least 0.01 m, found {}", self.cell_m));
+        }
+        if !(self.point_radius_m.is_finite()
+            && self.point_radius_m >= 0.0
+            && self.merge_gap_m.is_finite()
+            && self.merge_gap_m >= 0.0
+            && self.margin_m >= 0.0)
+        {
+            return Err("point_radius_m, merge_gap_m and margin_m must be zero or positive".into());
+        }
+        if !(self.extent.is_empty()
+            || (self.extent.len() == 4 && self.extent[0] < self.extent[2] && self.extent[1] < self.extent[3]))
+        {
+            return Err("extent must be [xmin, ymin, xmax, ymax] with min < max".into());
+        }
+        Ok(())
+    }
+
+    /// The grid over `bbox` (site [xmin, ymin, xmax, ymax]) or the configured extent.
+    pub fn grid(&self, bbox: [f64; 4]) -> Result<GridSpec> {
+        let e = if self.extent.len() == 4 {
+            [self.extent[0], self.extent[1], self.extent[2], self.extent[3]]
+        } else {
+            [bbox[0] - self.margin_m, bbox[1] - self.margin_m, bbox[2] + self.margin_m, bbox[3] + self.margin_m]
+        };
+        let c = self.cell_m;
+        let x0 = (e[0] / c).floor() * c;
+        let y0 = (e[1] / c).floor() * c;
+        let nx = ((e[2] - x0) / c).ceil().max(1.0);
+        let ny = ((e[3] - y0) / c).ceil().max(1.0);
+        if !(nx * ny <= MAX_CELLS as f64) {
+            return Err(DepthError::Settings(format!(
+                "a {nx} x {ny} grid is too large (at most {MAX_CELLS} cells): use a larger cell_m or a smaller extent"
+            )));
+        }
+        Ok(GridSpec { x0, y0, cell: c, nx: nx as u32, ny: ny as u32 })
+    }
+}
+
+/// The inputs of a depth map, in site coordinates.
+#[derive(Default)]
+pub struct Inputs {
+    pub points: Vec<[f64; 3]>,
+    pub ground: Vec<bool>,
+    pub mesh: TriMesh,
+}
+
+/// Reads the site cloud, dropping points inside `exclude` (e.g. the load at its
+/// pick position, which the survey scanned but which must not block its own lift).
+pub fn read_cloud(path: &Path, exclude: &[Obb], into: &mut Inputs) -> Result<usize> {
+    let mut r = las::Reader::from_path(path).map_err(|e| DepthError::Input(Location::file(path), e.to_string()))?;
+    let mut data = las::PointDataBuilder::new().for_header(r.header()).build();
+    let mut dropped = 0;
+    loop {
+        let n =
+            r.fill_points(1 << 20, &mut data).map_err(|e| DepthError::Input(Location::file(path), e.to_string()))?;
+        if n == 0 {
+            break;
+        }
+        for ((x, y), (z, c)) in data.x().zip(data.y()).zip(data.z().zip(data.classification())) {
+            let p = liftplan_core::frame::Point3::new(x, y, z);
+            if exclude.iter().any(|b| b.contains(&p)) {
+                dropped += 1;
+                continue;
+            }
+            into.points.push([x, y, z]);
+            into.ground.push(c == class::GROUND);
+        }
+    }
+    Ok(dropped)
+}
+
+/// Builds the depth map on the CPU.
+pub fn build_cpu(inp: &Inputs, s: &Settings) -> Result<(Mdm, Timings)> {
+    let t0 = std::time::Instant::now();
+    let mut bb = liftplan_core::frame::Aabb::from_points(&inp.points);
+    bb = bb.union(&inp.mesh.bbox());
+    if bb.is_empty() {
+        return Err(DepthError::Settings("nothing to rasterise: no site cloud and no plant mesh".into()));
+    }
+    let spec = s.grid([bb.min[0], bb.min[1], bb.max[0], bb.max[1]])?;
+    let mut objects = vec!["ground (scan)".to_string(), "scanned structure".to_string()];
+    objects.extend(inp.mesh.groups.iter().cloned());
+    let local = local_points(inp, &spec);
+    let t_prep = t0.elapsed();
+    let mut raws: Vec<Raw> = Vec::new();
+    mdm::point_raws(&local, &spec, s.point_radius_m as f32, &mut raws);
+    let t_points = t0.elapsed();
+    mdm::mesh_raws(&inp.mesh, &spec, 2, &mut raws);
+    let t_gen = t0.elapsed();
+    let m = mdm::assemble(&raws, spec, s.mode, s.merge_gap_m as f32, objects);
+    let t_all = t0.elapsed();
+    Ok((
+        m,
+        Timings {
+            prepare_ms: ms(t_prep),
+            points_ms: ms(t_points - t_prep),
+            triangles_ms: ms(t_gen - t_points),
+            assemble_ms: ms(t_all - t_gen),
+            total_ms: ms(t_all),
+            raw_intervals: raws.len(),
+        },
+    ))
+}
+
+fn ms(d: std::time::Duration) -> f64 {
+    d.as_secs_f64() * 1000.0
+}
+
+/// Points relative to the grid origin in `f32`, with their object ids.
+pub fn local_points(inp: &Inputs, spec: &GridSpec) -> LocalPoints {
+    use rayon::prelude::*;
+    LocalPoints {
+        xyz: inp.points.par_iter().map(|p| [(p[0] - spec.x0) as f32, (p[1] - spec.y0) as f32, p[2] as f32]).collect(),
+        obj: inp.ground.par_iter().map(|g| if *g { mdm::OBJ_GROUND } else { mdm::OBJ_SCAN }).collect(),
+    }
+}
+
+#[derive(Debug, Clone, Default, Serialize)]
+pub struct Timings {
+    pub prepare_ms: f64,
+    pub points_ms: f64,
+    pub triangles_ms: f64,
+    pub assemble_ms: f64,
+    pub total_ms: f64,
+    pub raw_intervals: usize,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct Summary {
+    pub grid: GridSpec,
+    pub mode: Mode,
+    pub points: usize,
+    pub points_excluded: usize,
+    pub triangles: usize,
+    pub intervals: usize,
+    pub occupied_cells: usize,
+    pub objects: usize,
+    pub backend: String,
+    pub timings: Timings,
+}
+
+impl Summary {
+    pub fn lines(&self) -> Vec<String> {
+        vec![format!(
+            "{} x {} cells of {} m ({:?}), {} intervals in {} cells from {} points and {} triangles ({} ms on {})",
+            self.grid.nx,
+            self.grid.ny,
+            self.grid.cell,
+            self.mode,
+            self.intervals,
+            self.occupied_cells,
+            self.points,
+            self.triangles,
+            self.timings.total_ms.round(),
+            self.backend
+        )]
+    }
+}
+
+/// Runs the stage: `cloud` (site.laz) and `mesh` (plant.mesh) may each be absent.
+pub fn run(
+    cloud: Option<&Path>,
+    mesh: Option<&Path>,
+    exclude: &[Obb],
+    s: &Settings,
+    out_dir: &Path,
+) -> Result<Summary> {
+    s.check().map_err(DepthError::Settings)?;
+    let mut inp = Inputs::default();
+    let mut excluded = 0;
+    if let Some(c) = cloud {
+        excluded = read_cloud(c, exclude, &mut inp)?;
+    }
+    if let Some(m) = mesh {
+        inp.mesh = TriMesh::read_artifact(m).map_err(|e| DepthError::Input(Location::file(m), e.to_string()))?;
+    }
+    let (m, timings) = build_cpu(&inp, s)?;
+    std::fs::create_dir_all(out_dir).map_err(|e| DepthError::Input(Location::file(out_dir), e.to_string()))?;
+    m.write(&out_dir.join("site.mdm"))
+        .map_err(|e| DepthError::Input(Location::file(out_dir.join("site.mdm")), e.to_string()))?;
+    picture::top_view(&m, 1400)
+        .write_png(&out_dir.join("depthmap.png"))
+        .map_err(|e| DepthError::Input(Location::file(out_dir.join("depthmap.png")), e.to_string()))?;
+    let summary = Summary {
+        grid: m.spec,
+        mode: m.mode,
+        points: inp.points.len(),
+        points_excluded: excluded,
+        triangles: inp.mesh.triangle_count(),
+        intervals: m.intervals.len(),
+        occupied_cells: m.offsets.windows(2).filter(|w| w[1] > w[0]).count(),
+        objects: m.objects.len(),
+        backend: "cpu".into(),
+        timings,
+    };
+    let json = serde_json::to_string_pretty(&summary).unwrap_or_default();
+    liftplan_core::artifact::write_atomic(&out_dir.join("depthmap.json"), json.as_bytes())
+        .map_err(|e| DepthError::Input(Location::file(out_dir), e.to_string()))?;
+    Ok(summary)
+}
+
+/// `liftplan inspect` of an MDM file.
+pub fn inspect(path: &Path) -> Result<serde_json::Value> {
+    let m = Mdm::read(path).map_err(|e| DepthError::Input(Location::file(path), e.to_string()))?;
+    let tops: Vec<f32> = m.pyramid[0].2.iter().copied().filter(|v| v.is_finite()).collect();
+    Ok(serde_json::json!({
+        "kind": "depthmap",
+        "format": "mdm",
+        "file": path.display().to_string(),
+        "grid": m.spec,
+        "mode": m.mode,
+        "intervals": m.intervals.len(),
+        "occupied_cells": tops.len(),
+        "max_intervals_per_cell": m.offsets.windows(2).map(|w| w[1] - w[0]).max().unwrap_or(0),
+        "highest_m": tops.iter().copied().fold(f32::NEG_INFINITY, f32::max),
+        "objects": m.objects.len(),
+        "bbox": [m.spec.x0, m.spec.y0, m.spec.x0 + m.spec.cell * m.spec.nx as f64, m.spec.y0 + m.spec.cell * m.spec.ny as f64],
+    }))
+}

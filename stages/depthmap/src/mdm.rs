@@ -1,0 +1,481 @@
+//! Multi-level depth maps (thesis ch. 3): per cell of a plan grid, the sorted
+//! height intervals occupied by the site, each tagged with the object it belongs
+//! to.
+//!
+//! Layout is CSR: `offsets[k]..offsets[k + 1]` index `intervals` for cell `k`
+//! (row-major, row 0 at the grid's south edge). Intervals of one cell are sorted
+//! by bottom, then top, then object.
+//!
+//! **Building** follows the thesis' passes, which the GPU twin repeats:
+//! 1. *generate*: each point gives `[z - r, z + r]` in every cell its disc of
+//!    radius `r` touches; each triangle gives, in every cell it touches, a
+//!    conservative range of its heights over that cell (see [`triangle_cells`]);
+//! 2. *count* the raw intervals per cell, 3. *prefix-sum* the counts into
+//!    offsets, 4. *fill* the raw intervals in, 5. *sort and merge* each cell.
+//!
+//! **Merging** (identical on CPU and GPU): raw intervals sort by (object, part,
+//! bottom, top); intervals of one convex solid (a part) become one interval from
+//! its lowest bottom to its highest top, since a vertical line through a convex
+//! solid meets it in one segment; surface intervals of the same object merge when
+//! they overlap or are less than `merge_gap` apart. A *single-level* map keeps
+//! one interval per cell, from the lowest bottom to the highest top (2.5D).
+//!
+//! All heights are `f32` metres in the site frame; plan coordinates are taken
+//! relative to the grid origin before anything else, so the arithmetic is the
+//! same single operations in both implementations.
+
+use liftplan_core::artifact::{self, ArtifactError, ByteReader, ByteWriter};
+use liftplan_core::mesh::TriMesh;
+use rayon::prelude::*;
+use std::path::Path;
+
+pub const ARTIFACT_KIND: &str = "MDM";
+pub const ARTIFACT_VERSION: u32 = 1;
+
+/// Object id of ground points from the scans.
+pub const OBJ_GROUND: u32 = 0;
+/// Object id of other scanned points.
+pub const OBJ_SCAN: u32 = 1;
+
+/// A plan grid: `nx x ny` square cells of `cell` metres from `(x0, y0)`.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct GridSpec {
+    pub x0: f64,
+    pub y0: f64,
+    pub cell: f64,
+    pub nx: u32,
+    pub ny: u32,
+}
+
+impl GridSpec {
+    pub fn cells(&self) -> usize {
+        self.nx as usize * self.ny as usize
+    }
+
+    /// Cell rectangle in grid-local metres.
+    pub fn rect_local(&self, i: u32, j: u32) -> [f64; 4] {
+        let c = self.cell;
+        [i as f64 * c, (i + 1) as f64 * c, j as f64 * c, (j + 1) as f64 * c]
+    }
+
+    /// Cell rectangle in site coordinates: [x0, x1, y0, y1].
+    pub fn rect(&self, i: u32, j: u32) -> [f64; 4] {
+        let r = self.rect_local(i, j);
+        [r[0] + self.x0, r[1] + self.x0, r[2] + self.y0, r[3] + self.y0]
+    }
+
+    /// Column of a site x, clamped into the grid, or `None` outside.
+    pub fn col(&self, x: f64) -> Option<u32> {
+        let i = ((x - self.x0) / self.cell).floor();
+        (i >= 0.0 && i < self.nx as f64).then_some(i as u32)
+    }
+
+    pub fn row(&self, y: f64) -> Option<u32> {
+        let j = ((y - self.y0) / self.cell).floor();
+        (j >= 0.0 && j < self.ny as f64).then_some(j as u32)
+    }
+
+    /// Columns overlapping [xa, xb] (site), clamped; empty if none.
+    pub fn cols_between(&self, xa: f64, xb: f64) -> std::ops::Range<u32> {
+        let a = ((xa - self.x0) / self.cell).floor().max(0.0);
+        let b = ((xb - self.x0) / self.cell).floor().min(self.nx as f64 - 1.0);
+        if b < a || b < 0.0 || a >= self.nx as f64 { 0..0 } else { a as u32..b as u32 + 1 }
+    }
+
+    pub fn rows_between(&self, ya: f64, yb: f64) -> std::ops::Range<u32> {
+        let a = ((ya - self.y0) / self.cell).floor().max(0.0);
+        let b = ((yb - self.y0) / self.cell).floor().min(self.ny as f64 - 1.0);
+        if b < a || b < 0.0 || a >= self.ny as f64 { 0..0 } else { a as u32..b as u32 + 1 }
+    }
+}
+
+/// One occupied height range of a cell.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[repr(C)]
+pub struct Interval {
+    pub zlo: f32,
+    pub zhi: f32,
+    pub obj: u32,
+}
+
+/// A raw interval before merging: `part` is 1 + the convex part's index, or 0
+/// for surfaces and points.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[repr(C)]
+pub struct Raw {
+    pub cell: u32,
+    pub zlo: f32,
+    pub zhi: f32,
+    pub obj: u32,
+    pub part: u32,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Mode {
+    Multi,
+    Single,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Mdm {
+    pub spec: GridSpec,
+    pub mode: Mode,
+    pub offsets: Vec<u32>,
+    pub intervals: Vec<Interval>,
+    /// Object names by id.
+    pub objects: Vec<String>,
+    /// Max-height pyramid: level 0 is the top of each cell (`-inf` if empty),
+    /// level k+1 the max over 2x2 blocks of level k.
+    pub pyramid: Vec<(u32, u32, Vec<f32>)>,
+}
+
+/// Points in grid-local metres (x, y relative to the grid origin, z absolute).
+pub struct LocalPoints {
+    pub xyz: Vec<[f32; 3]>,
+    pub obj: Vec<u32>,
+}
+
+/// Order of f32 by value as an unsigned key (total order, -0 < +0).
+#[inline]
+pub fn f32_key(v: f32) -> u32 {
+    let b = v.to_bits();
+    if b & 0x8000_0000 != 0 { !b } else { b | 0x8000_0000 }
+}
+
+/// Pass 1 for points: the raw intervals of every point.
+pub fn point_raws(p: &LocalPoints, spec: &GridSpec, radius: f32, out: &mut Vec<Raw>) {
+    let inv = (1.0 / spec.cell) as f32;
+    let (nx, ny) = (spec.nx as i64, spec.ny as i64);
+    let parts: Vec<Vec<Raw>> = p
+        .xyz
+        .par_chunks(1 << 16)
+        .enumerate()
+        .map(|(ci, chunk)| {
+            let mut v = Vec::with_capacity(chunk.len() + chunk.len() / 4);
+            for (k, q) in chunk.iter().enumerate() {
+                let obj = p.obj[(ci << 16) + k];
+                let i0 = ((q[0] - radius) * inv).floor() as i64;
+                let i1 = ((q[0] + radius) * inv).floor() as i64;
+                let j0 = ((q[1] - radius) * inv).floor() as i64;
+                let j1 = ((q[1] + radius) * inv).floor() as i64;
+                let (zlo, zhi) = (q[2] - radius, q[2] + radius);
+                for j in j0.max(0)..=j1.min(ny - 1) {
+                    for i in i0.max(0)..=i1.min(nx - 1) {
+                        v.push(Raw { cell: (j * nx + i) as u32, zlo, zhi, obj, part: 0 });
+                    }
+                }
+            }
+            v
+        })
+        .collect();
+    for v in parts {
+        out.extend_from_slice(&v);
+    }
+}
+
+/// Clips a convex polygon to `coord[axis] >= v` (`keep_above`) or `<= v`.
+fn clip(poly: &[[f64; 3]], axis: usize, v: f64, keep_above: bool) -> Vec<[f64; 3]> {
+    let inside = |p: &[f64; 3]| if keep_above { p[axis] >= v } else { p[axis] <= v };
+    let mut out = Vec::with_capacity(poly.len() + 2);
+    for k in 0..poly.len() {
+        let a = poly[k];
+        let b = poly[(k + 1) % poly.len()];
+        let (ia, ib) = (inside(&a), inside(&b));
+        if ia {
+            out.push(a);
+        }
+        if ia != ib {
+            let t = (v - a[axis]) / (b[axis] - a[axis]);
+            out.push([a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])]);
+        }
+    }
+    out
+}
+
+/// Pass 1 for one triangle (grid-local coordinates): for every cell it touches,
+/// the height range of the triangle over that cell, widened outwards by one part
+/// in 10^6 plus a micrometre so rounding never makes it too small.
+pub fn triangle_cells(t: &[[f64; 3]; 3], spec: &GridSpec, mut emit: impl FnMut(u32, f32, f32)) {
+    let c = spec.cell;
+    let minx = t.iter().map(|p| p[0]).fold(f64::INFINITY, f64::min);
+    let maxx = t.iter().map(|p| p[0]).fold(f64::NEG_INFINITY, f64::max);
+    let miny = t.iter().map(|p| p[1]).fold(f64::INFINITY, f64::min);
+    let maxy = t.iter().map(|p| p[1]).fold(f64::NEG_INFINITY, f64::max);
+    if !(maxx >= 0.0 && maxy >= 0.0 && minx <= spec.nx as f64 * c && maxy.is_finite() && miny <= spec.ny as f64 * c) {
+        return;
+    }
+    let j0 = ((miny / c).floor().max(0.0)) as u32;
+    let j1 = ((maxy / c).floor().min(spec.ny as f64 - 1.0)) as u32;
+    let i0 = ((minx / c).floor().max(0.0)) as u32;
+    let i1 = ((maxx / c).floor().min(spec.nx as f64 - 1.0)) as u32;
+    let tri = t.to_vec();
+    for j in j0..=j1 {
+        let (ya, yb) = (j as f64 * c, (j + 1) as f64 * c);
+        let strip = clip(&clip(&tri, 1, ya, true), 1, yb, false);
+        if strip.is_empty() {
+            continue;
+        }
+        let sx0 = strip.iter().map(|p| p[0]).fold(f64::INFINITY, f64::min);
+        let sx1 = strip.iter().map(|p| p[0]).fold(f64::NEG_INFINITY, f64::max);
+        let a = ((sx0 / c).floor().max(i0 as f64)) as u32;
+        let b = ((sx1 / c).floor().min(i1 as f64)) as u32;
+        for i in a..=b {
+            let (xa, xb) = (i as f64 * c, (i + 1) as f64 * c);
+            let poly = clip(&clip(&strip, 0, xa, true), 0, xb, false);
+            if poly.is_empty() {
+                continue;
+            }
+            let lo = poly.iter().map(|p| p[2]).fold(f64::INFINITY, f64::min);
+            let hi = poly.iter().map(|p| p[2]).fold(f64::NEG_INFINITY, f64::max);
+            let pad = 1e-6 * lo.abs().max(hi.abs()) + 1e-6;
+            emit(j * spec.nx + i, (lo - pad) as f32, (hi + pad) as f32);
+        }
+    }
+}
+
+/// Pass 1 for a mesh: raw intervals of every triangle, tagged with the group
+/// (object id `obj_base + group`) and, for convex parts, the part.
+pub fn mesh_raws(m: &TriMesh, spec: &GridSpec, obj_base: u32, out: &mut Vec<Raw>) {
+    let parts: Vec<Vec<Raw>> = (0..m.triangles.len())
+        .into_par_iter()
+        .chunks(4096)
+        .map(|ids| {
+            let mut v = Vec::new();
+            for t in ids {
+                let tri = m.triangles[t];
+                let pt = |k: usize| {
+                    let p = m.vertices[tri[k] as usize];
+                    [p[0] - spec.x0, p[1] - spec.y0, p[2]]
+                };
+                let part_idx = m.part_of[t] as usize;
+                let part = &m.parts[part_idx];
+                let obj = obj_base + part.group;
+                let pk = if part.convex_solid { part_idx as u32 + 1 } else { 0 };
+                triangle_cells(&[pt(0), pt(1), pt(2)], spec, |cell, zlo, zhi| {
+                    v.push(Raw { cell, zlo, zhi, obj, part: pk })
+                });
+            }
+            v
+        })
+        .collect();
+    for v in parts {
+        out.extend_from_slice(&v);
+    }
+}
+
+/// Sort key of a raw interval within its cell.
+#[inline]
+fn raw_key(r: &Raw) -> (u32, u32, u32, u32) {
+    (r.obj, r.part, f32_key(r.zlo), f32_key(r.zhi))
+}
+
+/// Pass 5 for one cell: sorts `raw` and writes the merged intervals.
+pub fn merge_cell(raw: &mut [Raw], gap: f32, mode: Mode, out: &mut Vec<Interval>) {
+    if raw.is_empty() {
+        return;
+    }
+    raw.sort_unstable_by_key(raw_key);
+    let start = out.len();
+    let mut cur = raw[0];
+    for n in &raw[1..] {
+        let same = n.obj == cur.obj && n.part == cur.part;
+        if same && (cur.part != 0 || n.zlo <= cur.zhi + gap) {
+            if n.zhi > cur.zhi {
+                cur.zhi = n.zhi;
+            }
+        } else {
+            out.push(Interval { zlo: cur.zlo, zhi: cur.zhi, obj: cur.obj });
+            cur = *n;
+        }
+    }
+    out.push(Interval { zlo: cur.zlo, zhi: cur.zhi, obj: cur.obj });
+    let cell = &mut out[start..];
+    cell.sort_unstable_by_key(|i| (f32_key(i.zlo), f32_key(i.zhi), i.obj));
+    if mode == Mode::Single {
+        let lo = cell.iter().map(|i| i.zlo).fold(f32::INFINITY, f32::min);
+        let top = cell.iter().fold(cell[0], |a, i| if f32_key(i.zhi) > f32_key(a.zhi) { *i } else { a });
+        out.truncate(start);
+        out.push(Interval { zlo: lo, zhi: top.zhi, obj: top.obj });
+    }
+}
+
+/// Passes 2 to 5 on the CPU: count, prefix-sum, fill, sort and merge.
+pub fn assemble(raws: &[Raw], spec: GridSpec, mode: Mode, gap: f32, objects: Vec<String>) -> Mdm {
+    let n = spec.cells();
+    // Count and prefix sum.
+    let mut counts = vec![0u32; n + 1];
+    for r in raws {
+        counts[r.cell as usize + 1] += 1;
+    }
+    for k in 1..=n {
+        counts[k] += counts[k - 1];
+    }
+    // Fill.
+    let mut cursor = counts.clone();
+    let mut slots = vec![Raw { cell: 0, zlo: 0.0, zhi: 0.0, obj: 0, part: 0 }; raws.len()];
+    for r in raws {
+        let c = &mut cursor[r.cell as usize];
+        slots[*c as usize] = *r;
+        *c += 1;
+    }
+    // Sort and merge, cells in parallel blocks, then compact.
+    const BLOCK: usize = 4096;
+    let ranges: Vec<(usize, usize)> = (0..n.div_ceil(BLOCK)).map(|b| (b * BLOCK, ((b + 1) * BLOCK).min(n))).collect();
+    let slot_ptr = SendPtr(slots.as_mut_ptr());
+    let merged: Vec<(Vec<u32>, Vec<Interval>)> = ranges
+        .par_iter()
+        .map(|&(a, b)| {
+            let mut lens = Vec::with_capacity(b - a);
+            let mut out = Vec::new();
+            for k in a..b {
+                let (s, e) = (counts[k] as usize, counts[k + 1] as usize);
+                // SAFETY: cell slices [s, e) of different cells never overlap, and
+                // each cell belongs to exactly one block.
+                let cell = unsafe { std::slice::from_raw_parts_mut(slot_ptr.get().add(s), e - s) };
+                let before = out.len();
+                merge_cell(cell, gap, mode, &mut out);
+                lens.push((out.len() - before) as u32);
+            }
+            (lens, out)
+        })
+        .collect();
+    let mut offsets = Vec::with_capacity(n + 1);
+    offsets.push(0u32);
+    let mut intervals = Vec::new();
+    for (lens, out) in merged {
+        for l in lens {
+            offsets.push(offsets.last().copied().unwrap_or(0) + l);
+        }
+        intervals.extend_from_slice(&out);
+    }
+    let mut m = Mdm { spec, mode, offsets, intervals, objects, pyramid: vec![] };
+    m.build_pyramid();
+    m
+}
+
+#[derive(Clone, Copy)]
+struct SendPtr(*mut Raw);
+unsafe impl Send for SendPtr {}
+unsafe impl Sync for SendPtr {}
+impl SendPtr {
+    fn get(self) -> *mut Raw {
+        self.0
+    }
+}
+
+impl Mdm {
+    pub fn cell(&self, i: u32, j: u32) -> &[Interval] {
+        let k = (j * self.spec.nx + i) as usize;
+        &self.intervals[self.offsets[k] as usize..self.offsets[k + 1] as usize]
+    }
+
+    /// Highest top in a cell, `-inf` if empty.
+    pub fn top(&self, i: u32, j: u32) -> f32 {
+        self.pyramid.first().map(|l| l.2[(j * self.spec.nx + i) as usize]).unwrap_or(f32::NEG_INFINITY)
+    }
+
+    pub fn build_pyramid(&mut self) {
+        let (nx, ny) = (self.spec.nx, self.spec.ny);
+        let base: Vec<f32> = (0..ny)
+            .flat_map(|j| (0..nx).map(move |i| (i, j)))
+            .map(|(i, j)| {
+                let k = (j * nx + i) as usize;
+                self.intervals[self.offsets[k] as usize..self.offsets[k + 1] as usize]
+                    .iter()
+                    .map(|iv| iv.zhi)
+                    .fold(f32::NEG_INFINITY, f32::max)
+            })
+            .collect();
+        let mut levels = vec![(nx, ny, base)];
+        while let Some((w, h, l)) = levels.last() {
+            if *w <= 1 && *h <= 1 {
+                break;
+            }
+            let (w2, h2) = (w.div_ceil(2), h.div_ceil(2));
+            let mut next = vec![f32::NEG_INFINITY; (w2 * h2) as usize];
+            for j in 0..*h {
+                for i in 0..*w {
+                    let v = l[(j * w + i) as usize];
+                    let k = ((j / 2) * w2 + i / 2) as usize;
+                    if v > next[k] {
+                        next[k] = v;
+                    }
+                }
+            }
+            levels.push((w2, h2, next));
+        }
+        self.pyramid = levels;
+    }
+
+    pub fn to_bytes(&self) -> Vec<u8> {
+        let mut w = ByteWriter::new();
+        let s = &self.spec;
+        w.f64(s.x0);
+        w.f64(s.y0);
+        w.f64(s.cell);
+        w.u32(s.nx);
+        w.u32(s.ny);
+        w.u8(matches!(self.mode, Mode::Single) as u8);
+        w.u64(self.objects.len() as u64);
+        for o in &self.objects {
+            w.str(o);
+        }
+        w.u32s(&self.offsets);
+        w.u64(self.intervals.len() as u64);
+        for iv in &self.intervals {
+            w.f32(iv.zlo);
+            w.f32(iv.zhi);
+            w.u32(iv.obj);
+        }
+        artifact::encode(ARTIFACT_KIND, ARTIFACT_VERSION, &w.buf)
+    }
+
+    pub fn write(&self, path: &Path) -> Result<(), ArtifactError> {
+        artifact::write_atomic(path, &self.to_bytes())
+            .map_err(|e| ArtifactError::Io(liftplan_core::Location::file(path), e))
+    }
+
+    pub fn read(path: &Path) -> Result<Mdm, ArtifactError> {
+        let bytes = std::fs::read(path).map_err(|e| ArtifactError::Io(liftplan_core::Location::file(path), e))?;
+        Self::from_bytes(path, &bytes)
+    }
+
+    pub fn from_bytes(path: &Path, bytes: &[u8]) -> Result<Mdm, ArtifactError> {
+        let payload = artifact::decode(path, bytes, ARTIFACT_KIND, ARTIFACT_VERSION)?;
+        let mut r = ByteReader::new(path, payload, 32);
+        let spec = GridSpec { x0: r.f64()?, y0: r.f64()?, cell: r.f64()?, nx: r.u32()?, ny: r.u32()? };
+        if !(spec.cell.is_finite() && spec.cell > 0.0 && spec.x0.is_finite() && spec.y0.is_finite()) {
+            return Err(r.error("grid origin and cell size must be finite, cell positive"));
+        }
+        let mode = if r.u8()? == 1 { Mode::Single } else { Mode::Multi };
+        let no = r.count(4)?;
+        let mut objects = Vec::with_capacity(no);
+        for _ in 0..no {
+            objects.push(r.str()?);
+        }
+        let offsets = r.u32s()?;
+        let ncells = (spec.nx as u64).saturating_mul(spec.ny as u64);
+        if offsets.len() as u64 != ncells + 1 {
+            return Err(r.error(format!("{} offsets for a {} x {} grid", offsets.len(), spec.nx, spec.ny)));
+        }
+        let ni = r.count(12)?;
+        let mut intervals = Vec::with_capacity(ni);
+        for _ in 0..ni {
+            intervals.push(Interval { zlo: r.f32()?, zhi: r.f32()?, obj: r.u32()? });
+        }
+        r.finish()?;
+        if offsets.first() != Some(&0)
+            || offsets.windows(2).any(|w| w[1] < w[0])
+            || *offsets.last().unwrap_or(&0) as usize != ni
+        {
+            return Err(r.error("offsets do not describe the intervals"));
+        }
+        if intervals.iter().any(|iv| !(iv.zlo <= iv.zhi) || iv.obj as usize >= objects.len()) {
+            return Err(r.error("an interval is inverted, not finite or names a missing object"));
+        }
+        let mut m = Mdm { spec, mode, offsets, intervals, objects, pyramid: vec![] };
+        m.build_pyramid();
+        Ok(m)
+    }
+}

@@ -1,0 +1,441 @@
+//! # liftplan-plan: stage 5, lift paths
+//!
+//! For each lift: build the hybrid C-space ([`liftplan_cspace`]), plan from the
+//! lifted-off pick configuration to the configuration above the set position
+//! with MSPGA ([`mspga`]; both swing directions), shorten the path, turn it into
+//! single-joint operator steps ([`path`], [`steps`]), and check the whole lift,
+//! lift-off and set-down included, with the independent [`validate`]or. A lift
+//! the validator rejects fails the stage: no plan is written for it.
+//!
+//! | file | what |
+//! |---|---|
+//! | `plan.json` | every lift: verdict, summary, steps, node and move configurations (the export for crane control) |
+//! | `<lift>.steps.csv` | the operator steps (Table 6.1 style) |
+//! | `<lift>.cspace.png` | the C-space with the path |
+//!
+//! Baselines for the benchmarks live in [`baselines`].
+
+pub mod baselines;
+pub mod mspga;
+pub mod path;
+pub mod steps;
+pub mod validate;
+
+use liftplan_core::Location;
+use liftplan_core::capacity::{CapacityTable, ChartConfig};
+use liftplan_core::crane::{Config, PartKind};
+use liftplan_core::lift::LiftTask;
+use liftplan_core::mesh::TriMesh;
+use liftplan_core::obb::Obb;
+use liftplan_cspace::{CSpace, Checker, Joint, LandingZone, Problem};
+use liftplan_depthmap::mdm::Mdm;
+use path::Move;
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+
+pub const NAME: &str = "plan";
+pub const VERSION: u32 = 1;
+
+#[derive(Debug, thiserror::Error)]
+pub enum PlanError {
+    #[error("{0}: {1}")]
+    Input(Location, String),
+    #[error("[plan] {0}")]
+    Settings(String),
+    #[error("lift '{lift}': {message}")]
+    Lift { lift: String, message: String },
+}
+
+pub type Result<T> = std::result::Result<T, PlanError>;
+
+/// Which planner produces the plan.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum Planner {
+    #[default]
+    Mspga,
+    AliGa,
+    RrtConnect,
+    Prm,
+}
+
+/// `[plan]` in `liftplan.toml`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Settings {
+    pub planner: Planner,
+    pub ga: mspga::GaSettings,
+    pub cspace: liftplan_cspace::Settings,
+    pub baselines: baselines::BaselineSettings,
+    /// Landing zones: the load's footprint at pick and set grown by this (m).
+    pub landing_margin_m: f64,
+    /// Clearance of the hanging parts while the load is over a landing zone (m).
+    pub landing_clearance_m: f64,
+    /// Obstacles this close under the load at pick/set are its supports (m).
+    pub support_m: f64,
+    /// Validator: largest displacement of any crane point between samples (m).
+    pub validator_sample_m: f64,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings {
+            planner: Planner::Mspga,
+            ga: mspga::GaSettings::default(),
+            cspace: liftplan_cspace::Settings::default(),
+            baselines: baselines::BaselineSettings::default(),
+            landing_margin_m: 0.5,
+            landing_clearance_m: 0.2,
+            support_m: 0.05,
+            validator_sample_m: 0.05,
+        }
+    }
+}
+
+impl Settings {
+    pub fn check(&self) -> std::result::Result<(), String> {
+        self.ga.check()?;
+        self.cspace.check()?;
+        let ok = |v: f64, lo: f64, hi: f64| v.is_finite() && v >= lo && v <= hi;
+        if !ok(self.landing_margin_m, 0.0, 5.0)
+            || !ok(self.landing_clearance_m, 0.0, 5.0)
+            || !ok(self.support_m, 0.0, 0.5)
+        {
+            return Err("[plan] landing_margin_m and landing_clearance_m must be 0..5 m, support_m 0..0.5 m".into());
+        }
+        if !ok(self.validator_sample_m, 0.001, 0.5) {
+            return Err("[plan] validator_sample_m must be between 0.001 and 0.5 m".into());
+        }
+        Ok(())
+    }
+}
+
+/// The scanned load at its pick position is in the site cloud; these boxes
+/// (the load at pick, grown by `grow_m`) are cut out of it so the load does not
+/// block its own lift.
+pub fn load_exclusions(tasks: &[LiftTask], grow_m: f64) -> Vec<Obb> {
+    tasks.iter().map(|t| t.crane.load_obb(&t.pick, &t.load).expanded(grow_m)).collect()
+}
+
+/// Everything a planned lift carries into `plan.json`.
+#[derive(Debug, Clone, Serialize)]
+pub struct LiftPlan {
+    pub lift: String,
+    pub description: String,
+    pub planner: Planner,
+    pub crane_model: String,
+    pub chart_config: String,
+    pub gross_kg: f64,
+    pub clearance_m: f64,
+    pub landing_clearance_m: f64,
+    pub critical_pct: f64,
+    pub pick: Config,
+    pub set: Config,
+    pub start: Config,
+    pub goal: Config,
+    /// Node configurations from start to goal (after shortening).
+    pub nodes: Vec<Config>,
+    pub moves: Vec<Move>,
+    pub steps: Vec<steps::Step>,
+    pub summary: steps::Summary,
+    pub validator: ValidatorReport,
+    pub planning: PlanningStats,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct ValidatorReport {
+    pub ok: bool,
+    pub samples: usize,
+    pub seconds: f64,
+    pub problems: Vec<String>,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct PlanningStats {
+    pub seed: u64,
+    pub generations: usize,
+    pub evaluations: usize,
+    pub first_feasible_generation: Option<usize>,
+    pub fitness: f64,
+    pub motion_cost: f64,
+    pub switches: usize,
+    pub cspace_ms: f64,
+    pub plan_ms: f64,
+    pub swing_direction: String,
+    pub table_lookups: u64,
+    pub box_queries: u64,
+    pub convergence_best: Vec<f64>,
+    pub convergence_mean: Vec<f64>,
+}
+
+/// Inputs shared by all lifts.
+pub struct Site<'a> {
+    pub map: &'a Mdm,
+    pub world: &'a validate::World,
+    pub charts: Option<&'a CapacityTable>,
+}
+
+fn lift_err(task: &LiftTask, message: impl Into<String>) -> PlanError {
+    PlanError::Lift { lift: task.id.clone(), message: message.into() }
+}
+
+/// The landing zones of a lift.
+pub fn landing_zones(task: &LiftTask, s: &Settings) -> Vec<LandingZone> {
+    [task.pick, task.set]
+        .iter()
+        .map(|c| LandingZone::around(&task.crane.load_obb(c, &task.load), s.landing_margin_m, s.landing_clearance_m))
+        .collect()
+}
+
+/// Plans, shortens, validates one lift.
+pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Result<(LiftPlan, CSpace)> {
+    let t0 = std::time::Instant::now();
+    let chart: Option<&ChartConfig> = match site.charts {
+        Some(t) => Some(t.config(&task.chart_config).map_err(|e| lift_err(task, e.to_string()))?),
+        None => None,
+    };
+    for (what, c) in [("pick", &task.pick), ("set", &task.set)] {
+        if let Some(ch) = chart {
+            match task.check_capacity(ch, c.radial) {
+                Ok(k) if k.effective_kg >= task.gross_kg() => {}
+                Ok(k) => {
+                    return Err(lift_err(
+                        task,
+                        format!(
+                            "{what} is over capacity: gross {:.0} kg at radius {:.2} m, chart {} gives {:.0} kg ({:.0} kg after the reduction)",
+                            task.gross_kg(),
+                            k.radius_m,
+                            k.capacity.cell,
+                            k.capacity.capacity_kg,
+                            k.effective_kg
+                        ),
+                    ));
+                }
+                Err(e) => return Err(lift_err(task, format!("{what}: {e}"))),
+            }
+        }
+    }
+    let cs = CSpace::build(&Problem { task, chart, map: site.map }, &s.cspace);
+    let ck = Checker::new(&cs, site.map, task, landing_zones(task, s), s.cspace.sample_m);
+    let start = task.start();
+    let goal0 = task.goal();
+    if let Err(b) = ck.config(&start) {
+        return Err(lift_err(task, format!("the lifted-off pick configuration is not allowed: {b}")));
+    }
+    if let Err(b) = ck.config(&goal0) {
+        return Err(lift_err(task, format!("the configuration above the set position is not allowed: {b}")));
+    }
+    // Both ways round.
+    let short = start.swing_rad + liftplan_core::units::wrap_pi(goal0.swing_rad - start.swing_rad);
+    let long = if short >= start.swing_rad { short - std::f64::consts::TAU } else { short + std::f64::consts::TAU };
+    let mut candidates = vec![];
+    for (label, gs) in [("short way", short), ("long way", long)] {
+        let goal = Config { swing_rad: gs, ..goal0 };
+        if let Some((a, b)) = task.swing_range_rad
+            && !(start.swing_rad.min(gs) >= a && start.swing_rad.max(gs) <= b)
+        {
+            continue;
+        }
+        let (nodes, stats) = match s.planner {
+            Planner::Mspga | Planner::AliGa => {
+                let kind = if s.planner == Planner::Mspga { mspga::Fitness::Mspga } else { mspga::Fitness::Ali };
+                let r = mspga::run(&ck, &start, &goal, &s.ga, kind, seed, &format!("plan/{}/{label}", task.id));
+                let best = r.best.clone();
+                match best {
+                    Some(b) if b.n == 0 => (Some(b.genes.clone()), r),
+                    Some(b) => {
+                        let why = mspga::first_problem(&ck, &b.genes).map(|p| p.to_string()).unwrap_or_default();
+                        tracing::info!("lift {}: {label}: no feasible path ({why})", task.id);
+                        (None, r)
+                    }
+                    None => (None, r),
+                }
+            }
+            Planner::RrtConnect | Planner::Prm => {
+                let r = if s.planner == Planner::RrtConnect {
+                    baselines::rrt_connect(&ck, &start, &goal, &s.baselines, &s.ga.weights, seed)
+                } else {
+                    baselines::prm(&ck, &start, &goal, &s.baselines, &s.ga.weights, seed)
+                };
+                let stats = mspga::GaResult {
+                    best: None,
+                    generations: r.iterations,
+                    evaluations: r.edge_checks,
+                    first_feasible: None,
+                    best_fitness: vec![],
+                    mean_fitness: vec![],
+                };
+                (r.found.then_some(r.nodes), stats)
+            }
+        };
+        if let Some(nodes) = nodes {
+            let nodes = path::shortcut(&ck, &nodes, &s.ga.weights);
+            let moves = path::path_moves(&ck, &nodes);
+            let (d, sc) = path::cost(&moves, &s.ga.weights, task.crane.model.is_tower());
+            candidates.push((d + s.ga.lambda2 * (1.0 + sc as f64), label, nodes, moves, d, sc, stats));
+        }
+    }
+    candidates.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let Some((m, label, nodes, moves, d, sc, stats)) = candidates.into_iter().next() else {
+        return Err(lift_err(
+            task,
+            format!(
+                "no collision-free, chart-compliant path found ({} generations of {} strings each way); \
+                 try a larger population or more generations, another crane position, or check the obstacles in the C-space picture",
+                s.ga.max_generations, s.ga.population
+            ),
+        ));
+    };
+    // The planner's own continuous check of the final moves.
+    if let Err(b) = path::check_moves(&ck, &moves) {
+        return Err(lift_err(task, format!("internal error: the shortened path fails the planner's own check: {b}")));
+    }
+    let plan_ms = t0.elapsed().as_secs_f64() * 1e3;
+    // Lift-off and set-down.
+    let mut all = Vec::with_capacity(moves.len() + 2);
+    all.push(Move { joint: Joint::Hoist, from: task.pick, to: start });
+    all.extend(moves.iter().copied());
+    all.push(Move {
+        joint: Joint::Hoist,
+        from: nodes.last().copied().unwrap_or(goal0),
+        to: Config { swing_rad: nodes.last().map(|n| n.swing_rad).unwrap_or(goal0.swing_rad), ..task.set },
+    });
+    let landing_flags: Vec<bool> = (0..all.len()).map(|i| i == 0 || i == all.len() - 1).collect();
+    let rules = validate::Rules {
+        clearance_m: task.clearance_m,
+        landing: landing_zones(task, s).into_iter().map(|z| z.polygon).collect(),
+        landing_clearance_m: s.landing_clearance_m,
+        sample_m: s.validator_sample_m,
+        support_m: s.support_m,
+    };
+    let verdict = validate::validate(task, chart, site.world, &rules, &all, &landing_flags);
+    if !verdict.ok {
+        return Err(lift_err(
+            task,
+            format!("the validator rejected the plan, so none is written:\n  {}", verdict.problems.join("\n  ")),
+        ));
+    }
+    let steps = steps::steps(task, &all, &verdict);
+    let summary = steps::summary(task, &steps, &verdict);
+    use std::sync::atomic::Ordering::Relaxed;
+    let plan = LiftPlan {
+        lift: task.id.clone(),
+        description: task.description.clone(),
+        planner: s.planner,
+        crane_model: task.crane.model.name.clone(),
+        chart_config: task.chart_config.clone(),
+        gross_kg: task.gross_kg(),
+        clearance_m: task.clearance_m,
+        landing_clearance_m: s.landing_clearance_m,
+        critical_pct: task.critical_pct,
+        pick: task.pick,
+        set: task.set,
+        start,
+        goal: nodes.last().copied().unwrap_or(goal0),
+        nodes,
+        moves: all,
+        steps,
+        summary,
+        validator: ValidatorReport {
+            ok: verdict.ok,
+            samples: verdict.samples,
+            seconds: verdict.seconds,
+            problems: verdict.problems,
+        },
+        planning: PlanningStats {
+            seed,
+            generations: stats.generations,
+            evaluations: stats.evaluations,
+            first_feasible_generation: stats.first_feasible,
+            fitness: m,
+            motion_cost: d,
+            switches: sc,
+            cspace_ms: cs.build_ms,
+            plan_ms,
+            swing_direction: label.to_string(),
+            table_lookups: ck.counters.lookups.load(Relaxed),
+            box_queries: ck.counters.box_queries.load(Relaxed),
+            convergence_best: stats.best_fitness,
+            convergence_mean: stats.mean_fitness,
+        },
+    };
+    Ok((plan, cs))
+}
+
+/// Reads the site points (dropping the `exclude` boxes) for the validator.
+pub fn read_points(path: &Path, exclude: &[Obb]) -> Result<(Vec<[f64; 3]>, Vec<bool>)> {
+    let mut inp = liftplan_depthmap::Inputs::default();
+    liftplan_depthmap::read_cloud(path, exclude, &mut inp)
+        .map_err(|e| PlanError::Input(Location::file(path), e.to_string()))?;
+    Ok((inp.points, inp.ground))
+}
+
+/// What the stage reports.
+#[derive(Debug, Clone, Serialize)]
+pub struct RunSummary {
+    pub lifts: Vec<steps::Summary>,
+}
+
+impl RunSummary {
+    pub fn lines(&self) -> Vec<String> {
+        self.lifts.iter().map(|s| s.line()).collect()
+    }
+}
+
+/// Runs the stage over every lift; fails on the first lift that cannot be planned and validated.
+pub fn run(
+    tasks: &[LiftTask],
+    map_path: &Path,
+    mesh_path: Option<&Path>,
+    cloud_path: Option<&Path>,
+    capacity_csv: Option<&Path>,
+    s: &Settings,
+    seed: u64,
+    out_dir: &Path,
+) -> Result<RunSummary> {
+    s.check().map_err(PlanError::Settings)?;
+    let map = Mdm::read(map_path).map_err(|e| PlanError::Input(Location::file(map_path), e.to_string()))?;
+    let mesh = match mesh_path {
+        Some(p) => TriMesh::read_artifact(p).map_err(|e| PlanError::Input(Location::file(p), e.to_string()))?,
+        None => TriMesh::default(),
+    };
+    let exclusions = load_exclusions(tasks, 0.3);
+    let (points, ground) = match cloud_path {
+        Some(p) => read_points(p, &exclusions)?,
+        None => (vec![], vec![]),
+    };
+    let world = validate::World::new(&mesh, &points, &ground).map_err(PlanError::Settings)?;
+    let charts = match capacity_csv {
+        Some(p) => Some(CapacityTable::read_csv(p).map_err(|e| PlanError::Input(Location::file(p), e))?),
+        None => None,
+    };
+    let site = Site { map: &map, world: &world, charts: charts.as_ref() };
+    std::fs::create_dir_all(out_dir).map_err(|e| PlanError::Input(Location::file(out_dir), e.to_string()))?;
+    let mut plans = Vec::new();
+    for task in tasks {
+        let (plan, cs) = plan_lift(task, &site, s, seed)?;
+        let io = |p: &Path, e: std::io::Error| PlanError::Input(Location::file(p), e.to_string());
+        let csv = out_dir.join(format!("{}.steps.csv", task.id));
+        liftplan_core::artifact::write_atomic(&csv, steps::to_csv(&plan.steps).as_bytes()).map_err(|e| io(&csv, e))?;
+        let png = out_dir.join(format!("{}.cspace.png", task.id));
+        let pts: Vec<(f64, f64)> = std::iter::once(&plan.moves[0].from)
+            .chain(plan.moves.iter().map(|m| &m.to))
+            .map(|c| (c.swing_rad, c.radial))
+            .collect();
+        let marks = [("PICK", task.pick.swing_rad, task.pick.radial), ("SET", task.set.swing_rad, task.set.radial)];
+        liftplan_cspace::picture::draw(&cs, task.gross_kg(), task.capacity_reduction_pct, &pts, &marks)
+            .write_png(&png)
+            .map_err(|e| io(&png, e))?;
+        plans.push(plan);
+    }
+    let json = serde_json::to_string_pretty(&serde_json::json!({ "lifts": plans })).unwrap_or_default();
+    let pj = out_dir.join("plan.json");
+    liftplan_core::artifact::write_atomic(&pj, json.as_bytes())
+        .map_err(|e| PlanError::Input(Location::file(&pj), e.to_string()))?;
+    Ok(RunSummary { lifts: plans.iter().map(|p| p.summary.clone()).collect() })
+}
+
+/// Part names for messages.
+pub fn part_name(p: PartKind) -> &'static str {
+    p.name()
+}

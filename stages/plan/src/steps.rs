@@ -1,0 +1,211 @@
+//! Operator steps (Cai Table 6.1 style): one joint at a time, with the crane's
+//! configuration, radius, capacity, utilisation and the smallest clearance the
+//! validator measured during the step.
+
+use crate::path::Move;
+use crate::validate::Verdict;
+use liftplan_core::crane::Config;
+use liftplan_core::lift::LiftTask;
+use liftplan_cspace::Joint;
+use serde::Serialize;
+
+#[derive(Debug, Clone, Serialize)]
+pub struct Step {
+    pub n: usize,
+    /// e.g. "Swing", "Luff up", "Hoist up", "Lower", "Rotate load", "Trolley out".
+    pub operation: String,
+    /// Signed amount in `unit`.
+    pub amount: f64,
+    pub unit: String,
+    /// Human text: "swing +58.0° (counter-clockwise)".
+    pub text: String,
+    pub end: Config,
+    /// Working radius at the end of the step (m).
+    pub radius_m: f64,
+    /// Load underside height at the end (m).
+    pub load_height_m: f64,
+    /// Smallest chart capacity during the step (kg, before the reduction) and its cell.
+    pub capacity_kg: Option<f64>,
+    pub chart_cell: Option<String>,
+    /// Highest utilisation during the step (%).
+    pub utilisation_pct: Option<f64>,
+    /// Smallest clearance during the step (m), which part, to what, and what was required.
+    pub min_clearance_m: f64,
+    pub clearance_part: String,
+    pub clearance_to: String,
+    pub required_clearance_m: f64,
+}
+
+fn describe(task: &LiftTask, m: &Move) -> (String, f64, String, String) {
+    let d = m.delta();
+    let tower = task.crane.model.is_tower();
+    match m.joint {
+        Joint::Swing => {
+            let deg = d.to_degrees();
+            let dir = if deg >= 0.0 { "counter-clockwise" } else { "clockwise" };
+            ("Swing".into(), deg, "°".into(), format!("swing {deg:+.1}° ({dir})"))
+        }
+        Joint::Radial if tower => {
+            let op = if d >= 0.0 { "Trolley out" } else { "Trolley in" };
+            (op.into(), d, "m".into(), format!("trolley {d:+.2} m"))
+        }
+        Joint::Radial => {
+            let deg = d.to_degrees();
+            let op = if deg >= 0.0 { "Luff up" } else { "Luff down" };
+            (op.into(), deg, "°".into(), format!("{} {:.1}°", op.to_lowercase(), deg.abs()))
+        }
+        Joint::Hoist => {
+            // Shorter rope raises the load: report the load's rise.
+            let rise = -d;
+            let op = if rise >= 0.0 { "Hoist up" } else { "Lower" };
+            (op.into(), rise, "m".into(), format!("{} {:.2} m", op.to_lowercase(), rise.abs()))
+        }
+        Joint::Rotate => {
+            let deg = d.to_degrees();
+            ("Rotate load".into(), deg, "°".into(), format!("rotate load {deg:+.1}°"))
+        }
+    }
+}
+
+/// The steps of a validated move list.
+pub fn steps(task: &LiftTask, moves: &[Move], verdict: &Verdict) -> Vec<Step> {
+    moves
+        .iter()
+        .enumerate()
+        .map(|(i, m)| {
+            let (operation, amount, unit, text) = describe(task, m);
+            let check = verdict.moves.get(i);
+            let tight = check.map(|c| &c.tightest);
+            let util = check.map(|c| &c.max_utilisation);
+            Step {
+                n: i + 1,
+                operation,
+                amount,
+                unit,
+                text,
+                end: m.to,
+                radius_m: task.crane.radius_m(m.to.radial),
+                load_height_m: task.crane.load_bottom_z(&m.to, &task.load),
+                capacity_kg: util.and_then(|u| u.capacity_kg),
+                chart_cell: util.and_then(|u| u.chart_cell.clone()),
+                utilisation_pct: util.and_then(|u| u.utilisation_pct),
+                min_clearance_m: tight.map(|t| t.nearest.distance_m).unwrap_or(f64::INFINITY),
+                clearance_part: tight.map(|t| t.part.name().to_string()).unwrap_or_default(),
+                clearance_to: tight.map(|t| t.nearest.object.clone()).unwrap_or_default(),
+                required_clearance_m: tight.map(|t| t.required_m).unwrap_or(0.0),
+            }
+        })
+        .collect()
+}
+
+/// The lift at a glance.
+#[derive(Debug, Clone, Serialize)]
+pub struct Summary {
+    pub lift: String,
+    pub validated: bool,
+    pub steps: usize,
+    pub max_utilisation_pct: f64,
+    pub max_utilisation_step: usize,
+    pub max_utilisation_cell: String,
+    pub critical: bool,
+    pub min_clearance_m: f64,
+    pub min_clearance_step: usize,
+    pub min_clearance_what: String,
+    pub swing_deg: f64,
+    pub luff_or_trolley: f64,
+    pub hoist_m: f64,
+    pub rotate_deg: f64,
+}
+
+impl Summary {
+    pub fn line(&self) -> String {
+        format!(
+            "lift {}: {} steps, validated; max utilisation {:.0} % (step {}, {}){}; min clearance {:.2} m (step {}, {})",
+            self.lift,
+            self.steps,
+            self.max_utilisation_pct,
+            self.max_utilisation_step,
+            self.max_utilisation_cell,
+            if self.critical { ", CRITICAL LIFT" } else { "" },
+            self.min_clearance_m,
+            self.min_clearance_step,
+            self.min_clearance_what
+        )
+    }
+}
+
+pub fn summary(task: &LiftTask, steps: &[Step], verdict: &Verdict) -> Summary {
+    let mut s = Summary {
+        lift: task.id.clone(),
+        validated: verdict.ok,
+        steps: steps.len(),
+        max_utilisation_pct: 0.0,
+        max_utilisation_step: 0,
+        max_utilisation_cell: String::new(),
+        critical: false,
+        min_clearance_m: f64::INFINITY,
+        min_clearance_step: 0,
+        min_clearance_what: String::new(),
+        swing_deg: 0.0,
+        luff_or_trolley: 0.0,
+        hoist_m: 0.0,
+        rotate_deg: 0.0,
+    };
+    for st in steps {
+        if let Some(u) = st.utilisation_pct
+            && u > s.max_utilisation_pct
+        {
+            s.max_utilisation_pct = u;
+            s.max_utilisation_step = st.n;
+            s.max_utilisation_cell = st.chart_cell.clone().unwrap_or_default();
+        }
+        // Lift-off and set-down touch the supports by design; report the travel.
+        let landing = st.n == 1 || st.n == steps.len();
+        if !landing && st.min_clearance_m < s.min_clearance_m {
+            s.min_clearance_m = st.min_clearance_m;
+            s.min_clearance_step = st.n;
+            s.min_clearance_what = format!("{} to {}", st.clearance_part, st.clearance_to);
+        }
+        match st.operation.as_str() {
+            "Swing" => s.swing_deg += st.amount.abs(),
+            "Rotate load" => s.rotate_deg += st.amount.abs(),
+            "Hoist up" | "Lower" => s.hoist_m += st.amount.abs(),
+            _ => s.luff_or_trolley += st.amount.abs(),
+        }
+    }
+    s.critical = s.max_utilisation_pct > task.critical_pct;
+    s
+}
+
+fn csv_field(s: &str) -> String {
+    if s.contains([',', '"', '\n']) { format!("\"{}\"", s.replace('"', "\"\"")) } else { s.to_string() }
+}
+
+pub fn to_csv(steps: &[Step]) -> String {
+    let mut out = String::from(
+        "step,operation,amount,unit,swing_deg,radial,hoist_m,load_yaw_deg,radius_m,load_height_m,capacity_kg,chart_cell,utilisation_pct,min_clearance_m,clearance_part,clearance_to\n",
+    );
+    for s in steps {
+        let opt = |v: Option<f64>, p: usize| v.map(|x| format!("{x:.p$}")).unwrap_or_default();
+        out.push_str(&format!(
+            "{},{},{:.3},{},{:.3},{:.5},{:.3},{:.3},{:.3},{:.3},{},{},{},{:.3},{},{}\n",
+            s.n,
+            csv_field(&s.operation),
+            s.amount,
+            s.unit,
+            s.end.swing_rad.to_degrees(),
+            s.end.radial,
+            s.end.hoist_m,
+            s.end.load_yaw_rad.to_degrees(),
+            s.radius_m,
+            s.load_height_m,
+            opt(s.capacity_kg, 0),
+            csv_field(s.chart_cell.as_deref().unwrap_or("")),
+            opt(s.utilisation_pct, 1),
+            s.min_clearance_m,
+            csv_field(&s.clearance_part),
+            csv_field(&s.clearance_to),
+        ));
+    }
+    out
+}

@@ -1,0 +1,379 @@
+//! The independent validator.
+//!
+//! It shares no collision code with the planner: no depth map, no C-space, no
+//! grown boxes. It measures exact distances (parry3d, f64) from every crane part
+//! to the original plant triangles and the site points, along every move
+//! sampled so that no point of the crane moves more than `sample_m` (finer than
+//! the planner), and re-reads the load chart at every sample. What it shares
+//! with the planner is the crane's forward kinematics (the part boxes) and the
+//! lift's rules (clearance, landing zones, chart), which it applies itself.
+//!
+//! A plan it rejects is never written as a plan.
+
+use crate::path::Move;
+use liftplan_core::capacity::ChartConfig;
+use liftplan_core::crane::{Config, Dependence, PartKind};
+use liftplan_core::lift::LiftTask;
+use liftplan_core::mesh::TriMesh;
+use liftplan_core::obb::Obb;
+use parry3d_f64::math::{Pose, Vector};
+use parry3d_f64::query::{self, PointQuery};
+use parry3d_f64::shape::{Cuboid, TriMesh as ParryMesh};
+use rayon::prelude::*;
+use serde::Serialize;
+use std::collections::HashMap;
+
+/// Site points hashed into 1 m voxels, with their ground flag.
+pub struct PointIndex {
+    cells: HashMap<[i32; 3], Vec<([f64; 3], bool)>>,
+    pub count: usize,
+}
+
+const VOXEL_M: f64 = 1.0;
+
+fn voxel(p: &[f64; 3]) -> [i32; 3] {
+    [(p[0] / VOXEL_M).floor() as i32, (p[1] / VOXEL_M).floor() as i32, (p[2] / VOXEL_M).floor() as i32]
+}
+
+impl PointIndex {
+    pub fn new(points: &[[f64; 3]], ground: &[bool]) -> PointIndex {
+        let mut cells: HashMap<[i32; 3], Vec<([f64; 3], bool)>> = HashMap::new();
+        for (p, g) in points.iter().zip(ground) {
+            cells.entry(voxel(p)).or_default().push((*p, *g));
+        }
+        PointIndex { cells, count: points.len() }
+    }
+}
+
+/// The obstacles, as the validator sees them.
+pub struct World {
+    pub mesh: Option<ParryMesh>,
+    /// Group name per parry triangle.
+    pub tri_group: Vec<String>,
+    pub points: PointIndex,
+}
+
+impl World {
+    pub fn new(mesh: &TriMesh, points: &[[f64; 3]], ground: &[bool]) -> Result<World, String> {
+        let parry = if mesh.triangles.is_empty() {
+            None
+        } else {
+            let v = mesh.vertices.iter().map(|p| Vector::new(p[0], p[1], p[2])).collect();
+            Some(
+                ParryMesh::new(v, mesh.triangles.clone())
+                    .map_err(|e| format!("plant mesh for the validator: {e:?}"))?,
+            )
+        };
+        let tri_group = (0..mesh.triangles.len()).map(|t| mesh.group_of_triangle(t).to_string()).collect();
+        Ok(World { mesh: parry, tri_group, points: PointIndex::new(points, ground) })
+    }
+}
+
+fn parry_box(b: &Obb) -> (Pose, Cuboid) {
+    let col = |k: usize| Vector::new(b.axes[(0, k)], b.axes[(1, k)], b.axes[(2, k)]);
+    let rot = parry3d_f64::glamx::DQuat::from_mat3(&parry3d_f64::glamx::DMat3::from_cols(col(0), col(1), col(2)));
+    (
+        Pose::from_parts(Vector::new(b.center.x, b.center.y, b.center.z), rot),
+        Cuboid::new(Vector::new(b.half.x, b.half.y, b.half.z)),
+    )
+}
+
+/// Distance from a box to the nearest obstacle, and which, searched up to `cutoff_m` for points.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Nearest {
+    pub distance_m: f64,
+    pub object: String,
+}
+
+fn nearest(world: &World, b: &Obb, ignore_ground: bool, cutoff_m: f64) -> Nearest {
+    let (pose, cub) = parry_box(b);
+    let mut best = Nearest { distance_m: f64::INFINITY, object: String::new() };
+    if let Some(m) = &world.mesh
+        && let Ok(d) = query::distance(&pose, &cub, &Pose::identity(), m)
+    {
+        best = Nearest {
+            distance_m: d.distance,
+            object: world.tri_group.get(d.subshape2 as usize).cloned().unwrap_or_default(),
+        };
+    }
+    let aabb = b.aabb().expanded(cutoff_m.min(best.distance_m));
+    let (lo, hi) = (voxel(&aabb.min), voxel(&aabb.max));
+    let n_vox = (hi[0] - lo[0] + 1) as i64 * (hi[1] - lo[1] + 1) as i64 * (hi[2] - lo[2] + 1) as i64;
+    let mut check = |pts: &Vec<([f64; 3], bool)>| {
+        for (p, g) in pts {
+            if ignore_ground && *g {
+                continue;
+            }
+            let d = cub.distance_to_point(&pose, Vector::new(p[0], p[1], p[2]), true);
+            if d < best.distance_m {
+                best = Nearest {
+                    distance_m: d,
+                    object: if *g { "ground (scan)".into() } else { "scanned structure".into() },
+                };
+            }
+        }
+    };
+    if n_vox as usize > world.points.cells.len() {
+        for pts in world.points.cells.values() {
+            check(pts);
+        }
+    } else {
+        for x in lo[0]..=hi[0] {
+            for y in lo[1]..=hi[1] {
+                for z in lo[2]..=hi[2] {
+                    if let Some(pts) = world.points.cells.get(&[x, y, z]) {
+                        check(pts);
+                    }
+                }
+            }
+        }
+    }
+    best
+}
+
+/// The lift's rules, as the validator applies them.
+#[derive(Debug, Clone, Serialize)]
+pub struct Rules {
+    pub clearance_m: f64,
+    /// Landing zones (plan polygons) and the clearance the hanging parts need in them.
+    pub landing: Vec<Vec<[f64; 2]>>,
+    pub landing_clearance_m: f64,
+    /// Largest displacement of any crane point between samples (m).
+    pub sample_m: f64,
+    /// Obstacles within this distance of the load's underside at pick/set are its supports.
+    pub support_m: f64,
+}
+
+fn in_polygon(poly: &[[f64; 2]], p: [f64; 2]) -> bool {
+    // Even-odd rule: independent of the planner's convex test.
+    let mut inside = false;
+    let n = poly.len();
+    for i in 0..n {
+        let (a, b) = (poly[i], poly[(i + 1) % n]);
+        if (a[1] > p[1]) != (b[1] > p[1]) && p[0] < a[0] + (p[1] - a[1]) / (b[1] - a[1]) * (b[0] - a[0]) {
+            inside = !inside;
+        }
+    }
+    inside
+}
+
+/// What one sample found.
+#[derive(Debug, Clone, Serialize)]
+pub struct SampleCheck {
+    pub config: Config,
+    pub part: PartKind,
+    pub nearest: Nearest,
+    pub required_m: f64,
+    pub radius_m: f64,
+    pub capacity_kg: Option<f64>,
+    pub chart_cell: Option<String>,
+    pub utilisation_pct: Option<f64>,
+}
+
+/// The verdict on one move.
+#[derive(Debug, Clone, Serialize)]
+pub struct MoveCheck {
+    pub samples: usize,
+    /// The sample with the smallest clearance margin (distance less requirement).
+    pub tightest: SampleCheck,
+    /// The sample with the highest utilisation.
+    pub max_utilisation: SampleCheck,
+    pub problems: Vec<String>,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct Verdict {
+    pub ok: bool,
+    pub moves: Vec<MoveCheck>,
+    pub problems: Vec<String>,
+    pub samples: usize,
+    pub seconds: f64,
+}
+
+fn samples_for(task: &LiftTask, m: &Move, sample_m: f64) -> usize {
+    let crane = &task.crane;
+    let delta = m.delta().abs();
+    let lever = match m.joint {
+        liftplan_cspace::Joint::Swing => {
+            // Farthest point of any part from the slewing axis.
+            let o = crane.slew_center();
+            let far = |c: &Config| {
+                crane
+                    .pose(c, &task.load)
+                    .parts
+                    .iter()
+                    .flat_map(|(_, b)| b.corners())
+                    .map(|p| ((p.x - o.x).powi(2) + (p.y - o.y).powi(2)).sqrt())
+                    .fold(0.0, f64::max)
+            };
+            far(&m.from).max(far(&m.to))
+        }
+        liftplan_cspace::Joint::Radial => {
+            if crane.model.is_tower() {
+                1.0
+            } else {
+                // Points of the boom and the hanging parts lie within this of the pivot.
+                crane.placement.boom_length_m
+                    + 10.0
+                    + task.load.bounding_radius() * 2.0
+                    + m.from.hoist_m.max(m.to.hoist_m)
+            }
+        }
+        liftplan_cspace::Joint::Hoist => 1.0,
+        liftplan_cspace::Joint::Rotate => 2.0 * task.load.bounding_radius(),
+    };
+    ((delta * lever / sample_m).ceil() as usize).max(1) + 1
+}
+
+/// Checks one configuration: every part's distance against its requirement and the chart.
+fn check_config(
+    task: &LiftTask,
+    chart: Option<&ChartConfig>,
+    world: &World,
+    rules: &Rules,
+    c: &Config,
+    landing_move: bool,
+) -> (Vec<SampleCheck>, Vec<String>) {
+    let crane = &task.crane;
+    let mut problems = Vec::new();
+    let lim = crane.limits();
+    if !(c.radial >= lim.radial.0 - 1e-9
+        && c.radial <= lim.radial.1 + 1e-9
+        && c.hoist_m >= lim.hoist_m.0 - 1e-9
+        && c.hoist_m <= lim.hoist_m.1 + 1e-9)
+    {
+        problems.push("outside the crane's joint limits".to_string());
+    }
+    let radius = crane.radius_m(c.radial);
+    let (cap, cell, util) = match chart.map(|ch| task.check_capacity(ch, c.radial)) {
+        Some(Ok(k)) => (Some(k.capacity.capacity_kg), Some(k.capacity.cell.clone()), Some(k.utilisation_pct)),
+        Some(Err(e)) => {
+            problems.push(format!("load chart: {e}"));
+            (None, None, None)
+        }
+        None => (None, None, None),
+    };
+    if util.is_some_and(|u| u > 100.0 + 1e-9) {
+        problems.push(format!("over capacity: {:.1} % at radius {radius:.2} m", util.unwrap_or(0.0)));
+    }
+    let load_box = crane.load_obb(c, &task.load);
+    let in_landing = rules.landing.iter().any(|poly| load_box.footprint().iter().all(|p| in_polygon(poly, *p)));
+    let mut out = Vec::new();
+    for &kind in crane.part_kinds() {
+        let dep = kind.dependence();
+        if dep == Dependence::Fixed {
+            continue; // checked once per plan
+        }
+        let Some(mut b) = crane.part(kind, c, &task.load) else { continue };
+        let hanging = dep == Dependence::Full;
+        let mut required = if hanging && in_landing { rules.landing_clearance_m } else { rules.clearance_m };
+        if landing_move && hanging {
+            required = 0.0;
+            if kind == PartKind::Load {
+                // The load may rest on its support: lift the box's underside by the support allowance.
+                let s = rules.support_m.min(b.half.z);
+                b.center.z += s / 2.0;
+                b.half.z -= s / 2.0;
+            }
+        }
+        let nearest = nearest(world, &b, !hanging, (rules.clearance_m * 3.0).max(3.0));
+        if nearest.distance_m < required - 1e-3 {
+            problems.push(format!(
+                "{} is {:.3} m from {} (needs {:.2} m)",
+                kind.name(),
+                nearest.distance_m,
+                nearest.object,
+                required
+            ));
+        }
+        out.push(SampleCheck {
+            config: *c,
+            part: kind,
+            nearest,
+            required_m: required,
+            radius_m: radius,
+            capacity_kg: cap,
+            chart_cell: cell.clone(),
+            utilisation_pct: util,
+        });
+    }
+    (out, problems)
+}
+
+/// Validates a plan: the moves from pick to set, the first and last being the
+/// lift-off and set-down moves (`landing_moves` marks which are).
+pub fn validate(
+    task: &LiftTask,
+    chart: Option<&ChartConfig>,
+    world: &World,
+    rules: &Rules,
+    moves: &[Move],
+    landing_moves: &[bool],
+) -> Verdict {
+    let t0 = std::time::Instant::now();
+    let mut problems = Vec::new();
+    // Fixed parts once: they stand on the ground, so only non-ground obstacles count.
+    if let Some(first) = moves.first() {
+        for &kind in task.crane.part_kinds() {
+            if kind.dependence() != Dependence::Fixed {
+                continue;
+            }
+            if let Some(b) = task.crane.part(kind, &first.from, &task.load) {
+                let n = nearest(world, &b, true, 1.0);
+                if n.distance_m <= 0.0 {
+                    problems.push(format!("crane set-up: {} intersects {}", kind.name(), n.object));
+                }
+            }
+        }
+    }
+    let mut move_checks = Vec::new();
+    let mut total = 0;
+    for (mi, m) in moves.iter().enumerate() {
+        let n = samples_for(task, m, rules.sample_m);
+        total += n;
+        let landing = landing_moves.get(mi).copied().unwrap_or(false);
+        let results: Vec<(Vec<SampleCheck>, Vec<String>)> = (0..n)
+            .into_par_iter()
+            .map(|s| {
+                let t = s as f64 / (n - 1).max(1) as f64;
+                let (a, b) = (m.from.to_array(), m.to.to_array());
+                let mut v = a;
+                let j = m.joint.index();
+                v[j] = a[j] + (b[j] - a[j]) * t;
+                check_config(task, chart, world, rules, &Config::from_array(v), landing)
+            })
+            .collect();
+        let mut move_problems: Vec<String> = Vec::new();
+        let mut tight: Option<SampleCheck> = None;
+        let mut util: Option<SampleCheck> = None;
+        for (checks, probs) in results {
+            for p in probs {
+                if !move_problems.contains(&p) && move_problems.len() < 5 {
+                    move_problems.push(p);
+                }
+            }
+            for c in checks {
+                let margin = c.nearest.distance_m - c.required_m;
+                if tight.as_ref().is_none_or(|t| margin < t.nearest.distance_m - t.required_m) {
+                    tight = Some(c.clone());
+                }
+                if util.as_ref().is_none_or(|u| c.utilisation_pct.unwrap_or(0.0) > u.utilisation_pct.unwrap_or(0.0)) {
+                    util = Some(c);
+                }
+            }
+        }
+        for p in &move_problems {
+            problems.push(format!("move {} ({:?}): {p}", mi + 1, m.joint));
+        }
+        if let (Some(t), Some(u)) = (tight, util) {
+            move_checks.push(MoveCheck { samples: n, tightest: t, max_utilisation: u, problems: move_problems });
+        }
+    }
+    Verdict {
+        ok: problems.is_empty(),
+        moves: move_checks,
+        problems,
+        samples: total,
+        seconds: t0.elapsed().as_secs_f64(),
+    }
+}
