@@ -18,8 +18,11 @@ pub fn inspect(path: &Path) -> Result<serde_json::Value> {
     if liftplan_plant::EXTS.contains(&ext.as_str()) {
         return Ok(liftplan_plant::inspect(path, &liftplan_plant::Settings::default())?);
     }
+    if ext == "mdm" {
+        return Ok(liftplan_depthmap::inspect(path)?);
+    }
     bail!(
-        "{}: liftplan does not read .{ext} files (scans: {}; plant: {}; charts: {})",
+        "{}: liftplan does not read .{ext} files (scans: {}; plant: {}; charts: {}; depth maps: mdm)",
         path.display(),
         crate::stages::SCAN_EXTS.join(", "),
         liftplan_plant::EXTS.join(", "),

@@ -265,6 +265,12 @@ fn real_main() -> Result<ExitCode> {
             print_report(&rep, false, &progress);
             if rep.ok {
                 println!("demo finished: outputs in {}", p.out_dir().display());
+                for l in &p.raw.lift {
+                    let pdf = p.out_dir().join(format!("{}.pdf", l.id));
+                    if pdf.is_file() {
+                        println!("lift plan: {}", pdf.display());
+                    }
+                }
             }
             Ok(if rep.ok { ExitCode::SUCCESS } else { ExitCode::from(1) })
         }

@@ -74,6 +74,7 @@ pub fn stages() -> Vec<StageDef> {
         crate::stages::charts(),
         crate::stages::depthmap(),
         crate::stages::plan(),
+        crate::stages::docs(),
     ]
 }
 

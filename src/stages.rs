@@ -190,3 +190,60 @@ fn run_plan(ctx: &Ctx) -> Result<Produced> {
     }
     Ok(Produced { outputs, summary: serde_json::to_value(&summary)?, lines: summary.lines() })
 }
+
+pub fn docs() -> StageDef {
+    StageDef {
+        name: liftplan_docs::NAME,
+        version: liftplan_docs::VERSION,
+        about: "render the pictures and the step-by-step lift plan PDF",
+        inputs: |p: &Project| Ok(p.crane_files()),
+        settings: |p: &Project| serde_json::json!({ "docs": p.raw.docs, "lifts": p.raw.lift, "project": p.raw.project.name }),
+        reads: &[("plan", "*"), ("scans", "site.laz"), ("plant", "plant.mesh"), ("charts", "capacity.csv")],
+        applicable: |_, _, up| up.contains_key("plan"),
+        run: run_docs,
+    }
+}
+
+fn run_docs(ctx: &Ctx) -> Result<Produced> {
+    let p = ctx.project;
+    let tasks = p.lifts()?;
+    let (plan_dir, _) = ctx.upstream.get("plan").ok_or_else(|| anyhow::anyhow!("no plan"))?;
+    let mut input_lines = Vec::new();
+    let mut input_hashes = Vec::new();
+    for stage in ["scans", "plant", "charts", "depthmap"] {
+        if let Some((_, m)) = ctx.upstream.get(stage) {
+            for l in &m.lines {
+                input_lines.push(format!("{stage}: {}", l.trim()));
+            }
+            for (name, hash) in &m.inputs {
+                if !name.starts_with("setting:") && !name.starts_with("upstream:") {
+                    input_hashes.push((name.clone(), hash.chars().take(16).collect::<String>()));
+                }
+            }
+        }
+    }
+    input_hashes.sort();
+    input_hashes.dedup();
+    let inputs = liftplan_docs::Inputs {
+        project: p.raw.project.name.clone(),
+        date: liftplan_docs::today(),
+        tasks: tasks.clone(),
+        plan_json: plan_dir.join("plan.json"),
+        mesh: ctx.upstream_file("plant", "plant.mesh"),
+        cloud: ctx.upstream_file("scans", "site.laz"),
+        capacity_csv: ctx.upstream_file("charts", "capacity.csv"),
+        plan_dir: plan_dir.clone(),
+        input_lines,
+        input_hashes,
+    };
+    let summary = liftplan_docs::run(&inputs, &p.raw.docs, ctx.out)?;
+    let mut outputs = Vec::new();
+    for t in &tasks {
+        outputs.push(format!("{}.pdf", t.id));
+        outputs.push(format!("{}.overview.png", t.id));
+        if ctx.out.join(format!("{}.chart.png", t.id)).exists() {
+            outputs.push(format!("{}.chart.png", t.id));
+        }
+    }
+    Ok(Produced { outputs, summary: serde_json::to_value(&summary)?, lines: summary.lines() })
+}

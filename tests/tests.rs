@@ -2,5 +2,6 @@
 //! temporary folder and runs the real executable.
 
 mod backbone;
+mod demo;
 mod util;
 mod watch;

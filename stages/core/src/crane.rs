@@ -425,6 +425,9 @@ pub enum PartKind {
     Trolley,
     Rope,
     HookBlock,
+    /// Slings and spreader between the hook block and the load: a box over the
+    /// load's footprint, from the load's top to the hook block's underside.
+    Rigging,
     Load,
 }
 
@@ -454,6 +457,7 @@ impl PartKind {
             PartKind::Trolley => "trolley",
             PartKind::Rope => "hoist rope",
             PartKind::HookBlock => "hook block",
+            PartKind::Rigging => "rigging",
             PartKind::Load => "load",
         }
     }
@@ -468,7 +472,7 @@ impl PartKind {
             | PartKind::CounterJib
             | PartKind::Cab => Dependence::Swing,
             PartKind::Boom | PartKind::Trolley => Dependence::SwingRadial,
-            PartKind::Rope | PartKind::HookBlock | PartKind::Load => Dependence::Full,
+            PartKind::Rope | PartKind::HookBlock | PartKind::Rigging | PartKind::Load => Dependence::Full,
         }
     }
 }
@@ -649,6 +653,13 @@ impl CraneSetup {
         let hook = &self.model.hook;
         match (&self.model.kind, kind) {
             (_, PartKind::Load) => Some(self.load_obb(c, load)),
+            (_, PartKind::Rigging) => {
+                let l = self.load_obb(c, load);
+                let h = load.rigging_height_m.max(0.0);
+                let mut b = Obb::new(l.center + Vec3::z() * (l.half.z + h / 2.0), l.axes, l.half);
+                b.half.z = h / 2.0;
+                Some(b)
+            }
             (_, PartKind::Rope) => {
                 let s = self.sheave(c);
                 let h = c.hoist_m.max(0.0);
@@ -755,6 +766,7 @@ impl CraneSetup {
                 PartKind::Boom,
                 PartKind::Rope,
                 PartKind::HookBlock,
+                PartKind::Rigging,
                 PartKind::Load,
             ],
             CraneKind::Tower(_) => &[
@@ -766,6 +778,7 @@ impl CraneSetup {
                 PartKind::Trolley,
                 PartKind::Rope,
                 PartKind::HookBlock,
+                PartKind::Rigging,
                 PartKind::Load,
             ],
         }

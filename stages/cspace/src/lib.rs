@@ -629,7 +629,7 @@ impl<'a> Checker<'a> {
         let load_box = crane.load_obb(c, &self.task.load);
         let clearance =
             self.landing.iter().find(|z| z.holds(&load_box)).map(|z| z.clearance_m).unwrap_or(self.task.clearance_m);
-        for kind in [PartKind::Load, PartKind::HookBlock, PartKind::Rope] {
+        for kind in [PartKind::Load, PartKind::Rigging, PartKind::HookBlock, PartKind::Rope] {
             let Some(b) = crane.part(kind, c, &self.task.load) else { continue };
             self.count(true);
             if let Some(h) = self.map.hit(&b.expanded(clearance + grow)) {

@@ -8,7 +8,6 @@ const FREE: Rgb = [238, 244, 238];
 const BODY: Rgb = [200, 60, 50];
 const BOOM: Rgb = [235, 150, 60];
 const CHART: Rgb = [150, 150, 160];
-const TIGHT: Rgb = [190, 215, 240];
 
 /// Draws the tables; `path` holds (swing rad, radial) points joined by lines,
 /// `marks` labelled points (pick, set).
@@ -28,9 +27,6 @@ pub fn draw(cs: &CSpace, gross_kg: f64, reduction_pct: f64, path: &[(f64, f64)],
             let i = i.min(cs.ns - 1);
             let idx = (k * cs.ns + i) as usize;
             let mut c = FREE;
-            if !cs.max_hoist.is_empty() && cs.max_hoist[idx] < 20.0 {
-                c = TIGHT;
-            }
             if !cs.cell_hits.is_empty() && cs.cell_hits[idx].is_some() {
                 c = BOOM;
             }

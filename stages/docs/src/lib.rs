@@ -1,11 +1,37 @@
 //! # liftplan-docs: stage 6, pictures and the lift plan PDF
+//!
+//! For each planned lift: a site overview (top view), one perspective picture
+//! per step, the load chart plot and the C-space picture from the plan stage,
+//! laid out in `<lift>.pdf` for the engineer who signs it and the crew who
+//! executes it. Reads `plan.json`; plans nothing and checks nothing itself.
+//!
+//! | file | what |
+//! |---|---|
+//! | `<lift>.pdf` | the lift plan document |
+//! | `<lift>.overview.png` | top view of the site, crane, load path |
+//! | `<lift>.chart.png` | capacity against radius with the lift's radii |
 
+pub mod pdf;
+pub mod pictures;
 pub mod render;
+mod report;
 
+use liftplan_core::Location;
 use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
 
 pub const NAME: &str = "docs";
 pub const VERSION: u32 = 1;
+
+#[derive(Debug, thiserror::Error)]
+pub enum DocsError {
+    #[error("{0}: {1}")]
+    Input(Location, String),
+    #[error("[docs] {0}")]
+    Other(String),
+}
+
+pub type Result<T> = std::result::Result<T, DocsError>;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
 #[serde(rename_all = "lowercase")]
@@ -28,4 +54,109 @@ impl Default for Settings {
     fn default() -> Self {
         Settings { paper: Paper::A4, step_pictures: true }
     }
+}
+
+/// What the documents are made from.
+pub struct Inputs {
+    pub project: String,
+    /// Issue date, YYYY-MM-DD.
+    pub date: String,
+    pub tasks: Vec<liftplan_core::lift::LiftTask>,
+    pub plan_json: PathBuf,
+    pub mesh: Option<PathBuf>,
+    pub cloud: Option<PathBuf>,
+    pub capacity_csv: Option<PathBuf>,
+    /// Folder holding `<lift>.cspace.png` from the plan stage.
+    pub plan_dir: PathBuf,
+    /// Lines describing the inputs (scans and registration, plant, chart).
+    pub input_lines: Vec<String>,
+    /// Input files and their blake3 hashes (short).
+    pub input_hashes: Vec<(String, String)>,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct Summary {
+    pub documents: Vec<String>,
+    pub pages: Vec<usize>,
+    pub seconds: f64,
+}
+
+impl Summary {
+    pub fn lines(&self) -> Vec<String> {
+        self.documents.iter().zip(&self.pages).map(|(d, p)| format!("{d}: {p} pages")).collect()
+    }
+}
+
+/// Today's date (UTC) as YYYY-MM-DD.
+pub fn today() -> String {
+    let days =
+        std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map(|d| d.as_secs() / 86_400).unwrap_or(0)
+            as i64;
+    // Civil from days (Howard Hinnant's algorithm).
+    let z = days + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z - era * 146_097;
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let d = doy - (153 * mp + 2) / 5 + 1;
+    let m = if mp < 10 { mp + 3 } else { mp - 9 };
+    let y = yoe + era * 400 + i64::from(m <= 2);
+    format!("{y:04}-{m:02}-{d:02}")
+}
+
+fn io(p: &Path, e: impl std::fmt::Display) -> DocsError {
+    DocsError::Input(Location::file(p), e.to_string())
+}
+
+/// Renders every lift's document.
+pub fn run(inp: &Inputs, s: &Settings, out_dir: &Path) -> Result<Summary> {
+    let t0 = std::time::Instant::now();
+    let text = std::fs::read_to_string(&inp.plan_json).map_err(|e| io(&inp.plan_json, e))?;
+    #[derive(Deserialize)]
+    struct PlanFile {
+        lifts: Vec<liftplan_plan::LiftPlan>,
+    }
+    let plans: PlanFile = serde_json::from_str(&text).map_err(|e| io(&inp.plan_json, e))?;
+    let mesh = match &inp.mesh {
+        Some(p) => liftplan_core::mesh::TriMesh::read_artifact(p).map_err(|e| io(p, e))?,
+        None => liftplan_core::mesh::TriMesh::default(),
+    };
+    let points = match &inp.cloud {
+        Some(p) => read_points(p)?,
+        None => vec![],
+    };
+    let site = pictures::SiteView::new(mesh, &points, 300_000);
+    let charts = match &inp.capacity_csv {
+        Some(p) => Some(liftplan_core::capacity::CapacityTable::read_csv(p).map_err(|e| io(p, e))?),
+        None => None,
+    };
+    std::fs::create_dir_all(out_dir).map_err(|e| io(out_dir, e))?;
+    let mut summary = Summary { documents: vec![], pages: vec![], seconds: 0.0 };
+    for plan in &plans.lifts {
+        let Some(task) = inp.tasks.iter().find(|t| t.id == plan.lift) else {
+            return Err(DocsError::Other(format!(
+                "plan.json has lift '{}' which the project no longer defines; rerun the plan stage",
+                plan.lift
+            )));
+        };
+        let chart = charts.as_ref().and_then(|c| c.config(&task.chart_config).ok());
+        let cspace_png = inp.plan_dir.join(format!("{}.cspace.png", task.id));
+        let cspace = std::fs::read(&cspace_png).ok().and_then(|b| liftplan_core::image::Image::decode_png(&b).ok());
+        let (bytes, pages, overview, chart_img) = report::document(inp, s, &site, task, plan, chart, cspace.as_ref())?;
+        let name = format!("{}.pdf", task.id);
+        liftplan_core::artifact::write_atomic(&out_dir.join(&name), &bytes).map_err(|e| io(&out_dir.join(&name), e))?;
+        overview.write_png(&out_dir.join(format!("{}.overview.png", task.id))).map_err(|e| io(out_dir, e))?;
+        if let Some(c) = chart_img {
+            c.write_png(&out_dir.join(format!("{}.chart.png", task.id))).map_err(|e| io(out_dir, e))?;
+        }
+        summary.documents.push(name);
+        summary.pages.push(pages);
+    }
+    summary.seconds = t0.elapsed().as_secs_f64();
+    Ok(summary)
+}
+
+fn read_points(path: &Path) -> Result<Vec<[f64; 3]>> {
+    liftplan_plan::read_points(path, &[]).map(|(p, _)| p).map_err(|e| io(path, e))
 }

@@ -118,7 +118,7 @@ pub fn load_exclusions(tasks: &[LiftTask], grow_m: f64) -> Vec<Obb> {
 }
 
 /// Everything a planned lift carries into `plan.json`.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct LiftPlan {
     pub lift: String,
     pub description: String,
@@ -142,7 +142,7 @@ pub struct LiftPlan {
     pub planning: PlanningStats,
 }
 
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct ValidatorReport {
     pub ok: bool,
     pub samples: usize,
@@ -150,7 +150,7 @@ pub struct ValidatorReport {
     pub problems: Vec<String>,
 }
 
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct PlanningStats {
     pub seed: u64,
     pub generations: usize,
@@ -212,6 +212,26 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
                     ));
                 }
                 Err(e) => return Err(lift_err(task, format!("{what}: {e}"))),
+            }
+        }
+    }
+    // The crane's set-up: carrier, outriggers (or mast) stand on the ground;
+    // anything else where they stand is a bad request.
+    for &kind in task.crane.part_kinds() {
+        if kind.dependence() != liftplan_core::crane::Dependence::Fixed {
+            continue;
+        }
+        if let Some(b) = task.crane.part(kind, &task.pick, &task.load) {
+            let b = standing(&b, s.support_m);
+            if let Some(h) = site.map.hit_where(&b, |iv| iv.obj != liftplan_depthmap::mdm::OBJ_GROUND) {
+                return Err(lift_err(
+                    task,
+                    format!(
+                        "crane set-up: the {} meets {}; move the crane or clear its footprint",
+                        kind.name(),
+                        site.map.object_name(&h.interval)
+                    ),
+                ));
             }
         }
     }
@@ -433,6 +453,16 @@ pub fn run(
     liftplan_core::artifact::write_atomic(&pj, json.as_bytes())
         .map_err(|e| PlanError::Input(Location::file(&pj), e.to_string()))?;
     Ok(RunSummary { lifts: plans.iter().map(|p| p.summary.clone()).collect() })
+}
+
+/// A part standing on the ground, its underside raised by `allowance_m` so the
+/// surface it stands on does not count as an obstacle.
+pub fn standing(b: &Obb, allowance_m: f64) -> Obb {
+    let lift = allowance_m.min(b.half.z);
+    let mut o = *b;
+    o.center.z += lift / 2.0;
+    o.half.z -= lift / 2.0;
+    o
 }
 
 /// Part names for messages.

@@ -303,7 +303,10 @@ pub fn run(
         }
         result.best_fitness.push(result.best.as_ref().map(|b| b.fitness).unwrap_or(0.0));
         result.mean_fitness.push(mean);
-        if result.best.as_ref().is_some_and(|b| b.n == 0) && stall >= s.stall_generations {
+        // Converged: a feasible best that stopped improving, or (a dead end,
+        // e.g. the long way round through a wall) no progress for twice as long.
+        let feasible = result.best.as_ref().is_some_and(|b| b.n == 0);
+        if (feasible && stall >= s.stall_generations) || stall >= 2 * s.stall_generations {
             break;
         }
         // Roulette selection with elitism.

@@ -9,10 +9,10 @@
 
 use liftplan_core::crane::Config;
 use liftplan_cspace::{Blocked, Checker, Joint};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// One single-joint move: `joint` goes to `to` starting from `from`.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Move {
     pub joint: Joint,
     pub from: Config,

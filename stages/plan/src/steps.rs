@@ -7,9 +7,9 @@ use crate::validate::Verdict;
 use liftplan_core::crane::Config;
 use liftplan_core::lift::LiftTask;
 use liftplan_cspace::Joint;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Step {
     pub n: usize,
     /// e.g. "Swing", "Luff up", "Hoist up", "Lower", "Rotate load", "Trolley out".
@@ -99,7 +99,7 @@ pub fn steps(task: &LiftTask, moves: &[Move], verdict: &Verdict) -> Vec<Step> {
 }
 
 /// The lift at a glance.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Summary {
     pub lift: String,
     pub validated: bool,

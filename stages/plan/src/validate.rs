@@ -319,6 +319,11 @@ pub fn validate(
                 continue;
             }
             if let Some(b) = task.crane.part(kind, &first.from, &task.load) {
+                // It stands on the ground: raise its underside by the support allowance.
+                let lift = rules.support_m.min(b.half.z);
+                let mut b = b;
+                b.center.z += lift / 2.0;
+                b.half.z -= lift / 2.0;
                 let n = nearest(world, &b, true, 1.0);
                 if n.distance_m <= 0.0 {
                     problems.push(format!("crane set-up: {} intersects {}", kind.name(), n.object));

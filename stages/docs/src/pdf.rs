@@ -1,0 +1,267 @@
+//! The lift plan PDF: a small page-layout layer over printpdf's operations.
+//!
+//! Text uses the embedded DejaVu Sans (regular and bold, subset on save), so
+//! degree and plus-minus signs print as such. Tables are vector lines; pictures
+//! are embedded losslessly (Flate). Coordinates here are millimetres from the
+//! top-left corner of the page; printpdf's origin is bottom-left.
+
+use liftplan_core::image::Image;
+use printpdf::{
+    Color, FontId, ImageCompression, ImageOptimizationOptions, Line, LinePoint, Mm, Op, ParsedFont, PdfDocument,
+    PdfFontHandle, PdfPage, PdfSaveOptions, Point, Pt, RawImage, RawImageData, RawImageFormat, Rect, Rgb, TextItem,
+    XObjectTransform,
+};
+
+const REGULAR: &[u8] = include_bytes!("../fonts/DejaVuSans.ttf");
+const BOLD: &[u8] = include_bytes!("../fonts/DejaVuSans-Bold.ttf");
+
+/// Page size in mm.
+#[derive(Debug, Clone, Copy)]
+pub struct PageSize {
+    pub w: f32,
+    pub h: f32,
+}
+
+pub const A4: PageSize = PageSize { w: 210.0, h: 297.0 };
+pub const LETTER: PageSize = PageSize { w: 215.9, h: 279.4 };
+
+pub struct Doc {
+    doc: PdfDocument,
+    regular: FontId,
+    bold: FontId,
+    pub size: PageSize,
+    pages: Vec<Vec<Op>>,
+    /// The page drawing goes to.
+    cur: usize,
+    /// Text of every page, for tests and the search index.
+    pub text: Vec<String>,
+}
+
+fn col(c: [u8; 3]) -> Color {
+    Color::Rgb(Rgb::new(c[0] as f32 / 255.0, c[1] as f32 / 255.0, c[2] as f32 / 255.0, None))
+}
+
+/// Rough advance width of DejaVu Sans in ems (for right-aligning and wrapping).
+pub fn text_width_mm(s: &str, size_pt: f32) -> f32 {
+    s.chars()
+        .map(|c| {
+            if c.is_ascii_digit() {
+                0.636
+            } else if c == ' ' {
+                0.32
+            } else if c.is_uppercase() {
+                0.70
+            } else {
+                0.56
+            }
+        })
+        .sum::<f32>()
+        * size_pt
+        * 0.3528
+}
+
+impl Doc {
+    pub fn new(title: &str, size: PageSize) -> Result<Doc, String> {
+        let mut doc = PdfDocument::new(title);
+        let mut w = Vec::new();
+        let r = ParsedFont::from_bytes(REGULAR, 0, &mut w).ok_or("embedded font DejaVuSans.ttf does not parse")?;
+        let b = ParsedFont::from_bytes(BOLD, 0, &mut w).ok_or("embedded font DejaVuSans-Bold.ttf does not parse")?;
+        let regular = doc.add_font(&r);
+        let bold = doc.add_font(&b);
+        Ok(Doc { doc, regular, bold, size, pages: vec![], cur: 0, text: vec![] })
+    }
+
+    pub fn new_page(&mut self) {
+        self.pages.push(vec![]);
+        self.text.push(String::new());
+        self.cur = self.pages.len() - 1;
+    }
+
+    fn ops(&mut self) -> &mut Vec<Op> {
+        if self.pages.is_empty() {
+            self.new_page();
+        }
+        &mut self.pages[self.cur]
+    }
+
+    fn pt(&self, x: f32, y: f32) -> Point {
+        Point::new(Mm(x), Mm(self.size.h - y))
+    }
+
+    /// Text with its baseline at (x, y) mm from the top-left.
+    pub fn text(&mut self, x: f32, y: f32, s: &str, size_pt: f32, bold: bool, color: [u8; 3]) {
+        let font = if bold { self.bold.clone() } else { self.regular.clone() };
+        let pos = self.pt(x, y);
+        let ops = self.ops();
+        ops.push(Op::StartTextSection);
+        ops.push(Op::SetFillColor { col: col(color) });
+        ops.push(Op::SetFont { font: PdfFontHandle::External(font), size: Pt(size_pt) });
+        ops.push(Op::SetTextCursor { pos });
+        ops.push(Op::ShowText { items: vec![TextItem::Text(s.to_string())] });
+        ops.push(Op::EndTextSection);
+        if let Some(t) = self.text.get_mut(self.cur) {
+            t.push_str(s);
+            t.push('\n');
+        }
+    }
+
+    /// Text wrapped to `width` mm; returns the y below the last line.
+    pub fn paragraph(&mut self, x: f32, mut y: f32, width: f32, s: &str, size_pt: f32) -> f32 {
+        let lh = size_pt * 0.3528 * 1.35;
+        let mut line = String::new();
+        for word in s.split_whitespace() {
+            let trial = if line.is_empty() { word.to_string() } else { format!("{line} {word}") };
+            if text_width_mm(&trial, size_pt) > width && !line.is_empty() {
+                self.text(x, y, &line, size_pt, false, [30, 30, 30]);
+                y += lh;
+                line = word.to_string();
+            } else {
+                line = trial;
+            }
+        }
+        if !line.is_empty() {
+            self.text(x, y, &line, size_pt, false, [30, 30, 30]);
+            y += lh;
+        }
+        y
+    }
+
+    pub fn line(&mut self, x0: f32, y0: f32, x1: f32, y1: f32, width_pt: f32, color: [u8; 3]) {
+        let (a, b) = (self.pt(x0, y0), self.pt(x1, y1));
+        let ops = self.ops();
+        ops.push(Op::SetOutlineColor { col: col(color) });
+        ops.push(Op::SetOutlineThickness { pt: Pt(width_pt) });
+        ops.push(Op::DrawLine {
+            line: Line {
+                points: vec![LinePoint { p: a, bezier: false }, LinePoint { p: b, bezier: false }],
+                is_closed: false,
+            },
+        });
+    }
+
+    pub fn fill_rect(&mut self, x: f32, y: f32, w: f32, h: f32, color: [u8; 3]) {
+        let bl = self.pt(x, y + h);
+        let ops = self.ops();
+        ops.push(Op::SetFillColor { col: col(color) });
+        ops.push(Op::DrawRectangle {
+            rectangle: Rect {
+                mode: Some(printpdf::PaintMode::Fill),
+                ..Rect::from_xywh(bl.x, bl.y, Mm(w).into(), Mm(h).into())
+            },
+        });
+    }
+
+    pub fn frame(&mut self, x: f32, y: f32, w: f32, h: f32, width_pt: f32, color: [u8; 3]) {
+        self.line(x, y, x + w, y, width_pt, color);
+        self.line(x + w, y, x + w, y + h, width_pt, color);
+        self.line(x + w, y + h, x, y + h, width_pt, color);
+        self.line(x, y + h, x, y, width_pt, color);
+    }
+
+    /// An image `w` mm wide with its top-left at (x, y); returns its height in mm.
+    pub fn image(&mut self, img: &Image, x: f32, y: f32, w: f32) -> f32 {
+        let raw = RawImage {
+            pixels: RawImageData::U8(img.data.clone()),
+            width: img.width as usize,
+            height: img.height as usize,
+            data_format: RawImageFormat::RGB8,
+            tag: vec![],
+        };
+        let id = self.doc.add_image(&raw);
+        let h = w * img.height as f32 / img.width as f32;
+        let dpi = img.width as f32 / (w / 25.4);
+        let bl = self.pt(x, y + h);
+        self.ops().push(Op::UseXobject {
+            id,
+            transform: XObjectTransform {
+                translate_x: Some(bl.x),
+                translate_y: Some(bl.y),
+                dpi: Some(dpi),
+                ..Default::default()
+            },
+        });
+        h
+    }
+
+    /// A table with a header row; `widths` in mm, `right` marks right-aligned
+    /// columns. Returns the y below it.
+    pub fn table(
+        &mut self,
+        x: f32,
+        mut y: f32,
+        widths: &[f32],
+        right: &[bool],
+        header: &[&str],
+        rows: &[Vec<String>],
+        size_pt: f32,
+    ) -> f32 {
+        let rh = size_pt * 0.3528 * 1.9;
+        let total: f32 = widths.iter().sum();
+        self.fill_rect(x, y, total, rh, [225, 232, 242]);
+        let mut cx = x;
+        for (k, h) in header.iter().enumerate() {
+            self.text(cx + 1.2, y + rh * 0.68, h, size_pt, true, [20, 20, 20]);
+            cx += widths[k];
+        }
+        self.line(x, y, x + total, y, 0.8, [80, 80, 80]);
+        y += rh;
+        self.line(x, y, x + total, y, 0.6, [80, 80, 80]);
+        for (ri, row) in rows.iter().enumerate() {
+            if ri % 2 == 1 {
+                self.fill_rect(x, y, total, rh, [246, 247, 250]);
+            }
+            let mut cx = x;
+            for (k, cell) in row.iter().enumerate() {
+                let tw = text_width_mm(cell, size_pt);
+                let tx = if right.get(k).copied().unwrap_or(false) { cx + widths[k] - 1.2 - tw } else { cx + 1.2 };
+                self.text(tx, y + rh * 0.68, cell, size_pt, false, [20, 20, 20]);
+                cx += widths[k];
+            }
+            y += rh;
+        }
+        self.line(x, y, x + total, y, 0.8, [80, 80, 80]);
+        y
+    }
+
+    /// Footer on every page ("page i of n"), then the PDF bytes.
+    pub fn finish(mut self, footer: &str, date: &str) -> Vec<u8> {
+        let n = self.pages.len();
+        for i in 0..n {
+            self.cur = i;
+            let y = self.size.h - 10.0;
+            let w = self.size.w;
+            self.line(15.0, y - 5.0, w - 15.0, y - 5.0, 0.5, [150, 150, 150]);
+            self.text(15.0, y, footer, 8.0, false, [90, 90, 90]);
+            let p = format!("page {} of {}", i + 1, n);
+            self.text(w - 15.0 - text_width_mm(&p, 8.0), y, &p, 8.0, false, [90, 90, 90]);
+        }
+        let pages: Vec<PdfPage> =
+            self.pages.into_iter().map(|ops| PdfPage::new(Mm(self.size.w), Mm(self.size.h), ops)).collect();
+        self.doc.metadata.info.producer = "liftplan".into();
+        self.doc.metadata.info.creator = format!("liftplan {}", env!("CARGO_PKG_VERSION"));
+        let ymd: Vec<i32> = date.split('-').filter_map(|v| v.parse().ok()).collect();
+        if let [y, m, d] = ymd[..] {
+            let dt = printpdf::DateTime {
+                date: printpdf::Date { year: y, month: m as u8, day: d as u8 },
+                time: printpdf::Time { hour: 0, minute: 0, second: 0, millisecond: 0 },
+                offset: printpdf::Offset { hours: 0, minutes: 0, seconds: 0, milliseconds: 0 },
+            };
+            self.doc.metadata.info.creation_date = dt;
+            self.doc.metadata.info.modification_date = dt;
+            self.doc.metadata.info.metadata_date = dt;
+        }
+        let opts = PdfSaveOptions {
+            image_optimization: Some(ImageOptimizationOptions {
+                quality: None,
+                max_image_size: None,
+                dither_greyscale: None,
+                convert_to_greyscale: Some(false),
+                auto_optimize: Some(false),
+                format: Some(ImageCompression::Flate),
+            }),
+            ..Default::default()
+        };
+        let mut warnings = Vec::new();
+        self.doc.with_pages(pages).save(&opts, &mut warnings)
+    }
+}

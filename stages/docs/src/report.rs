@@ -1,0 +1,363 @@
+//! The layout of one lift's document.
+
+use crate::pdf::{A4, Doc, LETTER};
+use crate::pictures::{self, SiteView};
+use crate::{DocsError, Inputs, Paper, Result, Settings};
+use liftplan_core::capacity::ChartConfig;
+use liftplan_core::image::Image;
+use liftplan_core::lift::LiftTask;
+use liftplan_plan::LiftPlan;
+
+const INK: [u8; 3] = [20, 20, 20];
+const GREY: [u8; 3] = [90, 90, 90];
+
+fn opt(v: Option<f64>, digits: usize) -> String {
+    v.map(|x| format!("{x:.digits$}")).unwrap_or_else(|| "—".into())
+}
+
+fn heading(d: &mut Doc, y: f32, s: &str) -> f32 {
+    d.text(15.0, y, s, 13.0, true, [25, 55, 110]);
+    d.line(15.0, y + 2.0, d.size.w - 15.0, y + 2.0, 0.6, [25, 55, 110]);
+    y + 9.0
+}
+
+fn key_values(d: &mut Doc, x: f32, mut y: f32, rows: &[(&str, String)], key_w: f32) -> f32 {
+    for (k, v) in rows {
+        d.text(x, y, k, 9.0, true, GREY);
+        d.text(x + key_w, y, v, 9.0, false, INK);
+        y += 5.0;
+    }
+    y
+}
+
+pub fn document(
+    inp: &Inputs,
+    s: &Settings,
+    site: &SiteView,
+    task: &LiftTask,
+    plan: &LiftPlan,
+    chart: Option<&ChartConfig>,
+    cspace: Option<&Image>,
+) -> Result<(Vec<u8>, usize, Image, Option<Image>)> {
+    let size = match s.paper {
+        Paper::A4 => A4,
+        Paper::Letter => LETTER,
+    };
+    let mut d = Doc::new(&format!("Lift plan {}", task.id), size).map_err(DocsError::Other)?;
+    let w = size.w - 30.0;
+    let sm = &plan.summary;
+
+    // Page 1: cover and summary.
+    d.new_page();
+    d.text(15.0, 22.0, &format!("Lift plan {}", task.id), 22.0, true, [25, 55, 110]);
+    d.text(15.0, 30.0, &task.description, 11.0, false, INK);
+    let mut y = 40.0;
+    y = key_values(
+        &mut d,
+        15.0,
+        y,
+        &[
+            ("Project", inp.project.clone()),
+            ("Lift", task.id.clone()),
+            (
+                "Load",
+                format!(
+                    "{} — {:.2} t, {:.1} × {:.1} × {:.1} m",
+                    task.load_name,
+                    task.load_mass_kg / 1000.0,
+                    task.load.size_m[0],
+                    task.load.size_m[1],
+                    task.load.size_m[2]
+                ),
+            ),
+            ("Gross load", format!("{:.2} t (load + rigging + hook block + deductions)", task.gross_kg() / 1000.0)),
+            (
+                "Crane",
+                format!(
+                    "{} at ({:.2}, {:.2}) m, heading {:.1}°, {}",
+                    task.crane.model.name,
+                    task.crane.placement.x_m,
+                    task.crane.placement.y_m,
+                    task.crane.placement.heading_rad.to_degrees(),
+                    if task.crane.model.is_tower() {
+                        "tower crane".to_string()
+                    } else {
+                        format!("boom {:.1} m", task.crane.placement.boom_length_m)
+                    }
+                ),
+            ),
+            ("Chart configuration", task.chart_config.clone()),
+            ("Date", inp.date.clone()),
+            (
+                "Planner",
+                format!("liftplan {} — {:?}, seed {}", env!("CARGO_PKG_VERSION"), plan.planner, plan.planning.seed),
+            ),
+        ],
+        42.0,
+    );
+    // Summary box.
+    y += 3.0;
+    let ok = plan.validator.ok;
+    let box_h = 36.0;
+    d.fill_rect(15.0, y, w, box_h, if ok { [232, 245, 233] } else { [251, 233, 231] });
+    d.frame(15.0, y, w, box_h, 1.0, if ok { [46, 125, 50] } else { [198, 40, 40] });
+    let verdict = if ok {
+        format!("VALIDATED — independent check of {} samples found no problem", plan.validator.samples)
+    } else {
+        "REJECTED — do not lift".to_string()
+    };
+    d.text(19.0, y + 7.0, &verdict, 11.0, true, if ok { [27, 94, 32] } else { [183, 28, 28] });
+    let crit = if sm.critical {
+        format!("CRITICAL LIFT (over {:.0} %)", task.critical_pct)
+    } else {
+        format!("not critical (limit {:.0} %)", task.critical_pct)
+    };
+    key_values(
+        &mut d,
+        19.0,
+        y + 14.0,
+        &[
+            (
+                "Max utilisation",
+                format!(
+                    "{:.1} % in step {} — chart cell {}",
+                    sm.max_utilisation_pct, sm.max_utilisation_step, sm.max_utilisation_cell
+                ),
+            ),
+            ("Critical lift", crit),
+            (
+                "Min clearance",
+                format!(
+                    "{:.2} m in step {} ({}); required {:.2} m, {:.2} m over landing zones",
+                    sm.min_clearance_m,
+                    sm.min_clearance_step,
+                    sm.min_clearance_what,
+                    plan.clearance_m,
+                    plan.landing_clearance_m
+                ),
+            ),
+            (
+                "Motion",
+                format!(
+                    "{} steps: swing {:.1}°, {} {:.1}{}, hoist/lower {:.2} m, rotate {:.1}°",
+                    sm.steps,
+                    sm.swing_deg,
+                    if task.crane.model.is_tower() { "trolley" } else { "luff" },
+                    sm.luff_or_trolley,
+                    if task.crane.model.is_tower() { " m" } else { "°" },
+                    sm.hoist_m,
+                    sm.rotate_deg
+                ),
+            ),
+        ],
+        34.0,
+    );
+    y += box_h + 6.0;
+    let overview = pictures::overview(site, task, plan, 1400, 1000);
+    d.text(
+        15.0,
+        y,
+        "Site overview (top view, north up): crane at the pick position, load path in red, load at set in light blue.",
+        8.5,
+        false,
+        GREY,
+    );
+    y += 3.0;
+    let avail = size.h - 22.0 - y;
+    let img_w = (avail * 1.4).min(w);
+    d.image(&overview, 15.0 + (w - img_w) / 2.0, y, img_w);
+
+    // Page 2: inputs.
+    d.new_page();
+    let mut y = heading(&mut d, 20.0, "Inputs");
+    for line in &inp.input_lines {
+        y = d.paragraph(15.0, y, w, line, 9.0);
+    }
+    y += 2.0;
+    y = key_values(
+        &mut d,
+        15.0,
+        y,
+        &[
+            (
+                "Clearance",
+                format!(
+                    "{:.2} m to every obstacle; hook and load over the landing zones {:.2} m",
+                    task.clearance_m, plan.landing_clearance_m
+                ),
+            ),
+            (
+                "Lift-off / set-down",
+                format!("{:.2} m, vertical; contact allowed only with the support under the load", task.liftoff_m),
+            ),
+            ("Capacity reduction", format!("{:.1} % of the chart value", task.capacity_reduction_pct)),
+            (
+                "Pick (load underside)",
+                format!(
+                    "({:.2}, {:.2}, {:.2}) m, yaw {:.1}°",
+                    task.pick_pose.x_m,
+                    task.pick_pose.y_m,
+                    task.pick_pose.z_m,
+                    task.pick_pose.yaw_rad.to_degrees()
+                ),
+            ),
+            (
+                "Set (load underside)",
+                format!(
+                    "({:.2}, {:.2}, {:.2}) m, yaw {:.1}°",
+                    task.set_pose.x_m,
+                    task.set_pose.y_m,
+                    task.set_pose.z_m,
+                    task.set_pose.yaw_rad.to_degrees()
+                ),
+            ),
+        ],
+        42.0,
+    );
+    y += 3.0;
+    d.text(15.0, y, "Input files (blake3, first 16 hex digits)", 9.0, true, GREY);
+    y += 5.0;
+    for (f, h) in inp.input_hashes.iter().take(16) {
+        d.text(15.0, y, h, 8.0, false, GREY);
+        d.text(50.0, y, f, 8.0, false, INK);
+        y += 4.2;
+    }
+    let chart_img = chart.map(|c| pictures::chart_plot(c, task, plan, 1200, 600));
+    if let Some(ci) = &chart_img {
+        y += 4.0;
+        d.text(15.0, y, "Load chart: capacity after the reduction against radius (steps), gross load (red line), radii used (dots).", 8.5, false, GREY);
+        d.image(ci, 15.0, y + 3.0, w);
+    }
+
+    // Page 3: the steps.
+    d.new_page();
+    let mut y = heading(&mut d, 20.0, "Steps");
+    let header = ["Step", "Operation", "Amount", "Radius m", "Capacity t", "Util. %", "Clear. m", "Closest obstacle"];
+    let widths = [11.0, 24.0, 20.0, 17.0, 19.0, 15.0, 16.0, w - 122.0];
+    let right = [true, false, true, true, true, true, true, false];
+    let rows: Vec<Vec<String>> = plan
+        .steps
+        .iter()
+        .map(|st| {
+            let amount = if st.unit == "°" { format!("{:+.1}°", st.amount) } else { format!("{:+.2} m", st.amount) };
+            vec![
+                st.n.to_string(),
+                st.operation.clone(),
+                amount,
+                format!("{:.2}", st.radius_m),
+                opt(st.capacity_kg.map(|c| c / 1000.0), 1),
+                opt(st.utilisation_pct, 1),
+                format!("{:.2}", st.min_clearance_m),
+                format!("{} – {}", st.clearance_part, st.clearance_to),
+            ]
+        })
+        .collect();
+    let mut start = 0;
+    while start < rows.len() {
+        let fit = (((size.h - 40.0 - y) / 6.0).floor() as usize).max(1);
+        let end = (start + fit).min(rows.len());
+        y = d.table(15.0, y, &widths, &right, &header, &rows[start..end], 8.0);
+        start = end;
+        if start < rows.len() {
+            d.new_page();
+            y = heading(&mut d, 20.0, "Steps (continued)");
+        }
+    }
+    y += 4.0;
+    y = d.paragraph(
+        15.0,
+        y,
+        w,
+        "Steps 1 and the last are the vertical lift-off and set-down. Capacity is the chart value (before the reduction) at the largest radius of the step; utilisation is the gross load over the reduced capacity; clearance is the smallest distance the validator measured between any crane part, rope, hook or load and the plant model or scanned points during the step. Swing angles are counter-clockwise positive seen from above.",
+        8.5,
+    );
+    if let Some(cs) = cspace {
+        y += 3.0;
+        let img_w = w.min((size.h - 25.0 - y) * cs.width as f32 / cs.height as f32);
+        if img_w > 60.0 {
+            let y2 = d.paragraph(15.0, y, w, "C-space of the crane at its position: swing across, luff (or trolley) up. Red: the body collides; orange: the boom collides (both with the clearance); grey hatching: outside the load chart for this load. The blue line is the planned path of the boom.", 8.0);
+            d.image(cs, 15.0, y2, img_w.min(w * (size.h - 25.0 - y2) / (size.h - 25.0 - y)));
+        }
+    }
+
+    // One page per step.
+    if s.step_pictures {
+        for st in &plan.steps {
+            d.new_page();
+            let mut y = heading(&mut d, 20.0, &format!("Step {} of {}: {}", st.n, plan.steps.len(), st.text));
+            y = key_values(
+                &mut d,
+                15.0,
+                y,
+                &[
+                    (
+                        "Crane at the end",
+                        format!(
+                            "swing {:.1}°, {}, rope {:.2} m, load yaw {:.1}°",
+                            st.end.swing_rad.to_degrees(),
+                            if task.crane.model.is_tower() {
+                                format!("trolley {:.2} m", st.end.radial)
+                            } else {
+                                format!("luff {:.1}°", st.end.radial.to_degrees())
+                            },
+                            st.end.hoist_m,
+                            st.end.load_yaw_rad.to_degrees()
+                        ),
+                    ),
+                    ("Radius / load height", format!("{:.2} m / underside at {:.2} m", st.radius_m, st.load_height_m)),
+                    (
+                        "Capacity",
+                        format!(
+                            "{} t ({}), utilisation {} %",
+                            opt(st.capacity_kg.map(|c| c / 1000.0), 1),
+                            st.chart_cell.clone().unwrap_or_default(),
+                            opt(st.utilisation_pct, 1)
+                        ),
+                    ),
+                    (
+                        "Min clearance",
+                        format!(
+                            "{:.2} m, {} to {} (required {:.2} m)",
+                            st.min_clearance_m, st.clearance_part, st.clearance_to, st.required_clearance_m
+                        ),
+                    ),
+                ],
+                40.0,
+            );
+            let img = pictures::step_view(site, task, plan, st.n, 1300, 950);
+            d.image(&img, 15.0, y + 2.0, w);
+        }
+    }
+
+    // Sign-off.
+    d.new_page();
+    let mut y = heading(&mut d, 20.0, "Review and sign-off");
+    y = d.paragraph(
+        15.0,
+        y,
+        w,
+        "This plan was generated by liftplan from the inputs listed on page 2 and checked by its independent validator. It does not replace the lift engineer's review: check the crane set-up (ground bearing, outriggers, counterweight) on site, confirm the load's mass and centre of gravity, and confirm that nothing on site has changed since the scans were taken.",
+        9.5,
+    );
+    y += 8.0;
+    for role in [
+        "Lift engineer (prepared / checked)",
+        "Appointed person (approved)",
+        "Crane operator (briefed)",
+        "Rigging supervisor (briefed)",
+    ] {
+        d.text(15.0, y, role, 10.0, true, INK);
+        d.text(15.0, y + 12.0, "Name:", 9.0, false, GREY);
+        d.line(27.0, y + 12.5, 95.0, y + 12.5, 0.5, GREY);
+        d.text(100.0, y + 12.0, "Signature:", 9.0, false, GREY);
+        d.line(118.0, y + 12.5, 160.0, y + 12.5, 0.5, GREY);
+        d.text(163.0, y + 12.0, "Date:", 9.0, false, GREY);
+        d.line(172.0, y + 12.5, size.w - 15.0, y + 12.5, 0.5, GREY);
+        y += 24.0;
+    }
+    let pages = d.text.len();
+    let footer =
+        format!("liftplan {} — {} — lift {} — issued {}", env!("CARGO_PKG_VERSION"), inp.project, task.id, inp.date);
+    let bytes = d.finish(&footer, &inp.date);
+    Ok((bytes, pages, overview, chart_img))
+}

@@ -1,0 +1,144 @@
+//! The planner and the validator on a small synthetic site: a wall between
+//! pick and set that the load must be lifted over.
+
+use liftplan_core::crane::{Config, builtin};
+use liftplan_core::lift::{LiftSpec, LiftTask};
+use liftplan_core::mesh::TriMesh;
+use liftplan_cspace::Joint;
+use liftplan_depthmap::mdm::Mdm;
+use liftplan_plan::path::Move;
+use liftplan_plan::validate::{Rules, World, validate};
+use liftplan_plan::{Settings, Site, plan_lift};
+
+fn task(pick_y: f64) -> LiftTask {
+    let text = format!(
+        r#"
+id = "T-1"
+description = "test lift over a wall"
+load = {{ name = "skid", mass_t = 5.0, size_m = [4.0, 2.0, 2.0], cog_m = [0.0, 0.0, 0.0] }}
+rigging = {{ mass_t = 0.2, height_m = 3.0 }}
+crane = {{ model = "ac-700", position_m = [0.0, 0.0], ground_z_m = 0.0, heading_deg = 0.0, boom_m = 40.0, chart_config = "none" }}
+pick = {{ x_m = 22.0, y_m = {pick_y}, z_m = 0.5, yaw_deg = 0.0 }}
+set = {{ x_m = 22.0, y_m = 14.0, z_m = 0.5, yaw_deg = 90.0 }}
+clearance_m = 1.0
+liftoff_m = 0.5
+"#
+    );
+    let spec: LiftSpec = toml::from_str(&text).unwrap();
+    spec.resolve(builtin("ac-700").unwrap()).unwrap()
+}
+
+fn box_part(mesh: &mut TriMesh, name: &str, lo: [f64; 3], hi: [f64; 3]) {
+    let g = mesh.group_id(name);
+    let v: Vec<[f64; 3]> = (0..8)
+        .map(|i| {
+            [
+                if i & 1 == 0 { lo[0] } else { hi[0] },
+                if i & 2 == 0 { lo[1] } else { hi[1] },
+                if i & 4 == 0 { lo[2] } else { hi[2] },
+            ]
+        })
+        .collect();
+    let t = [
+        [0, 2, 3],
+        [0, 3, 1],
+        [4, 5, 7],
+        [4, 7, 6],
+        [0, 1, 5],
+        [0, 5, 4],
+        [2, 6, 7],
+        [2, 7, 3],
+        [0, 4, 6],
+        [0, 6, 2],
+        [1, 3, 7],
+        [1, 7, 5],
+    ];
+    mesh.add_part(g, true, &v, &t);
+}
+
+fn site() -> TriMesh {
+    let mut m = TriMesh::default();
+    box_part(&mut m, "WALL", [14.0, -1.0, 0.0], [34.0, 1.0, 12.0]);
+    box_part(&mut m, "SLAB", [-40.0, -40.0, -0.3], [60.0, 40.0, 0.0]);
+    m
+}
+
+fn map(mesh: &TriMesh) -> Mdm {
+    let inp = liftplan_depthmap::Inputs { points: vec![], ground: vec![], mesh: mesh.clone() };
+    liftplan_depthmap::build_cpu(&inp, &liftplan_depthmap::Settings::default()).unwrap().0
+}
+
+fn quick() -> Settings {
+    let mut s = Settings::default();
+    s.ga.population = 40;
+    s.ga.max_generations = 80;
+    s.ga.stall_generations = 30;
+    s.cspace.swing_step_deg = 1.0;
+    s.cspace.luff_step_deg = 1.0;
+    s
+}
+
+#[test]
+fn plans_over_the_wall_and_the_validator_agrees() {
+    let mesh = site();
+    let m = map(&mesh);
+    let world = World::new(&mesh, &[], &[]).unwrap();
+    let t = task(-14.0);
+    let (plan, _) = plan_lift(&t, &Site { map: &m, world: &world, charts: None }, &quick(), 3).unwrap();
+    assert!(plan.validator.ok);
+    assert_eq!(plan.moves.first().unwrap().from, t.pick);
+    assert!((plan.moves.last().unwrap().to.hoist_m - t.set.hoist_m).abs() < 1e-9);
+    // The load had to clear the wall (12 m) by the clearance somewhere.
+    let highest = plan.steps.iter().map(|s| s.load_height_m).fold(f64::NEG_INFINITY, f64::max);
+    assert!(highest >= 13.0 - 1e-6, "load never went over the wall: {highest}");
+    for st in &plan.steps[1..plan.steps.len() - 1] {
+        assert!(st.min_clearance_m >= st.required_clearance_m - 1e-3, "step {} too close: {:?}", st.n, st);
+    }
+}
+
+#[test]
+fn same_plan_on_one_and_two_threads() {
+    let mesh = site();
+    let m = map(&mesh);
+    let world = World::new(&mesh, &[], &[]).unwrap();
+    let t = task(-14.0);
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        pool.install(|| {
+            let (p, _) = plan_lift(&t, &Site { map: &m, world: &world, charts: None }, &quick(), 11).unwrap();
+            p.moves.iter().flat_map(|mv| mv.to.to_array()).map(f64::to_bits).collect::<Vec<u64>>()
+        })
+    };
+    assert_eq!(run(1), run(2));
+}
+
+#[test]
+fn pick_inside_an_obstacle_is_refused_with_part_and_object() {
+    let mut mesh = site();
+    // A beam right over the pick position, 1.5 m above the load.
+    box_part(&mut mesh, "BEAM-OVER-PICK", [18.0, -16.0, 4.0], [26.0, -12.0, 4.5]);
+    let m = map(&mesh);
+    let world = World::new(&mesh, &[], &[]).unwrap();
+    let err =
+        plan_lift(&task(-14.0), &Site { map: &m, world: &world, charts: None }, &quick(), 1).unwrap_err().to_string();
+    assert!(err.contains("BEAM-OVER-PICK"), "{err}");
+    assert!(err.contains("lifted-off pick"), "{err}");
+}
+
+#[test]
+fn validator_rejects_a_swing_through_the_wall() {
+    let mesh = site();
+    let world = World::new(&mesh, &[], &[]).unwrap();
+    let t = task(-14.0);
+    let start = t.start();
+    let goal = t.goal();
+    let mid = Config { swing_rad: goal.swing_rad, ..start };
+    let moves = vec![
+        Move { joint: Joint::Swing, from: start, to: mid },
+        Move { joint: Joint::Rotate, from: mid, to: Config { load_yaw_rad: goal.load_yaw_rad, ..mid } },
+    ];
+    let rules = Rules { clearance_m: 1.0, landing: vec![], landing_clearance_m: 0.2, sample_m: 0.05, support_m: 0.05 };
+    let v = validate(&t, None, &world, &rules, &moves, &[false, false]);
+    assert!(!v.ok);
+    assert!(v.problems.iter().any(|p| p.contains("WALL")), "{:?}", v.problems);
+}

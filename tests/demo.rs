@@ -1,0 +1,58 @@
+//! The whole pipeline, scans to PDF, on the demo project.
+
+use crate::util::{ok, run_json, stage};
+
+#[test]
+fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("demo");
+    let d = dir.to_str().unwrap();
+    let out = ok(&["demo", d]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let pdf_path = dir.join("out").join("V-101.pdf");
+    assert!(stdout.contains(&format!("lift plan: {}", pdf_path.display())), "{stdout}");
+
+    // The PDF parses, has cover, inputs, step table, one page per step and the sign-off,
+    // and holds every step of steps.csv.
+    let steps_csv = std::fs::read_to_string(dir.join("out").join("V-101.steps.csv")).unwrap();
+    let steps: Vec<Vec<String>> =
+        steps_csv.lines().skip(1).map(|l| l.split(',').map(str::to_string).collect()).collect();
+    assert!(steps.len() >= 3, "{steps_csv}");
+    let doc = lopdf::Document::load(&pdf_path).unwrap();
+    let pages: Vec<u32> = doc.get_pages().keys().copied().collect();
+    assert_eq!(pages.len(), steps.len() + 4, "cover, inputs, steps table, {} step pages, sign-off", steps.len());
+    let text = doc.extract_text(&pages).unwrap();
+    for s in &steps {
+        let op = &s[1];
+        let line = format!("Step {} of {}", s[0], steps.len());
+        assert!(text.contains(&line), "no page '{line}' in the PDF");
+        assert!(text.contains(op.as_str()), "operation {op} missing");
+    }
+    assert!(text.contains("VALIDATED"));
+    assert!(text.contains('°'), "degree signs must survive as text");
+
+    // Nothing changed: everything fresh.
+    let r = run_json(&dir);
+    for s in r["stages"].as_array().unwrap() {
+        assert_eq!(s["status"], "fresh", "{s}");
+    }
+
+    // A heavier load: charts, plan and docs rerun; scans, plant and the depth map do not.
+    let toml_path = dir.join("liftplan.toml");
+    let t = std::fs::read_to_string(&toml_path).unwrap();
+    std::fs::write(&toml_path, t.replace("mass_t = 12.0", "mass_t = 13.0")).unwrap();
+    let r = run_json(&dir);
+    for (name, want) in [
+        ("scans", "fresh"),
+        ("plant", "fresh"),
+        ("depthmap", "fresh"),
+        ("charts", "ran"),
+        ("plan", "ran"),
+        ("docs", "ran"),
+    ] {
+        assert_eq!(stage(&r, name)["status"], want, "{name}: {}", stage(&r, name));
+    }
+    let plan: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join("out").join("plan.json")).unwrap()).unwrap();
+    assert!((plan["lifts"][0]["gross_kg"].as_f64().unwrap() - 17_000.0).abs() < 1e-6);
+}
