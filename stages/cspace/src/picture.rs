@@ -59,10 +59,19 @@ pub fn draw(cs: &CSpace, gross_kg: f64, reduction_pct: f64, path: &[(f64, f64)],
         let (a, b) = (win[0], win[1]);
         // Draw across the 0/360 seam as two pieces.
         let (xa, xb) = (x_of(a.0), x_of(b.0));
+        let (ya, yb) = (y_of(a.1), y_of(b.1));
         if (xa - xb).abs() > w as f64 / 2.0 {
+            // Crosses the 0°/360° seam: draw to the edge and on from the other edge.
+            let (left, right) = (ml as f64, (ml + w) as f64);
+            let (xa2, xb2) = if xa > xb { (xa - w as f64, xb) } else { (xa + w as f64, xb) };
+            let edge = if xa > xb { left } else { right };
+            let t = (edge - xa2) / (xb2 - xa2);
+            let ym = ya + (yb - ya) * t;
+            img.line(xa, ya, if xa > xb { right } else { left }, ym, 3.0, [20, 60, 160]);
+            img.line(edge, ym, xb, yb, 3.0, [20, 60, 160]);
             continue;
         }
-        img.line(xa, y_of(a.1), xb, y_of(b.1), 3.0, [20, 60, 160]);
+        img.line(xa, ya, xb, yb, 3.0, [20, 60, 160]);
     }
     for (label, s, r) in marks {
         let (x, y) = (x_of(*s), y_of(*r));

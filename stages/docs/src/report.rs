@@ -268,7 +268,7 @@ pub fn document(
         15.0,
         y,
         w,
-        "Steps 1 and the last are the vertical lift-off and set-down. Capacity is the chart value (before the reduction) at the largest radius of the step; utilisation is the gross load over the reduced capacity; clearance is the smallest distance the validator measured between any crane part, rope, hook or load and the plant model or scanned points during the step. Swing angles are counter-clockwise positive seen from above.",
+        "The first and the last steps are the vertical lift-off and set-down. Capacity is the chart value (before the reduction) at the largest radius of the step; utilisation is the gross load over the reduced capacity; clearance is the smallest distance the validator measured between any crane part, rope, hook or load and the plant model or scanned points during the step. Swing angles are counter-clockwise positive seen from above.",
         8.5,
     );
     if let Some(cs) = cspace {

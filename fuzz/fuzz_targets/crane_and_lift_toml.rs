@@ -1,0 +1,13 @@
+//! Crane model files and lift requests (TOML) through parsing and resolution.
+#![no_main]
+use libfuzzer_sys::fuzz_target;
+
+fuzz_target!(|data: &[u8]| {
+    let Ok(text) = std::str::from_utf8(data) else { return };
+    let _ = liftplan_core::crane::CraneModel::from_toml(std::path::Path::new("fuzz.toml"), text);
+    if let Ok(spec) = toml::from_str::<liftplan_core::lift::LiftSpec>(text)
+        && let Ok(model) = liftplan_core::crane::builtin("ac-700")
+    {
+        let _ = spec.resolve(model);
+    }
+});
