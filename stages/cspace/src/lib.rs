@@ -614,7 +614,16 @@ impl<'a> Checker<'a> {
             if matches!(kind.dependence(), Dependence::Swing | Dependence::SwingRadial) {
                 let Some(b) = crane.part(kind, c, &self.task.load) else { continue };
                 self.count(true);
-                if let Some(h) = self.map.hit_where(&b.expanded(self.task.clearance_m), |iv| counts_for(kind, iv)) {
+                // Like a table cell: the box covers every configuration within
+                // half a grid step of this one, which is how far apart a move's
+                // samples are.
+                let grow = self.task.clearance_m
+                    + if kind.dependence() == Dependence::Swing {
+                        reach(crane, &b) * cs.swing_step / 2.0
+                    } else {
+                        cs.cell_motion(crane, &b)
+                    };
+                if let Some(h) = self.map.hit_where(&b.expanded(grow), |iv| counts_for(kind, iv)) {
                     return Err(self.blocked("collision", Some(kind), Some(h.interval.obj), c));
                 }
             }

@@ -1,0 +1,136 @@
+//! The tables never say "free" where an exact check at a configuration inside
+//! the cell finds a collision, and the checker's continuous moves never pass
+//! through a configuration that the exact check rejects.
+
+use liftplan_core::crane::{Config, Dependence, PartKind, builtin};
+use liftplan_core::lift::{LiftSpec, LiftTask};
+use liftplan_core::mesh::TriMesh;
+use liftplan_cspace::{CSpace, Checker, Joint, Problem, Settings, Strategy};
+use liftplan_depthmap::mdm::Mdm;
+use proptest::prelude::*;
+
+fn task() -> LiftTask {
+    let text = r#"
+id = "P"
+load = { name = "box", mass_t = 3.0, size_m = [5.0, 2.0, 2.0], cog_m = [0.3, 0.0, 0.0] }
+rigging = { mass_t = 0.1, height_m = 2.0 }
+crane = { model = "ac-700", position_m = [0.0, 0.0], ground_z_m = 0.0, heading_deg = 20.0, boom_m = 40.0, chart_config = "none" }
+pick = { x_m = 20.0, y_m = -12.0, z_m = 0.5, yaw_deg = 0.0 }
+set = { x_m = 20.0, y_m = 12.0, z_m = 0.5, yaw_deg = 90.0 }
+clearance_m = 0.5
+"#;
+    let spec: LiftSpec = toml::from_str(text).unwrap();
+    spec.resolve(builtin("ac-700").unwrap()).unwrap()
+}
+
+fn scene(seed: u64) -> Mdm {
+    let mut mesh = TriMesh::default();
+    let mut s = seed;
+    let mut next = || {
+        s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        (s >> 11) as f64 / (1u64 << 53) as f64
+    };
+    for k in 0..12 {
+        let g = mesh.group_id(&format!("B{k}"));
+        let (cx, cy) = (next() * 70.0 - 35.0, next() * 70.0 - 35.0);
+        if cx.hypot(cy) < 9.0 {
+            continue; // not on the crane itself
+        }
+        let (hx, hy, top) = (0.5 + next() * 4.0, 0.5 + next() * 4.0, 2.0 + next() * 25.0);
+        let v: Vec<[f64; 3]> = (0..8)
+            .map(|i| {
+                [
+                    cx + if i & 1 == 0 { -hx } else { hx },
+                    cy + if i & 2 == 0 { -hy } else { hy },
+                    if i & 4 == 0 { 0.0 } else { top },
+                ]
+            })
+            .collect();
+        let t = [
+            [0, 2, 3],
+            [0, 3, 1],
+            [4, 5, 7],
+            [4, 7, 6],
+            [0, 1, 5],
+            [0, 5, 4],
+            [2, 6, 7],
+            [2, 7, 3],
+            [0, 4, 6],
+            [0, 6, 2],
+            [1, 3, 7],
+            [1, 7, 5],
+        ];
+        mesh.add_part(g, true, &v, &t);
+    }
+    let inp = liftplan_depthmap::Inputs { points: vec![], ground: vec![], mesh };
+    liftplan_depthmap::build_cpu(&inp, &liftplan_depthmap::Settings { cell_m: 0.5, ..Default::default() }).unwrap().0
+}
+
+/// Exact: every part that the tables or online checks cover, grown by the clearance.
+fn exact_free(t: &LiftTask, map: &Mdm, c: &Config) -> bool {
+    t.crane.part_kinds().iter().all(|&k| {
+        if k.dependence() == Dependence::Fixed {
+            return true;
+        }
+        let Some(b) = t.crane.part(k, c, &t.load) else { return true };
+        let structure = matches!(k.dependence(), Dependence::Swing | Dependence::SwingRadial);
+        let _ = PartKind::Load;
+        map.hit_where(&b.expanded(t.clearance_m), |iv| !(structure && iv.obj == 0)).is_none()
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(16))]
+    #[test]
+    fn free_answers_are_free(seed in any::<u64>(), strategy in 0usize..3) {
+        let t = task();
+        let map = scene(seed);
+        let s = Settings {
+            swing_step_deg: 2.0,
+            luff_step_deg: 2.0,
+            strategy: [Strategy::Hybrid, Strategy::Full, Strategy::Online][strategy],
+            ..Settings::default()
+        };
+        let cs = CSpace::build(&Problem { task: &t, chart: None, map: &map }, &s);
+        let ck = Checker::new(&cs, &map, &t, vec![], s.sample_m);
+        let lim = t.crane.limits();
+        let mut r = seed | 1;
+        let mut u = || {
+            r ^= r << 13;
+            r ^= r >> 7;
+            r ^= r << 17;
+            (r >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for _ in 0..150 {
+            let c = Config {
+                swing_rad: u() * std::f64::consts::TAU,
+                radial: lim.radial.0 + u() * (lim.radial.1 - lim.radial.0),
+                hoist_m: lim.hoist_m.0 + u() * 30.0,
+                load_yaw_rad: u() * 3.0,
+            };
+            if ck.config(&c).is_ok() {
+                prop_assert!(exact_free(&t, &map, &c), "checker says free, exact check collides at {c:?}");
+            }
+            // Luff and hoist moves the checker passes are exactly free at fine samples.
+            for (joint, to) in [(Joint::Radial, lim.radial.0 + u() * (lim.radial.1 - lim.radial.0)), (Joint::Hoist, lim.hoist_m.0 + u() * 30.0)] {
+                if ck.motion(&c, joint, to).is_ok() {
+                    for k in 0..=200 {
+                        let mut a = c.to_array();
+                        a[joint.index()] += (to - a[joint.index()]) * k as f64 / 200.0;
+                        let q = Config::from_array(a);
+                        prop_assert!(exact_free(&t, &map, &q), "{joint:?} move passed but collides at {q:?}");
+                    }
+                }
+            }
+            // A swing move the checker passes is exactly free at fine samples.
+            let to = c.swing_rad + (u() - 0.5) * 1.5;
+            if ck.motion(&c, Joint::Swing, to).is_ok() {
+                for k in 0..=200 {
+                    let x = c.swing_rad + (to - c.swing_rad) * k as f64 / 200.0;
+                    let q = Config { swing_rad: x, ..c };
+                    prop_assert!(exact_free(&t, &map, &q), "swing move passed but collides at {q:?}");
+                }
+            }
+        }
+    }
+}
