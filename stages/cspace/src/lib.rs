@@ -633,11 +633,11 @@ impl<'a> Checker<'a> {
 
     /// Rope, hook block and load at one configuration, each box grown by the
     /// clearance (less inside a landing zone) plus `grow`.
-    fn hanging_exact(&self, c: &Config, grow: f64) -> Result<(), Blocked> {
+    fn hanging_exact(&self, c: &Config, grow: f64, landing: bool) -> Result<(), Blocked> {
         let crane = &self.task.crane;
         let load_box = crane.load_obb(c, &self.task.load);
-        let clearance =
-            self.landing.iter().find(|z| z.holds(&load_box)).map(|z| z.clearance_m).unwrap_or(self.task.clearance_m);
+        let zone = if landing { self.landing.iter().find(|z| z.holds(&load_box)) } else { None };
+        let clearance = zone.map(|z| z.clearance_m).unwrap_or(self.task.clearance_m);
         for kind in [PartKind::Load, PartKind::Rigging, PartKind::HookBlock, PartKind::Rope] {
             let Some(b) = crane.part(kind, c, &self.task.load) else { continue };
             self.count(true);
@@ -685,7 +685,7 @@ impl<'a> Checker<'a> {
         if self.hanging_lookup(c, c.hoist_m) {
             return Ok(());
         }
-        self.hanging_exact(c, 0.0)
+        self.hanging_exact(c, 0.0, true)
     }
 
     /// A single-joint move from `from` to the joint value `to`, continuously.
@@ -730,6 +730,8 @@ impl<'a> Checker<'a> {
         // same or neighbouring cells, so every cell the move crosses is looked up.
         let n = if step.is_finite() { (((to - v0).abs() / step).ceil() as usize).max(1) } else { 1 };
         let mut prev = v0;
+        // Runs of sub-steps the tables cannot vouch for, checked exactly below.
+        let mut run: Option<f64> = None;
         for s in 0..=n {
             let v = v0 + (to - v0) * s as f64 / n as f64;
             a[joint.index()] = v;
@@ -742,23 +744,40 @@ impl<'a> Checker<'a> {
             let h_max = if joint == Joint::Hoist { v.max(prev) } else { c.hoist_m };
             let cp = self.with(&a, joint, prev);
             if self.hanging_lookup(&c, h_max) && self.hanging_lookup(&cp, h_max) {
-                prev = v;
-                continue;
-            }
-            // The tables cannot vouch for this sub-step: cut it into m pieces over
-            // which the hanging parts move at most `sample_m`, and check each
-            // piece's midpoint with the boxes grown by half the piece's movement.
-            // Every configuration of the piece is then inside the grown boxes.
-            let travel = (v - prev).abs() * lever;
-            let m = ((travel / self.sample_m).ceil() as usize).max(1);
-            let grow = travel / m as f64 / 2.0;
-            for t in 0..m {
-                let x = prev + (v - prev) * (t as f64 + 0.5) / m as f64;
-                self.hanging_exact(&self.with(&a, joint, x), grow)?;
+                if let Some(r0) = run.take() {
+                    self.exact_piece(&a, joint, r0, prev, lever)?;
+                }
+            } else if run.is_none() {
+                run = Some(prev);
             }
             prev = v;
         }
+        if let Some(r0) = run {
+            self.exact_piece(&a, joint, r0, prev, lever)?;
+        }
         Ok(())
+    }
+
+    /// Exact check of the hanging parts over the joint range [x0, x1] of a move.
+    ///
+    /// The configuration at the middle, with the boxes grown by half the travel
+    /// of the range (`lever` metres per joint unit), covers every configuration
+    /// of the range. Far from obstacles one such query settles a long range;
+    /// where it hits, the range is halved, down to pieces of `sample_m` travel,
+    /// which must pass. Only those smallest pieces may use a landing zone's
+    /// reduced clearance.
+    fn exact_piece(&self, a: &[f64; 4], joint: Joint, x0: f64, x1: f64, lever: f64) -> Result<(), Blocked> {
+        let travel = (x1 - x0).abs() * lever;
+        let xm = 0.5 * (x0 + x1);
+        let mid = self.with(a, joint, xm);
+        if travel <= self.sample_m {
+            return self.hanging_exact(&mid, travel / 2.0, true);
+        }
+        if self.hanging_exact(&mid, travel / 2.0, false).is_ok() {
+            return Ok(());
+        }
+        self.exact_piece(a, joint, x0, xm, lever)?;
+        self.exact_piece(a, joint, xm, x1, lever)
     }
 
     fn with(&self, a: &[f64; 4], joint: Joint, v: f64) -> Config {

@@ -11,7 +11,10 @@ fn main() {
     let att = path.with_extension("att");
     let attrs = std::fs::read(&att).ok().and_then(|b| liftplan_plant::att::parse(&att, &b).ok());
     println!("# Plant stage: parse + tessellate {}\n", path.file_name().unwrap().to_string_lossy());
-    println!("{} bytes; median of 21 runs per row; one thread of this machine. The reference figure is the issue's: the established C++ RVM tool tessellates this file at 0.01 m in about 5 ms giving about 24k triangles.\n", bytes.len());
+    println!(
+        "{} bytes; median of 21 runs per row; one thread of this machine. The reference figure is the issue's: the established C++ RVM tool tessellates this file at 0.01 m in about 5 ms giving about 24k triangles.\n",
+        bytes.len()
+    );
     println!("| tolerance m | parse ms | tessellate ms | total ms | triangles | ratio to the C++ tool's 5 ms |");
     println!("|---|---|---|---|---|---|");
     for tol in [0.1, 0.01, 0.001] {
