@@ -142,11 +142,17 @@ pub fn depthmap() -> StageDef {
 fn run_depthmap(ctx: &Ctx) -> Result<Produced> {
     let cloud = ctx.upstream_file("scans", "site.laz");
     let mesh = ctx.upstream_file("plant", "plant.mesh");
+    let gpu = match ctx.project.raw.gpu.use_ {
+        crate::project::GpuUse::Auto => liftplan_depthmap::GpuUse::Auto,
+        crate::project::GpuUse::Never => liftplan_depthmap::GpuUse::Never,
+        crate::project::GpuUse::Require => liftplan_depthmap::GpuUse::Require,
+    };
     let summary = liftplan_depthmap::run(
         cloud.as_deref(),
         mesh.as_deref(),
         &exclusions(ctx.project),
         &ctx.project.raw.depthmap,
+        gpu,
         ctx.out,
     )?;
     Ok(Produced {

@@ -9,6 +9,7 @@
 //! | `depthmap.png` | top view: height of the highest obstacle per cell |
 //! | `depthmap.json` | grid, counts, timings |
 
+pub mod gpu;
 pub mod mdm;
 pub mod picture;
 pub mod query;
@@ -146,6 +147,11 @@ pub fn read_cloud(path: &Path, exclude: &[Obb], into: &mut Inputs) -> Result<usi
 
 /// Builds the depth map on the CPU.
 pub fn build_cpu(inp: &Inputs, s: &Settings) -> Result<(Mdm, Timings)> {
+    build(inp, s, None)
+}
+
+/// Builds the depth map, with the point pass on `gpu` when given.
+pub fn build(inp: &Inputs, s: &Settings, gpu: Option<&gpu::Gpu>) -> Result<(Mdm, Timings)> {
     let t0 = std::time::Instant::now();
     let mut bb = liftplan_core::frame::Aabb::from_points(&inp.points);
     bb = bb.union(&inp.mesh.bbox());
@@ -158,7 +164,10 @@ pub fn build_cpu(inp: &Inputs, s: &Settings) -> Result<(Mdm, Timings)> {
     let local = local_points(inp, &spec);
     let t_prep = t0.elapsed();
     let mut raws: Vec<Raw> = Vec::new();
-    mdm::point_raws(&local, &spec, s.point_radius_m as f32, &mut raws);
+    match gpu {
+        Some(g) => g.point_raws(&local, &spec, s.point_radius_m as f32, &mut raws).map_err(DepthError::Gpu)?,
+        None => mdm::point_raws(&local, &spec, s.point_radius_m as f32, &mut raws),
+    }
     let t_points = t0.elapsed();
     mdm::mesh_raws(&inp.mesh, &spec, 2, &mut raws);
     let t_gen = t0.elapsed();
@@ -232,12 +241,21 @@ impl Summary {
     }
 }
 
+/// Whether to use a GPU (`[gpu] use` in the project file).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum GpuUse {
+    Auto,
+    Never,
+    Require,
+}
+
 /// Runs the stage: `cloud` (site.laz) and `mesh` (plant.mesh) may each be absent.
 pub fn run(
     cloud: Option<&Path>,
     mesh: Option<&Path>,
     exclude: &[Obb],
     s: &Settings,
+    gpu_use: GpuUse,
     out_dir: &Path,
 ) -> Result<Summary> {
     s.check().map_err(DepthError::Settings)?;
@@ -249,7 +267,12 @@ pub fn run(
     if let Some(m) = mesh {
         inp.mesh = TriMesh::read_artifact(m).map_err(|e| DepthError::Input(Location::file(m), e.to_string()))?;
     }
-    let (m, timings) = build_cpu(&inp, s)?;
+    let device = match gpu_use {
+        GpuUse::Never => None,
+        GpuUse::Auto => gpu::open().map_err(|e| tracing::info!("depth map on the CPU: {e}")).ok(),
+        GpuUse::Require => Some(gpu::open().map_err(|e| DepthError::Gpu(format!("[gpu] use = \"require\" but {e}")))?),
+    };
+    let (m, timings) = build(&inp, s, device.as_ref())?;
     std::fs::create_dir_all(out_dir).map_err(|e| DepthError::Input(Location::file(out_dir), e.to_string()))?;
     m.write(&out_dir.join("site.mdm"))
         .map_err(|e| DepthError::Input(Location::file(out_dir.join("site.mdm")), e.to_string()))?;
@@ -265,7 +288,7 @@ pub fn run(
         intervals: m.intervals.len(),
         occupied_cells: m.offsets.windows(2).filter(|w| w[1] > w[0]).count(),
         objects: m.objects.len(),
-        backend: "cpu".into(),
+        backend: device.as_ref().map(|g| format!("gpu: {}", g.name)).unwrap_or_else(|| "cpu".into()),
         timings,
     };
     let json = serde_json::to_string_pretty(&summary).unwrap_or_default();

@@ -1,0 +1,238 @@
+//! The GPU twin of the point pass (wgpu compute).
+//!
+//! Points dominate a site (tens of millions against a few hundred thousand plant
+//! triangles), so the point pass is what runs on the GPU: a count pass writes
+//! how many cells each point touches, the host turns the counts into offsets
+//! (an exclusive prefix sum), and a fill pass writes every point's raw intervals
+//! at its offset. The arithmetic is the CPU pass's, in the same f32 operations
+//! and the same cell order, so the raw intervals are identical and the map the
+//! shared assemble step builds from them is identical too (the tests compare
+//! them). Triangle intervals and assembly stay on the CPU.
+//!
+//! Points go up in chunks small enough for the default storage-binding limit.
+
+use crate::mdm::{GridSpec, LocalPoints, Raw};
+use wgpu::util::DeviceExt;
+
+const SHADER: &str = r#"
+struct Params { n: u32, nx: u32, ny: u32, inv_cell: f32, radius: f32, p0: u32, p1: u32, p2: u32 }
+@group(0) @binding(0) var<uniform> P: Params;
+@group(0) @binding(1) var<storage, read> pts: array<vec4<f32>>;
+@group(0) @binding(2) var<storage, read_write> counts: array<u32>;
+@group(0) @binding(3) var<storage, read> offsets: array<u32>;
+@group(0) @binding(4) var<storage, read_write> raws: array<u32>;
+
+fn cells(q: vec4<f32>) -> vec4<i32> {
+    let i0 = max(i32(floor((q.x - P.radius) * P.inv_cell)), 0);
+    let i1 = min(i32(floor((q.x + P.radius) * P.inv_cell)), i32(P.nx) - 1);
+    let j0 = max(i32(floor((q.y - P.radius) * P.inv_cell)), 0);
+    let j1 = min(i32(floor((q.y + P.radius) * P.inv_cell)), i32(P.ny) - 1);
+    return vec4<i32>(i0, i1, j0, j1);
+}
+
+@compute @workgroup_size(256)
+fn count(@builtin(global_invocation_id) g: vec3<u32>) {
+    let p = g.x + g.y * 65535u * 256u;
+    if (p >= P.n) { return; }
+    let r = cells(pts[p]);
+    var c = 0u;
+    if (r.y >= r.x && r.w >= r.z) { c = u32(r.y - r.x + 1) * u32(r.w - r.z + 1); }
+    counts[p] = c;
+}
+
+@compute @workgroup_size(256)
+fn fill(@builtin(global_invocation_id) g: vec3<u32>) {
+    let p = g.x + g.y * 65535u * 256u;
+    if (p >= P.n) { return; }
+    let q = pts[p];
+    let r = cells(q);
+    var o = offsets[p];
+    let zlo = bitcast<u32>(q.z - P.radius);
+    let zhi = bitcast<u32>(q.z + P.radius);
+    for (var j = r.z; j <= r.w; j = j + 1) {
+        for (var i = r.x; i <= r.y; i = i + 1) {
+            let b = o * 5u;
+            raws[b] = u32(j) * P.nx + u32(i);
+            raws[b + 1u] = zlo;
+            raws[b + 2u] = zhi;
+            raws[b + 3u] = bitcast<u32>(q.w);
+            raws[b + 4u] = 0u;
+            o = o + 1u;
+        }
+    }
+}
+"#;
+
+/// An open GPU.
+pub struct Gpu {
+    device: wgpu::Device,
+    queue: wgpu::Queue,
+    count: wgpu::ComputePipeline,
+    fill: wgpu::ComputePipeline,
+    /// Adapter name and backend, for reports.
+    pub name: String,
+}
+
+/// Opens the first adapter wgpu offers (a real GPU, or a software one such as
+/// lavapipe), or says why there is none.
+pub fn open() -> Result<Gpu, String> {
+    let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+    let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
+        power_preference: wgpu::PowerPreference::HighPerformance,
+        ..Default::default()
+    }))
+    .map_err(|e| format!("no GPU adapter: {e}"))?;
+    let info = adapter.get_info();
+    let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor::default()))
+        .map_err(|e| format!("GPU device on {}: {e}", info.name))?;
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some("depthmap points"),
+        source: wgpu::ShaderSource::Wgsl(SHADER.into()),
+    });
+    let pipeline = |entry: &str| {
+        device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some(entry),
+            layout: None,
+            module: &module,
+            entry_point: Some(entry),
+            compilation_options: Default::default(),
+            cache: None,
+        })
+    };
+    let count = pipeline("count");
+    let fill = pipeline("fill");
+    Ok(Gpu { device, queue, count, fill, name: format!("{} ({:?})", info.name, info.backend) })
+}
+
+impl Gpu {
+    fn read_back(&self, src: &wgpu::Buffer, bytes: u64) -> Result<Vec<u32>, String> {
+        let staging = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("read back"),
+            size: bytes.max(4),
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let mut enc = self.device.create_command_encoder(&Default::default());
+        enc.copy_buffer_to_buffer(src, 0, &staging, 0, bytes.max(4));
+        self.queue.submit([enc.finish()]);
+        let slice = staging.slice(..);
+        let (tx, rx) = std::sync::mpsc::channel();
+        slice.map_async(wgpu::MapMode::Read, move |r| {
+            let _ = tx.send(r);
+        });
+        self.device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| format!("GPU poll: {e}"))?;
+        rx.recv().map_err(|e| e.to_string())?.map_err(|e| format!("GPU read back: {e}"))?;
+        let data = slice.get_mapped_range().map_err(|e| format!("GPU read back: {e:?}"))?;
+        let words: Vec<u32> = data
+            .chunks_exact(4)
+            .take((bytes / 4) as usize)
+            .map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]]))
+            .collect();
+        drop(data);
+        staging.unmap();
+        Ok(words)
+    }
+
+    fn dispatch(&self, pipeline: &wgpu::ComputePipeline, bind: &wgpu::BindGroup, n: u32) {
+        let groups = n.div_ceil(256);
+        let (x, y) = if groups > 65_535 { (65_535, groups.div_ceil(65_535)) } else { (groups.max(1), 1) };
+        let mut enc = self.device.create_command_encoder(&Default::default());
+        {
+            let mut pass = enc.begin_compute_pass(&Default::default());
+            pass.set_pipeline(pipeline);
+            pass.set_bind_group(0, bind, &[]);
+            pass.dispatch_workgroups(x, y, 1);
+        }
+        self.queue.submit([enc.finish()]);
+    }
+
+    /// The point pass on the GPU: the same raw intervals, in the same order, as
+    /// [`crate::mdm::point_raws`].
+    pub fn point_raws(&self, p: &LocalPoints, spec: &GridSpec, radius: f32, out: &mut Vec<Raw>) -> Result<(), String> {
+        let inv = (1.0 / spec.cell) as f32;
+        // Cells one point can touch, to size chunks under the binding limit.
+        let span = ((2.0 * radius * inv).ceil() as u64 + 1).pow(2);
+        let limit = self.device.limits().max_storage_buffer_binding_size.min(self.device.limits().max_buffer_size);
+        let chunk = ((limit / (20 * span)) as usize).clamp(1, 1 << 22);
+        for (ci, pts) in p.xyz.chunks(chunk).enumerate() {
+            let n = pts.len() as u32;
+            let mut packed: Vec<u32> = Vec::with_capacity(pts.len() * 4);
+            for (k, q) in pts.iter().enumerate() {
+                packed.extend_from_slice(&[q[0].to_bits(), q[1].to_bits(), q[2].to_bits(), p.obj[ci * chunk + k]]);
+            }
+            let params: [u32; 8] = [n, spec.nx, spec.ny, inv.to_bits(), radius.to_bits(), 0, 0, 0];
+            let bytes = |v: &[u32]| v.iter().flat_map(|w| w.to_le_bytes()).collect::<Vec<u8>>();
+            let dev = &self.device;
+            let ubuf = dev.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("params"),
+                contents: &bytes(&params),
+                usage: wgpu::BufferUsages::UNIFORM,
+            });
+            let pbuf = dev.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("points"),
+                contents: &bytes(&packed),
+                usage: wgpu::BufferUsages::STORAGE,
+            });
+            let cbuf = dev.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("counts"),
+                size: 4 * n as u64,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: false,
+            });
+            let bind = dev.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("count"),
+                layout: &self.count.get_bind_group_layout(0),
+                entries: &[
+                    wgpu::BindGroupEntry { binding: 0, resource: ubuf.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 1, resource: pbuf.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 2, resource: cbuf.as_entire_binding() },
+                ],
+            });
+            self.dispatch(&self.count, &bind, n);
+            let counts = self.read_back(&cbuf, 4 * n as u64)?;
+            let mut offsets = Vec::with_capacity(counts.len());
+            let mut total: u64 = 0;
+            for c in &counts {
+                offsets.push(total as u32);
+                total += *c as u64;
+            }
+            if total == 0 {
+                continue;
+            }
+            let obuf = dev.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("offsets"),
+                contents: &bytes(&offsets),
+                usage: wgpu::BufferUsages::STORAGE,
+            });
+            let rbuf = dev.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("raws"),
+                size: 20 * total,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: false,
+            });
+            let bind = dev.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("fill"),
+                layout: &self.fill.get_bind_group_layout(0),
+                entries: &[
+                    wgpu::BindGroupEntry { binding: 0, resource: ubuf.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 1, resource: pbuf.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 3, resource: obuf.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 4, resource: rbuf.as_entire_binding() },
+                ],
+            });
+            self.dispatch(&self.fill, &bind, n);
+            let words = self.read_back(&rbuf, 20 * total)?;
+            out.reserve(total as usize);
+            for w in words.chunks_exact(5) {
+                out.push(Raw {
+                    cell: w[0],
+                    zlo: f32::from_bits(w[1]),
+                    zhi: f32::from_bits(w[2]),
+                    obj: w[3],
+                    part: w[4],
+                });
+            }
+        }
+        Ok(())
+    }
+}
