@@ -1,0 +1,92 @@
+//! Precompute time of the three C-space strategies on a ~376k-triangle plant
+//! (the thesis' Table 4.14 size), one process, this machine's CPU:
+//!
+//!   cargo run --release -p liftplan-cspace --example bench_cspace > reports/cspace.md
+
+use liftplan_core::crane::builtin;
+use liftplan_core::lift::LiftSpec;
+use liftplan_core::mesh::TriMesh;
+use liftplan_cspace::{CSpace, Problem, Settings, Strategy};
+use rand::{RngExt, SeedableRng};
+use std::time::Instant;
+
+fn plant() -> TriMesh {
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(376);
+    let mut m = TriMesh::default();
+    let t = [
+        [0, 2, 3],
+        [0, 3, 1],
+        [4, 5, 7],
+        [4, 7, 6],
+        [0, 1, 5],
+        [0, 5, 4],
+        [2, 6, 7],
+        [2, 7, 3],
+        [0, 4, 6],
+        [0, 6, 2],
+        [1, 3, 7],
+        [1, 7, 5],
+    ];
+    for k in 0..31_334 {
+        let g = m.group_id(&format!("ITEM-{}", k / 100));
+        // A plant ring around the crane: 12..60 m out, up to 25 m high.
+        let (r, a) = (12.0 + rng.random::<f64>() * 48.0, rng.random::<f64>() * std::f64::consts::TAU);
+        let c = [r * a.cos(), r * a.sin(), rng.random::<f64>() * 25.0];
+        let h = [0.2 + rng.random::<f64>() * 1.5, 0.2 + rng.random::<f64>() * 1.5, 0.2 + rng.random::<f64>() * 1.5];
+        let v: Vec<[f64; 3]> = (0..8)
+            .map(|i| {
+                [
+                    c[0] + if i & 1 == 0 { -h[0] } else { h[0] },
+                    c[1] + if i & 2 == 0 { -h[1] } else { h[1] },
+                    c[2] + if i & 4 == 0 { -h[2] } else { h[2] },
+                ]
+            })
+            .collect();
+        m.add_part(g, true, &v, &t);
+    }
+    m
+}
+
+fn main() {
+    let spec: LiftSpec = toml::from_str(
+        r#"
+id = "B"
+load = { name = "skid", mass_t = 10.0, size_m = [6.0, 3.0, 3.0], cog_m = [0.0, 0.0, 0.0] }
+rigging = { mass_t = 0.3, height_m = 3.0 }
+crane = { model = "ac-700", position_m = [0.0, 0.0], ground_z_m = 0.0, heading_deg = 0.0, boom_m = 40.0, chart_config = "none" }
+pick = { x_m = 25.0, y_m = 0.0, z_m = 10.0, yaw_deg = 0.0 }
+set = { x_m = 0.0, y_m = 25.0, z_m = 10.0, yaw_deg = 0.0 }
+clearance_m = 1.0
+"#,
+    )
+    .unwrap();
+    let task = spec.resolve(builtin("ac-700").unwrap()).unwrap();
+    let mesh = plant();
+    let t0 = Instant::now();
+    let inp = liftplan_depthmap::Inputs { points: vec![], ground: vec![], mesh };
+    let (map, _) = liftplan_depthmap::build_cpu(&inp, &liftplan_depthmap::Settings::default()).unwrap();
+    let map_ms = t0.elapsed().as_secs_f64() * 1e3;
+    println!("# C-space precomputation\n");
+    println!(
+        "{} triangles (rasterised into the depth map in {map_ms:.0} ms), AC 700 with a 40 m boom in the middle of the plant, \
+         0.5° x 0.5° swing x luff grid, {} CPU threads. Thesis Table 4.14: hybrid 1034 ms on its GPU. Best of 3.\n",
+        inp.mesh.triangle_count(),
+        rayon::current_num_threads()
+    );
+    println!("| strategy | cells | precompute ms | ratio to the thesis' 1034 ms |");
+    println!("|---|---|---|---|");
+    for strategy in [Strategy::Hybrid, Strategy::Full, Strategy::Online] {
+        let s = Settings { strategy, ..Settings::default() };
+        let mut best = f64::INFINITY;
+        let mut cells = 0;
+        for _ in 0..3 {
+            let cs = CSpace::build(&Problem { task: &task, chart: None, map: &map }, &s);
+            best = best.min(cs.build_ms);
+            cells = cs.ns * cs.nr;
+        }
+        println!("| {strategy:?} | {cells} | {best:.0} | {:.2} |", best / 1034.0);
+    }
+    println!(
+        "\n`online` precomputes only the per-row chart and internal-clearance limits; it pays at query time instead (see reports/planner.md)."
+    );
+}
