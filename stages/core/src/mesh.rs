@@ -71,6 +71,35 @@ impl TriMesh {
         }
     }
 
+    /// Adds an axis-aligned box from `lo` to `hi` as a closed convex part
+    /// (outward-facing triangles).
+    pub fn add_box(&mut self, group: u32, lo: [f64; 3], hi: [f64; 3]) {
+        let v: Vec<[f64; 3]> = (0..8)
+            .map(|i| {
+                [
+                    if i & 1 == 0 { lo[0] } else { hi[0] },
+                    if i & 2 == 0 { lo[1] } else { hi[1] },
+                    if i & 4 == 0 { lo[2] } else { hi[2] },
+                ]
+            })
+            .collect();
+        const T: [[u32; 3]; 12] = [
+            [0, 2, 3],
+            [0, 3, 1],
+            [4, 5, 7],
+            [4, 7, 6],
+            [0, 1, 5],
+            [0, 5, 4],
+            [2, 6, 7],
+            [2, 7, 3],
+            [0, 4, 6],
+            [0, 6, 2],
+            [1, 3, 7],
+            [1, 7, 5],
+        ];
+        self.add_part(group, true, &v, &T);
+    }
+
     /// Adds several parts that share one vertex array: `part_of[k]` indexes
     /// `convex` for triangle `k`.
     pub fn add_parts(

@@ -37,30 +37,7 @@ fn scene(seed: u64) -> Mdm {
             continue; // not on the crane itself
         }
         let (hx, hy, top) = (0.5 + next() * 4.0, 0.5 + next() * 4.0, 2.0 + next() * 25.0);
-        let v: Vec<[f64; 3]> = (0..8)
-            .map(|i| {
-                [
-                    cx + if i & 1 == 0 { -hx } else { hx },
-                    cy + if i & 2 == 0 { -hy } else { hy },
-                    if i & 4 == 0 { 0.0 } else { top },
-                ]
-            })
-            .collect();
-        let t = [
-            [0, 2, 3],
-            [0, 3, 1],
-            [4, 5, 7],
-            [4, 7, 6],
-            [0, 1, 5],
-            [0, 5, 4],
-            [2, 6, 7],
-            [2, 7, 3],
-            [0, 4, 6],
-            [0, 6, 2],
-            [1, 3, 7],
-            [1, 7, 5],
-        ];
-        mesh.add_part(g, true, &v, &t);
+        mesh.add_box(g, [cx - hx, cy - hy, 0.0], [cx + hx, cy + hy, top]);
     }
     let inp = liftplan_depthmap::Inputs { points: vec![], ground: vec![], mesh };
     liftplan_depthmap::build_cpu(&inp, &liftplan_depthmap::Settings { cell_m: 0.5, ..Default::default() }).unwrap().0

@@ -32,33 +32,10 @@ fn plant() -> TriMesh {
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(376);
     let mut m = TriMesh::default();
     let g = m.group_id("plant");
-    let t = [
-        [0, 2, 3],
-        [0, 3, 1],
-        [4, 5, 7],
-        [4, 7, 6],
-        [0, 1, 5],
-        [0, 5, 4],
-        [2, 6, 7],
-        [2, 7, 3],
-        [0, 4, 6],
-        [0, 6, 2],
-        [1, 3, 7],
-        [1, 7, 5],
-    ];
     for _ in 0..31_334 {
         let c = [rng.random::<f64>() * 200.0, rng.random::<f64>() * 200.0, rng.random::<f64>() * 25.0];
         let h = [0.2 + rng.random::<f64>() * 2.0, 0.2 + rng.random::<f64>() * 2.0, 0.2 + rng.random::<f64>() * 2.0];
-        let v: Vec<[f64; 3]> = (0..8)
-            .map(|i| {
-                [
-                    c[0] + if i & 1 == 0 { -h[0] } else { h[0] },
-                    c[1] + if i & 2 == 0 { -h[1] } else { h[1] },
-                    c[2] + if i & 4 == 0 { -h[2] } else { h[2] },
-                ]
-            })
-            .collect();
-        m.add_part(g, true, &v, &t);
+        m.add_box(g, [c[0] - h[0], c[1] - h[1], c[2] - h[2]], [c[0] + h[0], c[1] + h[1], c[2] + h[2]]);
     }
     m
 }

@@ -30,30 +30,7 @@ liftoff_m = 0.5
 
 fn box_part(mesh: &mut TriMesh, name: &str, lo: [f64; 3], hi: [f64; 3]) {
     let g = mesh.group_id(name);
-    let v: Vec<[f64; 3]> = (0..8)
-        .map(|i| {
-            [
-                if i & 1 == 0 { lo[0] } else { hi[0] },
-                if i & 2 == 0 { lo[1] } else { hi[1] },
-                if i & 4 == 0 { lo[2] } else { hi[2] },
-            ]
-        })
-        .collect();
-    let t = [
-        [0, 2, 3],
-        [0, 3, 1],
-        [4, 5, 7],
-        [4, 7, 6],
-        [0, 1, 5],
-        [0, 5, 4],
-        [2, 6, 7],
-        [2, 7, 3],
-        [0, 4, 6],
-        [0, 6, 2],
-        [1, 3, 7],
-        [1, 7, 5],
-    ];
-    mesh.add_part(g, true, &v, &t);
+    mesh.add_box(g, lo, hi);
 }
 
 fn site() -> TriMesh {
