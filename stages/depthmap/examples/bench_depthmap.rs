@@ -46,7 +46,7 @@ fn best_of(k: usize, mut f: impl FnMut() -> f64) -> f64 {
 
 fn main() {
     let s = Settings::default();
-    let device = gpu::open();
+    let device = gpu::open(true);
     println!("# Depth-map rasterisation\n");
     println!(
         "{} CPU threads; GPU: {}. Best of 3 runs. Floor = one streaming pass reading every point (sum of coordinates). \

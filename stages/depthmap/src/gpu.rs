@@ -73,9 +73,10 @@ pub struct Gpu {
     pub name: String,
 }
 
-/// Opens the first adapter wgpu offers (a real GPU, or a software one such as
-/// lavapipe), or says why there is none.
-pub fn open() -> Result<Gpu, String> {
+/// Opens the first adapter wgpu offers, or says why there is none. A software
+/// adapter (lavapipe, llvmpipe: slower than the CPU path) is taken only when
+/// `allow_software` is set, as the tests do to exercise the GPU code anywhere.
+pub fn open(allow_software: bool) -> Result<Gpu, String> {
     let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
     let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
         power_preference: wgpu::PowerPreference::HighPerformance,
@@ -83,6 +84,9 @@ pub fn open() -> Result<Gpu, String> {
     }))
     .map_err(|e| format!("no GPU adapter: {e}"))?;
     let info = adapter.get_info();
+    if info.device_type == wgpu::DeviceType::Cpu && !allow_software {
+        return Err(format!("only a software adapter ({}) is available", info.name));
+    }
     let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor::default()))
         .map_err(|e| format!("GPU device on {}: {e}", info.name))?;
     let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {

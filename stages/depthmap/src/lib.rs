@@ -269,8 +269,10 @@ pub fn run(
     }
     let device = match gpu_use {
         GpuUse::Never => None,
-        GpuUse::Auto => gpu::open().map_err(|e| tracing::info!("depth map on the CPU: {e}")).ok(),
-        GpuUse::Require => Some(gpu::open().map_err(|e| DepthError::Gpu(format!("[gpu] use = \"require\" but {e}")))?),
+        GpuUse::Auto => gpu::open(false).map_err(|e| tracing::info!("depth map on the CPU: {e}")).ok(),
+        GpuUse::Require => {
+            Some(gpu::open(true).map_err(|e| DepthError::Gpu(format!("[gpu] use = \"require\" but {e}")))?)
+        }
     };
     let (m, timings) = build(&inp, s, device.as_ref())?;
     std::fs::create_dir_all(out_dir).map_err(|e| DepthError::Input(Location::file(out_dir), e.to_string()))?;

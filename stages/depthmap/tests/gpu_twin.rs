@@ -18,7 +18,7 @@ fn cloud(n: usize, seed: u64) -> Inputs {
 
 #[test]
 fn gpu_and_cpu_maps_are_equal() {
-    let g = match gpu::open() {
+    let g = match gpu::open(true) {
         Ok(g) => g,
         Err(e) => {
             eprintln!("SKIPPED gpu_and_cpu_maps_are_equal: {e}");
