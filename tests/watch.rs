@@ -6,8 +6,19 @@ use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
+/// Finished runs: `N.json` records only, not a record still being written under a temporary name.
 fn runs(dir: &Path) -> usize {
-    std::fs::read_dir(dir.join(".liftplan/runs")).map(|r| r.count()).unwrap_or(0)
+    let Ok(entries) = std::fs::read_dir(dir.join(".liftplan/runs")) else {
+        return 0;
+    };
+    entries
+        .filter_map(|e| e.ok())
+        .filter(|e| {
+            let name = e.file_name();
+            let name = name.to_string_lossy();
+            name.strip_suffix(".json").is_some_and(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()))
+        })
+        .count()
 }
 
 fn wait_runs(dir: &Path, n: usize, timeout: Duration) -> bool {
