@@ -75,14 +75,7 @@ impl Default for WatchSettings {
     }
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
-#[serde(rename_all = "lowercase")]
-pub enum GpuUse {
-    #[default]
-    Auto,
-    Never,
-    Require,
-}
+pub use liftplan_depthmap::GpuUse;
 
 #[derive(Debug, Clone, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]

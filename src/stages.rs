@@ -114,9 +114,9 @@ fn run_charts(ctx: &Ctx) -> Result<Produced> {
 }
 
 /// The lifts' load boxes at pick, cut out of the site cloud (the scanned load
-/// must not block its own lift). Grown by 0.3 m for scan noise and rigging.
+/// must not block its own lift); see `liftplan_plan::load_exclusions`.
 fn exclusions(p: &Project) -> Vec<liftplan_core::obb::Obb> {
-    p.lifts().map(|l| liftplan_plan::load_exclusions(&l, 0.3)).unwrap_or_default()
+    p.lifts().map(|l| liftplan_plan::load_exclusions(&l)).unwrap_or_default()
 }
 
 pub fn depthmap() -> StageDef {
@@ -142,17 +142,12 @@ pub fn depthmap() -> StageDef {
 fn run_depthmap(ctx: &Ctx) -> Result<Produced> {
     let cloud = ctx.upstream_file("scans", "site.laz");
     let mesh = ctx.upstream_file("plant", "plant.mesh");
-    let gpu = match ctx.project.raw.gpu.use_ {
-        crate::project::GpuUse::Auto => liftplan_depthmap::GpuUse::Auto,
-        crate::project::GpuUse::Never => liftplan_depthmap::GpuUse::Never,
-        crate::project::GpuUse::Require => liftplan_depthmap::GpuUse::Require,
-    };
     let summary = liftplan_depthmap::run(
         cloud.as_deref(),
         mesh.as_deref(),
         &exclusions(ctx.project),
         &ctx.project.raw.depthmap,
-        gpu,
+        ctx.project.raw.gpu.use_,
         ctx.out,
     )?;
     Ok(Produced {

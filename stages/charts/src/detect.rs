@@ -224,8 +224,7 @@ fn title_above(sheet: &Sheet, g: &Grid) -> String {
     let last = *g.value_cols.last().unwrap_or(&g.label_col);
     let lo = g.label_col.saturating_sub(1);
     for r in (g.header_row.saturating_sub(6)..g.header_row).rev() {
-        for ((_, c), v) in sheet.cells.range((r, lo)..=(r, last)) {
-            let _ = c;
+        for (_, v) in sheet.cells.range((r, lo)..=(r, last)) {
             if let Val::Text(t) = v {
                 let t = t.trim();
                 if t.len() >= 4 && !(says_boom(t) && t.len() < 30) && !(says_radius(t) && t.len() < 30) {

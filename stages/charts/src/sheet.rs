@@ -48,13 +48,13 @@ impl Sheet {
     /// All text in the rectangle, joined with spaces (for unit and label search).
     pub fn text_in(&self, r0: u32, r1: u32, c0: u32, c1: u32) -> String {
         let mut out = String::new();
-        for ((r, c), v) in self.cells.range((r0, 0)..=(r1, u32::MAX)) {
-            if *c >= c0 && *c <= c1 {
-                if let Val::Text(t) = v {
-                    out.push_str(t);
-                    out.push(' ');
-                }
-                let _ = r;
+        for ((_, c), v) in self.cells.range((r0, 0)..=(r1, u32::MAX)) {
+            if *c >= c0
+                && *c <= c1
+                && let Val::Text(t) = v
+            {
+                out.push_str(t);
+                out.push(' ');
             }
         }
         out
@@ -93,46 +93,43 @@ pub fn read_workbook(path: &Path) -> Result<Vec<Sheet>> {
     let names = wb.sheet_names().to_vec();
     let mut out = Vec::new();
     for name in names {
-        let mut sheet = Sheet { name: name.clone(), cells: BTreeMap::new() };
-        let too_many = || bad(format!("sheet '{name}' has more than {MAX_CELLS} cells; a load chart never does"));
+        let mut cells = BTreeMap::new();
+        let mut put = |pos: (u32, u32), v: Val| {
+            cells.insert(pos, v);
+            if cells.len() > MAX_CELLS {
+                Err(bad(format!("sheet '{name}' has more than {MAX_CELLS} cells; a load chart never does")))
+            } else {
+                Ok(())
+            }
+        };
+        // xlsx and xlsb stream cell by cell (their readers are different types
+        // with the same methods); the other formats come as a range.
+        macro_rules! stream_cells {
+            ($book:expr) => {{
+                let mut r = $book.worksheet_cells_reader(&name).map_err(|e| bad(format!("sheet '{name}': {e}")))?;
+                while let Some(cell) = r.next_cell().map_err(|e| bad(format!("sheet '{name}': {e}")))? {
+                    if let Some(v) = from_ref(cell.get_value()) {
+                        put(cell.get_position(), v)?;
+                    }
+                }
+            }};
+        }
         match &mut wb {
-            calamine::Sheets::Xlsx(x) => {
-                let mut r = x.worksheet_cells_reader(&name).map_err(|e| bad(format!("sheet '{name}': {e}")))?;
-                while let Some(cell) = r.next_cell().map_err(|e| bad(format!("sheet '{name}': {e}")))? {
-                    if let Some(v) = from_ref(cell.get_value()) {
-                        sheet.cells.insert(cell.get_position(), v);
-                        if sheet.cells.len() > MAX_CELLS {
-                            return Err(too_many());
-                        }
-                    }
-                }
-            }
-            calamine::Sheets::Xlsb(x) => {
-                let mut r = x.worksheet_cells_reader(&name).map_err(|e| bad(format!("sheet '{name}': {e}")))?;
-                while let Some(cell) = r.next_cell().map_err(|e| bad(format!("sheet '{name}': {e}")))? {
-                    if let Some(v) = from_ref(cell.get_value()) {
-                        sheet.cells.insert(cell.get_position(), v);
-                        if sheet.cells.len() > MAX_CELLS {
-                            return Err(too_many());
-                        }
-                    }
-                }
-            }
+            calamine::Sheets::Xlsx(x) => stream_cells!(x),
+            calamine::Sheets::Xlsb(x) => stream_cells!(x),
             other => {
                 let range = other.worksheet_range(&name).map_err(|e| bad(format!("sheet '{name}': {e}")))?;
                 let (r0, c0) = range.start().unwrap_or((0, 0));
                 for (r, row) in range.rows().enumerate() {
                     for (c, d) in row.iter().enumerate() {
                         if let Some(v) = from_data(d) {
-                            sheet.cells.insert((r0 + r as u32, c0 + c as u32), v);
-                            if sheet.cells.len() > MAX_CELLS {
-                                return Err(too_many());
-                            }
+                            put((r0 + r as u32, c0 + c as u32), v)?;
                         }
                     }
                 }
             }
         }
+        let sheet = Sheet { name: name.clone(), cells };
         out.push(sheet);
     }
     Ok(out)

@@ -35,6 +35,18 @@ impl Obb {
         Obb { half: self.half.add_scalar(margin), ..*self }
     }
 
+    /// The box with its underside raised by `by_m` (at most half its height),
+    /// top unchanged: a part standing or resting on a surface, with that surface
+    /// not counted as an obstacle. For boxes whose third axis is vertical (crane
+    /// parts and loads are only ever turned about Z).
+    pub fn with_underside_raised(&self, by_m: f64) -> Obb {
+        let lift = by_m.min(self.half.z);
+        let mut o = *self;
+        o.center.z += lift / 2.0;
+        o.half.z -= lift / 2.0;
+        o
+    }
+
     pub fn corners(&self) -> [Point3; 8] {
         let mut out = [self.center; 8];
         for (k, c) in out.iter_mut().enumerate() {

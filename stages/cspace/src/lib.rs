@@ -417,7 +417,6 @@ impl CSpace {
                     if p.map.collides(&column) {
                         bits |= 1 << b;
                     }
-                    let _ = h_lo;
                 }
                 bits
             })

@@ -2,7 +2,7 @@
 //! the cell finds a collision, and the checker's continuous moves never pass
 //! through a configuration that the exact check rejects.
 
-use liftplan_core::crane::{Config, Dependence, PartKind, builtin};
+use liftplan_core::crane::{Config, Dependence, builtin};
 use liftplan_core::lift::{LiftSpec, LiftTask};
 use liftplan_core::mesh::TriMesh;
 use liftplan_cspace::{CSpace, Checker, Joint, Problem, Settings, Strategy};
@@ -51,7 +51,6 @@ fn exact_free(t: &LiftTask, map: &Mdm, c: &Config) -> bool {
         }
         let Some(b) = t.crane.part(k, c, &t.load) else { return true };
         let structure = matches!(k.dependence(), Dependence::Swing | Dependence::SwingRadial);
-        let _ = PartKind::Load;
         map.hit_where(&b.expanded(t.clearance_m), |iv| !(structure && iv.obj == 0)).is_none()
     })
 }

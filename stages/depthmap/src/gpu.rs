@@ -137,6 +137,39 @@ impl Gpu {
         Ok(words)
     }
 
+    /// A buffer holding `words`.
+    fn upload(&self, label: &str, words: &[u32], usage: wgpu::BufferUsages) -> wgpu::Buffer {
+        let bytes: Vec<u8> = words.iter().flat_map(|w| w.to_le_bytes()).collect();
+        self.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some(label),
+            contents: &bytes,
+            usage,
+        })
+    }
+
+    /// A buffer a shader writes and the host reads back.
+    fn output(&self, label: &str, bytes: u64) -> wgpu::Buffer {
+        self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some(label),
+            size: bytes,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        })
+    }
+
+    /// Binds buffers to a pipeline's group 0 by binding number.
+    fn bind(&self, pipeline: &wgpu::ComputePipeline, buffers: &[(u32, &wgpu::Buffer)]) -> wgpu::BindGroup {
+        let entries: Vec<wgpu::BindGroupEntry> = buffers
+            .iter()
+            .map(|(binding, b)| wgpu::BindGroupEntry { binding: *binding, resource: b.as_entire_binding() })
+            .collect();
+        self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: None,
+            layout: &pipeline.get_bind_group_layout(0),
+            entries: &entries,
+        })
+    }
+
     fn dispatch(&self, pipeline: &wgpu::ComputePipeline, bind: &wgpu::BindGroup, n: u32) {
         let groups = n.div_ceil(256);
         let (x, y) = if groups > 65_535 { (65_535, groups.div_ceil(65_535)) } else { (groups.max(1), 1) };
@@ -165,33 +198,10 @@ impl Gpu {
                 packed.extend_from_slice(&[q[0].to_bits(), q[1].to_bits(), q[2].to_bits(), p.obj[ci * chunk + k]]);
             }
             let params: [u32; 8] = [n, spec.nx, spec.ny, inv.to_bits(), radius.to_bits(), 0, 0, 0];
-            let bytes = |v: &[u32]| v.iter().flat_map(|w| w.to_le_bytes()).collect::<Vec<u8>>();
-            let dev = &self.device;
-            let ubuf = dev.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("params"),
-                contents: &bytes(&params),
-                usage: wgpu::BufferUsages::UNIFORM,
-            });
-            let pbuf = dev.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("points"),
-                contents: &bytes(&packed),
-                usage: wgpu::BufferUsages::STORAGE,
-            });
-            let cbuf = dev.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("counts"),
-                size: 4 * n as u64,
-                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-                mapped_at_creation: false,
-            });
-            let bind = dev.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("count"),
-                layout: &self.count.get_bind_group_layout(0),
-                entries: &[
-                    wgpu::BindGroupEntry { binding: 0, resource: ubuf.as_entire_binding() },
-                    wgpu::BindGroupEntry { binding: 1, resource: pbuf.as_entire_binding() },
-                    wgpu::BindGroupEntry { binding: 2, resource: cbuf.as_entire_binding() },
-                ],
-            });
+            let ubuf = self.upload("params", &params, wgpu::BufferUsages::UNIFORM);
+            let pbuf = self.upload("points", &packed, wgpu::BufferUsages::STORAGE);
+            let cbuf = self.output("counts", 4 * n as u64);
+            let bind = self.bind(&self.count, &[(0, &ubuf), (1, &pbuf), (2, &cbuf)]);
             self.dispatch(&self.count, &bind, n);
             let counts = self.read_back(&cbuf, 4 * n as u64)?;
             let mut offsets = Vec::with_capacity(counts.len());
@@ -203,27 +213,9 @@ impl Gpu {
             if total == 0 {
                 continue;
             }
-            let obuf = dev.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("offsets"),
-                contents: &bytes(&offsets),
-                usage: wgpu::BufferUsages::STORAGE,
-            });
-            let rbuf = dev.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("raws"),
-                size: 20 * total,
-                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-                mapped_at_creation: false,
-            });
-            let bind = dev.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("fill"),
-                layout: &self.fill.get_bind_group_layout(0),
-                entries: &[
-                    wgpu::BindGroupEntry { binding: 0, resource: ubuf.as_entire_binding() },
-                    wgpu::BindGroupEntry { binding: 1, resource: pbuf.as_entire_binding() },
-                    wgpu::BindGroupEntry { binding: 3, resource: obuf.as_entire_binding() },
-                    wgpu::BindGroupEntry { binding: 4, resource: rbuf.as_entire_binding() },
-                ],
-            });
+            let obuf = self.upload("offsets", &offsets, wgpu::BufferUsages::STORAGE);
+            let rbuf = self.output("raws", 20 * total);
+            let bind = self.bind(&self.fill, &[(0, &ubuf), (1, &pbuf), (3, &obuf), (4, &rbuf)]);
             self.dispatch(&self.fill, &bind, n);
             let words = self.read_back(&rbuf, 20 * total)?;
             out.reserve(total as usize);

@@ -242,8 +242,10 @@ impl Summary {
 }
 
 /// Whether to use a GPU (`[gpu] use` in the project file).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
 pub enum GpuUse {
+    #[default]
     Auto,
     Never,
     Require,

@@ -131,11 +131,9 @@ pub fn step_view(site: &SiteView, task: &LiftTask, plan: &LiftPlan, n: usize, w:
         }
     }
     lo[2] = lo[2].min(0.0);
-    let o = task.crane.slew_center();
     // Look from behind-left of the crane towards the work area.
     let mid_swing = 0.5 * (plan.start.swing_rad + plan.set.swing_rad) + task.crane.placement.heading_rad;
     let az = (mid_swing + std::f64::consts::PI + 0.6).to_degrees() as f32;
-    let _ = o;
     let cam = Camera::framing(lo, hi, az, 28.0, 40.0, w as f32 / h as f32);
     render::render_cpu(&s, &cam, w, h, 2)
 }
@@ -178,9 +176,7 @@ pub fn chart_plot(chart: &ChartConfig, task: &LiftTask, plan: &LiftPlan, w: u32,
     img.line(ml, y_of(g), w as f64 - mr, y_of(g), 2.0, [200, 40, 40]);
     img.text((w as f64 - mr - 150.0) as i64, y_of(g) as i64 - 18, "GROSS LOAD", 2, [200, 40, 40]);
     for st in &plan.steps {
-        let c = st.capacity_kg.map(|c| task.effective_capacity_kg(c)).unwrap_or(0.0);
         img.disc(x_of(st.radius_m), y_of(g), 5.0, [200, 40, 40]);
-        let _ = c;
     }
     img
 }

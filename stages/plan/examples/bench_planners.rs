@@ -29,7 +29,7 @@ fn main() {
         spec.resolve(liftplan_core::crane::builtin(&spec.crane.model).expect("built-in crane")).expect("lift resolves");
     let map = Mdm::read(&out.join("site.mdm")).expect("site.mdm");
     let mesh = liftplan_core::mesh::TriMesh::read_artifact(&out.join("plant.mesh")).unwrap_or_default();
-    let excl = liftplan_plan::load_exclusions(std::slice::from_ref(&task), 0.3);
+    let excl = liftplan_plan::load_exclusions(std::slice::from_ref(&task));
     let (pts, ground) = liftplan_plan::read_points(&out.join("site.laz"), &excl).expect("site.laz");
     let world = validate::World::new(&mesh, &pts, &ground).expect("world");
     let charts = CapacityTable::read_csv(&out.join("capacity.csv")).ok();

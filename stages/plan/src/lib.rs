@@ -23,7 +23,7 @@ pub mod validate;
 
 use liftplan_core::Location;
 use liftplan_core::capacity::{CapacityTable, ChartConfig};
-use liftplan_core::crane::{Config, PartKind};
+use liftplan_core::crane::Config;
 use liftplan_core::lift::LiftTask;
 use liftplan_core::mesh::TriMesh;
 use liftplan_core::obb::Obb;
@@ -110,11 +110,15 @@ impl Settings {
     }
 }
 
+/// How far the cut-out around a scanned load reaches beyond its box (m): scan
+/// noise and the rigging lying on it.
+pub const LOAD_CUTOUT_GROW_M: f64 = 0.3;
+
 /// The scanned load at its pick position is in the site cloud; these boxes
-/// (the load at pick, grown by `grow_m`) are cut out of it so the load does not
-/// block its own lift.
-pub fn load_exclusions(tasks: &[LiftTask], grow_m: f64) -> Vec<Obb> {
-    tasks.iter().map(|t| t.crane.load_obb(&t.pick, &t.load).expanded(grow_m)).collect()
+/// (the load at pick, grown by [`LOAD_CUTOUT_GROW_M`]) are cut out of it so the
+/// load does not block its own lift. The depth map and the validator use the same boxes.
+pub fn load_exclusions(tasks: &[LiftTask]) -> Vec<Obb> {
+    tasks.iter().map(|t| t.crane.load_obb(&t.pick, &t.load).expanded(LOAD_CUTOUT_GROW_M)).collect()
 }
 
 /// Everything a planned lift carries into `plan.json`.
@@ -222,7 +226,7 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
             continue;
         }
         if let Some(b) = task.crane.part(kind, &task.pick, &task.load) {
-            let b = standing(&b, s.support_m);
+            let b = b.with_underside_raised(s.support_m);
             if let Some(h) = site.map.hit_where(&b, |iv| iv.obj != liftplan_depthmap::mdm::OBJ_GROUND) {
                 return Err(lift_err(
                     task,
@@ -236,7 +240,8 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
         }
     }
     let cs = CSpace::build(&Problem { task, chart, map: site.map }, &s.cspace);
-    let ck = Checker::new(&cs, site.map, task, landing_zones(task, s), s.cspace.sample_m);
+    let zones = landing_zones(task, s);
+    let ck = Checker::new(&cs, site.map, task, zones.clone(), s.cspace.sample_m);
     let start = task.start();
     let goal0 = task.goal();
     if let Err(b) = ck.config(&start) {
@@ -323,7 +328,7 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
     let landing_flags: Vec<bool> = (0..all.len()).map(|i| i == 0 || i == all.len() - 1).collect();
     let rules = validate::Rules {
         clearance_m: task.clearance_m,
-        landing: landing_zones(task, s).into_iter().map(|z| z.polygon).collect(),
+        landing: zones.into_iter().map(|z| z.polygon).collect(),
         landing_clearance_m: s.landing_clearance_m,
         sample_m: s.validator_sample_m,
         support_m: s.support_m,
@@ -419,7 +424,7 @@ pub fn run(
         Some(p) => TriMesh::read_artifact(p).map_err(|e| PlanError::Input(Location::file(p), e.to_string()))?,
         None => TriMesh::default(),
     };
-    let exclusions = load_exclusions(tasks, 0.3);
+    let exclusions = load_exclusions(tasks);
     let (points, ground) = match cloud_path {
         Some(p) => read_points(p, &exclusions)?,
         None => (vec![], vec![]),
@@ -453,19 +458,4 @@ pub fn run(
     liftplan_core::artifact::write_atomic(&pj, json.as_bytes())
         .map_err(|e| PlanError::Input(Location::file(&pj), e.to_string()))?;
     Ok(RunSummary { lifts: plans.iter().map(|p| p.summary.clone()).collect() })
-}
-
-/// A part standing on the ground, its underside raised by `allowance_m` so the
-/// surface it stands on does not count as an obstacle.
-pub fn standing(b: &Obb, allowance_m: f64) -> Obb {
-    let lift = allowance_m.min(b.half.z);
-    let mut o = *b;
-    o.center.z += lift / 2.0;
-    o.half.z -= lift / 2.0;
-    o
-}
-
-/// Part names for messages.
-pub fn part_name(p: PartKind) -> &'static str {
-    p.name()
 }

@@ -11,7 +11,7 @@
 //! order, on one thread; only the (pure) fitness evaluation runs in parallel.
 //! The result does not depend on the number of threads.
 
-use crate::path::{self, Weights};
+use crate::path::{self, Move, Weights};
 use liftplan_core::crane::{Config, Dependence};
 use liftplan_core::rng::{self, Rng};
 use liftplan_cspace::{Blocked, Checker};
@@ -130,8 +130,9 @@ pub struct Scored {
 
 /// Collision and constraint counts of a string (eq. 4.22): node problems (no),
 /// structure problems on edges (nf), hanging-part problems on edges (nr), and
-/// limit / capacity / internal-clearance problems (nc).
-fn violations(ck: &Checker, genes: &[Config]) -> (Vec<bool>, usize) {
+/// limit / capacity / internal-clearance problems (nc); with the string's moves,
+/// built once per edge for both the checks and the motion cost.
+fn violations(ck: &Checker, genes: &[Config]) -> (Vec<bool>, usize, Vec<Move>) {
     let mut valid = Vec::with_capacity(genes.len());
     let mut n = 0;
     for g in genes {
@@ -139,22 +140,26 @@ fn violations(ck: &Checker, genes: &[Config]) -> (Vec<bool>, usize) {
         valid.push(ok);
         n += usize::from(!ok);
     }
+    let mut moves = Vec::new();
     for w in genes.windows(2) {
-        if let Err(b) = path::check_edge(ck, &w[0], &w[1]) {
+        let edge = path::edge_moves(ck, &w[0], &w[1]);
+        if let Err(b) = path::check_moves(ck, &edge) {
             n += 1;
             // A structural hit is counted again: it is the harder one to fix.
             if b.part.is_some_and(|p| p.dependence() != Dependence::Full) {
                 n += 1;
             }
         }
+        for m in edge {
+            path::push_merged(&mut moves, m);
+        }
     }
-    (valid, n)
+    (valid, n, moves)
 }
 
 pub fn score(ck: &Checker, genes: Vec<Config>, s: &GaSettings, kind: Fitness) -> Scored {
     let tower = ck.task.crane.model.is_tower();
-    let (valid, n) = violations(ck, &genes);
-    let moves = path::path_moves(ck, &genes);
+    let (valid, n, moves) = violations(ck, &genes);
     let (d, sc) = path::cost(&moves, &s.weights, tower);
     let fitness = match kind {
         Fitness::Mspga => {

@@ -101,19 +101,25 @@ pub fn edge_moves(ck: &Checker, a: &Config, b: &Config) -> Vec<Move> {
     out
 }
 
+/// Appends `m` to a move list, merging it into the last move when both turn
+/// the same joint the same way.
+pub fn push_merged(out: &mut Vec<Move>, m: Move) {
+    if let Some(last) = out.last_mut()
+        && last.joint == m.joint
+        && last.delta().signum() == m.delta().signum()
+    {
+        last.to = m.to;
+        return;
+    }
+    out.push(m);
+}
+
 /// All moves of a node path, consecutive moves of one joint merged.
 pub fn path_moves(ck: &Checker, nodes: &[Config]) -> Vec<Move> {
     let mut out: Vec<Move> = Vec::new();
     for w in nodes.windows(2) {
         for m in edge_moves(ck, &w[0], &w[1]) {
-            if let Some(last) = out.last_mut()
-                && last.joint == m.joint
-                && last.delta().signum() == m.delta().signum()
-            {
-                last.to = m.to;
-                continue;
-            }
-            out.push(m);
+            push_merged(&mut out, m);
         }
     }
     out

@@ -270,10 +270,8 @@ fn check_config(
         if landing_move && hanging {
             required = 0.0;
             if kind == PartKind::Load {
-                // The load may rest on its support: lift the box's underside by the support allowance.
-                let s = rules.support_m.min(b.half.z);
-                b.center.z += s / 2.0;
-                b.half.z -= s / 2.0;
+                // The load may rest on its support.
+                b = b.with_underside_raised(rules.support_m);
             }
         }
         let nearest = nearest(world, &b, !hanging, (rules.clearance_m * 3.0).max(3.0));
@@ -319,12 +317,8 @@ pub fn validate(
                 continue;
             }
             if let Some(b) = task.crane.part(kind, &first.from, &task.load) {
-                // It stands on the ground: raise its underside by the support allowance.
-                let lift = rules.support_m.min(b.half.z);
-                let mut b = b;
-                b.center.z += lift / 2.0;
-                b.half.z -= lift / 2.0;
-                let n = nearest(world, &b, true, 1.0);
+                // It stands on the ground.
+                let n = nearest(world, &b.with_underside_raised(rules.support_m), true, 1.0);
                 if n.distance_m <= 0.0 {
                     problems.push(format!("crane set-up: {} intersects {}", kind.name(), n.object));
                 }

@@ -173,13 +173,11 @@ pub fn align(source: &RegCloud, target: &RegCloud, max_points: usize) -> Vec<(Po
     if src.len() < 50 || tgt.len() < 50 {
         return vec![];
     }
-    let radius = src.iter().map(|p| (p[0] * p[0] + p[1] * p[1]).sqrt()).fold(0.0, f64::max);
     // Centre the source on its own centroid so rotation keeps it compact.
     let c = src.iter().fold([0.0, 0.0], |a, p| [a[0] + p[0], a[1] + p[1]]);
     let c = [c[0] / src.len() as f64, c[1] / src.len() as f64];
     let src_c: Vec<[f64; 2]> = src.iter().map(|p| [p[0] - c[0], p[1] - c[1]]).collect();
     let r_c = src_c.iter().map(|p| (p[0] * p[0] + p[1] * p[1]).sqrt()).fold(0.0, f64::max);
-    let _ = radius;
 
     let mut f1 = None;
     let coarse = plan_for(&tgt, r_c, 1.0, &mut f1);
