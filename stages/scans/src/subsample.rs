@@ -47,15 +47,34 @@ struct Acc {
 }
 
 /// Streaming voxel-centroid accumulator.
+///
+/// Voxels live in [`SHARDS`] hash maps chosen by a hash of the voxel index, so
+/// one chunk is accumulated by all threads at once, each owning whole shards,
+/// and every point is hashed into its final map exactly once. Within a shard,
+/// points are added in input order, so sums (and the output) do not depend on
+/// the number of threads.
 pub struct VoxelGrid {
     inv: f64,
-    map: FxHashMap<Key, Acc>,
+    shards: Vec<FxHashMap<Key, Acc>>,
     has_intensity: bool,
     has_rgb: bool,
 }
 
-/// Points per parallel task inside one chunk; fixed so results do not depend on
-/// the number of threads.
+/// Number of voxel shards; a power of two well above any core count we expect.
+const SHARDS: usize = 64;
+
+/// Shard of a voxel. Uses a hash unrelated to the maps' own (FxHash), so the
+/// keys of one shard still spread over its map's buckets and control bytes.
+#[inline]
+fn shard_of(k: &Key) -> usize {
+    let h = (k[0] as u32).wrapping_mul(0x9E37_79B1)
+        ^ (k[1] as u32).wrapping_mul(0x85EB_CA77)
+        ^ (k[2] as u32).wrapping_mul(0xC2B2_AE3D);
+    (h >> (32 - SHARDS.trailing_zeros())) as usize
+}
+
+/// Points per parallel task when computing voxel indices; fixed so errors and
+/// results do not depend on the number of threads.
 const TASK_POINTS: usize = 65_536;
 
 impl VoxelGrid {
@@ -63,11 +82,16 @@ impl VoxelGrid {
         if !(voxel_m.is_finite() && voxel_m > 0.0) {
             return Err(format!("voxel edge must be a positive number of metres, found {voxel_m}"));
         }
-        Ok(VoxelGrid { inv: 1.0 / voxel_m, map: FxHashMap::default(), has_intensity: false, has_rgb: false })
+        Ok(VoxelGrid {
+            inv: 1.0 / voxel_m,
+            shards: (0..SHARDS).map(|_| FxHashMap::default()).collect(),
+            has_intensity: false,
+            has_rgb: false,
+        })
     }
 
     pub fn voxels(&self) -> usize {
-        self.map.len()
+        self.shards.iter().map(|m| m.len()).sum()
     }
 
     /// Adds a chunk whose points all come from scan `scan_id` (or carry their
@@ -76,63 +100,62 @@ impl VoxelGrid {
         self.has_intensity |= !c.intensity.is_empty();
         self.has_rgb |= !c.rgb.is_empty();
         let inv = self.inv;
-        let parts: Vec<Result<FxHashMap<Key, Acc>, String>> = (0..c.len().div_ceil(TASK_POINTS))
-            .into_par_iter()
-            .map(|t| {
-                let lo = t * TASK_POINTS;
-                let hi = (lo + TASK_POINTS).min(c.len());
-                let mut m: FxHashMap<Key, Acc> = FxHashMap::default();
-                for i in lo..hi {
-                    let p = &c.xyz[i];
-                    let k = key(p, inv).ok_or_else(|| {
-                        format!("point {:?} is too far from the origin for a {} m voxel grid", p, 1.0 / inv)
-                    })?;
-                    let e = m.entry(k).or_insert(Acc {
-                        sum: [0.0; 3],
-                        n: 0,
-                        isum: 0,
-                        rgb: [0; 3],
-                        scan: c.scan.get(i).copied().unwrap_or(scan_id),
-                    });
-                    e.sum[0] += p[0];
-                    e.sum[1] += p[1];
-                    e.sum[2] += p[2];
-                    e.n += 1;
-                    if let Some(v) = c.intensity.get(i) {
-                        e.isum += *v as u64;
-                    }
-                    if let Some(v) = c.rgb.get(i) {
-                        for j in 0..3 {
-                            e.rgb[j] += v[j] as u64;
-                        }
-                    }
+        // Voxel index per point; the first bad point in input order is reported.
+        let mut keys: Vec<Key> = vec![[0; 3]; c.len()];
+        keys.par_chunks_mut(TASK_POINTS).enumerate().try_for_each(|(t, out)| -> Result<(), String> {
+            for (j, k) in out.iter_mut().enumerate() {
+                let p = &c.xyz[t * TASK_POINTS + j];
+                *k = key(p, inv).ok_or_else(|| {
+                    format!("point {:?} is too far from the origin for a {} m voxel grid", p, 1.0 / inv)
+                })?;
+            }
+            Ok(())
+        })?;
+        // Counting sort of point indices by shard, keeping input order within one.
+        let shard: Vec<u8> = keys.par_iter().map(|k| shard_of(k) as u8).collect();
+        let mut start = [0usize; SHARDS + 1];
+        for &s in &shard {
+            start[s as usize + 1] += 1;
+        }
+        for s in 0..SHARDS {
+            start[s + 1] += start[s];
+        }
+        let mut fill = start;
+        let mut order = vec![0usize; c.len()];
+        for (i, &s) in shard.iter().enumerate() {
+            order[fill[s as usize]] = i;
+            fill[s as usize] += 1;
+        }
+        self.shards.par_iter_mut().enumerate().for_each(|(s, map)| {
+            for &i in &order[start[s]..start[s + 1]] {
+                let p = &c.xyz[i];
+                let e = map.entry(keys[i]).or_insert(Acc {
+                    sum: [0.0; 3],
+                    n: 0,
+                    isum: 0,
+                    rgb: [0; 3],
+                    scan: c.scan.get(i).copied().unwrap_or(scan_id),
+                });
+                e.sum[0] += p[0];
+                e.sum[1] += p[1];
+                e.sum[2] += p[2];
+                e.n += 1;
+                if let Some(v) = c.intensity.get(i) {
+                    e.isum += *v as u64;
                 }
-                Ok(m)
-            })
-            .collect();
-        for part in parts {
-            for (k, a) in part? {
-                match self.map.get_mut(&k) {
-                    Some(e) => {
-                        for j in 0..3 {
-                            e.sum[j] += a.sum[j];
-                            e.rgb[j] += a.rgb[j];
-                        }
-                        e.n += a.n;
-                        e.isum += a.isum;
-                    }
-                    None => {
-                        self.map.insert(k, a);
+                if let Some(v) = c.rgb.get(i) {
+                    for j in 0..3 {
+                        e.rgb[j] += v[j] as u64;
                     }
                 }
             }
-        }
+        });
         Ok(())
     }
 
     /// The voxel centroids, in voxel order.
     pub fn finish(self) -> PointCloud {
-        let mut items: Vec<(Key, Acc)> = self.map.into_iter().collect();
+        let mut items: Vec<(Key, Acc)> = self.shards.into_iter().flatten().collect();
         items.par_sort_unstable_by(|a, b| order(&a.0, &b.0));
         let mut out = PointCloud {
             xyz: items
@@ -163,8 +186,9 @@ impl VoxelGrid {
     /// Centroids by voxel, for the second pass of nearest-to-centroid.
     pub fn into_nearest_picker(self) -> NearestPicker {
         let map = self
-            .map
+            .shards
             .into_iter()
+            .flatten()
             .map(|(k, a)| {
                 let n = a.n as f64;
                 (k, Pick { centroid: [a.sum[0] / n, a.sum[1] / n, a.sum[2] / n], best_d2: f64::INFINITY, best: None })
