@@ -198,7 +198,9 @@ pub fn docs() -> StageDef {
         version: liftplan_docs::VERSION,
         about: "render the pictures and the step-by-step lift plan PDF",
         inputs: |p: &Project| Ok(p.crane_files()),
-        settings: |p: &Project| serde_json::json!({ "docs": p.raw.docs, "lifts": p.raw.lift, "project": p.raw.project.name }),
+        // The GPU setting is part of the key: the GPU twin's pictures agree with the
+        // CPU's within a tolerance, not bit for bit.
+        settings: |p: &Project| serde_json::json!({ "docs": p.raw.docs, "lifts": p.raw.lift, "project": p.raw.project.name, "gpu": p.raw.gpu.use_ }),
         reads: &[("plan", "*"), ("scans", "site.laz"), ("plant", "plant.mesh"), ("charts", "capacity.csv")],
         applicable: |_, _, up| up.contains_key("plan"),
         run: run_docs,
@@ -237,7 +239,7 @@ fn run_docs(ctx: &Ctx) -> Result<Produced> {
         input_lines,
         input_hashes,
     };
-    let summary = liftplan_docs::run(&inputs, &p.raw.docs, ctx.out)?;
+    let summary = liftplan_docs::run(&inputs, &p.raw.docs, p.raw.gpu.use_, ctx.out)?;
     let mut outputs = Vec::new();
     for t in &tasks {
         outputs.push(format!("{}.pdf", t.id));

@@ -33,6 +33,8 @@ pub mod capacity;
 pub mod cloud;
 pub mod crane;
 pub mod frame;
+#[cfg(feature = "gpu")]
+pub mod gpu;
 pub mod image;
 pub mod lift;
 pub mod location;

@@ -63,38 +63,24 @@ fn fill(@builtin(global_invocation_id) g: vec3<u32>) {
 }
 "#;
 
-/// An open GPU.
+/// An open GPU with the point-pass pipelines.
 pub struct Gpu {
-    device: wgpu::Device,
-    queue: wgpu::Queue,
+    dev: liftplan_core::gpu::Device,
     count: wgpu::ComputePipeline,
     fill: wgpu::ComputePipeline,
     /// Adapter name and backend, for reports.
     pub name: String,
 }
 
-/// Opens the first adapter wgpu offers, or says why there is none. A software
-/// adapter (lavapipe, llvmpipe: slower than the CPU path) is taken only when
-/// `allow_software` is set, as the tests do to exercise the GPU code anywhere.
+/// Opens a device ([`liftplan_core::gpu::open_device`]) and builds the pipelines.
 pub fn open(allow_software: bool) -> Result<Gpu, String> {
-    let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
-    let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
-        power_preference: wgpu::PowerPreference::HighPerformance,
-        ..Default::default()
-    }))
-    .map_err(|e| format!("no GPU adapter: {e}"))?;
-    let info = adapter.get_info();
-    if info.device_type == wgpu::DeviceType::Cpu && !allow_software {
-        return Err(format!("only a software adapter ({}) is available", info.name));
-    }
-    let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor::default()))
-        .map_err(|e| format!("GPU device on {}: {e}", info.name))?;
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+    let dev = liftplan_core::gpu::open_device(allow_software)?;
+    let module = dev.device.create_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some("depthmap points"),
         source: wgpu::ShaderSource::Wgsl(SHADER.into()),
     });
     let pipeline = |entry: &str| {
-        device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        dev.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
             label: Some(entry),
             layout: None,
             module: &module,
@@ -105,42 +91,20 @@ pub fn open(allow_software: bool) -> Result<Gpu, String> {
     };
     let count = pipeline("count");
     let fill = pipeline("fill");
-    Ok(Gpu { device, queue, count, fill, name: format!("{} ({:?})", info.name, info.backend) })
+    let name = dev.name.clone();
+    Ok(Gpu { dev, count, fill, name })
 }
 
 impl Gpu {
     fn read_back(&self, src: &wgpu::Buffer, bytes: u64) -> Result<Vec<u32>, String> {
-        let staging = self.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("read back"),
-            size: bytes.max(4),
-            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        let mut enc = self.device.create_command_encoder(&Default::default());
-        enc.copy_buffer_to_buffer(src, 0, &staging, 0, bytes.max(4));
-        self.queue.submit([enc.finish()]);
-        let slice = staging.slice(..);
-        let (tx, rx) = std::sync::mpsc::channel();
-        slice.map_async(wgpu::MapMode::Read, move |r| {
-            let _ = tx.send(r);
-        });
-        self.device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| format!("GPU poll: {e}"))?;
-        rx.recv().map_err(|e| e.to_string())?.map_err(|e| format!("GPU read back: {e}"))?;
-        let data = slice.get_mapped_range().map_err(|e| format!("GPU read back: {e:?}"))?;
-        let words: Vec<u32> = data
-            .chunks_exact(4)
-            .take((bytes / 4) as usize)
-            .map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]]))
-            .collect();
-        drop(data);
-        staging.unmap();
-        Ok(words)
+        let data = liftplan_core::gpu::read_back(&self.dev, src, bytes)?;
+        Ok(data.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect())
     }
 
     /// A buffer holding `words`.
     fn upload(&self, label: &str, words: &[u32], usage: wgpu::BufferUsages) -> wgpu::Buffer {
         let bytes: Vec<u8> = words.iter().flat_map(|w| w.to_le_bytes()).collect();
-        self.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        self.dev.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some(label),
             contents: &bytes,
             usage,
@@ -149,7 +113,7 @@ impl Gpu {
 
     /// A buffer a shader writes and the host reads back.
     fn output(&self, label: &str, bytes: u64) -> wgpu::Buffer {
-        self.device.create_buffer(&wgpu::BufferDescriptor {
+        self.dev.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some(label),
             size: bytes,
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
@@ -163,7 +127,7 @@ impl Gpu {
             .iter()
             .map(|(binding, b)| wgpu::BindGroupEntry { binding: *binding, resource: b.as_entire_binding() })
             .collect();
-        self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+        self.dev.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: None,
             layout: &pipeline.get_bind_group_layout(0),
             entries: &entries,
@@ -173,14 +137,14 @@ impl Gpu {
     fn dispatch(&self, pipeline: &wgpu::ComputePipeline, bind: &wgpu::BindGroup, n: u32) {
         let groups = n.div_ceil(256);
         let (x, y) = if groups > 65_535 { (65_535, groups.div_ceil(65_535)) } else { (groups.max(1), 1) };
-        let mut enc = self.device.create_command_encoder(&Default::default());
+        let mut enc = self.dev.device.create_command_encoder(&Default::default());
         {
             let mut pass = enc.begin_compute_pass(&Default::default());
             pass.set_pipeline(pipeline);
             pass.set_bind_group(0, bind, &[]);
             pass.dispatch_workgroups(x, y, 1);
         }
-        self.queue.submit([enc.finish()]);
+        self.dev.queue.submit([enc.finish()]);
     }
 
     /// The point pass on the GPU: the same raw intervals, in the same order, as
@@ -189,7 +153,8 @@ impl Gpu {
         let inv = (1.0 / spec.cell) as f32;
         // Cells one point can touch, to size chunks under the binding limit.
         let span = ((2.0 * radius * inv).ceil() as u64 + 1).pow(2);
-        let limit = self.device.limits().max_storage_buffer_binding_size.min(self.device.limits().max_buffer_size);
+        let limit =
+            self.dev.device.limits().max_storage_buffer_binding_size.min(self.dev.device.limits().max_buffer_size);
         let chunk = ((limit / (20 * span)) as usize).clamp(1, 1 << 22);
         for (ci, pts) in p.xyz.chunks(chunk).enumerate() {
             let n = pts.len() as u32;

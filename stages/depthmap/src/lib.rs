@@ -241,15 +241,7 @@ impl Summary {
     }
 }
 
-/// Whether to use a GPU (`[gpu] use` in the project file).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
-#[serde(rename_all = "lowercase")]
-pub enum GpuUse {
-    #[default]
-    Auto,
-    Never,
-    Require,
-}
+pub use liftplan_core::gpu::GpuUse;
 
 /// Runs the stage: `cloud` (site.laz) and `mesh` (plant.mesh) may each be absent.
 pub fn run(

@@ -11,6 +11,7 @@
 //! | `<lift>.overview.png` | top view of the site, crane, load path |
 //! | `<lift>.chart.png` | capacity against radius with the lift's radii |
 
+pub mod gpu;
 pub mod pdf;
 pub mod pictures;
 pub mod render;
@@ -79,11 +80,16 @@ pub struct Summary {
     pub documents: Vec<String>,
     pub pages: Vec<usize>,
     pub seconds: f64,
+    /// Which rasteriser drew the pictures ("cpu" or "gpu: <adapter>").
+    pub renderer: String,
 }
 
 impl Summary {
     pub fn lines(&self) -> Vec<String> {
-        self.documents.iter().zip(&self.pages).map(|(d, p)| format!("{d}: {p} pages")).collect()
+        let mut lines: Vec<String> =
+            self.documents.iter().zip(&self.pages).map(|(d, p)| format!("{d}: {p} pages")).collect();
+        lines.push(format!("pictures drawn by the {} renderer", self.renderer));
+        lines
     }
 }
 
@@ -110,7 +116,8 @@ fn io(p: &Path, e: impl std::fmt::Display) -> DocsError {
 }
 
 /// Renders every lift's document.
-pub fn run(inp: &Inputs, s: &Settings, out_dir: &Path) -> Result<Summary> {
+/// Pictures use the GPU twin of the rasteriser as `gpu_use` says.
+pub fn run(inp: &Inputs, s: &Settings, gpu_use: liftplan_core::gpu::GpuUse, out_dir: &Path) -> Result<Summary> {
     let t0 = std::time::Instant::now();
     let text = std::fs::read_to_string(&inp.plan_json).map_err(|e| io(&inp.plan_json, e))?;
     #[derive(Deserialize)]
@@ -126,13 +133,15 @@ pub fn run(inp: &Inputs, s: &Settings, out_dir: &Path) -> Result<Summary> {
         Some(p) => read_points(p)?,
         None => vec![],
     };
-    let site = pictures::SiteView::new(mesh, &points, 300_000);
+    let renderer = render::Renderer::choose(gpu_use).map_err(DocsError::Other)?;
+    let renderer_name = renderer.name();
+    let site = pictures::SiteView::new(renderer, mesh, &points, 300_000);
     let charts = match &inp.capacity_csv {
         Some(p) => Some(liftplan_core::capacity::CapacityTable::read_csv(p).map_err(|e| io(p, e))?),
         None => None,
     };
     std::fs::create_dir_all(out_dir).map_err(|e| io(out_dir, e))?;
-    let mut summary = Summary { documents: vec![], pages: vec![], seconds: 0.0 };
+    let mut summary = Summary { documents: vec![], pages: vec![], seconds: 0.0, renderer: renderer_name };
     for plan in &plans.lifts {
         let Some(task) = inp.tasks.iter().find(|t| t.id == plan.lift) else {
             return Err(DocsError::Other(format!(

@@ -18,6 +18,7 @@ const PATH: Rgb = [200, 30, 60];
 
 /// The site as the pictures show it: plant mesh and a thinned cloud.
 pub struct SiteView {
+    pub renderer: render::Renderer,
     pub mesh: TriMesh,
     pub points: Vec<[f32; 3]>,
     pub colors: Vec<Rgb>,
@@ -25,7 +26,7 @@ pub struct SiteView {
 
 impl SiteView {
     /// Keeps at most `max_points` cloud points (every k-th), coloured by height.
-    pub fn new(mesh: TriMesh, points: &[[f64; 3]], max_points: usize) -> SiteView {
+    pub fn new(renderer: render::Renderer, mesh: TriMesh, points: &[[f64; 3]], max_points: usize) -> SiteView {
         let k = points.len().div_ceil(max_points.max(1)).max(1);
         let kept: Vec<[f32; 3]> = points.iter().step_by(k).map(|p| [p[0] as f32, p[1] as f32, p[2] as f32]).collect();
         let (lo, hi) = kept.iter().fold((f32::INFINITY, f32::NEG_INFINITY), |(a, b), p| (a.min(p[2]), b.max(p[2])));
@@ -37,7 +38,7 @@ impl SiteView {
                 [(c[0] as f64 * 0.8 + 40.0) as u8, (c[1] as f64 * 0.8 + 40.0) as u8, (c[2] as f64 * 0.8 + 40.0) as u8]
             })
             .collect();
-        SiteView { mesh, points: kept, colors }
+        SiteView { renderer, mesh, points: kept, colors }
     }
 
     fn base_scene(&self, point_px: f32) -> Scene {
@@ -105,7 +106,7 @@ pub fn overview(site: &SiteView, task: &LiftTask, plan: &LiftPlan, w: u32, h: u3
     });
     let (lo, hi) = s.bounds();
     let cam = Camera::top(lo, hi, w as f32 / h as f32);
-    render::render_cpu(&s, &cam, w, h, 2)
+    site.renderer.render(&s, &cam, w, h, 2)
 }
 
 /// Perspective view at the end of step `n` (1-based) with the path so far.
@@ -135,7 +136,7 @@ pub fn step_view(site: &SiteView, task: &LiftTask, plan: &LiftPlan, n: usize, w:
     let mid_swing = 0.5 * (plan.start.swing_rad + plan.set.swing_rad) + task.crane.placement.heading_rad;
     let az = (mid_swing + std::f64::consts::PI + 0.6).to_degrees() as f32;
     let cam = Camera::framing(lo, hi, az, 28.0, 40.0, w as f32 / h as f32);
-    render::render_cpu(&s, &cam, w, h, 2)
+    site.renderer.render(&s, &cam, w, h, 2)
 }
 
 /// Capacity against radius for the lift's boom, the gross load, and the

@@ -162,20 +162,92 @@ pub fn shade(color: Rgb, normal: Vector3<f32>, view_dir: Vector3<f32>) -> Rgb {
 
 pub const SKY: Rgb = [236, 241, 247];
 
-struct Target {
-    w: usize,
-    color: Vec<Rgb>,
-    depth: Vec<f32>,
+/// Which rasteriser draws the pictures.
+pub enum Renderer {
+    Cpu,
+    Gpu(crate::gpu::GpuRenderer),
 }
 
-/// Renders `scene` at `width x height` pixels with `ss x ss` samples per pixel.
-pub fn render_cpu(scene: &Scene, cam: &Camera, width: u32, height: u32, ss: u32) -> liftplan_core::image::Image {
-    let ss = ss.clamp(1, 4) as usize;
+impl Renderer {
+    /// The GPU twin when `[gpu] use` asks for it and an adapter opens (`auto`:
+    /// hardware adapters only), else the CPU rasteriser; `require` without an
+    /// adapter is an error.
+    pub fn choose(use_: liftplan_core::gpu::GpuUse) -> Result<Renderer, String> {
+        use liftplan_core::gpu::GpuUse;
+        Ok(match use_ {
+            GpuUse::Never => Renderer::Cpu,
+            GpuUse::Auto => match crate::gpu::open(false) {
+                Ok(g) => Renderer::Gpu(g),
+                Err(e) => {
+                    tracing::info!("pictures on the CPU: {e}");
+                    Renderer::Cpu
+                }
+            },
+            GpuUse::Require => {
+                Renderer::Gpu(crate::gpu::open(true).map_err(|e| format!("[gpu] use = \"require\" but {e}"))?)
+            }
+        })
+    }
+
+    pub fn name(&self) -> String {
+        match self {
+            Renderer::Cpu => "cpu".into(),
+            Renderer::Gpu(g) => format!("gpu: {}", g.name),
+        }
+    }
+
+    /// Renders with this renderer; a GPU failure (lost device, a picture over
+    /// its texture limit) falls back to the CPU twin with a warning, since the
+    /// two draw the same picture.
+    pub fn render(&self, scene: &Scene, cam: &Camera, width: u32, height: u32, ss: u32) -> liftplan_core::image::Image {
+        if let Renderer::Gpu(g) = self {
+            match g.render(scene, cam, width, height, ss) {
+                Ok(im) => return im,
+                Err(e) => tracing::warn!("GPU picture failed, drawing it on the CPU: {e}"),
+            }
+        }
+        render_cpu(scene, cam, width, height, ss)
+    }
+}
+
+pub(crate) struct Target {
+    pub(crate) w: usize,
+    pub(crate) color: Vec<Rgb>,
+    pub(crate) depth: Vec<f32>,
+}
+
+/// A point sprite in sample space: centre (x, y in samples, z in NDC), half side.
+pub(crate) struct Sprite {
+    pub(crate) at: [f32; 3],
+    pub(crate) half: f32,
+    pub(crate) color: Rgb,
+}
+
+/// A polyline segment in sample space.
+pub(crate) struct Segment {
+    pub(crate) a: [f32; 3],
+    pub(crate) b: [f32; 3],
+    pub(crate) radius: f32,
+    pub(crate) color: Rgb,
+    pub(crate) on_top: bool,
+}
+
+/// The scene projected to sample space (x right, y down, in samples; z in NDC,
+/// -1 near .. 1 far), triangles already shaded. Both renderers draw exactly this,
+/// so they differ only in how they rasterise it.
+pub(crate) struct Projected {
+    pub(crate) w: usize,
+    pub(crate) h: usize,
+    pub(crate) triangles: Vec<([[f32; 3]; 3], Rgb)>,
+    pub(crate) sprites: Vec<Sprite>,
+    pub(crate) segments: Vec<Segment>,
+}
+
+pub(crate) fn project(scene: &Scene, cam: &Camera, width: u32, height: u32, ss: usize) -> Projected {
     let (w, h) = (width as usize * ss, height as usize * ss);
     let aspect = width as f32 / height as f32;
     let vp = cam.view_proj(aspect);
     let vd = cam.view_dir();
-    let mut t = Target { w, color: vec![SKY; w * h], depth: vec![f32::INFINITY; w * h] };
     let to_screen = |p: &[f32; 3]| -> Option<[f32; 3]> {
         let c = vp * nalgebra::Vector4::new(p[0], p[1], p[2], 1.0);
         if c.w <= 1e-6 {
@@ -184,8 +256,7 @@ pub fn render_cpu(scene: &Scene, cam: &Camera, width: u32, height: u32, ss: u32)
         let n = c.xyz() / c.w;
         Some([(n.x * 0.5 + 0.5) * w as f32, (0.5 - n.y * 0.5) * h as f32, n.z])
     };
-    // Triangles, rasterised in horizontal bands in parallel.
-    let mut prepared: Vec<([[f32; 3]; 3], Rgb)> = Vec::new();
+    let mut triangles = Vec::new();
     for b in &scene.triangles {
         for tri in &b.triangles {
             let (a, bb, c) = (b.positions[tri[0] as usize], b.positions[tri[1] as usize], b.positions[tri[2] as usize]);
@@ -194,68 +265,91 @@ pub fn render_cpu(scene: &Scene, cam: &Camera, width: u32, height: u32, ss: u32)
             if n.norm_squared() == 0.0 {
                 continue;
             }
-            prepared.push(([sa, sb, sc], shade(b.color, n.normalize(), vd)));
+            triangles.push(([sa, sb, sc], shade(b.color, n.normalize(), vd)));
         }
     }
+    let mut sprites = Vec::new();
+    for b in &scene.points {
+        let half = b.size_px * ss as f32 / 2.0;
+        for (i, p) in b.positions.iter().enumerate() {
+            let Some(at) = to_screen(p) else { continue };
+            if !(-1.0..=1.0).contains(&at[2]) {
+                continue;
+            }
+            sprites.push(Sprite { at, half, color: b.colors.get(i).copied().unwrap_or(b.color) });
+        }
+    }
+    let mut segments = Vec::new();
+    for l in &scene.lines {
+        let radius = l.width_px * ss as f32 / 2.0;
+        for seg in l.points.windows(2) {
+            let (Some(a), Some(b)) = (to_screen(&seg[0]), to_screen(&seg[1])) else { continue };
+            segments.push(Segment { a, b, radius, color: l.color, on_top: l.on_top });
+        }
+    }
+    Projected { w, h, triangles, sprites, segments }
+}
+
+/// Renders `scene` at `width x height` pixels with `ss x ss` samples per pixel.
+pub fn render_cpu(scene: &Scene, cam: &Camera, width: u32, height: u32, ss: u32) -> liftplan_core::image::Image {
+    let ss = ss.clamp(1, 4) as usize;
+    let pr = project(scene, cam, width, height, ss);
+    let (w, h) = (pr.w, pr.h);
+    let mut t = Target { w, color: vec![SKY; w * h], depth: vec![f32::INFINITY; w * h] };
+    // Triangles, rasterised in horizontal bands in parallel.
     const BAND: usize = 64;
     t.color.par_chunks_mut(w * BAND).zip(t.depth.par_chunks_mut(w * BAND)).enumerate().for_each(|(bi, (col, dep))| {
         let y0 = bi * BAND;
         let y1 = (y0 + BAND).min(h);
-        for (s, c) in &prepared {
+        for (s, c) in &pr.triangles {
             raster_tri(s, *c, w, y0, y1, col, dep);
         }
     });
-    for b in &scene.points {
-        let half = b.size_px * ss as f32 / 2.0;
-        for (i, p) in b.positions.iter().enumerate() {
-            let Some(s) = to_screen(p) else { continue };
-            if !(-1.0..=1.0).contains(&s[2]) {
-                continue;
-            }
-            let c = b.colors.get(i).copied().unwrap_or(b.color);
-            let (x0, x1) = ((s[0] - half).round().max(0.0) as usize, ((s[0] + half).round() as usize).min(w));
-            let (y0, y1) = ((s[1] - half).round().max(0.0) as usize, ((s[1] + half).round() as usize).min(h));
-            for y in y0..y1 {
-                for x in x0..x1 {
-                    let k = y * w + x;
-                    if s[2] < t.depth[k] {
-                        t.depth[k] = s[2];
-                        t.color[k] = c;
-                    }
+    for sp in &pr.sprites {
+        let (s, half) = (sp.at, sp.half);
+        let (x0, x1) = ((s[0] - half).round().max(0.0) as usize, ((s[0] + half).round().max(0.0) as usize).min(w));
+        let (y0, y1) = ((s[1] - half).round().max(0.0) as usize, ((s[1] + half).round().max(0.0) as usize).min(h));
+        for y in y0..y1 {
+            for x in x0..x1 {
+                let k = y * w + x;
+                if s[2] < t.depth[k] {
+                    t.depth[k] = s[2];
+                    t.color[k] = sp.color;
                 }
             }
         }
     }
-    for l in &scene.lines {
-        let r = l.width_px * ss as f32 / 2.0;
-        for seg in l.points.windows(2) {
-            let (Some(a), Some(b)) = (to_screen(&seg[0]), to_screen(&seg[1])) else { continue };
-            let (minx, maxx) =
-                ((a[0].min(b[0]) - r).floor().max(0.0) as usize, ((a[0].max(b[0]) + r).ceil() as usize).min(w));
-            let (miny, maxy) =
-                ((a[1].min(b[1]) - r).floor().max(0.0) as usize, ((a[1].max(b[1]) + r).ceil() as usize).min(h));
-            let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
-            let len2 = (dx * dx + dy * dy).max(1e-12);
-            for y in miny..maxy {
-                for x in minx..maxx {
-                    let (px, py) = (x as f32 + 0.5, y as f32 + 0.5);
-                    let u = (((px - a[0]) * dx + (py - a[1]) * dy) / len2).clamp(0.0, 1.0);
-                    let (qx, qy) = (a[0] + u * dx, a[1] + u * dy);
-                    if (px - qx).powi(2) + (py - qy).powi(2) <= r * r {
-                        let z = a[2] + u * (b[2] - a[2]) - 1e-4;
-                        let k = y * w + x;
-                        if l.on_top || z < t.depth[k] {
-                            if !l.on_top {
-                                t.depth[k] = z;
-                            }
-                            t.color[k] = l.color;
+    for sg in &pr.segments {
+        let (a, b, r) = (sg.a, sg.b, sg.radius);
+        let (minx, maxx) =
+            ((a[0].min(b[0]) - r).floor().max(0.0) as usize, ((a[0].max(b[0]) + r).ceil().max(0.0) as usize).min(w));
+        let (miny, maxy) =
+            ((a[1].min(b[1]) - r).floor().max(0.0) as usize, ((a[1].max(b[1]) + r).ceil().max(0.0) as usize).min(h));
+        for y in miny..maxy {
+            for x in minx..maxx {
+                if let Some(z) = segment_depth(a, b, r, x as f32 + 0.5, y as f32 + 0.5) {
+                    let k = y * w + x;
+                    if sg.on_top || z < t.depth[k] {
+                        if !sg.on_top {
+                            t.depth[k] = z;
                         }
+                        t.color[k] = sg.color;
                     }
                 }
             }
         }
     }
     downsample(&t, ss, width, height)
+}
+
+/// Depth of a segment's capsule at a sample, or `None` outside it. The GPU
+/// fragment shader computes the same thing.
+fn segment_depth(a: [f32; 3], b: [f32; 3], r: f32, px: f32, py: f32) -> Option<f32> {
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let len2 = (dx * dx + dy * dy).max(1e-12);
+    let u = (((px - a[0]) * dx + (py - a[1]) * dy) / len2).clamp(0.0, 1.0);
+    let (qx, qy) = (a[0] + u * dx, a[1] + u * dy);
+    ((px - qx).powi(2) + (py - qy).powi(2) <= r * r).then(|| a[2] + u * (b[2] - a[2]) - 1e-4)
 }
 
 fn edge(a: &[f32; 3], b: &[f32; 3], x: f32, y: f32) -> f32 {
@@ -297,7 +391,7 @@ fn raster_tri(s: &[[f32; 3]; 3], c: Rgb, w: usize, y0: usize, y1: usize, col: &m
     }
 }
 
-fn downsample(t: &Target, ss: usize, width: u32, height: u32) -> liftplan_core::image::Image {
+pub(crate) fn downsample(t: &Target, ss: usize, width: u32, height: u32) -> liftplan_core::image::Image {
     let mut out = liftplan_core::image::Image::new(width, height, SKY);
     let n = (ss * ss) as u32;
     for y in 0..height as usize {

@@ -1,0 +1,78 @@
+//! GPU access for the stages that have a wgpu twin (depth map, pictures).
+//!
+//! Only opening a device lives here, so every stage picks adapters the same way
+//! and `[gpu] use` means the same thing everywhere. What runs on the device
+//! belongs to each stage; nothing here computes anything.
+
+use serde::{Deserialize, Serialize};
+
+/// Whether to use a GPU (`[gpu] use` in the project file).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum GpuUse {
+    /// A hardware adapter when there is one, else the CPU path.
+    #[default]
+    Auto,
+    /// Always the CPU path.
+    Never,
+    /// Any adapter, software ones included; an error without one.
+    Require,
+}
+
+/// An open device and its queue.
+pub struct Device {
+    pub device: wgpu::Device,
+    pub queue: wgpu::Queue,
+    /// Adapter name and backend, for reports.
+    pub name: String,
+}
+
+/// Opens the first adapter wgpu offers, or says why there is none. A software
+/// adapter (lavapipe, llvmpipe: slower than the CPU paths) is taken only when
+/// `allow_software` is set, as `require` and the twin tests do to exercise the
+/// GPU code anywhere.
+pub fn open_device(allow_software: bool) -> Result<Device, String> {
+    let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+    let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
+        power_preference: wgpu::PowerPreference::HighPerformance,
+        ..Default::default()
+    }))
+    .map_err(|e| format!("no GPU adapter: {e}"))?;
+    let info = adapter.get_info();
+    if info.device_type == wgpu::DeviceType::Cpu && !allow_software {
+        return Err(format!("only a software adapter ({}) is available", info.name));
+    }
+    let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor::default()))
+        .map_err(|e| format!("GPU device on {}: {e}", info.name))?;
+    Ok(Device { device, queue, name: format!("{} ({:?})", info.name, info.backend) })
+}
+
+/// Waits for the device and copies `bytes` bytes of `src` back to the host.
+pub fn read_back(dev: &Device, src: &wgpu::Buffer, bytes: u64) -> Result<Vec<u8>, String> {
+    let staging = dev.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("read back"),
+        size: bytes.max(4),
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    let mut enc = dev.device.create_command_encoder(&Default::default());
+    enc.copy_buffer_to_buffer(src, 0, &staging, 0, bytes.max(4));
+    dev.queue.submit([enc.finish()]);
+    map_read(dev, &staging, bytes)
+}
+
+/// Maps a `MAP_READ` buffer and copies its first `bytes` bytes out.
+pub fn map_read(dev: &Device, staging: &wgpu::Buffer, bytes: u64) -> Result<Vec<u8>, String> {
+    let slice = staging.slice(..);
+    let (tx, rx) = std::sync::mpsc::channel();
+    slice.map_async(wgpu::MapMode::Read, move |r| {
+        let _ = tx.send(r);
+    });
+    dev.device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| format!("GPU poll: {e}"))?;
+    rx.recv().map_err(|e| e.to_string())?.map_err(|e| format!("GPU read back: {e}"))?;
+    let data = slice.get_mapped_range().map_err(|e| format!("GPU read back: {e:?}"))?;
+    let out = data[..bytes as usize].to_vec();
+    drop(data);
+    staging.unmap();
+    Ok(out)
+}
