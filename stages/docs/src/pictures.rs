@@ -15,6 +15,7 @@ const CRANE: Rgb = [235, 170, 30];
 const BOOM: Rgb = [220, 120, 20];
 const LOAD: Rgb = [40, 110, 200];
 const PATH: Rgb = [200, 30, 60];
+const HOT_SPOT: Rgb = [235, 20, 20];
 
 /// The site as the pictures show it: plant mesh and a thinned cloud.
 pub struct SiteView {
@@ -118,6 +119,23 @@ pub fn step_view(site: &SiteView, task: &LiftTask, plan: &LiftPlan, n: usize, w:
     let all = load_path(task, plan, plan.moves.len());
     s.lines.push(Polyline { points: all, color: [230, 170, 180], width_px: 2.0, on_top: true });
     s.lines.push(Polyline { points: done, color: PATH, width_px: 3.5, on_top: true });
+    // Hot spot: where the validator measured this step's smallest clearance, as
+    // a red block on the obstacle with a flag pole drawn over everything, so it
+    // is found even when the obstacle hides it.
+    if let Some(at) = plan.steps.get(n - 1).and_then(|st| st.clearance_at) {
+        let c = nalgebra::Point3::new(at[0], at[1], at[2]);
+        s.triangles.push(render::obb_batch(
+            &liftplan_core::obb::Obb::axis_aligned(c, nalgebra::Vector3::new(0.3, 0.3, 0.3)),
+            HOT_SPOT,
+        ));
+        let (x, y, z) = (at[0] as f32, at[1] as f32, at[2] as f32);
+        s.lines.push(Polyline {
+            points: vec![[x, y, z], [x, y, z + 4.0]],
+            color: HOT_SPOT,
+            width_px: 2.5,
+            on_top: true,
+        });
+    }
     // Frame the crane and the path, not the whole cloud.
     let mut lo = [f32::INFINITY; 3];
     let mut hi = [f32::NEG_INFINITY; 3];

@@ -317,8 +317,12 @@ pub fn document(
                     (
                         "Min clearance",
                         format!(
-                            "{:.2} m, {} to {} (required {:.2} m)",
-                            st.min_clearance_m, st.clearance_part, st.clearance_to, st.required_clearance_m
+                            "{:.2} m, {} to {} (required {:.2} m){}",
+                            st.min_clearance_m,
+                            st.clearance_part,
+                            st.clearance_to,
+                            st.required_clearance_m,
+                            if st.clearance_at.is_some() { "; red flag in the picture" } else { "" }
                         ),
                     ),
                 ],

@@ -33,6 +33,9 @@ pub struct Step {
     pub min_clearance_m: f64,
     pub clearance_part: String,
     pub clearance_to: String,
+    /// Where on the obstacle the smallest clearance was measured (site frame).
+    #[serde(default)]
+    pub clearance_at: Option<[f64; 3]>,
     pub required_clearance_m: f64,
 }
 
@@ -92,6 +95,7 @@ pub fn steps(task: &LiftTask, moves: &[Move], verdict: &Verdict) -> Vec<Step> {
                 min_clearance_m: tight.map(|t| t.nearest.distance_m).unwrap_or(f64::INFINITY),
                 clearance_part: tight.map(|t| t.part.name().to_string()).unwrap_or_default(),
                 clearance_to: tight.map(|t| t.nearest.object.clone()).unwrap_or_default(),
+                clearance_at: tight.and_then(|t| t.nearest.at),
                 required_clearance_m: tight.map(|t| t.required_m).unwrap_or(0.0),
             }
         })

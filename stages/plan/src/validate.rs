@@ -83,17 +83,24 @@ fn parry_box(b: &Obb) -> (Pose, Cuboid) {
 pub struct Nearest {
     pub distance_m: f64,
     pub object: String,
+    /// The obstacle point the distance was measured to (for a plant triangle:
+    /// the triangle's point nearest the part's centre), for the pictures'
+    /// hot-spot markers.
+    pub at: Option<[f64; 3]>,
 }
 
 fn nearest(world: &World, b: &Obb, ignore_ground: bool, cutoff_m: f64) -> Nearest {
     let (pose, cub) = parry_box(b);
-    let mut best = Nearest { distance_m: f64::INFINITY, object: String::new() };
+    let mut best = Nearest { distance_m: f64::INFINITY, object: String::new(), at: None };
     if let Some(m) = &world.mesh
         && let Ok(d) = query::distance(&pose, &cub, &Pose::identity(), m)
     {
+        let c = b.center;
+        let on_tri = m.triangle(d.subshape2).project_local_point(Vector::new(c.x, c.y, c.z), true).point;
         best = Nearest {
             distance_m: d.distance,
             object: world.tri_group.get(d.subshape2 as usize).cloned().unwrap_or_default(),
+            at: Some([on_tri.x, on_tri.y, on_tri.z]),
         };
     }
     let aabb = b.aabb().expanded(cutoff_m.min(best.distance_m));
@@ -109,6 +116,7 @@ fn nearest(world: &World, b: &Obb, ignore_ground: bool, cutoff_m: f64) -> Neares
                 best = Nearest {
                     distance_m: d,
                     object: if *g { "ground (scan)".into() } else { "scanned structure".into() },
+                    at: Some(*p),
                 };
             }
         }
