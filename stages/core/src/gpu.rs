@@ -47,6 +47,17 @@ pub fn open_device(allow_software: bool) -> Result<Device, String> {
     Ok(Device { device, queue, name: format!("{} ({:?})", info.name, info.backend) })
 }
 
+/// The device `[gpu] use` asks for: `never` none; `auto` a hardware adapter if
+/// one opens (else none, logged); `require` any adapter, or an error saying why
+/// there is none. `what` names the work for the log ("depth map", "pictures").
+pub fn open_for(use_: GpuUse, what: &str) -> Result<Option<Device>, String> {
+    match use_ {
+        GpuUse::Never => Ok(None),
+        GpuUse::Auto => Ok(open_device(false).map_err(|e| tracing::info!("{what} on the CPU: {e}")).ok()),
+        GpuUse::Require => open_device(true).map(Some).map_err(|e| format!("[gpu] use = \"require\" but {e}")),
+    }
+}
+
 /// Waits for the device and copies `bytes` bytes of `src` back to the host.
 pub fn read_back(dev: &Device, src: &wgpu::Buffer, bytes: u64) -> Result<Vec<u8>, String> {
     let staging = dev.device.create_buffer(&wgpu::BufferDescriptor {

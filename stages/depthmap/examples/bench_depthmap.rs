@@ -52,7 +52,7 @@ fn main() {
         "{} CPU threads; GPU: {}. Best of 3 runs. Floor = one streaming pass reading every point (sum of coordinates). \
          The thesis' figure: 21,000,716 points in 584 ms on a Tesla K20c.\n",
         rayon::current_num_threads(),
-        device.as_ref().map(|g| g.name.clone()).unwrap_or_else(|e| format!("none ({e})"))
+        device.as_ref().map(|g| g.name().to_string()).unwrap_or_else(|e| format!("none ({e})"))
     );
     println!("| input | floor ms | CPU ms | CPU / floor | GPU ms | GPU / floor | maps equal |");
     println!("|---|---|---|---|---|---|---|");

@@ -68,34 +68,40 @@ pub struct Gpu {
     dev: liftplan_core::gpu::Device,
     count: wgpu::ComputePipeline,
     fill: wgpu::ComputePipeline,
-    /// Adapter name and backend, for reports.
-    pub name: String,
 }
 
 /// Opens a device ([`liftplan_core::gpu::open_device`]) and builds the pipelines.
 pub fn open(allow_software: bool) -> Result<Gpu, String> {
-    let dev = liftplan_core::gpu::open_device(allow_software)?;
-    let module = dev.device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some("depthmap points"),
-        source: wgpu::ShaderSource::Wgsl(SHADER.into()),
-    });
-    let pipeline = |entry: &str| {
-        dev.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some(entry),
-            layout: None,
-            module: &module,
-            entry_point: Some(entry),
-            compilation_options: Default::default(),
-            cache: None,
-        })
-    };
-    let count = pipeline("count");
-    let fill = pipeline("fill");
-    let name = dev.name.clone();
-    Ok(Gpu { dev, count, fill, name })
+    Ok(Gpu::new(liftplan_core::gpu::open_device(allow_software)?))
 }
 
 impl Gpu {
+    /// Builds the point-pass pipelines on an open device.
+    pub fn new(dev: liftplan_core::gpu::Device) -> Gpu {
+        let module = dev.device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("depthmap points"),
+            source: wgpu::ShaderSource::Wgsl(SHADER.into()),
+        });
+        let pipeline = |entry: &str| {
+            dev.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(entry),
+                layout: None,
+                module: &module,
+                entry_point: Some(entry),
+                compilation_options: Default::default(),
+                cache: None,
+            })
+        };
+        let count = pipeline("count");
+        let fill = pipeline("fill");
+        Gpu { dev, count, fill }
+    }
+
+    /// Adapter name and backend, for reports.
+    pub fn name(&self) -> &str {
+        &self.dev.name
+    }
+
     fn read_back(&self, src: &wgpu::Buffer, bytes: u64) -> Result<Vec<u32>, String> {
         let data = liftplan_core::gpu::read_back(&self.dev, src, bytes)?;
         Ok(data.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect())

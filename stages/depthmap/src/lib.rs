@@ -261,13 +261,7 @@ pub fn run(
     if let Some(m) = mesh {
         inp.mesh = TriMesh::read_artifact(m).map_err(|e| DepthError::Input(Location::file(m), e.to_string()))?;
     }
-    let device = match gpu_use {
-        GpuUse::Never => None,
-        GpuUse::Auto => gpu::open(false).map_err(|e| tracing::info!("depth map on the CPU: {e}")).ok(),
-        GpuUse::Require => {
-            Some(gpu::open(true).map_err(|e| DepthError::Gpu(format!("[gpu] use = \"require\" but {e}")))?)
-        }
-    };
+    let device = liftplan_core::gpu::open_for(gpu_use, "depth map").map_err(DepthError::Gpu)?.map(gpu::Gpu::new);
     let (m, timings) = build(&inp, s, device.as_ref())?;
     std::fs::create_dir_all(out_dir).map_err(|e| DepthError::Input(Location::file(out_dir), e.to_string()))?;
     m.write(&out_dir.join("site.mdm"))
@@ -284,7 +278,7 @@ pub fn run(
         intervals: m.intervals.len(),
         occupied_cells: m.offsets.windows(2).filter(|w| w[1] > w[0]).count(),
         objects: m.objects.len(),
-        backend: device.as_ref().map(|g| format!("gpu: {}", g.name)).unwrap_or_else(|| "cpu".into()),
+        backend: device.as_ref().map(|g| format!("gpu: {}", g.name())).unwrap_or_else(|| "cpu".into()),
         timings,
     };
     let json = serde_json::to_string_pretty(&summary).unwrap_or_default();

@@ -25,7 +25,7 @@ fn gpu_and_cpu_maps_are_equal() {
             return;
         }
     };
-    eprintln!("GPU twin test on {}", g.name);
+    eprintln!("GPU twin test on {}", g.name());
     for (n, cell, radius) in [(50_000, 0.25, 0.05), (20_000, 0.1, 0.12), (1, 0.5, 0.0)] {
         let inp = cloud(n, n as u64);
         let s = Settings { cell_m: cell, point_radius_m: radius, ..Settings::default() };

@@ -11,7 +11,7 @@
 //! This module must not change what a picture shows: any new scene element goes
 //! into [`Projected`] first and is drawn by both paths.
 
-use crate::render::{Camera, Projected, Rgb, SKY, Scene, Target, downsample, project};
+use crate::render::{Camera, Projected, Rgb, SKY, Scene, downsample, project};
 use liftplan_core::image::Image;
 use wgpu::util::DeviceExt;
 
@@ -86,8 +86,6 @@ pub struct GpuRenderer {
     sprites: wgpu::RenderPipeline,
     segments: wgpu::RenderPipeline,
     segments_on_top: wgpu::RenderPipeline,
-    /// Adapter name and backend, for reports.
-    pub name: String,
 }
 
 fn pack(c: Rgb) -> u32 {
@@ -100,7 +98,11 @@ fn f32s(v: &[f32]) -> impl Iterator<Item = u8> + '_ {
 
 /// Opens a device ([`liftplan_core::gpu::open_device`]) and builds the pipelines.
 pub fn open(allow_software: bool) -> Result<GpuRenderer, String> {
-    let dev = liftplan_core::gpu::open_device(allow_software)?;
+    Ok(GpuRenderer::new(liftplan_core::gpu::open_device(allow_software)?))
+}
+
+/// Builds the picture pipelines on an open device.
+fn pipelines(dev: liftplan_core::gpu::Device) -> GpuRenderer {
     let d = &dev.device;
     let module = d.create_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some("docs render"),
@@ -168,11 +170,19 @@ pub fn open(allow_software: bool) -> Result<GpuRenderer, String> {
     let sprites = pipeline("sprite_vs", "flat_fs", &sprite_attrs, 20, Instance, Less, true);
     let segments = pipeline("seg_vs", "seg_fs", &seg_attrs, 32, Instance, Less, true);
     let segments_on_top = pipeline("seg_vs", "seg_fs", &seg_attrs, 32, Instance, Always, false);
-    let name = dev.name.clone();
-    Ok(GpuRenderer { dev, layout, triangles, sprites, segments, segments_on_top, name })
+    GpuRenderer { dev, layout, triangles, sprites, segments, segments_on_top }
 }
 
 impl GpuRenderer {
+    pub fn new(dev: liftplan_core::gpu::Device) -> GpuRenderer {
+        pipelines(dev)
+    }
+
+    /// Adapter name and backend, for reports.
+    pub fn name(&self) -> &str {
+        &self.dev.name
+    }
+
     fn buffer(&self, label: &str, bytes: &[u8], usage: wgpu::BufferUsages) -> wgpu::Buffer {
         self.dev.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some(label),
@@ -308,11 +318,11 @@ impl GpuRenderer {
         );
         self.dev.queue.submit([enc.finish()]);
         let data = liftplan_core::gpu::map_read(&self.dev, &staging, row as u64 * h as u64)?;
-        let mut t = Target { w: w as usize, color: Vec::with_capacity((w * h) as usize), depth: Vec::new() };
+        let mut samples = Vec::with_capacity((w * h) as usize);
         for y in 0..h as usize {
             let r = &data[y * row as usize..y * row as usize + w as usize * 4];
-            t.color.extend(r.chunks_exact(4).map(|p| [p[0], p[1], p[2]]));
+            samples.extend(r.chunks_exact(4).map(|p| [p[0], p[1], p[2]]));
         }
-        Ok(downsample(&t, ss, width, height))
+        Ok(downsample(&samples, w as usize, ss, width, height))
     }
 }

@@ -173,26 +173,16 @@ impl Renderer {
     /// hardware adapters only), else the CPU rasteriser; `require` without an
     /// adapter is an error.
     pub fn choose(use_: liftplan_core::gpu::GpuUse) -> Result<Renderer, String> {
-        use liftplan_core::gpu::GpuUse;
-        Ok(match use_ {
-            GpuUse::Never => Renderer::Cpu,
-            GpuUse::Auto => match crate::gpu::open(false) {
-                Ok(g) => Renderer::Gpu(g),
-                Err(e) => {
-                    tracing::info!("pictures on the CPU: {e}");
-                    Renderer::Cpu
-                }
-            },
-            GpuUse::Require => {
-                Renderer::Gpu(crate::gpu::open(true).map_err(|e| format!("[gpu] use = \"require\" but {e}"))?)
-            }
+        Ok(match liftplan_core::gpu::open_for(use_, "pictures")? {
+            Some(dev) => Renderer::Gpu(crate::gpu::GpuRenderer::new(dev)),
+            None => Renderer::Cpu,
         })
     }
 
     pub fn name(&self) -> String {
         match self {
             Renderer::Cpu => "cpu".into(),
-            Renderer::Gpu(g) => format!("gpu: {}", g.name),
+            Renderer::Gpu(g) => format!("gpu: {}", g.name()),
         }
     }
 
@@ -210,10 +200,10 @@ impl Renderer {
     }
 }
 
-pub(crate) struct Target {
-    pub(crate) w: usize,
-    pub(crate) color: Vec<Rgb>,
-    pub(crate) depth: Vec<f32>,
+struct Target {
+    w: usize,
+    color: Vec<Rgb>,
+    depth: Vec<f32>,
 }
 
 /// A point sprite in sample space: centre (x, y in samples, z in NDC), half side.
@@ -339,7 +329,7 @@ pub fn render_cpu(scene: &Scene, cam: &Camera, width: u32, height: u32, ss: u32)
             }
         }
     }
-    downsample(&t, ss, width, height)
+    downsample(&t.color, t.w, ss, width, height)
 }
 
 /// Depth of a segment's capsule at a sample, or `None` outside it. The GPU
@@ -391,7 +381,14 @@ fn raster_tri(s: &[[f32; 3]; 3], c: Rgb, w: usize, y0: usize, y1: usize, col: &m
     }
 }
 
-pub(crate) fn downsample(t: &Target, ss: usize, width: u32, height: u32) -> liftplan_core::image::Image {
+/// Box-filters `ss x ss` samples (row-major, `sample_w` per row) to pixels.
+pub(crate) fn downsample(
+    samples: &[Rgb],
+    sample_w: usize,
+    ss: usize,
+    width: u32,
+    height: u32,
+) -> liftplan_core::image::Image {
     let mut out = liftplan_core::image::Image::new(width, height, SKY);
     let n = (ss * ss) as u32;
     for y in 0..height as usize {
@@ -399,7 +396,7 @@ pub(crate) fn downsample(t: &Target, ss: usize, width: u32, height: u32) -> lift
             let mut acc = [0u32; 3];
             for sy in 0..ss {
                 for sx in 0..ss {
-                    let c = t.color[(y * ss + sy) * t.w + x * ss + sx];
+                    let c = samples[(y * ss + sy) * sample_w + x * ss + sx];
                     for k in 0..3 {
                         acc[k] += c[k] as u32;
                     }

@@ -97,7 +97,7 @@ fn gpu_and_cpu_pictures_agree() {
             let (mean, far) = compare(&cpu, &gpu);
             eprintln!(
                 "camera {i}, {ss}x{ss} samples on {}: mean difference {mean:.3}, pixels off by > 24: {:.3} %",
-                g.name,
+                g.name(),
                 far * 100.0
             );
             // Edge samples may fall differently under the two rasterisers' rules;
