@@ -8,6 +8,7 @@ use liftplan_core::lift::LiftSpec;
 use liftplan_core::mesh::TriMesh;
 use liftplan_cspace::{CSpace, Problem, Settings, Strategy};
 use rand::{RngExt, SeedableRng};
+use rayon::prelude::*;
 use std::time::Instant;
 
 fn plant() -> TriMesh {
@@ -50,18 +51,67 @@ clearance_m = 1.0
         inp.mesh.triangle_count(),
         rayon::current_num_threads()
     );
-    println!("| strategy | cells | precompute ms | ratio to the thesis' 1034 ms |");
-    println!("|---|---|---|---|");
+    println!(
+        "| strategy | cells | precompute ms | ratio to the thesis' 1034 ms | body ms | boom ms | max rope ms | rope bits ms | boom cells blocked |"
+    );
+    println!("|---|---|---|---|---|---|---|---|---|");
+    // Optional arguments name the strategies to run (default: all three).
+    let only: Vec<String> = std::env::args().skip(1).map(|a| a.to_lowercase()).collect();
     for strategy in [Strategy::Hybrid, Strategy::Full, Strategy::Online] {
+        if !only.is_empty() && !only.contains(&format!("{strategy:?}").to_lowercase()) {
+            continue;
+        }
         let s = Settings { strategy, ..Settings::default() };
         let mut best = f64::INFINITY;
         let mut cells = 0;
+        let mut timings = liftplan_cspace::BuildTimings::default();
+        let mut blocked = 0;
         for _ in 0..3 {
             let cs = CSpace::build(&Problem { task: &task, chart: None, map: &map }, &s);
-            best = best.min(cs.build_ms);
+            if cs.build_ms < best {
+                best = cs.build_ms;
+                timings = cs.timings;
+            }
             cells = cs.ns * cs.nr;
+            blocked = cs.cell_hits.iter().filter(|h| h.is_some()).count();
         }
-        println!("| {strategy:?} | {cells} | {best:.0} | {:.2} |", best / 1034.0);
+        let t = timings;
+        println!(
+            "| {strategy:?} | {cells} | {best:.0} | {:.2} | {:.1} | {:.0} | {:.0} | {:.0} | {blocked} |",
+            best / 1034.0,
+            t.swing_ms,
+            t.radial_ms,
+            t.max_hoist_ms,
+            t.hoist_bits_ms
+        );
+    }
+    // The boom table as the previous build made it: one box query per cell.
+    if only.is_empty() || only.iter().any(|o| o == "hybrid") {
+        let cs = CSpace::build(&Problem { task: &task, chart: None, map: &map }, &Settings::default());
+        let problem = Problem { task: &task, chart: None, map: &map };
+        let t = Instant::now();
+        let by_query: Vec<_> = (0..cs.nr * cs.ns)
+            .into_par_iter()
+            .map(|idx| cs.radial_cell_by_query(&problem, idx % cs.ns, idx / cs.ns))
+            .collect();
+        let query_ms = t.elapsed().as_secs_f64() * 1e3;
+        let (mut both, mut only_query, mut only_marked) = (0, 0, 0);
+        for (a, b) in by_query.iter().zip(&cs.cell_hits) {
+            match (a.is_some(), b.is_some()) {
+                (true, true) => both += 1,
+                (true, false) => only_query += 1,
+                (false, true) => only_marked += 1,
+                _ => {}
+            }
+        }
+        println!(
+            "\nBoom rows, same run: one box query per cell (grown by the clearance and the cell's motion) {query_ms:.0} ms, \
+             {} cells blocked; marked obstacle by obstacle (the hybrid build above) {:.0} ms, {} blocked. \
+             Blocked by both {both}, only by the box queries {only_query}, only by the marking {only_marked}.",
+            both + only_query,
+            cs.timings.radial_ms,
+            both + only_marked
+        );
     }
     println!(
         "\n`online` precomputes only the per-row chart and internal-clearance limits; it pays at query time instead (see reports/planner.md)."

@@ -28,6 +28,7 @@
 //! What this crate must not do: plan, or decide that a plan is safe. The
 //! validator in `liftplan-plan` re-checks every plan with its own geometry.
 
+mod boom;
 pub mod picture;
 
 use liftplan_core::capacity::ChartConfig;
@@ -169,6 +170,22 @@ pub struct CSpace {
     /// Shortest rope that keeps the load clear of the boom (internal clearance), per row.
     pub row_min_hoist: Vec<f64>,
     pub build_ms: f64,
+    /// Where the build time went.
+    pub timings: BuildTimings,
+}
+
+/// Build time by pass (ms).
+#[derive(Debug, Clone, Copy, Default, Serialize)]
+pub struct BuildTimings {
+    pub rows_ms: f64,
+    pub swing_ms: f64,
+    pub radial_ms: f64,
+    pub max_hoist_ms: f64,
+    pub hoist_bits_ms: f64,
+}
+
+fn ms_since(t: std::time::Instant) -> f64 {
+    t.elapsed().as_secs_f64() * 1e3
 }
 
 /// The things a build needs.
@@ -229,6 +246,7 @@ impl CSpace {
             row_chart_cell: vec![],
             row_min_hoist: vec![],
             build_ms: 0.0,
+            timings: BuildTimings::default(),
         };
         // Rows: chart capacity and internal clearance (cheap, every strategy).
         for k in 0..nr {
@@ -243,6 +261,7 @@ impl CSpace {
             });
             cs.row_min_hoist.push(min_hoist_for_internal_clearance(crane, &task.load, b.max(a)).max(lim.hoist_m.0));
         }
+        cs.timings.rows_ms = ms_since(t0);
         if s.strategy == Strategy::Online {
             cs.build_ms = t0.elapsed().as_secs_f64() * 1e3;
             return cs;
@@ -268,30 +287,22 @@ impl CSpace {
                 })
             })
             .collect();
-        let cells: Vec<(Option<CellHit>, f32)> = (0..nr * ns)
-            .into_par_iter()
-            .map(|idx| {
-                let (i, k) = (idx % ns, idx / ns);
-                let c = Config {
-                    swing_rad: cs.swing_center(i),
-                    radial: cs.row_center(k),
-                    hoist_m: lim.hoist_m.0,
-                    load_yaw_rad: 0.0,
-                };
-                let hit = radial_parts.iter().find_map(|&kind| {
-                    let b = crane.part(kind, &c, &load)?;
-                    let grow = clearance + cs.cell_motion(crane, &b);
-                    p.map
-                        .hit_where(&b.expanded(grow), |iv| counts_for(kind, iv))
-                        .map(|h| CellHit { part: kind, obj: h.interval.obj })
-                });
-                (hit, cs.cell_max_hoist(p, i, k))
-            })
-            .collect();
-        cs.cell_hits = cells.iter().map(|c| c.0).collect();
-        cs.max_hoist = cells.iter().map(|c| c.1).collect();
+        cs.timings.swing_ms = ms_since(t0) - cs.timings.rows_ms;
+        let t_radial = std::time::Instant::now();
+        cs.cell_hits = match &crane.model.kind {
+            liftplan_core::crane::CraneKind::Luffing(l) if radial_parts == [PartKind::Boom] => {
+                boom::boom_hits(&cs, p, &l.boom, clearance)
+            }
+            _ => (0..nr * ns).into_par_iter().map(|idx| cs.radial_cell_by_query(p, idx % ns, idx / ns)).collect(),
+        };
+        cs.timings.radial_ms = ms_since(t_radial);
+        let t_hoist = std::time::Instant::now();
+        cs.max_hoist = cs.max_hoist_table(p);
+        cs.timings.max_hoist_ms = ms_since(t_hoist);
         if s.strategy == Strategy::Full {
+            let t_bits = std::time::Instant::now();
             cs.hoist_bits = cs.build_hoist_bits(p, s);
+            cs.timings.hoist_bits_ms = ms_since(t_bits);
         }
         cs.build_ms = t0.elapsed().as_secs_f64() * 1e3;
         cs
@@ -329,6 +340,27 @@ impl CSpace {
         } else {
             None
         }
+    }
+
+    /// The swing+radial parts (boom, trolley) at cell (i, k) by one box query
+    /// each, grown by the clearance and the part's motion within the cell.
+    /// The tables use it for every crane but the luffing boom, which
+    /// `boom.rs` marks obstacle by obstacle; the benchmark compares the two.
+    pub fn radial_cell_by_query(&self, p: &Problem, i: u32, k: u32) -> Option<CellHit> {
+        let crane = &p.task.crane;
+        let c = Config {
+            swing_rad: self.swing_center(i),
+            radial: self.row_center(k),
+            hoist_m: crane.limits().hoist_m.0,
+            load_yaw_rad: 0.0,
+        };
+        crane.part_kinds().iter().filter(|k| k.dependence() == Dependence::SwingRadial).find_map(|&kind| {
+            let b = crane.part(kind, &c, &p.task.load)?;
+            let grow = p.task.clearance_m + self.cell_motion(crane, &b);
+            p.map
+                .hit_where(&b.expanded(grow), |iv| counts_for(kind, iv))
+                .map(|h| CellHit { part: kind, obj: h.interval.obj })
+        })
     }
 
     /// Bound on how far any point of a swing+radial part moves within a cell
@@ -370,6 +402,60 @@ impl CSpace {
         task.crane.model.hook.height_m + task.load.rigging_height_m + task.load.size_m[2]
     }
 
+    /// The longest clear rope of every cell (see [`CSpace::cell_max_hoist`]),
+    /// from the map's cell tops dilated once by the widest envelope instead of
+    /// a rectangle query per cell.
+    ///
+    /// Where the dilated top reaches the sheave, something in the envelope's
+    /// square is at or above the sheave; the exact query would either find it
+    /// crossing the sheave height (no clear rope) or entirely above it (an
+    /// overhead structure, where the rope below may be clear): both become "no
+    /// clear rope" here, which only sends those rare cells to the exact online
+    /// checks.
+    fn max_hoist_table(&self, p: &Problem) -> Vec<f32> {
+        let task = p.task;
+        let crane = &task.crane;
+        let map = p.map;
+        let spec = map.spec;
+        let motion_max = (0..self.nr).map(|k| self.sheave_motion(crane, self.row_center(k))).fold(0.0, f64::max);
+        let r_max = Self::envelope_radius(task) + task.clearance_m + motion_max;
+        // Cells within r of any point of the sheave's cell are within w cells of it.
+        let w = (r_max / spec.cell).ceil() as usize + 1;
+        let dilated = liftplan_depthmap::dilate::window_max(
+            &map.pyramid.first().map(|l| l.2.clone()).unwrap_or_default(),
+            spec.nx as usize,
+            spec.ny as usize,
+            w,
+        );
+        (0..self.nr * self.ns)
+            .into_par_iter()
+            .map(|idx| {
+                let (i, k) = (idx % self.ns, idx / self.ns);
+                let c = Config {
+                    swing_rad: self.swing_center(i),
+                    radial: self.row_center(k),
+                    hoist_m: 0.0,
+                    load_yaw_rad: 0.0,
+                };
+                let sheave = crane.sheave(&c);
+                let (Some(ci), Some(cj)) = (spec.col(sheave.x), spec.row(sheave.y)) else {
+                    return self.cell_max_hoist(p, i, k);
+                };
+                let top = dilated[cj as usize * spec.nx as usize + ci as usize];
+                if top == f32::NEG_INFINITY {
+                    return f32::INFINITY;
+                }
+                let motion = self.sheave_motion(crane, c.radial);
+                if top as f64 >= sheave.z + motion {
+                    return f32::NEG_INFINITY;
+                }
+                (sheave.z - motion - top as f64 - task.clearance_m - Self::hang_below_rope(task)) as f32
+            })
+            .collect()
+    }
+
+    /// Longest rope at which the hanging parts' yaw-invariant envelope,
+    /// anywhere in cell (i, k), is clear: one rectangle query.
     fn cell_max_hoist(&self, p: &Problem, i: u32, k: u32) -> f32 {
         let task = p.task;
         let crane = &task.crane;

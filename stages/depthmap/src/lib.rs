@@ -9,6 +9,7 @@
 //! | `depthmap.png` | top view: height of the highest obstacle per cell |
 //! | `depthmap.json` | grid, counts, timings |
 
+pub mod dilate;
 pub mod gpu;
 pub mod mdm;
 pub mod picture;

@@ -1,0 +1,85 @@
+//! Square-window maximum filter over a row-major grid (a grey-scale dilation),
+//! used to turn the map's cell tops into "highest obstacle within w cells".
+//!
+//! Separable (rows, then columns), each pass the van Herk / Gil-Werman scheme:
+//! three comparisons per cell whatever the window. Cells outside the grid count
+//! as empty (`-inf`). Exact: every output is the maximum of its window.
+
+use rayon::prelude::*;
+
+/// `out[i] = max(src[i - w ..= i + w])`, indices outside `src` ignored.
+pub fn window_max_1d(src: &[f32], w: usize, out: &mut [f32]) {
+    let n = src.len();
+    let b = 2 * w + 1;
+    // Padded so that every window is exactly b long and starts at padded i.
+    let len = n + 2 * w;
+    let at = |p: usize| if p >= w && p < w + n { src[p - w] } else { f32::NEG_INFINITY };
+    let mut g = vec![f32::NEG_INFINITY; len];
+    let mut h = vec![f32::NEG_INFINITY; len];
+    for p in 0..len {
+        g[p] = if p % b == 0 { at(p) } else { g[p - 1].max(at(p)) };
+    }
+    for p in (0..len).rev() {
+        h[p] = if p % b == b - 1 || p == len - 1 { at(p) } else { h[p + 1].max(at(p)) };
+    }
+    for (i, o) in out.iter_mut().enumerate().take(n) {
+        *o = h[i].max(g[i + 2 * w]);
+    }
+}
+
+/// Maximum over the `(2w + 1) x (2w + 1)` window around every cell of an
+/// `nx x ny` row-major grid.
+pub fn window_max(grid: &[f32], nx: usize, ny: usize, w: usize) -> Vec<f32> {
+    if grid.len() != nx * ny || nx == 0 || ny == 0 {
+        return grid.to_vec();
+    }
+    let mut rows = vec![f32::NEG_INFINITY; nx * ny];
+    rows.par_chunks_mut(nx).zip(grid.par_chunks(nx)).for_each(|(out, src)| window_max_1d(src, w, out));
+    let cols: Vec<Vec<f32>> = (0..nx)
+        .into_par_iter()
+        .map(|i| {
+            let src: Vec<f32> = (0..ny).map(|j| rows[j * nx + i]).collect();
+            let mut out = vec![f32::NEG_INFINITY; ny];
+            window_max_1d(&src, w, &mut out);
+            out
+        })
+        .collect();
+    let mut out = vec![f32::NEG_INFINITY; nx * ny];
+    for (i, col) in cols.iter().enumerate() {
+        for (j, v) in col.iter().enumerate() {
+            out[j * nx + i] = *v;
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #[test]
+        fn equals_brute_force(nx in 1usize..20, ny in 1usize..20, w in 0usize..6, seed in any::<u64>()) {
+            let mut s = seed;
+            let grid: Vec<f32> = (0..nx * ny)
+                .map(|_| {
+                    s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+                    if s >> 62 == 0 { f32::NEG_INFINITY } else { (s >> 40) as f32 / 1000.0 }
+                })
+                .collect();
+            let got = window_max(&grid, nx, ny, w);
+            for j in 0..ny {
+                for i in 0..nx {
+                    let mut m = f32::NEG_INFINITY;
+                    for jj in j.saturating_sub(w)..=(j + w).min(ny - 1) {
+                        for ii in i.saturating_sub(w)..=(i + w).min(nx - 1) {
+                            m = m.max(grid[jj * nx + ii]);
+                        }
+                    }
+                    prop_assert_eq!(got[j * nx + i], m);
+                }
+            }
+        }
+    }
+}
