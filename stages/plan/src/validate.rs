@@ -106,14 +106,14 @@ fn nearest(world: &World, b: &Obb, ignore_ground: bool, cutoff_m: f64) -> Neares
     let aabb = b.aabb().expanded(cutoff_m.min(best.distance_m));
     let (lo, hi) = (voxel(&aabb.min), voxel(&aabb.max));
     let n_vox = (hi[0] - lo[0] + 1) as i64 * (hi[1] - lo[1] + 1) as i64 * (hi[2] - lo[2] + 1) as i64;
-    let mut check = |pts: &Vec<([f64; 3], bool)>| {
+    let check = |pts: &Vec<([f64; 3], bool)>, best: &mut Nearest| {
         for (p, g) in pts {
             if ignore_ground && *g {
                 continue;
             }
             let d = cub.distance_to_point(&pose, Vector::new(p[0], p[1], p[2]), true);
             if d < best.distance_m {
-                best = Nearest {
+                *best = Nearest {
                     distance_m: d,
                     object: if *g { "ground (scan)".into() } else { "scanned structure".into() },
                     at: Some(*p),
@@ -121,22 +121,44 @@ fn nearest(world: &World, b: &Obb, ignore_ground: bool, cutoff_m: f64) -> Neares
             }
         }
     };
+    // A voxel whose centre is farther from the box than the best distance so
+    // far plus its half diagonal holds no nearer point: skipped unread. The
+    // result is the same as reading every voxel.
+    let far = |key: &[i32; 3], best: f64| {
+        let c = [0, 1, 2].map(|k| (key[k] as f64 + 0.5) * VOXEL_M);
+        box_point_distance(b, &c) - VOXEL_HALF_DIAGONAL_M > best
+    };
     if n_vox as usize > world.points.cells.len() {
-        for pts in world.points.cells.values() {
-            check(pts);
+        for (key, pts) in &world.points.cells {
+            if !far(key, best.distance_m) {
+                check(pts, &mut best);
+            }
         }
     } else {
         for x in lo[0]..=hi[0] {
             for y in lo[1]..=hi[1] {
                 for z in lo[2]..=hi[2] {
+                    if far(&[x, y, z], best.distance_m) {
+                        continue;
+                    }
                     if let Some(pts) = world.points.cells.get(&[x, y, z]) {
-                        check(pts);
+                        check(pts, &mut best);
                     }
                 }
             }
         }
     }
     best
+}
+
+const VOXEL_HALF_DIAGONAL_M: f64 = 0.866_025_404 * VOXEL_M;
+
+/// Euclidean distance from a point to a box (0 inside), for skipping voxels.
+fn box_point_distance(b: &Obb, p: &[f64; 3]) -> f64 {
+    let d = liftplan_core::frame::Vec3::new(p[0] - b.center.x, p[1] - b.center.y, p[2] - b.center.z);
+    let local = b.axes.transpose() * d;
+    let out = [0, 1, 2].map(|k| (local[k].abs() - b.half[k]).max(0.0));
+    (out[0] * out[0] + out[1] * out[1] + out[2] * out[2]).sqrt()
 }
 
 /// The lift's rules, as the validator applies them.
