@@ -119,3 +119,87 @@ fn validator_rejects_a_swing_through_the_wall() {
     assert!(!v.ok);
     assert!(v.problems.iter().any(|p| p.contains("WALL")), "{:?}", v.problems);
 }
+
+/// A chart for the test crane's 40 m boom: ample capacity up to 28 m radius,
+/// less than the test load's gross weight beyond.
+fn chart(far_capacity_t: f64) -> liftplan_core::capacity::CapacityTable {
+    use liftplan_core::capacity::{CapacityRow, CapacityTable};
+    let rows: Vec<CapacityRow> =
+        [(10.0, 50.0), (20.0, 50.0), (28.0, 50.0), (34.0, far_capacity_t), (40.0, far_capacity_t)]
+            .iter()
+            .enumerate()
+            .map(|(i, &(r, t))| CapacityRow {
+                config: "none".into(),
+                boom_m: 40.0,
+                radius_m: r,
+                capacity_kg: t * 1000.0,
+                cell: format!("test.xlsx [main!B{}]", i + 2),
+            })
+            .collect();
+    CapacityTable::from_rows(&rows)
+}
+
+#[test]
+fn validator_rejects_a_step_over_capacity() {
+    let mesh = site();
+    let world = World::new(&mesh, &[], &[]).unwrap();
+    let t = task(-14.0);
+    let start = t.start();
+    // Hoist 10 m clear of everything, then luff down to a 32 m radius, away
+    // from the wall: geometrically free, but the chart allows only 3 t there.
+    let up = Config { hoist_m: start.hoist_m - 10.0, ..start };
+    let out = Config { radial: (34.5f64 / 40.0).acos(), ..up };
+    assert!((t.crane.radius_m(out.radial) - 32.0).abs() < 1e-9);
+    let moves =
+        vec![Move { joint: Joint::Hoist, from: start, to: up }, Move { joint: Joint::Radial, from: up, to: out }];
+    let rules = Rules { clearance_m: 1.0, landing: vec![], landing_clearance_m: 0.2, sample_m: 0.05, support_m: 0.05 };
+    let tight = chart(3.0);
+    let v = validate(&t, Some(tight.config("none").unwrap()), &world, &rules, &moves, &[false, false]);
+    assert!(!v.ok, "a luff to 32 m with {:.1} t gross on a 3 t row passed", t.gross_kg() / 1000.0);
+    assert!(v.problems.iter().any(|p| p.contains("over capacity")), "{:?}", v.problems);
+    assert!(v.moves[0].problems.is_empty(), "the hoist stays within 28 m: {:?}", v.moves[0].problems);
+    // The same moves with capacity to spare everywhere pass: the refusal above
+    // was the chart's, not a collision.
+    let ample = chart(50.0);
+    let v = validate(&t, Some(ample.config("none").unwrap()), &world, &rules, &moves, &[false, false]);
+    assert!(v.ok, "{:?}", v.problems);
+}
+
+fn tower_task() -> LiftTask {
+    let text = r#"
+id = "T-2"
+description = "tower crane lift over a wall"
+load = { name = "skid", mass_t = 5.0, size_m = [4.0, 2.0, 2.0], cog_m = [0.0, 0.0, 0.0] }
+rigging = { mass_t = 0.2, height_m = 3.0 }
+crane = { model = "tower-hh-60", position_m = [0.0, 0.0], ground_z_m = 0.0, heading_deg = 0.0, chart_config = "none" }
+pick = { x_m = 22.0, y_m = -14.0, z_m = 0.5, yaw_deg = 0.0 }
+set = { x_m = 30.0, y_m = 20.0, z_m = 0.5, yaw_deg = 90.0 }
+clearance_m = 1.0
+liftoff_m = 0.5
+"#;
+    let spec: LiftSpec = toml::from_str(text).unwrap();
+    spec.resolve(builtin("tower-hh-60").unwrap()).unwrap()
+}
+
+#[test]
+fn tower_crane_plans_over_the_wall_with_the_trolley() {
+    let mesh = site();
+    let m = map(&mesh);
+    let world = World::new(&mesh, &[], &[]).unwrap();
+    let t = tower_task();
+    let mut s = quick();
+    s.cspace.trolley_step_m = 0.5;
+    let (plan, _) = plan_lift(&t, &Site { map: &m, world: &world, charts: None }, &s, 5).unwrap();
+    assert!(plan.validator.ok, "{:?}", plan.validator.problems);
+    // Over the wall or round its inner end (it starts 14 m out): either way
+    // every step keeps the clearance.
+    for st in &plan.steps[1..plan.steps.len() - 1] {
+        assert!(st.min_clearance_m >= st.required_clearance_m - 1e-3, "step {} too close: {:?}", st.n, st);
+    }
+    // The radius changes (26.1 m at the pick, 36.1 m at the set) with the
+    // trolley, and the steps say so in metres.
+    assert!(plan.moves.iter().any(|mv| mv.joint == Joint::Radial));
+    assert!(plan.steps.iter().any(|st| st.operation.to_lowercase().contains("trolley")), "{:?}", plan.steps);
+    let last = plan.moves.last().unwrap().to;
+    assert!((t.crane.radius_m(last.radial) - 30f64.hypot(20.0)).abs() < 1e-6);
+}
