@@ -109,6 +109,28 @@ impl Obb {
     /// crossings of the column's vertical edges with the box; all three are tried.
     pub fn z_range_over_rect(&self, x0: f64, x1: f64, y0: f64, y1: f64) -> Option<(f64, f64)> {
         let eps = 1e-9;
+        if self.is_upright() {
+            // Upright (turned about z only, like the load, hook and crane body):
+            // its height range is the same over every column it reaches, and it
+            // reaches the column when its footprint meets the rectangle, a 2D
+            // separating-axis test.
+            let a = self.axes;
+            let (u, v) = ([a[(0, 0)], a[(1, 0)]], [a[(0, 1)], a[(1, 1)]]);
+            let (hx, hy) = (self.half.x, self.half.y);
+            let (ex, ey) = (0.5 * (x1 - x0), 0.5 * (y1 - y0));
+            let d = [self.center.x - 0.5 * (x0 + x1), self.center.y - 0.5 * (y0 + y1)];
+            let apart = d[0].abs() > ex + hx * u[0].abs() + hy * v[0].abs() + eps
+                || d[1].abs() > ey + hx * u[1].abs() + hy * v[1].abs() + eps
+                || (d[0] * u[0] + d[1] * u[1]).abs() > hx + ex * u[0].abs() + ey * u[1].abs() + eps
+                || (d[0] * v[0] + d[1] * v[1]).abs() > hy + ex * v[0].abs() + ey * v[1].abs() + eps;
+            return (!apart).then_some((self.center.z - self.half.z, self.center.z + self.half.z));
+        }
+        self.z_range_over_rect_by_vertices(x0, x1, y0, y1)
+    }
+
+    /// [`Obb::z_range_over_rect`] for any box, by the polytope's vertices.
+    fn z_range_over_rect_by_vertices(&self, x0: f64, x1: f64, y0: f64, y1: f64) -> Option<(f64, f64)> {
+        let eps = 1e-9;
         let inside = |x: f64, y: f64| x >= x0 - eps && x <= x1 + eps && y >= y0 - eps && y <= y1 + eps;
         let mut lo = f64::INFINITY;
         let mut hi = f64::NEG_INFINITY;
@@ -173,6 +195,12 @@ impl Obb {
             }
         }
         (lo <= hi).then_some((lo, hi))
+    }
+
+    /// Turned about the vertical only: the third axis is exactly up.
+    pub fn is_upright(&self) -> bool {
+        let a = self.axes;
+        a[(0, 2)] == 0.0 && a[(1, 2)] == 0.0 && a[(2, 2)] == 1.0 && a[(2, 0)] == 0.0 && a[(2, 1)] == 0.0
     }
 
     /// Separating-axis test between two solid boxes.
@@ -353,6 +381,33 @@ mod tests {
                 }
                 (None, None) => {}
                 (e, l) => prop_assert!(false, "exact {e:?} vs lines {l:?}"),
+            }
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(200))]
+        #[test]
+        fn upright_fast_path_matches_samples(
+            yaw in -3.2f64..3.2,
+            hx in 0.05f64..3.0, hy in 0.05f64..2.0, hz in 0.1f64..2.0,
+            cx in -3.0f64..3.0, cy in -3.0f64..3.0,
+        ) {
+            let b = Obb::new(Point3::new(cx, cy, 5.0), tilted(yaw, 0.0), Vec3::new(hx, hy, hz));
+            prop_assert!(b.is_upright());
+            let (x0, x1, y0, y1) = (0.0, 0.5, 0.0, 0.5);
+            match (b.z_range_over_rect(x0, x1, y0, y1), lines_z_range(&b, x0, x1, y0, y1)) {
+                (Some((lo, hi)), Some((llo, lhi))) => {
+                    prop_assert!(lo <= llo + 1e-9 && hi >= lhi - 1e-9);
+                    prop_assert!(llo - lo < 1e-9 && hi - lhi < 1e-9);
+                }
+                (None, Some(l)) => prop_assert!(false, "fast path misses a column the box reaches: {l:?}"),
+                // A footprint that only grazes the rectangle between the sample lines.
+                (Some(_), None) | (None, None) => {}
+            }
+            prop_assert_eq!(b.z_range_over_rect(x0, x1, y0, y1).is_some(), b.z_range_over_rect_by_vertices(x0, x1, y0, y1).is_some());
+            if let (Some(f), Some(v)) = (b.z_range_over_rect(x0, x1, y0, y1), b.z_range_over_rect_by_vertices(x0, x1, y0, y1)) {
+                prop_assert!((f.0 - v.0).abs() < 1e-9 && (f.1 - v.1).abs() < 1e-9, "{f:?} vs {v:?}");
             }
         }
     }

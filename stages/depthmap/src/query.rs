@@ -69,32 +69,78 @@ impl Mdm {
 
     /// First place where `b` meets an obstacle that `counts` (e.g. everything but
     /// the ground under a crane's carrier), if any.
+    ///
+    /// Descends the max-height pyramid from tiles about the box's size: a tile
+    /// whose highest top is below the box's lowest point over that tile (or that
+    /// the box does not stand over) is skipped with everything in it, so a big
+    /// box over mostly low ground costs a handful of tile tests instead of one
+    /// test per cell. Cells are tested exactly as before; the answer (hit or
+    /// not) is the same as testing every cell under the box.
     pub fn hit_where(&self, b: &Obb, counts: impl Fn(&Interval) -> bool) -> Option<Hit> {
         let aabb = b.aabb();
         let zmin = aabb.min[2] as f32;
-        if self.max_top_in(aabb.min[0], aabb.max[0], aabb.min[1], aabb.max[1]) < zmin {
+        let s = self.spec;
+        let (ci, cj) = (s.cols_between(aabb.min[0], aabb.max[0]), s.rows_between(aabb.min[1], aabb.max[1]));
+        if ci.is_empty() || cj.is_empty() || self.pyramid.is_empty() {
             return None;
         }
-        let mut found = None;
-        self.for_cells_under(b, |i, j| {
-            if self.top(i, j) < zmin {
-                return true;
+        let span = (ci.end - ci.start).max(cj.end - cj.start);
+        let mut lvl = 0usize;
+        while lvl + 1 < self.pyramid.len() && (1u32 << (lvl + 1)) < span {
+            lvl += 1;
+        }
+        for tj in (cj.start >> lvl)..=((cj.end - 1) >> lvl) {
+            for ti in (ci.start >> lvl)..=((ci.end - 1) >> lvl) {
+                if let Some(h) = self.descend(b, zmin, &counts, lvl, ti, tj) {
+                    return Some(h);
+                }
             }
-            let r = self.spec.rect(i, j);
-            let Some((lo, hi)) = b.z_range_over_rect(r[0], r[1], r[2], r[3]) else { return true };
-            let (lo, hi) = (lo as f32, hi as f32);
-            for iv in self.cell(i, j) {
+        }
+        None
+    }
+
+    fn descend(
+        &self,
+        b: &Obb,
+        zmin: f32,
+        counts: &impl Fn(&Interval) -> bool,
+        lvl: usize,
+        ti: u32,
+        tj: u32,
+    ) -> Option<Hit> {
+        let (w, h, tops) = &self.pyramid[lvl];
+        if ti >= *w || tj >= *h || tops[(tj * w + ti) as usize] < zmin {
+            return None;
+        }
+        let top = tops[(tj * w + ti) as usize];
+        let s = self.spec;
+        let (i0, j0) = (ti << lvl, tj << lvl);
+        let (i1, j1) = (((ti + 1) << lvl).min(s.nx), ((tj + 1) << lvl).min(s.ny));
+        let c = s.cell;
+        let (x0, x1) = (s.x0 + i0 as f64 * c, s.x0 + i1 as f64 * c);
+        let (y0, y1) = (s.y0 + j0 as f64 * c, s.y0 + j1 as f64 * c);
+        let (lo, hi) = b.z_range_over_rect(x0, x1, y0, y1)?;
+        let (lo, hi) = (lo as f32, hi as f32);
+        if top < lo {
+            return None;
+        }
+        if lvl == 0 {
+            for iv in self.cell(ti, tj) {
                 if iv.zlo > hi {
                     break;
                 }
                 if iv.zhi >= lo && counts(iv) {
-                    found = Some(Hit { i, j, interval: *iv });
-                    return false;
+                    return Some(Hit { i: ti, j: tj, interval: *iv });
                 }
             }
-            true
-        });
-        found
+            return None;
+        }
+        for (dj, di) in [(0, 0), (0, 1), (1, 0), (1, 1)] {
+            if let Some(h) = self.descend(b, zmin, counts, lvl - 1, 2 * ti + di, 2 * tj + dj) {
+                return Some(h);
+            }
+        }
+        None
     }
 
     pub fn collides(&self, b: &Obb) -> bool {

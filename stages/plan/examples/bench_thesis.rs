@@ -1,0 +1,283 @@
+//! The thesis' planner experiments on synthetic plants built like its figures
+//! (Cai 2016, §4.5), one process, this machine:
+//!
+//!   cargo run --release -p liftplan-plan --example bench_thesis -- [RUNS] [GRID_RUNS] > reports/planner-thesis.md
+//!
+//! - Table 4.11/4.12: success rate and solution quality over RUNS seeds, Ali et
+//!   al.'s fitness vs MSPGA's, on three plants: (1) process units between pick
+//!   and set, (2) the set position on a structure higher than the obstacles
+//!   between, (3) obstacles much higher than pick and set.
+//! - Tables 4.15/4.17: success rate and mean fitness of feasible results over
+//!   GRID_RUNS seeds for a grid of crossover (rc) and mutation (rm) rates on
+//!   plant 3 (the "higher obstacle" plant of Experiment 4.3.1).
+//!
+//! Every run is the product's own `plan_lift`: MSPGA (or the GA with Ali's
+//! fitness) both ways round, shortcut, and the independent validator; a run
+//! succeeds when a validated plan comes back. The plants are described in the
+//! code; they are built like the thesis' figures, not copied from its models
+//! (which are not published).
+
+use liftplan_core::crane::builtin;
+use liftplan_core::lift::{LiftSpec, LiftTask};
+use liftplan_core::mesh::TriMesh;
+use liftplan_cspace::Joint;
+use liftplan_depthmap::mdm::Mdm;
+use liftplan_plan::validate::World;
+use liftplan_plan::{LiftPlan, Planner, Settings, Site, plan_lift};
+use std::time::Instant;
+
+struct Plant {
+    name: &'static str,
+    what: &'static str,
+    mesh: TriMesh,
+    task: LiftTask,
+    /// The thesis' Table 4.11 success rates (Ali, MSPGA), %.
+    published: (f64, f64),
+}
+
+fn add_box(m: &mut TriMesh, name: &str, lo: [f64; 3], hi: [f64; 3]) {
+    let g = m.group_id(name);
+    m.add_box(g, lo, hi);
+}
+
+/// Box `[x0, x1] x [y0, y1] x [0, top]` placed at bearing `deg` and radius `r`
+/// from the crane (its centre), axis-aligned.
+fn unit_at(m: &mut TriMesh, name: &str, deg: f64, r: f64, half: [f64; 2], bottom: f64, top: f64) {
+    let (x, y) = (r * deg.to_radians().cos(), r * deg.to_radians().sin());
+    add_box(m, name, [x - half[0], y - half[1], bottom], [x + half[0], y + half[1], top]);
+}
+
+/// A lift from bearing/radius/height `pick` to `set` (degrees, m, m), the
+/// slewing range limited to the short way round as in the thesis' experiments.
+fn task(id: &str, pick: (f64, f64, f64), set: (f64, f64, f64)) -> LiftTask {
+    let at = |deg: f64, r: f64| (r * deg.to_radians().cos(), r * deg.to_radians().sin());
+    let (px, py) = at(pick.0, pick.1);
+    let (sx, sy) = at(set.0, set.1);
+    // The carrier stands along y (heading 90°), clear of the rows along x;
+    // the slewing range is relative to it.
+    let (lo, hi) = (pick.0.min(set.0) - 15.0 - 90.0, pick.0.max(set.0) + 15.0 - 90.0);
+    let text = format!(
+        r#"
+id = "{id}"
+load = {{ name = "skid", mass_t = 8.0, size_m = [6.0, 3.0, 2.5], cog_m = [0.0, 0.0, 0.0] }}
+rigging = {{ mass_t = 0.3, height_m = 3.0 }}
+crane = {{ model = "ac-700", position_m = [0.0, 0.0], ground_z_m = 0.0, heading_deg = 90.0, boom_m = 62.4, chart_config = "none" }}
+pick = {{ x_m = {px}, y_m = {py}, z_m = {}, yaw_deg = {} }}
+set = {{ x_m = {sx}, y_m = {sy}, z_m = {}, yaw_deg = {} }}
+clearance_m = 1.0
+liftoff_m = 0.5
+swing_range_deg = [{lo}, {hi}]
+"#,
+        pick.2, pick.0, set.2, set.0
+    );
+    let spec: LiftSpec = toml::from_str(&text).expect("lift");
+    spec.resolve(builtin("ac-700").expect("ac-700")).expect("lift resolves")
+}
+
+fn slab(m: &mut TriMesh) {
+    add_box(m, "GRADE", [-80.0, -80.0, -0.3], [80.0, 80.0, 0.0]);
+}
+
+/// Plant 1: a row of process units along the +x axis, from 8 m to 62 m out,
+/// between pick (bearing -45°) and set (48°): the load goes over a unit.
+fn plant1() -> Plant {
+    let mut m = TriMesh::default();
+    slab(&mut m);
+    for (k, top) in [12.0, 15.0, 18.0, 21.0, 16.0, 14.0].iter().enumerate() {
+        let x0 = 8.0 + 9.0 * k as f64;
+        add_box(&mut m, &format!("UNIT-{}", k + 1), [x0, -3.5, 0.0], [x0 + 9.0, 3.5, *top]);
+    }
+    unit_at(&mut m, "SHELTER", -20.0, 34.0, [3.0, 3.0], 0.0, 6.0);
+    unit_at(&mut m, "PIPE-RACK", 25.0, 30.0, [1.5, 6.0], 6.0, 8.0);
+    Plant {
+        name: "Plant 1",
+        what: "a row of six process units 12-21 m high from 8 to 62 m out between pick and set, a pipe rack \
+               and a shelter; 93° swing, pick and set at grade",
+        mesh: m,
+        task: task("P1", (-45.0, 24.0, 0.5), (48.0, 24.0, 0.5)),
+        published: (8.0, 100.0),
+    }
+}
+
+/// Plant 2: the set position on a structure higher than the obstacles between.
+fn plant2() -> Plant {
+    let mut m = TriMesh::default();
+    slab(&mut m);
+    add_box(&mut m, "PIPE-RACK", [8.0, -1.5, 0.0], [62.0, 1.5, 14.0]);
+    unit_at(&mut m, "VESSEL-1", -30.0, 25.0, [3.0, 3.0], 0.0, 14.0);
+    unit_at(&mut m, "VESSEL-2", 35.0, 25.0, [3.0, 3.0], 0.0, 14.0);
+    unit_at(&mut m, "STRUCTURE", 71.0, 26.0, [5.0, 5.0], 0.0, 18.0);
+    Plant {
+        name: "Plant 2",
+        what: "a 14 m pipe rack from 8 to 62 m out and two 14 m vessels between pick and set; the set is \
+               on top of an 18 m structure; 131° swing",
+        mesh: m,
+        task: task("P2", (-60.0, 24.0, 0.5), (71.0, 26.0, 18.0)),
+        published: (88.0, 100.0),
+    }
+}
+
+/// Plant 3: obstacles much higher than pick and set.
+fn plant3() -> Plant {
+    let mut m = TriMesh::default();
+    slab(&mut m);
+    for k in 0..6 {
+        let x0 = 8.0 + 9.0 * k as f64;
+        add_box(&mut m, &format!("COLUMN-{}", k + 1), [x0, -2.5, 0.0], [x0 + 9.0, 2.5, 32.0]);
+    }
+    unit_at(&mut m, "BRIDGE", -20.0, 16.0, [1.0, 5.0], 10.0, 11.0);
+    Plant {
+        name: "Plant 3",
+        what: "a row of 32 m columns from 8 to 62 m out between pick and set, and a pipe bridge; 83° swing, \
+               pick and set at grade",
+        mesh: m,
+        task: task("P3", (-40.0, 22.0, 0.5), (43.0, 24.0, 0.5)),
+        published: (0.0, 96.0),
+    }
+}
+
+fn map(mesh: &TriMesh) -> Mdm {
+    let inp = liftplan_depthmap::Inputs { points: vec![], ground: vec![], mesh: mesh.clone() };
+    liftplan_depthmap::build_cpu(&inp, &liftplan_depthmap::Settings::default()).expect("depth map").0
+}
+
+/// Motion units of a plan (swing deg, luff deg, hoist m, rotation deg) and its steps.
+fn units(p: &LiftPlan) -> ([f64; 4], usize) {
+    let mut u = [0.0; 4];
+    for mv in &p.moves {
+        let d = mv.delta().abs();
+        match mv.joint {
+            Joint::Swing => u[0] += d.to_degrees(),
+            Joint::Radial => u[1] += d.to_degrees(),
+            Joint::Hoist => u[2] += d,
+            Joint::Rotate => u[3] += d.to_degrees(),
+        }
+    }
+    (u, p.steps.len())
+}
+
+struct Tally {
+    ok: usize,
+    runs: usize,
+    units: [f64; 4],
+    steps: f64,
+    fitness: f64,
+    seconds: f64,
+}
+
+fn run_many(plant: &Plant, map: &Mdm, world: &World, s: &Settings, runs: u64) -> Tally {
+    let site = Site { map, world, charts: None };
+    let mut t = Tally { ok: 0, runs: runs as usize, units: [0.0; 4], steps: 0.0, fitness: 0.0, seconds: 0.0 };
+    for seed in 0..runs {
+        let t0 = Instant::now();
+        let r = plan_lift(&plant.task, &site, s, seed);
+        t.seconds += t0.elapsed().as_secs_f64();
+        if let Err(e) = &r {
+            tracing::debug!("{} seed {seed}: {e}", plant.name);
+        }
+        if let Ok((p, _)) = r {
+            t.ok += 1;
+            let (u, n) = units(&p);
+            for k in 0..4 {
+                t.units[k] += u[k];
+            }
+            t.steps += n as f64;
+            // The thesis reports eq. 4.21's value for feasible strings.
+            t.fitness += s.ga.lambda1 * (1.0 + s.ga.lambda1 / p.planning.fitness.max(1e-9));
+        }
+    }
+    t
+}
+
+fn pct(t: &Tally) -> f64 {
+    100.0 * t.ok as f64 / t.runs.max(1) as f64
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let runs: u64 = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(50);
+    let grid_runs: u64 = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(10);
+    let plants = [plant1(), plant2(), plant3()];
+    println!("# Planner: the thesis' experiments (Tables 4.11, 4.12, 4.15, 4.17)\n");
+    println!(
+        "Machine: {} threads. AC 700 with a 62.4 m boom (the thesis' boom length), 8 t skid 6 x 3 x 2.5 m, \
+         1 m clearance, no load chart (geometry only). GA parameters of Table 4.10: population 100, string \
+         length 6, rc 0.15, rm 0.75, at most 400 generations (stopping after 120 without improvement). \
+         A run succeeds when `plan_lift` returns a plan the independent validator accepted.\n",
+        rayon::current_num_threads()
+    );
+    for p in &plants {
+        println!("- {}: {} ({} triangles)", p.name, p.what, p.mesh.triangle_count());
+    }
+    println!("\n## Table 4.11 / 4.12: Ali et al.'s fitness vs MSPGA, {runs} runs each\n");
+    println!("| plant | fitness | success | published | swing ° | luff ° | hoist m | rotation ° | steps | s per run |");
+    println!("|---|---|---|---|---|---|---|---|---|---|");
+    let mut built = Vec::new();
+    for p in &plants {
+        let m = map(&p.mesh);
+        let world = World::new(&p.mesh, &[], &[]).expect("world");
+        for (planner, label, published) in
+            [(Planner::AliGa, "Ali et al.", p.published.0), (Planner::Mspga, "MSPGA", p.published.1)]
+        {
+            let s = Settings { planner, ..Settings::default() };
+            let t = run_many(p, &m, &world, &s, runs);
+            let n = t.ok.max(1) as f64;
+            let q = |v: f64| if t.ok == 0 { "-".to_string() } else { format!("{:.1}", v / n) };
+            println!(
+                "| {} | {label} | {:.0} % ({}/{}) | {published:.0} % | {} | {} | {} | {} | {} | {:.1} |",
+                p.name,
+                pct(&t),
+                t.ok,
+                t.runs,
+                q(t.units[0]),
+                q(t.units[1]),
+                q(t.units[2]),
+                q(t.units[3]),
+                q(t.steps),
+                t.seconds / t.runs as f64
+            );
+        }
+        built.push((m, world));
+    }
+    // Tables 4.15 / 4.17 on plant 3.
+    let rcs = [0.05, 0.15, 0.40, 0.75];
+    let rms = [0.05, 0.25, 0.55, 0.75];
+    let (m, world) = &built[2];
+    let mut success = vec![];
+    let mut fitness = vec![];
+    for &rc in &rcs {
+        let mut srow = vec![];
+        let mut frow = vec![];
+        for &rm in &rms {
+            let mut s = Settings::default();
+            s.ga.crossover_rate = rc;
+            s.ga.mutation_rate = rm;
+            let t = run_many(&plants[2], m, world, &s, grid_runs);
+            srow.push(t.ok as f64 / t.runs as f64);
+            frow.push(if t.ok == 0 { f64::NAN } else { t.fitness / t.ok as f64 });
+        }
+        success.push(srow);
+        fitness.push(frow);
+    }
+    let table = |title: &str, rows: &[Vec<f64>], fmt: &dyn Fn(f64) -> String| {
+        println!("\n{title}\n");
+        print!("| |");
+        for rm in rms {
+            print!(" rm = {rm:.2} |");
+        }
+        println!();
+        println!("|---|{}", "---|".repeat(rms.len()));
+        for (rc, row) in rcs.iter().zip(rows) {
+            print!("| rc = {rc:.2} |");
+            for v in row {
+                print!(" {} |", fmt(*v));
+            }
+            println!();
+        }
+    };
+    println!("\n## Tables 4.15 / 4.16: crossover and mutation rates on plant 3, {grid_runs} runs per cell");
+    table("Probability of a feasible (validated) plan:", &success, &|v| format!("{v:.2}"));
+    table("Mean fitness (eq. 4.21) of the feasible plans:", &fitness, &|v| {
+        if v.is_nan() { "-".into() } else { format!("{v:.1}") }
+    });
+}
