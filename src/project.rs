@@ -353,6 +353,7 @@ stall_generations = 120
 lambda1 = 1000.0
 lambda2 = 10.0
 swing_margin_deg = 20.0
+restarts = 2              # no feasible path either way: start again from new strings, up to this many times
 
 [plan.ga.weights]         # motion cost per unit (Cai Table 4.13)
 swing_per_deg = 1.0

@@ -166,6 +166,8 @@ pub struct PlanningStats {
     pub cspace_ms: f64,
     pub plan_ms: f64,
     pub swing_direction: String,
+    /// GA runs each way round until a feasible path appeared (1 + restarts used).
+    pub attempts: usize,
     pub table_lookups: u64,
     pub box_queries: u64,
     pub convergence_best: Vec<f64>,
@@ -254,50 +256,71 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
     let short = start.swing_rad + liftplan_core::units::wrap_pi(goal0.swing_rad - start.swing_rad);
     let long = if short >= start.swing_rad { short - std::f64::consts::TAU } else { short + std::f64::consts::TAU };
     let mut candidates = vec![];
-    for (label, gs) in [("short way", short), ("long way", long)] {
-        let goal = Config { swing_rad: gs, ..goal0 };
-        if let Some((a, b)) = task.swing_range_rad
-            && !(start.swing_rad.min(gs) >= a && start.swing_rad.max(gs) <= b)
-        {
-            continue;
+    let mut attempts = 0;
+    for attempt in 0..=s.ga.restarts {
+        if !candidates.is_empty() {
+            break;
         }
-        let (nodes, stats) = match s.planner {
-            Planner::Mspga | Planner::AliGa => {
-                let kind = if s.planner == Planner::Mspga { mspga::Fitness::Mspga } else { mspga::Fitness::Ali };
-                let r = mspga::run(&ck, &start, &goal, &s.ga, kind, seed, &format!("plan/{}/{label}", task.id));
-                let best = r.best.clone();
-                match best {
-                    Some(b) if b.n == 0 => (Some(b.genes.clone()), r),
-                    Some(b) => {
-                        let why = mspga::first_problem(&ck, &b.genes).map(|p| p.to_string()).unwrap_or_default();
-                        tracing::info!("lift {}: {label}: no feasible path ({why})", task.id);
-                        (None, r)
-                    }
-                    None => (None, r),
-                }
-            }
-            Planner::RrtConnect | Planner::Prm => {
-                let r = if s.planner == Planner::RrtConnect {
-                    baselines::rrt_connect(&ck, &start, &goal, &s.baselines, &s.ga.weights, seed)
-                } else {
-                    baselines::prm(&ck, &start, &goal, &s.baselines, &s.ga.weights, seed)
-                };
-                let stats = mspga::GaResult {
-                    best: None,
-                    generations: r.iterations,
-                    evaluations: r.edge_checks,
-                    first_feasible: None,
-                    best_fitness: vec![],
-                    mean_fitness: vec![],
-                };
-                (r.found.then_some(r.nodes), stats)
-            }
+        attempts = attempt + 1;
+        // Attempt 0 uses the project seed as it is; restarts draw new strings.
+        let (seed, restart) = if attempt == 0 {
+            (seed, String::new())
+        } else {
+            (seed ^ (attempt as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15), format!("/restart {attempt}"))
         };
-        if let Some(nodes) = nodes {
-            let nodes = path::shortcut(&ck, &nodes, &s.ga.weights);
-            let moves = path::path_moves(&ck, &nodes);
-            let (d, sc) = path::cost(&moves, &s.ga.weights, task.crane.model.is_tower());
-            candidates.push((d + s.ga.lambda2 * (1.0 + sc as f64), label, nodes, moves, d, sc, stats));
+        for (label, gs) in [("short way", short), ("long way", long)] {
+            let goal = Config { swing_rad: gs, ..goal0 };
+            if let Some((a, b)) = task.swing_range_rad
+                && !(start.swing_rad.min(gs) >= a && start.swing_rad.max(gs) <= b)
+            {
+                continue;
+            }
+            let (nodes, stats) = match s.planner {
+                Planner::Mspga | Planner::AliGa => {
+                    let kind = if s.planner == Planner::Mspga { mspga::Fitness::Mspga } else { mspga::Fitness::Ali };
+                    let r = mspga::run(
+                        &ck,
+                        &start,
+                        &goal,
+                        &s.ga,
+                        kind,
+                        seed,
+                        &format!("plan/{}/{label}{restart}", task.id),
+                    );
+                    let best = r.best.clone();
+                    match best {
+                        Some(b) if b.n == 0 => (Some(b.genes.clone()), r),
+                        Some(b) => {
+                            let why = mspga::first_problem(&ck, &b.genes).map(|p| p.to_string()).unwrap_or_default();
+                            tracing::info!("lift {}: {label}: no feasible path ({why})", task.id);
+                            (None, r)
+                        }
+                        None => (None, r),
+                    }
+                }
+                Planner::RrtConnect | Planner::Prm => {
+                    let r = if s.planner == Planner::RrtConnect {
+                        baselines::rrt_connect(&ck, &start, &goal, &s.baselines, &s.ga.weights, seed)
+                    } else {
+                        baselines::prm(&ck, &start, &goal, &s.baselines, &s.ga.weights, seed)
+                    };
+                    let stats = mspga::GaResult {
+                        best: None,
+                        generations: r.iterations,
+                        evaluations: r.edge_checks,
+                        first_feasible: None,
+                        best_fitness: vec![],
+                        mean_fitness: vec![],
+                    };
+                    (r.found.then_some(r.nodes), stats)
+                }
+            };
+            if let Some(nodes) = nodes {
+                let nodes = path::shortcut(&ck, &nodes, &s.ga.weights);
+                let moves = path::path_moves(&ck, &nodes);
+                let (d, sc) = path::cost(&moves, &s.ga.weights, task.crane.model.is_tower());
+                candidates.push((d + s.ga.lambda2 * (1.0 + sc as f64), label, nodes, moves, d, sc, stats));
+            }
         }
     }
     candidates.sort_by(|a, b| a.0.total_cmp(&b.0));
@@ -305,9 +328,9 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
         return Err(lift_err(
             task,
             format!(
-                "no collision-free, chart-compliant path found ({} generations of {} strings each way); \
+                "no collision-free, chart-compliant path found ({} run(s) of up to {} generations of {} strings each way); \
                  try a larger population or more generations, another crane position, or check the obstacles in the C-space picture",
-                s.ga.max_generations, s.ga.population
+                attempts, s.ga.max_generations, s.ga.population
             ),
         ));
     };
@@ -378,6 +401,7 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
             cspace_ms: cs.build_ms,
             plan_ms,
             swing_direction: label.to_string(),
+            attempts,
             table_lookups: ck.counters.lookups.load(Relaxed),
             box_queries: ck.counters.box_queries.load(Relaxed),
             convergence_best: stats.best_fitness,

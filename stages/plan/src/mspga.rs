@@ -39,6 +39,10 @@ pub struct GaSettings {
     pub weights: Weights,
     /// Extra swing room beyond the start-goal span for intermediate genes (deg).
     pub swing_margin_deg: f64,
+    /// When no feasible path is found either way round, start again from new
+    /// random strings (their seeds derived from the project seed) up to this
+    /// many times before giving up. 0: one run each way, as in the thesis.
+    pub restarts: usize,
 }
 
 impl Default for GaSettings {
@@ -56,6 +60,7 @@ impl Default for GaSettings {
             lambda2: 10.0,
             weights: Weights::default(),
             swing_margin_deg: 20.0,
+            restarts: 2,
         }
     }
 }
@@ -76,6 +81,9 @@ impl GaSettings {
             && self.max_generations <= 1_000_000)
         {
             return Err("[plan] lambda1 must be positive, lambda2 non-negative, max_generations 1..1000000".into());
+        }
+        if self.restarts > 20 {
+            return Err("[plan] restarts must be 0..20".into());
         }
         Ok(())
     }
