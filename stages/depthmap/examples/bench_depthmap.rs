@@ -46,7 +46,14 @@ fn best_of(k: usize, mut f: impl FnMut() -> f64) -> f64 {
 
 fn main() {
     let s = Settings::default();
-    let device = gpu::open(true);
+    // Optional: `cpu` skips the GPU; numbers replace the point counts.
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let cpu_only = args.iter().any(|a| a == "cpu");
+    let mut sizes: Vec<usize> = args.iter().filter_map(|a| a.parse().ok()).collect();
+    if sizes.is_empty() {
+        sizes = vec![1_000_000, 5_000_000, 21_000_716];
+    }
+    let device = if cpu_only { Err("not asked for".to_string()) } else { gpu::open(true) };
     println!("# Depth-map rasterisation\n");
     println!(
         "{} CPU threads; GPU: {}. Best of 3 runs. Floor = one streaming pass reading every point (sum of coordinates). \
@@ -56,7 +63,7 @@ fn main() {
     );
     println!("| input | floor ms | CPU ms | CPU / floor | GPU ms | GPU / floor | maps equal |");
     println!("|---|---|---|---|---|---|---|");
-    for n in [1_000_000usize, 5_000_000, 21_000_716] {
+    for n in sizes {
         let inp = points(n);
         let floor = best_of(3, || {
             let t = Instant::now();
@@ -67,8 +74,9 @@ fn main() {
         let mut cpu_map = None;
         let cpu = best_of(3, || {
             let t = Instant::now();
-            let (m, _) = build_cpu(&inp, &s).unwrap();
+            let (m, timings) = build_cpu(&inp, &s).unwrap();
             let dt = t.elapsed().as_secs_f64() * 1e3;
+            eprintln!("{n} points, CPU: {timings:?}");
             cpu_map = Some(m);
             dt
         });

@@ -165,14 +165,16 @@ pub fn build(inp: &Inputs, s: &Settings, gpu: Option<&gpu::Gpu>) -> Result<(Mdm,
     let local = local_points(inp, &spec);
     let t_prep = t0.elapsed();
     let mut raws: Vec<Raw> = Vec::new();
-    match gpu {
-        Some(g) => g.point_raws(&local, &spec, s.point_radius_m as f32, &mut raws).map_err(DepthError::Gpu)?,
-        None => mdm::point_raws(&local, &spec, s.point_radius_m as f32, &mut raws),
+    // On the GPU the point pass makes raw intervals; on the CPU it is fused
+    // into the assembly (same cells, same intervals, no raws stored).
+    if let Some(g) = gpu {
+        g.point_raws(&local, &spec, s.point_radius_m as f32, &mut raws).map_err(DepthError::Gpu)?;
     }
     let t_points = t0.elapsed();
     mdm::mesh_raws(&inp.mesh, &spec, 2, &mut raws);
     let t_gen = t0.elapsed();
-    let m = mdm::assemble(&raws, spec, s.mode, s.merge_gap_m as f32, objects);
+    let points = gpu.is_none().then_some(mdm::PointSource { points: &local, radius: s.point_radius_m as f32 });
+    let m = mdm::assemble_sources(points, &raws, spec, s.mode, s.merge_gap_m as f32, objects);
     let t_all = t0.elapsed();
     Ok((
         m,

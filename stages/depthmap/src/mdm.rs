@@ -143,6 +143,30 @@ pub fn f32_key(v: f32) -> u32 {
     if b & 0x8000_0000 != 0 { !b } else { b | 0x8000_0000 }
 }
 
+/// `x.floor() as i64`, inline (the baseline x86-64 target has no rounding
+/// instruction, so `floor` is a library call): the same value for every input.
+#[inline]
+fn floor_i64(x: f32) -> i64 {
+    let t = x as i64;
+    if (t as f32) > x { t.saturating_sub(1) } else { t }
+}
+
+/// The cells a point's square of half side `radius` touches, and its height
+/// interval: the one definition the CPU passes and the GPU shader follow.
+#[inline]
+fn point_cells(q: &[f32; 3], radius: f32, inv: f32, nx: i64, ny: i64, mut cell: impl FnMut(u32)) -> (f32, f32) {
+    let i0 = floor_i64((q[0] - radius) * inv);
+    let i1 = floor_i64((q[0] + radius) * inv);
+    let j0 = floor_i64((q[1] - radius) * inv);
+    let j1 = floor_i64((q[1] + radius) * inv);
+    for j in j0.max(0)..=j1.min(ny - 1) {
+        for i in i0.max(0)..=i1.min(nx - 1) {
+            cell((j * nx + i) as u32);
+        }
+    }
+    (q[2] - radius, q[2] + radius)
+}
+
 /// Pass 1 for points: the raw intervals of every point.
 pub fn point_raws(p: &LocalPoints, spec: &GridSpec, radius: f32, out: &mut Vec<Raw>) {
     let inv = (1.0 / spec.cell) as f32;
@@ -153,18 +177,12 @@ pub fn point_raws(p: &LocalPoints, spec: &GridSpec, radius: f32, out: &mut Vec<R
         .enumerate()
         .map(|(ci, chunk)| {
             let mut v = Vec::with_capacity(chunk.len() + chunk.len() / 4);
+            let mut cells = Vec::with_capacity(4);
             for (k, q) in chunk.iter().enumerate() {
                 let obj = p.obj[(ci << 16) + k];
-                let i0 = ((q[0] - radius) * inv).floor() as i64;
-                let i1 = ((q[0] + radius) * inv).floor() as i64;
-                let j0 = ((q[1] - radius) * inv).floor() as i64;
-                let j1 = ((q[1] + radius) * inv).floor() as i64;
-                let (zlo, zhi) = (q[2] - radius, q[2] + radius);
-                for j in j0.max(0)..=j1.min(ny - 1) {
-                    for i in i0.max(0)..=i1.min(nx - 1) {
-                        v.push(Raw { cell: (j * nx + i) as u32, zlo, zhi, obj, part: 0 });
-                    }
-                }
+                cells.clear();
+                let (zlo, zhi) = point_cells(q, radius, inv, nx, ny, |c| cells.push(c));
+                v.extend(cells.iter().map(|&cell| Raw { cell, zlo, zhi, obj, part: 0 }));
             }
             v
         })
@@ -264,32 +282,42 @@ pub fn mesh_raws(m: &TriMesh, spec: &GridSpec, obj_base: u32, out: &mut Vec<Raw>
     }
 }
 
-/// Sort key of a raw interval within its cell.
+/// A raw interval without its cell, packed so that the integer order is the
+/// merge order (object, part, bottom, top) and nothing is lost.
 #[inline]
-fn raw_key(r: &Raw) -> (u32, u32, u32, u32) {
-    (r.obj, r.part, f32_key(r.zlo), f32_key(r.zhi))
+fn pack(obj: u32, part: u32, zlo: f32, zhi: f32) -> u128 {
+    (obj as u128) << 96 | (part as u128) << 64 | (f32_key(zlo) as u128) << 32 | f32_key(zhi) as u128
 }
 
-/// Pass 5 for one cell: sorts `raw` and writes the merged intervals.
-pub fn merge_cell(raw: &mut [Raw], gap: f32, mode: Mode, out: &mut Vec<Interval>) {
+/// Inverse of [`f32_key`].
+#[inline]
+fn f32_from_key(k: u32) -> f32 {
+    f32::from_bits(if k & 0x8000_0000 != 0 { k & 0x7fff_ffff } else { !k })
+}
+
+/// Pass 5 for one cell: sorts the packed raws and appends the merged intervals.
+fn merge_cell(raw: &mut [u128], gap: f32, mode: Mode, out: &mut Vec<Interval>) {
     if raw.is_empty() {
         return;
     }
-    raw.sort_unstable_by_key(raw_key);
+    // Equal keys are equal raws: the sorted order, hence the map, does not
+    // depend on the order the raws arrived in.
+    raw.sort_unstable();
+    let unpack = |k: u128| ((k >> 96) as u32, (k >> 64) as u32, f32_from_key((k >> 32) as u32), f32_from_key(k as u32));
     let start = out.len();
-    let mut cur = raw[0];
-    for n in &raw[1..] {
-        let same = n.obj == cur.obj && n.part == cur.part;
-        if same && (cur.part != 0 || n.zlo <= cur.zhi + gap) {
-            if n.zhi > cur.zhi {
-                cur.zhi = n.zhi;
+    let (mut obj, mut part, mut zlo, mut zhi) = unpack(raw[0]);
+    for &k in &raw[1..] {
+        let (o, p, lo, hi) = unpack(k);
+        if o == obj && p == part && (part != 0 || lo <= zhi + gap) {
+            if hi > zhi {
+                zhi = hi;
             }
         } else {
-            out.push(Interval { zlo: cur.zlo, zhi: cur.zhi, obj: cur.obj });
-            cur = *n;
+            out.push(Interval { zlo, zhi, obj });
+            (obj, part, zlo, zhi) = (o, p, lo, hi);
         }
     }
-    out.push(Interval { zlo: cur.zlo, zhi: cur.zhi, obj: cur.obj });
+    out.push(Interval { zlo, zhi, obj });
     let cell = &mut out[start..];
     cell.sort_unstable_by_key(|i| (f32_key(i.zlo), f32_key(i.zhi), i.obj));
     if mode == Mode::Single {
@@ -300,54 +328,206 @@ pub fn merge_cell(raw: &mut [Raw], gap: f32, mode: Mode, out: &mut Vec<Interval>
     }
 }
 
-/// Passes 2 to 5 on the CPU: count, prefix-sum, fill, sort and merge.
+/// Points rasterised straight into the assembly (no raw intervals stored).
+pub struct PointSource<'a> {
+    pub points: &'a LocalPoints,
+    pub radius: f32,
+}
+
+/// Passes 2 to 5 on the CPU for raw intervals: see [`assemble_sources`].
 pub fn assemble(raws: &[Raw], spec: GridSpec, mode: Mode, gap: f32, objects: Vec<String>) -> Mdm {
-    let n = spec.cells();
-    // Count and prefix sum.
-    let mut counts = vec![0u32; n + 1];
-    for r in raws {
-        counts[r.cell as usize + 1] += 1;
+    assemble_sources(None, raws, spec, mode, gap, objects)
+}
+
+/// Tiles of `TILE x TILE` cells group the work of passes 2 to 5.
+const TILE: u32 = 64;
+/// Points or raws per parallel job.
+const JOB: usize = 1 << 16;
+
+/// What the assembly reads: the points (rasterised on the fly) and raws.
+struct Sources<'a> {
+    points: Option<&'a PointSource<'a>>,
+    raws: &'a [Raw],
+    inv: f32,
+    nx: i64,
+    ny: i64,
+}
+
+impl Sources<'_> {
+    /// Calls `f(cell, packed key)` for every raw interval of a job, in order.
+    #[inline]
+    fn visit(&self, job: Job, mut f: impl FnMut(u32, u128)) {
+        match job {
+            Job::Points(a, b) => {
+                let Some(p) = self.points else { return };
+                for k in a..b {
+                    let q = &p.points.xyz[k];
+                    let obj = p.points.obj[k];
+                    let (mut cells, mut n) = ([0u32; 4], 0);
+                    let (zlo, zhi) = point_cells(q, p.radius, self.inv, self.nx, self.ny, |c| {
+                        if n < 4 {
+                            cells[n] = c;
+                        }
+                        n += 1;
+                    });
+                    let key = pack(obj, 0, zlo, zhi);
+                    if n <= 4 {
+                        for &c in &cells[..n] {
+                            f(c, key);
+                        }
+                    } else {
+                        // A radius wider than a cell: rare, so recompute.
+                        point_cells(q, p.radius, self.inv, self.nx, self.ny, |c| f(c, key));
+                    }
+                }
+            }
+            Job::Raws(a, b) => {
+                for r in &self.raws[a..b] {
+                    f(r.cell, pack(r.obj, r.part, r.zlo, r.zhi));
+                }
+            }
+        }
     }
-    for k in 1..=n {
-        counts[k] += counts[k - 1];
-    }
-    // Fill.
-    let mut cursor = counts.clone();
-    let mut slots = vec![Raw { cell: 0, zlo: 0.0, zhi: 0.0, obj: 0, part: 0 }; raws.len()];
-    for r in raws {
-        let c = &mut cursor[r.cell as usize];
-        slots[*c as usize] = *r;
-        *c += 1;
-    }
-    // Sort and merge, cells in parallel blocks, then compact.
-    const BLOCK: usize = 4096;
-    let ranges: Vec<(usize, usize)> = (0..n.div_ceil(BLOCK)).map(|b| (b * BLOCK, ((b + 1) * BLOCK).min(n))).collect();
-    let slot_ptr = SendPtr(slots.as_mut_ptr());
-    let merged: Vec<(Vec<u32>, Vec<Interval>)> = ranges
+}
+
+#[derive(Clone, Copy)]
+enum Job {
+    Points(usize, usize),
+    Raws(usize, usize),
+}
+
+/// Passes 2 to 5 on the CPU: count, prefix-sum, fill, sort and merge, for the
+/// points of `points` (pass 1 fused in: each point's cells are computed where
+/// they are counted and where they are filled) and the raw intervals `raws`.
+///
+/// Two levels, so that every write stays in cache: the raws are first
+/// partitioned by tile of 64 x 64 cells (count per tile, prefix, fill, per
+/// job in parallel into disjoint slots, packed into 16-byte sort keys), then
+/// each tile, in parallel, is counted, prefix-summed and filled by cell in a
+/// local buffer and every cell sorted and merged. The sorted keys of a cell
+/// are unique, so the map does not depend on job or thread order.
+pub fn assemble_sources(
+    points: Option<PointSource>,
+    raws: &[Raw],
+    spec: GridSpec,
+    mode: Mode,
+    gap: f32,
+    objects: Vec<String>,
+) -> Mdm {
+    let (nx, ny) = (spec.nx, spec.ny);
+    let (tx, ty) = (nx.div_ceil(TILE), ny.div_ceil(TILE));
+    let ntiles = (tx * ty) as usize;
+    let tile_of = |cell: u32| {
+        let (i, j) = (cell % nx, cell / nx);
+        ((j / TILE) * tx + i / TILE) as usize
+    };
+    let inv = (1.0 / spec.cell) as f32;
+    let npts = points.as_ref().map(|p| p.points.xyz.len()).unwrap_or(0);
+    let mut jobs: Vec<Job> = (0..npts.div_ceil(JOB)).map(|k| Job::Points(k * JOB, ((k + 1) * JOB).min(npts))).collect();
+    jobs.extend((0..raws.len().div_ceil(JOB)).map(|k| Job::Raws(k * JOB, ((k + 1) * JOB).min(raws.len()))));
+    let src = Sources { points: points.as_ref(), raws, inv, nx: nx as i64, ny: ny as i64 };
+    // Level 1: partition by tile.
+    let counts: Vec<Vec<u32>> = jobs
         .par_iter()
-        .map(|&(a, b)| {
-            let mut lens = Vec::with_capacity(b - a);
+        .map(|&job| {
+            let mut c = vec![0u32; ntiles];
+            src.visit(job, |cell, _| c[tile_of(cell)] += 1);
+            c
+        })
+        .collect();
+    let mut tile_start = vec![0usize; ntiles + 1];
+    let mut cursors: Vec<Vec<usize>> = vec![vec![0; ntiles]; jobs.len()];
+    let mut at = 0usize;
+    for t in 0..ntiles {
+        tile_start[t] = at;
+        for (j, c) in counts.iter().enumerate() {
+            cursors[j][t] = at;
+            at += c[t] as usize;
+        }
+    }
+    tile_start[ntiles] = at;
+    drop(counts);
+    let mut cells = vec![0u32; at];
+    let mut keys = vec![0u128; at];
+    let (cell_ptr, key_ptr) = (SendPtr(cells.as_mut_ptr()), SendPtr(keys.as_mut_ptr()));
+    jobs.par_iter().zip(cursors.par_iter_mut()).for_each(|(&job, cur)| {
+        src.visit(job, |cell, key| {
+            let c = &mut cur[tile_of(cell)];
+            // SAFETY: each job owns the slots [its cursor start, + its count) of
+            // every tile, disjoint from every other job's and within `at`.
+            unsafe {
+                *cell_ptr.get().add(*c) = cell;
+                *key_ptr.get().add(*c) = key;
+            }
+            *c += 1;
+        });
+    });
+    drop(cursors);
+    // Level 2: per tile, by cell, then sort and merge.
+    let tiles: Vec<(Vec<u32>, Vec<Interval>)> = (0..ntiles)
+        .into_par_iter()
+        .map(|t| {
+            let (ti, tj) = (t as u32 % tx, t as u32 / tx);
+            let (i0, j0) = (ti * TILE, tj * TILE);
+            let (w, h) = ((nx - i0).min(TILE), (ny - j0).min(TILE));
+            let local = |cell: u32| ((cell / nx - j0) * w + (cell % nx - i0)) as usize;
+            let (a, b) = (tile_start[t], tile_start[t + 1]);
+            let mut offs = vec![0u32; (w * h) as usize + 1];
+            for &c in &cells[a..b] {
+                offs[local(c) + 1] += 1;
+            }
+            for k in 1..offs.len() {
+                offs[k] += offs[k - 1];
+            }
+            let mut sorted = vec![0u128; b - a];
+            let mut cur = offs.clone();
+            for (&c, &k) in cells[a..b].iter().zip(&keys[a..b]) {
+                let l = local(c);
+                sorted[cur[l] as usize] = k;
+                cur[l] += 1;
+            }
+            let mut lens = Vec::with_capacity((w * h) as usize);
             let mut out = Vec::new();
-            for k in a..b {
-                let (s, e) = (counts[k] as usize, counts[k + 1] as usize);
-                // SAFETY: cell slices [s, e) of different cells never overlap, and
-                // each cell belongs to exactly one block.
-                let cell = unsafe { std::slice::from_raw_parts_mut(slot_ptr.get().add(s), e - s) };
+            for l in 0..(w * h) as usize {
                 let before = out.len();
-                merge_cell(cell, gap, mode, &mut out);
+                merge_cell(&mut sorted[offs[l] as usize..offs[l + 1] as usize], gap, mode, &mut out);
                 lens.push((out.len() - before) as u32);
             }
             (lens, out)
         })
         .collect();
+    drop((cells, keys));
+    // Row-major CSR from the tiles.
+    let n = spec.cells();
     let mut offsets = Vec::with_capacity(n + 1);
     offsets.push(0u32);
-    let mut intervals = Vec::new();
-    for (lens, out) in merged {
-        for l in lens {
-            offsets.push(offsets.last().copied().unwrap_or(0) + l);
+    let starts: Vec<Vec<u32>> = tiles
+        .iter()
+        .map(|(lens, _)| {
+            let mut s = Vec::with_capacity(lens.len() + 1);
+            s.push(0u32);
+            for l in lens {
+                s.push(s.last().copied().unwrap_or(0) + l);
+            }
+            s
+        })
+        .collect();
+    let total: usize = tiles.iter().map(|t| t.1.len()).sum();
+    let mut intervals = Vec::with_capacity(total);
+    for j in 0..ny {
+        let tj = j / TILE;
+        for ti in 0..tx {
+            let t = (tj * tx + ti) as usize;
+            let (i0, j0) = (ti * TILE, tj * TILE);
+            let w = (nx - i0).min(TILE);
+            let row = ((j - j0) * w) as usize;
+            let s = &starts[t];
+            let (a, b) = (s[row] as usize, s[row + w as usize] as usize);
+            intervals.extend_from_slice(&tiles[t].1[a..b]);
+            for l in row..row + w as usize {
+                offsets.push(offsets.last().copied().unwrap_or(0) + (s[l + 1] - s[l]));
+            }
         }
-        intervals.extend_from_slice(&out);
     }
     let mut m = Mdm { spec, mode, offsets, intervals, objects, pyramid: vec![] };
     m.build_pyramid();
@@ -355,11 +535,11 @@ pub fn assemble(raws: &[Raw], spec: GridSpec, mode: Mode, gap: f32, objects: Vec
 }
 
 #[derive(Clone, Copy)]
-struct SendPtr(*mut Raw);
-unsafe impl Send for SendPtr {}
-unsafe impl Sync for SendPtr {}
-impl SendPtr {
-    fn get(self) -> *mut Raw {
+struct SendPtr<T>(*mut T);
+unsafe impl<T> Send for SendPtr<T> {}
+unsafe impl<T> Sync for SendPtr<T> {}
+impl<T> SendPtr<T> {
+    fn get(self) -> *mut T {
         self.0
     }
 }
