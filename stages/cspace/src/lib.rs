@@ -313,6 +313,11 @@ impl CSpace {
         (i as f64 + 0.5) * self.swing_step
     }
 
+    /// The configuration at the centre of cell (i, k), rope `hoist_m`, load yaw 0.
+    pub fn cell_center(&self, i: u32, k: u32, hoist_m: f64) -> Config {
+        Config { swing_rad: self.swing_center(i), radial: self.row_center(k), hoist_m, load_yaw_rad: 0.0 }
+    }
+
     pub fn row_center(&self, k: u32) -> f64 {
         self.radial0 + (k as f64 + 0.5) * self.radial_step
     }
@@ -348,12 +353,7 @@ impl CSpace {
     /// `boom.rs` marks obstacle by obstacle; the benchmark compares the two.
     pub fn radial_cell_by_query(&self, p: &Problem, i: u32, k: u32) -> Option<CellHit> {
         let crane = &p.task.crane;
-        let c = Config {
-            swing_rad: self.swing_center(i),
-            radial: self.row_center(k),
-            hoist_m: crane.limits().hoist_m.0,
-            load_yaw_rad: 0.0,
-        };
+        let c = self.cell_center(i, k, crane.limits().hoist_m.0);
         crane.part_kinds().iter().filter(|k| k.dependence() == Dependence::SwingRadial).find_map(|&kind| {
             let b = crane.part(kind, &c, &p.task.load)?;
             let grow = p.task.clearance_m + self.cell_motion(crane, &b);
@@ -431,12 +431,7 @@ impl CSpace {
             .into_par_iter()
             .map(|idx| {
                 let (i, k) = (idx % self.ns, idx / self.ns);
-                let c = Config {
-                    swing_rad: self.swing_center(i),
-                    radial: self.row_center(k),
-                    hoist_m: 0.0,
-                    load_yaw_rad: 0.0,
-                };
+                let c = self.cell_center(i, k, 0.0);
                 let sheave = crane.sheave(&c);
                 let (Some(ci), Some(cj)) = (spec.col(sheave.x), spec.row(sheave.y)) else {
                     return self.cell_max_hoist(p, i, k);
@@ -459,7 +454,7 @@ impl CSpace {
     fn cell_max_hoist(&self, p: &Problem, i: u32, k: u32) -> f32 {
         let task = p.task;
         let crane = &task.crane;
-        let c = Config { swing_rad: self.swing_center(i), radial: self.row_center(k), hoist_m: 0.0, load_yaw_rad: 0.0 };
+        let c = self.cell_center(i, k, 0.0);
         let sheave = crane.sheave(&c);
         let motion = self.sheave_motion(crane, c.radial);
         let r = Self::envelope_radius(task) + task.clearance_m + motion;
@@ -482,12 +477,7 @@ impl CSpace {
             .map(|idx| {
                 let (i, k) = (idx % self.ns, idx / self.ns);
                 let mut bits = 0u64;
-                let c0 = Config {
-                    swing_rad: self.swing_center(i),
-                    radial: self.row_center(k),
-                    hoist_m: 0.0,
-                    load_yaw_rad: 0.0,
-                };
+                let c0 = self.cell_center(i, k, 0.0);
                 let sheave = crane.sheave(&c0);
                 let motion = self.sheave_motion(crane, c0.radial);
                 let r = Self::envelope_radius(task) + task.clearance_m + motion;
