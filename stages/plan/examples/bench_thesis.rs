@@ -175,7 +175,7 @@ fn run_many(plant: &Plant, map: &Mdm, world: &World, s: &Settings, runs: u64) ->
         let r = plan_lift(&plant.task, &site, s, seed);
         t.seconds += t0.elapsed().as_secs_f64();
         if let Err(e) = &r {
-            tracing::debug!("{} seed {seed}: {e}", plant.name);
+            eprintln!("{} seed {seed}: {e}", plant.name);
         }
         if let Ok((p, _)) = r {
             t.ok += 1;
@@ -201,6 +201,8 @@ fn main() {
     let grid_runs: u64 = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(10);
     // `shipped`: only the rows of the planner as shipped (restarts), no grid.
     let shipped_only = args.iter().any(|a| a == "shipped");
+    // `plant=N`: only that plant (1..3) in Table 4.11.
+    let only_plant: Option<usize> = args.iter().find_map(|a| a.strip_prefix("plant=")).and_then(|v| v.parse().ok());
     let plants = [plant1(), plant2(), plant3()];
     println!("# Planner: the thesis' experiments (Tables 4.11, 4.12, 4.15, 4.17)\n");
     println!(
@@ -217,7 +219,10 @@ fn main() {
     println!("| plant | fitness | success | published | swing ° | luff ° | hoist m | rotation ° | steps | s per run |");
     println!("|---|---|---|---|---|---|---|---|---|---|");
     let mut built = Vec::new();
-    for p in &plants {
+    for (k, p) in plants.iter().enumerate() {
+        if only_plant.is_some_and(|n| n != k + 1) {
+            continue;
+        }
         let m = map(&p.mesh);
         let world = World::new(&p.mesh, &[], &[]).expect("world");
         let rows = [
@@ -251,7 +256,7 @@ fn main() {
         }
         built.push((m, world));
     }
-    if shipped_only {
+    if shipped_only || only_plant.is_some() {
         return;
     }
     // Tables 4.15 / 4.17 on plant 3, one GA run each way per plan as in the thesis.
