@@ -138,6 +138,44 @@ fn plant3() -> Plant {
     }
 }
 
+/// The Table 4.14 plant: ~376k triangles (31,334 boxes) in a ring 14-60 m
+/// around the crane, up to 25 m high, with pick and set pads kept clear.
+fn plant_414() -> Plant {
+    use rand::{RngExt, SeedableRng};
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(376);
+    let mut m = TriMesh::default();
+    slab(&mut m);
+    let t = task("P4", (-45.0, 24.0, 0.5), (45.0, 24.0, 0.5));
+    let pad = |c: &liftplan_core::crane::Config| {
+        let b = t.crane.load_obb(c, &t.load);
+        ([b.center.x, b.center.y], 8.0)
+    };
+    let pads = [pad(&t.pick), pad(&t.set)];
+    let mut placed = 0;
+    while placed < 31_333 {
+        let (r, a) = (14.0 + rng.random::<f64>() * 46.0, rng.random::<f64>() * std::f64::consts::TAU);
+        let c = [r * a.cos(), r * a.sin(), rng.random::<f64>() * 25.0];
+        // The crane's carrier (20.5 m) and outriggers stand along y.
+        if c[0].abs() < 8.0 && c[1].abs() < 16.0 {
+            continue;
+        }
+        if pads.iter().any(|(p, d)| (c[0] - p[0]).hypot(c[1] - p[1]) < *d) {
+            continue;
+        }
+        let h = [0.2 + rng.random::<f64>() * 1.5, 0.2 + rng.random::<f64>() * 1.5, 0.2 + rng.random::<f64>() * 1.5];
+        let g = m.group_id(&format!("ITEM-{}", placed / 100));
+        m.add_box(g, [c[0] - h[0], c[1] - h[1], (c[2] - h[2]).max(0.0)], [c[0] + h[0], c[1] + h[1], c[2] + h[2]]);
+        placed += 1;
+    }
+    Plant {
+        name: "Table 4.14 plant",
+        what: "31,333 boxes in a ring 14-60 m around the crane, up to 26.5 m high, the crane's set-up area and pick and set pads (8 m) clear; 90° swing",
+        mesh: m,
+        task: t,
+        published: (0.0, 92.0),
+    }
+}
+
 fn map(mesh: &TriMesh) -> Mdm {
     let inp = liftplan_depthmap::Inputs { points: vec![], ground: vec![], mesh: mesh.clone() };
     liftplan_depthmap::build_cpu(&inp, &liftplan_depthmap::Settings::default()).expect("depth map").0
@@ -203,6 +241,11 @@ fn main() {
     let shipped_only = args.iter().any(|a| a == "shipped");
     // `plant=N`: only that plant (1..3) in Table 4.11.
     let only_plant: Option<usize> = args.iter().find_map(|a| a.strip_prefix("plant=")).and_then(|v| v.parse().ok());
+    // `t414=N`: only Table 4.14 (C-space strategies), N runs each.
+    if let Some(n) = args.iter().find_map(|a| a.strip_prefix("t414=")).and_then(|v| v.parse::<u64>().ok()) {
+        table_414(n);
+        return;
+    }
     let plants = [plant1(), plant2(), plant3()];
     println!("# Planner: the thesis' experiments (Tables 4.11, 4.12, 4.15, 4.17)\n");
     println!(
@@ -215,9 +258,11 @@ fn main() {
     for p in &plants {
         println!("- {}: {} ({} triangles)", p.name, p.what, p.mesh.triangle_count());
     }
-    println!("\n## Table 4.11 / 4.12: Ali et al.'s fitness vs MSPGA, {runs} runs each\n");
-    println!("| plant | fitness | success | published | swing ° | luff ° | hoist m | rotation ° | steps | s per run |");
-    println!("|---|---|---|---|---|---|---|---|---|---|");
+    if runs > 0 {
+        println!("\n## Table 4.11 / 4.12: Ali et al.'s fitness vs MSPGA, {runs} runs each\n");
+        println!("| plant | fitness | success | published | swing ° | luff ° | hoist m | rotation ° | steps | s per run |");
+        println!("|---|---|---|---|---|---|---|---|---|---|");
+    }
     let mut built = Vec::new();
     for (k, p) in plants.iter().enumerate() {
         if only_plant.is_some_and(|n| n != k + 1) {
@@ -231,7 +276,7 @@ fn main() {
             (Planner::Mspga, "MSPGA + 2 restarts (shipped)", None, 2),
         ];
         for (planner, label, published, restarts) in rows {
-            if shipped_only && restarts == 0 {
+            if runs == 0 || (shipped_only && restarts == 0) {
                 continue;
             }
             let mut s = Settings { planner, ..Settings::default() };
@@ -301,4 +346,60 @@ fn main() {
     table("Mean fitness (eq. 4.21) of the feasible plans:", &fitness, &|v| {
         if v.is_nan() { "-".into() } else { format!("{v:.1}") }
     });
+}
+
+/// Table 4.14: the three C-space strategies under MSPGA with 200 generations.
+fn table_414(runs: u64) {
+    use liftplan_cspace::Strategy;
+    let p = plant_414();
+    let t0 = Instant::now();
+    let m = map(&p.mesh);
+    let map_ms = t0.elapsed().as_secs_f64() * 1e3;
+    let world = World::new(&p.mesh, &[], &[]).expect("world");
+    let site = Site { map: &m, world: &world, charts: None };
+    println!("## Table 4.14: C-space strategies, {runs} runs each\n");
+    println!(
+        "{} ({} triangles; depth map {map_ms:.0} ms). MSPGA, population 100, 200 generations (no early stop), \
+         one GA run each way (restarts 0); plan ms is both swing directions, the shortcut and the planner's own \
+         check, without the validator; a run succeeds when the validator accepts the plan. {} threads.\n",
+        p.what,
+        p.mesh.triangle_count(),
+        rayon::current_num_threads()
+    );
+    println!("| strategy | prep ms | plan ms | success | mean motion cost | thesis prep ms | thesis plan ms | thesis success |");
+    println!("|---|---|---|---|---|---|---|---|");
+    let published = [(Strategy::Full, "C-space"), (Strategy::Online, "online"), (Strategy::Hybrid, "hybrid")];
+    let thesis = |st: Strategy| match st {
+        Strategy::Full => ("10,535", "789", "66 %"),
+        Strategy::Online => ("0", "3,999", "93 %"),
+        Strategy::Hybrid => ("1,034", "2,134", "92 %"),
+    };
+    for (strategy, _) in published {
+        let mut s = Settings::default();
+        s.cspace.strategy = strategy;
+        s.ga.max_generations = 200;
+        s.ga.stall_generations = 200;
+        s.ga.restarts = 0;
+        let (mut ok, mut prep, mut plan, mut cost) = (0, 0.0, 0.0, 0.0);
+        for seed in 0..runs {
+            match plan_lift(&p.task, &site, &s, seed) {
+                Ok((lp, cs)) => {
+                    ok += 1;
+                    cost += lp.planning.motion_cost;
+                    prep += cs.build_ms;
+                    plan += lp.planning.plan_ms - cs.build_ms;
+                }
+                Err(e) => eprintln!("{strategy:?} seed {seed}: {e}"),
+            }
+        }
+        let k = ok.max(1) as f64;
+        let (tp, tl, ts) = thesis(strategy);
+        println!(
+            "| {strategy:?} | {:.0} | {:.0} | {:.0} % ({ok}/{runs}) | {:.1} | {tp} | {tl} | {ts} |",
+            prep / k,
+            plan / k,
+            100.0 * ok as f64 / runs as f64,
+            cost / k
+        );
+    }
 }
