@@ -247,7 +247,7 @@ fn main() {
         return;
     }
     let plants = [plant1(), plant2(), plant3()];
-    println!("# Planner: the thesis' experiments (Tables 4.11, 4.12, 4.15, 4.17)\n");
+    println!("# Planner: the thesis' experiments (Tables 4.11, 4.12, 4.14, 4.15, 4.16)\n");
     println!(
         "Machine: {} threads. AC 700 with a 62.4 m boom (the thesis' boom length), 8 t skid 6 x 3 x 2.5 m, \
          1 m clearance, no load chart (geometry only). GA parameters of Table 4.10: population 100, string \
@@ -260,7 +260,9 @@ fn main() {
     }
     if runs > 0 {
         println!("\n## Table 4.11 / 4.12: Ali et al.'s fitness vs MSPGA, {runs} runs each\n");
-        println!("| plant | fitness | success | published | swing ° | luff ° | hoist m | rotation ° | steps | s per run |");
+        println!(
+            "| plant | fitness | success | published | swing ° | luff ° | hoist m | rotation ° | steps | s per run |"
+        );
         println!("|---|---|---|---|---|---|---|---|---|---|");
     }
     let mut built = Vec::new();
@@ -366,7 +368,9 @@ fn table_414(runs: u64) {
         p.mesh.triangle_count(),
         rayon::current_num_threads()
     );
-    println!("| strategy | prep ms | plan ms | success | mean motion cost | thesis prep ms | thesis plan ms | thesis success |");
+    println!(
+        "| strategy | prep ms | plan ms | success | mean motion cost | thesis prep ms | thesis plan ms | thesis success |"
+    );
     println!("|---|---|---|---|---|---|---|---|");
     let published = [(Strategy::Full, "C-space"), (Strategy::Online, "online"), (Strategy::Hybrid, "hybrid")];
     let thesis = |st: Strategy| match st {
