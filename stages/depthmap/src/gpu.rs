@@ -153,8 +153,9 @@ impl Gpu {
         self.dev.queue.submit([enc.finish()]);
     }
 
-    /// The point pass on the GPU: the same raw intervals, in the same order, as
-    /// [`crate::mdm::point_raws`].
+    /// The point pass on the GPU: every point's raw interval in every cell its
+    /// square touches, as the CPU assembly rasterises points
+    /// (`mdm::point_cells`), in point order.
     pub fn point_raws(&self, p: &LocalPoints, spec: &GridSpec, radius: f32, out: &mut Vec<Raw>) -> Result<(), String> {
         let inv = (1.0 / spec.cell) as f32;
         // Cells one point can touch, to size chunks under the binding limit.

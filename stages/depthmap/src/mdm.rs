@@ -167,31 +167,6 @@ fn point_cells(q: &[f32; 3], radius: f32, inv: f32, nx: i64, ny: i64, mut cell: 
     (q[2] - radius, q[2] + radius)
 }
 
-/// Pass 1 for points: the raw intervals of every point.
-pub fn point_raws(p: &LocalPoints, spec: &GridSpec, radius: f32, out: &mut Vec<Raw>) {
-    let inv = (1.0 / spec.cell) as f32;
-    let (nx, ny) = (spec.nx as i64, spec.ny as i64);
-    let parts: Vec<Vec<Raw>> = p
-        .xyz
-        .par_chunks(1 << 16)
-        .enumerate()
-        .map(|(ci, chunk)| {
-            let mut v = Vec::with_capacity(chunk.len() + chunk.len() / 4);
-            let mut cells = Vec::with_capacity(4);
-            for (k, q) in chunk.iter().enumerate() {
-                let obj = p.obj[(ci << 16) + k];
-                cells.clear();
-                let (zlo, zhi) = point_cells(q, radius, inv, nx, ny, |c| cells.push(c));
-                v.extend(cells.iter().map(|&cell| Raw { cell, zlo, zhi, obj, part: 0 }));
-            }
-            v
-        })
-        .collect();
-    for v in parts {
-        out.extend_from_slice(&v);
-    }
-}
-
 /// Clips a convex polygon to `coord[axis] >= v` (`keep_above`) or `<= v`.
 fn clip(poly: &[[f64; 3]], axis: usize, v: f64, keep_above: bool) -> Vec<[f64; 3]> {
     let inside = |p: &[f64; 3]| if keep_above { p[axis] >= v } else { p[axis] <= v };
@@ -332,11 +307,6 @@ fn merge_cell(raw: &mut [u128], gap: f32, mode: Mode, out: &mut Vec<Interval>) {
 pub struct PointSource<'a> {
     pub points: &'a LocalPoints,
     pub radius: f32,
-}
-
-/// Passes 2 to 5 on the CPU for raw intervals: see [`assemble_sources`].
-pub fn assemble(raws: &[Raw], spec: GridSpec, mode: Mode, gap: f32, objects: Vec<String>) -> Mdm {
-    assemble_sources(None, raws, spec, mode, gap, objects)
 }
 
 /// Tiles of `TILE x TILE` cells group the work of passes 2 to 5.
@@ -486,14 +456,15 @@ pub fn assemble_sources(
                 sorted[cur[l] as usize] = k;
                 cur[l] += 1;
             }
-            let mut lens = Vec::with_capacity((w * h) as usize);
+            // starts[l]..starts[l + 1]: the merged intervals of local cell l.
+            let mut starts = Vec::with_capacity((w * h) as usize + 1);
+            starts.push(0u32);
             let mut out = Vec::new();
             for l in 0..(w * h) as usize {
-                let before = out.len();
                 merge_cell(&mut sorted[offs[l] as usize..offs[l + 1] as usize], gap, mode, &mut out);
-                lens.push((out.len() - before) as u32);
+                starts.push(out.len() as u32);
             }
-            (lens, out)
+            (starts, out)
         })
         .collect();
     drop((cells, keys));
@@ -501,17 +472,6 @@ pub fn assemble_sources(
     let n = spec.cells();
     let mut offsets = Vec::with_capacity(n + 1);
     offsets.push(0u32);
-    let starts: Vec<Vec<u32>> = tiles
-        .iter()
-        .map(|(lens, _)| {
-            let mut s = Vec::with_capacity(lens.len() + 1);
-            s.push(0u32);
-            for l in lens {
-                s.push(s.last().copied().unwrap_or(0) + l);
-            }
-            s
-        })
-        .collect();
     let total: usize = tiles.iter().map(|t| t.1.len()).sum();
     let mut intervals = Vec::with_capacity(total);
     for j in 0..ny {
@@ -521,9 +481,9 @@ pub fn assemble_sources(
             let (i0, j0) = (ti * TILE, tj * TILE);
             let w = (nx - i0).min(TILE);
             let row = ((j - j0) * w) as usize;
-            let s = &starts[t];
+            let (s, out) = &tiles[t];
             let (a, b) = (s[row] as usize, s[row + w as usize] as usize);
-            intervals.extend_from_slice(&tiles[t].1[a..b]);
+            intervals.extend_from_slice(&out[a..b]);
             for l in row..row + w as usize {
                 offsets.push(offsets.last().copied().unwrap_or(0) + (s[l + 1] - s[l]));
             }

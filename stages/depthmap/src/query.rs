@@ -30,12 +30,7 @@ impl Mdm {
         if ci.is_empty() || cj.is_empty() {
             return f32::NEG_INFINITY;
         }
-        // The coarsest level where the rectangle spans at most 2 x 2 tiles.
-        let span = (ci.end - ci.start).max(cj.end - cj.start);
-        let mut lvl = 0usize;
-        while lvl + 1 < self.pyramid.len() && (1u32 << (lvl + 1)) < span {
-            lvl += 1;
-        }
+        let lvl = self.cover_level(&ci, &cj);
         let (w, _, data) = &self.pyramid[lvl];
         let mut m = f32::NEG_INFINITY;
         for j in (cj.start >> lvl)..=((cj.end - 1) >> lvl) {
@@ -44,6 +39,17 @@ impl Mdm {
             }
         }
         m
+    }
+
+    /// The coarsest pyramid level at which a block of cells spans at most
+    /// 2 x 2 tiles (or whatever the pyramid has).
+    fn cover_level(&self, ci: &std::ops::Range<u32>, cj: &std::ops::Range<u32>) -> usize {
+        let span = (ci.end - ci.start).max(cj.end - cj.start);
+        let mut lvl = 0usize;
+        while lvl + 1 < self.pyramid.len() && (1u32 << (lvl + 1)) < span {
+            lvl += 1;
+        }
+        lvl
     }
 
     /// Calls `f(i, j)` for every cell under the box's footprint, row by row.
@@ -84,11 +90,7 @@ impl Mdm {
         if ci.is_empty() || cj.is_empty() || self.pyramid.is_empty() {
             return None;
         }
-        let span = (ci.end - ci.start).max(cj.end - cj.start);
-        let mut lvl = 0usize;
-        while lvl + 1 < self.pyramid.len() && (1u32 << (lvl + 1)) < span {
-            lvl += 1;
-        }
+        let lvl = self.cover_level(&ci, &cj);
         for tj in (cj.start >> lvl)..=((cj.end - 1) >> lvl) {
             for ti in (ci.start >> lvl)..=((ci.end - 1) >> lvl) {
                 if let Some(h) = self.descend(b, zmin, &counts, lvl, ti, tj) {
@@ -109,10 +111,13 @@ impl Mdm {
         tj: u32,
     ) -> Option<Hit> {
         let (w, h, tops) = &self.pyramid[lvl];
-        if ti >= *w || tj >= *h || tops[(tj * w + ti) as usize] < zmin {
+        if ti >= *w || tj >= *h {
             return None;
         }
         let top = tops[(tj * w + ti) as usize];
+        if top < zmin {
+            return None;
+        }
         let s = self.spec;
         let (i0, j0) = (ti << lvl, tj << lvl);
         let (i1, j1) = (((ti + 1) << lvl).min(s.nx), ((tj + 1) << lvl).min(s.ny));
