@@ -35,6 +35,7 @@ use crate::{CSpace, CellHit, Problem, counts_for};
 use liftplan_core::crane::{Boom, PartKind};
 use liftplan_core::frame::{Mat3, Point3, Vec3};
 use liftplan_core::obb::Obb;
+use liftplan_depthmap::mdm::Interval;
 use rayon::prelude::*;
 use std::f64::consts::TAU;
 
@@ -222,6 +223,31 @@ fn rows_of(cs: &CSpace, lo: f64, hi: f64, mut emit: impl FnMut(u32, u32)) {
     }
 }
 
+/// The luff rows at which `strip` may meet each obstacle interval of a cell
+/// whose extent along the boom's plane is `[x0, x1]` from the pin (at height
+/// `pz`); intervals outside `[z_floor, z_ceil]` cannot be reached.
+fn cell_rows(
+    cs: &CSpace,
+    strip: &Strip,
+    cell: &[Interval],
+    (x0, x1): (f64, f64),
+    pz: f64,
+    (z_floor, z_ceil): (f64, f64),
+    mut emit: impl FnMut(u32, u32, u32),
+) {
+    for iv in cell {
+        if iv.zlo as f64 > z_ceil {
+            break;
+        }
+        if (iv.zhi as f64) < z_floor || !counts_for(PartKind::Boom, iv) {
+            continue;
+        }
+        if let Some((lo, hi)) = strip.luff_interval(x0, x1, iv.zlo as f64 - pz, iv.zhi as f64 - pz) {
+            rows_of(cs, lo, hi, |k0, k1| emit(k0, k1, iv.obj));
+        }
+    }
+}
+
 /// A block of the table blocked by one obstacle: swing columns `c0 ..= c0 + cn`
 /// (modulo a turn, `c0` in `0..ns`) and luff rows `k0 ..= k1`.
 #[derive(Debug, Clone, Copy)]
@@ -285,8 +311,9 @@ pub(crate) fn boom_hits(cs: &CSpace, p: &Problem, boom: &Boom, clearance: f64) -
     let (pa, pz) = (boom.pivot_x_m, o.z + boom.pivot_z_m);
     let far = Strip::new(boom, len, clearance, cs);
     let diag = spec.cell * std::f64::consts::SQRT_2;
-    // Beyond r_near every relevant point is in front of the pin's plane
-    // position (a > 0); the margin keeps the far bound on a tight.
+    // Beyond r_near every relevant point is in front of the pin (a > 0); the
+    // 2 m margin keeps the far bound on the distance along the plane,
+    // √(R² − lat²), within ~0.2 m of the truth.
     let r_near = (far.g + far.h - pa).max(0.0) + far.lat + 2.0;
     let near = Strip::new(boom, len, clearance + (r_near + diag) * cs.swing_step / 2.0, cs);
     let z_floor = pz - (len + near.g) * (-cs.radial0.sin()).max(0.0) - near.g - near.h;
@@ -320,27 +347,24 @@ pub(crate) fn boom_hits(cs: &CSpace, p: &Problem, boom: &Boom, clearance: f64) -
                     b0 = b0.min(b);
                     b1 = b1.max(b);
                 }
+                // Nearest the cell comes along any plane within reach across it.
+                let a_min = (r_min * r_min - far.lat * far.lat).sqrt();
                 // asin(lat / R_min), here R_min > lat.
-                let delta = atan2_fast(far.lat, (r_min * r_min - far.lat * far.lat).sqrt()) + ANGLE_TOL;
+                let delta = atan2_fast(far.lat, a_min) + ANGLE_TOL;
                 let c0 = floor((b0 - heading - delta - ANGLE_TOL) / swing_step) as i64;
                 let c1 = floor((b1 - heading + delta + ANGLE_TOL) / swing_step) as i64;
                 let (c0, cn) =
                     if c1 - c0 >= ns - 1 { (0, ns as u32 - 1) } else { (c0.rem_euclid(ns), (c1 - c0) as u32) };
-                let x0 = (r_min * r_min - far.lat * far.lat).max(0.0).sqrt() - pa;
-                let x1 = r_max - pa;
                 cell_runs.clear();
-                for iv in map.cell(ci, cj) {
-                    if iv.zlo as f64 > z_ceil {
-                        break;
-                    }
-                    if (iv.zhi as f64) < z_floor || !counts_for(PartKind::Boom, iv) {
-                        continue;
-                    }
-                    let Some((lo, hi)) = far.luff_interval(x0, x1, iv.zlo as f64 - pz, iv.zhi as f64 - pz) else {
-                        continue;
-                    };
-                    rows_of(cs, lo, hi, |k0, k1| cell_runs.push((k0, k1, iv.obj)));
-                }
+                cell_rows(
+                    cs,
+                    &far,
+                    map.cell(ci, cj),
+                    (a_min - pa, r_max - pa),
+                    pz,
+                    (z_floor, z_ceil),
+                    |k0, k1, obj| cell_runs.push((k0, k1, obj)),
+                );
                 // The cell's intervals share its columns: emit the union of
                 // their rows once, each row with an obstacle that covers it.
                 cell_runs.sort_unstable_by_key(|&(k0, k1, obj)| (k0, std::cmp::Reverse(k1), obj));
@@ -445,17 +469,9 @@ fn near_column(
         if b0 > near.lat || b1 < -near.lat {
             return true;
         }
-        for iv in map.cell(ci, cj) {
-            if iv.zlo as f64 > z_ceil {
-                break;
-            }
-            if (iv.zhi as f64) < z_floor || !counts_for(PartKind::Boom, iv) {
-                continue;
-            }
-            if let Some((lo, hi)) = near.luff_interval(a0 - pa, a1 - pa, iv.zlo as f64 - pz, iv.zhi as f64 - pz) {
-                rows_of(cs, lo, hi, |k0, k1| col.paint(k0, k1, iv.obj));
-            }
-        }
+        cell_rows(cs, near, map.cell(ci, cj), (a0 - pa, a1 - pa), pz, (z_floor, z_ceil), |k0, k1, obj| {
+            col.paint(k0, k1, obj)
+        });
         true
     });
 }

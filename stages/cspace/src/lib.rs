@@ -263,7 +263,7 @@ impl CSpace {
         }
         cs.timings.rows_ms = ms_since(t0);
         if s.strategy == Strategy::Online {
-            cs.build_ms = t0.elapsed().as_secs_f64() * 1e3;
+            cs.build_ms = ms_since(t0);
             return cs;
         }
         let clearance = task.clearance_m;
@@ -304,7 +304,7 @@ impl CSpace {
             cs.hoist_bits = cs.build_hoist_bits(p, s);
             cs.timings.hoist_bits_ms = ms_since(t_bits);
         }
-        cs.build_ms = t0.elapsed().as_secs_f64() * 1e3;
+        cs.build_ms = ms_since(t0);
         cs
     }
 
@@ -421,12 +421,8 @@ impl CSpace {
         let r_max = Self::envelope_radius(task) + task.clearance_m + motion_max;
         // Cells within r of any point of the sheave's cell are within w cells of it.
         let w = (r_max / spec.cell).ceil() as usize + 1;
-        let dilated = liftplan_depthmap::dilate::window_max(
-            &map.pyramid.first().map(|l| l.2.clone()).unwrap_or_default(),
-            spec.nx as usize,
-            spec.ny as usize,
-            w,
-        );
+        let tops = map.pyramid.first().map(|l| l.2.as_slice()).unwrap_or(&[]);
+        let dilated = liftplan_depthmap::dilate::window_max(tops, spec.nx as usize, spec.ny as usize, w);
         (0..self.nr * self.ns)
             .into_par_iter()
             .map(|idx| {
@@ -437,14 +433,11 @@ impl CSpace {
                     return self.cell_max_hoist(p, i, k);
                 };
                 let top = dilated[cj as usize * spec.nx as usize + ci as usize];
-                if top == f32::NEG_INFINITY {
-                    return f32::INFINITY;
-                }
                 let motion = self.sheave_motion(crane, c.radial);
-                if top as f64 >= sheave.z + motion {
+                if top != f32::NEG_INFINITY && top as f64 >= sheave.z + motion {
                     return f32::NEG_INFINITY;
                 }
-                (sheave.z - motion - top as f64 - task.clearance_m - Self::hang_below_rope(task)) as f32
+                Self::rope_clear_of(task, sheave.z - motion, top)
             })
             .collect()
     }
@@ -461,10 +454,17 @@ impl CSpace {
         let z_lo = sheave.z - motion;
         let z_hi = (sheave.z + motion) as f32;
         let top = highest_below(p.map, sheave.x - r, sheave.x + r, sheave.y - r, sheave.y + r, z_hi);
+        Self::rope_clear_of(task, z_lo, top)
+    }
+
+    /// Longest rope with the load's underside the clearance above `top` (the
+    /// highest obstacle under the envelope, `-inf`: none) when the sheave is no
+    /// lower than `sheave_z_lo`.
+    fn rope_clear_of(task: &LiftTask, sheave_z_lo: f64, top: f32) -> f32 {
         if top == f32::NEG_INFINITY {
             return f32::INFINITY;
         }
-        (z_lo - top as f64 - task.clearance_m - Self::hang_below_rope(task)) as f32
+        (sheave_z_lo - top as f64 - task.clearance_m - Self::hang_below_rope(task)) as f32
     }
 
     fn build_hoist_bits(&self, p: &Problem, s: &Settings) -> Vec<u64> {
