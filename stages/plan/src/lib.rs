@@ -193,6 +193,49 @@ pub fn landing_zones(task: &LiftTask, s: &Settings) -> Vec<LandingZone> {
         .collect()
 }
 
+/// One planner run from `start` to `goal`: the node path if it found a
+/// feasible one, and its statistics.
+fn search(
+    ck: &Checker,
+    start: &Config,
+    goal: &Config,
+    s: &Settings,
+    seed: u64,
+    purpose: &str,
+) -> (Option<Vec<Config>>, mspga::GaResult) {
+    match s.planner {
+        Planner::Mspga | Planner::AliGa => {
+            let kind = if s.planner == Planner::Mspga { mspga::Fitness::Mspga } else { mspga::Fitness::Ali };
+            let r = mspga::run(ck, start, goal, &s.ga, kind, seed, purpose);
+            match r.best.clone() {
+                Some(b) if b.n == 0 => (Some(b.genes), r),
+                Some(b) => {
+                    let why = mspga::first_problem(ck, &b.genes).map(|p| p.to_string()).unwrap_or_default();
+                    tracing::info!("{purpose}: no feasible path ({why})");
+                    (None, r)
+                }
+                None => (None, r),
+            }
+        }
+        Planner::RrtConnect | Planner::Prm => {
+            let r = if s.planner == Planner::RrtConnect {
+                baselines::rrt_connect(ck, start, goal, &s.baselines, &s.ga.weights, seed)
+            } else {
+                baselines::prm(ck, start, goal, &s.baselines, &s.ga.weights, seed)
+            };
+            let stats = mspga::GaResult {
+                best: None,
+                generations: r.iterations,
+                evaluations: r.edge_checks,
+                first_feasible: None,
+                best_fitness: vec![],
+                mean_fitness: vec![],
+            };
+            (r.found.then_some(r.nodes), stats)
+        }
+    }
+}
+
 /// Plans, shortens, validates one lift.
 pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Result<(LiftPlan, CSpace)> {
     let t0 = std::time::Instant::now();
@@ -275,46 +318,8 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
             {
                 continue;
             }
-            let (nodes, stats) = match s.planner {
-                Planner::Mspga | Planner::AliGa => {
-                    let kind = if s.planner == Planner::Mspga { mspga::Fitness::Mspga } else { mspga::Fitness::Ali };
-                    let r = mspga::run(
-                        &ck,
-                        &start,
-                        &goal,
-                        &s.ga,
-                        kind,
-                        seed,
-                        &format!("plan/{}/{label}{restart}", task.id),
-                    );
-                    let best = r.best.clone();
-                    match best {
-                        Some(b) if b.n == 0 => (Some(b.genes.clone()), r),
-                        Some(b) => {
-                            let why = mspga::first_problem(&ck, &b.genes).map(|p| p.to_string()).unwrap_or_default();
-                            tracing::info!("lift {}: {label}: no feasible path ({why})", task.id);
-                            (None, r)
-                        }
-                        None => (None, r),
-                    }
-                }
-                Planner::RrtConnect | Planner::Prm => {
-                    let r = if s.planner == Planner::RrtConnect {
-                        baselines::rrt_connect(&ck, &start, &goal, &s.baselines, &s.ga.weights, seed)
-                    } else {
-                        baselines::prm(&ck, &start, &goal, &s.baselines, &s.ga.weights, seed)
-                    };
-                    let stats = mspga::GaResult {
-                        best: None,
-                        generations: r.iterations,
-                        evaluations: r.edge_checks,
-                        first_feasible: None,
-                        best_fitness: vec![],
-                        mean_fitness: vec![],
-                    };
-                    (r.found.then_some(r.nodes), stats)
-                }
-            };
+            let purpose = format!("plan/{}/{label}{restart}", task.id);
+            let (nodes, stats) = search(&ck, &start, &goal, s, seed, &purpose);
             if let Some(nodes) = nodes {
                 let nodes = path::shortcut(&ck, &nodes, &s.ga.weights);
                 let moves = path::path_moves(&ck, &nodes);

@@ -125,8 +125,8 @@ fn nearest(world: &World, b: &Obb, ignore_ground: bool, cutoff_m: f64) -> Neares
     // far plus its half diagonal holds no nearer point: skipped unread. The
     // result is the same as reading every voxel.
     let far = |key: &[i32; 3], best: f64| {
-        let c = [0, 1, 2].map(|k| (key[k] as f64 + 0.5) * VOXEL_M);
-        box_point_distance(b, &c) - VOXEL_HALF_DIAGONAL_M > best
+        let c = key.map(|k| (k as f64 + 0.5) * VOXEL_M);
+        cub.distance_to_point(&pose, Vector::new(c[0], c[1], c[2]), true) - VOXEL_HALF_DIAGONAL_M > best
     };
     if n_vox as usize > world.points.cells.len() {
         for (key, pts) in &world.points.cells {
@@ -152,14 +152,6 @@ fn nearest(world: &World, b: &Obb, ignore_ground: bool, cutoff_m: f64) -> Neares
 }
 
 const VOXEL_HALF_DIAGONAL_M: f64 = 0.866_025_404 * VOXEL_M;
-
-/// Euclidean distance from a point to a box (0 inside), for skipping voxels.
-fn box_point_distance(b: &Obb, p: &[f64; 3]) -> f64 {
-    let d = liftplan_core::frame::Vec3::new(p[0] - b.center.x, p[1] - b.center.y, p[2] - b.center.z);
-    let local = b.axes.transpose() * d;
-    let out = [0, 1, 2].map(|k| (local[k].abs() - b.half[k]).max(0.0));
-    (out[0] * out[0] + out[1] * out[1] + out[2] * out[2]).sqrt()
-}
 
 /// The lift's rules, as the validator applies them.
 #[derive(Debug, Clone, Serialize)]
