@@ -100,19 +100,22 @@ impl VoxelGrid {
         self.has_intensity |= !c.intensity.is_empty();
         self.has_rgb |= !c.rgb.is_empty();
         let inv = self.inv;
-        // Voxel index per point; the first bad point in input order is reported.
+        // Voxel index and shard per point; the first bad point in input order is reported.
         let mut keys: Vec<Key> = vec![[0; 3]; c.len()];
-        keys.par_chunks_mut(TASK_POINTS).enumerate().try_for_each(|(t, out)| -> Result<(), String> {
-            for (j, k) in out.iter_mut().enumerate() {
-                let p = &c.xyz[t * TASK_POINTS + j];
-                *k = key(p, inv).ok_or_else(|| {
-                    format!("point {:?} is too far from the origin for a {} m voxel grid", p, 1.0 / inv)
-                })?;
-            }
-            Ok(())
-        })?;
+        let mut shard: Vec<u8> = vec![0; c.len()];
+        keys.par_chunks_mut(TASK_POINTS).zip(shard.par_chunks_mut(TASK_POINTS)).enumerate().try_for_each(
+            |(t, (out, sh))| -> Result<(), String> {
+                for (j, (k, s)) in out.iter_mut().zip(sh.iter_mut()).enumerate() {
+                    let p = &c.xyz[t * TASK_POINTS + j];
+                    *k = key(p, inv).ok_or_else(|| {
+                        format!("point {:?} is too far from the origin for a {} m voxel grid", p, 1.0 / inv)
+                    })?;
+                    *s = shard_of(k) as u8;
+                }
+                Ok(())
+            },
+        )?;
         // Counting sort of point indices by shard, keeping input order within one.
-        let shard: Vec<u8> = keys.par_iter().map(|k| shard_of(k) as u8).collect();
         let mut start = [0usize; SHARDS + 1];
         for &s in &shard {
             start[s as usize + 1] += 1;
