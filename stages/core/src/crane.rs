@@ -507,6 +507,20 @@ impl LoadShape {
     }
 }
 
+/// The rope from the sheave down to the hook.
+fn rope_below(sheave: Point3, slew: Mat3, c: &Config) -> Obb {
+    let h = c.hoist_m.max(0.0);
+    Obb::new(Point3::new(sheave.x, sheave.y, sheave.z - h / 2.0), slew, Vec3::new(0.05, 0.05, h / 2.0))
+}
+
+/// The slings and spreader: the load's footprint, `rigging_height_m` tall, on top of it.
+fn rigging_above(l: &Obb, load: &LoadShape) -> Obb {
+    let h = load.rigging_height_m.max(0.0);
+    let mut b = Obb::new(l.center + Vec3::z() * (l.half.z + h / 2.0), l.axes, l.half);
+    b.half.z = h / 2.0;
+    b
+}
+
 /// A load pose: box-centre plan position, underside height and yaw (site frame).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct LoadPose {
@@ -624,7 +638,34 @@ impl CraneSetup {
 
     /// The load box at a configuration.
     pub fn load_obb(&self, c: &Config, load: &LoadShape) -> Obb {
+        self.load_below(self.sheave(c), c, load)
+    }
+
+    /// Load, rigging, hook block and rope at one configuration, in that order:
+    /// the boxes [`Self::part`] gives for them, from one evaluation of the
+    /// sheave and the rotations (the planner checks these at every sample).
+    pub fn hanging_parts(&self, c: &Config, load: &LoadShape) -> [(PartKind, Obb); 4] {
         let s = self.sheave(c);
+        let slew = rot_z(self.placement.heading_rad + c.swing_rad);
+        let l = self.load_below(s, c, load);
+        [
+            (PartKind::Load, l),
+            (PartKind::Rigging, rigging_above(&l, load)),
+            (PartKind::HookBlock, self.hook_block_below(s, slew, c)),
+            (PartKind::Rope, rope_below(s, slew, c)),
+        ]
+    }
+
+    fn hook_block_below(&self, sheave: Point3, slew: Mat3, c: &Config) -> Obb {
+        let hook = &self.model.hook;
+        Obb::new(
+            Point3::new(sheave.x, sheave.y, sheave.z - c.hoist_m - hook.height_m / 2.0),
+            slew,
+            Vec3::new(hook.width_m / 2.0, hook.width_m / 2.0, hook.height_m / 2.0),
+        )
+    }
+
+    fn load_below(&self, s: Point3, c: &Config, load: &LoadShape) -> Obb {
         let drop = c.hoist_m + self.model.hook.height_m + load.rigging_height_m + load.size_m[2] / 2.0;
         let r = rot_z(c.load_yaw_rad);
         let cog = r * Vec3::new(load.cog_m[0], load.cog_m[1], 0.0);
@@ -650,29 +691,11 @@ impl CraneSetup {
             let local = Vec3::new(b.center_x_m, b.center_y_m, b.base_z_m + b.height_m / 2.0);
             Obb::new(o + r * local, *r, Vec3::new(b.length_m / 2.0, b.width_m / 2.0, b.height_m / 2.0))
         };
-        let hook = &self.model.hook;
         match (&self.model.kind, kind) {
             (_, PartKind::Load) => Some(self.load_obb(c, load)),
-            (_, PartKind::Rigging) => {
-                let l = self.load_obb(c, load);
-                let h = load.rigging_height_m.max(0.0);
-                let mut b = Obb::new(l.center + Vec3::z() * (l.half.z + h / 2.0), l.axes, l.half);
-                b.half.z = h / 2.0;
-                Some(b)
-            }
-            (_, PartKind::Rope) => {
-                let s = self.sheave(c);
-                let h = c.hoist_m.max(0.0);
-                Some(Obb::new(Point3::new(s.x, s.y, s.z - h / 2.0), slew, Vec3::new(0.05, 0.05, h / 2.0)))
-            }
-            (_, PartKind::HookBlock) => {
-                let s = self.sheave(c);
-                Some(Obb::new(
-                    Point3::new(s.x, s.y, s.z - c.hoist_m - hook.height_m / 2.0),
-                    slew,
-                    Vec3::new(hook.width_m / 2.0, hook.width_m / 2.0, hook.height_m / 2.0),
-                ))
-            }
+            (_, PartKind::Rigging) => Some(rigging_above(&self.load_obb(c, load), load)),
+            (_, PartKind::Rope) => Some(rope_below(self.sheave(c), slew, c)),
+            (_, PartKind::HookBlock) => Some(self.hook_block_below(self.sheave(c), slew, c)),
             (CraneKind::Luffing(l), PartKind::Carrier) => Some(place_box(&l.carrier, &fixed)),
             (CraneKind::Luffing(l), PartKind::Outriggers) => {
                 let g = &l.outriggers;
@@ -857,6 +880,20 @@ mod tests {
         for n in builtin_names() {
             let m = builtin(n).unwrap();
             assert!(!m.source.is_empty(), "{n} must say where its dimensions come from");
+        }
+    }
+
+    #[test]
+    fn hanging_parts_are_the_parts() {
+        let c = mobile();
+        for q in [
+            Config { swing_rad: 0.0, radial: 0.5, hoist_m: 12.0, load_yaw_rad: 0.0 },
+            Config { swing_rad: -2.7, radial: 1.2, hoist_m: 3.5, load_yaw_rad: 1.1 },
+            Config { swing_rad: 7.0, radial: 0.2, hoist_m: 40.0, load_yaw_rad: -0.4 },
+        ] {
+            for (kind, b) in c.hanging_parts(&q, &load()) {
+                assert_eq!(Some(b), c.part(kind, &q, &load()), "{kind:?} at {q:?}");
+            }
         }
     }
 

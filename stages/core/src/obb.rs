@@ -35,6 +35,18 @@ impl Obb {
         Obb { half: self.half.add_scalar(margin), ..*self }
     }
 
+    /// The box grown to hold every point within `horizontal_m` horizontally and
+    /// `vertical_m` vertically of it: the region a box sweeps when each of its
+    /// points moves at most that far that way. Exact growth of the half sizes
+    /// for upright boxes; any other box grows by the larger of the two on every side.
+    pub fn expanded_by_motion(&self, horizontal_m: f64, vertical_m: f64) -> Obb {
+        if !self.is_upright() {
+            return self.expanded(horizontal_m.max(vertical_m));
+        }
+        let half = Vec3::new(self.half.x + horizontal_m, self.half.y + horizontal_m, self.half.z + vertical_m);
+        Obb { half, ..*self }
+    }
+
     /// The box with its underside raised by `by_m` (at most half its height),
     /// top unchanged: a part standing or resting on a surface, with that surface
     /// not counted as an obstacle. For boxes whose third axis is vertical (crane

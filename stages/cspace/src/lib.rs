@@ -574,7 +574,9 @@ impl LandingZone {
 
     /// Does the zone hold the whole footprint of `b`?
     pub fn holds(&self, b: &Obb) -> bool {
-        b.footprint().iter().all(|p| inside_convex(&self.polygon, p))
+        // The zone is convex: the box's footprint (the hull of its corners) is
+        // inside exactly when every corner is.
+        b.corners().iter().all(|c| inside_convex(&self.polygon, &[c.x, c.y]))
     }
 }
 
@@ -600,11 +602,71 @@ fn inside_convex(poly: &[[f64; 2]], p: &[f64; 2]) -> bool {
     true
 }
 
+/// How far the hanging parts may move, horizontally and vertically (m), over
+/// the piece of a move that one configuration's check stands for.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Sweep {
+    horizontal_m: f64,
+    vertical_m: f64,
+}
+
+impl Sweep {
+    const NONE: Sweep = Sweep { horizontal_m: 0.0, vertical_m: 0.0 };
+
+    /// Swinging and turning the load move every hanging point on a horizontal
+    /// circle, hoisting moves it straight up or down, a trolley moves it along
+    /// the jib; luffing moves the sheave on a circle in the boom's plane, so the
+    /// load moves both ways.
+    fn of(joint: Joint, luffing: bool, reach_m: f64) -> Sweep {
+        let (horizontal, vertical) = match joint {
+            Joint::Swing | Joint::Rotate => (true, false),
+            Joint::Hoist => (false, true),
+            Joint::Radial => (true, luffing),
+        };
+        Sweep { horizontal_m: if horizontal { reach_m } else { 0.0 }, vertical_m: if vertical { reach_m } else { 0.0 } }
+    }
+}
+
 /// Counters of what the checker did (for the strategy benchmark).
+///
+/// Every thread counts in its own cache line: one shared pair of atomics,
+/// bumped from every thread thousands of times per string, cost the GA a
+/// tenth of its time in cache-line transfers.
 #[derive(Debug, Default)]
 pub struct Counters {
-    pub lookups: std::sync::atomic::AtomicU64,
-    pub box_queries: std::sync::atomic::AtomicU64,
+    slots: [CounterSlot; COUNTER_SLOTS],
+}
+
+const COUNTER_SLOTS: usize = 32;
+
+#[derive(Debug, Default)]
+#[repr(align(128))]
+struct CounterSlot {
+    lookups: std::sync::atomic::AtomicU64,
+    box_queries: std::sync::atomic::AtomicU64,
+}
+
+impl Counters {
+    fn slot(&self) -> &CounterSlot {
+        use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
+        static NEXT: AtomicUsize = AtomicUsize::new(0);
+        thread_local!(static SLOT: usize = NEXT.fetch_add(1, Relaxed) % COUNTER_SLOTS);
+        &self.slots[SLOT.with(|s| *s)]
+    }
+
+    fn total(&self, pick: impl Fn(&CounterSlot) -> &std::sync::atomic::AtomicU64) -> u64 {
+        self.slots.iter().map(|s| pick(s).load(std::sync::atomic::Ordering::Relaxed)).sum()
+    }
+
+    /// Table lookups so far.
+    pub fn lookups(&self) -> u64 {
+        self.total(|s| &s.lookups)
+    }
+
+    /// Box queries against the depth map so far.
+    pub fn box_queries(&self) -> u64 {
+        self.total(|s| &s.box_queries)
+    }
 }
 
 /// The collision, clearance, capacity and internal-clearance checker the
@@ -625,10 +687,11 @@ impl<'a> Checker<'a> {
 
     fn count(&self, box_query: bool) {
         use std::sync::atomic::Ordering::Relaxed;
+        let slot = self.counters.slot();
         if box_query {
-            self.counters.box_queries.fetch_add(1, Relaxed);
+            slot.box_queries.fetch_add(1, Relaxed);
         } else {
-            self.counters.lookups.fetch_add(1, Relaxed);
+            slot.lookups.fetch_add(1, Relaxed);
         }
     }
 
@@ -707,16 +770,17 @@ impl<'a> Checker<'a> {
     }
 
     /// Rope, hook block and load at one configuration, each box grown by the
-    /// clearance (less inside a landing zone) plus `grow`.
-    fn hanging_exact(&self, c: &Config, grow: f64, landing: bool) -> Result<(), Blocked> {
-        let crane = &self.task.crane;
-        let load_box = crane.load_obb(c, &self.task.load);
-        let zone = if landing { self.landing.iter().find(|z| z.holds(&load_box)) } else { None };
+    /// clearance (less inside a landing zone) and by how far its points may
+    /// move over the piece of a move the configuration stands for.
+    fn hanging_exact(&self, c: &Config, sweep: Sweep, landing: bool) -> Result<(), Blocked> {
+        let parts = self.task.crane.hanging_parts(c, &self.task.load);
+        let load_box = &parts[0].1;
+        let zone = if landing { self.landing.iter().find(|z| z.holds(load_box)) } else { None };
         let clearance = zone.map(|z| z.clearance_m).unwrap_or(self.task.clearance_m);
-        for kind in [PartKind::Load, PartKind::Rigging, PartKind::HookBlock, PartKind::Rope] {
-            let Some(b) = crane.part(kind, c, &self.task.load) else { continue };
+        for (kind, b) in parts {
             self.count(true);
-            if let Some(h) = self.map.hit(&b.expanded(clearance + grow)) {
+            let grown = b.expanded(clearance).expanded_by_motion(sweep.horizontal_m, sweep.vertical_m);
+            if let Some(h) = self.map.hit(&grown) {
                 return Err(self.blocked("collision", Some(kind), Some(h.interval.obj), c));
             }
         }
@@ -727,29 +791,31 @@ impl<'a> Checker<'a> {
     /// `c` be answered from the tables?
     fn hanging_lookup(&self, c: &Config, h_max: f64) -> bool {
         let cs = self.cs;
-        match cs.strategy {
-            Strategy::Online => false,
-            Strategy::Hybrid => {
-                self.count(false);
-                let (i, k) = (cs.col(c.swing_rad), cs.row(c.radial).unwrap_or(0));
-                h_max <= cs.max_hoist[(k * cs.ns + i) as usize] as f64
-            }
-            Strategy::Full => {
-                self.count(false);
-                let (i, k) = (cs.col(c.swing_rad), cs.row(c.radial).unwrap_or(0));
-                let idx = (k * cs.ns + i) as usize;
-                if h_max <= cs.max_hoist[idx] as f64 {
-                    return true;
-                }
-                let b_hi = ((h_max - cs.hoist0) / cs.hoist_step).floor() as i64;
-                if !(0..64).contains(&b_hi) {
-                    return false;
-                }
-                // Longer ropes hang lower: the column test at bucket b covers every
-                // shorter rope too, so one bit decides.
-                cs.hoist_bits[idx] & (1 << b_hi) == 0
-            }
+        if cs.strategy == Strategy::Online {
+            return false;
         }
+        let (i, k) = (cs.col(c.swing_rad), cs.row(c.radial).unwrap_or(0));
+        self.table_covers((k * cs.ns + i) as usize, h_max)
+    }
+
+    /// Do the tables vouch for the hanging parts in cell `idx` at rope lengths
+    /// up to `h_max`?
+    fn table_covers(&self, idx: usize, h_max: f64) -> bool {
+        let cs = self.cs;
+        self.count(false);
+        if h_max <= cs.max_hoist[idx] as f64 {
+            return true;
+        }
+        if cs.strategy != Strategy::Full {
+            return false;
+        }
+        let b_hi = ((h_max - cs.hoist0) / cs.hoist_step).floor() as i64;
+        if !(0..64).contains(&b_hi) {
+            return false;
+        }
+        // Longer ropes hang lower: the column test at bucket b covers every
+        // shorter rope too, so one bit decides.
+        cs.hoist_bits[idx] & (1 << b_hi) == 0
     }
 
     /// Everything at one configuration: limits, capacity, internal clearance,
@@ -760,31 +826,24 @@ impl<'a> Checker<'a> {
         if self.hanging_lookup(c, c.hoist_m) {
             return Ok(());
         }
-        self.hanging_exact(c, 0.0, true)
+        self.hanging_exact(c, Sweep::NONE, true)
     }
 
     /// A single-joint move from `from` to the joint value `to`, continuously.
     ///
-    /// Table answers cover whole cells, so a move is checked cell by cell along
-    /// its path. Where a table cannot answer, the move is sampled so that no
-    /// point of the hanging parts moves more than `sample_m` between samples;
-    /// each sample's boxes are grown by `sample_m / 2`, so together they cover
-    /// the swept volume.
+    /// With the tables, whose answers cover whole cells, the move is walked
+    /// cell by cell: every cell it enters is looked up, and the stretches of
+    /// the move in cells where the tables cannot vouch for the hanging parts
+    /// are checked exactly ([`Self::exact_piece`]). Online, the body and boom
+    /// are checked at sub-steps at most one grid step apart and the hanging
+    /// parts exactly over the whole move.
     pub fn motion(&self, from: &Config, joint: Joint, to: f64) -> Result<(), Blocked> {
-        let mut a = from.to_array();
-        let v0 = a[joint.index()];
+        let v0 = from.to_array()[joint.index()];
         if (to - v0).abs() < 1e-12 {
             return self.config(from);
         }
-        let cs = self.cs;
         let crane = &self.task.crane;
-        // Cell boundaries crossed (swing and radial moves change cells).
-        let step = match joint {
-            Joint::Swing => cs.swing_step,
-            Joint::Radial => cs.radial_step,
-            _ => f64::INFINITY,
-        };
-        // Per-sample displacement bound of the hanging parts per unit of the joint.
+        // How far (m) a hanging point can move per unit of the joint.
         let lever = match joint {
             Joint::Swing => {
                 crane.radius_m(from.radial)
@@ -801,54 +860,130 @@ impl<'a> Checker<'a> {
             Joint::Hoist => 1.0,
             Joint::Rotate => self.task.load.bounding_radius() * 2.0,
         };
-        // Coarse sub-steps of at most one cell: consecutive samples lie in the
-        // same or neighbouring cells, so every cell the move crosses is looked up.
-        let n = if step.is_finite() { (((to - v0).abs() / step).ceil() as usize).max(1) } else { 1 };
-        let mut prev = v0;
-        // Runs of sub-steps the tables cannot vouch for, checked exactly below.
+        if self.cs.strategy == Strategy::Online {
+            self.motion_sampled(from, joint, to, lever)
+        } else {
+            self.motion_by_cells(from, joint, to, lever)
+        }
+    }
+
+    fn motion_by_cells(&self, from: &Config, joint: Joint, to: f64, lever: f64) -> Result<(), Blocked> {
+        let cs = self.cs;
+        let a = from.to_array();
+        let v0 = a[joint.index()];
+        let end = self.with(&a, joint, to);
+        // The joint moves monotonically: its range, and the row's capacity and
+        // internal clearance for a move that stays in one row, hold at both ends.
+        self.limits_ok(from)?;
+        self.limits_ok(&end)?;
+        let h_max = from.hoist_m.max(end.hoist_m);
+        // The move's cells: along the swing columns or the radial rows for those
+        // joints (cell j spans [origin + j·step, origin + (j+1)·step)), else the one
+        // cell it turns or hoists in.
+        let grid = match joint {
+            Joint::Swing => Some((0.0, cs.swing_step)),
+            Joint::Radial => Some((cs.radial0, cs.radial_step)),
+            Joint::Hoist | Joint::Rotate => None,
+        };
+        let cell_of = |v: f64| grid.map(|(origin, step)| ((v - origin) / step).floor() as i64).unwrap_or(0);
+        let (j0, j1) = (cell_of(v0), cell_of(to));
+        if j0.abs_diff(j1) > 4 * (cs.ns as u64 + cs.nr as u64) {
+            return Err(self.blocked("joint limit (move longer than the crane's range)", None, None, from));
+        }
+        let up = to > v0;
+        let (i_from, k_from) = (cs.col(from.swing_rad), cs.row(from.radial).unwrap_or(0));
+        // Start of the stretch the tables cannot vouch for, if one is open.
         let mut run: Option<f64> = None;
+        let mut j = j0;
+        loop {
+            let (xa, xb) = match grid {
+                Some((origin, step)) => {
+                    let (lo, hi) = (origin + j as f64 * step, origin + (j + 1) as f64 * step);
+                    if up { (v0.max(lo), to.min(hi)) } else { (v0.min(hi), to.max(lo)) }
+                }
+                None => (v0, to),
+            };
+            let (i, k) = match joint {
+                Joint::Swing => (j.rem_euclid(cs.ns as i64) as u32, k_from),
+                Joint::Radial => (i_from, j.clamp(0, cs.nr as i64 - 1) as u32),
+                Joint::Hoist | Joint::Rotate => (i_from, k_from),
+            };
+            if joint == Joint::Radial {
+                let at = self.with(&a, joint, xa);
+                self.row_ok(k, &at)?;
+                if from.hoist_m < cs.row_min_hoist[k as usize] - 1e-9 {
+                    return Err(self.blocked(
+                        "internal clearance (load too close to the boom)",
+                        Some(PartKind::Load),
+                        None,
+                        &at,
+                    ));
+                }
+            }
+            let idx = (k * cs.ns + i) as usize;
+            if let Some(h) = cs.swing_hits[i as usize].or(cs.cell_hits[idx]) {
+                return Err(self.blocked("collision", Some(h.part), Some(h.obj), &self.with(&a, joint, xa)));
+            }
+            if self.table_covers(idx, h_max) {
+                if let Some(r0) = run.take() {
+                    self.exact_piece(&a, joint, r0, xa, lever)?;
+                }
+            } else if run.is_none() {
+                run = Some(xa);
+            }
+            if j == j1 {
+                if let Some(r0) = run {
+                    self.exact_piece(&a, joint, r0, xb, lever)?;
+                }
+                return Ok(());
+            }
+            j += if up { 1 } else { -1 };
+        }
+    }
+
+    /// Online: body and boom at sub-steps at most one grid step apart (each
+    /// box query covers half a step either way), the hanging parts exactly.
+    fn motion_sampled(&self, from: &Config, joint: Joint, to: f64, lever: f64) -> Result<(), Blocked> {
+        let cs = self.cs;
+        let mut a = from.to_array();
+        let v0 = a[joint.index()];
+        let step = match joint {
+            Joint::Swing => cs.swing_step,
+            Joint::Radial => cs.radial_step,
+            Joint::Hoist | Joint::Rotate => f64::INFINITY,
+        };
+        let n = if step.is_finite() { (((to - v0).abs() / step).ceil() as usize).max(1) } else { 1 };
         for s in 0..=n {
-            let v = v0 + (to - v0) * s as f64 / n as f64;
-            a[joint.index()] = v;
+            a[joint.index()] = v0 + (to - v0) * s as f64 / n as f64;
             let c = Config::from_array(a);
             self.limits_ok(&c)?;
             self.structure_ok(&c)?;
-            if s == 0 {
-                continue;
-            }
-            let h_max = if joint == Joint::Hoist { v.max(prev) } else { c.hoist_m };
-            let cp = self.with(&a, joint, prev);
-            if self.hanging_lookup(&c, h_max) && self.hanging_lookup(&cp, h_max) {
-                if let Some(r0) = run.take() {
-                    self.exact_piece(&a, joint, r0, prev, lever)?;
-                }
-            } else if run.is_none() {
-                run = Some(prev);
-            }
-            prev = v;
         }
-        if let Some(r0) = run {
-            self.exact_piece(&a, joint, r0, prev, lever)?;
-        }
-        Ok(())
+        self.exact_piece(&a, joint, v0, to, lever)
     }
 
     /// Exact check of the hanging parts over the joint range [x0, x1] of a move.
     ///
     /// The configuration at the middle, with the boxes grown by half the travel
-    /// of the range (`lever` metres per joint unit), covers every configuration
+    /// of the range (`lever` metres per joint unit) the way the joint moves them
+    /// (swing, load rotation and a tower crane's trolley only horizontally,
+    /// hoisting only vertically, luffing both ways), covers every configuration
     /// of the range. Far from obstacles one such query settles a long range;
     /// where it hits, the range is halved, down to pieces of `sample_m` travel,
-    /// which must pass. Only those smallest pieces may use a landing zone's
-    /// reduced clearance.
+    /// which must pass. Only those smallest pieces (and hoisting, see below)
+    /// may use a landing zone's reduced clearance.
     fn exact_piece(&self, a: &[f64; 4], joint: Joint, x0: f64, x1: f64, lever: f64) -> Result<(), Blocked> {
         let travel = (x1 - x0).abs() * lever;
         let xm = 0.5 * (x0 + x1);
         let mid = self.with(a, joint, xm);
-        if travel <= self.sample_m {
-            return self.hanging_exact(&mid, travel / 2.0, true);
+        let sweep = Sweep::of(joint, is_luffing(&self.task.crane), travel / 2.0);
+        // Hoisting keeps the load's footprint, so a landing zone holds all of
+        // the range or none of it, and the grown box is the exact swept volume:
+        // one query answers for every piece the range would be halved into.
+        if travel <= self.sample_m || joint == Joint::Hoist {
+            return self.hanging_exact(&mid, sweep, true);
         }
-        if self.hanging_exact(&mid, travel / 2.0, false).is_ok() {
+        if self.hanging_exact(&mid, sweep, false).is_ok() {
             return Ok(());
         }
         self.exact_piece(a, joint, x0, xm, lever)?;

@@ -87,8 +87,13 @@ proptest! {
             if ck.config(&c).is_ok() {
                 prop_assert!(exact_free(&t, &map, &c), "checker says free, exact check collides at {c:?}");
             }
-            // Luff and hoist moves the checker passes are exactly free at fine samples.
-            for (joint, to) in [(Joint::Radial, lim.radial.0 + u() * (lim.radial.1 - lim.radial.0)), (Joint::Hoist, lim.hoist_m.0 + u() * 30.0)] {
+            // Luff, hoist and load-rotation moves the checker passes are exactly free at fine samples.
+            let moves = [
+                (Joint::Radial, lim.radial.0 + u() * (lim.radial.1 - lim.radial.0)),
+                (Joint::Hoist, lim.hoist_m.0 + u() * 30.0),
+                (Joint::Rotate, c.load_yaw_rad + (u() - 0.5) * 3.0),
+            ];
+            for (joint, to) in moves {
                 if ck.motion(&c, joint, to).is_ok() {
                     for k in 0..=200 {
                         let mut a = c.to_array();

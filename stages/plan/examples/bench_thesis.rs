@@ -243,7 +243,9 @@ fn main() {
     let only_plant: Option<usize> = args.iter().find_map(|a| a.strip_prefix("plant=")).and_then(|v| v.parse().ok());
     // `t414=N`: only Table 4.14 (C-space strategies), N runs each.
     if let Some(n) = args.iter().find_map(|a| a.strip_prefix("t414=")).and_then(|v| v.parse::<u64>().ok()) {
-        table_414(n);
+        // `strategy=NAME`: only that strategy's row (hybrid, full, online).
+        let only = args.iter().find_map(|a| a.strip_prefix("strategy=")).map(str::to_lowercase);
+        table_414(n, only.as_deref());
         return;
     }
     let plants = [plant1(), plant2(), plant3()];
@@ -351,7 +353,7 @@ fn main() {
 }
 
 /// Table 4.14: the three C-space strategies under MSPGA with 200 generations.
-fn table_414(runs: u64) {
+fn table_414(runs: u64, only: Option<&str>) {
     use liftplan_cspace::Strategy;
     let p = plant_414();
     let t0 = Instant::now();
@@ -369,9 +371,9 @@ fn table_414(runs: u64) {
         rayon::current_num_threads()
     );
     println!(
-        "| strategy | prep ms | plan ms | success | mean motion cost | thesis prep ms | thesis plan ms | thesis success |"
+        "| strategy | prep ms | plan ms | success | mean motion cost | table lookups per plan | box queries per plan | thesis prep ms | thesis plan ms | thesis success |"
     );
-    println!("|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|---|");
     // Strategy, and the thesis' prep ms, plan ms and success (its "C-space" is our `full`).
     let rows = [
         (Strategy::Full, "10,535", "789", "66 %"),
@@ -379,12 +381,16 @@ fn table_414(runs: u64) {
         (Strategy::Hybrid, "1,034", "2,134", "92 %"),
     ];
     for (strategy, tp, tl, ts) in rows {
+        if only.is_some_and(|o| o != format!("{strategy:?}").to_lowercase()) {
+            continue;
+        }
         let mut s = Settings::default();
         s.cspace.strategy = strategy;
         s.ga.max_generations = 200;
         s.ga.stall_generations = 200;
         s.ga.restarts = 0;
         let (mut ok, mut prep, mut plan, mut cost) = (0, 0.0, 0.0, 0.0);
+        let (mut lookups, mut queries) = (0, 0);
         for seed in 0..runs {
             match plan_lift(&p.task, &site, &s, seed) {
                 Ok((lp, cs)) => {
@@ -392,17 +398,21 @@ fn table_414(runs: u64) {
                     cost += lp.planning.motion_cost;
                     prep += cs.build_ms;
                     plan += lp.planning.plan_ms - cs.build_ms;
+                    lookups += lp.planning.table_lookups;
+                    queries += lp.planning.box_queries;
                 }
                 Err(e) => eprintln!("{strategy:?} seed {seed}: {e}"),
             }
         }
         let k = ok.max(1) as f64;
         println!(
-            "| {strategy:?} | {:.0} | {:.0} | {:.0} % ({ok}/{runs}) | {:.1} | {tp} | {tl} | {ts} |",
+            "| {strategy:?} | {:.0} | {:.0} | {:.0} % ({ok}/{runs}) | {:.1} | {:.2e} | {:.2e} | {tp} | {tl} | {ts} |",
             prep / k,
             plan / k,
             100.0 * ok as f64 / runs as f64,
-            cost / k
+            cost / k,
+            lookups as f64 / k,
+            queries as f64 / k,
         );
     }
 }

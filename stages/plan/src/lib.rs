@@ -374,7 +374,6 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
     }
     let steps = steps::steps(task, &all, &verdict);
     let summary = steps::summary(task, &steps, &verdict);
-    use std::sync::atomic::Ordering::Relaxed;
     let plan = LiftPlan {
         lift: task.id.clone(),
         description: task.description.clone(),
@@ -411,8 +410,8 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
             plan_ms,
             swing_direction: label.to_string(),
             attempts,
-            table_lookups: ck.counters.lookups.load(Relaxed),
-            box_queries: ck.counters.box_queries.load(Relaxed),
+            table_lookups: ck.counters.lookups(),
+            box_queries: ck.counters.box_queries(),
             convergence_best: stats.best_fitness,
             convergence_mean: stats.mean_fitness,
         },
