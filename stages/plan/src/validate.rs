@@ -93,13 +93,13 @@ fn nearest(world: &World, b: &Obb, ignore_ground: bool, cutoff_m: f64) -> Neares
     let (pose, cub) = parry_box(b);
     let mut best = Nearest { distance_m: f64::INFINITY, object: String::new(), at: None };
     if let Some(m) = &world.mesh
-        && let Ok(d) = query::distance(&pose, &cub, &Pose::identity(), m)
+        && let Some((distance_m, tri)) = mesh_nearest(m, b)
     {
         let c = b.center;
-        let on_tri = m.triangle(d.subshape2).project_local_point(Vector::new(c.x, c.y, c.z), true).point;
+        let on_tri = m.triangle(tri).project_local_point(Vector::new(c.x, c.y, c.z), true).point;
         best = Nearest {
-            distance_m: d.distance,
-            object: world.tri_group.get(d.subshape2 as usize).cloned().unwrap_or_default(),
+            distance_m,
+            object: world.tri_group.get(tri as usize).cloned().unwrap_or_default(),
             at: Some([on_tri.x, on_tri.y, on_tri.z]),
         };
     }
@@ -149,6 +149,62 @@ fn nearest(world: &World, b: &Obb, ignore_ground: bool, cutoff_m: f64) -> Neares
         }
     }
     best
+}
+
+/// Longest side of the pieces a box is cut into for the mesh search (m).
+const PIECE_M: f64 = 4.0;
+
+/// Exact distance from a box to the plant mesh, and the nearest triangle.
+///
+/// The mesh's BVH is searched best-first with a node's bound taken from the
+/// query's axis-aligned box; an inclined 60 m boom's is tens of metres wide
+/// and prunes almost nothing. So the box is cut into pieces at most
+/// `PIECE_M` long (their union is the box, so the smallest piece distance is
+/// the box's distance) and each piece is searched with its own tight bound and
+/// the best distance so far as the cut-off.
+fn mesh_nearest(m: &ParryMesh, b: &Obb) -> Option<(f64, u32)> {
+    let mut best: Option<(f64, u32)> = None;
+    for piece in pieces(b, PIECE_M) {
+        let (pose, cub) = parry_box(&piece);
+        let bb = piece.aabb();
+        let gap = |lo: f64, hi: f64, a: f64, b: f64| (lo - b).max(a - hi).max(0.0);
+        let node_bound = |node: &parry3d_f64::partitioning::BvhNode, _: f64| {
+            let (lo, hi) = (node.mins(), node.maxs());
+            let dx = gap(lo.x, hi.x, bb.min[0], bb.max[0]);
+            let dy = gap(lo.y, hi.y, bb.min[1], bb.max[1]);
+            let dz = gap(lo.z, hi.z, bb.min[2], bb.max[2]);
+            (dx * dx + dy * dy + dz * dz).sqrt()
+        };
+        let tri_distance =
+            |t: u32, _: f64| query::distance(&pose, &cub, &Pose::identity(), &m.triangle(t)).ok().map(|d| d.distance);
+        let cutoff = best.map(|(d, _)| d).unwrap_or(f64::MAX);
+        if let Some((t, d)) = m.bvh().find_best(cutoff, node_bound, tri_distance)
+            && best.is_none_or(|(bd, _)| d < bd)
+        {
+            best = Some((d, t));
+        }
+    }
+    best
+}
+
+/// `b` cut into equal pieces at most `max_m` long along each of its axes.
+fn pieces(b: &Obb, max_m: f64) -> Vec<Obb> {
+    let n = [0, 1, 2].map(|k| ((2.0 * b.half[k] / max_m).ceil() as usize).clamp(1, 64));
+    let half = liftplan_core::frame::Vec3::new(b.half.x / n[0] as f64, b.half.y / n[1] as f64, b.half.z / n[2] as f64);
+    let mut out = Vec::with_capacity(n[0] * n[1] * n[2]);
+    for i in 0..n[0] {
+        for j in 0..n[1] {
+            for k in 0..n[2] {
+                let at = |idx: usize, nk: usize, h: f64| (2.0 * idx as f64 + 1.0 - nk as f64) * h;
+                let center = b.center
+                    + b.axis(0) * at(i, n[0], half.x)
+                    + b.axis(1) * at(j, n[1], half.y)
+                    + b.axis(2) * at(k, n[2], half.z);
+                out.push(Obb::new(center, b.axes, half));
+            }
+        }
+    }
+    out
 }
 
 const VOXEL_HALF_DIAGONAL_M: f64 = 0.866_025_404 * VOXEL_M;
@@ -396,5 +452,54 @@ pub fn validate(
         problems,
         samples: total,
         seconds: t0.elapsed().as_secs_f64(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use liftplan_core::frame::{Mat3, Point3, Vec3, rot_z};
+    use proptest::prelude::*;
+
+    fn clutter(seed: u64) -> TriMesh {
+        let mut mesh = TriMesh::default();
+        let mut s = seed | 1;
+        let mut u = || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            (s >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for k in 0..40 {
+            let g = mesh.group_id(&format!("B{k}"));
+            let (x, y, z) = (u() * 80.0 - 40.0, u() * 80.0 - 40.0, u() * 20.0);
+            let (hx, hy, hz) = (0.2 + u() * 3.0, 0.2 + u() * 3.0, 0.2 + u() * 6.0);
+            mesh.add_box(g, [x - hx, y - hy, z], [x + hx, y + hy, z + 2.0 * hz]);
+        }
+        mesh
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(24))]
+        /// Cutting the box into pieces gives the distance of the whole box.
+        #[test]
+        fn pieces_give_the_box_distance(
+            seed in any::<u64>(),
+            centre in prop::array::uniform3(-30.0f64..30.0),
+            half in prop::array::uniform3(0.05f64..35.0),
+            yaw in -3.2f64..3.2,
+            tilt in -1.5f64..1.5,
+        ) {
+            let mesh = clutter(seed);
+            let world = World::new(&mesh, &[], &[]).unwrap();
+            let m = world.mesh.as_ref().unwrap();
+            let (st, ct) = tilt.sin_cos();
+            let axes: Mat3 = rot_z(yaw) * Mat3::new(ct, 0.0, st, 0.0, 1.0, 0.0, -st, 0.0, ct);
+            let b = Obb::new(Point3::new(centre[0], centre[1], centre[2] + 15.0), axes, Vec3::new(half[0], half[1], half[2]));
+            let (pose, cub) = parry_box(&b);
+            let whole = query::distance(&pose, &cub, &Pose::identity(), m).unwrap().distance;
+            let (cut, _) = mesh_nearest(m, &b).unwrap();
+            prop_assert!((cut - whole).abs() < 1e-6, "pieces {cut} vs whole box {whole}");
+        }
     }
 }
