@@ -7,9 +7,12 @@
 //!   al.'s fitness vs MSPGA's, on three plants: (1) process units between pick
 //!   and set, (2) the set position on a structure higher than the obstacles
 //!   between, (3) obstacles much higher than pick and set.
-//! - Tables 4.15/4.17: success rate and mean fitness of feasible results over
-//!   GRID_RUNS seeds for a grid of crossover (rc) and mutation (rm) rates on
-//!   plant 3 (the "higher obstacle" plant of Experiment 4.3.1).
+//! - Tables 4.15-4.18: success rate and mean fitness of feasible results over
+//!   GRID_RUNS seeds for the thesis' 6 x 6 grid of crossover (rc) and mutation
+//!   (rm) rates on plant 3 (Experiment 4.3.1) and on plant 3 with its columns
+//!   lowered to 14 m (Experiment 4.3.2), next to the thesis' values.
+//! - Table 4.14 (`-- 0 0 t414=N`): the three C-space strategies on a
+//!   376k-triangle plant, N runs each (`strategy=NAME` runs one).
 //!
 //! Every run is the product's own `plan_lift`: MSPGA (or the GA with Ali's
 //! fitness) both ways round, shortcut, and the independent validator; a run
@@ -121,20 +124,30 @@ fn plant2() -> Plant {
 
 /// Plant 3: obstacles much higher than pick and set.
 fn plant3() -> Plant {
+    plant3_with_columns(32.0)
+}
+
+/// Plant 3 with its columns `top` metres high (Experiment 4.3.2 lowers them
+/// so that the crane need not raise its boom over them).
+fn plant3_with_columns(top: f64) -> Plant {
     let mut m = TriMesh::default();
     slab(&mut m);
     for k in 0..6 {
         let x0 = 8.0 + 9.0 * k as f64;
-        add_box(&mut m, &format!("COLUMN-{}", k + 1), [x0, -2.5, 0.0], [x0 + 9.0, 2.5, 32.0]);
+        add_box(&mut m, &format!("COLUMN-{}", k + 1), [x0, -2.5, 0.0], [x0 + 9.0, 2.5, top]);
     }
     unit_at(&mut m, "BRIDGE", -20.0, 16.0, [1.0, 5.0], 10.0, 11.0);
     Plant {
-        name: "Plant 3",
-        what: "a row of 32 m columns from 8 to 62 m out between pick and set, and a pipe bridge; 83° swing, \
-               pick and set at grade",
+        name: if top >= 30.0 { "Plant 3" } else { "Plant 3, lower columns" },
+        what: if top >= 30.0 {
+            "a row of 32 m columns from 8 to 62 m out between pick and set, and a pipe bridge; 83° swing, \
+             pick and set at grade"
+        } else {
+            "plant 3 with its columns 14 m high (Experiment 4.3.2)"
+        },
         mesh: m,
         task: task("P3", (-40.0, 22.0, 0.5), (43.0, 24.0, 0.5)),
-        published: Some((0.0, 96.0)),
+        published: if top >= 30.0 { Some((0.0, 96.0)) } else { None },
     }
 }
 
@@ -260,6 +273,9 @@ fn main() {
     for p in &plants {
         println!("- {}: {} ({} triangles)", p.name, p.what, p.mesh.triangle_count());
     }
+    println!(
+        "- Plant 3, lower columns: plant 3 with its columns 14 m high instead of 32 m (Experiment 4.3.2: the crane need not raise its boom over them)"
+    );
     if runs > 0 {
         println!("\n## Table 4.11 / 4.12: Ali et al.'s fitness vs MSPGA, {runs} runs each\n");
         println!(
@@ -305,51 +321,95 @@ fn main() {
         }
         built.push((m, world));
     }
-    if shipped_only || only_plant.is_some() {
+    if shipped_only || only_plant.is_some() || grid_runs == 0 {
         return;
     }
-    // Tables 4.15 / 4.17 on plant 3, one GA run each way per plan as in the thesis.
-    let rcs = [0.05, 0.15, 0.40, 0.75];
-    let rms = [0.05, 0.25, 0.55, 0.75];
-    let (m, world) = &built[2];
-    let mut success = vec![];
-    let mut fitness = vec![];
-    for &rc in &rcs {
-        let mut srow = vec![];
-        let mut frow = vec![];
-        for &rm in &rms {
-            let mut s = Settings::default();
-            s.ga.restarts = 0;
-            s.ga.crossover_rate = rc;
-            s.ga.mutation_rate = rm;
-            let t = run_many(&plants[2], m, world, &s, grid_runs);
-            srow.push(t.ok as f64 / t.runs as f64);
-            frow.push(if t.ok == 0 { f64::NAN } else { t.fitness / t.ok as f64 });
+    let low = plant3_with_columns(14.0);
+    let built_low = (map(&low.mesh), World::new(&low.mesh, &[], &[]).expect("world"));
+    // Tables 4.15-4.18: the thesis' grid of rates on plant 3 (Experiment 4.3.1)
+    // and on plant 3 with lower columns (4.3.2), one GA run each way per plan.
+    let experiments = [
+        ("4.15 / 4.16", "Experiment 4.3.1, plant 3", &plants[2], &built[2], &THESIS_4_15, &THESIS_4_16),
+        ("4.17 / 4.18", "Experiment 4.3.2, plant 3 with 14 m columns", &low, &built_low, &THESIS_4_17, &THESIS_4_18),
+    ];
+    for (tables, what, plant, (m, world), thesis_success, thesis_fitness) in experiments {
+        let mut success = [[0.0; 6]; 6];
+        let mut fitness = [[f64::NAN; 6]; 6];
+        for (a, &rc) in RATES.iter().enumerate() {
+            for (b, &rm) in RATES.iter().enumerate() {
+                let mut s = Settings::default();
+                s.ga.restarts = 0;
+                s.ga.crossover_rate = rc;
+                s.ga.mutation_rate = rm;
+                let t = run_many(plant, m, world, &s, grid_runs);
+                success[a][b] = t.ok as f64 / t.runs as f64;
+                if t.ok > 0 {
+                    fitness[a][b] = t.fitness / t.ok as f64;
+                }
+            }
         }
-        success.push(srow);
-        fitness.push(frow);
+        println!("\n## Tables {tables}: crossover and mutation rates, {what}, {grid_runs} runs per cell");
+        println!("\nEach cell: ours (thesis, 50 runs on its own plant).");
+        grid_table("Probability of a feasible (validated) plan:", &success, thesis_success, 2);
+        grid_table("Mean fitness (eq. 4.21) of the feasible plans:", &fitness, thesis_fitness, 1);
     }
-    let table = |title: &str, rows: &[Vec<f64>], fmt: &dyn Fn(f64) -> String| {
-        println!("\n{title}\n");
-        print!("| |");
-        for rm in rms {
-            print!(" rm = {rm:.2} |");
+}
+
+/// The thesis' crossover and mutation rates (Tables 4.15-4.18).
+const RATES: [f64; 6] = [0.05, 0.15, 0.25, 0.40, 0.55, 0.75];
+
+/// Cai 2016 Tables 4.15-4.18, rows rc, columns rm, in the order of `RATES`.
+const THESIS_4_15: [[f64; 6]; 6] = [
+    [0.18, 0.42, 0.62, 0.68, 0.86, 0.94],
+    [0.12, 0.32, 0.56, 0.76, 0.9, 0.92],
+    [0.2, 0.38, 0.72, 0.7, 0.82, 1.0],
+    [0.2, 0.36, 0.72, 0.66, 0.88, 0.88],
+    [0.18, 0.46, 0.6, 0.74, 0.76, 0.72],
+    [0.12, 0.12, 0.32, 0.32, 0.5, 0.54],
+];
+const THESIS_4_16: [[f64; 6]; 6] = [
+    [2621.57, 2641.26, 2697.87, 2695.51, 2669.43, 2687.2],
+    [2583.56, 2689.6, 2690.29, 2695.53, 2661.03, 2680.24],
+    [2671.82, 2691.26, 2690.43, 2680.13, 2698.68, 2695.71],
+    [2690.81, 2698.15, 2693.12, 2683.36, 2687.22, 2693.53],
+    [2676.43, 2688.1, 2683.17, 2668.07, 2673.2, 2678.88],
+    [2692.9, 2659.97, 2673.0, 2684.72, 2673.45, 2677.55],
+];
+const THESIS_4_17: [[f64; 6]; 6] = [
+    [0.26, 0.46, 0.64, 0.7, 0.82, 0.86],
+    [0.14, 0.42, 0.7, 0.82, 0.84, 0.94],
+    [0.26, 0.64, 0.58, 0.84, 0.96, 0.96],
+    [0.24, 0.54, 0.7, 0.78, 0.9, 0.98],
+    [0.26, 0.38, 0.56, 0.66, 0.88, 0.86],
+    [0.08, 0.44, 0.54, 0.42, 0.46, 0.6],
+];
+const THESIS_4_18: [[f64; 6]; 6] = [
+    [2732.36, 2816.53, 2878.26, 2894.7, 2852.79, 2898.74],
+    [2873.98, 2884.97, 2889.7, 2912.74, 2892.72, 2887.05],
+    [2792.33, 2876.66, 2872.2, 2887.83, 2892.21, 2888.91],
+    [2845.68, 2844.28, 2875.95, 2885.69, 2879.5, 2871.27],
+    [2797.59, 2748.11, 2808.0, 2870.67, 2871.94, 2874.16],
+    [2841.87, 2839.74, 2834.0, 2846.18, 2832.1, 2862.73],
+];
+
+/// One rc x rm table, ours next to the thesis'.
+fn grid_table(title: &str, ours: &[[f64; 6]; 6], thesis: &[[f64; 6]; 6], digits: usize) {
+    println!("\n{title}\n");
+    print!("| |");
+    for rm in RATES {
+        print!(" rm = {rm:.2} |");
+    }
+    println!();
+    println!("|---|{}", "---|".repeat(RATES.len()));
+    for (a, rc) in RATES.iter().enumerate() {
+        print!("| rc = {rc:.2} |");
+        for b in 0..RATES.len() {
+            let v = ours[a][b];
+            let mine = if v.is_nan() { "-".to_string() } else { format!("{v:.digits$}") };
+            print!(" {mine} ({:.digits$}) |", thesis[a][b]);
         }
         println!();
-        println!("|---|{}", "---|".repeat(rms.len()));
-        for (rc, row) in rcs.iter().zip(rows) {
-            print!("| rc = {rc:.2} |");
-            for v in row {
-                print!(" {} |", fmt(*v));
-            }
-            println!();
-        }
-    };
-    println!("\n## Tables 4.15 / 4.16: crossover and mutation rates on plant 3, {grid_runs} runs per cell");
-    table("Probability of a feasible (validated) plan:", &success, &|v| format!("{v:.2}"));
-    table("Mean fitness (eq. 4.21) of the feasible plans:", &fitness, &|v| {
-        if v.is_nan() { "-".into() } else { format!("{v:.1}") }
-    });
+    }
 }
 
 /// Table 4.14: the three C-space strategies under MSPGA with 200 generations.
