@@ -86,27 +86,26 @@ fn floor(x: f64) -> f64 {
     if t > c { t - 1.0 } else { t }
 }
 
-/// The grown boom in its plane: length `len` from the pin, grown by `g` at both
-/// ends, half thickness `h` in the plane, half width `lat` across it (m).
+/// The grown boom in its plane: length `len` from the pin (see [`Strip::new`]),
+/// grown by `g` at both ends, half thickness `h` in the plane, half width `lat`
+/// across it (m).
 #[derive(Debug, Clone, Copy)]
 struct Strip {
-    len: f64,
     g: f64,
     h: f64,
     lat: f64,
     /// Lowest and highest luff of the table (rad).
     luff_range: (f64, f64),
+    /// Farthest point of the strip from the pin (a corner of its far end),
+    /// `hypot(len + g, h)`: computed once, it is needed for every interval.
+    reach: f64,
 }
 
 impl Strip {
     fn new(boom: &Boom, len: f64, g: f64, cs: &CSpace) -> Strip {
         let luff_range = (cs.radial0, cs.radial0 + cs.nr as f64 * cs.radial_step);
-        Strip { len, g, h: boom.depth_m / 2.0 + g, lat: boom.width_m / 2.0 + g, luff_range }
-    }
-
-    /// Farthest point of the strip from the pin (a corner of its far end).
-    fn reach(&self) -> f64 {
-        (self.len + self.g).hypot(self.h)
+        let h = boom.depth_m / 2.0 + g;
+        Strip { g, h, lat: boom.width_m / 2.0 + g, luff_range, reach: (len + g).hypot(h) }
     }
 
     /// Luff angles (rad) at which the strip may meet the plane rectangle
@@ -127,7 +126,7 @@ impl Strip {
             0.0
         };
         let rho2 = dx * dx + dy * dy;
-        let reach = self.reach();
+        let reach = self.reach;
         if rho2 > reach * reach {
             return None;
         }
@@ -226,6 +225,13 @@ fn rows_of(cs: &CSpace, lo: f64, hi: f64, mut emit: impl FnMut(u32, u32)) {
 /// The luff rows at which `strip` may meet each obstacle interval of a cell
 /// whose extent along the boom's plane is `[x0, x1]` from the pin (at height
 /// `pz`); intervals outside `[z_floor, z_ceil]` cannot be reached.
+///
+/// Intervals less than the strip's thickness `2h` apart are taken together:
+/// wherever the strip has its full thickness, its vertical chord is at least
+/// `2h` long, so it cannot meet the gap between them without meeting one of
+/// them in the same column, and the rows are those of the two. Only at the
+/// strip's ends can this block a row more (never less). Cluttered sites (pipe
+/// racks, stacked steel) have many such intervals per cell.
 fn cell_rows(
     cs: &CSpace,
     strip: &Strip,
@@ -235,16 +241,31 @@ fn cell_rows(
     (z_floor, z_ceil): (f64, f64),
     mut emit: impl FnMut(u32, u32, u32),
 ) {
+    let mut flush = |(zlo, zhi, obj): (f64, f64, u32)| {
+        if let Some((lo, hi)) = strip.luff_interval(x0, x1, zlo - pz, zhi - pz) {
+            rows_of(cs, lo, hi, |k0, k1| emit(k0, k1, obj));
+        }
+    };
+    let mut run: Option<(f64, f64, u32)> = None;
     for iv in cell {
-        if iv.zlo as f64 > z_ceil {
+        let (zlo, zhi) = (iv.zlo as f64, iv.zhi as f64);
+        if zlo > z_ceil {
             break;
         }
-        if (iv.zhi as f64) < z_floor || !counts_for(PartKind::Boom, iv) {
+        if zhi < z_floor || !counts_for(PartKind::Boom, iv) {
             continue;
         }
-        if let Some((lo, hi)) = strip.luff_interval(x0, x1, iv.zlo as f64 - pz, iv.zhi as f64 - pz) {
-            rows_of(cs, lo, hi, |k0, k1| emit(k0, k1, iv.obj));
-        }
+        run = match run {
+            Some((lo, hi, obj)) if zlo - hi < 2.0 * strip.h => Some((lo, hi.max(zhi), obj)),
+            Some(done) => {
+                flush(done);
+                Some((zlo, zhi, iv.obj))
+            }
+            None => Some((zlo, zhi, iv.obj)),
+        };
+    }
+    if let Some(done) = run {
+        flush(done);
     }
 }
 
@@ -273,13 +294,20 @@ impl Column {
 
     fn paint(&mut self, k0: u32, k1: u32, obj: u32) {
         let k1 = k1.min(self.hits.len() as u32 - 1);
-        if k0 > k1 {
-            return;
+        if k0 <= k1 {
+            self.paint_rows(&RowMask::new(k0, k1), obj);
         }
-        for w in (k0 / 64)..=(k1 / 64) {
-            let lo = if w == k0 / 64 { k0 % 64 } else { 0 };
-            let hi = if w == k1 / 64 { k1 % 64 } else { 63 };
-            let mask = (u64::MAX >> (63 - hi)) & (u64::MAX << lo);
+    }
+
+    fn paint_rows(&mut self, rows: &RowMask, obj: u32) {
+        for w in rows.w0..=rows.w1 {
+            let mut mask = u64::MAX;
+            if w == rows.w0 {
+                mask &= rows.first;
+            }
+            if w == rows.w1 {
+                mask &= rows.last;
+            }
             let word = &mut self.painted[w as usize];
             let mut free = mask & !*word;
             *word |= mask;
@@ -288,6 +316,22 @@ impl Column {
                 free &= free - 1;
             }
         }
+    }
+}
+
+/// Rows `k0 ..= k1` (k0 <= k1) as bit masks over a column's 64-row words:
+/// words `w0 ..= w1`, the first and last of them masked. Computed once per
+/// span and applied to each of its ~20 columns.
+struct RowMask {
+    w0: u32,
+    w1: u32,
+    first: u64,
+    last: u64,
+}
+
+impl RowMask {
+    fn new(k0: u32, k1: u32) -> RowMask {
+        RowMask { w0: k0 / 64, w1: k1 / 64, first: u64::MAX << (k0 % 64), last: u64::MAX >> (63 - k1 % 64) }
     }
 }
 
@@ -317,8 +361,8 @@ pub(crate) fn boom_hits(cs: &CSpace, p: &Problem, boom: &Boom, clearance: f64) -
     let r_near = (far.g + far.h - pa).max(0.0) + far.lat + 2.0;
     let near = Strip::new(boom, len, clearance + (r_near + diag) * cs.swing_step / 2.0, cs);
     let z_floor = pz - (len + near.g) * (-cs.radial0.sin()).max(0.0) - near.g - near.h;
-    let z_ceil = pz + near.reach();
-    let r_lim = (pa.abs() + far.reach()).hypot(far.lat);
+    let z_ceil = pz + near.reach;
+    let r_lim = (pa.abs() + far.reach).hypot(far.lat);
 
     // Far cells: one span per interval (per luff-row run), in cell order.
     let (ns, swing_step) = (cs.ns as i64, cs.swing_step);
@@ -329,6 +373,18 @@ pub(crate) fn boom_hits(cs: &CSpace, p: &Problem, boom: &Boom, clearance: f64) -
         .flat_map_iter(|&cj| {
             let mut out: Vec<Span> = Vec::new();
             let mut cell_runs: Vec<(u32, u32, u32)> = Vec::new();
+            if cols.is_empty() {
+                return out;
+            }
+            // Bearings of the row's grid corners from the axis, each computed
+            // once for the two cells that share it: [bottom, top] per grid line.
+            let first = spec.rect(cols.start, cj);
+            let corner_bearings: Vec<[f64; 2]> = cols
+                .clone()
+                .map(|ci| spec.rect(ci, cj)[0])
+                .chain([spec.rect(cols.end - 1, cj)[1]])
+                .map(|x| [first[2], first[3]].map(|y| atan2_fast(y - o.y, x - o.x)))
+                .collect();
             for ci in cols.clone() {
                 if (map.top(ci, cj) as f64) < z_floor {
                     continue;
@@ -341,9 +397,9 @@ pub(crate) fn boom_hits(cs: &CSpace, p: &Problem, boom: &Boom, clearance: f64) -
                 // Bearing window of the cell from the axis.
                 let wrap = r[1] < o.x && r[2] <= o.y && r[3] >= o.y;
                 let (mut b0, mut b1) = (f64::INFINITY, f64::NEG_INFINITY);
-                for (x, y) in [(r[0], r[2]), (r[1], r[2]), (r[0], r[3]), (r[1], r[3])] {
-                    let b = atan2_fast(y - o.y, x - o.x);
-                    let b = if wrap { b.rem_euclid(TAU) } else { b };
+                let k = (ci - cols.start) as usize;
+                for b in corner_bearings[k].iter().chain(&corner_bearings[k + 1]) {
+                    let b = if wrap { b.rem_euclid(TAU) } else { *b };
                     b0 = b0.min(b);
                     b1 = b1.max(b);
                 }
@@ -387,25 +443,45 @@ pub(crate) fn boom_hits(cs: &CSpace, p: &Problem, boom: &Boom, clearance: f64) -
         })
         .collect();
 
-    // Columns in blocks: near cells per column, then the far spans.
+    // Columns in blocks: near cells per column, then the far spans. Each
+    // block gets the spans that reach it, in their order (the first obstacle
+    // to cover a cell is the one reported, so the order must not change).
     const BLOCK: u32 = 120;
-    let blocks: Vec<u32> = (0..cs.ns.div_ceil(BLOCK)).collect();
-    let columns: Vec<Vec<Column>> = blocks
+    let n_blocks = cs.ns.div_ceil(BLOCK) as usize;
+    let mut block_spans: Vec<Vec<&Span>> = vec![Vec::new(); n_blocks];
+    for s in &far_spans {
+        // Columns c0 ..= c0 + cn (c0 < ns, cn < ns), past ns continuing from 0.
+        let (c0, c1) = (s.c0 as u32, s.c0 as u32 + s.cn);
+        let wrapped = (c1 >= cs.ns).then(|| (0, c1 - cs.ns));
+        for (a, b) in [(c0, c1.min(cs.ns - 1))].into_iter().chain(wrapped) {
+            for bk in (a / BLOCK) as usize..=(b / BLOCK) as usize {
+                if block_spans[bk].last().is_none_or(|l| !std::ptr::eq(*l, s)) {
+                    block_spans[bk].push(s);
+                }
+            }
+        }
+    }
+    let columns: Vec<Vec<Column>> = block_spans
         .par_iter()
-        .map(|&bk| {
-            let (b0, b1) = (bk * BLOCK, ((bk + 1) * BLOCK).min(cs.ns));
+        .enumerate()
+        .map(|(bk, spans)| {
+            let (b0, b1) = (bk as u32 * BLOCK, ((bk as u32 + 1) * BLOCK).min(cs.ns));
             let mut block: Vec<Column> = (b0..b1).map(|_| Column::new(cs.nr)).collect();
             for (col, i) in block.iter_mut().zip(b0..b1) {
                 near_column(cs, p, i, &near, (pa, pz), (r_near, z_floor, z_ceil), col);
             }
             let width = (b1 - b0) as i64;
-            for s in &far_spans {
+            for s in spans {
+                if s.k0 > s.k1.min(cs.nr - 1) {
+                    continue;
+                }
+                let rows = RowMask::new(s.k0, s.k1.min(cs.nr - 1));
                 // Columns b0 + t with (b0 + t - c0) mod ns <= cn.
                 let off = if b0 as i64 >= s.c0 { b0 as i64 - s.c0 } else { b0 as i64 - s.c0 + ns };
                 let cn = s.cn as i64;
                 let mut paint_range = |t0: i64, t1: i64| {
                     for t in t0.max(0)..=t1.min(width - 1) {
-                        block[t as usize].paint(s.k0, s.k1, s.obj);
+                        block[t as usize].paint_rows(&rows, s.obj);
                     }
                 };
                 if off <= cn {

@@ -27,7 +27,7 @@ clearance_m = 0.5
     spec.resolve(builtin("ac-700").unwrap()).unwrap()
 }
 
-/// Towers, overhead beams and low clutter near the crane.
+/// Towers, overhead beams, low clutter near the crane and pipe-rack tiers.
 fn scene(seed: u64) -> Mdm {
     let mut mesh = TriMesh::default();
     let mut s = seed;
@@ -53,6 +53,20 @@ fn scene(seed: u64) -> Mdm {
             continue; // not on the crane's own body
         }
         mesh.add_box(g, [cx - hx, cy - hy, bottom], [cx + hx, cy + hy, top]);
+    }
+    // Pipe-rack tiers: thin decks stacked with gaps from 0.2 to 6 m, some
+    // narrower than the boom grown by the clearance, some wider.
+    for k in 0..8 {
+        let (r, a) = (12.0 + next() * 34.0, next() * std::f64::consts::TAU);
+        let (cx, cy) = (r * a.cos(), r * a.sin());
+        let (hx, hy) = (0.5 + next() * 3.0, 0.5 + next() * 3.0);
+        let mut z = 2.0 + next() * 10.0;
+        for tier in 0..3 {
+            let g = mesh.group_id(&format!("RACK{k}-{tier}"));
+            let deck = 0.2 + next() * 0.8;
+            mesh.add_box(g, [cx - hx, cy - hy, z], [cx + hx, cy + hy, z + deck]);
+            z += deck + 0.2 + next() * 5.8;
+        }
     }
     let inp = liftplan_depthmap::Inputs { points: vec![], ground: vec![], mesh };
     liftplan_depthmap::build_cpu(&inp, &liftplan_depthmap::Settings { cell_m: 0.5, ..Default::default() }).unwrap().0
