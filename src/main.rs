@@ -131,6 +131,26 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Reproduce the planner benchmark: Cai 2016 Tables 4.11-4.18 on plants built
+    /// like the thesis', then MSPGA against Ali et al.'s GA, RRT-Connect and PRM
+    /// and the three C-space strategies on the demo lift. Markdown on stdout.
+    #[command(
+        after_help = "Examples:\n  liftplan bench > reports/planner.md    # about 40 minutes on 2 cores\n  liftplan bench --runs 2 --grid-runs 0 --t414-runs 1 --demo-seeds 1"
+    )]
+    Bench {
+        /// Seeds per row of Tables 4.11/4.12 (the thesis: 50).
+        #[arg(long, default_value_t = 50)]
+        runs: u64,
+        /// Seeds per cell of the rate grids, Tables 4.15-4.18 (the thesis: 50; 0 skips them).
+        #[arg(long, default_value_t = 50)]
+        grid_runs: u64,
+        /// Runs per C-space strategy for Table 4.14 (0 skips it).
+        #[arg(long, default_value_t = 3)]
+        t414_runs: u64,
+        /// Seeds per planner on the demo lift (0 skips it).
+        #[arg(long, default_value_t = 3)]
+        demo_seeds: u64,
+    },
     /// Run the scans stage on loose files.
     #[command(after_help = "Example:\n  liftplan scans a.laz b.e57 -o site.laz --voxel 0.05 --json")]
     Scans {
@@ -273,6 +293,36 @@ fn real_main() -> Result<ExitCode> {
                 }
             }
             Ok(if rep.ok { ExitCode::SUCCESS } else { ExitCode::from(1) })
+        }
+        Command::Bench { runs, grid_runs, t414_runs, demo_seeds } => {
+            use liftplan_plan::bench;
+            if runs > 0 || grid_runs > 0 {
+                bench::thesis_tables(runs, grid_runs, false, None);
+                println!();
+            }
+            if t414_runs > 0 {
+                bench::table_414(t414_runs, None);
+                println!();
+            }
+            if demo_seeds > 0 {
+                let dir = std::env::temp_dir().join(format!("liftplan-bench-{}", std::process::id()));
+                liftplan_fixtures::demo::write_project(&dir, &liftplan_fixtures::demo::DemoOptions::default())
+                    .map_err(anyhow::Error::msg)?;
+                let p = match load(&dir) {
+                    Ok(p) => p,
+                    Err(c) => return Ok(c),
+                };
+                let rep = pipeline::run(&p, &RunOptions { until: None, force: vec![] }, &progress)?;
+                let done = if rep.ok {
+                    bench::demo_lift(&dir, demo_seeds).map_err(anyhow::Error::msg)
+                } else {
+                    Err(anyhow::anyhow!("the demo project did not run; see `liftplan demo`"))
+                };
+                // The temporary project is removed whatever happened.
+                let _ = std::fs::remove_dir_all(&dir);
+                done?;
+            }
+            Ok(ExitCode::SUCCESS)
         }
         Command::Inspect { file, json } => {
             let v = match inspect::inspect(&file) {

@@ -16,6 +16,7 @@
 //! Baselines for the benchmarks live in [`baselines`].
 
 pub mod baselines;
+pub mod bench;
 pub mod mspga;
 pub mod path;
 pub mod steps;
