@@ -499,15 +499,16 @@ pub fn demo_lift(dir: &Path, seeds: u64) -> Result<(), String> {
     println!("## Demo lift: MSPGA and the baselines (lift {})\n", task.id);
     println!(
         "Machine: {} threads. Same inputs, same checker (hybrid C-space), same validator; {seeds} seeds each. \
-         Motion cost is the thesis' weighted units (swing 1/deg, luff 1.5/deg, hoist 0.06/cm, rotate 1/deg).\n",
+         Motion cost is the thesis' weighted units (swing 1/deg, luff 1.5/deg, hoist 0.06/cm, rotate 1/deg); \
+         joint switches are the changes of moving joint along the path (the thesis' sc); time includes validation.\n",
         rayon::current_num_threads()
     );
-    println!("| planner | success | mean cost | mean steps | mean time s | validator ok |");
-    println!("|---|---|---|---|---|---|");
+    println!("| planner | success | mean cost | mean steps | mean joint switches | mean time s | validator ok |");
+    println!("|---|---|---|---|---|---|---|");
     for planner in [Planner::Mspga, Planner::AliGa, Planner::RrtConnect, Planner::Prm] {
         let mut s = Settings { planner, ..Settings::default() };
         s.ga.max_generations = 400;
-        let (mut ok, mut cost, mut steps, mut time, mut valid) = (0, 0.0, 0.0, 0.0, 0);
+        let (mut ok, mut cost, mut steps, mut switches, mut time, mut valid) = (0, 0.0, 0.0, 0.0, 0.0, 0);
         for seed in 0..seeds {
             let t0 = Instant::now();
             let r = plan_lift(&task, &site, &s, seed);
@@ -518,6 +519,7 @@ pub fn demo_lift(dir: &Path, seeds: u64) -> Result<(), String> {
                     ok += 1;
                     cost += p.planning.motion_cost;
                     steps += p.steps.len() as f64;
+                    switches += p.planning.switches as f64;
                     valid += usize::from(p.validator.ok);
                 }
                 Err(e) => eprintln!("{planner:?} seed {seed}: {e}"),
@@ -525,9 +527,10 @@ pub fn demo_lift(dir: &Path, seeds: u64) -> Result<(), String> {
         }
         let k = ok.max(1) as f64;
         println!(
-            "| {planner:?} | {ok}/{seeds} | {:.1} | {:.1} | {:.2} | {valid}/{ok} |",
+            "| {planner:?} | {ok}/{seeds} | {:.1} | {:.1} | {:.1} | {:.2} | {valid}/{ok} |",
             cost / k,
             steps / k,
+            switches / k,
             time / seeds as f64
         );
     }
