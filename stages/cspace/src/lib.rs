@@ -686,12 +686,18 @@ impl<'a> Checker<'a> {
     }
 
     fn count(&self, box_query: bool) {
+        self.count_n(box_query, 1);
+    }
+
+    /// Adds `n` at once: hot loops count locally and add once (an atomic add
+    /// per table lookup cost the planner ~8 %).
+    fn count_n(&self, box_query: bool, n: u64) {
         use std::sync::atomic::Ordering::Relaxed;
         let slot = self.counters.slot();
         if box_query {
-            slot.box_queries.fetch_add(1, Relaxed);
+            slot.box_queries.fetch_add(n, Relaxed);
         } else {
-            slot.lookups.fetch_add(1, Relaxed);
+            slot.lookups.fetch_add(n, Relaxed);
         }
     }
 
@@ -777,13 +783,14 @@ impl<'a> Checker<'a> {
         let load_box = &parts[0].1;
         let zone = if landing { self.landing.iter().find(|z| z.holds(load_box)) } else { None };
         let clearance = zone.map(|z| z.clearance_m).unwrap_or(self.task.clearance_m);
-        for (kind, b) in parts {
-            self.count(true);
+        for (queried, (kind, b)) in (1..).zip(parts) {
             let grown = b.expanded(clearance).expanded_by_motion(sweep.horizontal_m, sweep.vertical_m);
             if let Some(h) = self.map.hit(&grown) {
+                self.count_n(true, queried);
                 return Err(self.blocked("collision", Some(kind), Some(h.interval.obj), c));
             }
         }
+        self.count_n(true, parts.len() as u64);
         Ok(())
     }
 
@@ -795,6 +802,7 @@ impl<'a> Checker<'a> {
             return false;
         }
         let (i, k) = (cs.col(c.swing_rad), cs.row(c.radial).unwrap_or(0));
+        self.count(false);
         self.table_covers((k * cs.ns + i) as usize, h_max)
     }
 
@@ -802,7 +810,6 @@ impl<'a> Checker<'a> {
     /// up to `h_max`?
     fn table_covers(&self, idx: usize, h_max: f64) -> bool {
         let cs = self.cs;
-        self.count(false);
         if h_max <= cs.max_hoist[idx] as f64 {
             return true;
         }
@@ -892,6 +899,8 @@ impl<'a> Checker<'a> {
         }
         let up = to > v0;
         let (i_from, k_from) = (cs.col(from.swing_rad), cs.row(from.radial).unwrap_or(0));
+        // Every cell the move enters is one lookup, counted once for the move.
+        self.count_n(false, j0.abs_diff(j1) + 1);
         // Start of the stretch the tables cannot vouch for, if one is open.
         let mut run: Option<f64> = None;
         let mut j = j0;
