@@ -724,17 +724,27 @@ impl<'a> Checker<'a> {
         {
             return Err(self.blocked("joint limit (permitted swing range)", None, None, c));
         }
-        self.row_ok(k, c)?;
+        self.row_ok(k, c)
+    }
+
+    /// Chart capacity and internal clearance of radial row `k`, at `c`.
+    fn row_ok(&self, k: u32, c: &Config) -> Result<(), Blocked> {
+        match self.cs.row_capacity_kg[k as usize] {
+            Some(cap) if self.task.effective_capacity_kg(cap) >= self.task.gross_kg() => {}
+            _ => return Err(self.blocked("capacity (outside the load chart or over capacity)", None, None, c)),
+        }
         if c.hoist_m < self.cs.row_min_hoist[k as usize] - 1e-9 {
             return Err(self.blocked("internal clearance (load too close to the boom)", Some(PartKind::Load), None, c));
         }
         Ok(())
     }
 
-    fn row_ok(&self, k: u32, c: &Config) -> Result<(), Blocked> {
-        match self.cs.row_capacity_kg[k as usize] {
-            Some(cap) if self.task.effective_capacity_kg(cap) >= self.task.gross_kg() => Ok(()),
-            _ => Err(self.blocked("capacity (outside the load chart or over capacity)", None, None, c)),
+    /// Body and boom in table cell (i, k), reported at `c`.
+    fn cell_structure_ok(&self, i: u32, k: u32, c: &Config) -> Result<(), Blocked> {
+        let cs = self.cs;
+        match cs.swing_hits[i as usize].or(cs.cell_hits[(k * cs.ns + i) as usize]) {
+            Some(h) => Err(self.blocked("collision", Some(h.part), Some(h.obj), c)),
+            None => Ok(()),
         }
     }
 
@@ -743,15 +753,7 @@ impl<'a> Checker<'a> {
         let cs = self.cs;
         if cs.strategy != Strategy::Online {
             self.count(false);
-            let i = cs.col(c.swing_rad);
-            let k = cs.row(c.radial).unwrap_or(0);
-            if let Some(h) = cs.swing_hits[i as usize] {
-                return Err(self.blocked("collision", Some(h.part), Some(h.obj), c));
-            }
-            if let Some(h) = cs.cell_hits[(k * cs.ns + i) as usize] {
-                return Err(self.blocked("collision", Some(h.part), Some(h.obj), c));
-            }
-            return Ok(());
+            return self.cell_structure_ok(cs.col(c.swing_rad), cs.row(c.radial).unwrap_or(0), c);
         }
         let crane = &self.task.crane;
         for &kind in crane.part_kinds() {
@@ -917,23 +919,12 @@ impl<'a> Checker<'a> {
                 Joint::Radial => (i_from, j.clamp(0, cs.nr as i64 - 1) as u32),
                 Joint::Hoist | Joint::Rotate => (i_from, k_from),
             };
+            let at = self.with(&a, joint, xa);
             if joint == Joint::Radial {
-                let at = self.with(&a, joint, xa);
                 self.row_ok(k, &at)?;
-                if from.hoist_m < cs.row_min_hoist[k as usize] - 1e-9 {
-                    return Err(self.blocked(
-                        "internal clearance (load too close to the boom)",
-                        Some(PartKind::Load),
-                        None,
-                        &at,
-                    ));
-                }
             }
-            let idx = (k * cs.ns + i) as usize;
-            if let Some(h) = cs.swing_hits[i as usize].or(cs.cell_hits[idx]) {
-                return Err(self.blocked("collision", Some(h.part), Some(h.obj), &self.with(&a, joint, xa)));
-            }
-            if self.table_covers(idx, h_max) {
+            self.cell_structure_ok(i, k, &at)?;
+            if self.table_covers((k * cs.ns + i) as usize, h_max) {
                 if let Some(r0) = run.take() {
                     self.exact_piece(&a, joint, r0, xa, lever)?;
                 }
