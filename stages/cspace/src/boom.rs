@@ -293,9 +293,8 @@ impl Column {
     }
 
     fn paint(&mut self, k0: u32, k1: u32, obj: u32) {
-        let k1 = k1.min(self.hits.len() as u32 - 1);
-        if k0 <= k1 {
-            self.paint_rows(&RowMask::new(k0, k1), obj);
+        if let Some(rows) = RowMask::within(k0, k1, self.hits.len() as u32) {
+            self.paint_rows(&rows, obj);
         }
     }
 
@@ -319,9 +318,9 @@ impl Column {
     }
 }
 
-/// Rows `k0 ..= k1` (k0 <= k1) as bit masks over a column's 64-row words:
-/// words `w0 ..= w1`, the first and last of them masked. Computed once per
-/// span and applied to each of its ~20 columns.
+/// Rows `k0 ..= k1` as bit masks over a column's 64-row words: words
+/// `w0 ..= w1`, the first and last of them masked. Computed once per span and
+/// applied to each of its ~20 columns.
 struct RowMask {
     w0: u32,
     w1: u32,
@@ -330,8 +329,16 @@ struct RowMask {
 }
 
 impl RowMask {
-    fn new(k0: u32, k1: u32) -> RowMask {
-        RowMask { w0: k0 / 64, w1: k1 / 64, first: u64::MAX << (k0 % 64), last: u64::MAX >> (63 - k1 % 64) }
+    /// Rows `k0 ..= k1` of a column of `nr` rows (`k1` clipped to the last),
+    /// `None` if that leaves none.
+    fn within(k0: u32, k1: u32, nr: u32) -> Option<RowMask> {
+        let k1 = k1.min(nr.checked_sub(1)?);
+        (k0 <= k1).then(|| RowMask {
+            w0: k0 / 64,
+            w1: k1 / 64,
+            first: u64::MAX << (k0 % 64),
+            last: u64::MAX >> (63 - k1 % 64),
+        })
     }
 }
 
@@ -472,10 +479,7 @@ pub(crate) fn boom_hits(cs: &CSpace, p: &Problem, boom: &Boom, clearance: f64) -
             }
             let width = (b1 - b0) as i64;
             for s in spans {
-                if s.k0 > s.k1.min(cs.nr - 1) {
-                    continue;
-                }
-                let rows = RowMask::new(s.k0, s.k1.min(cs.nr - 1));
+                let Some(rows) = RowMask::within(s.k0, s.k1, cs.nr) else { continue };
                 // Columns b0 + t with (b0 + t - c0) mod ns <= cn.
                 let off = if b0 as i64 >= s.c0 { b0 as i64 - s.c0 } else { b0 as i64 - s.c0 + ns };
                 let cn = s.cn as i64;
