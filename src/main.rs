@@ -297,27 +297,24 @@ fn real_main() -> Result<ExitCode> {
         Command::Bench { runs, grid_runs, t414_runs, demo_seeds } => {
             use liftplan_plan::bench;
             if runs > 0 || grid_runs > 0 {
-                bench::thesis_tables(runs, grid_runs, false, None);
+                bench::thesis_tables(runs, grid_runs);
                 println!();
             }
             if t414_runs > 0 {
-                bench::table_414(t414_runs, None);
+                bench::table_414(t414_runs);
                 println!();
             }
             if demo_seeds > 0 {
                 let dir = std::env::temp_dir().join(format!("liftplan-bench-{}", std::process::id()));
-                liftplan_fixtures::demo::write_project(&dir, &liftplan_fixtures::demo::DemoOptions::default())
-                    .map_err(anyhow::Error::msg)?;
-                let p = match load(&dir) {
-                    Ok(p) => p,
-                    Err(c) => return Ok(c),
-                };
-                let rep = pipeline::run(&p, &RunOptions { until: None, force: vec![] }, &progress)?;
-                let done = if rep.ok {
+                let run_demo = || -> anyhow::Result<()> {
+                    liftplan_fixtures::demo::write_project(&dir, &liftplan_fixtures::demo::DemoOptions::default())
+                        .map_err(anyhow::Error::msg)?;
+                    let p = project::Project::load(&dir)?;
+                    let rep = pipeline::run(&p, &RunOptions { until: None, force: vec![] }, &progress)?;
+                    anyhow::ensure!(rep.ok, "the demo project did not run; see `liftplan demo`");
                     bench::demo_lift(&dir, demo_seeds).map_err(anyhow::Error::msg)
-                } else {
-                    Err(anyhow::anyhow!("the demo project did not run; see `liftplan demo`"))
                 };
+                let done = run_demo();
                 // The temporary project is removed whatever happened.
                 let _ = std::fs::remove_dir_all(&dir);
                 done?;

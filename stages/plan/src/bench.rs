@@ -238,7 +238,7 @@ fn run_many(plant: &Plant, map: &Mdm, world: &World, s: &Settings, runs: u64) ->
             }
             t.steps += n as f64;
             // The thesis reports eq. 4.21's value for feasible strings.
-            t.fitness += s.ga.lambda1 * (1.0 + s.ga.lambda1 / p.planning.fitness.max(1e-9));
+            t.fitness += crate::mspga::feasible_fitness(&s.ga, p.planning.fitness);
         }
     }
     t
@@ -249,9 +249,8 @@ fn pct(t: &Tally) -> f64 {
 }
 
 /// Tables 4.11/4.12 (`runs` seeds per row) and the rate grids of Tables
-/// 4.15-4.18 (`grid_runs` seeds per cell; 0 skips them). `shipped_only`: only
-/// the rows of the planner as shipped; `only_plant`: one plant of Table 4.11.
-pub fn thesis_tables(runs: u64, grid_runs: u64, shipped_only: bool, only_plant: Option<usize>) {
+/// 4.15-4.18 (`grid_runs` seeds per cell; 0 skips them).
+pub fn thesis_tables(runs: u64, grid_runs: u64) {
     let plants = [plant1(), plant2(), plant3()];
     println!("# Planner: the thesis' experiments (Tables 4.11-4.18) and the baselines\n");
     println!(
@@ -275,10 +274,7 @@ pub fn thesis_tables(runs: u64, grid_runs: u64, shipped_only: bool, only_plant: 
         println!("|---|---|---|---|---|---|---|---|---|---|");
     }
     let mut built = Vec::new();
-    for (k, p) in plants.iter().enumerate() {
-        if only_plant.is_some_and(|n| n != k + 1) {
-            continue;
-        }
+    for p in &plants {
         let m = map(&p.mesh);
         let world = World::new(&p.mesh, &[], &[]).expect("world");
         let rows = [
@@ -287,7 +283,7 @@ pub fn thesis_tables(runs: u64, grid_runs: u64, shipped_only: bool, only_plant: 
             (Planner::Mspga, "MSPGA + 2 restarts (shipped)", None, 2),
         ];
         for (planner, label, published, restarts) in rows {
-            if runs == 0 || (shipped_only && restarts == 0) {
+            if runs == 0 {
                 continue;
             }
             let mut s = Settings { planner, ..Settings::default() };
@@ -312,7 +308,7 @@ pub fn thesis_tables(runs: u64, grid_runs: u64, shipped_only: bool, only_plant: 
         }
         built.push((m, world));
     }
-    if shipped_only || only_plant.is_some() || grid_runs == 0 {
+    if grid_runs == 0 {
         return;
     }
     let low = plant3_with_columns(14.0);
@@ -404,7 +400,7 @@ fn grid_table(title: &str, ours: &[[f64; 6]; 6], thesis: &[[f64; 6]; 6], digits:
 }
 
 /// Table 4.14: the three C-space strategies under MSPGA with 200 generations.
-pub fn table_414(runs: u64, only: Option<&str>) {
+pub fn table_414(runs: u64) {
     use liftplan_cspace::Strategy;
     let p = plant_414();
     let t0 = Instant::now();
@@ -432,9 +428,6 @@ pub fn table_414(runs: u64, only: Option<&str>) {
         (Strategy::Hybrid, "1,034", "2,134", "92 %", "3965.8"),
     ];
     for (strategy, tp, tl, ts, tf) in rows {
-        if only.is_some_and(|o| o != format!("{strategy:?}").to_lowercase()) {
-            continue;
-        }
         let mut s = Settings::default();
         s.cspace.strategy = strategy;
         s.ga.max_generations = 200;
@@ -447,8 +440,8 @@ pub fn table_414(runs: u64, only: Option<&str>) {
                 Ok((lp, cs)) => {
                     ok += 1;
                     cost += lp.planning.motion_cost;
-                    // `planning.fitness` is eq. 4.21's motion term m; the fitness is λ1 (1 + λ1 / m).
-                    fitness += s.ga.lambda1 * (1.0 + s.ga.lambda1 / lp.planning.fitness.max(1e-9));
+                    // `planning.fitness` is eq. 4.21's motion term m.
+                    fitness += crate::mspga::feasible_fitness(&s.ga, lp.planning.fitness);
                     prep += cs.build_ms;
                     plan += lp.planning.plan_ms - cs.build_ms;
                     lookups += lp.planning.table_lookups;

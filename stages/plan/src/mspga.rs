@@ -165,6 +165,12 @@ fn violations(ck: &Checker, genes: &[Config]) -> (Vec<bool>, usize, Vec<Move>) {
     (valid, n, moves)
 }
 
+/// Eq. 4.21 for a collision-free string whose motion term (weighted distance
+/// plus the switch penalty) is `m`.
+pub fn feasible_fitness(s: &GaSettings, m: f64) -> f64 {
+    s.lambda1 * (1.0 + s.lambda1 / m.max(1e-9))
+}
+
 pub fn score(ck: &Checker, genes: Vec<Config>, s: &GaSettings, kind: Fitness) -> Scored {
     let tower = ck.task.crane.model.is_tower();
     let (valid, n, moves) = violations(ck, &genes);
@@ -174,8 +180,7 @@ pub fn score(ck: &Checker, genes: Vec<Config>, s: &GaSettings, kind: Fitness) ->
             if n > 0 {
                 s.lambda1 / n as f64
             } else {
-                let m = d + s.lambda2 * (1.0 + sc as f64);
-                s.lambda1 * (1.0 + s.lambda1 / m.max(1e-9))
+                feasible_fitness(s, d + s.lambda2 * (1.0 + sc as f64))
             }
         }
         Fitness::Ali => {
