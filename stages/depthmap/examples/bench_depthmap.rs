@@ -105,7 +105,8 @@ fn main() {
     let inp = Inputs { points: vec![], ground: vec![], mesh };
     let cpu = best_of(3, || {
         let t = Instant::now();
-        let _ = build_cpu(&inp, &s).unwrap();
+        let (_, timings) = build_cpu(&inp, &s).unwrap();
+        eprintln!("plant, CPU: {timings:?}");
         t.elapsed().as_secs_f64() * 1e3
     });
     println!("| {} triangles | - | {cpu:.0} | - | (CPU pass; shared) | - | - |", inp.mesh.triangle_count());

@@ -11,7 +11,7 @@
 //!
 //! Points go up in chunks small enough for the default storage-binding limit.
 
-use crate::mdm::{GridSpec, LocalPoints, Raw};
+use crate::mdm::{GridSpec, PointSource, Raw, local_point};
 use wgpu::util::DeviceExt;
 
 const SHADER: &str = r#"
@@ -156,7 +156,8 @@ impl Gpu {
     /// The point pass on the GPU: every point's raw interval in every cell its
     /// square touches, as the CPU assembly rasterises points
     /// (`mdm::point_cells`), in point order.
-    pub fn point_raws(&self, p: &LocalPoints, spec: &GridSpec, radius: f32, out: &mut Vec<Raw>) -> Result<(), String> {
+    pub fn point_raws(&self, p: &PointSource, spec: &GridSpec, out: &mut Vec<Raw>) -> Result<(), String> {
+        let radius = p.radius;
         let inv = (1.0 / spec.cell) as f32;
         // Cells one point can touch, to size chunks under the binding limit.
         let span = ((2.0 * radius * inv).ceil() as u64 + 1).pow(2);
@@ -166,8 +167,9 @@ impl Gpu {
         for (ci, pts) in p.xyz.chunks(chunk).enumerate() {
             let n = pts.len() as u32;
             let mut packed: Vec<u32> = Vec::with_capacity(pts.len() * 4);
-            for (k, q) in pts.iter().enumerate() {
-                packed.extend_from_slice(&[q[0].to_bits(), q[1].to_bits(), q[2].to_bits(), p.obj[ci * chunk + k]]);
+            for (k, site) in pts.iter().enumerate() {
+                let q = local_point(site, spec);
+                packed.extend_from_slice(&[q[0].to_bits(), q[1].to_bits(), q[2].to_bits(), p.obj(ci * chunk + k)]);
             }
             let params: [u32; 8] = [n, spec.nx, spec.ny, inv.to_bits(), radius.to_bits(), 0, 0, 0];
             let ubuf = self.upload("params", &params, wgpu::BufferUsages::UNIFORM);

@@ -17,9 +17,10 @@ pub mod query;
 
 use liftplan_core::Location;
 use liftplan_core::cloud::class;
+use liftplan_core::frame::Aabb;
 use liftplan_core::mesh::TriMesh;
 use liftplan_core::obb::Obb;
-use mdm::{GridSpec, LocalPoints, Mdm, Mode, Raw};
+use mdm::{GridSpec, Mdm, Mode, Raw};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
@@ -154,27 +155,42 @@ pub fn build_cpu(inp: &Inputs, s: &Settings) -> Result<(Mdm, Timings)> {
 /// Builds the depth map, with the point pass on `gpu` when given.
 pub fn build(inp: &Inputs, s: &Settings, gpu: Option<&gpu::Gpu>) -> Result<(Mdm, Timings)> {
     let t0 = std::time::Instant::now();
-    let mut bb = liftplan_core::frame::Aabb::from_points(&inp.points);
-    bb = bb.union(&inp.mesh.bbox());
+    if inp.ground.len() != inp.points.len() {
+        return Err(DepthError::Settings(format!(
+            "{} points but {} ground flags: each point needs one",
+            inp.points.len(),
+            inp.ground.len()
+        )));
+    }
+    let bb = points_bbox(&inp.points)
+        .map_err(|k| {
+            DepthError::Settings(format!(
+                "site point {k} has a coordinate that is not a finite number: {:?}",
+                inp.points[k]
+            ))
+        })?
+        .union(&inp.mesh.bbox());
     if bb.is_empty() {
         return Err(DepthError::Settings("nothing to rasterise: no site cloud and no plant mesh".into()));
     }
     let spec = s.grid([bb.min[0], bb.min[1], bb.max[0], bb.max[1]])?;
     let mut objects = vec!["ground (scan)".to_string(), "scanned structure".to_string()];
     objects.extend(inp.mesh.groups.iter().cloned());
-    let local = local_points(inp, &spec);
+    let points = mdm::PointSource { xyz: &inp.points, ground: &inp.ground, radius: s.point_radius_m as f32 };
     let t_prep = t0.elapsed();
-    let mut raws: Vec<Raw> = Vec::new();
+    let mut gpu_raws: Vec<Raw> = Vec::new();
     // On the GPU the point pass makes raw intervals; on the CPU it is fused
     // into the assembly (same cells, same intervals, no raws stored).
     if let Some(g) = gpu {
-        g.point_raws(&local, &spec, s.point_radius_m as f32, &mut raws).map_err(DepthError::Gpu)?;
+        g.point_raws(&points, &spec, &mut gpu_raws).map_err(DepthError::Gpu)?;
     }
     let t_points = t0.elapsed();
-    mdm::mesh_raws(&inp.mesh, &spec, 2, &mut raws);
+    let mut raws = mdm::mesh_raws(&inp.mesh, &spec, 2);
+    raws.push(gpu_raws);
     let t_gen = t0.elapsed();
-    let points = gpu.is_none().then_some(mdm::PointSource { points: &local, radius: s.point_radius_m as f32 });
-    let m = mdm::assemble_sources(points, &raws, spec, s.mode, s.merge_gap_m as f32, objects);
+    let chunks: Vec<&[Raw]> = raws.iter().map(|v| v.as_slice()).collect();
+    let cpu_points = gpu.is_none().then_some(points);
+    let m = mdm::assemble_sources(cpu_points, &chunks, spec, s.mode, s.merge_gap_m as f32, objects);
     let t_all = t0.elapsed();
     Ok((
         m,
@@ -184,22 +200,42 @@ pub fn build(inp: &Inputs, s: &Settings, gpu: Option<&gpu::Gpu>) -> Result<(Mdm,
             triangles_ms: ms(t_gen - t_points),
             assemble_ms: ms(t_all - t_gen),
             total_ms: ms(t_all),
-            raw_intervals: raws.len(),
+            raw_intervals: raws.iter().map(Vec::len).sum(),
         },
     ))
 }
 
-fn ms(d: std::time::Duration) -> f64 {
-    d.as_secs_f64() * 1000.0
+/// The points' bounding box, computed in parallel (it is a pass over every
+/// point); or the index of the first point with a coordinate that is not a
+/// finite number, which no grid cell can hold.
+fn points_bbox(points: &[[f64; 3]]) -> std::result::Result<Aabb, usize> {
+    use rayon::prelude::*;
+    const CHUNK: usize = 1 << 16;
+    points
+        .par_chunks(CHUNK)
+        .enumerate()
+        .map(|(c, chunk)| {
+            let mut b = Aabb::empty();
+            for (k, p) in chunk.iter().enumerate() {
+                if !(p[0].is_finite() && p[1].is_finite() && p[2].is_finite()) {
+                    return Err(c * CHUNK + k);
+                }
+                b.grow(*p);
+            }
+            Ok(b)
+        })
+        .reduce(
+            || Ok(Aabb::empty()),
+            |a, b| match (a, b) {
+                (Err(x), Err(y)) => Err(x.min(y)),
+                (Err(x), _) | (_, Err(x)) => Err(x),
+                (Ok(a), Ok(b)) => Ok(a.union(&b)),
+            },
+        )
 }
 
-/// Points relative to the grid origin in `f32`, with their object ids.
-pub fn local_points(inp: &Inputs, spec: &GridSpec) -> LocalPoints {
-    use rayon::prelude::*;
-    LocalPoints {
-        xyz: inp.points.par_iter().map(|p| [(p[0] - spec.x0) as f32, (p[1] - spec.y0) as f32, p[2] as f32]).collect(),
-        obj: inp.ground.par_iter().map(|g| if *g { mdm::OBJ_GROUND } else { mdm::OBJ_SCAN }).collect(),
-    }
+fn ms(d: std::time::Duration) -> f64 {
+    d.as_secs_f64() * 1000.0
 }
 
 #[derive(Debug, Clone, Default, Serialize)]

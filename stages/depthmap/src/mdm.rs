@@ -130,10 +130,31 @@ pub struct Mdm {
     pub pyramid: Vec<(u32, u32, Vec<f32>)>,
 }
 
-/// Points in grid-local metres (x, y relative to the grid origin, z absolute).
-pub struct LocalPoints {
-    pub xyz: Vec<[f32; 3]>,
-    pub obj: Vec<u32>,
+/// Scan points as the depth map reads them: site coordinates and, per point,
+/// whether it is ground. Every pass takes them relative to the grid origin in
+/// `f32` with [`local_point`] as it reads them, so no converted copy is stored.
+#[derive(Clone, Copy)]
+pub struct PointSource<'a> {
+    pub xyz: &'a [[f64; 3]],
+    /// One flag per point of `xyz`.
+    pub ground: &'a [bool],
+    /// Half side of the square and half height each point occupies (m).
+    pub radius: f32,
+}
+
+impl PointSource<'_> {
+    /// Object id of point `k`.
+    #[inline]
+    pub fn obj(&self, k: usize) -> u32 {
+        if self.ground[k] { OBJ_GROUND } else { OBJ_SCAN }
+    }
+}
+
+/// A site point in grid-local `f32` metres (x, y relative to the grid origin,
+/// z absolute): the one conversion the CPU passes and the GPU upload share.
+#[inline]
+pub fn local_point(p: &[f64; 3], spec: &GridSpec) -> [f32; 3] {
+    [(p[0] - spec.x0) as f32, (p[1] - spec.y0) as f32, p[2] as f32]
 }
 
 /// Order of f32 by value as an unsigned key (total order, -0 < +0).
@@ -143,44 +164,109 @@ pub fn f32_key(v: f32) -> u32 {
     if b & 0x8000_0000 != 0 { !b } else { b | 0x8000_0000 }
 }
 
-/// `x.floor() as i64`, inline (the baseline x86-64 target has no rounding
-/// instruction, so `floor` is a library call): the same value for every input.
+/// `floor(x)` clamped to `[-1, 2^30]`, which holds every grid index (grids are
+/// far smaller), as an integer. Written out because the baseline x86-64 target
+/// makes `floor` a library call and a plain `as` conversion checks for
+/// overflow; after the clamp (which takes NaN to -1) the value is finite and
+/// in range, so neither is needed. The clamp changes no index the caller
+/// keeps: it clamps to `[0, n - 1]` after.
 #[inline]
-fn floor_i64(x: f32) -> i64 {
-    let t = x as i64;
-    if (t as f32) > x { t.saturating_sub(1) } else { t }
+#[allow(clippy::manual_clamp)] // `clamp` would keep a NaN, which the conversion must not see
+fn floor_index(x: f32) -> i64 {
+    let c = x.max(-1.0).min(1_073_741_824.0);
+    // SAFETY: `c` is finite and within the range of i32.
+    let t: i32 = unsafe { c.to_int_unchecked() };
+    (if (t as f32) > c { t - 1 } else { t }) as i64
 }
 
-/// The cells a point's square of half side `radius` touches, and its height
-/// interval: the one definition the CPU passes and the GPU shader follow.
+/// The columns `i0..=i1` and rows `j0..=j1` of the cells a point's square of
+/// half side `radius` touches, clamped to the grid (empty when `i1 < i0` or
+/// `j1 < j0`): the one definition the CPU passes and the GPU shader follow.
 #[inline]
-fn point_cells(q: &[f32; 3], radius: f32, inv: f32, nx: i64, ny: i64, mut cell: impl FnMut(u32)) -> (f32, f32) {
-    let i0 = floor_i64((q[0] - radius) * inv);
-    let i1 = floor_i64((q[0] + radius) * inv);
-    let j0 = floor_i64((q[1] - radius) * inv);
-    let j1 = floor_i64((q[1] + radius) * inv);
-    for j in j0.max(0)..=j1.min(ny - 1) {
-        for i in i0.max(0)..=i1.min(nx - 1) {
-            cell((j * nx + i) as u32);
+fn point_span(q: &[f32; 3], radius: f32, inv: f32, nx: i64, ny: i64) -> (i64, i64, i64, i64) {
+    let i0 = floor_index((q[0] - radius) * inv).max(0);
+    let i1 = floor_index((q[0] + radius) * inv).min(nx - 1);
+    let j0 = floor_index((q[1] - radius) * inv).max(0);
+    let j1 = floor_index((q[1] + radius) * inv).min(ny - 1);
+    (i0, i1, j0, j1)
+}
+
+/// The cells `(column, row)` of [`point_span`], row by row, and the point's
+/// height interval.
+#[inline]
+fn point_cells(q: &[f32; 3], radius: f32, inv: f32, nx: i64, ny: i64, mut cell: impl FnMut(u32, u32)) -> (f32, f32) {
+    let (i0, i1, j0, j1) = point_span(q, radius, inv, nx, ny);
+    for j in j0..=j1 {
+        for i in i0..=i1 {
+            cell(i as u32, j as u32);
         }
     }
     (q[2] - radius, q[2] + radius)
 }
 
+/// The point pass as raw intervals, point by point and each point's cells in
+/// row order: what the GPU twin's shader writes, and the reference the fused
+/// CPU assembly is tested against.
+pub fn point_raws(points: &PointSource, spec: &GridSpec, out: &mut Vec<Raw>) {
+    let inv = (1.0 / spec.cell) as f32;
+    let (nx, ny) = (spec.nx as i64, spec.ny as i64);
+    for (k, p) in points.xyz.iter().enumerate() {
+        let obj = points.obj(k);
+        let q = local_point(p, spec);
+        let mut cells = Vec::new();
+        let (zlo, zhi) = point_cells(&q, points.radius, inv, nx, ny, |i, j| cells.push(j * spec.nx + i));
+        out.extend(cells.into_iter().map(|cell| Raw { cell, zlo, zhi, obj, part: 0 }));
+    }
+}
+
+/// A convex polygon of at most 12 vertices: a triangle clipped to a cell
+/// rectangle has at most 7. `lossy` marks one that needed more (possible only
+/// when rounding makes a nearly degenerate polygon non-convex): a vertex was
+/// dropped, so its height range may be too small and must not be used.
+#[derive(Clone, Copy)]
+struct Poly {
+    v: [[f64; 3]; 12],
+    n: usize,
+    lossy: bool,
+}
+
+impl Poly {
+    fn vertices(&self) -> &[[f64; 3]] {
+        &self.v[..self.n]
+    }
+
+    fn range(&self, axis: usize) -> (f64, f64) {
+        let vs = self.vertices();
+        (
+            vs.iter().map(|p| p[axis]).fold(f64::INFINITY, f64::min),
+            vs.iter().map(|p| p[axis]).fold(f64::NEG_INFINITY, f64::max),
+        )
+    }
+}
+
 /// Clips a convex polygon to `coord[axis] >= v` (`keep_above`) or `<= v`.
-fn clip(poly: &[[f64; 3]], axis: usize, v: f64, keep_above: bool) -> Vec<[f64; 3]> {
+fn clip(poly: &Poly, axis: usize, v: f64, keep_above: bool) -> Poly {
     let inside = |p: &[f64; 3]| if keep_above { p[axis] >= v } else { p[axis] <= v };
-    let mut out = Vec::with_capacity(poly.len() + 2);
-    for k in 0..poly.len() {
-        let a = poly[k];
-        let b = poly[(k + 1) % poly.len()];
+    let mut out = Poly { v: [[0.0; 3]; 12], n: 0, lossy: poly.lossy };
+    let mut push = |p: [f64; 3]| {
+        if out.n < out.v.len() {
+            out.v[out.n] = p;
+            out.n += 1;
+        } else {
+            out.lossy = true;
+        }
+    };
+    let vs = poly.vertices();
+    for k in 0..vs.len() {
+        let a = vs[k];
+        let b = vs[(k + 1) % vs.len()];
         let (ia, ib) = (inside(&a), inside(&b));
         if ia {
-            out.push(a);
+            push(a);
         }
         if ia != ib {
             let t = (v - a[axis]) / (b[axis] - a[axis]);
-            out.push([a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])]);
+            push([a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])]);
         }
     }
     out
@@ -191,10 +277,9 @@ fn clip(poly: &[[f64; 3]], axis: usize, v: f64, keep_above: bool) -> Vec<[f64; 3
 /// in 10^6 plus a micrometre so rounding never makes it too small.
 pub fn triangle_cells(t: &[[f64; 3]; 3], spec: &GridSpec, mut emit: impl FnMut(u32, f32, f32)) {
     let c = spec.cell;
-    let minx = t.iter().map(|p| p[0]).fold(f64::INFINITY, f64::min);
-    let maxx = t.iter().map(|p| p[0]).fold(f64::NEG_INFINITY, f64::max);
-    let miny = t.iter().map(|p| p[1]).fold(f64::INFINITY, f64::min);
-    let maxy = t.iter().map(|p| p[1]).fold(f64::NEG_INFINITY, f64::max);
+    let mut tri = Poly { v: [[0.0; 3]; 12], n: 3, lossy: false };
+    tri.v[..3].copy_from_slice(t);
+    let ((minx, maxx), (miny, maxy)) = (tri.range(0), tri.range(1));
     if !(maxx >= 0.0 && maxy >= 0.0 && minx <= spec.nx as f64 * c && maxy.is_finite() && miny <= spec.ny as f64 * c) {
         return;
     }
@@ -202,25 +287,29 @@ pub fn triangle_cells(t: &[[f64; 3]; 3], spec: &GridSpec, mut emit: impl FnMut(u
     let j1 = ((maxy / c).floor().min(spec.ny as f64 - 1.0)) as u32;
     let i0 = ((minx / c).floor().max(0.0)) as u32;
     let i1 = ((maxx / c).floor().min(spec.nx as f64 - 1.0)) as u32;
-    let tri = t.to_vec();
     for j in j0..=j1 {
         let (ya, yb) = (j as f64 * c, (j + 1) as f64 * c);
         let strip = clip(&clip(&tri, 1, ya, true), 1, yb, false);
-        if strip.is_empty() {
+        if strip.n == 0 && !strip.lossy {
             continue;
         }
-        let sx0 = strip.iter().map(|p| p[0]).fold(f64::INFINITY, f64::min);
-        let sx1 = strip.iter().map(|p| p[0]).fold(f64::NEG_INFINITY, f64::max);
-        let a = ((sx0 / c).floor().max(i0 as f64)) as u32;
-        let b = ((sx1 / c).floor().min(i1 as f64)) as u32;
+        let (a, b) = if strip.lossy {
+            (i0, i1)
+        } else {
+            let (sx0, sx1) = strip.range(0);
+            (((sx0 / c).floor().max(i0 as f64)) as u32, ((sx1 / c).floor().min(i1 as f64)) as u32)
+        };
         for i in a..=b {
             let (xa, xb) = (i as f64 * c, (i + 1) as f64 * c);
             let poly = clip(&clip(&strip, 0, xa, true), 0, xb, false);
-            if poly.is_empty() {
+            let (lo, hi) = if poly.lossy {
+                // Conservative: the whole triangle's heights.
+                tri.range(2)
+            } else if poly.n > 0 {
+                poly.range(2)
+            } else {
                 continue;
-            }
-            let lo = poly.iter().map(|p| p[2]).fold(f64::INFINITY, f64::min);
-            let hi = poly.iter().map(|p| p[2]).fold(f64::NEG_INFINITY, f64::max);
+            };
             let pad = 1e-6 * lo.abs().max(hi.abs()) + 1e-6;
             emit(j * spec.nx + i, (lo - pad) as f32, (hi + pad) as f32);
         }
@@ -228,9 +317,10 @@ pub fn triangle_cells(t: &[[f64; 3]; 3], spec: &GridSpec, mut emit: impl FnMut(u
 }
 
 /// Pass 1 for a mesh: raw intervals of every triangle, tagged with the group
-/// (object id `obj_base + group`) and, for convex parts, the part.
-pub fn mesh_raws(m: &TriMesh, spec: &GridSpec, obj_base: u32, out: &mut Vec<Raw>) {
-    let parts: Vec<Vec<Raw>> = (0..m.triangles.len())
+/// (object id `obj_base + group`) and, for convex parts, the part; in chunks of
+/// triangles, rasterised in parallel.
+pub fn mesh_raws(m: &TriMesh, spec: &GridSpec, obj_base: u32) -> Vec<Vec<Raw>> {
+    (0..m.triangles.len())
         .into_par_iter()
         .chunks(4096)
         .map(|ids| {
@@ -251,17 +341,7 @@ pub fn mesh_raws(m: &TriMesh, spec: &GridSpec, obj_base: u32, out: &mut Vec<Raw>
             }
             v
         })
-        .collect();
-    for v in parts {
-        out.extend_from_slice(&v);
-    }
-}
-
-/// A raw interval without its cell, packed so that the integer order is the
-/// merge order (object, part, bottom, top) and nothing is lost.
-#[inline]
-fn pack(obj: u32, part: u32, zlo: f32, zhi: f32) -> u128 {
-    (obj as u128) << 96 | (part as u128) << 64 | (f32_key(zlo) as u128) << 32 | f32_key(zhi) as u128
+        .collect()
 }
 
 /// Inverse of [`f32_key`].
@@ -270,18 +350,67 @@ fn f32_from_key(k: u32) -> f32 {
     f32::from_bits(if k & 0x8000_0000 != 0 { k & 0x7fff_ffff } else { !k })
 }
 
-/// Pass 5 for one cell: sorts the packed raws and appends the merged intervals.
-fn merge_cell(raw: &mut [u128], gap: f32, mode: Mode, out: &mut Vec<Interval>) {
-    if raw.is_empty() {
-        return;
+/// A raw interval without its cell, as its sort key: the integer order is the
+/// merge order (object, part, bottom, top), and nothing is lost.
+#[inline]
+fn raw_key(r: &[u32; 5]) -> u128 {
+    (r[1] as u128) << 96 | (r[2] as u128) << 64 | (r[3] as u128) << 32 | r[4] as u128
+}
+
+/// A point's record in a band: bits 33 and up the cell in the band, bit 32 the
+/// object (ground or scan), the low 32 bits the key of its height, so that the
+/// integer order is (cell, object, height). Its interval `[z - r, z + r]` is
+/// computed again from the height when merging, in the operations
+/// [`point_cells`] uses, so 8 bytes carry what a 16-byte raw key would.
+#[inline]
+fn point_record(local: u32, obj: u32, z: f32) -> u64 {
+    (local as u64) << 33 | (obj as u64) << 32 | f32_key(z) as u64
+}
+
+const _: () = assert!(OBJ_GROUND == 0 && OBJ_SCAN == 1, "a point's object is one bit of its record");
+
+/// Pass 5 for one cell's points, `recs` sorted: appends the merged intervals,
+/// ground first, and returns where the other points' intervals start.
+///
+/// Sorted by height, a cell's point intervals are also sorted by (bottom,
+/// top), the order [`merge_raws`] sorts raw intervals into, so both give the
+/// same intervals for the same points (the GPU twin's map goes through
+/// `merge_raws`).
+fn merge_points(recs: &[u64], radius: f32, gap: f32, out: &mut Vec<Interval>) -> usize {
+    let Some((&first, rest)) = recs.split_first() else { return out.len() };
+    let mut mid = out.len();
+    let unpack = |k: u64| {
+        let z = f32_from_key(k as u32);
+        ((k >> 32) as u32 & 1, z - radius, z + radius)
+    };
+    let (mut obj, mut zlo, mut zhi) = unpack(first);
+    for &k in rest {
+        let (o, lo, hi) = unpack(k);
+        if o == obj && lo <= zhi + gap {
+            if hi > zhi {
+                zhi = hi;
+            }
+        } else {
+            out.push(Interval { zlo, zhi, obj });
+            if o != obj {
+                mid = out.len();
+            }
+            (obj, zlo, zhi) = (o, lo, hi);
+        }
     }
-    // Equal keys are equal raws: the sorted order, hence the map, does not
-    // depend on the order the raws arrived in.
-    raw.sort_unstable();
+    out.push(Interval { zlo, zhi, obj });
+    if obj == OBJ_GROUND { out.len() } else { mid }
+}
+
+/// Pass 5 for one cell's raw intervals: sorts their keys and appends the
+/// merged intervals. Equal keys are equal raws, so the sorted order, hence the
+/// map, does not depend on the order the raws arrived in.
+fn merge_raws(keys: &mut [u128], gap: f32, out: &mut Vec<Interval>) {
+    keys.sort_unstable();
+    let Some((&first, rest)) = keys.split_first() else { return };
     let unpack = |k: u128| ((k >> 96) as u32, (k >> 64) as u32, f32_from_key((k >> 32) as u32), f32_from_key(k as u32));
-    let start = out.len();
-    let (mut obj, mut part, mut zlo, mut zhi) = unpack(raw[0]);
-    for &k in &raw[1..] {
+    let (mut obj, mut part, mut zlo, mut zhi) = unpack(first);
+    for &k in rest {
         let (o, p, lo, hi) = unpack(k);
         if o == obj && p == part && (part != 0 || lo <= zhi + gap) {
             if hi > zhi {
@@ -293,205 +422,347 @@ fn merge_cell(raw: &mut [u128], gap: f32, mode: Mode, out: &mut Vec<Interval>) {
         }
     }
     out.push(Interval { zlo, zhi, obj });
+}
+
+/// The end of pass 5 for one cell whose merged intervals are `out[start..]`:
+/// sorts them by (bottom, top, object), keeps one in single-level mode, and
+/// returns the cell's top (`-inf` if empty) for the pyramid.
+///
+/// `sorted_runs` says that `out[start..]` is at most two runs, each already in
+/// that order, split at `mid` (a cell of scan points only: its ground run and
+/// its other-points run), which are merged instead of sorted.
+fn finish_cell(
+    out: &mut Vec<Interval>,
+    start: usize,
+    sorted_runs: Option<usize>,
+    mode: Mode,
+    tmp: &mut Vec<Interval>,
+) -> f32 {
+    let order = |i: &Interval| (f32_key(i.zlo), f32_key(i.zhi), i.obj);
+    match sorted_runs {
+        Some(mid) if mid > start && mid < out.len() => {
+            tmp.clear();
+            tmp.extend_from_slice(&out[start..]);
+            let (a, b) = tmp.split_at(mid - start);
+            let (mut x, mut y) = (0, 0);
+            for slot in &mut out[start..] {
+                let take_a = y == b.len() || (x < a.len() && order(&a[x]) <= order(&b[y]));
+                *slot = if take_a { a[x] } else { b[y] };
+                if take_a {
+                    x += 1;
+                } else {
+                    y += 1;
+                }
+            }
+        }
+        Some(_) => {}
+        None => out[start..].sort_unstable_by_key(order),
+    }
     let cell = &mut out[start..];
-    cell.sort_unstable_by_key(|i| (f32_key(i.zlo), f32_key(i.zhi), i.obj));
-    if mode == Mode::Single {
+    if mode == Mode::Single && !cell.is_empty() {
         let lo = cell.iter().map(|i| i.zlo).fold(f32::INFINITY, f32::min);
         let top = cell.iter().fold(cell[0], |a, i| if f32_key(i.zhi) > f32_key(a.zhi) { *i } else { a });
         out.truncate(start);
         out.push(Interval { zlo: lo, zhi: top.zhi, obj: top.obj });
     }
+    out[start..].iter().map(|i| i.zhi).fold(f32::NEG_INFINITY, f32::max)
 }
 
-/// Points rasterised straight into the assembly (no raw intervals stored).
-pub struct PointSource<'a> {
-    pub points: &'a LocalPoints,
-    pub radius: f32,
-}
-
-/// Tiles of `TILE x TILE` cells group the work of passes 2 to 5.
-const TILE: u32 = 64;
-/// Points or raws per parallel job.
+/// About this many cells make a band, a run of whole grid rows that passes 2
+/// to 5 treat together: small enough that a band's records stay in cache while
+/// they are sorted and merged.
+const BAND_CELLS: u32 = 2048;
+/// Points or raws per parallel job of the partition.
 const JOB: usize = 1 << 16;
 
-/// What the assembly reads: the points (rasterised on the fly) and raws.
-struct Sources<'a> {
-    points: Option<&'a PointSource<'a>>,
-    raws: &'a [Raw],
-    inv: f32,
-    nx: i64,
-    ny: i64,
+/// Records split into jobs that are visited the same way every time: the
+/// partition counts a job's records per band on one visit and writes them on
+/// the next.
+trait Records: Sync {
+    type Rec: Copy + Send + Sync;
+    fn jobs(&self) -> usize;
+    /// Adds the number of records of `job` in band `b` to `counts[b]`.
+    fn count(&self, job: usize, counts: &mut [u32]);
+    /// Calls `f(band, record)` for every record of `job`, in order.
+    fn visit(&self, job: usize, f: impl FnMut(usize, Self::Rec));
 }
 
-impl Sources<'_> {
-    /// Calls `f(cell, packed key)` for every raw interval of a job, in order.
-    #[inline]
-    fn visit(&self, job: Job, mut f: impl FnMut(u32, u128)) {
-        match job {
-            Job::Points(a, b) => {
-                let Some(p) = self.points else { return };
-                for k in a..b {
-                    let q = &p.points.xyz[k];
-                    let obj = p.points.obj[k];
-                    let (mut cells, mut n) = ([0u32; 4], 0);
-                    let (zlo, zhi) = point_cells(q, p.radius, self.inv, self.nx, self.ny, |c| {
-                        if n < 4 {
-                            cells[n] = c;
-                        }
-                        n += 1;
-                    });
-                    let key = pack(obj, 0, zlo, zhi);
-                    if n <= 4 {
-                        for &c in &cells[..n] {
-                            f(c, key);
-                        }
-                    } else {
-                        // A radius wider than a cell: rare, so recompute.
-                        point_cells(q, p.radius, self.inv, self.nx, self.ny, |c| f(c, key));
-                    }
-                }
-            }
-            Job::Raws(a, b) => {
-                for r in &self.raws[a..b] {
-                    f(r.cell, pack(r.obj, r.part, r.zlo, r.zhi));
+/// Pass 1 for points, fused into the partition: each point's cells are
+/// computed where they are counted and again where they are written, so the
+/// raw intervals are never stored and the converted points neither.
+struct PointRecords<'a> {
+    points: PointSource<'a>,
+    spec: GridSpec,
+    inv: f32,
+    /// log2 of the rows per band.
+    band_shift: u32,
+}
+
+impl Records for PointRecords<'_> {
+    type Rec = u64;
+    fn jobs(&self) -> usize {
+        self.points.xyz.len().div_ceil(JOB)
+    }
+    fn count(&self, job: usize, counts: &mut [u32]) {
+        let p = &self.points;
+        let (nx, ny) = (self.spec.nx as i64, self.spec.ny as i64);
+        for k in job * JOB..((job + 1) * JOB).min(p.xyz.len()) {
+            let q = local_point(&p.xyz[k], &self.spec);
+            let (i0, i1, j0, j1) = point_span(&q, p.radius, self.inv, nx, ny);
+            if i1 >= i0 {
+                for j in j0..=j1 {
+                    counts[(j >> self.band_shift) as usize] += (i1 - i0 + 1) as u32;
                 }
             }
         }
     }
+    #[inline]
+    fn visit(&self, job: usize, mut f: impl FnMut(usize, u64)) {
+        let p = &self.points;
+        let nx = self.spec.nx;
+        let mask = (1u32 << self.band_shift) - 1;
+        for k in job * JOB..((job + 1) * JOB).min(p.xyz.len()) {
+            let q = local_point(&p.xyz[k], &self.spec);
+            let obj = p.obj(k);
+            point_cells(&q, p.radius, self.inv, nx as i64, self.spec.ny as i64, |i, j| {
+                f((j >> self.band_shift) as usize, point_record((j & mask) * nx + i, obj, q[2]));
+            });
+        }
+    }
 }
 
-#[derive(Clone, Copy)]
-enum Job {
-    Points(usize, usize),
-    Raws(usize, usize),
+/// Raw intervals (triangles, or the GPU's points) in chunks, each record
+/// `[cell in band, object, part, bottom key, top key]`.
+struct RawRecords<'a> {
+    jobs: Vec<&'a [Raw]>,
+    band_cells: u32,
 }
 
-/// Passes 2 to 5 on the CPU: count, prefix-sum, fill, sort and merge, for the
-/// points of `points` (pass 1 fused in: each point's cells are computed where
-/// they are counted and where they are filled) and the raw intervals `raws`.
+impl Records for RawRecords<'_> {
+    type Rec = [u32; 5];
+    fn jobs(&self) -> usize {
+        self.jobs.len()
+    }
+    fn count(&self, job: usize, counts: &mut [u32]) {
+        for r in self.jobs[job] {
+            counts[(r.cell / self.band_cells) as usize] += 1;
+        }
+    }
+    #[inline]
+    fn visit(&self, job: usize, mut f: impl FnMut(usize, [u32; 5])) {
+        for r in self.jobs[job] {
+            let band = r.cell / self.band_cells;
+            f(band as usize, [r.cell % self.band_cells, r.obj, r.part, f32_key(r.zlo), f32_key(r.zhi)]);
+        }
+    }
+}
+
+/// Passes 2 to 4 by band: counts every job's records per band, gives each job
+/// its own slots in every band (bands in order, jobs in order within a band),
+/// and writes the records there, jobs in parallel. Returns the records and
+/// where each band's start (`starts[b]..starts[b + 1]`).
+fn partition<R: Records>(recs: &R, bands: usize) -> (Vec<R::Rec>, Vec<usize>) {
+    let counts: Vec<Vec<u32>> = (0..recs.jobs())
+        .into_par_iter()
+        .map(|job| {
+            let mut c = vec![0u32; bands];
+            recs.count(job, &mut c);
+            c
+        })
+        .collect();
+    let mut starts = vec![0usize; bands + 1];
+    // Per job and band: [next slot, end of its slots].
+    let mut slots: Vec<Vec<[usize; 2]>> = vec![vec![[0, 0]; bands]; counts.len()];
+    let mut at = 0usize;
+    for b in 0..bands {
+        starts[b] = at;
+        for (job, c) in counts.iter().enumerate() {
+            slots[job][b] = [at, at + c[b] as usize];
+            at += c[b] as usize;
+        }
+    }
+    starts[bands] = at;
+    drop(counts);
+    let mut out: Vec<R::Rec> = Vec::with_capacity(at);
+    let ptr = SendPtr(out.as_mut_ptr());
+    slots.par_iter_mut().enumerate().for_each(|(job, slots)| {
+        recs.visit(job, |b, r| {
+            let s = &mut slots[b];
+            // A visit that gave more records than it counted would be a bug in
+            // `visit`; stop rather than write outside the job's slots.
+            assert!(s[0] < s[1], "depth map partition: band {b} of job {job} overflows its slots");
+            // SAFETY: `s[0]` lies in this job's slots of band `b`, which no other
+            // job writes, and all slots lie within the capacity `at`.
+            unsafe { ptr.get().add(s[0]).write(r) };
+            s[0] += 1;
+        });
+    });
+    assert!(
+        slots.iter().flatten().all(|s| s[0] == s[1]),
+        "depth map partition: a job wrote fewer records than it counted"
+    );
+    // SAFETY: the slots tile 0..at and every slot was written (checked above).
+    unsafe { out.set_len(at) };
+    (out, starts)
+}
+
+/// Counting sort of one band's records by cell into `buf`: cell `l`'s keys are
+/// `buf[ends[l - 1]..ends[l]]` (from 0 for `l = 0`).
+fn bucket<T, K: Copy + Default>(
+    recs: &[T],
+    cells: usize,
+    cell_of: impl Fn(&T) -> usize,
+    key_of: impl Fn(&T) -> K,
+    ends: &mut Vec<u32>,
+    buf: &mut Vec<K>,
+) {
+    ends.clear();
+    ends.resize(cells + 1, 0);
+    for r in recs {
+        ends[cell_of(r) + 1] += 1;
+    }
+    for l in 1..=cells {
+        ends[l] += ends[l - 1];
+    }
+    buf.clear();
+    buf.resize(recs.len(), K::default());
+    for r in recs {
+        let at = &mut ends[cell_of(r)];
+        buf[*at as usize] = key_of(r);
+        *at += 1;
+    }
+}
+
+/// Per-thread buffers of pass 5.
+#[derive(Default)]
+struct Scratch {
+    point_ends: Vec<u32>,
+    points: Vec<u64>,
+    raw_ends: Vec<u32>,
+    raws: Vec<u128>,
+    out: Vec<Interval>,
+    tmp: Vec<Interval>,
+}
+
+/// Passes 2 to 5 on the CPU: count, prefix-sum, fill, sort and merge, for
+/// `points` (pass 1 fused in, see [`PointRecords`]) and the raw intervals in
+/// `raws`.
 ///
-/// Two levels, so that every write stays in cache: the raws are first
-/// partitioned by tile of 64 x 64 cells (count per tile, prefix, fill, per
-/// job in parallel into disjoint slots, packed into 16-byte sort keys), then
-/// each tile, in parallel, is counted, prefix-summed and filled by cell in a
-/// local buffer and every cell sorted and merged. The sorted keys of a cell
-/// are unique, so the map does not depend on job or thread order.
+/// Two levels, so that every write stays in cache: records are first
+/// partitioned by band of whole grid rows (about [`BAND_CELLS`] cells; jobs in
+/// parallel into disjoint slots), then each band, in parallel, is sorted by
+/// cell in a local buffer and every cell sorted and merged. The sorted keys of
+/// a cell are unique up to equal raws, so the map does not depend on job or
+/// thread order.
 pub fn assemble_sources(
     points: Option<PointSource>,
-    raws: &[Raw],
+    raws: &[&[Raw]],
     spec: GridSpec,
     mode: Mode,
     gap: f32,
     objects: Vec<String>,
 ) -> Mdm {
     let (nx, ny) = (spec.nx, spec.ny);
-    let (tx, ty) = (nx.div_ceil(TILE), ny.div_ceil(TILE));
-    let ntiles = (tx * ty) as usize;
-    let tile_of = |cell: u32| {
-        let (i, j) = (cell % nx, cell / nx);
-        ((j / TILE) * tx + i / TILE) as usize
-    };
+    // Rows per band: a power of two, so a row's band is a shift.
+    let band_shift = (BAND_CELLS / nx.max(1)).max(1).ilog2().min(ny.max(1).ilog2() + 1);
+    let band_rows = 1u32 << band_shift;
+    let band_cells = band_rows * nx;
+    let bands = ny.div_ceil(band_rows) as usize;
     let inv = (1.0 / spec.cell) as f32;
-    let npts = points.as_ref().map(|p| p.points.xyz.len()).unwrap_or(0);
-    let mut jobs: Vec<Job> = (0..npts.div_ceil(JOB)).map(|k| Job::Points(k * JOB, ((k + 1) * JOB).min(npts))).collect();
-    jobs.extend((0..raws.len().div_ceil(JOB)).map(|k| Job::Raws(k * JOB, ((k + 1) * JOB).min(raws.len()))));
-    let src = Sources { points: points.as_ref(), raws, inv, nx: nx as i64, ny: ny as i64 };
-    // Level 1: partition by tile.
-    let counts: Vec<Vec<u32>> = jobs
-        .par_iter()
-        .map(|&job| {
-            let mut c = vec![0u32; ntiles];
-            src.visit(job, |cell, _| c[tile_of(cell)] += 1);
-            c
-        })
-        .collect();
-    let mut tile_start = vec![0usize; ntiles + 1];
-    let mut cursors: Vec<Vec<usize>> = vec![vec![0; ntiles]; jobs.len()];
-    let mut at = 0usize;
-    for t in 0..ntiles {
-        tile_start[t] = at;
-        for (j, c) in counts.iter().enumerate() {
-            cursors[j][t] = at;
-            at += c[t] as usize;
-        }
-    }
-    tile_start[ntiles] = at;
-    drop(counts);
-    let mut cells = vec![0u32; at];
-    let mut keys = vec![0u128; at];
-    let (cell_ptr, key_ptr) = (SendPtr(cells.as_mut_ptr()), SendPtr(keys.as_mut_ptr()));
-    jobs.par_iter().zip(cursors.par_iter_mut()).for_each(|(&job, cur)| {
-        src.visit(job, |cell, key| {
-            let c = &mut cur[tile_of(cell)];
-            // SAFETY: each job owns the slots [its cursor start, + its count) of
-            // every tile, disjoint from every other job's and within `at`.
-            unsafe {
-                *cell_ptr.get().add(*c) = cell;
-                *key_ptr.get().add(*c) = key;
-            }
-            *c += 1;
-        });
-    });
-    drop(cursors);
-    // Level 2: per tile, by cell, then sort and merge.
-    let tiles: Vec<(Vec<u32>, Vec<Interval>)> = (0..ntiles)
-        .into_par_iter()
-        .map(|t| {
-            let (ti, tj) = (t as u32 % tx, t as u32 / tx);
-            let (i0, j0) = (ti * TILE, tj * TILE);
-            let (w, h) = ((nx - i0).min(TILE), (ny - j0).min(TILE));
-            let local = |cell: u32| ((cell / nx - j0) * w + (cell % nx - i0)) as usize;
-            let (a, b) = (tile_start[t], tile_start[t + 1]);
-            let mut offs = vec![0u32; (w * h) as usize + 1];
-            for &c in &cells[a..b] {
-                offs[local(c) + 1] += 1;
-            }
-            for k in 1..offs.len() {
-                offs[k] += offs[k - 1];
-            }
-            let mut sorted = vec![0u128; b - a];
-            let mut cur = offs.clone();
-            for (&c, &k) in cells[a..b].iter().zip(&keys[a..b]) {
-                let l = local(c);
-                sorted[cur[l] as usize] = k;
-                cur[l] += 1;
-            }
-            // starts[l]..starts[l + 1]: the merged intervals of local cell l.
-            let mut starts = Vec::with_capacity((w * h) as usize + 1);
-            starts.push(0u32);
-            let mut out = Vec::new();
-            for l in 0..(w * h) as usize {
-                merge_cell(&mut sorted[offs[l] as usize..offs[l + 1] as usize], gap, mode, &mut out);
-                starts.push(out.len() as u32);
-            }
-            (starts, out)
-        })
-        .collect();
-    drop((cells, keys));
-    // Row-major CSR from the tiles.
+    let radius = points.map(|p| p.radius).unwrap_or(0.0);
+    let (point_recs, point_starts) = match points {
+        Some(points) => partition(&PointRecords { points, spec, inv, band_shift }, bands),
+        None => (vec![], vec![0; bands + 1]),
+    };
+    let raw_jobs = raws.iter().flat_map(|c| c.chunks(JOB)).collect();
+    let (raw_recs, raw_starts) = partition(&RawRecords { jobs: raw_jobs, band_cells }, bands);
     let n = spec.cells();
+    // Bands are merged a few at a time, each into a buffer that is reused and
+    // so stays in cache and paged in; once a group is done, where its
+    // intervals go in the map is known and they are copied there. Each record
+    // gives at most one interval, which bounds the map.
+    let capacity = point_recs.len() + raw_recs.len();
+    let mut intervals: Vec<Interval> = Vec::with_capacity(capacity);
+    let mut counts = vec![0u32; n];
+    let mut tops = vec![0f32; n];
+    let group = 4 * rayon::current_num_threads();
+    let mut scratch: Vec<Scratch> = (0..group).map(|_| Scratch::default()).collect();
+    let mut band_counts: Vec<&mut [u32]> = counts.chunks_mut(band_cells as usize).collect();
+    let mut band_tops: Vec<&mut [f32]> = tops.chunks_mut(band_cells as usize).collect();
+    for first in (0..bands).step_by(group) {
+        let last = (first + group).min(bands);
+        scratch[..last - first]
+            .par_iter_mut()
+            .zip(band_counts[first..last].par_iter_mut().zip(band_tops[first..last].par_iter_mut()))
+            .enumerate()
+            .for_each(|(k, (s, (counts, tops)))| {
+                let b = first + k;
+                let pts = &point_recs[point_starts[b]..point_starts[b + 1]];
+                let rws = &raw_recs[raw_starts[b]..raw_starts[b + 1]];
+                merge_band(pts, rws, radius, gap, mode, s, counts, tops);
+            });
+        let mut rest = &mut intervals.spare_capacity_mut()[..];
+        let mut dsts = Vec::with_capacity(last - first);
+        for s in &scratch[..last - first] {
+            let (d, r) = std::mem::take(&mut rest).split_at_mut(s.out.len());
+            dsts.push(d);
+            rest = r;
+        }
+        let added: usize = scratch[..last - first].iter().map(|s| s.out.len()).sum();
+        dsts.into_par_iter().zip(&scratch[..last - first]).for_each(|(d, s)| {
+            for (d, v) in d.iter_mut().zip(&s.out) {
+                d.write(*v);
+            }
+        });
+        // SAFETY: the `added` slots after the length were written just above.
+        unsafe { intervals.set_len(intervals.len() + added) };
+    }
+    drop((point_recs, raw_recs, band_counts, band_tops));
+    intervals.shrink_to_fit();
+    // Row-major CSR: the bands in order.
     let mut offsets = Vec::with_capacity(n + 1);
     offsets.push(0u32);
-    let total: usize = tiles.iter().map(|t| t.1.len()).sum();
-    let mut intervals = Vec::with_capacity(total);
-    for j in 0..ny {
-        let tj = j / TILE;
-        for ti in 0..tx {
-            let t = (tj * tx + ti) as usize;
-            let (i0, j0) = (ti * TILE, tj * TILE);
-            let w = (nx - i0).min(TILE);
-            let row = ((j - j0) * w) as usize;
-            let (s, out) = &tiles[t];
-            let (a, b) = (s[row] as usize, s[row + w as usize] as usize);
-            intervals.extend_from_slice(&out[a..b]);
-            for l in row..row + w as usize {
-                offsets.push(offsets.last().copied().unwrap_or(0) + (s[l + 1] - s[l]));
-            }
-        }
+    let mut at = 0u32;
+    for c in &counts {
+        at += c;
+        offsets.push(at);
     }
     let mut m = Mdm { spec, mode, offsets, intervals, objects, pyramid: vec![] };
-    m.build_pyramid();
+    m.pyramid = Mdm::pyramid_from(nx, ny, tops);
     m
+}
+
+/// Passes 2 (by cell) to 5 for one band: its intervals into `s.out`, and per
+/// cell their number and the top into `counts` and `tops`.
+#[allow(clippy::too_many_arguments)]
+fn merge_band(
+    points: &[u64],
+    raws: &[[u32; 5]],
+    radius: f32,
+    gap: f32,
+    mode: Mode,
+    s: &mut Scratch,
+    counts: &mut [u32],
+    tops: &mut [f32],
+) {
+    let cells = counts.len();
+    bucket(points, cells, |r| (r >> 33) as usize, |r| *r, &mut s.point_ends, &mut s.points);
+    bucket(raws, cells, |r| r[0] as usize, raw_key, &mut s.raw_ends, &mut s.raws);
+    let out = &mut s.out;
+    out.clear();
+    let (mut p0, mut r0) = (0usize, 0usize);
+    for l in 0..cells {
+        let (p1, r1) = (s.point_ends[l] as usize, s.raw_ends[l] as usize);
+        let start = out.len();
+        let cell_points = &mut s.points[p0..p1];
+        cell_points.sort_unstable();
+        let mid = merge_points(cell_points, radius, gap, out);
+        let runs = (r1 == r0).then_some(mid);
+        merge_raws(&mut s.raws[r0..r1], gap, out);
+        tops[l] = finish_cell(out, start, runs, mode, &mut s.tmp);
+        counts[l] = (out.len() - start) as u32;
+        (p0, r0) = (p1, r1);
+    }
 }
 
 #[derive(Clone, Copy)]
@@ -517,16 +788,18 @@ impl Mdm {
 
     pub fn build_pyramid(&mut self) {
         let (nx, ny) = (self.spec.nx, self.spec.ny);
-        let base: Vec<f32> = (0..ny)
-            .flat_map(|j| (0..nx).map(move |i| (i, j)))
-            .map(|(i, j)| {
-                let k = (j * nx + i) as usize;
-                self.intervals[self.offsets[k] as usize..self.offsets[k + 1] as usize]
-                    .iter()
-                    .map(|iv| iv.zhi)
-                    .fold(f32::NEG_INFINITY, f32::max)
+        let base = self
+            .offsets
+            .windows(2)
+            .map(|w| {
+                self.intervals[w[0] as usize..w[1] as usize].iter().map(|iv| iv.zhi).fold(f32::NEG_INFINITY, f32::max)
             })
             .collect();
+        self.pyramid = Self::pyramid_from(nx, ny, base);
+    }
+
+    /// The max-height pyramid over `base`, the top of each cell in row-major order.
+    fn pyramid_from(nx: u32, ny: u32, base: Vec<f32>) -> Vec<(u32, u32, Vec<f32>)> {
         let mut levels = vec![(nx, ny, base)];
         while let Some((w, h, l)) = levels.last() {
             if *w <= 1 && *h <= 1 {
@@ -545,7 +818,7 @@ impl Mdm {
             }
             levels.push((w2, h2, next));
         }
-        self.pyramid = levels;
+        levels
     }
 
     pub fn to_bytes(&self) -> Vec<u8> {

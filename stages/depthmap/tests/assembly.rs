@@ -1,0 +1,139 @@
+//! The CPU assembly against a plain reference.
+//!
+//! The CPU rasterises points inside the assembly (8-byte point records, merged
+//! by height) while the GPU twin hands the same points over as raw intervals
+//! (16-byte keys, merged by bottom and top). Both must give the map a plain
+//! per-cell reference gives: every raw interval of a cell sorted by (object,
+//! part, bottom, top), runs of one object merged (a convex part whole, other
+//! intervals when less than the gap apart), then sorted by (bottom, top,
+//! object), or one interval in single-level mode.
+
+use liftplan_core::mesh::TriMesh;
+use liftplan_depthmap::mdm::{self, GridSpec, Interval, Mdm, Mode, PointSource, Raw};
+use proptest::prelude::*;
+use rand::{RngExt, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+fn key(v: f32) -> u32 {
+    mdm::f32_key(v)
+}
+
+/// The map of `raws` cell by cell, written as plainly as possible.
+fn reference(raws: &[Raw], spec: GridSpec, mode: Mode, gap: f32) -> (Vec<u32>, Vec<Interval>) {
+    let mut cells: Vec<Vec<Raw>> = vec![Vec::new(); spec.cells()];
+    for r in raws {
+        cells[r.cell as usize].push(*r);
+    }
+    let mut offsets = vec![0u32];
+    let mut intervals = Vec::new();
+    for mut c in cells {
+        c.sort_by_key(|r| (r.obj, r.part, key(r.zlo), key(r.zhi)));
+        let mut merged: Vec<(Raw, f32)> = Vec::new();
+        for r in c {
+            match merged.last_mut() {
+                Some((m, hi)) if m.obj == r.obj && m.part == r.part && (r.part != 0 || r.zlo <= *hi + gap) => {
+                    *hi = hi.max(r.zhi)
+                }
+                _ => merged.push((r, r.zhi)),
+            }
+        }
+        let mut out: Vec<Interval> =
+            merged.iter().map(|(m, hi)| Interval { zlo: m.zlo, zhi: *hi, obj: m.obj }).collect();
+        out.sort_by_key(|i| (key(i.zlo), key(i.zhi), i.obj));
+        if mode == Mode::Single && !out.is_empty() {
+            let lo = out.iter().map(|i| i.zlo).fold(f32::INFINITY, f32::min);
+            let top = *out.iter().rev().max_by_key(|i| key(i.zhi)).unwrap();
+            out = vec![Interval { zlo: lo, zhi: top.zhi, obj: top.obj }];
+        }
+        intervals.extend(out);
+        offsets.push(intervals.len() as u32);
+    }
+    (offsets, intervals)
+}
+
+struct Scene {
+    xyz: Vec<[f64; 3]>,
+    ground: Vec<bool>,
+    mesh: TriMesh,
+}
+
+/// Points around (and a few outside) the grid, many at equal heights (a
+/// ground plane and a quantised set) so ties and merges are common, some
+/// triangles and boxes (convex parts) across cells.
+fn scene(seed: u64, spec: &GridSpec, n: usize) -> Scene {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let (w, h) = (spec.nx as f64 * spec.cell, spec.ny as f64 * spec.cell);
+    let mut s = Scene { xyz: vec![], ground: vec![], mesh: TriMesh::default() };
+    for _ in 0..n {
+        let x = spec.x0 + rng.random::<f64>() * (w + 2.0) - 1.0;
+        let y = spec.y0 + rng.random::<f64>() * (h + 2.0) - 1.0;
+        let (z, g) = match rng.random_range(0..4) {
+            0 => (0.0, true),
+            // Multiples of 1/16 m: with the radii and gaps below, exact
+            // touching (bottom = top + gap) happens.
+            1 => (rng.random_range(0..24) as f64 * 0.0625, false),
+            2 => (rng.random::<f64>() * 3.0, rng.random::<bool>()),
+            _ => (-rng.random::<f64>(), false),
+        };
+        s.xyz.push([x, y, z]);
+        s.ground.push(g);
+    }
+    let g = s.mesh.group_id("pipe");
+    let q = s.mesh.group_id("rack");
+    for _ in 0..6 {
+        let c = [spec.x0 + rng.random::<f64>() * w, spec.y0 + rng.random::<f64>() * h, rng.random::<f64>() * 2.0];
+        let t: Vec<[f64; 3]> = (0..3)
+            .map(|_| [c[0] + rng.random::<f64>() - 0.5, c[1] + rng.random::<f64>() - 0.5, c[2] + rng.random::<f64>()])
+            .collect();
+        s.mesh.add_part(g, false, &t, &[[0, 1, 2]]);
+        let lo = [c[0], c[1], c[2]];
+        s.mesh.add_box(q, lo, [lo[0] + 0.4, lo[1] + 0.3, lo[2] + 0.5]);
+    }
+    s
+}
+
+fn check(seed: u64, spec: GridSpec, radius: f32, gap: f32, mode: Mode, n: usize) -> Result<(), TestCaseError> {
+    let s = scene(seed, &spec, n);
+    let points = PointSource { xyz: &s.xyz, ground: &s.ground, radius };
+    let tris: Vec<Raw> = mdm::mesh_raws(&s.mesh, &spec, 2).concat();
+    let mut all = Vec::new();
+    mdm::point_raws(&points, &spec, &mut all);
+    all.extend_from_slice(&tris);
+    let objects = vec!["g".to_string(), "s".into(), "pipe".into(), "rack".into()];
+    let fused: Mdm = mdm::assemble_sources(Some(points), &[&tris], spec, mode, gap, objects.clone());
+    let as_raws: Mdm =
+        mdm::assemble_sources(None, &[&all[..all.len() / 2], &all[all.len() / 2..]], spec, mode, gap, objects);
+    let (offsets, intervals) = reference(&all, spec, mode, gap);
+    prop_assert!(fused.offsets == offsets && fused.intervals == intervals, "points rasterised in the assembly differ");
+    prop_assert!(as_raws.offsets == offsets && as_raws.intervals == intervals, "points as raw intervals differ");
+    let mut read_back = fused.clone();
+    read_back.build_pyramid();
+    prop_assert!(read_back.pyramid == fused.pyramid, "the pyramid differs from one built from the intervals");
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+    #[test]
+    fn assembly_matches_the_reference(
+        seed in any::<u64>(),
+        nx in 1u32..60,
+        ny in 1u32..40,
+        cell in prop::sample::select(vec![0.1, 0.25, 0.5]),
+        radius in prop::sample::select(vec![0.0f32, 0.05, 0.0625, 0.12, 0.3]),
+        gap in prop::sample::select(vec![0.0f32, 0.1, 0.125]),
+        single in any::<bool>(),
+    ) {
+        let spec = GridSpec { x0: 1000.0, y0: -500.0, cell, nx, ny };
+        check(seed, spec, radius, gap, if single { Mode::Single } else { Mode::Multi }, 400)?;
+    }
+}
+
+/// Grids wider than a band (one row per band) and narrow ones (many rows).
+#[test]
+fn assembly_matches_the_reference_on_wide_and_narrow_grids() {
+    for (nx, ny) in [(3000, 3), (2049, 2), (2, 3000), (700, 9)] {
+        let spec = GridSpec { x0: 0.0, y0: 0.0, cell: 0.25, nx, ny };
+        check(11, spec, 0.0625, 0.125, Mode::Multi, 20_000).unwrap();
+    }
+}
