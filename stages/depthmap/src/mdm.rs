@@ -272,6 +272,51 @@ fn clip(poly: &Poly, axis: usize, v: f64, keep_above: bool) -> Poly {
     out
 }
 
+/// One edge `a -> b` of a Sutherland-Hodgman clip to `x >= v` (`keep_above`)
+/// or `x <= v`: `a` if it is inside, then the crossing if the edge crosses.
+/// The arithmetic of [`clip`].
+#[inline]
+fn clip_edge(a: [f64; 3], b: [f64; 3], v: f64, keep_above: bool, mut emit: impl FnMut([f64; 3])) {
+    let inside = |p: &[f64; 3]| if keep_above { p[0] >= v } else { p[0] <= v };
+    let (ia, ib) = (inside(&a), inside(&b));
+    if ia {
+        emit(a);
+    }
+    if ia != ib {
+        let t = (v - a[0]) / (b[0] - a[0]);
+        emit([a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])]);
+    }
+}
+
+/// The lowest and highest height of convex polygon `poly` clipped to
+/// `xa <= x <= xb`, or `None` if nothing is left: the vertices that clipping
+/// to `x >= xa` and then to `x <= xb` with [`clip`] would give, in the same
+/// order and arithmetic, but passed from the first clip to the second one at
+/// a time instead of stored (this runs once per cell of every triangle).
+fn heights_between(poly: &[[f64; 3]], xa: f64, xb: f64) -> Option<(f64, f64)> {
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    let mut keep = |p: [f64; 3]| {
+        lo = lo.min(p[2]);
+        hi = hi.max(p[2]);
+    };
+    // The second clip's first and latest input vertex.
+    let mut first: Option<[f64; 3]> = None;
+    let mut prev = [0.0; 3];
+    for k in 0..poly.len() {
+        clip_edge(poly[k], poly[(k + 1) % poly.len()], xa, true, |p| {
+            if first.is_some() {
+                clip_edge(prev, p, xb, false, &mut keep);
+            } else {
+                first = Some(p);
+            }
+            prev = p;
+        });
+    }
+    let first = first?;
+    clip_edge(prev, first, xb, false, &mut keep);
+    (lo <= hi).then_some((lo, hi))
+}
+
 /// Pass 1 for one triangle (grid-local coordinates): for every cell it touches,
 /// the height range of the triangle over that cell, widened outwards by one part
 /// in 10^6 plus a micrometre so rounding never makes it too small.
@@ -301,14 +346,14 @@ pub fn triangle_cells(t: &[[f64; 3]; 3], spec: &GridSpec, mut emit: impl FnMut(u
         };
         for i in a..=b {
             let (xa, xb) = (i as f64 * c, (i + 1) as f64 * c);
-            let poly = clip(&clip(&strip, 0, xa, true), 0, xb, false);
-            let (lo, hi) = if poly.lossy {
+            let (lo, hi) = if strip.lossy {
                 // Conservative: the whole triangle's heights.
                 tri.range(2)
-            } else if poly.n > 0 {
-                poly.range(2)
             } else {
-                continue;
+                match heights_between(strip.vertices(), xa, xb) {
+                    Some(range) => range,
+                    None => continue,
+                }
             };
             let pad = 1e-6 * lo.abs().max(hi.abs()) + 1e-6;
             emit(j * spec.nx + i, (lo - pad) as f32, (hi + pad) as f32);
