@@ -5,8 +5,11 @@
 //!
 //!   cargo run --release -p liftplan-depthmap --example bench_depthmap > reports/depthmap.md
 //!
-//! Points are random over a 200 x 200 m site with 60 % on a ground plane
-//! (deterministic); the map uses the project defaults (0.25 m cells, 5 cm point radius).
+//! Two clouds of each size over a 200 x 200 m site, both deterministic:
+//! *random* (60 % on a ground plane, the rest anywhere up to 30 m: almost
+//! nothing merges, the worst case for the assembly) and *surface* (points on
+//! ground, buildings, tanks and pipes, as a scan sees a plant). The map uses
+//! the project defaults (0.25 m cells, 5 cm point radius).
 
 use liftplan_core::mesh::TriMesh;
 use liftplan_depthmap::{Inputs, Settings, build, build_cpu, gpu};
@@ -22,6 +25,57 @@ fn points(n: usize) -> Inputs {
         let (x, y) = (rng.random::<f64>() * 200.0, rng.random::<f64>() * 200.0);
         let g = rng.random::<f64>() < 0.6;
         inp.points.push([x, y, if g { 0.0 } else { rng.random::<f64>() * 30.0 }]);
+        inp.ground.push(g);
+    }
+    inp
+}
+
+/// `n` points on surfaces, as a laser scan of a plant sees it: gently sloping
+/// ground (half of them, classed ground), the walls and roofs of 12 buildings,
+/// 8 storage tanks and 16 pipes on racks, over the same 200 x 200 m. Unlike
+/// [`points`], most points of a cell lie on one or two surfaces, so they merge.
+fn surface_points(n: usize) -> Inputs {
+    use std::f64::consts::TAU;
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(n as u64 ^ 0x5eed);
+    let ground_z = |x: f64, y: f64| 0.01 * x + 0.4 * (y / 25.0).sin();
+    let buildings: Vec<[f64; 5]> = (0..12)
+        .map(|k| {
+            let (x, y) = (10.0 + (k % 4) as f64 * 48.0, 15.0 + (k / 4) as f64 * 60.0);
+            [x, y, 18.0 + (k % 3) as f64 * 6.0, 12.0 + (k % 2) as f64 * 8.0, 8.0 + (k % 5) as f64 * 3.0]
+        })
+        .collect();
+    let tanks: Vec<[f64; 4]> = (0..8).map(|k| [30.0 + k as f64 * 20.0, 190.0, 4.0 + (k % 3) as f64, 12.0]).collect();
+    let mut inp = Inputs::default();
+    inp.points.reserve(n);
+    inp.ground.reserve(n);
+    for _ in 0..n {
+        let u = rng.random::<f64>();
+        let (p, g) = if u < 0.5 {
+            let (x, y) = (rng.random::<f64>() * 200.0, rng.random::<f64>() * 200.0);
+            ([x, y, ground_z(x, y)], true)
+        } else if u < 0.8 {
+            let [bx, by, w, d, h] = buildings[rng.random_range(0..buildings.len())];
+            let z0 = ground_z(bx, by);
+            let (a, b) = (rng.random::<f64>(), rng.random::<f64>());
+            let p = match rng.random_range(0..5) {
+                0 => [bx + a * w, by, z0 + b * h],
+                1 => [bx + a * w, by + d, z0 + b * h],
+                2 => [bx, by + a * d, z0 + b * h],
+                3 => [bx + w, by + a * d, z0 + b * h],
+                _ => [bx + a * w, by + b * d, z0 + h],
+            };
+            (p, false)
+        } else if u < 0.9 {
+            let [cx, cy, r, h] = tanks[rng.random_range(0..tanks.len())];
+            let t = rng.random::<f64>() * TAU;
+            ([cx + r * t.cos(), cy + r * t.sin(), ground_z(cx, cy) + rng.random::<f64>() * h], false)
+        } else {
+            let k = rng.random_range(0..16);
+            let (y, z) = (100.0 + (k % 4) as f64 * 2.0, 6.0 + (k / 4) as f64 * 1.5);
+            let t = rng.random::<f64>() * TAU;
+            ([5.0 + rng.random::<f64>() * 190.0, y + 0.3 * t.cos(), z + 0.3 * t.sin()], false)
+        };
+        inp.points.push(p);
         inp.ground.push(g);
     }
     inp
@@ -63,8 +117,9 @@ fn main() {
     );
     println!("| input | floor ms | CPU ms | CPU / floor | GPU ms | GPU / floor | maps equal |");
     println!("|---|---|---|---|---|---|---|");
-    for n in sizes {
-        let inp = points(n);
+    let clouds = sizes.iter().map(|&n| ("random", n)).chain(sizes.iter().map(|&n| ("surface", n)));
+    for (kind, n) in clouds {
+        let inp = if kind == "random" { points(n) } else { surface_points(n) };
         let floor = best_of(3, || {
             let t = Instant::now();
             let s: f64 = inp.points.iter().map(|p| p[0] + p[1] + p[2]).sum();
@@ -76,7 +131,7 @@ fn main() {
             let t = Instant::now();
             let (m, timings) = build_cpu(&inp, &s).unwrap();
             let dt = t.elapsed().as_secs_f64() * 1e3;
-            eprintln!("{n} points, CPU: {timings:?}");
+            eprintln!("{n} {kind} points, CPU: {timings:?}, {} intervals", m.intervals.len());
             cpu_map = Some(m);
             dt
         });
@@ -96,7 +151,7 @@ fn main() {
         };
         let ratio = |x: &str| x.parse::<f64>().map(|v| format!("{:.1}", v / floor)).unwrap_or_else(|_| "-".into());
         println!(
-            "| {n} points | {floor:.1} | {cpu:.0} | {:.1} | {gpu_ms} | {} | {equal} |",
+            "| {n} {kind} points | {floor:.1} | {cpu:.0} | {:.1} | {gpu_ms} | {} | {equal} |",
             cpu / floor,
             ratio(&gpu_ms)
         );
