@@ -402,15 +402,25 @@ fn raw_key(r: &[u32; 5]) -> u128 {
     (r[1] as u128) << 96 | (r[2] as u128) << 64 | (r[3] as u128) << 32 | r[4] as u128
 }
 
-/// A point's record in a band: bits 33 and up the cell in the band, bit 32 the
-/// object (ground or scan), the low 32 bits the key of its height, so that the
-/// integer order is (cell, object, height). Its interval `[z - r, z + r]` is
-/// computed again from the height when merging, in the operations
-/// [`point_cells`] uses, so 8 bytes carry what a 16-byte raw key would.
+/// A point's record in a band: the low 32 bits the key of its height, bit 32
+/// its object (ground or scan), then [`WIDE`] and [`TALL`], and from bit
+/// [`CELL_SHIFT`] up its first cell in the band. Below the flags, the integer
+/// order is (object, height), the order a cell's points are merged in. Its
+/// interval `[z - r, z + r]` is computed again from the height when merging,
+/// in the operations [`point_cells`] uses, so 8 bytes carry what a 16-byte raw
+/// key would, and one record stands for up to four cells.
 #[inline]
-fn point_record(local: u32, obj: u32, z: f32) -> u64 {
-    (local as u64) << 33 | (obj as u64) << 32 | f32_key(z) as u64
+fn point_record(local: u32, flags: u64, obj: u32, z: f32) -> u64 {
+    (local as u64) << CELL_SHIFT | flags | (obj as u64) << 32 | f32_key(z) as u64
 }
+
+/// The point also covers the next column.
+const WIDE: u64 = 1 << 33;
+/// The point also covers the next row, in the same band.
+const TALL: u64 = 1 << 34;
+const CELL_SHIFT: u32 = 35;
+/// Object and height: what a cell sorts and merges.
+const POINT_KEY: u64 = (1 << 33) - 1;
 
 const _: () = assert!(OBJ_GROUND == 0 && OBJ_SCAN == 1, "a point's object is one bit of its record");
 
@@ -520,134 +530,117 @@ const BAND_CELLS: u32 = 2048;
 /// Points or raws per parallel job of the partition.
 const JOB: usize = 1 << 16;
 
-/// Records split into jobs that are visited the same way every time: the
-/// partition counts a job's records per band on one visit and writes them on
-/// the next.
-trait Records: Sync {
-    type Rec: Copy + Send + Sync;
-    fn jobs(&self) -> usize;
-    /// Adds the number of records of `job` in band `b` to `counts[b]`.
-    fn count(&self, job: usize, counts: &mut [u32]);
-    /// Calls `f(band, record)` for every record of `job`, in order.
-    fn visit(&self, job: usize, f: impl FnMut(usize, Self::Rec));
+/// One job's points as records grouped by band: band `b`'s are
+/// `recs[starts[b]..starts[b + 1]]`, in point order.
+struct PointJob {
+    recs: Vec<u64>,
+    starts: Vec<u32>,
+    /// Cells the records stand for.
+    cells: usize,
 }
 
-/// Pass 1 for points, fused into the partition: each point's cells are
-/// computed where they are counted and again where they are written, so the
-/// raw intervals are never stored and the converted points neither.
-struct PointRecords<'a> {
-    points: PointSource<'a>,
-    spec: GridSpec,
-    inv: f32,
-    /// log2 of the rows per band.
+/// Pass 1 for a job of points, fused into the partition: every point's cells
+/// become one record per band it touches (or one per cell, for a point wider
+/// or taller than two cells), made in cache-sized batches and grouped by band
+/// there, so the points are read once and neither they nor their raw
+/// intervals are stored again.
+fn point_job(
+    p: &PointSource,
+    range: std::ops::Range<usize>,
+    spec: &GridSpec,
     band_shift: u32,
-}
-
-impl Records for PointRecords<'_> {
-    type Rec = u64;
-    fn jobs(&self) -> usize {
-        self.points.xyz.len().div_ceil(JOB)
-    }
-    fn count(&self, job: usize, counts: &mut [u32]) {
-        let p = &self.points;
-        let (nx, ny) = (self.spec.nx as i64, self.spec.ny as i64);
-        for k in job * JOB..((job + 1) * JOB).min(p.xyz.len()) {
-            let q = local_point(&p.xyz[k], &self.spec);
-            let (i0, i1, j0, j1) = point_span(&q, p.radius, self.inv, nx, ny);
-            if i1 >= i0 {
-                for j in j0..=j1 {
-                    counts[(j >> self.band_shift) as usize] += (i1 - i0 + 1) as u32;
+    bands: usize,
+) -> PointJob {
+    let inv = (1.0 / spec.cell) as f32;
+    let (nx, ny) = (spec.nx, spec.ny);
+    let mask = (1u32 << band_shift) - 1;
+    let mut made: Vec<(u32, u64)> = Vec::with_capacity(2 * range.len());
+    let mut cells = 0usize;
+    for k in range {
+        let q = local_point(&p.xyz[k], spec);
+        let (i0, i1, j0, j1) = point_span(&q, p.radius, inv, nx as i64, ny as i64);
+        if i1 < i0 || j1 < j0 {
+            continue;
+        }
+        let (i0, i1, j0, j1) = (i0 as u32, i1 as u32, j0 as u32, j1 as u32);
+        cells += ((i1 - i0 + 1) * (j1 - j0 + 1)) as usize;
+        let obj = p.obj(k);
+        let (b0, b1) = (j0 >> band_shift, j1 >> band_shift);
+        if i1 - i0 <= 1 && j1 - j0 <= 1 {
+            let wide = if i1 > i0 { WIDE } else { 0 };
+            if b0 == b1 {
+                let tall = if j1 > j0 { TALL } else { 0 };
+                made.push((b0, point_record((j0 & mask) * nx + i0, wide | tall, obj, q[2])));
+            } else {
+                made.push((b0, point_record((j0 & mask) * nx + i0, wide, obj, q[2])));
+                made.push((b1, point_record((j1 & mask) * nx + i0, wide, obj, q[2])));
+            }
+        } else {
+            for j in j0..=j1 {
+                for i in i0..=i1 {
+                    made.push((j >> band_shift, point_record((j & mask) * nx + i, 0, obj, q[2])));
                 }
             }
         }
     }
-    #[inline]
-    fn visit(&self, job: usize, mut f: impl FnMut(usize, u64)) {
-        let p = &self.points;
-        let nx = self.spec.nx;
-        let mask = (1u32 << self.band_shift) - 1;
-        for k in job * JOB..((job + 1) * JOB).min(p.xyz.len()) {
-            let q = local_point(&p.xyz[k], &self.spec);
-            let obj = p.obj(k);
-            point_cells(&q, p.radius, self.inv, nx as i64, self.spec.ny as i64, |i, j| {
-                f((j >> self.band_shift) as usize, point_record((j & mask) * nx + i, obj, q[2]));
-            });
-        }
+    let mut starts = vec![0u32; bands + 1];
+    for &(b, _) in &made {
+        starts[b as usize + 1] += 1;
     }
+    for b in 1..=bands {
+        starts[b] += starts[b - 1];
+    }
+    let mut cursor = starts.clone();
+    let mut recs = vec![0u64; made.len()];
+    for &(b, r) in &made {
+        let at = &mut cursor[b as usize];
+        recs[*at as usize] = r;
+        *at += 1;
+    }
+    PointJob { recs, starts, cells }
 }
 
-/// Raw intervals (triangles, or the GPU's points) in chunks, each record
-/// `[cell in band, object, part, bottom key, top key]`.
-struct RawRecords<'a> {
-    jobs: Vec<&'a [Raw]>,
-    band_cells: u32,
-}
-
-impl Records for RawRecords<'_> {
-    type Rec = [u32; 5];
-    fn jobs(&self) -> usize {
-        self.jobs.len()
-    }
-    fn count(&self, job: usize, counts: &mut [u32]) {
-        for r in self.jobs[job] {
-            counts[(r.cell / self.band_cells) as usize] += 1;
-        }
-    }
-    #[inline]
-    fn visit(&self, job: usize, mut f: impl FnMut(usize, [u32; 5])) {
-        for r in self.jobs[job] {
-            let band = r.cell / self.band_cells;
-            f(band as usize, [r.cell % self.band_cells, r.obj, r.part, f32_key(r.zlo), f32_key(r.zhi)]);
-        }
-    }
-}
-
-/// Passes 2 to 4 by band: counts every job's records per band, gives each job
-/// its own slots in every band (bands in order, jobs in order within a band),
-/// and writes the records there, jobs in parallel. Returns the records and
-/// where each band's start (`starts[b]..starts[b + 1]`).
-fn partition<R: Records>(recs: &R, bands: usize) -> (Vec<R::Rec>, Vec<usize>) {
-    let counts: Vec<Vec<u32>> = (0..recs.jobs())
-        .into_par_iter()
+/// Passes 2 to 4 by band for raw intervals (triangles, or the GPU's points),
+/// each as `[cell in band, object, part, bottom key, top key]`: counts every
+/// job's raws per band, gives each job its own slots in every band (bands in
+/// order, jobs in order within a band), and writes them there, jobs in
+/// parallel. Returns the records and where each band starts
+/// (`starts[b]..starts[b + 1]`).
+fn partition_raws(jobs: &[&[Raw]], band_cells: u32, bands: usize) -> (Vec<[u32; 5]>, Vec<usize>) {
+    let counts: Vec<Vec<u32>> = jobs
+        .par_iter()
         .map(|job| {
             let mut c = vec![0u32; bands];
-            recs.count(job, &mut c);
+            for r in *job {
+                c[(r.cell / band_cells) as usize] += 1;
+            }
             c
         })
         .collect();
     let mut starts = vec![0usize; bands + 1];
-    // Per job and band: [next slot, end of its slots].
-    let mut slots: Vec<Vec<[usize; 2]>> = vec![vec![[0, 0]; bands]; counts.len()];
-    let mut at = 0usize;
     for b in 0..bands {
-        starts[b] = at;
+        starts[b + 1] = starts[b] + counts.iter().map(|c| c[b] as usize).sum::<usize>();
+    }
+    let at = starts[bands];
+    let mut out = vec![[0u32; 5]; at];
+    // Each job's slots, band by band, as disjoint slices of `out`.
+    let mut slices: Vec<Vec<&mut [[u32; 5]]>> = (0..jobs.len()).map(|_| Vec::with_capacity(bands)).collect();
+    let mut rest = &mut out[..];
+    for b in 0..bands {
         for (job, c) in counts.iter().enumerate() {
-            slots[job][b] = [at, at + c[b] as usize];
-            at += c[b] as usize;
+            let (s, r) = std::mem::take(&mut rest).split_at_mut(c[b] as usize);
+            slices[job].push(s);
+            rest = r;
         }
     }
-    starts[bands] = at;
-    drop(counts);
-    let mut out: Vec<R::Rec> = Vec::with_capacity(at);
-    let ptr = SendPtr(out.as_mut_ptr());
-    slots.par_iter_mut().enumerate().for_each(|(job, slots)| {
-        recs.visit(job, |b, r| {
-            let s = &mut slots[b];
-            // A visit that gave more records than it counted would be a bug in
-            // `visit`; stop rather than write outside the job's slots.
-            assert!(s[0] < s[1], "depth map partition: band {b} of job {job} overflows its slots");
-            // SAFETY: `s[0]` lies in this job's slots of band `b`, which no other
-            // job writes, and all slots lie within the capacity `at`.
-            unsafe { ptr.get().add(s[0]).write(r) };
-            s[0] += 1;
-        });
+    slices.par_iter_mut().zip(jobs.par_iter()).for_each(|(slices, job)| {
+        let mut next = vec![0usize; bands];
+        for r in *job {
+            let b = (r.cell / band_cells) as usize;
+            slices[b][next[b]] = [r.cell % band_cells, r.obj, r.part, f32_key(r.zlo), f32_key(r.zhi)];
+            next[b] += 1;
+        }
     });
-    assert!(
-        slots.iter().flatten().all(|s| s[0] == s[1]),
-        "depth map partition: a job wrote fewer records than it counted"
-    );
-    // SAFETY: the slots tile 0..at and every slot was written (checked above).
-    unsafe { out.set_len(at) };
     (out, starts)
 }
 
@@ -678,6 +671,48 @@ fn bucket<T, K: Copy + Default>(
     }
 }
 
+/// [`bucket`] for one band's point records, gathered from every job and each
+/// standing for up to four cells: cell `l`'s keys (object and height) are
+/// `buf[ends[l - 1]..ends[l]]` (from 0 for `l = 0`).
+fn bucket_points(jobs: &[PointJob], band: usize, cells: usize, nx: usize, ends: &mut Vec<u32>, buf: &mut Vec<u64>) {
+    let segments = || jobs.iter().map(|j| &j.recs[j.starts[band] as usize..j.starts[band + 1] as usize]);
+    // The cells a record stands for, as offsets from its first cell; a flag
+    // set only where that cell exists (the same row, or the same band).
+    let covered = |r: u64| {
+        let (wide, tall) = (r & WIDE != 0, r & TALL != 0);
+        [(0, true), (1, wide), (nx, tall), (nx + 1, wide && tall)]
+    };
+    ends.clear();
+    ends.resize(cells + 1, 0);
+    for seg in segments() {
+        for &r in seg {
+            let l = (r >> CELL_SHIFT) as usize;
+            for (d, on) in covered(r) {
+                if on {
+                    ends[l + d + 1] += 1;
+                }
+            }
+        }
+    }
+    for l in 1..=cells {
+        ends[l] += ends[l - 1];
+    }
+    buf.clear();
+    buf.resize(ends[cells] as usize, 0);
+    for seg in segments() {
+        for &r in seg {
+            let l = (r >> CELL_SHIFT) as usize;
+            for (d, on) in covered(r) {
+                if on {
+                    let at = &mut ends[l + d];
+                    buf[*at as usize] = r & POINT_KEY;
+                    *at += 1;
+                }
+            }
+        }
+    }
+}
+
 /// Per-thread buffers of pass 5.
 #[derive(Default)]
 struct Scratch {
@@ -690,15 +725,16 @@ struct Scratch {
 }
 
 /// Passes 2 to 5 on the CPU: count, prefix-sum, fill, sort and merge, for
-/// `points` (pass 1 fused in, see [`PointRecords`]) and the raw intervals in
+/// `points` (pass 1 fused in, see [`point_job`]) and the raw intervals in
 /// `raws`.
 ///
-/// Two levels, so that every write stays in cache: records are first
-/// partitioned by band of whole grid rows (about [`BAND_CELLS`] cells; jobs in
-/// parallel into disjoint slots), then each band, in parallel, is sorted by
-/// cell in a local buffer and every cell sorted and merged. The sorted keys of
-/// a cell are unique up to equal raws, so the map does not depend on job or
-/// thread order.
+/// Two levels, so that every write stays in cache: records are first grouped
+/// by band of whole grid rows (about [`BAND_CELLS`] cells): points job by job,
+/// each job's records grouped in its own buffer; raws counted per job and
+/// written into disjoint slots. Then each band, in parallel, gathers its
+/// records from every job, sorts them by cell in a local buffer, and every
+/// cell is sorted and merged. The sorted keys of a cell are unique up to equal
+/// raws, so the map does not depend on job or thread order.
 pub fn assemble_sources(
     points: Option<PointSource>,
     raws: &[&[Raw]],
@@ -713,20 +749,22 @@ pub fn assemble_sources(
     let band_rows = 1u32 << band_shift;
     let band_cells = band_rows * nx;
     let bands = ny.div_ceil(band_rows) as usize;
-    let inv = (1.0 / spec.cell) as f32;
     let radius = points.map(|p| p.radius).unwrap_or(0.0);
-    let (point_recs, point_starts) = match points {
-        Some(points) => partition(&PointRecords { points, spec, inv, band_shift }, bands),
-        None => (vec![], vec![0; bands + 1]),
+    let point_jobs: Vec<PointJob> = match points {
+        Some(p) => (0..p.xyz.len().div_ceil(JOB))
+            .into_par_iter()
+            .map(|k| point_job(&p, k * JOB..((k + 1) * JOB).min(p.xyz.len()), &spec, band_shift, bands))
+            .collect(),
+        None => vec![],
     };
-    let raw_jobs = raws.iter().flat_map(|c| c.chunks(JOB)).collect();
-    let (raw_recs, raw_starts) = partition(&RawRecords { jobs: raw_jobs, band_cells }, bands);
+    let raw_jobs: Vec<&[Raw]> = raws.iter().flat_map(|c| c.chunks(JOB)).collect();
+    let (raw_recs, raw_starts) = partition_raws(&raw_jobs, band_cells, bands);
     let n = spec.cells();
     // Bands are merged a few at a time, each into a buffer that is reused and
     // so stays in cache and paged in; once a group is done, where its
-    // intervals go in the map is known and they are copied there. Each record
-    // gives at most one interval, which bounds the map.
-    let capacity = point_recs.len() + raw_recs.len();
+    // intervals go in the map is known and they are copied there. Each cell a
+    // record stands for gives at most one interval, which bounds the map.
+    let capacity = point_jobs.iter().map(|j| j.cells).sum::<usize>() + raw_recs.len();
     let mut intervals: Vec<Interval> = Vec::with_capacity(capacity);
     let mut counts = vec![0u32; n];
     let mut tops = vec![0f32; n];
@@ -742,9 +780,9 @@ pub fn assemble_sources(
             .enumerate()
             .for_each(|(k, (s, (counts, tops)))| {
                 let b = first + k;
-                let pts = &point_recs[point_starts[b]..point_starts[b + 1]];
+                bucket_points(&point_jobs, b, counts.len(), nx as usize, &mut s.point_ends, &mut s.points);
                 let rws = &raw_recs[raw_starts[b]..raw_starts[b + 1]];
-                merge_band(pts, rws, radius, gap, mode, s, counts, tops);
+                merge_band(rws, radius, gap, mode, s, counts, tops);
             });
         let mut rest = &mut intervals.spare_capacity_mut()[..];
         let mut dsts = Vec::with_capacity(last - first);
@@ -762,7 +800,7 @@ pub fn assemble_sources(
         // SAFETY: the `added` slots after the length were written just above.
         unsafe { intervals.set_len(intervals.len() + added) };
     }
-    drop((point_recs, raw_recs, band_counts, band_tops));
+    drop((point_jobs, raw_recs, band_counts, band_tops));
     intervals.shrink_to_fit();
     // Row-major CSR: the bands in order.
     let mut offsets = Vec::with_capacity(n + 1);
@@ -777,11 +815,10 @@ pub fn assemble_sources(
     m
 }
 
-/// Passes 2 (by cell) to 5 for one band: its intervals into `s.out`, and per
-/// cell their number and the top into `counts` and `tops`.
-#[allow(clippy::too_many_arguments)]
+/// Passes 2 (by cell) to 5 for one band whose points are already in
+/// `s.points` by cell: its intervals into `s.out`, and per cell their number
+/// and the top into `counts` and `tops`.
 fn merge_band(
-    points: &[u64],
     raws: &[[u32; 5]],
     radius: f32,
     gap: f32,
@@ -791,7 +828,6 @@ fn merge_band(
     tops: &mut [f32],
 ) {
     let cells = counts.len();
-    bucket(points, cells, |r| (r >> 33) as usize, |r| *r, &mut s.point_ends, &mut s.points);
     bucket(raws, cells, |r| r[0] as usize, raw_key, &mut s.raw_ends, &mut s.raws);
     let out = &mut s.out;
     out.clear();
@@ -807,16 +843,6 @@ fn merge_band(
         tops[l] = finish_cell(out, start, runs, mode, &mut s.tmp);
         counts[l] = (out.len() - start) as u32;
         (p0, r0) = (p1, r1);
-    }
-}
-
-#[derive(Clone, Copy)]
-struct SendPtr<T>(*mut T);
-unsafe impl<T> Send for SendPtr<T> {}
-unsafe impl<T> Sync for SendPtr<T> {}
-impl<T> SendPtr<T> {
-    fn get(self) -> *mut T {
-        self.0
     }
 }
 
