@@ -543,18 +543,20 @@ struct PointJob {
 /// become one record per band it touches (or one per cell, for a point wider
 /// or taller than two cells), made in cache-sized batches and grouped by band
 /// there, so the points are read once and neither they nor their raw
-/// intervals are stored again.
+/// intervals are stored again. `made` holds the records before grouping, a
+/// buffer reused from job to job (fresh memory would be paged in every time).
 fn point_job(
     p: &PointSource,
     range: std::ops::Range<usize>,
     spec: &GridSpec,
     band_shift: u32,
     bands: usize,
+    made: &mut Vec<(u32, u64)>,
 ) -> PointJob {
     let inv = (1.0 / spec.cell) as f32;
     let (nx, ny) = (spec.nx, spec.ny);
     let mask = (1u32 << band_shift) - 1;
-    let mut made: Vec<(u32, u64)> = Vec::with_capacity(2 * range.len());
+    made.clear();
     let mut cells = 0usize;
     for k in range {
         let q = local_point(&p.xyz[k], spec);
@@ -584,7 +586,7 @@ fn point_job(
         }
     }
     let mut starts = vec![0u32; bands + 1];
-    for &(b, _) in &made {
+    for &(b, _) in made.iter() {
         starts[b as usize + 1] += 1;
     }
     for b in 1..=bands {
@@ -592,7 +594,7 @@ fn point_job(
     }
     let mut cursor = starts.clone();
     let mut recs = vec![0u64; made.len()];
-    for &(b, r) in &made {
+    for &(b, r) in made.iter() {
         let at = &mut cursor[b as usize];
         recs[*at as usize] = r;
         *at += 1;
@@ -753,7 +755,9 @@ pub fn assemble_sources(
     let point_jobs: Vec<PointJob> = match points {
         Some(p) => (0..p.xyz.len().div_ceil(JOB))
             .into_par_iter()
-            .map(|k| point_job(&p, k * JOB..((k + 1) * JOB).min(p.xyz.len()), &spec, band_shift, bands))
+            .map_init(Vec::new, |made, k| {
+                point_job(&p, k * JOB..((k + 1) * JOB).min(p.xyz.len()), &spec, band_shift, bands, made)
+            })
             .collect(),
         None => vec![],
     };
