@@ -129,10 +129,11 @@ proptest! {
     }
 }
 
-/// Grids wider than a band (one row per band) and narrow ones (many rows).
+/// Grids wider than a band (one row per band), narrow ones (many rows), and
+/// tiny ones whose cells hold thousands of points (sorted by radix).
 #[test]
-fn assembly_matches_the_reference_on_wide_and_narrow_grids() {
-    for (nx, ny) in [(3000, 3), (2049, 2), (2, 3000), (700, 9)] {
+fn assembly_matches_the_reference_on_wide_narrow_and_crowded_grids() {
+    for (nx, ny) in [(3000, 3), (2049, 2), (2, 3000), (700, 9), (2, 2), (4, 1)] {
         let spec = GridSpec { x0: 0.0, y0: 0.0, cell: 0.25, nx, ny };
         check(11, spec, 0.0625, 0.125, Mode::Multi, 20_000).unwrap();
     }
