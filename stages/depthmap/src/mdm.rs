@@ -727,16 +727,19 @@ struct Scratch {
 }
 
 /// Passes 2 to 5 on the CPU: count, prefix-sum, fill, sort and merge, for
-/// `points` (pass 1 fused in, see [`point_job`]) and the raw intervals in
+/// `points` (pass 1 fused in, see `point_job`) and the raw intervals in
 /// `raws`.
 ///
 /// Two levels, so that every write stays in cache: records are first grouped
-/// by band of whole grid rows (about [`BAND_CELLS`] cells): points job by job,
+/// by band of whole grid rows (about `BAND_CELLS` cells): points job by job,
 /// each job's records grouped in its own buffer; raws counted per job and
 /// written into disjoint slots. Then each band, in parallel, gathers its
 /// records from every job, sorts them by cell in a local buffer, and every
 /// cell is sorted and merged. The sorted keys of a cell are unique up to equal
 /// raws, so the map does not depend on job or thread order.
+///
+/// The grid must have at most [`crate::MAX_CELLS`] cells, as
+/// [`crate::Settings::grid`] makes sure (a band's cell must fit its record).
 pub fn assemble_sources(
     points: Option<PointSource>,
     raws: &[&[Raw]],
@@ -746,6 +749,8 @@ pub fn assemble_sources(
     objects: Vec<String>,
 ) -> Mdm {
     let (nx, ny) = (spec.nx, spec.ny);
+    assert!(spec.cells() as u64 <= crate::MAX_CELLS, "a {nx} x {ny} grid is larger than the depth map allows");
+    const _: () = assert!(crate::MAX_CELLS <= 1 << (64 - CELL_SHIFT), "a cell in a band must fit a point record");
     // Rows per band: a power of two, so a row's band is a shift.
     let band_shift = (BAND_CELLS / nx.max(1)).max(1).ilog2().min(ny.max(1).ilog2() + 1);
     let band_rows = 1u32 << band_shift;
