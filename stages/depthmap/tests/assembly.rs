@@ -138,3 +138,24 @@ fn assembly_matches_the_reference_on_wide_narrow_and_crowded_grids() {
         check(11, spec, 0.0625, 0.125, Mode::Multi, 20_000).unwrap();
     }
 }
+
+/// One crowded cell whose points sit at heights exactly one "touching"
+/// distance apart (2 radius + gap) or further, in random order: the merge
+/// must join the touching ones and only those, however many there are.
+#[test]
+fn crowded_cell_joins_exactly_touching_points() {
+    let spec = GridSpec { x0: 0.0, y0: 0.0, cell: 1.0, nx: 1, ny: 1 };
+    let (radius, gap) = (0.0625f32, 0.125f32);
+    let mut rng = ChaCha8Rng::seed_from_u64(3);
+    let levels = [0.0, 0.25, 0.5, 1.5, 1.75, 3.0, 3.3125, 5.0];
+    for n in [70, 300, 2000] {
+        let xyz: Vec<[f64; 3]> = (0..n).map(|_| [0.5, 0.5, levels[rng.random_range(0..levels.len())]]).collect();
+        let ground: Vec<bool> = (0..n).map(|_| rng.random_range(0..4) == 0).collect();
+        let points = PointSource { xyz: &xyz, ground: &ground, radius };
+        let mut raws = Vec::new();
+        mdm::point_raws(&points, &spec, &mut raws);
+        let fused = mdm::assemble_sources(Some(points), &[], spec, Mode::Multi, gap, vec!["g".into(), "s".into()]);
+        let (offsets, intervals) = reference(&raws, spec, Mode::Multi, gap);
+        assert_eq!((fused.offsets, fused.intervals), (offsets, intervals), "{n} points");
+    }
+}
