@@ -7,8 +7,8 @@
 //! by bottom, then top, then object.
 //!
 //! **Building** follows the thesis' passes, which the GPU twin repeats:
-//! 1. *generate*: each point gives `[z - r, z + r]` in every cell its disc of
-//!    radius `r` touches; each triangle gives, in every cell it touches, a
+//! 1. *generate*: each point gives `[z - r, z + r]` in every cell its square of
+//!    half side `r` touches; each triangle gives, in every cell it touches, a
 //!    conservative range of its heights over that cell (see [`triangle_cells`]);
 //! 2. *count* the raw intervals per cell, 3. *prefix-sum* the counts into
 //!    offsets, 4. *fill* the raw intervals in, 5. *sort and merge* each cell.
