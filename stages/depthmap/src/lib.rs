@@ -178,19 +178,19 @@ pub fn build(inp: &Inputs, s: &Settings, gpu: Option<&gpu::Gpu>) -> Result<(Mdm,
     objects.extend(inp.mesh.groups.iter().cloned());
     let points = mdm::PointSource { xyz: &inp.points, ground: &inp.ground, radius: s.point_radius_m as f32 };
     let t_prep = t0.elapsed();
-    let mut gpu_raws: Vec<Raw> = Vec::new();
     // On the GPU the point pass makes raw intervals; on the CPU it is fused
     // into the assembly (same cells, same intervals, no raws stored).
+    let mut raws = Vec::new();
     if let Some(g) = gpu {
+        let mut gpu_raws: Vec<Raw> = Vec::new();
         g.point_raws(&points, &spec, &mut gpu_raws).map_err(DepthError::Gpu)?;
+        raws = mdm::raw_jobs(&gpu_raws, &spec);
     }
     let t_points = t0.elapsed();
-    let mut raws = mdm::mesh_raws(&inp.mesh, &spec, 2);
-    raws.push(gpu_raws);
+    raws.extend(mdm::mesh_jobs(&inp.mesh, &spec, 2));
     let t_gen = t0.elapsed();
-    let chunks: Vec<&[Raw]> = raws.iter().map(|v| v.as_slice()).collect();
     let cpu_points = gpu.is_none().then_some(points);
-    let m = mdm::assemble_sources(cpu_points, &chunks, spec, s.mode, s.merge_gap_m as f32, objects);
+    let m = mdm::assemble_sources(cpu_points, &raws, spec, s.mode, s.merge_gap_m as f32, objects);
     let t_all = t0.elapsed();
     Ok((
         m,
@@ -200,7 +200,7 @@ pub fn build(inp: &Inputs, s: &Settings, gpu: Option<&gpu::Gpu>) -> Result<(Mdm,
             triangles_ms: ms(t_gen - t_points),
             assemble_ms: ms(t_all - t_gen),
             total_ms: ms(t_all),
-            raw_intervals: raws.iter().map(Vec::len).sum(),
+            raw_intervals: raws.iter().map(mdm::RawJob::len).sum(),
         },
     ))
 }

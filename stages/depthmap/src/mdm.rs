@@ -389,6 +389,51 @@ pub fn mesh_raws(m: &TriMesh, spec: &GridSpec, obj_base: u32) -> Vec<Vec<Raw>> {
         .collect()
 }
 
+/// Pass 1 for a mesh fused with the grouping by band: [`mesh_raws`]' raw
+/// intervals, chunk by chunk of triangles, grouped by band in cache as they
+/// are made, for [`assemble_sources`]. The same intervals, never stored
+/// ungrouped.
+pub fn mesh_jobs(m: &TriMesh, spec: &GridSpec, obj_base: u32) -> Vec<RawJob> {
+    let bands = Bands::of(spec);
+    (0..m.triangles.len())
+        .into_par_iter()
+        .chunks(4096)
+        .map_init(Vec::new, |made, ids| {
+            made.clear();
+            for t in ids {
+                let tri = m.triangles[t];
+                let pt = |k: usize| {
+                    let p = m.vertices[tri[k] as usize];
+                    [p[0] - spec.x0, p[1] - spec.y0, p[2]]
+                };
+                let part_idx = m.part_of[t] as usize;
+                let part = &m.parts[part_idx];
+                let obj = obj_base + part.group;
+                let pk = if part.convex_solid { part_idx as u32 + 1 } else { 0 };
+                triangle_cells(&[pt(0), pt(1), pt(2)], spec, |cell, zlo, zhi| {
+                    made.push(bands.raw_record(&Raw { cell, zlo, zhi, obj, part: pk }))
+                });
+            }
+            let (recs, starts) = group_by_band(made, bands.count);
+            RawJob { recs, starts }
+        })
+        .collect()
+}
+
+/// Raw intervals (the GPU's points, or any made elsewhere) grouped by band in
+/// jobs, for [`assemble_sources`].
+pub fn raw_jobs(raws: &[Raw], spec: &GridSpec) -> Vec<RawJob> {
+    let bands = Bands::of(spec);
+    raws.par_chunks(JOB)
+        .map_init(Vec::new, |made, chunk| {
+            made.clear();
+            made.extend(chunk.iter().map(|r| bands.raw_record(r)));
+            let (recs, starts) = group_by_band(made, bands.count);
+            RawJob { recs, starts }
+        })
+        .collect()
+}
+
 /// Inverse of [`f32_key`].
 #[inline]
 fn f32_from_key(k: u32) -> f32 {
@@ -549,12 +594,12 @@ fn point_job(
     p: &PointSource,
     range: std::ops::Range<usize>,
     spec: &GridSpec,
-    band_shift: u32,
-    bands: usize,
+    bands: Bands,
     made: &mut Vec<(u32, u64)>,
 ) -> PointJob {
     let inv = (1.0 / spec.cell) as f32;
     let (nx, ny) = (spec.nx, spec.ny);
+    let band_shift = bands.shift;
     let mask = (1u32 << band_shift) - 1;
     made.clear();
     let mut cells = 0usize;
@@ -585,95 +630,103 @@ fn point_job(
             }
         }
     }
+    let (recs, starts) = group_by_band(made, bands.count);
+    PointJob { recs, starts, cells }
+}
+
+/// How the grid is cut into bands: `1 << shift` rows each (a power of two, so
+/// a row's band is a shift), `cells` cells each, `count` of them.
+#[derive(Clone, Copy)]
+struct Bands {
+    shift: u32,
+    cells: u32,
+    count: usize,
+}
+
+impl Bands {
+    /// About [`BAND_CELLS`] cells per band. The grid must have at most
+    /// [`crate::MAX_CELLS`] cells, as [`crate::Settings::grid`] makes sure (a
+    /// band's cell must fit a point record).
+    fn of(spec: &GridSpec) -> Bands {
+        let (nx, ny) = (spec.nx, spec.ny);
+        assert!(spec.cells() as u64 <= crate::MAX_CELLS, "a {nx} x {ny} grid is larger than the depth map allows");
+        const _: () = assert!(crate::MAX_CELLS <= 1 << (64 - CELL_SHIFT), "a cell in a band must fit a point record");
+        let shift = (BAND_CELLS / nx.max(1)).max(1).ilog2().min(ny.max(1).ilog2() + 1);
+        Bands { shift, cells: (1 << shift) * nx, count: ny.div_ceil(1 << shift) as usize }
+    }
+
+    /// A raw interval as `(band, [cell in band, object, part, bottom key, top key])`.
+    #[inline]
+    fn raw_record(&self, r: &Raw) -> (u32, [u32; 5]) {
+        (r.cell / self.cells, [r.cell % self.cells, r.obj, r.part, f32_key(r.zlo), f32_key(r.zhi)])
+    }
+}
+
+/// One job's raw intervals grouped by band: band `b`'s are
+/// `recs[starts[b]..starts[b + 1]]`, each `[cell in band, object, part,
+/// bottom key, top key]`. Made by [`mesh_jobs`] and [`raw_jobs`].
+pub struct RawJob {
+    recs: Vec<[u32; 5]>,
+    starts: Vec<u32>,
+}
+
+impl RawJob {
+    /// Raw intervals in the job.
+    pub fn len(&self) -> usize {
+        self.recs.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.recs.is_empty()
+    }
+}
+
+/// A counting sort of `made` (band, record) pairs by band: the records and
+/// where each band's start.
+fn group_by_band<T: Copy + Default>(made: &[(u32, T)], bands: usize) -> (Vec<T>, Vec<u32>) {
     let mut starts = vec![0u32; bands + 1];
-    for &(b, _) in made.iter() {
+    for &(b, _) in made {
         starts[b as usize + 1] += 1;
     }
     for b in 1..=bands {
         starts[b] += starts[b - 1];
     }
     let mut cursor = starts.clone();
-    let mut recs = vec![0u64; made.len()];
-    for &(b, r) in made.iter() {
+    let mut recs = vec![T::default(); made.len()];
+    for &(b, r) in made {
         let at = &mut cursor[b as usize];
         recs[*at as usize] = r;
         *at += 1;
     }
-    PointJob { recs, starts, cells }
+    (recs, starts)
 }
 
-/// Passes 2 to 4 by band for raw intervals (triangles, or the GPU's points),
-/// each as `[cell in band, object, part, bottom key, top key]`: counts every
-/// job's raws per band, gives each job its own slots in every band (bands in
-/// order, jobs in order within a band), and writes them there, jobs in
-/// parallel. Returns the records and where each band starts
-/// (`starts[b]..starts[b + 1]`).
-fn partition_raws(jobs: &[&[Raw]], band_cells: u32, bands: usize) -> (Vec<[u32; 5]>, Vec<usize>) {
-    let counts: Vec<Vec<u32>> = jobs
-        .par_iter()
-        .map(|job| {
-            let mut c = vec![0u32; bands];
-            for r in *job {
-                c[(r.cell / band_cells) as usize] += 1;
-            }
-            c
-        })
-        .collect();
-    let mut starts = vec![0usize; bands + 1];
-    for b in 0..bands {
-        starts[b + 1] = starts[b] + counts.iter().map(|c| c[b] as usize).sum::<usize>();
-    }
-    let at = starts[bands];
-    let mut out = vec![[0u32; 5]; at];
-    // Each job's slots, band by band, as disjoint slices of `out`.
-    let mut slices: Vec<Vec<&mut [[u32; 5]]>> = (0..jobs.len()).map(|_| Vec::with_capacity(bands)).collect();
-    let mut rest = &mut out[..];
-    for b in 0..bands {
-        for (job, c) in counts.iter().enumerate() {
-            let (s, r) = std::mem::take(&mut rest).split_at_mut(c[b] as usize);
-            slices[job].push(s);
-            rest = r;
-        }
-    }
-    slices.par_iter_mut().zip(jobs.par_iter()).for_each(|(slices, job)| {
-        let mut next = vec![0usize; bands];
-        for r in *job {
-            let b = (r.cell / band_cells) as usize;
-            slices[b][next[b]] = [r.cell % band_cells, r.obj, r.part, f32_key(r.zlo), f32_key(r.zhi)];
-            next[b] += 1;
-        }
-    });
-    (out, starts)
-}
-
-/// Counting sort of one band's records by cell into `buf`: cell `l`'s keys are
+/// [`bucket_points`] for raw records: cell `l`'s keys are
 /// `buf[ends[l - 1]..ends[l]]` (from 0 for `l = 0`).
-fn bucket<T, K: Copy + Default>(
-    recs: &[T],
-    cells: usize,
-    cell_of: impl Fn(&T) -> usize,
-    key_of: impl Fn(&T) -> K,
-    ends: &mut Vec<u32>,
-    buf: &mut Vec<K>,
-) {
+fn bucket_raws(jobs: &[RawJob], band: usize, cells: usize, ends: &mut Vec<u32>, buf: &mut Vec<u128>) {
+    let segments = || jobs.iter().map(|j| &j.recs[j.starts[band] as usize..j.starts[band + 1] as usize]);
     ends.clear();
     ends.resize(cells + 1, 0);
-    for r in recs {
-        ends[cell_of(r) + 1] += 1;
+    for seg in segments() {
+        for r in seg {
+            ends[r[0] as usize + 1] += 1;
+        }
     }
     for l in 1..=cells {
         ends[l] += ends[l - 1];
     }
     buf.clear();
-    buf.resize(recs.len(), K::default());
-    for r in recs {
-        let at = &mut ends[cell_of(r)];
-        buf[*at as usize] = key_of(r);
-        *at += 1;
+    buf.resize(ends[cells] as usize, 0);
+    for seg in segments() {
+        for r in seg {
+            let at = &mut ends[r[0] as usize];
+            buf[*at as usize] = raw_key(r);
+            *at += 1;
+        }
     }
 }
 
-/// [`bucket`] for one band's point records, gathered from every job and each
+/// Counting sort by cell of one band's point records, gathered from every job and each
 /// standing for up to four cells: cell `l`'s keys (object and height) are
 /// `buf[ends[l - 1]..ends[l]]` (from 0 for `l = 0`).
 fn bucket_points(jobs: &[PointJob], band: usize, cells: usize, nx: usize, ends: &mut Vec<u32>, buf: &mut Vec<u64>) {
@@ -728,12 +781,11 @@ struct Scratch {
 
 /// Passes 2 to 5 on the CPU: count, prefix-sum, fill, sort and merge, for
 /// `points` (pass 1 fused in, see `point_job`) and the raw intervals in
-/// `raws`.
+/// `raws` (from [`mesh_jobs`], where pass 1 is fused in too, or [`raw_jobs`]).
 ///
 /// Two levels, so that every write stays in cache: records are first grouped
-/// by band of whole grid rows (about `BAND_CELLS` cells): points job by job,
-/// each job's records grouped in its own buffer; raws counted per job and
-/// written into disjoint slots. Then each band, in parallel, gathers its
+/// by band of whole grid rows (about `BAND_CELLS` cells), job by job, each
+/// job's records in its own buffer. Then each band, in parallel, gathers its
 /// records from every job, sorts them by cell in a local buffer, and every
 /// cell is sorted and merged. The sorted keys of a cell are unique up to equal
 /// raws, so the map does not depend on job or thread order.
@@ -742,47 +794,37 @@ struct Scratch {
 /// [`crate::Settings::grid`] makes sure (a band's cell must fit its record).
 pub fn assemble_sources(
     points: Option<PointSource>,
-    raws: &[&[Raw]],
+    raws: &[RawJob],
     spec: GridSpec,
     mode: Mode,
     gap: f32,
     objects: Vec<String>,
 ) -> Mdm {
     let (nx, ny) = (spec.nx, spec.ny);
-    assert!(spec.cells() as u64 <= crate::MAX_CELLS, "a {nx} x {ny} grid is larger than the depth map allows");
-    const _: () = assert!(crate::MAX_CELLS <= 1 << (64 - CELL_SHIFT), "a cell in a band must fit a point record");
-    // Rows per band: a power of two, so a row's band is a shift.
-    let band_shift = (BAND_CELLS / nx.max(1)).max(1).ilog2().min(ny.max(1).ilog2() + 1);
-    let band_rows = 1u32 << band_shift;
-    let band_cells = band_rows * nx;
-    let bands = ny.div_ceil(band_rows) as usize;
+    let bands = Bands::of(&spec);
     let radius = points.map(|p| p.radius).unwrap_or(0.0);
     let point_jobs: Vec<PointJob> = match points {
         Some(p) => (0..p.xyz.len().div_ceil(JOB))
             .into_par_iter()
-            .map_init(Vec::new, |made, k| {
-                point_job(&p, k * JOB..((k + 1) * JOB).min(p.xyz.len()), &spec, band_shift, bands, made)
-            })
+            .map_init(Vec::new, |made, k| point_job(&p, k * JOB..((k + 1) * JOB).min(p.xyz.len()), &spec, bands, made))
             .collect(),
         None => vec![],
     };
-    let raw_jobs: Vec<&[Raw]> = raws.iter().flat_map(|c| c.chunks(JOB)).collect();
-    let (raw_recs, raw_starts) = partition_raws(&raw_jobs, band_cells, bands);
     let n = spec.cells();
     // Bands are merged a few at a time, each into a buffer that is reused and
     // so stays in cache and paged in; once a group is done, where its
     // intervals go in the map is known and they are copied there. Each cell a
     // record stands for gives at most one interval, which bounds the map.
-    let capacity = point_jobs.iter().map(|j| j.cells).sum::<usize>() + raw_recs.len();
+    let capacity = point_jobs.iter().map(|j| j.cells).sum::<usize>() + raws.iter().map(RawJob::len).sum::<usize>();
     let mut intervals: Vec<Interval> = Vec::with_capacity(capacity);
     let mut counts = vec![0u32; n];
     let mut tops = vec![0f32; n];
     let group = 4 * rayon::current_num_threads();
     let mut scratch: Vec<Scratch> = (0..group).map(|_| Scratch::default()).collect();
-    let mut band_counts: Vec<&mut [u32]> = counts.chunks_mut(band_cells as usize).collect();
-    let mut band_tops: Vec<&mut [f32]> = tops.chunks_mut(band_cells as usize).collect();
-    for first in (0..bands).step_by(group) {
-        let last = (first + group).min(bands);
+    let mut band_counts: Vec<&mut [u32]> = counts.chunks_mut(bands.cells as usize).collect();
+    let mut band_tops: Vec<&mut [f32]> = tops.chunks_mut(bands.cells as usize).collect();
+    for first in (0..bands.count).step_by(group) {
+        let last = (first + group).min(bands.count);
         scratch[..last - first]
             .par_iter_mut()
             .zip(band_counts[first..last].par_iter_mut().zip(band_tops[first..last].par_iter_mut()))
@@ -790,8 +832,8 @@ pub fn assemble_sources(
             .for_each(|(k, (s, (counts, tops)))| {
                 let b = first + k;
                 bucket_points(&point_jobs, b, counts.len(), nx as usize, &mut s.point_ends, &mut s.points);
-                let rws = &raw_recs[raw_starts[b]..raw_starts[b + 1]];
-                merge_band(rws, radius, gap, mode, s, counts, tops);
+                bucket_raws(raws, b, counts.len(), &mut s.raw_ends, &mut s.raws);
+                merge_band(radius, gap, mode, s, counts, tops);
             });
         let mut rest = &mut intervals.spare_capacity_mut()[..];
         let mut dsts = Vec::with_capacity(last - first);
@@ -809,7 +851,7 @@ pub fn assemble_sources(
         // SAFETY: the `added` slots after the length were written just above.
         unsafe { intervals.set_len(intervals.len() + added) };
     }
-    drop((point_jobs, raw_recs, band_counts, band_tops));
+    drop((point_jobs, band_counts, band_tops));
     intervals.shrink_to_fit();
     // Row-major CSR: the bands in order.
     let mut offsets = Vec::with_capacity(n + 1);
@@ -824,20 +866,11 @@ pub fn assemble_sources(
     m
 }
 
-/// Passes 2 (by cell) to 5 for one band whose points are already in
-/// `s.points` by cell: its intervals into `s.out`, and per cell their number
+/// Passes 2 (by cell) to 5 for one band whose points and raws are already in
+/// `s.points` and `s.raws` by cell: its intervals into `s.out`, and per cell their number
 /// and the top into `counts` and `tops`.
-fn merge_band(
-    raws: &[[u32; 5]],
-    radius: f32,
-    gap: f32,
-    mode: Mode,
-    s: &mut Scratch,
-    counts: &mut [u32],
-    tops: &mut [f32],
-) {
+fn merge_band(radius: f32, gap: f32, mode: Mode, s: &mut Scratch, counts: &mut [u32], tops: &mut [f32]) {
     let cells = counts.len();
-    bucket(raws, cells, |r| r[0] as usize, raw_key, &mut s.raw_ends, &mut s.raws);
     let out = &mut s.out;
     out.clear();
     let (mut p0, mut r0) = (0usize, 0usize);

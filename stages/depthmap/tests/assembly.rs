@@ -100,9 +100,13 @@ fn check(seed: u64, spec: GridSpec, radius: f32, gap: f32, mode: Mode, n: usize)
     mdm::point_raws(&points, &spec, &mut all);
     all.extend_from_slice(&tris);
     let objects = vec!["g".to_string(), "s".into(), "pipe".into(), "rack".into()];
-    let fused: Mdm = mdm::assemble_sources(Some(points), &[&tris], spec, mode, gap, objects.clone());
-    let as_raws: Mdm =
-        mdm::assemble_sources(None, &[&all[..all.len() / 2], &all[all.len() / 2..]], spec, mode, gap, objects);
+    // The mesh rasterised into the assembly's jobs, and everything as raws.
+    let mesh_jobs = mdm::mesh_jobs(&s.mesh, &spec, 2);
+    prop_assert_eq!(mesh_jobs.iter().map(mdm::RawJob::len).sum::<usize>(), tris.len());
+    let fused: Mdm = mdm::assemble_sources(Some(points), &mesh_jobs, spec, mode, gap, objects.clone());
+    let mut jobs = mdm::raw_jobs(&all[..all.len() / 2], &spec);
+    jobs.extend(mdm::raw_jobs(&all[all.len() / 2..], &spec));
+    let as_raws: Mdm = mdm::assemble_sources(None, &jobs, spec, mode, gap, objects);
     let (offsets, intervals) = reference(&all, spec, mode, gap);
     prop_assert!(fused.offsets == offsets && fused.intervals == intervals, "points rasterised in the assembly differ");
     prop_assert!(as_raws.offsets == offsets && as_raws.intervals == intervals, "points as raw intervals differ");
