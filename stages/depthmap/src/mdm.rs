@@ -361,9 +361,9 @@ pub fn triangle_cells(t: &[[f64; 3]; 3], spec: &GridSpec, mut emit: impl FnMut(u
     }
 }
 
-/// Pass 1 for a mesh: raw intervals of every triangle, tagged with the group
-/// (object id `obj_base + group`) and, for convex parts, the part; in chunks of
-/// triangles, rasterised in parallel.
+/// Pass 1 for a mesh: raw intervals of every triangle (`triangle_raws`), in
+/// chunks of triangles rasterised in parallel. The plain form, which the
+/// tests use as reference; the build uses [`mesh_jobs`].
 pub fn mesh_raws(m: &TriMesh, spec: &GridSpec, obj_base: u32) -> Vec<Vec<Raw>> {
     (0..m.triangles.len())
         .into_par_iter()
@@ -371,22 +371,27 @@ pub fn mesh_raws(m: &TriMesh, spec: &GridSpec, obj_base: u32) -> Vec<Vec<Raw>> {
         .map(|ids| {
             let mut v = Vec::new();
             for t in ids {
-                let tri = m.triangles[t];
-                let pt = |k: usize| {
-                    let p = m.vertices[tri[k] as usize];
-                    [p[0] - spec.x0, p[1] - spec.y0, p[2]]
-                };
-                let part_idx = m.part_of[t] as usize;
-                let part = &m.parts[part_idx];
-                let obj = obj_base + part.group;
-                let pk = if part.convex_solid { part_idx as u32 + 1 } else { 0 };
-                triangle_cells(&[pt(0), pt(1), pt(2)], spec, |cell, zlo, zhi| {
-                    v.push(Raw { cell, zlo, zhi, obj, part: pk })
-                });
+                triangle_raws(m, t, spec, obj_base, |r| v.push(r));
             }
             v
         })
         .collect()
+}
+
+/// Pass 1 for triangle `t` of a mesh: its raw intervals, tagged with the group
+/// (object id `obj_base + group`) and, for convex parts, the part.
+#[inline]
+fn triangle_raws(m: &TriMesh, t: usize, spec: &GridSpec, obj_base: u32, mut emit: impl FnMut(Raw)) {
+    let tri = m.triangles[t];
+    let pt = |k: usize| {
+        let p = m.vertices[tri[k] as usize];
+        [p[0] - spec.x0, p[1] - spec.y0, p[2]]
+    };
+    let part_idx = m.part_of[t] as usize;
+    let part = &m.parts[part_idx];
+    let obj = obj_base + part.group;
+    let pk = if part.convex_solid { part_idx as u32 + 1 } else { 0 };
+    triangle_cells(&[pt(0), pt(1), pt(2)], spec, |cell, zlo, zhi| emit(Raw { cell, zlo, zhi, obj, part: pk }));
 }
 
 /// Pass 1 for a mesh fused with the grouping by band: [`mesh_raws`]' raw
@@ -401,18 +406,7 @@ pub fn mesh_jobs(m: &TriMesh, spec: &GridSpec, obj_base: u32) -> Vec<RawJob> {
         .map_init(Vec::new, |made, ids| {
             made.clear();
             for t in ids {
-                let tri = m.triangles[t];
-                let pt = |k: usize| {
-                    let p = m.vertices[tri[k] as usize];
-                    [p[0] - spec.x0, p[1] - spec.y0, p[2]]
-                };
-                let part_idx = m.part_of[t] as usize;
-                let part = &m.parts[part_idx];
-                let obj = obj_base + part.group;
-                let pk = if part.convex_solid { part_idx as u32 + 1 } else { 0 };
-                triangle_cells(&[pt(0), pt(1), pt(2)], spec, |cell, zlo, zhi| {
-                    made.push(bands.raw_record(&Raw { cell, zlo, zhi, obj, part: pk }))
-                });
+                triangle_raws(m, t, spec, obj_base, |r| made.push(bands.raw_record(&r)));
             }
             let (recs, starts) = group_by_band(made, bands.count);
             RawJob { recs, starts }
