@@ -69,6 +69,10 @@ impl Default for Settings {
     }
 }
 
+/// Point radii above this many cells are refused: the work per point grows
+/// with the square of it.
+pub const MAX_POINT_RADIUS_CELLS: f64 = 8.0;
+
 /// Grids above this many cells are refused (a typo in the cell size).
 pub const MAX_CELLS: u64 = 64_000_000;
 
@@ -84,6 +88,13 @@ impl Settings {
             && self.margin_m >= 0.0)
         {
             return Err("point_radius_m, merge_gap_m and margin_m must be zero or positive".into());
+        }
+        if self.point_radius_m > MAX_POINT_RADIUS_CELLS * self.cell_m {
+            return Err(format!(
+                "point_radius_m {} is more than {MAX_POINT_RADIUS_CELLS} cells of {} m: a scan point covering \
+                 hundreds of cells is a typo (each point is rasterised into every cell it covers)",
+                self.point_radius_m, self.cell_m
+            ));
         }
         if !(self.extent.is_empty()
             || (self.extent.len() == 4 && self.extent[0] < self.extent[2] && self.extent[1] < self.extent[3]))
@@ -155,6 +166,7 @@ pub fn build_cpu(inp: &Inputs, s: &Settings) -> Result<(Mdm, Timings)> {
 /// Builds the depth map, with the point pass on `gpu` when given.
 pub fn build(inp: &Inputs, s: &Settings, gpu: Option<&gpu::Gpu>) -> Result<(Mdm, Timings)> {
     let t0 = std::time::Instant::now();
+    s.check().map_err(DepthError::Settings)?;
     if inp.ground.len() != inp.points.len() {
         return Err(DepthError::Settings(format!(
             "{} points but {} ground flags: each point needs one",

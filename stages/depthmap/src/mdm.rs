@@ -409,7 +409,7 @@ pub fn mesh_jobs(m: &TriMesh, spec: &GridSpec, obj_base: u32) -> Vec<RawJob> {
                 triangle_raws(m, t, spec, obj_base, |r| made.push(bands.raw_record(&r)));
             }
             let (recs, starts) = group_by_band(made, bands.count);
-            RawJob { recs, starts }
+            RawJob { recs, starts, band_cells: bands.cells }
         })
         .collect()
 }
@@ -423,7 +423,7 @@ pub fn raw_jobs(raws: &[Raw], spec: &GridSpec) -> Vec<RawJob> {
             made.clear();
             made.extend(chunk.iter().map(|r| bands.raw_record(r)));
             let (recs, starts) = group_by_band(made, bands.count);
-            RawJob { recs, starts }
+            RawJob { recs, starts, band_cells: bands.cells }
         })
         .collect()
 }
@@ -604,7 +604,7 @@ fn point_job(
             continue;
         }
         let (i0, i1, j0, j1) = (i0 as u32, i1 as u32, j0 as u32, j1 as u32);
-        cells += ((i1 - i0 + 1) * (j1 - j0 + 1)) as usize;
+        cells += (i1 - i0 + 1) as usize * (j1 - j0 + 1) as usize;
         let obj = p.obj(k);
         let (b0, b1) = (j0 >> band_shift, j1 >> band_shift);
         if i1 - i0 <= 1 && j1 - j0 <= 1 {
@@ -662,6 +662,8 @@ impl Bands {
 pub struct RawJob {
     recs: Vec<[u32; 5]>,
     starts: Vec<u32>,
+    /// Cells per band of the grid it was made for.
+    band_cells: u32,
 }
 
 impl RawJob {
@@ -796,6 +798,10 @@ pub fn assemble_sources(
 ) -> Mdm {
     let (nx, ny) = (spec.nx, spec.ny);
     let bands = Bands::of(&spec);
+    assert!(
+        raws.iter().all(|j| j.starts.len() == bands.count + 1 && j.band_cells == bands.cells),
+        "depth map assembly: raw jobs made for another grid"
+    );
     let radius = points.map(|p| p.radius).unwrap_or(0.0);
     let point_jobs: Vec<PointJob> = match points {
         Some(p) => (0..p.xyz.len().div_ceil(JOB))

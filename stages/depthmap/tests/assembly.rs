@@ -163,3 +163,16 @@ fn crowded_cell_joins_exactly_touching_points() {
         assert_eq!((fused.offsets, fused.intervals), (offsets, intervals), "{n} points");
     }
 }
+
+/// Settings that would make the build's work or memory blow up are refused
+/// with a message naming the setting, before anything is rasterised.
+#[test]
+fn oversized_point_radius_is_refused() {
+    use liftplan_depthmap::{Inputs, Settings, build_cpu};
+    let inp = Inputs { points: vec![[0.0, 0.0, 0.0]], ground: vec![false], ..Inputs::default() };
+    let s = Settings { cell_m: 0.05, point_radius_m: 5.0, ..Settings::default() };
+    let err = build_cpu(&inp, &s).expect_err("a 100-cell radius must be refused").to_string();
+    assert!(err.contains("point_radius_m"), "{err}");
+    let ok = Settings { cell_m: 0.05, point_radius_m: 0.4, ..Settings::default() };
+    assert!(build_cpu(&inp, &ok).is_ok());
+}
