@@ -727,29 +727,49 @@ fn bucket_raws(jobs: &[RawJob], band: usize, cells: usize, ends: &mut Vec<u32>, 
 /// `buf[ends[l - 1]..ends[l]]` (from 0 for `l = 0`).
 fn bucket_points(jobs: &[PointJob], band: usize, cells: usize, nx: usize, ends: &mut Vec<u32>, buf: &mut Vec<u64>) {
     let segments = || jobs.iter().map(|j| &j.recs[j.starts[band] as usize..j.starts[band + 1] as usize]);
-    // The cells a record stands for, as offsets from its first cell; a flag
-    // set only where that cell exists (the same row, or the same band).
+    // Counted by first cell and flags, one add per record (the flags are as
+    // good as random, so adding per covered cell would branch badly); then a
+    // cell's count is its own records, the wide ones of the cell to its left,
+    // the tall ones of the cell below, and those both wide and tall below left.
+    const _: () = assert!(WIDE == 1 << 33 && TALL == 1 << 34);
+    let flags = |r: u64| ((r >> 33) & 3) as usize;
+    ends.clear();
+    ends.resize(4 * cells + 1, 0);
+    for seg in segments() {
+        for &r in seg {
+            ends[4 * (r >> CELL_SHIFT) as usize + flags(r)] += 1;
+        }
+    }
+    let by = |l: usize, f: usize| ends[4 * l + f];
+    let mut counts = vec![0u32; cells];
+    for (l, c) in counts.iter_mut().enumerate() {
+        let mut n = by(l, 0) + by(l, 1) + by(l, 2) + by(l, 3);
+        if l % nx > 0 {
+            n += by(l - 1, 1) + by(l - 1, 3);
+        }
+        if l >= nx {
+            n += by(l - nx, 2) + by(l - nx, 3);
+            if l % nx > 0 {
+                n += by(l - nx - 1, 3);
+            }
+        }
+        *c = n;
+    }
+    ends.clear();
+    ends.push(0);
+    let mut at = 0;
+    for c in counts {
+        at += c;
+        ends.push(at);
+    }
+    // ends[l] is where cell l's keys start; as the cursor of cell l it ends
+    // where they end.
+    buf.clear();
+    buf.resize(at as usize, 0);
     let covered = |r: u64| {
         let (wide, tall) = (r & WIDE != 0, r & TALL != 0);
         [(0, true), (1, wide), (nx, tall), (nx + 1, wide && tall)]
     };
-    ends.clear();
-    ends.resize(cells + 1, 0);
-    for seg in segments() {
-        for &r in seg {
-            let l = (r >> CELL_SHIFT) as usize;
-            for (d, on) in covered(r) {
-                if on {
-                    ends[l + d + 1] += 1;
-                }
-            }
-        }
-    }
-    for l in 1..=cells {
-        ends[l] += ends[l - 1];
-    }
-    buf.clear();
-    buf.resize(ends[cells] as usize, 0);
     for seg in segments() {
         for &r in seg {
             let l = (r >> CELL_SHIFT) as usize;
