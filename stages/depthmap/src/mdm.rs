@@ -722,65 +722,60 @@ fn bucket_raws(jobs: &[RawJob], band: usize, cells: usize, ends: &mut Vec<u32>, 
     }
 }
 
-/// Counting sort by cell of one band's point records, gathered from every job and each
-/// standing for up to four cells: cell `l`'s keys (object and height) are
-/// `buf[ends[l - 1]..ends[l]]` (from 0 for `l = 0`).
-fn bucket_points(jobs: &[PointJob], band: usize, cells: usize, nx: usize, ends: &mut Vec<u32>, buf: &mut Vec<u64>) {
+/// Counting sort by cell of one band's point records, gathered from every job
+/// and each standing for up to four cells: cell `l`'s keys (object and
+/// height) end up in `s.points[s.point_ends[l - 1]..s.point_ends[l]]` (from 0
+/// for `l = 0`).
+///
+/// The records are first sorted by first cell and flags, one write each with
+/// no branch on the flags (which are as good as random); a cell's keys are
+/// then its own records, the wide ones of the cell to its left, the tall ones
+/// of the cell below and those both wide and tall below left, copied together
+/// run by run.
+fn bucket_points(jobs: &[PointJob], band: usize, cells: usize, nx: usize, s: &mut Scratch) {
     let segments = || jobs.iter().map(|j| &j.recs[j.starts[band] as usize..j.starts[band + 1] as usize]);
-    // Counted by first cell and flags, one add per record (the flags are as
-    // good as random, so adding per covered cell would branch badly); then a
-    // cell's count is its own records, the wide ones of the cell to its left,
-    // the tall ones of the cell below, and those both wide and tall below left.
     const _: () = assert!(WIDE == 1 << 33 && TALL == 1 << 34);
-    let flags = |r: u64| ((r >> 33) & 3) as usize;
-    ends.clear();
-    ends.resize(4 * cells + 1, 0);
+    let group = |r: u64| 4 * (r >> CELL_SHIFT) as usize + ((r >> 33) & 3) as usize;
+    let (starts, grouped) = (&mut s.group_starts, &mut s.grouped);
+    starts.clear();
+    starts.resize(4 * cells + 1, 0);
     for seg in segments() {
         for &r in seg {
-            ends[4 * (r >> CELL_SHIFT) as usize + flags(r)] += 1;
+            starts[group(r) + 1] += 1;
         }
     }
-    let by = |l: usize, f: usize| ends[4 * l + f];
-    let mut counts = vec![0u32; cells];
-    for (l, c) in counts.iter_mut().enumerate() {
-        let mut n = by(l, 0) + by(l, 1) + by(l, 2) + by(l, 3);
+    for g in 1..starts.len() {
+        starts[g] += starts[g - 1];
+    }
+    grouped.clear();
+    grouped.resize(starts[4 * cells] as usize, 0);
+    let mut cursor = starts.clone();
+    for seg in segments() {
+        for &r in seg {
+            let at = &mut cursor[group(r)];
+            grouped[*at as usize] = r & POINT_KEY;
+            *at += 1;
+        }
+    }
+    // Runs of group g: grouped[starts[g]..starts[g + 1]]; flags 1 wide, 2 tall.
+    let run = |g: usize| &grouped[starts[g] as usize..starts[g + 1] as usize];
+    let (ends, buf) = (&mut s.point_ends, &mut s.points);
+    ends.clear();
+    buf.clear();
+    for l in 0..cells {
+        buf.extend_from_slice(&grouped[starts[4 * l] as usize..starts[4 * l + 4] as usize]);
         if l % nx > 0 {
-            n += by(l - 1, 1) + by(l - 1, 3);
+            buf.extend_from_slice(run(4 * (l - 1) + 1));
+            buf.extend_from_slice(run(4 * (l - 1) + 3));
         }
         if l >= nx {
-            n += by(l - nx, 2) + by(l - nx, 3);
+            buf.extend_from_slice(run(4 * (l - nx) + 2));
+            buf.extend_from_slice(run(4 * (l - nx) + 3));
             if l % nx > 0 {
-                n += by(l - nx - 1, 3);
+                buf.extend_from_slice(run(4 * (l - nx - 1) + 3));
             }
         }
-        *c = n;
-    }
-    ends.clear();
-    ends.push(0);
-    let mut at = 0;
-    for c in counts {
-        at += c;
-        ends.push(at);
-    }
-    // ends[l] is where cell l's keys start; as the cursor of cell l it ends
-    // where they end.
-    buf.clear();
-    buf.resize(at as usize, 0);
-    let covered = |r: u64| {
-        let (wide, tall) = (r & WIDE != 0, r & TALL != 0);
-        [(0, true), (1, wide), (nx, tall), (nx + 1, wide && tall)]
-    };
-    for seg in segments() {
-        for &r in seg {
-            let l = (r >> CELL_SHIFT) as usize;
-            for (d, on) in covered(r) {
-                if on {
-                    let at = &mut ends[l + d];
-                    buf[*at as usize] = r & POINT_KEY;
-                    *at += 1;
-                }
-            }
-        }
+        ends.push(buf.len() as u32);
     }
 }
 
@@ -793,6 +788,8 @@ struct Scratch {
     raws: Vec<u128>,
     out: Vec<Interval>,
     tmp: Vec<Interval>,
+    group_starts: Vec<u32>,
+    grouped: Vec<u64>,
 }
 
 /// Passes 2 to 5 on the CPU: count, prefix-sum, fill, sort and merge, for
@@ -851,7 +848,7 @@ pub fn assemble_sources(
             .enumerate()
             .for_each(|(k, (s, (counts, tops)))| {
                 let b = first + k;
-                bucket_points(&point_jobs, b, counts.len(), nx as usize, &mut s.point_ends, &mut s.points);
+                bucket_points(&point_jobs, b, counts.len(), nx as usize, s);
                 bucket_raws(raws, b, counts.len(), &mut s.raw_ends, &mut s.raws);
                 merge_band(radius, gap, mode, s, counts, tops);
             });
