@@ -155,7 +155,7 @@ impl Gpu {
 
     /// The point pass on the GPU: every point's raw interval in every cell its
     /// square touches, as the CPU assembly rasterises points
-    /// (`mdm::point_cells`), in point order.
+    /// (`mdm::point_span`, `mdm::point_raws`), in point order.
     pub fn point_raws(&self, p: &PointSource, spec: &GridSpec, out: &mut Vec<Raw>) -> Result<(), String> {
         let radius = p.radius;
         let inv = (1.0 / spec.cell) as f32;

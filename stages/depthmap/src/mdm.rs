@@ -191,19 +191,6 @@ fn point_span(q: &[f32; 3], radius: f32, inv: f32, nx: i64, ny: i64) -> (i64, i6
     (i0, i1, j0, j1)
 }
 
-/// The cells `(column, row)` of [`point_span`], row by row, and the point's
-/// height interval.
-#[inline]
-fn point_cells(q: &[f32; 3], radius: f32, inv: f32, nx: i64, ny: i64, mut cell: impl FnMut(u32, u32)) -> (f32, f32) {
-    let (i0, i1, j0, j1) = point_span(q, radius, inv, nx, ny);
-    for j in j0..=j1 {
-        for i in i0..=i1 {
-            cell(i as u32, j as u32);
-        }
-    }
-    (q[2] - radius, q[2] + radius)
-}
-
 /// The point pass as raw intervals, point by point and each point's cells in
 /// row order: what the GPU twin's shader writes, and the reference the fused
 /// CPU assembly is tested against.
@@ -211,11 +198,14 @@ pub fn point_raws(points: &PointSource, spec: &GridSpec, out: &mut Vec<Raw>) {
     let inv = (1.0 / spec.cell) as f32;
     let (nx, ny) = (spec.nx as i64, spec.ny as i64);
     for (k, p) in points.xyz.iter().enumerate() {
-        let obj = points.obj(k);
-        let q = local_point(p, spec);
-        let mut cells = Vec::new();
-        let (zlo, zhi) = point_cells(&q, points.radius, inv, nx, ny, |i, j| cells.push(j * spec.nx + i));
-        out.extend(cells.into_iter().map(|cell| Raw { cell, zlo, zhi, obj, part: 0 }));
+        let (obj, q) = (points.obj(k), local_point(p, spec));
+        let (i0, i1, j0, j1) = point_span(&q, points.radius, inv, nx, ny);
+        let (zlo, zhi) = (q[2] - points.radius, q[2] + points.radius);
+        for j in j0..=j1 {
+            for i in i0..=i1 {
+                out.push(Raw { cell: j as u32 * spec.nx + i as u32, zlo, zhi, obj, part: 0 });
+            }
+        }
     }
 }
 
@@ -246,7 +236,6 @@ impl Poly {
 
 /// Clips a convex polygon to `coord[axis] >= v` (`keep_above`) or `<= v`.
 fn clip(poly: &Poly, axis: usize, v: f64, keep_above: bool) -> Poly {
-    let inside = |p: &[f64; 3]| if keep_above { p[axis] >= v } else { p[axis] <= v };
     let mut out = Poly { v: [[0.0; 3]; 12], n: 0, lossy: poly.lossy };
     let mut push = |p: [f64; 3]| {
         if out.n < out.v.len() {
@@ -258,32 +247,23 @@ fn clip(poly: &Poly, axis: usize, v: f64, keep_above: bool) -> Poly {
     };
     let vs = poly.vertices();
     for k in 0..vs.len() {
-        let a = vs[k];
-        let b = vs[(k + 1) % vs.len()];
-        let (ia, ib) = (inside(&a), inside(&b));
-        if ia {
-            push(a);
-        }
-        if ia != ib {
-            let t = (v - a[axis]) / (b[axis] - a[axis]);
-            push([a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])]);
-        }
+        clip_edge(vs[k], vs[(k + 1) % vs.len()], axis, v, keep_above, &mut push);
     }
     out
 }
 
-/// One edge `a -> b` of a Sutherland-Hodgman clip to `x >= v` (`keep_above`)
-/// or `x <= v`: `a` if it is inside, then the crossing if the edge crosses.
-/// The arithmetic of [`clip`].
+/// One edge `a -> b` of a Sutherland-Hodgman clip to `coord[axis] >= v`
+/// (`keep_above`) or `<= v`: `a` if it is inside, then the crossing if the
+/// edge crosses.
 #[inline]
-fn clip_edge(a: [f64; 3], b: [f64; 3], v: f64, keep_above: bool, mut emit: impl FnMut([f64; 3])) {
-    let inside = |p: &[f64; 3]| if keep_above { p[0] >= v } else { p[0] <= v };
+fn clip_edge(a: [f64; 3], b: [f64; 3], axis: usize, v: f64, keep_above: bool, mut emit: impl FnMut([f64; 3])) {
+    let inside = |p: &[f64; 3]| if keep_above { p[axis] >= v } else { p[axis] <= v };
     let (ia, ib) = (inside(&a), inside(&b));
     if ia {
         emit(a);
     }
     if ia != ib {
-        let t = (v - a[0]) / (b[0] - a[0]);
+        let t = (v - a[axis]) / (b[axis] - a[axis]);
         emit([a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])]);
     }
 }
@@ -303,9 +283,9 @@ fn heights_between(poly: &[[f64; 3]], xa: f64, xb: f64) -> Option<(f64, f64)> {
     let mut first: Option<[f64; 3]> = None;
     let mut prev = [0.0; 3];
     for k in 0..poly.len() {
-        clip_edge(poly[k], poly[(k + 1) % poly.len()], xa, true, |p| {
+        clip_edge(poly[k], poly[(k + 1) % poly.len()], 0, xa, true, |p| {
             if first.is_some() {
-                clip_edge(prev, p, xb, false, &mut keep);
+                clip_edge(prev, p, 0, xb, false, &mut keep);
             } else {
                 first = Some(p);
             }
@@ -313,7 +293,7 @@ fn heights_between(poly: &[[f64; 3]], xa: f64, xb: f64) -> Option<(f64, f64)> {
         });
     }
     let first = first?;
-    clip_edge(prev, first, xb, false, &mut keep);
+    clip_edge(prev, first, 0, xb, false, &mut keep);
     (lo <= hi).then_some((lo, hi))
 }
 
@@ -446,7 +426,7 @@ fn raw_key(r: &[u32; 5]) -> u128 {
 /// [`CELL_SHIFT`] up its first cell in the band. Below the flags, the integer
 /// order is (object, height), the order a cell's points are merged in. Its
 /// interval `[z - r, z + r]` is computed again from the height when merging,
-/// in the operations [`point_cells`] uses, so 8 bytes carry what a 16-byte raw
+/// in the operations [`point_raws`] uses, so 8 bytes carry what a 16-byte raw
 /// key would, and one record stands for up to four cells.
 #[inline]
 fn point_record(local: u32, flags: u64, obj: u32, z: f32) -> u64 {
@@ -463,49 +443,14 @@ const POINT_KEY: u64 = (1 << 33) - 1;
 
 const _: () = assert!(OBJ_GROUND == 0 && OBJ_SCAN == 1, "a point's object is one bit of its record");
 
-/// Pass 5 for one cell's points, `recs` sorted: appends the merged intervals,
-/// ground first, and returns where the other points' intervals start.
-///
-/// Sorted by height, a cell's point intervals are also sorted by (bottom,
-/// top), the order [`merge_raws`] sorts raw intervals into, so both give the
-/// same intervals for the same points (the GPU twin's map goes through
-/// `merge_raws`).
-fn merge_points(recs: &[u64], radius: f32, gap: f32, out: &mut Vec<Interval>) -> usize {
-    let Some((&first, rest)) = recs.split_first() else { return out.len() };
-    let mut mid = out.len();
-    let unpack = |k: u64| {
-        let z = f32_from_key(k as u32);
-        ((k >> 32) as u32 & 1, z - radius, z + radius)
-    };
-    let (mut obj, mut zlo, mut zhi) = unpack(first);
-    for &k in rest {
-        let (o, lo, hi) = unpack(k);
-        if o == obj && lo <= zhi + gap {
-            if hi > zhi {
-                zhi = hi;
-            }
-        } else {
-            out.push(Interval { zlo, zhi, obj });
-            if o != obj {
-                mid = out.len();
-            }
-            (obj, zlo, zhi) = (o, lo, hi);
-        }
-    }
-    out.push(Interval { zlo, zhi, obj });
-    if obj == OBJ_GROUND { out.len() } else { mid }
-}
-
-/// Pass 5 for one cell's raw intervals: sorts their keys and appends the
-/// merged intervals. Equal keys are equal raws, so the sorted order, hence the
-/// map, does not depend on the order the raws arrived in.
-fn merge_raws(keys: &mut [u128], gap: f32, out: &mut Vec<Interval>) {
-    keys.sort_unstable();
-    let Some((&first, rest)) = keys.split_first() else { return };
-    let unpack = |k: u128| ((k >> 96) as u32, (k >> 64) as u32, f32_from_key((k >> 32) as u32), f32_from_key(k as u32));
-    let (mut obj, mut part, mut zlo, mut zhi) = unpack(first);
-    for &k in rest {
-        let (o, p, lo, hi) = unpack(k);
+/// Pass 5's merge for one cell: `sorted` gives its raw intervals as (object,
+/// part, bottom, top) in that order. A convex part's intervals become one, and
+/// surface intervals (part 0) of one object merge when they overlap or are
+/// less than `gap` apart.
+#[inline]
+fn merge_sorted(mut sorted: impl Iterator<Item = (u32, u32, f32, f32)>, gap: f32, out: &mut Vec<Interval>) {
+    let Some((mut obj, mut part, mut zlo, mut zhi)) = sorted.next() else { return };
+    for (o, p, lo, hi) in sorted {
         if o == obj && p == part && (part != 0 || lo <= zhi + gap) {
             if hi > zhi {
                 zhi = hi;
@@ -516,6 +461,33 @@ fn merge_raws(keys: &mut [u128], gap: f32, out: &mut Vec<Interval>) {
         }
     }
     out.push(Interval { zlo, zhi, obj });
+}
+
+/// Pass 5 for one cell's points, `recs` sorted: appends the merged intervals,
+/// ground first, and returns where the other points' intervals start.
+///
+/// Sorted by height, a cell's point intervals are also sorted by (bottom,
+/// top), the order [`merge_raws`] sorts raw intervals into, so both give the
+/// same intervals for the same points (the GPU twin's map goes through
+/// `merge_raws`).
+fn merge_points(recs: &[u64], radius: f32, gap: f32, out: &mut Vec<Interval>) -> usize {
+    let start = out.len();
+    let unpack = |&k: &u64| {
+        let z = f32_from_key(k as u32);
+        ((k >> 32) as u32 & 1, 0, z - radius, z + radius)
+    };
+    merge_sorted(recs.iter().map(unpack), gap, out);
+    start + out[start..].iter().take_while(|i| i.obj == OBJ_GROUND).count()
+}
+
+/// Pass 5 for one cell's raw intervals: sorts their keys and appends the
+/// merged intervals. Equal keys are equal raws, so the sorted order, hence the
+/// map, does not depend on the order the raws arrived in.
+fn merge_raws(keys: &mut [u128], gap: f32, out: &mut Vec<Interval>) {
+    keys.sort_unstable();
+    let unpack =
+        |&k: &u128| ((k >> 96) as u32, (k >> 64) as u32, f32_from_key((k >> 32) as u32), f32_from_key(k as u32));
+    merge_sorted(keys.iter().map(unpack), gap, out);
 }
 
 /// The end of pass 5 for one cell whose merged intervals are `out[start..]`:
