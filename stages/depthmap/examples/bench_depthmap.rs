@@ -94,9 +94,9 @@ fn plant() -> TriMesh {
     m
 }
 
-/// CPU builds (and floor passes) per row: a shared 2-core machine's times vary by 10-15 % from
-/// run to run, and a CPU build is quick, so it gets more tries than the GPU
-/// (3) does.
+/// CPU builds (and floor passes) per row: a shared 2-core machine's times
+/// vary by 10-15 % from run to run, and a CPU build is quick, so it gets more
+/// tries than the GPU (3) does.
 const CPU_RUNS: usize = 5;
 
 fn best_of(k: usize, mut f: impl FnMut() -> f64) -> f64 {
