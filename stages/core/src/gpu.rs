@@ -42,7 +42,11 @@ pub fn open_device(allow_software: bool) -> Result<Device, String> {
     if info.device_type == wgpu::DeviceType::Cpu && !allow_software {
         return Err(format!("only a software adapter ({}) is available", info.name));
     }
-    let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor::default()))
+    // The adapter's own limits, not wgpu's portable defaults: a depth map of
+    // tens of millions of points wants storage buffers of gigabytes, which
+    // every desktop GPU binds (the defaults stop at 128 MiB).
+    let descriptor = wgpu::DeviceDescriptor { required_limits: adapter.limits(), ..Default::default() };
+    let (device, queue) = pollster::block_on(adapter.request_device(&descriptor))
         .map_err(|e| format!("GPU device on {}: {e}", info.name))?;
     Ok(Device { device, queue, name: format!("{} ({:?})", info.name, info.backend) })
 }

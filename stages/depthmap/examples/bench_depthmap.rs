@@ -118,10 +118,18 @@ fn main() {
         "{} CPU threads; GPU: {}. Best of {CPU_RUNS} runs on the CPU, of 3 on the GPU. Floor = one streaming pass reading every point (sum of coordinates). \
          The thesis' figure: 21,000,716 points in 584 ms on a Tesla K20c.\n",
         rayon::current_num_threads(),
-        device.as_ref().map(|g| g.name().to_string()).unwrap_or_else(|e| format!("none ({e})"))
+        device
+            .as_ref()
+            .map(|g| match g.loop_cap() {
+                Some(cap) => format!("{} (ends a shader's loops after {cap} iterations)", g.name()),
+                None => g.name().to_string(),
+            })
+            .unwrap_or_else(|e| format!("none ({e})"))
     );
-    println!("| input | floor ms | CPU ms | CPU / floor | GPU ms | GPU / floor | maps equal |");
-    println!("|---|---|---|---|---|---|---|");
+    println!(
+        "| input | floor ms | CPU ms | CPU / floor | GPU ms | GPU / floor | GPU passes ms | GPU passes / floor | maps equal |"
+    );
+    println!("|---|---|---|---|---|---|---|---|---|");
     let clouds = sizes.iter().map(|&n| ("random", n)).chain(sizes.iter().map(|&n| ("surface", n)));
     for (kind, n) in clouds {
         let inp = if kind == "random" { points(n) } else { surface_points(n) };
@@ -131,46 +139,64 @@ fn main() {
             std::hint::black_box(s);
             t.elapsed().as_secs_f64() * 1e3
         });
-        let mut cpu_map = None;
-        let cpu = best_of(CPU_RUNS, || {
-            let t = Instant::now();
-            let (m, timings) = build_cpu(&inp, &s).unwrap();
-            let dt = t.elapsed().as_secs_f64() * 1e3;
-            eprintln!("{n} {kind} points, CPU: {timings:?}, {} intervals", m.intervals.len());
-            cpu_map = Some(m);
-            dt
-        });
-        let (gpu_ms, equal) = match &device {
-            Ok(g) => {
-                let mut gm = None;
-                let dt = best_of(3, || {
-                    let t = Instant::now();
-                    let (m, _) = build(&inp, &s, Some(g)).unwrap();
-                    let dt = t.elapsed().as_secs_f64() * 1e3;
-                    gm = Some(m);
-                    dt
-                });
-                (format!("{dt:.0}"), if gm == cpu_map { "yes" } else { "NO" }.to_string())
-            }
-            Err(_) => ("-".into(), "-".into()),
-        };
-        let ratio = |x: &str| x.parse::<f64>().map(|v| format!("{:.1}", v / floor)).unwrap_or_else(|_| "-".into());
+        let (cpu, gpu) = compare(&inp, &s, &device, &format!("{n} {kind} points"));
+        let ratio = |x: f64| format!("{:.1}", x / floor);
         println!(
-            "| {n} {kind} points | {floor:.1} | {cpu:.0} | {:.1} | {gpu_ms} | {} | {equal} |",
-            cpu / floor,
-            ratio(&gpu_ms)
+            "| {n} {kind} points | {floor:.1} | {cpu:.0} | {} | {} | {} | {} | {} | {} |",
+            ratio(cpu),
+            gpu.map_or("-".into(), |g| format!("{:.0}", g.total_ms)),
+            gpu.map_or("-".into(), |g| ratio(g.total_ms)),
+            gpu.map_or("-".into(), |g| format!("{:.1}", g.passes_ms)),
+            gpu.map_or("-".into(), |g| ratio(g.passes_ms)),
+            gpu.map_or("-", |g| if g.equal { "yes" } else { "NO" }),
         );
     }
-    let mesh = plant();
-    let inp = Inputs { points: vec![], ground: vec![], mesh };
+    let inp = Inputs { points: vec![], ground: vec![], mesh: plant() };
+    let (cpu, gpu) = compare(&inp, &s, &device, "plant");
+    println!(
+        "| {} triangles | - | {cpu:.0} | - | {} | - | {} | - | {} |",
+        inp.mesh.triangle_count(),
+        gpu.map_or("-".into(), |g| format!("{:.0}", g.total_ms)),
+        gpu.map_or("-".into(), |g| format!("{:.1}", g.passes_ms)),
+        gpu.map_or("-", |g| if g.equal { "yes" } else { "NO" }),
+    );
+    println!(
+        "\nBoth paths run every pass (count, prefix sum, fill, per-cell sort and merge). Triangles are clipped to \
+         cells on the CPU for both (in f64); on the GPU path their raw intervals go up and through the device's \
+         passes with the points. GPU ms is the whole build (conversion and upload of the points, the passes, \
+         reading the map back); GPU passes ms is the device's part alone."
+    );
+}
+
+#[derive(Clone, Copy)]
+struct GpuRun {
+    total_ms: f64,
+    passes_ms: f64,
+    equal: bool,
+}
+
+/// CPU time (best of [`CPU_RUNS`]) and, with a device, the GPU's (best of 3)
+/// and whether its map is the CPU's.
+fn compare(inp: &Inputs, s: &Settings, device: &Result<gpu::Gpu, String>, what: &str) -> (f64, Option<GpuRun>) {
+    let mut cpu_map = None;
     let cpu = best_of(CPU_RUNS, || {
         let t = Instant::now();
-        let (_, timings) = build_cpu(&inp, &s).unwrap();
-        eprintln!("plant, CPU: {timings:?}");
-        t.elapsed().as_secs_f64() * 1e3
+        let (m, timings) = build_cpu(inp, s).unwrap();
+        let dt = t.elapsed().as_secs_f64() * 1e3;
+        eprintln!("{what}, CPU: {timings:?}, {} intervals", m.intervals.len());
+        cpu_map = Some(m);
+        dt
     });
-    println!("| {} triangles | - | {cpu:.0} | - | (CPU pass; shared) | - | - |", inp.mesh.triangle_count());
-    println!(
-        "\nThe GPU path runs the point pass (count, host prefix sum, fill) on the device; triangle intervals and the per-cell sort/merge run on the CPU for both paths, so GPU time includes them and the transfers."
-    );
+    let Ok(g) = device else { return (cpu, None) };
+    let mut best = GpuRun { total_ms: f64::INFINITY, passes_ms: f64::INFINITY, equal: true };
+    for _ in 0..3 {
+        let t = Instant::now();
+        let (m, timings) = build(inp, s, Some(g)).unwrap();
+        let dt = t.elapsed().as_secs_f64() * 1e3;
+        eprintln!("{what}, GPU: {timings:?}");
+        best.total_ms = best.total_ms.min(dt);
+        best.passes_ms = best.passes_ms.min(timings.gpu.map_or(f64::NAN, |g| g.passes_ms));
+        best.equal &= Some(m) == cpu_map;
+    }
+    (cpu, Some(best))
 }

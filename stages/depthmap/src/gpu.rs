@@ -1,73 +1,448 @@
-//! The GPU twin of the point pass (wgpu compute).
+//! The GPU twin of the depth-map assembly (wgpu compute).
 //!
-//! Points dominate a site (tens of millions against a few hundred thousand plant
-//! triangles), so the point pass is what runs on the GPU: a count pass writes
-//! how many cells each point touches, the host turns the counts into offsets
-//! (an exclusive prefix sum), and a fill pass writes every point's raw intervals
-//! at its offset. The arithmetic is the CPU pass's, in the same f32 operations
-//! and the same cell order, so the raw intervals are identical and the map the
-//! shared assemble step builds from them is identical too (the tests compare
-//! them). Triangle intervals and assembly stay on the CPU.
+//! The thesis' passes (ch. 3), all on the device, slab after slab of grid
+//! rows:
 //!
-//! Points go up in chunks small enough for the default storage-binding limit.
+//! 1. *count*: every point adds one to each cell its square touches (the cells
+//!    of `mdm::point_span`), every triangle raw interval to its cell (atomics);
+//! 2. *allocate*: an exclusive prefix sum of the counts gives each cell its
+//!    start (a workgroup scan per 256 cells; the block sums scanned the same
+//!    way and added back);
+//! 3. *fill*: every raw interval's sort key `[object, part, key(bottom),
+//!    key(top)]` goes to its cell's next free slot;
+//! 4. *sort and merge*: a cell's keys sorted, merged as `mdm::merge_sorted`
+//!    merges them, sorted by (bottom, top, object), cut to one in
+//!    single-level mode, counted, and the cell's top written. A cell of up to
+//!    256 keys takes one invocation (insertion sort when short, heapsort
+//!    otherwise); a more crowded one (walls, poles, dense scans) takes a
+//!    workgroup, which sorts with a bitonic network and merges with one
+//!    invocation;
+//! 5. a prefix sum of the merged counts, and each cell's intervals copied to
+//!    their place in the slab's part of the map.
+//!
+//! The fill order depends on thread timing, a cell's sorted keys do not (equal
+//! keys are equal raw intervals), and the arithmetic is the CPU's: the same
+//! `f32` operations for a point's cells and heights, comparisons in the
+//! integer key order where the CPU uses it, and the merge's `bottom <= top +
+//! gap` as the same `f32` sum. So the map is the CPU's bit for bit (the tests
+//! compare them); the one way they could differ is a height within 1.2e-38 m
+//! of zero that is not zero (a subnormal number, which a GPU may flush to
+//! zero in arithmetic), which no survey or plant model holds. Triangles are
+//! clipped to cells on the CPU (in `f64`, which WGSL lacks; a few hundred
+//! thousand triangles against tens of millions of points), and their raw
+//! intervals go up and through the same passes.
+//!
+//! Mesa's lavapipe (llvmpipe) silently leaves every loop of an invocation once
+//! it has run 65535 iterations in all, which would give a wrong map for a
+//! crowded cell. A one-invocation probe finds such a cap when the device
+//! opens, and a slab whose most crowded cell could need more is refused with
+//! an error instead; GPUs run loops to their end.
+//!
+//! Buffers stay under the device's storage-binding limit: points and triangle
+//! raws go up in chunks, and a slab has as many rows as its raw intervals'
+//! keys fit one buffer (a slab that turns out too full is cut and counted
+//! again).
 
-use crate::mdm::{GridSpec, PointSource, Raw, local_point};
+use crate::mdm::{GridSpec, Interval, Mode, PointSource, Raw, local_point};
 use wgpu::util::DeviceExt;
 
 const SHADER: &str = r#"
-struct Params { n: u32, nx: u32, ny: u32, inv_cell: f32, radius: f32, p0: u32, p1: u32, p2: u32 }
+struct Params {
+    n: u32,          // items of this dispatch: points, raws or cells
+    nx: u32,
+    row0: u32,       // first row of the slab
+    rows: u32,       // rows in the slab
+    inv_cell: f32,
+    radius: f32,
+    gap: f32,
+    single: u32,
+}
 @group(0) @binding(0) var<uniform> P: Params;
-@group(0) @binding(1) var<storage, read> pts: array<vec4<f32>>;
-@group(0) @binding(2) var<storage, read_write> counts: array<u32>;
-@group(0) @binding(3) var<storage, read> offsets: array<u32>;
-@group(0) @binding(4) var<storage, read_write> raws: array<u32>;
+@group(0) @binding(1) var<storage, read> pts: array<vec4<u32>>;
+@group(0) @binding(2) var<storage, read> mesh: array<u32>;
+@group(0) @binding(3) var<storage, read_write> tally: array<atomic<u32>>;
+@group(0) @binding(4) var<storage, read_write> keys: array<vec4<u32>>;
+@group(0) @binding(5) var<storage, read_write> data: array<u32>;
+@group(0) @binding(6) var<storage, read_write> sums: array<u32>;
+@group(0) @binding(7) var<storage, read> starts: array<u32>;
+@group(0) @binding(8) var<storage, read_write> merged: array<u32>;
+@group(0) @binding(9) var<storage, read_write> tops: array<u32>;
+@group(0) @binding(10) var<storage, read_write> intervals: array<u32>;
+@group(0) @binding(11) var<storage, read_write> large: array<u32>;
 
-fn cells(q: vec4<f32>) -> vec4<i32> {
+const GROUP: u32 = 256u;
+const MAX_DIM: u32 = 65535u;
+
+fn item(g: vec3<u32>) -> u32 { return g.x + g.y * MAX_DIM * GROUP; }
+
+// mdm::f32_key and its inverse, on bit patterns.
+fn key_of(bits: u32) -> u32 {
+    if ((bits & 0x80000000u) != 0u) { return ~bits; }
+    return bits | 0x80000000u;
+}
+fn bits_of(key: u32) -> u32 {
+    if ((key & 0x80000000u) != 0u) { return key & 0x7fffffffu; }
+    return ~key;
+}
+
+// The slab-local cells of a point: columns x..y, rows z..w (empty when y < x or w < z).
+fn span(q: vec3<f32>) -> vec4<i32> {
     let i0 = max(i32(floor((q.x - P.radius) * P.inv_cell)), 0);
     let i1 = min(i32(floor((q.x + P.radius) * P.inv_cell)), i32(P.nx) - 1);
-    let j0 = max(i32(floor((q.y - P.radius) * P.inv_cell)), 0);
-    let j1 = min(i32(floor((q.y + P.radius) * P.inv_cell)), i32(P.ny) - 1);
-    return vec4<i32>(i0, i1, j0, j1);
+    let j0 = max(i32(floor((q.y - P.radius) * P.inv_cell)), i32(P.row0));
+    let j1 = min(i32(floor((q.y + P.radius) * P.inv_cell)), i32(P.row0 + P.rows) - 1);
+    return vec4<i32>(i0, i1, j0 - i32(P.row0), j1 - i32(P.row0));
+}
+
+// A triangle raw's slab-local cell, or 0xffffffff outside the slab.
+fn mesh_cell(r: u32) -> u32 {
+    let c = mesh[5u * r];
+    let first = P.row0 * P.nx;
+    if (c < first || c - first >= P.rows * P.nx) { return 0xffffffffu; }
+    return c - first;
 }
 
 @compute @workgroup_size(256)
-fn count(@builtin(global_invocation_id) g: vec3<u32>) {
-    let p = g.x + g.y * 65535u * 256u;
+fn count_points(@builtin(global_invocation_id) g: vec3<u32>) {
+    let p = item(g);
     if (p >= P.n) { return; }
-    let r = cells(pts[p]);
-    var c = 0u;
-    if (r.y >= r.x && r.w >= r.z) { c = u32(r.y - r.x + 1) * u32(r.w - r.z + 1); }
-    counts[p] = c;
-}
-
-@compute @workgroup_size(256)
-fn fill(@builtin(global_invocation_id) g: vec3<u32>) {
-    let p = g.x + g.y * 65535u * 256u;
-    if (p >= P.n) { return; }
-    let q = pts[p];
-    let r = cells(q);
-    var o = offsets[p];
-    let zlo = bitcast<u32>(q.z - P.radius);
-    let zhi = bitcast<u32>(q.z + P.radius);
-    for (var j = r.z; j <= r.w; j = j + 1) {
-        for (var i = r.x; i <= r.y; i = i + 1) {
-            let b = o * 5u;
-            raws[b] = u32(j) * P.nx + u32(i);
-            raws[b + 1u] = zlo;
-            raws[b + 2u] = zhi;
-            raws[b + 3u] = bitcast<u32>(q.w);
-            raws[b + 4u] = 0u;
-            o = o + 1u;
+    let s = span(bitcast<vec3<f32>>(pts[p].xyz));
+    for (var j = s.z; j <= s.w; j++) {
+        for (var i = s.x; i <= s.y; i++) {
+            atomicAdd(&tally[u32(j) * P.nx + u32(i)], 1u);
         }
+    }
+}
+
+@compute @workgroup_size(256)
+fn count_mesh(@builtin(global_invocation_id) g: vec3<u32>) {
+    let r = item(g);
+    if (r >= P.n) { return; }
+    let c = mesh_cell(r);
+    if (c != 0xffffffffu) { atomicAdd(&tally[c], 1u); }
+}
+
+@compute @workgroup_size(256)
+fn fill_points(@builtin(global_invocation_id) g: vec3<u32>) {
+    let p = item(g);
+    if (p >= P.n) { return; }
+    let q = bitcast<vec3<f32>>(pts[p].xyz);
+    let s = span(q);
+    let k = vec4<u32>(pts[p].w, 0u, key_of(bitcast<u32>(q.z - P.radius)), key_of(bitcast<u32>(q.z + P.radius)));
+    for (var j = s.z; j <= s.w; j++) {
+        for (var i = s.x; i <= s.y; i++) {
+            keys[atomicAdd(&tally[u32(j) * P.nx + u32(i)], 1u)] = k;
+        }
+    }
+}
+
+@compute @workgroup_size(256)
+fn fill_mesh(@builtin(global_invocation_id) g: vec3<u32>) {
+    let r = item(g);
+    if (r >= P.n) { return; }
+    let c = mesh_cell(r);
+    if (c == 0xffffffffu) { return; }
+    let b = 5u * r;
+    let k = vec4<u32>(mesh[b + 3u], mesh[b + 4u], key_of(mesh[b + 1u]), key_of(mesh[b + 2u]));
+    keys[atomicAdd(&tally[c], 1u)] = k;
+}
+
+// Sums that stop at 0xffffffff instead of wrapping, so an overfull slab shows.
+fn add_sat(a: u32, b: u32) -> u32 {
+    let s = a + b;
+    if (s < a) { return 0xffffffffu; }
+    return s;
+}
+
+var<workgroup> partial: array<u32, 256>;
+
+// Exclusive prefix sum of each block of 256 of data[..n], in place; the
+// block's total to sums[block].
+@compute @workgroup_size(256)
+fn scan_blocks(@builtin(workgroup_id) w: vec3<u32>, @builtin(local_invocation_id) l: vec3<u32>) {
+    let b = w.x + w.y * MAX_DIM;
+    let i = b * GROUP + l.x;
+    var v = 0u;
+    if (i < P.n) { v = data[i]; }
+    partial[l.x] = v;
+    workgroupBarrier();
+    for (var off = 1u; off < GROUP; off = off * 2u) {
+        var t = 0u;
+        if (l.x >= off) { t = partial[l.x - off]; }
+        workgroupBarrier();
+        partial[l.x] = add_sat(partial[l.x], t);
+        workgroupBarrier();
+    }
+    if (i < P.n) {
+        var prior = 0u;
+        if (l.x > 0u) { prior = partial[l.x - 1u]; }
+        data[i] = prior;
+    }
+    if (l.x == GROUP - 1u && b * GROUP < P.n) { sums[b] = partial[GROUP - 1u]; }
+}
+
+// Adds each block's scanned total to its elements.
+@compute @workgroup_size(256)
+fn add_blocks(@builtin(global_invocation_id) g: vec3<u32>) {
+    let i = item(g);
+    if (i >= P.n) { return; }
+    data[i] = add_sat(data[i], sums[i / GROUP]);
+}
+
+fn precedes(a: vec4<u32>, b: vec4<u32>) -> bool {
+    if (a.x != b.x) { return a.x < b.x; }
+    if (a.y != b.y) { return a.y < b.y; }
+    if (a.z != b.z) { return a.z < b.z; }
+    return a.w < b.w;
+}
+
+fn sift(base: u32, root: u32, n: u32) {
+    var r = root;
+    loop {
+        let c = 2u * r + 1u;
+        if (c >= n) { break; }
+        var m = c;
+        if (c + 1u < n && precedes(keys[base + c], keys[base + c + 1u])) { m = c + 1u; }
+        let top = keys[base + r];
+        let child = keys[base + m];
+        if (!precedes(top, child)) { break; }
+        keys[base + r] = child;
+        keys[base + m] = top;
+        r = m;
+    }
+}
+
+fn sort_keys(base: u32, n: u32) {
+    if (n <= 16u) {
+        for (var i = 1u; i < n; i++) {
+            let v = keys[base + i];
+            var j = i;
+            while (j > 0u && precedes(v, keys[base + j - 1u])) {
+                keys[base + j] = keys[base + j - 1u];
+                j--;
+            }
+            keys[base + j] = v;
+        }
+        return;
+    }
+    for (var s = n / 2u; s > 0u; s--) { sift(base, s - 1u, n); }
+    for (var end = n - 1u; end > 0u; end--) {
+        let t = keys[base];
+        keys[base] = keys[base + end];
+        keys[base + end] = t;
+        sift(base, 0u, end);
+    }
+}
+
+// `a > b` on the floats of two keys: the key order, except that -0 == +0.
+fn above(a: u32, b: u32) -> bool {
+    return a > b && ((bits_of(a) | bits_of(b)) & 0x7fffffffu) != 0u;
+}
+
+// `lo <= hi + gap` on the floats of two keys.
+fn within_gap(lo: u32, hi: u32) -> bool {
+    return bitcast<f32>(bits_of(lo)) <= bitcast<f32>(bits_of(hi)) + P.gap;
+}
+
+// A sorted cell's raw keys merged in place (mdm::merge_sorted) into
+// [key(bottom), key(top), object, 0]; returns how many.
+fn merge_run(base: u32, n: u32) -> u32 {
+    if (n == 0u) { return 0u; }
+    var m = 0u;
+    var cur = keys[base];
+    var hi = cur.w;
+    for (var k = 1u; k < n; k++) {
+        let e = keys[base + k];
+        if (e.x == cur.x && e.y == cur.y && (cur.y != 0u || within_gap(e.z, hi))) {
+            if (above(e.w, hi)) { hi = e.w; }
+        } else {
+            keys[base + m] = vec4<u32>(cur.z, hi, cur.x, 0u);
+            m++;
+            cur = e;
+            hi = e.w;
+        }
+    }
+    keys[base + m] = vec4<u32>(cur.z, hi, cur.x, 0u);
+    return m + 1u;
+}
+
+// The end of pass 4 for cell c, its m merged intervals sorted: one kept in
+// single-level mode, the count to merged[c] and the top's bits to tops[c].
+fn finish(c: u32, base: u32, merged_n: u32) {
+    var m = merged_n;
+    if (P.single != 0u && m > 0u) {
+        var top = keys[base];
+        for (var k = 1u; k < m; k++) {
+            let e = keys[base + k];
+            if (e.y > top.y) { top = e; }
+        }
+        keys[base] = vec4<u32>(keys[base].x, top.y, top.z, 0u);
+        m = 1u;
+    }
+    var highest = 0u;
+    for (var k = 0u; k < m; k++) { highest = max(highest, keys[base + k].y); }
+    merged[c] = m;
+    if (m == 0u) { tops[c] = 0xff800000u; } else { tops[c] = bits_of(highest); }
+}
+
+// Cells with more raw keys than this are sorted by a whole workgroup
+// (large_cells); the others by one invocation each (merge_cells).
+const LARGE: u32 = {LARGE}u;
+
+// Pass 4 for every cell of at most LARGE keys, one invocation each.
+@compute @workgroup_size(64)
+fn merge_cells(@builtin(global_invocation_id) g: vec3<u32>) {
+    let c = g.x + g.y * MAX_DIM * 64u;
+    if (c >= P.n) { return; }
+    let base = starts[c];
+    let n = starts[c + 1u] - base;
+    if (n > LARGE) { return; }
+    sort_keys(base, n);
+    let m = merge_run(base, n);
+    sort_keys(base, m);
+    finish(c, base, m);
+}
+
+// Lists the cells of more than LARGE keys (large[0..stats[0]]) and the
+// largest count (stats[1]).
+@compute @workgroup_size(256)
+fn find_large(@builtin(global_invocation_id) g: vec3<u32>) {
+    let c = item(g);
+    if (c >= P.n) { return; }
+    let n = starts[c + 1u] - starts[c];
+    atomicMax(&tally[1], n);
+    if (n > LARGE) { large[atomicAdd(&tally[0], 1u)] = c; }
+}
+
+// keys[base + i] and keys[base + j] (i < j) in order.
+fn order(i: u32, j: u32) {
+    let a = keys[i];
+    let b = keys[j];
+    if (precedes(b, a)) {
+        keys[i] = b;
+        keys[j] = a;
+    }
+}
+
+// A workgroup's bitonic sort of keys[base..base + n], n uniform: every
+// comparator puts the smaller key first, so the network runs as if padded
+// to a power of two with keys above all others, which never move.
+fn sort_together(base: u32, n: u32, lane: u32) {
+    var p = 1u;
+    while (p < n) { p = p * 2u; }
+    let pairs = p / 2u;
+    for (var k = 2u; k <= p; k = k * 2u) {
+        let half = k / 2u;
+        for (var t = lane; t < pairs; t += GROUP) {
+            let off = t % half;
+            let i = (t / half) * k + off;
+            let j = (t / half) * k + k - 1u - off;
+            if (j < n) { order(base + i, base + j); }
+        }
+        storageBarrier();
+        for (var d = k / 4u; d > 0u; d = d / 2u) {
+            for (var t = lane; t < pairs; t += GROUP) {
+                let i = (t / d) * 2u * d + t % d;
+                if (i + d < n) { order(base + i, base + i + d); }
+            }
+            storageBarrier();
+        }
+    }
+}
+
+var<workgroup> cell_id: u32;
+var<workgroup> cell_base: u32;
+var<workgroup> cell_n: u32;
+var<workgroup> cell_m: u32;
+
+// Pass 4 for one listed cell of more than LARGE keys per workgroup: sorted
+// together, merged by the first invocation, sorted together again, finished.
+@compute @workgroup_size(256)
+fn large_cells(@builtin(workgroup_id) w: vec3<u32>, @builtin(local_invocation_id) l: vec3<u32>) {
+    let listed = w.x + w.y * MAX_DIM;
+    if (l.x == 0u) {
+        var c = 0xffffffffu;
+        if (listed < P.n) { c = large[listed]; }
+        cell_id = c;
+        if (c != 0xffffffffu) {
+            cell_base = starts[c];
+            cell_n = starts[c + 1u] - starts[c];
+        }
+    }
+    let c = workgroupUniformLoad(&cell_id);
+    if (c == 0xffffffffu) { return; }
+    let base = workgroupUniformLoad(&cell_base);
+    let n = workgroupUniformLoad(&cell_n);
+    sort_together(base, n, l.x);
+    if (l.x == 0u) { cell_m = merge_run(base, n); }
+    let m = workgroupUniformLoad(&cell_m);
+    storageBarrier();
+    sort_together(base, m, l.x);
+    if (l.x == 0u) { finish(c, base, m); }
+}
+
+// How many loop iterations one invocation may run: Mesa's llvmpipe (lavapipe)
+// silently leaves every loop of an invocation after 65535 in all, so the
+// host checks its passes fit what this finds.
+@compute @workgroup_size(1)
+fn probe_loops() {
+    var k = 0u;
+    loop {
+        if (k >= P.n) { break; }
+        k = k + data[1] + 1u;
+    }
+    data[0] = k;
+}
+
+// Pass 5: each cell's merged intervals, [bottom, top, object] as f32 bits, to
+// their place in intervals (merged[] is now their exclusive prefix sum).
+@compute @workgroup_size(256)
+fn compact(@builtin(global_invocation_id) g: vec3<u32>) {
+    let c = item(g);
+    if (c >= P.n) { return; }
+    let src = starts[c];
+    let dst = merged[c];
+    let m = merged[c + 1u] - dst;
+    for (var k = 0u; k < m; k++) {
+        let e = keys[src + k];
+        let o = 3u * (dst + k);
+        intervals[o] = bits_of(e.x);
+        intervals[o + 1u] = bits_of(e.y);
+        intervals[o + 2u] = e.z;
     }
 }
 "#;
 
-/// An open GPU with the point-pass pipelines.
+const GROUP: u32 = 256;
+const MERGE_GROUP: u32 = 64;
+/// Cells with more raw keys than this are sorted by a workgroup each, the
+/// others by one invocation each (the shader's `LARGE`).
+const LARGE: u64 = 256;
+/// Iterations of the loop probe: more than any pass needs on a device that
+/// does not cut loops short.
+const PROBE_LOOPS: u32 = 1 << 20;
+const MAX_DIM: u32 = 65_535;
+
+/// An open GPU with the assembly pipelines.
 pub struct Gpu {
     dev: liftplan_core::gpu::Device,
-    count: wgpu::ComputePipeline,
-    fill: wgpu::ComputePipeline,
+    count_points: wgpu::ComputePipeline,
+    count_mesh: wgpu::ComputePipeline,
+    fill_points: wgpu::ComputePipeline,
+    fill_mesh: wgpu::ComputePipeline,
+    scan_blocks: wgpu::ComputePipeline,
+    add_blocks: wgpu::ComputePipeline,
+    merge_cells: wgpu::ComputePipeline,
+    compact: wgpu::ComputePipeline,
+    find_large: wgpu::ComputePipeline,
+    large_cells: wgpu::ComputePipeline,
+    probe: wgpu::ComputePipeline,
+    /// Loop iterations one invocation may run, where the device cuts loops
+    /// short (lavapipe: 65535); `None` where the probe ran to its end.
+    loop_cap: Option<u32>,
+    /// Largest buffer the passes use (bytes): the device's storage-binding
+    /// limit, or less when asked ([`Gpu::set_buffer_limit`]).
+    buffer_limit: u64,
 }
 
 /// Opens a device ([`liftplan_core::gpu::open_device`]) and builds the pipelines.
@@ -75,12 +450,49 @@ pub fn open(allow_software: bool) -> Result<Gpu, String> {
     Ok(Gpu::new(liftplan_core::gpu::open_device(allow_software)?))
 }
 
+/// The device's side of a depth map, cell by cell in row-major order: what
+/// [`crate::mdm::Mdm::from_cells`] takes.
+pub struct Cells {
+    pub counts: Vec<u32>,
+    pub intervals: Vec<Interval>,
+    pub tops: Vec<f32>,
+    /// Raw intervals before merging.
+    pub raws: usize,
+    /// Slabs of rows the grid was cut into.
+    pub slabs: usize,
+    pub timings: GpuTimings,
+}
+
+/// Where the GPU assembly's time went (ms, wall clock on the host).
+#[derive(Debug, Clone, Copy, Default, serde::Serialize)]
+pub struct GpuTimings {
+    /// Converting and uploading points and triangle raws.
+    pub upload_ms: f64,
+    /// The passes on the device, each slab up to its last count read back.
+    pub passes_ms: f64,
+    /// Reading the map back (counts, tops, intervals).
+    pub read_back_ms: f64,
+}
+
+/// Uniform parameters of one dispatch (the shader's `Params`).
+#[derive(Clone, Copy)]
+struct Params {
+    n: u32,
+    nx: u32,
+    row0: u32,
+    rows: u32,
+    inv_cell: f32,
+    radius: f32,
+    gap: f32,
+    single: bool,
+}
+
 impl Gpu {
-    /// Builds the point-pass pipelines on an open device.
+    /// Builds the pipelines on an open device.
     pub fn new(dev: liftplan_core::gpu::Device) -> Gpu {
         let module = dev.device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("depthmap points"),
-            source: wgpu::ShaderSource::Wgsl(SHADER.into()),
+            label: Some("depthmap assembly"),
+            source: wgpu::ShaderSource::Wgsl(SHADER.replace("{LARGE}", &LARGE.to_string()).into()),
         });
         let pipeline = |entry: &str| {
             dev.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
@@ -92,9 +504,61 @@ impl Gpu {
                 cache: None,
             })
         };
-        let count = pipeline("count");
-        let fill = pipeline("fill");
-        Gpu { dev, count, fill }
+        let mut gpu = Gpu {
+            count_points: pipeline("count_points"),
+            count_mesh: pipeline("count_mesh"),
+            fill_points: pipeline("fill_points"),
+            fill_mesh: pipeline("fill_mesh"),
+            scan_blocks: pipeline("scan_blocks"),
+            add_blocks: pipeline("add_blocks"),
+            merge_cells: pipeline("merge_cells"),
+            compact: pipeline("compact"),
+            find_large: pipeline("find_large"),
+            large_cells: pipeline("large_cells"),
+            buffer_limit: device_buffer_limit(&dev.device),
+            loop_cap: None,
+            probe: pipeline("probe_loops"),
+            dev,
+        };
+        gpu.loop_cap = gpu.probe_loops(&gpu.probe);
+        gpu
+    }
+
+    /// Runs one invocation of a loop of [`PROBE_LOOPS`] iterations and
+    /// returns how many it ran, if fewer (or the device failed to say).
+    fn probe_loops(&self, probe: &wgpu::ComputePipeline) -> Option<u32> {
+        let out = self.storage("probe", 8);
+        let p = self.uniform(Params {
+            n: PROBE_LOOPS,
+            nx: 0,
+            row0: 0,
+            rows: 0,
+            inv_cell: 0.0,
+            radius: 0.0,
+            gap: 0.0,
+            single: false,
+        });
+        let mut enc = self.dev.device.create_command_encoder(&Default::default());
+        self.pass(&mut enc, probe, &[(0, &p), (5, &out)], 1, 1);
+        self.submit(enc);
+        match self.read_words(&out, 0, 1) {
+            Ok(w) if w[0] >= PROBE_LOOPS => None,
+            Ok(w) => Some(w[0]),
+            Err(_) => Some(0),
+        }
+    }
+
+    /// Keeps every buffer under `bytes` (at least 4 KiB) where the device
+    /// allows more: more chunks and slabs, the same map. The tests use it to
+    /// run the slab and chunk logic on small inputs.
+    pub fn set_buffer_limit(&mut self, bytes: u64) {
+        self.buffer_limit = device_buffer_limit(&self.dev.device).min(bytes.max(4096));
+    }
+
+    /// Loop iterations one shader invocation may run on this device, where
+    /// it cuts loops short (Mesa's lavapipe: 65535); `None` elsewhere.
+    pub fn loop_cap(&self) -> Option<u32> {
+        self.loop_cap
     }
 
     /// Adapter name and backend, for reports.
@@ -102,107 +566,360 @@ impl Gpu {
         &self.dev.name
     }
 
-    fn read_back(&self, src: &wgpu::Buffer, bytes: u64) -> Result<Vec<u32>, String> {
-        let data = liftplan_core::gpu::read_back(&self.dev, src, bytes)?;
-        Ok(data.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect())
-    }
-
-    /// A buffer holding `words`.
-    fn upload(&self, label: &str, words: &[u32], usage: wgpu::BufferUsages) -> wgpu::Buffer {
-        let bytes: Vec<u8> = words.iter().flat_map(|w| w.to_le_bytes()).collect();
+    fn upload(&self, label: &str, bytes: &[u8], usage: wgpu::BufferUsages) -> wgpu::Buffer {
         self.dev.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some(label),
-            contents: &bytes,
+            contents: bytes,
             usage,
         })
     }
 
-    /// A buffer a shader writes and the host reads back.
-    fn output(&self, label: &str, bytes: u64) -> wgpu::Buffer {
+    fn uniform(&self, p: Params) -> wgpu::Buffer {
+        let words =
+            [p.n, p.nx, p.row0, p.rows, p.inv_cell.to_bits(), p.radius.to_bits(), p.gap.to_bits(), p.single as u32];
+        self.upload("params", &words_to_bytes(&words), wgpu::BufferUsages::UNIFORM)
+    }
+
+    /// A zeroed storage buffer (wgpu zeroes new buffers) of at least 16 bytes.
+    fn storage(&self, label: &str, bytes: u64) -> wgpu::Buffer {
         self.dev.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some(label),
-            size: bytes,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            size: bytes.max(16).next_multiple_of(4),
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         })
     }
 
-    /// Binds buffers to a pipeline's group 0 by binding number.
-    fn bind(&self, pipeline: &wgpu::ComputePipeline, buffers: &[(u32, &wgpu::Buffer)]) -> wgpu::BindGroup {
+    /// Records `pipeline` over `n` items, `per_group` per workgroup.
+    fn pass(
+        &self,
+        enc: &mut wgpu::CommandEncoder,
+        pipeline: &wgpu::ComputePipeline,
+        buffers: &[(u32, &wgpu::Buffer)],
+        n: u32,
+        per_group: u32,
+    ) {
+        if n == 0 {
+            return;
+        }
         let entries: Vec<wgpu::BindGroupEntry> = buffers
             .iter()
             .map(|(binding, b)| wgpu::BindGroupEntry { binding: *binding, resource: b.as_entire_binding() })
             .collect();
-        self.dev.device.create_bind_group(&wgpu::BindGroupDescriptor {
+        let bind = self.dev.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: None,
             layout: &pipeline.get_bind_group_layout(0),
             entries: &entries,
-        })
+        });
+        let groups = n.div_ceil(per_group);
+        let (x, y) = if groups > MAX_DIM { (MAX_DIM, groups.div_ceil(MAX_DIM)) } else { (groups, 1) };
+        let mut pass = enc.begin_compute_pass(&Default::default());
+        pass.set_pipeline(pipeline);
+        pass.set_bind_group(0, &bind, &[]);
+        pass.dispatch_workgroups(x, y, 1);
     }
 
-    fn dispatch(&self, pipeline: &wgpu::ComputePipeline, bind: &wgpu::BindGroup, n: u32) {
-        let groups = n.div_ceil(256);
-        let (x, y) = if groups > 65_535 { (65_535, groups.div_ceil(65_535)) } else { (groups.max(1), 1) };
-        let mut enc = self.dev.device.create_command_encoder(&Default::default());
-        {
-            let mut pass = enc.begin_compute_pass(&Default::default());
-            pass.set_pipeline(pipeline);
-            pass.set_bind_group(0, bind, &[]);
-            pass.dispatch_workgroups(x, y, 1);
+    /// Records an exclusive, saturating prefix sum of `data[..n]` in place.
+    fn scan(&self, enc: &mut wgpu::CommandEncoder, data: &wgpu::Buffer, n: u32, base: Params) {
+        let blocks = n.div_ceil(GROUP);
+        let sums = self.storage("scan sums", 4 * blocks as u64);
+        let p = self.uniform(Params { n, ..base });
+        // One workgroup per block: `pass` counts items, so blocks * GROUP.
+        self.pass(enc, &self.scan_blocks, &[(0, &p), (5, data), (6, &sums)], blocks * GROUP, GROUP);
+        if blocks > 1 {
+            self.scan(enc, &sums, blocks, base);
+            self.pass(enc, &self.add_blocks, &[(0, &p), (5, data), (6, &sums)], n, GROUP);
         }
+    }
+
+    fn submit(&self, enc: wgpu::CommandEncoder) {
         self.dev.queue.submit([enc.finish()]);
     }
 
-    /// The point pass on the GPU: every point's raw interval in every cell its
-    /// square touches, as the CPU assembly rasterises points
-    /// (`mdm::point_span`, `mdm::point_raws`), in point order.
-    pub fn point_raws(&self, p: &PointSource, spec: &GridSpec, out: &mut Vec<Raw>) -> Result<(), String> {
-        let radius = p.radius;
-        let inv = (1.0 / spec.cell) as f32;
-        // Cells one point can touch, to size chunks under the binding limit.
-        let span = ((2.0 * radius * inv).ceil() as u64 + 1).pow(2);
-        let limit =
-            self.dev.device.limits().max_storage_buffer_binding_size.min(self.dev.device.limits().max_buffer_size);
-        let chunk = ((limit / (20 * span)) as usize).clamp(1, 1 << 22);
-        for (ci, pts) in p.xyz.chunks(chunk).enumerate() {
-            let n = pts.len() as u32;
-            let mut packed: Vec<u32> = Vec::with_capacity(pts.len() * 4);
-            for (k, site) in pts.iter().enumerate() {
-                let q = local_point(site, spec);
-                packed.extend_from_slice(&[q[0].to_bits(), q[1].to_bits(), q[2].to_bits(), p.obj(ci * chunk + k)]);
+    /// `words` 32-bit words of `src` from word `at`.
+    fn read_words(&self, src: &wgpu::Buffer, at: u64, words: u64) -> Result<Vec<u32>, String> {
+        let bytes = 4 * words;
+        let staging = self.dev.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("read back"),
+            size: bytes.max(4),
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let mut enc = self.dev.device.create_command_encoder(&Default::default());
+        if bytes > 0 {
+            enc.copy_buffer_to_buffer(src, 4 * at, &staging, 0, bytes);
+        }
+        self.submit(enc);
+        let data = liftplan_core::gpu::map_read(&self.dev, &staging, bytes)?;
+        Ok(data.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect())
+    }
+
+    /// Passes 1 to 5 on the device for `points` and the triangles' raw
+    /// intervals `mesh` (from `mdm::mesh_raws`): every cell's merged
+    /// intervals, count and top, as `mdm::assemble_sources` makes them.
+    pub fn assemble(
+        &self,
+        points: Option<&PointSource>,
+        mesh: &[Raw],
+        spec: &GridSpec,
+        mode: Mode,
+        gap: f32,
+    ) -> Result<Cells, String> {
+        let t0 = std::time::Instant::now();
+        let ms = |t: std::time::Instant| t.elapsed().as_secs_f64() * 1e3;
+        let base = Params {
+            n: 0,
+            nx: spec.nx,
+            row0: 0,
+            rows: 0,
+            inv_cell: (1.0 / spec.cell) as f32,
+            radius: points.map_or(0.0, |p| p.radius),
+            gap,
+            single: mode == Mode::Single,
+        };
+        let sources = self.upload_sources(points, mesh, spec)?;
+        let mut cells = Cells {
+            counts: Vec::with_capacity(spec.cells()),
+            intervals: Vec::new(),
+            tops: Vec::with_capacity(spec.cells()),
+            raws: 0,
+            slabs: 0,
+            timings: GpuTimings { upload_ms: ms(t0), ..GpuTimings::default() },
+        };
+        // Rows per slab: as many as the per-cell buffers (one word a cell,
+        // plus one) allow, cut when the keys do not fit.
+        let max_rows = (((self.buffer_limit / 4).saturating_sub(1)) / spec.nx as u64).clamp(1, spec.ny as u64) as u32;
+        let max_keys = self.buffer_limit / 16;
+        let mut rows = max_rows;
+        let mut row0 = 0u32;
+        while row0 < spec.ny {
+            rows = rows.min(spec.ny - row0);
+            let slab = Params { row0, rows, ..base };
+            let t_count = std::time::Instant::now();
+            let (starts, large, counted) = self.count_slab(&sources, slab)?;
+            let total = counted.total;
+            cells.timings.passes_ms += ms(t_count);
+            if let Some(cap) = self.loop_cap {
+                let need = self.loop_need(counted.most, base.radius as f64 * base.inv_cell as f64);
+                if need > cap as u64 / 2 {
+                    return Err(format!(
+                        "{} ends a shader's loops after {cap} iterations (Mesa's lavapipe does), and the most crowded \
+                         cell of grid rows {row0}..{} ({} raw intervals) needs up to {need}: use the CPU ([gpu] use = \
+                         \"never\"), or a GPU",
+                        self.dev.name,
+                        row0 + rows,
+                        counted.most
+                    ));
+                }
             }
-            let params: [u32; 8] = [n, spec.nx, spec.ny, inv.to_bits(), radius.to_bits(), 0, 0, 0];
-            let ubuf = self.upload("params", &params, wgpu::BufferUsages::UNIFORM);
-            let pbuf = self.upload("points", &packed, wgpu::BufferUsages::STORAGE);
-            let cbuf = self.output("counts", 4 * n as u64);
-            let bind = self.bind(&self.count, &[(0, &ubuf), (1, &pbuf), (2, &cbuf)]);
-            self.dispatch(&self.count, &bind, n);
-            let counts = self.read_back(&cbuf, 4 * n as u64)?;
-            let mut offsets = Vec::with_capacity(counts.len());
-            let mut total: u64 = 0;
-            for c in &counts {
-                offsets.push(total as u32);
-                total += *c as u64;
-            }
-            if total == 0 {
+            if total > max_keys {
+                if rows == 1 {
+                    return Err(format!(
+                        "grid row {row0} has {total} raw intervals or more, over what one GPU buffer holds \
+                         ({max_keys}): use a larger cell_m, or the CPU ([gpu] use = \"never\")"
+                    ));
+                }
+                // Cut to what should fit, with a margin for uneven rows.
+                rows = (((rows as u64 * max_keys / total) as u32).clamp(1, rows - 1) * 7 / 8).max(1);
                 continue;
             }
-            let obuf = self.upload("offsets", &offsets, wgpu::BufferUsages::STORAGE);
-            let rbuf = self.output("raws", 20 * total);
-            let bind = self.bind(&self.fill, &[(0, &ubuf), (1, &pbuf), (3, &obuf), (4, &rbuf)]);
-            self.dispatch(&self.fill, &bind, n);
-            let words = self.read_back(&rbuf, 20 * total)?;
-            out.reserve(total as usize);
-            for w in words.chunks_exact(5) {
-                out.push(Raw {
-                    cell: w[0],
-                    zlo: f32::from_bits(w[1]),
-                    zhi: f32::from_bits(w[2]),
-                    obj: w[3],
-                    part: w[4],
-                });
+            self.merge_slab(&sources, slab, &starts, &large, counted, &mut cells)?;
+            row0 += rows;
+        }
+        Ok(cells)
+    }
+
+    /// Points as `[x, y, z, object]` (grid-local `f32`, the CPU's conversion)
+    /// and triangle raws as `[cell, bottom, top, object, part]`, in chunks
+    /// that fit a binding.
+    fn upload_sources(&self, points: Option<&PointSource>, mesh: &[Raw], spec: &GridSpec) -> Result<Sources, String> {
+        let mut sources = Sources::default();
+        if let Some(p) = points {
+            let per = (self.buffer_limit / 16).min(1 << 24) as usize;
+            for (ci, chunk) in p.xyz.chunks(per).enumerate() {
+                let buf = self.upload_items("points", chunk.len(), 4, |k| {
+                    let q = local_point(&chunk[k], spec);
+                    [q[0].to_bits(), q[1].to_bits(), q[2].to_bits(), p.obj(ci * per + k), 0]
+                })?;
+                sources.points.push((buf, chunk.len() as u32));
             }
         }
+        for chunk in mesh.chunks((self.buffer_limit / 20).min(1 << 24) as usize) {
+            let buf = self.upload_items("mesh raws", chunk.len(), 5, |k| {
+                let r = &chunk[k];
+                [r.cell, r.zlo.to_bits(), r.zhi.to_bits(), r.obj, r.part]
+            })?;
+            sources.mesh.push((buf, chunk.len() as u32));
+        }
+        Ok(sources)
+    }
+
+    /// A storage buffer of `n` items of `words` 32-bit words each (the first
+    /// `words` of what `item` gives), packed in parallel: at tens of millions
+    /// of points, packing on one thread cost more than the passes on a GPU.
+    fn upload_items(
+        &self,
+        label: &str,
+        n: usize,
+        words: usize,
+        item: impl Fn(usize) -> [u32; 5] + Sync,
+    ) -> Result<wgpu::Buffer, String> {
+        use rayon::prelude::*;
+        const BLOCK: usize = 1 << 12;
+        let stride = 4 * words;
+        let mut packed = vec![0u8; stride * n];
+        packed.par_chunks_mut(stride * BLOCK).enumerate().for_each(|(b, block)| {
+            for (k, out) in block.chunks_exact_mut(stride).enumerate() {
+                for (o, w) in out.chunks_exact_mut(4).zip(&item(b * BLOCK + k)[..words]) {
+                    o.copy_from_slice(&w.to_le_bytes());
+                }
+            }
+        });
+        let buf = self.dev.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some(label),
+            size: packed.len().max(16) as u64,
+            usage: wgpu::BufferUsages::STORAGE,
+            mapped_at_creation: true,
+        });
+        // Mapped memory is write-only (it may be write-combining): one copy in.
+        buf.slice(..)
+            .get_mapped_range_mut()
+            .map_err(|e| format!("GPU upload of {label}: {e:?}"))?
+            .slice(..packed.len())
+            .copy_from_slice(&packed);
+        buf.unmap();
+        Ok(buf)
+    }
+
+    /// Passes 1 and 2 for one slab: each cell's start in the slab's keys
+    /// (one more word, the total, at the end), the list of large cells, and
+    /// [`SlabCounts`].
+    fn count_slab(&self, src: &Sources, slab: Params) -> Result<(wgpu::Buffer, wgpu::Buffer, SlabCounts), String> {
+        let cells = slab.rows * slab.nx;
+        let starts = self.storage("starts", 4 * (cells as u64 + 1));
+        let large = self.storage("large cells", 4 * cells as u64);
+        let stats = self.storage("slab counts", 12);
+        let mut enc = self.dev.device.create_command_encoder(&Default::default());
+        for (buf, k) in &src.points {
+            let p = self.uniform(Params { n: *k, ..slab });
+            self.pass(&mut enc, &self.count_points, &[(0, &p), (1, buf), (3, &starts)], *k, GROUP);
+        }
+        for (buf, k) in &src.mesh {
+            let p = self.uniform(Params { n: *k, ..slab });
+            self.pass(&mut enc, &self.count_mesh, &[(0, &p), (2, buf), (3, &starts)], *k, GROUP);
+        }
+        self.scan(&mut enc, &starts, cells + 1, slab);
+        let p = self.uniform(Params { n: cells, ..slab });
+        self.pass(&mut enc, &self.find_large, &[(0, &p), (3, &stats), (7, &starts), (11, &large)], cells, GROUP);
+        enc.copy_buffer_to_buffer(&starts, 4 * cells as u64, &stats, 8, 4);
+        self.submit(enc);
+        let w = self.read_words(&stats, 0, 3)?;
+        Ok((starts, large, SlabCounts { large: w[0], most: w[1] as u64, total: w[2] as u64 }))
+    }
+
+    /// The most loop iterations one invocation of a pass runs for a slab
+    /// whose most crowded cell has `most` raw keys (an upper bound).
+    fn loop_need(&self, most: u64, radius_cells: f64) -> u64 {
+        let lg = |n: u64| 64 - n.max(1).leading_zeros() as u64;
+        // One invocation's heapsort, merge, sort and finish of up to LARGE keys.
+        let small = 2 * (LARGE / 2 + LARGE) * lg(LARGE) + 3 * LARGE;
+        // A workgroup's bitonic sorts (each lane), and the first lane's merge
+        // and finish; the compaction copies up to `most` intervals.
+        let p = most.max(1).next_power_of_two();
+        let stages = lg(p) * (lg(p) + 1) / 2;
+        let large = 2 * stages * (p / 2).div_ceil(GROUP as u64) + 3 * most + 2 * lg(p);
+        let span = (2.0 * radius_cells).ceil() as u64 + 2;
+        small.max(large).max(span * span)
+    }
+
+    /// Passes 3 to 5 for one slab whose cells start at `starts` in `total`
+    /// keys; its cells appended to `out`.
+    fn merge_slab(
+        &self,
+        src: &Sources,
+        slab: Params,
+        starts: &wgpu::Buffer,
+        large: &wgpu::Buffer,
+        counted: SlabCounts,
+        out: &mut Cells,
+    ) -> Result<(), String> {
+        let total = counted.total;
+        let t0 = std::time::Instant::now();
+        let ms = |t: std::time::Instant| t.elapsed().as_secs_f64() * 1e3;
+        let cells = slab.rows * slab.nx;
+        let keys = self.storage("keys", 16 * total);
+        let cursor = self.storage("cursor", 4 * (cells as u64 + 1));
+        let merged = self.storage("merged counts", 4 * (cells as u64 + 1));
+        let tops = self.storage("tops", 4 * cells as u64);
+        let mut enc = self.dev.device.create_command_encoder(&Default::default());
+        enc.copy_buffer_to_buffer(starts, 0, &cursor, 0, 4 * (cells as u64 + 1));
+        for (buf, k) in &src.points {
+            let p = self.uniform(Params { n: *k, ..slab });
+            self.pass(&mut enc, &self.fill_points, &[(0, &p), (1, buf), (3, &cursor), (4, &keys)], *k, GROUP);
+        }
+        for (buf, k) in &src.mesh {
+            let p = self.uniform(Params { n: *k, ..slab });
+            self.pass(&mut enc, &self.fill_mesh, &[(0, &p), (2, buf), (3, &cursor), (4, &keys)], *k, GROUP);
+        }
+        let p = self.uniform(Params { n: cells, ..slab });
+        let binds = [(0, &p), (4, &keys), (7, starts), (8, &merged), (9, &tops)];
+        self.pass(&mut enc, &self.merge_cells, &binds, cells, MERGE_GROUP);
+        let pl = self.uniform(Params { n: counted.large, ..slab });
+        let binds = [(0, &pl), (4, &keys), (7, starts), (8, &merged), (9, &tops), (11, large)];
+        // One workgroup per large cell: `pass` counts items.
+        self.pass(&mut enc, &self.large_cells, &binds, counted.large * GROUP, GROUP);
+        self.scan(&mut enc, &merged, cells + 1, slab);
+        self.submit(enc);
+        let kept = self.read_words(&merged, cells as u64, 1)?[0] as u64;
+        let intervals = self.storage("intervals", 12 * kept);
+        let mut enc = self.dev.device.create_command_encoder(&Default::default());
+        let binds = [(0, &p), (4, &keys), (7, starts), (8, &merged), (10, &intervals)];
+        self.pass(&mut enc, &self.compact, &binds, cells, GROUP);
+        self.submit(enc);
+        self.dev.device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| format!("GPU poll: {e}"))?;
+        out.timings.passes_ms += ms(t0);
+        let t_read = std::time::Instant::now();
+        let ends = self.read_words(&merged, 0, cells as u64 + 1)?;
+        out.counts.extend(ends.windows(2).map(|w| w[1] - w[0]));
+        out.tops.extend(self.read_words(&tops, 0, cells as u64)?.into_iter().map(f32::from_bits));
+        let words = self.read_words(&intervals, 0, 3 * kept)?;
+        out.intervals.extend(words.chunks_exact(3).map(|w| Interval {
+            zlo: f32::from_bits(w[0]),
+            zhi: f32::from_bits(w[1]),
+            obj: w[2],
+        }));
+        out.timings.read_back_ms += ms(t_read);
+        out.raws += total as usize;
+        out.slabs += 1;
         Ok(())
     }
+}
+
+/// What the count of one slab found.
+#[derive(Clone, Copy)]
+struct SlabCounts {
+    /// Cells of more than `LARGE` raw keys, sorted by a workgroup each.
+    large: u32,
+    /// Raw keys of the most crowded cell.
+    most: u64,
+    /// Raw keys in all (saturated at `u32::MAX`).
+    total: u64,
+}
+
+/// The inputs on the device, each chunk with its item count.
+#[derive(Default)]
+struct Sources {
+    points: Vec<(wgpu::Buffer, u32)>,
+    mesh: Vec<(wgpu::Buffer, u32)>,
+}
+
+/// The largest buffer a pass may bind on `device` (bytes), and at most 4 GiB,
+/// so that every index a shader computes (in `u32` words) fits.
+fn device_buffer_limit(device: &wgpu::Device) -> u64 {
+    let limits = device.limits();
+    limits.max_storage_buffer_binding_size.min(limits.max_buffer_size).min(u32::MAX as u64)
+}
+
+fn words_to_bytes(words: &[u32]) -> Vec<u8> {
+    words.iter().flat_map(|w| w.to_le_bytes()).collect()
 }

@@ -190,19 +190,32 @@ pub fn build(inp: &Inputs, s: &Settings, gpu: Option<&gpu::Gpu>) -> Result<(Mdm,
     objects.extend(inp.mesh.groups.iter().cloned());
     let points = mdm::PointSource { xyz: &inp.points, ground: &inp.ground, radius: s.point_radius_m as f32 };
     let t_prep = t0.elapsed();
-    // On the GPU the point pass makes raw intervals; on the CPU it is fused
-    // into the assembly (same cells, same intervals, no raws stored).
-    let mut raws = Vec::new();
+    let gap = s.merge_gap_m as f32;
     if let Some(g) = gpu {
-        let mut gpu_raws: Vec<Raw> = Vec::new();
-        g.point_raws(&points, &spec, &mut gpu_raws).map_err(DepthError::Gpu)?;
-        raws = mdm::raw_jobs(&gpu_raws, &spec);
+        // Triangles are clipped on the CPU (in f64); the device takes their
+        // raw intervals through the same passes as the points.
+        let mesh: Vec<Raw> = mdm::mesh_raws(&inp.mesh, &spec, 2).into_iter().flatten().collect();
+        let t_gen = t0.elapsed();
+        let cells = g.assemble(Some(&points), &mesh, &spec, s.mode, gap).map_err(DepthError::Gpu)?;
+        let m = Mdm::from_cells(spec, s.mode, &cells.counts, cells.intervals, cells.tops, objects);
+        let t_all = t0.elapsed();
+        let timings = Timings {
+            prepare_ms: ms(t_prep),
+            points_ms: 0.0,
+            triangles_ms: ms(t_gen - t_prep),
+            assemble_ms: ms(t_all - t_gen),
+            total_ms: ms(t_all),
+            raw_intervals: cells.raws,
+            gpu: Some(cells.timings),
+        };
+        return Ok((m, timings));
     }
+    // On the CPU the point pass is fused into the assembly (no raw intervals
+    // are stored for points).
     let t_points = t0.elapsed();
-    raws.extend(mdm::mesh_jobs(&inp.mesh, &spec, 2));
+    let raws = mdm::mesh_jobs(&inp.mesh, &spec, 2);
     let t_gen = t0.elapsed();
-    let cpu_points = gpu.is_none().then_some(points);
-    let m = mdm::assemble_sources(cpu_points, &raws, spec, s.mode, s.merge_gap_m as f32, objects);
+    let m = mdm::assemble_sources(Some(points), &raws, spec, s.mode, gap, objects);
     let t_all = t0.elapsed();
     Ok((
         m,
@@ -213,6 +226,7 @@ pub fn build(inp: &Inputs, s: &Settings, gpu: Option<&gpu::Gpu>) -> Result<(Mdm,
             assemble_ms: ms(t_all - t_gen),
             total_ms: ms(t_all),
             raw_intervals: raws.iter().map(mdm::RawJob::len).sum(),
+            gpu: None,
         },
     ))
 }
@@ -258,6 +272,9 @@ pub struct Timings {
     pub assemble_ms: f64,
     pub total_ms: f64,
     pub raw_intervals: usize,
+    /// The GPU assembly's parts, when it ran.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub gpu: Option<gpu::GpuTimings>,
 }
 
 #[derive(Debug, Clone, Serialize)]

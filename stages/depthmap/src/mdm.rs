@@ -526,12 +526,21 @@ fn finish_cell(
     }
     let cell = &mut out[start..];
     if mode == Mode::Single && !cell.is_empty() {
-        let lo = cell.iter().map(|i| i.zlo).fold(f32::INFINITY, f32::min);
+        // Sorted, the first bottom is the lowest (in key order, which also
+        // orders -0 below +0, so every path picks the same one).
+        let lo = cell[0].zlo;
         let top = cell.iter().fold(cell[0], |a, i| if f32_key(i.zhi) > f32_key(a.zhi) { *i } else { a });
         out.truncate(start);
         out.push(Interval { zlo: lo, zhi: top.zhi, obj: top.obj });
     }
-    out[start..].iter().map(|i| i.zhi).fold(f32::NEG_INFINITY, f32::max)
+    cell_top(&out[start..])
+}
+
+/// The highest top of a cell's intervals, `-inf` if it has none: the greatest
+/// in key order ([`f32_key`]), so that of a -0 and a +0 top every path picks
+/// the same one (`f32::max` may return either).
+pub fn cell_top(cell: &[Interval]) -> f32 {
+    cell.iter().map(|i| f32_key(i.zhi)).max().map_or(f32::NEG_INFINITY, f32_from_key)
 }
 
 /// About this many cells make a band, a run of whole grid rows that passes 2
@@ -785,7 +794,7 @@ pub fn assemble_sources(
     gap: f32,
     objects: Vec<String>,
 ) -> Mdm {
-    let (nx, ny) = (spec.nx, spec.ny);
+    let nx = spec.nx;
     let bands = Bands::of(&spec);
     assert!(
         raws.iter().all(|j| j.starts.len() == bands.count + 1 && j.band_cells == bands.cells),
@@ -842,17 +851,7 @@ pub fn assemble_sources(
     }
     drop((point_jobs, band_counts, band_tops));
     intervals.shrink_to_fit();
-    // Row-major CSR: the bands in order.
-    let mut offsets = Vec::with_capacity(n + 1);
-    offsets.push(0u32);
-    let mut at = 0u32;
-    for c in &counts {
-        at += c;
-        offsets.push(at);
-    }
-    let mut m = Mdm { spec, mode, offsets, intervals, objects, pyramid: vec![] };
-    m.pyramid = Mdm::pyramid_from(nx, ny, tops);
-    m
+    Mdm::from_cells(spec, mode, &counts, intervals, tops, objects)
 }
 
 /// Passes 2 (by cell) to 5 for one band whose points and raws are already in
@@ -878,6 +877,30 @@ fn merge_band(radius: f32, gap: f32, mode: Mode, s: &mut Scratch, counts: &mut [
 }
 
 impl Mdm {
+    /// A map from its cells in row-major order: how many intervals each has
+    /// (`intervals` holds them cell after cell) and its top (for the pyramid).
+    pub fn from_cells(
+        spec: GridSpec,
+        mode: Mode,
+        counts: &[u32],
+        intervals: Vec<Interval>,
+        tops: Vec<f32>,
+        objects: Vec<String>,
+    ) -> Mdm {
+        assert_eq!(counts.len(), spec.cells(), "depth map: one count per cell");
+        assert_eq!(tops.len(), spec.cells(), "depth map: one top per cell");
+        let mut offsets = Vec::with_capacity(counts.len() + 1);
+        offsets.push(0u32);
+        let mut at = 0u32;
+        for c in counts {
+            at += c;
+            offsets.push(at);
+        }
+        assert_eq!(at as usize, intervals.len(), "depth map: counts add up to the intervals");
+        let pyramid = Mdm::pyramid_from(spec.nx, spec.ny, tops);
+        Mdm { spec, mode, offsets, intervals, objects, pyramid }
+    }
+
     pub fn cell(&self, i: u32, j: u32) -> &[Interval] {
         let k = (j * self.spec.nx + i) as usize;
         &self.intervals[self.offsets[k] as usize..self.offsets[k + 1] as usize]
@@ -890,13 +913,7 @@ impl Mdm {
 
     pub fn build_pyramid(&mut self) {
         let (nx, ny) = (self.spec.nx, self.spec.ny);
-        let base = self
-            .offsets
-            .windows(2)
-            .map(|w| {
-                self.intervals[w[0] as usize..w[1] as usize].iter().map(|iv| iv.zhi).fold(f32::NEG_INFINITY, f32::max)
-            })
-            .collect();
+        let base = self.offsets.windows(2).map(|w| cell_top(&self.intervals[w[0] as usize..w[1] as usize])).collect();
         self.pyramid = Self::pyramid_from(nx, ny, base);
     }
 

@@ -41,7 +41,7 @@ fn reference(raws: &[Raw], spec: GridSpec, mode: Mode, gap: f32) -> (Vec<u32>, V
             merged.iter().map(|(m, hi)| Interval { zlo: m.zlo, zhi: *hi, obj: m.obj }).collect();
         out.sort_by_key(|i| (key(i.zlo), key(i.zhi), i.obj));
         if mode == Mode::Single && !out.is_empty() {
-            let lo = out.iter().map(|i| i.zlo).fold(f32::INFINITY, f32::min);
+            let lo = out.iter().map(|i| i.zlo).min_by_key(|z| key(*z)).unwrap();
             let top = *out.iter().rev().max_by_key(|i| key(i.zhi)).unwrap();
             out = vec![Interval { zlo: lo, zhi: top.zhi, obj: top.obj }];
         }

@@ -1,36 +1,159 @@
-//! The GPU point pass gives the same map as the CPU one. Runs where wgpu finds
-//! an adapter (a GPU, or Mesa's lavapipe); says so plainly and passes otherwise.
+//! The GPU assembly gives the CPU's map, bit for bit. Runs where wgpu finds an
+//! adapter (a GPU, or Mesa's lavapipe); says so plainly and passes otherwise.
 
+use liftplan_depthmap::mdm::{self, Mode, PointSource, Raw};
 use liftplan_depthmap::{Inputs, Settings, build, build_cpu, gpu};
 use rand::{RngExt, SeedableRng};
 
-fn cloud(n: usize, seed: u64) -> Inputs {
+/// A sloping ground and scattered structure, with (when `plant`) pipes as
+/// loose triangles and racks as boxes (convex parts) among them. Heights are
+/// often multiples of 1/16 m, so equal heights and exactly touching intervals
+/// are common.
+fn site(n: usize, seed: u64, plant: bool) -> Inputs {
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
     let mut inp = Inputs::default();
     for _ in 0..n {
         let (x, y) = (rng.random::<f64>() * 80.0 - 40.0, rng.random::<f64>() * 60.0 - 30.0);
-        let z = if rng.random::<f64>() < 0.6 { 0.02 * x } else { rng.random::<f64>() * 25.0 };
+        let z = match rng.random_range(0..4) {
+            0 | 1 => 0.02 * x,
+            2 => rng.random_range(0..200) as f64 * 0.0625,
+            _ => rng.random::<f64>() * 25.0,
+        };
         inp.points.push([x + 1000.0, y + 2000.0, z]);
-        inp.ground.push(z < 0.02 * x + 0.01);
+        // Some points off the ground plane are ground too (classification
+        // is not geometry), so one cell can hold equal intervals of both.
+        inp.ground.push(z < 0.02 * x + 0.01 || rng.random_range(0..8) == 0);
+    }
+    if plant {
+        let pipe = inp.mesh.group_id("pipe");
+        let rack = inp.mesh.group_id("rack");
+        for _ in 0..300 {
+            let c = [1000.0 + rng.random::<f64>() * 80.0 - 40.0, 2000.0 + rng.random::<f64>() * 60.0 - 30.0];
+            let z = rng.random::<f64>() * 20.0;
+            let t: Vec<[f64; 3]> = (0..3)
+                .map(|_| [c[0] + rng.random::<f64>() * 3.0, c[1] + rng.random::<f64>() * 3.0, z + rng.random::<f64>()])
+                .collect();
+            inp.mesh.add_part(pipe, false, &t, &[[0, 1, 2]]);
+            inp.mesh.add_box(rack, [c[0], c[1], z], [c[0] + 1.5, c[1] + 0.7, z + 0.5]);
+        }
     }
     inp
 }
 
+fn open() -> Option<gpu::Gpu> {
+    match gpu::open(true) {
+        Ok(g) => {
+            eprintln!("GPU twin test on {}", g.name());
+            Some(g)
+        }
+        Err(e) => {
+            eprintln!("SKIPPED: no GPU adapter, the GPU twin is not tested here: {e}");
+            None
+        }
+    }
+}
+
 #[test]
 fn gpu_and_cpu_maps_are_equal() {
-    let g = match gpu::open(true) {
-        Ok(g) => g,
-        Err(e) => {
-            eprintln!("SKIPPED gpu_and_cpu_maps_are_equal: {e}");
-            return;
-        }
-    };
-    eprintln!("GPU twin test on {}", g.name());
-    for (n, cell, radius) in [(50_000, 0.25, 0.05), (20_000, 0.1, 0.12), (1, 0.5, 0.0)] {
-        let inp = cloud(n, n as u64);
-        let s = Settings { cell_m: cell, point_radius_m: radius, ..Settings::default() };
+    let Some(g) = open() else { return };
+    let cases = [
+        (50_000, 0.25, 0.05, 0.1, Mode::Multi, true),
+        (50_000, 0.25, 0.0625, 0.125, Mode::Single, true),
+        (20_000, 0.1, 0.12, 0.0, Mode::Multi, false),
+        (30_000, 0.5, 0.0, 0.0, Mode::Multi, true),
+        (30_000, 1.0, 0.25, 0.5, Mode::Single, false),
+        (1, 0.5, 0.0, 0.1, Mode::Multi, false),
+        (0, 0.5, 0.05, 0.1, Mode::Multi, true),
+    ];
+    for (n, cell, radius, gap, mode, plant) in cases {
+        let inp = site(n, n as u64 + 7, plant);
+        let s = Settings { cell_m: cell, point_radius_m: radius, merge_gap_m: gap, mode, ..Settings::default() };
         let (cpu, _) = build_cpu(&inp, &s).unwrap();
         let (gpu, _) = build(&inp, &s, Some(&g)).unwrap();
-        assert_eq!(cpu, gpu, "maps differ for {n} points, cell {cell}, radius {radius}");
+        assert!(
+            cpu == gpu,
+            "maps differ: {n} points, cell {cell}, radius {radius}, gap {gap}, {mode:?}, plant {plant}"
+        );
     }
+}
+
+/// Under a small buffer limit the grid is cut into many slabs (some cut again
+/// when they turn out too full) and the points and triangles go up in many
+/// chunks; crowded cells take the heapsort. The map is the same.
+#[test]
+fn gpu_slabs_chunks_and_crowded_cells_give_the_same_map() {
+    let Some(mut g) = open() else { return };
+    let cases = [
+        (40_000, 0.5, Mode::Multi, 1 << 16),
+        (40_000, 4.0, Mode::Single, 1 << 16),
+        (60_000, 10.0, Mode::Multi, 1 << 18),
+    ];
+    for (n, cell, mode, limit) in cases {
+        g.set_buffer_limit(limit);
+        let inp = site(n, 3, true);
+        let s = Settings { cell_m: cell, mode, ..Settings::default() };
+        let (cpu, _) = build_cpu(&inp, &s).unwrap();
+        let points = PointSource { xyz: &inp.points, ground: &inp.ground, radius: s.point_radius_m as f32 };
+        let mesh: Vec<Raw> = mdm::mesh_raws(&inp.mesh, &cpu.spec, 2).concat();
+        let cells = g.assemble(Some(&points), &mesh, &cpu.spec, mode, s.merge_gap_m as f32).unwrap();
+        assert!(cells.slabs > 1, "expected several slabs, got {}", cells.slabs);
+        let crowded = cpu.offsets.windows(2).map(|w| w[1] - w[0]).max().unwrap_or(0);
+        let gpu = mdm::Mdm::from_cells(cpu.spec, mode, &cells.counts, cells.intervals, cells.tops, cpu.objects.clone());
+        assert!(cpu == gpu, "maps differ: {n} points, cell {cell}, {mode:?} ({} slabs)", cells.slabs);
+        eprintln!("cell {cell}: {} slabs, {} raw intervals, up to {crowded} intervals a cell", cells.slabs, cells.raws);
+    }
+}
+
+/// A grid row with more raw intervals than one buffer holds is refused with
+/// an error that says what to change; nothing is cut short silently.
+#[test]
+fn gpu_refuses_a_row_over_its_buffers() {
+    let Some(mut g) = open() else { return };
+    g.set_buffer_limit(1 << 16);
+    let inp = site(60_000, 3, false);
+    let s = Settings { cell_m: 20.0, ..Settings::default() };
+    let err = build(&inp, &s, Some(&g)).expect_err("a row of 60,000 points cannot fit 4096 keys").to_string();
+    assert!(err.contains("grid row 0") && err.contains("cell_m"), "{err}");
+}
+
+/// Single cells of a few to thousands of points at random heights: cells of
+/// up to `LARGE` (256) raw keys are sorted by one invocation, larger ones by
+/// a workgroup's bitonic sort, on both sides of the switch.
+#[test]
+fn gpu_crowded_single_cells_match_the_cpu() {
+    let Some(g) = open() else { return };
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(5);
+    for (n, height) in [(16, 1.0), (17, 1.0), (256, 30.0), (257, 30.0), (1000, 100.0), (4600, 10.0), (7000, 400.0)] {
+        let mut inp = Inputs::default();
+        for _ in 0..n {
+            inp.points.push([0.5 + rng.random::<f64>() * 0.1, 0.5, rng.random::<f64>() * height]);
+            inp.ground.push(rng.random_range(0..3) == 0);
+        }
+        for mode in [Mode::Multi, Mode::Single] {
+            let s = Settings { cell_m: 1.0, extent: vec![0.0, 0.0, 1.0, 1.0], mode, ..Settings::default() };
+            let (cpu, _) = build_cpu(&inp, &s).unwrap();
+            let (gpu, _) = build(&inp, &s, Some(&g)).unwrap();
+            assert!(cpu == gpu, "maps differ: {n} points in one cell, {mode:?}");
+        }
+    }
+}
+
+/// Where the device cuts shader loops short (lavapipe), a cell too crowded
+/// for that is refused with an error, never rasterised wrong.
+#[test]
+fn gpu_loop_cap_refuses_what_it_cannot_finish() {
+    let Some(g) = open() else { return };
+    let Some(cap) = g.loop_cap() else {
+        eprintln!("SKIPPED: {} runs loops to their end", g.name());
+        return;
+    };
+    let n = cap as usize;
+    let inp = Inputs {
+        points: (0..n).map(|k| [0.5, 0.5, k as f64 * 0.5]).collect(),
+        ground: vec![false; n],
+        ..Inputs::default()
+    };
+    let s = Settings { cell_m: 1.0, extent: vec![0.0, 0.0, 1.0, 1.0], ..Settings::default() };
+    let err = build(&inp, &s, Some(&g)).expect_err("a cell of `cap` keys cannot finish under the cap").to_string();
+    assert!(err.contains("loops") && err.contains("[gpu] use"), "{err}");
 }
