@@ -330,7 +330,19 @@ pub fn run(
         inp.mesh = TriMesh::read_artifact(m).map_err(|e| DepthError::Input(Location::file(m), e.to_string()))?;
     }
     let device = liftplan_core::gpu::open_for(gpu_use, "depth map").map_err(DepthError::Gpu)?.map(gpu::Gpu::new);
-    let (m, timings) = build(&inp, s, device.as_ref())?;
+    let (m, timings, device) = match build(&inp, s, device.as_ref()) {
+        // `auto` means "the GPU where it can": a map the device refuses (a
+        // row over its buffers) is built on the CPU, which gives the same map.
+        Err(DepthError::Gpu(why)) if gpu_use == GpuUse::Auto => {
+            tracing::warn!("depth map on the CPU: the GPU could not build it: {why}");
+            let (m, timings) = build(&inp, s, None)?;
+            (m, timings, None)
+        }
+        built => {
+            let (m, timings) = built?;
+            (m, timings, device)
+        }
+    };
     std::fs::create_dir_all(out_dir).map_err(|e| DepthError::Input(Location::file(out_dir), e.to_string()))?;
     m.write(&out_dir.join("site.mdm"))
         .map_err(|e| DepthError::Input(Location::file(out_dir.join("site.mdm")), e.to_string()))?;
