@@ -163,7 +163,8 @@ pub fn build_cpu(inp: &Inputs, s: &Settings) -> Result<(Mdm, Timings)> {
     build(inp, s, None)
 }
 
-/// Builds the depth map, with the point pass on `gpu` when given.
+/// Builds the depth map, assembled on `gpu` when given (the triangles are
+/// clipped to cells on the CPU either way).
 pub fn build(inp: &Inputs, s: &Settings, gpu: Option<&gpu::Gpu>) -> Result<(Mdm, Timings)> {
     let t0 = std::time::Instant::now();
     s.check().map_err(DepthError::Settings)?;

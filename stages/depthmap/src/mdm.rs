@@ -13,6 +13,10 @@
 //! 2. *count* the raw intervals per cell, 3. *prefix-sum* the counts into
 //!    offsets, 4. *fill* the raw intervals in, 5. *sort and merge* each cell.
 //!
+//! The CPU fuses pass 1 into a two-level grouping by band and cell
+//! ([`assemble_sources`]); the GPU twin (`crate::gpu`) runs the passes as
+//! written.
+//!
 //! **Merging** (identical on CPU and GPU): raw intervals sort by (object, part,
 //! bottom, top); intervals of one convex solid (a part) become one interval from
 //! its lowest bottom to its highest top, since a vertical line through a convex
@@ -192,8 +196,8 @@ fn point_span(q: &[f32; 3], radius: f32, inv: f32, nx: i64, ny: i64) -> (i64, i6
 }
 
 /// The point pass as raw intervals, point by point and each point's cells in
-/// row order: what the GPU twin's shader writes, and the reference the fused
-/// CPU assembly is tested against.
+/// row order: the cells and intervals the GPU twin's fill pass writes, and the
+/// reference the fused CPU assembly is tested against.
 pub fn point_raws(points: &PointSource, spec: &GridSpec, out: &mut Vec<Raw>) {
     let inv = (1.0 / spec.cell) as f32;
     let (nx, ny) = (spec.nx as i64, spec.ny as i64);
@@ -394,8 +398,8 @@ pub fn mesh_jobs(m: &TriMesh, spec: &GridSpec, obj_base: u32) -> Vec<RawJob> {
         .collect()
 }
 
-/// Raw intervals (the GPU's points, or any made elsewhere) grouped by band in
-/// jobs, for [`assemble_sources`].
+/// Raw intervals made elsewhere (e.g. points by [`point_raws`]) grouped by
+/// band in jobs, for [`assemble_sources`].
 pub fn raw_jobs(raws: &[Raw], spec: &GridSpec) -> Vec<RawJob> {
     let bands = Bands::of(spec);
     raws.par_chunks(JOB)
@@ -468,8 +472,8 @@ fn merge_sorted(mut sorted: impl Iterator<Item = (u32, u32, f32, f32)>, gap: f32
 ///
 /// Sorted by height, a cell's point intervals are also sorted by (bottom,
 /// top), the order [`merge_raws`] sorts raw intervals into, so both give the
-/// same intervals for the same points (the GPU twin's map goes through
-/// `merge_raws`).
+/// same intervals for the same points (as the GPU twin's, which merges points
+/// as raw keys, must).
 fn merge_points(recs: &[u64], radius: f32, gap: f32, out: &mut Vec<Interval>) -> usize {
     let start = out.len();
     let unpack = |&k: &u64| {
