@@ -436,7 +436,6 @@ pub struct Gpu {
     compact: wgpu::ComputePipeline,
     find_large: wgpu::ComputePipeline,
     large_cells: wgpu::ComputePipeline,
-    probe: wgpu::ComputePipeline,
     /// Loop iterations one invocation may run, where the device cuts loops
     /// short (lavapipe: 65535); `None` where the probe ran to its end.
     loop_cap: Option<u32>,
@@ -447,7 +446,7 @@ pub struct Gpu {
 
 /// Opens a device ([`liftplan_core::gpu::open_device`]) and builds the pipelines.
 pub fn open(allow_software: bool) -> Result<Gpu, String> {
-    Ok(Gpu::new(liftplan_core::gpu::open_device(allow_software)?))
+    Gpu::new(liftplan_core::gpu::open_device(allow_software)?)
 }
 
 /// The device's side of a depth map, cell by cell in row-major order: what
@@ -488,8 +487,9 @@ struct Params {
 }
 
 impl Gpu {
-    /// Builds the pipelines on an open device.
-    pub fn new(dev: liftplan_core::gpu::Device) -> Gpu {
+    /// Builds the pipelines on an open device and probes how long its shader
+    /// loops may run.
+    pub fn new(dev: liftplan_core::gpu::Device) -> Result<Gpu, String> {
         let module = dev.device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("depthmap assembly"),
             source: wgpu::ShaderSource::Wgsl(SHADER.replace("{LARGE}", &LARGE.to_string()).into()),
@@ -504,6 +504,7 @@ impl Gpu {
                 cache: None,
             })
         };
+        let probe = pipeline("probe_loops");
         let mut gpu = Gpu {
             count_points: pipeline("count_points"),
             count_mesh: pipeline("count_mesh"),
@@ -517,16 +518,15 @@ impl Gpu {
             large_cells: pipeline("large_cells"),
             buffer_limit: device_buffer_limit(&dev.device),
             loop_cap: None,
-            probe: pipeline("probe_loops"),
             dev,
         };
-        gpu.loop_cap = gpu.probe_loops(&gpu.probe);
-        gpu
+        gpu.loop_cap = gpu.probe_loops(&probe)?;
+        Ok(gpu)
     }
 
     /// Runs one invocation of a loop of [`PROBE_LOOPS`] iterations and
-    /// returns how many it ran, if fewer (or the device failed to say).
-    fn probe_loops(&self, probe: &wgpu::ComputePipeline) -> Option<u32> {
+    /// returns how many it ran, if fewer.
+    fn probe_loops(&self, probe: &wgpu::ComputePipeline) -> Result<Option<u32>, String> {
         let out = self.storage("probe", 8);
         let p = self.uniform(Params {
             n: PROBE_LOOPS,
@@ -541,11 +541,8 @@ impl Gpu {
         let mut enc = self.dev.device.create_command_encoder(&Default::default());
         self.pass(&mut enc, probe, &[(0, &p), (5, &out)], 1, 1);
         self.submit(enc);
-        match self.read_words(&out, 0, 1) {
-            Ok(w) if w[0] >= PROBE_LOOPS => None,
-            Ok(w) => Some(w[0]),
-            Err(_) => Some(0),
-        }
+        let ran = self.read_words(&out, 0, 1)?[0];
+        Ok((ran < PROBE_LOOPS).then_some(ran))
     }
 
     /// Keeps every buffer under `bytes` (at least 4 KiB) where the device

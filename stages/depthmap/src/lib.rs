@@ -330,7 +330,17 @@ pub fn run(
     if let Some(m) = mesh {
         inp.mesh = TriMesh::read_artifact(m).map_err(|e| DepthError::Input(Location::file(m), e.to_string()))?;
     }
-    let device = liftplan_core::gpu::open_for(gpu_use, "depth map").map_err(DepthError::Gpu)?.map(gpu::Gpu::new);
+    let device = match liftplan_core::gpu::open_for(gpu_use, "depth map").map_err(DepthError::Gpu)? {
+        None => None,
+        Some(d) => match gpu::Gpu::new(d) {
+            Ok(g) => Some(g),
+            Err(why) if gpu_use == GpuUse::Auto => {
+                tracing::warn!("depth map on the CPU: the GPU did not start: {why}");
+                None
+            }
+            Err(why) => return Err(DepthError::Gpu(why)),
+        },
+    };
     let (m, timings, device) = match build(&inp, s, device.as_ref()) {
         // `auto` means "the GPU where it can": a map the device refuses (a
         // row over its buffers) is built on the CPU, which gives the same map.
