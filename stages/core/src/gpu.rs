@@ -62,6 +62,23 @@ pub fn open_for(use_: GpuUse, what: &str) -> Result<Option<Device>, String> {
     }
 }
 
+/// Runs `work` on `dev` with the device's out-of-memory and validation errors
+/// caught: they come back as `Err` instead of reaching wgpu's default handler,
+/// which panics. Work that fails on its own says why; otherwise the first
+/// device error does.
+pub fn catching_errors<T>(dev: &Device, work: impl FnOnce() -> Result<T, String>) -> Result<T, String> {
+    let out_of_memory = dev.device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
+    let invalid = dev.device.push_error_scope(wgpu::ErrorFilter::Validation);
+    let done = work();
+    let invalid = pollster::block_on(invalid.pop());
+    let out_of_memory = pollster::block_on(out_of_memory.pop());
+    match (done, out_of_memory.or(invalid)) {
+        (Err(why), _) => Err(why),
+        (Ok(_), Some(e)) => Err(format!("GPU ({}): {e}", dev.name)),
+        (Ok(v), None) => Ok(v),
+    }
+}
+
 /// Waits for the device and copies `bytes` bytes of `src` back to the host.
 pub fn read_back(dev: &Device, src: &wgpu::Buffer, bytes: u64) -> Result<Vec<u8>, String> {
     let staging = dev.device.create_buffer(&wgpu::BufferDescriptor {

@@ -156,7 +156,7 @@ impl Gpu {
             loop_cap: None,
             dev,
         };
-        gpu.loop_cap = gpu.probe_loops(&probe)?;
+        gpu.loop_cap = liftplan_core::gpu::catching_errors(&gpu.dev, || gpu.probe_loops(&probe))?;
         Ok(gpu)
     }
 
@@ -290,6 +290,9 @@ impl Gpu {
     /// Passes 1 to 5 on the device for `points` and the triangles' raw
     /// intervals `mesh` (from `mdm::mesh_raws`): every cell's merged
     /// intervals, count and top, as `mdm::assemble_sources` makes them.
+    ///
+    /// Errors the device reports (out of memory, a buffer it cannot make) come
+    /// back as `Err`, as do the refusals above; nothing panics.
     pub fn assemble(
         &self,
         points: Option<&PointSource>,
@@ -298,6 +301,24 @@ impl Gpu {
         mode: Mode,
         gap: f32,
     ) -> Result<Cells, String> {
+        liftplan_core::gpu::catching_errors(&self.dev, || self.assemble_slabs(points, mesh, spec, mode, gap))
+    }
+
+    fn assemble_slabs(
+        &self,
+        points: Option<&PointSource>,
+        mesh: &[Raw],
+        spec: &GridSpec,
+        mode: Mode,
+        gap: f32,
+    ) -> Result<Cells, String> {
+        if 4 * (spec.nx as u64 + 1) > self.buffer_limit {
+            return Err(format!(
+                "a grid row of {} cells is more than one GPU buffer holds ({} bytes): use a larger cell_m, or the \
+                 CPU ([gpu] use = \"never\")",
+                spec.nx, self.buffer_limit
+            ));
+        }
         let t0 = std::time::Instant::now();
         let ms = |t: std::time::Instant| t.elapsed().as_secs_f64() * 1e3;
         let base = Params {

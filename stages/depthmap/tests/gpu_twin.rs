@@ -114,6 +114,11 @@ fn gpu_refuses_a_row_over_its_buffers() {
     let s = Settings { cell_m: 20.0, ..Settings::default() };
     let err = build(&inp, &s, Some(&g)).expect_err("a row of 60,000 points cannot fit 4096 keys").to_string();
     assert!(err.contains("grid row 0") && err.contains("cell_m"), "{err}");
+    // A row of more cells than one buffer's words.
+    g.set_buffer_limit(4096);
+    let s = Settings { cell_m: 0.05, ..Settings::default() };
+    let err = build(&inp, &s, Some(&g)).expect_err("a row of 2000 cells cannot fit 1024 words").to_string();
+    assert!(err.contains("a grid row of") && err.contains("cell_m"), "{err}");
 }
 
 /// Single cells of a few to thousands of points at random heights: cells of

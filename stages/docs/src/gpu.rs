@@ -191,8 +191,13 @@ impl GpuRenderer {
         })
     }
 
-    /// Renders like [`crate::render::render_cpu`].
+    /// Renders like [`crate::render::render_cpu`]; device errors (out of
+    /// memory, a texture it cannot make) come back as `Err`.
     pub fn render(&self, scene: &Scene, cam: &Camera, width: u32, height: u32, ss: u32) -> Result<Image, String> {
+        liftplan_core::gpu::catching_errors(&self.dev, || self.render_caught(scene, cam, width, height, ss))
+    }
+
+    fn render_caught(&self, scene: &Scene, cam: &Camera, width: u32, height: u32, ss: u32) -> Result<Image, String> {
         let ss = ss.clamp(1, 4) as usize;
         let pr: Projected = project(scene, cam, width, height, ss);
         let (w, h) = (pr.w as u32, pr.h as u32);
