@@ -39,12 +39,18 @@ fn bits_of(key: u32) -> u32 {
     return ~key;
 }
 
+// mdm::raster::floor_index: floor(x) clamped to [-1, 2^30] first, so a point
+// far off the grid (a configured extent) converts the same way on both paths.
+fn floor_index(x: f32) -> i32 {
+    return i32(floor(min(max(x, -1.0), 1073741824.0)));
+}
+
 // The slab-local cells of a point: columns x..y, rows z..w (empty when y < x or w < z).
 fn span(q: vec3<f32>) -> vec4<i32> {
-    let i0 = max(i32(floor((q.x - P.radius) * P.inv_cell)), 0);
-    let i1 = min(i32(floor((q.x + P.radius) * P.inv_cell)), i32(P.nx) - 1);
-    let j0 = max(i32(floor((q.y - P.radius) * P.inv_cell)), i32(P.row0));
-    let j1 = min(i32(floor((q.y + P.radius) * P.inv_cell)), i32(P.row0 + P.rows) - 1);
+    let i0 = max(floor_index((q.x - P.radius) * P.inv_cell), 0);
+    let i1 = min(floor_index((q.x + P.radius) * P.inv_cell), i32(P.nx) - 1);
+    let j0 = max(floor_index((q.y - P.radius) * P.inv_cell), i32(P.row0));
+    let j1 = min(floor_index((q.y + P.radius) * P.inv_cell), i32(P.row0 + P.rows) - 1);
     return vec4<i32>(i0, i1, j0 - i32(P.row0), j1 - i32(P.row0));
 }
 

@@ -162,3 +162,20 @@ fn gpu_loop_cap_refuses_what_it_cannot_finish() {
     let err = build(&inp, &s, Some(&g)).expect_err("a cell of `cap` keys cannot finish under the cap").to_string();
     assert!(err.contains("loops") && err.contains("[gpu] use"), "{err}");
 }
+
+/// With a configured extent, points off the grid (near it, and absurdly far)
+/// are left out the same way on both paths.
+#[test]
+fn gpu_leaves_out_points_off_a_configured_extent_as_the_cpu_does() {
+    let Some(g) = open() else { return };
+    let mut inp = site(20_000, 9, true);
+    for far in [1.0e4, 1.0e8, -1.0e8, 3.0e9] {
+        inp.points.push([1000.0 + far, 2000.0, 1.0]);
+        inp.points.push([1000.0, 2000.0 - far, 2.0]);
+        inp.ground.extend([false, true]);
+    }
+    let s = Settings { cell_m: 0.1, extent: vec![990.0, 1990.0, 1010.0, 2005.0], ..Settings::default() };
+    let (cpu, _) = build_cpu(&inp, &s).unwrap();
+    let (gpu, _) = build(&inp, &s, Some(&g)).unwrap();
+    assert!(cpu == gpu, "maps differ with points off the extent");
+}
