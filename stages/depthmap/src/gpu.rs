@@ -535,6 +535,14 @@ impl Gpu {
         out.timings.passes_ms += ms(t0);
         let t_read = std::time::Instant::now();
         let ends = self.read_words(&merged, 0, cells as u64 + 1)?;
+        // What comes back must be a map: a device that answers otherwise is
+        // refused rather than trusted.
+        if ends[0] != 0 || ends.windows(2).any(|w| w[1] < w[0]) || ends[cells as usize] as u64 != kept {
+            return Err(format!(
+                "GPU ({}) returned inconsistent interval counts for grid rows from {}",
+                self.dev.name, slab.row0
+            ));
+        }
         out.counts.extend(ends.windows(2).map(|w| w[1] - w[0]));
         out.tops.extend(self.read_words(&tops, 0, cells as u64)?.into_iter().map(f32::from_bits));
         let words = self.read_words(&intervals, 0, 3 * kept)?;
