@@ -301,17 +301,6 @@ impl Gpu {
         mode: Mode,
         gap: f32,
     ) -> Result<Cells, String> {
-        liftplan_core::gpu::catching_errors(&self.dev, || self.assemble_slabs(points, mesh, spec, mode, gap))
-    }
-
-    fn assemble_slabs(
-        &self,
-        points: Option<&PointSource>,
-        mesh: &[Raw],
-        spec: &GridSpec,
-        mode: Mode,
-        gap: f32,
-    ) -> Result<Cells, String> {
         if 4 * (spec.nx as u64 + 1) > self.buffer_limit {
             return Err(format!(
                 "a grid row of {} cells is more than one GPU buffer holds ({} bytes): use a larger cell_m, or the \
@@ -319,8 +308,6 @@ impl Gpu {
                 spec.nx, self.buffer_limit
             ));
         }
-        let t0 = std::time::Instant::now();
-        let ms = |t: std::time::Instant| t.elapsed().as_secs_f64() * 1e3;
         let base = Params {
             n: 0,
             nx: spec.nx,
@@ -331,14 +318,29 @@ impl Gpu {
             gap,
             single: mode == Mode::Single,
         };
-        let sources = self.upload_sources(points, mesh, spec)?;
+        liftplan_core::gpu::catching_errors(&self.dev, || {
+            let t0 = std::time::Instant::now();
+            let sources = self.upload_sources(points, mesh, spec)?;
+            self.assemble_slabs(&sources, spec, base, t0.elapsed().as_secs_f64() * 1e3)
+        })
+    }
+
+    /// Every slab of the grid, with the sources already on the device.
+    fn assemble_slabs(
+        &self,
+        sources: &Sources,
+        spec: &GridSpec,
+        base: Params,
+        upload_ms: f64,
+    ) -> Result<Cells, String> {
+        let ms = |t: std::time::Instant| t.elapsed().as_secs_f64() * 1e3;
         let mut cells = Cells {
             counts: Vec::with_capacity(spec.cells()),
             intervals: Vec::new(),
             tops: Vec::with_capacity(spec.cells()),
             raws: 0,
             slabs: 0,
-            timings: GpuTimings { upload_ms: ms(t0), ..GpuTimings::default() },
+            timings: GpuTimings { upload_ms, ..GpuTimings::default() },
         };
         // Rows per slab: as many as the per-cell buffers (one word a cell,
         // plus one) allow, cut when the keys do not fit.
@@ -350,7 +352,7 @@ impl Gpu {
             rows = rows.min(spec.ny - row0);
             let slab = Params { row0, rows, ..base };
             let t_count = std::time::Instant::now();
-            let (starts, large, counted) = self.count_slab(&sources, slab)?;
+            let (starts, large, counted) = self.count_slab(sources, slab)?;
             let total = counted.total;
             cells.timings.passes_ms += ms(t_count);
             if let Some(cap) = self.loop_cap {
@@ -377,7 +379,7 @@ impl Gpu {
                 rows = (((rows as u64 * max_keys / total) as u32).clamp(1, rows - 1) * 7 / 8).max(1);
                 continue;
             }
-            self.merge_slab(&sources, slab, &starts, &large, counted, &mut cells)?;
+            self.merge_slab(sources, slab, &starts, &large, counted, &mut cells)?;
             row0 += rows;
         }
         Ok(cells)
