@@ -1,0 +1,111 @@
+//! Soak test of the GPU depth-map assembly against the CPU's: random sites
+//! (points, loose triangles and boxes; heights often on a 1/16 m lattice, so
+//! ties and exact touching are common), cell sizes, radii, gaps, modes and
+//! buffer limits (so slabs are cut and uploads chunked), for as long as asked:
+//!
+//!   cargo run --release -p liftplan-depthmap --example stress_gpu -- [seconds]
+//!
+//! Prints each map that differs and each the device refuses (a row over a
+//! small buffer limit, or lavapipe's loop cap), then a summary; exits with an
+//! error when any map differs. The test suite's `tests/gpu_twin.rs` covers
+//! the same ground in seconds; this is for a long run on a device machine.
+
+use liftplan_depthmap::mdm::{self, Mode, PointSource, Raw};
+use liftplan_depthmap::{Inputs, Settings, build_cpu, gpu};
+use rand::{RngExt, SeedableRng};
+
+fn main() {
+    let mut g = gpu::open(true).unwrap();
+    let seconds: u64 = std::env::args().nth(1).and_then(|a| a.parse().ok()).unwrap_or(300);
+    let t0 = std::time::Instant::now();
+    let (mut case, mut compared, mut refused, mut differ) = (0u64, 0u64, 0u64, 0u64);
+    while t0.elapsed().as_secs() < seconds {
+        case += 1;
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(case);
+        let n = rng.random_range(0..40_000usize);
+        let w = rng.random_range(1.0..60.0f64);
+        let h = rng.random_range(1.0..60.0f64);
+        let mut inp = Inputs::default();
+        let quant = rng.random_bool(0.5);
+        for _ in 0..n {
+            let x = 500.0 + rng.random::<f64>() * w;
+            let y = -300.0 + rng.random::<f64>() * h;
+            let z = if quant { rng.random_range(-20..200) as f64 * 0.0625 } else { rng.random::<f64>() * 30.0 - 5.0 };
+            inp.points.push([x, y, z]);
+            inp.ground.push(rng.random_bool(0.3));
+        }
+        let tris = rng.random_range(0..200);
+        let a = inp.mesh.group_id("a");
+        let b = inp.mesh.group_id("b");
+        for _ in 0..tris {
+            let c = [500.0 + rng.random::<f64>() * w, -300.0 + rng.random::<f64>() * h, rng.random::<f64>() * 20.0];
+            if rng.random_bool(0.5) {
+                let t: Vec<[f64; 3]> = (0..3)
+                    .map(|_| {
+                        [c[0] + rng.random::<f64>() * 2.0, c[1] + rng.random::<f64>() * 2.0, c[2] + rng.random::<f64>()]
+                    })
+                    .collect();
+                inp.mesh.add_part(a, false, &t, &[[0, 1, 2]]);
+            } else {
+                inp.mesh.add_box(
+                    b,
+                    c,
+                    [
+                        c[0] + rng.random::<f64>() * 3.0,
+                        c[1] + rng.random::<f64>() * 3.0,
+                        c[2] + 0.1 + rng.random::<f64>(),
+                    ],
+                );
+            }
+        }
+        let cell: f64 = [0.05, 0.1, 0.25, 0.5, 1.0, 2.0, 5.0][rng.random_range(0..7)];
+        let radius: f64 = [0.0f64, 0.01, 0.05, 0.0625, 0.12, 0.3][rng.random_range(0..6)].min(8.0 * cell);
+        let gap = [0.0, 0.05, 0.1, 0.125, 0.5][rng.random_range(0..5)];
+        let mode = if rng.random_bool(0.3) { Mode::Single } else { Mode::Multi };
+        let s = Settings {
+            cell_m: cell,
+            point_radius_m: radius,
+            merge_gap_m: gap,
+            mode,
+            margin_m: rng.random_range(0.0..3.0),
+            ..Settings::default()
+        };
+        let Ok((cpu, _)) = build_cpu(&inp, &s) else { continue };
+        let limit = [1u64 << 16, 1 << 20, u64::MAX][rng.random_range(0..3)];
+        g.set_buffer_limit(limit);
+        let points = PointSource { xyz: &inp.points, ground: &inp.ground, radius: radius as f32 };
+        let mesh: Vec<Raw> = mdm::mesh_raws(&inp.mesh, &cpu.spec, 2).concat();
+        match g.assemble(Some(&points), &mesh, &cpu.spec, mode, gap as f32) {
+            Ok(cells) => {
+                let m = mdm::Mdm::from_cells(
+                    cpu.spec,
+                    mode,
+                    &cells.counts,
+                    cells.intervals,
+                    cells.tops,
+                    cpu.objects.clone(),
+                );
+                compared += 1;
+                if m != cpu {
+                    differ += 1;
+                    println!(
+                        "MISMATCH case {case}: n {n} tris {tris} cell {cell} radius {radius} gap {gap} {mode:?} limit {limit} slabs {}",
+                        cells.slabs
+                    );
+                }
+            }
+            Err(e) => {
+                refused += 1;
+                println!("case {case} refused: {e}");
+            }
+        }
+    }
+    println!(
+        "{case} cases in {} s on {}: {compared} maps compared, {differ} differ, {refused} refused",
+        t0.elapsed().as_secs(),
+        g.name()
+    );
+    if differ > 0 {
+        std::process::exit(1);
+    }
+}
