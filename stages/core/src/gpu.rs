@@ -79,8 +79,9 @@ pub fn catching_errors<T>(dev: &Device, work: impl FnOnce() -> Result<T, String>
     }
 }
 
-/// Waits for the device and copies `bytes` bytes of `src` back to the host.
-pub fn read_back(dev: &Device, src: &wgpu::Buffer, bytes: u64) -> Result<Vec<u8>, String> {
+/// Waits for the device and copies `bytes` bytes of `src` from byte `offset`
+/// back to the host (both multiples of 4).
+pub fn read_back(dev: &Device, src: &wgpu::Buffer, offset: u64, bytes: u64) -> Result<Vec<u8>, String> {
     let staging = dev.device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("read back"),
         size: bytes.max(4),
@@ -88,7 +89,9 @@ pub fn read_back(dev: &Device, src: &wgpu::Buffer, bytes: u64) -> Result<Vec<u8>
         mapped_at_creation: false,
     });
     let mut enc = dev.device.create_command_encoder(&Default::default());
-    enc.copy_buffer_to_buffer(src, 0, &staging, 0, bytes.max(4));
+    if bytes > 0 {
+        enc.copy_buffer_to_buffer(src, offset, &staging, 0, bytes);
+    }
     dev.queue.submit([enc.finish()]);
     map_read(dev, &staging, bytes)
 }

@@ -110,7 +110,7 @@ pub struct GpuTimings {
 }
 
 /// Uniform parameters of one dispatch (the shader's `Params`).
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, Default)]
 struct Params {
     n: u32,
     nx: u32,
@@ -164,16 +164,7 @@ impl Gpu {
     /// returns how many it ran, if fewer.
     fn probe_loops(&self, probe: &wgpu::ComputePipeline) -> Result<Option<u32>, String> {
         let out = self.storage("probe", 8);
-        let p = self.uniform(Params {
-            n: PROBE_LOOPS,
-            nx: 0,
-            row0: 0,
-            rows: 0,
-            inv_cell: 0.0,
-            radius: 0.0,
-            gap: 0.0,
-            single: false,
-        });
+        let p = self.uniform(Params { n: PROBE_LOOPS, ..Params::default() });
         let mut enc = self.dev.device.create_command_encoder(&Default::default());
         self.pass(&mut enc, probe, &[(0, &p), (5, &out)], 1, 1);
         self.submit(enc);
@@ -271,19 +262,7 @@ impl Gpu {
 
     /// `words` 32-bit words of `src` from word `at`.
     fn read_words(&self, src: &wgpu::Buffer, at: u64, words: u64) -> Result<Vec<u32>, String> {
-        let bytes = 4 * words;
-        let staging = self.dev.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("read back"),
-            size: bytes.max(4),
-            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        let mut enc = self.dev.device.create_command_encoder(&Default::default());
-        if bytes > 0 {
-            enc.copy_buffer_to_buffer(src, 4 * at, &staging, 0, bytes);
-        }
-        self.submit(enc);
-        let data = liftplan_core::gpu::map_read(&self.dev, &staging, bytes)?;
+        let data = liftplan_core::gpu::read_back(&self.dev, src, 4 * at, 4 * words)?;
         Ok(data.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect())
     }
 
@@ -309,14 +288,12 @@ impl Gpu {
             ));
         }
         let base = Params {
-            n: 0,
             nx: spec.nx,
-            row0: 0,
-            rows: 0,
             inv_cell: (1.0 / spec.cell) as f32,
             radius: points.map_or(0.0, |p| p.radius),
             gap,
             single: mode == Mode::Single,
+            ..Params::default()
         };
         liftplan_core::gpu::catching_errors(&self.dev, || {
             let t0 = std::time::Instant::now();

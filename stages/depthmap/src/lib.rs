@@ -330,29 +330,24 @@ pub fn run(
     if let Some(m) = mesh {
         inp.mesh = TriMesh::read_artifact(m).map_err(|e| DepthError::Input(Location::file(m), e.to_string()))?;
     }
-    let device = match liftplan_core::gpu::open_for(gpu_use, "depth map").map_err(DepthError::Gpu)? {
-        None => None,
-        Some(d) => match gpu::Gpu::new(d) {
-            Ok(g) => Some(g),
-            Err(why) if gpu_use == GpuUse::Auto => {
-                tracing::warn!("depth map on the CPU: the GPU did not start: {why}");
-                None
-            }
-            Err(why) => return Err(DepthError::Gpu(why)),
-        },
+    // `auto` means "the GPU where it can": a device that does not start, or a
+    // map it refuses (a row over its buffers), leaves the map to the CPU,
+    // which builds the same one.
+    let on_gpu = |d| -> Result<(Mdm, Timings, String)> {
+        let g = gpu::Gpu::new(d).map_err(DepthError::Gpu)?;
+        let (m, timings) = build(&inp, s, Some(&g))?;
+        Ok((m, timings, format!("gpu: {}", g.name())))
     };
-    let (m, timings, device) = match build(&inp, s, device.as_ref()) {
-        // `auto` means "the GPU where it can": a map the device refuses (a
-        // row over its buffers) is built on the CPU, which gives the same map.
-        Err(DepthError::Gpu(why)) if gpu_use == GpuUse::Auto => {
-            tracing::warn!("depth map on the CPU: the GPU could not build it: {why}");
-            let (m, timings) = build(&inp, s, None)?;
-            (m, timings, None)
-        }
-        built => {
-            let (m, timings) = built?;
-            (m, timings, device)
-        }
+    let on_cpu = || build(&inp, s, None).map(|(m, timings)| (m, timings, "cpu".to_string()));
+    let (m, timings, backend) = match liftplan_core::gpu::open_for(gpu_use, "depth map").map_err(DepthError::Gpu)? {
+        None => on_cpu()?,
+        Some(d) => match on_gpu(d) {
+            Err(DepthError::Gpu(why)) if gpu_use == GpuUse::Auto => {
+                tracing::warn!("depth map on the CPU: the GPU could not build it: {why}");
+                on_cpu()?
+            }
+            built => built?,
+        },
     };
     std::fs::create_dir_all(out_dir).map_err(|e| DepthError::Input(Location::file(out_dir), e.to_string()))?;
     m.write(&out_dir.join("site.mdm"))
@@ -369,7 +364,7 @@ pub fn run(
         intervals: m.intervals.len(),
         occupied_cells: m.offsets.windows(2).filter(|w| w[1] > w[0]).count(),
         objects: m.objects.len(),
-        backend: device.as_ref().map(|g| format!("gpu: {}", g.name())).unwrap_or_else(|| "cpu".into()),
+        backend,
         timings,
     };
     let json = serde_json::to_string_pretty(&summary).unwrap_or_default();
