@@ -10,8 +10,15 @@
 //! nothing merges, the worst case for the assembly) and *surface* (points on
 //! ground, buildings, tanks and pipes, as a scan sees a plant). The map uses
 //! the project defaults (0.25 m cells, 5 cm point radius).
+//!
+//! With `queries`, it times batched box queries instead, CPU against GPU
+//! (the device's walk, the CPU's exact test for what it leaves), on one map of the plant and
+//! 5 M surface points:
+//!
+//!   cargo run --release -p liftplan-depthmap --example bench_depthmap -- queries > reports/queries.md
 
 use liftplan_core::mesh::TriMesh;
+use liftplan_core::obb::Obb;
 use liftplan_depthmap::{Inputs, Settings, build, build_cpu, gpu};
 use rand::{RngExt, SeedableRng};
 use std::time::Instant;
@@ -113,6 +120,9 @@ fn main() {
         sizes = vec![1_000_000, 5_000_000, 21_000_716];
     }
     let device = if cpu_only { Err("not asked for".to_string()) } else { gpu::open(true) };
+    if args.iter().any(|a| a == "queries") {
+        return queries(&s, &device);
+    }
     println!("# Depth-map rasterisation\n");
     println!(
         "{} CPU threads; GPU: {}. Best of {CPU_RUNS} runs on the CPU, of 3 on the GPU. Floor = one streaming pass reading every point on every thread (sum of coordinates, four accumulators a thread). \
@@ -216,4 +226,99 @@ fn compare(inp: &Inputs, s: &Settings, device: &Result<gpu::Gpu, String>, what: 
         best.equal &= Some(m) == cpu_map;
     }
     (cpu, Some(best))
+}
+
+/// Three sets of boxes over the site, as a planner asks them: loads and hooks
+/// (upright), booms at a luffing angle, and boxes turned any way.
+fn query_boxes(n: usize, kind: &str) -> Vec<Obb> {
+    use liftplan_core::frame::{Point3, Vec3};
+    use nalgebra::{Rotation3, Unit, Vector3};
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(n as u64 ^ kind.len() as u64);
+    (0..n)
+        .map(|_| {
+            let yaw = Rotation3::from_axis_angle(&Vector3::z_axis(), rng.random::<f64>() * std::f64::consts::TAU);
+            let (x, y) = (rng.random::<f64>() * 200.0, rng.random::<f64>() * 200.0);
+            match kind {
+                "loads" => {
+                    let half =
+                        Vec3::new(rng.random_range(1.0..4.0), rng.random_range(1.0..4.0), rng.random_range(0.5..2.0));
+                    Obb::new(Point3::new(x, y, rng.random_range(0.0..45.0)), *yaw.matrix(), half)
+                }
+                "booms" => {
+                    let luff = Rotation3::from_axis_angle(&Vector3::y_axis(), -rng.random_range(0.0..1.4));
+                    let half = Vec3::new(rng.random_range(10.0..30.0), 0.6, 0.6);
+                    Obb::new(Point3::new(x, y, rng.random_range(10.0..50.0)), *(yaw * luff).matrix(), half)
+                }
+                _ => {
+                    let axis = Unit::new_normalize(Vector3::new(rng.random(), rng.random(), rng.random::<f64>() - 0.5));
+                    let turn = Rotation3::from_axis_angle(&axis, rng.random_range(0.0..3.0));
+                    let half =
+                        Vec3::new(rng.random_range(0.5..5.0), rng.random_range(0.5..5.0), rng.random_range(0.5..5.0));
+                    Obb::new(Point3::new(x, y, rng.random_range(0.0..45.0)), *(turn * yaw).matrix(), half)
+                }
+            }
+        })
+        .collect()
+}
+
+/// Batched box queries on the CPU (`Mdm::hits`, rayon) and through the GPU
+/// screen (`Gpu::hits_where`), same boxes, same map, answers compared.
+fn queries(s: &Settings, device: &Result<gpu::Gpu, String>) {
+    const N: usize = 100_000;
+    let mut inp = surface_points(5_000_000);
+    inp.mesh = plant();
+    let (map, _) = build_cpu(&inp, s).unwrap();
+    println!("# Box queries against the depth map\n");
+    println!(
+        "{} CPU threads; GPU: {}. Map: the plant of reports/depthmap.md ({} triangles) and 5 M surface points, \
+         0.25 m cells, {} intervals. {N} boxes a set; best of 3 runs each.\n",
+        rayon::current_num_threads(),
+        device.as_ref().map(|g| g.name().to_string()).unwrap_or_else(|e| format!("none ({e})")),
+        inp.mesh.triangle_count(),
+        map.intervals.len()
+    );
+    let Ok(g) = device else {
+        println!("No GPU: nothing to compare.");
+        return;
+    };
+    let t = Instant::now();
+    let on_gpu = g.upload_map(&map).unwrap();
+    println!("Map upload to the GPU: {:.0} ms.\n", t.elapsed().as_secs_f64() * 1e3);
+    println!(
+        "| boxes | hit (CPU) | CPU ms | GPU ms | CPU / GPU | free on the GPU | hit on the GPU | left to the CPU | GPU walk ms | CPU rest ms | answers equal |"
+    );
+    println!("|---|---|---|---|---|---|---|---|---|---|---|");
+    for kind in ["loads", "booms", "turned"] {
+        let boxes = query_boxes(N, kind);
+        let mut cpu_hits = Vec::new();
+        let cpu = best_of(3, || {
+            let t = Instant::now();
+            cpu_hits = map.hits(&boxes);
+            t.elapsed().as_secs_f64() * 1e3
+        });
+        let mut best = (f64::INFINITY, gpu::ScreenCounts::default());
+        let mut equal = true;
+        for _ in 0..3 {
+            let t = Instant::now();
+            let (hits, counts) = g.hits_where(&on_gpu, &map, &boxes, None).unwrap();
+            let dt = t.elapsed().as_secs_f64() * 1e3;
+            eprintln!("{kind}: GPU {dt:.0} ms, {counts:?}");
+            equal &= hits == cpu_hits;
+            if dt < best.0 {
+                best = (dt, counts);
+            }
+        }
+        let (gpu_ms, c) = best;
+        println!(
+            "| {N} {kind} | {} | {cpu:.0} | {gpu_ms:.0} | {:.2} | {} | {} | {} | {:.0} | {:.0} | {} |",
+            cpu_hits.iter().filter(|h| h.is_some()).count(),
+            cpu / gpu_ms,
+            c.free_on_gpu,
+            c.hit_on_gpu,
+            c.left_to_cpu,
+            c.screen_ms,
+            c.exact_ms,
+            if equal { "yes" } else { "NO" }
+        );
+    }
 }

@@ -42,9 +42,15 @@
 //! raws go up in chunks, and a slab has as many rows as its raw intervals'
 //! keys fit one buffer (a slab that turns out too full is cut and counted
 //! again).
+//!
+//! The box queries' twin, [`Gpu::upload_map`] and [`Gpu::hits_where`], is in
+//! `gpu/screen.rs`.
 
 use crate::mdm::{GridSpec, Interval, Mode, PointSource, Raw, local_point};
 use wgpu::util::DeviceExt;
+
+mod screen;
+pub use screen::{GpuMap, MAX_COORD_M, ScreenCounts};
 
 /// The passes, in WGSL; `{LARGE}` is replaced by [`LARGE`] when compiled.
 const SHADER: &str = include_str!("assemble.wgsl");
@@ -72,6 +78,8 @@ pub struct Gpu {
     compact: wgpu::ComputePipeline,
     find_large: wgpu::ComputePipeline,
     large_cells: wgpu::ComputePipeline,
+    /// The box-query screen (`screen.rs`).
+    screen_boxes: wgpu::ComputePipeline,
     /// Loop iterations one invocation may run, where the device cuts loops
     /// short (lavapipe: 65535); `None` where the probe ran to its end.
     loop_cap: Option<u32>,
@@ -130,16 +138,21 @@ impl Gpu {
             label: Some("depthmap assembly"),
             source: wgpu::ShaderSource::Wgsl(SHADER.replace("{LARGE}", &LARGE.to_string()).into()),
         });
-        let pipeline = |entry: &str| {
+        let screen = dev.device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("box query screen"),
+            source: wgpu::ShaderSource::Wgsl(screen::SHADER.into()),
+        });
+        let pipeline_in = |module: &wgpu::ShaderModule, entry: &str| {
             dev.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
                 label: Some(entry),
                 layout: None,
-                module: &module,
+                module,
                 entry_point: Some(entry),
                 compilation_options: Default::default(),
                 cache: None,
             })
         };
+        let pipeline = |entry: &str| pipeline_in(&module, entry);
         let probe = pipeline("probe_loops");
         let mut gpu = Gpu {
             count_points: pipeline("count_points"),
@@ -152,6 +165,7 @@ impl Gpu {
             compact: pipeline("compact"),
             find_large: pipeline("find_large"),
             large_cells: pipeline("large_cells"),
+            screen_boxes: pipeline_in(&screen, "screen_boxes"),
             buffer_limit: device_buffer_limit(&dev.device),
             loop_cap: None,
             dev,

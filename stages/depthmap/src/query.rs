@@ -9,6 +9,10 @@
 //! looking at a single interval. Otherwise each cell under the footprint whose top
 //! reaches the box is tested exactly: the box's height range over that cell's
 //! column ([`Obb::z_range_over_rect`]) against the cell's intervals.
+//!
+//! The GPU twin (`crate::gpu::Gpu::hits_where`) follows this walk, in this
+//! order, and answers only what it can prove gives these answers; keep the two
+//! in step when changing the walk (its tests compare them box for box).
 
 use crate::mdm::{Interval, Mdm};
 use liftplan_core::obb::{Obb, strip_x_range};
@@ -43,7 +47,7 @@ impl Mdm {
 
     /// The coarsest pyramid level at which a block of cells spans at most
     /// 2 x 2 tiles (or whatever the pyramid has).
-    fn cover_level(&self, ci: &std::ops::Range<u32>, cj: &std::ops::Range<u32>) -> usize {
+    pub(crate) fn cover_level(&self, ci: &std::ops::Range<u32>, cj: &std::ops::Range<u32>) -> usize {
         let span = (ci.end - ci.start).max(cj.end - cj.start);
         let mut lvl = 0usize;
         while lvl + 1 < self.pyramid.len() && (1u32 << (lvl + 1)) < span {

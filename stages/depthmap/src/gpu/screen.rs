@@ -1,0 +1,350 @@
+//! The GPU twin of the box queries ([`Mdm::hit_where`]): the device answers
+//! what it can prove in `f32`, the CPU's exact test the rest.
+//!
+//! The exact per-cell test ([`liftplan_core::obb::Obb::z_range_over_rect`]) is
+//! `f64` geometry, which WGSL lacks, and an `f32` copy of it would not give
+//! the CPU's answers bit for bit on every driver (GPU compilers may fuse
+//! multiply-adds and divide to 2.5 ulp). So the device works like a filtered
+//! geometric predicate. Each box goes up twice over: grown by a margin far
+//! larger than any `f32` rounding of the shader's few operations (the
+//! *outer* box, which holds every point within the margin of the queried
+//! one), and shrunk by it (the *inner* box, inside the queried one). The
+//! shader walks the max-height pyramid and the cells exactly as the CPU's
+//! walk does, in the same order, and decides each interval it meets:
+//!
+//! - outside the outer box's heights over the cell (a relaxation: each box
+//!   axis alone bounds them): the CPU's exact test misses it too;
+//! - meeting heights the inner box surely has over the cell (its vertical
+//!   segments at the cell's corners, centre and nearest point): the CPU's
+//!   exact test meets it too, and as nothing before it in the walk met the
+//!   box, it is the CPU's answer, cell and interval;
+//! - anything else: the device gives the box up, and the CPU answers it.
+//!
+//! A box the walk passes whole without a contact is free on both paths. So
+//! every answer is the CPU's answer, `Hit` for `Hit` (the tests compare them
+//! on random sites and boxes); how many boxes the device answers itself is a
+//! matter of speed only (`ScreenCounts`).
+//!
+//! Must not: guess. A box it cannot place in `f32` safely (coordinates over
+//! [`MAX_COORD_M`] from the grid origin), or whose walk runs past its loop
+//! budget (a device that cuts loops short, [`Gpu::loop_cap`], gets half that
+//! cap), goes to the CPU.
+
+use super::{Gpu, words_to_bytes};
+use crate::mdm::{Interval, Mdm};
+use crate::query::Hit;
+use liftplan_core::obb::Obb;
+use rayon::prelude::*;
+
+/// The shader.
+pub(super) const SHADER: &str = include_str!("screen.wgsl");
+
+/// Words a box takes on the device (the shader's layout).
+const BOX_WORDS: usize = 32;
+const SCREEN_GROUP: u32 = 64;
+/// Boxes farther than this from the grid origin (m) are left to the CPU: the
+/// margin that covers `f32` rounding grows with the coordinates.
+pub const MAX_COORD_M: f64 = 1e6;
+/// The margin's fixed part (m) and its part relative to the box's coordinates
+/// and size: 2^-16 is 256 `f32` ulps, where the shader's few operations on a
+/// quantity round by at most ten.
+const MARGIN_M: f64 = 1e-3;
+const MARGIN_REL: f64 = 1.0 / 65536.0;
+/// Loop iterations one box may take on a device that runs loops to the end:
+/// a box over more cells and intervals than that is left to the CPU.
+const BUDGET: u32 = 1 << 20;
+
+/// A depth map on the device, for [`Gpu::hits_where`].
+pub struct GpuMap {
+    offsets: wgpu::Buffer,
+    intervals: wgpu::Buffer,
+    tops: wgpu::Buffer,
+    levels: wgpu::Buffer,
+    /// What the buffers were made from, to refuse a different map.
+    spec: crate::mdm::GridSpec,
+    intervals_len: usize,
+    levels_len: usize,
+}
+
+/// How a batch of boxes was answered, and where the time went.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct ScreenCounts {
+    /// Answered "free" by the device.
+    pub free_on_gpu: usize,
+    /// Answered with their first contact by the device.
+    pub hit_on_gpu: usize,
+    /// Answered by the CPU's exact query: a contact the device could not
+    /// decide in `f32`, a walk over its loop budget, or a box too far from
+    /// the grid origin.
+    pub left_to_cpu: usize,
+    /// Preparing the boxes, the device's walk and its answers read back (ms,
+    /// wall clock on the host).
+    pub screen_ms: f64,
+    /// The CPU's exact queries of the boxes left to it (ms).
+    pub exact_ms: f64,
+}
+
+/// The device's answer for one box.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Verdict {
+    Free,
+    Hit(Hit),
+    LeftToCpu,
+}
+
+impl Gpu {
+    /// Puts a depth map on the device for box queries.
+    pub fn upload_map(&self, map: &Mdm) -> Result<GpuMap, String> {
+        let spec = map.spec;
+        let consistent = map.offsets.len() == spec.cells() + 1
+            && map.offsets.first() == Some(&0)
+            && map.offsets.windows(2).all(|w| w[0] <= w[1])
+            && map.offsets.last().is_some_and(|&n| n as usize == map.intervals.len())
+            && map.pyramid.first().is_some_and(|l| l.2.len() == spec.cells());
+        if !consistent {
+            return Err("depth map is not consistent (offsets or pyramid do not match its grid)".into());
+        }
+        if map.intervals.iter().any(|iv| iv.obj == u32::MAX) {
+            // The shader reads u32::MAX as "no object ignored".
+            return Err("depth map has an interval of object id 4294967295, which the GPU queries reserve".into());
+        }
+        let mut tops = Vec::new();
+        let mut levels = Vec::new();
+        for (w, h, data) in &map.pyramid {
+            levels.extend([tops.len() as u32, *w, *h, 0]);
+            // WGSL may assume no infinities: an empty cell's -inf goes up as
+            // the lowest finite height, which compares the same way.
+            tops.extend(data.iter().map(|t| t.max(f32::MIN).to_bits()));
+        }
+        let mut intervals: Vec<u32> =
+            map.intervals.iter().flat_map(|iv| [iv.zlo.to_bits(), iv.zhi.to_bits(), iv.obj]).collect();
+        // A buffer is never empty.
+        intervals.resize(intervals.len().max(4), 0);
+        for (what, words) in [("offsets", map.offsets.len()), ("intervals", intervals.len()), ("pyramid", tops.len())] {
+            if 4 * words as u64 > self.buffer_limit {
+                return Err(format!(
+                    "the depth map's {what} ({} bytes) are more than one GPU buffer holds ({} bytes)",
+                    4 * words,
+                    self.buffer_limit
+                ));
+            }
+        }
+        let usage = wgpu::BufferUsages::STORAGE;
+        liftplan_core::gpu::catching_errors(&self.dev, || {
+            Ok(GpuMap {
+                offsets: self.upload("map offsets", &words_to_bytes(&map.offsets), usage),
+                intervals: self.upload("map intervals", &words_to_bytes(&intervals), usage),
+                tops: self.upload("map pyramid", &words_to_bytes(&tops), usage),
+                levels: self.upload("map levels", &words_to_bytes(&levels), usage),
+                spec,
+                intervals_len: map.intervals.len(),
+                levels_len: map.pyramid.len(),
+            })
+        })
+    }
+
+    /// [`Mdm::hit_where`] for every box, with `counts` "every object but
+    /// `ignore`": the device answers what it can prove, the CPU the rest (see
+    /// the module doc). `gpu_map` must be `map` uploaded.
+    pub fn hits_where(
+        &self,
+        gpu_map: &GpuMap,
+        map: &Mdm,
+        boxes: &[Obb],
+        ignore: Option<u32>,
+    ) -> Result<(Vec<Option<Hit>>, ScreenCounts), String> {
+        if gpu_map.spec != map.spec
+            || gpu_map.intervals_len != map.intervals.len()
+            || gpu_map.levels_len != map.pyramid.len()
+        {
+            return Err("the depth map on the GPU is not the one queried".into());
+        }
+        let t0 = std::time::Instant::now();
+        let verdicts = self.screen(gpu_map, map, boxes, ignore)?;
+        let t_exact = std::time::Instant::now();
+        let counts_obj = |iv: &Interval| Some(iv.obj) != ignore;
+        let hits = boxes
+            .par_iter()
+            .zip(&verdicts)
+            .map(|(b, v)| match v {
+                Verdict::Free => None,
+                Verdict::Hit(h) => Some(*h),
+                Verdict::LeftToCpu => map.hit_where(b, counts_obj),
+            })
+            .collect();
+        let mut counts = ScreenCounts {
+            screen_ms: (t_exact - t0).as_secs_f64() * 1e3,
+            exact_ms: t_exact.elapsed().as_secs_f64() * 1e3,
+            ..ScreenCounts::default()
+        };
+        for v in &verdicts {
+            match v {
+                Verdict::Free => counts.free_on_gpu += 1,
+                Verdict::Hit(_) => counts.hit_on_gpu += 1,
+                Verdict::LeftToCpu => counts.left_to_cpu += 1,
+            }
+        }
+        Ok((hits, counts))
+    }
+
+    /// The device's answer for every box.
+    fn screen(&self, gpu_map: &GpuMap, map: &Mdm, boxes: &[Obb], ignore: Option<u32>) -> Result<Vec<Verdict>, String> {
+        let budget = self.loop_cap.map_or(BUDGET, |cap| cap / 2);
+        let mut verdicts = vec![Verdict::LeftToCpu; boxes.len()];
+        // The boxes that go up, with their place in `boxes`.
+        let mut sent: Vec<usize> = Vec::new();
+        let mut words: Vec<u32> = Vec::new();
+        for (k, b) in boxes.iter().enumerate() {
+            match prepare(b, map, ignore) {
+                Prepared::Outside => verdicts[k] = Verdict::Free,
+                Prepared::Unsafe => {}
+                Prepared::Box(w) => {
+                    sent.push(k);
+                    words.extend(w);
+                }
+            }
+        }
+        let spec = map.spec;
+        // The inner test's lines stand this far inside a cell, clear of the
+        // rounding of the cell's edges (a few ulps of the grid's size).
+        let size = spec.nx.max(spec.ny) as f64 * spec.cell;
+        let margin = 1e-4 + size / (1u64 << 20) as f64;
+        let margin = if margin < spec.cell / 4.0 { margin as f32 } else { -1.0 };
+        let per_batch = ((self.buffer_limit / (16 * BOX_WORDS as u64)) as usize).max(1);
+        liftplan_core::gpu::catching_errors(&self.dev, || {
+            for (batch, chunk) in sent.chunks(per_batch).enumerate() {
+                let first = batch * per_batch * BOX_WORDS;
+                let boxes_buf = self.upload(
+                    "query boxes",
+                    &words_to_bytes(&words[first..first + chunk.len() * BOX_WORDS]),
+                    wgpu::BufferUsages::STORAGE,
+                );
+                let out = self.storage("query answers", 16 * chunk.len() as u64);
+                let params = [
+                    chunk.len() as u32,
+                    spec.nx,
+                    spec.ny,
+                    budget,
+                    (spec.cell as f32).to_bits(),
+                    margin.to_bits(),
+                    0,
+                    0,
+                ];
+                let p = self.upload("query params", &words_to_bytes(&params), wgpu::BufferUsages::UNIFORM);
+                let mut enc = self.dev.device.create_command_encoder(&Default::default());
+                let binds = [
+                    (0, &p),
+                    (1, &boxes_buf),
+                    (2, &gpu_map.offsets),
+                    (3, &gpu_map.intervals),
+                    (4, &gpu_map.tops),
+                    (5, &gpu_map.levels),
+                    (6, &out),
+                ];
+                self.pass(&mut enc, &self.screen_boxes, &binds, chunk.len() as u32, SCREEN_GROUP);
+                self.submit(enc);
+                let answers = self.read_words(&out, 0, 4 * chunk.len() as u64)?;
+                for (k, a) in chunk.iter().zip(answers.chunks_exact(4)) {
+                    verdicts[*k] = verdict(map, a);
+                }
+            }
+            Ok(())
+        })?;
+        Ok(verdicts)
+    }
+}
+
+/// One box's answer from the device, `[verdict, cell, interval, 0]`. A hit
+/// whose interval is not in its cell is not trusted: the CPU answers.
+fn verdict(map: &Mdm, a: &[u32]) -> Verdict {
+    match a[0] {
+        0 => Verdict::Free,
+        1 => {
+            let (cell, k) = (a[1] as usize, a[2]);
+            let inside = cell < map.spec.cells() && (map.offsets[cell]..map.offsets[cell + 1]).contains(&k);
+            if !inside {
+                return Verdict::LeftToCpu;
+            }
+            let nx = map.spec.nx as usize;
+            Verdict::Hit(Hit { i: (cell % nx) as u32, j: (cell / nx) as u32, interval: map.intervals[k as usize] })
+        }
+        _ => Verdict::LeftToCpu,
+    }
+}
+
+/// A box made ready for the device.
+enum Prepared {
+    /// Its bounding box misses the grid: free on both paths.
+    Outside,
+    /// Too far out, or not finite, to take to `f32` safely.
+    Unsafe,
+    Box([u32; BOX_WORDS]),
+}
+
+/// The box in grid-local `f32` (the shader's layout): centre and axes
+/// rounded, the outer half sizes (grown by the margin) and z range rounded
+/// outward, the inner ones (shrunk by it) inward, the outer box's cells, and
+/// where the CPU's walk starts ([`Mdm::hit_where`]).
+fn prepare(b: &Obb, map: &Mdm, ignore: Option<u32>) -> Prepared {
+    let s = map.spec;
+    let local = [b.center.x - s.x0, b.center.y - s.y0, b.center.z];
+    let size = b.half.norm();
+    let far = local.iter().fold(0.0f64, |m, v| m.max(v.abs())) + size + 2.0 * s.cell;
+    let finite = local.iter().chain(b.half.iter()).chain(b.axes.iter()).all(|v| v.is_finite());
+    if !finite || far > MAX_COORD_M {
+        return Prepared::Unsafe;
+    }
+    // The CPU's walk: its cells and start tiles.
+    let aabb = b.aabb();
+    let (ci, cj) = (s.cols_between(aabb.min[0], aabb.max[0]), s.rows_between(aabb.min[1], aabb.max[1]));
+    if ci.is_empty() || cj.is_empty() || map.pyramid.is_empty() {
+        return Prepared::Outside;
+    }
+    let start = map.cover_level(&ci, &cj) as u32;
+    let margin = MARGIN_M + MARGIN_REL * far;
+    let outer = b.expanded(margin);
+    let outer_box = outer.aabb();
+    let (oi, oj) =
+        (s.cols_between(outer_box.min[0], outer_box.max[0]), s.rows_between(outer_box.min[1], outer_box.max[1]));
+    let mut w = [0u32; BOX_WORDS];
+    for (k, v) in local.iter().enumerate() {
+        w[k] = (*v as f32).to_bits();
+    }
+    w[3] = ignore.unwrap_or(u32::MAX);
+    let inner: Vec<f64> = b.half.iter().map(|h| h - margin).collect();
+    let inner_ok = inner.iter().all(|h| *h > 0.0);
+    for k in 0..3 {
+        for r in 0..3 {
+            w[4 + 4 * k + r] = (b.axes[(r, k)] as f32).to_bits();
+        }
+        w[7 + 4 * k] = f32_up(outer.half[k]).to_bits();
+        w[24 + k] = f32_down(inner[k].max(0.0)).to_bits();
+    }
+    w[16..20].copy_from_slice(&[oi.start, oi.end - 1, oj.start, oj.end - 1]);
+    w[20] = f32_down(outer_box.min[2]).to_bits();
+    w[21] = f32_up(outer_box.max[2]).to_bits();
+    w[22] = start;
+    // A negative radius empties every inner segment: no inner box.
+    let radius = if inner_ok { f32_up(inner.iter().map(|h| h * h).sum::<f64>().sqrt()) } else { -1.0 };
+    w[23] = radius.to_bits();
+    w[27..31].copy_from_slice(&[ci.start >> start, (ci.end - 1) >> start, cj.start >> start, (cj.end - 1) >> start]);
+    w[31] = (0..3)
+        .max_by(|&k, &l| {
+            let plan = |k: usize| b.half[k] * b.axes[(0, k)].hypot(b.axes[(1, k)]);
+            plan(k).total_cmp(&plan(l))
+        })
+        .unwrap_or(0) as u32;
+    Prepared::Box(w)
+}
+
+/// The nearest `f32` at or above `x`.
+fn f32_up(x: f64) -> f32 {
+    let y = x as f32;
+    if (y as f64) < x { y.next_up() } else { y }
+}
+
+/// The nearest `f32` at or below `x`.
+fn f32_down(x: f64) -> f32 {
+    let y = x as f32;
+    if (y as f64) > x { y.next_down() } else { y }
+}

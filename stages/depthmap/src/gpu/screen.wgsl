@@ -1,0 +1,245 @@
+// The GPU twin of the box queries: see the module doc of `gpu/screen.rs`,
+// which prepares the boxes (grid-local f32, with outer and inner half sizes)
+// and says why an answer this shader gives is the CPU's answer.
+
+struct Params {
+    n: u32,        // boxes of this dispatch
+    nx: u32,
+    ny: u32,
+    budget: u32,   // loop iterations one invocation may run before it gives up
+    cell: f32,
+    margin: f32,   // how far inside a cell the inner test's lines stand (m)
+    pad0: u32,
+    pad1: u32,
+}
+@group(0) @binding(0) var<uniform> P: Params;
+// Per box, 32 words (BOX_WORDS in screen.rs):
+//  0..3  centre, ignored object
+//  4..15 per axis k: its xyz and outer half size
+// 16..19 the outer box's cells i0, i1, j0, j1 (inclusive)
+// 20..21 the outer box's z range
+// 22     the CPU walk's start level
+// 23     inner radius
+// 24..26 inner half sizes
+// 27..30 the CPU walk's start tiles ti0, ti1, tj0, tj1 (inclusive)
+// 31     the axis whose plan view is longest
+@group(0) @binding(1) var<storage, read> boxes: array<u32>;
+@group(0) @binding(2) var<storage, read> offsets: array<u32>;
+// Per interval: bottom, top (f32 bits), object.
+@group(0) @binding(3) var<storage, read> intervals: array<u32>;
+// All pyramid levels, one after the other (empty cells hold -f32::MAX).
+@group(0) @binding(4) var<storage, read> tops: array<f32>;
+// Per level: first index in tops, width, height.
+@group(0) @binding(5) var<storage, read> levels: array<vec4<u32>>;
+// Per box: verdict, cell, interval.
+@group(0) @binding(6) var<storage, read_write> verdict: array<vec4<u32>>;
+
+const MAX_DIM: u32 = 65535u;
+const GROUP: u32 = 64u;
+const FREE: u32 = 0u;
+const HIT: u32 = 1u;
+const GAVE_UP: u32 = 2u;
+const STACK: u32 = 80u;
+const EMPTY: vec2<f32> = vec2<f32>(1.0, -1.0);
+
+fn word(b: u32, k: u32) -> f32 { return bitcast<f32>(boxes[32u * b + k]); }
+fn centre(b: u32) -> vec3<f32> { return vec3<f32>(word(b, 0u), word(b, 1u), word(b, 2u)); }
+fn axis(b: u32, k: u32) -> vec3<f32> { return vec3<f32>(word(b, 4u + 4u * k), word(b, 5u + 4u * k), word(b, 6u + 4u * k)); }
+
+// The shader has no loops but the walk's own, and counts every iteration of
+// those against the budget: a device may end loops silently after a number
+// of iterations in all (Mesa's lavapipe: 65535), and a walk cut short would
+// read as "free".
+
+// Outer: a range of heights that holds every height of the outer box over
+// the column above [x0, x1] x [y0, y1], or EMPTY when that box stays out of
+// the column. Each box axis k bounds a_k . (p - c) to [-h_k, h_k]; with
+// (x, y) anywhere in the rectangle, the horizontal part of that product lies
+// in [ulo, uhi], which leaves a_k.z (z - c.z) in [-h_k - uhi, h_k - ulo].
+// Each axis alone is a relaxation of the box, so their intersection holds it.
+fn outer_range(b: u32, x0: f32, x1: f32, y0: f32, y1: f32) -> vec2<f32> {
+    let c = centre(b);
+    let d = vec4<f32>(x0 - c.x, x1 - c.x, y0 - c.y, y1 - c.y);
+    var r = vec2<f32>(word(b, 20u), word(b, 21u));
+    r = outer_axis(axis(b, 0u), word(b, 7u), d, c.z, r);
+    r = outer_axis(axis(b, 1u), word(b, 11u), d, c.z, r);
+    r = outer_axis(axis(b, 2u), word(b, 15u), d, c.z, r);
+    return r;
+}
+
+// `r` cut by one axis' bound (a: the axis, h: its half size, d: the
+// rectangle's sides relative to the centre, cz: the centre's height).
+fn outer_axis(a: vec3<f32>, h: f32, d: vec4<f32>, cz: f32, r: vec2<f32>) -> vec2<f32> {
+    let ulo = min(a.x * d.x, a.x * d.y) + min(a.y * d.z, a.y * d.w);
+    let uhi = max(a.x * d.x, a.x * d.y) + max(a.y * d.z, a.y * d.w);
+    let nlo = -h - uhi;
+    let nhi = h - ulo;
+    if (a.z == 0.0) {
+        if (nlo > 0.0 || nhi < 0.0) { return EMPTY; }
+        return r;
+    }
+    if (abs(a.z) < 1e-6) {
+        // A nearly level axis bounds z only loosely; it is left out (fewer
+        // constraints: still a relaxation) rather than divided by.
+        return r;
+    }
+    var zl = nlo / a.z;
+    var zh = nhi / a.z;
+    if (a.z < 0.0) {
+        let t = zl;
+        zl = zh;
+        zh = t;
+    }
+    return vec2<f32>(max(r.x, cz + zl), min(r.y, cz + zh));
+}
+
+// Inner: the heights of the inner box on the vertical line through (x, y),
+// or EMPTY. The inner box lies inside the queried one, so these heights are
+// heights of the queried box in any column the line stands in.
+fn segment(b: u32, x: f32, y: f32) -> vec2<f32> {
+    let c = centre(b);
+    let d = vec2<f32>(x - c.x, y - c.y);
+    let radius = word(b, 23u);
+    var t = vec2<f32>(-radius, radius);
+    t = segment_axis(axis(b, 0u), word(b, 24u), d, radius, t);
+    t = segment_axis(axis(b, 1u), word(b, 25u), d, radius, t);
+    t = segment_axis(axis(b, 2u), word(b, 26u), d, radius, t);
+    if (t.x > t.y) { return EMPTY; }
+    return vec2<f32>(c.z + t.x, c.z + t.y);
+}
+
+// The line's parameter range `t` cut by one axis' slab.
+fn segment_axis(a: vec3<f32>, h: f32, d: vec2<f32>, radius: f32, t: vec2<f32>) -> vec2<f32> {
+    let o = a.x * d.x + a.y * d.y;
+    if (abs(a.z) < 1e-6) {
+        // Level (or nearly): the line stays inside this slab over all of
+        // [-radius, radius], or nothing is sure.
+        if (abs(o) + abs(a.z) * radius > h) { return EMPTY; }
+        return t;
+    }
+    let ta = (-h - o) / a.z;
+    let tb = (h - o) / a.z;
+    return vec2<f32>(max(t.x, min(ta, tb)), min(t.y, max(ta, tb)));
+}
+
+// The hull of two height ranges, either of which may be EMPTY.
+fn hull(r: vec2<f32>, s: vec2<f32>) -> vec2<f32> {
+    if (s.x > s.y) { return r; }
+    if (r.x > r.y) { return s; }
+    return vec2<f32>(min(r.x, s.x), max(r.y, s.y));
+}
+
+// Heights the queried box surely has over a cell: the hull of its inner
+// segments on lines at the cell's corners and centre (pulled in by the
+// margin), at the point of the cell nearest the box's centre, and where the
+// box's long axis (seen from above) crosses the cell's middle lines. The
+// box's heights over a column form one interval, so the hull is inside it.
+fn inner_range(b: u32, x0: f32, x1: f32, y0: f32, y1: f32) -> vec2<f32> {
+    if (P.margin < 0.0) { return EMPTY; }
+    let xa = x0 + P.margin;
+    let xb = x1 - P.margin;
+    let ya = y0 + P.margin;
+    let yb = y1 - P.margin;
+    let c = centre(b);
+    var r = segment(b, clamp(c.x, xa, xb), clamp(c.y, ya, yb));
+    r = hull(r, segment(b, 0.5 * (x0 + x1), 0.5 * (y0 + y1)));
+    r = hull(r, segment(b, xa, ya));
+    r = hull(r, segment(b, xb, ya));
+    r = hull(r, segment(b, xa, yb));
+    r = hull(r, segment(b, xb, yb));
+    let u = axis(b, boxes[32u * b + 31u]).xy;
+    let xm = 0.5 * (x0 + x1);
+    let ym = 0.5 * (y0 + y1);
+    if (abs(u.x) > 1e-3) {
+        r = hull(r, segment(b, xm, clamp(c.y + (xm - c.x) * u.y / u.x, ya, yb)));
+    }
+    if (abs(u.y) > 1e-3) {
+        r = hull(r, segment(b, clamp(c.x + (ym - c.y) * u.x / u.y, xa, xb), ym));
+    }
+    return r;
+}
+
+@compute @workgroup_size(64)
+fn screen_boxes(@builtin(global_invocation_id) g: vec3<u32>) {
+    let b = g.x + g.y * MAX_DIM * GROUP;
+    if (b >= P.n) { return; }
+    let ignore = boxes[32u * b + 3u];
+    let i0 = boxes[32u * b + 16u];
+    let i1 = boxes[32u * b + 17u];
+    let j0 = boxes[32u * b + 18u];
+    let j1 = boxes[32u * b + 19u];
+    let start = boxes[32u * b + 22u];
+    verdict[b] = vec4<u32>(GAVE_UP, 0u, 0u, 0u);
+    // The CPU's walk (`Mdm::hit_where`): its start tiles row by row, each
+    // tile's four children in the order (0,0), (1,0), (0,1), (1,1), so the
+    // first contact found is the CPU's. The stack is filled in reverse.
+    var stack: array<vec3<u32>, STACK>;
+    var sp = 0u;
+    let ti0 = boxes[32u * b + 27u];
+    let ti1 = boxes[32u * b + 28u];
+    let tj0 = boxes[32u * b + 29u];
+    let tj1 = boxes[32u * b + 30u];
+    if ((ti1 - ti0 + 1u) * (tj1 - tj0 + 1u) > 16u) { return; }
+    var steps = 0u;
+    for (var tj = tj1 + 1u; tj > tj0; tj--) {
+        steps++;
+        for (var ti = ti1 + 1u; ti > ti0; ti--) {
+            steps++;
+            stack[sp] = vec3<u32>(start, ti - 1u, tj - 1u);
+            sp++;
+        }
+    }
+    loop {
+        if (sp == 0u) { break; }
+        steps++;
+        if (steps > P.budget) { return; }
+        sp--;
+        let t = stack[sp];
+        let lvl = t.x;
+        // The tile's cells, cut to the outer box's (no others can be met).
+        let ci0 = max(t.y << lvl, i0);
+        let ci1 = min(((t.y + 1u) << lvl) - 1u, i1);
+        let cj0 = max(t.z << lvl, j0);
+        let cj1 = min(((t.z + 1u) << lvl) - 1u, j1);
+        if (ci0 > ci1 || cj0 > cj1) { continue; }
+        let info = levels[lvl];
+        let top = tops[info.x + t.z * info.y + t.y];
+        let x0 = f32(ci0) * P.cell;
+        let x1 = f32(ci1 + 1u) * P.cell;
+        let y0 = f32(cj0) * P.cell;
+        let y1 = f32(cj1 + 1u) * P.cell;
+        let r = outer_range(b, x0, x1, y0, y1);
+        if (r.x > r.y || top < r.x) { continue; }
+        if (lvl == 0u) {
+            let cell = t.z * P.nx + t.y;
+            var inner = EMPTY;
+            var inner_done = false;
+            for (var k = offsets[cell]; k < offsets[cell + 1u]; k++) {
+                steps++;
+                if (steps > P.budget) { return; }
+                let zlo = bitcast<f32>(intervals[3u * k]);
+                if (zlo > r.y) { break; }
+                let zhi = bitcast<f32>(intervals[3u * k + 1u]);
+                if (zhi < r.x || intervals[3u * k + 2u] == ignore) { continue; }
+                // It may meet the box: a hit if it meets what the box surely
+                // has over the cell, else the CPU's exact test must decide.
+                if (!inner_done) {
+                    inner = inner_range(b, x0, x1, y0, y1);
+                    inner_done = true;
+                }
+                if (inner.x <= inner.y && zhi >= inner.x && zlo <= inner.y) {
+                    verdict[b] = vec4<u32>(HIT, cell, k, 0u);
+                }
+                return;
+            }
+            continue;
+        }
+        if (sp + 4u > STACK) { return; }
+        stack[sp] = vec3<u32>(lvl - 1u, 2u * t.y + 1u, 2u * t.z + 1u);
+        stack[sp + 1u] = vec3<u32>(lvl - 1u, 2u * t.y, 2u * t.z + 1u);
+        stack[sp + 2u] = vec3<u32>(lvl - 1u, 2u * t.y + 1u, 2u * t.z);
+        stack[sp + 3u] = vec3<u32>(lvl - 1u, 2u * t.y, 2u * t.z);
+        sp += 4u;
+    }
+    verdict[b] = vec4<u32>(FREE, 0u, 0u, 0u);
+}
