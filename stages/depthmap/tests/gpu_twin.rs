@@ -244,11 +244,11 @@ fn gpu_and_cpu_box_queries_agree() {
             // The boxes above the site, and the one off the grid.
             assert!(counts.free_on_gpu > above.len(), "the device must clear the boxes above the site");
             // The device's tests have margins of millimetres: it answers
-            // most boxes itself (free 99 %, hits 89-96 % when written); weaker ones would
+            // most boxes itself (free 99 %, hits 95-97 % when written); weaker ones would
             // leave the work to the CPU.
             assert!(100 * counts.free_on_gpu >= 97 * free, "the device cleared {counts:?} of {free} free boxes");
             assert!(
-                100 * counts.hit_on_gpu >= 85 * (boxes.len() - free),
+                100 * counts.hit_on_gpu >= 90 * (boxes.len() - free),
                 "the device answered {counts:?} of {} boxes that meet the map",
                 boxes.len() - free
             );

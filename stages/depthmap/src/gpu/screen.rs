@@ -13,11 +13,14 @@
 //! walk does, in the same order, and decides each interval it meets:
 //!
 //! - outside the outer box's heights over the cell (a relaxation: each box
-//!   axis alone bounds them): the CPU's exact test misses it too;
+//!   axis alone bounds them; retried once over the cell's sixteenths, which
+//!   is tighter, when the next test fails): the CPU's exact test misses it
+//!   too;
 //! - meeting heights the inner box surely has over the cell (its vertical
-//!   segments at the cell's corners, centre and nearest point): the CPU's
-//!   exact test meets it too, and as nothing before it in the walk met the
-//!   box, it is the CPU's answer, cell and interval;
+//!   segments at the cell's corners, centre and a few nearest points; for an
+//!   upright box, its height range wherever its footprint meets the cell):
+//!   the CPU's exact test meets it too, and as nothing before it in the walk
+//!   met the box, it is the CPU's answer, cell and interval;
 //! - anything else: the device gives the box up, and the CPU answers it.
 //!
 //! A box the walk passes whole without a contact is free on both paths. So
@@ -42,6 +45,8 @@ pub(super) const SHADER: &str = include_str!("screen.wgsl");
 /// Words a box takes on the device (the shader's layout).
 const BOX_WORDS: usize = 32;
 const SCREEN_GROUP: u32 = 64;
+/// The shader's flag (in a box's word 31) for a box turned about z only.
+const UPRIGHT: u32 = 0x100;
 /// Boxes farther than this from the grid origin (m) are left to the CPU: the
 /// margin that covers `f32` rounding grows with the coordinates.
 pub const MAX_COORD_M: f64 = 1e6;
@@ -334,6 +339,9 @@ fn prepare(b: &Obb, map: &Mdm, ignore: Option<u32>) -> Prepared {
             plan(k).total_cmp(&plan(l))
         })
         .unwrap_or(0) as u32;
+    if b.is_upright() {
+        w[31] |= UPRIGHT;
+    }
     Prepared::Box(w)
 }
 

@@ -22,7 +22,7 @@ struct Params {
 // 23     inner radius
 // 24..26 inner half sizes
 // 27..30 the CPU walk's start tiles ti0, ti1, tj0, tj1 (inclusive)
-// 31     the axis whose plan view is longest
+// 31     the axis whose plan view is longest, and UPRIGHT
 @group(0) @binding(1) var<storage, read> boxes: array<u32>;
 @group(0) @binding(2) var<storage, read> offsets: array<u32>;
 // Per interval: bottom, top (f32 bits), object.
@@ -41,6 +41,8 @@ const HIT: u32 = 1u;
 const GAVE_UP: u32 = 2u;
 const STACK: u32 = 80u;
 const EMPTY: vec2<f32> = vec2<f32>(1.0, -1.0);
+// Word 31's flag for a box whose third axis is exactly up.
+const UPRIGHT: u32 = 0x100u;
 
 fn word(b: u32, k: u32) -> f32 { return bitcast<f32>(boxes[32u * b + k]); }
 fn centre(b: u32) -> vec3<f32> { return vec3<f32>(word(b, 0u), word(b, 1u), word(b, 2u)); }
@@ -64,6 +66,30 @@ fn outer_range(b: u32, x0: f32, x1: f32, y0: f32, y1: f32) -> vec2<f32> {
     r = outer_axis(axis(b, 0u), word(b, 7u), d, c.z, r);
     r = outer_axis(axis(b, 1u), word(b, 11u), d, c.z, r);
     r = outer_axis(axis(b, 2u), word(b, 15u), d, c.z, r);
+    return r;
+}
+
+// outer_range over the rectangle's four quarters, joined: the relaxation is
+// looser the larger the rectangle, so this is a tighter range that still
+// holds every height of the outer box over the whole rectangle.
+fn outer_quarters(b: u32, x0: f32, x1: f32, y0: f32, y1: f32) -> vec2<f32> {
+    let xm = 0.5 * (x0 + x1);
+    let ym = 0.5 * (y0 + y1);
+    var r = outer_range(b, x0, xm, y0, ym);
+    r = hull(r, outer_range(b, xm, x1, y0, ym));
+    r = hull(r, outer_range(b, x0, xm, ym, y1));
+    r = hull(r, outer_range(b, xm, x1, ym, y1));
+    return r;
+}
+
+// The same over sixteenths.
+fn outer_sixteenths(b: u32, x0: f32, x1: f32, y0: f32, y1: f32) -> vec2<f32> {
+    let xm = 0.5 * (x0 + x1);
+    let ym = 0.5 * (y0 + y1);
+    var r = outer_quarters(b, x0, xm, y0, ym);
+    r = hull(r, outer_quarters(b, xm, x1, y0, ym));
+    r = hull(r, outer_quarters(b, x0, xm, ym, y1));
+    r = hull(r, outer_quarters(b, xm, x1, ym, y1));
     return r;
 }
 
@@ -141,6 +167,9 @@ fn inner_range(b: u32, x0: f32, x1: f32, y0: f32, y1: f32) -> vec2<f32> {
     let ya = y0 + P.margin;
     let yb = y1 - P.margin;
     let c = centre(b);
+    if ((boxes[32u * b + 31u] & UPRIGHT) != 0u) {
+        return upright_inner(b, xa, xb, ya, yb);
+    }
     var r = segment(b, clamp(c.x, xa, xb), clamp(c.y, ya, yb));
     r = hull(r, segment(b, 0.5 * (x0 + x1), 0.5 * (y0 + y1)));
     r = hull(r, segment(b, xa, ya));
@@ -157,6 +186,26 @@ fn inner_range(b: u32, x0: f32, x1: f32, y0: f32, y1: f32) -> vec2<f32> {
         r = hull(r, segment(b, clamp(c.x + (ym - c.y) * u.x / u.y, xa, xb), ym));
     }
     return r;
+}
+
+// An upright box (turned about z only) has the same heights over every
+// column it reaches, so the inner box's heights are sure wherever its
+// footprint meets the (pulled-in) cell: a 2D separating-axis test of two
+// rectangles, exact with their four axes.
+fn upright_inner(b: u32, xa: f32, xb: f32, ya: f32, yb: f32) -> vec2<f32> {
+    let c = centre(b);
+    let u = axis(b, 0u).xy;
+    let v = axis(b, 1u).xy;
+    let hu = word(b, 24u);
+    let hv = word(b, 25u);
+    let e = vec2<f32>(0.5 * (xb - xa), 0.5 * (yb - ya));
+    let d = vec2<f32>(0.5 * (xa + xb) - c.x, 0.5 * (ya + yb) - c.y);
+    let apart = abs(d.x) > e.x + hu * abs(u.x) + hv * abs(v.x)
+        || abs(d.y) > e.y + hu * abs(u.y) + hv * abs(v.y)
+        || abs(dot(d, u)) > hu + e.x * abs(u.x) + e.y * abs(u.y)
+        || abs(dot(d, v)) > hv + e.x * abs(v.x) + e.y * abs(v.y);
+    if (apart || word(b, 23u) < 0.0) { return EMPTY; }
+    return vec2<f32>(c.z - word(b, 26u), c.z + word(b, 26u));
 }
 
 @compute @workgroup_size(64)
@@ -212,6 +261,7 @@ fn screen_boxes(@builtin(global_invocation_id) g: vec3<u32>) {
         if (r.x > r.y || top < r.x) { continue; }
         if (lvl == 0u) {
             let cell = t.z * P.nx + t.y;
+            var r = r;
             var inner = EMPTY;
             var inner_done = false;
             for (var k = offsets[cell]; k < offsets[cell + 1u]; k++) {
@@ -226,6 +276,12 @@ fn screen_boxes(@builtin(global_invocation_id) g: vec3<u32>) {
                 if (!inner_done) {
                     inner = inner_range(b, x0, x1, y0, y1);
                     inner_done = true;
+                    if (!(inner.x <= inner.y && zhi >= inner.x && zlo <= inner.y)) {
+                        // Undecided: once per cell, the tighter outer range.
+                        r = outer_sixteenths(b, x0, x1, y0, y1);
+                        if (zlo > r.y) { break; }
+                        if (zhi < r.x) { continue; }
+                    }
                 }
                 if (inner.x <= inner.y && zhi >= inner.x && zlo <= inner.y) {
                     verdict[b] = vec4<u32>(HIT, cell, k, 0u);
