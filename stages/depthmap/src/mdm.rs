@@ -97,6 +97,14 @@ impl GridSpec {
     }
 }
 
+/// Whether CSR `offsets` describe `intervals` intervals: from 0, never
+/// falling, ending at their count.
+pub fn offsets_describe(offsets: &[u32], intervals: usize) -> bool {
+    offsets.first() == Some(&0)
+        && offsets.windows(2).all(|w| w[0] <= w[1])
+        && offsets.last().is_some_and(|&n| n as usize == intervals)
+}
+
 /// One occupied height range of a cell.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[repr(C)]
@@ -306,10 +314,7 @@ impl Mdm {
             intervals.push(Interval { zlo: r.f32()?, zhi: r.f32()?, obj: r.u32()? });
         }
         r.finish()?;
-        if offsets.first() != Some(&0)
-            || offsets.windows(2).any(|w| w[1] < w[0])
-            || *offsets.last().unwrap_or(&0) as usize != ni
-        {
+        if !offsets_describe(&offsets, ni) {
             return Err(r.error("offsets do not describe the intervals"));
         }
         if intervals.iter().any(|iv| !(iv.zlo <= iv.zhi) || iv.obj as usize >= objects.len()) {

@@ -102,9 +102,7 @@ impl Gpu {
     pub fn upload_map(&self, map: &Mdm) -> Result<GpuMap, String> {
         let spec = map.spec;
         let consistent = map.offsets.len() == spec.cells() + 1
-            && map.offsets.first() == Some(&0)
-            && map.offsets.windows(2).all(|w| w[0] <= w[1])
-            && map.offsets.last().is_some_and(|&n| n as usize == map.intervals.len())
+            && crate::mdm::offsets_describe(&map.offsets, map.intervals.len())
             && map.pyramid.first().is_some_and(|l| l.2.len() == spec.cells());
         if !consistent {
             return Err("depth map is not consistent (offsets or pyramid do not match its grid)".into());

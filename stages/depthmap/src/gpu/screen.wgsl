@@ -155,6 +155,11 @@ fn hull(r: vec2<f32>, s: vec2<f32>) -> vec2<f32> {
     return vec2<f32>(min(r.x, s.x), max(r.y, s.y));
 }
 
+// Whether the interval [zlo, zhi] meets the height range r (not EMPTY).
+fn meets(r: vec2<f32>, zlo: f32, zhi: f32) -> bool {
+    return r.x <= r.y && zhi >= r.x && zlo <= r.y;
+}
+
 // Heights the queried box surely has over a cell: the hull of its inner
 // segments on lines at the cell's corners and centre (pulled in by the
 // margin), at the point of the cell nearest the box's centre, and where the
@@ -276,14 +281,14 @@ fn screen_boxes(@builtin(global_invocation_id) g: vec3<u32>) {
                 if (!inner_done) {
                     inner = inner_range(b, x0, x1, y0, y1);
                     inner_done = true;
-                    if (!(inner.x <= inner.y && zhi >= inner.x && zlo <= inner.y)) {
+                    if (!meets(inner, zlo, zhi)) {
                         // Undecided: once per cell, the tighter outer range.
                         r = outer_sixteenths(b, x0, x1, y0, y1);
                         if (zlo > r.y) { break; }
                         if (zhi < r.x) { continue; }
                     }
                 }
-                if (inner.x <= inner.y && zhi >= inner.x && zlo <= inner.y) {
+                if (meets(inner, zlo, zhi)) {
                     verdict[b] = vec4<u32>(HIT, cell, k, 0u);
                 }
                 return;
