@@ -1,24 +1,36 @@
-//! Soak test of the GPU depth-map assembly against the CPU's: random sites
-//! (points, loose triangles and boxes; heights often on a 1/16 m lattice, so
-//! ties and exact touching are common), cell sizes, radii, gaps, modes and
-//! buffer limits (so slabs are cut and uploads chunked), for as long as asked:
+//! Soak test of the GPU depth-map assembly and box queries against the
+//! CPU's: random sites (points, loose triangles and boxes; heights often on a
+//! 1/16 m lattice, so ties and exact touching are common), cell sizes, radii,
+//! gaps, modes and buffer limits (so slabs are cut and uploads chunked), for
+//! as long as asked:
 //!
 //!   cargo run --release -p liftplan-depthmap --example stress_gpu -- [seconds]
 //!
-//! Prints each map that differs and each the device refuses (a row over a
-//! small buffer limit, or lavapipe's loop cap), then a summary; exits with an
-//! error when any map differs. The test suite's `tests/gpu_twin.rs` covers
-//! the same ground in seconds; this is for a long run on a device machine.
+//! On each map, random crane-part boxes and boxes on the 1/16 m lattice (and
+//! those a thousandth of a millimetre higher and lower) are queried on the
+//! device and on the CPU, with and without the ground ignored.
+//!
+//! Prints each map and each query answer that differs and each map the device
+//! refuses (a row over a small buffer limit, or lavapipe's loop cap), then a
+//! summary; exits with an error when anything differs. The test suite's
+//! `tests/gpu_twin.rs` covers the same ground in seconds; this is for a long
+//! run on a device machine.
 
+use liftplan_core::frame::Vec3;
+use liftplan_core::obb::Obb;
 use liftplan_depthmap::mdm::{self, Mode, PointSource, Raw};
 use liftplan_depthmap::{Inputs, Settings, build_cpu, gpu};
 use rand::{RngExt, SeedableRng};
+
+#[path = "../tests/support/boxes.rs"]
+mod boxes;
 
 fn main() {
     let mut g = gpu::open(true).unwrap();
     let seconds: u64 = std::env::args().nth(1).and_then(|a| a.parse().ok()).unwrap_or(300);
     let t0 = std::time::Instant::now();
     let (mut case, mut compared, mut refused, mut differ) = (0u64, 0u64, 0u64, 0u64);
+    let (mut queries, mut queries_differ, mut left_to_cpu) = (0u64, 0u64, 0u64);
     while t0.elapsed().as_secs() < seconds {
         case += 1;
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(case);
@@ -99,13 +111,58 @@ fn main() {
                 println!("case {case} refused: {e}");
             }
         }
+        let centre = [500.0 + w / 2.0, -300.0 + h / 2.0];
+        let spread = [w / 2.0 + 5.0, h / 2.0 + 5.0];
+        let mut boxes: Vec<Obb> = (0..200)
+            .map(|_| {
+                let z = rng.random_range(-5.0..35.0);
+                boxes::random_box(&mut rng, centre, spread, z)
+            })
+            .collect();
+        for _ in 0..100 {
+            let b = boxes::lattice_box(&mut rng, centre, spread, [-40, 420]);
+            let moved = |dz: f64| Obb::axis_aligned(b.center + Vec3::new(0.0, 0.0, dz), b.half);
+            boxes.extend([b, moved(1e-6), moved(-1e-6)]);
+        }
+        // The map goes up whole (small limits are for the assembly's slabs);
+        // the boxes go up in batches under this case's limit.
+        g.set_buffer_limit(u64::MAX);
+        let uploaded = g.upload_map(&cpu);
+        g.set_buffer_limit(limit);
+        let on_gpu = match uploaded {
+            Ok(m) => m,
+            Err(e) => {
+                println!("case {case}: map not uploaded for queries: {e}");
+                continue;
+            }
+        };
+        for ignore in [None, Some(mdm::OBJ_GROUND)] {
+            match g.hits_where(&on_gpu, &cpu, &boxes, ignore) {
+                Ok((hits, counts)) => {
+                    left_to_cpu += counts.left_to_cpu as u64;
+                    for (k, b) in boxes.iter().enumerate() {
+                        queries += 1;
+                        let want = cpu.hit_where(b, |iv| Some(iv.obj) != ignore);
+                        if hits[k] != want {
+                            queries_differ += 1;
+                            println!(
+                                "QUERY MISMATCH case {case} box {k} ignoring {ignore:?}: GPU {:?}, CPU {want:?}, {b:?}",
+                                hits[k]
+                            );
+                        }
+                    }
+                }
+                Err(e) => println!("case {case}: queries refused: {e}"),
+            }
+        }
     }
     println!(
-        "{case} cases in {} s on {}: {compared} maps compared, {differ} differ, {refused} refused",
+        "{case} cases in {} s on {}: {compared} maps compared, {differ} differ, {refused} refused; \
+         {queries} box queries compared, {queries_differ} differ ({left_to_cpu} answered by the CPU's exact test)",
         t0.elapsed().as_secs(),
         g.name()
     );
-    if differ > 0 {
+    if differ > 0 || queries_differ > 0 {
         std::process::exit(1);
     }
 }

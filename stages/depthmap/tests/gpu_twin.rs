@@ -7,6 +7,9 @@ use liftplan_depthmap::mdm::{self, Mode, PointSource, Raw};
 use liftplan_depthmap::{Inputs, Settings, build, build_cpu, gpu};
 use rand::{RngExt, SeedableRng};
 
+#[path = "support/boxes.rs"]
+mod boxes;
+
 /// A sloping ground and scattered structure, with (when `plant`) pipes as
 /// loose triangles and racks as boxes (convex parts) among them. Heights are
 /// often multiples of 1/16 m, so equal heights and exactly touching intervals
@@ -182,29 +185,9 @@ fn gpu_leaves_out_points_off_a_configured_extent_as_the_cpu_does() {
     assert!(cpu == gpu, "maps differ with points off the extent");
 }
 
-/// A random box over (and around) `site`'s area: upright, tilted any way,
-/// or a long thin boom at a luffing angle, `z` its centre height.
+/// A random box over (and around) `site`'s area, `z` its centre height.
 fn random_box(rng: &mut rand_chacha::ChaCha8Rng, z: f64) -> Obb {
-    use nalgebra::{Rotation3, Unit, Vector3};
-    let center = Point3::new(1000.0 + rng.random_range(-50.0..50.0), 2000.0 + rng.random_range(-40.0..40.0), z);
-    let yaw = Rotation3::from_axis_angle(&Vector3::z_axis(), rng.random_range(0.0..std::f64::consts::TAU));
-    match rng.random_range(0..3) {
-        0 => {
-            let half = Vec3::new(rng.random_range(0.05..8.0), rng.random_range(0.05..8.0), rng.random_range(0.05..4.0));
-            Obb::new(center, *yaw.matrix(), half)
-        }
-        1 => {
-            let axis = Unit::new_normalize(Vector3::new(rng.random(), rng.random(), rng.random::<f64>() - 0.5));
-            let turn = Rotation3::from_axis_angle(&axis, rng.random_range(0.0..3.0));
-            let half = Vec3::new(rng.random_range(0.05..6.0), rng.random_range(0.05..6.0), rng.random_range(0.05..6.0));
-            Obb::new(center, *(turn * yaw).matrix(), half)
-        }
-        _ => {
-            let luff = Rotation3::from_axis_angle(&Vector3::y_axis(), -rng.random_range(0.0..1.5));
-            let half = Vec3::new(rng.random_range(5.0..30.0), 0.8, 0.8);
-            Obb::new(center, *(yaw * luff).matrix(), half)
-        }
-    }
+    boxes::random_box(rng, [1000.0, 2000.0], [50.0, 40.0], z)
 }
 
 /// The GPU's box queries (device screen, CPU exact test for the rest) give
@@ -283,5 +266,38 @@ fn gpu_box_query_longer_than_the_loop_budget_is_right() {
     assert_eq!(hits[0], cpu);
     if g.loop_cap().is_some() {
         assert_eq!(counts.left_to_cpu, 1, "a walk of 40,000 cells is over lavapipe's budget");
+    }
+}
+
+/// Boxes whose faces lie on the 1/16 m lattice over a site whose point
+/// intervals do too (heights on the lattice, radius 1/16 m, cells of 1/4 m),
+/// and the same boxes a thousandth of a millimetre higher and lower: faces
+/// touching an interval or a cell edge exactly, or missing it by less than
+/// `f32` resolves, are where the device cannot decide, and the answers must
+/// still be the CPU's.
+#[test]
+fn gpu_box_queries_touching_exactly_are_right() {
+    let Some(g) = open() else { return };
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(23);
+    let inp = site(30_000, 5, false);
+    let s = Settings { cell_m: 0.25, point_radius_m: 0.0625, ..Settings::default() };
+    let (map, _) = build_cpu(&inp, &s).unwrap();
+    let on_gpu = g.upload_map(&map).unwrap();
+    let lattice: Vec<Obb> =
+        (0..3000).map(|_| boxes::lattice_box(&mut rng, [1000.0, 2000.0], [40.0, 30.0], [-16, 420])).collect();
+    let moved = |dz: f64| lattice.iter().map(move |b| Obb::axis_aligned(b.center + Vec3::new(0.0, 0.0, dz), b.half));
+    let all: Vec<Obb> = lattice.iter().copied().chain(moved(1e-6)).chain(moved(-1e-6)).collect();
+    for ignore in [None, Some(mdm::OBJ_GROUND)] {
+        let (hits, counts) = g.hits_where(&on_gpu, &map, &all, ignore).unwrap();
+        let cpu: Vec<_> = all.iter().map(|b| map.hit_where(b, |iv| Some(iv.obj) != ignore)).collect();
+        for (k, b) in all.iter().enumerate() {
+            assert_eq!(hits[k], cpu[k], "box {k} ({b:?}), ignoring {ignore:?}");
+        }
+        // A lattice box that meets the map but is free once moved touches it exactly.
+        let n = lattice.len();
+        let touching =
+            (0..n).filter(|&k| cpu[k].is_some() && (cpu[n + k].is_none() || cpu[2 * n + k].is_none())).count();
+        eprintln!("lattice boxes ignoring {ignore:?}: {counts:?}, {touching} touch the map exactly");
+        assert!(touching > 0, "no box touches exactly: the test does not test what it says");
     }
 }

@@ -126,7 +126,7 @@ impl Gpu {
         for (what, words) in [("offsets", map.offsets.len()), ("intervals", intervals.len()), ("pyramid", tops.len())] {
             if 4 * words as u64 > self.buffer_limit {
                 return Err(format!(
-                    "the depth map's {what} ({} bytes) are more than one GPU buffer holds ({} bytes)",
+                    "the depth map's {what} take {} bytes, more than one GPU buffer holds ({} bytes)",
                     4 * words,
                     self.buffer_limit
                 ));

@@ -1,0 +1,103 @@
+#!/usr/bin/env bash
+# The GPU twin tests and the GPU benchmarks on a machine with a GPU, in one
+# call of the device tool (which has no network and no cargo), from binaries
+# built here.
+#
+#   scripts/gpu_device.sh prepare
+#       Here: builds the release binaries (the GPU twin tests of core,
+#       depthmap and docs; bench_depthmap; stress_gpu) into .devbin/, stripped,
+#       and fetches the Vulkan loader's packages into .gl/ (both ignored by git).
+#
+#   scripts/gpu_device.sh run [soak-seconds]
+#       There, from the repository root, with `.devbin` and `.gl` carried:
+#       unpacks the loader, says which adapter wgpu finds, runs the twin
+#       tests, `bench_depthmap` (maps) and `bench_depthmap queries`, then the
+#       soak test for soak-seconds (default 120). Logs and the two reports go
+#       to $OUT (./gpu-out where OUT is unset); the reports are drop-in
+#       replacements for reports/depthmap.md and reports/queries.md.
+#       Exits non-zero if a test fails or the soak finds a difference.
+#
+# The device tool's call, about 8 minutes on an H100 machine:
+#   run(command="scripts/gpu_device.sh run 120", carry=[".devbin", ".gl"], timeout_s=600)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+prepare() {
+    local bins=.devbin
+    rm -rf "$bins"
+    mkdir -p "$bins"
+    # Test executables are named by cargo's JSON messages, not guessable paths.
+    local built
+    built=$(cargo test --release --no-run --message-format=json \
+        -p liftplan-core --test gpu_errors \
+        -p liftplan-depthmap --test gpu_twin \
+        -p liftplan-docs --test gpu_twin |
+        python3 -c '
+import json, sys
+for line in sys.stdin:
+    m = json.loads(line)
+    if m.get("reason") == "compiler-artifact" and m.get("executable") and m["target"]["kind"] == ["test"]:
+        pkg = m["package_id"].split("#")[-1].split("@")[0].split("/")[-1]
+        print(pkg, m["target"]["name"], m["executable"])
+')
+    while read -r pkg name exe; do
+        cp "$exe" "$bins/test-$pkg-$name"
+    done <<<"$built"
+    cargo build --release -p liftplan-depthmap --example bench_depthmap --example stress_gpu
+    cp target/release/examples/bench_depthmap target/release/examples/stress_gpu "$bins/"
+    strip "$bins"/*
+    ls -l "$bins"
+    du -sh "$bins"
+
+    mkdir -p .gl /tmp/amd64/partial
+    local o=(-oAPT::Architecture=amd64 -oAPT::Architectures=amd64 -oDir::State::Lists=/tmp/amd64)
+    apt-get "${o[@]}" update >/dev/null
+    (cd .gl && apt-get "${o[@]}" download libvulkan1 libegl1 libglvnd0 libopengl0 libgl1 libglx0 libgles2)
+    ls .gl
+}
+
+run() {
+    local soak=${1:-120}
+    local out=${OUT:-gpu-out}
+    mkdir -p "$out"
+    [[ -d .devbin ]] || { echo "no .devbin: run 'scripts/gpu_device.sh prepare' here and carry .devbin and .gl" >&2; exit 2; }
+    if ! ldconfig -p | grep -q libvulkan; then
+        for f in .gl/*.deb; do dpkg -x "$f" /; done
+        ldconfig
+    fi
+    local icd=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
+    [[ -f $icd ]] && export VK_DRIVER_FILES=$icd
+    if command -v nvidia-smi >/dev/null; then
+        nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv >"$out/gpu.txt" 2>&1 || true
+    else
+        echo "no nvidia-smi" >"$out/gpu.txt"
+    fi
+    cat "$out/gpu.txt"
+
+    local failed=0
+    for t in .devbin/test-*; do
+        # Tests run where cargo runs them: their package's directory.
+        local pkg=${t#.devbin/test-liftplan-}
+        pkg=${pkg%-gpu_*}
+        echo "== $t"
+        (cd "stages/$pkg" && "../../$t" --test-threads=1 --nocapture) >"$out/test.log" 2>&1 || failed=1
+        grep -E "^test |test result|GPU twin test on|SKIPPED" "$out/test.log" | sort -u || true
+        cat "$out/test.log" >>"$out/tests.log"
+        rm "$out/test.log"
+    done
+    echo "== bench_depthmap"
+    .devbin/bench_depthmap >"$out/depthmap.md" 2>"$out/bench_depthmap.log" || failed=1
+    echo "== bench_depthmap queries"
+    .devbin/bench_depthmap queries >"$out/queries.md" 2>>"$out/bench_depthmap.log" || failed=1
+    echo "== stress_gpu $soak"
+    .devbin/stress_gpu "$soak" >"$out/stress_gpu.log" 2>&1 || failed=1
+    tail -n 1 "$out/stress_gpu.log" || true
+    head -n 20 "$out/depthmap.md" "$out/queries.md" || true
+    exit "$failed"
+}
+
+case "${1:-}" in
+    prepare) prepare ;;
+    run) shift; run "$@" ;;
+    *) echo "usage: scripts/gpu_device.sh prepare | run [soak-seconds]" >&2; exit 2 ;;
+esac
