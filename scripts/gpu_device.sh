@@ -13,8 +13,8 @@
 #       unpacks the loader, says which adapter wgpu finds, runs the twin
 #       tests, `bench_depthmap` (maps) and `bench_depthmap queries`, then the
 #       soak test for soak-seconds (default 120). Logs and the two reports go
-#       to $OUT (./gpu-out where OUT is unset); the reports are drop-in
-#       replacements for reports/depthmap.md and reports/queries.md.
+#       to $OUT (./gpu-out where OUT is unset); the two reports' tables
+#       take the place of those in reports/depthmap.md and reports/queries.md.
 #       Exits non-zero if a test fails or the soak finds a difference.
 #
 # The device tool's call, about 8 minutes on an H100 machine:
