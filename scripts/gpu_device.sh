@@ -4,20 +4,26 @@
 # built here.
 #
 #   scripts/gpu_device.sh prepare
-#       Here: builds the release binaries (the GPU twin tests of core,
-#       depthmap and docs; bench_depthmap; stress_gpu) into .devbin/, stripped,
+#       Here: builds the release binaries (liftplan; the GPU twin tests of
+#       core, depthmap and docs; bench_depthmap; stress_gpu) into .devbin/, stripped,
 #       and fetches the Vulkan loader's packages into .gl/ (both ignored by git).
 #
 #   scripts/gpu_device.sh run [soak-seconds]
 #       There, from the repository root, with `.devbin` and `.gl` carried:
-#       unpacks the loader, says which adapter wgpu finds, runs the twin
-#       tests, `bench_depthmap` (maps) and `bench_depthmap queries`, then the
-#       soak test for soak-seconds (default 120). Logs and the two reports go
+#       unpacks the loader, says which GPU is there, runs the twin tests, the
+#       demo project end to end twice (`[gpu] use = "never"` and "require")
+#       and compares their depth maps and plans byte for byte, then
+#       `bench_depthmap` (maps) and `bench_depthmap queries`, then the soak
+#       test for soak-seconds (default 120). Logs and the two reports go
 #       to $OUT (./gpu-out where OUT is unset); the two reports' tables
 #       take the place of those in reports/depthmap.md and reports/queries.md.
-#       Exits non-zero if a test fails or the soak finds a difference.
+#       The GPU run's PDF comes back too. Exits non-zero if a test fails,
+#       the two demo runs differ, or the soak finds a difference.
 #
-# The device tool's call, about 8 minutes on an H100 machine:
+# The device tool's call (estimated at 6 to 8 minutes there, from this
+# machine's times; not yet run on one). .devbin is ~50 MB stripped, within the
+# 64 MiB the working tree and carried paths may take; the 8 files written
+# to $OUT are the most that come back:
 #   run(command="scripts/gpu_device.sh run 120", carry=[".devbin", ".gl"], timeout_s=600)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -44,7 +50,8 @@ for line in sys.stdin:
         cp "$exe" "$bins/test-$pkg-$name"
     done <<<"$built"
     cargo build --release -p liftplan-depthmap --example bench_depthmap --example stress_gpu
-    cp target/release/examples/bench_depthmap target/release/examples/stress_gpu "$bins/"
+    cargo build --release -p liftplan
+    cp target/release/examples/bench_depthmap target/release/examples/stress_gpu target/release/liftplan "$bins/"
     strip "$bins"/*
     ls -l "$bins"
     du -sh "$bins"
@@ -85,6 +92,8 @@ run() {
         cat "$out/test.log" >>"$out/tests.log"
         rm "$out/test.log"
     done
+    echo "== demo, CPU and GPU"
+    demo_twice "$out" || failed=1
     echo "== bench_depthmap"
     .devbin/bench_depthmap >"$out/depthmap.md" 2>"$out/bench_depthmap.log" || failed=1
     echo "== bench_depthmap queries"
@@ -94,6 +103,40 @@ run() {
     tail -n 1 "$out/stress_gpu.log" || true
     head -n 20 "$out/depthmap.md" "$out/queries.md" || true
     exit "$failed"
+}
+
+# The demo project run on the CPU and on the GPU (depth map and pictures):
+# the depth map, the plan and its steps must be the same bytes (the pictures
+# agree within a tolerance, which tests/gpu_twin.rs of the docs checks).
+demo_twice() {
+    local out=$1 d mode f t0 differ=0
+    d=$(mktemp -d)
+    .devbin/liftplan -q demo "$d/base" >"$out/demo.log" 2>&1 || return 1
+    for mode in never require; do
+        cp -r "$d/base" "$d/$mode"
+        printf '\n[gpu]\nuse = "%s"\n' "$mode" >>"$d/$mode/liftplan.toml"
+        .devbin/liftplan -q clean "$d/$mode" >>"$out/demo.log" 2>&1
+        echo "== [gpu] use = \"$mode\"" >>"$out/demo.log"
+        t0=$(date +%s.%N)
+        .devbin/liftplan run "$d/$mode" >>"$out/demo.log" 2>&1 || return 1
+        awk -v a="$t0" -v b="$(date +%s.%N)" 'BEGIN { printf "whole run: %.2f s\n", b - a }' >>"$out/demo.log"
+    done
+    cp "$d/require/out/V-101.pdf" "$out/V-101-gpu.pdf"
+    # plan.json also records how long each part took: compared without those lines.
+    for m in never require; do
+        grep -vE '"[a-z_]*_ms":|"seconds":' "$d/$m/out/plan.json" >"$d/$m/out/plan-untimed.json"
+    done
+    for f in site.mdm plan-untimed.json V-101.steps.csv; do
+        if cmp "$d/never/out/$f" "$d/require/out/$f" >>"$out/demo.log" 2>&1; then
+            echo "demo: $f is the same on the CPU and the GPU" | tee -a "$out/demo.log"
+        else
+            echo "demo: $f DIFFERS between the CPU and the GPU" | tee -a "$out/demo.log"
+            differ=1
+        fi
+    done
+    grep -E "^== |depthmap|docs|whole run" "$out/demo.log" || true
+    rm -rf "$d"
+    return "$differ"
 }
 
 case "${1:-}" in
