@@ -1,6 +1,6 @@
 //! The whole pipeline, scans to PDF, on the demo project.
 
-use crate::util::{ok, run_json, stage};
+use crate::util::{liftplan, ok, run_json, stage};
 
 #[test]
 fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
@@ -37,9 +37,34 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
         assert_eq!(s["status"], "fresh", "{s}");
     }
 
-    // A heavier load: charts, plan and docs rerun; scans, plant and the depth map do not.
+    // The depth map rebuilt on a GPU (any adapter: Mesa's lavapipe in CI) is
+    // the CPU's, byte for byte, so the plan after it stays fresh; only the
+    // pictures, whose renderer `[gpu] use` picks, are drawn again.
     let toml_path = dir.join("liftplan.toml");
     let t = std::fs::read_to_string(&toml_path).unwrap();
+    let map_path = dir.join("out").join("site.mdm");
+    let cpu_map = std::fs::read(&map_path).unwrap();
+    std::fs::write(&toml_path, format!("{t}\n[gpu]\nuse = \"require\"\n")).unwrap();
+    let o = liftplan(&["run", d, "--force", "depthmap", "--json", "-q"]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    if o.status.success() {
+        let r: serde_json::Value = serde_json::from_slice(&o.stdout).expect("run --json prints JSON");
+        assert_eq!(stage(&r, "depthmap")["status"], "ran", "{r}");
+        let summary: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(dir.join("out").join("depthmap.json")).unwrap()).unwrap();
+        let backend = summary["backend"].as_str().unwrap_or_default();
+        assert!(backend.starts_with("gpu: "), "the depth map must have run on the GPU: {backend:?}");
+        assert!(std::fs::read(&map_path).unwrap() == cpu_map, "the GPU's site.mdm differs from the CPU's");
+        for (name, want) in [("plan", "fresh"), ("docs", "ran")] {
+            assert_eq!(stage(&r, name)["status"], want, "{name}: {}", stage(&r, name));
+        }
+    } else {
+        assert!(stderr.contains("[gpu] use = \"require\" but"), "the GPU run failed otherwise:\n{stderr}");
+        eprintln!("SKIPPED: no GPU adapter, the demo's depth map is not built on one here: {stderr}");
+    }
+    std::fs::write(&toml_path, &t).unwrap();
+
+    // A heavier load: charts, plan and docs rerun; scans, plant and the depth map do not.
     std::fs::write(&toml_path, t.replace("mass_t = 12.0", "mass_t = 13.0")).unwrap();
     let r = run_json(&dir);
     for (name, want) in [
