@@ -296,35 +296,22 @@ fn count_and_fill_banded(points: &[[f64; 3]], cell: f64, runs: usize) -> f64 {
         let jobs: Vec<(Vec<u64>, Vec<u32>)> = points
             .par_chunks(1 << 16)
             .map_init(Vec::new, |made: &mut Vec<(u32, u64)>, c| {
-                // Each point's band and record once, in cache; then grouped.
+                // Each point's band and record once, in cache; then grouped
+                // by band as the build groups its own.
                 made.clear();
                 made.extend(c.iter().map(|p| {
                     let cell = grid.cell_of(p);
                     let key = liftplan_depthmap::mdm::f32_key(p[2] as f32);
                     ((cell / band_cells) as u32, ((cell % band_cells) as u64) << 32 | key as u64)
                 }));
-                let mut starts = vec![0u32; bands + 1];
-                for &(b, _) in made.iter() {
-                    starts[b as usize + 1] += 1;
-                }
-                for b in 1..=bands {
-                    starts[b] += starts[b - 1];
-                }
-                let mut next = starts.clone();
-                let mut recs = vec![0u64; c.len()];
-                for &(b, r) in made.iter() {
-                    let at = &mut next[b as usize];
-                    recs[*at as usize] = r;
-                    *at += 1;
-                }
-                (recs, starts)
+                liftplan_depthmap::mdm::group_by_band(made, bands)
             })
             .collect();
         let seg = |j: &(Vec<u64>, Vec<u32>), b: usize| (j.1[b] as usize, j.1[b + 1] as usize);
         let mut parts: Vec<&mut [u32]> = Vec::with_capacity(bands);
         let mut rest = &mut out[..];
         for b in 0..bands {
-            let n: usize = jobs.iter().map(|j| seg(j, b).1 - seg(j, b).0).sum();
+            let n: usize = jobs.iter().map(|j| seg(j, b)).map(|(s, e)| e - s).sum();
             let (part, r) = std::mem::take(&mut rest).split_at_mut(n);
             parts.push(part);
             rest = r;

@@ -34,7 +34,7 @@ use std::path::Path;
 mod assemble;
 mod raster;
 
-pub use assemble::{RawJob, assemble_sources, mesh_jobs, raw_jobs};
+pub use assemble::{RawJob, assemble_sources, group_by_band, mesh_jobs, raw_jobs};
 pub use raster::{mesh_raws, point_raws, triangle_cells};
 
 pub const ARTIFACT_KIND: &str = "MDM";
