@@ -29,6 +29,7 @@
 //! validator in `liftplan-plan` re-checks every plan with its own geometry.
 
 mod boom;
+pub mod by_query;
 pub mod picture;
 
 use liftplan_core::capacity::ChartConfig;
@@ -214,7 +215,13 @@ fn is_luffing(crane: &CraneSetup) -> bool {
 /// the ground, and the body's underside swings over it: the scanned ground is
 /// not an obstacle for them (the crane's set-up check covers the ground).
 fn counts_for(part: PartKind, iv: &Interval) -> bool {
-    !(iv.obj == OBJ_GROUND && matches!(part.dependence(), Dependence::Fixed | Dependence::Swing))
+    Some(iv.obj) != ignored_object(part)
+}
+
+/// The one object a part's box queries leave out ([`counts_for`] in the form
+/// the GPU's queries take).
+fn ignored_object(part: PartKind) -> Option<u32> {
+    matches!(part.dependence(), Dependence::Fixed | Dependence::Swing).then_some(OBJ_GROUND)
 }
 
 impl CSpace {
@@ -267,22 +274,16 @@ impl CSpace {
             return cs;
         }
         let clearance = task.clearance_m;
-        let load = task.load;
         let swing_parts: Vec<PartKind> =
             crane.part_kinds().iter().copied().filter(|k| k.dependence() == Dependence::Swing).collect();
         let radial_parts: Vec<PartKind> =
             crane.part_kinds().iter().copied().filter(|k| k.dependence() == Dependence::SwingRadial).collect();
-        let mid_r = 0.5 * (lim.radial.0 + lim.radial.1);
         cs.swing_hits = (0..ns)
             .into_par_iter()
             .map(|i| {
-                let c =
-                    Config { swing_rad: cs.swing_center(i), radial: mid_r, hoist_m: lim.hoist_m.0, load_yaw_rad: 0.0 };
                 swing_parts.iter().find_map(|&k| {
-                    let b = crane.part(k, &c, &load)?;
-                    let grow = clearance + reach(crane, &b) * swing_step / 2.0;
                     p.map
-                        .hit_where(&b.expanded(grow), |iv| counts_for(k, iv))
+                        .hit_where(&cs.swing_box(p, k, i)?, |iv| counts_for(k, iv))
                         .map(|h| CellHit { part: k, obj: h.interval.obj })
                 })
             })
@@ -353,14 +354,31 @@ impl CSpace {
     /// `boom.rs` marks obstacle by obstacle; the benchmark compares the two.
     pub fn radial_cell_by_query(&self, p: &Problem, i: u32, k: u32) -> Option<CellHit> {
         let crane = &p.task.crane;
-        let c = self.cell_center(i, k, crane.limits().hoist_m.0);
         crane.part_kinds().iter().filter(|k| k.dependence() == Dependence::SwingRadial).find_map(|&kind| {
-            let b = crane.part(kind, &c, &p.task.load)?;
-            let grow = p.task.clearance_m + self.cell_motion(crane, &b);
             p.map
-                .hit_where(&b.expanded(grow), |iv| counts_for(kind, iv))
+                .hit_where(&self.radial_box(p, kind, i, k)?, |iv| counts_for(kind, iv))
                 .map(|h| CellHit { part: kind, obj: h.interval.obj })
         })
+    }
+
+    /// The box a swing-only part's column `i` asks: the part at the column's
+    /// centre (and mid radial), grown by the clearance and by how far its
+    /// farthest point moves within half a column.
+    fn swing_box(&self, p: &Problem, kind: PartKind, i: u32) -> Option<Obb> {
+        let crane = &p.task.crane;
+        let lim = crane.limits();
+        let mid_r = 0.5 * (lim.radial.0 + lim.radial.1);
+        let c = Config { swing_rad: self.swing_center(i), radial: mid_r, hoist_m: lim.hoist_m.0, load_yaw_rad: 0.0 };
+        let b = crane.part(kind, &c, &p.task.load)?;
+        Some(b.expanded(p.task.clearance_m + reach(crane, &b) * self.swing_step / 2.0))
+    }
+
+    /// The box a swing+radial part's cell (i, k) asks: the part at the cell
+    /// centre, grown by the clearance and its motion within the cell.
+    fn radial_box(&self, p: &Problem, kind: PartKind, i: u32, k: u32) -> Option<Obb> {
+        let crane = &p.task.crane;
+        let b = crane.part(kind, &self.cell_center(i, k, crane.limits().hoist_m.0), &p.task.load)?;
+        Some(b.expanded(p.task.clearance_m + self.cell_motion(crane, &b)))
     }
 
     /// Bound on how far any point of a swing+radial part moves within a cell

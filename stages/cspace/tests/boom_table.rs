@@ -6,10 +6,11 @@
 
 use liftplan_core::crane::{Config, PartKind, builtin};
 use liftplan_core::lift::{LiftSpec, LiftTask};
-use liftplan_core::mesh::TriMesh;
 use liftplan_cspace::{CSpace, Problem, Settings};
-use liftplan_depthmap::mdm::Mdm;
 use proptest::prelude::*;
+
+#[path = "support/scene.rs"]
+mod scene;
 
 fn task(heading_deg: f64) -> LiftTask {
     let text = format!(
@@ -27,57 +28,12 @@ clearance_m = 0.5
     spec.resolve(builtin("ac-700").unwrap()).unwrap()
 }
 
-/// Towers, overhead beams, low clutter near the crane and pipe-rack tiers.
-fn scene(seed: u64) -> Mdm {
-    let mut mesh = TriMesh::default();
-    let mut s = seed;
-    let mut next = || {
-        s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-        (s >> 11) as f64 / (1u64 << 53) as f64
-    };
-    for k in 0..40 {
-        let g = mesh.group_id(&format!("B{k}"));
-        let (r, a) = (4.0 + next() * 44.0, next() * std::f64::consts::TAU);
-        let (cx, cy) = (r * a.cos(), r * a.sin());
-        let (hx, hy) = (0.2 + next() * 2.0, 0.2 + next() * 2.0);
-        let (bottom, top) = match k % 4 {
-            0 => (0.0, 2.0 + next() * 35.0), // tower
-            1 => {
-                let b = 6.0 + next() * 25.0; // overhead beam
-                (b, b + 0.5 + next() * 2.0)
-            }
-            2 => (0.0, 0.5 + next() * 5.0), // low clutter
-            _ => (next() * 10.0, 12.0 + next() * 20.0),
-        };
-        if r < 9.0 && top > 3.0 {
-            continue; // not on the crane's own body
-        }
-        mesh.add_box(g, [cx - hx, cy - hy, bottom], [cx + hx, cy + hy, top]);
-    }
-    // Pipe-rack tiers: thin decks stacked with gaps from 0.2 to 6 m, some
-    // narrower than the boom grown by the clearance, some wider.
-    for k in 0..8 {
-        let (r, a) = (12.0 + next() * 34.0, next() * std::f64::consts::TAU);
-        let (cx, cy) = (r * a.cos(), r * a.sin());
-        let (hx, hy) = (0.5 + next() * 3.0, 0.5 + next() * 3.0);
-        let mut z = 2.0 + next() * 10.0;
-        for tier in 0..3 {
-            let g = mesh.group_id(&format!("RACK{k}-{tier}"));
-            let deck = 0.2 + next() * 0.8;
-            mesh.add_box(g, [cx - hx, cy - hy, z], [cx + hx, cy + hy, z + deck]);
-            z += deck + 0.2 + next() * 5.8;
-        }
-    }
-    let inp = liftplan_depthmap::Inputs { points: vec![], ground: vec![], mesh };
-    liftplan_depthmap::build_cpu(&inp, &liftplan_depthmap::Settings { cell_m: 0.5, ..Default::default() }).unwrap().0
-}
-
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(8))]
     #[test]
     fn boom_rows_are_conservative_and_tight(seed in any::<u64>(), heading in 0.0f64..360.0) {
         let t = task(heading);
-        let map = scene(seed);
+        let map = scene::depth_map(scene::site(seed), &[]);
         let s = Settings { swing_step_deg: 2.0, luff_step_deg: 2.0, ..Settings::default() };
         let cs = CSpace::build(&Problem { task: &t, chart: None, map: &map }, &s);
         let mut r = seed | 1;
