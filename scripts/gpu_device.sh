@@ -5,25 +5,28 @@
 #
 #   scripts/gpu_device.sh prepare
 #       Here: builds the release binaries (liftplan; the GPU twin tests of
-#       core, depthmap and docs; bench_depthmap; stress_gpu) into .devbin/, stripped,
-#       and fetches the Vulkan loader's packages into .gl/ (both ignored by git).
+#       core, depthmap, cspace and docs; bench_depthmap; bench_cspace;
+#       stress_gpu) into .devbin/, stripped and packed, and fetches the
+#       Vulkan loader's packages into .gl/ (both ignored by git).
 #
 #   scripts/gpu_device.sh run [soak-seconds]
 #       There, from the repository root, with `.devbin` and `.gl` carried:
 #       unpacks the loader, says which GPU is there, runs the twin tests, the
 #       demo project end to end twice (`[gpu] use = "never"` and "require")
 #       and compares their depth maps and plans byte for byte, then
-#       `bench_depthmap` (maps) and `bench_depthmap queries`, then the soak
-#       test for soak-seconds (default 120). Logs and the two reports go
-#       to $OUT (./gpu-out where OUT is unset); the two reports' tables
-#       take the place of those in reports/depthmap.md and reports/queries.md.
+#       `bench_depthmap` (maps), `bench_depthmap queries` and `bench_cspace
+#       hybrid`, then the soak test for soak-seconds (default 120). Logs and
+#       the three reports go to $OUT (./gpu-out where OUT is unset); the
+#       reports' tables take the place of those in reports/depthmap.md,
+#       reports/queries.md and reports/cspace.md.
 #       The GPU run's PDF comes back too. Exits non-zero if a test fails,
 #       the two demo runs differ, or the soak finds a difference.
 #
 # The device tool's call (estimated at 6 to 8 minutes there, from this
-# machine's times; not yet run on one). .devbin is ~50 MB stripped, within the
-# 64 MiB the working tree and carried paths may take; the 8 files written
-# to $OUT are the most that come back:
+# machine's times; not yet run on one). .devbin holds the binaries stripped
+# and packed with xz, small enough for the 64 MiB the working tree and
+# carried paths may take; the 8 files written to $OUT are the most that
+# come back:
 #   run(command="scripts/gpu_device.sh run 120", carry=[".devbin", ".gl"], timeout_s=600)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -37,6 +40,7 @@ prepare() {
     built=$(cargo test --release --no-run --message-format=json \
         -p liftplan-core --test gpu_errors \
         -p liftplan-depthmap --test gpu_twin \
+        -p liftplan-cspace --test gpu_twin \
         -p liftplan-docs --test gpu_twin |
         python3 -c '
 import json, sys
@@ -50,10 +54,15 @@ for line in sys.stdin:
         cp "$exe" "$bins/test-$pkg-$name"
     done <<<"$built"
     cargo build --release -p liftplan-depthmap --example bench_depthmap --example stress_gpu
+    cargo build --release -p liftplan-cspace --example bench_cspace
     cargo build --release -p liftplan
-    cp target/release/examples/bench_depthmap target/release/examples/stress_gpu target/release/liftplan "$bins/"
+    cp target/release/examples/{bench_depthmap,stress_gpu,bench_cspace} target/release/liftplan "$bins/"
     strip "$bins"/*
     ls -l "$bins"
+    # Packed: the binaries share most of their code (wgpu, naga), which xz finds.
+    tar -C "$bins" -cJf "$bins.tar.xz" .
+    rm -rf "${bins:?}"/*
+    mv "$bins.tar.xz" "$bins/bins.tar.xz"
     du -sh "$bins"
 
     mkdir -p .gl /tmp/amd64/partial
@@ -64,30 +73,34 @@ for line in sys.stdin:
 }
 
 run() {
-    local soak=${1:-120}
+    local soak=${1:-120} bin
     local out=${OUT:-gpu-out}
     mkdir -p "$out"
-    [[ -d .devbin ]] || { echo "no .devbin: run 'scripts/gpu_device.sh prepare' here and carry .devbin and .gl" >&2; exit 2; }
+    [[ -f .devbin/bins.tar.xz ]] || { echo "no .devbin: run 'scripts/gpu_device.sh prepare' here and carry .devbin and .gl" >&2; exit 2; }
+    # Unpacked outside .devbin, which stays small enough to carry again.
+    bin=$(mktemp -d)
+    tar -C "$bin" -xJf .devbin/bins.tar.xz
     if ! ldconfig -p | grep -q libvulkan; then
         for f in .gl/*.deb; do dpkg -x "$f" /; done
         ldconfig
     fi
     local icd=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
     [[ -f $icd ]] && export VK_DRIVER_FILES=$icd
+    # The GPU's name heads the test log (8 files are all that come back).
     if command -v nvidia-smi >/dev/null; then
-        nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv >"$out/gpu.txt" 2>&1 || true
+        nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv >"$out/tests.log" 2>&1 || true
     else
-        echo "no nvidia-smi" >"$out/gpu.txt"
+        echo "no nvidia-smi" >"$out/tests.log"
     fi
-    cat "$out/gpu.txt"
+    cat "$out/tests.log"
 
     local failed=0
-    for t in .devbin/test-*; do
+    for t in "$bin"/test-*; do
         # Tests run where cargo runs them: their package's directory.
-        local pkg=${t#.devbin/test-liftplan-}
+        local pkg=${t#"$bin"/test-liftplan-}
         pkg=${pkg%-gpu_*}
         echo "== $t"
-        (cd "stages/$pkg" && "../../$t" --test-threads=1 --nocapture) >"$out/test.log" 2>&1 || failed=1
+        (cd "stages/$pkg" && "$t" --test-threads=1 --nocapture) >"$out/test.log" 2>&1 || failed=1
         grep -E "^test |test result|GPU twin test on|SKIPPED" "$out/test.log" | sort -u || true
         cat "$out/test.log" >>"$out/tests.log"
         rm "$out/test.log"
@@ -95,13 +108,15 @@ run() {
     echo "== demo, CPU and GPU"
     demo_twice "$out" || failed=1
     echo "== bench_depthmap"
-    .devbin/bench_depthmap >"$out/depthmap.md" 2>"$out/bench_depthmap.log" || failed=1
+    "$bin"/bench_depthmap >"$out/depthmap.md" 2>"$out/bench_depthmap.log" || failed=1
     echo "== bench_depthmap queries"
-    .devbin/bench_depthmap queries >"$out/queries.md" 2>>"$out/bench_depthmap.log" || failed=1
+    "$bin"/bench_depthmap queries >"$out/queries.md" 2>>"$out/bench_depthmap.log" || failed=1
+    echo "== bench_cspace hybrid"
+    "$bin"/bench_cspace hybrid >"$out/cspace.md" 2>>"$out/bench_depthmap.log" || failed=1
     echo "== stress_gpu $soak"
-    .devbin/stress_gpu "$soak" >"$out/stress_gpu.log" 2>&1 || failed=1
+    "$bin"/stress_gpu "$soak" >"$out/stress_gpu.log" 2>&1 || failed=1
     tail -n 1 "$out/stress_gpu.log" || true
-    head -n 20 "$out/depthmap.md" "$out/queries.md" || true
+    head -n 20 "$out/depthmap.md" "$out/queries.md" "$out/cspace.md" || true
     exit "$failed"
 }
 
@@ -111,14 +126,14 @@ run() {
 demo_twice() {
     local out=$1 d mode f t0 differ=0
     d=$(mktemp -d)
-    .devbin/liftplan -q demo "$d/base" >"$out/demo.log" 2>&1 || return 1
+    "$bin"/liftplan -q demo "$d/base" >"$out/demo.log" 2>&1 || return 1
     for mode in never require; do
         cp -r "$d/base" "$d/$mode"
         printf '\n[gpu]\nuse = "%s"\n' "$mode" >>"$d/$mode/liftplan.toml"
-        .devbin/liftplan -q clean "$d/$mode" >>"$out/demo.log" 2>&1
+        "$bin"/liftplan -q clean "$d/$mode" >>"$out/demo.log" 2>&1
         echo "== [gpu] use = \"$mode\"" >>"$out/demo.log"
         t0=$(date +%s.%N)
-        .devbin/liftplan run "$d/$mode" >>"$out/demo.log" 2>&1 || return 1
+        "$bin"/liftplan run "$d/$mode" >>"$out/demo.log" 2>&1 || return 1
         awk -v a="$t0" -v b="$(date +%s.%N)" 'BEGIN { printf "whole run: %.2f s\n", b - a }' >>"$out/demo.log"
     done
     cp "$d/require/out/V-101.pdf" "$out/V-101-gpu.pdf"
