@@ -60,9 +60,11 @@ for line in sys.stdin:
     strip "$bins"/*
     ls -l "$bins"
     # Packed: the binaries share most of their code (wgpu, naga), which xz finds.
-    tar -C "$bins" -cJf "$bins.tar.xz" .
+    local packed
+    packed=$(mktemp)
+    tar -C "$bins" -cJf "$packed" .
     rm -rf "${bins:?}"/*
-    mv "$bins.tar.xz" "$bins/bins.tar.xz"
+    mv "$packed" "$bins/bins.tar.xz"
     du -sh "$bins"
 
     mkdir -p .gl /tmp/amd64/partial

@@ -153,9 +153,9 @@ clearance_m = 1.0
                 );
                 println!(
                     "\nGPU: the depth map's upload took {upload_ms:.0} ms (once per map, not in the row). Of the best run, \
-                     {:.0} ms went to preparing the boxes, the device's walk and reading its answers back, and {:.0} ms to \
-                     the CPU's exact queries of the boxes left to it.",
-                    sc.screen_ms, sc.exact_ms
+                     {:.0} ms went to preparing the boxes on the host ({:.0} ms), the device's walk and reading its answers \
+                     back, and {:.0} ms to the CPU's exact queries of the boxes left to it.",
+                    sc.screen_ms, sc.prepare_ms, sc.exact_ms
                 );
                 if !equal {
                     eprintln!("the GPU's rows differ from the CPU's");

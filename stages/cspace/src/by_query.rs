@@ -97,6 +97,7 @@ fn first_hits(
                 screen.hit_on_gpu += counts.hit_on_gpu;
                 screen.left_to_cpu += counts.left_to_cpu;
                 screen.screen_ms += counts.screen_ms;
+                screen.prepare_ms += counts.prepare_ms;
                 screen.exact_ms += counts.exact_ms;
                 answers
             }

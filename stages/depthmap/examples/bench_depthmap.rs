@@ -432,9 +432,9 @@ fn queries(s: &Settings, device: &Result<gpu::Gpu, String>) {
     let on_gpu = g.upload_map(&map).unwrap();
     println!("Map upload to the GPU: {:.0} ms.\n", t.elapsed().as_secs_f64() * 1e3);
     println!(
-        "| boxes | hit (CPU) | CPU ms | GPU ms | CPU / GPU | free on the GPU | hit on the GPU | left to the CPU | GPU walk ms | CPU rest ms | answers equal |"
+        "| boxes | hit (CPU) | CPU ms | GPU ms | CPU / GPU | free on the GPU | hit on the GPU | left to the CPU | GPU walk ms | of which host prep ms | CPU rest ms | answers equal |"
     );
-    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|");
     for kind in ["loads", "booms", "turned"] {
         let boxes = query_boxes(N, kind);
         let mut cpu_hits = Vec::new();
@@ -457,13 +457,14 @@ fn queries(s: &Settings, device: &Result<gpu::Gpu, String>) {
         }
         let (gpu_ms, c) = best;
         println!(
-            "| {N} {kind} | {} | {cpu:.0} | {gpu_ms:.0} | {:.2} | {} | {} | {} | {:.0} | {:.0} | {} |",
+            "| {N} {kind} | {} | {cpu:.0} | {gpu_ms:.0} | {:.2} | {} | {} | {} | {:.0} | {:.0} | {:.0} | {} |",
             cpu_hits.iter().filter(|h| h.is_some()).count(),
             cpu / gpu_ms,
             c.free_on_gpu,
             c.hit_on_gpu,
             c.left_to_cpu,
             c.screen_ms,
+            c.prepare_ms,
             c.exact_ms,
             if equal { "yes" } else { "NO" }
         );

@@ -85,6 +85,8 @@ pub struct ScreenCounts {
     /// Preparing the boxes, the device's walk and its answers read back (ms,
     /// wall clock on the host).
     pub screen_ms: f64,
+    /// Of `screen_ms`, preparing the boxes on the host (ms).
+    pub prepare_ms: f64,
     /// The CPU's exact queries of the boxes left to it (ms).
     pub exact_ms: f64,
 }
@@ -163,7 +165,7 @@ impl Gpu {
             return Err("the depth map on the GPU is not the one queried".into());
         }
         let t0 = std::time::Instant::now();
-        let verdicts = self.screen(gpu_map, map, boxes, ignore)?;
+        let (verdicts, prepare_ms) = self.screen(gpu_map, map, boxes, ignore)?;
         let t_exact = std::time::Instant::now();
         let counts_obj = |iv: &Interval| Some(iv.obj) != ignore;
         let hits = boxes
@@ -177,6 +179,7 @@ impl Gpu {
             .collect();
         let mut counts = ScreenCounts {
             screen_ms: (t_exact - t0).as_secs_f64() * 1e3,
+            prepare_ms,
             exact_ms: t_exact.elapsed().as_secs_f64() * 1e3,
             ..ScreenCounts::default()
         };
@@ -190,15 +193,24 @@ impl Gpu {
         Ok((hits, counts))
     }
 
-    /// The device's answer for every box.
-    fn screen(&self, gpu_map: &GpuMap, map: &Mdm, boxes: &[Obb], ignore: Option<u32>) -> Result<Vec<Verdict>, String> {
+    /// The device's answer for every box, and the time the host took to
+    /// prepare them (ms).
+    fn screen(
+        &self,
+        gpu_map: &GpuMap,
+        map: &Mdm,
+        boxes: &[Obb],
+        ignore: Option<u32>,
+    ) -> Result<(Vec<Verdict>, f64), String> {
         let budget = self.loop_cap.map_or(BUDGET, |cap| cap / 2);
+        let t_prepare = std::time::Instant::now();
         let mut verdicts = vec![Verdict::LeftToCpu; boxes.len()];
         // The boxes that go up, with their place in `boxes`.
         let mut sent: Vec<usize> = Vec::new();
         let mut words: Vec<u32> = Vec::new();
-        for (k, b) in boxes.iter().enumerate() {
-            match prepare(b, map, ignore) {
+        let prepared: Vec<Prepared> = boxes.par_iter().map(|b| prepare(b, map, ignore)).collect();
+        for (k, p) in prepared.into_iter().enumerate() {
+            match p {
                 Prepared::Outside => verdicts[k] = Verdict::Free,
                 Prepared::Unsafe => {}
                 Prepared::Box(w) => {
@@ -207,6 +219,7 @@ impl Gpu {
                 }
             }
         }
+        let prepare_ms = t_prepare.elapsed().as_secs_f64() * 1e3;
         let spec = map.spec;
         // The inner test's lines stand this far inside a cell, clear of the
         // rounding of the cell's edges (a few ulps of the grid's size).
@@ -253,7 +266,7 @@ impl Gpu {
             }
             Ok(())
         })?;
-        Ok(verdicts)
+        Ok((verdicts, prepare_ms))
     }
 }
 
@@ -314,7 +327,7 @@ fn prepare(b: &Obb, map: &Mdm, ignore: Option<u32>) -> Prepared {
         w[k] = (*v as f32).to_bits();
     }
     w[3] = ignore.unwrap_or(u32::MAX);
-    let inner: Vec<f64> = b.half.iter().map(|h| h - margin).collect();
+    let inner = [b.half[0] - margin, b.half[1] - margin, b.half[2] - margin];
     let inner_ok = inner.iter().all(|h| *h > 0.0);
     for k in 0..3 {
         for r in 0..3 {
