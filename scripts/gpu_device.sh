@@ -65,6 +65,7 @@ for line in sys.stdin:
     tar -C "$bins" -cJf "$packed" .
     rm -rf "${bins:?}"/*
     mv "$packed" "$bins/bins.tar.xz"
+    chmod 644 "$bins/bins.tar.xz"
     du -sh "$bins"
 
     mkdir -p .gl /tmp/amd64/partial
