@@ -147,8 +147,8 @@ clearance_m = 1.0
                     gpu_ms / 1034.0,
                     gpu_ms / cpu_ms,
                     sc.left_to_cpu,
-                    sc.free_on_gpu + sc.hit_on_gpu + sc.left_to_cpu,
-                    100.0 * sc.left_to_cpu as f64 / (sc.free_on_gpu + sc.hit_on_gpu + sc.left_to_cpu).max(1) as f64,
+                    sc.boxes(),
+                    100.0 * sc.left_to_cpu as f64 / sc.boxes().max(1) as f64,
                     if equal { "yes" } else { "**NO**" }
                 );
                 println!(

@@ -2,10 +2,10 @@
 //! query of the depth map per swing column and per (swing, radial) cell, on
 //! the CPU or batched on the GPU.
 //!
-//! [`CSpace::build`] answers the swing rows and, for every crane but the
-//! luffing boom, the cell rows with these same box queries on the CPU; the
-//! luffing boom's rows it marks obstacle by obstacle (`boom.rs`), which on a
-//! 2-core CPU is faster than either path here. The benchmark builds the rows
+//! [`CSpace::build`] takes the swing rows and, for every crane but the
+//! luffing boom, the cell rows from this module's CPU path; the luffing
+//! boom's rows it marks obstacle by obstacle (`boom.rs`), which on a 2-core
+//! CPU is faster than either path here. The benchmark builds the rows
 //! this way on both paths to compare them with each other and with the
 //! thesis' GPU figure.
 //!
@@ -24,7 +24,9 @@ use crate::{CSpace, CellHit, Problem, counts_for, ignored_object};
 use liftplan_core::crane::{Dependence, PartKind};
 use liftplan_core::obb::Obb;
 use liftplan_depthmap::gpu::{Gpu, GpuMap, ScreenCounts};
+use liftplan_depthmap::query::Hit;
 use rayon::prelude::*;
+use std::convert::Infallible;
 
 /// Where the box queries run.
 #[derive(Clone, Copy)]
@@ -48,63 +50,62 @@ pub struct QueryRows {
 /// Builds the swing and cell rows of `cs`'s grid by one box query each
 /// (each part in turn, where the earlier parts met nothing).
 pub fn rows_by_query(cs: &CSpace, p: &Problem, on: Queries) -> Result<QueryRows, String> {
-    let kinds = |dep: Dependence| -> Vec<PartKind> {
-        p.task.crane.part_kinds().iter().copied().filter(|k| k.dependence() == dep).collect()
-    };
     let mut screen = ScreenCounts::default();
-    let swing_hits = first_hits(
-        cs.ns as usize,
-        &kinds(Dependence::Swing),
-        |kind, i| cs.swing_box(p, kind, i as u32),
-        p,
-        on,
-        &mut screen,
-    )?;
-    let ns = cs.ns as usize;
-    let cell_hits = first_hits(
-        (cs.nr * cs.ns) as usize,
-        &kinds(Dependence::SwingRadial),
-        |kind, idx| cs.radial_box(p, kind, (idx % ns) as u32, (idx / ns) as u32),
-        p,
-        on,
-        &mut screen,
-    )?;
+    let mut answer = |kind: PartKind, boxes: &[Obb]| -> Result<Vec<Option<Hit>>, String> {
+        match on {
+            Queries::Cpu => Ok(on_cpu(p, kind, boxes)),
+            Queries::Gpu(gpu, gpu_map) => {
+                let (answers, counts) = gpu.hits_where(gpu_map, p.map, boxes, ignored_object(kind))?;
+                screen.add(&counts);
+                Ok(answers)
+            }
+        }
+    };
+    let swing_hits = rows_with(cs, p, Dependence::Swing, &mut answer)?;
+    let cell_hits = rows_with(cs, p, Dependence::SwingRadial, &mut answer)?;
     Ok(QueryRows { swing_hits, cell_hits, screen })
 }
 
-/// For each of `n` entries, the first of `kinds` whose box meets the map.
-fn first_hits(
-    n: usize,
-    kinds: &[PartKind],
-    box_of: impl Fn(PartKind, usize) -> Option<Obb> + Sync,
+/// The swing rows (`Dependence::Swing`) or the cell rows
+/// (`Dependence::SwingRadial`) on the CPU: what [`CSpace::build`] puts in
+/// [`CSpace::swing_hits`], and in [`CSpace::cell_hits`] for every crane but
+/// a luffing boom.
+pub(crate) fn rows_on_cpu(cs: &CSpace, p: &Problem, dep: Dependence) -> Vec<Option<CellHit>> {
+    let Ok(rows) = rows_with(cs, p, dep, &mut |kind, boxes: &[Obb]| Ok::<_, Infallible>(on_cpu(p, kind, boxes)));
+    rows
+}
+
+/// For each swing column (`Dependence::Swing`) or cell (`SwingRadial`), the
+/// first part of that dependence whose box meets the map; `answer` answers
+/// one part's boxes in one batch.
+fn rows_with<E>(
+    cs: &CSpace,
     p: &Problem,
-    on: Queries,
-    screen: &mut ScreenCounts,
-) -> Result<Vec<Option<CellHit>>, String> {
+    dep: Dependence,
+    answer: &mut impl FnMut(PartKind, &[Obb]) -> Result<Vec<Option<Hit>>, E>,
+) -> Result<Vec<Option<CellHit>>, E> {
+    let ns = cs.ns as usize;
+    let (n, swing) = if dep == Dependence::Swing { (ns, true) } else { ((cs.nr * cs.ns) as usize, false) };
+    let box_of = |kind: PartKind, e: usize| {
+        if swing { cs.swing_box(p, kind, e as u32) } else { cs.radial_box(p, kind, (e % ns) as u32, (e / ns) as u32) }
+    };
+    let kinds: Vec<PartKind> = p.task.crane.part_kinds().iter().copied().filter(|k| k.dependence() == dep).collect();
     let mut hits: Vec<Option<CellHit>> = vec![None; n];
-    for &kind in kinds {
+    for kind in kinds {
         // Only the entries no earlier part has blocked ask this part's box.
         let (entries, boxes): (Vec<usize>, Vec<Obb>) = (0..n)
             .into_par_iter()
             .filter(|&e| hits[e].is_none())
             .filter_map(|e| box_of(kind, e).map(|b| (e, b)))
             .unzip();
-        let answers = match on {
-            Queries::Cpu => boxes.par_iter().map(|b| p.map.hit_where(b, |iv| counts_for(kind, iv))).collect(),
-            Queries::Gpu(gpu, gpu_map) => {
-                let (answers, counts) = gpu.hits_where(gpu_map, p.map, &boxes, ignored_object(kind))?;
-                screen.free_on_gpu += counts.free_on_gpu;
-                screen.hit_on_gpu += counts.hit_on_gpu;
-                screen.left_to_cpu += counts.left_to_cpu;
-                screen.screen_ms += counts.screen_ms;
-                screen.prepare_ms += counts.prepare_ms;
-                screen.exact_ms += counts.exact_ms;
-                answers
-            }
-        };
-        for (e, answer) in entries.into_iter().zip(answers) {
+        for (e, answer) in entries.into_iter().zip(answer(kind, &boxes)?) {
             hits[e] = answer.map(|h| CellHit { part: kind, obj: h.interval.obj });
         }
     }
     Ok(hits)
+}
+
+/// The CPU's exact queries of one part's boxes.
+fn on_cpu(p: &Problem, kind: PartKind, boxes: &[Obb]) -> Vec<Option<Hit>> {
+    boxes.par_iter().map(|b| p.map.hit_where(b, |iv| counts_for(kind, iv))).collect()
 }

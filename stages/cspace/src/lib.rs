@@ -274,27 +274,16 @@ impl CSpace {
             return cs;
         }
         let clearance = task.clearance_m;
-        let swing_parts: Vec<PartKind> =
-            crane.part_kinds().iter().copied().filter(|k| k.dependence() == Dependence::Swing).collect();
         let radial_parts: Vec<PartKind> =
             crane.part_kinds().iter().copied().filter(|k| k.dependence() == Dependence::SwingRadial).collect();
-        cs.swing_hits = (0..ns)
-            .into_par_iter()
-            .map(|i| {
-                swing_parts.iter().find_map(|&k| {
-                    p.map
-                        .hit_where(&cs.swing_box(p, k, i)?, |iv| counts_for(k, iv))
-                        .map(|h| CellHit { part: k, obj: h.interval.obj })
-                })
-            })
-            .collect();
+        cs.swing_hits = by_query::rows_on_cpu(&cs, p, Dependence::Swing);
         cs.timings.swing_ms = ms_since(t0) - cs.timings.rows_ms;
         let t_radial = std::time::Instant::now();
         cs.cell_hits = match &crane.model.kind {
             liftplan_core::crane::CraneKind::Luffing(l) if radial_parts == [PartKind::Boom] => {
                 boom::boom_hits(&cs, p, &l.boom, clearance)
             }
-            _ => (0..nr * ns).into_par_iter().map(|idx| cs.radial_cell_by_query(p, idx % ns, idx / ns)).collect(),
+            _ => by_query::rows_on_cpu(&cs, p, Dependence::SwingRadial),
         };
         cs.timings.radial_ms = ms_since(t_radial);
         let t_hoist = std::time::Instant::now();
@@ -346,19 +335,6 @@ impl CSpace {
         } else {
             None
         }
-    }
-
-    /// The swing+radial parts (boom, trolley) at cell (i, k) by one box query
-    /// each, grown by the clearance and the part's motion within the cell.
-    /// The tables use it for every crane but the luffing boom, which
-    /// `boom.rs` marks obstacle by obstacle; the benchmark compares the two.
-    pub fn radial_cell_by_query(&self, p: &Problem, i: u32, k: u32) -> Option<CellHit> {
-        let crane = &p.task.crane;
-        crane.part_kinds().iter().filter(|k| k.dependence() == Dependence::SwingRadial).find_map(|&kind| {
-            p.map
-                .hit_where(&self.radial_box(p, kind, i, k)?, |iv| counts_for(kind, iv))
-                .map(|h| CellHit { part: kind, obj: h.interval.obj })
-        })
     }
 
     /// The box a swing-only part's column `i` asks: the part at the column's

@@ -101,7 +101,7 @@ fn check(crane: &str, tall: bool, seeds: &[u64], by_build: impl Fn(&CSpace, &Que
             );
         }
         let sc = dev.screen;
-        let asked = sc.free_on_gpu + sc.hit_on_gpu + sc.left_to_cpu;
+        let asked = sc.boxes();
         eprintln!(
             "  GPU: {} free, {} hit, {} left to the CPU of {asked} boxes",
             sc.free_on_gpu, sc.hit_on_gpu, sc.left_to_cpu

@@ -91,6 +91,23 @@ pub struct ScreenCounts {
     pub exact_ms: f64,
 }
 
+impl ScreenCounts {
+    /// Boxes answered, by the device or the CPU.
+    pub fn boxes(&self) -> usize {
+        self.free_on_gpu + self.hit_on_gpu + self.left_to_cpu
+    }
+
+    /// Adds another batch's counts and times to these.
+    pub fn add(&mut self, o: &ScreenCounts) {
+        self.free_on_gpu += o.free_on_gpu;
+        self.hit_on_gpu += o.hit_on_gpu;
+        self.left_to_cpu += o.left_to_cpu;
+        self.screen_ms += o.screen_ms;
+        self.prepare_ms += o.prepare_ms;
+        self.exact_ms += o.exact_ms;
+    }
+}
+
 /// The device's answer for one box.
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum Verdict {
