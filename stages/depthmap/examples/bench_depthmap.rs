@@ -19,6 +19,7 @@
 
 use liftplan_core::mesh::TriMesh;
 use liftplan_core::obb::Obb;
+use liftplan_depthmap::query::Vertical;
 use liftplan_depthmap::{Inputs, Settings, build, build_cpu, gpu};
 use rand::{RngExt, SeedableRng};
 use std::time::Instant;
@@ -424,6 +425,26 @@ fn queries(s: &Settings, device: &Result<gpu::Gpu, String>) {
         inp.mesh.triangle_count(),
         map.intervals.len()
     );
+    println!(
+        "Vertical clearance, down and up (`Mdm::clearances`, CPU only: it has no GPU twin yet), of the boxes below:\n"
+    );
+    println!("| boxes | with something below | down ms | with something above | up ms |");
+    println!("|---|---|---|---|---|");
+    for kind in ["loads", "booms", "turned"] {
+        let boxes = query_boxes(N, kind);
+        let mut timed = [(0usize, 0f64); 2];
+        for (slot, way) in timed.iter_mut().zip([Vertical::Down, Vertical::Up]) {
+            let mut found = 0;
+            let ms = best_of(3, || {
+                let t = Instant::now();
+                found = map.clearances(&boxes, way).iter().filter(|c| c.is_some()).count();
+                t.elapsed().as_secs_f64() * 1e3
+            });
+            *slot = (found, ms);
+        }
+        println!("| {N} {kind} | {} | {:.0} | {} | {:.0} |", timed[0].0, timed[0].1, timed[1].0, timed[1].1);
+    }
+    println!();
     let Ok(g) = device else {
         println!("No GPU: nothing to compare.");
         return;

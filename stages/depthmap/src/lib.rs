@@ -1,7 +1,8 @@
 //! # liftplan-depthmap: stage 4a, the site as multi-level depth maps
 //!
 //! Rasterises the registered site cloud (points) and the plant mesh (triangles)
-//! into one [`mdm::Mdm`] and answers box queries against it ([`query`]).
+//! into one [`mdm::Mdm`] and answers box queries against it ([`query`]): does
+//! a box meet an obstacle, and how far can it move straight down or up.
 //!
 //! | file | what |
 //! |---|---|

@@ -13,6 +13,10 @@
 //! The GPU twin (`crate::gpu::Gpu::hits_where`) follows this walk, in this
 //! order, and answers only what it can prove gives these answers; keep the two
 //! in step when changing the walk (its tests compare them box for box).
+//!
+//! Vertical clearance ([`Mdm::clearance`]): how far a box can move straight
+//! down or up before it meets an obstacle, from the same per-cell test. It
+//! has no GPU twin yet.
 
 use crate::mdm::{Interval, Mdm};
 use liftplan_core::obb::{Obb, strip_x_range};
@@ -24,6 +28,30 @@ pub struct Hit {
     pub i: u32,
     pub j: u32,
     pub interval: Interval,
+}
+
+/// Which way [`Mdm::clearance`] moves a box: straight down (how high it
+/// hangs over what is under it) or straight up (its headroom).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Vertical {
+    Down,
+    Up,
+}
+
+/// How far a box can move one way ([`Vertical`]) before it meets the map.
+///
+/// As conservative as the box queries: the map may put an obstacle nearer
+/// than it is (intervals cover whole cells), never farther.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Clearance {
+    /// Metres the box can move before it touches the interval at `at` (with
+    /// its heights over that cell). Zero or less: it meets that interval now,
+    /// which reaches `-gap_m` metres past the box's bottom (moving down: the
+    /// interval's top is that far above it) or top (moving up).
+    pub gap_m: f32,
+    /// The obstacle it meets first: the smallest gap, and of equal gaps the
+    /// first in row order of the cells and in height order in a cell.
+    pub at: Hit,
 }
 
 impl Mdm {
@@ -161,30 +189,127 @@ impl Mdm {
         boxes.par_iter().map(|b| self.hit(b)).collect()
     }
 
-    /// Smallest vertical gap between the box and the obstacles in the cells under
-    /// it (negative: overlap), with the obstacle; `None` if there is nothing under
-    /// or over it.
-    pub fn vertical_clearance(&self, b: &Obb) -> Option<(f32, Interval)> {
-        let mut best: Option<(f32, Interval)> = None;
-        self.for_cells_under(b, |i, j| {
-            let r = self.spec.rect(i, j);
-            let Some((lo, hi)) = b.z_range_over_rect(r[0], r[1], r[2], r[3]) else { return true };
-            let (lo, hi) = (lo as f32, hi as f32);
-            for iv in self.cell(i, j) {
-                let gap = if iv.zhi < lo {
-                    lo - iv.zhi
-                } else if iv.zlo > hi {
-                    iv.zlo - hi
-                } else {
-                    -(iv.zhi.min(hi) - iv.zlo.max(lo))
-                };
-                if best.is_none_or(|(g, _)| gap < g) {
-                    best = Some((gap, *iv));
-                }
-            }
-            true
-        });
+    /// How far `b` can move straight down or up before it meets an obstacle
+    /// in the cells under it (see [`Clearance`]); `None` when nothing under
+    /// or over it lies that way.
+    pub fn clearance(&self, b: &Obb, way: Vertical) -> Option<Clearance> {
+        self.clearance_where(b, way, |_| true)
+    }
+
+    /// [`Mdm::clearance`] to the obstacles that `counts` only (e.g. everything
+    /// but the ground under a crane's carrier).
+    ///
+    /// Every cell under the box is tested as [`Mdm::hit_where`] tests it:
+    /// the box's height range over the cell's column
+    /// ([`Obb::z_range_over_rect`], rounded to `f32` as the map is) against
+    /// the cell's intervals. So the box meets something (`hit_where` is
+    /// `Some`) exactly when the gap is zero or less, either way. Moving down,
+    /// the box meets every interval that starts no higher than its top over
+    /// the cell, when its bottom reaches the interval's top; moving up,
+    /// symmetrically.
+    ///
+    /// The walk descends the max-height pyramid as `hit_where` does, but
+    /// cannot stop at the first contact: it skips a tile only when nothing in
+    /// it can beat the gap found so far (moving down: the box's lowest point
+    /// over the tile, less the tile's top, is larger by a millimetre; moving
+    /// up: everything in the tile lies below the box by a millimetre). Of
+    /// equal gaps it keeps the lowest row, then column, then the first in the
+    /// cell's height order, so the answer does not depend on the walk's order.
+    pub fn clearance_where(&self, b: &Obb, way: Vertical, counts: impl Fn(&Interval) -> bool) -> Option<Clearance> {
+        let aabb = b.aabb();
+        let s = self.spec;
+        let (ci, cj) = (s.cols_between(aabb.min[0], aabb.max[0]), s.rows_between(aabb.min[1], aabb.max[1]));
+        if ci.is_empty() || cj.is_empty() || self.pyramid.is_empty() {
+            return None;
+        }
+        let lvl = self.cover_level(&ci, &cj);
+        let (w, _, tops) = &self.pyramid[lvl];
+        let mut tiles: Vec<(u32, u32)> = ((cj.start >> lvl)..=((cj.end - 1) >> lvl))
+            .flat_map(|tj| ((ci.start >> lvl)..=((ci.end - 1) >> lvl)).map(move |ti| (ti, tj)))
+            .collect();
+        if way == Vertical::Down {
+            // Highest first, as in `descend_clearance`.
+            tiles.sort_by(|&(ai, aj), &(bi, bj)| tops[(bj * w + bi) as usize].total_cmp(&tops[(aj * w + ai) as usize]));
+        }
+        let mut best = None;
+        for (ti, tj) in tiles {
+            self.descend_clearance(b, way, &counts, (lvl, ti, tj), &mut best);
+        }
         best
+    }
+
+    fn descend_clearance(
+        &self,
+        b: &Obb,
+        way: Vertical,
+        counts: &impl Fn(&Interval) -> bool,
+        (lvl, ti, tj): (usize, u32, u32),
+        best: &mut Option<Clearance>,
+    ) {
+        // Far above the `f32` rounding of heights, so that a tile's bound
+        // never skips a cell whose own test would tie or win.
+        const SPARE_M: f32 = 1e-3;
+        let (w, h, tops) = &self.pyramid[lvl];
+        if ti >= *w || tj >= *h {
+            return;
+        }
+        let top = tops[(tj * w + ti) as usize];
+        if top == f32::NEG_INFINITY {
+            return;
+        }
+        let s = self.spec;
+        let (i0, j0) = (ti << lvl, tj << lvl);
+        let (i1, j1) = (((ti + 1) << lvl).min(s.nx), ((tj + 1) << lvl).min(s.ny));
+        let c = s.cell;
+        let (x0, x1) = (s.x0 + i0 as f64 * c, s.x0 + i1 as f64 * c);
+        let (y0, y1) = (s.y0 + j0 as f64 * c, s.y0 + j1 as f64 * c);
+        let Some((lo, hi)) = b.z_range_over_rect(x0, x1, y0, y1) else { return };
+        let (lo, hi) = (lo as f32, hi as f32);
+        let hopeless = match way {
+            Vertical::Down => best.is_some_and(|b| lo - top > b.gap_m + SPARE_M),
+            Vertical::Up => top < lo - SPARE_M,
+        };
+        if hopeless {
+            return;
+        }
+        if lvl > 0 {
+            let mut children = [(0, 0), (0, 1), (1, 0), (1, 1)].map(|(dj, di)| (2 * ti + di, 2 * tj + dj));
+            if way == Vertical::Down {
+                // Highest first: its gap is likely the smallest, and the
+                // lower tiles then fall to the bound above.
+                let (w, h, tops) = &self.pyramid[lvl - 1];
+                let top = |&(i, j): &(u32, u32)| if i < *w && j < *h { tops[(j * w + i) as usize] } else { f32::MIN };
+                children.sort_by(|a, b| top(b).total_cmp(&top(a)));
+            }
+            for (i, j) in children {
+                self.descend_clearance(b, way, counts, (lvl - 1, i, j), best);
+            }
+            return;
+        }
+        let mut found: Option<Clearance> = None;
+        for iv in self.cell(ti, tj) {
+            let gap = match way {
+                // Sorted by bottom: the rest start above the box too.
+                Vertical::Down if iv.zlo > hi => break,
+                Vertical::Down => lo - iv.zhi,
+                Vertical::Up if iv.zhi < lo => continue,
+                Vertical::Up => iv.zlo - hi,
+            };
+            if counts(iv) && found.is_none_or(|f| gap < f.gap_m) {
+                found = Some(Clearance { gap_m: gap, at: Hit { i: ti, j: tj, interval: *iv } });
+            }
+        }
+        if let Some(f) = found {
+            let first = |c: &Clearance| (c.at.j, c.at.i);
+            if best.is_none_or(|b| f.gap_m < b.gap_m || (f.gap_m == b.gap_m && first(&f) < first(&b))) {
+                *best = Some(f);
+            }
+        }
+    }
+
+    /// [`Mdm::clearance`] of many boxes at once, in parallel; answers in input order.
+    pub fn clearances(&self, boxes: &[Obb], way: Vertical) -> Vec<Option<Clearance>> {
+        boxes.par_iter().map(|b| self.clearance(b, way)).collect()
     }
 
     /// Name of an interval's object.

@@ -3,14 +3,19 @@
 //! Contract: the map never answers "free" for a box that touches a triangle or a
 //! point's occupied cube; it may answer "hit" for a free box only when a real
 //! obstacle lies within one cell diagonal (plus the merge gap) of the box.
+//! Likewise its vertical clearance never gives a box more room than it has
+//! (parry3d's shape cast straight down or up), and where the room it gives
+//! ends, a real obstacle lies within that slack.
 
 use liftplan_core::frame::{Mat3, Point3, Vec3};
 use liftplan_core::mesh::TriMesh;
 use liftplan_core::obb::Obb;
-use liftplan_depthmap::mdm::Mode;
+use liftplan_depthmap::mdm::{Mdm, Mode};
+use liftplan_depthmap::query::Vertical;
 use liftplan_depthmap::{Inputs, Settings, build_cpu};
 use parry3d_f64::math::{Pose, Vector};
 use parry3d_f64::query;
+use parry3d_f64::query::ShapeCastOptions;
 use parry3d_f64::shape::{Cuboid, Triangle};
 use proptest::prelude::*;
 use rand::{RngExt, SeedableRng};
@@ -75,6 +80,36 @@ fn brute_distance(s: &Scene, b: &Obb, point_half: f64) -> f64 {
     best
 }
 
+/// Exact distance the box can move straight down or up before it touches an
+/// obstacle (0 when touching now), or `None` if it never does.
+fn brute_travel(s: &Scene, b: &Obb, point_half: f64, way: Vertical) -> Option<f64> {
+    let (pose, cub) = parry_pose(b);
+    let id = Pose::identity();
+    let vel = Vector::new(0.0, 0.0, if way == Vertical::Down { -1.0 } else { 1.0 });
+    let opts = ShapeCastOptions {
+        max_time_of_impact: 1e3,
+        target_distance: 0.0,
+        stop_at_penetration: true,
+        compute_impact_geometry_on_penetration: false,
+    };
+    let cast = |pos: &Pose, shape: &dyn parry3d_f64::shape::Shape| {
+        query::cast_shapes(&pose, vel, &cub, pos, Vector::ZERO, shape, opts).unwrap().map(|h| h.time_of_impact)
+    };
+    let tris = s
+        .tris
+        .iter()
+        .filter_map(|t| cast(&id, &Triangle::new(Vector::from(t[0]), Vector::from(t[1]), Vector::from(t[2]))));
+    let pc = Cuboid::new(Vector::splat(point_half));
+    let points = s.points.iter().filter_map(|p| cast(&Pose::from_translation(Vector::from(*p)), &pc));
+    tris.chain(points).reduce(f64::min)
+}
+
+/// `b` moved `m` metres straight down or up.
+fn moved(b: &Obb, way: Vertical, m: f64) -> Obb {
+    let dz = if way == Vertical::Down { -m } else { m };
+    Obb::new(Point3::new(b.center.x, b.center.y, b.center.z + dz), b.axes, b.half)
+}
+
 fn scene_inputs(s: &Scene) -> Inputs {
     let mut mesh = TriMesh::default();
     let g = mesh.group_id("soup");
@@ -103,6 +138,68 @@ fn check(seed: u64, cell: f64, mode: Mode) -> Result<(), TestCaseError> {
     Ok(())
 }
 
+/// The map's vertical clearance of random boxes against the exact travel,
+/// the map's own box query, and the box moved by the clearance.
+fn check_clearance(seed: u64, cell: f64, mode: Mode) -> Result<(), TestCaseError> {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let scene = random_scene(&mut rng, 25, 40);
+    let settings =
+        Settings { cell_m: cell, mode, point_radius_m: 0.05, merge_gap_m: 0.1, extent: vec![], margin_m: 2.0 };
+    let (map, _) = build_cpu(&scene_inputs(&scene), &settings).unwrap();
+    let slack = cell * 2f64.sqrt() + settings.merge_gap_m + 1e-4;
+    // f32 heights of a few metres round by under a micrometre; parry's casts
+    // stop within its own tolerance.
+    let tol = 1e-4;
+    let (mut met, mut roomy) = (0, 0);
+    for _ in 0..40 {
+        let b = random_box(&mut rng);
+        let hit = map.collides(&b);
+        for way in [Vertical::Down, Vertical::Up] {
+            let c = map.clearance(&b, way);
+            prop_assert_eq!(hit, c.is_some_and(|c| c.gap_m <= 0.0), "clearance {:?} disagrees with the box query", c);
+            if let Some(t) = brute_travel(&scene, &b, settings.point_radius_m, way) {
+                met += 1;
+                let c = c.ok_or_else(|| {
+                    TestCaseError::fail(format!(
+                        "{way:?}: the box meets an obstacle after {t} m, but the map sees none"
+                    ))
+                })?;
+                prop_assert!(
+                    c.gap_m as f64 <= t + tol,
+                    "{way:?}: the map gives {} m of room, the box has {t} m",
+                    c.gap_m
+                );
+            }
+            let Some(c) = c else { continue };
+            let gap = c.gap_m as f64;
+            if gap > 2e-3 {
+                roomy += 1;
+                prop_assert!(
+                    !map.collides(&moved(&b, way, gap - 1e-3)),
+                    "{way:?}: moved {} m of its {gap} m, the box meets the map",
+                    gap - 1e-3
+                );
+            }
+            if gap <= 0.0 {
+                // In contact now (checked against the box query above).
+                continue;
+            }
+            let past = moved(&b, way, gap + 1e-3);
+            prop_assert!(map.collides(&past), "{way:?}: moved past its {gap} m of room, the box meets nothing");
+            if mode == Mode::Multi {
+                let d = brute_distance(&scene, &past, settings.point_radius_m);
+                prop_assert!(
+                    d <= slack,
+                    "{way:?}: where its {gap} m of room ends, the nearest obstacle is {d} m away (allowed {slack})"
+                );
+            }
+        }
+    }
+    // The scenes are crowded enough that this cannot pass by testing nothing.
+    prop_assert!(met > 0 && roomy > 0, "no box met an obstacle ({met}) or had room ({roomy})");
+    Ok(())
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(24))]
     #[test]
@@ -114,6 +211,53 @@ proptest! {
     fn single_level_map_is_conservative(seed in any::<u64>(), cell in 0.1f64..0.6) {
         check(seed, cell, Mode::Single)?;
     }
+
+    #[test]
+    fn multi_level_clearance_is_conservative_and_tight(seed in any::<u64>(), cell in 0.1f64..0.6) {
+        check_clearance(seed, cell, Mode::Multi)?;
+    }
+
+    #[test]
+    fn single_level_clearance_is_conservative(seed in any::<u64>(), cell in 0.1f64..0.6) {
+        check_clearance(seed, cell, Mode::Single)?;
+    }
+}
+
+/// A box 2 m over a slab and 1.5 m under a roof: the clearances name both,
+/// and leaving out the roof's object leaves nothing overhead.
+#[test]
+fn clearance_under_a_roof_and_over_a_slab() {
+    let mut mesh = TriMesh::default();
+    let (slab, roof) = (mesh.group_id("SLAB-1"), mesh.group_id("ROOF-2"));
+    mesh.add_box(slab, [0.0, 0.0, 0.0], [6.0, 6.0, 1.0]);
+    mesh.add_box(roof, [0.0, 0.0, 6.5], [6.0, 6.0, 7.0]);
+    let inp = Inputs { points: vec![], ground: vec![], mesh };
+    let (map, _) = build_cpu(&inp, &Settings { margin_m: 1.0, ..Settings::default() }).unwrap();
+    let b = Obb::axis_aligned(Point3::new(3.0, 3.0, 4.0), Vec3::new(1.0, 0.5, 1.0));
+    let name = |m: &Mdm, c: &liftplan_depthmap::query::Clearance| m.object_name(&c.at.interval).to_string();
+    let down = map.clearance(&b, Vertical::Down).unwrap();
+    assert!((down.gap_m - 2.0).abs() < 1e-4 && name(&map, &down) == "SLAB-1", "{down:?}");
+    // The slab is level, so every cell under the box ties: the first cell
+    // under it in row order is named, whatever order the walk took.
+    let s = map.spec;
+    let first = (0..s.ny)
+        .flat_map(|j| (0..s.nx).map(move |i| (j, i)))
+        .find(|&(j, i)| {
+            let r = s.rect(i, j);
+            !map.cell(i, j).is_empty() && b.z_range_over_rect(r[0], r[1], r[2], r[3]).is_some()
+        })
+        .unwrap();
+    assert_eq!((down.at.j, down.at.i), first);
+    let up = map.clearance(&b, Vertical::Up).unwrap();
+    assert!((up.gap_m - 1.5).abs() < 1e-4 && name(&map, &up) == "ROOF-2", "{up:?}");
+    let not_roof = |iv: &liftplan_depthmap::mdm::Interval| map.object_name(iv) != "ROOF-2";
+    assert_eq!(map.clearance_where(&b, Vertical::Up, not_roof), None);
+    // Sunk 0.25 m into the slab: in contact, and 0.25 m up clears it.
+    let sunk = moved(&b, Vertical::Down, 2.25);
+    let c = map.clearance(&sunk, Vertical::Down).unwrap();
+    assert!((c.gap_m + 0.25).abs() < 1e-4 && map.collides(&sunk), "{c:?}");
+    let many = map.clearances(&[b, sunk], Vertical::Down);
+    assert_eq!(many, vec![Some(down), Some(c)]);
 }
 
 /// The MDM artifact reads back identical to what was written.
