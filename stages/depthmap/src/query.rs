@@ -133,6 +133,21 @@ impl Mdm {
         None
     }
 
+    /// The box's height range over the column of pyramid tile (`ti`, `tj`)
+    /// of level `lvl` (a cell at level 0), rounded to `f32` as the map is, or
+    /// `None` if the box does not reach it: the one test both walks make, so
+    /// that a box query and a clearance see the same cells.
+    fn tile_z_range(&self, b: &Obb, lvl: usize, ti: u32, tj: u32) -> Option<(f32, f32)> {
+        let s = self.spec;
+        let (i0, j0) = (ti << lvl, tj << lvl);
+        let (i1, j1) = (((ti + 1) << lvl).min(s.nx), ((tj + 1) << lvl).min(s.ny));
+        let c = s.cell;
+        let (x0, x1) = (s.x0 + i0 as f64 * c, s.x0 + i1 as f64 * c);
+        let (y0, y1) = (s.y0 + j0 as f64 * c, s.y0 + j1 as f64 * c);
+        let (lo, hi) = b.z_range_over_rect(x0, x1, y0, y1)?;
+        Some((lo as f32, hi as f32))
+    }
+
     fn descend(
         &self,
         b: &Obb,
@@ -150,14 +165,7 @@ impl Mdm {
         if top < zmin {
             return None;
         }
-        let s = self.spec;
-        let (i0, j0) = (ti << lvl, tj << lvl);
-        let (i1, j1) = (((ti + 1) << lvl).min(s.nx), ((tj + 1) << lvl).min(s.ny));
-        let c = s.cell;
-        let (x0, x1) = (s.x0 + i0 as f64 * c, s.x0 + i1 as f64 * c);
-        let (y0, y1) = (s.y0 + j0 as f64 * c, s.y0 + j1 as f64 * c);
-        let (lo, hi) = b.z_range_over_rect(x0, x1, y0, y1)?;
-        let (lo, hi) = (lo as f32, hi as f32);
+        let (lo, hi) = self.tile_z_range(b, lvl, ti, tj)?;
         if top < lo {
             return None;
         }
@@ -257,14 +265,7 @@ impl Mdm {
         if top == f32::NEG_INFINITY {
             return;
         }
-        let s = self.spec;
-        let (i0, j0) = (ti << lvl, tj << lvl);
-        let (i1, j1) = (((ti + 1) << lvl).min(s.nx), ((tj + 1) << lvl).min(s.ny));
-        let c = s.cell;
-        let (x0, x1) = (s.x0 + i0 as f64 * c, s.x0 + i1 as f64 * c);
-        let (y0, y1) = (s.y0 + j0 as f64 * c, s.y0 + j1 as f64 * c);
-        let Some((lo, hi)) = b.z_range_over_rect(x0, x1, y0, y1) else { return };
-        let (lo, hi) = (lo as f32, hi as f32);
+        let Some((lo, hi)) = self.tile_z_range(b, lvl, ti, tj) else { return };
         let hopeless = match way {
             Vertical::Down => best.is_some_and(|b| lo - top > b.gap_m + SPARE_M),
             Vertical::Up => top < lo - SPARE_M,
