@@ -430,14 +430,14 @@ fn queries(s: &Settings, device: &Result<gpu::Gpu, String>) {
     );
     println!("| boxes | with something below | down ms | with something above | up ms |");
     println!("|---|---|---|---|---|");
-    for kind in ["loads", "booms", "turned"] {
-        let boxes = query_boxes(N, kind);
+    let sets = ["loads", "booms", "turned"].map(|kind| (kind, query_boxes(N, kind)));
+    for (kind, boxes) in &sets {
         let mut timed = [(0usize, 0f64); 2];
         for (slot, way) in timed.iter_mut().zip([Vertical::Down, Vertical::Up]) {
             let mut found = 0;
             let ms = best_of(3, || {
                 let t = Instant::now();
-                found = map.clearances(&boxes, way).iter().filter(|c| c.is_some()).count();
+                found = map.clearances(boxes, way).iter().filter(|c| c.is_some()).count();
                 t.elapsed().as_secs_f64() * 1e3
             });
             *slot = (found, ms);
@@ -456,19 +456,18 @@ fn queries(s: &Settings, device: &Result<gpu::Gpu, String>) {
         "| boxes | hit (CPU) | CPU ms | GPU ms | CPU / GPU | free on the GPU | hit on the GPU | left to the CPU | GPU walk ms | of which host prep ms | CPU rest ms | answers equal |"
     );
     println!("|---|---|---|---|---|---|---|---|---|---|---|---|");
-    for kind in ["loads", "booms", "turned"] {
-        let boxes = query_boxes(N, kind);
+    for (kind, boxes) in &sets {
         let mut cpu_hits = Vec::new();
         let cpu = best_of(3, || {
             let t = Instant::now();
-            cpu_hits = map.hits(&boxes);
+            cpu_hits = map.hits(boxes);
             t.elapsed().as_secs_f64() * 1e3
         });
         let mut best = (f64::INFINITY, gpu::ScreenCounts::default());
         let mut equal = true;
         for _ in 0..3 {
             let t = Instant::now();
-            let (hits, counts) = g.hits_where(&on_gpu, &map, &boxes, None).unwrap();
+            let (hits, counts) = g.hits_where(&on_gpu, &map, boxes, None).unwrap();
             let dt = t.elapsed().as_secs_f64() * 1e3;
             eprintln!("{kind}: GPU {dt:.0} ms, {counts:?}");
             equal &= hits == cpu_hits;

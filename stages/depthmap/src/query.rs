@@ -133,6 +133,21 @@ impl Mdm {
         None
     }
 
+    /// The highest top in pyramid tile (`ti`, `tj`) of level `lvl` (`-inf`
+    /// if it is empty), or `None` past the level's edge.
+    fn tile_top(&self, lvl: usize, ti: u32, tj: u32) -> Option<f32> {
+        let (w, h, tops) = &self.pyramid[lvl];
+        (ti < *w && tj < *h).then(|| tops[(tj * w + ti) as usize])
+    }
+
+    /// Orders tiles of level `lvl` highest top first (those past the edge
+    /// last): the clearance's walk down, where the highest tile likely holds
+    /// the smallest gap and the lower ones then fall to its bound.
+    fn highest_first(&self, lvl: usize, tiles: &mut [(u32, u32)]) {
+        let top = |&(i, j): &(u32, u32)| self.tile_top(lvl, i, j).unwrap_or(f32::NEG_INFINITY);
+        tiles.sort_by(|a, b| top(b).total_cmp(&top(a)));
+    }
+
     /// The box's height range over the column of pyramid tile (`ti`, `tj`)
     /// of level `lvl` (a cell at level 0), rounded to `f32` as the map is, or
     /// `None` if the box does not reach it: the one test both walks make, so
@@ -157,11 +172,7 @@ impl Mdm {
         ti: u32,
         tj: u32,
     ) -> Option<Hit> {
-        let (w, h, tops) = &self.pyramid[lvl];
-        if ti >= *w || tj >= *h {
-            return None;
-        }
-        let top = tops[(tj * w + ti) as usize];
+        let top = self.tile_top(lvl, ti, tj)?;
         if top < zmin {
             return None;
         }
@@ -231,13 +242,11 @@ impl Mdm {
             return None;
         }
         let lvl = self.cover_level(&ci, &cj);
-        let (w, _, tops) = &self.pyramid[lvl];
         let mut tiles: Vec<(u32, u32)> = ((cj.start >> lvl)..=((cj.end - 1) >> lvl))
             .flat_map(|tj| ((ci.start >> lvl)..=((ci.end - 1) >> lvl)).map(move |ti| (ti, tj)))
             .collect();
         if way == Vertical::Down {
-            // Highest first, as in `descend_clearance`.
-            tiles.sort_by(|&(ai, aj), &(bi, bj)| tops[(bj * w + bi) as usize].total_cmp(&tops[(aj * w + ai) as usize]));
+            self.highest_first(lvl, &mut tiles);
         }
         let mut best = None;
         for (ti, tj) in tiles {
@@ -257,11 +266,7 @@ impl Mdm {
         // Far above the `f32` rounding of heights, so that a tile's bound
         // never skips a cell whose own test would tie or win.
         const SPARE_M: f32 = 1e-3;
-        let (w, h, tops) = &self.pyramid[lvl];
-        if ti >= *w || tj >= *h {
-            return;
-        }
-        let top = tops[(tj * w + ti) as usize];
+        let Some(top) = self.tile_top(lvl, ti, tj) else { return };
         if top == f32::NEG_INFINITY {
             return;
         }
@@ -276,11 +281,7 @@ impl Mdm {
         if lvl > 0 {
             let mut children = [(0, 0), (0, 1), (1, 0), (1, 1)].map(|(dj, di)| (2 * ti + di, 2 * tj + dj));
             if way == Vertical::Down {
-                // Highest first: its gap is likely the smallest, and the
-                // lower tiles then fall to the bound above.
-                let (w, h, tops) = &self.pyramid[lvl - 1];
-                let top = |&(i, j): &(u32, u32)| if i < *w && j < *h { tops[(j * w + i) as usize] } else { f32::MIN };
-                children.sort_by(|a, b| top(b).total_cmp(&top(a)));
+                self.highest_first(lvl - 1, &mut children);
             }
             for (i, j) in children {
                 self.descend_clearance(b, way, counts, (lvl - 1, i, j), best);

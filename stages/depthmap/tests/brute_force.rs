@@ -16,7 +16,7 @@ use liftplan_depthmap::{Inputs, Settings, build_cpu};
 use parry3d_f64::math::{Pose, Vector};
 use parry3d_f64::query;
 use parry3d_f64::query::ShapeCastOptions;
-use parry3d_f64::shape::{Cuboid, Triangle};
+use parry3d_f64::shape::{Cuboid, Shape, Triangle};
 use proptest::prelude::*;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -64,19 +64,26 @@ fn random_box(rng: &mut ChaCha8Rng) -> Obb {
     )
 }
 
-/// Exact distance from the box to the nearest obstacle (0 when touching).
-fn brute_distance(s: &Scene, b: &Obb, point_half: f64) -> f64 {
-    let (pose, cub) = parry_pose(b);
+/// Calls `f` with every obstacle of the scene as parry3d sees it: each
+/// triangle, and each point's occupied cube of half side `point_half`.
+fn for_each_obstacle(s: &Scene, point_half: f64, mut f: impl FnMut(&Pose, &dyn Shape)) {
     let id = Pose::identity();
-    let mut best = f64::INFINITY;
     for t in &s.tris {
-        let tri = Triangle::new(Vector::from(t[0]), Vector::from(t[1]), Vector::from(t[2]));
-        best = best.min(query::distance(&pose, &cub, &id, &tri).unwrap().distance);
+        f(&id, &Triangle::new(Vector::from(t[0]), Vector::from(t[1]), Vector::from(t[2])));
     }
     let pc = Cuboid::new(Vector::splat(point_half));
     for p in &s.points {
-        best = best.min(query::distance(&pose, &cub, &Pose::from_translation(Vector::from(*p)), &pc).unwrap().distance);
+        f(&Pose::from_translation(Vector::from(*p)), &pc);
     }
+}
+
+/// Exact distance from the box to the nearest obstacle (0 when touching).
+fn brute_distance(s: &Scene, b: &Obb, point_half: f64) -> f64 {
+    let (pose, cub) = parry_pose(b);
+    let mut best = f64::INFINITY;
+    for_each_obstacle(s, point_half, |pos, shape| {
+        best = best.min(query::distance(&pose, &cub, pos, shape).unwrap().distance);
+    });
     best
 }
 
@@ -84,7 +91,6 @@ fn brute_distance(s: &Scene, b: &Obb, point_half: f64) -> f64 {
 /// obstacle (0 when touching now), or `None` if it never does.
 fn brute_travel(s: &Scene, b: &Obb, point_half: f64, way: Vertical) -> Option<f64> {
     let (pose, cub) = parry_pose(b);
-    let id = Pose::identity();
     let vel = Vector::new(0.0, 0.0, if way == Vertical::Down { -1.0 } else { 1.0 });
     let opts = ShapeCastOptions {
         max_time_of_impact: 1e3,
@@ -92,16 +98,14 @@ fn brute_travel(s: &Scene, b: &Obb, point_half: f64, way: Vertical) -> Option<f6
         stop_at_penetration: true,
         compute_impact_geometry_on_penetration: false,
     };
-    let cast = |pos: &Pose, shape: &dyn parry3d_f64::shape::Shape| {
-        query::cast_shapes(&pose, vel, &cub, pos, Vector::ZERO, shape, opts).unwrap().map(|h| h.time_of_impact)
-    };
-    let tris = s
-        .tris
-        .iter()
-        .filter_map(|t| cast(&id, &Triangle::new(Vector::from(t[0]), Vector::from(t[1]), Vector::from(t[2]))));
-    let pc = Cuboid::new(Vector::splat(point_half));
-    let points = s.points.iter().filter_map(|p| cast(&Pose::from_translation(Vector::from(*p)), &pc));
-    tris.chain(points).reduce(f64::min)
+    let mut best: Option<f64> = None;
+    for_each_obstacle(s, point_half, |pos, shape| {
+        let hit = query::cast_shapes(&pose, vel, &cub, pos, Vector::ZERO, shape, opts).unwrap();
+        if let Some(t) = hit.map(|h| h.time_of_impact) {
+            best = Some(best.map_or(t, |b| b.min(t)));
+        }
+    });
+    best
 }
 
 /// `b` moved `m` metres straight down or up.
@@ -119,13 +123,30 @@ fn scene_inputs(s: &Scene) -> Inputs {
     Inputs { ground: vec![false; s.points.len()], points: s.points.clone(), mesh }
 }
 
-fn check(seed: u64, cell: f64, mode: Mode) -> Result<(), TestCaseError> {
+/// A random scene of `seed`, its map with `cell` m cells in `mode`, and the
+/// generator left where the scene ends, to draw boxes from.
+struct Site {
+    rng: ChaCha8Rng,
+    scene: Scene,
+    settings: Settings,
+    map: Mdm,
+    /// How far from a real obstacle the map may put one: a cell diagonal
+    /// plus the merge gap.
+    slack: f64,
+}
+
+fn site(seed: u64, cell: f64, mode: Mode) -> Site {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let scene = random_scene(&mut rng, 25, 40);
     let settings =
         Settings { cell_m: cell, mode, point_radius_m: 0.05, merge_gap_m: 0.1, extent: vec![], margin_m: 2.0 };
     let (map, _) = build_cpu(&scene_inputs(&scene), &settings).unwrap();
     let slack = cell * 2f64.sqrt() + settings.merge_gap_m + 1e-4;
+    Site { rng, scene, settings, map, slack }
+}
+
+fn check(seed: u64, cell: f64, mode: Mode) -> Result<(), TestCaseError> {
+    let Site { mut rng, scene, settings, map, slack } = site(seed, cell, mode);
     for _ in 0..60 {
         let b = random_box(&mut rng);
         let d = brute_distance(&scene, &b, settings.point_radius_m);
@@ -141,12 +162,7 @@ fn check(seed: u64, cell: f64, mode: Mode) -> Result<(), TestCaseError> {
 /// The map's vertical clearance of random boxes against the exact travel,
 /// the map's own box query, and the box moved by the clearance.
 fn check_clearance(seed: u64, cell: f64, mode: Mode) -> Result<(), TestCaseError> {
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let scene = random_scene(&mut rng, 25, 40);
-    let settings =
-        Settings { cell_m: cell, mode, point_radius_m: 0.05, merge_gap_m: 0.1, extent: vec![], margin_m: 2.0 };
-    let (map, _) = build_cpu(&scene_inputs(&scene), &settings).unwrap();
-    let slack = cell * 2f64.sqrt() + settings.merge_gap_m + 1e-4;
+    let Site { mut rng, scene, settings, map, slack } = site(seed, cell, mode);
     // f32 heights of a few metres round by under a micrometre; parry's casts
     // stop within its own tolerance.
     let tol = 1e-4;
