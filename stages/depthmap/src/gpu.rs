@@ -43,8 +43,8 @@
 //! keys fit one buffer (a slab that turns out too full is cut and counted
 //! again).
 //!
-//! The box queries' twin, [`Gpu::upload_map`] and [`Gpu::hits_where`], is in
-//! `gpu/screen.rs`.
+//! The box queries' and clearances' twin, [`Gpu::upload_map`],
+//! [`Gpu::hits_where`] and [`Gpu::clearances_where`], is in `gpu/screen.rs`.
 
 use crate::mdm::{GridSpec, Interval, Mode, PointSource, Raw, local_point};
 use wgpu::util::DeviceExt;
@@ -80,6 +80,7 @@ pub struct Gpu {
     large_cells: wgpu::ComputePipeline,
     /// The box-query screen (`screen.rs`).
     screen_boxes: wgpu::ComputePipeline,
+    clear_boxes: wgpu::ComputePipeline,
     /// Loop iterations one invocation may run, where the device cuts loops
     /// short (lavapipe: 65535); `None` where the probe ran to its end.
     loop_cap: Option<u32>,
@@ -166,6 +167,7 @@ impl Gpu {
             find_large: pipeline("find_large"),
             large_cells: pipeline("large_cells"),
             screen_boxes: pipeline_in(&screen, "screen_boxes"),
+            clear_boxes: pipeline_in(&screen, "clear_boxes"),
             buffer_limit: device_buffer_limit(&dev.device),
             loop_cap: None,
             dev,

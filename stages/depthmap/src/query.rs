@@ -15,8 +15,11 @@
 //! in step when changing the walk (its tests compare them box for box).
 //!
 //! Vertical clearance ([`Mdm::clearance`]): how far a box can move straight
-//! down or up before it meets an obstacle, from the same per-cell test. It
-//! has no GPU twin yet.
+//! down or up before it meets an obstacle, from the same per-cell test. Its
+//! GPU twin (`crate::gpu::Gpu::clearances_where`) narrows each box down to a
+//! few cells and has `Mdm::clearance_in_cells` measure them: keep the
+//! per-cell test (`Mdm::cell_clearance`) and the tie rule (`keep_first`)
+//! the one both paths use.
 
 use crate::mdm::{Interval, Mdm};
 use liftplan_core::obb::{Obb, strip_x_range};
@@ -230,8 +233,9 @@ impl Mdm {
     /// The walk descends the max-height pyramid as `hit_where` does, but
     /// cannot stop at the first contact: it skips a tile only when nothing in
     /// it can beat the gap found so far (moving down: the box's lowest point
-    /// over the tile, less the tile's top, is larger by a millimetre; moving
-    /// up: everything in the tile lies below the box by a millimetre). Of
+    /// over the tile, less the tile's top, is larger by a millimetre and the
+    /// rounding of the heights; moving up: everything in the tile lies below
+    /// the box by as much). Of
     /// equal gaps it keeps the lowest row, then column, then the first in the
     /// cell's height order, so the answer does not depend on the walk's order.
     pub fn clearance_where(&self, b: &Obb, way: Vertical, counts: impl Fn(&Interval) -> bool) -> Option<Clearance> {
@@ -263,17 +267,17 @@ impl Mdm {
         (lvl, ti, tj): (usize, u32, u32),
         best: &mut Option<Clearance>,
     ) {
-        // Far above the `f32` rounding of heights, so that a tile's bound
-        // never skips a cell whose own test would tie or win.
-        const SPARE_M: f32 = 1e-3;
         let Some(top) = self.tile_top(lvl, ti, tj) else { return };
         if top == f32::NEG_INFINITY {
             return;
         }
-        let Some((lo, hi)) = self.tile_z_range(b, lvl, ti, tj) else { return };
+        let Some((lo, _)) = self.tile_z_range(b, lvl, ti, tj) else { return };
         let hopeless = match way {
-            Vertical::Down => best.is_some_and(|b| lo - top > b.gap_m + SPARE_M),
-            Vertical::Up => top < lo - SPARE_M,
+            // Every gap in the tile is at least `lo - top`, less the rounding
+            // of two `f32` subtractions (its and the cell's), which
+            // `spare_m` covers many times over at any height.
+            Vertical::Down => best.is_some_and(|b| lo - top > b.gap_m + spare_m(lo, top)),
+            Vertical::Up => top < lo - spare_m(lo, top),
         };
         if hopeless {
             return;
@@ -288,8 +292,26 @@ impl Mdm {
             }
             return;
         }
+        if let Some(found) = self.cell_clearance(b, way, counts, ti, tj) {
+            keep_first(best, found);
+        }
+    }
+
+    /// The smallest gap between `b`, moved `way`, and an interval of cell
+    /// (`i`, `j`) that `counts`, with the box's heights over the cell's
+    /// column; of equal gaps the first in height order. `None` when the box
+    /// does not reach the cell's column or nothing in it lies that way.
+    fn cell_clearance(
+        &self,
+        b: &Obb,
+        way: Vertical,
+        counts: &impl Fn(&Interval) -> bool,
+        i: u32,
+        j: u32,
+    ) -> Option<Clearance> {
+        let (lo, hi) = self.tile_z_range(b, 0, i, j)?;
         let mut found: Option<Clearance> = None;
-        for iv in self.cell(ti, tj) {
+        for iv in self.cell(i, j) {
             let gap = match way {
                 // Sorted by bottom: the rest start above the box too.
                 Vertical::Down if iv.zlo > hi => break,
@@ -298,15 +320,30 @@ impl Mdm {
                 Vertical::Up => iv.zlo - hi,
             };
             if counts(iv) && found.is_none_or(|f| gap < f.gap_m) {
-                found = Some(Clearance { gap_m: gap, at: Hit { i: ti, j: tj, interval: *iv } });
+                found = Some(Clearance { gap_m: gap, at: Hit { i, j, interval: *iv } });
             }
         }
-        if let Some(f) = found {
-            let first = |c: &Clearance| (c.at.j, c.at.i);
-            if best.is_none_or(|b| f.gap_m < b.gap_m || (f.gap_m == b.gap_m && first(&f) < first(&b))) {
-                *best = Some(f);
+        found
+    }
+
+    /// [`Mdm::clearance_where`] when the answer is known to lie in one of
+    /// `cells` (indices `j * nx + i`, in any order): the GPU twin's last
+    /// step, which has proved that every other cell's gap is larger.
+    pub(crate) fn clearance_in_cells(
+        &self,
+        b: &Obb,
+        way: Vertical,
+        counts: impl Fn(&Interval) -> bool,
+        cells: &[u32],
+    ) -> Option<Clearance> {
+        let nx = self.spec.nx;
+        let mut best = None;
+        for &c in cells {
+            if let Some(found) = self.cell_clearance(b, way, &counts, c % nx, c / nx) {
+                keep_first(&mut best, found);
             }
         }
+        best
     }
 
     /// [`Mdm::clearance`] of many boxes at once, in parallel; answers in input order.
@@ -318,4 +355,24 @@ impl Mdm {
     pub fn object_name(&self, iv: &Interval) -> &str {
         self.objects.get(iv.obj as usize).map(|s| s.as_str()).unwrap_or("unknown object")
     }
+}
+
+/// Keeps in `best` the clearance the walk must answer: the smallest gap, and
+/// of equal gaps the lowest row, then column (a cell's own ties are settled
+/// by `Mdm::cell_clearance`); so the answer does not depend on the order
+/// in which cells are tested.
+fn keep_first(best: &mut Option<Clearance>, found: Clearance) {
+    let first = |c: &Clearance| (c.at.j, c.at.i);
+    if best.is_none_or(|b| found.gap_m < b.gap_m || (found.gap_m == b.gap_m && first(&found) < first(&b))) {
+        *best = Some(found);
+    }
+}
+
+/// Room for the rounding of the `f32` subtractions that give gaps and their
+/// bounds from heights `a` and `b`: a millimetre, and 16 times the largest
+/// rounding error of one subtraction (2^-24 of the operands), so that a
+/// tile's bound never skips a cell whose own test would tie or win, at any
+/// height.
+fn spare_m(a: f32, b: f32) -> f32 {
+    1e-3 + (a.abs() + b.abs()) * (1.0 / (1u32 << 20) as f32)
 }

@@ -4,6 +4,7 @@
 use liftplan_core::frame::{Point3, Vec3};
 use liftplan_core::obb::Obb;
 use liftplan_depthmap::mdm::{self, Mode, PointSource, Raw};
+use liftplan_depthmap::query::Vertical;
 use liftplan_depthmap::{Inputs, Settings, build, build_cpu, gpu};
 use rand::{RngExt, SeedableRng};
 
@@ -300,4 +301,187 @@ fn gpu_box_queries_touching_exactly_are_right() {
         eprintln!("lattice boxes ignoring {ignore:?}: {counts:?}, {touching} touch the map exactly");
         assert!(touching > 0, "no box touches exactly: the test does not test what it says");
     }
+}
+
+/// The GPU's clearances (device narrowing, CPU measuring the cells it
+/// keeps) give the CPU's answer for every box, both ways, with and without
+/// an ignored object: gap, cell and interval.
+#[test]
+fn gpu_and_cpu_clearances_agree() {
+    let Some(g) = open() else { return };
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(29);
+    for (n, cell, mode) in [(40_000, 0.25, Mode::Multi), (20_000, 1.0, Mode::Single), (40_000, 0.1, Mode::Multi)] {
+        let inp = site(n, n as u64 + 1, true);
+        let s = Settings { cell_m: cell, mode, ..Settings::default() };
+        let (map, _) = build_cpu(&inp, &s).unwrap();
+        let on_gpu = g.upload_map(&map).unwrap();
+        let mut boxes: Vec<Obb> = (0..2000)
+            .map(|_| {
+                let z = rng.random_range(-5.0..40.0);
+                random_box(&mut rng, z)
+            })
+            .collect();
+        boxes.push(Obb::axis_aligned(Point3::new(5000.0, 2000.0, 1.0), Vec3::new(1.0, 1.0, 1.0)));
+        boxes.push(Obb::axis_aligned(Point3::new(1000.0, 2.0e6, 1.0), Vec3::new(3.0e6, 1.0, 1.0)));
+        for way in [Vertical::Down, Vertical::Up] {
+            for ignore in [None, Some(mdm::OBJ_GROUND)] {
+                let (found, counts) = g.clearances_where(&on_gpu, &map, &boxes, way, ignore).unwrap();
+                let mut some = 0;
+                for (k, b) in boxes.iter().enumerate() {
+                    let cpu = map.clearance_where(b, way, |iv| Some(iv.obj) != ignore);
+                    assert_eq!(found[k], cpu, "box {k} ({b:?}), cell {cell}, {mode:?}, {way:?}, ignoring {ignore:?}");
+                    some += cpu.is_some() as usize;
+                }
+                eprintln!(
+                    "cell {cell} {mode:?} {way:?} ignoring {ignore:?}: {some} of {} with a gap, {counts:?}",
+                    boxes.len()
+                );
+                assert!(some > boxes.len() / 10, "too few boxes have anything {way:?} of them: {some}");
+                assert!(counts.left_to_cpu >= 1, "the far box must go to the CPU");
+                assert!(counts.free_on_gpu >= 1, "the box off the grid has nothing under or over it");
+                // The device narrows most boxes to a few cells; a weaker
+                // bound would leave the work to the CPU.
+                assert!(
+                    100 * counts.hit_on_gpu >= 80 * some,
+                    "the device narrowed {counts:?} of {some} boxes with a gap"
+                );
+            }
+        }
+    }
+}
+
+/// Over a level slab every cell under a box ties: the device must settle
+/// the tie as the CPU does (the first cell in row order), from the upright
+/// box's exact heights, and hand the CPU a single cell. Boxes turned out of
+/// the upright only tie nearly, and still agree.
+#[test]
+fn gpu_clearance_ties_over_a_slab_are_the_cpus() {
+    let Some(g) = open() else { return };
+    let mut inp = Inputs::default();
+    let slab = inp.mesh.group_id("SLAB-1");
+    inp.mesh.add_box(slab, [0.0, 0.0, 0.0], [40.0, 40.0, 0.3]);
+    let roof = inp.mesh.group_id("ROOF-1");
+    inp.mesh.add_box(roof, [0.0, 0.0, 12.0], [40.0, 40.0, 12.5]);
+    let s = Settings { cell_m: 0.25, extent: vec![0.0, 0.0, 40.0, 40.0], ..Settings::default() };
+    let (map, _) = build_cpu(&inp, &s).unwrap();
+    let on_gpu = g.upload_map(&map).unwrap();
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(31);
+    let upright: Vec<Obb> = (0..500).map(|_| boxes::random_box(&mut rng, [20.0, 20.0], [15.0, 15.0], 5.0)).collect();
+    let upright: Vec<Obb> = upright.into_iter().filter(|b| b.is_upright()).collect();
+    assert!(upright.len() > 100, "{} upright boxes", upright.len());
+    for way in [Vertical::Down, Vertical::Up] {
+        let (found, counts) = g.clearances_where(&on_gpu, &map, &upright, way, None).unwrap();
+        for (k, b) in upright.iter().enumerate() {
+            assert_eq!(found[k], map.clearance(b, way), "box {k} ({b:?}), {way:?}");
+        }
+        eprintln!("slab, upright boxes {way:?}: {counts:?}");
+        assert_eq!(counts.boxes(), upright.len());
+        assert!(100 * counts.hit_on_gpu >= 95 * upright.len(), "{counts:?}");
+        // One cell per box, but where the box's edge runs within a
+        // millimetre of a cell's (the device cannot tell if it reaches).
+        assert!(counts.cells_measured <= counts.hit_on_gpu + counts.hit_on_gpu / 10, "{counts:?}");
+    }
+    let turned: Vec<Obb> = (0..500).map(|_| boxes::random_box(&mut rng, [20.0, 20.0], [15.0, 15.0], 5.0)).collect();
+    for way in [Vertical::Down, Vertical::Up] {
+        let (found, counts) = g.clearances_where(&on_gpu, &map, &turned, way, None).unwrap();
+        for (k, b) in turned.iter().enumerate() {
+            assert_eq!(found[k], map.clearance(b, way), "box {k} ({b:?}), {way:?}");
+        }
+        eprintln!("slab, any boxes {way:?}: {counts:?}");
+    }
+}
+
+/// Lattice boxes over a lattice site (see the box queries' test of the
+/// same name): faces touching intervals exactly give gaps of exactly zero,
+/// the ties the device's bounds cannot split; the answers must still be the
+/// CPU's, both ways.
+#[test]
+fn gpu_clearances_touching_exactly_are_right() {
+    let Some(g) = open() else { return };
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(37);
+    let inp = site(30_000, 6, false);
+    let s = Settings { cell_m: 0.25, point_radius_m: 0.0625, ..Settings::default() };
+    let (map, _) = build_cpu(&inp, &s).unwrap();
+    let on_gpu = g.upload_map(&map).unwrap();
+    let lattice: Vec<Obb> =
+        (0..2000).map(|_| boxes::lattice_box(&mut rng, [1000.0, 2000.0], [40.0, 30.0], [-16, 420])).collect();
+    for way in [Vertical::Down, Vertical::Up] {
+        for ignore in [None, Some(mdm::OBJ_GROUND)] {
+            let (found, counts) = g.clearances_where(&on_gpu, &map, &lattice, way, ignore).unwrap();
+            let mut touching = 0;
+            for (k, b) in lattice.iter().enumerate() {
+                let cpu = map.clearance_where(b, way, |iv| Some(iv.obj) != ignore);
+                assert_eq!(found[k], cpu, "box {k} ({b:?}), {way:?}, ignoring {ignore:?}");
+                touching += cpu.is_some_and(|c| c.gap_m == 0.0) as usize;
+            }
+            eprintln!("lattice boxes {way:?} ignoring {ignore:?}: {counts:?}, {touching} touch the map exactly");
+            assert!(touching > 0, "no box touches exactly: the test does not test what it says");
+        }
+    }
+}
+
+/// A clearance walk longer than the device's loop budget is given up and
+/// answered by the CPU (lavapipe would otherwise end it silently).
+#[test]
+fn gpu_clearance_longer_than_the_loop_budget_is_right() {
+    let Some(g) = open() else { return };
+    let mut inp = Inputs::default();
+    for j in 0..200 {
+        for i in 0..200 {
+            // Rising by 1/64 m a cell in the device walk's order (the
+            // quadtree's, z-order): each tile holds a cell higher than any
+            // before it, so no tile bound cuts the walk short.
+            let z = 90.0 + z_order(i, j) as f64 / 64.0;
+            inp.points.push([i as f64 * 0.1 + 0.05, j as f64 * 0.1 + 0.05, z]);
+            inp.ground.push(false);
+        }
+    }
+    // Each point in its own cell only: a neighbour's height in a cell's
+    // top would let a tile bound skip tiles.
+    let s = Settings { cell_m: 0.1, point_radius_m: 0.01, extent: vec![0.0, 0.0, 20.0, 20.0], ..Settings::default() };
+    let (map, _) = build_cpu(&inp, &s).unwrap();
+    let on_gpu = g.upload_map(&map).unwrap();
+    let b = Obb::axis_aligned(Point3::new(10.0, 10.0, 2000.0), Vec3::new(9.99, 9.99, 0.5));
+    let cpu = map.clearance(&b, Vertical::Up);
+    assert!(cpu.is_none(), "{cpu:?}");
+    let cpu = map.clearance(&b, Vertical::Down);
+    assert!(cpu.is_some_and(|c| c.at.i >= 198 && c.at.j >= 198), "{cpu:?}");
+    let (found, counts) = g.clearances_where(&on_gpu, &map, &[b], Vertical::Down, None).unwrap();
+    eprintln!("{counts:?}");
+    assert_eq!(found[0], cpu);
+    if g.loop_cap().is_some() {
+        assert_eq!(counts.left_to_cpu, 1, "a walk of 40,000 cells is over lavapipe's budget");
+    }
+}
+
+/// A clearance walk within the device's loop budget by the shader's own
+/// count that Mesa's lavapipe still cut short: its count also takes the
+/// iteration in which each loop ends, and this walk ends many short loops.
+/// Read as finished, it gave a gap 6 cm larger than the CPU's. The walk's
+/// `done` flag sends such a box to the CPU; on a GPU it is answered whole.
+#[test]
+fn gpu_clearance_walk_cut_short_by_the_device_goes_to_the_cpu() {
+    let Some(g) = open() else { return };
+    let inp = site(40_000, 40_001, true);
+    let s = Settings { cell_m: 0.1, mode: Mode::Multi, ..Settings::default() };
+    let (map, _) = build_cpu(&inp, &s).unwrap();
+    let on_gpu = g.upload_map(&map).unwrap();
+    let (c, sn) = (0.872538559727929, 0.4885452505018458);
+    let turn = nalgebra::Matrix3::new(c, -sn, 0.0, sn, c, 0.0, 0.0, 0.0, 1.0);
+    let b = Obb::new(
+        Point3::new(1019.720667928227, 2022.0937481368644, -1.7599987149763696),
+        turn,
+        Vec3::new(7.602656184928848, 7.664752076727674, 1.9150532673840082),
+    );
+    let cpu = map.clearance(&b, Vertical::Up);
+    assert!(cpu.is_some_and(|c| c.gap_m < -0.2), "{cpu:?}");
+    let (found, counts) = g.clearances_where(&on_gpu, &map, &[b], Vertical::Up, None).unwrap();
+    eprintln!("{counts:?}");
+    assert_eq!(found[0], cpu);
+}
+
+/// The cell's place in z-order: the bits of `i` and `j` interleaved, `i`'s
+/// first.
+fn z_order(i: u32, j: u32) -> u32 {
+    (0..16).map(|b| ((i >> b) & 1) << (2 * b) | ((j >> b) & 1) << (2 * b + 1)).sum()
 }

@@ -1,4 +1,5 @@
-//! The GPU twin of the box queries ([`Mdm::hit_where`]): the device answers
+//! The GPU twin of the box queries ([`Mdm::hit_where`]) and the vertical
+//! clearances ([`Mdm::clearance_where`]): the device answers
 //! what it can prove in `f32`, the CPU's exact test the rest.
 //!
 //! The exact per-cell test ([`liftplan_core::obb::Obb::z_range_over_rect`]) is
@@ -28,14 +29,34 @@
 //! on random sites and boxes); how many boxes the device answers itself is a
 //! matter of speed only (`ScreenCounts`).
 //!
+//! The vertical clearances ([`Mdm::clearance_where`], [`Gpu::clearances_where`])
+//! work the same way with bounds instead of a yes or no. A cell's gap is an
+//! `f32` subtraction from the box's exact heights over the cell; the device
+//! bounds it from below with the outer box's heights (less a slack of 2^-20
+//! of the heights, sixteen times the rounding of the subtraction on either
+//! path) and from above with the inner box's, where those surely meet an
+//! interval. It walks the box's cells, keeps the least upper bound found and
+//! its cell, and keeps every cell whose lower bound does not lose to it in
+//! the CPU's order (the smaller gap, then the lower cell index). Every cell
+//! it drops has a larger gap than that cell, or an equal one later in that
+//! order, so the CPU's answer lies in the cells it keeps (at most
+//! [`CELLS`]), which the CPU then measures with its own per-cell test and
+//! tie rule. For an upright box the heights are the CPU's own (the same over
+//! every column it reaches), so its gaps are exact where it surely reaches a
+//! cell, and over level ground the device settles the tie itself and keeps
+//! one cell. More cells than that, or a walk past its budget: the CPU
+//! answers the box whole.
+//!
 //! Must not: guess. A box it cannot place in `f32` safely (coordinates over
 //! [`MAX_COORD_M`] from the grid origin), or whose walk runs past its loop
 //! budget (a device that cuts loops short, [`Gpu::loop_cap`], gets half that
-//! cap), goes to the CPU.
+//! cap, and a walk counts as finished only when its loop ended by itself),
+//! goes to the CPU; so do all clearances on a map with heights beyond
+//! [`MAX_HEIGHT_M`].
 
 use super::{Gpu, words_to_bytes};
 use crate::mdm::{Interval, Mdm};
-use crate::query::Hit;
+use crate::query::{Clearance, Hit, Vertical};
 use liftplan_core::obb::Obb;
 use rayon::prelude::*;
 
@@ -55,6 +76,16 @@ pub const MAX_COORD_M: f64 = 1e6;
 /// quantity round by at most ten.
 const MARGIN_M: f64 = 1e-3;
 const MARGIN_REL: f64 = 1.0 / 65536.0;
+/// Answer words per box of the clearance walk: verdict, number of cells,
+/// and up to [`CELLS`] cells (the shader's `CLEAR_WORDS`).
+const CLEAR_WORDS: usize = 12;
+/// Cells the clearance walk may hand the CPU for one box (the shader's
+/// `CELLS`); a box with more undecided cells is left to the CPU whole.
+const CELLS: usize = 10;
+/// Maps with heights farther than this from zero (m) take no clearances on
+/// the device: the shader's gaps and their bounds must stay far from
+/// `f32`'s largest number.
+const MAX_HEIGHT_M: f32 = 1e30;
 /// Loop iterations one box may take on a device that runs loops to the end:
 /// a box over more cells and intervals than that is left to the CPU.
 const BUDGET: u32 = 1 << 20;
@@ -69,14 +100,18 @@ pub struct GpuMap {
     spec: crate::mdm::GridSpec,
     intervals_len: usize,
     levels_len: usize,
+    /// The largest height in the map, by magnitude (m).
+    height_bound: f32,
 }
 
 /// How a batch of boxes was answered, and where the time went.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct ScreenCounts {
-    /// Answered "free" by the device.
+    /// Answered "free" by the device (clearances: nothing lies that way).
     pub free_on_gpu: usize,
-    /// Answered with their first contact by the device.
+    /// Answered with their first contact by the device (clearances: the
+    /// device proved the answer lies in a few cells, `cells_measured` in
+    /// all, which the CPU then measured exactly).
     pub hit_on_gpu: usize,
     /// Answered by the CPU's exact query: a contact the device could not
     /// decide in `f32`, a walk over its loop budget, or a box too far from
@@ -87,8 +122,12 @@ pub struct ScreenCounts {
     pub screen_ms: f64,
     /// Of `screen_ms`, preparing the boxes on the host (ms).
     pub prepare_ms: f64,
-    /// The CPU's exact queries of the boxes left to it (ms).
+    /// The CPU's exact queries of the boxes left to it, and for clearances
+    /// its measuring of the device's cells (ms).
     pub exact_ms: f64,
+    /// Clearances: the cells the CPU measured for the boxes the device
+    /// narrowed down (`hit_on_gpu`).
+    pub cells_measured: usize,
 }
 
 impl ScreenCounts {
@@ -105,6 +144,7 @@ impl ScreenCounts {
         self.screen_ms += o.screen_ms;
         self.prepare_ms += o.prepare_ms;
         self.exact_ms += o.exact_ms;
+        self.cells_measured += o.cells_measured;
     }
 }
 
@@ -161,6 +201,7 @@ impl Gpu {
                 spec,
                 intervals_len: map.intervals.len(),
                 levels_len: map.pyramid.len(),
+                height_bound: map.intervals.iter().fold(0.0f32, |m, iv| m.max(iv.zlo.abs()).max(iv.zhi.abs())),
             })
         })
     }
@@ -219,40 +260,40 @@ impl Gpu {
         boxes: &[Obb],
         ignore: Option<u32>,
     ) -> Result<(Vec<Verdict>, f64), String> {
+        let batch = prepare_batch(map, boxes, ignore);
+        let mut verdicts: Vec<Verdict> =
+            batch.outside.iter().map(|&out| if out { Verdict::Free } else { Verdict::LeftToCpu }).collect();
+        let run = Dispatch { pipeline: &self.screen_boxes, way: 0, exact: None, out_binding: 6, out_words: 4 };
+        self.dispatch(gpu_map, map, &batch, &run, |k, a| verdicts[k] = verdict(map, a))?;
+        Ok((verdicts, batch.prepare_ms))
+    }
+
+    /// Runs `run` over the boxes of `batch` that go up, in batches that fit
+    /// the device's buffers, and hands each box's answer words to `take`
+    /// with the box's place in the caller's list.
+    fn dispatch(
+        &self,
+        gpu_map: &GpuMap,
+        map: &Mdm,
+        batch: &Batch,
+        run: &Dispatch,
+        mut take: impl FnMut(usize, &[u32]),
+    ) -> Result<(), String> {
         let budget = self.loop_cap.map_or(BUDGET, |cap| cap / 2);
-        let t_prepare = std::time::Instant::now();
-        let mut verdicts = vec![Verdict::LeftToCpu; boxes.len()];
-        // The boxes that go up, with their place in `boxes`.
-        let mut sent: Vec<usize> = Vec::new();
-        let mut words: Vec<u32> = Vec::new();
-        let prepared: Vec<Prepared> = boxes.par_iter().map(|b| prepare(b, map, ignore)).collect();
-        for (k, p) in prepared.into_iter().enumerate() {
-            match p {
-                Prepared::Outside => verdicts[k] = Verdict::Free,
-                Prepared::Unsafe => {}
-                Prepared::Box(w) => {
-                    sent.push(k);
-                    words.extend(w);
-                }
-            }
-        }
-        let prepare_ms = t_prepare.elapsed().as_secs_f64() * 1e3;
         let spec = map.spec;
         // The inner test's lines stand this far inside a cell, clear of the
         // rounding of the cell's edges (a few ulps of the grid's size).
         let size = spec.nx.max(spec.ny) as f64 * spec.cell;
         let margin = 1e-4 + size / (1u64 << 20) as f64;
         let margin = if margin < spec.cell / 4.0 { margin as f32 } else { -1.0 };
-        let per_batch = ((self.buffer_limit / (16 * BOX_WORDS as u64)) as usize).max(1);
+        let per_box = (BOX_WORDS + 2 + run.out_words) as u64 * 4;
+        let per_batch = ((self.buffer_limit / (4 * per_box)) as usize).max(1);
         liftplan_core::gpu::catching_errors(&self.dev, || {
-            for (batch, chunk) in sent.chunks(per_batch).enumerate() {
-                let first = batch * per_batch * BOX_WORDS;
-                let boxes_buf = self.upload(
-                    "query boxes",
-                    &words_to_bytes(&words[first..first + chunk.len() * BOX_WORDS]),
-                    wgpu::BufferUsages::STORAGE,
-                );
-                let out = self.storage("query answers", 16 * chunk.len() as u64);
+            for (n, chunk) in batch.sent.chunks(per_batch).enumerate() {
+                let first = n * per_batch;
+                let words = &batch.words[first * BOX_WORDS..(first + chunk.len()) * BOX_WORDS];
+                let boxes_buf = self.upload("query boxes", &words_to_bytes(words), wgpu::BufferUsages::STORAGE);
+                let out = self.storage("query answers", 4 * (run.out_words * chunk.len()) as u64);
                 let params = [
                     chunk.len() as u32,
                     spec.nx,
@@ -260,31 +301,159 @@ impl Gpu {
                     budget,
                     (spec.cell as f32).to_bits(),
                     margin.to_bits(),
-                    0,
+                    run.way,
                     0,
                 ];
                 let p = self.upload("query params", &words_to_bytes(&params), wgpu::BufferUsages::UNIFORM);
-                let mut enc = self.dev.device.create_command_encoder(&Default::default());
-                let binds = [
+                let mut binds = vec![
                     (0, &p),
                     (1, &boxes_buf),
                     (2, &gpu_map.offsets),
                     (3, &gpu_map.intervals),
                     (4, &gpu_map.tops),
                     (5, &gpu_map.levels),
-                    (6, &out),
+                    (run.out_binding, &out),
                 ];
-                self.pass(&mut enc, &self.screen_boxes, &binds, chunk.len() as u32, SCREEN_GROUP);
+                let exact_buf;
+                if let Some(exact) = run.exact {
+                    let words = &exact[2 * first..2 * (first + chunk.len())];
+                    exact_buf = self.upload("query exact heights", &words_to_bytes(words), wgpu::BufferUsages::STORAGE);
+                    binds.push((7, &exact_buf));
+                }
+                let mut enc = self.dev.device.create_command_encoder(&Default::default());
+                self.pass(&mut enc, run.pipeline, &binds, chunk.len() as u32, SCREEN_GROUP);
                 self.submit(enc);
-                let answers = self.read_words(&out, 0, 4 * chunk.len() as u64)?;
-                for (k, a) in chunk.iter().zip(answers.chunks_exact(4)) {
-                    verdicts[*k] = verdict(map, a);
+                let answers = self.read_words(&out, 0, (run.out_words * chunk.len()) as u64)?;
+                for (k, a) in chunk.iter().zip(answers.chunks_exact(run.out_words)) {
+                    take(*k, a);
                 }
             }
             Ok(())
-        })?;
-        Ok((verdicts, prepare_ms))
+        })
     }
+
+    /// [`Mdm::clearance_where`] for every box, with `counts` "every object
+    /// but `ignore`": the device narrows each box's answer down to a few
+    /// cells, the CPU measures those exactly (see the module doc). `gpu_map`
+    /// must be `map` uploaded.
+    pub fn clearances_where(
+        &self,
+        gpu_map: &GpuMap,
+        map: &Mdm,
+        boxes: &[Obb],
+        way: Vertical,
+        ignore: Option<u32>,
+    ) -> Result<(Vec<Option<Clearance>>, ScreenCounts), String> {
+        if gpu_map.spec != map.spec
+            || gpu_map.intervals_len != map.intervals.len()
+            || gpu_map.levels_len != map.pyramid.len()
+        {
+            return Err("the depth map on the GPU is not the one queried".into());
+        }
+        let t0 = std::time::Instant::now();
+        let mut batch = prepare_batch(map, boxes, ignore);
+        let mut answers: Vec<Narrowed> =
+            batch.outside.iter().map(|&out| if out { Narrowed::Nothing } else { Narrowed::LeftToCpu }).collect();
+        if gpu_map.height_bound > MAX_HEIGHT_M {
+            // Gaps and their bounds could overflow `f32` on the device.
+            batch.sent.clear();
+        }
+        // An upright box's heights are the same over every column it
+        // reaches: the CPU's, rounded as it rounds them, go up with it.
+        let exact: Vec<u32> = batch
+            .sent
+            .iter()
+            .flat_map(|&k| {
+                let b = &boxes[k];
+                [((b.center.z - b.half.z) as f32).to_bits(), ((b.center.z + b.half.z) as f32).to_bits()]
+            })
+            .collect();
+        let prepare_ms = t0.elapsed().as_secs_f64() * 1e3;
+        let way_word = match way {
+            Vertical::Down => 0,
+            Vertical::Up => 1,
+        };
+        let run = Dispatch {
+            pipeline: &self.clear_boxes,
+            way: way_word,
+            exact: Some(&exact),
+            out_binding: 8,
+            out_words: CLEAR_WORDS,
+        };
+        self.dispatch(gpu_map, map, &batch, &run, |k, a| answers[k] = narrowed(map, a))?;
+        let t_exact = std::time::Instant::now();
+        let counts_obj = |iv: &Interval| Some(iv.obj) != ignore;
+        let found = boxes
+            .par_iter()
+            .zip(&answers)
+            .map(|(b, a)| match a {
+                Narrowed::Nothing => None,
+                Narrowed::Cells(n, cells) => map.clearance_in_cells(b, way, counts_obj, &cells[..*n]),
+                Narrowed::LeftToCpu => map.clearance_where(b, way, counts_obj),
+            })
+            .collect();
+        let mut counts = ScreenCounts {
+            screen_ms: (t_exact - t0).as_secs_f64() * 1e3,
+            prepare_ms,
+            exact_ms: t_exact.elapsed().as_secs_f64() * 1e3,
+            ..ScreenCounts::default()
+        };
+        for a in &answers {
+            match a {
+                Narrowed::Nothing => counts.free_on_gpu += 1,
+                Narrowed::Cells(n, _) => {
+                    counts.hit_on_gpu += 1;
+                    counts.cells_measured += n;
+                }
+                Narrowed::LeftToCpu => counts.left_to_cpu += 1,
+            }
+        }
+        Ok((found, counts))
+    }
+}
+
+/// One kind of device walk over a batch of boxes.
+struct Dispatch<'a> {
+    pipeline: &'a wgpu::ComputePipeline,
+    /// The params' word 6 (clearances: 0 down, 1 up).
+    way: u32,
+    /// Two words per box that goes up, bound at 7, if the walk reads them.
+    exact: Option<&'a [u32]>,
+    out_binding: u32,
+    /// Answer words per box.
+    out_words: usize,
+}
+
+/// The boxes made ready for the device.
+struct Batch {
+    /// Per box: its bounding box misses the grid (no answer to look for, on
+    /// both paths).
+    outside: Vec<bool>,
+    /// The boxes that go up, by their place in the caller's list, and their
+    /// words, `BOX_WORDS` each. A box neither outside nor sent is left to
+    /// the CPU (too far out, or not finite).
+    sent: Vec<usize>,
+    words: Vec<u32>,
+    /// Time spent preparing (ms).
+    prepare_ms: f64,
+}
+
+fn prepare_batch(map: &Mdm, boxes: &[Obb], ignore: Option<u32>) -> Batch {
+    let t = std::time::Instant::now();
+    let mut batch = Batch { outside: vec![false; boxes.len()], sent: Vec::new(), words: Vec::new(), prepare_ms: 0.0 };
+    let prepared: Vec<Prepared> = boxes.par_iter().map(|b| prepare(b, map, ignore)).collect();
+    for (k, p) in prepared.into_iter().enumerate() {
+        match p {
+            Prepared::Outside => batch.outside[k] = true,
+            Prepared::Unsafe => {}
+            Prepared::Box(w) => {
+                batch.sent.push(k);
+                batch.words.extend(w);
+            }
+        }
+    }
+    batch.prepare_ms = t.elapsed().as_secs_f64() * 1e3;
+    batch
 }
 
 /// One box's answer from the device, `[verdict, cell, interval, 0]`. A hit
@@ -302,6 +471,36 @@ fn verdict(map: &Mdm, a: &[u32]) -> Verdict {
             Verdict::Hit(Hit { i: (cell % nx) as u32, j: (cell / nx) as u32, interval: map.intervals[k as usize] })
         }
         _ => Verdict::LeftToCpu,
+    }
+}
+
+/// The clearance walk's answer for one box.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Narrowed {
+    /// Nothing it could meet lies that way, in any cell.
+    Nothing,
+    /// The answer lies in one of these cells (the first `.0`).
+    Cells(usize, [u32; CELLS]),
+    LeftToCpu,
+}
+
+/// One box's clearance answer from the device, `[verdict, n, cells...]`.
+/// Cells off the grid, or a count out of range, are not trusted: the CPU
+/// answers.
+fn narrowed(map: &Mdm, a: &[u32]) -> Narrowed {
+    match a[0] {
+        0 => Narrowed::Nothing,
+        1 => {
+            let n = a[1] as usize;
+            let cells = map.spec.cells();
+            if n == 0 || n > CELLS || a[2..2 + n].iter().any(|&c| c as usize >= cells) {
+                return Narrowed::LeftToCpu;
+            }
+            let mut out = [0u32; CELLS];
+            out[..n].copy_from_slice(&a[2..2 + n]);
+            Narrowed::Cells(n, out)
+        }
+        _ => Narrowed::LeftToCpu,
     }
 }
 

@@ -9,7 +9,7 @@ struct Params {
     budget: u32,   // loop iterations one invocation may run before it gives up
     cell: f32,
     margin: f32,   // how far inside a cell the inner test's lines stand (m)
-    pad0: u32,
+    way: u32,      // clearances: DOWN or UP
     pad1: u32,
 }
 @group(0) @binding(0) var<uniform> P: Params;
@@ -33,6 +33,11 @@ struct Params {
 @group(0) @binding(5) var<storage, read> levels: array<vec4<u32>>;
 // Per box: verdict, cell, interval.
 @group(0) @binding(6) var<storage, read_write> verdict: array<vec4<u32>>;
+// Clearances, per box: its heights as the CPU rounds them (for an upright
+// box, the same over every column it reaches).
+@group(0) @binding(7) var<storage, read> exact: array<vec2<f32>>;
+// Clearances, per box, CLEAR_WORDS: verdict, n, n cells.
+@group(0) @binding(8) var<storage, read_write> narrowed: array<u32>;
 
 const MAX_DIM: u32 = 65535u;
 const GROUP: u32 = 64u;
@@ -48,10 +53,14 @@ fn word(b: u32, k: u32) -> f32 { return bitcast<f32>(boxes[32u * b + k]); }
 fn centre(b: u32) -> vec3<f32> { return vec3<f32>(word(b, 0u), word(b, 1u), word(b, 2u)); }
 fn axis(b: u32, k: u32) -> vec3<f32> { return vec3<f32>(word(b, 4u + 4u * k), word(b, 5u + 4u * k), word(b, 6u + 4u * k)); }
 
-// The shader has no loops but the walk's own, and counts every iteration of
-// those against the budget: a device may end loops silently after a number
-// of iterations in all (Mesa's lavapipe: 65535), and a walk cut short would
-// read as "free".
+// A device may end loops silently after a number of iterations in all
+// (Mesa's lavapipe: 65535), and a walk cut short would read as "free". So
+// each walk counts its iterations against a budget (half such a cap), and,
+// as the count cannot be exact (lavapipe runs eight invocations in
+// lockstep, and counts the iterations of all eight and the one in which a
+// loop ends), an answer is written after the walk only when the walk's
+// loop ended where it ends by itself, with nothing left to walk (`done`).
+// A loop cut short ends anywhere else: its box goes to the CPU.
 
 // Outer: a range of heights that holds every height of the outer box over
 // the column above [x0, x1] x [y0, y1], or EMPTY when that box stays out of
@@ -243,8 +252,12 @@ fn screen_boxes(@builtin(global_invocation_id) g: vec3<u32>) {
             sp++;
         }
     }
+    var done = false;
     loop {
-        if (sp == 0u) { break; }
+        if (sp == 0u) {
+            done = true;
+            break;
+        }
         steps++;
         if (steps > P.budget) { return; }
         sp--;
@@ -302,5 +315,223 @@ fn screen_boxes(@builtin(global_invocation_id) g: vec3<u32>) {
         stack[sp + 3u] = vec3<u32>(lvl - 1u, 2u * t.y, 2u * t.z);
         sp += 4u;
     }
+    // A device that cuts loops short (see below) ends this loop without
+    // `done`: the walk is not finished, and the box goes to the CPU.
+    if (!done) { return; }
     verdict[b] = vec4<u32>(FREE, 0u, 0u, 0u);
+}
+
+// The clearance twin (`Gpu::clearances_where`): how far a box can move
+// straight down or up before it meets the map (`Mdm::clearance_where`).
+//
+// The CPU's gap in a cell is an `f32` subtraction from the box's exact
+// height range over the cell's column, which the device cannot compute. It
+// can bound it: from below with the outer range (and a slack for the
+// rounding of the subtractions, on either path), from above with the inner
+// range, where that surely holds an interval. For an upright box the range
+// is the CPU's own (`exact`), so the gap is exact where the box surely
+// reaches the cell. The walk keeps the least upper bound U found so far,
+// with its cell, and the cells whose lower bound L is not beyond it in the
+// CPU's order (smaller gap, then lower cell index): L < U, or L = U and the
+// cell comes first. Every other cell's gap is larger than the gap of U's
+// cell, or equal and later, so the CPU's answer is in one of the cells
+// kept, which it then measures exactly. Too many undecided cells, or a walk
+// over its budget: the CPU answers the box.
+
+const DOWN: u32 = 0u;
+const CLEAR_WORDS: u32 = 12u;
+const CELLS: u32 = 10u;
+const NOTHING: u32 = 0u;
+const NARROWED: u32 = 1u;
+// Above every gap the walk can meet (the host keeps heights under 1e30 m).
+const NO_BOUND: f32 = 3.0e38;
+// Empty tiles hold -f32::MAX; no height comes near it.
+const EMPTY_TOP: f32 = -1.0e38;
+
+// Room for the rounding of one `f32` subtraction of `a` and `b` on the
+// device and one on the CPU: each errs by at most 2^-24 of the operands
+// (a few ulps on the device); this is 2^-20 of them.
+fn slack(a: f32, b: f32) -> f32 {
+    return (abs(a) + abs(b)) * 9.5367431640625e-7;
+}
+
+// Whether a cell of lower bound `l` at index `cell` may still hold the
+// answer, against the best upper bound `u` at `u_cell`.
+fn in_the_running(l: f32, cell: u32, u: f32, u_cell: u32) -> bool {
+    return l < u || (l == u && cell <= u_cell);
+}
+
+@compute @workgroup_size(64)
+fn clear_boxes(@builtin(global_invocation_id) g: vec3<u32>) {
+    let b = g.x + g.y * MAX_DIM * GROUP;
+    if (b >= P.n) { return; }
+    let slot = CLEAR_WORDS * b;
+    narrowed[slot] = GAVE_UP;
+    let down = P.way == DOWN;
+    let upright = (boxes[32u * b + 31u] & UPRIGHT) != 0u;
+    let e = exact[b];
+    let ignore = boxes[32u * b + 3u];
+    let i0 = boxes[32u * b + 16u];
+    let i1 = boxes[32u * b + 17u];
+    let j0 = boxes[32u * b + 18u];
+    let j1 = boxes[32u * b + 19u];
+    let start = boxes[32u * b + 22u];
+    // The CPU walk's start tiles, as in screen_boxes (the order does not
+    // matter here, only which cells are walked).
+    var stack: array<vec3<u32>, STACK>;
+    var sp = 0u;
+    let ti0 = boxes[32u * b + 27u];
+    let ti1 = boxes[32u * b + 28u];
+    let tj0 = boxes[32u * b + 29u];
+    let tj1 = boxes[32u * b + 30u];
+    if ((ti1 - ti0 + 1u) * (tj1 - tj0 + 1u) > 16u) { return; }
+    var steps = 0u;
+    for (var tj = tj1 + 1u; tj > tj0; tj--) {
+        steps++;
+        for (var ti = ti1 + 1u; ti > ti0; ti--) {
+            steps++;
+            stack[sp] = vec3<u32>(start, ti - 1u, tj - 1u);
+            sp++;
+        }
+    }
+    var best_u = NO_BOUND;
+    var best_cell = 0xffffffffu;
+    var kept: array<u32, CELLS>;
+    var kept_l: array<f32, CELLS>;
+    var n = 0u;
+    var any = false;
+    var done = false;
+    loop {
+        if (sp == 0u) {
+            done = true;
+            break;
+        }
+        steps++;
+        if (steps > P.budget) { return; }
+        sp--;
+        let t = stack[sp];
+        let lvl = t.x;
+        let ci0 = max(t.y << lvl, i0);
+        let ci1 = min(((t.y + 1u) << lvl) - 1u, i1);
+        let cj0 = max(t.z << lvl, j0);
+        let cj1 = min(((t.z + 1u) << lvl) - 1u, j1);
+        if (ci0 > ci1 || cj0 > cj1) { continue; }
+        let info = levels[lvl];
+        let top = tops[info.x + t.z * info.y + t.y];
+        if (top < EMPTY_TOP) { continue; }
+        let x0 = f32(ci0) * P.cell;
+        let x1 = f32(ci1 + 1u) * P.cell;
+        let y0 = f32(cj0) * P.cell;
+        let y1 = f32(cj1 + 1u) * P.cell;
+        let r = outer_range(b, x0, x1, y0, y1);
+        if (r.x > r.y) { continue; }
+        if (down) {
+            // Every gap in the tile is at least its lowest box height less
+            // its top (exact for an upright box: rounding is monotone).
+            var l = e.x - top;
+            if (!upright) { l = (r.x - top) - slack(r.x, top); }
+            if (!in_the_running(l, cj0 * P.nx + ci0, best_u, best_cell)) { continue; }
+        } else if (top < r.x) {
+            // Nothing in the tile reaches the box's bottom.
+            continue;
+        }
+        if (lvl > 0u) {
+            if (sp + 4u > STACK) { return; }
+            stack[sp] = vec3<u32>(lvl - 1u, 2u * t.y + 1u, 2u * t.z + 1u);
+            stack[sp + 1u] = vec3<u32>(lvl - 1u, 2u * t.y, 2u * t.z + 1u);
+            stack[sp + 2u] = vec3<u32>(lvl - 1u, 2u * t.y + 1u, 2u * t.z);
+            stack[sp + 3u] = vec3<u32>(lvl - 1u, 2u * t.y, 2u * t.z);
+            sp += 4u;
+            continue;
+        }
+        // A cell: its box heights, outer (tighter over sixteenths) or exact,
+        // and inner (heights the box surely has over it, or EMPTY).
+        let cell = t.z * P.nx + t.y;
+        var o = e;
+        if (!upright) {
+            o = outer_sixteenths(b, x0, x1, y0, y1);
+            if (o.x > o.y) { continue; }
+        }
+        let inner = inner_range(b, x0, x1, y0, y1);
+        let sure = inner.x <= inner.y;
+        var l_cell = NO_BOUND;
+        var u_cell = NO_BOUND;
+        for (var k = offsets[cell]; k < offsets[cell + 1u]; k++) {
+            steps++;
+            if (steps > P.budget) { return; }
+            let zlo = bitcast<f32>(intervals[3u * k]);
+            let zhi = bitcast<f32>(intervals[3u * k + 1u]);
+            if (down && zlo > o.y) { break; }
+            if (intervals[3u * k + 2u] == ignore) { continue; }
+            if (down) {
+                if (upright) {
+                    // Met on the way down where the box reaches the cell.
+                    let gap = e.x - zhi;
+                    l_cell = min(l_cell, gap);
+                    if (sure) { u_cell = min(u_cell, gap); }
+                } else {
+                    l_cell = min(l_cell, (o.x - zhi) - slack(o.x, zhi));
+                    if (sure && zlo <= inner.y) {
+                        u_cell = min(u_cell, (inner.x - zhi) + slack(inner.x, zhi));
+                    }
+                }
+            } else {
+                if (zhi < o.x) { continue; }
+                if (upright) {
+                    let gap = zlo - e.y;
+                    l_cell = min(l_cell, gap);
+                    if (sure) { u_cell = min(u_cell, gap); }
+                } else {
+                    l_cell = min(l_cell, (zlo - o.y) - slack(zlo, o.y));
+                    if (sure && zhi >= inner.x) {
+                        u_cell = min(u_cell, (zlo - inner.y) + slack(zlo, inner.y));
+                    }
+                }
+            }
+        }
+        if (l_cell == NO_BOUND) { continue; }
+        any = true;
+        if (u_cell < NO_BOUND && (u_cell < best_u || (u_cell == best_u && cell < best_cell))) {
+            best_u = u_cell;
+            best_cell = cell;
+            // keep_running's loop counts against the budget too.
+            steps += n;
+            n = keep_running(&kept, &kept_l, n, best_u, best_cell);
+        }
+        if (!in_the_running(l_cell, cell, best_u, best_cell)) { continue; }
+        if (n == CELLS) { return; }
+        kept[n] = cell;
+        kept_l[n] = l_cell;
+        n++;
+    }
+    if (!done) { return; }
+    if (!any) {
+        narrowed[slot] = NOTHING;
+        return;
+    }
+    narrowed[slot + 1u] = n;
+    for (var k = 0u; k < n; k++) {
+        narrowed[slot + 2u + k] = kept[k];
+    }
+    narrowed[slot] = NARROWED;
+}
+
+// Drops the kept cells that can no longer hold the answer; returns how
+// many are left (packed at the front).
+fn keep_running(
+    kept: ptr<function, array<u32, CELLS>>,
+    kept_l: ptr<function, array<f32, CELLS>>,
+    n: u32,
+    u: f32,
+    u_cell: u32,
+) -> u32 {
+    var m = 0u;
+    for (var k = 0u; k < n; k++) {
+        if (in_the_running((*kept_l)[k], (*kept)[k], u, u_cell)) {
+            (*kept)[m] = (*kept)[k];
+            (*kept_l)[m] = (*kept_l)[k];
+            m++;
+        }
+    }
+    return m;
 }
