@@ -19,6 +19,7 @@
 
 use liftplan_core::mesh::TriMesh;
 use liftplan_core::obb::Obb;
+use liftplan_depthmap::mdm::Mdm;
 use liftplan_depthmap::query::Vertical;
 use liftplan_depthmap::{Inputs, Settings, build, build_cpu, gpu};
 use rand::{RngExt, SeedableRng};
@@ -425,33 +426,19 @@ fn queries(s: &Settings, device: &Result<gpu::Gpu, String>) {
         inp.mesh.triangle_count(),
         map.intervals.len()
     );
-    println!(
-        "Vertical clearance, down and up (`Mdm::clearances`, CPU only: it has no GPU twin yet), of the boxes below:\n"
-    );
-    println!("| boxes | with something below | down ms | with something above | up ms |");
-    println!("|---|---|---|---|---|");
     let sets = ["loads", "booms", "turned"].map(|kind| (kind, query_boxes(N, kind)));
-    for (kind, boxes) in &sets {
-        let mut timed = [(0usize, 0f64); 2];
-        for (slot, way) in timed.iter_mut().zip([Vertical::Down, Vertical::Up]) {
-            let mut found = 0;
-            let ms = best_of(3, || {
-                let t = Instant::now();
-                found = map.clearances(boxes, way).iter().filter(|c| c.is_some()).count();
-                t.elapsed().as_secs_f64() * 1e3
-            });
-            *slot = (found, ms);
-        }
-        println!("| {N} {kind} | {} | {:.0} | {} | {:.0} |", timed[0].0, timed[0].1, timed[1].0, timed[1].1);
-    }
-    println!();
-    let Ok(g) = device else {
+    let on_gpu = device.as_ref().ok().map(|g| {
+        let t = Instant::now();
+        let on_gpu = g.upload_map(&map).unwrap();
+        println!("Map upload to the GPU: {:.0} ms.\n", t.elapsed().as_secs_f64() * 1e3);
+        (g, on_gpu)
+    });
+    clearances(&map, &sets, on_gpu.as_ref());
+    let Some((g, on_gpu)) = on_gpu else {
         println!("No GPU: nothing to compare.");
         return;
     };
-    let t = Instant::now();
-    let on_gpu = g.upload_map(&map).unwrap();
-    println!("Map upload to the GPU: {:.0} ms.\n", t.elapsed().as_secs_f64() * 1e3);
+    println!("Box queries (`Mdm::hits` on the CPU, `Gpu::hits_where` on the GPU) of the same boxes:\n");
     println!(
         "| boxes | hit (CPU) | CPU ms | GPU ms | CPU / GPU | free on the GPU | hit on the GPU | left to the CPU | GPU walk ms | of which host prep ms | CPU rest ms | answers equal |"
     );
@@ -489,4 +476,60 @@ fn queries(s: &Settings, device: &Result<gpu::Gpu, String>) {
             if equal { "yes" } else { "NO" }
         );
     }
+}
+
+/// Vertical clearances, down and up, of each set of boxes: on the CPU
+/// (`Mdm::clearances`, rayon) and, where there is a GPU, through its twin
+/// (`Gpu::clearances_where`), answers compared.
+fn clearances(map: &Mdm, sets: &[(&str, Vec<Obb>)], device: Option<&(&gpu::Gpu, gpu::GpuMap)>) {
+    println!(
+        "Vertical clearance, down and up: on the CPU (`Mdm::clearances`) and on the GPU twin \
+        (`Gpu::clearances_where`: the device narrows each box down to a few cells, the CPU measures those):\n"
+    );
+    println!(
+        "| boxes | way | with something that way | CPU ms | GPU ms | CPU / GPU | nothing that way (GPU) | \
+         narrowed on the GPU | cells measured | left to the CPU | GPU walk ms | CPU rest ms | answers equal |"
+    );
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|");
+    for (kind, boxes) in sets {
+        for way in [Vertical::Down, Vertical::Up] {
+            let mut on_cpu = Vec::new();
+            let cpu = best_of(3, || {
+                let t = Instant::now();
+                on_cpu = map.clearances(boxes, way);
+                t.elapsed().as_secs_f64() * 1e3
+            });
+            let found = on_cpu.iter().filter(|c| c.is_some()).count();
+            let Some((g, on_gpu)) = device else {
+                println!("| {} {kind} | {way:?} | {found} | {cpu:.0} | | | | | | | | | |", boxes.len());
+                continue;
+            };
+            let mut best = (f64::INFINITY, gpu::ScreenCounts::default());
+            let mut equal = true;
+            for _ in 0..3 {
+                let t = Instant::now();
+                let (answers, counts) = g.clearances_where(on_gpu, map, boxes, way, None).unwrap();
+                let dt = t.elapsed().as_secs_f64() * 1e3;
+                eprintln!("{kind} {way:?}: GPU {dt:.0} ms, {counts:?}");
+                equal &= answers == on_cpu;
+                if dt < best.0 {
+                    best = (dt, counts);
+                }
+            }
+            let (gpu_ms, c) = best;
+            println!(
+                "| {} {kind} | {way:?} | {found} | {cpu:.0} | {gpu_ms:.0} | {:.2} | {} | {} | {} | {} | {:.0} | {:.0} | {} |",
+                boxes.len(),
+                cpu / gpu_ms,
+                c.free_on_gpu,
+                c.hit_on_gpu,
+                c.cells_measured,
+                c.left_to_cpu,
+                c.screen_ms,
+                c.exact_ms,
+                if equal { "yes" } else { "NO" }
+            );
+        }
+    }
+    println!();
 }

@@ -8,7 +8,8 @@
 //!
 //! On each map, random crane-part boxes and boxes on the 1/16 m lattice (and
 //! those a thousandth of a millimetre higher and lower) are queried on the
-//! device and on the CPU, with and without the ground ignored.
+//! device and on the CPU, with and without the ground ignored: box queries,
+//! and vertical clearances down and up.
 //!
 //! Prints each map and each query answer that differs and each map the device
 //! refuses (a row over a small buffer limit, or lavapipe's loop cap), then a
@@ -19,6 +20,7 @@
 use liftplan_core::frame::Vec3;
 use liftplan_core::obb::Obb;
 use liftplan_depthmap::mdm::{self, Mode, PointSource, Raw};
+use liftplan_depthmap::query::Vertical;
 use liftplan_depthmap::{Inputs, Settings, build_cpu, gpu};
 use rand::{RngExt, SeedableRng};
 
@@ -31,6 +33,7 @@ fn main() {
     let t0 = std::time::Instant::now();
     let (mut case, mut compared, mut refused, mut differ) = (0u64, 0u64, 0u64, 0u64);
     let (mut queries, mut queries_differ, mut left_to_cpu) = (0u64, 0u64, 0u64);
+    let (mut clearances, mut clearances_differ, mut clearance_left) = (0u64, 0u64, 0u64);
     while t0.elapsed().as_secs() < seconds {
         case += 1;
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(case);
@@ -154,15 +157,36 @@ fn main() {
                 }
                 Err(e) => println!("case {case}: queries refused: {e}"),
             }
+            for way in [Vertical::Down, Vertical::Up] {
+                match g.clearances_where(&on_gpu, &cpu, &boxes, way, ignore) {
+                    Ok((found, counts)) => {
+                        clearance_left += counts.left_to_cpu as u64;
+                        for (k, b) in boxes.iter().enumerate() {
+                            clearances += 1;
+                            let want = cpu.clearance_where(b, way, |iv| Some(iv.obj) != ignore);
+                            if found[k] != want {
+                                clearances_differ += 1;
+                                println!(
+                                    "CLEARANCE MISMATCH case {case} box {k} {way:?} ignoring {ignore:?}: GPU {:?}, \
+                                     CPU {want:?}, {b:?}",
+                                    found[k]
+                                );
+                            }
+                        }
+                    }
+                    Err(e) => println!("case {case}: clearances refused: {e}"),
+                }
+            }
         }
     }
     println!(
         "{case} cases in {} s on {}: {compared} maps compared, {differ} differ, {refused} refused; \
-         {queries} box queries compared, {queries_differ} differ ({left_to_cpu} answered by the CPU's exact test)",
+         {queries} box queries compared, {queries_differ} differ ({left_to_cpu} answered by the CPU's exact test); \
+         {clearances} clearances compared, {clearances_differ} differ ({clearance_left} answered by the CPU whole)",
         t0.elapsed().as_secs(),
         g.name()
     );
-    if differ > 0 || queries_differ > 0 {
+    if differ > 0 || queries_differ > 0 || clearances_differ > 0 {
         std::process::exit(1);
     }
 }
