@@ -136,6 +136,17 @@ impl ScreenCounts {
         self.free_on_gpu + self.hit_on_gpu + self.left_to_cpu
     }
 
+    /// No boxes yet, and the times of a batch begun at `t0` whose device
+    /// part ended at `t_exact` and whose CPU part ends now.
+    fn timed(t0: std::time::Instant, t_exact: std::time::Instant, prepare_ms: f64) -> ScreenCounts {
+        ScreenCounts {
+            screen_ms: (t_exact - t0).as_secs_f64() * 1e3,
+            prepare_ms,
+            exact_ms: t_exact.elapsed().as_secs_f64() * 1e3,
+            ..ScreenCounts::default()
+        }
+    }
+
     /// Adds another batch's counts and times to these.
     pub fn add(&mut self, o: &ScreenCounts) {
         self.free_on_gpu += o.free_on_gpu;
@@ -235,12 +246,7 @@ impl Gpu {
                 Verdict::LeftToCpu => map.hit_where(b, counts_obj),
             })
             .collect();
-        let mut counts = ScreenCounts {
-            screen_ms: (t_exact - t0).as_secs_f64() * 1e3,
-            prepare_ms,
-            exact_ms: t_exact.elapsed().as_secs_f64() * 1e3,
-            ..ScreenCounts::default()
-        };
+        let mut counts = ScreenCounts::timed(t0, t_exact, prepare_ms);
         for v in &verdicts {
             match v {
                 Verdict::Free => counts.free_on_gpu += 1,
@@ -392,12 +398,7 @@ impl Gpu {
                 Narrowed::LeftToCpu => map.clearance_where(b, way, counts_obj),
             })
             .collect();
-        let mut counts = ScreenCounts {
-            screen_ms: (t_exact - t0).as_secs_f64() * 1e3,
-            prepare_ms,
-            exact_ms: t_exact.elapsed().as_secs_f64() * 1e3,
-            ..ScreenCounts::default()
-        };
+        let mut counts = ScreenCounts::timed(t0, t_exact, prepare_ms);
         for a in &answers {
             match a {
                 Narrowed::Nothing => counts.free_on_gpu += 1,
