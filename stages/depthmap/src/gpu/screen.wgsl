@@ -377,7 +377,10 @@ fn clear_boxes(@builtin(global_invocation_id) g: vec3<u32>) {
     let j1 = boxes[32u * b + 19u];
     let start = boxes[32u * b + 22u];
     // The CPU walk's start tiles, as in screen_boxes (the order does not
-    // matter here, only which cells are walked).
+    // matter here, only which cells are walked). This start and the tile
+    // step repeat screen_boxes' on purpose: as functions taking the stack by
+    // pointer they doubled the twin tests' time on llvmpipe (naga's GLSL
+    // passes the array by copy).
     var stack: array<vec3<u32>, STACK>;
     var sp = 0u;
     let ti0 = boxes[32u * b + 27u];
