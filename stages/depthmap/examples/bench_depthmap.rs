@@ -450,19 +450,7 @@ fn queries(s: &Settings, device: &Result<gpu::Gpu, String>) {
             cpu_hits = map.hits(boxes);
             t.elapsed().as_secs_f64() * 1e3
         });
-        let mut best = (f64::INFINITY, gpu::ScreenCounts::default());
-        let mut equal = true;
-        for _ in 0..3 {
-            let t = Instant::now();
-            let (hits, counts) = g.hits_where(&on_gpu, &map, boxes, None).unwrap();
-            let dt = t.elapsed().as_secs_f64() * 1e3;
-            eprintln!("{kind}: GPU {dt:.0} ms, {counts:?}");
-            equal &= hits == cpu_hits;
-            if dt < best.0 {
-                best = (dt, counts);
-            }
-        }
-        let (gpu_ms, c) = best;
+        let (gpu_ms, c, equal) = best_gpu_run(kind, &cpu_hits, || g.hits_where(&on_gpu, &map, boxes, None));
         println!(
             "| {N} {kind} | {} | {cpu:.0} | {gpu_ms:.0} | {:.2} | {} | {} | {} | {:.0} | {:.0} | {:.0} | {} |",
             cpu_hits.iter().filter(|h| h.is_some()).count(),
@@ -504,19 +492,9 @@ fn clearances(map: &Mdm, sets: &[(&str, Vec<Obb>)], device: Option<&(&gpu::Gpu, 
                 println!("| {} {kind} | {way:?} | {found} | {cpu:.0} | | | | | | | | | |", boxes.len());
                 continue;
             };
-            let mut best = (f64::INFINITY, gpu::ScreenCounts::default());
-            let mut equal = true;
-            for _ in 0..3 {
-                let t = Instant::now();
-                let (answers, counts) = g.clearances_where(on_gpu, map, boxes, way, None).unwrap();
-                let dt = t.elapsed().as_secs_f64() * 1e3;
-                eprintln!("{kind} {way:?}: GPU {dt:.0} ms, {counts:?}");
-                equal &= answers == on_cpu;
-                if dt < best.0 {
-                    best = (dt, counts);
-                }
-            }
-            let (gpu_ms, c) = best;
+            let label = format!("{kind} {way:?}");
+            let (gpu_ms, c, equal) =
+                best_gpu_run(&label, &on_cpu, || g.clearances_where(on_gpu, map, boxes, way, None));
             println!(
                 "| {} {kind} | {way:?} | {found} | {cpu:.0} | {gpu_ms:.0} | {:.2} | {} | {} | {} | {} | {:.0} | {:.0} | {} |",
                 boxes.len(),
@@ -532,4 +510,26 @@ fn clearances(map: &Mdm, sets: &[(&str, Vec<Obb>)], device: Option<&(&gpu::Gpu, 
         }
     }
     println!();
+}
+
+/// Best of 3 runs of a GPU twin's batch: its time (ms, the whole call), that
+/// run's counts, and whether every run gave the CPU's answers `want`.
+fn best_gpu_run<T: PartialEq>(
+    label: &str,
+    want: &[T],
+    mut run: impl FnMut() -> Result<(Vec<T>, gpu::ScreenCounts), String>,
+) -> (f64, gpu::ScreenCounts, bool) {
+    let mut best = (f64::INFINITY, gpu::ScreenCounts::default());
+    let mut equal = true;
+    for _ in 0..3 {
+        let t = Instant::now();
+        let (answers, counts) = run().unwrap();
+        let dt = t.elapsed().as_secs_f64() * 1e3;
+        eprintln!("{label}: GPU {dt:.0} ms, {counts:?}");
+        equal &= answers == want;
+        if dt < best.0 {
+            best = (dt, counts);
+        }
+    }
+    (best.0, best.1, equal)
 }

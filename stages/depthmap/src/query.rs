@@ -22,6 +22,7 @@
 //! the one both paths use.
 
 use crate::mdm::{Interval, Mdm};
+use liftplan_core::frame::Aabb;
 use liftplan_core::obb::{Obb, strip_x_range};
 use rayon::prelude::*;
 
@@ -31,6 +32,15 @@ pub struct Hit {
     pub i: u32,
     pub j: u32,
     pub interval: Interval,
+}
+
+/// The pyramid tiles a walk over a box's cells starts from (level `lvl`;
+/// columns and rows, inclusive), in row order.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct StartTiles {
+    pub lvl: usize,
+    pub cols: std::ops::RangeInclusive<u32>,
+    pub rows: std::ops::RangeInclusive<u32>,
 }
 
 /// Which way [`Mdm::clearance`] moves a box: straight down (how high it
@@ -78,7 +88,7 @@ impl Mdm {
 
     /// The coarsest pyramid level at which a block of cells spans at most
     /// 2 x 2 tiles (or whatever the pyramid has).
-    pub(crate) fn cover_level(&self, ci: &std::ops::Range<u32>, cj: &std::ops::Range<u32>) -> usize {
+    fn cover_level(&self, ci: &std::ops::Range<u32>, cj: &std::ops::Range<u32>) -> usize {
         let span = (ci.end - ci.start).max(cj.end - cj.start);
         let mut lvl = 0usize;
         while lvl + 1 < self.pyramid.len() && (1u32 << (lvl + 1)) < span {
@@ -120,20 +130,33 @@ impl Mdm {
     pub fn hit_where(&self, b: &Obb, counts: impl Fn(&Interval) -> bool) -> Option<Hit> {
         let aabb = b.aabb();
         let zmin = aabb.min[2] as f32;
+        let start = self.start_tiles(&aabb)?;
+        for tj in start.rows.clone() {
+            for ti in start.cols.clone() {
+                if let Some(h) = self.descend(b, zmin, &counts, start.lvl, ti, tj) {
+                    return Some(h);
+                }
+            }
+        }
+        None
+    }
+
+    /// Where the walks over a box's cells start: the pyramid tiles about the
+    /// box's size that cover the cells under its bounding box `aabb`; `None`
+    /// when those miss the grid. The box query, the clearance and their GPU
+    /// twin all start here.
+    pub(crate) fn start_tiles(&self, aabb: &Aabb) -> Option<StartTiles> {
         let s = self.spec;
         let (ci, cj) = (s.cols_between(aabb.min[0], aabb.max[0]), s.rows_between(aabb.min[1], aabb.max[1]));
         if ci.is_empty() || cj.is_empty() || self.pyramid.is_empty() {
             return None;
         }
         let lvl = self.cover_level(&ci, &cj);
-        for tj in (cj.start >> lvl)..=((cj.end - 1) >> lvl) {
-            for ti in (ci.start >> lvl)..=((ci.end - 1) >> lvl) {
-                if let Some(h) = self.descend(b, zmin, &counts, lvl, ti, tj) {
-                    return Some(h);
-                }
-            }
-        }
-        None
+        Some(StartTiles {
+            lvl,
+            cols: (ci.start >> lvl)..=((ci.end - 1) >> lvl),
+            rows: (cj.start >> lvl)..=((cj.end - 1) >> lvl),
+        })
     }
 
     /// The highest top in pyramid tile (`ti`, `tj`) of level `lvl` (`-inf`
@@ -239,16 +262,8 @@ impl Mdm {
     /// equal gaps it keeps the lowest row, then column, then the first in the
     /// cell's height order, so the answer does not depend on the walk's order.
     pub fn clearance_where(&self, b: &Obb, way: Vertical, counts: impl Fn(&Interval) -> bool) -> Option<Clearance> {
-        let aabb = b.aabb();
-        let s = self.spec;
-        let (ci, cj) = (s.cols_between(aabb.min[0], aabb.max[0]), s.rows_between(aabb.min[1], aabb.max[1]));
-        if ci.is_empty() || cj.is_empty() || self.pyramid.is_empty() {
-            return None;
-        }
-        let lvl = self.cover_level(&ci, &cj);
-        let mut tiles: Vec<(u32, u32)> = ((cj.start >> lvl)..=((cj.end - 1) >> lvl))
-            .flat_map(|tj| ((ci.start >> lvl)..=((ci.end - 1) >> lvl)).map(move |ti| (ti, tj)))
-            .collect();
+        let StartTiles { lvl, cols, rows } = self.start_tiles(&b.aabb())?;
+        let mut tiles: Vec<(u32, u32)> = rows.flat_map(|tj| cols.clone().map(move |ti| (ti, tj))).collect();
         if way == Vertical::Down {
             self.highest_first(lvl, &mut tiles);
         }

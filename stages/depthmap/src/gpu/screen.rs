@@ -104,6 +104,16 @@ pub struct GpuMap {
     height_bound: f32,
 }
 
+impl GpuMap {
+    /// Refuses a query of `map` against a different map on the device.
+    fn check_is(&self, map: &Mdm) -> Result<(), String> {
+        if self.spec != map.spec || self.intervals_len != map.intervals.len() || self.levels_len != map.pyramid.len() {
+            return Err("the depth map on the GPU is not the one queried".into());
+        }
+        Ok(())
+    }
+}
+
 /// How a batch of boxes was answered, and where the time went.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct ScreenCounts {
@@ -227,12 +237,7 @@ impl Gpu {
         boxes: &[Obb],
         ignore: Option<u32>,
     ) -> Result<(Vec<Option<Hit>>, ScreenCounts), String> {
-        if gpu_map.spec != map.spec
-            || gpu_map.intervals_len != map.intervals.len()
-            || gpu_map.levels_len != map.pyramid.len()
-        {
-            return Err("the depth map on the GPU is not the one queried".into());
-        }
+        gpu_map.check_is(map)?;
         let t0 = std::time::Instant::now();
         let (verdicts, prepare_ms) = self.screen(gpu_map, map, boxes, ignore)?;
         let t_exact = std::time::Instant::now();
@@ -350,12 +355,7 @@ impl Gpu {
         way: Vertical,
         ignore: Option<u32>,
     ) -> Result<(Vec<Option<Clearance>>, ScreenCounts), String> {
-        if gpu_map.spec != map.spec
-            || gpu_map.intervals_len != map.intervals.len()
-            || gpu_map.levels_len != map.pyramid.len()
-        {
-            return Err("the depth map on the GPU is not the one queried".into());
-        }
+        gpu_map.check_is(map)?;
         let t0 = std::time::Instant::now();
         let mut batch = prepare_batch(map, boxes, ignore);
         let mut answers: Vec<Narrowed> =
@@ -527,13 +527,8 @@ fn prepare(b: &Obb, map: &Mdm, ignore: Option<u32>) -> Prepared {
     if !finite || far > MAX_COORD_M {
         return Prepared::Unsafe;
     }
-    // The CPU's walk: its cells and start tiles.
-    let aabb = b.aabb();
-    let (ci, cj) = (s.cols_between(aabb.min[0], aabb.max[0]), s.rows_between(aabb.min[1], aabb.max[1]));
-    if ci.is_empty() || cj.is_empty() || map.pyramid.is_empty() {
-        return Prepared::Outside;
-    }
-    let start = map.cover_level(&ci, &cj) as u32;
+    // The CPU's walk: its start tiles.
+    let Some(start) = map.start_tiles(&b.aabb()) else { return Prepared::Outside };
     let margin = MARGIN_M + MARGIN_REL * far;
     let outer = b.expanded(margin);
     let outer_box = outer.aabb();
@@ -556,11 +551,11 @@ fn prepare(b: &Obb, map: &Mdm, ignore: Option<u32>) -> Prepared {
     w[16..20].copy_from_slice(&[oi.start, oi.end - 1, oj.start, oj.end - 1]);
     w[20] = f32_down(outer_box.min[2]).to_bits();
     w[21] = f32_up(outer_box.max[2]).to_bits();
-    w[22] = start;
+    w[22] = start.lvl as u32;
     // A negative radius empties every inner segment: no inner box.
     let radius = if inner_ok { f32_up(inner.iter().map(|h| h * h).sum::<f64>().sqrt()) } else { -1.0 };
     w[23] = radius.to_bits();
-    w[27..31].copy_from_slice(&[ci.start >> start, (ci.end - 1) >> start, cj.start >> start, (cj.end - 1) >> start]);
+    w[27..31].copy_from_slice(&[*start.cols.start(), *start.cols.end(), *start.rows.start(), *start.rows.end()]);
     w[31] = (0..3)
         .max_by(|&k, &l| {
             let plan = |k: usize| b.half[k] * b.axes[(0, k)].hypot(b.axes[(1, k)]);

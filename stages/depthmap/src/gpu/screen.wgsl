@@ -370,6 +370,11 @@ fn clear_boxes(@builtin(global_invocation_id) g: vec3<u32>) {
     let down = P.way == DOWN;
     let upright = (boxes[32u * b + 31u] & UPRIGHT) != 0u;
     let e = exact[b];
+    // An upright box's heights are the CPU's own (`e`, the same over every
+    // column it reaches): its gaps need no slack (rounding is monotone, and
+    // x - 0 is x), a turned box's bounds do.
+    var loose = 1.0;
+    if (upright) { loose = 0.0; }
     let ignore = boxes[32u * b + 3u];
     let i0 = boxes[32u * b + 16u];
     let i1 = boxes[32u * b + 17u];
@@ -402,7 +407,6 @@ fn clear_boxes(@builtin(global_invocation_id) g: vec3<u32>) {
     var kept: array<u32, CELLS>;
     var kept_l: array<f32, CELLS>;
     var n = 0u;
-    var any = false;
     var done = false;
     loop {
         if (sp == 0u) {
@@ -430,9 +434,10 @@ fn clear_boxes(@builtin(global_invocation_id) g: vec3<u32>) {
         if (r.x > r.y) { continue; }
         if (down) {
             // Every gap in the tile is at least its lowest box height less
-            // its top (exact for an upright box: rounding is monotone).
-            var l = e.x - top;
-            if (!upright) { l = (r.x - top) - slack(r.x, top); }
+            // its top.
+            var lo = r.x;
+            if (upright) { lo = e.x; }
+            let l = (lo - top) - loose * slack(lo, top);
             if (!in_the_running(l, cj0 * P.nx + ci0, best_u, best_cell)) { continue; }
         } else if (top < r.x) {
             // Nothing in the tile reaches the box's bottom.
@@ -447,15 +452,18 @@ fn clear_boxes(@builtin(global_invocation_id) g: vec3<u32>) {
             sp += 4u;
             continue;
         }
-        // A cell: its box heights, outer (tighter over sixteenths) or exact,
-        // and inner (heights the box surely has over it, or EMPTY).
+        // A cell: the box's heights over it, outer (all it may have there;
+        // tighter over sixteenths) and inner (what it surely has there, or
+        // EMPTY). An upright box has its exact heights, or none, over it.
         let cell = t.z * P.nx + t.y;
         var o = e;
-        if (!upright) {
+        var inner = inner_range(b, x0, x1, y0, y1);
+        if (upright) {
+            if (inner.x <= inner.y) { inner = e; }
+        } else {
             o = outer_sixteenths(b, x0, x1, y0, y1);
             if (o.x > o.y) { continue; }
         }
-        let inner = inner_range(b, x0, x1, y0, y1);
         let sure = inner.x <= inner.y;
         var l_cell = NO_BOUND;
         var u_cell = NO_BOUND;
@@ -466,34 +474,24 @@ fn clear_boxes(@builtin(global_invocation_id) g: vec3<u32>) {
             let zhi = bitcast<f32>(intervals[3u * k + 1u]);
             if (down && zlo > o.y) { break; }
             if (intervals[3u * k + 2u] == ignore) { continue; }
+            // Down, the box meets the interval if it starts no higher than
+            // the box's top, when the box's bottom reaches its top; up,
+            // symmetrically. Surely met: it lies that way of what the box
+            // surely has.
             if (down) {
-                if (upright) {
-                    // Met on the way down where the box reaches the cell.
-                    let gap = e.x - zhi;
-                    l_cell = min(l_cell, gap);
-                    if (sure) { u_cell = min(u_cell, gap); }
-                } else {
-                    l_cell = min(l_cell, (o.x - zhi) - slack(o.x, zhi));
-                    if (sure && zlo <= inner.y) {
-                        u_cell = min(u_cell, (inner.x - zhi) + slack(inner.x, zhi));
-                    }
+                l_cell = min(l_cell, (o.x - zhi) - loose * slack(o.x, zhi));
+                if (sure && zlo <= inner.y) {
+                    u_cell = min(u_cell, (inner.x - zhi) + loose * slack(inner.x, zhi));
                 }
             } else {
                 if (zhi < o.x) { continue; }
-                if (upright) {
-                    let gap = zlo - e.y;
-                    l_cell = min(l_cell, gap);
-                    if (sure) { u_cell = min(u_cell, gap); }
-                } else {
-                    l_cell = min(l_cell, (zlo - o.y) - slack(zlo, o.y));
-                    if (sure && zhi >= inner.x) {
-                        u_cell = min(u_cell, (zlo - inner.y) + slack(zlo, inner.y));
-                    }
+                l_cell = min(l_cell, (zlo - o.y) - loose * slack(zlo, o.y));
+                if (sure && zhi >= inner.x) {
+                    u_cell = min(u_cell, (zlo - inner.y) + loose * slack(zlo, inner.y));
                 }
             }
         }
         if (l_cell == NO_BOUND) { continue; }
-        any = true;
         if (u_cell < NO_BOUND && (u_cell < best_u || (u_cell == best_u && cell < best_cell))) {
             best_u = u_cell;
             best_cell = cell;
@@ -508,7 +506,9 @@ fn clear_boxes(@builtin(global_invocation_id) g: vec3<u32>) {
         n++;
     }
     if (!done) { return; }
-    if (!any) {
+    // Every cell with an interval that way was kept, or lost to the cell of
+    // the least upper bound, which is kept: none kept, no such cell.
+    if (n == 0u) {
         narrowed[slot] = NOTHING;
         return;
     }
