@@ -57,10 +57,11 @@ fn axis(b: u32, k: u32) -> vec3<f32> { return vec3<f32>(word(b, 4u + 4u * k), wo
 // (Mesa's lavapipe: 65535), and a walk cut short would read as "free". So
 // each walk counts its iterations against a budget (half such a cap), and,
 // as the count cannot be exact (lavapipe runs eight invocations in
-// lockstep, and counts the iterations of all eight and the one in which a
-// loop ends), an answer is written after the walk only when the walk's
-// loop ended where it ends by itself, with nothing left to walk (`done`).
-// A loop cut short ends anywhere else: its box goes to the CPU.
+// lockstep on one count, counts the iteration in which a loop ends too, and
+// once the cap is spent still runs each later loop once), every loop shows that it ended where it ends by itself: the walk
+// with nothing left to walk (`done`), a cell's intervals at their end or
+// past the box, the answer's cells all written. An answer goes out only
+// then; a loop cut short ends anywhere else, and its box goes to the CPU.
 
 // Outer: a range of heights that holds every height of the outer box over
 // the column above [x0, x1] x [y0, y1], or EMPTY when that box stays out of
@@ -252,6 +253,7 @@ fn screen_boxes(@builtin(global_invocation_id) g: vec3<u32>) {
             sp++;
         }
     }
+    if (sp != (ti1 - ti0 + 1u) * (tj1 - tj0 + 1u)) { return; }
     var done = false;
     loop {
         if (sp == 0u) {
@@ -282,11 +284,17 @@ fn screen_boxes(@builtin(global_invocation_id) g: vec3<u32>) {
             var r = r;
             var inner = EMPTY;
             var inner_done = false;
-            for (var k = offsets[cell]; k < offsets[cell + 1u]; k++) {
+            let end = offsets[cell + 1u];
+            var k = offsets[cell];
+            var higher = false;
+            for (; k < end; k++) {
                 steps++;
                 if (steps > P.budget) { return; }
                 let zlo = bitcast<f32>(intervals[3u * k]);
-                if (zlo > r.y) { break; }
+                if (zlo > r.y) {
+                    higher = true;
+                    break;
+                }
                 let zhi = bitcast<f32>(intervals[3u * k + 1u]);
                 if (zhi < r.x || intervals[3u * k + 2u] == ignore) { continue; }
                 // It may meet the box: a hit if it meets what the box surely
@@ -297,7 +305,10 @@ fn screen_boxes(@builtin(global_invocation_id) g: vec3<u32>) {
                     if (!meets(inner, zlo, zhi)) {
                         // Undecided: once per cell, the tighter outer range.
                         r = outer_sixteenths(b, x0, x1, y0, y1);
-                        if (zlo > r.y) { break; }
+                        if (zlo > r.y) {
+                            higher = true;
+                            break;
+                        }
                         if (zhi < r.x) { continue; }
                     }
                 }
@@ -306,6 +317,9 @@ fn screen_boxes(@builtin(global_invocation_id) g: vec3<u32>) {
                 }
                 return;
             }
+            // The cell's loop ended by itself: past its last interval, or at
+            // one above the box (the rest are higher still).
+            if (k < end && !higher) { return; }
             continue;
         }
         if (sp + 4u > STACK) { return; }
@@ -402,6 +416,7 @@ fn clear_boxes(@builtin(global_invocation_id) g: vec3<u32>) {
             sp++;
         }
     }
+    if (sp != (ti1 - ti0 + 1u) * (tj1 - tj0 + 1u)) { return; }
     var best_u = NO_BOUND;
     var best_cell = 0xffffffffu;
     var kept: array<u32, CELLS>;
@@ -467,12 +482,18 @@ fn clear_boxes(@builtin(global_invocation_id) g: vec3<u32>) {
         let sure = inner.x <= inner.y;
         var l_cell = NO_BOUND;
         var u_cell = NO_BOUND;
-        for (var k = offsets[cell]; k < offsets[cell + 1u]; k++) {
+        let end = offsets[cell + 1u];
+        var k = offsets[cell];
+        var higher = false;
+        for (; k < end; k++) {
             steps++;
             if (steps > P.budget) { return; }
             let zlo = bitcast<f32>(intervals[3u * k]);
             let zhi = bitcast<f32>(intervals[3u * k + 1u]);
-            if (down && zlo > o.y) { break; }
+            if (down && zlo > o.y) {
+                higher = true;
+                break;
+            }
             if (intervals[3u * k + 2u] == ignore) { continue; }
             // Down, the box meets the interval if it starts no higher than
             // the box's top, when the box's bottom reaches its top; up,
@@ -491,6 +512,7 @@ fn clear_boxes(@builtin(global_invocation_id) g: vec3<u32>) {
                 }
             }
         }
+        if (k < end && !higher) { return; }
         if (l_cell == NO_BOUND) { continue; }
         if (u_cell < NO_BOUND && (u_cell < best_u || (u_cell == best_u && cell < best_cell))) {
             best_u = u_cell;
@@ -498,6 +520,7 @@ fn clear_boxes(@builtin(global_invocation_id) g: vec3<u32>) {
             // keep_running's loop counts against the budget too.
             steps += n;
             n = keep_running(&kept, &kept_l, n, best_u, best_cell);
+            if (n > CELLS) { return; }
         }
         if (!in_the_running(l_cell, cell, best_u, best_cell)) { continue; }
         if (n == CELLS) { return; }
@@ -513,14 +536,18 @@ fn clear_boxes(@builtin(global_invocation_id) g: vec3<u32>) {
         return;
     }
     narrowed[slot + 1u] = n;
-    for (var k = 0u; k < n; k++) {
-        narrowed[slot + 2u + k] = kept[k];
+    var written = 0u;
+    for (; written < n; written++) {
+        narrowed[slot + 2u + written] = kept[written];
     }
-    narrowed[slot] = NARROWED;
+    // This loop too may be cut short (the eight invocations' other walks
+    // count against the same cap): the cells go out only when all did.
+    if (written == n) { narrowed[slot] = NARROWED; }
 }
 
 // Drops the kept cells that can no longer hold the answer; returns how
-// many are left (packed at the front).
+// many are left (packed at the front), or more than CELLS where its loop
+// was cut short.
 fn keep_running(
     kept: ptr<function, array<u32, CELLS>>,
     kept_l: ptr<function, array<f32, CELLS>>,
@@ -529,12 +556,14 @@ fn keep_running(
     u_cell: u32,
 ) -> u32 {
     var m = 0u;
-    for (var k = 0u; k < n; k++) {
+    var k = 0u;
+    for (; k < n; k++) {
         if (in_the_running((*kept_l)[k], (*kept)[k], u, u_cell)) {
             (*kept)[m] = (*kept)[k];
             (*kept_l)[m] = (*kept_l)[k];
             m++;
         }
     }
+    if (k < n) { return CELLS + 1u; }
     return m;
 }
