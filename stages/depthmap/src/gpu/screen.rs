@@ -50,7 +50,8 @@
 //! Must not: guess. A box it cannot place in `f32` safely (coordinates over
 //! [`MAX_COORD_M`] from the grid origin), or whose walk runs past its loop
 //! budget (a device that cuts loops short, [`Gpu::loop_cap`], gets half that
-//! cap, and a walk counts as finished only when its loop ended by itself),
+//! cap, and an answer goes out only when every loop of the walk, and the
+//! one writing the answer, ended by itself),
 //! goes to the CPU; so do all clearances on a map with heights beyond
 //! [`MAX_HEIGHT_M`].
 
