@@ -32,12 +32,40 @@ pub struct Device {
 /// `allow_software` is set, as `require` and the twin tests do to exercise the
 /// GPU code anywhere.
 pub fn open_device(allow_software: bool) -> Result<Device, String> {
-    let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+    open_on(wgpu::InstanceDescriptor::new_without_display_handle_from_env(), allow_software)
+}
+
+/// A device on each backend that has one (Vulkan, Metal, DirectX 12,
+/// OpenGL; only those `WGPU_BACKEND` names where it is set), each named, or
+/// why it did not open. For the twin tests: the backends' shader compilers
+/// differ, and so can what a shader does on the same adapter (Mesa's
+/// lavapipe runs loops differently through Vulkan and through OpenGL).
+/// Backends without an adapter are left out.
+pub fn open_each_backend(allow_software: bool) -> Vec<(wgpu::Backend, Result<Device, String>)> {
+    let wanted = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::all());
+    [wgpu::Backend::Vulkan, wgpu::Backend::Metal, wgpu::Backend::Dx12, wgpu::Backend::Gl]
+        .into_iter()
+        .filter(|&b| wanted.contains(wgpu::Backends::from(b)))
+        .filter_map(|b| {
+            let mut descriptor = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
+            descriptor.backends = wgpu::Backends::from(b);
+            match open_on(descriptor, allow_software) {
+                Err(e) if e.starts_with(NO_ADAPTER) => None,
+                opened => Some((b, opened)),
+            }
+        })
+        .collect()
+}
+
+const NO_ADAPTER: &str = "no GPU adapter";
+
+fn open_on(descriptor: wgpu::InstanceDescriptor, allow_software: bool) -> Result<Device, String> {
+    let instance = wgpu::Instance::new(descriptor);
     let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
         power_preference: wgpu::PowerPreference::HighPerformance,
         ..Default::default()
     }))
-    .map_err(|e| format!("no GPU adapter: {e}"))?;
+    .map_err(|e| format!("{NO_ADAPTER}: {e}"))?;
     let info = adapter.get_info();
     if info.device_type == wgpu::DeviceType::Cpu && !allow_software {
         return Err(format!("only a software adapter ({}) is available", info.name));

@@ -94,6 +94,15 @@ pub fn open(allow_software: bool) -> Result<Gpu, String> {
     Gpu::new(liftplan_core::gpu::open_device(allow_software)?)
 }
 
+/// [`open`] on each backend that has an adapter
+/// ([`liftplan_core::gpu::open_each_backend`]), for the twin tests.
+pub fn open_each_backend(allow_software: bool) -> Vec<(wgpu::Backend, Result<Gpu, String>)> {
+    liftplan_core::gpu::open_each_backend(allow_software)
+        .into_iter()
+        .map(|(b, dev)| (b, dev.and_then(Gpu::new)))
+        .collect()
+}
+
 /// The device's side of a depth map, cell by cell in row-major order: what
 /// [`crate::mdm::Mdm::from_cells`] takes.
 pub struct Cells {
