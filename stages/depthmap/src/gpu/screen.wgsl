@@ -58,9 +58,10 @@ fn axis(b: u32, k: u32) -> vec3<f32> { return vec3<f32>(word(b, 4u + 4u * k), wo
 // each walk counts its iterations against a budget (half such a cap), and,
 // as the count cannot be exact (lavapipe runs eight invocations in
 // lockstep on one count, counts the iteration in which a loop ends too, and
-// once the cap is spent still runs each later loop once), every loop shows that it ended where it ends by itself: the walk
-// with nothing left to walk (`done`), a cell's intervals at their end or
-// past the box, the answer's cells all written. An answer goes out only
+// once the cap is spent still runs each later loop once), every loop shows
+// that it ended where it ends by itself: the start tiles all pushed, the
+// walk with nothing left to walk (`done`), a cell's intervals at their end
+// or past the box, the answer's cells all written. An answer goes out only
 // then; a loop cut short ends anywhere else, and its box goes to the CPU.
 
 // Outer: a range of heights that holds every height of the outer box over
