@@ -32,15 +32,16 @@ pub struct Device {
 /// `allow_software` is set, as `require` and the twin tests do to exercise the
 /// GPU code anywhere.
 pub fn open_device(allow_software: bool) -> Result<Device, String> {
-    open_on(wgpu::InstanceDescriptor::new_without_display_handle_from_env(), allow_software)
+    let adapter = first_adapter(wgpu::InstanceDescriptor::new_without_display_handle_from_env())
+        .map_err(|e| format!("no GPU adapter: {e}"))?;
+    open_adapter(&adapter, allow_software)
 }
 
-/// A device on each backend that has one (Vulkan, Metal, DirectX 12,
+/// A device on each backend that has an adapter (Vulkan, Metal, DirectX 12,
 /// OpenGL; only those `WGPU_BACKEND` names where it is set), each named, or
 /// why it did not open. For the twin tests: the backends' shader compilers
 /// differ, and so can what a shader does on the same adapter (Mesa's
 /// lavapipe runs loops differently through Vulkan and through OpenGL).
-/// Backends without an adapter are left out.
 pub fn open_each_backend(allow_software: bool) -> Vec<(wgpu::Backend, Result<Device, String>)> {
     let wanted = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::all());
     [wgpu::Backend::Vulkan, wgpu::Backend::Metal, wgpu::Backend::Dx12, wgpu::Backend::Gl]
@@ -49,23 +50,22 @@ pub fn open_each_backend(allow_software: bool) -> Vec<(wgpu::Backend, Result<Dev
         .filter_map(|b| {
             let mut descriptor = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
             descriptor.backends = wgpu::Backends::from(b);
-            match open_on(descriptor, allow_software) {
-                Err(e) if e.starts_with(NO_ADAPTER) => None,
-                opened => Some((b, opened)),
-            }
+            let adapter = first_adapter(descriptor).ok()?;
+            Some((b, open_adapter(&adapter, allow_software)))
         })
         .collect()
 }
 
-const NO_ADAPTER: &str = "no GPU adapter";
-
-fn open_on(descriptor: wgpu::InstanceDescriptor, allow_software: bool) -> Result<Device, String> {
+/// The adapter wgpu offers first on the backends of `descriptor`.
+fn first_adapter(descriptor: wgpu::InstanceDescriptor) -> Result<wgpu::Adapter, wgpu::RequestAdapterError> {
     let instance = wgpu::Instance::new(descriptor);
-    let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
+    pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
         power_preference: wgpu::PowerPreference::HighPerformance,
         ..Default::default()
     }))
-    .map_err(|e| format!("{NO_ADAPTER}: {e}"))?;
+}
+
+fn open_adapter(adapter: &wgpu::Adapter, allow_software: bool) -> Result<Device, String> {
     let info = adapter.get_info();
     if info.device_type == wgpu::DeviceType::Cpu && !allow_software {
         return Err(format!("only a software adapter ({}) is available", info.name));

@@ -244,7 +244,8 @@ fn screen_boxes(@builtin(global_invocation_id) g: vec3<u32>) {
     let ti1 = boxes[32u * b + 28u];
     let tj0 = boxes[32u * b + 29u];
     let tj1 = boxes[32u * b + 30u];
-    if ((ti1 - ti0 + 1u) * (tj1 - tj0 + 1u) > 16u) { return; }
+    let starts = (ti1 - ti0 + 1u) * (tj1 - tj0 + 1u);
+    if (starts > 16u) { return; }
     var steps = 0u;
     for (var tj = tj1 + 1u; tj > tj0; tj--) {
         steps++;
@@ -254,7 +255,7 @@ fn screen_boxes(@builtin(global_invocation_id) g: vec3<u32>) {
             sp++;
         }
     }
-    if (sp != (ti1 - ti0 + 1u) * (tj1 - tj0 + 1u)) { return; }
+    if (sp != starts) { return; }
     var done = false;
     loop {
         if (sp == 0u) {
@@ -330,8 +331,9 @@ fn screen_boxes(@builtin(global_invocation_id) g: vec3<u32>) {
         stack[sp + 3u] = vec3<u32>(lvl - 1u, 2u * t.y, 2u * t.z);
         sp += 4u;
     }
-    // A device that cuts loops short (see below) ends this loop without
-    // `done`: the walk is not finished, and the box goes to the CPU.
+    // A device that cuts loops short (see the top of this file) ends this
+    // loop without `done`: the walk is not finished, and the box goes to
+    // the CPU.
     if (!done) { return; }
     verdict[b] = vec4<u32>(FREE, 0u, 0u, 0u);
 }
@@ -407,7 +409,8 @@ fn clear_boxes(@builtin(global_invocation_id) g: vec3<u32>) {
     let ti1 = boxes[32u * b + 28u];
     let tj0 = boxes[32u * b + 29u];
     let tj1 = boxes[32u * b + 30u];
-    if ((ti1 - ti0 + 1u) * (tj1 - tj0 + 1u) > 16u) { return; }
+    let starts = (ti1 - ti0 + 1u) * (tj1 - tj0 + 1u);
+    if (starts > 16u) { return; }
     var steps = 0u;
     for (var tj = tj1 + 1u; tj > tj0; tj--) {
         steps++;
@@ -417,7 +420,7 @@ fn clear_boxes(@builtin(global_invocation_id) g: vec3<u32>) {
             sp++;
         }
     }
-    if (sp != (ti1 - ti0 + 1u) * (tj1 - tj0 + 1u)) { return; }
+    if (sp != starts) { return; }
     var best_u = NO_BOUND;
     var best_cell = 0xffffffffu;
     var kept: array<u32, CELLS>;
