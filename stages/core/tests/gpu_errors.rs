@@ -1,18 +1,23 @@
 //! Device errors come back as `Err` from `catching_errors`, not as wgpu's
-//! default panic. Runs where wgpu finds an adapter (lavapipe included).
+//! default panic. Runs on every backend where wgpu finds an adapter (lavapipe
+//! and llvmpipe included).
 #![cfg(feature = "gpu")]
 
-use liftplan_core::gpu::{catching_errors, open_device};
+use liftplan_core::gpu::{Device, catching_errors, open_each_backend};
 
 #[test]
 fn a_buffer_the_device_cannot_make_is_an_error_not_a_panic() {
-    let dev = match open_device(true) {
-        Ok(d) => d,
-        Err(e) => {
-            eprintln!("SKIPPED: no GPU adapter: {e}");
-            return;
-        }
-    };
+    let devices = open_each_backend(true);
+    if devices.is_empty() {
+        eprintln!("SKIPPED: no GPU adapter");
+    }
+    for (backend, opened) in devices {
+        check(opened.unwrap_or_else(|e| panic!("{backend:?} has an adapter, but: {e}")));
+    }
+}
+
+fn check(dev: Device) {
+    eprintln!("on {}", dev.name);
     let too_big = dev.device.limits().max_buffer_size.saturating_add(4);
     let got = catching_errors(&dev, || {
         let _ = dev.device.create_buffer(&wgpu::BufferDescriptor {

@@ -2,8 +2,9 @@
 //! entry, and the CPU's are the hybrid build's own where the build uses box
 //! queries (every swing row; the cell rows of a tower crane).
 //!
-//! The GPU half runs where wgpu finds an adapter (lavapipe in CI) and prints
-//! SKIPPED otherwise.
+//! The GPU half runs on every backend where wgpu finds an adapter (lavapipe
+//! through Vulkan and llvmpipe through OpenGL in CI) and prints SKIPPED
+//! where there is none.
 
 use liftplan_core::crane::builtin;
 use liftplan_core::lift::{LiftSpec, LiftTask};
@@ -53,17 +54,21 @@ fn site(seed: u64, tall: bool) -> Mdm {
     scene::depth_map(mesh, &ground)
 }
 
-fn open() -> Option<gpu::Gpu> {
-    match gpu::open(true) {
-        Ok(g) => {
-            eprintln!("GPU twin test on {}", g.name());
-            Some(g)
-        }
-        Err(e) => {
-            eprintln!("SKIPPED: no GPU adapter, the C-space's GPU twin is not tested here: {e}");
-            None
-        }
+/// A device on each backend with an adapter (lavapipe through Vulkan and
+/// llvmpipe through OpenGL in CI); none, with a visible message, elsewhere.
+fn devices() -> Vec<gpu::Gpu> {
+    let devices = gpu::open_each_backend(true);
+    if devices.is_empty() {
+        eprintln!("SKIPPED: no GPU adapter, the C-space's GPU twin is not tested here");
     }
+    devices
+        .into_iter()
+        .map(|(backend, opened)| {
+            let g = opened.unwrap_or_else(|e| panic!("{backend:?} has an adapter, but: {e}"));
+            eprintln!("GPU twin test on {}", g.name());
+            g
+        })
+        .collect()
 }
 
 fn blocked(rows: &[Option<liftplan_cspace::CellHit>]) -> usize {
@@ -73,7 +78,7 @@ fn blocked(rows: &[Option<liftplan_cspace::CellHit>]) -> usize {
 /// Builds the rows both ways (the GPU where there is one) and checks them.
 fn check(crane: &str, tall: bool, seeds: &[u64], by_build: impl Fn(&CSpace, &QueryRows)) {
     let t = task(crane);
-    let g = open();
+    let devices = devices();
     for &seed in seeds {
         let map = site(seed, tall);
         let p = Problem { task: &t, chart: None, map: &map };
@@ -87,29 +92,31 @@ fn check(crane: &str, tall: bool, seeds: &[u64], by_build: impl Fn(&CSpace, &Que
         eprintln!("{crane}, seed {seed}: {swing} of {} columns and {cells} of {n} cells blocked", cs.ns);
         assert!(swing > 0 && swing < cs.swing_hits.len(), "the body should meet the walls in some columns only");
         assert!(cells > n / 100 && cells < n - n / 100, "the site should block some cells, not all");
-        let Some(g) = &g else { continue };
-        let on = g.upload_map(&map).unwrap();
-        let dev = rows_by_query(&cs, &p, Queries::Gpu(g, &on)).unwrap();
-        assert_eq!(dev.swing_hits, cpu.swing_hits, "seed {seed}: swing rows differ");
-        for (idx, (a, b)) in dev.cell_hits.iter().zip(&cpu.cell_hits).enumerate() {
-            assert_eq!(
-                a,
-                b,
-                "seed {seed}: cell {idx} (swing {}, radial row {}) differs",
-                idx as u32 % cs.ns,
-                idx as u32 / cs.ns
+        for g in &devices {
+            let on = g.upload_map(&map).unwrap();
+            let dev = rows_by_query(&cs, &p, Queries::Gpu(g, &on)).unwrap();
+            assert_eq!(dev.swing_hits, cpu.swing_hits, "seed {seed} on {}: swing rows differ", g.name());
+            for (idx, (a, b)) in dev.cell_hits.iter().zip(&cpu.cell_hits).enumerate() {
+                assert_eq!(
+                    a,
+                    b,
+                    "seed {seed} on {}: cell {idx} (swing {}, radial row {}) differs",
+                    g.name(),
+                    idx as u32 % cs.ns,
+                    idx as u32 / cs.ns
+                );
+            }
+            let sc = dev.screen;
+            let asked = sc.boxes();
+            eprintln!(
+                "  GPU: {} free, {} hit, {} left to the CPU of {asked} boxes",
+                sc.free_on_gpu, sc.hit_on_gpu, sc.left_to_cpu
             );
+            // Every entry asks one box per part until one meets something.
+            assert!(asked >= cs.swing_hits.len() + n);
+            // The device must answer most boxes itself, or the twin is the CPU.
+            assert!(sc.left_to_cpu * 10 < asked, "the device left {} of {asked} boxes to the CPU", sc.left_to_cpu);
         }
-        let sc = dev.screen;
-        let asked = sc.boxes();
-        eprintln!(
-            "  GPU: {} free, {} hit, {} left to the CPU of {asked} boxes",
-            sc.free_on_gpu, sc.hit_on_gpu, sc.left_to_cpu
-        );
-        // Every entry asks one box per part until one meets something.
-        assert!(asked >= cs.swing_hits.len() + n);
-        // The device must answer most boxes itself, or the twin is the CPU.
-        assert!(sc.left_to_cpu * 10 < asked, "the device left {} of {asked} boxes to the CPU", sc.left_to_cpu);
     }
 }
 
@@ -152,7 +159,7 @@ fn the_ground_is_left_out_for_the_body_only() {
     let s = Settings { swing_step_deg: 5.0, luff_step_deg: 5.0, ..Settings::default() };
     let cs = CSpace::build(&p, &s);
     let mut all = vec![rows_by_query(&cs, &p, Queries::Cpu).unwrap()];
-    if let Some(g) = open() {
+    for g in devices() {
         let on = g.upload_map(&map).unwrap();
         all.push(rows_by_query(&cs, &p, Queries::Gpu(&g, &on)).unwrap());
     }

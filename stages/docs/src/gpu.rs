@@ -101,6 +101,16 @@ pub fn open(allow_software: bool) -> Result<GpuRenderer, String> {
     Ok(GpuRenderer::new(liftplan_core::gpu::open_device(allow_software)?))
 }
 
+/// [`open`] on each backend that has an adapter
+/// ([`liftplan_core::gpu::open_each_backend`]), for the twin test: the
+/// backends' shader compilers and rasterisers differ.
+pub fn open_each_backend(allow_software: bool) -> Vec<(wgpu::Backend, Result<GpuRenderer, String>)> {
+    liftplan_core::gpu::open_each_backend(allow_software)
+        .into_iter()
+        .map(|(b, dev)| (b, dev.map(GpuRenderer::new)))
+        .collect()
+}
+
 /// Builds the picture pipelines on an open device.
 fn pipelines(dev: liftplan_core::gpu::Device) -> GpuRenderer {
     let d = &dev.device;

@@ -1,8 +1,9 @@
 //! The GPU twin of the picture renderer draws what the CPU rasteriser draws.
 //!
-//! Runs wherever wgpu finds an adapter (Mesa's lavapipe counts, so CI exercises
-//! it); without one it prints why and passes, since the CPU path is the one
-//! every machine has and its own tests cover it.
+//! Runs on every backend where wgpu finds an adapter (Mesa's lavapipe through
+//! Vulkan and llvmpipe through OpenGL count, so CI exercises both); without
+//! one it prints why and passes, since the CPU path is the one every machine
+//! has and its own tests cover it.
 
 use liftplan_core::image::Image;
 use liftplan_docs::render::{Camera, PointBatch, Polyline, Projection, Scene, TriangleBatch, obb_batch, render_cpu};
@@ -69,13 +70,17 @@ fn compare(a: &Image, b: &Image) -> (f64, f64) {
 
 #[test]
 fn gpu_and_cpu_pictures_agree() {
-    let g = match liftplan_docs::gpu::open(true) {
-        Ok(g) => g,
-        Err(e) => {
-            eprintln!("SKIPPED: no GPU adapter for the twin test ({e})");
-            return;
-        }
-    };
+    let devices = liftplan_docs::gpu::open_each_backend(true);
+    if devices.is_empty() {
+        eprintln!("SKIPPED: no GPU adapter for the twin test");
+    }
+    for (backend, opened) in devices {
+        let g = opened.unwrap_or_else(|e| panic!("{backend:?} has an adapter, but: {e}"));
+        check_pictures(&g);
+    }
+}
+
+fn check_pictures(g: &liftplan_docs::gpu::GpuRenderer) {
     let s = scene();
     let (lo, hi) = s.bounds();
     let cams = [
