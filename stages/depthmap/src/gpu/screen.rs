@@ -17,8 +17,10 @@
 //!   axis alone bounds them; retried once over the cell's sixteenths, which
 //!   is tighter, when the next test fails): the CPU's exact test misses it
 //!   too;
-//! - meeting heights the inner box surely has over the cell (its vertical
-//!   segments at the cell's corners, centre and a few nearest points; for an
+//! - meeting heights the inner box surely has over the cell (its height
+//!   range over the cell pulled in by a margin, from the corners of that
+//!   convex piece: the box's corners in the column, its edges' crossings
+//!   with the column's sides, its segments on the column's edges; for an
 //!   upright box, its height range wherever its footprint meets the cell):
 //!   the CPU's exact test meets it too, and as nothing before it in the walk
 //!   met the box, it is the CPU's answer, cell and interval;
@@ -557,14 +559,8 @@ fn prepare(b: &Obb, map: &Mdm, ignore: Option<u32>) -> Prepared {
     let radius = if inner_ok { f32_up(inner.iter().map(|h| h * h).sum::<f64>().sqrt()) } else { -1.0 };
     w[23] = radius.to_bits();
     w[27..31].copy_from_slice(&[*start.cols.start(), *start.cols.end(), *start.rows.start(), *start.rows.end()]);
-    w[31] = (0..3)
-        .max_by(|&k, &l| {
-            let plan = |k: usize| b.half[k] * b.axes[(0, k)].hypot(b.axes[(1, k)]);
-            plan(k).total_cmp(&plan(l))
-        })
-        .unwrap_or(0) as u32;
     if b.is_upright() {
-        w[31] |= UPRIGHT;
+        w[31] = UPRIGHT;
     }
     Prepared::Box(w)
 }

@@ -22,7 +22,7 @@ struct Params {
 // 23     inner radius
 // 24..26 inner half sizes
 // 27..30 the CPU walk's start tiles ti0, ti1, tj0, tj1 (inclusive)
-// 31     the axis whose plan view is longest, and UPRIGHT
+// 31     UPRIGHT or 0
 @group(0) @binding(1) var<storage, read> boxes: array<u32>;
 @group(0) @binding(2) var<storage, read> offsets: array<u32>;
 // Per interval: bottom, top (f32 bits), object.
@@ -171,37 +171,77 @@ fn meets(r: vec2<f32>, zlo: f32, zhi: f32) -> bool {
     return r.x <= r.y && zhi >= r.x && zlo <= r.y;
 }
 
-// Heights the queried box surely has over a cell: the hull of its inner
-// segments on lines at the cell's corners and centre (pulled in by the
-// margin), at the point of the cell nearest the box's centre, and where the
-// box's long axis (seen from above) crosses the cell's middle lines. The
-// box's heights over a column form one interval, so the hull is inside it.
+// Heights the queried box surely has over a cell: the inner box's height
+// range over the column above the cell pulled in by the margin. That part
+// of the inner box is convex, so its highest and lowest points are among its
+// vertices: the inner segments on the column's four vertical edges, the
+// box's corners inside the column, and where the box's edges cross the
+// column's sides. Each is computed in `f32`, off by far less than the margin
+// between the inner box and the queried one, and the cell by the margin
+// between the pulled-in column and the cell, so each is a height the queried
+// box has over the cell, and so is all between them. A point dropped (an
+// edge nearly parallel to a side) only narrows the range.
 fn inner_range(b: u32, x0: f32, x1: f32, y0: f32, y1: f32) -> vec2<f32> {
-    if (P.margin < 0.0) { return EMPTY; }
+    if (P.margin < 0.0 || word(b, 23u) < 0.0) { return EMPTY; }
     let xa = x0 + P.margin;
     let xb = x1 - P.margin;
     let ya = y0 + P.margin;
     let yb = y1 - P.margin;
-    let c = centre(b);
     if ((boxes[32u * b + 31u] & UPRIGHT) != 0u) {
         return upright_inner(b, xa, xb, ya, yb);
     }
-    var r = segment(b, clamp(c.x, xa, xb), clamp(c.y, ya, yb));
-    r = hull(r, segment(b, 0.5 * (x0 + x1), 0.5 * (y0 + y1)));
-    r = hull(r, segment(b, xa, ya));
+    let q = vec4<f32>(xa, xb, ya, yb);
+    var r = segment(b, xa, ya);
     r = hull(r, segment(b, xb, ya));
     r = hull(r, segment(b, xa, yb));
     r = hull(r, segment(b, xb, yb));
-    let u = axis(b, boxes[32u * b + 31u]).xy;
-    let xm = 0.5 * (x0 + x1);
-    let ym = 0.5 * (y0 + y1);
-    if (abs(u.x) > 1e-3) {
-        r = hull(r, segment(b, xm, clamp(c.y + (xm - c.x) * u.y / u.x, ya, yb)));
-    }
-    if (abs(u.y) > 1e-3) {
-        r = hull(r, segment(b, clamp(c.x + (ym - c.y) * u.x / u.y, xa, xb), ym));
-    }
+    let c = centre(b);
+    let u = axis(b, 0u) * word(b, 24u);
+    let v = axis(b, 1u) * word(b, 25u);
+    let w = axis(b, 2u) * word(b, 26u);
+    // The four edges along each axis, from their middles; their ends are
+    // the box's corners.
+    r = hull(r, edge(c + v + w, u, q));
+    r = hull(r, edge(c + v - w, u, q));
+    r = hull(r, edge(c - v + w, u, q));
+    r = hull(r, edge(c - v - w, u, q));
+    r = hull(r, edge(c + u + w, v, q));
+    r = hull(r, edge(c + u - w, v, q));
+    r = hull(r, edge(c - u + w, v, q));
+    r = hull(r, edge(c - u - w, v, q));
+    r = hull(r, edge(c + u + v, w, q));
+    r = hull(r, edge(c + u - v, w, q));
+    r = hull(r, edge(c - u + v, w, q));
+    r = hull(r, edge(c - u - v, w, q));
     return r;
+}
+
+// The heights of the box edge m - e .. m + e where it lies in the column
+// above q = (xa, xb, ya, yb): at its ends and where it crosses the sides.
+fn edge(m: vec3<f32>, e: vec3<f32>, q: vec4<f32>) -> vec2<f32> {
+    var r = corner(m - e, q);
+    r = hull(r, corner(m + e, q));
+    r = hull(r, crossing(m, e, q.x, q.zw));
+    r = hull(r, crossing(m, e, q.y, q.zw));
+    r = hull(r, crossing(m.yxz, e.yxz, q.z, q.xy));
+    r = hull(r, crossing(m.yxz, e.yxz, q.w, q.xy));
+    return r;
+}
+
+fn corner(p: vec3<f32>, q: vec4<f32>) -> vec2<f32> {
+    if (p.x < q.x || p.x > q.y || p.y < q.z || p.y > q.w) { return EMPTY; }
+    return vec2<f32>(p.z, p.z);
+}
+
+// Where the edge m + s e, s in [-1, 1], crosses x = side with y in span.
+fn crossing(m: vec3<f32>, e: vec3<f32>, side: f32, span: vec2<f32>) -> vec2<f32> {
+    if (abs(e.x) < 1e-6) { return EMPTY; }
+    let s = (side - m.x) / e.x;
+    if (abs(s) > 1.0) { return EMPTY; }
+    let y = m.y + s * e.y;
+    if (y < span.x || y > span.y) { return EMPTY; }
+    let z = m.z + s * e.z;
+    return vec2<f32>(z, z);
 }
 
 // An upright box (turned about z only) has the same heights over every
