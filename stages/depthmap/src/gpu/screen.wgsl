@@ -247,7 +247,8 @@ fn crossing(m: vec3<f32>, e: vec3<f32>, side: f32, span: vec2<f32>) -> vec2<f32>
 // An upright box (turned about z only) has the same heights over every
 // column it reaches, so the inner box's heights are sure wherever its
 // footprint meets the (pulled-in) cell: a 2D separating-axis test of two
-// rectangles, exact with their four axes.
+// rectangles, exact with their four axes. Only for a box with an inner box
+// (`inner_range` checks).
 fn upright_inner(b: u32, xa: f32, xb: f32, ya: f32, yb: f32) -> vec2<f32> {
     let c = centre(b);
     let u = axis(b, 0u).xy;
@@ -260,7 +261,7 @@ fn upright_inner(b: u32, xa: f32, xb: f32, ya: f32, yb: f32) -> vec2<f32> {
         || abs(d.y) > e.y + hu * abs(u.y) + hv * abs(v.y)
         || abs(dot(d, u)) > hu + e.x * abs(u.x) + e.y * abs(u.y)
         || abs(dot(d, v)) > hv + e.x * abs(v.x) + e.y * abs(v.y);
-    if (apart || word(b, 23u) < 0.0) { return EMPTY; }
+    if (apart) { return EMPTY; }
     return vec2<f32>(c.z - word(b, 26u), c.z + word(b, 26u));
 }
 
