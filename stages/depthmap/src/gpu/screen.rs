@@ -14,9 +14,11 @@
 //! walk does, in the same order, and decides each interval it meets:
 //!
 //! - outside the outer box's heights over the cell (a relaxation: each box
-//!   axis alone bounds them; retried once over the cell's sixteenths, which
-//!   is tighter, when the next test fails): the CPU's exact test misses it
-//!   too;
+//!   axis alone bounds them; when the next test fails, the exact range, by
+//!   duality: a bound on the heights that holds for any multipliers of the
+//!   column's sides, so `f32` rounding only needs a room added, and whose
+//!   best value, at one of ten multipliers, is the exact range): the CPU's
+//!   exact test misses it too;
 //! - meeting heights the inner box surely has over the cell (its height
 //!   range over the cell pulled in by a margin, from the corners of that
 //!   convex piece: the box's corners in the column, its edges' crossings

@@ -80,28 +80,87 @@ fn outer_range(b: u32, x0: f32, x1: f32, y0: f32, y1: f32) -> vec2<f32> {
     return r;
 }
 
-// outer_range over the rectangle's four quarters, joined: the relaxation is
-// looser the larger the rectangle, so this is a tighter range that still
-// holds every height of the outer box over the whole rectangle.
-fn outer_quarters(b: u32, x0: f32, x1: f32, y0: f32, y1: f32) -> vec2<f32> {
-    let xm = 0.5 * (x0 + x1);
-    let ym = 0.5 * (y0 + y1);
-    var r = outer_range(b, x0, xm, y0, ym);
-    r = hull(r, outer_range(b, xm, x1, y0, ym));
-    r = hull(r, outer_range(b, x0, xm, ym, y1));
-    r = hull(r, outer_range(b, xm, x1, ym, y1));
+// The outer box's exact height range over the column above [x0, x1] x
+// [y0, y1], intersected with `r` (a range already known to hold it), or
+// EMPTY when the box stays out of the column; for a cell the walk cannot
+// decide with `outer_range`, which relaxes the box axis by axis.
+//
+// By duality, not by its vertices, so that rounding can only widen it. A
+// point of the box is c + sum_k s_k a_k with |s_k| <= h_k; over the column
+// its x - c.x = sum_k s_k a_k.x lies in [dx0, dx1], and likewise y. For
+// any multipliers (lx, ly) its height is therefore
+//   z = c.z + lx (x - c.x) + ly (y - c.y) + sum_k s_k (a_k.z - lx a_k.x - ly a_k.y)
+// and lies between c.z + min(lx dx) + min(ly dy) - sum_k h_k |g_k| and
+// c.z + max(lx dx) + max(ly dy) + sum_k h_k |g_k|. Both bounds hold for
+// every choice of (lx, ly), however it was computed, so only their own few
+// roundings need room: `dual_bounds` widens them by 2^-19 of the sum of
+// their terms' magnitudes, four times what those operations can err by.
+// The bounds are piecewise linear in (lx, ly), bent on the lines g_k = 0,
+// lx = 0 and ly = 0; linear programming duality makes their best values
+// the exact range, reached where two of those lines cross: the origin, a
+// face's slope (g_j = g_k = 0, so (lx, ly, -1) is along the third axis),
+// and each g_k = 0 on an axis. A crossing that would divide by nearly zero
+// is left out, which only loosens the range. If the bounds cross, no point
+// of the box lies over the column (for one that did, every upper bound is
+// at least its height and every lower bound at most).
+//
+// The f32 box as the host wrote it (centre, axes within rounding of unit
+// and square, half sizes grown by the margin) holds the queried box over
+// the cell: the margin absorbs the axes' rounding and the column's.
+fn outer_exact(b: u32, x0: f32, x1: f32, y0: f32, y1: f32, r: vec2<f32>) -> vec2<f32> {
+    let c = centre(b);
+    let a0 = axis(b, 0u);
+    let a1 = axis(b, 1u);
+    let a2 = axis(b, 2u);
+    let ax = vec3<f32>(a0.x, a1.x, a2.x);
+    let ay = vec3<f32>(a0.y, a1.y, a2.y);
+    let az = vec3<f32>(a0.z, a1.z, a2.z);
+    let h = vec3<f32>(word(b, 7u), word(b, 11u), word(b, 15u));
+    let d = vec4<f32>(x0 - c.x, x1 - c.x, y0 - c.y, y1 - c.y);
+    var o = r;
+    o = narrow(o, dual_bounds(vec2<f32>(0.0, 0.0), c.z, d, ax, ay, az, h));
+    // Unrolled: no loop here, so no loop count a device could cut short.
+    o = crossing_bounds(o, ax.x, ay.x, az.x, c.z, d, ax, ay, az, h);
+    o = crossing_bounds(o, ax.y, ay.y, az.y, c.z, d, ax, ay, az, h);
+    o = crossing_bounds(o, ax.z, ay.z, az.z, c.z, d, ax, ay, az, h);
+    if (o.x > o.y) { return EMPTY; }
+    return o;
+}
+
+// `o` narrowed by the bounds at the crossings that axis k = (kx, ky, kz)
+// makes: its face's slope, and g_k = 0 on each axis of (lx, ly).
+fn crossing_bounds(o: vec2<f32>, kx: f32, ky: f32, kz: f32, cz: f32, d: vec4<f32>, ax: vec3<f32>, ay: vec3<f32>, az: vec3<f32>, h: vec3<f32>) -> vec2<f32> {
+    var r = o;
+    if (abs(kz) > 1e-6) {
+        r = narrow(r, dual_bounds(vec2<f32>(-kx / kz, -ky / kz), cz, d, ax, ay, az, h));
+    }
+    if (abs(kx) > 1e-6) {
+        r = narrow(r, dual_bounds(vec2<f32>(kz / kx, 0.0), cz, d, ax, ay, az, h));
+    }
+    if (abs(ky) > 1e-6) {
+        r = narrow(r, dual_bounds(vec2<f32>(0.0, kz / ky), cz, d, ax, ay, az, h));
+    }
     return r;
 }
 
-// The same over sixteenths.
-fn outer_sixteenths(b: u32, x0: f32, x1: f32, y0: f32, y1: f32) -> vec2<f32> {
-    let xm = 0.5 * (x0 + x1);
-    let ym = 0.5 * (y0 + y1);
-    var r = outer_quarters(b, x0, xm, y0, ym);
-    r = hull(r, outer_quarters(b, xm, x1, y0, ym));
-    r = hull(r, outer_quarters(b, x0, xm, ym, y1));
-    r = hull(r, outer_quarters(b, xm, x1, ym, y1));
-    return r;
+// The two bounds of `outer_exact` for the multipliers `l`, widened by room
+// for their rounding (and a little for a device that flushes tiny numbers).
+fn dual_bounds(l: vec2<f32>, cz: f32, d: vec4<f32>, ax: vec3<f32>, ay: vec3<f32>, az: vec3<f32>, h: vec3<f32>) -> vec2<f32> {
+    let sx = l.x * d.xy;
+    let sy = l.y * d.zw;
+    let lx = l.x * ax;
+    let ly = l.y * ay;
+    let spread = dot(h, abs(az - lx - ly));
+    let up = cz + max(sx.x, sx.y) + max(sy.x, sy.y) + spread;
+    let lo = cz + min(sx.x, sx.y) + min(sy.x, sy.y) - spread;
+    let size = abs(cz) + max(abs(sx.x), abs(sx.y)) + max(abs(sy.x), abs(sy.y)) + dot(h, abs(az) + abs(lx) + abs(ly));
+    let room = size * 1.9073486328125e-6 + 1e-30;
+    return vec2<f32>(lo - room, up + room);
+}
+
+// The intersection of two height ranges that both hold the same heights.
+fn narrow(r: vec2<f32>, s: vec2<f32>) -> vec2<f32> {
+    return vec2<f32>(max(r.x, s.x), min(r.y, s.y));
 }
 
 // `r` cut by one axis' bound (a: the axis, h: its half size, d: the
@@ -346,8 +405,8 @@ fn screen_boxes(@builtin(global_invocation_id) g: vec3<u32>) {
                     inner = inner_range(b, x0, x1, y0, y1);
                     inner_done = true;
                     if (!meets(inner, zlo, zhi)) {
-                        // Undecided: once per cell, the tighter outer range.
-                        r = outer_sixteenths(b, x0, x1, y0, y1);
+                        // Undecided: once per cell, the exact outer range.
+                        r = outer_exact(b, x0, x1, y0, y1, r);
                         if (zlo > r.y) {
                             higher = true;
                             break;
@@ -512,8 +571,8 @@ fn clear_boxes(@builtin(global_invocation_id) g: vec3<u32>) {
             sp += 4u;
             continue;
         }
-        // A cell: the box's heights over it, outer (all it may have there;
-        // tighter over sixteenths) and inner (what it surely has there, or
+        // A cell: the box's heights over it, outer (all it may have there,
+        // exact up to rounding) and inner (what it surely has there, or
         // EMPTY). An upright box has its exact heights, or none, over it.
         let cell = t.z * P.nx + t.y;
         var o = e;
@@ -521,7 +580,7 @@ fn clear_boxes(@builtin(global_invocation_id) g: vec3<u32>) {
         if (upright) {
             if (inner.x <= inner.y) { inner = e; }
         } else {
-            o = outer_sixteenths(b, x0, x1, y0, y1);
+            o = outer_exact(b, x0, x1, y0, y1, r);
             if (o.x > o.y) { continue; }
         }
         let sure = inner.x <= inner.y;
