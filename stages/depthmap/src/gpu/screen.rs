@@ -6,8 +6,9 @@
 //! `f64` geometry, which WGSL lacks, and an `f32` copy of it would not give
 //! the CPU's answers bit for bit on every driver (GPU compilers may fuse
 //! multiply-adds and divide to 2.5 ulp). So the device works like a filtered
-//! geometric predicate. Each box goes up twice over: grown by a margin far
-//! larger than any `f32` rounding of the shader's few operations (the
+//! geometric predicate. Each box goes up twice over: grown by a margin larger
+//! than the `f32` rounding of the shader's few operations, by the accounting
+//! at [`MARGIN_REL`] (the
 //! *outer* box, which holds every point within the margin of the queried
 //! one), and shrunk by it (the *inner* box, inside the queried one). The
 //! shader walks the max-height pyramid and the cells exactly as the CPU's
@@ -76,11 +77,32 @@ const UPRIGHT: u32 = 0x100;
 /// Boxes farther than this from the grid origin (m) are left to the CPU: the
 /// margin that covers `f32` rounding grows with the coordinates.
 pub const MAX_COORD_M: f64 = 1e6;
-/// The margin's fixed part (m) and its part relative to the box's coordinates
-/// and size: 2^-16 is 256 `f32` ulps, where the shader's few operations on a
-/// quantity round by at most ten.
-const MARGIN_M: f64 = 1e-3;
-const MARGIN_REL: f64 = 1.0 / 65536.0;
+/// The margin's fixed part (m) and its part relative to the box's reach `F`
+/// (its centre's largest grid-local coordinate, plus its size and two
+/// cells): 2^-18 is 64 u, with u = 2^-24 the unit roundoff of `f32`.
+///
+/// The accounting (in u F, worst cases; the division is WGSL's, within
+/// 2.5 ulps, 5 u):
+/// - The `f32` box as written (centre within u F, axes within u, half sizes
+///   rounded outward or inward), with the `f32` cell edges (within 2 u F),
+///   holds the queried box over the true cell to within 9 u F: left over,
+///   55.
+/// - `outer_axis` errs by at most 10 in its numerator, 12.5 more once
+///   divided by the axis' height (divided too, as is the margin) and 3.5
+///   when the centre is added: 26, inside 55.
+/// - `inner_range`'s points lie within 5 of the `f32` inner box (corners and
+///   edges), 12 more across a side for a crossing, and a segment's ends
+///   within 33 of its slabs (the division's error is an error along the
+///   axis, not in height): at most 42, inside 64, so a point of the queried
+///   box has that height over the cell.
+/// - `outer_exact` is exact up to a room it adds for its own rounding.
+///
+/// The fixed part covers the CPU's own tolerances (1e-9 m, and its `f64`
+/// rounding) with room to spare. At the twelfth stop the margin was 1 mm
+/// plus 2^-16 (256 u): five times as many of the C-space test's boxes went
+/// to the CPU, all at contacts within a few margins.
+const MARGIN_M: f64 = 1e-4;
+const MARGIN_REL: f64 = 1.0 / 262144.0;
 /// Answer words per box of the clearance walk: verdict, number of cells,
 /// and up to [`CELLS`] cells (the shader's `CLEAR_WORDS`).
 const CLEAR_WORDS: usize = 12;
