@@ -114,8 +114,11 @@ fn check(crane: &str, tall: bool, seeds: &[u64], by_build: impl Fn(&CSpace, &Que
             );
             // Every entry asks one box per part until one meets something.
             assert!(asked >= cs.swing_hits.len() + n);
-            // The device must answer most boxes itself, or the twin is the CPU.
-            assert!(sc.left_to_cpu * 10 < asked, "the device left {} of {asked} boxes to the CPU", sc.left_to_cpu);
+            // The device must answer nearly every box itself (all but 0.25 %),
+            // or the twin is the CPU: it leaves about 0.1 % here (lavapipe and
+            // llvmpipe), and left 0.6 % before its exact outer range and
+            // smaller margin, which this bound would have failed.
+            assert!(sc.left_to_cpu * 400 < asked, "the device left {} of {asked} boxes to the CPU", sc.left_to_cpu);
         }
     }
 }
