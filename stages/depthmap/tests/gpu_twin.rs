@@ -227,9 +227,11 @@ fn gpu_and_cpu_box_queries_agree() {
             // Above everything (the site's tops stay under 27 m).
             let above: Vec<Obb> = (0..300).map(|_| random_box(&mut rng, 70.0)).collect();
             boxes.extend(&above);
-            // Off the grid, and too far out to screen in f32.
-            boxes.push(Obb::axis_aligned(Point3::new(5000.0, 2000.0, 1.0), Vec3::new(1.0, 1.0, 1.0)));
-            boxes.push(Obb::axis_aligned(Point3::new(1000.0, 2.0e6, 1.0), Vec3::new(3.0e6, 1.0, 1.0)));
+            // Off the grid, and too far out to screen in f32: first and in
+            // the middle of the list, so that the boxes after them go up in
+            // other slots than their places in the list.
+            boxes.insert(0, Obb::axis_aligned(Point3::new(5000.0, 2000.0, 1.0), Vec3::new(1.0, 1.0, 1.0)));
+            boxes.insert(1500, Obb::axis_aligned(Point3::new(1000.0, 2.0e6, 1.0), Vec3::new(3.0e6, 1.0, 1.0)));
             for ignore in [None, Some(mdm::OBJ_GROUND)] {
                 let (hits, counts) = g.hits_where(&on_gpu, &map, &boxes, ignore).unwrap();
                 let mut free = 0;
