@@ -440,9 +440,9 @@ fn queries(s: &Settings, device: &Result<gpu::Gpu, String>) {
     };
     println!("Box queries (`Mdm::hits` on the CPU, `Gpu::hits_where` on the GPU) of the same boxes:\n");
     println!(
-        "| boxes | hit (CPU) | CPU ms | GPU ms | CPU / GPU | free on the GPU | hit on the GPU | left to the CPU | GPU walk ms | of which host prep ms | CPU rest ms | answers equal |"
+        "| boxes | hit (CPU) | CPU ms | GPU ms | CPU / GPU | free on the GPU | hit on the GPU | left to the CPU | GPU walk ms | of which host prep ms | of which host transfer ms | CPU rest ms | answers equal |"
     );
-    println!("|---|---|---|---|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     for (kind, boxes) in &sets {
         let mut cpu_hits = Vec::new();
         let cpu = best_of(3, || {
@@ -452,7 +452,7 @@ fn queries(s: &Settings, device: &Result<gpu::Gpu, String>) {
         });
         let (gpu_ms, c, equal) = best_gpu_run(kind, &cpu_hits, || g.hits_where(&on_gpu, &map, boxes, None));
         println!(
-            "| {N} {kind} | {} | {cpu:.0} | {gpu_ms:.0} | {:.2} | {} | {} | {} | {:.0} | {:.0} | {:.0} | {} |",
+            "| {N} {kind} | {} | {cpu:.0} | {gpu_ms:.0} | {:.2} | {} | {} | {} | {:.0} | {:.0} | {:.0} | {:.0} | {} |",
             cpu_hits.iter().filter(|h| h.is_some()).count(),
             cpu / gpu_ms,
             c.free_on_gpu,
@@ -460,6 +460,7 @@ fn queries(s: &Settings, device: &Result<gpu::Gpu, String>) {
             c.left_to_cpu,
             c.screen_ms,
             c.prepare_ms,
+            c.transfer_ms,
             c.exact_ms,
             if equal { "yes" } else { "NO" }
         );

@@ -159,6 +159,11 @@ pub struct ScreenCounts {
     pub screen_ms: f64,
     /// Of `screen_ms`, preparing the boxes on the host (ms).
     pub prepare_ms: f64,
+    /// Of `screen_ms`, the host's share of moving boxes and answers: filling
+    /// the device's buffers with the boxes and decoding the answers read
+    /// back (ms). What is left of `screen_ms` after this and `prepare_ms`
+    /// is the device's walk, the copies and the wait for them.
+    pub transfer_ms: f64,
     /// The CPU's exact queries of the boxes left to it, and for clearances
     /// its measuring of the device's cells (ms).
     pub exact_ms: f64,
@@ -175,10 +180,11 @@ impl ScreenCounts {
 
     /// No boxes yet, and the times of a batch begun at `t0` whose device
     /// part ended at `t_exact` and whose CPU part ends now.
-    fn timed(t0: std::time::Instant, t_exact: std::time::Instant, prepare_ms: f64) -> ScreenCounts {
+    fn timed(t0: std::time::Instant, t_exact: std::time::Instant, host: HostMs) -> ScreenCounts {
         ScreenCounts {
             screen_ms: (t_exact - t0).as_secs_f64() * 1e3,
-            prepare_ms,
+            prepare_ms: host.prepare,
+            transfer_ms: host.transfer,
             exact_ms: t_exact.elapsed().as_secs_f64() * 1e3,
             ..ScreenCounts::default()
         }
@@ -191,9 +197,17 @@ impl ScreenCounts {
         self.left_to_cpu += o.left_to_cpu;
         self.screen_ms += o.screen_ms;
         self.prepare_ms += o.prepare_ms;
+        self.transfer_ms += o.transfer_ms;
         self.exact_ms += o.exact_ms;
         self.cells_measured += o.cells_measured;
     }
+}
+
+/// Where the host's own time went in a batch (ms).
+#[derive(Clone, Copy, Default)]
+struct HostMs {
+    prepare: f64,
+    transfer: f64,
 }
 
 /// The device's answer for one box.
@@ -266,7 +280,7 @@ impl Gpu {
     ) -> Result<(Vec<Option<Hit>>, ScreenCounts), String> {
         gpu_map.check_is(map)?;
         let t0 = std::time::Instant::now();
-        let (verdicts, prepare_ms) = self.screen(gpu_map, map, boxes, ignore)?;
+        let (verdicts, host) = self.screen(gpu_map, map, boxes, ignore)?;
         let t_exact = std::time::Instant::now();
         let counts_obj = |iv: &Interval| Some(iv.obj) != ignore;
         let hits = boxes
@@ -278,7 +292,7 @@ impl Gpu {
                 Verdict::LeftToCpu => map.hit_where(b, counts_obj),
             })
             .collect();
-        let mut counts = ScreenCounts::timed(t0, t_exact, prepare_ms);
+        let mut counts = ScreenCounts::timed(t0, t_exact, host);
         for v in &verdicts {
             match v {
                 Verdict::Free => counts.free_on_gpu += 1,
@@ -289,26 +303,27 @@ impl Gpu {
         Ok((hits, counts))
     }
 
-    /// The device's answer for every box, and the time the host took to
-    /// prepare them (ms).
+    /// The device's answer for every box, and where the host's own time
+    /// went.
     fn screen(
         &self,
         gpu_map: &GpuMap,
         map: &Mdm,
         boxes: &[Obb],
         ignore: Option<u32>,
-    ) -> Result<(Vec<Verdict>, f64), String> {
+    ) -> Result<(Vec<Verdict>, HostMs), String> {
         let batch = prepare_batch(map, boxes, ignore);
         let mut verdicts: Vec<Verdict> =
             batch.outside.iter().map(|&out| if out { Verdict::Free } else { Verdict::LeftToCpu }).collect();
         let run = Dispatch { pipeline: &self.screen_boxes, way: 0, exact: None, out_binding: 6, out_words: 4 };
-        self.dispatch(gpu_map, map, &batch, &run, |k, a| verdicts[k] = verdict(map, a))?;
-        Ok((verdicts, batch.prepare_ms))
+        let transfer = self.dispatch(gpu_map, map, &batch, &run, |k, a| verdicts[k] = verdict(map, a))?;
+        Ok((verdicts, HostMs { prepare: batch.prepare_ms, transfer }))
     }
 
     /// Runs `run` over the boxes of `batch` that go up, in batches that fit
     /// the device's buffers, and hands each box's answer words to `take`
-    /// with the box's place in the caller's list.
+    /// with the box's place in the caller's list. Returns the host's time
+    /// filling the buffers and decoding the answers (ms).
     fn dispatch(
         &self,
         gpu_map: &GpuMap,
@@ -316,7 +331,7 @@ impl Gpu {
         batch: &Batch,
         run: &Dispatch,
         mut take: impl FnMut(usize, &[u32]),
-    ) -> Result<(), String> {
+    ) -> Result<f64, String> {
         let budget = self.loop_cap.map_or(BUDGET, |cap| cap / 2);
         let spec = map.spec;
         // The inner test's lines stand this far inside a cell, clear of the
@@ -326,9 +341,11 @@ impl Gpu {
         let margin = if margin < spec.cell / 4.0 { margin as f32 } else { -1.0 };
         let per_box = (BOX_WORDS + 2 + run.out_words) as u64 * 4;
         let per_batch = ((self.buffer_limit / (4 * per_box)) as usize).max(1);
+        let mut transfer = std::time::Duration::ZERO;
         liftplan_core::gpu::catching_errors(&self.dev, || {
             for (n, chunk) in batch.sent.chunks(per_batch).enumerate() {
                 let first = n * per_batch;
+                let t_fill = std::time::Instant::now();
                 let words = batch.words[first..first + chunk.len()].as_flattened();
                 let boxes_buf = self.upload("query boxes", &words_to_bytes(words), wgpu::BufferUsages::STORAGE);
                 let out = self.storage("query answers", 4 * (run.out_words * chunk.len()) as u64);
@@ -358,16 +375,23 @@ impl Gpu {
                     exact_buf = self.upload("query exact heights", &words_to_bytes(words), wgpu::BufferUsages::STORAGE);
                     binds.push((7, &exact_buf));
                 }
+                transfer += t_fill.elapsed();
                 let mut enc = self.dev.device.create_command_encoder(&Default::default());
                 self.pass(&mut enc, run.pipeline, &binds, chunk.len() as u32, SCREEN_GROUP);
                 self.submit(enc);
-                let answers = self.read_words(&out, 0, (run.out_words * chunk.len()) as u64)?;
+                let bytes =
+                    liftplan_core::gpu::read_back(&self.dev, &out, 0, 4 * (run.out_words * chunk.len()) as u64)?;
+                let t_decode = std::time::Instant::now();
+                let answers: Vec<u32> =
+                    bytes.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
                 for (k, a) in chunk.iter().zip(answers.chunks_exact(run.out_words)) {
                     take(*k, a);
                 }
+                transfer += t_decode.elapsed();
             }
             Ok(())
-        })
+        })?;
+        Ok(transfer.as_secs_f64() * 1e3)
     }
 
     /// [`Mdm::clearance_where`] for every box, with `counts` "every object
@@ -413,7 +437,7 @@ impl Gpu {
             out_binding: 8,
             out_words: CLEAR_WORDS,
         };
-        self.dispatch(gpu_map, map, &batch, &run, |k, a| answers[k] = narrowed(map, a))?;
+        let transfer = self.dispatch(gpu_map, map, &batch, &run, |k, a| answers[k] = narrowed(map, a))?;
         let t_exact = std::time::Instant::now();
         let counts_obj = |iv: &Interval| Some(iv.obj) != ignore;
         let found = boxes
@@ -425,7 +449,7 @@ impl Gpu {
                 Narrowed::LeftToCpu => map.clearance_where(b, way, counts_obj),
             })
             .collect();
-        let mut counts = ScreenCounts::timed(t0, t_exact, prepare_ms);
+        let mut counts = ScreenCounts::timed(t0, t_exact, HostMs { prepare: prepare_ms, transfer });
         for a in &answers {
             match a {
                 Narrowed::Nothing => counts.free_on_gpu += 1,
