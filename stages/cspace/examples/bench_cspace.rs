@@ -151,23 +151,17 @@ clearance_m = 1.0
                     100.0 * sc.left_to_cpu as f64 / sc.boxes().max(1) as f64,
                     if equal { "yes" } else { "**NO**" }
                 );
-                let host_ms = sc.prepare_ms + sc.transfer_ms + sc.exact_ms;
+                let (prepare_ms, transfer_ms, exact_ms) = (sc.prepare_ms, sc.transfer_ms, sc.exact_ms);
+                let (host_ms, walk_ms) = (prepare_ms + transfer_ms + exact_ms, sc.screen_ms - prepare_ms - transfer_ms);
                 println!(
                     "\nGPU: the depth map's upload took {upload_ms:.0} ms (once per map, not in the row). Of the best run, \
-                     {:.0} ms went to the device's part: preparing the boxes on the host ({:.0} ms), filling the \
-                     device's buffers with them and decoding its answers on the host ({:.0} ms), and the device's walk, \
-                     its copies and the wait for them ({:.0} ms); and {:.0} ms to the CPU's exact queries of the boxes \
-                     left to it. The host's own share, {host_ms:.0} ms ({:.0} + {:.0} + {:.0}), is work on this host's \
-                     cores that a faster device does not take off them: with this host, no device makes the row \
-                     faster than that.",
-                    sc.screen_ms,
-                    sc.prepare_ms,
-                    sc.transfer_ms,
-                    sc.screen_ms - sc.prepare_ms - sc.transfer_ms,
-                    sc.exact_ms,
-                    sc.prepare_ms,
-                    sc.transfer_ms,
-                    sc.exact_ms
+                     {:.0} ms went to the device's part: preparing the boxes on the host ({prepare_ms:.0} ms), filling \
+                     the device's buffers with them and decoding its answers on the host ({transfer_ms:.0} ms), and the \
+                     device's walk, its copies and the wait for them ({walk_ms:.0} ms); and {exact_ms:.0} ms to the \
+                     CPU's exact queries of the boxes left to it. The host's own share, {host_ms:.0} ms \
+                     ({prepare_ms:.0} + {transfer_ms:.0} + {exact_ms:.0}), is work on this host's cores that a faster \
+                     device does not take off them: with this host, no device makes the row faster than that.",
+                    sc.screen_ms
                 );
                 if !equal {
                     eprintln!("the GPU's rows differ from the CPU's");

@@ -288,7 +288,7 @@ impl Gpu {
     /// `words` 32-bit words of `src` from word `at`.
     fn read_words(&self, src: &wgpu::Buffer, at: u64, words: u64) -> Result<Vec<u32>, String> {
         let data = liftplan_core::gpu::read_back(&self.dev, src, 4 * at, 4 * words)?;
-        Ok(data.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect())
+        Ok(words_from_bytes(&data))
     }
 
     /// Passes 1 to 5 on the device for `points` and the triangles' raw
@@ -585,6 +585,11 @@ struct Sources {
 fn device_buffer_limit(device: &wgpu::Device) -> u64 {
     let limits = device.limits();
     limits.max_storage_buffer_binding_size.min(limits.max_buffer_size).min(u32::MAX as u64)
+}
+
+/// Words the device wrote (little-endian), as read back.
+fn words_from_bytes(bytes: &[u8]) -> Vec<u32> {
+    bytes.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect()
 }
 
 /// The words as the device reads them (little-endian): on a little-endian

@@ -60,7 +60,7 @@
 //! goes to the CPU; so do all clearances on a map with heights beyond
 //! [`MAX_HEIGHT_M`].
 
-use super::{Gpu, words_to_bytes};
+use super::{Gpu, words_from_bytes, words_to_bytes};
 use crate::mdm::{Interval, Mdm};
 use crate::query::{Clearance, Hit, Vertical};
 use liftplan_core::obb::Obb;
@@ -382,8 +382,7 @@ impl Gpu {
                 let bytes =
                     liftplan_core::gpu::read_back(&self.dev, &out, 0, 4 * (run.out_words * chunk.len()) as u64)?;
                 let t_decode = std::time::Instant::now();
-                let answers: Vec<u32> =
-                    bytes.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
+                let answers = words_from_bytes(&bytes);
                 for (k, a) in chunk.iter().zip(answers.chunks_exact(run.out_words)) {
                     take(*k, a);
                 }
