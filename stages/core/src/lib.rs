@@ -18,6 +18,7 @@
 //! | [`artifact`] | checked binary artifact files and atomic writes |
 //! | [`image`] | RGB rasters, PNG output, labels and colour ramps |
 //! | [`rng`] | the seeded random streams |
+//! | [`testing`] | what the property tests share (their case count) |
 //!
 //! ```
 //! use liftplan_core::crane::{builtin, CraneSetup, Placement, LoadShape, LoadPose};
@@ -41,6 +42,7 @@ pub mod location;
 pub mod mesh;
 pub mod obb;
 pub mod rng;
+pub mod testing;
 pub mod units;
 
 pub use location::{Location, Place};

@@ -396,7 +396,7 @@ mod tests {
     }
 
     proptest! {
-        #![proptest_config(ProptestConfig::with_cases(96))]
+        #![proptest_config(ProptestConfig::with_cases(crate::testing::proptest_cases(96)))]
         #[test]
         fn z_range_contains_every_sample(
             yaw in -3.2f64..3.2, pitch in -1.5f64..1.5,
@@ -423,7 +423,7 @@ mod tests {
     }
 
     proptest! {
-        #![proptest_config(ProptestConfig::with_cases(200))]
+        #![proptest_config(ProptestConfig::with_cases(crate::testing::proptest_cases(200)))]
         #[test]
         fn upright_fast_path_matches_samples(
             yaw in -3.2f64..3.2,

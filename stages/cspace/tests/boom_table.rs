@@ -29,7 +29,7 @@ clearance_m = 0.5
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(8))]
+    #![proptest_config(ProptestConfig::with_cases(liftplan_core::testing::proptest_cases(8)))]
     #[test]
     fn boom_rows_are_conservative_and_tight(seed in any::<u64>(), heading in 0.0f64..360.0) {
         let t = task(heading);

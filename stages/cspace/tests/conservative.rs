@@ -56,7 +56,7 @@ fn exact_free(t: &LiftTask, map: &Mdm, c: &Config) -> bool {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(16))]
+    #![proptest_config(ProptestConfig::with_cases(liftplan_core::testing::proptest_cases(16)))]
     #[test]
     fn free_answers_are_free(seed in any::<u64>(), strategy in 0usize..3) {
         let t = task();

@@ -117,7 +117,7 @@ fn check(seed: u64, spec: GridSpec, radius: f32, gap: f32, mode: Mode, n: usize)
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(64))]
+    #![proptest_config(ProptestConfig::with_cases(liftplan_core::testing::proptest_cases(64)))]
     #[test]
     fn assembly_matches_the_reference(
         seed in any::<u64>(),

@@ -480,7 +480,7 @@ mod tests {
     }
 
     proptest! {
-        #![proptest_config(ProptestConfig::with_cases(24))]
+        #![proptest_config(ProptestConfig::with_cases(liftplan_core::testing::proptest_cases(24)))]
         /// Cutting the box into pieces gives the distance of the whole box.
         #[test]
         fn pieces_give_the_box_distance(

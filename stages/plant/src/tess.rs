@@ -449,7 +449,7 @@ mod tests {
     }
 
     proptest! {
-        #![proptest_config(ProptestConfig::with_cases(40))]
+        #![proptest_config(ProptestConfig::with_cases(liftplan_core::testing::proptest_cases(40)))]
 
         #[test]
         fn cylinder_within_tolerance(r in 0.0f64..3.0, h in 0.0f64..5.0, tol in 0.001f64..0.2) {

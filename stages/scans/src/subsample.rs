@@ -395,7 +395,7 @@ mod tests {
     }
 
     proptest! {
-        #![proptest_config(ProptestConfig::with_cases(48))]
+        #![proptest_config(ProptestConfig::with_cases(liftplan_core::testing::proptest_cases(48)))]
         #[test]
         fn voxel_equals_brute_force(
             pts in proptest::collection::vec((-20.0f64..20.0, -20.0f64..20.0, -5.0f64..5.0), 1..3000),
