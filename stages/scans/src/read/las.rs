@@ -51,6 +51,148 @@ fn le_f64(b: &[u8], o: usize) -> f64 {
     f64::from_bits(le_u64(b, o))
 }
 
+/// Where a LAS file's points lie and what the header says of them.
+struct PointLayout {
+    offset_to_points: u64,
+    record_length: u16,
+    points: u64,
+    file_len: u64,
+}
+
+/// The most bytes one decompressed LAZ chunk may take (the chunk's points
+/// times the record length). The decompressor holds a whole chunk at once, so
+/// a header field must not make it ask for more: real files use chunks of
+/// 50,000 points (a few MB); this allows about 30 M points of 34 bytes.
+const MAX_LAZ_CHUNK_BYTES: u64 = 1 << 30;
+
+/// Checks what the LAZ decompressor trusts: the laszip VLR (at byte `lz_at`,
+/// `lz_len` bytes long) against the header's record length, and the chunk table against
+/// the declared points, the compressed data's size and
+/// [`MAX_LAZ_CHUNK_BYTES`]. The decompressor asserts, or allocates, on these
+/// fields instead of refusing them.
+fn check_laz(path: &Path, f: &mut std::fs::File, (lz_at, lz_len): (u64, u16), l: &PointLayout) -> Result<()> {
+    let bad = |off: u64, msg: String| ScanError::format(Location::byte(path, off), msg);
+    let io = |off: u64, e: std::io::Error| ScanError::Io(Location::byte(path, off), e);
+    let (points, record_length, file_len) = (l.points, l.record_length, l.file_len);
+    if lz_len < 34 {
+        return Err(bad(lz_at, format!("laszip VLR is {lz_len} bytes, shorter than its 34-byte header")));
+    }
+    let mut lz = vec![0u8; lz_len as usize];
+    f.seek(SeekFrom::Start(lz_at)).and_then(|_| f.read_exact(&mut lz)).map_err(|e| io(lz_at, e))?;
+    let chunk_size = le_u32(&lz, 12);
+    let variable_chunks = chunk_size == u32::MAX;
+    let num_items = le_u16(&lz, 32) as u64;
+    if 34 + num_items * 6 > lz_len as u64 {
+        return Err(bad(lz_at + 32, format!("laszip VLR lists {num_items} items, more than its {lz_len} bytes hold")));
+    }
+    // Each item is (type, size, version); together they make one point.
+    let items_size: u64 = (0..num_items as usize).map(|k| le_u16(&lz, 34 + 6 * k + 2) as u64).sum();
+    if items_size != record_length as u64 {
+        return Err(bad(
+            lz_at + 34,
+            format!(
+                "laszip VLR's items make {items_size}-byte points, but the header's record length is {record_length} bytes"
+            ),
+        ));
+    }
+    if chunk_size == 0 {
+        return Err(bad(lz_at + 12, "laszip VLR gives a chunk size of 0 points".into()));
+    }
+    if !variable_chunks && chunk_size as u64 * record_length as u64 > MAX_LAZ_CHUNK_BYTES {
+        return Err(bad(
+            lz_at + 12,
+            format!(
+                "laszip chunks of {chunk_size} points of {record_length} bytes exceed the {} MiB liftplan decompresses at once (re-compress with smaller chunks, e.g. 50,000 points)",
+                MAX_LAZ_CHUNK_BYTES >> 20
+            ),
+        ));
+    }
+    // Chunk table: an i64 offset at the start of the point data, or at the end.
+    let data_at = l.offset_to_points;
+    if data_at + 8 > file_len {
+        return Err(bad(data_at, "the file ends where the compressed point data should start".into()));
+    }
+    let mut b = [0u8; 8];
+    f.seek(SeekFrom::Start(data_at)).and_then(|_| f.read_exact(&mut b)).map_err(|e| io(data_at, e))?;
+    let mut table_at = i64::from_le_bytes(b);
+    if table_at <= data_at as i64 && file_len >= 8 {
+        f.seek(SeekFrom::End(-8)).and_then(|_| f.read_exact(&mut b)).map_err(|e| io(file_len - 8, e))?;
+        table_at = i64::from_le_bytes(b);
+    }
+    if table_at <= data_at as i64 {
+        // No chunk table: the decompressor refuses the file with its own error.
+        return Ok(());
+    }
+    let t = table_at as u64;
+    if t + 8 > file_len {
+        return Err(bad(
+            data_at,
+            format!(
+                "LAZ chunk table offset {t} lies beyond the end of the file ({file_len} bytes): the file is truncated"
+            ),
+        ));
+    }
+    let mut tb = [0u8; 8];
+    f.seek(SeekFrom::Start(t)).and_then(|_| f.read_exact(&mut tb)).map_err(|e| io(t, e))?;
+    let chunks = le_u32(&tb, 4) as u64;
+    let by_size = file_len / 4;
+    let by_points = if variable_chunks { u64::MAX } else { points / chunk_size as u64 + 2 };
+    if chunks > by_size.min(by_points) {
+        return Err(bad(
+            t + 4,
+            format!(
+                "LAZ chunk table lists {chunks} chunks, more than {points} points in chunks of {chunk_size} or a {file_len}-byte file can hold"
+            ),
+        ));
+    }
+    f.seek(SeekFrom::Start(t)).map_err(|e| io(t, e))?;
+    let table = laz::laszip::ChunkTable::read(f, variable_chunks)
+        .map_err(|e| bad(t, format!("LAZ chunk table cannot be decoded: {e}")))?;
+    let entries: &[laz::laszip::ChunkTableEntry] = table.as_ref();
+    // The decoder gives each count as a 32-bit integer; read as u64, a
+    // negative one is huge, which the sums below refuse.
+    let bytes = entries.iter().fold(0u64, |s, e| s.saturating_add(e.byte_count));
+    let span = t - data_at;
+    if bytes > span {
+        return Err(bad(
+            t,
+            format!(
+                "LAZ chunk table's chunks add up to {bytes} bytes, but only {span} lie between the point data and the table"
+            ),
+        ));
+    }
+    if variable_chunks {
+        // Writers may end the table with an empty chunk (lazrs does).
+        for (k, e) in entries.iter().enumerate() {
+            if e.point_count.saturating_mul(record_length as u64) > MAX_LAZ_CHUNK_BYTES {
+                return Err(bad(
+                    t,
+                    format!(
+                        "LAZ chunk {k} holds {} points; a chunk may hold up to {} points of {record_length} bytes",
+                        e.point_count,
+                        MAX_LAZ_CHUNK_BYTES / record_length as u64
+                    ),
+                ));
+            }
+        }
+        let listed = entries.iter().fold(0u64, |s, e| s.saturating_add(e.point_count));
+        if listed != points {
+            return Err(bad(
+                t,
+                format!("LAZ chunk table's chunks hold {listed} points, but the header declares {points}"),
+            ));
+        }
+    } else if chunks.saturating_mul(chunk_size as u64) < points {
+        return Err(bad(
+            t + 4,
+            format!(
+                "LAZ chunk table lists {chunks} chunks of {chunk_size} points, fewer than the {points} points the header declares"
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// Validates the structure of a LAS/LAZ file without trusting any field.
 pub fn precheck(path: &Path) -> Result<RawLasHeader> {
     let bad = |off: u64, msg: String| ScanError::format(Location::byte(path, off), msg);
@@ -116,6 +258,18 @@ pub fn precheck(path: &Path) -> Result<RawLasHeader> {
     let legacy_points = le_u32(&h, 107) as u64;
     let points = if version.1 >= 4 && h.len() >= 255 {
         let p64 = le_u64(&h, 247);
+        // LAS 1.4 R15: a non-zero legacy count must equal the 64-bit one (a
+        // reader that finds them apart should say so). The point reader goes
+        // by the legacy one, so a file whose counts differ is refused rather
+        // than read to a count its checks were not made for.
+        if legacy_points != 0 && p64 != legacy_points {
+            return Err(bad(
+                247,
+                format!(
+                    "the header's point counts disagree: {p64} (LAS 1.4, byte 247) against {legacy_points} (legacy, byte 107)"
+                ),
+            ));
+        }
         if p64 != 0 { p64 } else { legacy_points }
     } else {
         legacy_points
@@ -157,70 +311,11 @@ pub fn precheck(path: &Path) -> Result<RawLasHeader> {
         pos += 54 + len;
     }
     if compressed {
-        let Some((lz_at, lz_len)) = laszip else {
+        let Some(laszip) = laszip else {
             return Err(bad(104, "point format is marked compressed but the laszip VLR is missing".into()));
         };
-        if lz_len < 34 {
-            return Err(bad(lz_at, format!("laszip VLR is {lz_len} bytes, shorter than its 34-byte header")));
-        }
-        let mut lz = vec![0u8; lz_len as usize];
-        f.seek(SeekFrom::Start(lz_at))
-            .and_then(|_| f.read_exact(&mut lz))
-            .map_err(|e| ScanError::Io(Location::byte(path, lz_at), e))?;
-        let chunk_size = le_u32(&lz, 12);
-        let num_items = le_u16(&lz, 32) as u64;
-        if 34 + num_items * 6 > lz_len as u64 {
-            return Err(bad(
-                lz_at + 32,
-                format!("laszip VLR lists {num_items} items, more than its {lz_len} bytes hold"),
-            ));
-        }
-        // Chunk table: an i64 offset at the start of the point data, or at the end.
-        if offset_to_points as u64 + 8 <= file_len {
-            let mut b = [0u8; 8];
-            f.seek(SeekFrom::Start(offset_to_points as u64))
-                .and_then(|_| f.read_exact(&mut b))
-                .map_err(|e| ScanError::Io(Location::byte(path, offset_to_points as u64), e))?;
-            let mut table_at = i64::from_le_bytes(b);
-            if table_at <= offset_to_points as i64 && file_len >= 8 {
-                f.seek(SeekFrom::End(-8))
-                    .and_then(|_| f.read_exact(&mut b))
-                    .map_err(|e| ScanError::Io(Location::byte(path, file_len - 8), e))?;
-                table_at = i64::from_le_bytes(b);
-            }
-            if table_at > offset_to_points as i64 {
-                let t = table_at as u64;
-                if t + 8 > file_len {
-                    return Err(bad(
-                        offset_to_points as u64,
-                        format!(
-                            "LAZ chunk table offset {t} lies beyond the end of the file ({file_len} bytes): the file is truncated"
-                        ),
-                    ));
-                }
-                let mut tb = [0u8; 8];
-                f.seek(SeekFrom::Start(t))
-                    .and_then(|_| f.read_exact(&mut tb))
-                    .map_err(|e| ScanError::Io(Location::byte(path, t), e))?;
-                let chunks = le_u32(&tb, 4) as u64;
-                let by_size = file_len / 4;
-                let by_points =
-                    if chunk_size != u32::MAX && chunk_size > 0 { points / chunk_size as u64 + 2 } else { u64::MAX };
-                if chunks > by_size.min(by_points) {
-                    return Err(bad(
-                        t + 4,
-                        format!(
-                            "LAZ chunk table lists {chunks} chunks, more than {points} points in chunks of {chunk_size} or a {file_len}-byte file can hold"
-                        ),
-                    ));
-                }
-            }
-        } else {
-            return Err(bad(
-                offset_to_points as u64,
-                "the file ends where the compressed point data should start".into(),
-            ));
-        }
+        let layout = PointLayout { offset_to_points: offset_to_points as u64, record_length, points, file_len };
+        check_laz(path, &mut f, laszip, &layout)?;
     } else {
         let need = points.saturating_mul(record_length as u64);
         let have = file_len - offset_to_points as u64;
@@ -364,4 +459,94 @@ pub(super) fn stream(info: &ScanInfo, f: &mut dyn FnMut(&PointCloud) -> Result<(
         ));
     }
     Ok(seen)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use liftplan_core::cloud::PointCloud;
+
+    /// A 1000-point LAZ written by liftplan, and where its laszip VLR's
+    /// payload starts.
+    fn small_laz(dir: &Path) -> (std::path::PathBuf, Vec<u8>, usize) {
+        let mut c = PointCloud::default();
+        for k in 0..1000 {
+            c.xyz.push([k as f64 * 0.01, (k % 37) as f64 * 0.1, (k % 11) as f64 * 0.2]);
+            c.intensity.push(k as u16);
+        }
+        let path = dir.join("a.laz");
+        crate::write::write_las(&path, &c).unwrap();
+        let bytes = std::fs::read(&path).unwrap();
+        let user = bytes.windows(14).position(|w| w == b"laszip encoded").expect("a laszip VLR");
+        // The user id starts 2 bytes into the 54-byte VLR header.
+        (path, bytes, user - 2 + 54)
+    }
+
+    fn damaged(path: &Path, bytes: &[u8], at: usize, value: &[u8]) -> String {
+        let mut b = bytes.to_vec();
+        b[at..at + value.len()].copy_from_slice(value);
+        std::fs::write(path, &b).unwrap();
+        let err = list(path, Format::Laz).and_then(|s| super::super::read_all(&s[0]));
+        err.expect_err("a damaged file must be refused").to_string()
+    }
+
+    #[test]
+    fn laz_fields_the_decompressor_trusts_are_checked() {
+        let dir = tempfile::tempdir().unwrap();
+        let (path, bytes, vlr) = small_laz(dir.path());
+        let info = list(&path, Format::Laz).unwrap();
+        assert_eq!(super::super::read_all(&info[0]).unwrap().len(), 1000, "the undamaged file reads whole");
+
+        // An item one byte longer than the record (found by the scan_file
+        // fuzz target: the decompressor asserted on it).
+        let size = le_u16(&bytes, vlr + 34 + 2);
+        let e = damaged(&path, &bytes, vlr + 34 + 2, &(size + 1).to_le_bytes());
+        assert!(e.contains("a.laz") && e.contains("record length"), "{e}");
+
+        // Chunks too large to hold in memory at once.
+        let e = damaged(&path, &bytes, vlr + 12, &0x7fff_fff0u32.to_le_bytes());
+        assert!(e.contains("MiB") && e.contains(&format!("byte {}", vlr + 12)), "{e}");
+
+        // Chunks too small for the points declared: the one chunk cannot hold them.
+        let e = damaged(&path, &bytes, vlr + 12, &100u32.to_le_bytes());
+        assert!(e.contains("fewer than the 1000 points"), "{e}");
+
+        let e = damaged(&path, &bytes, vlr + 12, &0u32.to_le_bytes());
+        assert!(e.contains("chunk size of 0"), "{e}");
+    }
+    /// The fixture's 250 points in variable-size chunks (100, 70, 80, then the
+    /// empty one lazrs ends with), as COPC files are chunked.
+    fn variable_chunks(dir: &Path) -> (std::path::PathBuf, Vec<u8>) {
+        let fixture = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/scans/variable-chunks.laz");
+        let bytes = std::fs::read(fixture).unwrap();
+        let path = dir.join("v.laz");
+        std::fs::write(&path, &bytes).unwrap();
+        (path, bytes)
+    }
+
+    #[test]
+    fn variable_size_chunks_read_whole_and_their_counts_are_checked() {
+        let dir = tempfile::tempdir().unwrap();
+        let (path, bytes) = variable_chunks(dir.path());
+        let info = list(&path, Format::Laz).unwrap();
+        let c = super::super::read_all(&info[0]).unwrap();
+        assert_eq!(c.len(), 250);
+        let b = info[0].bbox.unwrap();
+        assert!(
+            c.xyz.iter().all(|p| (0..3).all(|k| p[k] >= b.min[k] && p[k] <= b.max[k])),
+            "points inside the header's box"
+        );
+
+        // One point more in the header than in the chunks, in both counts.
+        let mut more = bytes.clone();
+        more[107..111].copy_from_slice(&251u32.to_le_bytes());
+        more[247..255].copy_from_slice(&251u64.to_le_bytes());
+        std::fs::write(&path, &more).unwrap();
+        let e = list(&path, Format::Laz).unwrap_err().to_string();
+        assert!(e.contains("v.laz") && e.contains("hold 250 points, but the header declares 251"), "{e}");
+
+        // The legacy count apart from the LAS 1.4 one.
+        let e = damaged(&path, &bytes, 107, &249u32.to_le_bytes());
+        assert!(e.contains("byte 247") && e.contains("disagree"), "{e}");
+    }
 }
