@@ -190,6 +190,70 @@ fn check_laz(path: &Path, f: &mut std::fs::File, (lz_at, lz_len): (u64, u16), l:
             ),
         ));
     }
+    if le_u16(&lz, 0) == LAYERED_CHUNKED {
+        let items: Vec<(u16, u16)> =
+            (0..num_items as usize).map(|k| (le_u16(&lz, 34 + 6 * k), le_u16(&lz, 34 + 6 * k + 2))).collect();
+        check_layers(path, f, &items, entries, data_at + 8, record_length)?;
+    }
+    Ok(())
+}
+
+/// The laszip compressor of LAS 1.4's point formats 6 to 10.
+const LAYERED_CHUNKED: u16 = 3;
+
+/// Checks that every chunk's layers fit in the chunk, for LAS 1.4's layered
+/// compression. A chunk opens with its first point raw, its point count and
+/// each layer's size in bytes, and the decompressor allocates each layer's
+/// stated size before it reads the layer, so a damaged size would have it
+/// ask for up to 4 GiB.
+///
+/// `items` are the laszip VLR's (type, size); the chunks lie one after the
+/// other from `first_chunk_at`, each `byte_count` long.
+fn check_layers(
+    path: &Path,
+    f: &mut std::fs::File,
+    items: &[(u16, u16)],
+    entries: &[laz::laszip::ChunkTableEntry],
+    first_chunk_at: u64,
+    record_length: u16,
+) -> Result<()> {
+    // Layers per item: POINT14 9 (xy and returns, z, classification, flags,
+    // intensity, scan angle, user data, point source, GPS time), RGB14 1,
+    // RGBNIR14 2, WAVEPACKET14 1, BYTE14 one per byte.
+    let layers: usize = items
+        .iter()
+        .map(|&(kind, size)| match kind {
+            10 => 9,
+            11 | 13 => 1,
+            12 => 2,
+            14 => size as usize,
+            _ => 0,
+        })
+        .sum();
+    let head = record_length as u64 + 4 + 4 * layers as u64;
+    let mut sizes = vec![0u8; 4 * layers];
+    let mut at = first_chunk_at;
+    for (k, e) in entries.iter().enumerate() {
+        // A chunk too short to hold its sizes fails to decompress on its own,
+        // reading past its end; only the sizes it holds can mislead.
+        if e.byte_count >= head {
+            let sizes_at = at + record_length as u64 + 4;
+            f.seek(SeekFrom::Start(sizes_at))
+                .and_then(|_| f.read_exact(&mut sizes))
+                .map_err(|e| ScanError::Io(Location::byte(path, sizes_at), e))?;
+            let stated: u64 = sizes.chunks_exact(4).map(|b| le_u32(b, 0) as u64).sum();
+            let room = e.byte_count - head;
+            if stated > room {
+                return Err(ScanError::format(
+                    Location::byte(path, sizes_at),
+                    format!(
+                        "LAZ chunk {k}'s layers add up to {stated} bytes, but the chunk holds {room} after its first point and layer sizes"
+                    ),
+                ));
+            }
+        }
+        at = at.saturating_add(e.byte_count);
+    }
     Ok(())
 }
 
@@ -513,6 +577,14 @@ mod tests {
 
         let e = damaged(&path, &bytes, vlr + 12, &0u32.to_le_bytes());
         assert!(e.contains("chunk size of 0"), "{e}");
+
+        // A layer of the first chunk stated at 2 GiB (found by the fuzz
+        // target: the decompressor allocated it before reading). The chunk
+        // opens after the 8-byte table offset with its first point (30 bytes
+        // in format 6) and its point count.
+        let sizes = le_u32(&bytes, 96) as usize + 8 + 30 + 4;
+        let e = damaged(&path, &bytes, sizes, &0x7fff_ffffu32.to_le_bytes());
+        assert!(e.contains("chunk 0's layers") && e.contains(&format!("byte {sizes}")), "{e}");
     }
     /// The fixture's 250 points in variable-size chunks (100, 70, 80, then the
     /// empty one lazrs ends with), as COPC files are chunked.
