@@ -1,0 +1,152 @@
+"""Writes seed inputs for the cargo-fuzz targets into CORPUS/<target>/ (default
+fuzz/corpus): one small valid file of each format a target reads, so the
+fuzzer starts past the formats' signatures. Run by scripts/fuzz.sh, which
+installs what this needs (laspy, lazrs, pye57, openpyxl, odfpy).
+
+For targets whose first byte picks the format (scan_file, chart_workbook,
+artifacts), each seed starts with that byte."""
+import os, shutil, struct, sys, tempfile
+import numpy as np
+
+root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+corpus = sys.argv[1] if len(sys.argv) > 1 else os.path.join(root, "fuzz", "corpus")
+tmp = tempfile.mkdtemp()
+
+
+def seed(target, name, data, select=None):
+    d = os.path.join(corpus, target)
+    os.makedirs(d, exist_ok=True)
+    with open(os.path.join(d, name), "wb") as f:
+        f.write((bytes([select]) if select is not None else b"") + data)
+
+
+def read(path):
+    with open(path, "rb") as f:
+        return f.read()
+
+
+# rvm, att: the fixture plant export.
+seed("rvm", "plm-sample.rvm", read(os.path.join(root, "fixtures/plant/plm-sample_11072013.rvm")))
+seed("att", "plm-sample.att", read(os.path.join(root, "fixtures/plant/plm-sample_11072013.att")))
+
+# crane_and_lift_toml: the built-in cranes and the demo's lift.
+cranes = os.path.join(root, "stages/core/src/cranes")
+for name in sorted(os.listdir(cranes)):
+    seed("crane_and_lift_toml", name, read(os.path.join(cranes, name)))
+seed("crane_and_lift_toml", "lift.toml", b"""id = "V-101"
+description = "Vessel V-101 from the trailer over the pipe rack onto its foundation"
+load = { name = "vessel V-101", mass_t = 12.0, size_m = [8.0, 3.0, 3.0], cog_m = [0.2, 0.0, -0.1] }
+rigging = { mass_t = 0.5, height_m = 4.0 }
+crane = { model = "ac-700", position_m = [0.0, 0.0], ground_z_m = 0.0, heading_deg = 0.0, boom_m = 40.0, chart_config = "Main boom 360" }
+pick = { x_m = 6.0, y_m = -16.0, z_m = 1.2, yaw_deg = 90.0 }
+set = { x_m = 30.0, y_m = 2.0, z_m = 1.2, yaw_deg = 0.0 }
+clearance_m = 1.0
+liftoff_m = 0.5
+critical_pct = 75.0
+""")
+
+# scan_file: first byte 0 las, 1 laz, 2 ply, 3 e57, 4 pts, 5 xyz.
+import laspy
+
+rng = np.random.default_rng(1)
+n = 40
+x, y, z = rng.uniform(0, 10, n), rng.uniform(0, 10, n), rng.uniform(0, 3, n)
+for version, fmt, name in [("1.2", 0, "a12.las"), ("1.2", 3, "b12.las"), ("1.4", 6, "c14.las"),
+                           ("1.2", 1, "d12.laz"), ("1.4", 7, "e14.laz")]:
+    h = laspy.LasHeader(point_format=fmt, version=version)
+    h.scales, h.offsets = [0.001] * 3, [0.0] * 3
+    las = laspy.LasData(h)
+    las.x, las.y, las.z = x, y, z
+    las.classification = (np.arange(n) % 3).astype(np.uint8)
+    path = os.path.join(tmp, name)
+    laz = name.endswith(".laz")
+    las.write(path, laz_backend=laspy.LazBackend.Lazrs if laz else None)
+    seed("scan_file", name, read(path), 1 if laz else 0)
+seed("scan_file", "variable-chunks.laz", read(os.path.join(root, "fixtures/scans/variable-chunks.laz")), 1)
+
+def ply_header(fmt, props):
+    return (f"ply\nformat {fmt} 1.0\nelement vertex {n}\n" + "".join(f"property {p}\n" for p in props)
+            + "end_header\n").encode()
+rgb = ["float x", "float y", "float z", "uchar red", "uchar green", "uchar blue"]
+seed("scan_file", "a.ply", ply_header("ascii", rgb)
+     + "".join(f"{a:.3f} {b:.3f} {c:.3f} 10 20 30\n" for a, b, c in zip(x, y, z)).encode(), 2)
+seed("scan_file", "b.ply", ply_header("binary_little_endian", rgb)
+     + b"".join(struct.pack("<fffBBB", a, b, c, 1, 2, 3) for a, b, c in zip(x, y, z)), 2)
+seed("scan_file", "c.ply", ply_header("binary_little_endian", ["double x", "double y", "double z"])
+     + b"".join(struct.pack("<ddd", a, b, c) for a, b, c in zip(x, y, z)), 2)
+
+import pye57
+
+for name, extra in [("a.e57", False), ("b.e57", True)]:
+    path = os.path.join(tmp, name)
+    e = pye57.E57(path, mode="w")
+    data = {"cartesianX": x[:30], "cartesianY": y[:30], "cartesianZ": z[:30]}
+    if extra:
+        data["intensity"] = rng.uniform(0, 1, 30)
+        grey = rng.integers(0, 255, 30).astype(np.uint8)
+        data["colorRed"] = data["colorGreen"] = data["colorBlue"] = grey
+    e.write_scan_raw(data, rotation=np.array([1.0, 0, 0, 0]), translation=np.array([1.0, 2.0, 0.5]))
+    e.close()
+    seed("scan_file", name, read(path), 3)
+
+seed("scan_file", "a.pts", (f"{n}\n" + "".join(f"{a:.3f} {b:.3f} {c:.3f} -1200 100 120 140\n"
+                                              for a, b, c in zip(x, y, z))).encode(), 4)
+seed("scan_file", "a.xyz", "".join(f"{a:.3f} {b:.3f} {c:.3f}\n" for a, b, c in zip(x, y, z)).encode(), 5)
+seed("scan_file", "b.xyz", "".join(f"{a:.3f},{b:.3f},{c:.3f},200,100,50\n" for a, b, c in zip(x, y, z)).encode(), 5)
+
+# chart_workbook: first byte 0 xlsx, 1 xls, 2 xlsb, 3 ods.
+import openpyxl
+from odf.opendocument import OpenDocumentSpreadsheet
+from odf.table import Table, TableCell, TableRow
+from odf.text import P
+
+booms, radii = [20.0, 30.0, 40.0], [3.0, 5.0, 8.0, 12.0]
+cap = lambda r, b: round(400 / (r + 2) * (30 / b), 1) if r < b - 2 else None
+rows = [["Main boom 360, counterweight 20 t, capacities in t"], [], ["Radius (m)", "Boom length (m)"],
+        [None] + booms] + [[r] + [cap(r, b) for b in booms] for r in radii]
+wb = openpyxl.Workbook()
+ws = wb.active
+ws.title = "Main boom 360"
+for row in rows:
+    ws.append(row)
+imperial = wb.create_sheet("Imperial")
+for row in [["Capacities in lb"], [], ["Radius (ft)", "Boom length (ft)"], [None, 66, 98],
+            [10, 40000, 30000], [20, 20000, "15,000*"]]:
+    imperial.append(row)
+path = os.path.join(tmp, "chart.xlsx")
+wb.save(path)
+seed("chart_workbook", "chart.xlsx", read(path), 0)
+doc = OpenDocumentSpreadsheet()
+table = Table(name="Main boom 360")
+for row in rows:
+    tr = TableRow()
+    for v in row:
+        if v is None:
+            cell = TableCell()
+        else:
+            cell = TableCell(valuetype="float", value=v) if isinstance(v, float) else TableCell(valuetype="string")
+            cell.addElement(P(text=str(v)))
+        tr.addElement(cell)
+    table.addElement(tr)
+doc.spreadsheet.addElement(table)
+path = os.path.join(tmp, "chart.ods")
+doc.save(path)
+seed("chart_workbook", "chart.ods", read(path), 3)
+
+# artifacts: first byte 0 raw bytes, 1 depth-map payload, 2 mesh payload
+# (the target frames 1 and 2 as valid artifacts).
+def s(text):
+    b = text.encode()
+    return struct.pack("<I", len(b)) + b
+
+mdm = struct.pack("<dddII", 0.0, 0.0, 1.0, 2, 2) + b"\x00" + struct.pack("<Q", 2) + s("ground") + s("PIPE-RACK-2")
+mdm += struct.pack("<Q", 5) + struct.pack("<5I", 0, 1, 1, 3, 3)
+mdm += struct.pack("<Q", 3) + struct.pack("<ffI", 0, 0.1, 0) + struct.pack("<ffI", 1, 2, 1) + struct.pack("<ffI", 3, 4, 1)
+seed("artifacts", "mdm-payload", mdm, 1)
+mesh = struct.pack("<Q", 1) + s("/RACK") + struct.pack("<Q", 1) + struct.pack("<IB", 0, 1)
+mesh += struct.pack("<Q", 3) + struct.pack("<9d", 0, 0, 0, 1, 0, 0, 0, 1, 2)
+mesh += struct.pack("<Q", 1) + struct.pack("<4I", 0, 1, 2, 0)
+seed("artifacts", "mesh-payload", mesh, 2)
+
+shutil.rmtree(tmp)
+print(f"seeds written under {corpus}")
