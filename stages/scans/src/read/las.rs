@@ -7,7 +7,7 @@
 //! headers (padding after the header, extra bytes per point, user VLRs, legacy and
 //! 64-bit point counts that disagree); those are accepted.
 
-use super::{CHUNK_POINTS, Format, ScanInfo, check_finite, stem};
+use super::{CHUNK_POINTS, Format, ScanInfo, check_finite, guard_decoder, stem};
 use crate::error::{Result, ScanError};
 use las::Reader;
 use liftplan_core::Location;
@@ -443,7 +443,11 @@ pub fn precheck(path: &Path) -> Result<RawLasHeader> {
 fn open(path: &Path) -> Result<Reader> {
     let file = std::fs::File::open(path).map_err(|e| ScanError::Io(Location::file(path), e))?;
     let r = std::io::BufReader::with_capacity(1 << 20, file);
-    Reader::new(r).map_err(|e| ScanError::format(Location::file(path), format!("cannot read LAS header: {e}")))
+    guard_decoder(
+        || Location::file(path),
+        "the LAS/LAZ reader",
+        || Reader::new(r).map_err(|e| ScanError::format(Location::file(path), format!("cannot read LAS header: {e}"))),
+    )
 }
 
 pub(super) fn list(path: &Path, format: Format) -> Result<Vec<ScanInfo>> {
@@ -487,9 +491,13 @@ pub(super) fn stream(info: &ScanInfo, f: &mut dyn FnMut(&PointCloud) -> Result<(
     let mut chunk = PointCloud::default();
     let mut seen = 0u64;
     loop {
-        let n = match reader.fill_points(CHUNK_POINTS as u64, &mut data) {
-            Ok(n) => n,
-            Err(e) => {
+        let place = || Location::item(&info.path, format!("point {seen}"));
+        let n = match guard_decoder(place, "the LAS/LAZ point reader", || {
+            Ok(reader.fill_points(CHUNK_POINTS as u64, &mut data))
+        }) {
+            Ok(Ok(n)) => n,
+            Err(e) => return Err(e),
+            Ok(Err(e)) => {
                 return Err(ScanError::format(
                     Location::item(&info.path, format!("point {seen}")),
                     format!(
@@ -620,5 +628,19 @@ mod tests {
         // The legacy count apart from the LAS 1.4 one.
         let e = damaged(&path, &bytes, 107, &249u32.to_le_bytes());
         assert!(e.contains("byte 247") && e.contains("disagree"), "{e}");
+    }
+    /// Found by the scan_file fuzz target: a LAZ (LAS 1.4, format 7) whose
+    /// compressed points make `laz`'s arithmetic decoder index past its table
+    /// and panic. Its structure passes every check, so the panic is caught and
+    /// becomes an error naming the file and the point.
+    #[test]
+    fn a_panic_in_the_decompressor_is_an_error() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/scans/damaged-decoder-panic.laz");
+        let info = list(&path, Format::Laz).unwrap();
+        let e = super::super::read_all(&info[0]).unwrap_err().to_string();
+        assert!(
+            e.contains("damaged-decoder-panic.laz") && e.contains("point 0") && e.contains("failed on damaged data"),
+            "{e}"
+        );
     }
 }
