@@ -148,5 +148,46 @@ mesh += struct.pack("<Q", 3) + struct.pack("<9d", 0, 0, 0, 1, 0, 0, 0, 1, 2)
 mesh += struct.pack("<Q", 1) + struct.pack("<4I", 0, 1, 2, 0)
 seed("artifacts", "mesh-payload", mesh, 2)
 
+# plant_mesh: first byte 0 obj, 1 ply, 2 stl, 3 gltf, 4 glb. A tetrahedron each.
+import base64, json
+
+tet_v = [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0)]
+tet_f = [(0, 2, 1), (0, 1, 3), (0, 3, 2), (1, 2, 3)]
+seed("plant_mesh", "tet.obj", ("o PIPE-1\n" + "".join(f"v {a} {b} {c}\n" for a, b, c in tet_v)
+                               + "".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in tet_f)).encode(), 0)
+seed("plant_mesh", "tet.ply", (f"ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                               f"property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n"
+                               + "".join(f"{a} {b} {c}\n" for a, b, c in tet_v)
+                               + "".join(f"3 {a} {b} {c}\n" for a, b, c in tet_f)).encode(), 1)
+seed("plant_mesh", "tet-ascii.stl", ("solid tet\n" + "".join(
+    "facet normal 0 0 0\nouter loop\n" + "".join(f"vertex {x} {y} {z}\n" for x, y, z in (tet_v[i] for i in f))
+    + "endloop\nendfacet\n" for f in tet_f) + "endsolid tet\n").encode(), 2)
+seed("plant_mesh", "tet-binary.stl", b"\0" * 80 + struct.pack("<I", 4) + b"".join(
+    struct.pack("<3f", 0, 0, 0) + b"".join(struct.pack("<3f", *tet_v[i]) for i in f) + b"\0\0" for f in tet_f), 2)
+positions = b"".join(struct.pack("<3f", *v) for v in tet_v)
+indices = b"".join(struct.pack("<3H", *f) for f in tet_f)
+binary = positions + indices
+def gltf_json(uri):
+    buffer = {"byteLength": len(binary)}
+    if uri:
+        buffer["uri"] = uri
+    return {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+            "nodes": [{"mesh": 0, "name": "VESSEL-1", "translation": [1.0, 0.0, 0.0]}],
+            "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+            "buffers": [buffer],
+            "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": len(positions)},
+                            {"buffer": 0, "byteOffset": len(positions), "byteLength": len(indices)}],
+            "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
+                           "min": [0, 0, 0], "max": [1, 1, 1]},
+                          {"bufferView": 1, "componentType": 5123, "count": 12, "type": "SCALAR"}]}
+uri = "data:application/octet-stream;base64," + base64.b64encode(binary).decode()
+seed("plant_mesh", "tet.gltf", json.dumps(gltf_json(uri)).encode(), 3)
+js = json.dumps(gltf_json(None)).encode()
+js += b" " * (-len(js) % 4)
+body = binary + b"\0" * (-len(binary) % 4)
+glb = (struct.pack("<I", len(js)) + b"JSON" + js
+       + struct.pack("<I", len(body)) + b"BIN\0" + body)
+seed("plant_mesh", "tet.glb", b"glTF" + struct.pack("<II", 2, 12 + len(glb)) + glb, 4)
+
 shutil.rmtree(tmp)
 print(f"seeds written under {corpus}")

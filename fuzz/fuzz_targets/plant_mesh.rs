@@ -1,0 +1,14 @@
+//! The BIM mesh readers (OBJ, PLY, STL, glTF and GLB) through `read_file`,
+//! as the plant stage calls them: the first byte picks the format.
+#![no_main]
+use libfuzzer_sys::fuzz_target;
+
+fuzz_target!(|data: &[u8]| {
+    let Some((&sel, body)) = data.split_first() else { return };
+    let ext = ["obj", "ply", "stl", "gltf", "glb"][sel as usize % 5];
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join(format!("plant.{ext}"));
+    std::fs::write(&path, body).unwrap();
+    let settings = liftplan_plant::Settings::default();
+    let _ = liftplan_plant::read_file(&path, &settings, &mut liftplan_plant::Summary::default());
+});
