@@ -218,25 +218,98 @@ struct StationFile {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct Station {
-    scan: String,
-    x_m: f64,
-    y_m: f64,
-    #[serde(default)]
-    z_m: f64,
-    #[serde(default)]
-    yaw_deg: f64,
+    scan: toml::Spanned<String>,
+    x_m: toml::Spanned<f64>,
+    y_m: toml::Spanned<f64>,
+    z_m: Option<toml::Spanned<f64>>,
+    yaw_deg: Option<toml::Spanned<f64>>,
 }
 
-fn read_stations(path: &Path) -> Result<Vec<(String, Pose)>> {
+/// A surveyed station: the scan it belongs to, its pose in the site frame,
+/// and the line of the station file that names the scan.
+#[derive(Debug)]
+struct SurveyedStation {
+    scan: String,
+    pose: Pose,
+    line: u64,
+}
+
+/// Reads a station file. Each value must be a finite number (TOML also
+/// writes `nan` and `inf`); an error names the file, line and column.
+fn read_stations(path: &Path) -> Result<Vec<SurveyedStation>> {
     let text = std::fs::read_to_string(path).map_err(|e| ScanError::Io(Location::file(path), e))?;
     let f: StationFile = toml::from_str(&text).map_err(|e| {
         let (loc, msg) = liftplan_core::location::toml_error(path, &text, &e);
         ScanError::format(loc, msg)
     })?;
-    Ok(f.station
-        .into_iter()
-        .map(|s| (s.scan, liftplan_core::frame::pose_xyz_yaw(s.x_m, s.y_m, s.z_m, s.yaw_deg.to_radians())))
-        .collect())
+    let at = |span: std::ops::Range<usize>| {
+        let (line, col) = liftplan_core::location::line_col(&text, span.start);
+        Location::line(path, line, Some(col))
+    };
+    let mut out = Vec::with_capacity(f.station.len());
+    for st in f.station {
+        let given = [
+            ("x_m", Some(&st.x_m)),
+            ("y_m", Some(&st.y_m)),
+            ("z_m", st.z_m.as_ref()),
+            ("yaw_deg", st.yaw_deg.as_ref()),
+        ];
+        for (name, v) in given.into_iter().filter_map(|(n, v)| Some((n, v?))) {
+            if !v.get_ref().is_finite() {
+                return Err(ScanError::format(
+                    at(v.span()),
+                    format!("{name} = {} is not a finite number", v.get_ref()),
+                ));
+            }
+        }
+        out.push(SurveyedStation {
+            line: liftplan_core::location::line_col(&text, st.scan.span().start).0,
+            pose: liftplan_core::frame::pose_xyz_yaw(
+                *st.x_m.get_ref(),
+                *st.y_m.get_ref(),
+                st.z_m.as_ref().map_or(0.0, |v| *v.get_ref()),
+                st.yaw_deg.as_ref().map_or(0.0, |v| *v.get_ref()).to_radians(),
+            ),
+            scan: st.scan.into_inner(),
+        });
+    }
+    Ok(out)
+}
+
+/// At least one station must name a scan given, and no scan may have two.
+/// A station file that places no scan is a mistake (a misspelt name would
+/// otherwise drop the surveyed pose without a word, and the site would be
+/// placed by another scan's frame); a station for a scan not delivered yet is
+/// not, so it is only warned of.
+fn check_stations(path: &Path, stations: &[SurveyedStation], scans: &[ScanInfo]) -> Result<()> {
+    let given = |st: &SurveyedStation| scans.iter().any(|s| s.name == st.scan);
+    if let Some(st) = stations.iter().find(|st| !given(st)) {
+        let names: Vec<&str> = scans.iter().map(|s| s.name.as_str()).collect();
+        let what = format!("station for scan \"{}\" names no scan given (the scans are {})", st.scan, names.join(", "));
+        if !stations.iter().any(given) {
+            return Err(ScanError::format(
+                Location::line(path, st.line, None),
+                format!("{what}, and no other station names one: the file places no scan"),
+            ));
+        }
+        for st in stations.iter().filter(|st| !given(st)) {
+            tracing::warn!(
+                "{}:{}: station for scan \"{}\" names no scan given; ignored",
+                path.display(),
+                st.line,
+                st.scan
+            );
+        }
+    }
+    for (k, st) in stations.iter().enumerate() {
+        if let Some(first) = stations[..k].iter().find(|o| o.scan == st.scan) {
+            return Err(ScanError::format(
+                Location::line(path, st.line, None),
+                format!("scan \"{}\" has a second station (the first is on line {})", st.scan, first.line),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Lists every scan in `inputs` (files in the given order, scans in file order).
@@ -287,11 +360,15 @@ pub fn run(inputs: &[PathBuf], s: &Settings, opts: &RunOptions, out_dir: &Path) 
         return Err(ScanError::Settings("no scan files given".into()));
     }
     let stations = match &s.stations {
-        Some(p) => read_stations(p)?,
+        Some(p) => {
+            let stations = read_stations(p)?;
+            check_stations(p, &stations, &scans)?;
+            stations
+        }
         None => vec![],
     };
     let initial = |info: &ScanInfo| -> Option<Pose> {
-        stations.iter().find(|(n, _)| *n == info.name).map(|(_, p)| *p).or(info.pose)
+        stations.iter().find(|st| st.scan == info.name).map(|st| st.pose).or(info.pose)
     };
     let names: Vec<String> = scans.iter().map(|x| x.name.clone()).collect();
     let mut read_counts = vec![0u64; scans.len()];
@@ -526,4 +603,70 @@ pub fn inspect(path: &Path) -> Result<serde_json::Value> {
         "bbox": if bbox.is_empty() { serde_json::Value::Null } else { serde_json::json!(bbox.to_array()) },
         "scans": per,
     }))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scan(name: &str) -> ScanInfo {
+        ScanInfo {
+            path: PathBuf::from(format!("{name}.laz")),
+            format: read::Format::Laz,
+            index: 0,
+            name: name.into(),
+            declared_points: None,
+            pose: None,
+            bbox: None,
+            details: Default::default(),
+        }
+    }
+
+    fn stations(text: &str) -> (tempfile::TempDir, PathBuf) {
+        let d = tempfile::tempdir().unwrap();
+        let p = d.path().join("stations.toml");
+        std::fs::write(&p, text).unwrap();
+        (d, p)
+    }
+
+    #[test]
+    fn station_values_are_finite_numbers() {
+        let (_d, p) = stations("[[station]]\nscan = \"scan-1\"\nx_m = nan\ny_m = 2.0\n");
+        let e = read_stations(&p).unwrap_err().to_string();
+        assert!(e.contains("stations.toml:3:7") && e.contains("x_m = NaN is not a finite number"), "{e}");
+
+        let (_d, p) = stations("[[station]]\nscan = \"scan-1\"\nx_m = 1.0\ny_m = 2.0\nyaw_deg = inf\n");
+        let e = read_stations(&p).unwrap_err().to_string();
+        assert!(e.contains("yaw_deg = inf is not a finite number"), "{e}");
+
+        // Height and heading may be left out.
+        let (_d, p) = stations("[[station]]\nscan = \"scan-1\"\nx_m = 1.0\ny_m = 2.0\n");
+        let st = read_stations(&p).unwrap();
+        assert_eq!((st[0].scan.as_str(), st[0].line), ("scan-1", 2));
+        let t = st[0].pose.translation.vector;
+        assert!((t.x - 1.0).abs() < 1e-12 && (t.y - 2.0).abs() < 1e-12 && t.z == 0.0, "{t:?}");
+    }
+
+    #[test]
+    fn station_file_places_some_scan_and_no_scan_twice() {
+        let scans = [scan("scan-1"), scan("scan-2")];
+        let (_d, p) = stations("[[station]]\nscan = \"scan1\"\nx_m = 1.0\ny_m = 2.0\n");
+        let e = check_stations(&p, &read_stations(&p).unwrap(), &scans).unwrap_err().to_string();
+        assert!(
+            e.contains("stations.toml:2")
+                && e.contains("\"scan1\" names no scan given")
+                && e.contains("scan-1, scan-2"),
+            "{e}"
+        );
+
+        let two = "[[station]]\nscan = \"scan-2\"\nx_m = 1.0\ny_m = 2.0\n\n[[station]]\nscan = \"scan-2\"\nx_m = 3.0\ny_m = 4.0\n";
+        let (_d, p) = stations(two);
+        let e = check_stations(&p, &read_stations(&p).unwrap(), &scans).unwrap_err().to_string();
+        assert!(e.contains("\"scan-2\" has a second station (the first is on line 2)"), "{e}");
+
+        // A station for a scan not delivered yet, beside one that places a scan.
+        let later = "[[station]]\nscan = \"scan-2\"\nx_m = 1.0\ny_m = 2.0\n\n[[station]]\nscan = \"scan-9\"\nx_m = 3.0\ny_m = 4.0\n";
+        let (_d, p) = stations(later);
+        check_stations(&p, &read_stations(&p).unwrap(), &scans).unwrap();
+    }
 }
