@@ -9,6 +9,7 @@
 //! | [`location`] | file + byte / line / `sheet!cell` places for error messages |
 //! | [`units`] | the SI-inside, units-at-the-edges conversions |
 //! | [`frame`] | site frame, poses, axis-aligned boxes |
+//! | [`guard`] | the boundary around third-party parsers that panic on damaged input |
 //! | [`obb`] | oriented boxes: crane parts and their exact footprint/height facts |
 //! | [`cloud`] | point clouds (columns) |
 //! | [`mesh`] | triangle meshes with part/group provenance |
@@ -36,6 +37,7 @@ pub mod crane;
 pub mod frame;
 #[cfg(feature = "gpu")]
 pub mod gpu;
+pub mod guard;
 pub mod image;
 pub mod lift;
 pub mod location;

@@ -236,6 +236,17 @@ fn load_buffers(path: &Path, doc: &gltf::Document, blob: Option<Vec<u8>>) -> Res
 }
 
 pub fn read_gltf(path: &Path) -> Result<TriMesh> {
+    // The gltf crate's validation indexes accessors it has not checked yet and
+    // panics on such a file (found by the plant_mesh fuzz target).
+    liftplan_core::guard::catch_panic(|| read_gltf_unguarded(path)).unwrap_or_else(|why| {
+        Err(PlantError::at(
+            Location::file(path),
+            format!("the glTF reader failed on damaged data ({why}); the file is corrupt"),
+        ))
+    })
+}
+
+fn read_gltf_unguarded(path: &Path) -> Result<TriMesh> {
     let bytes = std::fs::read(path).map_err(|e| PlantError::Io(Location::file(path), e))?;
     let g = gltf::Gltf::from_slice(&bytes)
         .map_err(|e| PlantError::at(Location::file(path), format!("cannot read glTF: {e}")))?;
@@ -294,4 +305,25 @@ pub fn read_gltf(path: &Path) -> Result<TriMesh> {
     }
     check_finite(path, &m)?;
     Ok(m)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Found by the plant_mesh fuzz target: a glTF whose mesh names a
+    /// position accessor (5) that does not exist. The gltf crate's validation
+    /// indexed it and panicked; the reader now refuses the file.
+    #[test]
+    fn a_gltf_naming_a_missing_accessor_is_refused() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/plant/damaged-accessor.gltf");
+        let e = read_gltf(&path).unwrap_err().to_string();
+        assert!(e.contains("damaged-accessor.gltf") && e.contains("failed on damaged data"), "{e}");
+        // The same file naming accessor 0 reads.
+        let d = tempfile::tempdir().unwrap();
+        let good = d.path().join("tet.gltf");
+        let text = std::fs::read_to_string(&path).unwrap().replace("\"POSITION\": 5", "\"POSITION\": 0");
+        std::fs::write(&good, text).unwrap();
+        assert_eq!(read_gltf(&good).unwrap().triangles.len(), 4);
+    }
 }

@@ -119,29 +119,15 @@ pub fn read_all(info: &ScanInfo) -> Result<PointCloud> {
 
 /// Runs a third-party decoder on a file's bytes, turning a panic inside it
 /// into an error at `place`: "`what` failed on damaged data", with the
-/// panic's message.
-///
-/// Some decoders we depend on index their tables with values read from the
-/// file and panic on corrupt data (`laz`'s arithmetic decoder does; found by
-/// the scan_file fuzz target), where no check of ours before the call can
-/// tell. Our own code must not rely on this: it refuses bad input with an
-/// error. The panic's message is still printed by the panic hook.
+/// panic's message (see [`liftplan_core::guard`]).
 pub(crate) fn guard_decoder<T>(
     place: impl FnOnce() -> Location,
     what: &str,
     f: impl FnOnce() -> Result<T>,
 ) -> Result<T> {
-    match std::panic::catch_unwind(std::panic::AssertUnwindSafe(f)) {
-        Ok(r) => r,
-        Err(payload) => {
-            let why = payload
-                .downcast_ref::<&str>()
-                .map(|s| s.to_string())
-                .or_else(|| payload.downcast_ref::<String>().cloned())
-                .unwrap_or_else(|| "no message".into());
-            Err(ScanError::format(place(), format!("{what} failed on damaged data ({why}); the file is corrupt")))
-        }
-    }
+    liftplan_core::guard::catch_panic(f).unwrap_or_else(|why| {
+        Err(ScanError::format(place(), format!("{what} failed on damaged data ({why}); the file is corrupt")))
+    })
 }
 
 /// Checks a chunk's coordinates; `first_index` is the index of its first point

@@ -1,0 +1,35 @@
+//! A boundary around third-party parsers that panic on damaged input.
+//!
+//! Some crates we read files with index their tables with values read from
+//! the file and panic on corrupt data instead of returning an error: `laz`'s
+//! arithmetic decoder and `gltf`'s validation did, found by the fuzz targets.
+//! No check of ours before the call can always tell, so the call is made
+//! through [`catch_panic`] and the reader turns a panic into its own error,
+//! naming the file. Our own code must not rely on this: it refuses bad input
+//! with an error. The panic's message is still printed by the panic hook.
+
+/// Runs `f`, returning the message of a panic inside it instead of unwinding.
+pub fn catch_panic<T>(f: impl FnOnce() -> T) -> Result<T, String> {
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(f)).map_err(|payload| {
+        payload
+            .downcast_ref::<&str>()
+            .map(|s| s.to_string())
+            .or_else(|| payload.downcast_ref::<String>().cloned())
+            .unwrap_or_else(|| "no message".into())
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_panic_becomes_its_message() {
+        assert_eq!(catch_panic(|| 7), Ok(7));
+        let v: Vec<u32> = vec![1, 2];
+        let i = v.len() + 3;
+        let e = catch_panic(|| v[i]).unwrap_err();
+        assert!(e.contains("index out of bounds"), "{e}");
+        assert_eq!(catch_panic(|| -> u32 { panic!("{} apples", 3) }), Err("3 apples".to_string()));
+    }
+}
