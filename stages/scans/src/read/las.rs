@@ -146,8 +146,16 @@ fn check_laz(path: &Path, f: &mut std::fs::File, (lz_at, lz_len): (u64, u16), l:
         ));
     }
     f.seek(SeekFrom::Start(t)).map_err(|e| io(t, e))?;
-    let table = laz::laszip::ChunkTable::read(f, variable_chunks)
-        .map_err(|e| bad(t, format!("LAZ chunk table cannot be decoded: {e}")))?;
+    // laz's arithmetic decoder panics on some damaged tables (found by the
+    // scan_file fuzz target).
+    let table = guard_decoder(
+        || Location::byte(path, t),
+        "the LAZ chunk table's decoder",
+        || {
+            laz::laszip::ChunkTable::read(f, variable_chunks)
+                .map_err(|e| bad(t, format!("LAZ chunk table cannot be decoded: {e}")))
+        },
+    )?;
     let entries: &[laz::laszip::ChunkTableEntry] = table.as_ref();
     // The decoder gives each count as a 32-bit integer; read as u64, a
     // negative one is huge, which the sums below refuse.
@@ -642,5 +650,14 @@ mod tests {
             e.contains("damaged-decoder-panic.laz") && e.contains("point 0") && e.contains("failed on damaged data"),
             "{e}"
         );
+    }
+    /// Found by the scan_file fuzz target: a chunk table whose
+    /// arithmetic-coded counts make the same decoder panic while `precheck`
+    /// reads the table.
+    #[test]
+    fn a_panic_decoding_the_chunk_table_is_an_error() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/scans/damaged-chunk-table.laz");
+        let e = list(&path, Format::Laz).unwrap_err().to_string();
+        assert!(e.contains("damaged-chunk-table.laz at byte") && e.contains("chunk table's decoder failed"), "{e}");
     }
 }
