@@ -1,8 +1,9 @@
 //! A boundary around third-party parsers that panic on damaged input.
 //!
 //! Some crates we read files with index their tables with values read from
-//! the file and panic on corrupt data instead of returning an error: `laz`'s
-//! arithmetic decoder and `gltf`'s validation did, found by the fuzz targets.
+//! the file, or unwrap what they parse, and panic on corrupt data instead of
+//! returning an error: `laz`'s arithmetic decoder, `gltf`'s validation and
+//! `ply-rs`'s header grammar did, found by the fuzz targets.
 //! No check of ours before the call can always tell, so the call is made
 //! through [`catch_panic`] and the reader turns a panic into its own error,
 //! naming the file. Our own code must not rely on this: it refuses bad input

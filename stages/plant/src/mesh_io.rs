@@ -141,6 +141,12 @@ impl ply_rs::ply::PropertyAccess for PlyFace {
 }
 
 pub fn read_ply(path: &Path, imp: Import) -> Result<TriMesh> {
+    // ply-rs unwraps numbers in the header and panics on one too large for
+    // 64 bits (found by the plant_mesh fuzz target).
+    guarded(path, "the PLY reader", || read_ply_unguarded(path, imp))
+}
+
+fn read_ply_unguarded(path: &Path, imp: Import) -> Result<TriMesh> {
     use ply_rs::parser::Parser;
     let f = std::fs::File::open(path).map_err(|e| PlantError::Io(Location::file(path), e))?;
     let mut r = std::io::BufReader::new(f);
@@ -238,11 +244,14 @@ fn load_buffers(path: &Path, doc: &gltf::Document, blob: Option<Vec<u8>>) -> Res
 pub fn read_gltf(path: &Path) -> Result<TriMesh> {
     // The gltf crate's validation indexes accessors it has not checked yet and
     // panics on such a file (found by the plant_mesh fuzz target).
-    liftplan_core::guard::catch_panic(|| read_gltf_unguarded(path)).unwrap_or_else(|why| {
-        Err(PlantError::at(
-            Location::file(path),
-            format!("the glTF reader failed on damaged data ({why}); the file is corrupt"),
-        ))
+    guarded(path, "the glTF reader", || read_gltf_unguarded(path))
+}
+
+/// Runs a reader built on a third-party parser, turning a panic inside it
+/// into an error naming the file (see [`liftplan_core::guard`]).
+fn guarded(path: &Path, what: &str, read: impl FnOnce() -> Result<TriMesh>) -> Result<TriMesh> {
+    liftplan_core::guard::catch_panic(read).unwrap_or_else(|why| {
+        Err(PlantError::at(Location::file(path), format!("{what} failed on damaged data ({why}); the file is corrupt")))
     })
 }
 
@@ -325,5 +334,16 @@ mod tests {
         let text = std::fs::read_to_string(&path).unwrap().replace("\"POSITION\": 5", "\"POSITION\": 0");
         std::fs::write(&good, text).unwrap();
         assert_eq!(read_gltf(&good).unwrap().triangles.len(), 4);
+    }
+    /// Found by the plant_mesh fuzz target: ply-rs unwraps the header's
+    /// numbers and panicked on one too large for 64 bits.
+    #[test]
+    fn a_ply_header_number_too_large_is_refused() {
+        let d = tempfile::tempdir().unwrap();
+        let path = d.path().join("huge.ply");
+        let text = "ply\nformat ascii 1.0\nelement vertex 99999999999999999999999\nproperty float x\nproperty float y\nproperty float z\nend_header\n";
+        std::fs::write(&path, text).unwrap();
+        let e = read_ply(&path, Import { scale: 1.0, y_up: false }).unwrap_err().to_string();
+        assert!(e.contains("huge.ply") && e.contains("PLY reader failed on damaged data"), "{e}");
     }
 }

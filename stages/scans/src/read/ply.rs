@@ -2,7 +2,7 @@
 //! intensity (`intensity`, `scalar_intensity`, `reflectance`) and colour
 //! (`red`/`green`/`blue`, 8 or 16 bit). Normals are accepted and ignored.
 
-use super::{CHUNK_POINTS, Format, ScanInfo, check_finite, stem};
+use super::{CHUNK_POINTS, Format, ScanInfo, check_finite, guard_decoder, stem};
 use crate::error::{Result, ScanError};
 use liftplan_core::Location;
 use liftplan_core::cloud::PointCloud;
@@ -59,9 +59,17 @@ impl PropertyAccess for Vertex {
 fn header(path: &Path) -> Result<(Header, BufReader<std::fs::File>)> {
     let f = std::fs::File::open(path).map_err(|e| ScanError::Io(Location::file(path), e))?;
     let mut r = BufReader::new(f);
-    let h = Parser::<DefaultElement>::new()
-        .read_header(&mut r)
-        .map_err(|e| ScanError::format(Location::file(path), format!("cannot read PLY header: {e}")))?;
+    // ply-rs unwraps numbers in the header and panics on one too large for
+    // 64 bits (found by the scan_file fuzz target).
+    let h = guard_decoder(
+        || Location::file(path),
+        "the PLY header reader",
+        || {
+            Parser::<DefaultElement>::new()
+                .read_header(&mut r)
+                .map_err(|e| ScanError::format(Location::file(path), format!("cannot read PLY header: {e}")))
+        },
+    )?;
     Ok((h, r))
 }
 
@@ -120,14 +128,13 @@ pub(super) fn list(path: &Path) -> Result<Vec<ScanInfo>> {
     }])
 }
 
-pub(super) fn stream(info: &ScanInfo, f: &mut dyn FnMut(&PointCloud) -> Result<()>) -> Result<u64> {
-    let path = &info.path;
-    let (h, mut r) = header(path)?;
-    let lay = layout(path, &h)?;
+/// The vertices of a PLY file whose header `h` was read from `r`, skipping
+/// the elements before them.
+fn vertices(path: &Path, h: &Header, r: &mut BufReader<std::fs::File>) -> Result<Vec<Vertex>> {
     let mut verts: Vec<Vertex> = Vec::new();
     for (name, def) in &h.elements {
         if name == "vertex" {
-            verts = Parser::<Vertex>::new().read_payload_for_element(&mut r, def, &h).map_err(|e| {
+            verts = Parser::<Vertex>::new().read_payload_for_element(r, def, h).map_err(|e| {
                 ScanError::format(
                     Location::item(path, "element 'vertex'"),
                     format!("cannot read the {} vertices the header declares: {e}", def.count),
@@ -135,10 +142,18 @@ pub(super) fn stream(info: &ScanInfo, f: &mut dyn FnMut(&PointCloud) -> Result<(
             })?;
             break;
         }
-        Parser::<DefaultElement>::new().read_payload_for_element(&mut r, def, &h).map_err(|e| {
+        Parser::<DefaultElement>::new().read_payload_for_element(r, def, h).map_err(|e| {
             ScanError::format(Location::item(path, format!("element '{name}'")), format!("cannot read: {e}"))
         })?;
     }
+    Ok(verts)
+}
+
+pub(super) fn stream(info: &ScanInfo, f: &mut dyn FnMut(&PointCloud) -> Result<()>) -> Result<u64> {
+    let path = &info.path;
+    let (h, mut r) = header(path)?;
+    let lay = layout(path, &h)?;
+    let verts = guard_decoder(|| Location::file(path), "the PLY reader", || vertices(path, &h, &mut r))?;
     // Float intensities are usually 0..1; LAS wants 16 bits.
     let max_i = verts.iter().map(|v| v.intensity).fold(0.0f64, f64::max);
     let scale_i = if lay.intensity_is_float && max_i <= 1.0 { 65535.0 } else { 1.0 };
@@ -160,4 +175,21 @@ pub(super) fn stream(info: &ScanInfo, f: &mut dyn FnMut(&PointCloud) -> Result<(
         f(&chunk)?;
     }
     Ok(seen)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Found by the scan_file fuzz target: ply-rs unwraps the header's
+    /// numbers and panicked on one too large for 64 bits.
+    #[test]
+    fn a_header_number_too_large_is_an_error() {
+        let d = tempfile::tempdir().unwrap();
+        let path = d.path().join("huge.ply");
+        let text = "ply\nformat ascii 1.0\nelement vertex 99999999999999999999999\nproperty float x\nproperty float y\nproperty float z\nend_header\n";
+        std::fs::write(&path, text).unwrap();
+        let e = list(&path).unwrap_err().to_string();
+        assert!(e.contains("huge.ply") && e.contains("PLY header reader failed on damaged data"), "{e}");
+    }
 }
