@@ -33,17 +33,10 @@ seed("att", "plm-sample.att", read(os.path.join(root, "fixtures/plant/plm-sample
 cranes = os.path.join(root, "stages/core/src/cranes")
 for name in sorted(os.listdir(cranes)):
     seed("crane_and_lift_toml", name, read(os.path.join(cranes, name)))
-seed("crane_and_lift_toml", "lift.toml", b"""id = "V-101"
-description = "Vessel V-101 from the trailer over the pipe rack onto its foundation"
-load = { name = "vessel V-101", mass_t = 12.0, size_m = [8.0, 3.0, 3.0], cog_m = [0.2, 0.0, -0.1] }
-rigging = { mass_t = 0.5, height_m = 4.0 }
-crane = { model = "ac-700", position_m = [0.0, 0.0], ground_z_m = 0.0, heading_deg = 0.0, boom_m = 40.0, chart_config = "Main boom 360" }
-pick = { x_m = 6.0, y_m = -16.0, z_m = 1.2, yaw_deg = 90.0 }
-set = { x_m = 30.0, y_m = 2.0, z_m = 1.2, yaw_deg = 0.0 }
-clearance_m = 1.0
-liftoff_m = 0.5
-critical_pct = 75.0
-""")
+# The demo's lift, taken from the demo project's text so the two stay alike.
+demo = read(os.path.join(root, "fixtures/src/demo.rs")).decode()
+lift = demo[demo.index("[[lift]]\n") + len("[[lift]]\n"):]
+seed("crane_and_lift_toml", "lift.toml", lift[:lift.index('"#')].encode())
 
 # scan_file: first byte 0 las, 1 laz, 2 ply, 3 e57, 4 pts, 5 xyz.
 import laspy
