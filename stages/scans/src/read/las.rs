@@ -85,8 +85,23 @@ fn check_laz(path: &Path, f: &mut std::fs::File, (lz_at, lz_len): (u64, u16), l:
     if 34 + num_items * 6 > lz_len as u64 {
         return Err(bad(lz_at + 32, format!("laszip VLR lists {num_items} items, more than its {lz_len} bytes hold")));
     }
-    // Each item is (type, size, version); together they make one point.
-    let items_size: u64 = (0..num_items as usize).map(|k| le_u16(&lz, 34 + 6 * k + 2) as u64).sum();
+    // Each item is (type, size, version); together they make one point. The
+    // decompressor reads each item's fixed size whatever size the VLR gives,
+    // so the two must agree.
+    let items: Vec<[u16; 3]> = (0..num_items as usize)
+        .map(|k| [le_u16(&lz, 34 + 6 * k), le_u16(&lz, 34 + 6 * k + 2), le_u16(&lz, 34 + 6 * k + 4)])
+        .collect();
+    for (k, &[kind, size, _]) in items.iter().enumerate() {
+        if let Some(fixed) = laz_item_size(kind)
+            && fixed != size
+        {
+            return Err(bad(
+                lz_at + 34 + 6 * k as u64 + 2,
+                format!("laszip item {k} (type {kind}) is given as {size} bytes; that type is {fixed} bytes"),
+            ));
+        }
+    }
+    let items_size: u64 = items.iter().map(|i| i[1] as u64).sum();
     if items_size != record_length as u64 {
         return Err(bad(
             lz_at + 34,
@@ -198,16 +213,29 @@ fn check_laz(path: &Path, f: &mut std::fs::File, (lz_at, lz_len): (u64, u16), l:
             ),
         ));
     }
-    if le_u16(&lz, 0) == LAYERED_CHUNKED {
-        let items: Vec<(u16, u16)> =
-            (0..num_items as usize).map(|k| (le_u16(&lz, 34 + 6 * k), le_u16(&lz, 34 + 6 * k + 2))).collect();
+    // The decompressor takes the points as layered when the first item's
+    // version is 3 or 4, whatever the VLR's compressor field says.
+    if matches!(items.first(), Some([_, _, 3 | 4])) {
+        let items: Vec<(u16, u16)> = items.iter().map(|i| (i[0], i[1])).collect();
         check_layers(path, f, &items, entries, data_at + 8, record_length)?;
     }
     Ok(())
 }
 
-/// The laszip compressor of LAS 1.4's point formats 6 to 10.
-const LAYERED_CHUNKED: u16 = 3;
+/// The size in bytes of a laszip item of a fixed-size type (`None` for the
+/// extra-bytes types, whose size the VLR gives, and for unknown types, which
+/// the decompressor refuses).
+fn laz_item_size(kind: u16) -> Option<u16> {
+    match kind {
+        6 => Some(20),      // POINT10
+        7 => Some(8),       // GPSTIME11
+        8 | 11 => Some(6),  // RGB12, RGB14
+        9 | 13 => Some(29), // WAVEPACKET13, WAVEPACKET14
+        10 => Some(30),     // POINT14
+        12 => Some(8),      // RGBNIR14
+        _ => None,          // BYTE, BYTE14, unknown
+    }
+}
 
 /// Checks that every chunk's layers fit in the chunk, for LAS 1.4's layered
 /// compression. A chunk opens with its first point raw, its point count and
@@ -577,11 +605,21 @@ mod tests {
         let info = list(&path, Format::Laz).unwrap();
         assert_eq!(super::super::read_all(&info[0]).unwrap().len(), 1000, "the undamaged file reads whole");
 
-        // An item one byte longer than the record (found by the scan_file
-        // fuzz target: the decompressor asserted on it).
-        let size = le_u16(&bytes, vlr + 34 + 2);
-        let e = damaged(&path, &bytes, vlr + 34 + 2, &(size + 1).to_le_bytes());
+        // Items that make a point other than the header's record length
+        // (found by the scan_file fuzz target: the decompressor asserted).
+        let record = le_u16(&bytes, 105);
+        let e = damaged(&path, &bytes, 105, &(record + 1).to_le_bytes());
         assert!(e.contains("a.laz") && e.contains("record length"), "{e}");
+
+        // An item whose size is not its type's.
+        let e = damaged(&path, &bytes, vlr + 34 + 2, &(record + 1).to_le_bytes());
+        assert!(e.contains("item 0 (type 10) is given as 31 bytes; that type is 30 bytes"), "{e}");
+
+        // A POINT14 item (30 bytes) retyped as RGB14 (6 bytes): the
+        // decompressor would read a 6-byte first point and take the next
+        // bytes for layer sizes (found by the fuzz target: a 4 GB layer).
+        let e = damaged(&path, &bytes, vlr + 34, &11u16.to_le_bytes());
+        assert!(e.contains("item 0 (type 11) is given as 30 bytes; that type is 6 bytes"), "{e}");
 
         // Chunks too large to hold in memory at once.
         let e = damaged(&path, &bytes, vlr + 12, &0x7fff_fff0u32.to_le_bytes());
