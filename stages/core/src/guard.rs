@@ -5,9 +5,17 @@
 //! returning an error: `laz`'s arithmetic decoder, `gltf`'s validation and
 //! `ply-rs`'s header grammar did, found by the fuzz targets.
 //! No check of ours before the call can always tell, so the call is made
-//! through [`catch_panic`] and the reader turns a panic into its own error,
-//! naming the file. Our own code must not rely on this: it refuses bad input
+//! through [`run_reader`] and the reader turns the message of a panic into
+//! its own error, naming the file. Our own code must not rely on this: it refuses bad input
 //! with an error. The panic's message is still printed by the panic hook.
+
+/// Runs the third-party reader `what` (e.g. "the PLY reader") as `f`. A panic
+/// inside it becomes the message "`what` failed on damaged data (the panic's
+/// message); the file is corrupt", for the caller's own error at the file's
+/// place.
+pub fn run_reader<T>(what: &str, f: impl FnOnce() -> T) -> Result<T, String> {
+    catch_panic(f).map_err(|why| format!("{what} failed on damaged data ({why}); the file is corrupt"))
+}
 
 /// Runs `f`, returning the message of a panic inside it instead of unwinding.
 pub fn catch_panic<T>(f: impl FnOnce() -> T) -> Result<T, String> {
@@ -32,5 +40,9 @@ mod tests {
         let e = catch_panic(|| v[i]).unwrap_err();
         assert!(e.contains("index out of bounds"), "{e}");
         assert_eq!(catch_panic(|| -> u32 { panic!("{} apples", 3) }), Err("3 apples".to_string()));
+        assert_eq!(
+            run_reader("the pear reader", || -> u32 { panic!("bruised") }),
+            Err("the pear reader failed on damaged data (bruised); the file is corrupt".to_string())
+        );
     }
 }

@@ -250,9 +250,7 @@ pub fn read_gltf(path: &Path) -> Result<TriMesh> {
 /// Runs a reader built on a third-party parser, turning a panic inside it
 /// into an error naming the file (see [`liftplan_core::guard`]).
 fn guarded(path: &Path, what: &str, read: impl FnOnce() -> Result<TriMesh>) -> Result<TriMesh> {
-    liftplan_core::guard::catch_panic(read).unwrap_or_else(|why| {
-        Err(PlantError::at(Location::file(path), format!("{what} failed on damaged data ({why}); the file is corrupt")))
-    })
+    liftplan_core::guard::run_reader(what, read).unwrap_or_else(|why| Err(PlantError::at(Location::file(path), why)))
 }
 
 fn read_gltf_unguarded(path: &Path) -> Result<TriMesh> {

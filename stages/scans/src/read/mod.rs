@@ -118,16 +118,13 @@ pub fn read_all(info: &ScanInfo) -> Result<PointCloud> {
 }
 
 /// Runs a third-party decoder on a file's bytes, turning a panic inside it
-/// into an error at `place`: "`what` failed on damaged data", with the
-/// panic's message (see [`liftplan_core::guard`]).
+/// into an error at `place` (see [`liftplan_core::guard::run_reader`]).
 pub(crate) fn guard_decoder<T>(
     place: impl FnOnce() -> Location,
     what: &str,
     f: impl FnOnce() -> Result<T>,
 ) -> Result<T> {
-    liftplan_core::guard::catch_panic(f).unwrap_or_else(|why| {
-        Err(ScanError::format(place(), format!("{what} failed on damaged data ({why}); the file is corrupt")))
-    })
+    liftplan_core::guard::run_reader(what, f).unwrap_or_else(|why| Err(ScanError::format(place(), why)))
 }
 
 /// Checks a chunk's coordinates; `first_index` is the index of its first point
