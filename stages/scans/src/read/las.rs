@@ -216,7 +216,6 @@ fn check_laz(path: &Path, f: &mut std::fs::File, (lz_at, lz_len): (u64, u16), l:
     // The decompressor takes the points as layered when the first item's
     // version is 3 or 4, whatever the VLR's compressor field says.
     if matches!(items.first(), Some([_, _, 3 | 4])) {
-        let items: Vec<(u16, u16)> = items.iter().map(|i| (i[0], i[1])).collect();
         check_layers(path, f, &items, entries, data_at + 8, record_length)?;
     }
     Ok(())
@@ -243,12 +242,12 @@ fn laz_item_size(kind: u16) -> Option<u16> {
 /// stated size before it reads the layer, so a damaged size would have it
 /// ask for up to 4 GiB.
 ///
-/// `items` are the laszip VLR's (type, size); the chunks lie one after the
-/// other from `first_chunk_at`, each `byte_count` long.
+/// `items` are the laszip VLR's (type, size, version); the chunks lie one
+/// after the other from `first_chunk_at`, each `byte_count` long.
 fn check_layers(
     path: &Path,
     f: &mut std::fs::File,
-    items: &[(u16, u16)],
+    items: &[[u16; 3]],
     entries: &[laz::laszip::ChunkTableEntry],
     first_chunk_at: u64,
     record_length: u16,
@@ -258,7 +257,7 @@ fn check_layers(
     // RGBNIR14 2, WAVEPACKET14 1, BYTE14 one per byte.
     let layers: usize = items
         .iter()
-        .map(|&(kind, size)| match kind {
+        .map(|&[kind, size, _]| match kind {
             10 => 9,
             11 | 13 => 1,
             12 => 2,
@@ -528,20 +527,16 @@ pub(super) fn stream(info: &ScanInfo, f: &mut dyn FnMut(&PointCloud) -> Result<(
     let mut seen = 0u64;
     loop {
         let place = || Location::item(&info.path, format!("point {seen}"));
-        let n = match guard_decoder(place, "the LAS/LAZ point reader", || {
-            Ok(reader.fill_points(CHUNK_POINTS as u64, &mut data))
-        }) {
-            Ok(Ok(n)) => n,
-            Err(e) => return Err(e),
-            Ok(Err(e)) => {
-                return Err(ScanError::format(
-                    Location::item(&info.path, format!("point {seen}")),
+        let n = guard_decoder(place, "the LAS/LAZ point reader", || {
+            reader.fill_points(CHUNK_POINTS as u64, &mut data).map_err(|e| {
+                ScanError::format(
+                    place(),
                     format!(
                         "cannot decode points after {seen} of the {declared} the header declares: {e} (truncated or corrupt file)"
                     ),
-                ));
-            }
-        };
+                )
+            })
+        })?;
         if n == 0 {
             break;
         }
