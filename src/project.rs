@@ -144,10 +144,7 @@ impl Project {
     /// Line of the first occurrence of `needle` in the file, for error places.
     fn locate(&self, text: &str, needle: &str) -> Location {
         match text.find(needle) {
-            Some(off) => {
-                let (l, c) = liftplan_core::location::line_col(text, off);
-                Location::line(&self.file, l, Some(c))
-            }
+            Some(off) => Location::in_text(&self.file, text, off),
             None => Location::file(&self.file),
         }
     }

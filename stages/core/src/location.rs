@@ -40,6 +40,11 @@ impl Location {
     pub fn line(path: impl AsRef<Path>, line: u64, column: Option<u64>) -> Self {
         Location { path: path.as_ref().to_path_buf(), place: Place::Line { line, column } }
     }
+    /// The line and column of byte `offset` of `text`, the contents of `path`.
+    pub fn in_text(path: impl AsRef<Path>, text: &str, offset: usize) -> Self {
+        let (line, column) = line_col(text, offset);
+        Location::line(path, line, Some(column))
+    }
     pub fn cell(path: impl AsRef<Path>, sheet: &str, cell: &str) -> Self {
         Location {
             path: path.as_ref().to_path_buf(),
@@ -121,10 +126,7 @@ pub fn line_col(text: &str, offset: usize) -> (u64, u64) {
 /// `site/liftplan.toml:12:1: unknown field 'voxl', expected one of ...`.
 pub fn toml_error(path: impl AsRef<Path>, text: &str, err: &toml::de::Error) -> (Location, String) {
     let loc = match err.span() {
-        Some(span) => {
-            let (l, c) = line_col(text, span.start);
-            Location::line(path, l, Some(c))
-        }
+        Some(span) => Location::in_text(path, text, span.start),
         None => Location::file(path),
     };
     (loc, err.message().trim().to_string())

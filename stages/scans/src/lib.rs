@@ -242,10 +242,6 @@ fn read_stations(path: &Path) -> Result<Vec<SurveyedStation>> {
         let (loc, msg) = liftplan_core::location::toml_error(path, &text, &e);
         ScanError::format(loc, msg)
     })?;
-    let at = |span: std::ops::Range<usize>| {
-        let (line, col) = liftplan_core::location::line_col(&text, span.start);
-        Location::line(path, line, Some(col))
-    };
     let mut out = Vec::with_capacity(f.station.len());
     for st in f.station {
         let given = [
@@ -257,7 +253,7 @@ fn read_stations(path: &Path) -> Result<Vec<SurveyedStation>> {
         for (name, v) in given.into_iter().filter_map(|(n, v)| Some((n, v?))) {
             if !v.get_ref().is_finite() {
                 return Err(ScanError::format(
-                    at(v.span()),
+                    Location::in_text(path, &text, v.span().start),
                     format!("{name} = {} is not a finite number", v.get_ref()),
                 ));
             }
