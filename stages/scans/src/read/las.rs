@@ -585,6 +585,11 @@ mod tests {
         (path, bytes, user - 2 + 54)
     }
 
+    /// A file in `fixtures/scans/`.
+    fn fixture(name: &str) -> std::path::PathBuf {
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/scans").join(name)
+    }
+
     fn damaged(path: &Path, bytes: &[u8], at: usize, value: &[u8]) -> String {
         let mut b = bytes.to_vec();
         b[at..at + value.len()].copy_from_slice(value);
@@ -638,7 +643,7 @@ mod tests {
     /// The fixture's 250 points in variable-size chunks (100, 70, 80, then the
     /// empty one lazrs ends with), as COPC files are chunked.
     fn variable_chunks(dir: &Path) -> (std::path::PathBuf, Vec<u8>) {
-        let fixture = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/scans/variable-chunks.laz");
+        let fixture = fixture("variable-chunks.laz");
         let bytes = std::fs::read(fixture).unwrap();
         let path = dir.join("v.laz");
         std::fs::write(&path, &bytes).unwrap();
@@ -676,7 +681,7 @@ mod tests {
     /// becomes an error naming the file and the point.
     #[test]
     fn a_panic_in_the_decompressor_is_an_error() {
-        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/scans/damaged-decoder-panic.laz");
+        let path = fixture("damaged-decoder-panic.laz");
         let info = list(&path, Format::Laz).unwrap();
         let e = super::super::read_all(&info[0]).unwrap_err().to_string();
         assert!(
@@ -689,7 +694,7 @@ mod tests {
     /// reads the table.
     #[test]
     fn a_panic_decoding_the_chunk_table_is_an_error() {
-        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/scans/damaged-chunk-table.laz");
+        let path = fixture("damaged-chunk-table.laz");
         let e = list(&path, Format::Laz).unwrap_err().to_string();
         assert!(e.contains("damaged-chunk-table.laz at byte") && e.contains("chunk table's decoder failed"), "{e}");
     }
