@@ -93,56 +93,157 @@ pub fn transform(m: &[f32; 12], p: [f64; 3]) -> [f64; 3] {
 /// file units (metres divided by the matrix scale). Returns `None` for shapes
 /// without a surface (lines).
 pub fn tessellate(p: &Primitive, tol_local: f64, caps: Caps) -> Option<Tess> {
-    let t = match &p.shape {
-        Shape::Box { lengths } => boxed(lengths.map(|v| v as f64 / 2.0)),
-        Shape::Pyramid { bottom, top, offset, height } => pyramid(*bottom, *top, *offset, *height),
-        Shape::Cylinder { radius, height } => {
-            snout(*radius as f64, *radius as f64, *height as f64, [0.0; 2], [0.0; 2], [0.0; 2], tol_local, caps)
+    let t = match form(&p.shape)? {
+        Form::Box(h) => boxed(h),
+        Form::Pyramid { bottom, top, offset, height } => pyramid(bottom, top, offset, height),
+        Form::Snout { rb, rt, h, offset, bshear, tshear } => snout(rb, rt, h, offset, bshear, tshear, tol_local, caps),
+        Form::SphereCap { r, arc, shift_z, scale_z } => sphere_cap(r, arc, shift_z, scale_z, tol_local),
+        Form::CircularTorus { offset, radius, angle } => circular_torus(offset, radius, angle, tol_local, caps),
+        Form::RectangularTorus { ri, ro, h, angle } => rectangular_torus(ri, ro, h, angle, tol_local, caps),
+        Form::Facets(polygons) => facets(polygons),
+    };
+    Some(t)
+}
+
+/// How many triangles [`tessellate`] makes of `p`, found without making them,
+/// so that a stage can refuse a model too large to hold before it allocates
+/// (an RVM file of a few hundred bytes per primitive can ask for millions of
+/// triangles each). Exact for the analytic shapes; for facet groups an upper
+/// bound (ear clipping a polygon of `v` vertices and `h` holes makes at most
+/// `v + 2h - 2` triangles, fewer where it drops degenerate ones).
+pub fn triangle_count(p: &Primitive, tol_local: f64, caps: Caps) -> u64 {
+    let cap = |on: bool, ring: u64| if on { ring.saturating_sub(2) } else { 0 };
+    match form(&p.shape) {
+        None => 0,
+        Some(Form::Box(_) | Form::Pyramid { .. }) => 12,
+        Some(Form::Snout { rb, rt, .. }) => {
+            let n = snout_segments(rb, rt, tol_local) as u64;
+            2 * n + cap(caps[0] && rb > 0.0, n) + cap(caps[1] && rt > 0.0, n)
         }
-        Shape::Snout { radius_b, radius_t, height, offset, bshear, tshear } => snout(
-            *radius_b as f64,
-            *radius_t as f64,
-            *height as f64,
-            offset.map(|v| v as f64),
-            bshear.map(|v| v as f64),
-            tshear.map(|v| v as f64),
-            tol_local,
-            caps,
-        ),
-        Shape::Sphere { diameter } => sphere_cap(*diameter as f64 / 2.0, PI, 0.0, 1.0, tol_local),
+        Some(Form::SphereCap { r, arc, scale_z, .. }) => {
+            let Some((n_lon, n_lat, full)) = sphere_segments(r, arc, scale_z, tol_local) else { return 0 };
+            let (n_lon, n_lat) = (n_lon as u64, n_lat as u64);
+            // Fans at the top pole and (full) the bottom pole, quads between
+            // rings, and (dishes) the flat base.
+            if full { 2 * n_lon * (n_lat - 1) } else { n_lon + 2 * n_lon * (n_lat - 1) + cap(true, n_lon) }
+        }
+        Some(Form::CircularTorus { offset, radius, angle }) => {
+            let (n_u, n_v) = circular_torus_segments(offset, radius, angle, tol_local);
+            let (n_u, n_v) = (n_u as u64, n_v as u64);
+            let open = !(angle >= TAU - 1e-6) && radius > 0.0;
+            2 * n_u * n_v + cap(open && caps[0], n_v) + cap(open && caps[1], n_v)
+        }
+        Some(Form::RectangularTorus { ro, angle, .. }) => {
+            let n_u = segments(angle, ro, tol_local, 1) as u64;
+            let open = angle < TAU - 1e-6;
+            8 * n_u + if open && caps[0] { 2 } else { 0 } + if open && caps[1] { 2 } else { 0 }
+        }
+        Some(Form::Facets(polys)) => polys
+            .iter()
+            .map(|poly| {
+                let contours = poly.contours.iter().filter(|c| c.len() >= 3);
+                let (v, n) = contours.fold((0u64, 0u64), |(v, n), c| (v + c.len() as u64, n + 1));
+                // Each hole is bridged to the outer contour: 2 more triangles.
+                (v + 2 * n.saturating_sub(1)).saturating_sub(2)
+            })
+            .sum(),
+    }
+}
+
+/// A primitive's shape as the surface the tessellation draws: the RVM
+/// parameters turned into the few analytic forms, in f64 file units.
+enum Form<'a> {
+    /// Half lengths.
+    Box([f64; 3]),
+    Pyramid {
+        bottom: [f32; 2],
+        top: [f32; 2],
+        offset: [f32; 2],
+        height: f32,
+    },
+    Snout {
+        rb: f64,
+        rt: f64,
+        h: f64,
+        offset: [f64; 2],
+        bshear: [f64; 2],
+        tshear: [f64; 2],
+    },
+    SphereCap {
+        r: f64,
+        arc: f64,
+        shift_z: f64,
+        scale_z: f64,
+    },
+    CircularTorus {
+        offset: f64,
+        radius: f64,
+        angle: f64,
+    },
+    RectangularTorus {
+        ri: f64,
+        ro: f64,
+        h: f64,
+        angle: f64,
+    },
+    Facets(&'a [Polygon]),
+}
+
+fn form(shape: &Shape) -> Option<Form<'_>> {
+    Some(match shape {
+        Shape::Box { lengths } => Form::Box(lengths.map(|v| v as f64 / 2.0)),
+        Shape::Pyramid { bottom, top, offset, height } => {
+            Form::Pyramid { bottom: *bottom, top: *top, offset: *offset, height: *height }
+        }
+        Shape::Cylinder { radius, height } => Form::Snout {
+            rb: *radius as f64,
+            rt: *radius as f64,
+            h: *height as f64,
+            offset: [0.0; 2],
+            bshear: [0.0; 2],
+            tshear: [0.0; 2],
+        },
+        Shape::Snout { radius_b, radius_t, height, offset, bshear, tshear } => Form::Snout {
+            rb: *radius_b as f64,
+            rt: *radius_t as f64,
+            h: *height as f64,
+            offset: offset.map(|v| v as f64),
+            bshear: bshear.map(|v| v as f64),
+            tshear: tshear.map(|v| v as f64),
+        },
+        Shape::Sphere { diameter } => {
+            Form::SphereCap { r: *diameter as f64 / 2.0, arc: PI, shift_z: 0.0, scale_z: 1.0 }
+        }
         Shape::EllipticalDish { base_radius, height } => {
             let r = *base_radius as f64;
             let scale_z = if r > 0.0 { *height as f64 / r } else { 0.0 };
-            sphere_cap(r, FRAC_PI_2, 0.0, scale_z, tol_local)
+            Form::SphereCap { r, arc: FRAC_PI_2, shift_z: 0.0, scale_z }
         }
         Shape::SphericalDish { base_radius, height } => {
             let (rc, h) = (*base_radius as f64, *height as f64);
             if !(h > 0.0) {
-                sphere_cap(rc, 0.0, 0.0, 1.0, tol_local)
+                Form::SphereCap { r: rc, arc: 0.0, shift_z: 0.0, scale_z: 1.0 }
             } else {
                 let rs = (rc * rc + h * h) / (2.0 * h);
                 let mut arc = (rc / rs).clamp(-1.0, 1.0).asin();
                 if rc < h {
                     arc = PI - arc;
                 }
-                sphere_cap(rs, arc, h - rs, 1.0, tol_local)
+                Form::SphereCap { r: rs, arc, shift_z: h - rs, scale_z: 1.0 }
             }
         }
         Shape::CircularTorus { offset, radius, angle } => {
-            circular_torus(*offset as f64, *radius as f64, *angle as f64, tol_local, caps)
+            Form::CircularTorus { offset: *offset as f64, radius: *radius as f64, angle: *angle as f64 }
         }
-        Shape::RectangularTorus { inner_radius, outer_radius, height, angle } => rectangular_torus(
-            *inner_radius as f64,
-            *outer_radius as f64,
-            *height as f64,
-            *angle as f64,
-            tol_local,
-            caps,
-        ),
-        Shape::FacetGroup { polygons } => facets(polygons),
+        Shape::RectangularTorus { inner_radius, outer_radius, height, angle } => Form::RectangularTorus {
+            ri: *inner_radius as f64,
+            ro: *outer_radius as f64,
+            h: *height as f64,
+            angle: *angle as f64,
+        },
+        Shape::FacetGroup { polygons } => Form::Facets(polygons),
         Shape::Line { .. } => return None,
-    };
-    Some(t)
+    })
 }
 
 fn boxed(h: [f64; 3]) -> Tess {
@@ -182,8 +283,12 @@ fn pyramid(bottom: [f32; 2], top: [f32; 2], offset: [f32; 2], height: f32) -> Te
 }
 
 /// Snout (cylinder when radii are equal and there is no offset or shear).
+fn snout_segments(rb: f64, rt: f64, tol: f64) -> usize {
+    segments(TAU, rb.max(rt), tol, 3)
+}
+
 fn snout(rb: f64, rt: f64, h: f64, offset: [f64; 2], bshear: [f64; 2], tshear: [f64; 2], tol: f64, caps: Caps) -> Tess {
-    let n = segments(TAU, rb.max(rt), tol, 3);
+    let n = snout_segments(rb, rt, tol);
     let (ox, oy) = (offset[0] / 2.0, offset[1] / 2.0);
     let (mb, mt) = ([bshear[0].tan(), bshear[1].tan()], [tshear[0].tan(), tshear[1].tan()]);
     let mut t = Tess { convex: vec![true], ..Default::default() };
@@ -208,18 +313,25 @@ fn snout(rb: f64, rt: f64, h: f64, offset: [f64; 2], bshear: [f64; 2], tshear: [
     t
 }
 
-/// A sphere-based shape: the part of a sphere of radius `r` within `arc` of its
-/// top pole, centre at z = `shift_z`, z scaled by `scale_z`, closed by a flat base
-/// when `arc` < pi (dishes).
-fn sphere_cap(r: f64, arc: f64, shift_z: f64, scale_z: f64, tol: f64) -> Tess {
-    let mut t = Tess { convex: vec![true], ..Default::default() };
+/// Longitudes and latitude rings of [`sphere_cap`], and whether it is a full
+/// sphere; `None` when it has no surface.
+fn sphere_segments(r: f64, arc: f64, scale_z: f64, tol: f64) -> Option<(usize, usize, bool)> {
     if !(r > 0.0) || !(arc > 0.0) {
-        return t;
+        return None;
     }
     let reff = r * scale_z.max(1.0);
     let n_lon = segments(TAU * std::f64::consts::SQRT_2, reff, tol, 3);
     let full = arc >= PI - 1e-9;
     let n_lat = segments(arc * std::f64::consts::SQRT_2, reff, tol, if full { 2 } else { 1 });
+    Some((n_lon, n_lat, full))
+}
+
+/// A sphere-based shape: the part of a sphere of radius `r` within `arc` of its
+/// top pole, centre at z = `shift_z`, z scaled by `scale_z`, closed by a flat base
+/// when `arc` < pi (dishes).
+fn sphere_cap(r: f64, arc: f64, shift_z: f64, scale_z: f64, tol: f64) -> Tess {
+    let mut t = Tess { convex: vec![true], ..Default::default() };
+    let Some((n_lon, n_lat, full)) = sphere_segments(r, arc, scale_z, tol) else { return t };
     let top = t.vertex([0.0, 0.0, r * scale_z + shift_z]);
     let mut prev: Vec<u32> = vec![top];
     for k in 1..=n_lat {
@@ -255,10 +367,16 @@ fn sphere_cap(r: f64, arc: f64, shift_z: f64, scale_z: f64, tol: f64) -> Tess {
     t
 }
 
-fn circular_torus(offset: f64, radius: f64, angle: f64, tol: f64, caps: Caps) -> Tess {
-    let mut t = Tess::default();
+/// Segments along and around a circular torus.
+fn circular_torus_segments(offset: f64, radius: f64, angle: f64, tol: f64) -> (usize, usize) {
     let n_u = segments(angle * std::f64::consts::SQRT_2, offset + radius, tol, 1);
     let n_v = segments(TAU * std::f64::consts::SQRT_2, radius, tol, 3);
+    (n_u, n_v)
+}
+
+fn circular_torus(offset: f64, radius: f64, angle: f64, tol: f64, caps: Caps) -> Tess {
+    let mut t = Tess::default();
+    let (n_u, n_v) = circular_torus_segments(offset, radius, angle, tol);
     let rings: Vec<Vec<u32>> = (0..=n_u)
         .map(|k| {
             let u = angle * k as f64 / n_u as f64;
@@ -578,6 +696,87 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// A shape of any kind with sizes from degenerate (0, negative) to large,
+    /// angles past a full turn, and facet polygons with holes.
+    fn any_shape() -> impl Strategy<Value = Shape> {
+        let size = prop_oneof![Just(0.0f32), Just(-1.0f32), 0.001f32..5.0, 5.0f32..50.0];
+        let angle = prop_oneof![Just(0.0f32), Just(std::f32::consts::TAU), 0.001f32..7.0];
+        let v2 = || [size.clone(), size.clone()];
+        // Contours of 2 vertices are left out by the tessellation, and counted as such.
+        let ring = proptest::collection::vec(([-5.0f32..5.0, -5.0f32..5.0, -0.1f32..0.1], Just([0.0f32; 3])), 2..9);
+        let polygon = proptest::collection::vec(ring, 1..4).prop_map(|contours| Polygon { contours });
+        prop_oneof![
+            [size.clone(), size.clone(), size.clone()].prop_map(|lengths| Shape::Box { lengths }),
+            (v2(), v2(), v2(), size.clone()).prop_map(|(bottom, top, offset, height)| Shape::Pyramid {
+                bottom,
+                top,
+                offset,
+                height
+            }),
+            (size.clone(), size.clone()).prop_map(|(radius, height)| Shape::Cylinder { radius, height }),
+            (size.clone(), size.clone(), size.clone(), v2(), [-0.5f32..0.5, -0.5f32..0.5]).prop_map(
+                |(radius_b, radius_t, height, offset, bshear)| Shape::Snout {
+                    radius_b,
+                    radius_t,
+                    height,
+                    offset,
+                    bshear,
+                    tshear: [bshear[1], bshear[0]],
+                }
+            ),
+            size.clone().prop_map(|diameter| Shape::Sphere { diameter }),
+            (size.clone(), size.clone())
+                .prop_map(|(base_radius, height)| Shape::EllipticalDish { base_radius, height }),
+            (size.clone(), size.clone()).prop_map(|(base_radius, height)| Shape::SphericalDish { base_radius, height }),
+            (size.clone(), size.clone(), angle.clone()).prop_map(|(offset, radius, angle)| Shape::CircularTorus {
+                offset,
+                radius,
+                angle
+            }),
+            (size.clone(), size.clone(), size.clone(), angle).prop_map(
+                |(inner_radius, outer_radius, height, angle)| Shape::RectangularTorus {
+                    inner_radius,
+                    outer_radius,
+                    height,
+                    angle
+                }
+            ),
+            proptest::collection::vec(polygon, 0..4).prop_map(|polygons| Shape::FacetGroup { polygons }),
+        ]
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(liftplan_core::testing::proptest_cases(400)))]
+
+        /// The count a stage budgets with is the tessellation's own: exact for
+        /// the analytic shapes, never below it for facet groups.
+        #[test]
+        fn triangle_count_is_the_tessellations(
+            shape in any_shape(),
+            tol in 0.002f64..0.2,
+            caps in [any::<bool>(), any::<bool>()],
+        ) {
+            let p = prim(shape.clone());
+            let made = tessellate(&p, tol, caps).map_or(0, |t| t.triangles.len() as u64);
+            let counted = triangle_count(&p, tol, caps);
+            if matches!(shape, Shape::FacetGroup { .. }) {
+                prop_assert!(made <= counted, "{made} made, {counted} counted");
+            } else {
+                prop_assert_eq!(made, counted);
+            }
+        }
+    }
+
+    /// Where the tolerance asks for more segments than a circle may have, the
+    /// count follows the tessellation's cap too.
+    #[test]
+    fn triangle_count_at_the_segment_cap() {
+        let p = prim(Shape::Cylinder { radius: 100.0, height: 1.0 });
+        let t = tessellate(&p, 1e-9, [true, true]).unwrap();
+        assert_eq!(t.triangles.len(), 2 * 4096 + 2 * 4094);
+        assert_eq!(triangle_count(&p, 1e-9, [true, true]), t.triangles.len() as u64);
     }
 
     #[test]
