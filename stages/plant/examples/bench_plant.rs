@@ -27,7 +27,9 @@ fn main() {
             let f = liftplan_plant::rvm::parse(&path, &bytes).expect("parse");
             let t1 = Instant::now();
             let mut summary = liftplan_plant::Summary::default();
-            let m = liftplan_plant::rvm_to_mesh(&f, attrs.as_ref(), &s, &mut summary);
+            let m =
+                liftplan_plant::rvm_to_mesh(&path, &f, attrs.as_ref(), &s, &mut summary, liftplan_plant::MAX_TRIANGLES)
+                    .expect("tessellate");
             let t2 = Instant::now();
             tris = m.triangle_count();
             parse.push((t1 - t0).as_secs_f64() * 1e3);

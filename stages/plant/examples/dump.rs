@@ -10,7 +10,8 @@ fn main() {
     let s = liftplan_plant::Settings { tolerance: tol, ..Default::default() };
     let mut sum = liftplan_plant::Summary::default();
     let t = std::time::Instant::now();
-    let m = liftplan_plant::rvm_to_mesh(&f, None, &s, &mut sum);
+    let m = liftplan_plant::rvm_to_mesh(p, &f, None, &s, &mut sum, liftplan_plant::MAX_TRIANGLES)
+        .unwrap_or_else(|e| panic!("{e}"));
     let tt = t.elapsed();
     println!(
         "parse {parse:?} tessellate {tt:?}: {} triangles {} vertices, caps culled {}, bbox {:?}",

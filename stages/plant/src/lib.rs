@@ -269,13 +269,29 @@ fn caps_for(prims: &[(&rvm::Primitive, usize)]) -> (Vec<tess::Caps>, usize) {
     (caps, culled)
 }
 
-/// Converts an RVM file (with attributes, if any) into a mesh.
+/// The most triangles a plant model may have, all its files together.
+///
+/// A model's size is not bounded by its files' size: an RVM primitive of a
+/// hundred bytes can ask the tessellation for millions of triangles (a large
+/// torus at a fine tolerance, or a matrix that scales it up), and a glTF scene
+/// can place one mesh many times. Each triangle costs about 40 bytes here and
+/// more in the depth map and the validator, so past this the stage refuses the
+/// model, naming what makes it large, before it allocates the triangles. The
+/// thesis' plant has 376,008 triangles; the PDMS sample export makes 18,833
+/// at the default tolerance.
+pub const MAX_TRIANGLES: u64 = 100_000_000;
+
+/// Converts an RVM file (with attributes, if any) into a mesh. `path` names
+/// the file in errors; the model may add at most `room` triangles (see
+/// [`MAX_TRIANGLES`]).
 pub fn rvm_to_mesh(
+    path: &Path,
     file: &rvm::RvmFile,
     attrs: Option<&att::Attributes>,
     s: &Settings,
     summary: &mut Summary,
-) -> TriMesh {
+    room: u64,
+) -> Result<TriMesh> {
     // Decide per group whether it is kept, walking the hierarchy.
     let mut kept: Vec<(&rvm::Primitive, usize)> = Vec::new();
     let mut group_names: Vec<String> = Vec::new();
@@ -334,13 +350,30 @@ pub fn rvm_to_mesh(
     let (caps, culled) = if s.cull_caps { caps_for(&kept) } else { (vec![[true, true]; kept.len()], 0) };
     summary.caps_culled += culled;
     let tol = s.tolerance;
+    let tol_local = |p: &rvm::Primitive| tol / tess::matrix_scale(&p.matrix).max(1e-12);
+    let counts: Vec<u64> =
+        kept.par_iter().zip(caps.par_iter()).map(|((p, _), c)| tess::triangle_count(p, tol_local(p), *c)).collect();
+    let total: u64 = counts.iter().sum();
+    if total > room {
+        let (i, most) = counts.iter().enumerate().max_by_key(|(_, n)| **n).map_or((0, 0), |(i, n)| (i, *n));
+        let (p, g) = kept[i];
+        let before = if room < MAX_TRIANGLES { " with the plant files read before it" } else { "" };
+        return Err(PlantError::at(
+            Location::file(path),
+            format!(
+                "tessellated at a tolerance of {tol} m this model makes {total} triangles, more than a plant may \
+                 have ({MAX_TRIANGLES}{before}); the largest primitive, a {} of group {} at byte {}, makes {most} \
+                 alone. Raise [plant] tolerance, or leave groups out with [plant] exclude",
+                p.shape.kind().name(),
+                group_names[g],
+                p.offset
+            ),
+        ));
+    }
     let tessellated: Vec<Option<(tess::Tess, usize, [f32; 12])>> = kept
         .par_iter()
         .zip(caps.par_iter())
-        .map(|((p, g), c)| {
-            let scale = tess::matrix_scale(&p.matrix).max(1e-12);
-            tess::tessellate(p, tol / scale, *c).map(|t| (t, *g, p.matrix))
-        })
+        .map(|((p, g), c)| tess::tessellate(p, tol_local(p), *c).map(|t| (t, *g, p.matrix)))
         .collect();
     let mut mesh = TriMesh::default();
     let gids: Vec<u32> = group_names.iter().map(|n| mesh.group_id(n)).collect();
@@ -353,11 +386,31 @@ pub fn rvm_to_mesh(
         // One mesh part per primitive part (torus segments are parts of their own).
         mesh.add_parts(gids[g], &t.convex, &verts, &t.triangles, &t.part);
     }
-    mesh
+    Ok(mesh)
 }
 
-/// Reads one plant file into a mesh in model coordinates.
+/// Reads one plant file into a mesh in model coordinates, adding its
+/// triangles to `summary.triangles`. A file that would take the plant past
+/// [`MAX_TRIANGLES`] (with the triangles already in `summary`) is refused.
 pub fn read_file(path: &Path, s: &Settings, summary: &mut Summary) -> Result<TriMesh> {
+    let room = MAX_TRIANGLES.saturating_sub(summary.triangles as u64);
+    let m = read_model(path, s, summary, room)?;
+    if m.triangle_count() as u64 > room {
+        return Err(PlantError::at(
+            Location::file(path),
+            format!(
+                "this file has {} triangles, and the plant {} before it: more than a plant may have \
+                 ({MAX_TRIANGLES}); simplify the model",
+                m.triangle_count(),
+                summary.triangles
+            ),
+        ));
+    }
+    summary.triangles += m.triangle_count();
+    Ok(m)
+}
+
+fn read_model(path: &Path, s: &Settings, summary: &mut Summary, room: u64) -> Result<TriMesh> {
     let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
     let imp = mesh_io::Import { scale: s.unit.to_m(), y_up: s.up_axis == UpAxis::Y };
     let m = match ext.as_str() {
@@ -376,12 +429,12 @@ pub fn read_file(path: &Path, s: &Settings, summary: &mut Summary) -> Result<Tri
                 }
                 None
             };
-            rvm_to_mesh(&f, attrs.as_ref(), s, summary)
+            rvm_to_mesh(path, &f, attrs.as_ref(), s, summary, room)?
         }
         "obj" => mesh_io::read_obj(path, imp)?,
         "ply" => mesh_io::read_ply(path, imp)?,
         "stl" => mesh_io::read_stl(path, imp)?,
-        "gltf" | "glb" => mesh_io::read_gltf(path)?,
+        "gltf" | "glb" => mesh_io::read_gltf(path, room)?,
         "ifc" => {
             return Err(PlantError::at(
                 Location::file(path),
@@ -503,4 +556,58 @@ pub fn inspect(path: &Path, s: &Settings) -> Result<serde_json::Value> {
         v["attributes_file"] = serde_json::json!(path.with_extension("att").exists());
     }
     Ok(v)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rvm::{Group, Primitive, Role, RvmFile, Shape};
+
+    /// An RVM file of `n` circular tori in group /ELBOWS, `scale` times their
+    /// size in metres, written and read back as the stage reads it.
+    fn tori_file(dir: &Path, n: usize, scale: f32) -> PathBuf {
+        let torus = Primitive {
+            role: Role::Primitive,
+            matrix: [scale, 0.0, 0.0, 0.0, scale, 0.0, 0.0, 0.0, scale, 0.0, 0.0, 0.0],
+            bbox_local: [-2.0, -2.0, -0.5, 2.0, 2.0, 0.5],
+            shape: Shape::CircularTorus { offset: 1.5, radius: 0.5, angle: 6.0 },
+            offset: 0,
+        };
+        let group = Group { name: "/ELBOWS".into(), primitives: vec![torus; n], ..Default::default() };
+        let path = dir.join("plant.rvm");
+        std::fs::write(&path, rvm::write(&RvmFile { groups: vec![group], ..Default::default() })).unwrap();
+        path
+    }
+
+    /// A model whose tessellation would pass the plant's triangle budget is
+    /// refused before its triangles are made: here ten tori of a few hundred
+    /// bytes each, scaled up 10^6 times, would make 336 million.
+    #[test]
+    fn a_model_too_large_to_hold_is_refused_before_it_is_tessellated() {
+        let d = tempfile::tempdir().unwrap();
+        let path = tori_file(d.path(), 10, 1e6);
+        assert!(std::fs::metadata(&path).unwrap().len() < 10_000);
+        let e = read_file(&path, &Settings::default(), &mut Summary::default()).unwrap_err().to_string();
+        assert!(e.contains("plant.rvm") && e.contains("more than a plant may have (100000000)"), "{e}");
+        assert!(e.contains("makes 335626200 triangles") && e.contains("a circular_torus of group /ELBOWS"), "{e}");
+        assert!(e.contains("Raise [plant] tolerance"), "{e}");
+    }
+
+    /// The budget counts the files read before: a model that fits the room
+    /// left exactly is read, one triangle less room refuses it.
+    #[test]
+    fn the_triangle_budget_counts_earlier_files() {
+        let d = tempfile::tempdir().unwrap();
+        let path = tori_file(d.path(), 3, 1.0);
+        let s = Settings::default();
+        let m = read_file(&path, &s, &mut Summary::default()).unwrap();
+        let n = m.triangle_count();
+        assert!(n > 100, "{n}");
+        let mut summary = Summary { triangles: MAX_TRIANGLES as usize - n, ..Default::default() };
+        read_file(&path, &s, &mut summary).unwrap();
+        assert_eq!(summary.triangles, MAX_TRIANGLES as usize);
+        let mut summary = Summary { triangles: MAX_TRIANGLES as usize - n + 1, ..Default::default() };
+        let e = read_file(&path, &s, &mut summary).unwrap_err().to_string();
+        assert!(e.contains("with the plant files read before it"), "{e}");
+    }
 }

@@ -241,10 +241,13 @@ fn load_buffers(path: &Path, doc: &gltf::Document, blob: Option<Vec<u8>>) -> Res
     Ok(out)
 }
 
-pub fn read_gltf(path: &Path) -> Result<TriMesh> {
+/// Reads a glTF or GLB scene, refusing it once its meshes, placed by its
+/// nodes, pass `max_triangles` (a scene may place one mesh many times, so
+/// the file's size does not bound the model's).
+pub fn read_gltf(path: &Path, max_triangles: u64) -> Result<TriMesh> {
     // The gltf crate's validation indexes accessors it has not checked yet and
     // panics on such a file (found by the plant_mesh fuzz target).
-    guarded(path, "the glTF reader", || read_gltf_unguarded(path))
+    guarded(path, "the glTF reader", || read_gltf_unguarded(path, max_triangles))
 }
 
 /// Runs a reader built on a third-party parser, turning a panic inside it
@@ -253,7 +256,7 @@ fn guarded(path: &Path, what: &str, read: impl FnOnce() -> Result<TriMesh>) -> R
     liftplan_core::guard::run_reader(what, read).unwrap_or_else(|why| Err(PlantError::at(Location::file(path), why)))
 }
 
-fn read_gltf_unguarded(path: &Path) -> Result<TriMesh> {
+fn read_gltf_unguarded(path: &Path, max_triangles: u64) -> Result<TriMesh> {
     let bytes = std::fs::read(path).map_err(|e| PlantError::Io(Location::file(path), e))?;
     let g = gltf::Gltf::from_slice(&bytes)
         .map_err(|e| PlantError::at(Location::file(path), format!("cannot read glTF: {e}")))?;
@@ -262,11 +265,18 @@ fn read_gltf_unguarded(path: &Path) -> Result<TriMesh> {
     let mut m = TriMesh::default();
     let scene = g.document.default_scene().or_else(|| g.document.scenes().next());
     let Some(scene) = scene else { return Ok(m) };
-    let mut stack: Vec<(gltf::Node, nalgebra::Matrix4<f64>, usize)> =
-        scene.nodes().map(|n| (n, nalgebra::Matrix4::identity(), 0)).collect();
-    while let Some((node, parent, depth)) = stack.pop() {
-        if depth > 256 {
-            return Err(PlantError::at(Location::file(path), "node hierarchy deeper than 256 levels (a cycle?)"));
+    let mut stack: Vec<(gltf::Node, nalgebra::Matrix4<f64>)> =
+        scene.nodes().map(|n| (n, nalgebra::Matrix4::identity())).collect();
+    // glTF nodes form trees. A node reached twice (a cycle, or a node with
+    // two parents) would be walked without end or place its subtree once per
+    // path to it, which grows exponentially with depth.
+    let mut reached = vec![false; g.document.nodes().len()];
+    while let Some((node, parent)) = stack.pop() {
+        if std::mem::replace(&mut reached[node.index()], true) {
+            return Err(PlantError::at(
+                Location::item(path, format!("node {}", node.index())),
+                "the node is reached twice in the scene (a cycle, or a node with two parents); glTF nodes must form trees",
+            ));
         }
         let local = nalgebra::Matrix4::from_column_slice(
             &node.transform().matrix().concat().iter().map(|v| *v as f64).collect::<Vec<_>>(),
@@ -283,6 +293,22 @@ fn read_gltf_unguarded(path: &Path) -> Result<TriMesh> {
                 if prim.mode() != gltf::mesh::Mode::Triangles {
                     tracing::warn!("{}: {name}: skipping a primitive drawn as {:?}", path.display(), prim.mode());
                     continue;
+                }
+                // Counted before the positions are read, since the scene may
+                // place this mesh many times. Positions count too: a mesh of
+                // a few indices into millions of positions is read whole at
+                // every place.
+                let count = |a: Option<gltf::Accessor>| a.map_or(0, |a| a.count() as u64);
+                let corners = count(prim.indices()).max(count(prim.get(&gltf::Semantic::Positions)));
+                if m.triangle_count() as u64 + corners / 3 > max_triangles {
+                    return Err(PlantError::at(
+                        Location::item(path, &name),
+                        format!(
+                            "the scene's meshes, as its nodes place them, make more than {max_triangles} \
+                             triangles, the room the plant has left of the {} it may have; simplify the model",
+                            crate::MAX_TRIANGLES
+                        ),
+                    ));
                 }
                 let reader = prim.reader(|b| buffers.get(b.index()).map(|d| d.as_slice()));
                 let Some(pos) = reader.read_positions() else { continue };
@@ -307,7 +333,7 @@ fn read_gltf_unguarded(path: &Path) -> Result<TriMesh> {
             }
         }
         for c in node.children() {
-            stack.push((c, world, depth + 1));
+            stack.push((c, world));
         }
     }
     check_finite(path, &m)?;
@@ -324,15 +350,57 @@ mod tests {
     #[test]
     fn a_gltf_naming_a_missing_accessor_is_refused() {
         let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/plant/damaged-accessor.gltf");
-        let e = read_gltf(&path).unwrap_err().to_string();
+        let e = read_gltf(&path, crate::MAX_TRIANGLES).unwrap_err().to_string();
         assert!(e.contains("damaged-accessor.gltf") && e.contains("failed on damaged data"), "{e}");
         // The same file naming accessor 0 reads.
         let d = tempfile::tempdir().unwrap();
         let good = d.path().join("tet.gltf");
         let text = std::fs::read_to_string(&path).unwrap().replace("\"POSITION\": 5", "\"POSITION\": 0");
         std::fs::write(&good, text).unwrap();
-        assert_eq!(read_gltf(&good).unwrap().triangles.len(), 4);
+        assert_eq!(read_gltf(&good, crate::MAX_TRIANGLES).unwrap().triangles.len(), 4);
     }
+    /// The fixture's tetrahedron (4 triangles) with `nodes` as the scene's
+    /// node list and the scene's roots `roots`.
+    fn tet_scene(dir: &Path, nodes: &str, roots: &str) -> std::path::PathBuf {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/plant/damaged-accessor.gltf");
+        let text = std::fs::read_to_string(&path).unwrap().replace("\"POSITION\": 5", "\"POSITION\": 0");
+        let old_nodes = r#""nodes": [{"mesh": 0, "name": "VESSEL-1", "translation": [1.0, 0.0, 0.0]}]"#;
+        assert!(text.contains(old_nodes) && text.contains(r#""nodes": [0]"#));
+        let text = text.replace(old_nodes, &format!(r#""nodes": {nodes}"#)).replace(r#""nodes": [0]"#, roots);
+        let out = dir.join("scene.gltf");
+        std::fs::write(&out, text).unwrap();
+        out
+    }
+
+    /// glTF nodes must form trees. A chain of nodes each naming the next one
+    /// twice as its child would be walked 2^40 times; a cycle for ever.
+    #[test]
+    fn a_gltf_node_reached_twice_is_refused() {
+        let d = tempfile::tempdir().unwrap();
+        let chain: Vec<String> = (0..40).map(|i| format!(r#"{{"children": [{0}, {0}]}}"#, i + 1)).collect();
+        let nodes = format!(r#"[{}, {{"mesh": 0}}]"#, chain.join(", "));
+        let e = read_gltf(&tet_scene(d.path(), &nodes, r#""nodes": [0]"#), crate::MAX_TRIANGLES).unwrap_err();
+        assert!(e.to_string().contains("scene.gltf (node 40): the node is reached twice"), "{e}");
+        let cycle = r#"[{"children": [1]}, {"mesh": 0, "children": [0]}]"#;
+        let e = read_gltf(&tet_scene(d.path(), cycle, r#""nodes": [0]"#), crate::MAX_TRIANGLES).unwrap_err();
+        assert!(e.to_string().contains("reached twice"), "{e}");
+        // One mesh placed by three nodes of a tree is fine.
+        let tree = r#"[{"children": [1, 2, 3]}, {"mesh": 0}, {"mesh": 0}, {"mesh": 0}]"#;
+        assert_eq!(read_gltf(&tet_scene(d.path(), tree, r#""nodes": [0]"#), 12).unwrap().triangles.len(), 12);
+    }
+
+    /// A scene placing a mesh many times is counted against the plant's
+    /// room before each placement is read.
+    #[test]
+    fn a_gltf_scene_is_counted_as_its_nodes_place_it() {
+        let d = tempfile::tempdir().unwrap();
+        let placed: Vec<String> = (0..5).map(|_| r#"{"mesh": 0}"#.to_string()).collect();
+        let path = tet_scene(d.path(), &format!("[{}]", placed.join(", ")), r#""nodes": [0, 1, 2, 3, 4]"#);
+        assert_eq!(read_gltf(&path, 20).unwrap().triangles.len(), 20);
+        let e = read_gltf(&path, 19).unwrap_err().to_string();
+        assert!(e.contains("scene.gltf") && e.contains("make more than 19 triangles"), "{e}");
+    }
+
     /// Found by the plant_mesh fuzz target: ply-rs unwraps the header's
     /// numbers and panicked on one too large for 64 bits.
     #[test]
