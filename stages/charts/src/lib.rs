@@ -18,6 +18,7 @@
 //! a changed load mass changes `lifts.json` and leaves stages that read only the
 //! capacity table fresh.
 
+pub mod container;
 pub mod detect;
 pub mod error;
 pub mod sheet;

@@ -3,7 +3,9 @@
 //!
 //! xlsx and xlsb sheets are streamed cell by cell and capped at
 //! [`MAX_CELLS`], so a sheet that declares a huge used range cannot drive an
-//! allocation; xls and ods are read through calamine's dense ranges.
+//! allocation; xls and ods are read through calamine's dense ranges, an ods
+//! file's only after [`crate::container`] has counted the cells its repeat
+//! attributes make.
 
 use crate::error::{ChartError, Result};
 use calamine::{Data, DataRef, Reader};
@@ -89,6 +91,7 @@ fn from_ref(d: &DataRef) -> Option<Val> {
 /// Reads every sheet of a workbook.
 pub fn read_workbook(path: &Path) -> Result<Vec<Sheet>> {
     let bad = |msg: String| ChartError::Format(Location::file(path), msg);
+    crate::container::check(path)?;
     let mut wb = calamine::open_workbook_auto(path).map_err(|e| bad(format!("cannot open the workbook: {e}")))?;
     let names = wb.sheet_names().to_vec();
     let mut out = Vec::new();

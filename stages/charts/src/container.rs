@@ -1,0 +1,404 @@
+//! The zip container of xlsx, xlsm, xlsb and ods workbooks, checked before
+//! calamine reads it.
+//!
+//! A workbook's size on disk does not bound what calamine makes of it:
+//! - its parts are deflated, and calamine reads some of them whole (the
+//!   shared strings, an ODS file's `content.xml`), so a part that unpacks to
+//!   gigabytes is held in memory;
+//! - an ODS cell's `table:number-columns-repeated` and a row's
+//!   `table:number-rows-repeated` are expanded into a dense range of up to
+//!   calamine's own limit of 100 M cells (about 3 GB): an 811-byte file took
+//!   6.3 GB and 17 s before the sheet reader's [`MAX_CELLS`] could refuse it.
+//!
+//! So every part is unpacked once here, counting bytes, and an ODS
+//! spreadsheet's cells are counted from its repeat attributes the way calamine
+//! expands them, both before calamine opens the file. This module does not
+//! read values or judge whether a file is a valid workbook: an archive or
+//! part it cannot read is left to calamine, which reports it.
+
+use crate::error::{ChartError, Result};
+use crate::sheet::MAX_CELLS;
+use liftplan_core::Location;
+use quick_xml::events::{BytesStart, Event};
+use std::io::{BufReader, Read};
+use std::path::Path;
+
+/// The most bytes a workbook's parts may unpack to, all together. A
+/// manufacturer's load chart workbook unpacks to a few megabytes.
+pub const MAX_UNPACKED_BYTES: u64 = 256 << 20;
+
+/// calamine's caps on an ODS sheet's columns and rows (`ods.rs`).
+const ODS_MAX_COLUMNS: u64 = 16_384;
+const ODS_MAX_ROWS: u64 = 1_048_576;
+
+/// Checks the workbook at `path` if it is a zip container (xlsx, xlsm, xlsb,
+/// ods); other files pass unchecked.
+pub fn check(path: &Path) -> Result<()> {
+    check_within(path, MAX_UNPACKED_BYTES)
+}
+
+fn check_within(path: &Path, max_unpacked_bytes: u64) -> Result<()> {
+    let bad = |msg: String| ChartError::Format(Location::file(path), msg);
+    let ods = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("ods"));
+    let Ok(file) = std::fs::File::open(path) else { return Ok(()) };
+    let Ok(mut zip) = zip::ZipArchive::new(BufReader::new(file)) else { return Ok(()) };
+    let mut unpacked = 0u64;
+    for i in 0..zip.len() {
+        let Ok(part) = zip.by_index(i) else { continue };
+        let name = part.name().map(|n| n.into_owned()).unwrap_or_default();
+        let room = max_unpacked_bytes - unpacked;
+        let mut counted = Counted { inner: part.take(room + 1), bytes: 0 };
+        let cells = if ods && name == "content.xml" {
+            ods_cells(&mut BufReader::new(&mut counted))
+        } else {
+            std::io::copy(&mut counted, &mut std::io::sink()).map(|_| Ok(())).map_err(|_| ())
+        };
+        unpacked += counted.bytes;
+        if unpacked > max_unpacked_bytes {
+            return Err(bad(format!(
+                "the workbook's parts unpack to more than {max_unpacked_bytes} bytes (at part {name}); a load chart \
+                 workbook never does"
+            )));
+        }
+        match cells {
+            Ok(Ok(())) => {}
+            Ok(Err(too_many)) => return Err(bad(too_many)),
+            // A part that does not unpack or parse is calamine's to report.
+            Err(()) => return Ok(()),
+        }
+    }
+    Ok(())
+}
+
+/// Counts the bytes read through it.
+struct Counted<R> {
+    inner: R,
+    bytes: u64,
+}
+
+impl<R: Read> Read for Counted<R> {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        let n = self.inner.read(buf)?;
+        self.bytes += n as u64;
+        Ok(n)
+    }
+}
+
+/// The cells calamine would make of an ODS `content.xml`: `Err(())` if the
+/// XML does not parse, `Ok(Err(message))` if a sheet, or all sheets
+/// together, would pass [`MAX_CELLS`].
+///
+/// calamine keeps each row element's cells up to its last non-empty one, with
+/// the columns repeated, and then makes a dense range of the rectangle from
+/// the first to the last non-empty row (rows repeated) and from the leftmost
+/// to the rightmost non-empty column. Both are counted. A cell counts as
+/// non-empty if it has a value type, a formula, or any content: more than
+/// calamine keeps, never less.
+fn ods_cells(xml: &mut impl std::io::BufRead) -> std::result::Result<std::result::Result<(), String>, ()> {
+    let mut reader = quick_xml::Reader::from_reader(xml);
+    let config = reader.config_mut();
+    config.expand_empty_elements = true;
+    config.check_end_names = false;
+    let mut buf = Vec::new();
+    let mut depth = 0usize;
+    let mut table: Option<OdsTable> = None;
+    let mut total = 0u64;
+    loop {
+        let event = reader.read_event_into(&mut buf).map_err(|_| ())?;
+        match event {
+            Event::Start(e) => {
+                depth += 1;
+                match &mut table {
+                    None if e.name().as_ref() == "table:table" => {
+                        let name = attr(&e, "table:name").unwrap_or_default();
+                        table = Some(OdsTable { name, depth, ..Default::default() });
+                    }
+                    Some(t) => t.start(&e, depth),
+                    None => {}
+                }
+            }
+            Event::Text(text) if table.as_ref().is_some_and(|t| t.cell.is_some()) => {
+                if text.chars().any(|c| !c.is_whitespace())
+                    && let Some(t) = &mut table
+                {
+                    t.content();
+                }
+            }
+            Event::GeneralRef(_) | Event::CData(_) => {
+                if let Some(t) = &mut table {
+                    t.content();
+                }
+            }
+            Event::End(_) => {
+                if let Some(t) = &mut table
+                    && t.end(depth)
+                {
+                    let (read, dense) = t.cells();
+                    total += dense;
+                    if read > MAX_CELLS as u64 || total > MAX_CELLS as u64 {
+                        return Ok(Err(format!(
+                            "sheet '{}' repeats its cells into {} (the workbook's sheets {total} in all); a load \
+                             chart never has more than {MAX_CELLS}",
+                            t.name,
+                            if read > dense { format!("{read} cells") } else { t.span() },
+                        )));
+                    }
+                    table = None;
+                }
+                depth = depth.saturating_sub(1);
+            }
+            Event::Eof => return Ok(Ok(())),
+            _ => {}
+        }
+        buf.clear();
+    }
+}
+
+/// One `table:table` being counted.
+#[derive(Default)]
+struct OdsTable {
+    name: String,
+    depth: usize,
+    /// Rows so far, repeats included (capped as calamine caps them).
+    rows: u64,
+    /// The row element being read: its depth, its repeats, its next column,
+    /// and its first and end non-empty columns.
+    row: Option<(usize, u64, u64, Option<(u64, u64)>)>,
+    /// The cell being read: its depth, its repeats, whether it has content.
+    cell: Option<(usize, u64, bool)>,
+    /// Cells of the row elements as calamine keeps them (columns repeated).
+    read: u64,
+    /// First and end rows (repeats included) that have a non-empty cell.
+    span_rows: Option<(u64, u64)>,
+    /// Leftmost and end non-empty columns.
+    span_cols: Option<(u64, u64)>,
+}
+
+impl OdsTable {
+    fn start(&mut self, e: &BytesStart, depth: usize) {
+        if let Some(cell) = &mut self.cell {
+            cell.2 = true;
+            return;
+        }
+        let name = e.name();
+        if self.row.is_none() && name.as_ref() == "table:table-row" {
+            let repeats = count_attr(e, "table:number-rows-repeated").min(ODS_MAX_ROWS - self.rows.min(ODS_MAX_ROWS));
+            self.row = Some((depth, repeats, 0, None));
+        } else if self.row.is_some()
+            && (name.as_ref() == "table:table-cell" || name.as_ref() == "table:covered-table-cell")
+        {
+            let repeats = count_attr(e, "table:number-columns-repeated");
+            let valued = attr(e, "office:value-type").is_some() || attr(e, "table:formula").is_some();
+            self.cell = Some((depth, repeats, valued));
+        }
+    }
+
+    fn content(&mut self) {
+        if let Some(cell) = &mut self.cell {
+            cell.2 = true;
+        }
+    }
+
+    /// Ends the element at `depth`; true when it ends the table.
+    fn end(&mut self, depth: usize) -> bool {
+        if let Some((cell_depth, repeats, filled)) = self.cell {
+            if depth != cell_depth {
+                return false;
+            }
+            self.cell = None;
+            if let Some((_, _, column, filled_cols)) = &mut self.row {
+                let end = column.saturating_add(repeats).min(ODS_MAX_COLUMNS);
+                if filled && end > *column {
+                    let first = filled_cols.map_or(*column, |(f, _)| f);
+                    *filled_cols = Some((first, end));
+                }
+                *column = end;
+            }
+        } else if let Some((row_depth, repeats, _, filled_cols)) = self.row {
+            if depth != row_depth {
+                return false;
+            }
+            self.row = None;
+            if let Some((first, end)) = filled_cols {
+                self.read += end;
+                let rows_first = self.span_rows.map_or(self.rows, |(f, _)| f);
+                self.span_rows = Some((rows_first, self.rows + repeats));
+                let (l, r) = self.span_cols.unwrap_or((first, end));
+                self.span_cols = Some((l.min(first), r.max(end)));
+            }
+            self.rows += repeats;
+        } else {
+            return depth == self.depth;
+        }
+        false
+    }
+
+    /// Cells calamine keeps while reading the rows, and in its dense range.
+    fn cells(&self) -> (u64, u64) {
+        let (rows, cols) = self.extent();
+        (self.read, rows.saturating_mul(cols))
+    }
+
+    fn extent(&self) -> (u64, u64) {
+        match (self.span_rows, self.span_cols) {
+            (Some((r0, r1)), Some((c0, c1))) => (r1 - r0, c1 - c0),
+            _ => (0, 0),
+        }
+    }
+
+    fn span(&self) -> String {
+        let (rows, cols) = self.extent();
+        format!("{rows} rows x {cols} columns")
+    }
+}
+
+fn attr(e: &BytesStart, key: &str) -> Option<String> {
+    e.attributes().flatten().find(|a| a.key.as_ref() == key).map(|a| a.value.into_owned())
+}
+
+/// A repeat count: 1 when absent or not a number (calamine refuses the
+/// latter itself).
+fn count_attr(e: &BytesStart, key: &str) -> u64 {
+    attr(e, key).and_then(|v| v.trim().parse::<u64>().ok()).unwrap_or(1)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::io::Write;
+
+    /// A zip file of `parts` (name, text), deflated.
+    fn zip_file(path: &Path, parts: &[(&str, &str)]) {
+        let mut w = zip::ZipWriter::new(std::fs::File::create(path).unwrap());
+        for (name, text) in parts {
+            let method =
+                if *name == "mimetype" { zip::CompressionMethod::Stored } else { zip::CompressionMethod::Deflated };
+            w.start_file(*name, zip::write::SimpleFileOptions::default().compression_method(method)).unwrap();
+            w.write_all(text.as_bytes()).unwrap();
+        }
+        w.finish().unwrap();
+    }
+
+    /// An ODS workbook with one sheet "Chart" whose rows are `rows` (XML).
+    fn ods(path: &Path, rows: &str) {
+        let content = format!(
+            r#"<?xml version="1.0" encoding="UTF-8"?>
+<office:document-content xmlns:office="urn:oasis:names:tc:opendocument:xmlns:office:1.0" xmlns:table="urn:oasis:names:tc:opendocument:xmlns:table:1.0" xmlns:text="urn:oasis:names:tc:opendocument:xmlns:text:1.0" office:version="1.2"><office:body><office:spreadsheet><table:table table:name="Chart">{rows}</table:table></office:spreadsheet></office:body></office:document-content>"#
+        );
+        let manifest = r#"<?xml version="1.0" encoding="UTF-8"?><manifest:manifest xmlns:manifest="urn:oasis:names:tc:opendocument:xmlns:manifest:1.0" manifest:version="1.2"><manifest:file-entry manifest:full-path="/" manifest:media-type="application/vnd.oasis.opendocument.spreadsheet"/><manifest:file-entry manifest:full-path="content.xml" manifest:media-type="text/xml"/></manifest:manifest>"#;
+        zip_file(
+            path,
+            &[
+                ("mimetype", "application/vnd.oasis.opendocument.spreadsheet"),
+                ("META-INF/manifest.xml", manifest),
+                ("content.xml", &content),
+            ],
+        );
+    }
+
+    fn cell(v: &str) -> String {
+        match v.parse::<f64>() {
+            Ok(_) => format!(
+                r#"<table:table-cell office:value-type="float" office:value="{v}"><text:p>{v}</text:p></table:table-cell>"#
+            ),
+            Err(_) => {
+                format!(r#"<table:table-cell office:value-type="string"><text:p>{v}</text:p></table:table-cell>"#)
+            }
+        }
+    }
+
+    /// A small load chart laid out as LibreOffice saves one: every row padded
+    /// with an empty cell repeated to the last column, and the empty rows
+    /// below repeated to the sheet's last row.
+    fn libreoffice_chart() -> String {
+        let empty_to_end =
+            |used: usize| format!(r#"<table:table-cell table:number-columns-repeated="{}"/>"#, 16384 - used);
+        let mut rows = String::new();
+        let grid: [&[&str]; 6] = [
+            &["Main boom, capacities in t"],
+            &["Radius (m)", "Boom length (m)"],
+            &["", "20", "30"],
+            &["3", "50", "40"],
+            &["5", "30", "25"],
+            &["8", "15", "12"],
+        ];
+        for line in grid {
+            rows.push_str("<table:table-row>");
+            for v in line {
+                rows.push_str(&if v.is_empty() { "<table:table-cell/>".to_string() } else { cell(v) });
+            }
+            rows.push_str(&empty_to_end(line.len()));
+            rows.push_str("</table:table-row>");
+        }
+        rows.push_str(&format!(
+            r#"<table:table-row table:number-rows-repeated="{}">{}</table:table-row>"#,
+            1_048_576 - grid.len(),
+            empty_to_end(0)
+        ));
+        rows
+    }
+
+    /// Found by hand after the fuzzers missed it (they cannot reach inside a
+    /// deflated part): an 811-byte ODS file whose one row of one cell is
+    /// repeated into 99,000 rows of 1000 columns. calamine would make a dense
+    /// range of 99 M cells (6.3 GB) before the sheet reader could refuse it.
+    #[test]
+    fn an_ods_file_whose_repeats_make_millions_of_cells_is_refused() {
+        let d = tempfile::tempdir().unwrap();
+        let path = d.path().join("bomb.ods");
+        let row = format!(
+            r#"<table:table-row table:number-rows-repeated="99000">{}</table:table-row>"#,
+            cell("1").replace("<table:table-cell ", r#"<table:table-cell table:number-columns-repeated="1000" "#)
+        );
+        ods(&path, &row);
+        assert!(std::fs::metadata(&path).unwrap().len() < 2000);
+        let e = crate::sheet::read_workbook(&path).unwrap_err().to_string();
+        assert!(e.contains("bomb.ods: sheet 'Chart' repeats its cells into 99000 rows x 1000 columns"), "{e}");
+        // Two cells far apart make calamine's range as large.
+        let far = format!(
+            r#"<table:table-row>{}</table:table-row><table:table-row table:number-rows-repeated="300"><table:table-cell/></table:table-row><table:table-row><table:table-cell table:number-columns-repeated="16000"/>{}</table:table-row>"#,
+            cell("1"),
+            cell("2")
+        );
+        ods(&path, &far);
+        let e = crate::sheet::read_workbook(&path).unwrap_err().to_string();
+        assert!(e.contains("repeats its cells into 302 rows x 16001 columns"), "{e}");
+    }
+
+    /// A chart saved the way LibreOffice saves it (empty cells and rows
+    /// repeated to the sheet's edges) is read, and its grid found.
+    #[test]
+    fn an_ods_chart_padded_to_the_sheets_edges_is_read() {
+        let d = tempfile::tempdir().unwrap();
+        let path = d.path().join("chart.ods");
+        ods(&path, &libreoffice_chart());
+        let sheets = crate::sheet::read_workbook(&path).unwrap();
+        assert_eq!(sheets.len(), 1);
+        assert_eq!(sheets[0].cells.len(), 14);
+        assert_eq!(sheets[0].num(4, 2), Some(25.0));
+        let (configs, _) = crate::read_chart(&path, &crate::Settings::default()).unwrap();
+        assert_eq!(configs.len(), 1);
+        assert_eq!(configs[0].boom_lengths_m, vec![20.0, 30.0]);
+        assert_eq!(configs[0].radii_m, vec![3.0, 5.0, 8.0]);
+        let c = configs[0].lookup(30.0, 4.0).unwrap();
+        assert_eq!(c.capacity_kg, 25_000.0);
+    }
+
+    /// A part that unpacks past the limit is refused before calamine reads it.
+    #[test]
+    fn a_workbook_unpacking_past_the_limit_is_refused() {
+        let d = tempfile::tempdir().unwrap();
+        let path = d.path().join("chart.xlsx");
+        let zeros = "0".repeat(1 << 20);
+        zip_file(&path, &[("[Content_Types].xml", "<Types/>"), ("xl/sharedStrings.xml", &zeros)]);
+        assert!(std::fs::metadata(&path).unwrap().len() < 10_000);
+        let e = check_within(&path, 64 << 10).unwrap_err().to_string();
+        assert!(
+            e.contains(
+                "chart.xlsx: the workbook's parts unpack to more than 65536 bytes (at part xl/sharedStrings.xml)"
+            ),
+            "{e}"
+        );
+        check_within(&path, 2 << 20).unwrap();
+    }
+}
