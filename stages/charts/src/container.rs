@@ -7,7 +7,7 @@
 //!   gigabytes is held in memory;
 //! - an ODS cell's `table:number-columns-repeated` and a row's
 //!   `table:number-rows-repeated` are expanded into a dense range of up to
-//!   calamine's own limit of 100 M cells (about 3 GB): an 811-byte file took
+//!   calamine's own limit of 100 M cells (about 3 GB): an 813-byte file took
 //!   6.3 GB and 17 s before the sheet reader's [`MAX_CELLS`] could refuse it.
 //!
 //! So every part is unpacked once here, counting bytes, and an ODS
@@ -339,7 +339,7 @@ mod tests {
     }
 
     /// Found by hand after the fuzzers missed it (they cannot reach inside a
-    /// deflated part): an 811-byte ODS file whose one row of one cell is
+    /// deflated part): an 813-byte ODS file whose one row of one cell is
     /// repeated into 99,000 rows of 1000 columns. calamine would make a dense
     /// range of 99 M cells (6.3 GB) before the sheet reader could refuse it.
     #[test]

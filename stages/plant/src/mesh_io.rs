@@ -8,7 +8,9 @@
 use crate::error::{PlantError, Result};
 use liftplan_core::Location;
 use liftplan_core::mesh::TriMesh;
+use std::collections::HashMap;
 use std::path::Path;
+use std::rc::Rc;
 
 /// How to bring a mesh file into the site frame's units and axes.
 #[derive(Debug, Clone, Copy)]
@@ -200,15 +202,20 @@ fn read_ply_unguarded(path: &Path, imp: Import) -> Result<TriMesh> {
     Ok(m)
 }
 
-fn load_buffers(path: &Path, doc: &gltf::Document, blob: Option<Vec<u8>>) -> Result<Vec<Vec<u8>>> {
+/// The scene's buffers, in order. A file beside the glTF is read once however
+/// many buffers name it: a few hundred bytes of JSON naming one large file
+/// thousands of times would otherwise hold it in memory thousands of times.
+fn load_buffers(path: &Path, doc: &gltf::Document, blob: Option<Vec<u8>>) -> Result<Vec<Rc<[u8]>>> {
     use base64::Engine;
     let mut out = Vec::new();
+    let mut files: HashMap<String, Rc<[u8]>> = HashMap::new();
     let mut blob = blob;
     for b in doc.buffers() {
-        let data = match b.source() {
-            gltf::buffer::Source::Bin => {
-                blob.take().ok_or_else(|| PlantError::at(Location::file(path), "GLB buffer without a binary chunk"))?
-            }
+        let data: Rc<[u8]> = match b.source() {
+            gltf::buffer::Source::Bin => blob
+                .take()
+                .ok_or_else(|| PlantError::at(Location::file(path), "GLB buffer without a binary chunk"))?
+                .into(),
             gltf::buffer::Source::Uri(uri) => {
                 if let Some(rest) = uri.strip_prefix("data:") {
                     let b64 = rest
@@ -218,6 +225,9 @@ fn load_buffers(path: &Path, doc: &gltf::Document, blob: Option<Vec<u8>>) -> Res
                     base64::engine::general_purpose::STANDARD
                         .decode(b64)
                         .map_err(|e| PlantError::at(Location::file(path), format!("bad base64 buffer: {e}")))?
+                        .into()
+                } else if let Some(data) = files.get(uri) {
+                    data.clone()
                 } else {
                     if uri.contains("..") || uri.starts_with('/') || uri.contains("://") {
                         return Err(PlantError::at(
@@ -226,7 +236,9 @@ fn load_buffers(path: &Path, doc: &gltf::Document, blob: Option<Vec<u8>>) -> Res
                         ));
                     }
                     let p = path.parent().unwrap_or(Path::new(".")).join(uri);
-                    std::fs::read(&p).map_err(|e| PlantError::Io(Location::file(&p), e))?
+                    let data: Rc<[u8]> = std::fs::read(&p).map_err(|e| PlantError::Io(Location::file(&p), e))?.into();
+                    files.insert(uri.to_string(), data.clone());
+                    data
                 }
             }
         };
@@ -310,7 +322,7 @@ fn read_gltf_unguarded(path: &Path, max_triangles: u64) -> Result<TriMesh> {
                         ),
                     ));
                 }
-                let reader = prim.reader(|b| buffers.get(b.index()).map(|d| d.as_slice()));
+                let reader = prim.reader(|b| buffers.get(b.index()).map(|d| &d[..]));
                 let Some(pos) = reader.read_positions() else { continue };
                 let verts: Vec<[f64; 3]> = pos
                     .map(|p| {
@@ -387,6 +399,28 @@ mod tests {
         // One mesh placed by three nodes of a tree is fine.
         let tree = r#"[{"children": [1, 2, 3]}, {"mesh": 0}, {"mesh": 0}, {"mesh": 0}]"#;
         assert_eq!(read_gltf(&tet_scene(d.path(), tree, r#""nodes": [0]"#), 12).unwrap().triangles.len(), 12);
+    }
+
+    /// Buffers naming the same file beside the glTF share one read of it.
+    #[test]
+    fn a_gltf_buffer_file_named_twice_is_read_once() {
+        use base64::Engine;
+        let d = tempfile::tempdir().unwrap();
+        let fixture = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/plant/damaged-accessor.gltf");
+        let text = std::fs::read_to_string(&fixture).unwrap().replace("\"POSITION\": 5", "\"POSITION\": 0");
+        let (head, rest) = text.split_once(r#""uri": "data:application/octet-stream;base64,"#).unwrap();
+        let (b64, tail) = rest.split_once('"').unwrap();
+        std::fs::write(d.path().join("tet.bin"), base64::engine::general_purpose::STANDARD.decode(b64).unwrap())
+            .unwrap();
+        let text = format!(r#"{head}"uri": "tet.bin"}}, {{"byteLength": 72, "uri": "tet.bin"{tail}"#)
+            .replace(r#"{"buffer": 0, "byteOffset": 48"#, r#"{"buffer": 1, "byteOffset": 48"#);
+        let path = d.path().join("scene.gltf");
+        std::fs::write(&path, &text).unwrap();
+        assert_eq!(read_gltf(&path, crate::MAX_TRIANGLES).unwrap().triangles.len(), 4);
+        let g = gltf::Gltf::from_slice(text.as_bytes()).unwrap();
+        let buffers = load_buffers(&path, &g.document, None).unwrap();
+        assert_eq!(buffers.len(), 2);
+        assert!(Rc::ptr_eq(&buffers[0], &buffers[1]));
     }
 
     /// A scene placing a mesh many times is counted against the plant's
