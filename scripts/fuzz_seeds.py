@@ -4,7 +4,9 @@ fuzzer starts past the formats' signatures. Run by scripts/fuzz.sh, which
 installs what this needs (laspy, lazrs, pye57, openpyxl, odfpy).
 
 For targets whose first byte picks the format (scan_file, chart_workbook,
-artifacts), each seed starts with that byte."""
+artifacts), each seed starts with that byte; some seeds are a single part
+that the target frames (an E57 file whose checksums it writes, a workbook
+part it zips)."""
 import os, shutil, struct, sys, tempfile
 import numpy as np
 
@@ -81,6 +83,8 @@ for name, extra in [("a.e57", False), ("b.e57", True)]:
     e.write_scan_raw(data, rotation=np.array([1.0, 0, 0, 0]), translation=np.array([1.0, 2.0, 0.5]))
     e.close()
     seed("scan_file", name, read(path), 3)
+    # Selector 9: e57, with the target writing the page checksums.
+    seed("scan_file", "crc-" + name, read(path), 9)
 
 seed("scan_file", "a.pts", (f"{n}\n" + "".join(f"{a:.3f} {b:.3f} {c:.3f} -1200 100 120 140\n"
                                               for a, b, c in zip(x, y, z))).encode(), 4)
@@ -125,6 +129,16 @@ doc.spreadsheet.addElement(table)
 path = os.path.join(tmp, "chart.ods")
 doc.save(path)
 seed("chart_workbook", "chart.ods", read(path), 3)
+# Selectors 4 to 6: one part, zipped by the target into a workbook.
+import zipfile
+with zipfile.ZipFile(path) as z:
+    seed("chart_workbook", "content.xml", z.read("content.xml"), 4)
+with zipfile.ZipFile(os.path.join(tmp, "chart.xlsx")) as z:
+    seed("chart_workbook", "sheet1.xml", z.read("xl/worksheets/sheet1.xml"), 5)
+# openpyxl writes its strings inline; the shared strings the target's sheet names:
+sst = "".join(f"<si><t>{t}</t></si>" for t in ["Main boom, capacities in t", "Radius (m)", "Boom length (m)"])
+seed("chart_workbook", "sharedStrings.xml", ('<?xml version="1.0" encoding="UTF-8"?><sst xmlns='
+     f'"http://schemas.openxmlformats.org/spreadsheetml/2006/main" count="3" uniqueCount="3">{sst}</sst>').encode(), 6)
 
 # artifacts: first byte 0 raw bytes, 1 depth-map payload, 2 mesh payload
 # (the target frames 1 and 2 as valid artifacts).
