@@ -174,7 +174,12 @@ impl Project {
         self.raw.scans.check().map_err(|m| err("[scans]", format!("[scans] {m}")))?;
         self.raw.plant.check().map_err(|m| err("[plant]", format!("[plant] {m}")))?;
         self.raw.depthmap.check().map_err(|m| err("[depthmap]", format!("[depthmap] {m}")))?;
-        self.raw.plan.check().map_err(|m| err("[plan]", m))?;
+        self.raw.plan.check().map_err(|m| {
+            // The message starts with its table ("[plan.ga] ..."): point there.
+            let table = m.strip_prefix('[').and_then(|r| r.split_once(']')).map(|(t, _)| format!("[{t}]"));
+            let needle = table.filter(|t| text.contains(t.as_str())).unwrap_or_else(|| "[plan]".into());
+            err(&needle, m)
+        })?;
         let mut ids = std::collections::HashSet::new();
         for l in &self.raw.lift {
             if !ids.insert(l.id.clone()) {

@@ -149,6 +149,14 @@ fn bad_project_files_name_line_and_column() {
     assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
     std::fs::write(&f, "[scans]\nvoxel = -1.0\n").unwrap();
     expect_project_error(&dir, "voxel must be a positive", 1);
+    // Planner settings that would make a NaN fitness or unbounded work are
+    // refused at their own table.
+    std::fs::write(&f, "[plan]\nplanner = \"prm\"\n\n[plan.baselines]\nprm_samples = 1000000000000\n").unwrap();
+    expect_project_error(&dir, "prm_samples must be 2..20000", 4);
+    std::fs::write(&f, "[plan.ga]\nlambda2 = inf\n").unwrap();
+    expect_project_error(&dir, "[plan.ga] lambda1 must be positive, lambda2 non-negative (both finite)", 1);
+    std::fs::write(&f, "[plan.ga.weights]\nswing_per_deg = nan\n").unwrap();
+    expect_project_error(&dir, "weights must be finite", 1);
     std::fs::write(&f, "this is not toml").unwrap();
     let o = liftplan(&["run", dir.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(2));

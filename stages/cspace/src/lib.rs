@@ -89,13 +89,13 @@ impl Settings {
     pub fn check(&self) -> Result<(), String> {
         let ok = |v: f64, lo: f64, hi: f64| v.is_finite() && v >= lo && v <= hi;
         if !ok(self.swing_step_deg, 0.05, 10.0) || !ok(self.luff_step_deg, 0.05, 10.0) {
-            return Err("[cspace] swing_step_deg and luff_step_deg must be between 0.05 and 10 degrees".into());
+            return Err("[plan.cspace] swing_step_deg and luff_step_deg must be between 0.05 and 10 degrees".into());
         }
         if !ok(self.trolley_step_m, 0.01, 5.0)
             || !ok(self.sample_m, 0.005, 1.0)
             || !ok(self.full_hoist_step_m, 0.05, 10.0)
         {
-            return Err("[cspace] trolley_step_m (0.01..5), sample_m (0.005..1) and full_hoist_step_m (0.05..10) are out of range".into());
+            return Err("[plan.cspace] trolley_step_m (0.01..5), sample_m (0.005..1) and full_hoist_step_m (0.05..10) are out of range".into());
         }
         Ok(())
     }

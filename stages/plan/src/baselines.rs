@@ -28,6 +28,24 @@ impl Default for BaselineSettings {
     }
 }
 
+impl BaselineSettings {
+    /// Ranges that keep a baseline's work and memory bounded: RRT grows a tree
+    /// node per iteration, PRM compares every sample with every other.
+    pub fn check(&self) -> Result<(), String> {
+        let unit = |v: f64| v.is_finite() && (0.0..=1.0).contains(&v);
+        if !(1..=1_000_000).contains(&self.rrt_iterations) || !(unit(self.rrt_step) && self.rrt_step > 0.0) {
+            return Err("[plan.baselines] rrt_iterations must be 1..1000000 and rrt_step in (0, 1]".into());
+        }
+        if !unit(self.goal_bias) {
+            return Err("[plan.baselines] goal_bias must be in [0, 1]".into());
+        }
+        if !(2..=20_000).contains(&self.prm_samples) || !(1..=100).contains(&self.prm_neighbours) {
+            return Err("[plan.baselines] prm_samples must be 2..20000 and prm_neighbours 1..100".into());
+        }
+        Ok(())
+    }
+}
+
 /// A baseline's answer.
 #[derive(Debug, Clone, Serialize)]
 pub struct BaselineResult {

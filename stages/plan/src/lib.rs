@@ -97,6 +97,7 @@ impl Settings {
     pub fn check(&self) -> std::result::Result<(), String> {
         self.ga.check()?;
         self.cspace.check()?;
+        self.baselines.check()?;
         let ok = |v: f64, lo: f64, hi: f64| v.is_finite() && v >= lo && v <= hi;
         if !ok(self.landing_margin_m, 0.0, 5.0)
             || !ok(self.landing_clearance_m, 0.0, 5.0)

@@ -68,22 +68,36 @@ impl Default for GaSettings {
 impl GaSettings {
     pub fn check(&self) -> Result<(), String> {
         if !(2..=10_000).contains(&self.population) || !(3..=64).contains(&self.string_length) {
-            return Err("[plan] population must be 2..10000 and string_length 3..64".into());
+            return Err("[plan.ga] population must be 2..10000 and string_length 3..64".into());
         }
         let rate = |v: f64| v.is_finite() && (0.0..=1.0).contains(&v);
         if !rate(self.crossover_rate) || !rate(self.mutation_rate) || !rate(self.small_scale) || !rate(self.large_scale)
         {
-            return Err("[plan] crossover_rate, mutation_rate, small_scale and large_scale must be in [0, 1]".into());
+            return Err("[plan.ga] crossover_rate, mutation_rate, small_scale and large_scale must be in [0, 1]".into());
         }
-        if !(self.lambda1 > 0.0
+        // A NaN or infinite term makes every fitness NaN or infinite, and the
+        // GA's ranking meaningless.
+        if !(self.lambda1.is_finite()
+            && self.lambda1 > 0.0
+            && self.lambda2.is_finite()
             && self.lambda2 >= 0.0
             && self.max_generations >= 1
             && self.max_generations <= 1_000_000)
         {
-            return Err("[plan] lambda1 must be positive, lambda2 non-negative, max_generations 1..1000000".into());
+            return Err("[plan.ga] lambda1 must be positive, lambda2 non-negative (both finite), max_generations \
+                        1..1000000"
+                .into());
+        }
+        let w = &self.weights;
+        let weights = [w.swing_per_deg, w.luff_per_deg, w.hoist_per_cm, w.rotate_per_deg];
+        if !weights.iter().all(|v| v.is_finite() && *v >= 0.0) || !weights.iter().any(|v| *v > 0.0) {
+            return Err("[plan.ga.weights] weights must be finite, non-negative and not all zero".into());
+        }
+        if !(self.swing_margin_deg.is_finite() && (0.0..=180.0).contains(&self.swing_margin_deg)) {
+            return Err("[plan.ga] swing_margin_deg must be 0..180".into());
         }
         if self.restarts > 20 {
-            return Err("[plan] restarts must be 0..20".into());
+            return Err("[plan.ga] restarts must be 0..20".into());
         }
         Ok(())
     }
