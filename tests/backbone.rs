@@ -157,6 +157,8 @@ fn bad_project_files_name_line_and_column() {
     expect_project_error(&dir, "[plan.ga] lambda1 must be positive, lambda2 non-negative (both finite)", 1);
     std::fs::write(&f, "[plan.ga.weights]\nswing_per_deg = nan\n").unwrap();
     expect_project_error(&dir, "weights must be finite", 1);
+    std::fs::write(&f, "[depthmap]\nmargin_m = inf\n").unwrap();
+    expect_project_error(&dir, "margin_m must be zero or positive (and finite)", 1);
     std::fs::write(&f, "this is not toml").unwrap();
     let o = liftplan(&["run", dir.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(2));

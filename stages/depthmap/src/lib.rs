@@ -86,9 +86,10 @@ impl Settings {
             && self.point_radius_m >= 0.0
             && self.merge_gap_m.is_finite()
             && self.merge_gap_m >= 0.0
+            && self.margin_m.is_finite()
             && self.margin_m >= 0.0)
         {
-            return Err("point_radius_m, merge_gap_m and margin_m must be zero or positive".into());
+            return Err("point_radius_m, merge_gap_m and margin_m must be zero or positive (and finite)".into());
         }
         if self.point_radius_m > MAX_POINT_RADIUS_CELLS * self.cell_m {
             return Err(format!(
@@ -98,9 +99,12 @@ impl Settings {
             ));
         }
         if !(self.extent.is_empty()
-            || (self.extent.len() == 4 && self.extent[0] < self.extent[2] && self.extent[1] < self.extent[3]))
+            || (self.extent.len() == 4
+                && self.extent.iter().all(|v| v.is_finite())
+                && self.extent[0] < self.extent[2]
+                && self.extent[1] < self.extent[3]))
         {
-            return Err("extent must be [xmin, ymin, xmax, ymax] with min < max".into());
+            return Err("extent must be [xmin, ymin, xmax, ymax], finite, with min < max".into());
         }
         Ok(())
     }
