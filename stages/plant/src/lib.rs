@@ -227,6 +227,12 @@ fn circular_ends(prims: &[(&rvm::Primitive, usize)]) -> Vec<End> {
     ends
 }
 
+/// Ends compared with each end, at most, when looking for the one that hides
+/// its cap. Real joints meet in twos or threes; a file with thousands of ends
+/// on one spot would otherwise cost the square of their number. Past this the
+/// cap is kept, which is always safe: culling only saves triangles.
+const CAP_CANDIDATES: usize = 64;
+
 /// Caps to emit per primitive: an end is left open when another primitive's end
 /// sits on it (within a millimetre), faces the other way and has about the same
 /// radius, so the cap would be hidden inside the joint.
@@ -243,6 +249,7 @@ fn caps_for(prims: &[(&rvm::Primitive, usize)]) -> (Vec<tess::Caps>, usize) {
     for (k, e) in ends.iter().enumerate() {
         let c = key(&e.center);
         let mut hidden = false;
+        let mut compared = 0;
         'n: for dx in -1..=1 {
             for dy in -1..=1 {
                 for dz in -1..=1 {
@@ -250,6 +257,10 @@ fn caps_for(prims: &[(&rvm::Primitive, usize)]) -> (Vec<tess::Caps>, usize) {
                         let f = &ends[o];
                         if o == k || f.prim == e.prim {
                             continue;
+                        }
+                        compared += 1;
+                        if compared > CAP_CANDIDATES {
+                            break 'n;
                         }
                         let d2: f64 = (0..3).map(|i| (e.center[i] - f.center[i]).powi(2)).sum();
                         let dot: f64 = (0..3).map(|i| e.normal[i] * f.normal[i]).sum();
@@ -591,6 +602,35 @@ mod tests {
         assert!(e.contains("plant.rvm") && e.contains("more than a plant may have (100000000)"), "{e}");
         assert!(e.contains("makes 335626200 triangles") && e.contains("a circular_torus of group /ELBOWS"), "{e}");
         assert!(e.contains("Raise [plant] tolerance"), "{e}");
+    }
+
+    /// Thousands of pipe ends on one spot are not compared pairwise (the
+    /// square of their number): each end looks at CAP_CANDIDATES others at
+    /// most and otherwise keeps its cap, which is always safe.
+    #[test]
+    fn a_crowd_of_ends_on_one_spot_is_not_compared_pairwise() {
+        let cylinder = |z: f32| Primitive {
+            role: Role::Primitive,
+            matrix: [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, z],
+            bbox_local: [-0.5, -0.5, -1.0, 0.5, 0.5, 1.0],
+            shape: Shape::Cylinder { radius: 0.5, height: 2.0 },
+            offset: 0,
+        };
+        // Two cylinders meeting at z = 1: both inner caps are hidden.
+        let pair = [cylinder(0.0), cylinder(2.0)];
+        let kept: Vec<(&Primitive, usize)> = pair.iter().map(|p| (p, 0)).collect();
+        assert_eq!(caps_for(&kept), (vec![[true, false], [false, true]], 2));
+        // 20,000 copies of the lower one, then the upper one: each top end of
+        // the crowd would have to pass the other 19,999 (facing the same way)
+        // to reach the upper cylinder's end. It stops at CAP_CANDIDATES and
+        // keeps its cap; the upper cylinder's end meets a crowd end at once.
+        let mut crowd: Vec<Primitive> = (0..20_000).map(|_| cylinder(0.0)).collect();
+        crowd.push(cylinder(2.0));
+        let kept: Vec<(&Primitive, usize)> = crowd.iter().map(|p| (p, 0)).collect();
+        let (caps, culled) = caps_for(&kept);
+        assert_eq!(culled, 1);
+        assert_eq!(caps[20_000], [false, true]);
+        assert!(caps[..20_000].iter().all(|c| *c == [true, true]));
     }
 
     /// The budget counts the files read before: a model that fits the room
