@@ -384,6 +384,39 @@ mod tests {
         assert_eq!(c.capacity_kg, 25_000.0);
     }
 
+    /// A sheet too large to search for grids (here a chart above a block of
+    /// 202,500 numbers) is named in the error, and a `[[charts.table]]`
+    /// mapping of its grid still reads it.
+    #[test]
+    fn a_sheet_too_large_to_search_is_named_and_can_be_mapped() {
+        let d = tempfile::tempdir().unwrap();
+        let path = d.path().join("chart.ods");
+        let block =
+            cell("7").replace("<table:table-cell ", r#"<table:table-cell table:number-columns-repeated="450" "#);
+        let rows = libreoffice_chart().replace(
+            r#"<table:table-row table:number-rows-repeated="1048570">"#,
+            &format!(r#"<table:table-row table:number-rows-repeated="450">{block}</table:table-row><table:table-row table:number-rows-repeated="1048120">"#),
+        );
+        assert_ne!(rows, libreoffice_chart());
+        ods(&path, &rows);
+        let e = crate::read_chart(&path, &crate::Settings::default()).unwrap_err().to_string();
+        assert!(e.contains("no load-chart grid found") && e.contains("sheet 'Chart' (202514 cells)"), "{e}");
+        let mapped = crate::Settings {
+            table: vec![crate::TableMapping {
+                file: "chart.ods".into(),
+                sheet: "Chart".into(),
+                config: "main".into(),
+                across: "B3:C3".into(),
+                down: "A4:A6".into(),
+                transposed: false,
+                length_unit: None,
+                capacity_unit: None,
+            }],
+        };
+        let (configs, _) = crate::read_chart(&path, &mapped).unwrap();
+        assert_eq!(configs[0].boom_lengths_m, vec![20.0, 30.0]);
+    }
+
     /// A part that unpacks past the limit is refused before calamine reads it.
     #[test]
     fn a_workbook_unpacking_past_the_limit_is_refused() {

@@ -136,10 +136,21 @@ pub fn read_chart(path: &Path, s: &Settings) -> Result<(Vec<ChartConfig>, Vec<Co
     let file_name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
     let mut configs = Vec::new();
     let mut reports = Vec::new();
+    let mut not_searched = Vec::new();
     for sh in &sheets {
         let mapped: Vec<&TableMapping> = s.table.iter().filter(|t| t.file == file_name && t.sheet == sh.name).collect();
         let mut grids: Vec<(detect::Grid, Option<&TableMapping>)> = Vec::new();
-        if mapped.is_empty() {
+        if mapped.is_empty() && sh.cells.len() > detect::MAX_SEARCHED_CELLS {
+            tracing::warn!(
+                "{}: sheet '{}' has {} cells, more than a chart grid is searched in ({}); describe its grid with \
+                 [[charts.table]] if it holds one",
+                path.display(),
+                sh.name,
+                sh.cells.len(),
+                detect::MAX_SEARCHED_CELLS
+            );
+            not_searched.push(format!("'{}' ({} cells)", sh.name, sh.cells.len()));
+        } else if mapped.is_empty() {
             grids.extend(detect::find_grids(sh).into_iter().map(|g| (g, None)));
         } else {
             for m in mapped {
@@ -197,9 +208,21 @@ pub fn read_chart(path: &Path, s: &Settings) -> Result<(Vec<ChartConfig>, Vec<Co
         }
     }
     if configs.is_empty() {
+        let skipped = if not_searched.is_empty() {
+            String::new()
+        } else {
+            format!(
+                "; not searched, as larger than any chart (over {} cells): sheet {}",
+                detect::MAX_SEARCHED_CELLS,
+                not_searched.join(", ")
+            )
+        };
         return Err(ChartError::Format(
             Location::file(path),
-            "no load-chart grid found: expected boom lengths across a row and radii down the column left of them (or describe the grid with [[charts.table]])".into(),
+            format!(
+                "no load-chart grid found: expected boom lengths across a row and radii down the column left of \
+                 them (or describe the grid with [[charts.table]]){skipped}"
+            ),
         ));
     }
     Ok((configs, reports))
