@@ -1,20 +1,26 @@
 //! The zip container of xlsx, xlsm, xlsb and ods workbooks, checked before
 //! calamine reads it.
 //!
-//! A workbook's size on disk does not bound what calamine makes of it:
+//! A workbook's size on disk does not bound what calamine makes of it, and a
+//! damaged one can stop it for ever:
 //! - its parts are deflated, and calamine reads some of them whole (the
 //!   shared strings, an ODS file's `content.xml`), so a part that unpacks to
 //!   gigabytes is held in memory;
 //! - an ODS cell's `table:number-columns-repeated` and a row's
 //!   `table:number-rows-repeated` are expanded into a dense range of up to
-//!   calamine's own limit of 100 M cells (about 3 GB): an 813-byte file took
-//!   6.3 GB and 17 s before the sheet reader's [`MAX_CELLS`] could refuse it.
+//!   calamine's own limit of 100 M cells (about 3 GB), and the cell's text is
+//!   copied into each: an 813-byte file took 6.3 GB and 17 s before the sheet
+//!   reader's [`MAX_CELLS`] could refuse it;
+//! - calamine waits for an ODS sheet's end tag until the end of the file, and
+//!   past it: a `content.xml` cut short or with a damaged end tag made it loop
+//!   for ever (found by the chart_workbook fuzz target).
 //!
 //! So every part is unpacked once here, counting bytes, and an ODS
-//! spreadsheet's cells are counted from its repeat attributes the way calamine
-//! expands them, both before calamine opens the file. This module does not
-//! read values or judge whether a file is a valid workbook: an archive or
-//! part it cannot read is left to calamine, which reports it.
+//! `content.xml` must be well-formed XML whose cells and text, counted from
+//! the repeat attributes the way calamine expands them, stay within bounds,
+//! all before calamine opens the file. This module does not read values or
+//! judge whether a file is a valid workbook: an archive or part it cannot
+//! unpack is left to calamine, which reports it.
 
 use crate::error::{ChartError, Result};
 use crate::sheet::MAX_CELLS;
@@ -48,8 +54,8 @@ fn check_within(path: &Path, max_unpacked_bytes: u64) -> Result<()> {
         let name = part.name().map(|n| n.into_owned()).unwrap_or_default();
         let room = max_unpacked_bytes - unpacked;
         let mut counted = Counted { inner: part.take(room + 1), bytes: 0 };
-        let cells = if ods && name == "content.xml" {
-            ods_cells(&mut BufReader::new(&mut counted))
+        let verdict = if ods && name == "content.xml" {
+            ods_content(&mut BufReader::new(&mut counted))
         } else {
             std::io::copy(&mut counted, &mut std::io::sink()).map(|_| Ok(())).map_err(|_| ())
         };
@@ -60,10 +66,10 @@ fn check_within(path: &Path, max_unpacked_bytes: u64) -> Result<()> {
                  workbook never does"
             )));
         }
-        match cells {
+        match verdict {
             Ok(Ok(())) => {}
-            Ok(Err(too_many)) => return Err(bad(too_many)),
-            // A part that does not unpack or parse is calamine's to report.
+            Ok(Err(refusal)) => return Err(bad(refusal)),
+            // A part that does not unpack is calamine's to report.
             Err(()) => return Ok(()),
         }
     }
@@ -84,27 +90,45 @@ impl<R: Read> Read for Counted<R> {
     }
 }
 
-/// The cells calamine would make of an ODS `content.xml`: `Err(())` if the
-/// XML does not parse, `Ok(Err(message))` if a sheet, or all sheets
-/// together, would pass [`MAX_CELLS`].
+/// What calamine would make of an ODS `content.xml`: `Err(())` if the part
+/// cannot be read (calamine reports it), `Ok(Err(message))` if it must not be
+/// given to calamine.
 ///
-/// calamine keeps each row element's cells up to its last non-empty one, with
-/// the columns repeated, and then makes a dense range of the rectangle from
-/// the first to the last non-empty row (rows repeated) and from the leftmost
-/// to the rightmost non-empty column. Both are counted. A cell counts as
-/// non-empty if it has a value type, a formula, or any content: more than
-/// calamine keeps, never less.
-fn ods_cells(xml: &mut impl std::io::BufRead) -> std::result::Result<std::result::Result<(), String>, ()> {
+/// Refused:
+/// - XML that is not well-formed, or ends inside an element. calamine reads
+///   leniently and waits for a sheet's end tag (or an annotation's) until
+///   the end of the file, for ever: a truncated or damaged `content.xml`
+///   hung it (found by the chart_workbook fuzz target).
+/// - A sheet, or all sheets together, of more than [`MAX_CELLS`] cells.
+///   calamine keeps each row element's cells up to its last non-empty one,
+///   with the columns repeated, and then makes a dense range of the rectangle
+///   from the first to the last non-empty row (rows repeated) and from the
+///   leftmost to the rightmost non-empty column. Both are counted. A cell
+///   counts as non-empty if it has a value type, a formula, or any content:
+///   more than calamine keeps, never less.
+/// - Text that the repeats (and `text:s` runs of spaces) would expand past
+///   [`MAX_UNPACKED_BYTES`]: calamine copies a cell's text for every column
+///   and row it is repeated over.
+fn ods_content(xml: &mut impl std::io::BufRead) -> std::result::Result<std::result::Result<(), String>, ()> {
     let mut reader = quick_xml::Reader::from_reader(xml);
     let config = reader.config_mut();
     config.expand_empty_elements = true;
-    config.check_end_names = false;
+    config.check_end_names = true;
     let mut buf = Vec::new();
     let mut depth = 0usize;
     let mut table: Option<OdsTable> = None;
-    let mut total = 0u64;
+    let (mut cells, mut text) = (0u64, 0u64);
     loop {
-        let event = reader.read_event_into(&mut buf).map_err(|_| ())?;
+        let event = match reader.read_event_into(&mut buf) {
+            Ok(event) => event,
+            Err(quick_xml::Error::Io(_)) => return Err(()),
+            Err(e) => {
+                return Ok(Err(format!(
+                    "content.xml is not well-formed XML at byte {} ({e}); the workbook is damaged",
+                    reader.error_position()
+                )));
+            }
+        };
         match event {
             Event::Start(e) => {
                 depth += 1;
@@ -117,16 +141,16 @@ fn ods_cells(xml: &mut impl std::io::BufRead) -> std::result::Result<std::result
                     None => {}
                 }
             }
-            Event::Text(text) if table.as_ref().is_some_and(|t| t.cell.is_some()) => {
-                if text.chars().any(|c| !c.is_whitespace())
-                    && let Some(t) = &mut table
-                {
-                    t.content();
+            Event::Text(t) => {
+                if let Some(cell) = table.as_mut().and_then(|t| t.cell.as_mut()) {
+                    cell.bytes += t.len() as u64;
+                    cell.filled |= t.chars().any(|c| !c.is_whitespace());
                 }
             }
             Event::GeneralRef(_) | Event::CData(_) => {
-                if let Some(t) = &mut table {
-                    t.content();
+                if let Some(cell) = table.as_mut().and_then(|t| t.cell.as_mut()) {
+                    cell.bytes += 4;
+                    cell.filled = true;
                 }
             }
             Event::End(_) => {
@@ -134,18 +158,29 @@ fn ods_cells(xml: &mut impl std::io::BufRead) -> std::result::Result<std::result
                     && t.end(depth)
                 {
                     let (read, dense) = t.cells();
-                    total += dense;
-                    if read > MAX_CELLS as u64 || total > MAX_CELLS as u64 {
+                    cells += dense;
+                    text = text.saturating_add(t.text);
+                    if read > MAX_CELLS as u64 || cells > MAX_CELLS as u64 {
                         return Ok(Err(format!(
-                            "sheet '{}' repeats its cells into {} (the workbook's sheets {total} in all); a load \
+                            "sheet '{}' repeats its cells into {} (the workbook's sheets {cells} in all); a load \
                              chart never has more than {MAX_CELLS}",
                             t.name,
                             if read > dense { format!("{read} cells") } else { t.span() },
                         )));
                     }
+                    if text > MAX_UNPACKED_BYTES {
+                        return Ok(Err(format!(
+                            "sheet '{}' repeats its text into more than {MAX_UNPACKED_BYTES} bytes (the workbook's \
+                             sheets {text} in all); a load chart never holds that much",
+                            t.name
+                        )));
+                    }
                     table = None;
                 }
                 depth = depth.saturating_sub(1);
+            }
+            Event::Eof if depth > 0 => {
+                return Ok(Err("content.xml ends inside an element; the workbook is truncated or damaged".into()));
             }
             Event::Eof => return Ok(Ok(())),
             _ => {}
@@ -161,72 +196,93 @@ struct OdsTable {
     depth: usize,
     /// Rows so far, repeats included (capped as calamine caps them).
     rows: u64,
-    /// The row element being read: its depth, its repeats, its next column,
-    /// and its first and end non-empty columns.
-    row: Option<(usize, u64, u64, Option<(u64, u64)>)>,
-    /// The cell being read: its depth, its repeats, whether it has content.
-    cell: Option<(usize, u64, bool)>,
+    row: Option<OdsRow>,
+    cell: Option<OdsCell>,
     /// Cells of the row elements as calamine keeps them (columns repeated).
     read: u64,
     /// First and end rows (repeats included) that have a non-empty cell.
     span_rows: Option<(u64, u64)>,
     /// Leftmost and end non-empty columns.
     span_cols: Option<(u64, u64)>,
+    /// Bytes of text and formulas, columns and rows repeated.
+    text: u64,
+}
+
+/// A `table:table-row` being read.
+struct OdsRow {
+    depth: usize,
+    repeats: u64,
+    next_column: u64,
+    /// First and end non-empty columns.
+    filled: Option<(u64, u64)>,
+    /// Bytes of text and formulas, columns repeated.
+    text: u64,
+}
+
+/// A `table:table-cell` (or covered cell) being read.
+struct OdsCell {
+    depth: usize,
+    repeats: u64,
+    filled: bool,
+    /// Bytes of its text and formula, `text:s` spaces expanded.
+    bytes: u64,
 }
 
 impl OdsTable {
     fn start(&mut self, e: &BytesStart, depth: usize) {
         if let Some(cell) = &mut self.cell {
-            cell.2 = true;
+            cell.filled = true;
+            if e.name().as_ref() == "text:s" {
+                cell.bytes = cell.bytes.saturating_add(count_attr(e, "text:c"));
+            }
             return;
         }
         let name = e.name();
         if self.row.is_none() && name.as_ref() == "table:table-row" {
-            let repeats = count_attr(e, "table:number-rows-repeated").min(ODS_MAX_ROWS - self.rows.min(ODS_MAX_ROWS));
-            self.row = Some((depth, repeats, 0, None));
+            let room = ODS_MAX_ROWS - self.rows.min(ODS_MAX_ROWS);
+            let repeats = count_attr(e, "table:number-rows-repeated").min(room);
+            self.row = Some(OdsRow { depth, repeats, next_column: 0, filled: None, text: 0 });
         } else if self.row.is_some()
             && (name.as_ref() == "table:table-cell" || name.as_ref() == "table:covered-table-cell")
         {
             let repeats = count_attr(e, "table:number-columns-repeated");
-            let valued = attr(e, "office:value-type").is_some() || attr(e, "table:formula").is_some();
-            self.cell = Some((depth, repeats, valued));
-        }
-    }
-
-    fn content(&mut self) {
-        if let Some(cell) = &mut self.cell {
-            cell.2 = true;
+            let formula = attr(e, "table:formula");
+            let filled = attr(e, "office:value-type").is_some() || formula.is_some();
+            let bytes = formula.map_or(0, |f| f.len() as u64);
+            self.cell = Some(OdsCell { depth, repeats, filled, bytes });
         }
     }
 
     /// Ends the element at `depth`; true when it ends the table.
     fn end(&mut self, depth: usize) -> bool {
-        if let Some((cell_depth, repeats, filled)) = self.cell {
-            if depth != cell_depth {
+        if let Some(cell) = &self.cell {
+            if depth != cell.depth {
                 return false;
+            }
+            if let Some(row) = &mut self.row {
+                let end = row.next_column.saturating_add(cell.repeats).min(ODS_MAX_COLUMNS);
+                if cell.filled && end > row.next_column {
+                    let first = row.filled.map_or(row.next_column, |(f, _)| f);
+                    row.filled = Some((first, end));
+                    row.text = row.text.saturating_add(cell.bytes.saturating_mul(end - row.next_column));
+                }
+                row.next_column = end;
             }
             self.cell = None;
-            if let Some((_, _, column, filled_cols)) = &mut self.row {
-                let end = column.saturating_add(repeats).min(ODS_MAX_COLUMNS);
-                if filled && end > *column {
-                    let first = filled_cols.map_or(*column, |(f, _)| f);
-                    *filled_cols = Some((first, end));
-                }
-                *column = end;
-            }
-        } else if let Some((row_depth, repeats, _, filled_cols)) = self.row {
-            if depth != row_depth {
+        } else if let Some(row) = &self.row {
+            if depth != row.depth {
                 return false;
             }
-            self.row = None;
-            if let Some((first, end)) = filled_cols {
+            if let Some((first, end)) = row.filled {
                 self.read += end;
                 let rows_first = self.span_rows.map_or(self.rows, |(f, _)| f);
-                self.span_rows = Some((rows_first, self.rows + repeats));
+                self.span_rows = Some((rows_first, self.rows + row.repeats));
                 let (l, r) = self.span_cols.unwrap_or((first, end));
                 self.span_cols = Some((l.min(first), r.max(end)));
+                self.text = self.text.saturating_add(row.text.saturating_mul(row.repeats));
             }
-            self.rows += repeats;
+            self.rows += row.repeats;
+            self.row = None;
         } else {
             return depth == self.depth;
         }
@@ -279,21 +335,30 @@ mod tests {
         w.finish().unwrap();
     }
 
-    /// An ODS workbook with one sheet "Chart" whose rows are `rows` (XML).
-    fn ods(path: &Path, rows: &str) {
-        let content = format!(
+    /// `content.xml` of one sheet "Chart" whose rows are `rows` (XML).
+    fn content(rows: &str) -> String {
+        format!(
             r#"<?xml version="1.0" encoding="UTF-8"?>
 <office:document-content xmlns:office="urn:oasis:names:tc:opendocument:xmlns:office:1.0" xmlns:table="urn:oasis:names:tc:opendocument:xmlns:table:1.0" xmlns:text="urn:oasis:names:tc:opendocument:xmlns:text:1.0" office:version="1.2"><office:body><office:spreadsheet><table:table table:name="Chart">{rows}</table:table></office:spreadsheet></office:body></office:document-content>"#
-        );
+        )
+    }
+
+    /// An ODS workbook of `content` (its `content.xml`).
+    fn ods_of(path: &Path, content: &str) {
         let manifest = r#"<?xml version="1.0" encoding="UTF-8"?><manifest:manifest xmlns:manifest="urn:oasis:names:tc:opendocument:xmlns:manifest:1.0" manifest:version="1.2"><manifest:file-entry manifest:full-path="/" manifest:media-type="application/vnd.oasis.opendocument.spreadsheet"/><manifest:file-entry manifest:full-path="content.xml" manifest:media-type="text/xml"/></manifest:manifest>"#;
         zip_file(
             path,
             &[
                 ("mimetype", "application/vnd.oasis.opendocument.spreadsheet"),
                 ("META-INF/manifest.xml", manifest),
-                ("content.xml", &content),
+                ("content.xml", content),
             ],
         );
+    }
+
+    /// An ODS workbook with one sheet "Chart" whose rows are `rows` (XML).
+    fn ods(path: &Path, rows: &str) {
+        ods_of(path, &content(rows));
     }
 
     fn cell(v: &str) -> String {
@@ -415,6 +480,48 @@ mod tests {
         };
         let (configs, _) = crate::read_chart(&path, &mapped).unwrap();
         assert_eq!(configs[0].boom_lengths_m, vec![20.0, 30.0]);
+    }
+
+    /// Found by the chart_workbook fuzz target: a sheet whose end tag is
+    /// damaged (`</tible:table>`) made calamine read past the end of the file
+    /// for ever. Damaged or truncated XML is refused before calamine sees it.
+    #[test]
+    fn a_content_xml_that_is_not_well_formed_is_refused() {
+        let d = tempfile::tempdir().unwrap();
+        let path = d.path().join("chart.ods");
+        let whole = content(&libreoffice_chart());
+        // The fuzzer's case: the sheet's end tag misspelt.
+        let misspelt = whole.replace("</table:table></office:spreadsheet>", "</tible:table></office:spreadsheet>");
+        assert_ne!(misspelt, whole);
+        for (bad, why) in [
+            (misspelt, "not well-formed XML"),
+            (whole[..whole.len() / 2].to_string(), "not well-formed XML"),
+            (whole[..whole.rfind("</table:table>").unwrap()].to_string(), "ends inside an element"),
+        ] {
+            ods_of(&path, &bad);
+            let e = crate::sheet::read_workbook(&path).unwrap_err().to_string();
+            assert!(e.contains("chart.ods: content.xml") && e.contains(why), "{why}: {e}");
+        }
+    }
+
+    /// Text is copied into every cell a repeat makes: a cell of a few hundred
+    /// bytes over a million cells, or one run of four billion spaces
+    /// (`text:s`), is refused.
+    #[test]
+    fn an_ods_file_whose_repeats_make_gigabytes_of_text_is_refused() {
+        let d = tempfile::tempdir().unwrap();
+        let path = d.path().join("text.ods");
+        let long = "x".repeat(300);
+        let row = format!(
+            r#"<table:table-row table:number-rows-repeated="1000"><table:table-cell table:number-columns-repeated="1000" office:value-type="string"><text:p>{long}</text:p></table:table-cell></table:table-row>"#
+        );
+        ods(&path, &row);
+        let e = crate::sheet::read_workbook(&path).unwrap_err().to_string();
+        assert!(e.contains("sheet 'Chart' repeats its text into more than 268435456 bytes"), "{e}");
+        let spaces = r#"<table:table-row><table:table-cell office:value-type="string"><text:p>a<text:s text:c="4000000000"/>b</text:p></table:table-cell></table:table-row>"#;
+        ods(&path, spaces);
+        let e = crate::sheet::read_workbook(&path).unwrap_err().to_string();
+        assert!(e.contains("repeats its text into more than"), "{e}");
     }
 
     /// A part that unpacks past the limit is refused before calamine reads it.
