@@ -39,6 +39,8 @@ for name in sorted(os.listdir(cranes)):
 demo = read(os.path.join(root, "fixtures/src/demo.rs")).decode()
 lift = demo[demo.index("[[lift]]\n") + len("[[lift]]\n"):]
 seed("crane_and_lift_toml", "lift.toml", lift[:lift.index('"#')].encode())
+seed("crane_and_lift_toml", "stations.toml", b'[[station]]\nscan = "scan-1"\nx_m = 1.0\ny_m = 2.0\nz_m = 0.5\n'
+     b'yaw_deg = 30.0\n\n[[station]]\nscan = "scan-2"\nx_m = -4.0\ny_m = 12.5\n')
 
 # scan_file: first byte 0 las, 1 laz, 2 ply, 3 e57, 4 pts, 5 xyz.
 import laspy

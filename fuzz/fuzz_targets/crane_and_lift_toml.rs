@@ -1,4 +1,5 @@
-//! Crane model files and lift requests (TOML) through parsing and resolution.
+//! Crane model files, lift requests and scanner station files (TOML) through
+//! parsing and resolution.
 #![no_main]
 use libfuzzer_sys::fuzz_target;
 
@@ -10,4 +11,5 @@ fuzz_target!(|data: &[u8]| {
     {
         let _ = spec.resolve(model);
     }
+    let _ = liftplan_scans::parse_stations(std::path::Path::new("stations.toml"), text);
 });

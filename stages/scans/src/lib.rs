@@ -228,18 +228,27 @@ struct Station {
 /// A surveyed station: the scan it belongs to, its pose in the site frame,
 /// and the line of the station file that names the scan.
 #[derive(Debug)]
-struct SurveyedStation {
-    scan: String,
-    pose: Pose,
-    line: u64,
+pub struct SurveyedStation {
+    /// The scan's name.
+    pub scan: String,
+    /// Scanner frame to site frame.
+    pub pose: Pose,
+    /// The line of the file that names the scan.
+    pub line: u64,
 }
 
-/// Reads a station file. Each value must be a finite number (TOML also
-/// writes `nan` and `inf`); an error names the file, line and column.
+/// Reads a station file (see [`parse_stations`]).
 fn read_stations(path: &Path) -> Result<Vec<SurveyedStation>> {
     let text = std::fs::read_to_string(path).map_err(|e| ScanError::Io(Location::file(path), e))?;
-    let f: StationFile = toml::from_str(&text).map_err(|e| {
-        let (loc, msg) = liftplan_core::location::toml_error(path, &text, &e);
+    parse_stations(path, &text)
+}
+
+/// Parses the text of the station file at `path`. Each value must be a finite
+/// number (TOML also writes `nan` and `inf`); an error names the file, line
+/// and column.
+pub fn parse_stations(path: &Path, text: &str) -> Result<Vec<SurveyedStation>> {
+    let f: StationFile = toml::from_str(text).map_err(|e| {
+        let (loc, msg) = liftplan_core::location::toml_error(path, text, &e);
         ScanError::format(loc, msg)
     })?;
     let mut out = Vec::with_capacity(f.station.len());
@@ -253,13 +262,13 @@ fn read_stations(path: &Path) -> Result<Vec<SurveyedStation>> {
         for (name, v) in given.into_iter().filter_map(|(n, v)| Some((n, v?))) {
             if !v.get_ref().is_finite() {
                 return Err(ScanError::format(
-                    Location::in_text(path, &text, v.span().start),
+                    Location::in_text(path, text, v.span().start),
                     format!("{name} = {} is not a finite number", v.get_ref()),
                 ));
             }
         }
         out.push(SurveyedStation {
-            line: liftplan_core::location::line_col(&text, st.scan.span().start).0,
+            line: liftplan_core::location::line_col(text, st.scan.span().start).0,
             pose: liftplan_core::frame::pose_xyz_yaw(
                 *st.x_m.get_ref(),
                 *st.y_m.get_ref(),
