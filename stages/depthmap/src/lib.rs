@@ -77,6 +77,15 @@ pub const MAX_POINT_RADIUS_CELLS: f64 = 8.0;
 /// Grids above this many cells are refused (a typo in the cell size).
 pub const MAX_CELLS: u64 = 64_000_000;
 
+/// The most raw intervals (one for each cell a scan point or a plant
+/// triangle covers) a depth map is built from. Assembly holds about 32 bytes
+/// for each, so this is about 8 GB; past it the build is refused, naming what
+/// to change, instead of running out of memory. A site's raw intervals grow
+/// with the square of 1 / `cell_m` (a floor slab covers its area's cells)
+/// and with `point_radius_m`; the thesis' largest site (21 M points and a
+/// 376k-triangle plant) makes about 36 M.
+pub const MAX_RAW_INTERVALS: u64 = 1 << 28;
+
 impl Settings {
     pub fn check(&self) -> std::result::Result<(), String> {
         if !(self.cell_m.is_finite() && self.cell_m >= 0.01) {
@@ -195,6 +204,7 @@ pub fn build(inp: &Inputs, s: &Settings, gpu: Option<&gpu::Gpu>) -> Result<(Mdm,
     let mut objects = vec!["ground (scan)".to_string(), "scanned structure".to_string()];
     objects.extend(inp.mesh.groups.iter().cloned());
     let points = mdm::PointSource { xyz: &inp.points, ground: &inp.ground, radius: s.point_radius_m as f32 };
+    check_raw_intervals(&points, &inp.mesh, &spec, s)?;
     let t_prep = t0.elapsed();
     let gap = s.merge_gap_m as f32;
     if let Some(g) = gpu {
@@ -235,6 +245,31 @@ pub fn build(inp: &Inputs, s: &Settings, gpu: Option<&gpu::Gpu>) -> Result<(Mdm,
             gpu: None,
         },
     ))
+}
+
+/// Refuses a map that would be built from more than [`MAX_RAW_INTERVALS`]
+/// raw intervals. Cheap bounds first; the counts only when they do not
+/// settle it.
+fn check_raw_intervals(points: &mdm::PointSource, mesh: &TriMesh, spec: &GridSpec, s: &Settings) -> Result<()> {
+    let bounds = mdm::point_cells_bound(points, spec).saturating_add(mdm::mesh_cells_bound(mesh, spec));
+    if bounds <= MAX_RAW_INTERVALS {
+        return Ok(());
+    }
+    let (from_points, from_mesh) = (mdm::point_cells(points, spec), mdm::mesh_cells(mesh, spec));
+    if from_points + from_mesh <= MAX_RAW_INTERVALS {
+        return Ok(());
+    }
+    Err(DepthError::Settings(format!(
+        "the depth map would be built from {} raw intervals ({from_points} from scan points, {from_mesh} from plant \
+         triangles), more than it may hold ({MAX_RAW_INTERVALS}, about 8 GB): use a larger cell_m (now {} m){}",
+        from_points + from_mesh,
+        s.cell_m,
+        if from_points > from_mesh {
+            format!(" or a smaller point_radius_m (now {} m)", s.point_radius_m)
+        } else {
+            String::new()
+        }
+    )))
 }
 
 /// The points' bounding box, computed in parallel (it is a pass over every

@@ -35,7 +35,10 @@ mod assemble;
 mod raster;
 
 pub use assemble::{RawJob, assemble_sources, group_by_band, mesh_jobs, raw_jobs};
-pub use raster::{mesh_raws, point_raws, triangle_cells};
+pub use raster::{
+    mesh_cells, mesh_cells_bound, mesh_raws, point_cells, point_cells_bound, point_raws, triangle_cell_count,
+    triangle_cells,
+};
 
 pub const ARTIFACT_KIND: &str = "MDM";
 pub const ARTIFACT_VERSION: u32 = 1;

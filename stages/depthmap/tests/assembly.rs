@@ -98,6 +98,12 @@ fn check(seed: u64, spec: GridSpec, radius: f32, gap: f32, mode: Mode, n: usize)
     let tris: Vec<Raw> = mdm::mesh_raws(&s.mesh, &spec, 2).concat();
     let mut all = Vec::new();
     mdm::point_raws(&points, &spec, &mut all);
+    // The counts the build's memory budget is checked with bound what is made.
+    let (from_points, from_mesh) = (all.len() as u64, tris.len() as u64);
+    prop_assert_eq!(mdm::point_cells(&points, &spec), from_points);
+    prop_assert!(mdm::point_cells_bound(&points, &spec) >= from_points);
+    let mesh_cells = mdm::mesh_cells(&s.mesh, &spec);
+    prop_assert!(mesh_cells >= from_mesh && mdm::mesh_cells_bound(&s.mesh, &spec) >= mesh_cells);
     all.extend_from_slice(&tris);
     let objects = vec!["g".to_string(), "s".into(), "pipe".into(), "rack".into()];
     // The mesh rasterised into the assembly's jobs, and everything as raws.
@@ -175,4 +181,33 @@ fn oversized_point_radius_is_refused() {
     assert!(err.contains("point_radius_m"), "{err}");
     let ok = Settings { cell_m: 0.05, point_radius_m: 0.4, ..Settings::default() };
     assert!(build_cpu(&inp, &ok).is_ok());
+}
+
+/// A map that would be built from more raw intervals than the budget
+/// (`MAX_RAW_INTERVALS`) is refused before anything is rasterised: here ten
+/// floor slabs of 79 x 79 m at 1 cm cells, 624 M raw intervals (about 20 GB
+/// to assemble). The same slabs at 25 cm build.
+#[test]
+fn a_map_too_large_to_assemble_is_refused() {
+    use liftplan_depthmap::{Inputs, MAX_RAW_INTERVALS, Settings, build_cpu};
+    let mut mesh = TriMesh::default();
+    let g = mesh.group_id("floors");
+    for k in 0..10 {
+        let z = 3.0 * k as f64;
+        let v = [[0.0, 0.0, z], [79.0, 0.0, z], [79.0, 79.0, z], [0.0, 79.0, z]];
+        mesh.add_part(g, false, &v, &[[0, 1, 2], [0, 2, 3]]);
+    }
+    let inp = Inputs { mesh, ..Inputs::default() };
+    let extent = vec![0.0, 0.0, 79.0, 79.0];
+    let fine = Settings { cell_m: 0.01, extent: extent.clone(), ..Settings::default() };
+    let bound = mdm::mesh_cells(&inp.mesh, &fine.grid([0.0, 0.0, 79.0, 79.0]).unwrap());
+    assert!(bound > MAX_RAW_INTERVALS, "{bound}");
+    let err = build_cpu(&inp, &fine).expect_err("624 M raw intervals must be refused").to_string();
+    assert!(
+        err.contains("raw intervals (0 from scan points") && err.contains("use a larger cell_m (now 0.01 m)"),
+        "{err}"
+    );
+    let coarse = Settings { cell_m: 0.25, extent, ..Settings::default() };
+    let (m, _) = build_cpu(&inp, &coarse).unwrap();
+    assert_eq!(m.intervals.len(), 10 * 316 * 316);
 }

@@ -38,6 +38,29 @@ pub(crate) fn point_span(q: &[f32; 3], radius: f32, inv: f32, nx: i64, ny: i64) 
     (i0, i1, j0, j1)
 }
 
+/// An upper bound on the raw intervals [`point_raws`] makes, without a pass:
+/// the points times the most cells one can cover.
+pub fn point_cells_bound(points: &PointSource, spec: &GridSpec) -> u64 {
+    // A span of 2r starts in one cell and ends at most ceil(2r / cell) cells
+    // later; one more for rounding in the f32 arithmetic of `point_span`.
+    let side = (2.0 * points.radius as f64 / spec.cell).ceil() as u64 + 2;
+    (points.xyz.len() as u64).saturating_mul(side * side)
+}
+
+/// The raw intervals [`point_raws`] makes: each point's cells, counted.
+pub fn point_cells(points: &PointSource, spec: &GridSpec) -> u64 {
+    let inv = (1.0 / spec.cell) as f32;
+    let (nx, ny) = (spec.nx as i64, spec.ny as i64);
+    points
+        .xyz
+        .par_iter()
+        .map(|p| {
+            let (i0, i1, j0, j1) = point_span(&local_point(p, spec), points.radius, inv, nx, ny);
+            ((i1 - i0 + 1).max(0) * (j1 - j0 + 1).max(0)) as u64
+        })
+        .sum()
+}
+
 /// The point pass as raw intervals, point by point and each point's cells in
 /// row order: the cells and intervals the GPU twin's fill pass writes, and the
 /// reference the fused CPU assembly is tested against.
@@ -149,6 +172,38 @@ fn heights_between(poly: &[[f64; 3]], xa: f64, xb: f64) -> Option<(f64, f64)> {
 /// in 10^6 plus a micrometre so rounding never makes it too small.
 pub fn triangle_cells(t: &[[f64; 3]; 3], spec: &GridSpec, mut emit: impl FnMut(u32, f32, f32)) {
     let c = spec.cell;
+    triangle_rows(t, spec, |tri, j, (a, b), strip| {
+        for i in a..=b {
+            let (xa, xb) = (i as f64 * c, (i + 1) as f64 * c);
+            let (lo, hi) = match strip {
+                // Conservative: the whole triangle's heights.
+                None => tri.range(2),
+                Some(strip) => match heights_between(strip.vertices(), xa, xb) {
+                    Some(range) => range,
+                    None => continue,
+                },
+            };
+            let pad = 1e-6 * lo.abs().max(hi.abs()) + 1e-6;
+            emit(j * spec.nx + i, (lo - pad) as f32, (hi + pad) as f32);
+        }
+    });
+}
+
+/// How many cells [`triangle_cells`] visits for the triangle: an upper bound
+/// on the raw intervals it makes (a cell its strip spans but the triangle
+/// misses makes none), found without the per-cell clipping.
+pub fn triangle_cell_count(t: &[[f64; 3]; 3], spec: &GridSpec) -> u64 {
+    let mut n = 0u64;
+    triangle_rows(t, spec, |_, _, (a, b), _| n += (b as u64 + 1).saturating_sub(a as u64));
+    n
+}
+
+/// The grid rows a triangle crosses: for each, the row `j`, the columns
+/// `(a, b)` its strip spans and the strip (the triangle clipped to the row),
+/// or `None` where clipping lost precision and the row is taken across the
+/// triangle's whole column range.
+fn triangle_rows(t: &[[f64; 3]; 3], spec: &GridSpec, mut row: impl FnMut(&Poly, u32, (u32, u32), Option<&Poly>)) {
+    let c = spec.cell;
     let mut tri = Poly { v: [[0.0; 3]; 12], n: 3, lossy: false };
     tri.v[..3].copy_from_slice(t);
     let ((minx, maxx), (miny, maxy)) = (tri.range(0), tri.range(1));
@@ -165,27 +220,48 @@ pub fn triangle_cells(t: &[[f64; 3]; 3], spec: &GridSpec, mut emit: impl FnMut(u
         if strip.n == 0 && !strip.lossy {
             continue;
         }
-        let (a, b) = if strip.lossy {
-            (i0, i1)
+        if strip.lossy {
+            row(&tri, j, (i0, i1), None);
         } else {
             let (sx0, sx1) = strip.range(0);
-            (((sx0 / c).floor().max(i0 as f64)) as u32, ((sx1 / c).floor().min(i1 as f64)) as u32)
-        };
-        for i in a..=b {
-            let (xa, xb) = (i as f64 * c, (i + 1) as f64 * c);
-            let (lo, hi) = if strip.lossy {
-                // Conservative: the whole triangle's heights.
-                tri.range(2)
-            } else {
-                match heights_between(strip.vertices(), xa, xb) {
-                    Some(range) => range,
-                    None => continue,
-                }
-            };
-            let pad = 1e-6 * lo.abs().max(hi.abs()) + 1e-6;
-            emit(j * spec.nx + i, (lo - pad) as f32, (hi + pad) as f32);
+            let span = (((sx0 / c).floor().max(i0 as f64)) as u32, ((sx1 / c).floor().min(i1 as f64)) as u32);
+            row(&tri, j, span, Some(&strip));
         }
     }
+}
+
+/// A mesh's triangles in grid-local coordinates (as [`triangle_raws`] takes them).
+fn local_triangle(m: &TriMesh, spec: &GridSpec, t: usize) -> [[f64; 3]; 3] {
+    let p = |k: usize| {
+        let v = m.vertices[m.triangles[t][k] as usize];
+        [v[0] - spec.x0, v[1] - spec.y0, v[2]]
+    };
+    [p(0), p(1), p(2)]
+}
+
+/// An upper bound on the raw intervals [`mesh_raws`] makes, in one cheap
+/// pass: the cells of each triangle's bounding box, summed.
+pub fn mesh_cells_bound(m: &TriMesh, spec: &GridSpec) -> u64 {
+    (0..m.triangles.len())
+        .into_par_iter()
+        .map(|t| {
+            let v = local_triangle(m, spec, t);
+            let span = |axis: usize, cells: u32| {
+                let lo = v.iter().map(|p| p[axis]).fold(f64::INFINITY, f64::min) / spec.cell;
+                let hi = v.iter().map(|p| p[axis]).fold(f64::NEG_INFINITY, f64::max) / spec.cell;
+                let (lo, hi) = (lo.floor().max(0.0), hi.floor().min(cells as f64 - 1.0));
+                if hi >= lo { (hi - lo) as u64 + 1 } else { 0 }
+            };
+            span(0, spec.nx) * span(1, spec.ny)
+        })
+        .sum()
+}
+
+/// A tighter upper bound than [`mesh_cells_bound`]: the cells
+/// [`triangle_cell_count`] finds for each triangle (a long diagonal pipe
+/// covers a few of its box's thousands of cells).
+pub fn mesh_cells(m: &TriMesh, spec: &GridSpec) -> u64 {
+    (0..m.triangles.len()).into_par_iter().map(|t| triangle_cell_count(&local_triangle(m, spec, t), spec)).sum()
 }
 
 /// Pass 1 for a mesh: raw intervals of every triangle (`triangle_raws`), in
