@@ -131,6 +131,8 @@ doc.spreadsheet.addElement(table)
 path = os.path.join(tmp, "chart.ods")
 doc.save(path)
 seed("chart_workbook", "chart.ods", read(path), 3)
+# The xls fixture (xlwt's BIFF8 in a compound file; no Python writer here).
+seed("chart_workbook", "chart.xls", read(os.path.join(root, "fixtures/charts/chart.xls")), 1)
 # Selectors 4 to 6: one part, zipped by the target into a workbook.
 import zipfile
 with zipfile.ZipFile(path) as z:

@@ -1,5 +1,6 @@
-//! The zip container of xlsx, xlsm, xlsb and ods workbooks, checked before
-//! calamine reads it.
+//! The containers of workbooks, checked before calamine reads them: the zip
+//! archive of xlsx, xlsm, xlsb and ods files, and the compound file (CFB) of
+//! xls files.
 //!
 //! A workbook's size on disk does not bound what calamine makes of it, and a
 //! damaged one can stop it for ever:
@@ -13,14 +14,20 @@
 //!   reader's [`MAX_CELLS`] could refuse it;
 //! - calamine waits for an ODS sheet's end tag until the end of the file, and
 //!   past it: a `content.xml` cut short or with a damaged end tag made it loop
-//!   for ever (found by the chart_workbook fuzz target).
+//!   for ever (found by the chart_workbook fuzz target);
+//! - an xls file is a compound file whose streams are chains of sectors
+//!   linked by a table in the file. calamine follows a chain until it ends:
+//!   a 1,536-byte xls file whose directory's sector names itself as the next
+//!   one made it grow a buffer until the allocation failed, and a link past
+//!   the table's end indexes past it.
 //!
 //! So every part is unpacked once here, counting bytes, and an ODS
 //! `content.xml` must be well-formed XML whose cells and text, counted from
-//! the repeat attributes the way calamine expands them, stay within bounds,
-//! all before calamine opens the file. This module does not read values or
-//! judge whether a file is a valid workbook: an archive or part it cannot
-//! unpack is left to calamine, which reports it.
+//! the repeat attributes the way calamine expands them, stay within bounds;
+//! an xls file's sector tables must link every chain to an end, without a
+//! loop or a link past the table. All before calamine opens the file. This
+//! module does not read values or judge whether a file is a valid workbook:
+//! an archive or part it cannot unpack is left to calamine, which reports it.
 
 use crate::error::{ChartError, Result};
 use crate::sheet::MAX_CELLS;
@@ -38,9 +45,102 @@ const ODS_MAX_COLUMNS: u64 = 16_384;
 const ODS_MAX_ROWS: u64 = 1_048_576;
 
 /// Checks the workbook at `path` if it is a zip container (xlsx, xlsm, xlsb,
-/// ods); other files pass unchecked.
+/// ods) or a compound file (xls); other files pass unchecked.
 pub fn check(path: &Path) -> Result<()> {
+    if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("xls")) {
+        let bytes = std::fs::read(path).map_err(|e| ChartError::Io(Location::file(path), e))?;
+        return check_compound_file(&bytes).map_err(|m| ChartError::Format(Location::file(path), m));
+    }
     check_within(path, MAX_UNPACKED_BYTES)
+}
+
+/// CFB sector ids from here up are markers (free, end of chain, table
+/// sectors), not links.
+const CFB_MAX_LINK: u32 = 0xFFFF_FFFA;
+const CFB_END_OF_CHAIN: u32 = 0xFFFF_FFFE;
+
+/// Checks a compound file's sector table (FAT) and mini sector table: every
+/// link must stay inside its table and every chain must end, so that calamine,
+/// which follows a chain as long as it goes on, reads at most the file.
+/// A file that is not a compound file passes (calamine reports it).
+fn check_compound_file(bytes: &[u8]) -> std::result::Result<(), String> {
+    const SIGNATURE: [u8; 8] = [0xD0, 0xCF, 0x11, 0xE0, 0xA1, 0xB1, 0x1A, 0xE1];
+    if bytes.len() < 512 || bytes[..8] != SIGNATURE {
+        return Ok(());
+    }
+    let u16_at = |o: usize| u16::from_le_bytes([bytes[o], bytes[o + 1]]);
+    let u32_at = |b: &[u8], o: usize| u32::from_le_bytes([b[o], b[o + 1], b[o + 2], b[o + 3]]);
+    let sector_size = match u16_at(30) {
+        9 => 512,
+        12 => 4096,
+        // calamine refuses other sizes itself.
+        _ => return Ok(()),
+    };
+    let sectors = bytes.len() / sector_size;
+    let sector = |id: u32| -> Option<&[u8]> {
+        let start = (id as usize).checked_add(1)?.checked_mul(sector_size)?;
+        bytes.get(start..start + sector_size)
+    };
+    // The table's own sectors: 109 in the header, then a chain of DIFAT
+    // sectors (each a list and a link to the next), bounded by the file.
+    let mut fat_sectors: Vec<u32> = (0..109).map(|k| u32_at(bytes, 76 + 4 * k)).collect();
+    let mut difat = u32_at(bytes, 68);
+    let mut walked = 0;
+    while difat < CFB_MAX_LINK {
+        walked += 1;
+        let Some(s) = sector(difat).filter(|_| walked <= sectors) else {
+            return Err("its DIFAT chain loops or leaves the file; the workbook is damaged".into());
+        };
+        let n = sector_size / 4;
+        fat_sectors.extend((0..n - 1).map(|k| u32_at(s, 4 * k)));
+        difat = u32_at(s, 4 * (n - 1));
+    }
+    let fat: Vec<u32> = fat_sectors
+        .iter()
+        .filter(|id| **id < CFB_MAX_LINK)
+        .filter_map(|id| sector(*id))
+        .flat_map(|s| (0..sector_size / 4).map(move |k| u32_at(s, 4 * k)))
+        .collect();
+    check_chains(&fat).map_err(|m| format!("its sector table {m}; the workbook is damaged"))?;
+    // The mini sector table is a stream itself, a chain in the table above.
+    let mut mini = Vec::new();
+    let mut at = u32_at(bytes, 60);
+    while at < CFB_MAX_LINK {
+        let Some(s) = sector(at) else { break };
+        mini.extend((0..sector_size / 4).map(|k| u32_at(s, 4 * k)));
+        at = fat.get(at as usize).copied().unwrap_or(CFB_END_OF_CHAIN);
+    }
+    check_chains(&mini).map_err(|m| format!("its mini sector table {m}; the workbook is damaged"))
+}
+
+/// Every link of `table` (entry k: the sector after k) stays inside it and
+/// no chain comes back on itself.
+fn check_chains(table: &[u32]) -> std::result::Result<(), String> {
+    // 0: not seen, 1: on the chain being walked, 2: leads to an end.
+    let mut state = vec![0u8; table.len()];
+    let mut path = Vec::new();
+    for start in 0..table.len() {
+        let mut at = start;
+        while state[at] == 0 {
+            state[at] = 1;
+            path.push(at);
+            let next = table[at];
+            if next >= CFB_MAX_LINK {
+                break;
+            }
+            if next as usize >= table.len() {
+                return Err(format!("links sector {at} to {next}, past its {} entries", table.len()));
+            }
+            at = next as usize;
+            if state[at] == 1 {
+                return Err(format!("links sector {at} back into its own chain (a loop)"));
+            }
+        }
+        for k in path.drain(..) {
+            state[k] = 2;
+        }
+    }
+    Ok(())
 }
 
 fn check_within(path: &Path, max_unpacked_bytes: u64) -> Result<()> {
@@ -522,6 +622,44 @@ mod tests {
         ods(&path, spaces);
         let e = crate::sheet::read_workbook(&path).unwrap_err().to_string();
         assert!(e.contains("repeats its text into more than"), "{e}");
+    }
+
+    /// `fixtures/charts/chart.xls` (xlwt's BIFF8 in a compound file).
+    fn xls_fixture() -> Vec<u8> {
+        std::fs::read(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/charts/chart.xls")).unwrap()
+    }
+
+    #[test]
+    fn an_xls_chart_is_read() {
+        let d = tempfile::tempdir().unwrap();
+        let path = d.path().join("chart.xls");
+        std::fs::write(&path, xls_fixture()).unwrap();
+        let (configs, _) = crate::read_chart(&path, &crate::Settings::default()).unwrap();
+        assert_eq!(configs[0].boom_lengths_m, vec![20.0, 30.0, 40.0]);
+        assert_eq!(configs[0].radii_m, vec![3.0, 5.0, 8.0, 12.0]);
+    }
+
+    /// An xls file whose directory's sector names itself as the next one made
+    /// calamine grow a buffer until the allocation failed (a 1,536-byte file
+    /// asked for 4 GB); one whose chain links past the sector table would
+    /// index past it. Both are refused before calamine opens them.
+    #[test]
+    fn an_xls_file_whose_sector_chains_loop_or_leave_the_table_is_refused() {
+        let d = tempfile::tempdir().unwrap();
+        let path = d.path().join("chart.xls");
+        let good = xls_fixture();
+        let u32_at = |o: usize| u32::from_le_bytes(good[o..o + 4].try_into().unwrap());
+        assert_eq!(u16::from_le_bytes([good[30], good[31]]), 9, "512-byte sectors");
+        // The directory's entry in the first sector of the table.
+        let (fat0, dir) = (u32_at(76) as usize, u32_at(48) as usize);
+        let entry = (fat0 + 1) * 512 + 4 * dir;
+        for (next, why) in [(dir as u32, "back into its own chain (a loop)"), (100_000, "past its 128 entries")] {
+            let mut bad = good.clone();
+            bad[entry..entry + 4].copy_from_slice(&next.to_le_bytes());
+            std::fs::write(&path, &bad).unwrap();
+            let e = crate::sheet::read_workbook(&path).unwrap_err().to_string();
+            assert!(e.contains("chart.xls: its sector table links sector") && e.contains(why), "{e}");
+        }
     }
 
     /// A part that unpacks past the limit is refused before calamine reads it.
