@@ -76,7 +76,8 @@ fn check_compound_file(bytes: &[u8]) -> std::result::Result<(), String> {
         // calamine refuses other sizes itself.
         _ => return Ok(()),
     };
-    let sectors = bytes.len() / sector_size;
+    // Sectors after the header.
+    let sectors = (bytes.len() / sector_size).saturating_sub(1);
     let sector = |id: u32| -> Option<&[u8]> {
         let start = (id as usize).checked_add(1)?.checked_mul(sector_size)?;
         bytes.get(start..start + sector_size)
@@ -95,9 +96,17 @@ fn check_compound_file(bytes: &[u8]) -> std::result::Result<(), String> {
         fat_sectors.extend((0..n - 1).map(|k| u32_at(s, 4 * k)));
         difat = u32_at(s, 4 * (n - 1));
     }
+    // calamine reads every sector listed, however often it is listed: a
+    // table of more sectors than the file has would be made of repeats.
+    fat_sectors.retain(|id| *id < CFB_MAX_LINK);
+    if fat_sectors.len() > sectors {
+        return Err(format!(
+            "it lists {} sectors of its sector table, more than the file's {sectors}; the workbook is damaged",
+            fat_sectors.len()
+        ));
+    }
     let fat: Vec<u32> = fat_sectors
         .iter()
-        .filter(|id| **id < CFB_MAX_LINK)
         .filter_map(|id| sector(*id))
         .flat_map(|s| (0..sector_size / 4).map(move |k| u32_at(s, 4 * k)))
         .collect();
@@ -642,7 +651,9 @@ mod tests {
     /// An xls file whose directory's sector names itself as the next one made
     /// calamine grow a buffer until the allocation failed (a 1,536-byte file
     /// asked for 4 GB); one whose chain links past the sector table would
-    /// index past it. Both are refused before calamine opens them.
+    /// index past it; one listing a sector of its table many times makes
+    /// calamine read it as many times. All are refused before calamine opens
+    /// them.
     #[test]
     fn an_xls_file_whose_sector_chains_loop_or_leave_the_table_is_refused() {
         let d = tempfile::tempdir().unwrap();
@@ -660,6 +671,14 @@ mod tests {
             let e = crate::sheet::read_workbook(&path).unwrap_err().to_string();
             assert!(e.contains("chart.xls: its sector table links sector") && e.contains(why), "{e}");
         }
+        // A table listing one sector 109 times: calamine reads each listing.
+        let mut bad = good.clone();
+        for k in 1..109 {
+            bad[76 + 4 * k..80 + 4 * k].copy_from_slice(&(fat0 as u32).to_le_bytes());
+        }
+        std::fs::write(&path, &bad).unwrap();
+        let e = crate::sheet::read_workbook(&path).unwrap_err().to_string();
+        assert!(e.contains("it lists 109 sectors of its sector table, more than the file's 10"), "{e}");
     }
 
     /// A part that unpacks past the limit is refused before calamine reads it.
