@@ -681,6 +681,30 @@ mod tests {
         assert!(e.contains("it lists 109 sectors of its sector table, more than the file's 10"), "{e}");
     }
 
+    /// Found by the chart_workbook fuzz target (calamine panicked on it): a
+    /// compound file whose DIFAT chain leads past the file's end, refused by
+    /// the container check. And a chain that links, inside its table, to a
+    /// sector past the file's end: calamine slices its buffer from that
+    /// sector's start to the end of what it read, and panics; the guard around
+    /// calamine turns that into an error naming the file.
+    #[test]
+    fn an_xls_file_cut_short_is_refused() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/charts/damaged-difat.xls");
+        let e = crate::sheet::read_workbook(&path).unwrap_err().to_string();
+        assert!(e.contains("damaged-difat.xls: its DIFAT chain loops or leaves the file"), "{e}");
+        let d = tempfile::tempdir().unwrap();
+        let path = d.path().join("chart.xls");
+        let mut bad = xls_fixture();
+        let u32_at = |o: usize| u32::from_le_bytes(bad[o..o + 4].try_into().unwrap());
+        let (fat0, dir) = (u32_at(76) as usize, u32_at(48) as usize);
+        let past_the_end = (bad.len() / 512) as u32;
+        let entry = (fat0 + 1) * 512 + 4 * dir;
+        bad[entry..entry + 4].copy_from_slice(&past_the_end.to_le_bytes());
+        std::fs::write(&path, &bad).unwrap();
+        let e = crate::sheet::read_workbook(&path).unwrap_err().to_string();
+        assert!(e.contains("chart.xls: the workbook reader (calamine) failed on damaged data"), "{e}");
+    }
+
     /// A part that unpacks past the limit is refused before calamine reads it.
     #[test]
     fn a_workbook_unpacking_past_the_limit_is_refused() {

@@ -90,8 +90,17 @@ fn from_ref(d: &DataRef) -> Option<Val> {
 
 /// Reads every sheet of a workbook.
 pub fn read_workbook(path: &Path) -> Result<Vec<Sheet>> {
-    let bad = |msg: String| ChartError::Format(Location::file(path), msg);
     crate::container::check(path)?;
+    // calamine panics on some damaged files (a compound file cut short inside
+    // a sector, found by the chart_workbook fuzz target); the guard turns
+    // that into an error naming the file. What would hang it or exhaust
+    // memory is refused by the container check above, as no guard can.
+    liftplan_core::guard::run_reader("the workbook reader (calamine)", || read_sheets(path))
+        .unwrap_or_else(|why| Err(ChartError::Format(Location::file(path), why)))
+}
+
+fn read_sheets(path: &Path) -> Result<Vec<Sheet>> {
+    let bad = |msg: String| ChartError::Format(Location::file(path), msg);
     let mut wb = calamine::open_workbook_auto(path).map_err(|e| bad(format!("cannot open the workbook: {e}")))?;
     let names = wb.sheet_names().to_vec();
     let mut out = Vec::new();
