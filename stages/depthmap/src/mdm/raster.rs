@@ -230,7 +230,7 @@ fn triangle_rows(t: &[[f64; 3]; 3], spec: &GridSpec, mut row: impl FnMut(&Poly, 
     }
 }
 
-/// A mesh's triangles in grid-local coordinates (as [`triangle_raws`] takes them).
+/// Triangle `t` of a mesh in grid-local coordinates.
 fn local_triangle(m: &TriMesh, spec: &GridSpec, t: usize) -> [[f64; 3]; 3] {
     let p = |k: usize| {
         let v = m.vertices[m.triangles[t][k] as usize];
@@ -285,14 +285,9 @@ pub fn mesh_raws(m: &TriMesh, spec: &GridSpec, obj_base: u32) -> Vec<Vec<Raw>> {
 /// (object id `obj_base + group`) and, for convex parts, the part.
 #[inline]
 pub(crate) fn triangle_raws(m: &TriMesh, t: usize, spec: &GridSpec, obj_base: u32, mut emit: impl FnMut(Raw)) {
-    let tri = m.triangles[t];
-    let pt = |k: usize| {
-        let p = m.vertices[tri[k] as usize];
-        [p[0] - spec.x0, p[1] - spec.y0, p[2]]
-    };
     let part_idx = m.part_of[t] as usize;
     let part = &m.parts[part_idx];
     let obj = obj_base + part.group;
     let pk = if part.convex_solid { part_idx as u32 + 1 } else { 0 };
-    triangle_cells(&[pt(0), pt(1), pt(2)], spec, |cell, zlo, zhi| emit(Raw { cell, zlo, zhi, obj, part: pk }));
+    triangle_cells(&local_triangle(m, spec, t), spec, |cell, zlo, zhi| emit(Raw { cell, zlo, zhi, obj, part: pk }));
 }
