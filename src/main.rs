@@ -202,6 +202,9 @@ fn print_report(rep: &pipeline::RunReport, json: bool, progress: &Progress) {
 }
 
 fn real_main() -> Result<ExitCode> {
+    // A third-party reader's panic on a damaged file is caught and reported
+    // as that file's error; do not print it as if the program had crashed.
+    liftplan_core::guard::quiet_caught_panics();
     let cli = Cli::parse();
     let level = match (cli.quiet, cli.verbose) {
         (true, _) => tracing::Level::ERROR,

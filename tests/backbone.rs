@@ -198,6 +198,19 @@ fn inspect_scan_prints_summary_json() {
     assert!(!o.status.success());
 }
 
+/// A damaged file that makes a third-party reader panic (the gltf crate, on
+/// this fixture) is one error naming the file, not a crash report followed by
+/// an error.
+#[test]
+fn a_reader_panic_on_a_damaged_file_reads_as_one_error() {
+    let f = concat!(env!("CARGO_MANIFEST_DIR"), "/fixtures/plant/damaged-accessor.gltf");
+    let o = liftplan(&["inspect", f]);
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("damaged-accessor.gltf") && err.contains("failed on damaged data"), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+}
+
 #[test]
 fn clean_and_version() {
     let t = tempfile::tempdir().unwrap();

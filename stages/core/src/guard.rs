@@ -7,7 +7,36 @@
 //! No check of ours before the call can always tell, so the call is made
 //! through [`run_reader`] and the reader turns the message of a panic into
 //! its own error, naming the file. Our own code must not rely on this: it refuses bad input
-//! with an error. The panic's message is still printed by the panic hook.
+//! with an error.
+//!
+//! A program that installs [`quiet_caught_panics`] (the CLI does) prints
+//! nothing for a panic caught here, so a damaged file reads as one error, not
+//! as a crash followed by an error. That holds for panics on the calling
+//! thread; a reader that works on other threads (the LAZ decompressor's rayon
+//! workers) still has their panics printed, though they are caught just the
+//! same. Panics anywhere else print as before.
+
+use std::cell::Cell;
+
+thread_local! {
+    /// Whether this thread is inside [`catch_panic`].
+    static CATCHING: Cell<bool> = const { Cell::new(false) };
+}
+
+/// Replaces the panic hook with one that stays silent for panics that
+/// [`catch_panic`] catches on the thread it runs on, and hands every other
+/// panic to the hook it replaces. Call once, early (later calls do nothing).
+pub fn quiet_caught_panics() {
+    static ONCE: std::sync::Once = std::sync::Once::new();
+    ONCE.call_once(|| {
+        let previous = std::panic::take_hook();
+        std::panic::set_hook(Box::new(move |info| {
+            if !CATCHING.with(Cell::get) {
+                previous(info);
+            }
+        }));
+    });
+}
 
 /// Runs the third-party reader `what` (e.g. "the PLY reader") as `f`. A panic
 /// inside it becomes the message "`what` failed on damaged data (the panic's
@@ -19,7 +48,10 @@ pub fn run_reader<T>(what: &str, f: impl FnOnce() -> T) -> Result<T, String> {
 
 /// Runs `f`, returning the message of a panic inside it instead of unwinding.
 pub fn catch_panic<T>(f: impl FnOnce() -> T) -> Result<T, String> {
-    std::panic::catch_unwind(std::panic::AssertUnwindSafe(f)).map_err(|payload| {
+    let outer = CATCHING.with(|c| c.replace(true));
+    let caught = std::panic::catch_unwind(std::panic::AssertUnwindSafe(f));
+    CATCHING.with(|c| c.set(outer));
+    caught.map_err(|payload| {
         payload
             .downcast_ref::<&str>()
             .map(|s| s.to_string())
