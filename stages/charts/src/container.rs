@@ -76,6 +76,17 @@ fn check_compound_file(bytes: &[u8]) -> std::result::Result<(), String> {
         // calamine refuses other sizes itself.
         _ => return Ok(()),
     };
+    // calamine reads a sector cut short by the file's end as the bytes there
+    // are, and the same sector read again as padded with zeros, so what it
+    // makes of a file cut short inside a sector depends on the order it reads
+    // things in (the chart_workbook fuzz target found such a file that made it
+    // allocate without end). Whole sectors only.
+    if !bytes.len().is_multiple_of(sector_size) {
+        return Err(format!(
+            "it is cut short: {} bytes is not a whole number of {sector_size}-byte sectors; the workbook is damaged",
+            bytes.len()
+        ));
+    }
     // Sectors after the header.
     let sectors = (bytes.len() / sector_size).saturating_sub(1);
     let sector = |id: u32| -> Option<&[u8]> {
@@ -99,6 +110,11 @@ fn check_compound_file(bytes: &[u8]) -> std::result::Result<(), String> {
     // calamine reads every sector listed, however often it is listed: a
     // table of more sectors than the file has would be made of repeats.
     fat_sectors.retain(|id| *id < CFB_MAX_LINK);
+    if let Some(id) = fat_sectors.iter().find(|id| **id as usize >= sectors) {
+        return Err(format!(
+            "its sector table is said to lie in sector {id}, past the file's {sectors}; the workbook is damaged"
+        ));
+    }
     if fat_sectors.len() > sectors {
         return Err(format!(
             "it lists {} sectors of its sector table, more than the file's {sectors}; the workbook is damaged",
@@ -671,6 +687,18 @@ mod tests {
             let e = crate::sheet::read_workbook(&path).unwrap_err().to_string();
             assert!(e.contains("chart.xls: its sector table links sector") && e.contains(why), "{e}");
         }
+        // The table said to lie past the file's end, and a DIFAT chain leaving
+        // the file.
+        for (offset, why) in [
+            (76, "its sector table is said to lie in sector 1000, past the file's 10"),
+            (68, "its DIFAT chain loops or leaves the file"),
+        ] {
+            let mut bad = good.clone();
+            bad[offset..offset + 4].copy_from_slice(&1000u32.to_le_bytes());
+            std::fs::write(&path, &bad).unwrap();
+            let e = crate::sheet::read_workbook(&path).unwrap_err().to_string();
+            assert!(e.contains(why), "{e}");
+        }
         // A table listing one sector 109 times: calamine reads each listing.
         let mut bad = good.clone();
         for k in 1..109 {
@@ -682,16 +710,21 @@ mod tests {
     }
 
     /// Found by the chart_workbook fuzz target (calamine panicked on it): a
-    /// compound file whose DIFAT chain leads past the file's end, refused by
-    /// the container check. And a chain that links, inside its table, to a
+    /// compound file cut short, refused by the container check. And a chain that links, inside its table, to a
     /// sector past the file's end: calamine slices its buffer from that
     /// sector's start to the end of what it read, and panics; the guard around
     /// calamine turns that into an error naming the file.
+    ///
+    /// Also found by it: a file whose sector table lies in its last sector,
+    /// cut short. calamine read the part there and, for sectors past the end,
+    /// zeros, in a chain that never ended, until the allocation failed.
     #[test]
     fn an_xls_file_cut_short_is_refused() {
-        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/charts/damaged-difat.xls");
-        let e = crate::sheet::read_workbook(&path).unwrap_err().to_string();
-        assert!(e.contains("damaged-difat.xls: its DIFAT chain loops or leaves the file"), "{e}");
+        let fixture = |name: &str| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/charts").join(name);
+        let e = crate::sheet::read_workbook(&fixture("damaged-cut-short.xls")).unwrap_err().to_string();
+        assert!(e.contains("damaged-cut-short.xls: it is cut short: 1897 bytes"), "{e}");
+        let e = crate::sheet::read_workbook(&fixture("damaged-partial-sector.xls")).unwrap_err().to_string();
+        assert!(e.contains("damaged-partial-sector.xls: it is cut short: 5100 bytes"), "{e}");
         let d = tempfile::tempdir().unwrap();
         let path = d.path().join("chart.xls");
         let mut bad = xls_fixture();
