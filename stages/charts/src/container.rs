@@ -649,9 +649,26 @@ mod tests {
         assert!(e.contains("repeats its text into more than"), "{e}");
     }
 
+    fn chart_fixture(name: &str) -> std::path::PathBuf {
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/charts").join(name)
+    }
+
     /// `fixtures/charts/chart.xls` (xlwt's BIFF8 in a compound file).
     fn xls_fixture() -> Vec<u8> {
-        std::fs::read(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/charts/chart.xls")).unwrap()
+        std::fs::read(chart_fixture("chart.xls")).unwrap()
+    }
+
+    /// The xls fixture with its directory's link (the sector after the
+    /// directory's first, in the sector table) set to `next`; and the first
+    /// sector of the table.
+    fn xls_with_directory_link(next: impl FnOnce(u32) -> u32) -> (Vec<u8>, u32) {
+        let mut bytes = xls_fixture();
+        assert_eq!(u16::from_le_bytes([bytes[30], bytes[31]]), 9, "512-byte sectors");
+        let u32_at = |o: usize| u32::from_le_bytes(bytes[o..o + 4].try_into().unwrap());
+        let (fat0, dir) = (u32_at(76), u32_at(48));
+        let entry = (fat0 as usize + 1) * 512 + 4 * dir as usize;
+        bytes[entry..entry + 4].copy_from_slice(&next(dir).to_le_bytes());
+        (bytes, fat0)
     }
 
     #[test]
@@ -674,66 +691,56 @@ mod tests {
     fn an_xls_file_whose_sector_chains_loop_or_leave_the_table_is_refused() {
         let d = tempfile::tempdir().unwrap();
         let path = d.path().join("chart.xls");
-        let good = xls_fixture();
-        let u32_at = |o: usize| u32::from_le_bytes(good[o..o + 4].try_into().unwrap());
-        assert_eq!(u16::from_le_bytes([good[30], good[31]]), 9, "512-byte sectors");
-        // The directory's entry in the first sector of the table.
-        let (fat0, dir) = (u32_at(76) as usize, u32_at(48) as usize);
-        let entry = (fat0 + 1) * 512 + 4 * dir;
-        for (next, why) in [(dir as u32, "back into its own chain (a loop)"), (100_000, "past its 128 entries")] {
-            let mut bad = good.clone();
-            bad[entry..entry + 4].copy_from_slice(&next.to_le_bytes());
-            std::fs::write(&path, &bad).unwrap();
-            let e = crate::sheet::read_workbook(&path).unwrap_err().to_string();
-            assert!(e.contains("chart.xls: its sector table links sector") && e.contains(why), "{e}");
-        }
+        let refusal = |bytes: &[u8]| {
+            std::fs::write(&path, bytes).unwrap();
+            crate::sheet::read_workbook(&path).unwrap_err().to_string()
+        };
+        let (looped, fat0) = xls_with_directory_link(|dir| dir);
+        let e = refusal(&looped);
+        assert!(e.contains("chart.xls: its sector table links sector") && e.contains("back into its own chain"), "{e}");
+        let e = refusal(&xls_with_directory_link(|_| 100_000).0);
+        assert!(e.contains("links sector") && e.contains("to 100000, past its 128 entries"), "{e}");
         // The table said to lie past the file's end, and a DIFAT chain leaving
         // the file.
         for (offset, why) in [
             (76, "its sector table is said to lie in sector 1000, past the file's 10"),
             (68, "its DIFAT chain loops or leaves the file"),
         ] {
-            let mut bad = good.clone();
+            let mut bad = xls_fixture();
             bad[offset..offset + 4].copy_from_slice(&1000u32.to_le_bytes());
-            std::fs::write(&path, &bad).unwrap();
-            let e = crate::sheet::read_workbook(&path).unwrap_err().to_string();
+            let e = refusal(&bad);
             assert!(e.contains(why), "{e}");
         }
         // A table listing one sector 109 times: calamine reads each listing.
-        let mut bad = good.clone();
+        let mut bad = xls_fixture();
         for k in 1..109 {
-            bad[76 + 4 * k..80 + 4 * k].copy_from_slice(&(fat0 as u32).to_le_bytes());
+            bad[76 + 4 * k..80 + 4 * k].copy_from_slice(&fat0.to_le_bytes());
         }
-        std::fs::write(&path, &bad).unwrap();
-        let e = crate::sheet::read_workbook(&path).unwrap_err().to_string();
+        let e = refusal(&bad);
         assert!(e.contains("it lists 109 sectors of its sector table, more than the file's 10"), "{e}");
     }
 
-    /// Found by the chart_workbook fuzz target (calamine panicked on it): a
-    /// compound file cut short, refused by the container check. And a chain that links, inside its table, to a
-    /// sector past the file's end: calamine slices its buffer from that
-    /// sector's start to the end of what it read, and panics; the guard around
-    /// calamine turns that into an error naming the file.
+    /// Found by the chart_workbook fuzz target:
+    /// - a compound file cut short inside a sector (calamine panicked on it);
+    /// - one whose sector table lies in its last sector, cut short: calamine
+    ///   read the part there and, for sectors past the end, zeros, in a chain
+    ///   that never ended, until the allocation failed.
     ///
-    /// Also found by it: a file whose sector table lies in its last sector,
-    /// cut short. calamine read the part there and, for sectors past the end,
-    /// zeros, in a chain that never ended, until the allocation failed.
+    /// Both are refused by the container check. A chain that links, inside
+    /// its table, to a sector past the file's end still makes calamine slice
+    /// its buffer from that sector's start to the end of what it read, and
+    /// panic; the guard around calamine turns that into an error naming the
+    /// file.
     #[test]
     fn an_xls_file_cut_short_is_refused() {
-        let fixture = |name: &str| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/charts").join(name);
-        let e = crate::sheet::read_workbook(&fixture("damaged-cut-short.xls")).unwrap_err().to_string();
+        let e = crate::sheet::read_workbook(&chart_fixture("damaged-cut-short.xls")).unwrap_err().to_string();
         assert!(e.contains("damaged-cut-short.xls: it is cut short: 1897 bytes"), "{e}");
-        let e = crate::sheet::read_workbook(&fixture("damaged-partial-sector.xls")).unwrap_err().to_string();
+        let e = crate::sheet::read_workbook(&chart_fixture("damaged-partial-sector.xls")).unwrap_err().to_string();
         assert!(e.contains("damaged-partial-sector.xls: it is cut short: 5100 bytes"), "{e}");
         let d = tempfile::tempdir().unwrap();
         let path = d.path().join("chart.xls");
-        let mut bad = xls_fixture();
-        let u32_at = |o: usize| u32::from_le_bytes(bad[o..o + 4].try_into().unwrap());
-        let (fat0, dir) = (u32_at(76) as usize, u32_at(48) as usize);
-        let past_the_end = (bad.len() / 512) as u32;
-        let entry = (fat0 + 1) * 512 + 4 * dir;
-        bad[entry..entry + 4].copy_from_slice(&past_the_end.to_le_bytes());
-        std::fs::write(&path, &bad).unwrap();
+        let sectors_in_file = (xls_fixture().len() / 512) as u32;
+        std::fs::write(&path, xls_with_directory_link(|_| sectors_in_file).0).unwrap();
         let e = crate::sheet::read_workbook(&path).unwrap_err().to_string();
         assert!(e.contains("chart.xls: the workbook reader (calamine) failed on damaged data"), "{e}");
     }
