@@ -135,7 +135,153 @@ fn check_compound_file(bytes: &[u8]) -> std::result::Result<(), String> {
         mini.extend((0..sector_size / 4).map(|k| u32_at(s, 4 * k)));
         at = fat.get(at as usize).copied().unwrap_or(CFB_END_OF_CHAIN);
     }
-    check_chains(&mini).map_err(|m| format!("its mini sector table {m}; the workbook is damaged"))
+    check_chains(&mini).map_err(|m| format!("its mini sector table {m}; the workbook is damaged"))?;
+    let file = CompoundFile { bytes, sector_size, fat, mini };
+    check_xls_used_ranges(&file).map_err(|m| format!("{m}; the workbook is damaged"))
+}
+
+/// A compound file whose sector tables were checked (no loops, no links past
+/// them), so that every chain ends.
+struct CompoundFile<'a> {
+    bytes: &'a [u8],
+    sector_size: usize,
+    fat: Vec<u32>,
+    mini: Vec<u32>,
+}
+
+impl CompoundFile<'_> {
+    const MINI_SECTOR: usize = 64;
+    /// Streams shorter than this lie in the mini stream (calamine's cut-off).
+    const MINI_CUTOFF: usize = 4096;
+
+    fn sector(&self, id: u32) -> Option<&[u8]> {
+        let start = (id as usize).checked_add(1)?.checked_mul(self.sector_size)?;
+        self.bytes.get(start..start + self.sector_size)
+    }
+
+    /// The first `len` bytes of the chain from `start`, read as calamine
+    /// reads them. A chain that runs into a sector the file does not have is
+    /// an error: calamine would read it as zeros or as whatever follows.
+    fn chain(&self, start: u32, len: usize) -> std::result::Result<Vec<u8>, String> {
+        let mut out = Vec::new();
+        let mut at = start;
+        while at != CFB_END_OF_CHAIN && out.len() < len {
+            let s = self.sector(at).ok_or_else(|| format!("a stream runs into sector {at}, past the file's end"))?;
+            out.extend_from_slice(&s[..s.len().min(len - out.len())]);
+            // A link past the table panics calamine; its guard reports that.
+            at = self.fat.get(at as usize).copied().unwrap_or(CFB_END_OF_CHAIN);
+        }
+        Ok(out)
+    }
+
+    /// The same for a chain of mini sectors in `mini_stream`.
+    fn mini_chain(&self, mini_stream: &[u8], start: u32, len: usize) -> std::result::Result<Vec<u8>, String> {
+        let mut out = Vec::new();
+        let mut at = start;
+        while at != CFB_END_OF_CHAIN && out.len() < len {
+            let from = at as usize * Self::MINI_SECTOR;
+            let s = mini_stream
+                .get(from..from + Self::MINI_SECTOR)
+                .ok_or_else(|| format!("a stream runs into mini sector {at}, past the mini stream's end"))?;
+            out.extend_from_slice(&s[..s.len().min(len - out.len())]);
+            at = self.mini.get(at as usize).copied().unwrap_or(CFB_END_OF_CHAIN);
+        }
+        Ok(out)
+    }
+
+    /// The stream named `name` (ASCII, any case), as calamine finds it: the
+    /// first directory entry of that name.
+    fn stream(&self, dir: &[u8], name: &str) -> std::result::Result<Option<Vec<u8>>, String> {
+        let entries: Vec<&[u8]> = dir.chunks_exact(128).collect();
+        let entry_name = |e: &[u8]| -> Vec<u8> {
+            let units: Vec<u16> = e[..64].chunks_exact(2).map(|c| u16::from_le_bytes([c[0], c[1]])).collect();
+            String::from_utf16_lossy(&units).bytes().take_while(|b| *b != 0).collect()
+        };
+        let Some(e) = entries.iter().find(|e| entry_name(e).eq_ignore_ascii_case(name.as_bytes())) else {
+            return Ok(None);
+        };
+        let start = u32::from_le_bytes([e[116], e[117], e[118], e[119]]);
+        let len = if self.sector_size == 512 {
+            u32::from_le_bytes([e[120], e[121], e[122], e[123]]) as usize
+        } else {
+            u64::from_le_bytes(e[120..128].try_into().unwrap_or([0; 8])) as usize
+        };
+        if len >= Self::MINI_CUTOFF {
+            return self.chain(start, len).map(Some);
+        }
+        // The mini stream is the root entry's stream.
+        let root = entries[0];
+        let root_start = u32::from_le_bytes([root[116], root[117], root[118], root[119]]);
+        let root_len = u32::from_le_bytes([root[120], root[121], root[122], root[123]]) as usize;
+        let mini_stream = self.chain(root_start, root_len)?;
+        self.mini_chain(&mini_stream, start, len).map(Some)
+    }
+}
+
+/// The used ranges (DIMENSIONS records) of an xls file's sheets, which
+/// calamine reserves cells for before it reads any: a DIMENSIONS record of
+/// 14 bytes claiming four billion rows made it ask for 687 GB (found by the
+/// chart_workbook fuzz target). Each must be within [`MAX_CELLS`] cells, as
+/// calamine computes them (wrapping, as its release build does). The records
+/// are looked for where calamine reads them: the workbook globals, and each
+/// sheet from the position its BoundSheet8 record gives.
+fn check_xls_used_ranges(file: &CompoundFile) -> std::result::Result<(), String> {
+    let dir_start = u32::from_le_bytes([file.bytes[48], file.bytes[49], file.bytes[50], file.bytes[51]]);
+    let dir = file.chain(dir_start, usize::MAX)?;
+    if dir.len() < 128 {
+        return Ok(());
+    }
+    let stream = match file.stream(&dir, "Workbook")? {
+        Some(s) => s,
+        None => match file.stream(&dir, "Book")? {
+            Some(s) => s,
+            None => return Ok(()),
+        },
+    };
+    let mut sheets = Vec::new();
+    check_records(&stream, 0, &mut sheets)?;
+    for pos in sheets {
+        check_records(&stream, pos, &mut Vec::new())?;
+    }
+    Ok(())
+}
+
+/// Walks BIFF records from `pos`: refuses a used range over [`MAX_CELLS`]
+/// cells and collects BoundSheet8 positions into `sheets`.
+fn check_records(stream: &[u8], pos: usize, sheets: &mut Vec<usize>) -> std::result::Result<(), String> {
+    let mut rest = stream.get(pos..).unwrap_or_default();
+    let u16_at = |b: &[u8], o: usize| u16::from_le_bytes([b[o], b[o + 1]]) as u32;
+    let u32_at = |b: &[u8], o: usize| u32::from_le_bytes([b[o], b[o + 1], b[o + 2], b[o + 3]]);
+    while rest.len() >= 4 {
+        let (typ, len) = (u16_at(rest, 0), u16_at(rest, 2) as usize);
+        let Some(data) = rest.get(4..4 + len) else { break };
+        rest = &rest[4 + len..];
+        match (typ, len) {
+            (0x0085, 4..) => sheets.push(u32_at(data, 0) as usize),
+            (0x0200, 10 | 14 | 16) => {
+                let (rf, rl, cf, cl) = if len == 10 {
+                    (u16_at(data, 0), u16_at(data, 2), u16_at(data, 4), u16_at(data, 6))
+                } else {
+                    (u32_at(data, 0), u32_at(data, 4), u16_at(data, 8), u16_at(data, 10))
+                };
+                let cf = if 0xFF < cf || cl < cf { 0 } else { cf };
+                let (rows, cols) = if rl >= 1 && cl >= 1 {
+                    ((rl - 1).wrapping_sub(rf).wrapping_add(1), (cl - 1).wrapping_sub(cf).wrapping_add(1))
+                } else {
+                    (1, 1)
+                };
+                let cells = rows as u64 * cols as u64;
+                if cells > MAX_CELLS as u64 {
+                    return Err(format!(
+                        "a sheet's used range (its DIMENSIONS record) spans {rows} rows x {cols} columns, more than \
+                         the {MAX_CELLS} cells a load chart may have"
+                    ));
+                }
+            }
+            _ => {}
+        }
+    }
+    Ok(())
 }
 
 /// Every link of `table` (entry k: the sector after k) stays inside it and
@@ -720,17 +866,40 @@ mod tests {
         assert!(e.contains("it lists 109 sectors of its sector table, more than the file's 10"), "{e}");
     }
 
+    /// Found by the chart_workbook fuzz target: an xls sheet whose used range
+    /// (DIMENSIONS record, 14 bytes) ends before it starts, which calamine's
+    /// wrapping arithmetic turns into four billion rows, and reserves cells
+    /// for: 687 GB, an allocation failure. And the fixture's own used range
+    /// stretched to a million rows.
+    #[test]
+    fn an_xls_sheet_whose_used_range_is_too_large_is_refused() {
+        let e = crate::sheet::read_workbook(&chart_fixture("damaged-dimensions.xls")).unwrap_err().to_string();
+        assert!(
+            e.contains("damaged-dimensions.xls: a sheet's used range (its DIMENSIONS record) spans 4294967150 rows"),
+            "{e}"
+        );
+        let d = tempfile::tempdir().unwrap();
+        let path = d.path().join("chart.xls");
+        let mut bad = xls_fixture();
+        // DIMENSIONS: type 0x0200, 14 bytes: first row, last row + 1 (u32),
+        // first column, last column + 1 (u16).
+        let at = bad.windows(4).position(|w| w == [0x00, 0x02, 0x0E, 0x00]).unwrap() + 4;
+        bad[at + 4..at + 8].copy_from_slice(&1_000_000u32.to_le_bytes());
+        std::fs::write(&path, &bad).unwrap();
+        let e = crate::sheet::read_workbook(&path).unwrap_err().to_string();
+        assert!(e.contains("spans 1000000 rows x 4 columns, more than the 2000000 cells"), "{e}");
+    }
+
     /// Found by the chart_workbook fuzz target:
     /// - a compound file cut short inside a sector (calamine panicked on it);
     /// - one whose sector table lies in its last sector, cut short: calamine
     ///   read the part there and, for sectors past the end, zeros, in a chain
     ///   that never ended, until the allocation failed.
     ///
-    /// Both are refused by the container check. A chain that links, inside
-    /// its table, to a sector past the file's end still makes calamine slice
-    /// its buffer from that sector's start to the end of what it read, and
-    /// panic; the guard around calamine turns that into an error naming the
-    /// file.
+    /// Both are refused by the container check. A sheet whose BoundSheet8
+    /// record places it past the end of the workbook stream still makes
+    /// calamine slice past it and panic; the guard around calamine turns that
+    /// into an error naming the file.
     #[test]
     fn an_xls_file_cut_short_is_refused() {
         let e = crate::sheet::read_workbook(&chart_fixture("damaged-cut-short.xls")).unwrap_err().to_string();
@@ -739,8 +908,13 @@ mod tests {
         assert!(e.contains("damaged-partial-sector.xls: it is cut short: 5100 bytes"), "{e}");
         let d = tempfile::tempdir().unwrap();
         let path = d.path().join("chart.xls");
-        let sectors_in_file = (xls_fixture().len() / 512) as u32;
-        std::fs::write(&path, xls_with_directory_link(|_| sectors_in_file).0).unwrap();
+        let mut bad = xls_fixture();
+        // The fixture's BoundSheet8 record (type 0x0085, 17 bytes: the sheet's
+        // position, then its state, type and name).
+        let at = bad.windows(4).position(|w| w == [0x85, 0x00, 0x11, 0x00]).unwrap() + 4;
+        assert_eq!(bad[at..at + 4], 1024u32.to_le_bytes());
+        bad[at..at + 4].copy_from_slice(&0x00FF_FFFFu32.to_le_bytes());
+        std::fs::write(&path, &bad).unwrap();
         let e = crate::sheet::read_workbook(&path).unwrap_err().to_string();
         assert!(e.contains("chart.xls: the workbook reader (calamine) failed on damaged data"), "{e}");
     }
