@@ -18,16 +18,20 @@
 //! - an xls file is a compound file whose streams are chains of sectors
 //!   linked by a table in the file. calamine follows a chain until it ends:
 //!   a 1,536-byte xls file whose directory's sector names itself as the next
-//!   one made it grow a buffer until the allocation failed, and a link past
-//!   the table's end indexes past it.
+//!   one made it grow a buffer until the allocation failed, and a file cut
+//!   short inside a sector did the same (found by the fuzz target);
+//! - calamine reserves the cells an xls sheet's used range (DIMENSIONS
+//!   record) claims before reading any: one whose last row came before its
+//!   first asked for 687 GB (found by the fuzz target).
 //!
 //! So every part is unpacked once here, counting bytes, and an ODS
 //! `content.xml` must be well-formed XML whose cells and text, counted from
 //! the repeat attributes the way calamine expands them, stay within bounds;
-//! an xls file's sector tables must link every chain to an end, without a
-//! loop or a link past the table. All before calamine opens the file. This
-//! module does not read values or judge whether a file is a valid workbook:
-//! an archive or part it cannot unpack is left to calamine, which reports it.
+//! an xls file must be whole sectors, its sector tables must link every chain
+//! to an end inside the file, and its sheets' used ranges must stay within
+//! bounds. All before calamine opens the file. This module does not read
+//! values or judge whether a file is a valid workbook: an archive or part it
+//! cannot unpack is left to calamine, which reports it.
 
 use crate::error::{ChartError, Result};
 use crate::sheet::MAX_CELLS;
