@@ -49,14 +49,20 @@ const ODS_MAX_COLUMNS: u64 = 16_384;
 const ODS_MAX_ROWS: u64 = 1_048_576;
 
 /// Checks the workbook at `path` if it is a zip container (xlsx, xlsm, xlsb,
-/// ods) or a compound file (xls); other files pass unchecked.
+/// ods) or a compound file; other files pass unchecked. A compound file is
+/// checked whatever its name: calamine opens one named xlsx or xlsb too, to
+/// see whether it is an encrypted workbook (found by the fuzz target).
 pub fn check(path: &Path) -> Result<()> {
-    if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("xls")) {
+    let mut head = [0u8; 8];
+    let compound = std::fs::File::open(path).and_then(|mut f| f.read_exact(&mut head)).is_ok() && head == CFB_SIGNATURE;
+    if compound {
         let bytes = std::fs::read(path).map_err(|e| ChartError::Io(Location::file(path), e))?;
         return check_compound_file(&bytes).map_err(|m| ChartError::Format(Location::file(path), m));
     }
     check_within(path, MAX_UNPACKED_BYTES)
 }
+
+const CFB_SIGNATURE: [u8; 8] = [0xD0, 0xCF, 0x11, 0xE0, 0xA1, 0xB1, 0x1A, 0xE1];
 
 /// CFB sector ids from here up are markers (free, end of chain, table
 /// sectors), not links.
@@ -68,8 +74,7 @@ const CFB_END_OF_CHAIN: u32 = 0xFFFF_FFFE;
 /// which follows a chain as long as it goes on, reads at most the file.
 /// A file that is not a compound file passes (calamine reports it).
 fn check_compound_file(bytes: &[u8]) -> std::result::Result<(), String> {
-    const SIGNATURE: [u8; 8] = [0xD0, 0xCF, 0x11, 0xE0, 0xA1, 0xB1, 0x1A, 0xE1];
-    if bytes.len() < 512 || bytes[..8] != SIGNATURE {
+    if bytes.len() < 512 || bytes[..8] != CFB_SIGNATURE {
         return Ok(());
     }
     let u16_at = |o: usize| u16::from_le_bytes([bytes[o], bytes[o + 1]]);
@@ -833,7 +838,8 @@ mod tests {
 
     /// An xls file whose directory's sector names itself as the next one made
     /// calamine grow a buffer until the allocation failed (a 1,536-byte file
-    /// asked for 4 GB); one whose chain links past the sector table would
+    /// asked for 4 GB), and so did one named xlsb; one whose chain links past
+    /// the sector table would
     /// index past it; one listing a sector of its table many times makes
     /// calamine read it as many times. All are refused before calamine opens
     /// them.
@@ -848,6 +854,14 @@ mod tests {
         let (looped, fat0) = xls_with_directory_link(|dir| dir);
         let e = refusal(&looped);
         assert!(e.contains("chart.xls: its sector table links sector") && e.contains("back into its own chain"), "{e}");
+        // calamine opens a compound file named xlsx or xlsb too, to see
+        // whether it is an encrypted workbook (found by the fuzz target).
+        for name in ["chart.xlsx", "chart.xlsb"] {
+            let other = d.path().join(name);
+            std::fs::write(&other, &looped).unwrap();
+            let e = crate::sheet::read_workbook(&other).unwrap_err().to_string();
+            assert!(e.contains(&format!("{name}: its sector table links sector")), "{e}");
+        }
         let e = refusal(&xls_with_directory_link(|_| 100_000).0);
         assert!(e.contains("links sector") && e.contains("to 100000, past its 128 entries"), "{e}");
         // The table said to lie past the file's end, and a DIFAT chain leaving
