@@ -1,0 +1,405 @@
+//! A compound file (the container of xls files, and of encrypted xlsx and
+//! xlsb ones), checked before calamine reads it: whole sectors, sector tables
+//! whose every chain ends inside the file, and sheets' used ranges within
+//! bounds (see [the container module](super)).
+
+use crate::sheet::MAX_CELLS;
+
+pub(super) const SIGNATURE: [u8; 8] = [0xD0, 0xCF, 0x11, 0xE0, 0xA1, 0xB1, 0x1A, 0xE1];
+
+/// CFB sector ids from here up are markers (free, end of chain, table
+/// sectors), not links.
+const CFB_MAX_LINK: u32 = 0xFFFF_FFFA;
+const CFB_END_OF_CHAIN: u32 = 0xFFFF_FFFE;
+
+/// Checks a compound file's sector table (FAT) and mini sector table: every
+/// link must stay inside its table and every chain must end, so that calamine,
+/// which follows a chain as long as it goes on, reads at most the file.
+/// A file that is not a compound file passes (calamine reports it).
+pub(super) fn check(bytes: &[u8]) -> std::result::Result<(), String> {
+    if bytes.len() < 512 || bytes[..8] != SIGNATURE {
+        return Ok(());
+    }
+    let u16_at = |o: usize| u16::from_le_bytes([bytes[o], bytes[o + 1]]);
+    let u32_at = |b: &[u8], o: usize| u32::from_le_bytes([b[o], b[o + 1], b[o + 2], b[o + 3]]);
+    let sector_size = match u16_at(30) {
+        9 => 512,
+        12 => 4096,
+        // calamine refuses other sizes itself.
+        _ => return Ok(()),
+    };
+    // calamine reads a sector cut short by the file's end as the bytes there
+    // are, and the same sector read again as padded with zeros, so what it
+    // makes of a file cut short inside a sector depends on the order it reads
+    // things in (the chart_workbook fuzz target found such a file that made it
+    // allocate without end). Whole sectors only.
+    if !bytes.len().is_multiple_of(sector_size) {
+        return Err(format!(
+            "it is cut short: {} bytes is not a whole number of {sector_size}-byte sectors; the workbook is damaged",
+            bytes.len()
+        ));
+    }
+    // Sectors after the header.
+    let sectors = (bytes.len() / sector_size).saturating_sub(1);
+    let sector = |id: u32| -> Option<&[u8]> {
+        let start = (id as usize).checked_add(1)?.checked_mul(sector_size)?;
+        bytes.get(start..start + sector_size)
+    };
+    // The table's own sectors: 109 in the header, then a chain of DIFAT
+    // sectors (each a list and a link to the next), bounded by the file.
+    let mut fat_sectors: Vec<u32> = (0..109).map(|k| u32_at(bytes, 76 + 4 * k)).collect();
+    let mut difat = u32_at(bytes, 68);
+    let mut walked = 0;
+    while difat < CFB_MAX_LINK {
+        walked += 1;
+        let Some(s) = sector(difat).filter(|_| walked <= sectors) else {
+            return Err("its DIFAT chain loops or leaves the file; the workbook is damaged".into());
+        };
+        let n = sector_size / 4;
+        fat_sectors.extend((0..n - 1).map(|k| u32_at(s, 4 * k)));
+        difat = u32_at(s, 4 * (n - 1));
+    }
+    // calamine reads every sector listed, however often it is listed: a
+    // table of more sectors than the file has would be made of repeats.
+    fat_sectors.retain(|id| *id < CFB_MAX_LINK);
+    if let Some(id) = fat_sectors.iter().find(|id| **id as usize >= sectors) {
+        return Err(format!(
+            "its sector table is said to lie in sector {id}, past the file's {sectors}; the workbook is damaged"
+        ));
+    }
+    if fat_sectors.len() > sectors {
+        return Err(format!(
+            "it lists {} sectors of its sector table, more than the file's {sectors}; the workbook is damaged",
+            fat_sectors.len()
+        ));
+    }
+    let fat: Vec<u32> = fat_sectors
+        .iter()
+        .filter_map(|id| sector(*id))
+        .flat_map(|s| (0..sector_size / 4).map(move |k| u32_at(s, 4 * k)))
+        .collect();
+    check_chains(&fat).map_err(|m| format!("its sector table {m}; the workbook is damaged"))?;
+    // The mini sector table is a stream itself, a chain in the table above.
+    let mut mini = Vec::new();
+    let mut at = u32_at(bytes, 60);
+    while at < CFB_MAX_LINK {
+        let Some(s) = sector(at) else { break };
+        mini.extend((0..sector_size / 4).map(|k| u32_at(s, 4 * k)));
+        at = fat.get(at as usize).copied().unwrap_or(CFB_END_OF_CHAIN);
+    }
+    check_chains(&mini).map_err(|m| format!("its mini sector table {m}; the workbook is damaged"))?;
+    let file = CompoundFile { bytes, sector_size, fat, mini };
+    check_xls_used_ranges(&file).map_err(|m| format!("{m}; the workbook is damaged"))
+}
+
+/// A compound file whose sector tables were checked (no loops, no links past
+/// them), so that every chain ends.
+struct CompoundFile<'a> {
+    bytes: &'a [u8],
+    sector_size: usize,
+    fat: Vec<u32>,
+    mini: Vec<u32>,
+}
+
+impl CompoundFile<'_> {
+    const MINI_SECTOR: usize = 64;
+    /// Streams shorter than this lie in the mini stream (calamine's cut-off).
+    const MINI_CUTOFF: usize = 4096;
+
+    fn sector(&self, id: u32) -> Option<&[u8]> {
+        let start = (id as usize).checked_add(1)?.checked_mul(self.sector_size)?;
+        self.bytes.get(start..start + self.sector_size)
+    }
+
+    /// The first `len` bytes of the chain from `start`, read as calamine
+    /// reads them. A chain that runs into a sector the file does not have is
+    /// an error: calamine would read it as zeros or as whatever follows.
+    fn chain(&self, start: u32, len: usize) -> std::result::Result<Vec<u8>, String> {
+        let mut out = Vec::new();
+        let mut at = start;
+        while at != CFB_END_OF_CHAIN && out.len() < len {
+            let s = self.sector(at).ok_or_else(|| format!("a stream runs into sector {at}, past the file's end"))?;
+            out.extend_from_slice(&s[..s.len().min(len - out.len())]);
+            // A link past the table panics calamine; its guard reports that.
+            at = self.fat.get(at as usize).copied().unwrap_or(CFB_END_OF_CHAIN);
+        }
+        Ok(out)
+    }
+
+    /// The same for a chain of mini sectors in `mini_stream`.
+    fn mini_chain(&self, mini_stream: &[u8], start: u32, len: usize) -> std::result::Result<Vec<u8>, String> {
+        let mut out = Vec::new();
+        let mut at = start;
+        while at != CFB_END_OF_CHAIN && out.len() < len {
+            let from = at as usize * Self::MINI_SECTOR;
+            let s = mini_stream
+                .get(from..from + Self::MINI_SECTOR)
+                .ok_or_else(|| format!("a stream runs into mini sector {at}, past the mini stream's end"))?;
+            out.extend_from_slice(&s[..s.len().min(len - out.len())]);
+            at = self.mini.get(at as usize).copied().unwrap_or(CFB_END_OF_CHAIN);
+        }
+        Ok(out)
+    }
+
+    /// The stream named `name` (ASCII, any case), as calamine finds it: the
+    /// first directory entry of that name.
+    fn stream(&self, dir: &[u8], name: &str) -> std::result::Result<Option<Vec<u8>>, String> {
+        let entries: Vec<&[u8]> = dir.chunks_exact(128).collect();
+        let entry_name = |e: &[u8]| -> Vec<u8> {
+            let units: Vec<u16> = e[..64].chunks_exact(2).map(|c| u16::from_le_bytes([c[0], c[1]])).collect();
+            String::from_utf16_lossy(&units).bytes().take_while(|b| *b != 0).collect()
+        };
+        let Some(e) = entries.iter().find(|e| entry_name(e).eq_ignore_ascii_case(name.as_bytes())) else {
+            return Ok(None);
+        };
+        let start = u32::from_le_bytes([e[116], e[117], e[118], e[119]]);
+        let len = if self.sector_size == 512 {
+            u32::from_le_bytes([e[120], e[121], e[122], e[123]]) as usize
+        } else {
+            u64::from_le_bytes(e[120..128].try_into().unwrap_or([0; 8])) as usize
+        };
+        if len >= Self::MINI_CUTOFF {
+            return self.chain(start, len).map(Some);
+        }
+        // The mini stream is the root entry's stream.
+        let root = entries[0];
+        let root_start = u32::from_le_bytes([root[116], root[117], root[118], root[119]]);
+        let root_len = u32::from_le_bytes([root[120], root[121], root[122], root[123]]) as usize;
+        let mini_stream = self.chain(root_start, root_len)?;
+        self.mini_chain(&mini_stream, start, len).map(Some)
+    }
+}
+
+/// The used ranges (DIMENSIONS records) of an xls file's sheets, which
+/// calamine reserves cells for before it reads any: a DIMENSIONS record of
+/// 14 bytes claiming four billion rows made it ask for 687 GB (found by the
+/// chart_workbook fuzz target). Each must be within [`MAX_CELLS`] cells, as
+/// calamine computes them (wrapping, as its release build does). The records
+/// are looked for where calamine reads them: the workbook globals, and each
+/// sheet from the position its BoundSheet8 record gives.
+fn check_xls_used_ranges(file: &CompoundFile) -> std::result::Result<(), String> {
+    let dir_start = u32::from_le_bytes([file.bytes[48], file.bytes[49], file.bytes[50], file.bytes[51]]);
+    let dir = file.chain(dir_start, usize::MAX)?;
+    if dir.len() < 128 {
+        return Ok(());
+    }
+    let stream = match file.stream(&dir, "Workbook")? {
+        Some(s) => s,
+        None => match file.stream(&dir, "Book")? {
+            Some(s) => s,
+            None => return Ok(()),
+        },
+    };
+    let mut sheets = Vec::new();
+    check_records(&stream, 0, &mut sheets)?;
+    for pos in sheets {
+        check_records(&stream, pos, &mut Vec::new())?;
+    }
+    Ok(())
+}
+
+/// Walks BIFF records from `pos`: refuses a used range over [`MAX_CELLS`]
+/// cells and collects BoundSheet8 positions into `sheets`.
+fn check_records(stream: &[u8], pos: usize, sheets: &mut Vec<usize>) -> std::result::Result<(), String> {
+    let mut rest = stream.get(pos..).unwrap_or_default();
+    let u16_at = |b: &[u8], o: usize| u16::from_le_bytes([b[o], b[o + 1]]) as u32;
+    let u32_at = |b: &[u8], o: usize| u32::from_le_bytes([b[o], b[o + 1], b[o + 2], b[o + 3]]);
+    while rest.len() >= 4 {
+        let (typ, len) = (u16_at(rest, 0), u16_at(rest, 2) as usize);
+        let Some(data) = rest.get(4..4 + len) else { break };
+        rest = &rest[4 + len..];
+        match (typ, len) {
+            (0x0085, 4..) => sheets.push(u32_at(data, 0) as usize),
+            (0x0200, 10 | 14 | 16) => {
+                let (rf, rl, cf, cl) = if len == 10 {
+                    (u16_at(data, 0), u16_at(data, 2), u16_at(data, 4), u16_at(data, 6))
+                } else {
+                    (u32_at(data, 0), u32_at(data, 4), u16_at(data, 8), u16_at(data, 10))
+                };
+                let cf = if 0xFF < cf || cl < cf { 0 } else { cf };
+                let (rows, cols) = if rl >= 1 && cl >= 1 {
+                    ((rl - 1).wrapping_sub(rf).wrapping_add(1), (cl - 1).wrapping_sub(cf).wrapping_add(1))
+                } else {
+                    (1, 1)
+                };
+                let cells = rows as u64 * cols as u64;
+                if cells > MAX_CELLS as u64 {
+                    return Err(format!(
+                        "a sheet's used range (its DIMENSIONS record) spans {rows} rows x {cols} columns, more than \
+                         the {MAX_CELLS} cells a load chart may have"
+                    ));
+                }
+            }
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
+/// Every link of `table` (entry k: the sector after k) stays inside it and
+/// no chain comes back on itself.
+fn check_chains(table: &[u32]) -> std::result::Result<(), String> {
+    // 0: not seen, 1: on the chain being walked, 2: leads to an end.
+    let mut state = vec![0u8; table.len()];
+    let mut path = Vec::new();
+    for start in 0..table.len() {
+        let mut at = start;
+        while state[at] == 0 {
+            state[at] = 1;
+            path.push(at);
+            let next = table[at];
+            if next >= CFB_MAX_LINK {
+                break;
+            }
+            if next as usize >= table.len() {
+                return Err(format!("links sector {at} to {next}, past its {} entries", table.len()));
+            }
+            at = next as usize;
+            if state[at] == 1 {
+                return Err(format!("links sector {at} back into its own chain (a loop)"));
+            }
+        }
+        for k in path.drain(..) {
+            state[k] = 2;
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    fn chart_fixture(name: &str) -> std::path::PathBuf {
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/charts").join(name)
+    }
+
+    /// `fixtures/charts/chart.xls` (xlwt's BIFF8 in a compound file).
+    fn xls_fixture() -> Vec<u8> {
+        std::fs::read(chart_fixture("chart.xls")).unwrap()
+    }
+
+    /// The xls fixture with its directory's link (the sector after the
+    /// directory's first, in the sector table) set to `next`; and the first
+    /// sector of the table.
+    fn xls_with_directory_link(next: impl FnOnce(u32) -> u32) -> (Vec<u8>, u32) {
+        let mut bytes = xls_fixture();
+        assert_eq!(u16::from_le_bytes([bytes[30], bytes[31]]), 9, "512-byte sectors");
+        let u32_at = |o: usize| u32::from_le_bytes(bytes[o..o + 4].try_into().unwrap());
+        let (fat0, dir) = (u32_at(76), u32_at(48));
+        let entry = (fat0 as usize + 1) * 512 + 4 * dir as usize;
+        bytes[entry..entry + 4].copy_from_slice(&next(dir).to_le_bytes());
+        (bytes, fat0)
+    }
+
+    #[test]
+    fn an_xls_chart_is_read() {
+        let d = tempfile::tempdir().unwrap();
+        let path = d.path().join("chart.xls");
+        std::fs::write(&path, xls_fixture()).unwrap();
+        let (configs, _) = crate::read_chart(&path, &crate::Settings::default()).unwrap();
+        assert_eq!(configs[0].boom_lengths_m, vec![20.0, 30.0, 40.0]);
+        assert_eq!(configs[0].radii_m, vec![3.0, 5.0, 8.0, 12.0]);
+    }
+
+    /// An xls file whose directory's sector names itself as the next one made
+    /// calamine grow a buffer until the allocation failed (a 1,536-byte file
+    /// asked for 4 GB), and so did one named xlsb; one whose chain links past
+    /// the sector table would
+    /// index past it; one listing a sector of its table many times makes
+    /// calamine read it as many times. All are refused before calamine opens
+    /// them.
+    #[test]
+    fn an_xls_file_whose_sector_chains_loop_or_leave_the_table_is_refused() {
+        let d = tempfile::tempdir().unwrap();
+        let path = d.path().join("chart.xls");
+        let refusal = |bytes: &[u8]| {
+            std::fs::write(&path, bytes).unwrap();
+            crate::sheet::read_workbook(&path).unwrap_err().to_string()
+        };
+        let (looped, fat0) = xls_with_directory_link(|dir| dir);
+        let e = refusal(&looped);
+        assert!(e.contains("chart.xls: its sector table links sector") && e.contains("back into its own chain"), "{e}");
+        // calamine opens a compound file named xlsx or xlsb too, to see
+        // whether it is an encrypted workbook (found by the fuzz target).
+        for name in ["chart.xlsx", "chart.xlsb"] {
+            let other = d.path().join(name);
+            std::fs::write(&other, &looped).unwrap();
+            let e = crate::sheet::read_workbook(&other).unwrap_err().to_string();
+            assert!(e.contains(&format!("{name}: its sector table links sector")), "{e}");
+        }
+        let e = refusal(&xls_with_directory_link(|_| 100_000).0);
+        assert!(e.contains("links sector") && e.contains("to 100000, past its 128 entries"), "{e}");
+        // The table said to lie past the file's end, and a DIFAT chain leaving
+        // the file.
+        for (offset, why) in [
+            (76, "its sector table is said to lie in sector 1000, past the file's 10"),
+            (68, "its DIFAT chain loops or leaves the file"),
+        ] {
+            let mut bad = xls_fixture();
+            bad[offset..offset + 4].copy_from_slice(&1000u32.to_le_bytes());
+            let e = refusal(&bad);
+            assert!(e.contains(why), "{e}");
+        }
+        // A table listing one sector 109 times: calamine reads each listing.
+        let mut bad = xls_fixture();
+        for k in 1..109 {
+            bad[76 + 4 * k..80 + 4 * k].copy_from_slice(&fat0.to_le_bytes());
+        }
+        let e = refusal(&bad);
+        assert!(e.contains("it lists 109 sectors of its sector table, more than the file's 10"), "{e}");
+    }
+
+    /// Found by the chart_workbook fuzz target: an xls sheet whose used range
+    /// (DIMENSIONS record, 14 bytes) ends before it starts, which calamine's
+    /// wrapping arithmetic turns into four billion rows, and reserves cells
+    /// for: 687 GB, an allocation failure. And the fixture's own used range
+    /// stretched to a million rows.
+    #[test]
+    fn an_xls_sheet_whose_used_range_is_too_large_is_refused() {
+        let e = crate::sheet::read_workbook(&chart_fixture("damaged-dimensions.xls")).unwrap_err().to_string();
+        assert!(
+            e.contains("damaged-dimensions.xls: a sheet's used range (its DIMENSIONS record) spans 4294967150 rows"),
+            "{e}"
+        );
+        let d = tempfile::tempdir().unwrap();
+        let path = d.path().join("chart.xls");
+        let mut bad = xls_fixture();
+        // DIMENSIONS: type 0x0200, 14 bytes: first row, last row + 1 (u32),
+        // first column, last column + 1 (u16).
+        let at = bad.windows(4).position(|w| w == [0x00, 0x02, 0x0E, 0x00]).unwrap() + 4;
+        bad[at + 4..at + 8].copy_from_slice(&1_000_000u32.to_le_bytes());
+        std::fs::write(&path, &bad).unwrap();
+        let e = crate::sheet::read_workbook(&path).unwrap_err().to_string();
+        assert!(e.contains("spans 1000000 rows x 4 columns, more than the 2000000 cells"), "{e}");
+    }
+
+    /// Found by the chart_workbook fuzz target:
+    /// - a compound file cut short inside a sector (calamine panicked on it);
+    /// - one whose sector table lies in its last sector, cut short: calamine
+    ///   read the part there and, for sectors past the end, zeros, in a chain
+    ///   that never ended, until the allocation failed.
+    ///
+    /// Both are refused by the container check. A sheet whose BoundSheet8
+    /// record places it past the end of the workbook stream still makes
+    /// calamine slice past it and panic; the guard around calamine turns that
+    /// into an error naming the file.
+    #[test]
+    fn an_xls_file_cut_short_is_refused() {
+        let e = crate::sheet::read_workbook(&chart_fixture("damaged-cut-short.xls")).unwrap_err().to_string();
+        assert!(e.contains("damaged-cut-short.xls: it is cut short: 1897 bytes"), "{e}");
+        let e = crate::sheet::read_workbook(&chart_fixture("damaged-partial-sector.xls")).unwrap_err().to_string();
+        assert!(e.contains("damaged-partial-sector.xls: it is cut short: 5100 bytes"), "{e}");
+        let d = tempfile::tempdir().unwrap();
+        let path = d.path().join("chart.xls");
+        let mut bad = xls_fixture();
+        // The fixture's BoundSheet8 record (type 0x0085, 17 bytes: the sheet's
+        // position, then its state, type and name).
+        let at = bad.windows(4).position(|w| w == [0x85, 0x00, 0x11, 0x00]).unwrap() + 4;
+        assert_eq!(bad[at..at + 4], 1024u32.to_le_bytes());
+        bad[at..at + 4].copy_from_slice(&0x00FF_FFFFu32.to_le_bytes());
+        std::fs::write(&path, &bad).unwrap();
+        let e = crate::sheet::read_workbook(&path).unwrap_err().to_string();
+        assert!(e.contains("chart.xls: the workbook reader (calamine) failed on damaged data"), "{e}");
+    }
+}
