@@ -40,8 +40,10 @@ pub fn read_obj(path: &Path, imp: Import) -> Result<TriMesh> {
     let opts = tobj::LoadOptions { triangulate: true, single_index: true, ignore_points: true, ignore_lines: true };
     let file = std::fs::File::open(path).map_err(|e| PlantError::Io(Location::file(path), e))?;
     let mut r = std::io::BufReader::new(file);
-    let (models, _) = tobj::load_obj_buf(&mut r, &opts, |_| Err(tobj::LoadError::OpenFileFailed))
-        .map_err(|e| PlantError::at(Location::file(path), format!("cannot read OBJ: {e}")))?;
+    let (models, _) = third_party(path, "the OBJ reader", || {
+        tobj::load_obj_buf(&mut r, &opts, |_| Err(tobj::LoadError::OpenFileFailed))
+    })?
+    .map_err(|e| PlantError::at(Location::file(path), format!("cannot read OBJ: {e}")))?;
     let mut m = TriMesh::default();
     for model in &models {
         let name = if model.name.is_empty() { stem(path) } else { model.name.clone() };
@@ -72,8 +74,8 @@ pub fn read_obj(path: &Path, imp: Import) -> Result<TriMesh> {
 
 pub fn read_stl(path: &Path, imp: Import) -> Result<TriMesh> {
     let mut f = std::fs::File::open(path).map_err(|e| PlantError::Io(Location::file(path), e))?;
-    let mesh =
-        stl_io::read_stl(&mut f).map_err(|e| PlantError::at(Location::file(path), format!("cannot read STL: {e}")))?;
+    let mesh = third_party(path, "the STL reader", || stl_io::read_stl(&mut f))?
+        .map_err(|e| PlantError::at(Location::file(path), format!("cannot read STL: {e}")))?;
     let mut m = TriMesh::default();
     let g = m.group_id(&stem(path));
     let verts: Vec<[f64; 3]> =
@@ -145,7 +147,7 @@ impl ply_rs::ply::PropertyAccess for PlyFace {
 pub fn read_ply(path: &Path, imp: Import) -> Result<TriMesh> {
     // ply-rs unwraps numbers in the header and panics on one too large for
     // 64 bits (found by the plant_mesh fuzz target).
-    guarded(path, "the PLY reader", || read_ply_unguarded(path, imp))
+    third_party(path, "the PLY reader", || read_ply_unguarded(path, imp))?
 }
 
 fn read_ply_unguarded(path: &Path, imp: Import) -> Result<TriMesh> {
@@ -259,13 +261,16 @@ fn load_buffers(path: &Path, doc: &gltf::Document, blob: Option<Vec<u8>>) -> Res
 pub fn read_gltf(path: &Path, max_triangles: u64) -> Result<TriMesh> {
     // The gltf crate's validation indexes accessors it has not checked yet and
     // panics on such a file (found by the plant_mesh fuzz target).
-    guarded(path, "the glTF reader", || read_gltf_unguarded(path, max_triangles))
+    third_party(path, "the glTF reader", || read_gltf_unguarded(path, max_triangles))?
 }
 
-/// Runs a reader built on a third-party parser, turning a panic inside it
-/// into an error naming the file (see [`liftplan_core::guard`]).
-fn guarded(path: &Path, what: &str, read: impl FnOnce() -> Result<TriMesh>) -> Result<TriMesh> {
-    liftplan_core::guard::run_reader(what, read).unwrap_or_else(|why| Err(PlantError::at(Location::file(path), why)))
+/// Calls a third-party parser (or a reader built on one), turning a panic
+/// inside it into an error naming the file (see [`liftplan_core::guard`]).
+/// The fuzzers found the gltf crate and ply-rs panicking; OBJ's and STL's
+/// parsers have not, but a damaged file should be that file's error whatever
+/// its parser does.
+fn third_party<T>(path: &Path, what: &str, parse: impl FnOnce() -> T) -> Result<T> {
+    liftplan_core::guard::run_reader(what, parse).map_err(|why| PlantError::at(Location::file(path), why))
 }
 
 fn read_gltf_unguarded(path: &Path, max_triangles: u64) -> Result<TriMesh> {
