@@ -87,6 +87,7 @@ for name, extra in [("a.e57", False), ("b.e57", True)]:
     seed("scan_file", name, read(path), 3)
     # Selector 9: e57, with the target writing the page checksums.
     seed("scan_file", "crc-" + name, read(path), 9)
+seed("scan_file", "crc-two-scans.e57", read(os.path.join(root, "fixtures/scans/two-scans.e57")), 9)
 
 seed("scan_file", "a.pts", (f"{n}\n" + "".join(f"{a:.3f} {b:.3f} {c:.3f} -1200 100 120 140\n"
                                               for a, b, c in zip(x, y, z))).encode(), 4)
