@@ -51,6 +51,11 @@ fn le_f64(b: &[u8], o: usize) -> f64 {
     f64::from_bits(le_u64(b, o))
 }
 
+/// Reads `buf.len()` bytes of `f` at byte `at`; an I/O error names that byte.
+fn read_at(path: &Path, f: &mut std::fs::File, at: u64, buf: &mut [u8]) -> Result<()> {
+    f.seek(SeekFrom::Start(at)).and_then(|_| f.read_exact(buf)).map_err(|e| ScanError::Io(Location::byte(path, at), e))
+}
+
 /// Where a LAS file's points lie and what the header says of them.
 struct PointLayout {
     offset_to_points: u64,
@@ -72,13 +77,12 @@ const MAX_LAZ_CHUNK_BYTES: u64 = 1 << 30;
 /// fields instead of refusing them.
 fn check_laz(path: &Path, f: &mut std::fs::File, (lz_at, lz_len): (u64, u16), l: &PointLayout) -> Result<()> {
     let bad = |off: u64, msg: String| ScanError::format(Location::byte(path, off), msg);
-    let io = |off: u64, e: std::io::Error| ScanError::Io(Location::byte(path, off), e);
     let (points, record_length, file_len) = (l.points, l.record_length, l.file_len);
     if lz_len < 34 {
         return Err(bad(lz_at, format!("laszip VLR is {lz_len} bytes, shorter than its 34-byte header")));
     }
     let mut lz = vec![0u8; lz_len as usize];
-    f.seek(SeekFrom::Start(lz_at)).and_then(|_| f.read_exact(&mut lz)).map_err(|e| io(lz_at, e))?;
+    read_at(path, f, lz_at, &mut lz)?;
     let chunk_size = le_u32(&lz, 12);
     let variable_chunks = chunk_size == u32::MAX;
     let num_items = le_u16(&lz, 32) as u64;
@@ -128,10 +132,10 @@ fn check_laz(path: &Path, f: &mut std::fs::File, (lz_at, lz_len): (u64, u16), l:
         return Err(bad(data_at, "the file ends where the compressed point data should start".into()));
     }
     let mut b = [0u8; 8];
-    f.seek(SeekFrom::Start(data_at)).and_then(|_| f.read_exact(&mut b)).map_err(|e| io(data_at, e))?;
+    read_at(path, f, data_at, &mut b)?;
     let mut table_at = i64::from_le_bytes(b);
     if table_at <= data_at as i64 && file_len >= 8 {
-        f.seek(SeekFrom::End(-8)).and_then(|_| f.read_exact(&mut b)).map_err(|e| io(file_len - 8, e))?;
+        read_at(path, f, file_len - 8, &mut b)?;
         table_at = i64::from_le_bytes(b);
     }
     if table_at <= data_at as i64 {
@@ -148,7 +152,7 @@ fn check_laz(path: &Path, f: &mut std::fs::File, (lz_at, lz_len): (u64, u16), l:
         ));
     }
     let mut tb = [0u8; 8];
-    f.seek(SeekFrom::Start(t)).and_then(|_| f.read_exact(&mut tb)).map_err(|e| io(t, e))?;
+    read_at(path, f, t, &mut tb)?;
     let chunks = le_u32(&tb, 4) as u64;
     let by_size = file_len / 4;
     let by_points = if variable_chunks { u64::MAX } else { points / chunk_size as u64 + 2 };
@@ -160,7 +164,7 @@ fn check_laz(path: &Path, f: &mut std::fs::File, (lz_at, lz_len): (u64, u16), l:
             ),
         ));
     }
-    f.seek(SeekFrom::Start(t)).map_err(|e| io(t, e))?;
+    f.seek(SeekFrom::Start(t)).map_err(|e| ScanError::Io(Location::byte(path, t), e))?;
     // laz's arithmetic decoder panics on some damaged tables (found by the
     // scan_file fuzz target).
     let table = guard_decoder(
@@ -273,9 +277,7 @@ fn check_layers(
         // reading past its end; only the sizes it holds can mislead.
         if e.byte_count >= head {
             let sizes_at = at + record_length as u64 + 4;
-            f.seek(SeekFrom::Start(sizes_at))
-                .and_then(|_| f.read_exact(&mut sizes))
-                .map_err(|e| ScanError::Io(Location::byte(path, sizes_at), e))?;
+            read_at(path, f, sizes_at, &mut sizes)?;
             let stated: u64 = sizes.chunks_exact(4).map(|b| le_u32(b, 0) as u64).sum();
             let room = e.byte_count - head;
             if stated > room {
@@ -393,9 +395,7 @@ pub fn precheck(path: &Path) -> Result<RawLasHeader> {
             return Err(bad(pos, format!("VLR {i} header runs past the start of the point data")));
         }
         let mut vh = [0u8; 54];
-        f.seek(SeekFrom::Start(pos))
-            .and_then(|_| f.read_exact(&mut vh))
-            .map_err(|e| ScanError::Io(Location::byte(path, pos), e))?;
+        read_at(path, &mut f, pos, &mut vh)?;
         let len = le_u16(&vh, 20) as u64;
         if pos + 54 + len > offset_to_points as u64 {
             return Err(bad(
@@ -448,9 +448,7 @@ pub fn precheck(path: &Path) -> Result<RawLasHeader> {
                 if p + 60 > file_len {
                     return Err(bad(p, format!("EVLR {i} header runs past the end of the file")));
                 }
-                f.seek(SeekFrom::Start(p))
-                    .and_then(|_| f.read_exact(&mut eh))
-                    .map_err(|e| ScanError::Io(Location::byte(path, p), e))?;
+                read_at(path, &mut f, p, &mut eh)?;
                 let len = le_u64(&eh, 20);
                 if len > file_len - p - 60 {
                     return Err(bad(p + 20, format!("EVLR {i} declares {len} bytes, past the end of the file")));
