@@ -12,6 +12,19 @@ pub(super) const SIGNATURE: [u8; 8] = [0xD0, 0xCF, 0x11, 0xE0, 0xA1, 0xB1, 0x1A,
 const CFB_MAX_LINK: u32 = 0xFFFF_FFFA;
 const CFB_END_OF_CHAIN: u32 = 0xFFFF_FFFE;
 
+fn le_u16(b: &[u8], o: usize) -> u16 {
+    u16::from_le_bytes([b[o], b[o + 1]])
+}
+
+fn le_u32(b: &[u8], o: usize) -> u32 {
+    u32::from_le_bytes([b[o], b[o + 1], b[o + 2], b[o + 3]])
+}
+
+/// The 4-byte little-endian entries of a sector of a table.
+fn entries(sector: &[u8]) -> impl Iterator<Item = u32> + '_ {
+    sector.chunks_exact(4).map(|c| le_u32(c, 0))
+}
+
 /// Checks a compound file's sector table (FAT) and mini sector table: every
 /// link must stay inside its table and every chain must end, so that calamine,
 /// which follows a chain as long as it goes on, reads at most the file.
@@ -20,9 +33,7 @@ pub(super) fn check(bytes: &[u8]) -> std::result::Result<(), String> {
     if bytes.len() < 512 || bytes[..8] != SIGNATURE {
         return Ok(());
     }
-    let u16_at = |o: usize| u16::from_le_bytes([bytes[o], bytes[o + 1]]);
-    let u32_at = |b: &[u8], o: usize| u32::from_le_bytes([b[o], b[o + 1], b[o + 2], b[o + 3]]);
-    let sector_size = match u16_at(30) {
+    let sector_size = match le_u16(bytes, 30) {
         9 => 512,
         12 => 4096,
         // calamine refuses other sizes itself.
@@ -41,23 +52,20 @@ pub(super) fn check(bytes: &[u8]) -> std::result::Result<(), String> {
     }
     // Sectors after the header.
     let sectors = (bytes.len() / sector_size).saturating_sub(1);
-    let sector = |id: u32| -> Option<&[u8]> {
-        let start = (id as usize).checked_add(1)?.checked_mul(sector_size)?;
-        bytes.get(start..start + sector_size)
-    };
+    let mut file = CompoundFile { bytes, sector_size, fat: Vec::new(), mini: Vec::new() };
     // The table's own sectors: 109 in the header, then a chain of DIFAT
     // sectors (each a list and a link to the next), bounded by the file.
-    let mut fat_sectors: Vec<u32> = (0..109).map(|k| u32_at(bytes, 76 + 4 * k)).collect();
-    let mut difat = u32_at(bytes, 68);
+    let mut fat_sectors: Vec<u32> = entries(&bytes[76..76 + 4 * 109]).collect();
+    let mut difat = le_u32(bytes, 68);
     let mut walked = 0;
     while difat < CFB_MAX_LINK {
         walked += 1;
-        let Some(s) = sector(difat).filter(|_| walked <= sectors) else {
+        let Some(s) = file.sector(difat).filter(|_| walked <= sectors) else {
             return Err("its DIFAT chain loops or leaves the file; the workbook is damaged".into());
         };
         let n = sector_size / 4;
-        fat_sectors.extend((0..n - 1).map(|k| u32_at(s, 4 * k)));
-        difat = u32_at(s, 4 * (n - 1));
+        fat_sectors.extend(entries(s).take(n - 1));
+        difat = le_u32(s, 4 * (n - 1));
     }
     // calamine reads every sector listed, however often it is listed: a
     // table of more sectors than the file has would be made of repeats.
@@ -73,22 +81,18 @@ pub(super) fn check(bytes: &[u8]) -> std::result::Result<(), String> {
             fat_sectors.len()
         ));
     }
-    let fat: Vec<u32> = fat_sectors
-        .iter()
-        .filter_map(|id| sector(*id))
-        .flat_map(|s| (0..sector_size / 4).map(move |k| u32_at(s, 4 * k)))
-        .collect();
-    check_chains(&fat).map_err(|m| format!("its sector table {m}; the workbook is damaged"))?;
+    file.fat = fat_sectors.iter().filter_map(|id| file.sector(*id)).flat_map(entries).collect();
+    check_chains(&file.fat).map_err(|m| format!("its sector table {m}; the workbook is damaged"))?;
     // The mini sector table is a stream itself, a chain in the table above.
     let mut mini = Vec::new();
-    let mut at = u32_at(bytes, 60);
+    let mut at = le_u32(bytes, 60);
     while at < CFB_MAX_LINK {
-        let Some(s) = sector(at) else { break };
-        mini.extend((0..sector_size / 4).map(|k| u32_at(s, 4 * k)));
-        at = fat.get(at as usize).copied().unwrap_or(CFB_END_OF_CHAIN);
+        let Some(s) = file.sector(at) else { break };
+        mini.extend(entries(s));
+        at = file.fat.get(at as usize).copied().unwrap_or(CFB_END_OF_CHAIN);
     }
     check_chains(&mini).map_err(|m| format!("its mini sector table {m}; the workbook is damaged"))?;
-    let file = CompoundFile { bytes, sector_size, fat, mini };
+    file.mini = mini;
     check_xls_used_ranges(&file).map_err(|m| format!("{m}; the workbook is damaged"))
 }
 
@@ -141,30 +145,34 @@ impl CompoundFile<'_> {
         Ok(out)
     }
 
+    /// A directory entry's stream: its first sector and its length, read as
+    /// calamine reads them (a 64-bit length in files of 4096-byte sectors).
+    fn start_and_len(&self, entry: &[u8]) -> (u32, usize) {
+        let len = if self.sector_size == 512 {
+            le_u32(entry, 120) as usize
+        } else {
+            u64::from_le_bytes(entry[120..128].try_into().unwrap_or([0; 8])) as usize
+        };
+        (le_u32(entry, 116), len)
+    }
+
     /// The stream named `name` (ASCII, any case), as calamine finds it: the
     /// first directory entry of that name.
     fn stream(&self, dir: &[u8], name: &str) -> std::result::Result<Option<Vec<u8>>, String> {
-        let entries: Vec<&[u8]> = dir.chunks_exact(128).collect();
+        let dir_entries: Vec<&[u8]> = dir.chunks_exact(128).collect();
         let entry_name = |e: &[u8]| -> Vec<u8> {
-            let units: Vec<u16> = e[..64].chunks_exact(2).map(|c| u16::from_le_bytes([c[0], c[1]])).collect();
+            let units: Vec<u16> = e[..64].chunks_exact(2).map(|c| le_u16(c, 0)).collect();
             String::from_utf16_lossy(&units).bytes().take_while(|b| *b != 0).collect()
         };
-        let Some(e) = entries.iter().find(|e| entry_name(e).eq_ignore_ascii_case(name.as_bytes())) else {
+        let Some(e) = dir_entries.iter().find(|e| entry_name(e).eq_ignore_ascii_case(name.as_bytes())) else {
             return Ok(None);
         };
-        let start = u32::from_le_bytes([e[116], e[117], e[118], e[119]]);
-        let len = if self.sector_size == 512 {
-            u32::from_le_bytes([e[120], e[121], e[122], e[123]]) as usize
-        } else {
-            u64::from_le_bytes(e[120..128].try_into().unwrap_or([0; 8])) as usize
-        };
+        let (start, len) = self.start_and_len(e);
         if len >= Self::MINI_CUTOFF {
             return self.chain(start, len).map(Some);
         }
         // The mini stream is the root entry's stream.
-        let root = entries[0];
-        let root_start = u32::from_le_bytes([root[116], root[117], root[118], root[119]]);
-        let root_len = u32::from_le_bytes([root[120], root[121], root[122], root[123]]) as usize;
+        let (root_start, root_len) = self.start_and_len(dir_entries[0]);
         let mini_stream = self.chain(root_start, root_len)?;
         self.mini_chain(&mini_stream, start, len).map(Some)
     }
@@ -178,7 +186,7 @@ impl CompoundFile<'_> {
 /// are looked for where calamine reads them: the workbook globals, and each
 /// sheet from the position its BoundSheet8 record gives.
 fn check_xls_used_ranges(file: &CompoundFile) -> std::result::Result<(), String> {
-    let dir_start = u32::from_le_bytes([file.bytes[48], file.bytes[49], file.bytes[50], file.bytes[51]]);
+    let dir_start = le_u32(file.bytes, 48);
     let dir = file.chain(dir_start, usize::MAX)?;
     if dir.len() < 128 {
         return Ok(());
@@ -202,19 +210,18 @@ fn check_xls_used_ranges(file: &CompoundFile) -> std::result::Result<(), String>
 /// cells and collects BoundSheet8 positions into `sheets`.
 fn check_records(stream: &[u8], pos: usize, sheets: &mut Vec<usize>) -> std::result::Result<(), String> {
     let mut rest = stream.get(pos..).unwrap_or_default();
-    let u16_at = |b: &[u8], o: usize| u16::from_le_bytes([b[o], b[o + 1]]) as u32;
-    let u32_at = |b: &[u8], o: usize| u32::from_le_bytes([b[o], b[o + 1], b[o + 2], b[o + 3]]);
+    let u16_at = |b: &[u8], o: usize| le_u16(b, o) as u32;
     while rest.len() >= 4 {
         let (typ, len) = (u16_at(rest, 0), u16_at(rest, 2) as usize);
         let Some(data) = rest.get(4..4 + len) else { break };
         rest = &rest[4 + len..];
         match (typ, len) {
-            (0x0085, 4..) => sheets.push(u32_at(data, 0) as usize),
+            (0x0085, 4..) => sheets.push(le_u32(data, 0) as usize),
             (0x0200, 10 | 14 | 16) => {
                 let (rf, rl, cf, cl) = if len == 10 {
                     (u16_at(data, 0), u16_at(data, 2), u16_at(data, 4), u16_at(data, 6))
                 } else {
-                    (u32_at(data, 0), u32_at(data, 4), u16_at(data, 8), u16_at(data, 10))
+                    (le_u32(data, 0), le_u32(data, 4), u16_at(data, 8), u16_at(data, 10))
                 };
                 let cf = if 0xFF < cf || cl < cf { 0 } else { cf };
                 let (rows, cols) = if rl >= 1 && cl >= 1 {
@@ -284,9 +291,8 @@ mod tests {
     /// sector of the table.
     fn xls_with_directory_link(next: impl FnOnce(u32) -> u32) -> (Vec<u8>, u32) {
         let mut bytes = xls_fixture();
-        assert_eq!(u16::from_le_bytes([bytes[30], bytes[31]]), 9, "512-byte sectors");
-        let u32_at = |o: usize| u32::from_le_bytes(bytes[o..o + 4].try_into().unwrap());
-        let (fat0, dir) = (u32_at(76), u32_at(48));
+        assert_eq!(super::le_u16(&bytes, 30), 9, "512-byte sectors");
+        let (fat0, dir) = (super::le_u32(&bytes, 76), super::le_u32(&bytes, 48));
         let entry = (fat0 as usize + 1) * 512 + 4 * dir as usize;
         bytes[entry..entry + 4].copy_from_slice(&next(dir).to_le_bytes());
         (bytes, fat0)
