@@ -22,14 +22,17 @@
 //!   short inside a sector did the same (found by the fuzz target);
 //! - calamine reserves the cells an xls sheet's used range (DIMENSIONS
 //!   record) claims before reading any: one whose last row came before its
-//!   first asked for 687 GB (found by the fuzz target).
+//!   first asked for 687 GB (found by the fuzz target);
+//! - calamine makes an xls sheet one dense range spanning all its cells,
+//!   whose rows and columns are any 16-bit numbers: two cells at A1 and at
+//!   row and column 65,536 asked for 137 GB.
 //!
 //! So every part is unpacked once here, counting bytes, and an ODS
 //! `content.xml` must be well-formed XML whose cells and text, counted from
 //! the repeat attributes the way calamine expands them, stay within bounds;
 //! an xls file must be whole sectors, its sector tables must link every chain
-//! to an end inside the file, and its sheets' used ranges must stay within
-//! bounds. All before calamine opens the file. This module does not read
+//! to an end inside the file, and its sheets' used ranges and the span of
+//! their cells must stay within bounds. All before calamine opens the file. This module does not read
 //! values or judge whether a file is a valid workbook: an archive or part it
 //! cannot unpack is left to calamine, which reports it.
 

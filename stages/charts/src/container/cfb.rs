@@ -1,7 +1,7 @@
 //! A compound file (the container of xls files, and of encrypted xlsx and
 //! xlsb ones), checked before calamine reads it: whole sectors, sector tables
-//! whose every chain ends inside the file, and sheets' used ranges within
-//! bounds (see [the container module](super)).
+//! whose every chain ends inside the file, and sheets' used ranges and cells
+//! within bounds (see [the container module](super)).
 
 use crate::sheet::MAX_CELLS;
 
@@ -185,6 +185,12 @@ impl CompoundFile<'_> {
 /// calamine computes them (wrapping, as its release build does). The records
 /// are looked for where calamine reads them: the workbook globals, and each
 /// sheet from the position its BoundSheet8 record gives.
+///
+/// Then the cells themselves: calamine makes each sheet one dense range
+/// spanning every cell record it read, and a cell's row and column are any
+/// 16-bit numbers, so two cells of a 5 kB file, at A1 and at row 65,536 of
+/// column 65,536, made it ask for 137 GB. Each sheet's cells must span at
+/// most [`MAX_CELLS`] cells.
 fn check_xls_used_ranges(file: &CompoundFile) -> std::result::Result<(), String> {
     let dir_start = le_u32(file.bytes, 48);
     let dir = file.chain(dir_start, usize::MAX)?;
@@ -200,28 +206,33 @@ fn check_xls_used_ranges(file: &CompoundFile) -> std::result::Result<(), String>
     };
     let mut sheets = Vec::new();
     check_records(&stream, 0, &mut sheets)?;
-    for pos in sheets {
+    for (k, &(pos, _)) in sheets.iter().enumerate() {
         check_records(&stream, pos, &mut Vec::new())?;
+        check_sheet_cells(&stream, pos).map_err(|m| match &sheets[k].1 {
+            Some(name) => format!("sheet '{name}' {m}"),
+            None => format!("sheet {} {m}", k + 1),
+        })?;
     }
     Ok(())
 }
 
 /// Walks BIFF records from `pos`: refuses a used range over [`MAX_CELLS`]
-/// cells and collects BoundSheet8 positions into `sheets`.
-fn check_records(stream: &[u8], pos: usize, sheets: &mut Vec<usize>) -> std::result::Result<(), String> {
-    let mut rest = stream.get(pos..).unwrap_or_default();
-    let u16_at = |b: &[u8], o: usize| le_u16(b, o) as u32;
-    while rest.len() >= 4 {
-        let (typ, len) = (u16_at(rest, 0), u16_at(rest, 2) as usize);
-        let Some(data) = rest.get(4..4 + len) else { break };
-        rest = &rest[4 + len..];
-        match (typ, len) {
-            (0x0085, 4..) => sheets.push(le_u32(data, 0) as usize),
-            (0x0200, 10 | 14 | 16) => {
+/// cells and collects BoundSheet8 records (position and, where it reads as
+/// one, name) into `sheets`.
+fn check_records(
+    stream: &[u8],
+    pos: usize,
+    sheets: &mut Vec<(usize, Option<String>)>,
+) -> std::result::Result<(), String> {
+    for (typ, data) in records(stream, pos) {
+        let u16_at = |o: usize| le_u16(data, o) as u32;
+        match (typ, data.len()) {
+            (0x0085, 4..) => sheets.push((le_u32(data, 0) as usize, bound_sheet_name(data))),
+            (0x0200, len @ (10 | 14 | 16)) => {
                 let (rf, rl, cf, cl) = if len == 10 {
-                    (u16_at(data, 0), u16_at(data, 2), u16_at(data, 4), u16_at(data, 6))
+                    (u16_at(0), u16_at(2), u16_at(4), u16_at(6))
                 } else {
-                    (le_u32(data, 0), le_u32(data, 4), u16_at(data, 8), u16_at(data, 10))
+                    (le_u32(data, 0), le_u32(data, 4), u16_at(8), u16_at(10))
                 };
                 let cf = if 0xFF < cf || cl < cf { 0 } else { cf };
                 let (rows, cols) = if rl >= 1 && cl >= 1 {
@@ -239,6 +250,100 @@ fn check_records(stream: &[u8], pos: usize, sheets: &mut Vec<usize>) -> std::res
             }
             _ => {}
         }
+    }
+    Ok(())
+}
+
+/// The BIFF records (type, data) of `stream` from `pos`, as calamine splits
+/// them; a CONTINUE record is one of its own here (calamine appends it to the
+/// record before, whose data, read here, it leaves as it is).
+fn records(stream: &[u8], pos: usize) -> impl Iterator<Item = (u16, &[u8])> {
+    let mut rest = stream.get(pos..).unwrap_or_default();
+    std::iter::from_fn(move || {
+        if rest.len() < 4 {
+            return None;
+        }
+        let (typ, len) = (le_u16(rest, 0), le_u16(rest, 2) as usize);
+        let data = rest.get(4..4 + len)?;
+        rest = &rest[4 + len..];
+        Some((typ, data))
+    })
+}
+
+/// A BoundSheet8 record's sheet name, if it reads as a BIFF8 short string.
+fn bound_sheet_name(data: &[u8]) -> Option<String> {
+    let (&chars, &flags) = (data.get(6)?, data.get(7)?);
+    let name = if flags & 1 == 0 {
+        data.get(8..8 + chars as usize)?.iter().map(|&b| b as char).collect()
+    } else {
+        let units: Vec<u16> = data.get(8..8 + 2 * chars as usize)?.chunks_exact(2).map(|c| le_u16(c, 0)).collect();
+        String::from_utf16(&units).ok()?
+    };
+    Some(name)
+}
+
+/// The cells calamine reads from the sheet at `pos` must span at most
+/// [`MAX_CELLS`] cells. The walk is calamine's: nested substreams (an
+/// embedded chart) are skipped, the sheet's EOF record ends it, and every
+/// record calamine makes a cell (or a formula) of counts, at the row and
+/// columns it reads. A record too short for its cell counts where its first
+/// four bytes place it (calamine refuses it; counting it only refuses more).
+fn check_sheet_cells(stream: &[u8], pos: usize) -> std::result::Result<(), String> {
+    let (mut rows, mut cols) = ((u32::MAX, 0u32), (u32::MAX, 0u32));
+    let mut span = |row: u32, first: u32, last: u32| {
+        rows = (rows.0.min(row), rows.1.max(row));
+        cols = (cols.0.min(first), cols.1.max(last));
+    };
+    let (mut seen_bof, mut depth) = (false, 0usize);
+    let mut formula_at = (0u32, 0u32);
+    for (typ, data) in records(stream, pos) {
+        if depth > 0 {
+            match typ {
+                0x0809 => depth += 1,
+                0x000A => depth -= 1,
+                _ => {}
+            }
+            continue;
+        }
+        let at = || (data.len() >= 4).then(|| (le_u16(data, 0) as u32, le_u16(data, 2) as u32));
+        match typ {
+            0x0809 if seen_bof => depth += 1,
+            0x0809 => seen_bof = true,
+            0x000A => break,
+            // Number, Label, RString, BoolErr, Rk, LabelSst.
+            0x0203 | 0x0204 | 0x00D6 | 0x0205 | 0x027E | 0x00FD => {
+                if let Some((row, col)) = at() {
+                    span(row, col, col);
+                }
+            }
+            // Formula: a formula cell, and the place of a String record after it.
+            0x0006 => {
+                if let Some(place) = at() {
+                    formula_at = place;
+                    span(place.0, place.1, place.1);
+                }
+            }
+            0x0207 => span(formula_at.0, formula_at.1, formula_at.1),
+            // MulRk: a row of cells from the first column, six bytes each.
+            0x00BD => {
+                if let (Some((row, first)), true) = (at(), data.len() >= 12) {
+                    span(row, first, first + (data.len() as u32 - 6) / 6 - 1);
+                }
+            }
+            _ => {}
+        }
+    }
+    if rows.0 > rows.1 {
+        return Ok(());
+    }
+    let (height, width) = ((rows.1 - rows.0 + 1) as u64, (cols.1 - cols.0 + 1) as u64);
+    if height * width > MAX_CELLS as u64 {
+        return Err(format!(
+            "has cells from {} to {}: {height} rows x {width} columns, more than the {MAX_CELLS} cells a load \
+             chart may have",
+            liftplan_core::location::cell_ref(rows.0, cols.0),
+            liftplan_core::location::cell_ref(rows.1, cols.1),
+        ));
     }
     Ok(())
 }
@@ -275,6 +380,7 @@ fn check_chains(table: &[u32]) -> std::result::Result<(), String> {
 
 #[cfg(test)]
 mod tests {
+    use super::check_sheet_cells;
     use std::path::Path;
 
     fn chart_fixture(name: &str) -> std::path::PathBuf {
@@ -378,6 +484,79 @@ mod tests {
         std::fs::write(&path, &bad).unwrap();
         let e = crate::sheet::read_workbook(&path).unwrap_err().to_string();
         assert!(e.contains("spans 1000000 rows x 4 columns, more than the 2000000 cells"), "{e}");
+    }
+
+    /// Two cells of the 5.6 kB fixture, at A1 and at row 65,536 of column
+    /// 65,536 (one LabelSst record's row and column changed): calamine made
+    /// its sheet one dense range of 2^32 cells and asked for 137 GB, which
+    /// aborted liftplan. Refused, naming the sheet and the cells' span.
+    #[test]
+    fn an_xls_sheet_whose_cells_lie_far_apart_is_refused() {
+        let d = tempfile::tempdir().unwrap();
+        let path = d.path().join("chart.xls");
+        let mut bad = xls_fixture();
+        // LabelSst: type 0x00FD, 10 bytes: row, column (u16), format, string.
+        let at = bad.windows(4).rposition(|w| w == [0xFD, 0x00, 0x0A, 0x00]).unwrap() + 4;
+        bad[at..at + 4].copy_from_slice(&[0xFF; 4]);
+        std::fs::write(&path, &bad).unwrap();
+        let e = crate::sheet::read_workbook(&path).unwrap_err().to_string();
+        assert!(
+            e.contains(
+                "chart.xls: sheet 'Main boom' has cells from A1 to CRXP65536: 65536 rows x 65536 columns, more than \
+                 the 2000000 cells"
+            ),
+            "{e}"
+        );
+    }
+
+    /// BIFF records as bytes: (type, data) each.
+    fn biff(records: &[(u16, Vec<u8>)]) -> Vec<u8> {
+        let mut out = Vec::new();
+        for (typ, data) in records {
+            out.extend_from_slice(&typ.to_le_bytes());
+            out.extend_from_slice(&(data.len() as u16).to_le_bytes());
+            out.extend_from_slice(data);
+        }
+        out
+    }
+
+    /// A cell record's data: row, column, then `rest` zero bytes.
+    fn cell(row: u16, col: u16, rest: usize) -> Vec<u8> {
+        let mut d = [row.to_le_bytes(), col.to_le_bytes()].concat();
+        d.resize(4 + rest, 0);
+        d
+    }
+
+    /// The sheet walk counts what calamine reads and nothing else: cells in
+    /// an embedded chart's substream and after the sheet's EOF record do not
+    /// count; a MulRk row counts every column it fills; a String record
+    /// counts at the formula before it.
+    #[test]
+    fn an_xls_sheet_s_cells_are_counted_as_calamine_reads_them() {
+        let (bof, eof) = ((0x0809u16, vec![0u8; 16]), (0x000Au16, vec![]));
+        let far = (0x0203u16, cell(60_000, 200, 10));
+        let sheet = |cells: Vec<(u16, Vec<u8>)>| {
+            let mut r = vec![bof.clone(), (0x0203, cell(0, 0, 10))];
+            r.extend(cells);
+            r.push(eof.clone());
+            r.push(far.clone());
+            biff(&r)
+        };
+        // An embedded chart holding a far cell, skipped as calamine skips it.
+        let nested = sheet(vec![bof.clone(), far.clone(), bof.clone(), eof.clone(), far.clone(), eof.clone()]);
+        assert_eq!(check_sheet_cells(&nested, 0), Ok(()));
+        let near = sheet(vec![(0x00FD, cell(1999, 999, 6))]);
+        assert_eq!(check_sheet_cells(&near, 0), Ok(()));
+        let e = check_sheet_cells(&sheet(vec![far.clone()]), 0).unwrap_err();
+        assert!(e.starts_with("has cells from A1 to GS60001: 60001 rows x 201 columns"), "{e}");
+        // MulRk of three cells from column 700 (the last two bytes name the
+        // last column).
+        let mul_rk = (0x00BD, cell(2999, 700, 3 * 6 + 2));
+        let e = check_sheet_cells(&sheet(vec![mul_rk]), 0).unwrap_err();
+        assert!(e.contains("3000 rows x 703 columns"), "{e}");
+        let string_after_formula = vec![(0x0006, cell(4000, 600, 20)), (0x0207, vec![0; 4])];
+        let e = check_sheet_cells(&sheet(string_after_formula), 0).unwrap_err();
+        assert!(e.contains("4001 rows x 601 columns"), "{e}");
     }
 
     /// Found by the chart_workbook fuzz target:
