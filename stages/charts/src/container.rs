@@ -26,22 +26,27 @@
 //! - calamine makes an xls sheet one dense range spanning all its cells,
 //!   whose rows and columns are any 16-bit numbers: two cells at A1 and at
 //!   row and column 65,536 asked for 137 GB.
+//! - calamine reserves room for as many shared strings as an xlsx file's
+//!   table says it holds, before reading any: ten billion asked for 240 GB.
 //!
 //! So every part is unpacked once here, counting bytes, and an ODS
 //! `content.xml` must be well-formed XML whose cells and text, counted from
 //! the repeat attributes the way calamine expands them, stay within bounds;
 //! an xls file must be whole sectors, its sector tables must link every chain
 //! to an end inside the file, and its sheets' used ranges and the span of
-//! their cells must stay within bounds. All before calamine opens the file. This module does not read
-//! values or judge whether a file is a valid workbook: an archive or part it
-//! cannot unpack is left to calamine, which reports it.
-
+//! their cells must stay within bounds; an xlsx file's shared strings table
+//! must not claim more strings than it could hold. All before calamine opens
+//! the file. This module does not read values or judge whether a file is a
+//! valid workbook: an archive or part it cannot unpack is left to calamine,
+//! which reports it.
 //!
 //! The zip parts are checked here; `container/ods.rs` checks an ODS file's
-//! `content.xml` and `container/cfb.rs` a compound file.
+//! `content.xml`, `container/xlsx.rs` an xlsx file's shared strings and
+//! `container/cfb.rs` a compound file.
 
 mod cfb;
 mod ods;
+mod xlsx;
 
 use crate::error::{ChartError, Result};
 use liftplan_core::Location;
@@ -78,10 +83,17 @@ fn check_within(path: &Path, max_unpacked_bytes: u64) -> Result<()> {
         let name = part.name().map(|n| n.into_owned()).unwrap_or_default();
         let room = max_unpacked_bytes - unpacked;
         let mut counted = Counted { inner: part.take(room + 1), bytes: 0 };
-        let verdict = if ods && name == "content.xml" {
+        let checked = if ods && name == "content.xml" {
             ods::check_content(&mut BufReader::new(&mut counted))
+        } else if !ods && xlsx::is_shared_strings(&name) {
+            xlsx::check_shared_strings(&mut BufReader::new(&mut counted))
         } else {
-            std::io::copy(&mut counted, &mut std::io::sink()).map(|_| Ok(())).map_err(|_| ())
+            Ok(Ok(()))
+        };
+        // What a check did not read is still unpacked, and counted.
+        let verdict = match checked {
+            Ok(Ok(())) => std::io::copy(&mut counted, &mut std::io::sink()).map(|_| Ok(())).map_err(|_| ()),
+            other => other,
         };
         unpacked += counted.bytes;
         if unpacked > max_unpacked_bytes {
@@ -149,5 +161,47 @@ mod tests {
             "{e}"
         );
         check_within(&path, 2 << 20).unwrap();
+    }
+
+    /// A chart workbook whose shared strings table says it holds ten billion
+    /// strings: calamine reserved room for them (240 GB) and liftplan
+    /// aborted. Refused before calamine opens it; the same workbook with its
+    /// own count reads.
+    #[test]
+    fn a_workbook_claiming_billions_of_shared_strings_is_refused() {
+        use std::io::{Read, Write};
+        let d = tempfile::tempdir().unwrap();
+        let good = d.path().join("good.xlsx");
+        let mut wb = rust_xlsxwriter::Workbook::new();
+        let ws = wb.add_worksheet().set_name("Chart").unwrap();
+        ws.write_string(0, 0, "Main boom, capacities in t").unwrap();
+        ws.write_string(1, 0, "Radius (m)").unwrap();
+        ws.write_number(1, 1, 10.0).unwrap();
+        wb.save(&good).unwrap();
+        assert_eq!(crate::sheet::read_workbook(&good).unwrap()[0].text(1, 0), Some("Radius (m)"));
+
+        let bad = d.path().join("bad.xlsx");
+        let mut from = zip::ZipArchive::new(std::fs::File::open(&good).unwrap()).unwrap();
+        let mut to = zip::ZipWriter::new(std::fs::File::create(&bad).unwrap());
+        for i in 0..from.len() {
+            let mut part = from.by_index(i).unwrap();
+            let name = part.name().unwrap().into_owned();
+            let mut text = String::new();
+            part.read_to_string(&mut text).unwrap();
+            if name == "xl/sharedStrings.xml" {
+                assert!(text.contains("uniqueCount=\"2\""), "{text}");
+                text = text.replace("uniqueCount=\"2\"", "uniqueCount=\"10000000000\"");
+            }
+            to.start_file(name, zip::write::SimpleFileOptions::default()).unwrap();
+            to.write_all(text.as_bytes()).unwrap();
+        }
+        to.finish().unwrap();
+        let e = crate::sheet::read_workbook(&bad).unwrap_err().to_string();
+        assert!(
+            e.contains(
+                "bad.xlsx: its shared strings table says it holds 10000000000 strings (uniqueCount) but holds 2"
+            ),
+            "{e}"
+        );
     }
 }
