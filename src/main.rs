@@ -11,7 +11,7 @@ mod cache;
 mod inspect;
 mod pipeline;
 mod progress;
-mod project;
+use liftplan::project;
 mod stages;
 mod watch;
 
