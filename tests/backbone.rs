@@ -209,6 +209,16 @@ fn a_reader_panic_on_a_damaged_file_reads_as_one_error() {
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(err.contains("damaged-accessor.gltf") && err.contains("failed on damaged data"), "{err}");
     assert!(!err.contains("panicked"), "{err}");
+
+    // The LAZ decompressor panics on one of rayon's worker threads, not on
+    // the thread that called it.
+    let t = tempfile::tempdir().unwrap();
+    let f = concat!(env!("CARGO_MANIFEST_DIR"), "/fixtures/scans/damaged-decoder-panic.laz");
+    let o = liftplan(&["scans", f, "-o", t.path().join("site.ply").to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("damaged-decoder-panic.laz (point 0)") && err.contains("failed on damaged data"), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
 }
 
 #[test]

@@ -12,11 +12,22 @@
 //! A program that installs [`quiet_caught_panics`] (the CLI does) prints
 //! nothing for a panic caught here, so a damaged file reads as one error, not
 //! as a crash followed by an error. That holds for panics on the calling
-//! thread; a reader that works on other threads (the LAZ decompressor's rayon
-//! workers) still has their panics printed, though they are caught just the
-//! same. Panics anywhere else print as before.
+//! thread, and for panics in the source of a reader that decodes on worker
+//! threads ([`WORKER_READERS`]: the LAZ decompressor, on rayon's threads)
+//! raised while a guarded call runs: the worker's panic travels to the thread
+//! that called the reader, where the guard catches it. Panics anywhere else
+//! print as before.
 
 use std::cell::Cell;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+/// Third-party readers that decode on worker threads, as their source files'
+/// folders in a panic's location (`laz-0.13.0/src/...`). We call them only
+/// through the guard, so a panic there is one the guard will catch.
+const WORKER_READERS: &[&str] = &["/laz-"];
+
+/// How many guarded calls are running, on any thread.
+static GUARDED_CALLS: AtomicUsize = AtomicUsize::new(0);
 
 thread_local! {
     /// Whether this thread is inside [`catch_panic`].
@@ -24,14 +35,17 @@ thread_local! {
 }
 
 /// Replaces the panic hook with one that stays silent for panics that
-/// [`catch_panic`] catches on the thread it runs on, and hands every other
-/// panic to the hook it replaces. Call once, early (later calls do nothing).
+/// [`catch_panic`] catches on the thread it runs on or that a guarded reader
+/// raises on its worker threads, and hands every other panic to the hook it
+/// replaces. Call once, early (later calls do nothing).
 pub fn quiet_caught_panics() {
     static ONCE: std::sync::Once = std::sync::Once::new();
     ONCE.call_once(|| {
         let previous = std::panic::take_hook();
         std::panic::set_hook(Box::new(move |info| {
-            if !CATCHING.with(Cell::get) {
+            let on_a_reader_s_worker = GUARDED_CALLS.load(Ordering::SeqCst) > 0
+                && info.location().is_some_and(|l| WORKER_READERS.iter().any(|r| l.file().contains(r)));
+            if !CATCHING.with(Cell::get) && !on_a_reader_s_worker {
                 previous(info);
             }
         }));
@@ -49,7 +63,9 @@ pub fn run_reader<T>(what: &str, f: impl FnOnce() -> T) -> Result<T, String> {
 /// Runs `f`, returning the message of a panic inside it instead of unwinding.
 pub fn catch_panic<T>(f: impl FnOnce() -> T) -> Result<T, String> {
     let outer = CATCHING.with(|c| c.replace(true));
+    GUARDED_CALLS.fetch_add(1, Ordering::SeqCst);
     let caught = std::panic::catch_unwind(std::panic::AssertUnwindSafe(f));
+    GUARDED_CALLS.fetch_sub(1, Ordering::SeqCst);
     CATCHING.with(|c| c.set(outer));
     caught.map_err(|payload| {
         payload
