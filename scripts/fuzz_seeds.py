@@ -138,9 +138,12 @@ doc.spreadsheet.addElement(table)
 path = os.path.join(tmp, "chart.ods")
 doc.save(path)
 seed("chart_workbook", "chart.ods", read(path), 3)
-# The xls fixture (xlwt's BIFF8 in a compound file; no Python writer here).
+# The xls and xlsb fixtures (xlwt's BIFF8 in a compound file; BIFF12 records
+# written by make_chart_xlsb.py).
 seed("chart_workbook", "chart.xls", read(os.path.join(root, "fixtures/charts/chart.xls")), 1)
-# Selectors 4 to 6: one part, zipped by the target into a workbook.
+xlsb = os.path.join(root, "fixtures/charts/chart.xlsb")
+seed("chart_workbook", "chart.xlsb", read(xlsb), 2)
+# Selectors 4 to 7: one part, zipped by the target into a workbook.
 import zipfile
 with zipfile.ZipFile(path) as z:
     seed("chart_workbook", "content.xml", z.read("content.xml"), 4)
@@ -150,6 +153,8 @@ with zipfile.ZipFile(os.path.join(tmp, "chart.xlsx")) as z:
 sst = "".join(f"<si><t>{t}</t></si>" for t in ["Main boom, capacities in t", "Radius (m)", "Boom length (m)"])
 seed("chart_workbook", "sharedStrings.xml", ('<?xml version="1.0" encoding="UTF-8"?><sst xmlns='
      f'"http://schemas.openxmlformats.org/spreadsheetml/2006/main" count="3" uniqueCount="3">{sst}</sst>').encode(), 6)
+with zipfile.ZipFile(xlsb) as z:
+    seed("chart_workbook", "sheet1.bin", z.read("xl/worksheets/sheet1.bin"), 7)
 
 # artifacts: first byte 0 raw bytes, 1 depth-map payload, 2 mesh payload
 # (the target frames 1 and 2 as valid artifacts).

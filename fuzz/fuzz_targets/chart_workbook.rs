@@ -2,9 +2,10 @@
 //! detection. The first byte picks what the rest is:
 //! - 0 to 3: a whole xlsx, xls, xlsb or ods file;
 //! - 4: an ODS `content.xml`, 5: an xlsx worksheet, 6: an xlsx shared-strings
-//!   part, each zipped here into an otherwise valid workbook.
+//!   part, 7: an xlsb worksheet (BIFF12 records), each zipped here into an
+//!   otherwise valid workbook (for xlsb, `fixtures/charts/chart.xlsb`'s).
 //!
-//! Modes 4 to 6 exist because workbook parts are deflated: a mutation of a
+//! Modes 4 to 7 exist because workbook parts are deflated: a mutation of a
 //! whole file almost never survives unpacking, so the XML readers behind the
 //! zip container (and `liftplan_charts::container`'s counting) would go
 //! untested.
@@ -30,7 +31,7 @@ fuzz_target!(|data: &[u8]| {
     PANIC_HOOK.call_once(|| drop(std::panic::take_hook()));
     let Some((&sel, body)) = data.split_first() else { return };
     let dir = tempfile::tempdir().unwrap();
-    let (ext, bytes) = match sel % 7 {
+    let (ext, bytes) = match sel % 8 {
         m @ 0..=3 => (["xlsx", "xls", "xlsb", "ods"][m as usize], body.to_vec()),
         4 => (
             "ods",
@@ -40,6 +41,12 @@ fuzz_target!(|data: &[u8]| {
                 ("content.xml", body),
             ]),
         ),
+        7 => {
+            let mut parts: Vec<(&str, &[u8])> =
+                xlsb_parts().iter().map(|(n, d)| (n.as_str(), d.as_slice())).filter(|(n, _)| *n != XLSB_SHEET).collect();
+            parts.push((XLSB_SHEET, body));
+            ("xlsb", zipped(&parts))
+        }
         m => {
             let (sheet, shared) = if m == 5 { (body, SHARED.as_bytes()) } else { (SHEET.as_bytes(), body) };
             (
@@ -59,6 +66,26 @@ fuzz_target!(|data: &[u8]| {
     std::fs::write(&path, bytes).unwrap();
     let _ = liftplan_charts::inspect(&path);
 });
+
+const XLSB_SHEET: &str = "xl/worksheets/sheet1.bin";
+
+/// The parts of `fixtures/charts/chart.xlsb` (name, unpacked bytes).
+fn xlsb_parts() -> &'static [(String, Vec<u8>)] {
+    static PARTS: std::sync::OnceLock<Vec<(String, Vec<u8>)>> = std::sync::OnceLock::new();
+    PARTS.get_or_init(|| {
+        use std::io::Read;
+        let file = include_bytes!("../../fixtures/charts/chart.xlsb");
+        let mut zip = zip::ZipArchive::new(std::io::Cursor::new(&file[..])).unwrap();
+        (0..zip.len())
+            .map(|i| {
+                let mut part = zip.by_index(i).unwrap();
+                let mut data = Vec::new();
+                part.read_to_end(&mut data).unwrap();
+                (part.name().unwrap().into_owned(), data)
+            })
+            .collect()
+    })
+}
 
 /// A zip archive of `parts`, deflated (the mimetype stored, as ODS asks).
 fn zipped(parts: &[(&str, &[u8])]) -> Vec<u8> {

@@ -255,3 +255,24 @@ fn explicit_mapping_wins() {
     let (_, auto) = read_chart(&p, &Settings::default()).unwrap();
     assert!(!auto[0].warnings.is_empty(), "detection must say it assumed units");
 }
+
+/// The same chart in Excel's binary workbook format (xlsb) and the legacy
+/// one (xls), both fixtures written by scripts beside them: the same
+/// configuration, booms, radii and capacities, each capacity from the same
+/// cell.
+#[test]
+fn an_xlsb_chart_reads_as_its_xls_twin() {
+    let fixture = |name: &str| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/charts").join(name);
+    let (xlsb, _) = read_chart(&fixture("chart.xlsb"), &Settings::default()).unwrap();
+    let (xls, _) = read_chart(&fixture("chart.xls"), &Settings::default()).unwrap();
+    assert_eq!(xlsb.len(), 1);
+    assert_eq!(xlsb[0].name, "Main boom");
+    assert_eq!(xlsb[0].boom_lengths_m, vec![20.0, 30.0, 40.0]);
+    assert_eq!(xlsb[0].radii_m, vec![3.0, 5.0, 8.0, 12.0]);
+    assert_eq!(xlsb[0].cells.len(), 12);
+    for (b, s) in xlsb[0].cells.iter().zip(&xls[0].cells) {
+        let (b, s) = (b.as_ref().unwrap(), s.as_ref().unwrap());
+        assert_eq!(b.capacity_kg, s.capacity_kg);
+        assert_eq!(b.cell.replace("chart.xlsb", "chart.xls"), s.cell);
+    }
+}
