@@ -42,8 +42,11 @@ fuzz_target!(|data: &[u8]| {
             ]),
         ),
         7 => {
-            let mut parts: Vec<(&str, &[u8])> =
-                xlsb_parts().iter().map(|(n, d)| (n.as_str(), d.as_slice())).filter(|(n, _)| *n != XLSB_SHEET).collect();
+            let mut parts: Vec<(&str, &[u8])> = xlsb_parts()
+                .iter()
+                .map(|(n, d)| (n.as_str(), d.as_slice()))
+                .filter(|(n, _)| *n != XLSB_SHEET)
+                .collect();
             parts.push((XLSB_SHEET, body));
             ("xlsb", zipped(&parts))
         }
@@ -91,7 +94,8 @@ fn xlsb_parts() -> &'static [(String, Vec<u8>)] {
 fn zipped(parts: &[(&str, &[u8])]) -> Vec<u8> {
     let mut w = zip::ZipWriter::new(std::io::Cursor::new(Vec::new()));
     for (name, data) in parts {
-        let method = if *name == "mimetype" { zip::CompressionMethod::Stored } else { zip::CompressionMethod::Deflated };
+        let method =
+            if *name == "mimetype" { zip::CompressionMethod::Stored } else { zip::CompressionMethod::Deflated };
         w.start_file(*name, zip::write::SimpleFileOptions::default().compression_method(method)).unwrap();
         w.write_all(data).unwrap();
     }
