@@ -2,10 +2,11 @@
 //! text, through `calamine`.
 //!
 //! xlsx and xlsb sheets are streamed cell by cell and capped at
-//! [`MAX_CELLS`], so a sheet that declares a huge used range cannot drive an
-//! allocation; xls and ods are read through calamine's dense ranges, an ods
-//! file's only after [`crate::container`] has counted the cells its repeat
-//! attributes make.
+//! [`MAX_CELLS`] in a sheet and in all sheets together, so a sheet that
+//! declares a huge used range cannot drive an allocation; xls and ods are
+//! read through calamine's dense ranges, only after [`crate::container`] has
+//! counted the cells they will make (an ods file's repeat attributes, an xls
+//! file's cell records).
 
 use crate::error::{ChartError, Result};
 use calamine::{Data, DataRef, Reader};
@@ -95,21 +96,30 @@ pub fn read_workbook(path: &Path) -> Result<Vec<Sheet>> {
     // a sector, found by the chart_workbook fuzz target); the guard turns
     // that into an error naming the file. What would hang it or exhaust
     // memory is refused by the container check above, as no guard can.
-    liftplan_core::guard::run_reader("the workbook reader (calamine)", || read_sheets(path))
+    liftplan_core::guard::run_reader("the workbook reader (calamine)", || read_sheets(path, MAX_CELLS))
         .unwrap_or_else(|why| Err(ChartError::Format(Location::file(path), why)))
 }
 
-fn read_sheets(path: &Path) -> Result<Vec<Sheet>> {
+/// The sheets of the workbook at `path`, refused past `max_cells` cells in
+/// a sheet or in all.
+fn read_sheets(path: &Path, max_cells: usize) -> Result<Vec<Sheet>> {
     let bad = |msg: String| ChartError::Format(Location::file(path), msg);
     let mut wb = calamine::open_workbook_auto(path).map_err(|e| bad(format!("cannot open the workbook: {e}")))?;
     let names = wb.sheet_names().to_vec();
     let mut out = Vec::new();
+    // Cells kept from the sheets before this one: the workbook's sheets are
+    // all held at once, so they share the bound.
+    let mut before = 0usize;
     for name in names {
         let mut cells = BTreeMap::new();
         let mut put = |pos: (u32, u32), v: Val| {
             cells.insert(pos, v);
-            if cells.len() > MAX_CELLS {
-                Err(bad(format!("sheet '{name}' has more than {MAX_CELLS} cells; a load chart never does")))
+            if cells.len() > max_cells {
+                Err(bad(format!("sheet '{name}' has more than {max_cells} cells; a load chart never does")))
+            } else if before + cells.len() > max_cells {
+                Err(bad(format!(
+                    "its sheets up to '{name}' have more than {max_cells} cells in all; a load chart workbook never does"
+                )))
             } else {
                 Ok(())
             }
@@ -141,8 +151,35 @@ fn read_sheets(path: &Path) -> Result<Vec<Sheet>> {
                 }
             }
         }
+        before += cells.len();
         let sheet = Sheet { name: name.clone(), cells };
         out.push(sheet);
     }
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A workbook's sheets are held together, so they share the cell bound:
+    /// two sheets of six cells pass a bound of ten one by one, not together.
+    #[test]
+    fn a_workbook_s_sheets_share_the_cell_bound() {
+        let d = tempfile::tempdir().unwrap();
+        let path = d.path().join("two.xlsx");
+        let mut wb = rust_xlsxwriter::Workbook::new();
+        for name in ["Boom A", "Boom B"] {
+            let ws = wb.add_worksheet().set_name(name).unwrap();
+            for k in 0..6 {
+                ws.write_number(k, 0, k as f64).unwrap();
+            }
+        }
+        wb.save(&path).unwrap();
+        assert_eq!(read_sheets(&path, 12).unwrap().len(), 2);
+        let e = read_sheets(&path, 10).unwrap_err().to_string();
+        assert!(e.contains("two.xlsx: its sheets up to 'Boom B' have more than 10 cells in all"), "{e}");
+        let e = read_sheets(&path, 5).unwrap_err().to_string();
+        assert!(e.contains("two.xlsx: sheet 'Boom A' has more than 5 cells"), "{e}");
+    }
 }

@@ -204,14 +204,29 @@ fn check_xls_used_ranges(file: &CompoundFile) -> std::result::Result<(), String>
             None => return Ok(()),
         },
     };
+    check_workbook_stream(&stream)
+}
+
+/// [`check_xls_used_ranges`] on the workbook stream: the globals from its
+/// start, then each sheet from its BoundSheet8 position.
+fn check_workbook_stream(stream: &[u8]) -> std::result::Result<(), String> {
     let mut sheets = Vec::new();
-    check_records(&stream, 0, &mut sheets)?;
+    check_records(stream, 0, &mut sheets)?;
+    // calamine reads every sheet when it opens the file, and keeps them all.
+    let mut all = 0u64;
     for (k, &(pos, _)) in sheets.iter().enumerate() {
-        check_records(&stream, pos, &mut Vec::new())?;
-        check_sheet_cells(&stream, pos).map_err(|m| match &sheets[k].1 {
+        check_records(stream, pos, &mut Vec::new())?;
+        all += check_sheet_cells(stream, pos).map_err(|m| match &sheets[k].1 {
             Some(name) => format!("sheet '{name}' {m}"),
             None => format!("sheet {} {m}", k + 1),
         })?;
+        if all > MAX_CELLS as u64 {
+            return Err(format!(
+                "its first {} sheets' cells span {all} cells in all, more than the {MAX_CELLS} cells a load chart \
+                 workbook may have",
+                k + 1
+            ));
+        }
     }
     Ok(())
 }
@@ -283,12 +298,13 @@ fn bound_sheet_name(data: &[u8]) -> Option<String> {
 }
 
 /// The cells calamine reads from the sheet at `pos` must span at most
-/// [`MAX_CELLS`] cells. The walk is calamine's: nested substreams (an
+/// [`MAX_CELLS`] cells; returns how many they span (the dense range calamine
+/// makes of them). The walk is calamine's: nested substreams (an
 /// embedded chart) are skipped, the sheet's EOF record ends it, and every
 /// record calamine makes a cell (or a formula) of counts, at the row and
 /// columns it reads. A record too short for its cell counts where its first
 /// four bytes place it (calamine refuses it; counting it only refuses more).
-fn check_sheet_cells(stream: &[u8], pos: usize) -> std::result::Result<(), String> {
+fn check_sheet_cells(stream: &[u8], pos: usize) -> std::result::Result<u64, String> {
     let (mut rows, mut cols) = ((u32::MAX, 0u32), (u32::MAX, 0u32));
     let mut span = |row: u32, first: u32, last: u32| {
         rows = (rows.0.min(row), rows.1.max(row));
@@ -334,7 +350,7 @@ fn check_sheet_cells(stream: &[u8], pos: usize) -> std::result::Result<(), Strin
         }
     }
     if rows.0 > rows.1 {
-        return Ok(());
+        return Ok(0);
     }
     let (height, width) = ((rows.1 - rows.0 + 1) as u64, (cols.1 - cols.0 + 1) as u64);
     if height * width > MAX_CELLS as u64 {
@@ -345,7 +361,7 @@ fn check_sheet_cells(stream: &[u8], pos: usize) -> std::result::Result<(), Strin
             liftplan_core::location::cell_ref(rows.1, cols.1),
         ));
     }
-    Ok(())
+    Ok(height * width)
 }
 
 /// Every link of `table` (entry k: the sector after k) stays inside it and
@@ -380,7 +396,7 @@ fn check_chains(table: &[u32]) -> std::result::Result<(), String> {
 
 #[cfg(test)]
 mod tests {
-    use super::check_sheet_cells;
+    use super::{check_sheet_cells, check_workbook_stream};
     use std::path::Path;
 
     fn chart_fixture(name: &str) -> std::path::PathBuf {
@@ -544,9 +560,9 @@ mod tests {
         };
         // An embedded chart holding a far cell, skipped as calamine skips it.
         let nested = sheet(vec![bof.clone(), far.clone(), bof.clone(), eof.clone(), far.clone(), eof.clone()]);
-        assert_eq!(check_sheet_cells(&nested, 0), Ok(()));
+        assert_eq!(check_sheet_cells(&nested, 0), Ok(1));
         let near = sheet(vec![(0x00FD, cell(1999, 999, 6))]);
-        assert_eq!(check_sheet_cells(&near, 0), Ok(()));
+        assert_eq!(check_sheet_cells(&near, 0), Ok(2000 * 1000));
         let e = check_sheet_cells(&sheet(vec![far.clone()]), 0).unwrap_err();
         assert!(e.starts_with("has cells from A1 to GS60001: 60001 rows x 201 columns"), "{e}");
         // MulRk of three cells from column 700 (the last two bytes name the
@@ -557,6 +573,47 @@ mod tests {
         let string_after_formula = vec![(0x0006, cell(4000, 600, 20)), (0x0207, vec![0; 4])];
         let e = check_sheet_cells(&sheet(string_after_formula), 0).unwrap_err();
         assert!(e.contains("4001 rows x 601 columns"), "{e}");
+    }
+
+    /// calamine keeps every sheet's dense range once it has opened the file:
+    /// two sheets of 1.2 M cells each pass one by one but not together.
+    #[test]
+    fn an_xls_workbook_s_sheets_count_together() {
+        let (bof, eof) = ((0x0809u16, vec![0u8; 16]), (0x000Au16, vec![]));
+        let sheet = biff(&[bof.clone(), (0x0203, cell(0, 0, 10)), (0x0203, cell(1199, 999, 10)), eof.clone()]);
+        // BoundSheet8: the sheet's position, state, type, then its name
+        // (a count, a flag byte: 8-bit characters, the characters).
+        let bound = |pos: u32, name: &str| {
+            let mut d = pos.to_le_bytes().to_vec();
+            d.extend_from_slice(&[0, 0, name.len() as u8, 0]);
+            d.extend_from_slice(name.as_bytes());
+            (0x0085u16, d)
+        };
+        let globals_len = |sheets: usize| biff(&[bof.clone(), eof.clone()]).len() + sheets * (4 + 8 + 5);
+        let workbook = |sheets: usize| {
+            let start = globals_len(sheets);
+            let mut records = vec![bof.clone()];
+            for k in 0..sheets {
+                records.push(bound((start + k * sheet.len()) as u32, &format!("Boom{k}")));
+            }
+            records.push(eof.clone());
+            let mut stream = biff(&records);
+            assert_eq!(stream.len(), start);
+            for _ in 0..sheets {
+                stream.extend_from_slice(&sheet);
+            }
+            stream
+        };
+        assert_eq!(check_workbook_stream(&workbook(1)), Ok(()));
+        let e = check_workbook_stream(&workbook(2)).unwrap_err();
+        assert!(e.contains("its first 2 sheets' cells span 2400000 cells in all, more than the 2000000"), "{e}");
+        // One sheet over the limit is named.
+        let wide = biff(&[bof.clone(), (0x0203, cell(0, 0, 10)), (0x0203, cell(2000, 999, 10)), eof.clone()]);
+        let at = biff(&[bof.clone(), bound(0, "Main boom"), eof.clone()]).len() as u32;
+        let mut one = biff(&[bof.clone(), bound(at, "Main boom"), eof.clone()]);
+        one.extend_from_slice(&wide);
+        let e = check_workbook_stream(&one).unwrap_err();
+        assert!(e.starts_with("sheet 'Main boom' has cells from A1 to ALL2001"), "{e}");
     }
 
     /// Found by the chart_workbook fuzz target:
