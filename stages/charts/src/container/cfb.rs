@@ -285,10 +285,14 @@ fn records(stream: &[u8], pos: usize) -> impl Iterator<Item = (u16, &[u8])> {
     })
 }
 
-/// A BoundSheet8 record's sheet name, if it reads as a BIFF8 short string.
+/// A BoundSheet8 record's sheet name, if it reads as a BIFF8 short string
+/// (a count, a flag byte of 0 or 1, the characters).
 fn bound_sheet_name(data: &[u8]) -> Option<String> {
     let (&chars, &flags) = (data.get(6)?, data.get(7)?);
-    let name = if flags & 1 == 0 {
+    if flags > 1 {
+        return None;
+    }
+    let name = if flags == 0 {
         data.get(8..8 + chars as usize)?.iter().map(|&b| b as char).collect()
     } else {
         let units: Vec<u16> = data.get(8..8 + 2 * chars as usize)?.chunks_exact(2).map(|c| le_u16(c, 0)).collect();
