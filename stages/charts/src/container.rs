@@ -25,7 +25,7 @@
 //!   first asked for 687 GB (found by the fuzz target);
 //! - calamine makes an xls sheet one dense range spanning all its cells,
 //!   whose rows and columns are any 16-bit numbers: two cells at A1 and at
-//!   row and column 65,536 asked for 137 GB.
+//!   row and column 65,536 asked for 137 GB;
 //! - calamine reserves room for as many shared strings as an xlsx file's
 //!   table says it holds, before reading any: ten billion asked for 240 GB.
 //!
