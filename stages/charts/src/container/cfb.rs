@@ -119,30 +119,19 @@ impl CompoundFile<'_> {
     /// reads them. A chain that runs into a sector the file does not have is
     /// an error: calamine would read it as zeros or as whatever follows.
     fn chain(&self, start: u32, len: usize) -> std::result::Result<Vec<u8>, String> {
-        let mut out = Vec::new();
-        let mut at = start;
-        while at != CFB_END_OF_CHAIN && out.len() < len {
-            let s = self.sector(at).ok_or_else(|| format!("a stream runs into sector {at}, past the file's end"))?;
-            out.extend_from_slice(&s[..s.len().min(len - out.len())]);
-            // A link past the table panics calamine; its guard reports that.
-            at = self.fat.get(at as usize).copied().unwrap_or(CFB_END_OF_CHAIN);
-        }
-        Ok(out)
+        follow(start, len, &self.fat, |at| {
+            self.sector(at).ok_or_else(|| format!("a stream runs into sector {at}, past the file's end"))
+        })
     }
 
     /// The same for a chain of mini sectors in `mini_stream`.
     fn mini_chain(&self, mini_stream: &[u8], start: u32, len: usize) -> std::result::Result<Vec<u8>, String> {
-        let mut out = Vec::new();
-        let mut at = start;
-        while at != CFB_END_OF_CHAIN && out.len() < len {
+        follow(start, len, &self.mini, |at| {
             let from = at as usize * Self::MINI_SECTOR;
-            let s = mini_stream
+            mini_stream
                 .get(from..from + Self::MINI_SECTOR)
-                .ok_or_else(|| format!("a stream runs into mini sector {at}, past the mini stream's end"))?;
-            out.extend_from_slice(&s[..s.len().min(len - out.len())]);
-            at = self.mini.get(at as usize).copied().unwrap_or(CFB_END_OF_CHAIN);
-        }
-        Ok(out)
+                .ok_or_else(|| format!("a stream runs into mini sector {at}, past the mini stream's end"))
+        })
     }
 
     /// A directory entry's stream: its first sector and its length, read as
@@ -176,6 +165,25 @@ impl CompoundFile<'_> {
         let mini_stream = self.chain(root_start, root_len)?;
         self.mini_chain(&mini_stream, start, len).map(Some)
     }
+}
+
+/// The first `len` bytes of the chain from `start` through `table` (entry k:
+/// the sector after k), each sector's bytes from `sector`. A link past the
+/// table ends the chain here; it panics calamine, whose guard reports that.
+fn follow<'a>(
+    start: u32,
+    len: usize,
+    table: &[u32],
+    sector: impl Fn(u32) -> std::result::Result<&'a [u8], String>,
+) -> std::result::Result<Vec<u8>, String> {
+    let mut out = Vec::new();
+    let mut at = start;
+    while at != CFB_END_OF_CHAIN && out.len() < len {
+        let s = sector(at)?;
+        out.extend_from_slice(&s[..s.len().min(len - out.len())]);
+        at = table.get(at as usize).copied().unwrap_or(CFB_END_OF_CHAIN);
+    }
+    Ok(out)
 }
 
 /// The used ranges (DIMENSIONS records) of an xls file's sheets, which
