@@ -218,16 +218,15 @@ fn check_xls_used_ranges(file: &CompoundFile) -> std::result::Result<(), String>
 /// [`check_xls_used_ranges`] on the workbook stream: the globals from its
 /// start, then each sheet from its BoundSheet8 position.
 fn check_workbook_stream(stream: &[u8]) -> std::result::Result<(), String> {
-    let mut sheets = Vec::new();
-    check_records(stream, 0, &mut sheets)?;
+    let sheets = check_globals(stream)?;
     // calamine reads every sheet when it opens the file, and keeps them all.
     let mut all = 0u64;
-    for (k, &(pos, _)) in sheets.iter().enumerate() {
-        check_records(stream, pos, &mut Vec::new())?;
-        all += check_sheet_cells(stream, pos).map_err(|m| match &sheets[k].1 {
-            Some(name) => format!("sheet '{name}' {m}"),
-            None => format!("sheet {} {m}", k + 1),
-        })?;
+    for (k, (pos, name)) in sheets.iter().enumerate() {
+        let sheet = match name {
+            Some(name) => format!("sheet '{name}'"),
+            None => format!("sheet {}", k + 1),
+        };
+        all += check_sheet(stream, *pos, &sheet)?;
         if all > MAX_CELLS as u64 {
             return Err(format!(
                 "its first {} sheets' cells span {all} cells in all, more than the {MAX_CELLS} cells a load chart \
@@ -239,40 +238,43 @@ fn check_workbook_stream(stream: &[u8]) -> std::result::Result<(), String> {
     Ok(())
 }
 
-/// Walks BIFF records from `pos`: refuses a used range over [`MAX_CELLS`]
-/// cells and collects BoundSheet8 records (position and, where it reads as
-/// one, name) into `sheets`.
-fn check_records(
-    stream: &[u8],
-    pos: usize,
-    sheets: &mut Vec<(usize, Option<String>)>,
-) -> std::result::Result<(), String> {
-    for (typ, data) in records(stream, pos) {
-        let u16_at = |o: usize| le_u16(data, o) as u32;
+/// Walks the workbook stream's records from its start: refuses a used range
+/// over [`MAX_CELLS`] cells anywhere on the way ([`check_used_range`]) and
+/// returns the BoundSheet8 records (position and, where it reads as one,
+/// name).
+fn check_globals(stream: &[u8]) -> std::result::Result<Vec<(usize, Option<String>)>, String> {
+    let mut sheets = Vec::new();
+    for (typ, data) in records(stream, 0) {
         match (typ, data.len()) {
             (0x0085, 4..) => sheets.push((le_u32(data, 0) as usize, bound_sheet_name(data))),
-            (0x0200, len @ (10 | 14 | 16)) => {
-                let (rf, rl, cf, cl) = if len == 10 {
-                    (u16_at(0), u16_at(2), u16_at(4), u16_at(6))
-                } else {
-                    (le_u32(data, 0), le_u32(data, 4), u16_at(8), u16_at(10))
-                };
-                let cf = if 0xFF < cf || cl < cf { 0 } else { cf };
-                let (rows, cols) = if rl >= 1 && cl >= 1 {
-                    ((rl - 1).wrapping_sub(rf).wrapping_add(1), (cl - 1).wrapping_sub(cf).wrapping_add(1))
-                } else {
-                    (1, 1)
-                };
-                let cells = rows as u64 * cols as u64;
-                if cells > MAX_CELLS as u64 {
-                    return Err(format!(
-                        "a sheet's used range (its DIMENSIONS record) spans {rows} rows x {cols} columns, more than \
-                         the {MAX_CELLS} cells a load chart may have"
-                    ));
-                }
-            }
+            (0x0200, _) => check_used_range(data)?,
             _ => {}
         }
+    }
+    Ok(sheets)
+}
+
+/// A DIMENSIONS record's used range, which calamine reserves cells for, must
+/// be within [`MAX_CELLS`] cells as calamine computes them (wrapping, as its
+/// release build does). Records of other lengths calamine refuses.
+fn check_used_range(data: &[u8]) -> std::result::Result<(), String> {
+    let u16_at = |o: usize| le_u16(data, o) as u32;
+    let (rf, rl, cf, cl) = match data.len() {
+        10 => (u16_at(0), u16_at(2), u16_at(4), u16_at(6)),
+        14 | 16 => (le_u32(data, 0), le_u32(data, 4), u16_at(8), u16_at(10)),
+        _ => return Ok(()),
+    };
+    let cf = if 0xFF < cf || cl < cf { 0 } else { cf };
+    let (rows, cols) = if rl >= 1 && cl >= 1 {
+        ((rl - 1).wrapping_sub(rf).wrapping_add(1), (cl - 1).wrapping_sub(cf).wrapping_add(1))
+    } else {
+        (1, 1)
+    };
+    if rows as u64 * cols as u64 > MAX_CELLS as u64 {
+        return Err(format!(
+            "a sheet's used range (its DIMENSIONS record) spans {rows} rows x {cols} columns, more than the \
+             {MAX_CELLS} cells a load chart may have"
+        ));
     }
     Ok(())
 }
@@ -309,22 +311,32 @@ fn bound_sheet_name(data: &[u8]) -> Option<String> {
     Some(name)
 }
 
-/// The cells calamine reads from the sheet at `pos` must span at most
-/// [`MAX_CELLS`] cells; returns how many they span (the dense range calamine
-/// makes of them). The walk is calamine's: nested substreams (an
-/// embedded chart) are skipped, the sheet's EOF record ends it, and every
+/// Walks the records of `sheet` (a name for messages) from `pos`, once: the
+/// cells calamine reads from it must span at most [`MAX_CELLS`] cells, and
+/// every used range on the way is checked ([`check_used_range`]), past the
+/// sheet's end too. Returns how many cells the sheet's cells span (the dense
+/// range calamine makes of them).
+///
+/// The cells are counted as calamine reads them: nested substreams (an
+/// embedded chart) are skipped, the sheet's EOF record ends them, and every
 /// record calamine makes a cell (or a formula) of counts, at the row and
 /// columns it reads. A record too short for its cell counts where its first
 /// four bytes place it (calamine refuses it; counting it only refuses more).
-fn check_sheet_cells(stream: &[u8], pos: usize) -> std::result::Result<u64, String> {
+fn check_sheet(stream: &[u8], pos: usize, sheet: &str) -> std::result::Result<u64, String> {
     let (mut rows, mut cols) = ((u32::MAX, 0u32), (u32::MAX, 0u32));
     let mut span = |row: u32, first: u32, last: u32| {
         rows = (rows.0.min(row), rows.1.max(row));
         cols = (cols.0.min(first), cols.1.max(last));
     };
-    let (mut seen_bof, mut depth) = (false, 0usize);
+    let (mut seen_bof, mut depth, mut ended) = (false, 0usize, false);
     let mut formula_at = (0u32, 0u32);
     for (typ, data) in records(stream, pos) {
+        if typ == 0x0200 {
+            check_used_range(data)?;
+        }
+        if ended {
+            continue;
+        }
         if depth > 0 {
             match typ {
                 0x0809 => depth += 1,
@@ -337,7 +349,7 @@ fn check_sheet_cells(stream: &[u8], pos: usize) -> std::result::Result<u64, Stri
         match typ {
             0x0809 if seen_bof => depth += 1,
             0x0809 => seen_bof = true,
-            0x000A => break,
+            0x000A => ended = true,
             // Number, Label, RString, BoolErr, Rk, LabelSst.
             0x0203 | 0x0204 | 0x00D6 | 0x0205 | 0x027E | 0x00FD => {
                 if let Some((row, col)) = at() {
@@ -367,8 +379,8 @@ fn check_sheet_cells(stream: &[u8], pos: usize) -> std::result::Result<u64, Stri
     let (height, width) = ((rows.1 - rows.0 + 1) as u64, (cols.1 - cols.0 + 1) as u64);
     if height * width > MAX_CELLS as u64 {
         return Err(format!(
-            "has cells from {} to {}: {height} rows x {width} columns, more than the {MAX_CELLS} cells a load \
-             chart may have",
+            "{sheet} has cells from {} to {}: {height} rows x {width} columns, more than the {MAX_CELLS} cells a \
+             load chart may have",
             liftplan_core::location::cell_ref(rows.0, cols.0),
             liftplan_core::location::cell_ref(rows.1, cols.1),
         ));
@@ -408,7 +420,7 @@ fn check_chains(table: &[u32]) -> std::result::Result<(), String> {
 
 #[cfg(test)]
 mod tests {
-    use super::{check_sheet_cells, check_workbook_stream};
+    use super::{check_sheet, check_workbook_stream};
     use std::path::Path;
 
     fn chart_fixture(name: &str) -> std::path::PathBuf {
@@ -572,18 +584,18 @@ mod tests {
         };
         // An embedded chart holding a far cell, skipped as calamine skips it.
         let nested = sheet(vec![bof.clone(), far.clone(), bof.clone(), eof.clone(), far.clone(), eof.clone()]);
-        assert_eq!(check_sheet_cells(&nested, 0), Ok(1));
+        assert_eq!(check_sheet(&nested, 0, "sheet"), Ok(1));
         let near = sheet(vec![(0x00FD, cell(1999, 999, 6))]);
-        assert_eq!(check_sheet_cells(&near, 0), Ok(2000 * 1000));
-        let e = check_sheet_cells(&sheet(vec![far.clone()]), 0).unwrap_err();
-        assert!(e.starts_with("has cells from A1 to GS60001: 60001 rows x 201 columns"), "{e}");
+        assert_eq!(check_sheet(&near, 0, "sheet"), Ok(2000 * 1000));
+        let e = check_sheet(&sheet(vec![far.clone()]), 0, "sheet").unwrap_err();
+        assert!(e.starts_with("sheet has cells from A1 to GS60001: 60001 rows x 201 columns"), "{e}");
         // MulRk of three cells from column 700 (the last two bytes name the
         // last column).
         let mul_rk = (0x00BD, cell(2999, 700, 3 * 6 + 2));
-        let e = check_sheet_cells(&sheet(vec![mul_rk]), 0).unwrap_err();
+        let e = check_sheet(&sheet(vec![mul_rk]), 0, "sheet").unwrap_err();
         assert!(e.contains("3000 rows x 703 columns"), "{e}");
         let string_after_formula = vec![(0x0006, cell(4000, 600, 20)), (0x0207, vec![0; 4])];
-        let e = check_sheet_cells(&sheet(string_after_formula), 0).unwrap_err();
+        let e = check_sheet(&sheet(string_after_formula), 0, "sheet").unwrap_err();
         assert!(e.contains("4001 rows x 601 columns"), "{e}");
     }
 
