@@ -432,6 +432,14 @@ mod tests {
         std::fs::read(chart_fixture("chart.xls")).unwrap()
     }
 
+    /// The error of reading `bytes` as a workbook named `chart.xls`.
+    fn refusal(bytes: &[u8]) -> String {
+        let d = tempfile::tempdir().unwrap();
+        let path = d.path().join("chart.xls");
+        std::fs::write(&path, bytes).unwrap();
+        crate::sheet::read_workbook(&path).unwrap_err().to_string()
+    }
+
     /// The xls fixture with its directory's link (the sector after the
     /// directory's first, in the sector table) set to `next`; and the first
     /// sector of the table.
@@ -446,10 +454,7 @@ mod tests {
 
     #[test]
     fn an_xls_chart_is_read() {
-        let d = tempfile::tempdir().unwrap();
-        let path = d.path().join("chart.xls");
-        std::fs::write(&path, xls_fixture()).unwrap();
-        let (configs, _) = crate::read_chart(&path, &crate::Settings::default()).unwrap();
+        let (configs, _) = crate::read_chart(&chart_fixture("chart.xls"), &crate::Settings::default()).unwrap();
         assert_eq!(configs[0].boom_lengths_m, vec![20.0, 30.0, 40.0]);
         assert_eq!(configs[0].radii_m, vec![3.0, 5.0, 8.0, 12.0]);
     }
@@ -464,11 +469,6 @@ mod tests {
     #[test]
     fn an_xls_file_whose_sector_chains_loop_or_leave_the_table_is_refused() {
         let d = tempfile::tempdir().unwrap();
-        let path = d.path().join("chart.xls");
-        let refusal = |bytes: &[u8]| {
-            std::fs::write(&path, bytes).unwrap();
-            crate::sheet::read_workbook(&path).unwrap_err().to_string()
-        };
         let (looped, fat0) = xls_with_directory_link(|dir| dir);
         let e = refusal(&looped);
         assert!(e.contains("chart.xls: its sector table links sector") && e.contains("back into its own chain"), "{e}");
@@ -514,15 +514,12 @@ mod tests {
             e.contains("damaged-dimensions.xls: a sheet's used range (its DIMENSIONS record) spans 4294967150 rows"),
             "{e}"
         );
-        let d = tempfile::tempdir().unwrap();
-        let path = d.path().join("chart.xls");
         let mut bad = xls_fixture();
         // DIMENSIONS: type 0x0200, 14 bytes: first row, last row + 1 (u32),
         // first column, last column + 1 (u16).
         let at = bad.windows(4).position(|w| w == [0x00, 0x02, 0x0E, 0x00]).unwrap() + 4;
         bad[at + 4..at + 8].copy_from_slice(&1_000_000u32.to_le_bytes());
-        std::fs::write(&path, &bad).unwrap();
-        let e = crate::sheet::read_workbook(&path).unwrap_err().to_string();
+        let e = refusal(&bad);
         assert!(e.contains("spans 1000000 rows x 4 columns, more than the 2000000 cells"), "{e}");
     }
 
@@ -532,14 +529,11 @@ mod tests {
     /// aborted liftplan. Refused, naming the sheet and the cells' span.
     #[test]
     fn an_xls_sheet_whose_cells_lie_far_apart_is_refused() {
-        let d = tempfile::tempdir().unwrap();
-        let path = d.path().join("chart.xls");
         let mut bad = xls_fixture();
         // LabelSst: type 0x00FD, 10 bytes: row, column (u16), format, string.
         let at = bad.windows(4).rposition(|w| w == [0xFD, 0x00, 0x0A, 0x00]).unwrap() + 4;
         bad[at..at + 4].copy_from_slice(&[0xFF; 4]);
-        std::fs::write(&path, &bad).unwrap();
-        let e = crate::sheet::read_workbook(&path).unwrap_err().to_string();
+        let e = refusal(&bad);
         assert!(
             e.contains(
                 "chart.xls: sheet 'Main boom' has cells from A1 to CRXP65536: 65536 rows x 65536 columns, more than \
@@ -656,16 +650,13 @@ mod tests {
         assert!(e.contains("damaged-cut-short.xls: it is cut short: 1897 bytes"), "{e}");
         let e = crate::sheet::read_workbook(&chart_fixture("damaged-partial-sector.xls")).unwrap_err().to_string();
         assert!(e.contains("damaged-partial-sector.xls: it is cut short: 5100 bytes"), "{e}");
-        let d = tempfile::tempdir().unwrap();
-        let path = d.path().join("chart.xls");
         let mut bad = xls_fixture();
         // The fixture's BoundSheet8 record (type 0x0085, 17 bytes: the sheet's
         // position, then its state, type and name).
         let at = bad.windows(4).position(|w| w == [0x85, 0x00, 0x11, 0x00]).unwrap() + 4;
         assert_eq!(bad[at..at + 4], 1024u32.to_le_bytes());
         bad[at..at + 4].copy_from_slice(&0x00FF_FFFFu32.to_le_bytes());
-        std::fs::write(&path, &bad).unwrap();
-        let e = crate::sheet::read_workbook(&path).unwrap_err().to_string();
+        let e = refusal(&bad);
         assert!(e.contains("chart.xls: the workbook reader (calamine) failed on damaged data"), "{e}");
     }
 }
