@@ -42,8 +42,8 @@ seed("crane_and_lift_toml", "lift.toml", lift[:lift.index('"#')].encode())
 # project_toml: the template `liftplan init` writes and the demo's project
 # file, taken from their sources.
 for name, path, const in [("init.toml", "src/project.rs", "TEMPLATE"), ("demo.toml", "fixtures/src/demo.rs", "PROJECT_TOML")]:
-    text = read(os.path.join(root, path)).decode()
-    body = text[text.index(f'pub const {const}: &str = r#"') + len(f'pub const {const}: &str = r#"'):]
+    text, start = read(os.path.join(root, path)).decode(), f'pub const {const}: &str = r#"'
+    body = text[text.index(start) + len(start):]
     seed("project_toml", name, body[:body.index('"#;')].encode())
 seed("crane_and_lift_toml", "stations.toml", b'[[station]]\nscan = "scan-1"\nx_m = 1.0\ny_m = 2.0\nz_m = 0.5\n'
      b'yaw_deg = 30.0\n\n[[station]]\nscan = "scan-2"\nx_m = -4.0\ny_m = 12.5\n')
