@@ -28,13 +28,18 @@
 //!   row and column 65,536 asked for 137 GB;
 //! - calamine reserves room for as many shared strings as an xlsx file's
 //!   table says it holds, before reading any: ten billion asked for 240 GB.
+//! - calamine reads each xls sheet from where its BoundSheet8 record places
+//!   it to the sheet's EOF record, so many sheets placed at one spot with no
+//!   EOF cost the whole stream once per sheet (a 1.3 MB stream of 20,000
+//!   such sheets took this check 6.9 s in a debug build, before it was
+//!   bounded).
 //!
 //! So every part is unpacked once here, counting bytes, and an ODS
 //! `content.xml` must be well-formed XML whose cells and text, counted from
 //! the repeat attributes the way calamine expands them, stay within bounds;
 //! an xls file must be whole sectors, its sector tables must link every chain
-//! to an end inside the file, and its sheets' used ranges and the span of
-//! their cells must stay within bounds; an xlsx file's shared strings table
+//! to an end inside the file, its sheets must not overlap, and their used
+//! ranges and the span of their cells must stay within bounds; an xlsx file's shared strings table
 //! must not claim more strings than it could hold. All before calamine opens
 //! the file. This module does not read values or judge whether a file is a
 //! valid workbook: an archive or part it cannot unpack is left to calamine,

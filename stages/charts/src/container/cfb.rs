@@ -220,13 +220,26 @@ fn check_xls_used_ranges(file: &CompoundFile) -> std::result::Result<(), String>
 fn check_workbook_stream(stream: &[u8]) -> std::result::Result<(), String> {
     let sheets = check_globals(stream)?;
     // calamine reads every sheet when it opens the file, and keeps them all.
-    let mut all = 0u64;
+    let (mut all, mut read) = (0u64, 0usize);
     for (k, (pos, name)) in sheets.iter().enumerate() {
         let sheet = match name {
             Some(name) => format!("sheet '{name}'"),
             None => format!("sheet {}", k + 1),
         };
-        all += check_sheet(stream, *pos, &sheet)?;
+        let (cells, bytes) = check_sheet(stream, *pos, &sheet)?;
+        // Each sheet is read from its position to its EOF record, here and
+        // by calamine; sheets that overlap would cost the stream's length
+        // once per sheet.
+        read += bytes;
+        if read > 2 * stream.len() {
+            return Err(format!(
+                "{sheet} starts at offset {pos} of the {}-byte workbook stream, and its first {} sheets' records \
+                 add up to more than twice the stream: its sheets overlap; the workbook is damaged",
+                stream.len(),
+                k + 1
+            ));
+        }
+        all += cells;
         if all > MAX_CELLS as u64 {
             return Err(format!(
                 "its first {} sheets' cells span {all} cells in all, more than the {MAX_CELLS} cells a load chart \
@@ -311,32 +324,29 @@ fn bound_sheet_name(data: &[u8]) -> Option<String> {
     Some(name)
 }
 
-/// Walks the records of `sheet` (a name for messages) from `pos`, once: the
-/// cells calamine reads from it must span at most [`MAX_CELLS`] cells, and
-/// every used range on the way is checked ([`check_used_range`]), past the
-/// sheet's end too. Returns how many cells the sheet's cells span (the dense
-/// range calamine makes of them).
+/// Walks the records of `sheet` (a name for messages) from `pos` to its EOF
+/// record, as calamine reads them: the cells it reads must span at most
+/// [`MAX_CELLS`] cells, and the used ranges it reads are checked
+/// ([`check_used_range`]). Returns how many cells the sheet's cells span (the
+/// dense range calamine makes of them) and how many bytes of the stream the
+/// walk read.
 ///
-/// The cells are counted as calamine reads them: nested substreams (an
-/// embedded chart) are skipped, the sheet's EOF record ends them, and every
-/// record calamine makes a cell (or a formula) of counts, at the row and
-/// columns it reads. A record too short for its cell counts where its first
-/// four bytes place it (calamine refuses it; counting it only refuses more).
-fn check_sheet(stream: &[u8], pos: usize, sheet: &str) -> std::result::Result<u64, String> {
+/// Nested substreams (an embedded chart) are skipped, the sheet's EOF record
+/// ends the walk, and every record calamine makes a cell (or a formula) of
+/// counts, at the row and columns it reads. A record too short for its cell
+/// counts where its first four bytes place it (calamine refuses it; counting
+/// it only refuses more).
+fn check_sheet(stream: &[u8], pos: usize, sheet: &str) -> std::result::Result<(u64, usize), String> {
     let (mut rows, mut cols) = ((u32::MAX, 0u32), (u32::MAX, 0u32));
     let mut span = |row: u32, first: u32, last: u32| {
         rows = (rows.0.min(row), rows.1.max(row));
         cols = (cols.0.min(first), cols.1.max(last));
     };
-    let (mut seen_bof, mut depth, mut ended) = (false, 0usize, false);
+    let (mut seen_bof, mut depth) = (false, 0usize);
     let mut formula_at = (0u32, 0u32);
+    let mut read = 0;
     for (typ, data) in records(stream, pos) {
-        if typ == 0x0200 {
-            check_used_range(data)?;
-        }
-        if ended {
-            continue;
-        }
+        read += 4 + data.len();
         if depth > 0 {
             match typ {
                 0x0809 => depth += 1,
@@ -349,7 +359,8 @@ fn check_sheet(stream: &[u8], pos: usize, sheet: &str) -> std::result::Result<u6
         match typ {
             0x0809 if seen_bof => depth += 1,
             0x0809 => seen_bof = true,
-            0x000A => ended = true,
+            0x000A => break,
+            0x0200 => check_used_range(data)?,
             // Number, Label, RString, BoolErr, Rk, LabelSst.
             0x0203 | 0x0204 | 0x00D6 | 0x0205 | 0x027E | 0x00FD => {
                 if let Some((row, col)) = at() {
@@ -374,7 +385,7 @@ fn check_sheet(stream: &[u8], pos: usize, sheet: &str) -> std::result::Result<u6
         }
     }
     if rows.0 > rows.1 {
-        return Ok(0);
+        return Ok((0, read));
     }
     let (height, width) = ((rows.1 - rows.0 + 1) as u64, (cols.1 - cols.0 + 1) as u64);
     if height * width > MAX_CELLS as u64 {
@@ -385,7 +396,7 @@ fn check_sheet(stream: &[u8], pos: usize, sheet: &str) -> std::result::Result<u6
             liftplan_core::location::cell_ref(rows.1, cols.1),
         ));
     }
-    Ok(height * width)
+    Ok((height * width, read))
 }
 
 /// Every link of `table` (entry k: the sector after k) stays inside it and
@@ -578,9 +589,9 @@ mod tests {
         };
         // An embedded chart holding a far cell, skipped as calamine skips it.
         let nested = sheet(vec![bof.clone(), far.clone(), bof.clone(), eof.clone(), far.clone(), eof.clone()]);
-        assert_eq!(check_sheet(&nested, 0, "sheet"), Ok(1));
+        assert_eq!(check_sheet(&nested, 0, "sheet").map(|(cells, _)| cells), Ok(1));
         let near = sheet(vec![(0x00FD, cell(1999, 999, 6))]);
-        assert_eq!(check_sheet(&near, 0, "sheet"), Ok(2000 * 1000));
+        assert_eq!(check_sheet(&near, 0, "sheet").map(|(cells, _)| cells), Ok(2000 * 1000));
         let e = check_sheet(&sheet(vec![far.clone()]), 0, "sheet").unwrap_err();
         assert!(e.starts_with("sheet has cells from A1 to GS60001: 60001 rows x 201 columns"), "{e}");
         // MulRk of three cells from column 700 (the last two bytes name the
@@ -632,6 +643,46 @@ mod tests {
         one.extend_from_slice(&wide);
         let e = check_workbook_stream(&one).unwrap_err();
         assert!(e.starts_with("sheet 'Main boom' has cells from A1 to ALL2001"), "{e}");
+    }
+
+    /// Every sheet's records are read from its BoundSheet8 position to its
+    /// EOF record, by this check and then by calamine. A workbook whose many
+    /// sheets all start at one place and never end made both read the whole
+    /// stream once per sheet: 20,000 sheets over a 1 MB stream are 20 GB of
+    /// records. Refused once the sheets' records add up to more than twice
+    /// the stream (a workbook's sheets lie one after another).
+    #[test]
+    fn an_xls_workbook_whose_sheets_overlap_is_refused() {
+        let bof = (0x0809u16, vec![0u8; 16]);
+        let bound = |pos: u32| {
+            let mut d = pos.to_le_bytes().to_vec();
+            d.extend_from_slice(&[0, 0, 1, 0, b'S']);
+            (0x0085u16, d)
+        };
+        // No EOF anywhere: every sheet, at the stream's start, reads to its end.
+        let mut records = vec![bof.clone()];
+        records.extend((0..20_000).map(|_| bound(0)));
+        records.extend((0..100_000).map(|_| (0x0001u16, vec![0u8; 6])));
+        let stream = biff(&records);
+        let e = check_workbook_stream(&stream).unwrap_err();
+        assert!(
+            e.starts_with(
+                "sheet 'S' starts at offset 0 of the 1260020-byte workbook stream, and its first 3 sheets' records \
+                 add up to more than twice the stream: its sheets overlap"
+            ),
+            "{e}"
+        );
+        // Sheets one after another, each with an EOF, pass however many.
+        let sheet = biff(&[bof.clone(), (0x0203, cell(0, 0, 10)), (0x000A, vec![])]);
+        let n = 5_000;
+        let start = biff(&[bof.clone(), (0x000A, vec![])]).len() + n * (4 + 9);
+        let mut records = vec![bof.clone()];
+        records.extend((0..n).map(|k| bound((start + k * sheet.len()) as u32)));
+        records.push((0x000A, vec![]));
+        let mut stream = biff(&records);
+        assert_eq!(stream.len(), start);
+        stream.extend(sheet.repeat(n));
+        assert_eq!(check_workbook_stream(&stream), Ok(()));
     }
 
     /// Found by the chart_workbook fuzz target:
