@@ -27,23 +27,23 @@
 //!   whose rows and columns are any 16-bit numbers: two cells at A1 and at
 //!   row and column 65,536 asked for 137 GB;
 //! - calamine reserves room for as many shared strings as an xlsx file's
-//!   table says it holds, before reading any: ten billion asked for 240 GB.
+//!   table says it holds, before reading any: ten billion asked for 240 GB;
 //! - calamine reads each xls sheet from where its BoundSheet8 record places
 //!   it to the sheet's EOF record, so many sheets placed at one spot with no
 //!   EOF cost the whole stream once per sheet (a 1.3 MB stream of 20,000
 //!   such sheets took this check 6.9 s in a debug build, before it was
-//!   bounded).
+//!   bounded), and calamine's own reading walks them the same way.
 //!
 //! So every part is unpacked once here, counting bytes, and an ODS
 //! `content.xml` must be well-formed XML whose cells and text, counted from
 //! the repeat attributes the way calamine expands them, stay within bounds;
 //! an xls file must be whole sectors, its sector tables must link every chain
 //! to an end inside the file, its sheets must not overlap, and their used
-//! ranges and the span of their cells must stay within bounds; an xlsx file's shared strings table
-//! must not claim more strings than it could hold. All before calamine opens
-//! the file. This module does not read values or judge whether a file is a
-//! valid workbook: an archive or part it cannot unpack is left to calamine,
-//! which reports it.
+//! ranges and the span of their cells must stay within bounds; an xlsx
+//! file's shared strings table must not claim more strings than it could
+//! hold. All before calamine opens the file. This module does not read
+//! values or judge whether a file is a valid workbook: an archive or part it
+//! cannot unpack is left to calamine, which reports it.
 //!
 //! The zip parts are checked here; `container/ods.rs` checks an ODS file's
 //! `content.xml`, `container/xlsx.rs` an xlsx file's shared strings and
