@@ -234,7 +234,7 @@ fn check_workbook_stream(stream: &[u8]) -> std::result::Result<(), String> {
         if read > 2 * stream.len() {
             return Err(format!(
                 "{sheet} starts at offset {pos} of the {}-byte workbook stream, and its first {} sheets' records \
-                 add up to more than twice the stream: its sheets overlap; the workbook is damaged",
+                 add up to more than twice the stream: its sheets overlap",
                 stream.len(),
                 k + 1
             ));
