@@ -151,7 +151,9 @@ pub fn read_chart(path: &Path, s: &Settings) -> Result<(Vec<ChartConfig>, Vec<Co
             );
             not_searched.push(format!("'{}' ({} cells)", sh.name, sh.cells.len()));
         } else if mapped.is_empty() {
-            grids.extend(detect::find_grids(sh).into_iter().map(|g| (g, None)));
+            let found = detect::find_grids(sh)
+                .map_err(|(cell, msg)| ChartError::Format(Location::cell(path, &sh.name, &cell), msg))?;
+            grids.extend(found.into_iter().map(|g| (g, None)));
         } else {
             for m in mapped {
                 grids.push((grid_from_mapping(path, m)?, Some(m)));
