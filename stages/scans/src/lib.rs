@@ -439,7 +439,7 @@ pub fn run(inputs: &[PathBuf], s: &Settings, opts: &RunOptions, out_dir: &Path) 
     }
     let grid = if s.ground.enabled {
         (opts.progress)("ground", 0, 1);
-        let g = ground::classify(&mut cloud, &s.ground);
+        let g = ground::classify(&mut cloud, &s.ground).map_err(ScanError::Settings)?;
         (opts.progress)("ground", 1, 1);
         g
     } else {
