@@ -101,10 +101,24 @@ fn rotate(pts: &[[f64; 2]], yaw: f64) -> Vec<[f64; 2]> {
     pts.iter().map(|p| [c * p[0] - s * p[1], s * p[0] + c * p[1]]).collect()
 }
 
-/// Size and origin shared by both images at one resolution.
-fn plan_for(target: &[[f64; 2]], source_radius: f64, cell: f64, fft: &mut Option<Fft2>) -> Plan {
+/// The most cells a side of the coarse and of the fine correlation images
+/// may have. The images cover the target's plan and the source's reach
+/// around it, so a few far returns (a distant building, a long-range
+/// scanner) widen them: at 0.4 m cells a 4 km plan would be 10,000 cells a
+/// side, 800 MB an image and minutes a transform. Past these sides the cell
+/// grows instead (a coarser first guess, which ICP refines as it does any).
+const COARSE_SIDE: usize = 1024;
+const FINE_SIDE: usize = 2048;
+
+/// Size and origin shared by both images at one resolution: cells of `cell`
+/// metres, or larger where the plan needs more than `max_side` of them.
+fn plan_for(target: &[[f64; 2]], source_radius: f64, cell: f64, max_side: usize, fft: &mut Option<Fft2>) -> Plan {
     let (lo, hi) = bbox2(target);
-    let w = ((hi[0] - lo[0]).max(hi[1] - lo[1]) + 2.0 * source_radius) / cell;
+    let extent_m = (hi[0] - lo[0]).max(hi[1] - lo[1]) + 2.0 * source_radius;
+    // Room for the rounding below: 4 cells of margin and up to 15 to a
+    // multiple of 16.
+    let cell = cell.max(extent_m / (max_side - 20) as f64);
+    let w = extent_m / cell;
     let n = ((w.ceil() as usize + 4).div_ceil(16)) * 16;
     let f = Fft2::new(n);
     let mut spec = raster(target, lo, cell, n, true);
@@ -168,6 +182,18 @@ fn correlate(plan: &Plan, f: &Fft2, src: &[[f64; 2]], k: usize) -> Vec<([f64; 2]
 /// Candidate poses (source frame to target frame), best first, with their
 /// correlation scores. `source` and `target` are levelled clouds with normals.
 pub fn align(source: &RegCloud, target: &RegCloud, max_points: usize) -> Vec<(Pose, f32)> {
+    align_within(source, target, max_points, COARSE_SIDE, FINE_SIDE)
+}
+
+/// [`align`] with images of at most `coarse_side` and `fine_side` cells a
+/// side.
+fn align_within(
+    source: &RegCloud,
+    target: &RegCloud,
+    max_points: usize,
+    coarse_side: usize,
+    fine_side: usize,
+) -> Vec<(Pose, f32)> {
     let src = vertical_structure(source, max_points);
     let tgt = vertical_structure(target, max_points);
     if src.len() < 50 || tgt.len() < 50 {
@@ -180,7 +206,7 @@ pub fn align(source: &RegCloud, target: &RegCloud, max_points: usize) -> Vec<(Po
     let r_c = src_c.iter().map(|p| (p[0] * p[0] + p[1] * p[1]).sqrt()).fold(0.0, f64::max);
 
     let mut f1 = None;
-    let coarse = plan_for(&tgt, r_c, 1.0, &mut f1);
+    let coarse = plan_for(&tgt, r_c, 1.0, coarse_side, &mut f1);
     let f1 = f1.unwrap_or_else(|| Fft2::new(coarse.n));
     let yaws: Vec<f64> = (0..180).map(|k| (k as f64 * 2.0).to_radians()).collect();
     let scored: Vec<(f64, [f64; 2], f32)> = yaws
@@ -204,7 +230,7 @@ pub fn align(source: &RegCloud, target: &RegCloud, max_points: usize) -> Vec<(Po
     peaks.truncate(6);
 
     let mut f2 = None;
-    let fine = plan_for(&tgt, r_c, 0.4, &mut f2);
+    let fine = plan_for(&tgt, r_c, 0.4, fine_side, &mut f2);
     let f2 = f2.unwrap_or_else(|| Fft2::new(fine.n));
     let mut out: Vec<(Pose, f32)> = peaks
         .par_iter()
@@ -265,4 +291,75 @@ fn with_height(source: &RegCloud, target: &RegCloud, pose: Pose) -> Pose {
         na::Translation3::new(pose.translation.x, pose.translation.y, pose.translation.z + dz),
         pose.rotation,
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Walls of a few buildings (points with level normals), 5 m tall, on an
+    /// 80 m plot, and, if `far_m` is given, one more wall that far away.
+    fn walls(far_m: Option<f64>) -> RegCloud {
+        let mut c = RegCloud::default();
+        let mut wall = |a: [f64; 2], b: [f64; 2]| {
+            let len = ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2)).sqrt();
+            let normal = [(b[1] - a[1]) / len, (a[0] - b[0]) / len, 0.0];
+            for k in 0..(len / 0.25) as usize {
+                let t = k as f64 * 0.25 / len;
+                for h in 0..5 {
+                    c.pts.push([a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), h as f64]);
+                    c.normals.push(normal);
+                }
+            }
+        };
+        for &(x, y, w, d) in
+            &[(0.0, 0.0, 20.0, 12.0), (30.0, 5.0, 8.0, 30.0), (10.0, 40.0, 35.0, 9.0), (55.0, 60.0, 20.0, 20.0)]
+        {
+            wall([x, y], [x + w, y]);
+            wall([x + w, y], [x + w, y + d]);
+            wall([x + w, y + d], [x, y + d]);
+            wall([x, y + d], [x, y]);
+        }
+        if let Some(far) = far_m {
+            wall([far, 0.0], [far, 30.0]);
+        }
+        c
+    }
+
+    /// The source: the same site seen from a scanner turned by `yaw` and
+    /// moved, in its own frame.
+    fn seen_from(site: &RegCloud, pose: &Pose) -> RegCloud {
+        let inv = pose.inverse();
+        let moved = |p: &[f64; 3]| {
+            let q = inv * na::Point3::new(p[0], p[1], p[2]);
+            [q.x, q.y, q.z]
+        };
+        let turned = |n: &[f64; 3]| {
+            let m = inv.rotation * Vec3::new(n[0], n[1], n[2]);
+            [m.x, m.y, m.z]
+        };
+        RegCloud { pts: site.pts.iter().map(moved).collect(), normals: site.normals.iter().map(turned).collect() }
+    }
+
+    /// A wall 800 m away widens the plan past the images' sides: the cells
+    /// grow (here about 4 and 2 m) instead of the images, and the first guess
+    /// still lands within a few cells of the true pose.
+    #[test]
+    fn a_far_wall_grows_the_cells_not_the_images() {
+        let truth = Pose::from_parts(
+            na::Translation3::new(6.0, -4.0, 0.0),
+            na::UnitQuaternion::from_axis_angle(&Vec3::z_axis(), 30f64.to_radians()),
+        );
+        let site = walls(None);
+        let target = walls(Some(800.0));
+        let source = seen_from(&site, &truth);
+        let tgt = vertical_structure(&target, 30_000);
+        let plan = plan_for(&tgt, 60.0, 0.4, 256, &mut None);
+        assert!(plan.n <= 256 && plan.cell > 3.0, "{} cells of {} m", plan.n, plan.cell);
+        let poses = align_within(&source, &target, 30_000, 256, 512);
+        let (best, _) = poses.first().expect("a pose");
+        let miss = (best.translation.vector - truth.translation.vector).xy().norm();
+        let turn = best.rotation.angle_to(&truth.rotation).to_degrees();
+        assert!(miss < 5.0 && turn < 2.0, "{miss} m and {turn} deg off");
+    }
 }
