@@ -152,7 +152,7 @@ enum Command {
         demo_seeds: u64,
     },
     /// Run the scans stage on loose files.
-    #[command(after_help = "Example:\n  liftplan scans a.laz b.e57 -o site.laz --voxel 0.05 --json")]
+    #[command(after_help = "Example:\n  liftplan scans a.laz b.e57 -o site.laz --voxel 0.05 --ground-cell 0.5 --json")]
     Scans {
         #[arg(required = true)]
         inputs: Vec<PathBuf>,
@@ -165,6 +165,12 @@ enum Command {
         /// auto | none | poses
         #[arg(long)]
         register: Option<String>,
+        /// Cell of the ground classification's grid in metres (default 1).
+        #[arg(long, conflicts_with = "no_ground")]
+        ground_cell: Option<f64>,
+        /// Leave ground classification out (every point unclassified).
+        #[arg(long)]
+        no_ground: bool,
         /// Print the registration report as JSON.
         #[arg(long)]
         json: bool,
@@ -478,11 +484,15 @@ fn real_main() -> Result<ExitCode> {
             let _ = std::fs::remove_dir_all(&tmp);
             Ok(code)
         }
-        Command::Scans { inputs, output, voxel, register, json } => {
+        Command::Scans { inputs, output, voxel, register, ground_cell, no_ground, json } => {
             let mut s = liftplan_scans::Settings::default();
             if let Some(v) = voxel {
                 s.voxel = v;
             }
+            if let Some(c) = ground_cell {
+                s.ground.cell_m = c;
+            }
+            s.ground.enabled = !no_ground;
             if let Some(r) = register {
                 s.register = serde_json::from_value(serde_json::Value::String(r.clone()))
                     .map_err(|_| anyhow::anyhow!("--register {r}: expected auto, none or poses"))?;

@@ -221,6 +221,37 @@ fn a_reader_panic_on_a_damaged_file_reads_as_one_error() {
     assert!(!err.contains("panicked"), "{err}");
 }
 
+/// A cloud too wide for a ground grid at the default cell is refused with
+/// the cell, the extent and what to change; a larger cell, or no ground
+/// classification, reads it.
+#[test]
+fn a_cloud_too_wide_for_its_ground_grid_says_what_to_change() {
+    let t = tempfile::tempdir().unwrap();
+    let f = t.path().join("far.xyz");
+    std::fs::write(&f, "0 0 0\n1 1 0\n2 2 0\n6000 5000 1\n").unwrap();
+    let out = t.path().join("site.laz");
+    let scans = |extra: &[&str]| {
+        let mut args = vec!["scans", f.to_str().unwrap(), "-o", out.to_str().unwrap(), "--register", "none", "-q"];
+        args.extend_from_slice(extra);
+        liftplan(&args)
+    };
+    let o = scans(&[]);
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("ground.cell_m = 1 m over the cloud's 6000 m x 5000 m extent needs a ground grid of 6001 x 5001")
+            && err.contains("--ground-cell")
+            && err.contains("--no-ground"),
+        "{err}"
+    );
+    assert!(!out.exists());
+    for extra in [&["--ground-cell", "3"][..], &["--no-ground"][..]] {
+        let o = scans(extra);
+        assert!(o.status.success(), "{extra:?}: {}", String::from_utf8_lossy(&o.stderr));
+        assert_eq!(read_las_count(&out), 4, "{extra:?}");
+    }
+}
+
 #[test]
 fn clean_and_version() {
     let t = tempfile::tempdir().unwrap();

@@ -355,8 +355,9 @@ pub fn classify(cloud: &mut PointCloud, s: &GroundSettings) -> Result<Option<Hei
     if cols * rows > MAX_GROUND_CELLS as f64 {
         return Err(format!(
             "ground.cell_m = {c} m over the cloud's {:.0} m x {:.0} m extent needs a ground grid of {cols} x {rows} \
-             cells, more than the {MAX_GROUND_CELLS} it may have: raise ground.cell_m (a few stray points far from \
-             the site also stretch the extent)",
+             cells, more than the {MAX_GROUND_CELLS} it may have: raise the cell ([scans.ground] cell_m, or \
+             --ground-cell) or leave ground classification out ([scans.ground] enabled = false, or --no-ground); a \
+             few stray points far from the site also stretch the extent",
             bb.max[0] - bb.min[0],
             bb.max[1] - bb.min[1]
         ));
