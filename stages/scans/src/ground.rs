@@ -223,28 +223,32 @@ struct Scratch {
 fn morph(z: &[f64], out: &mut [f64], nx: usize, ny: usize, r: usize, max: bool, scratch: &mut Scratch) {
     scratch.across.resize(z.len(), 0.0);
     if max {
-        filter_rows(z, &mut scratch.across, nx, r, f64::max, f64::NEG_INFINITY);
-        filter_columns(&scratch.across, out, nx, ny, r, f64::max, f64::NEG_INFINITY, &mut scratch.strips);
+        let window = Window { r, pick: f64::max, never: f64::NEG_INFINITY };
+        filter_rows(z, &mut scratch.across, nx, &window);
+        filter_columns(&scratch.across, out, nx, ny, &window, &mut scratch.strips);
     } else {
-        filter_rows(z, &mut scratch.across, nx, r, f64::min, f64::INFINITY);
-        filter_columns(&scratch.across, out, nx, ny, r, f64::min, f64::INFINITY, &mut scratch.strips);
+        let window = Window { r, pick: f64::min, never: f64::INFINITY };
+        filter_rows(z, &mut scratch.across, nx, &window);
+        filter_columns(&scratch.across, out, nx, ny, &window, &mut scratch.strips);
     }
 }
 
-/// The extreme (`pick`: `f64::min` or `f64::max`; `never` never wins) of
-/// each row's cells within `r` of each cell, rows of `nx` cells, into `out`.
-/// Rows are taken eight at a time, laid side by side (cell `i` of the eight
-/// rows one after another), so that [`running_extremes`] steps along eight
-/// independent runs at once instead of waiting on one.
-fn filter_rows<P: Fn(f64, f64) -> f64 + Copy + Sync + Send>(
-    z: &[f64],
-    out: &mut [f64],
-    nx: usize,
+/// A filter's window: `r` cells each way, and which extreme it takes
+/// (`pick`: `f64::min` or `f64::max`; `never` never wins).
+struct Window<P> {
     r: usize,
     pick: P,
     never: f64,
-) {
+}
+
+/// The extreme of each row's cells within the window of each cell, rows of
+/// `nx` cells, into `out`.
+/// Rows are taken eight at a time, laid side by side (cell `i` of the eight
+/// rows one after another), so that [`running_extremes`] steps along eight
+/// independent runs at once instead of waiting on one.
+fn filter_rows<P: Fn(f64, f64) -> f64 + Copy + Sync + Send>(z: &[f64], out: &mut [f64], nx: usize, window: &Window<P>) {
     const ROWS: usize = 8;
+    let Window { r, pick, never } = *window;
     let steps = nx + 2 * r;
     out.par_chunks_mut(ROWS * nx).zip(z.par_chunks(ROWS * nx)).for_each_init(Vec::new, |runs, (out, lines)| {
         let width = lines.len() / nx;
@@ -267,18 +271,16 @@ fn filter_rows<P: Fn(f64, f64) -> f64 + Copy + Sync + Send>(
 /// [`filter_rows`] down the columns of an `nx` x `ny` grid, on strips of 64
 /// columns side by side: each step of the running extremes is one row of the
 /// strip, read in order. `strips` holds each strip's runs.
-#[allow(clippy::too_many_arguments)]
 fn filter_columns<P: Fn(f64, f64) -> f64 + Copy + Sync + Send>(
     z: &[f64],
     out: &mut [f64],
     nx: usize,
     ny: usize,
-    r: usize,
-    pick: P,
-    never: f64,
+    window: &Window<P>,
     strips: &mut Vec<Vec<f64>>,
 ) {
     const STRIP: usize = 64;
+    let Window { r, pick, never } = *window;
     let steps = ny + 2 * r;
     let width = |s: usize| ((s + 1) * STRIP).min(nx) - s * STRIP;
     strips.resize_with(nx.div_ceil(STRIP), Vec::new);
