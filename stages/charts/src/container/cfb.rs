@@ -572,6 +572,33 @@ mod tests {
         d
     }
 
+    /// A BoundSheet8 record: the sheet's position, state, type, then its name
+    /// (a count, a flag byte: 8-bit characters, the characters).
+    fn bound_sheet(pos: u32, name: &str) -> (u16, Vec<u8>) {
+        let mut d = pos.to_le_bytes().to_vec();
+        d.extend_from_slice(&[0, 0, name.len() as u8, 0]);
+        d.extend_from_slice(name.as_bytes());
+        (0x0085, d)
+    }
+
+    /// A workbook stream: the globals list a sheet per name, and the sheets,
+    /// each `sheet`, follow one after another.
+    fn workbook(sheet: &[u8], names: &[String]) -> Vec<u8> {
+        let (bof, eof) = ((0x0809u16, vec![0u8; 16]), (0x000Au16, vec![]));
+        let start = biff(&[bof.clone(), eof.clone()]).len() + names.iter().map(|n| 4 + 8 + n.len()).sum::<usize>();
+        let mut records = vec![bof];
+        let mut at = start;
+        for name in names {
+            records.push(bound_sheet(at as u32, name));
+            at += sheet.len();
+        }
+        records.push(eof);
+        let mut stream = biff(&records);
+        assert_eq!(stream.len(), start);
+        stream.extend(sheet.repeat(names.len()));
+        stream
+    }
+
     /// The sheet walk counts what calamine reads and nothing else: cells in
     /// an embedded chart's substream and after the sheet's EOF record do not
     /// count; a MulRk row counts every column it fills; a String record
@@ -610,38 +637,13 @@ mod tests {
     fn an_xls_workbook_s_sheets_count_together() {
         let (bof, eof) = ((0x0809u16, vec![0u8; 16]), (0x000Au16, vec![]));
         let sheet = biff(&[bof.clone(), (0x0203, cell(0, 0, 10)), (0x0203, cell(1199, 999, 10)), eof.clone()]);
-        // BoundSheet8: the sheet's position, state, type, then its name
-        // (a count, a flag byte: 8-bit characters, the characters).
-        let bound = |pos: u32, name: &str| {
-            let mut d = pos.to_le_bytes().to_vec();
-            d.extend_from_slice(&[0, 0, name.len() as u8, 0]);
-            d.extend_from_slice(name.as_bytes());
-            (0x0085u16, d)
-        };
-        let globals_len = |sheets: usize| biff(&[bof.clone(), eof.clone()]).len() + sheets * (4 + 8 + 5);
-        let workbook = |sheets: usize| {
-            let start = globals_len(sheets);
-            let mut records = vec![bof.clone()];
-            for k in 0..sheets {
-                records.push(bound((start + k * sheet.len()) as u32, &format!("Boom{k}")));
-            }
-            records.push(eof.clone());
-            let mut stream = biff(&records);
-            assert_eq!(stream.len(), start);
-            for _ in 0..sheets {
-                stream.extend_from_slice(&sheet);
-            }
-            stream
-        };
-        assert_eq!(check_workbook_stream(&workbook(1)), Ok(()));
-        let e = check_workbook_stream(&workbook(2)).unwrap_err();
+        let booms = |n: usize| (0..n).map(|k| format!("Boom{k}")).collect::<Vec<_>>();
+        assert_eq!(check_workbook_stream(&workbook(&sheet, &booms(1))), Ok(()));
+        let e = check_workbook_stream(&workbook(&sheet, &booms(2))).unwrap_err();
         assert!(e.contains("its first 2 sheets' cells span 2400000 cells in all, more than the 2000000"), "{e}");
         // One sheet over the limit is named.
         let wide = biff(&[bof.clone(), (0x0203, cell(0, 0, 10)), (0x0203, cell(2000, 999, 10)), eof.clone()]);
-        let at = biff(&[bof.clone(), bound(0, "Main boom"), eof.clone()]).len() as u32;
-        let mut one = biff(&[bof.clone(), bound(at, "Main boom"), eof.clone()]);
-        one.extend_from_slice(&wide);
-        let e = check_workbook_stream(&one).unwrap_err();
+        let e = check_workbook_stream(&workbook(&wide, &["Main boom".to_string()])).unwrap_err();
         assert!(e.starts_with("sheet 'Main boom' has cells from A1 to ALL2001"), "{e}");
     }
 
@@ -654,14 +656,9 @@ mod tests {
     #[test]
     fn an_xls_workbook_whose_sheets_overlap_is_refused() {
         let bof = (0x0809u16, vec![0u8; 16]);
-        let bound = |pos: u32| {
-            let mut d = pos.to_le_bytes().to_vec();
-            d.extend_from_slice(&[0, 0, 1, 0, b'S']);
-            (0x0085u16, d)
-        };
         // No EOF anywhere: every sheet, at the stream's start, reads to its end.
         let mut records = vec![bof.clone()];
-        records.extend((0..20_000).map(|_| bound(0)));
+        records.extend((0..20_000).map(|_| bound_sheet(0, "S")));
         records.extend((0..100_000).map(|_| (0x0001u16, vec![0u8; 6])));
         let stream = biff(&records);
         let e = check_workbook_stream(&stream).unwrap_err();
@@ -673,16 +670,8 @@ mod tests {
             "{e}"
         );
         // Sheets one after another, each with an EOF, pass however many.
-        let sheet = biff(&[bof.clone(), (0x0203, cell(0, 0, 10)), (0x000A, vec![])]);
-        let n = 5_000;
-        let start = biff(&[bof.clone(), (0x000A, vec![])]).len() + n * (4 + 9);
-        let mut records = vec![bof.clone()];
-        records.extend((0..n).map(|k| bound((start + k * sheet.len()) as u32)));
-        records.push((0x000A, vec![]));
-        let mut stream = biff(&records);
-        assert_eq!(stream.len(), start);
-        stream.extend(sheet.repeat(n));
-        assert_eq!(check_workbook_stream(&stream), Ok(()));
+        let sheet = biff(&[bof, (0x0203, cell(0, 0, 10)), (0x000A, vec![])]);
+        assert_eq!(check_workbook_stream(&workbook(&sheet, &vec!["S".to_string(); 5_000])), Ok(()));
     }
 
     /// Found by the chart_workbook fuzz target:
