@@ -379,13 +379,14 @@ pub fn classify(cloud: &mut PointCloud, s: &GroundSettings) -> Result<Option<Hei
         }
     }
     let measured: Vec<bool> = zmin.iter().map(|v| v.is_finite()).collect();
-    let mut surface = zmin.clone();
-    fill_holes(&mut surface, nx, ny);
+    // The surface being opened, window by window: first the lowest points,
+    // holes filled.
+    let mut cur = zmin.clone();
+    fill_holes(&mut cur, nx, ny);
     let mut object = vec![false; nx * ny];
     // Past the grid's side a window covers the whole grid: the opened
     // surface is flat, and wider windows find nothing more.
     let wmax = ((s.window_m / c).ceil().max(1.0) as usize).min(nx.max(ny));
-    let mut cur = surface.clone();
     let (mut eroded, mut opened) = (vec![0.0; cur.len()], vec![0.0; cur.len()]);
     let mut scratch = Scratch::default();
     for r in 1..=wmax {
