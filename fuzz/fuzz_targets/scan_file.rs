@@ -28,8 +28,9 @@ fuzz_target!(|data: &[u8]| {
     let path = dir.path().join(format!("scan.{ext}"));
     std::fs::write(&path, body).unwrap();
     if let Ok(scans) = liftplan_scans::read::list_scans(&path) {
+        let mut files = liftplan_scans::read::ScanStreamer::default();
         for s in &scans {
-            let _ = liftplan_scans::read::read_all(s);
+            let _ = files.stream(s, &mut |_| Ok(()));
         }
     }
 });

@@ -330,6 +330,7 @@ pub fn list_all(inputs: &[PathBuf]) -> Result<Vec<ScanInfo>> {
 }
 
 pub fn thin_for_registration(
+    files: &mut read::ScanStreamer,
     info: &ScanInfo,
     s: &RegistrationSettings,
     progress: &(dyn Fn(&str, u64, u64) + Sync),
@@ -337,7 +338,7 @@ pub fn thin_for_registration(
     let mut g = subsample::VoxelGrid::new(s.icp_voxel_m).map_err(ScanError::Settings)?;
     let total = info.declared_points.unwrap_or(0);
     let mut seen = 0u64;
-    let n = read::stream(info, &mut |c| {
+    let n = files.stream(info, &mut |c| {
         g.add(c, 0).map_err(|e| ScanError::format(Location::item(&info.path, &info.name), e))?;
         seen += c.len() as u64;
         progress(&format!("read {}", info.name), seen, total);
@@ -391,8 +392,9 @@ pub fn run(inputs: &[PathBuf], s: &Settings, opts: &RunOptions, out_dir: &Path) 
             .collect(),
         RegisterMode::Auto => {
             let mut regs = Vec::with_capacity(scans.len());
+            let mut files = read::ScanStreamer::default();
             for (k, info) in scans.iter().enumerate() {
-                let (fine, coarse, n) = thin_for_registration(info, &s.registration, opts.progress)?;
+                let (fine, coarse, n) = thin_for_registration(&mut files, info, &s.registration, opts.progress)?;
                 read_counts[k] = n;
                 regs.push(RegInput { name: info.name.clone(), fine, coarse, initial: initial(info) });
             }
@@ -509,6 +511,7 @@ fn thin(
     let pass =
         |filter: &mut Filter, nearest: Option<&mut subsample::NearestPicker>, read_counts: &mut [u64]| -> Result<()> {
             let mut nearest = nearest;
+            let mut files = read::ScanStreamer::default();
             for (k, (info, r)) in scans.iter().zip(results).enumerate() {
                 if !r.registered {
                     continue;
@@ -518,7 +521,7 @@ fn thin(
                 }
                 let total = info.declared_points.unwrap_or(0);
                 let mut seen = 0u64;
-                let n = read::stream(info, &mut |c| {
+                let n = files.stream(info, &mut |c| {
                     let mut c = c.clone();
                     c.transform(&r.pose);
                     c.scan = vec![k as u16; c.len()];
@@ -562,12 +565,13 @@ pub fn inspect(path: &Path) -> Result<serde_json::Value> {
     let mut total = 0u64;
     let mut bbox = Aabb::empty();
     let mut per = Vec::new();
+    let mut files = read::ScanStreamer::default();
     for info in &scans {
         let (n, b) = match (info.declared_points, info.bbox) {
             (Some(n), Some(b)) => (n, b),
             _ => {
                 let mut b = Aabb::empty();
-                let n = read::stream(info, &mut |c| {
+                let n = files.stream(info, &mut |c| {
                     b = b.union(&c.bbox());
                     Ok(())
                 })?;
@@ -624,6 +628,22 @@ mod tests {
             pose: None,
             bbox: None,
             details: Default::default(),
+        }
+    }
+
+    /// The stage opens an E57 file once per pass over its scans: once to
+    /// thin them at centroids, twice to pick the points nearest them.
+    #[test]
+    fn the_stage_opens_a_multi_scan_file_once_per_pass() {
+        let e57 = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/scans/two-scans.e57");
+        let opens = || read::E57_OPENS.with(|n| n.get());
+        for (voxel_point, passes) in [(VoxelPoint::Centroid, 1), (VoxelPoint::Nearest, 2)] {
+            let out = tempfile::tempdir().unwrap();
+            let s = Settings { register: RegisterMode::None, voxel_point, ..Default::default() };
+            let before = opens();
+            let summary = run(std::slice::from_ref(&e57), &s, &RunOptions::default(), out.path()).unwrap();
+            assert_eq!(opens() - before, passes, "{voxel_point:?}");
+            assert_eq!(summary.scans.iter().map(|r| r.points_read).collect::<Vec<_>>(), [30, 20]);
         }
     }
 

@@ -20,6 +20,13 @@ use std::path::{Path, PathBuf};
 
 pub use las::precheck as las_precheck;
 
+#[cfg(test)]
+thread_local! {
+    /// E57 files opened for streaming on this thread, for the tests that
+    /// check a file is opened once per pass over its scans.
+    pub(crate) static E57_OPENS: std::cell::Cell<usize> = const { std::cell::Cell::new(0) };
+}
+
 /// Points per chunk handed to a stream callback.
 pub const CHUNK_POINTS: usize = 500_000;
 
@@ -102,8 +109,34 @@ pub fn stream(info: &ScanInfo, f: &mut dyn FnMut(&PointCloud) -> Result<()>) -> 
     match info.format {
         Format::Las | Format::Laz => las::stream(info, f),
         Format::Ply => ply::stream(info, f),
-        Format::E57 => e57::stream(info, f),
+        Format::E57 => e57::OpenE57::open(&info.path)?.stream(info, f),
         Format::Pts | Format::Xyz => text::stream(info, f),
+    }
+}
+
+/// Streams scans one after another as [`stream`] does, keeping a file that
+/// holds several scans (E57) open from one of its scans to the next, so that
+/// it is opened once per pass over the scans, not once per scan. Give it the
+/// scans in file order, as [`list_scans`] lists them.
+#[derive(Default)]
+pub struct ScanStreamer {
+    e57: Option<e57::OpenE57>,
+}
+
+impl ScanStreamer {
+    pub fn stream(&mut self, info: &ScanInfo, f: &mut dyn FnMut(&PointCloud) -> Result<()>) -> Result<u64> {
+        if info.format != Format::E57 {
+            return stream(info, f);
+        }
+        let mut open = match self.e57.take() {
+            Some(open) if open.path() == info.path => open,
+            _ => e57::OpenE57::open(&info.path)?,
+        };
+        let n = open.stream(info, f)?;
+        // Kept only after a scan read to its end: a failed read may have left
+        // the reader anywhere.
+        self.e57 = Some(open);
+        Ok(n)
     }
 }
 
