@@ -427,10 +427,7 @@ pub fn run(inputs: &[PathBuf], s: &Settings, opts: &RunOptions, out_dir: &Path) 
     write_json(&out_dir.join("registration.json"), &serde_json::json!({ "register": s.register, "scans": reports }))?;
     if !unregistered.is_empty() && s.on_unregistered == OnUnregistered::Fail {
         let msgs: Vec<String> = unregistered.iter().filter_map(|r| r.warning.clone()).collect();
-        return Err(ScanError::Registration(format!(
-            "{} (set [scans] on_unregistered = \"exclude\" to leave such scans out, knowing their obstacles will be missing)",
-            msgs.join("; ")
-        )));
+        return Err(ScanError::Registration(unregistered_error(&msgs, &out_dir.join("registration.json"))));
     }
 
     // Second pass: every registered scan through the thinning filter.
@@ -558,6 +555,24 @@ fn thin(
     })
 }
 
+/// Scans whose reasons an unregistered-scans error spells out; the rest are
+/// counted (a survey of hundreds of scans that do not register would
+/// otherwise make an error of hundreds of lines).
+const UNREGISTERED_LISTED: usize = 5;
+
+/// The error for scans that do not register, from each scan's reason.
+fn unregistered_error(reasons: &[String], report: &Path) -> String {
+    let mut text = reasons.iter().take(UNREGISTERED_LISTED).cloned().collect::<Vec<_>>().join("; ");
+    if reasons.len() > UNREGISTERED_LISTED {
+        text += &format!(
+            "; and {} more scans do not register ({} gives every scan's fitness)",
+            reasons.len() - UNREGISTERED_LISTED,
+            report.display()
+        );
+    }
+    text + " (set [scans] on_unregistered = \"exclude\" to leave such scans out, knowing their obstacles will be missing)"
+}
+
 /// A summary of a scan file for `liftplan inspect`, from headers where they
 /// suffice and by streaming the points where they do not.
 pub fn inspect(path: &Path) -> Result<serde_json::Value> {
@@ -645,6 +660,17 @@ mod tests {
             assert_eq!(opens() - before, passes, "{voxel_point:?}");
             assert_eq!(summary.scans.iter().map(|r| r.points_read).collect::<Vec<_>>(), [30, 20]);
         }
+    }
+
+    #[test]
+    fn many_unregistered_scans_make_a_short_error() {
+        let report = Path::new("out/registration.json");
+        let reasons: Vec<String> = (0..7).map(|k| format!("scan 's{k}' does not register")).collect();
+        let e = unregistered_error(&reasons[..2], report);
+        assert!(e.starts_with("scan 's0' does not register; scan 's1' does not register (set [scans]"), "{e}");
+        let e = unregistered_error(&reasons, report);
+        assert!(e.contains("'s4' does not register; and 2 more scans do not register (out/registration.json"), "{e}");
+        assert!(!e.contains("'s5'") && e.ends_with("will be missing)"), "{e}");
     }
 
     fn stations(text: &str) -> (tempfile::TempDir, PathBuf) {
