@@ -7,7 +7,7 @@
 
 use crate::error::{PlantError, Result};
 use liftplan_core::Location;
-use liftplan_core::mesh::TriMesh;
+use liftplan_core::mesh::{GroupIndex, TriMesh};
 use std::collections::HashMap;
 use std::path::Path;
 use std::rc::Rc;
@@ -45,9 +45,10 @@ pub fn read_obj(path: &Path, imp: Import) -> Result<TriMesh> {
     })?
     .map_err(|e| PlantError::at(Location::file(path), format!("cannot read OBJ: {e}")))?;
     let mut m = TriMesh::default();
+    let mut groups = GroupIndex::of(&m);
     for model in &models {
         let name = if model.name.is_empty() { stem(path) } else { model.name.clone() };
-        let g = m.group_id(&name);
+        let g = groups.id(&mut m, &name);
         let pos = &model.mesh.positions;
         let verts: Vec<[f64; 3]> = pos
             .chunks(3)
@@ -280,6 +281,7 @@ fn read_gltf_unguarded(path: &Path, max_triangles: u64) -> Result<TriMesh> {
     let buffers = load_buffers(path, &g.document, g.blob.clone())?;
     let imp = Import { scale: 1.0, y_up: true };
     let mut m = TriMesh::default();
+    let mut groups = GroupIndex::of(&m);
     let scene = g.document.default_scene().or_else(|| g.document.scenes().next());
     let Some(scene) = scene else { return Ok(m) };
     let mut stack: Vec<(gltf::Node, nalgebra::Matrix4<f64>)> =
@@ -305,7 +307,7 @@ fn read_gltf_unguarded(path: &Path, max_triangles: u64) -> Result<TriMesh> {
                 .or(mesh.name())
                 .map(String::from)
                 .unwrap_or_else(|| format!("{} node {}", stem(path), node.index()));
-            let gid = m.group_id(&name);
+            let gid = groups.id(&mut m, &name);
             for prim in mesh.primitives() {
                 if prim.mode() != gltf::mesh::Mode::Triangles {
                     tracing::warn!("{}: {name}: skipping a primitive drawn as {:?}", path.display(), prim.mode());
