@@ -4,7 +4,9 @@
 //!   (Leica Cyclone; intensity -2048..2047 is shifted to 0..4095).
 //! * XYZ/TXT/CSV: `x y z [r g b]` or `x y z intensity [r g b]`, separated by spaces,
 //!   tabs, commas or semicolons; lines starting with `#` or `//` and a header line
-//!   of words are skipped.
+//!   of words are skipped. Exporters write intensity as 0..1, 12-bit or 16-bit
+//!   values, and the file does not say which: the range of the first chunk's
+//!   intensities decides, once for the whole file ([`intensity_scale`]).
 //!
 //! Lines stream through a buffered reader; a bad line is refused with its number.
 
@@ -58,6 +60,22 @@ impl<R: BufRead> TakeLine for R {
 
 use std::io::Read as _;
 
+/// The factor that takes an XYZ file's intensities to 0..65535, from the
+/// first chunk's: 0..1 (CloudCompare's and many exporters' floats), up to
+/// 4095 (12-bit, as PTS after its shift), else 16-bit. Decided once per file:
+/// deciding point by point, as the reader did, took an intensity of 1 to
+/// 65535 and one of 2 to 32 in the same file.
+fn intensity_scale(first: &[f64]) -> f64 {
+    let max = first.iter().copied().fold(0.0, f64::max);
+    if max <= 1.0 {
+        65535.0
+    } else if max <= 4095.0 {
+        16.0
+    } else {
+        1.0
+    }
+}
+
 pub(super) fn stream(info: &ScanInfo, f: &mut dyn FnMut(&PointCloud) -> Result<()>) -> Result<u64> {
     let path = &info.path;
     let file = std::fs::File::open(path).map_err(|e| ScanError::Io(Location::file(path), e))?;
@@ -70,6 +88,17 @@ pub(super) fn stream(info: &ScanInfo, f: &mut dyn FnMut(&PointCloud) -> Result<(
     let mut declared: Option<u64> = None;
     let pts = info.format == Format::Pts;
     let mut vals: Vec<f64> = Vec::with_capacity(8);
+    // Intensities as read, turned into 0..65535 when their chunk is handed on.
+    let mut raw_intensity: Vec<f64> = Vec::new();
+    let mut scale: Option<f64> = pts.then_some(16.0);
+    let mut hand_on = |chunk: &mut PointCloud, raw: &mut Vec<f64>| -> Result<()> {
+        if !raw.is_empty() {
+            let scale = *scale.get_or_insert_with(|| intensity_scale(raw));
+            chunk.intensity = raw.iter().map(|&i| (i * scale).clamp(0.0, 65535.0) as u16).collect();
+            raw.clear();
+        }
+        f(chunk)
+    };
     loop {
         let n = r.take_line(&mut line, path)?;
         if n == 0 {
@@ -131,10 +160,7 @@ pub(super) fn stream(info: &ScanInfo, f: &mut dyn FnMut(&PointCloud) -> Result<(
         // Column meaning by count: 4 = intensity, 6 = rgb, 7 = intensity + rgb.
         match c {
             4 | 7 => {
-                let i = if pts { vals[3] + 2048.0 } else { vals[3] };
-                chunk
-                    .intensity
-                    .push((if i <= 1.0 && !pts { i * 65535.0 } else { i * 16.0 }).clamp(0.0, 65535.0) as u16);
+                raw_intensity.push(if pts { vals[3] + 2048.0 } else { vals[3] });
                 if c == 7 {
                     chunk.rgb.push([(vals[4] * 257.0) as u16, (vals[5] * 257.0) as u16, (vals[6] * 257.0) as u16]);
                 }
@@ -144,13 +170,13 @@ pub(super) fn stream(info: &ScanInfo, f: &mut dyn FnMut(&PointCloud) -> Result<(
         }
         if chunk.len() >= CHUNK_POINTS {
             seen += chunk.len() as u64;
-            f(&chunk)?;
+            hand_on(&mut chunk, &mut raw_intensity)?;
             chunk = PointCloud::default();
         }
     }
     if !chunk.is_empty() {
         seen += chunk.len() as u64;
-        f(&chunk)?;
+        hand_on(&mut chunk, &mut raw_intensity)?;
     }
     if seen == 0 {
         return Err(ScanError::format(Location::file(path), "no points found"));
@@ -161,4 +187,73 @@ pub(super) fn stream(info: &ScanInfo, f: &mut dyn FnMut(&PointCloud) -> Result<(
         tracing::warn!("{}: first line declares {d} points, file holds {seen}", path.display());
     }
     Ok(seen)
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::read::{list_scans, read_all};
+
+    /// Writes `text` to `name` in a temporary folder and reads its one scan.
+    fn read(name: &str, text: &str) -> Result<liftplan_core::cloud::PointCloud, String> {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join(name);
+        std::fs::write(&path, text).unwrap();
+        let scans = list_scans(&path).map_err(|e| e.to_string())?;
+        read_all(&scans[0]).map_err(|e| e.to_string())
+    }
+
+    #[test]
+    fn a_file_s_intensities_are_scaled_alike() {
+        // 8- or 12-bit values: 1 and 2 are one step apart, as in the file
+        // (deciding point by point made 1 a full-scale 65535 and 2 a 32).
+        let c = read("a.xyz", "X Y Z Intensity\n# exported\n0 0 0 0\n1 0 0 1\n2 0 0 2\n3 0 0 255\n").unwrap();
+        assert_eq!(c.intensity, [0, 16, 32, 4080]);
+        assert_eq!(c.xyz[3], [3.0, 0.0, 0.0]);
+        // 0..1 floats.
+        let c = read("b.csv", "0,0,0,0\n1,0,0,0.5\n2,0,0,1\n").unwrap();
+        assert_eq!(c.intensity, [0, 32767, 65535]);
+        // 16-bit values are kept (they saturated at 65535 before).
+        let c = read("c.txt", "0;0;0;0\n1;0;0;1\n2;0;0;60000\n").unwrap();
+        assert_eq!(c.intensity, [0, 1, 60000]);
+        // Intensity and colour; colour is 8-bit.
+        let c = read("d.xyz", "0 0 0 0.25 10 20 30\n").unwrap();
+        assert_eq!((c.intensity[0], c.rgb[0]), (16383, [2570, 5140, 7710]));
+    }
+
+    /// The first chunk decides for the chunks after it.
+    #[test]
+    fn the_first_chunk_s_range_holds_for_the_file() {
+        let mut text = "0 0 0 200\n".repeat(crate::read::CHUNK_POINTS);
+        text += "1 0 0 1\n";
+        let c = read("a.xyz", &text).unwrap();
+        assert_eq!(
+            (c.len(), c.intensity[0], c.intensity[crate::read::CHUNK_POINTS]),
+            (crate::read::CHUNK_POINTS + 1, 3200, 16)
+        );
+    }
+
+    #[test]
+    fn pts_files_shift_their_intensities_and_may_count_their_points() {
+        let c = read("a.pts", "3\n0 0 0 -2048 1 2 3\n1 0 0 0 1 2 3\n2 0 0 2047 1 2 3\n").unwrap();
+        assert_eq!(c.intensity, [0, 32768, 65520]);
+        assert_eq!(c.rgb[2], [257, 514, 771]);
+        // A wrong count is a warning, not an error.
+        assert_eq!(read("b.pts", "5\n0 0 0\n1 1 1\n").unwrap().len(), 2);
+    }
+
+    #[test]
+    fn bad_lines_are_refused_with_their_number() {
+        let e = read("a.xyz", "0 0 0\n1 1 1\nx y z\n").unwrap_err();
+        assert!(e.contains("a.xyz:3") && e.contains("expected numbers 'x y z ...', found 'x y z'"), "{e}");
+        let e = read("b.xyz", "# header\n0 0 0\n1 1 1 7\n").unwrap_err();
+        assert!(e.contains("b.xyz:3") && e.contains("expected 3 values like the lines before, found 4"), "{e}");
+        let e = read("c.xyz", "0 0\n").unwrap_err();
+        assert!(e.contains("c.xyz:1") && e.contains("at least 3 numbers"), "{e}");
+        let e = read("d.xyz", "0 0 0\n1 NaN 1\n").unwrap_err();
+        assert!(e.contains("d.xyz:2") && e.contains("not a finite number"), "{e}");
+        let e = read("e.xyz", "# nothing here\n\n").unwrap_err();
+        assert!(e.contains("no points found"), "{e}");
+        let e = read("f.xyz", &"1".repeat(70_000)).unwrap_err();
+        assert!(e.contains("longer than 64 KiB"), "{e}");
+    }
 }
