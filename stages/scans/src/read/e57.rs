@@ -92,7 +92,7 @@ pub(super) fn list(path: &Path) -> Result<Vec<ScanInfo>> {
 /// An E57 file opened for all its scans. Opening one parses its XML section,
 /// which grows with the number of scans, so a file opened once per scan cost
 /// the square of its scans: 2,000 scans of three points each (4.5 MB) took
-/// `liftplan scans` 151 s.
+/// `liftplan scans` 155 s (0.31 s opened once).
 pub(super) struct OpenE57 {
     path: PathBuf,
     reader: E57Reader<std::io::BufReader<std::fs::File>>,
