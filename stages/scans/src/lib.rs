@@ -432,9 +432,17 @@ pub fn run(inputs: &[PathBuf], s: &Settings, opts: &RunOptions, out_dir: &Path) 
 
     // Second pass: every registered scan through the thinning filter.
     let mut cloud = thin(&scans, &results, s, opts, &mut read_counts)?;
+    // One count over the cloud for all scans (a count per scan read the
+    // whole cloud once per scan).
+    let mut kept = vec![0u64; reports.len()];
+    for &sc in &cloud.scan {
+        if let Some(n) = kept.get_mut(sc as usize) {
+            *n += 1;
+        }
+    }
     for (k, r) in reports.iter_mut().enumerate() {
         r.points_read = read_counts[k];
-        r.points_kept = cloud.scan.iter().filter(|&&sc| sc as usize == k).count() as u64;
+        r.points_kept = kept[k];
     }
     let grid = if s.ground.enabled {
         (opts.progress)("ground", 0, 1);
@@ -658,7 +666,8 @@ mod tests {
             let before = opens();
             let summary = run(std::slice::from_ref(&e57), &s, &RunOptions::default(), out.path()).unwrap();
             assert_eq!(opens() - before, passes, "{voxel_point:?}");
-            assert_eq!(summary.scans.iter().map(|r| r.points_read).collect::<Vec<_>>(), [30, 20]);
+            let counts: Vec<(u64, u64)> = summary.scans.iter().map(|r| (r.points_read, r.points_kept)).collect();
+            assert_eq!(counts, [(30, 30), (20, 20)]);
         }
     }
 
