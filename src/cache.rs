@@ -3,6 +3,7 @@
 //! ```text
 //! .liftplan/
 //!   cache/<stage>/<key>/     outputs of one stage run + manifest.json
+//!                            (the `[cache] keep` most recently used per stage)
 //!   cache/<stage>/.tmp-*     a run in progress (never trusted, swept)
 //!   last/<stage>.json        manifest of the stage's last successful run
 //!   runs/<n>.json            one record per `run` (keys, timings, versions)
@@ -13,6 +14,11 @@
 //!
 //! A stage's outputs appear under `<key>/` by one atomic rename of a complete
 //! folder, so a killed run leaves at most a `.tmp-*` folder that nothing reads.
+//!
+//! Entries are dropped past the `[cache] keep` most recently used per stage
+//! ([`Cache::prune`]): a site whose scans arrive one by one in watch mode
+//! would otherwise keep every version of its site cloud. A dropped entry only
+//! costs a rerun if its inputs come back.
 
 use anyhow::{Context, Result};
 use serde::{Deserialize, Serialize};
@@ -124,6 +130,50 @@ impl Cache {
                 }
             }
         }
+    }
+
+    /// Marks an entry as used now, for [`Cache::prune`] (best effort: an
+    /// entry whose time cannot be set is only dropped sooner).
+    pub fn touch(&self, stage: &str, key: &str) {
+        let manifest = self.entry_dir(stage, key).join("manifest.json");
+        if let Ok(f) = std::fs::File::options().append(true).open(manifest) {
+            let _ = f.set_modified(std::time::SystemTime::now());
+        }
+    }
+
+    /// Drops the stage's entries past the `keep` most recently used (by their
+    /// manifest's time: made or [`Cache::touch`]ed), never `in_use`. Each is
+    /// renamed out of the way (`.old-`) before it is removed, so a crash
+    /// midway leaves nothing [`Cache::lookup`] trusts and [`Cache::sweep`]
+    /// finishes it. Returns the keys dropped.
+    pub fn prune(&self, stage: &str, in_use: &str, keep: usize) -> Vec<String> {
+        let Ok(dir) = std::fs::read_dir(self.root.join("cache").join(stage)) else {
+            return vec![];
+        };
+        let mut others: Vec<(std::time::SystemTime, String)> = dir
+            .flatten()
+            .filter_map(|e| {
+                let key = e.file_name().to_str()?.to_string();
+                if key.starts_with('.') || key.contains(".old-") || key == in_use || !e.path().is_dir() {
+                    return None;
+                }
+                let used = std::fs::metadata(e.path().join("manifest.json")).and_then(|m| m.modified());
+                Some((used.unwrap_or(std::time::UNIX_EPOCH), key))
+            })
+            .collect();
+        // Newest first; of equal times, the larger key first, so that the
+        // order does not depend on the folder listing's.
+        others.sort_by(|a, b| b.cmp(a));
+        let mut dropped = Vec::new();
+        for (_, key) in others.into_iter().skip(keep.saturating_sub(1)) {
+            let entry = self.entry_dir(stage, &key);
+            let old = entry.with_extension(format!("old-{}", nanos()));
+            if std::fs::rename(&entry, &old).is_ok() {
+                let _ = std::fs::remove_dir_all(&old);
+                dropped.push(key);
+            }
+        }
+        dropped
     }
 
     /// Records a run as `.liftplan/runs/<n>.json`.

@@ -218,6 +218,7 @@ pub fn run(project: &Project, opts: &RunOptions, progress: &Progress) -> Result<
             let m = match cache.lookup(def.name, &key).filter(|_| !forced) {
                 Some(m) => {
                     rep.status = Status::Fresh;
+                    cache.touch(def.name, &key);
                     m
                 }
                 None => {
@@ -267,6 +268,14 @@ pub fn run(project: &Project, opts: &RunOptions, progress: &Progress) -> Result<
         reports.push(rep);
     }
     hashes.save(&project.state_dir())?;
+    // Only after every stage: a stage reads its upstream stages' entries.
+    for rep in &reports {
+        if let (Status::Fresh | Status::Ran, Some(key)) = (&rep.status, &rep.key) {
+            for dropped in cache.prune(&rep.name, key, project.raw.cache.keep) {
+                tracing::debug!("cache: dropped {} {dropped} (past [cache] keep)", rep.name);
+            }
+        }
+    }
     let report = RunReport { ok: !failed, stages: reports };
     cache.record_run(&serde_json::json!({
         "liftplan": env!("CARGO_PKG_VERSION"),

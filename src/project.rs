@@ -75,6 +75,20 @@ impl Default for WatchSettings {
     }
 }
 
+/// `[cache]`: how many runs' outputs each stage keeps in `.liftplan/cache/`.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct CacheSettings {
+    /// Cache entries kept per stage, the last run's included (1 to 100).
+    pub keep: usize,
+}
+
+impl Default for CacheSettings {
+    fn default() -> Self {
+        CacheSettings { keep: 3 }
+    }
+}
+
 pub use liftplan_depthmap::GpuUse;
 
 #[derive(Debug, Clone, Default, Serialize, Deserialize)]
@@ -109,6 +123,8 @@ pub struct RawProject {
     pub gpu: GpuSettings,
     #[serde(default)]
     pub watch: WatchSettings,
+    #[serde(default)]
+    pub cache: CacheSettings,
     #[serde(default)]
     pub lift: Vec<LiftSpec>,
 }
@@ -180,6 +196,15 @@ impl Project {
             let needle = table.filter(|t| text.contains(t.as_str())).unwrap_or_else(|| "[plan]".into());
             err(&needle, m)
         })?;
+        if !(1..=100).contains(&self.raw.cache.keep) {
+            return Err(err(
+                "[cache]",
+                format!(
+                    "[cache] keep = {}: each stage keeps 1 to 100 runs' outputs (the last run's included)",
+                    self.raw.cache.keep
+                ),
+            ));
+        }
         let mut ids = std::collections::HashSet::new();
         for l in &self.raw.lift {
             if !ids.insert(l.id.clone()) {
@@ -381,6 +406,9 @@ use = "auto"              # auto | never | require
 [watch]
 settle_ms = 1000          # quiet time after the last change before a rerun
 parse_wait_s = 10         # how long to wait for a dropped file to become readable
+
+[cache]
+keep = 3                  # runs' outputs each stage keeps in .liftplan/cache (the last included)
 
 # A lift: uncomment and edit.
 # [[lift]]

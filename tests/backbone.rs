@@ -63,6 +63,56 @@ fn touch_keeps_fresh_and_changing_voxel_reruns() {
     assert_eq!(n, voxel_count(&input.xyz, 0.1));
 }
 
+/// Each stage keeps the `[cache] keep` most recently used entries: settings
+/// that come back find theirs while it is kept, and rerun once it is not.
+#[test]
+fn the_cache_keeps_the_most_recently_used_entries() {
+    let t = tempfile::tempdir().unwrap();
+    let dir = t.path().join("p");
+    project_with_scan(&dir, 60);
+    set_toml(&dir, "keep = 3", "keep = 2");
+    let entries = || {
+        let mut keys: Vec<String> = std::fs::read_dir(dir.join(".liftplan/cache/scans"))
+            .unwrap()
+            .flatten()
+            .map(|e| e.file_name().to_string_lossy().into_owned())
+            .collect();
+        keys.sort();
+        keys
+    };
+    let mut voxel = "0.05".to_string();
+    let mut scans_with = |v: &str| {
+        set_toml(&dir, &format!("voxel = {voxel}"), &format!("voxel = {v}"));
+        voxel = v.to_string();
+        let rep = run_json(&dir);
+        let scans = stage(&rep, "scans");
+        (scans["status"].as_str().unwrap().to_string(), scans["key"].as_str().unwrap().to_string())
+    };
+    let (_, a) = scans_with("0.05");
+    let (_, b) = scans_with("0.1");
+    assert_eq!(entries(), sorted(&[&a, &b]));
+    let (status, c) = scans_with("0.2");
+    assert_eq!((status.as_str(), entries()), ("ran", sorted(&[&b, &c])));
+    // 0.1 is kept and now the most recently used; 0.05 was dropped.
+    assert_eq!(scans_with("0.1").0, "fresh");
+    let (status, a2) = scans_with("0.05");
+    assert_eq!((status.as_str(), &a2), ("ran", &a));
+    assert_eq!(entries(), sorted(&[&a, &b]));
+    assert_eq!(scans_with("0.1").0, "fresh");
+    assert_eq!(scans_with("0.2").0, "ran");
+
+    set_toml(&dir, "keep = 2", "keep = 0");
+    let out = liftplan(&["run", dir.to_str().unwrap()]);
+    let text = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success() && text.contains("liftplan.toml:") && text.contains("[cache] keep = 0"), "{text}");
+}
+
+fn sorted(keys: &[&String]) -> Vec<String> {
+    let mut v: Vec<String> = keys.iter().map(|k| k.to_string()).collect();
+    v.sort();
+    v
+}
+
 #[test]
 fn killed_run_leaves_no_trusted_partial_result() {
     use std::process::{Command, Stdio};
