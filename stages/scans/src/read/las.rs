@@ -696,4 +696,29 @@ mod tests {
         let e = list(&path, Format::Laz).unwrap_err().to_string();
         assert!(e.contains("damaged-chunk-table.laz at byte") && e.contains("chunk table's decoder failed"), "{e}");
     }
+    /// Found by the scan_file fuzz target: a LAZ (format 1) whose GPS times
+    /// switch sequence without end. `laz` 0.13.0 recursed once per switch
+    /// and overflowed the stack, aborting the process; the patched copy
+    /// (third_party/laz) stops after four switches in one point.
+    #[test]
+    fn gps_times_that_switch_without_end_are_an_error() {
+        let path = fixture("damaged-gps-recursion.laz");
+        let info = list(&path, Format::Laz).unwrap();
+        let e = super::super::read_all(&info[0]).unwrap_err().to_string();
+        assert!(e.contains("damaged-gps-recursion.laz") && e.contains("switches sequence more than 4 times"), "{e}");
+    }
+    /// GPS times taking turns among three sequences (`make_gps_switches.py`):
+    /// LASzip switches sequence at nearly every point, once per point, and
+    /// the patched decoder reads every point, in formats 1 and 6.
+    #[test]
+    fn gps_times_that_switch_once_per_point_read_whole() {
+        for name in ["gps-switches-1.laz", "gps-switches-6.laz"] {
+            let info = list(&fixture(name), Format::Laz).unwrap();
+            let c = super::super::read_all(&info[0]).unwrap();
+            assert_eq!(c.len(), 600, "{name}");
+            for (k, p) in c.xyz.iter().enumerate() {
+                assert!((p[0] - k as f64 / 100.0).abs() < 1e-9 && p[1] == 2.0 && p[2] == 0.5, "{name} {k}: {p:?}");
+            }
+        }
+    }
 }
