@@ -22,9 +22,11 @@ use std::cell::Cell;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// Third-party readers that decode on worker threads, as their source files'
-/// folders in a panic's location (`laz-0.13.0/src/...`). We call them only
-/// through the guard, so a panic there is one the guard will catch.
-const WORKER_READERS: &[&str] = &["/laz-"];
+/// folders in a panic's location: `laz-0.13.0/src/...` from the registry,
+/// `third_party/laz/src/...` for the patched copy the workspace builds. We
+/// call them only through the guard, so a panic there is one the guard will
+/// catch.
+const WORKER_READERS: &[&str] = &["/laz-", "third_party/laz/"];
 
 /// How many guarded calls are running, on any thread.
 static GUARDED_CALLS: AtomicUsize = AtomicUsize::new(0);
