@@ -193,20 +193,7 @@ impl CapacityTable {
             if values.get(i) == Some(&v) { i } else { values.iter().position(|&x| x == v).unwrap_or(0) }
         }
         for (c, mine) in t.configs.iter_mut().zip(by_config) {
-            let mut booms: Vec<f64> = mine.iter().map(|r| r.boom_m).collect();
-            let mut radii: Vec<f64> = mine.iter().map(|r| r.radius_m).collect();
-            booms.sort_by(f64::total_cmp);
-            booms.dedup();
-            radii.sort_by(f64::total_cmp);
-            radii.dedup();
-            c.cells = vec![None; booms.len() * radii.len()];
-            for r in mine {
-                let bi = index_of(&booms, r.boom_m);
-                let ri = index_of(&radii, r.radius_m);
-                c.cells[ri * booms.len() + bi] = Some(ChartCell { capacity_kg: r.capacity_kg, cell: r.cell.clone() });
-            }
-            c.boom_lengths_m = booms;
-            c.radii_m = radii;
+            (c.boom_lengths_m, c.radii_m, c.cells) = grid_of(&mine, index_of);
         }
         t
     }
@@ -242,6 +229,27 @@ impl CapacityTable {
     }
 }
 
+/// One configuration's booms and radii (sorted, each once) and its cells,
+/// radius-major, from its rows; `index_of` finds a value's place in the
+/// booms or radii. A later row of the same cell replaces an earlier one.
+fn grid_of(
+    rows: &[&CapacityRow],
+    index_of: impl Fn(&[f64], f64) -> usize,
+) -> (Vec<f64>, Vec<f64>, Vec<Option<ChartCell>>) {
+    let mut booms: Vec<f64> = rows.iter().map(|r| r.boom_m).collect();
+    let mut radii: Vec<f64> = rows.iter().map(|r| r.radius_m).collect();
+    booms.sort_by(f64::total_cmp);
+    booms.dedup();
+    radii.sort_by(f64::total_cmp);
+    radii.dedup();
+    let mut cells = vec![None; booms.len() * radii.len()];
+    for r in rows {
+        let (bi, ri) = (index_of(&booms, r.boom_m), index_of(&radii, r.radius_m));
+        cells[ri * booms.len() + bi] = Some(ChartCell { capacity_kg: r.capacity_kg, cell: r.cell.clone() });
+    }
+    (booms, radii, cells)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -263,20 +271,8 @@ mod tests {
         }
         for c in &mut t.configs {
             let mine: Vec<&CapacityRow> = rows.iter().filter(|r| r.config == c.name).collect();
-            let mut booms: Vec<f64> = mine.iter().map(|r| r.boom_m).collect();
-            let mut radii: Vec<f64> = mine.iter().map(|r| r.radius_m).collect();
-            booms.sort_by(f64::total_cmp);
-            booms.dedup();
-            radii.sort_by(f64::total_cmp);
-            radii.dedup();
-            c.cells = vec![None; booms.len() * radii.len()];
-            for r in mine {
-                let bi = booms.iter().position(|&b| b == r.boom_m).unwrap_or(0);
-                let ri = radii.iter().position(|&x| x == r.radius_m).unwrap_or(0);
-                c.cells[ri * booms.len() + bi] = Some(ChartCell { capacity_kg: r.capacity_kg, cell: r.cell.clone() });
-            }
-            c.boom_lengths_m = booms;
-            c.radii_m = radii;
+            (c.boom_lengths_m, c.radii_m, c.cells) =
+                grid_of(&mine, |values, v| values.iter().position(|&x| x == v).unwrap_or(0));
         }
         t
     }
