@@ -70,15 +70,36 @@ fn run_once(dir: &Path, progress: &Progress) {
     }
 }
 
-/// Whether a changed file is complete enough to use: same size twice, and a scan
-/// whose header parses.
-fn ready(p: &Path) -> Result<(), String> {
-    let s1 = std::fs::metadata(p).map(|m| m.len()).map_err(|e| e.to_string())?;
-    std::thread::sleep(Duration::from_millis(150));
-    let s2 = std::fs::metadata(p).map(|m| m.len()).map_err(|e| e.to_string())?;
-    if s1 != s2 {
-        return Err("still growing".into());
+/// How long a changed file's size must stay the same before it is used.
+const SIZE_LOOK_GAP: Duration = Duration::from_millis(150);
+
+/// The changed files that are not complete enough to use yet, with why: a file
+/// must keep its size between two looks, one before `wait` and one after it,
+/// and a scan's header must parse. Every file shares the one wait, so a drop
+/// of thousands of scans costs one wait, not one each.
+fn not_ready(paths: &[&Path], wait: impl FnOnce()) -> Vec<(PathBuf, String)> {
+    let size = |p: &Path| std::fs::metadata(p).map(|m| m.len()).map_err(|e| e.to_string());
+    let first: Vec<Result<u64, String>> = paths.iter().map(|p| size(p)).collect();
+    if first.iter().any(|s| s.is_ok()) {
+        wait();
     }
+    let mut out = Vec::new();
+    for (p, s1) in paths.iter().zip(first) {
+        let verdict = s1.and_then(|s1| {
+            if size(p)? != s1 {
+                return Err("still growing".to_string());
+            }
+            header_parses(p)
+        });
+        if let Err(e) = verdict {
+            out.push((p.to_path_buf(), e));
+        }
+    }
+    out
+}
+
+/// Whether a scan's header parses (files that are not scans pass).
+fn header_parses(p: &Path) -> Result<(), String> {
     let ext = p.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
     if crate::stages::SCAN_EXTS.contains(&ext.as_str()) {
         liftplan_scans::read::list_scans(p).map_err(|e| e.to_string())?;
@@ -135,8 +156,8 @@ pub fn watch(dir: &Path, progress: &Progress, stop: Arc<AtomicBool>) -> Result<(
         if changed.is_empty() || last_event.elapsed() < settle {
             continue;
         }
-        let not_ready: Vec<(PathBuf, String)> =
-            changed.iter().filter(|p| p.is_file()).filter_map(|p| ready(p).err().map(|e| (p.clone(), e))).collect();
+        let files: Vec<&Path> = changed.iter().map(PathBuf::as_path).filter(|p| p.is_file()).collect();
+        let not_ready = not_ready(&files, || std::thread::sleep(SIZE_LOOK_GAP));
         if !not_ready.is_empty() {
             let since = *waiting_since.get_or_insert_with(Instant::now);
             if since.elapsed() < parse_wait {
@@ -167,4 +188,47 @@ pub fn watch(dir: &Path, progress: &Progress, stop: Arc<AtomicBool>) -> Result<(
     }
     log(dir, "stopped");
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn files_share_one_wait_and_each_is_judged() {
+        let t = tempfile::tempdir().unwrap();
+        let scan = Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/scans/gps-switches-1.laz");
+        let bytes = std::fs::read(&scan).unwrap();
+        let path = |name: &str| t.path().join(name);
+        std::fs::write(path("done.laz"), &bytes).unwrap();
+        std::fs::write(path("growing.laz"), &bytes[..bytes.len() / 2]).unwrap();
+        std::fs::write(path("cut.laz"), &bytes[..100]).unwrap();
+        std::fs::write(path("notes.txt"), "not a scan").unwrap();
+        let names = ["done.laz", "growing.laz", "cut.laz", "notes.txt", "gone.laz"];
+        let paths: Vec<PathBuf> = names.iter().map(|n| path(n)).collect();
+        let refs: Vec<&Path> = paths.iter().map(PathBuf::as_path).collect();
+        // The copy of growing.laz goes on while the watcher waits (and ends
+        // before it looks again, so only the size tells).
+        let waits = std::cell::Cell::new(0);
+        let verdicts = not_ready(&refs, || {
+            waits.set(waits.get() + 1);
+            std::fs::write(path("growing.laz"), &bytes).unwrap();
+        });
+        assert_eq!(waits.get(), 1);
+        let why = |name: &str| verdicts.iter().find(|(p, _)| p == &path(name)).map(|(_, e)| e.clone());
+        assert_eq!(why("done.laz"), None);
+        assert_eq!(why("notes.txt"), None);
+        assert_eq!(why("growing.laz").as_deref(), Some("still growing"));
+        assert!(why("cut.laz").is_some_and(|e| e.contains("cut.laz")), "{verdicts:?}");
+        assert!(why("gone.laz").is_some(), "{verdicts:?}");
+        assert_eq!(verdicts.len(), 3, "{verdicts:?}");
+    }
+
+    #[test]
+    fn no_wait_when_no_file_is_there() {
+        let t = tempfile::tempdir().unwrap();
+        let gone = t.path().join("gone.laz");
+        let verdicts = not_ready(&[gone.as_path()], || panic!("waited for files that are not there"));
+        assert_eq!(verdicts.len(), 1);
+    }
 }
