@@ -81,3 +81,72 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
         serde_json::from_slice(&std::fs::read(dir.join("out").join("plan.json")).unwrap()).unwrap();
     assert!((plan["lifts"][0]["gross_kg"].as_f64().unwrap() - 17_000.0).abs() < 1e-6);
 }
+
+/// A JSON document with its timings (keys ending `_ms`, `seconds`) taken out.
+fn without_timings(v: &serde_json::Value) -> serde_json::Value {
+    match v {
+        serde_json::Value::Object(m) => m
+            .iter()
+            .filter(|(k, _)| !(k.ends_with("_ms") || k.as_str() == "seconds"))
+            .map(|(k, v)| (k.clone(), without_timings(v)))
+            .collect(),
+        serde_json::Value::Array(a) => a.iter().map(without_timings).collect(),
+        other => other.clone(),
+    }
+}
+
+#[test]
+fn demo_outputs_are_the_same_on_one_and_three_threads() {
+    // Same inputs and seed give the same outputs, bit for bit, however many
+    // threads run them; only timings may differ.
+    let tmp = tempfile::tempdir().unwrap();
+    let run = |threads: &str| {
+        // The outputs name their inputs by the path given, so both runs get
+        // the same relative one.
+        let cwd = tmp.path().join(format!("threads-{threads}"));
+        std::fs::create_dir(&cwd).unwrap();
+        let dir = cwd.join("demo");
+        let o = std::process::Command::new(crate::util::bin())
+            .args(["demo", "demo", "-q"])
+            .current_dir(&cwd)
+            .env("RAYON_NUM_THREADS", threads)
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "demo on {threads} threads failed:\n{}", String::from_utf8_lossy(&o.stderr));
+        dir.join("out")
+    };
+    let (one, three) = (run("1"), run("3"));
+    let mut names: Vec<String> =
+        std::fs::read_dir(&one).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
+    names.sort();
+    assert!(names.len() >= 15, "{names:?}");
+    for name in &names {
+        let (a, b) = (std::fs::read(one.join(name)).unwrap(), std::fs::read(three.join(name)).unwrap());
+        if name == ".manifest.json" {
+            // Hashes of the outputs; those of files with timings differ.
+            let parse =
+                |bytes: &[u8]| -> std::collections::BTreeMap<String, String> { serde_json::from_slice(bytes).unwrap() };
+            let (ma, mb) = (parse(&a), parse(&b));
+            assert_eq!(ma.keys().collect::<Vec<_>>(), mb.keys().collect::<Vec<_>>(), "{name}");
+            for (file, hash) in &ma {
+                if !(file.ends_with(".json") || file.ends_with(".pdf")) {
+                    assert_eq!(hash, &mb[file], "{name}: {file}");
+                }
+            }
+        } else if name.ends_with(".json") {
+            let parse = |bytes: &[u8]| without_timings(&serde_json::from_slice(bytes).unwrap());
+            assert_eq!(parse(&a), parse(&b), "{name} differs beyond its timings");
+        } else if name.ends_with(".pdf") {
+            // The inputs page gives the depth map's build time ("... (40 ms on cpu)").
+            let text = |path: &std::path::Path| {
+                let doc = lopdf::Document::load(path).unwrap();
+                let pages: Vec<u32> = doc.get_pages().keys().copied().collect();
+                let text = doc.extract_text(&pages).unwrap();
+                text.lines().filter(|l| !l.contains(" ms on ")).map(str::to_string).collect::<Vec<_>>()
+            };
+            assert_eq!(text(&one.join(name)), text(&three.join(name)), "{name}'s text differs beyond its timings");
+        } else {
+            assert!(a == b, "{name} differs between one and three threads");
+        }
+    }
+}
