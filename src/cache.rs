@@ -238,6 +238,21 @@ impl FileHashes {
         Ok(())
     }
 
+    /// The files written, replaced or removed since [`FileHashes::hash`] last
+    /// looked at them (their stamp differs from the one their hash was taken
+    /// at), and files never hashed.
+    pub fn changed_since_hashed(&self, files: &[PathBuf]) -> Vec<PathBuf> {
+        files
+            .iter()
+            .filter(|f| {
+                let now = std::fs::metadata(f).ok().map(|m| stamp(&m));
+                let then = self.entries.get(f.to_string_lossy().as_ref()).map(|(st, _)| st);
+                now.is_none() || now.as_ref() != then
+            })
+            .cloned()
+            .collect()
+    }
+
     pub fn hash(&mut self, path: &Path) -> Result<String> {
         let meta = std::fs::metadata(path).with_context(|| format!("reading {}", path.display()))?;
         let s = stamp(&meta);

@@ -163,7 +163,10 @@ fn key_inputs(
 
 /// Runs the stages in order; see the module docs.
 pub fn run(project: &Project, opts: &RunOptions, progress: &Progress) -> Result<RunReport> {
-    let defs = stages();
+    run_stages(project, &stages(), opts, progress)
+}
+
+fn run_stages(project: &Project, defs: &[StageDef], opts: &RunOptions, progress: &Progress) -> Result<RunReport> {
     let names: Vec<&str> = defs.iter().map(|d| d.name).collect();
     if let Some(u) = &opts.until
         && !names.contains(&u.as_str())
@@ -182,7 +185,7 @@ pub fn run(project: &Project, opts: &RunOptions, progress: &Progress) -> Result<
     let mut reports = Vec::new();
     let mut failed = false;
     let mut past_until = false;
-    for def in &defs {
+    for def in defs {
         let mut rep = StageReport {
             name: def.name.into(),
             status: Status::Skipped,
@@ -231,6 +234,24 @@ pub fn run(project: &Project, opts: &RunOptions, progress: &Progress) -> Result<
                             return Err(e);
                         }
                     };
+                    // The key names the files as they were hashed before the run.
+                    // A file written during the run (a copy still going, a scan
+                    // re-exported) may have been read half old, half new; kept
+                    // under that key, such a result would be served as fresh
+                    // once the file is back to what was hashed.
+                    let changed = hashes.changed_since_hashed(&files);
+                    if !changed.is_empty() {
+                        let _ = std::fs::remove_dir_all(&tmp);
+                        let names: Vec<String> = changed
+                            .iter()
+                            .map(|f| f.strip_prefix(&project.dir).unwrap_or(f).display().to_string())
+                            .collect();
+                        return Err(anyhow!(
+                            "{} changed while the {} stage read it; the result was not kept: run again once the file is complete",
+                            names.join(", "),
+                            def.name
+                        ));
+                    }
                     let m = Manifest {
                         stage: def.name.into(),
                         version: def.version,
@@ -392,5 +413,79 @@ fn diff_settings(prefix: &str, a: &serde_json::Value, b: &serde_json::Value, why
         }
         _ if a != b => why.push(format!("setting {prefix} changed ({a} -> {b})")),
         _ => {}
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scan_files(p: &Project) -> Result<Vec<PathBuf>> {
+        p.files(&p.raw.paths.scans, &["xyz"])
+    }
+
+    fn no_settings(_: &Project) -> serde_json::Value {
+        serde_json::Value::Null
+    }
+
+    fn always(_: &Project, _: &[PathBuf], _: &BTreeMap<&'static str, (PathBuf, Manifest)>) -> bool {
+        true
+    }
+
+    /// Copies its input to `copy.xyz`.
+    fn copy(ctx: &Ctx) -> Result<Produced> {
+        std::fs::copy(&ctx.inputs[0], ctx.out.join("copy.xyz"))?;
+        Ok(Produced { outputs: vec!["copy.xyz".into()], summary: serde_json::Value::Null, lines: vec![] })
+    }
+
+    /// Copies its input while a survey copy of the same file starts over:
+    /// the file is written again, with the same bytes in the end.
+    fn copy_while_rewritten(ctx: &Ctx) -> Result<Produced> {
+        let bytes = std::fs::read(&ctx.inputs[0])?;
+        std::fs::write(&ctx.inputs[0], &bytes[..bytes.len() / 2])?;
+        let produced = copy(ctx)?;
+        std::fs::write(&ctx.inputs[0], &bytes)?;
+        Ok(produced)
+    }
+
+    fn stage(run: fn(&Ctx) -> Result<Produced>) -> StageDef {
+        StageDef {
+            name: "copy",
+            version: 1,
+            about: "copies a scan",
+            inputs: scan_files,
+            settings: no_settings,
+            reads: &[],
+            applicable: always,
+            run,
+        }
+    }
+
+    #[test]
+    fn a_result_read_from_a_file_that_changed_during_the_run_is_not_kept() {
+        let t = tempfile::tempdir().unwrap();
+        crate::project::init(t.path()).unwrap();
+        let scan = t.path().join("scans").join("a.xyz");
+        let text: String = (0..1000).map(|k| format!("{k} 0 0\n")).collect();
+        std::fs::write(&scan, &text).unwrap();
+        let project = Project::load(t.path()).unwrap();
+        let opts = RunOptions { until: None, force: vec![] };
+        let progress = Progress::new(true);
+
+        let first = run_stages(&project, &[stage(copy_while_rewritten)], &opts, &progress).unwrap();
+        assert!(!first.ok);
+        assert_eq!(first.stages[0].status, Status::Failed);
+        let error = first.stages[0].error.clone().unwrap_or_default();
+        assert!(error.contains("scans/a.xyz changed while the copy stage read it"), "{error}");
+        assert!(!project.out_dir().join("copy.xyz").exists());
+
+        // The scan is as it was hashed, but the half copy was not kept: the
+        // stage runs again and copies the whole file, then is fresh.
+        assert_eq!(std::fs::read_to_string(&scan).unwrap(), text);
+        let second = run_stages(&project, &[stage(copy)], &opts, &progress).unwrap();
+        assert_eq!(second.stages[0].status, Status::Ran, "{:?}", second.stages[0]);
+        assert_eq!(std::fs::read_to_string(project.out_dir().join("copy.xyz")).unwrap(), text);
+        let third = run_stages(&project, &[stage(copy)], &opts, &progress).unwrap();
+        assert_eq!(third.stages[0].status, Status::Fresh);
     }
 }
