@@ -47,7 +47,7 @@ fn main() {
             let before = hashed(&points, &ground);
             let t_before = t.elapsed().as_secs_f64();
             let t = std::time::Instant::now();
-            let now = PointIndex::new(&points, &ground);
+            let now = PointIndex::new(&points, &ground).expect("the index");
             let t_now = t.elapsed().as_secs_f64();
             assert_eq!(now.voxels(), before.len());
             println!("| {cloud} | {n} | {} | {t_before:.2} | {t_now:.2} | {:.1} |", before.len(), t_before / t_now);

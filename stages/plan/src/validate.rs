@@ -50,7 +50,17 @@ impl PointIndex {
     /// Sorts the points by voxel, in parallel (a hash map of growing lists,
     /// one push per point, took 3.4 s for 10 M points where this takes 0.9 s:
     /// `examples/bench_point_index`).
-    pub fn new(points: &[[f64; 3]], ground: &[bool]) -> PointIndex {
+    pub fn new(points: &[[f64; 3]], ground: &[bool]) -> Result<PointIndex, String> {
+        if ground.len() != points.len() {
+            return Err(format!(
+                "{} site points but {} ground flags: each point needs one",
+                points.len(),
+                ground.len()
+            ));
+        }
+        if points.len() > u32::MAX as usize {
+            return Err(format!("{} site points: the validator indexes at most {}", points.len(), u32::MAX));
+        }
         let mut order: Vec<([i32; 3], u32)> =
             points.par_iter().enumerate().map(|(i, p)| (voxel(p), i as u32)).collect();
         // (voxel, index) pairs are distinct, so the unstable sort's order is the one order.
@@ -66,7 +76,7 @@ impl PointIndex {
         starts.push(order.len());
         let sorted = order.par_iter().map(|&(_, i)| (points[i as usize], ground[i as usize])).collect();
         let place = keys.iter().enumerate().map(|(k, key)| (*key, k as u32)).collect();
-        PointIndex { keys, starts, points: sorted, place, count: points.len() }
+        Ok(PointIndex { keys, starts, points: sorted, place, count: points.len() })
     }
 
     /// Number of occupied voxels.
@@ -99,7 +109,7 @@ impl World {
             )
         };
         let tri_group = (0..mesh.triangles.len()).map(|t| mesh.group_of_triangle(t).to_string()).collect();
-        Ok(World { mesh: parry, tri_group, points: PointIndex::new(points, ground) })
+        Ok(World { mesh: parry, tri_group, points: PointIndex::new(points, ground)? })
     }
 }
 
@@ -614,7 +624,7 @@ mod tests {
             let points: Vec<[f64; 3]> =
                 (0..n).map(|_| [0, 1, 2].map(|_| ((u() - 0.5) * spread * 4.0).round() / 4.0)).collect();
             let ground: Vec<bool> = (0..n).map(|_| u() < 0.4).collect();
-            let index = PointIndex::new(&points, &ground);
+            let index = PointIndex::new(&points, &ground).unwrap();
             let (st, ct) = tilt.sin_cos();
             let axes: Mat3 = rot_z(yaw) * Mat3::new(ct, 0.0, st, 0.0, 1.0, 0.0, -st, 0.0, ct);
             let b = Obb::new(Point3::new(centre[0], centre[1], centre[2]), axes, Vec3::new(half[0], half[1], half[2]));
@@ -647,5 +657,11 @@ mod tests {
             let n = nearest(&world, &b, false, 3.0);
             assert_eq!((n.distance_m, n.object.as_str(), n.at), (1.0, "scanned structure", Some([-3.5, 0.5, -1.0])));
         }
+    }
+
+    #[test]
+    fn points_without_their_ground_flags_are_refused() {
+        let e = World::new(&TriMesh::default(), &[[0.0; 3], [1.0; 3]], &[true]).err().unwrap_or_default();
+        assert!(e.contains("2 site points but 1 ground flags"), "{e}");
     }
 }
