@@ -461,7 +461,7 @@ fn real_main() -> Result<ExitCode> {
             }
             let tmp = tempdir_near(&output)?;
             let report = |what: &str, d: u64, t: u64| progress.report("plant", what, d, t);
-            let res = liftplan_plant::run(&inputs, &s, &tmp, &report);
+            let res = liftplan_plant::run(&inputs, &s, &tmp, None, &report);
             let code = match res {
                 Ok(sum) => {
                     std::fs::rename(tmp.join("plant.ply"), &output)
@@ -499,8 +499,12 @@ fn real_main() -> Result<ExitCode> {
             }
             let tmp = tempdir_near(&output)?;
             let report = |what: &str, d: u64, t: u64| progress.report("scans", what, d, t);
-            let res =
-                liftplan_scans::run(&inputs, &s, &liftplan_scans::RunOptions { seed: 0, progress: &report }, &tmp);
+            let res = liftplan_scans::run(
+                &inputs,
+                &s,
+                &liftplan_scans::RunOptions { seed: 0, progress: &report, root: None },
+                &tmp,
+            );
             let out = match res {
                 Ok(sum) => {
                     std::fs::rename(tmp.join("site.laz"), &output)

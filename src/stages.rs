@@ -38,7 +38,7 @@ fn run_scans(ctx: &Ctx) -> Result<Produced> {
     let summary = liftplan_scans::run(
         &scan_files,
         &s,
-        &liftplan_scans::RunOptions { seed: p.raw.project.seed, progress: &report },
+        &liftplan_scans::RunOptions { seed: p.raw.project.seed, progress: &report, root: Some(&p.dir) },
         ctx.out,
     )?;
     let mut outputs = vec!["site.laz".to_string(), "registration.json".into(), "scans.png".into()];
@@ -74,7 +74,7 @@ fn run_plant(ctx: &Ctx) -> Result<Produced> {
     let files: Vec<PathBuf> =
         ctx.inputs.iter().filter(|f| !f.extension().is_some_and(|e| e.eq_ignore_ascii_case("att"))).cloned().collect();
     let report = ctx.report("plant");
-    let summary = liftplan_plant::run(&files, &ctx.project.raw.plant, ctx.out, &report)?;
+    let summary = liftplan_plant::run(&files, &ctx.project.raw.plant, ctx.out, Some(&ctx.project.dir), &report)?;
     Ok(Produced {
         outputs: vec!["plant.mesh".into(), "plant.ply".into(), "plant.json".into()],
         summary: serde_json::to_value(&summary)?,
@@ -105,7 +105,7 @@ fn run_charts(ctx: &Ctx) -> Result<Produced> {
     let cranes = p.path(&p.raw.paths.cranes);
     let files: Vec<PathBuf> = ctx.inputs.iter().filter(|f| !f.starts_with(&cranes)).cloned().collect();
     let lifts = p.lifts()?;
-    let summary = liftplan_charts::run(&files, &p.raw.charts, &lifts, ctx.out)?;
+    let summary = liftplan_charts::run(&files, &p.raw.charts, &lifts, ctx.out, Some(&p.dir))?;
     Ok(Produced {
         outputs: vec!["capacity.csv".into(), "chart.json".into(), "lifts.json".into()],
         summary: serde_json::to_value(&summary)?,

@@ -332,7 +332,16 @@ impl Summary {
 }
 
 /// Runs the stage: reads `inputs`, checks `lifts` against the charts, writes into `out_dir`.
-pub fn run(inputs: &[PathBuf], s: &Settings, lifts: &[LiftTask], out_dir: &Path) -> Result<Summary> {
+/// Reads the charts in `inputs` and checks `lifts` against them, writing into
+/// `out_dir`; chart.json names the files relative to `root` (the project
+/// folder) where given.
+pub fn run(
+    inputs: &[PathBuf],
+    s: &Settings,
+    lifts: &[LiftTask],
+    out_dir: &Path,
+    root: Option<&Path>,
+) -> Result<Summary> {
     let mut table = CapacityTable::default();
     let mut reports = Vec::new();
     for p in inputs {
@@ -365,7 +374,7 @@ pub fn run(inputs: &[PathBuf], s: &Settings, lifts: &[LiftTask], out_dir: &Path)
         .write_csv(&out_dir.join("capacity.csv"))
         .map_err(|e| ChartError::Io(Location::file(out_dir.join("capacity.csv")), e))?;
     let summary = Summary {
-        files: inputs.iter().map(|p| p.display().to_string()).collect(),
+        files: inputs.iter().map(|p| liftplan_core::location::shown(p, root)).collect(),
         rows: table.rows().len(),
         configs: reports,
         lifts: lift_reports,

@@ -8,6 +8,14 @@
 use std::fmt;
 use std::path::{Path, PathBuf};
 
+/// How a stage's summary names an input file: relative to `root` (the
+/// project folder) when it lies inside it, else as given. A summary written
+/// this way is the same however the project folder was named on the command
+/// line and wherever it lies, as its cache key is.
+pub fn shown(path: &Path, root: Option<&Path>) -> String {
+    root.and_then(|r| path.strip_prefix(r).ok()).unwrap_or(path).display().to_string()
+}
+
 /// A place inside a file.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Place {
@@ -91,6 +99,15 @@ pub fn cell_ref(row: u32, col: u32) -> String {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn files_are_shown_relative_to_the_project_folder() {
+        let root = Path::new("/data/site-a");
+        assert_eq!(shown(Path::new("/data/site-a/scans/s1.laz"), Some(root)), "scans/s1.laz");
+        assert_eq!(shown(Path::new("site-a/scans/s1.laz"), Some(Path::new("site-a"))), "scans/s1.laz");
+        assert_eq!(shown(Path::new("/elsewhere/s1.laz"), Some(root)), "/elsewhere/s1.laz");
+        assert_eq!(shown(Path::new("/data/site-a/scans/s1.laz"), None), "/data/site-a/scans/s1.laz");
+    }
+
     use super::*;
 
     #[test]

@@ -534,11 +534,13 @@ fn keep_groups(m: &TriMesh, keep: &[bool]) -> TriMesh {
     out
 }
 
-/// Runs the stage on `inputs`, writing into `out_dir`.
+/// Runs the stage on `inputs`, writing into `out_dir`; plant.json names the
+/// files relative to `root` (the project folder) where given.
 pub fn run(
     inputs: &[PathBuf],
     s: &Settings,
     out_dir: &Path,
+    root: Option<&Path>,
     progress: &(dyn Fn(&str, u64, u64) + Sync),
 ) -> Result<Summary> {
     s.check().map_err(PlantError::Settings)?;
@@ -552,7 +554,7 @@ pub fn run(
         );
         let m = read_file(p, s, &mut summary)?;
         mesh.append(&m);
-        summary.files.push(p.display().to_string());
+        summary.files.push(liftplan_core::location::shown(p, root));
     }
     progress("read", inputs.len() as u64, inputs.len() as u64);
     let pose = liftplan_core::frame::pose_xyz_yaw(

@@ -156,11 +156,13 @@ pub struct RunOptions<'a> {
     pub seed: u64,
     /// Reports progress: (what, done, total).
     pub progress: &'a (dyn Fn(&str, u64, u64) + Sync),
+    /// The project folder: registration.json names the scans relative to it.
+    pub root: Option<&'a Path>,
 }
 
 impl Default for RunOptions<'_> {
     fn default() -> Self {
-        RunOptions { seed: 0, progress: &|_, _, _| {} }
+        RunOptions { seed: 0, progress: &|_, _, _| {}, root: None }
     }
 }
 
@@ -410,7 +412,7 @@ pub fn run(inputs: &[PathBuf], s: &Settings, opts: &RunOptions, out_dir: &Path) 
         .iter()
         .zip(&results)
         .map(|(info, r)| ScanReport {
-            file: info.path.display().to_string(),
+            file: liftplan_core::location::shown(&info.path, opts.root),
             name: info.name.clone(),
             format: info.format,
             points_read: 0,
