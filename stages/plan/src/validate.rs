@@ -526,15 +526,20 @@ mod tests {
     use liftplan_core::frame::{Mat3, Point3, Vec3, rot_z};
     use proptest::prelude::*;
 
-    fn clutter(seed: u64) -> TriMesh {
-        let mut mesh = TriMesh::default();
+    /// Numbers in [0, 1) from `seed` (xorshift): random scenes for the proptests.
+    fn unit_stream(seed: u64) -> impl FnMut() -> f64 {
         let mut s = seed | 1;
-        let mut u = || {
+        move || {
             s ^= s << 13;
             s ^= s >> 7;
             s ^= s << 17;
             (s >> 11) as f64 / (1u64 << 53) as f64
-        };
+        }
+    }
+
+    fn clutter(seed: u64) -> TriMesh {
+        let mut mesh = TriMesh::default();
+        let mut u = unit_stream(seed);
         for k in 0..40 {
             let g = mesh.group_id(&format!("B{k}"));
             let (x, y, z) = (u() * 80.0 - 40.0, u() * 80.0 - 40.0, u() * 20.0);
@@ -614,13 +619,7 @@ mod tests {
             start in prop::option::of(0.0f64..5.0),
             ignore_ground in any::<bool>(),
         ) {
-            let mut s = seed | 1;
-            let mut u = || {
-                s ^= s << 13;
-                s ^= s >> 7;
-                s ^= s << 17;
-                (s >> 11) as f64 / (1u64 << 53) as f64
-            };
+            let mut u = unit_stream(seed);
             let points: Vec<[f64; 3]> =
                 (0..n).map(|_| [0, 1, 2].map(|_| ((u() - 0.5) * spread * 4.0).round() / 4.0)).collect();
             let ground: Vec<bool> = (0..n).map(|_| u() < 0.4).collect();
