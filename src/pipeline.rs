@@ -247,7 +247,7 @@ fn run_stages(project: &Project, defs: &[StageDef], opts: &RunOptions, progress:
                             .map(|f| f.strip_prefix(&project.dir).unwrap_or(f).display().to_string())
                             .collect();
                         return Err(anyhow!(
-                            "{} changed while the {} stage read it; the result was not kept: run again once the file is complete",
+                            "{} changed (written, replaced or removed) while the {} stage ran; its result was not kept: run again once the files are complete",
                             names.join(", "),
                             def.name
                         ));
@@ -476,7 +476,10 @@ mod tests {
         assert!(!first.ok);
         assert_eq!(first.stages[0].status, Status::Failed);
         let error = first.stages[0].error.clone().unwrap_or_default();
-        assert!(error.contains("scans/a.xyz changed while the copy stage read it"), "{error}");
+        assert!(
+            error.contains("scans/a.xyz changed (written, replaced or removed) while the copy stage ran"),
+            "{error}"
+        );
         assert!(!project.out_dir().join("copy.xyz").exists());
 
         // The scan is as it was hashed, but the half copy was not kept: the
