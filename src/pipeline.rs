@@ -55,6 +55,9 @@ pub struct Produced {
 pub struct StageDef {
     pub name: &'static str,
     pub version: u32,
+    /// Hash of the code behind the stage (`build.rs`): part of its key, so a
+    /// new build whose code for the stage differs runs it again.
+    pub code: &'static str,
     pub about: &'static str,
     /// Project files the stage reads.
     pub inputs: fn(&Project) -> Result<Vec<PathBuf>>,
@@ -133,6 +136,7 @@ fn key_inputs(
     upstream: &BTreeMap<&'static str, (PathBuf, Manifest)>,
 ) -> Result<(BTreeMap<String, String>, serde_json::Value)> {
     let mut inputs = BTreeMap::new();
+    inputs.insert("code".to_string(), def.code.to_string());
     for f in files {
         let rel = f.strip_prefix(&project.dir).unwrap_or(f).to_string_lossy().into_owned();
         inputs.insert(format!("file:{rel}"), hashes.hash(f)?);
@@ -373,8 +377,11 @@ fn explain(
     if last.version != version {
         why.push(format!("stage code changed (version {} -> {version})", last.version));
     }
+    if last.inputs.get("code") != inputs.get("code") {
+        why.push("liftplan's code for this stage changed (a new build)".into());
+    }
     for (k, v) in inputs {
-        if k == "settings" {
+        if k == "settings" || k == "code" {
             continue;
         }
         match last.inputs.get(k) {
@@ -384,7 +391,7 @@ fn explain(
         }
     }
     for k in last.inputs.keys() {
-        if k != "settings" && !inputs.contains_key(k) {
+        if k != "settings" && k != "code" && !inputs.contains_key(k) {
             why.push(format!("{} removed", k.trim_start_matches("file:")));
         }
     }
@@ -449,9 +456,14 @@ mod tests {
     }
 
     fn stage(run: fn(&Ctx) -> Result<Produced>) -> StageDef {
+        built(run, "build-1")
+    }
+
+    fn built(run: fn(&Ctx) -> Result<Produced>, code: &'static str) -> StageDef {
         StageDef {
             name: "copy",
             version: 1,
+            code,
             about: "copies a scan",
             inputs: scan_files,
             settings: no_settings,
@@ -490,5 +502,25 @@ mod tests {
         assert_eq!(std::fs::read_to_string(project.out_dir().join("copy.xyz")).unwrap(), text);
         let third = run_stages(&project, &[stage(copy)], &opts, &progress).unwrap();
         assert_eq!(third.stages[0].status, Status::Fresh);
+    }
+
+    #[test]
+    fn a_build_with_other_code_for_a_stage_runs_it_again() {
+        let t = tempfile::tempdir().unwrap();
+        crate::project::init(t.path()).unwrap();
+        std::fs::write(t.path().join("scans").join("a.xyz"), "0 0 0\n1 0 0\n").unwrap();
+        let project = Project::load(t.path()).unwrap();
+        let opts = RunOptions { until: None, force: vec![] };
+        let progress = Progress::new(true);
+        let status = |code| run_stages(&project, &[built(copy, code)], &opts, &progress).unwrap().stages[0].status;
+        assert_eq!(status("build-1"), Status::Ran);
+        assert_eq!(status("build-1"), Status::Fresh);
+        assert_eq!(status("build-2"), Status::Ran);
+        let last = Cache::new(&project.state_dir()).last("copy").unwrap();
+        let files = scan_files(&project).unwrap();
+        let mut hashes = FileHashes::load(&project.state_dir());
+        let (inputs, settings) =
+            key_inputs(&built(copy, "build-3"), &project, &files, &mut hashes, &BTreeMap::new()).unwrap();
+        assert_eq!(explain(&last, 1, &inputs, &settings), vec!["liftplan's code for this stage changed (a new build)"]);
     }
 }

@@ -13,6 +13,7 @@ pub fn scans() -> StageDef {
     StageDef {
         name: liftplan_scans::NAME,
         version: liftplan_scans::VERSION,
+        code: env!("LIFTPLAN_CODE_SCANS"),
         about: "read, register, thin and ground-classify the survey scans",
         inputs: |p: &Project| {
             let mut files = p.files(&p.raw.paths.scans, SCAN_EXTS)?;
@@ -57,6 +58,7 @@ pub fn plant() -> StageDef {
     StageDef {
         name: liftplan_plant::NAME,
         version: liftplan_plant::VERSION,
+        code: env!("LIFTPLAN_CODE_PLANT"),
         about: "tessellate PDMS/E3D RVM exports and read BIM meshes into one plant mesh",
         inputs: |p: &Project| {
             let mut exts: Vec<&str> = liftplan_plant::EXTS.to_vec();
@@ -86,6 +88,7 @@ pub fn charts() -> StageDef {
     StageDef {
         name: liftplan_charts::NAME,
         version: liftplan_charts::VERSION,
+        code: env!("LIFTPLAN_CODE_CHARTS"),
         about: "read load charts into a capacity table and check each lift against it",
         inputs: |p: &Project| {
             let mut files = p.files(&p.raw.paths.charts, liftplan_charts::EXTS)?;
@@ -123,6 +126,7 @@ pub fn depthmap() -> StageDef {
     StageDef {
         name: liftplan_depthmap::NAME,
         version: liftplan_depthmap::VERSION,
+        code: env!("LIFTPLAN_CODE_DEPTHMAP"),
         about: "rasterise the site cloud and the plant mesh into a multi-level depth map",
         inputs: |_| Ok(vec![]),
         // The load boxes cut out of the cloud depend on the lifts' geometry (not their mass).
@@ -161,6 +165,7 @@ pub fn plan() -> StageDef {
     StageDef {
         name: liftplan_plan::NAME,
         version: liftplan_plan::VERSION,
+        code: env!("LIFTPLAN_CODE_PLAN"),
         about: "plan each lift (MSPGA on the hybrid C-space) and validate it independently",
         inputs: |p: &Project| Ok(p.crane_files()),
         settings: |p: &Project| serde_json::json!({ "plan": p.raw.plan, "lifts": p.raw.lift, "seed": p.raw.project.seed }),
@@ -196,6 +201,7 @@ pub fn docs() -> StageDef {
     StageDef {
         name: liftplan_docs::NAME,
         version: liftplan_docs::VERSION,
+        code: env!("LIFTPLAN_CODE_DOCS"),
         about: "render the pictures and the step-by-step lift plan PDF",
         inputs: |p: &Project| Ok(p.crane_files()),
         // The GPU setting is part of the key: the GPU twin's pictures agree with the
