@@ -29,6 +29,7 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
         assert!(text.contains(op.as_str()), "operation {op} missing");
     }
     assert!(text.contains("VALIDATED"));
+    assert!(text.contains("What this plan does not model"), "the sign-off must say what the plan leaves out");
     assert!(text.contains('°'), "degree signs must survive as text");
 
     // Nothing changed: everything fresh.
