@@ -13,22 +13,27 @@ use std::path::{Path, PathBuf};
 
 const STAGES: [&str; 6] = ["scans", "plant", "charts", "depthmap", "plan", "docs"];
 
+/// What of a crate does not go into the binary's answers.
+const NOT_CODE: [&str; 5] = ["tests", "examples", "benches", "proptest-regressions", "README.md"];
+
 fn main() {
     let root = PathBuf::from(std::env::var("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR"));
     for name in ["Cargo.lock", "src/stages.rs", "third_party"] {
         println!("cargo:rerun-if-changed={name}");
     }
-    let crates = std::fs::read_dir(root.join("stages")).expect("the stages folder").flatten();
-    for dir in crates {
-        for part in ["src", "Cargo.toml"] {
-            println!("cargo:rerun-if-changed={}", dir.path().join(part).display());
-        }
-    }
+    println!("cargo:rerun-if-changed=stages");
     for stage in STAGES {
         let mut files = Vec::new();
         for krate in with_dependencies(&root, stage) {
-            files.push(root.join("stages").join(&krate).join("Cargo.toml"));
-            collect(&root.join("stages").join(&krate).join("src"), &mut files);
+            // The whole crate (sources, shaders, fonts, crane files) but what
+            // only its tests, examples and benches use.
+            let dir = root.join("stages").join(&krate);
+            for e in std::fs::read_dir(&dir).unwrap_or_else(|e| panic!("reading {}: {e}", dir.display())).flatten() {
+                let name = e.file_name();
+                if !NOT_CODE.contains(&name.to_string_lossy().as_ref()) {
+                    collect(&e.path(), &mut files);
+                }
+            }
         }
         // A checkout without a lock file (a package) hashes what it has.
         files.extend([root.join("Cargo.lock"), root.join("src/stages.rs")].into_iter().filter(|f| f.exists()));
@@ -71,9 +76,13 @@ fn with_dependencies(root: &Path, stage: &str) -> Vec<String> {
     found
 }
 
-/// Every file under `dir`, recursively.
-fn collect(dir: &Path, out: &mut Vec<PathBuf>) {
-    let Ok(entries) = std::fs::read_dir(dir) else { return };
+/// `path` if it is a file, else every file under it, recursively.
+fn collect(path: &Path, out: &mut Vec<PathBuf>) {
+    if path.is_file() {
+        out.push(path.to_path_buf());
+        return;
+    }
+    let Ok(entries) = std::fs::read_dir(path) else { return };
     for e in entries.flatten() {
         let p = e.path();
         if p.is_dir() {
