@@ -225,11 +225,20 @@ fn run_docs(ctx: &Ctx) -> Result<Produced> {
                 input_lines.push(format!("{stage}: {}", l.trim()));
             }
             for (name, hash) in &m.inputs {
-                if !name.starts_with("setting:") && !name.starts_with("upstream:") {
-                    input_hashes.push((name.clone(), hash.chars().take(16).collect::<String>()));
-                }
+                let shown = match name.as_str() {
+                    "code" => format!("code of the {stage} stage"),
+                    "settings" => format!("settings of the {stage} stage"),
+                    _ if name.starts_with("setting:") || name.starts_with("upstream:") => continue,
+                    _ => name.clone(),
+                };
+                input_hashes.push((shown, hash.chars().take(16).collect::<String>()));
             }
         }
+    }
+    // The plan's and this document's own code, so the PDF names every build
+    // that had a hand in it.
+    for (stage, code) in [("plan", env!("LIFTPLAN_CODE_PLAN")), ("docs", env!("LIFTPLAN_CODE_DOCS"))] {
+        input_hashes.push((format!("code of the {stage} stage"), code.to_string()));
     }
     input_hashes.sort();
     input_hashes.dedup();

@@ -215,7 +215,7 @@ pub fn document(
         42.0,
     );
     y += 3.0;
-    d.text(15.0, y, "Input files (blake3, first 16 hex digits)", 9.0, true, GREY);
+    d.text(15.0, y, "Inputs and liftplan's code (blake3, first 16 hex digits)", 9.0, true, GREY);
     y += 5.0;
     for (f, h) in inp.input_hashes.iter().take(16) {
         d.text(15.0, y, h, 8.0, false, GREY);
