@@ -1,10 +1,11 @@
 //! Hashes the code behind each stage into the binary (`LIFTPLAN_CODE_<STAGE>`),
 //! so that a stage's cache key changes when the code that computes its outputs
 //! does: the make-style rule treats the code as an input, like the files and
-//! the settings. A stage's code is the sources and manifest of its crate and of
-//! the liftplan crates it depends on (read from their `[dependencies]`), the
-//! binary's glue (`src/stages.rs`), `Cargo.lock` (third-party versions) and the
-//! patched crates in `third_party/`. Tests, examples and benches do not count.
+//! the settings. A stage's code is its crate and the liftplan crates it depends
+//! on (read from their `[dependencies]`), whole but for their tests, examples,
+//! benches, proptest seeds and READMEs (so fonts, shaders and the built-in
+//! crane files count); the binary's glue (`src/stages.rs`); `Cargo.lock`
+//! (third-party versions); and the patched crates in `third_party/`.
 //!
 //! It must not hash anything that varies between two checkouts of one commit
 //! (times, absolute paths), or every clone would rerun every stage.

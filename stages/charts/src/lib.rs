@@ -331,8 +331,7 @@ impl Summary {
     }
 }
 
-/// Runs the stage: reads `inputs`, checks `lifts` against the charts, writes into `out_dir`.
-/// Reads the charts in `inputs` and checks `lifts` against them, writing into
+/// Runs the stage: reads the charts in `inputs` and checks `lifts` against them, writing into
 /// `out_dir`; chart.json names the files relative to `root` (the project
 /// folder) where given.
 pub fn run(

@@ -99,6 +99,8 @@ pub fn cell_ref(row: u32, col: u32) -> String {
 
 #[cfg(test)]
 mod tests {
+    use super::*;
+
     #[test]
     fn files_are_shown_relative_to_the_project_folder() {
         let root = Path::new("/data/site-a");
@@ -107,8 +109,6 @@ mod tests {
         assert_eq!(shown(Path::new("/elsewhere/s1.laz"), Some(root)), "/elsewhere/s1.laz");
         assert_eq!(shown(Path::new("/data/site-a/scans/s1.laz"), None), "/data/site-a/scans/s1.laz");
     }
-
-    use super::*;
 
     #[test]
     fn cell_refs() {

@@ -15,6 +15,9 @@ fn opt(v: Option<f64>, digits: usize) -> String {
     v.map(|x| format!("{x:.digits$}")).unwrap_or_else(|| "—".into())
 }
 
+/// Input rows the inputs page has room for beside the chart plot.
+const INPUT_ROWS_HERE: usize = 16;
+
 fn heading(d: &mut Doc, y: f32, s: &str) -> f32 {
     d.text(15.0, y, s, 13.0, true, [25, 55, 110]);
     d.line(15.0, y + 2.0, d.size.w - 15.0, y + 2.0, 0.6, [25, 55, 110]);
@@ -217,9 +220,18 @@ pub fn document(
     y += 3.0;
     d.text(15.0, y, "Inputs and liftplan's code (blake3, first 16 hex digits)", 9.0, true, GREY);
     y += 5.0;
-    for (f, h) in inp.input_hashes.iter().take(16) {
+    // What does not fit here goes on a last page: a signed plan lists every input.
+    let appendix = inp.input_hashes.len() > INPUT_ROWS_HERE;
+    let here = if appendix { INPUT_ROWS_HERE - 1 } else { INPUT_ROWS_HERE };
+    for (f, h) in inp.input_hashes.iter().take(here) {
         d.text(15.0, y, h, 8.0, false, GREY);
         d.text(50.0, y, f, 8.0, false, INK);
+        y += 4.2;
+    }
+    if appendix {
+        let more = inp.input_hashes.len() - here;
+        let line = format!("... and {more} more: all {} are listed on the last pages", inp.input_hashes.len());
+        d.text(50.0, y, &line, 8.0, false, INK);
         y += 4.2;
     }
     let chart_img = chart.map(|c| pictures::chart_plot(c, task, plan, 1200, 600));
@@ -374,6 +386,21 @@ pub fn document(
         d.text(163.0, y + 12.0, "Date:", 9.0, false, GREY);
         d.line(172.0, y + 12.5, size.w - 15.0, y + 12.5, 0.5, GREY);
         y += 24.0;
+    }
+    if appendix {
+        d.new_page();
+        let mut y = heading(&mut d, 20.0, "Inputs and liftplan's code");
+        d.text(15.0, y, "blake3 of each input file, of each stage's settings and of the code that ran each stage, first 16 hex digits", 9.0, false, GREY);
+        y += 6.0;
+        for (f, h) in &inp.input_hashes {
+            if y > size.h - 20.0 {
+                d.new_page();
+                y = heading(&mut d, 20.0, "Inputs and liftplan's code (continued)");
+            }
+            d.text(15.0, y, h, 8.0, false, GREY);
+            d.text(50.0, y, f, 8.0, false, INK);
+            y += 4.2;
+        }
     }
     let pages = d.text.len();
     let footer =
