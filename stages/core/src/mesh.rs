@@ -157,7 +157,13 @@ impl TriMesh {
 
     /// Appends another mesh, merging groups by name.
     pub fn append(&mut self, other: &TriMesh) {
-        let mut index = GroupIndex::of(self);
+        self.append_with(other, &mut GroupIndex::of(self));
+    }
+
+    /// [`TriMesh::append`] through `index`, this mesh's [`GroupIndex`]: a
+    /// caller appending many meshes keeps one index instead of indexing every
+    /// group again for each.
+    pub fn append_with(&mut self, other: &TriMesh, index: &mut GroupIndex) {
         let gmap: Vec<u32> = other.groups.iter().map(|g| index.id(self, g)).collect();
         let vbase = self.vertices.len() as u32;
         let pbase = self.parts.len() as u32;
@@ -407,6 +413,27 @@ mod tests {
         }
         assert_eq!(by_index.groups, ["A", "B", "A", "C", "D"]);
         assert_eq!(by_index, by_name);
+    }
+
+    #[test]
+    fn appending_through_one_index_is_appending() {
+        let parts = |names: &[&str]| {
+            let mut m = cube();
+            for n in names {
+                let g = m.group_id(n);
+                m.add_part(g, false, &[[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]], &[[0, 1, 2]]);
+            }
+            m
+        };
+        let meshes = [parts(&["A", "B"]), parts(&["B", "C", "A"]), parts(&[]), parts(&["D", "C"])];
+        let (mut each, mut once) = (parts(&["C"]), parts(&["C"]));
+        let mut index = GroupIndex::of(&once);
+        for m in &meshes {
+            each.append(m);
+            once.append_with(m, &mut index);
+        }
+        assert_eq!(once, each);
+        assert_eq!(once.groups.len(), 5, "{:?}", once.groups);
     }
 
     #[test]

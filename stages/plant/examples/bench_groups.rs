@@ -6,7 +6,11 @@
 //!   `[plant] exclude` leaving one object out;
 //! - side by side in one run, naming N groups one by one
 //!   (`TriMesh::group_id`, what the readers did before the nineteenth stop)
-//!   and through a `GroupIndex` (what they do now).
+//!   and through a `GroupIndex` (what they do now);
+//! - side by side in one run, appending F meshes of 500 groups each (the
+//!   plant stage's many input files) with `TriMesh::append`, which indexes
+//!   the growing mesh's groups again for each, and with `append_with` and one
+//!   index (what the stage does since the twentieth stop).
 //!
 //! `cargo run --release -p liftplan-plant --example bench_groups [N...]`
 
@@ -89,5 +93,40 @@ fn main() {
         let fast = t.elapsed().as_secs_f64();
         let same = a == b && one_by_one.groups == indexed.groups;
         println!("| {n} | {slow:.3} | {fast:.4} | {:.0}x | {} |", slow / fast, if same { "yes" } else { "NO" });
+    }
+    println!();
+    println!("| files of 500 groups appended | indexed per append s | one index s | ratio | same mesh |");
+    println!("|---|---|---|---|---|");
+    for files in [50, 200, 500] {
+        let meshes: Vec<TriMesh> = (0..files)
+            .map(|f| {
+                let mut m = TriMesh::default();
+                for k in 0..500 {
+                    let g = m.group_id(&format!("/SITE/AREA-{f:03}/PIPE-{k:03}"));
+                    m.add_part(
+                        g,
+                        false,
+                        &[[k as f64, 0.0, 0.0], [k as f64, 1.0, 0.0], [k as f64, 0.0, 1.0]],
+                        &[[0, 1, 2]],
+                    );
+                }
+                m
+            })
+            .collect();
+        let t = Instant::now();
+        let mut each = TriMesh::default();
+        for m in &meshes {
+            each.append(m);
+        }
+        let slow = t.elapsed().as_secs_f64();
+        let t = Instant::now();
+        let mut once = TriMesh::default();
+        let mut index = GroupIndex::of(&once);
+        for m in &meshes {
+            once.append_with(m, &mut index);
+        }
+        let fast = t.elapsed().as_secs_f64();
+        let same = if each == once { "yes" } else { "NO" };
+        println!("| {files} | {slow:.3} | {fast:.3} | {:.1}x | {same} |", slow / fast);
     }
 }

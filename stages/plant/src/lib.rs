@@ -546,6 +546,7 @@ pub fn run(
     s.check().map_err(PlantError::Settings)?;
     let mut summary = Summary { tolerance_m: s.tolerance, ..Default::default() };
     let mut mesh = TriMesh::default();
+    let mut groups = GroupIndex::of(&mesh);
     for (k, p) in inputs.iter().enumerate() {
         progress(
             &format!("read {}", p.file_name().map(|n| n.to_string_lossy()).unwrap_or_default()),
@@ -553,7 +554,7 @@ pub fn run(
             inputs.len() as u64,
         );
         let m = read_file(p, s, &mut summary)?;
-        mesh.append(&m);
+        mesh.append_with(&m, &mut groups);
         summary.files.push(liftplan_core::location::shown(p, root));
     }
     progress("read", inputs.len() as u64, inputs.len() as u64);
