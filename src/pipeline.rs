@@ -246,10 +246,8 @@ fn run_stages(project: &Project, defs: &[StageDef], opts: &RunOptions, progress:
                     let changed = hashes.changed_since_hashed(&files);
                     if !changed.is_empty() {
                         let _ = std::fs::remove_dir_all(&tmp);
-                        let names: Vec<String> = changed
-                            .iter()
-                            .map(|f| f.strip_prefix(&project.dir).unwrap_or(f).display().to_string())
-                            .collect();
+                        let names: Vec<String> =
+                            changed.iter().map(|f| liftplan_core::location::shown(f, Some(&project.dir))).collect();
                         return Err(anyhow!(
                             "{} changed (written, replaced or removed) while the {} stage ran; its result was not kept: run again once the files are complete",
                             names.join(", "),
