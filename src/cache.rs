@@ -6,6 +6,8 @@
 //!                            (the `[cache] keep` most recently used per stage)
 //!   cache/<stage>/.tmp-*     a run in progress (never trusted, swept)
 //!   last/<stage>.json        manifest of the stage's last successful run
+//!   memo/<stage>/            what a stage keeps to save time on its next run
+//!                            (registration's trials); never changes an output
 //!   runs/<n>.json            one record per `run` (keys, timings, versions)
 //!   hashes.json              file hashes by (size, mtime, inode): saves rehashing
 //!   log/                     watch-mode log

@@ -502,7 +502,7 @@ fn real_main() -> Result<ExitCode> {
             let res = liftplan_scans::run(
                 &inputs,
                 &s,
-                &liftplan_scans::RunOptions { seed: 0, progress: &report, root: None },
+                &liftplan_scans::RunOptions { seed: 0, progress: &report, root: None, memo: None },
                 &tmp,
             );
             let out = match res {

@@ -26,6 +26,13 @@ pub struct Ctx<'a> {
     pub upstream: &'a BTreeMap<&'static str, (PathBuf, Manifest)>,
     /// Folder the stage writes its outputs into.
     pub out: &'a Path,
+    /// Folder the stage may keep working data in from one run to the next
+    /// (`.liftplan/memo/<stage>/`, made when first written). What it keeps
+    /// there may only save time: its outputs must be the same without it.
+    pub memo: &'a Path,
+    /// The user forced this run (`--force`): the stage must not reuse what
+    /// it kept in `memo`.
+    pub forced: bool,
     pub progress: &'a Progress,
 }
 
@@ -230,7 +237,9 @@ fn run_stages(project: &Project, defs: &[StageDef], opts: &RunOptions, progress:
                 }
                 None => {
                     let tmp = cache.temp_dir(def.name)?;
-                    let ctx = Ctx { project, inputs: &files, upstream: &upstream, out: &tmp, progress };
+                    let memo = project.state_dir().join("memo").join(def.name);
+                    let ctx =
+                        Ctx { project, inputs: &files, upstream: &upstream, out: &tmp, memo: &memo, forced, progress };
                     let produced = match (def.run)(&ctx) {
                         Ok(p) => p,
                         Err(e) => {

@@ -36,10 +36,20 @@ fn run_scans(ctx: &Ctx) -> Result<Produced> {
     s.stations = station_file.clone();
     let scan_files: Vec<PathBuf> = ctx.inputs.iter().filter(|f| Some(*f) != station_file.as_ref()).cloned().collect();
     let report = ctx.report("scans");
+    let memo = ctx.memo.join("registration.memo");
     let summary = liftplan_scans::run(
         &scan_files,
         &s,
-        &liftplan_scans::RunOptions { seed: p.raw.project.seed, progress: &report, root: Some(&p.dir) },
+        &liftplan_scans::RunOptions {
+            seed: p.raw.project.seed,
+            progress: &report,
+            root: Some(&p.dir),
+            memo: Some(liftplan_scans::MemoFile {
+                path: &memo,
+                build: env!("LIFTPLAN_CODE_SCANS"),
+                reuse: !ctx.forced,
+            }),
+        },
         ctx.out,
     )?;
     let mut outputs = vec!["site.laz".to_string(), "registration.json".into(), "scans.png".into()];

@@ -32,6 +32,7 @@ pub mod features;
 pub mod grid;
 pub mod ground;
 pub mod kdtree;
+pub mod memo;
 pub mod picture;
 pub mod read;
 pub mod register;
@@ -158,11 +159,25 @@ pub struct RunOptions<'a> {
     pub progress: &'a (dyn Fn(&str, u64, u64) + Sync),
     /// The project folder: registration.json names the scans relative to it.
     pub root: Option<&'a Path>,
+    /// Where registration keeps its answers between runs, if anywhere.
+    pub memo: Option<MemoFile<'a>>,
+}
+
+/// A file registration's answers are kept in between runs ([`memo`]): they
+/// save time, never change a result.
+#[derive(Debug, Clone, Copy)]
+pub struct MemoFile<'a> {
+    pub path: &'a Path,
+    /// Names the build of this crate: answers of another build are not used.
+    pub build: &'a str,
+    /// False to start from an empty memo (a rerun the user forced); the file
+    /// is written afresh either way.
+    pub reuse: bool,
 }
 
 impl Default for RunOptions<'_> {
     fn default() -> Self {
-        RunOptions { seed: 0, progress: &|_, _, _| {}, root: None }
+        RunOptions { seed: 0, progress: &|_, _, _| {}, root: None, memo: None }
     }
 }
 
@@ -192,6 +207,10 @@ pub struct Summary {
     pub bbox: [f64; 6],
     pub register: RegisterMode,
     pub subsample: String,
+    /// Registration's answers (trials, placements, refinement) found in the
+    /// memo of earlier runs, and those worked out in this one.
+    pub registration_answers_reused: u64,
+    pub registration_answers_worked_out: u64,
 }
 
 impl Summary {
@@ -207,6 +226,13 @@ impl Summary {
                 };
                 format!("{}: {} points read, {} kept, {}", s.name, s.points_read, s.points_kept, state)
             })
+            .chain((self.registration_answers_reused > 0).then(|| {
+                format!(
+                    "registration: {} of {} answers reused from earlier runs (the same as working them out)",
+                    self.registration_answers_reused,
+                    self.registration_answers_reused + self.registration_answers_worked_out
+                )
+            }))
             .collect()
     }
 }
@@ -380,6 +406,7 @@ pub fn run(inputs: &[PathBuf], s: &Settings, opts: &RunOptions, out_dir: &Path) 
     };
     let names: Vec<String> = scans.iter().map(|x| x.name.clone()).collect();
     let mut read_counts = vec![0u64; scans.len()];
+    let mut memo_counts = (0, 0);
 
     let results: Vec<register::RegResult> = match s.register {
         RegisterMode::None => {
@@ -401,7 +428,19 @@ pub fn run(inputs: &[PathBuf], s: &Settings, opts: &RunOptions, out_dir: &Path) 
                 regs.push(RegInput { name: info.name.clone(), fine, coarse, initial: initial(info) });
             }
             (opts.progress)("register", 0, 1);
-            let r = register::register_all(&regs, &s.registration, opts.seed);
+            let mut memo = match opts.memo {
+                Some(m) if m.reuse => memo::Memo::load(m.path, m.build),
+                Some(m) => memo::Memo::new(m.build),
+                None => memo::Memo::new(""),
+            };
+            let r = register::register_all_memo(&regs, &s.registration, opts.seed, &mut memo);
+            memo_counts = (memo.hits, memo.misses);
+            if let Some(m) = opts.memo
+                && let Err(e) = memo.save(m.path)
+            {
+                // The memo only saves time: the stage's result does not depend on it.
+                tracing::warn!("{}: registration memo not written: {e}", m.path.display());
+            }
             (opts.progress)("register", 1, 1);
             r
         }
@@ -479,6 +518,8 @@ pub fn run(inputs: &[PathBuf], s: &Settings, opts: &RunOptions, out_dir: &Path) 
             SubsampleMethod::Nth => format!("every {}th point", s.every_nth),
             SubsampleMethod::None => "none".into(),
         },
+        registration_answers_reused: memo_counts.0,
+        registration_answers_worked_out: memo_counts.1,
         scans: reports,
     })
 }

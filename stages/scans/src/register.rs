@@ -22,6 +22,8 @@
 //! does not depend on the number of threads.
 
 use crate::features::{FPFH_BINS, Fpfh};
+use crate::memo::{Key, Memo};
+use liftplan_core::artifact::{ByteReader, ByteWriter};
 use liftplan_core::frame::{Pose, Vec3};
 use liftplan_core::rng;
 use nalgebra as na;
@@ -533,10 +535,170 @@ fn model_of(inputs: &[RegInput], poses: &[Option<Pose>], except: Option<usize>) 
 
 /// Places every scan in the frame of the first; see the module docs.
 pub fn register_all(inputs: &[RegInput], s: &RegistrationSettings, seed: u64) -> Vec<RegResult> {
+    register_all_memo(inputs, s, seed, &mut Memo::new(""))
+}
+
+/// Reads back an answer kept in the memo.
+fn answer(bytes: &[u8]) -> ByteReader<'_> {
+    ByteReader::new(std::path::Path::new("registration memo"), bytes, 0)
+}
+
+/// Bits of a pose, in the order [`read_pose`] reads them back.
+fn pose_numbers(p: &Pose) -> [f64; 7] {
+    let (q, t) = (p.rotation.coords, p.translation.vector);
+    [q[0], q[1], q[2], q[3], t.x, t.y, t.z]
+}
+
+fn hash_pose(h: &mut blake3::Hasher, p: &Pose) {
+    for v in pose_numbers(p) {
+        h.update(&v.to_bits().to_le_bytes());
+    }
+}
+
+fn write_pose(w: &mut ByteWriter, p: &Pose) {
+    for v in pose_numbers(p) {
+        w.f64(v);
+    }
+}
+
+/// The pose [`write_pose`] wrote, bit for bit (the quaternion is taken as
+/// written, not normalised again).
+fn read_pose(r: &mut ByteReader) -> Option<Pose> {
+    let mut v = [0.0; 7];
+    for x in &mut v {
+        *x = r.f64().ok()?;
+    }
+    let q = na::UnitQuaternion::new_unchecked(na::Quaternion::from(na::Vector4::new(v[0], v[1], v[2], v[3])));
+    Some(Pose::from_parts(na::Translation3::new(v[4], v[5], v[6]), q))
+}
+
+fn hash_points(h: &mut blake3::Hasher, pts: &[[f64; 3]]) {
+    h.update(&(pts.len() as u64).to_le_bytes());
+    for p in pts {
+        for v in p {
+            h.update(&v.to_bits().to_le_bytes());
+        }
+    }
+}
+
+/// Everything of a scan that registration reads.
+fn scan_key(inp: &RegInput) -> Key {
+    let mut h = blake3::Hasher::new();
+    h.update(&(inp.name.len() as u64).to_le_bytes());
+    h.update(inp.name.as_bytes());
+    match &inp.initial {
+        Some(p) => {
+            h.update(&[1]);
+            hash_pose(&mut h, p);
+        }
+        None => {
+            h.update(&[0]);
+        }
+    }
+    hash_points(&mut h, &inp.fine.pts);
+    hash_points(&mut h, &inp.fine.normals);
+    hash_points(&mut h, &inp.coarse.pts);
+    h.update(&(inp.coarse.fpfh.len() as u64).to_le_bytes());
+    for f in &inp.coarse.fpfh {
+        for v in f {
+            h.update(&v.to_bits().to_le_bytes());
+        }
+    }
+    *h.finalize().as_bytes()
+}
+
+/// A trial of one scan in one round: what each candidate pose gave after ICP,
+/// in the order they were tried.
+struct Trial {
+    /// (pose, fitness, violation, method) of the candidates that pass.
+    passing: Vec<(Pose, f64, f64, String)>,
+    /// The best (fitness, violation) of any candidate, passing or not.
+    closest: (f64, f64),
+}
+
+impl Trial {
+    fn encode(&self) -> Vec<u8> {
+        let mut w = ByteWriter::new();
+        w.f64(self.closest.0);
+        w.f64(self.closest.1);
+        w.u32(self.passing.len() as u32);
+        for (p, fit, viol, method) in &self.passing {
+            write_pose(&mut w, p);
+            w.f64(*fit);
+            w.f64(*viol);
+            w.str(method);
+        }
+        w.buf
+    }
+
+    fn decode(bytes: &[u8]) -> Option<Trial> {
+        let mut r = answer(bytes);
+        let closest = (r.f64().ok()?, r.f64().ok()?);
+        let n = r.u32().ok()?;
+        let mut passing = Vec::new();
+        for _ in 0..n {
+            passing.push((read_pose(&mut r)?, r.f64().ok()?, r.f64().ok()?, r.str().ok()?));
+        }
+        r.finish().is_ok().then_some(Trial { passing, closest })
+    }
+}
+
+/// The model of the placed scans, built only when a round has a trial or a
+/// placement the memo does not hold.
+struct Round {
+    model: Target,
+    model_cloud: RegCloud,
+}
+
+impl Round {
+    fn new(inputs: &[RegInput], poses: &[Option<Pose>]) -> Round {
+        let model = model_of(inputs, poses, None);
+        let model_cloud = RegCloud { pts: model.pts.clone(), normals: model.normals.clone() };
+        Round { model, model_cloud }
+    }
+}
+
+/// [`register_all`], with the answers of trials, placements and the final
+/// refinement looked up in and added to `memo` ([`crate::memo`]). The result
+/// is the same with any memo, bit for bit; only the time differs.
+pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u64, memo: &mut Memo) -> Vec<RegResult> {
     let n = inputs.len();
     if n == 0 {
         return vec![];
     }
+    // What every answer depends on besides the scans: the build and the
+    // platform (its maths library), the settings and, for feature matching,
+    // the seed and the scans' places in the list (its RANSAC is seeded from
+    // them).
+    let mut context = blake3::Hasher::new();
+    context.update(b"liftplan registration v1\0");
+    context.update(memo.build().as_bytes());
+    context.update(b"\0");
+    context.update(std::env::consts::ARCH.as_bytes());
+    context.update(std::env::consts::OS.as_bytes());
+    context.update(b"\0");
+    context.update(serde_json::to_string(s).unwrap_or_default().as_bytes());
+    if !s.leveled {
+        context.update(&seed.to_le_bytes());
+    }
+    let by_place = !s.leveled;
+    let scan_keys: Vec<Key> = inputs.par_iter().map(scan_key).collect();
+    // The placed scans, their order and poses.
+    let state_of = |poses: &[Option<Pose>], what: &[u8]| -> blake3::Hasher {
+        let mut h = context.clone();
+        h.update(what);
+        for (i, p) in poses.iter().enumerate() {
+            if let Some(p) = p {
+                if by_place {
+                    h.update(&(i as u64).to_le_bytes());
+                }
+                h.update(&scan_keys[i]);
+                hash_pose(&mut h, p);
+            }
+        }
+        h.update(b"\0end");
+        h
+    };
     let mut poses: Vec<Option<Pose>> = vec![None; n];
     let mut results: Vec<Option<RegResult>> = vec![None; n];
     let fit_d = s.fit_distance_m;
@@ -561,85 +723,121 @@ pub fn register_all(inputs: &[RegInput], s: &RegistrationSettings, seed: u64) ->
     // RANSAC inlier counts, computed once per pair (scans that are not levelled).
     let mut coarse: std::collections::HashMap<(usize, usize), Option<(Pose, usize)>> = std::collections::HashMap::new();
     let eps = 1.5 * s.feature_voxel_m;
-    let mut plan_guess: std::collections::HashMap<usize, (usize, Vec<(Pose, f32)>)> = std::collections::HashMap::new();
     loop {
         let pending: Vec<usize> = (0..n).filter(|&j| poses[j].is_none()).collect();
         if pending.is_empty() {
             break;
         }
-        let model = model_of(inputs, &poses, None);
-        let model_cloud = RegCloud { pts: model.pts.clone(), normals: model.normals.clone() };
+        let state = state_of(&poses, b"round");
+        let mut round: Option<Round> = None;
         let seen: Vec<(&RangeImage, Pose)> = (0..n).filter_map(|i| Some((images[i].as_ref()?, poses[i]?))).collect();
         // (scan, pose, fitness, violation, method)
         let mut best: Option<(usize, Pose, f64, f64, String)> = None;
         let mut closest: Vec<(f64, f64)> = vec![(0.0, 1.0); n];
         for &j in &pending {
-            let mut candidates: Vec<(Pose, String)> = Vec::new();
-            if let Some(p) = inputs[j].initial {
-                candidates.push((p, "file pose + ICP".into()));
+            let mut key = state.clone();
+            key.update(b"trial");
+            key.update(&scan_keys[j]);
+            if by_place {
+                key.update(&(j as u64).to_le_bytes());
             }
-            if s.leveled {
-                let stale = plan_guess.get(&j).is_none_or(|g| g.0 != model.pts.len());
-                if stale {
-                    let t = std::time::Instant::now();
-                    plan_guess
-                        .insert(j, (model.pts.len(), crate::coarse2d::align(&inputs[j].fine, &model_cloud, 30_000)));
-                    tracing::debug!("align {j}: {:?}", t.elapsed());
-                }
-                // Rank the plan-view guesses in 3D: overlap of structure, less
-                // seen-through space. Heights and visibility tell apart shifts
-                // that look alike from above.
-                let guesses = &plan_guess[&j].1;
-                let scores: Vec<f64> = guesses
-                    .par_iter()
-                    .map(|(p, _)| {
-                        evaluate(&checks[j], &model, p, 0.5, 0.25).0 - 10.0 * free_space_violations(&quick[j], p, &seen)
-                    })
-                    .collect();
-                let mut order: Vec<usize> = (0..guesses.len()).collect();
-                order.sort_by(|&a, &b| scores[b].total_cmp(&scores[a]));
-                for &k in order.iter().take(4) {
-                    candidates.push((guesses[k].0, "plan-view correlation + ICP".into()));
-                }
-            } else {
-                for i in 0..n {
-                    let Some(pi) = poses[i] else { continue };
-                    let c = coarse.entry((j, i)).or_insert_with(|| {
-                        let corr = match_features(&inputs[j].coarse, &inputs[i].coarse, 4000);
-                        ransac(
-                            &inputs[j].coarse.pts,
-                            &inputs[i].coarse.pts,
-                            &corr,
-                            false,
-                            eps,
-                            s.ransac_iterations,
-                            seed ^ ((j as u64) << 32 | i as u64),
-                        )
-                    });
-                    if let Some((t, _)) = c {
-                        candidates.push((pi * *t, format!("features (to {}) + ICP", inputs[i].name)));
+            let key: Key = *key.finalize().as_bytes();
+            let trial = match memo.get(&key).and_then(Trial::decode) {
+                Some(t) => t,
+                None => {
+                    let Round { model, model_cloud } = round.get_or_insert_with(|| Round::new(inputs, &poses));
+                    let model = &*model;
+                    let mut candidates: Vec<(Pose, String)> = Vec::new();
+                    if let Some(p) = inputs[j].initial {
+                        candidates.push((p, "file pose + ICP".into()));
                     }
+                    if s.leveled {
+                        let t = std::time::Instant::now();
+                        let guesses = crate::coarse2d::align(&inputs[j].fine, model_cloud, 30_000);
+                        tracing::debug!("align {j}: {:?}", t.elapsed());
+                        // Rank the plan-view guesses in 3D: overlap of structure, less
+                        // seen-through space. Heights and visibility tell apart shifts
+                        // that look alike from above.
+                        let scores: Vec<f64> = guesses
+                            .par_iter()
+                            .map(|(p, _)| {
+                                evaluate(&checks[j], model, p, 0.5, 0.25).0
+                                    - 10.0 * free_space_violations(&quick[j], p, &seen)
+                            })
+                            .collect();
+                        let mut order: Vec<usize> = (0..guesses.len()).collect();
+                        order.sort_by(|&a, &b| scores[b].total_cmp(&scores[a]));
+                        for &k in order.iter().take(4) {
+                            candidates.push((guesses[k].0, "plan-view correlation + ICP".into()));
+                        }
+                    } else {
+                        for i in 0..n {
+                            let Some(pi) = poses[i] else { continue };
+                            let c = coarse.entry((j, i)).or_insert_with(|| {
+                                let corr = match_features(&inputs[j].coarse, &inputs[i].coarse, 4000);
+                                ransac(
+                                    &inputs[j].coarse.pts,
+                                    &inputs[i].coarse.pts,
+                                    &corr,
+                                    false,
+                                    eps,
+                                    s.ransac_iterations,
+                                    seed ^ ((j as u64) << 32 | i as u64),
+                                )
+                            });
+                            if let Some((t, _)) = c {
+                                candidates.push((pi * *t, format!("features (to {}) + ICP", inputs[i].name)));
+                            }
+                        }
+                    }
+                    let t = std::time::Instant::now();
+                    let mut trial = Trial { passing: vec![], closest: (0.0, 1.0) };
+                    for (init, method) in candidates {
+                        let p = icp(&quick[j], model, init, quick_levels);
+                        let (fit, _) = evaluate(&checks[j], model, &p, fit_d, fit_r);
+                        let viol = free_space_violations(&quick[j], &p, &seen);
+                        if fit - 10.0 * viol > trial.closest.0 - 10.0 * trial.closest.1 {
+                            trial.closest = (fit, viol);
+                        }
+                        if fit >= s.min_fitness && viol <= s.max_violation {
+                            trial.passing.push((p, fit, viol, method));
+                        }
+                    }
+                    tracing::debug!("candidates {j}: {:?}", t.elapsed());
+                    memo.put(key, trial.encode());
+                    trial
                 }
-            }
-            let t = std::time::Instant::now();
-            for (init, method) in candidates {
-                let p = icp(&quick[j], &model, init, quick_levels);
-                let (fit, _) = evaluate(&checks[j], &model, &p, fit_d, fit_r);
-                let viol = free_space_violations(&quick[j], &p, &seen);
-                if fit - 10.0 * viol > closest[j].0 - 10.0 * closest[j].1 {
-                    closest[j] = (fit, viol);
-                }
-                let ok = fit >= s.min_fitness && viol <= s.max_violation;
-                if ok && best.as_ref().is_none_or(|b| fit - 10.0 * viol > b.2 - 10.0 * b.3) {
+            };
+            closest[j] = trial.closest;
+            for (p, fit, viol, method) in trial.passing {
+                if best.as_ref().is_none_or(|b| fit - 10.0 * viol > b.2 - 10.0 * b.3) {
                     best = Some((j, p, fit, viol, method));
                 }
             }
-            tracing::debug!("candidates {j}: {:?}", t.elapsed());
         }
         match best {
             Some((j, p, _, _, method)) => {
-                let p = icp(&srcs[j], &model, p, &s.icp_distances_m);
-                let (fit, rmse) = evaluate(&checks[j], &model, &p, fit_d, fit_r);
+                let mut key = state.clone();
+                key.update(b"place");
+                key.update(&scan_keys[j]);
+                hash_pose(&mut key, &p);
+                let key: Key = *key.finalize().as_bytes();
+                let placed = memo.get(&key).and_then(|b| {
+                    let mut r = answer(b);
+                    let placed = (read_pose(&mut r)?, r.f64().ok()?, r.f64().ok()?);
+                    r.finish().is_ok().then_some(placed)
+                });
+                let (p, fit, rmse) = placed.unwrap_or_else(|| {
+                    let model = &round.get_or_insert_with(|| Round::new(inputs, &poses)).model;
+                    let p = icp(&srcs[j], model, p, &s.icp_distances_m);
+                    let (fit, rmse) = evaluate(&checks[j], model, &p, fit_d, fit_r);
+                    let mut w = ByteWriter::new();
+                    write_pose(&mut w, &p);
+                    w.f64(fit);
+                    w.f64(rmse);
+                    memo.put(key, w.buf);
+                    (p, fit, rmse)
+                });
                 poses[j] = Some(p);
                 results[j] =
                     Some(RegResult { pose: p, fitness: fit, rmse_m: rmse, method, registered: true, warning: None });
@@ -668,9 +866,20 @@ pub fn register_all(inputs: &[RegInput], s: &RegistrationSettings, seed: u64) ->
         }
     }
     // Global refinement: each scan against all the others.
-    let fine = &s.icp_distances_m[s.icp_distances_m.len().saturating_sub(2)..];
-    {
-        for j in 1..n {
+    let key: Key = *state_of(&poses, b"refine").finalize().as_bytes();
+    // (pose, fitness, RMSE) of every placed scan after the first, in order.
+    let placed: Vec<usize> = (1..n).filter(|&j| poses[j].is_some()).collect();
+    let refined = memo.get(&key).and_then(|b| {
+        let mut r = answer(b);
+        let mut refined = Vec::with_capacity(placed.len());
+        for _ in &placed {
+            refined.push((read_pose(&mut r)?, r.f64().ok()?, r.f64().ok()?));
+        }
+        r.finish().is_ok().then_some(refined)
+    });
+    let refined = refined.unwrap_or_else(|| {
+        let fine = &s.icp_distances_m[s.icp_distances_m.len().saturating_sub(2)..];
+        for &j in &placed {
             let Some(pj) = poses[j] else { continue };
             let others = model_of(inputs, &poses, Some(j));
             if others.pts.is_empty() {
@@ -678,11 +887,24 @@ pub fn register_all(inputs: &[RegInput], s: &RegistrationSettings, seed: u64) ->
             }
             poses[j] = Some(icp(&srcs[j], &others, pj, fine));
         }
-    }
-    for j in 1..n {
-        if let (Some(p), Some(r)) = (poses[j], results[j].as_mut()) {
-            let others = model_of(inputs, &poses, Some(j));
-            let (fit, rmse) = evaluate(&checks[j], &others, &p, fit_d, fit_r);
+        let mut w = ByteWriter::new();
+        let refined: Vec<(Pose, f64, f64)> = placed
+            .iter()
+            .map(|&j| {
+                let p = poses[j].unwrap_or_else(Pose::identity);
+                let others = model_of(inputs, &poses, Some(j));
+                let (fit, rmse) = evaluate(&checks[j], &others, &p, fit_d, fit_r);
+                write_pose(&mut w, &p);
+                w.f64(fit);
+                w.f64(rmse);
+                (p, fit, rmse)
+            })
+            .collect();
+        memo.put(key, w.buf);
+        refined
+    });
+    for (&j, (p, fit, rmse)) in placed.iter().zip(refined) {
+        if let Some(r) = results[j].as_mut() {
             r.pose = p;
             r.fitness = fit;
             r.rmse_m = rmse;
