@@ -171,6 +171,13 @@ mesh += struct.pack("<Q", 3) + struct.pack("<9d", 0, 0, 0, 1, 0, 0, 0, 1, 2)
 mesh += struct.pack("<Q", 1) + struct.pack("<4I", 0, 1, 2, 0)
 seed("artifacts", "mesh-payload", mesh, 2)
 
+# registration_memo: first byte even a whole memo file, odd a payload the
+# target frames. Two answers: a key, a length, the answer's bytes.
+memo = struct.pack("<Q", 2)
+memo += bytes(range(32)) + struct.pack("<Q", 16) + struct.pack("<2d", 0.5, 0.001)
+memo += bytes(range(32, 64)) + struct.pack("<Q", 0)
+seed("registration_memo", "payload", memo, 1)
+
 # plant_mesh: first byte 0 obj, 1 ply, 2 stl, 3 gltf, 4 glb. A tetrahedron each.
 import base64, json
 

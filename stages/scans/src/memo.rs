@@ -113,8 +113,14 @@ fn read_file(path: &Path) -> Result<HashMap<Key, Vec<u8>>, String> {
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(HashMap::new()),
         Err(e) => return Err(format!("{}: {e}", path.display())),
     }
-    let payload = artifact::read_artifact(path, KIND, FORMAT).map_err(|e| e.to_string())?;
-    parse(path, &payload).map_err(|e| e.to_string())
+    let bytes = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    from_bytes(path, &bytes)
+}
+
+/// The answers of a memo file's bytes (`path` names it in errors).
+pub fn from_bytes(path: &Path, bytes: &[u8]) -> Result<HashMap<Key, Vec<u8>>, String> {
+    let payload = artifact::decode(path, bytes, KIND, FORMAT).map_err(|e| e.to_string())?;
+    parse(path, payload).map_err(|e| e.to_string())
 }
 
 fn parse(path: &Path, payload: &[u8]) -> Result<HashMap<Key, Vec<u8>>, artifact::ArtifactError> {
