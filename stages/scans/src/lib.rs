@@ -226,13 +226,6 @@ impl Summary {
                 };
                 format!("{}: {} points read, {} kept, {}", s.name, s.points_read, s.points_kept, state)
             })
-            .chain((self.registration_answers_reused > 0).then(|| {
-                format!(
-                    "registration: {} of {} answers reused from earlier runs (the same as working them out)",
-                    self.registration_answers_reused,
-                    self.registration_answers_reused + self.registration_answers_worked_out
-                )
-            }))
             .collect()
     }
 }
@@ -435,6 +428,13 @@ pub fn run(inputs: &[PathBuf], s: &Settings, opts: &RunOptions, out_dir: &Path) 
             };
             let r = register::register_all_memo(&regs, &s.registration, opts.seed, &mut memo);
             memo_counts = (memo.hits, memo.misses);
+            // Logged, not one of the summary's lines: those go into the
+            // PDF, which must not depend on what an earlier run left behind.
+            tracing::info!(
+                "registration: {} of {} answers reused from earlier runs (the same as working them out)",
+                memo.hits,
+                memo.hits + memo.misses
+            );
             if let Some(m) = opts.memo
                 && let Err(e) = memo.save(m.path)
             {
