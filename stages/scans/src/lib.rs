@@ -16,6 +16,11 @@
 //! registration works on voxel-thinned copies, and the final thinning streams the
 //! scans a second time through the chosen filter.
 //!
+//! Given a memo file ([`RunOptions::memo`]), registration keeps what it works
+//! out there and looks it up on the next run ([`memo`]): a rerun whose scans,
+//! poses and registration settings did not change gives the same result
+//! without working it out again.
+//!
 //! It must not know about the cache, the project folder or the CLI: it gets file
 //! paths and settings and writes into the folder it is given.
 //!

@@ -48,7 +48,7 @@ struct Acc {
 
 /// Streaming voxel-centroid accumulator.
 ///
-/// Voxels live in [`SHARDS`] hash maps chosen by a hash of the voxel index, so
+/// Voxels live in `SHARDS` hash maps chosen by a hash of the voxel index, so
 /// one chunk is accumulated by all threads at once, each owning whole shards,
 /// and every point is hashed into its final map exactly once. Within a shard,
 /// points are added in input order, so sums (and the output) do not depend on
