@@ -33,6 +33,9 @@ pub struct Ctx<'a> {
     /// The user forced this run (`--force`): the stage must not reuse what
     /// it kept in `memo`.
     pub forced: bool,
+    /// The hash of the code behind the stage ([`StageDef::code`]): what it
+    /// keeps in `memo` is valid for this build only.
+    pub code: &'a str,
     pub progress: &'a Progress,
 }
 
@@ -238,8 +241,16 @@ fn run_stages(project: &Project, defs: &[StageDef], opts: &RunOptions, progress:
                 None => {
                     let tmp = cache.temp_dir(def.name)?;
                     let memo = project.state_dir().join("memo").join(def.name);
-                    let ctx =
-                        Ctx { project, inputs: &files, upstream: &upstream, out: &tmp, memo: &memo, forced, progress };
+                    let ctx = Ctx {
+                        project,
+                        inputs: &files,
+                        upstream: &upstream,
+                        out: &tmp,
+                        memo: &memo,
+                        forced,
+                        code: def.code,
+                        progress,
+                    };
                     let produced = match (def.run)(&ctx) {
                         Ok(p) => p,
                         Err(e) => {

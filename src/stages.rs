@@ -44,11 +44,7 @@ fn run_scans(ctx: &Ctx) -> Result<Produced> {
             seed: p.raw.project.seed,
             progress: &report,
             root: Some(&p.dir),
-            memo: Some(liftplan_scans::MemoFile {
-                path: &memo,
-                build: env!("LIFTPLAN_CODE_SCANS"),
-                reuse: !ctx.forced,
-            }),
+            memo: Some(liftplan_scans::MemoFile { path: &memo, build: ctx.code, reuse: !ctx.forced }),
         },
         ctx.out,
     )?;

@@ -607,6 +607,28 @@ fn scan_key(inp: &RegInput) -> Key {
     *h.finalize().as_bytes()
 }
 
+/// Placed scans' (pose, fitness, RMSE), as a placement or the refinement
+/// keeps them.
+fn encode_placed(placed: &[(Pose, f64, f64)]) -> Vec<u8> {
+    let mut w = ByteWriter::new();
+    for (p, fit, rmse) in placed {
+        write_pose(&mut w, p);
+        w.f64(*fit);
+        w.f64(*rmse);
+    }
+    w.buf
+}
+
+/// What [`encode_placed`] wrote for `count` scans, if that is what `bytes` hold.
+fn decode_placed(bytes: &[u8], count: usize) -> Option<Vec<(Pose, f64, f64)>> {
+    let mut r = answer(bytes);
+    let mut placed = Vec::with_capacity(count);
+    for _ in 0..count {
+        placed.push((read_pose(&mut r)?, r.f64().ok()?, r.f64().ok()?));
+    }
+    r.finish().is_ok().then_some(placed)
+}
+
 /// A trial of one scan in one round: what each candidate pose gave after ICP,
 /// in the order they were tried.
 struct Trial {
@@ -822,20 +844,12 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                 key.update(&scan_keys[j]);
                 hash_pose(&mut key, &p);
                 let key: Key = *key.finalize().as_bytes();
-                let placed = memo.get(&key).and_then(|b| {
-                    let mut r = answer(b);
-                    let placed = (read_pose(&mut r)?, r.f64().ok()?, r.f64().ok()?);
-                    r.finish().is_ok().then_some(placed)
-                });
+                let placed = memo.get(&key).and_then(|b| decode_placed(b, 1)).map(|v| v[0]);
                 let (p, fit, rmse) = placed.unwrap_or_else(|| {
                     let model = &round.get_or_insert_with(|| Round::new(inputs, &poses)).model;
                     let p = icp(&srcs[j], model, p, &s.icp_distances_m);
                     let (fit, rmse) = evaluate(&checks[j], model, &p, fit_d, fit_r);
-                    let mut w = ByteWriter::new();
-                    write_pose(&mut w, &p);
-                    w.f64(fit);
-                    w.f64(rmse);
-                    memo.put(key, w.buf);
+                    memo.put(key, encode_placed(&[(p, fit, rmse)]));
                     (p, fit, rmse)
                 });
                 poses[j] = Some(p);
@@ -869,14 +883,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
     let key: Key = *state_of(&poses, b"refine").finalize().as_bytes();
     // (pose, fitness, RMSE) of every placed scan after the first, in order.
     let placed: Vec<usize> = (1..n).filter(|&j| poses[j].is_some()).collect();
-    let refined = memo.get(&key).and_then(|b| {
-        let mut r = answer(b);
-        let mut refined = Vec::with_capacity(placed.len());
-        for _ in &placed {
-            refined.push((read_pose(&mut r)?, r.f64().ok()?, r.f64().ok()?));
-        }
-        r.finish().is_ok().then_some(refined)
-    });
+    let refined = memo.get(&key).and_then(|b| decode_placed(b, placed.len()));
     let refined = refined.unwrap_or_else(|| {
         let fine = &s.icp_distances_m[s.icp_distances_m.len().saturating_sub(2)..];
         for &j in &placed {
@@ -887,20 +894,16 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
             }
             poses[j] = Some(icp(&srcs[j], &others, pj, fine));
         }
-        let mut w = ByteWriter::new();
         let refined: Vec<(Pose, f64, f64)> = placed
             .iter()
             .map(|&j| {
                 let p = poses[j].unwrap_or_else(Pose::identity);
                 let others = model_of(inputs, &poses, Some(j));
                 let (fit, rmse) = evaluate(&checks[j], &others, &p, fit_d, fit_r);
-                write_pose(&mut w, &p);
-                w.f64(fit);
-                w.f64(rmse);
                 (p, fit, rmse)
             })
             .collect();
-        memo.put(key, w.buf);
+        memo.put(key, encode_placed(&refined));
         refined
     });
     for (&j, (p, fit, rmse)) in placed.iter().zip(refined) {
