@@ -976,7 +976,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
             if let Some(r) = results[j].as_mut() {
                 r.registered = false;
                 r.warning = Some(format!(
-                    "scan '{}' is not merged: the scans placed against the reference scan '{}' (the first) do not agree with it: {:.1} % of the reference's points lie where they saw through (at most {:.1} %); something beside its scanner (a vehicle, a skip) may have misled the first alignments: give the scans' poses in the station file, or make another scan the reference (the first by name)",
+                    "scan '{}' is not merged: the scans placed against the reference scan '{}' (the first) do not agree with it: {:.1} % of the reference's points lie where they saw through (at most {:.1} %); something beside its scanner (a vehicle, a skip) may have misled the first alignments: rescan that station with its view clear",
                     inputs[j].name,
                     inputs[0].name,
                     100.0 * share,
