@@ -674,22 +674,6 @@ impl Trial {
     }
 }
 
-/// The final check's seen-through shares, one per registered scan in order.
-fn encode_shares(shares: &[f64]) -> Vec<u8> {
-    let mut w = ByteWriter::new();
-    for v in shares {
-        w.f64(*v);
-    }
-    w.buf
-}
-
-/// What [`encode_shares`] wrote for `count` scans, if that is what `bytes` hold.
-fn decode_shares(bytes: &[u8], count: usize) -> Option<Vec<f64>> {
-    let mut r = answer(bytes);
-    let shares = (0..count).map(|_| r.f64().ok()).collect::<Option<Vec<f64>>>()?;
-    r.finish().is_ok().then_some(shares)
-}
-
 /// With every scan placed, a scan may have at most this many times
 /// `max_violation` of its points where the other scanners saw through.
 /// Right poses measured at most 0.9 % against all other scans (a van or a
@@ -956,7 +940,13 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
         results.iter().map(|r| r.as_ref().filter(|r| r.registered).map(|r| r.pose)).collect();
     let registered: Vec<(usize, Pose)> = final_poses.iter().enumerate().filter_map(|(j, p)| Some((j, (*p)?))).collect();
     let key: Key = *state_of(&final_poses, b"final check").finalize().as_bytes();
-    let shares = memo.get(&key).and_then(|b| decode_shares(b, registered.len())).unwrap_or_else(|| {
+    // One share per registered scan, in order.
+    let kept = memo.get(&key).and_then(|b| {
+        let mut r = answer(b);
+        let shares = r.f64s().ok()?;
+        (r.finish().is_ok() && shares.len() == registered.len()).then_some(shares)
+    });
+    let shares = kept.unwrap_or_else(|| {
         let shares: Vec<f64> = registered
             .iter()
             .map(|&(j, p)| {
@@ -965,7 +955,9 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                 free_space_violations(&quick[j], &p, &seen)
             })
             .collect();
-        memo.put(key, encode_shares(&shares));
+        let mut w = ByteWriter::new();
+        w.f64s(&shares);
+        memo.put(key, w.buf);
         shares
     });
     let limit = FINAL_VIOLATION_FACTOR * s.max_violation;
