@@ -320,7 +320,11 @@ voxel = 0.05              # voxel edge, m
 voxel_point = "centroid"  # centroid | nearest
 spacing = 0.05            # minimum point spacing for subsample = "spacing", m
 every_nth = 9             # keep every Nth point for subsample = "nth"
-# stations = "stations.toml"   # initial scanner poses: [[station]] scan, x_m, y_m, z_m, yaw_deg
+# stations = "stations.toml"   # surveyed scanner poses: [[station]] scan, x_m, y_m, z_m, yaw_deg;
+#                              # registration keeps each scan within tolerance_m (plan and height,
+#                              # default 0.5) and yaw_tolerance_deg (default 3) of its station,
+#                              # per station or for the whole file; the first scan with a station
+#                              # is the reference, so the site is in the station file's frame
 on_unregistered = "fail"  # fail | exclude
 
 [scans.ground]

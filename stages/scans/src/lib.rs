@@ -238,6 +238,9 @@ impl Summary {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct StationFile {
+    /// Tolerances of every station that gives none of its own.
+    tolerance_m: Option<toml::Spanned<f64>>,
+    yaw_tolerance_deg: Option<toml::Spanned<f64>>,
     station: Vec<Station>,
 }
 
@@ -249,16 +252,28 @@ struct Station {
     y_m: toml::Spanned<f64>,
     z_m: Option<toml::Spanned<f64>>,
     yaw_deg: Option<toml::Spanned<f64>>,
+    tolerance_m: Option<toml::Spanned<f64>>,
+    yaw_tolerance_deg: Option<toml::Spanned<f64>>,
 }
 
+/// How far registration may place a scan from its station, in plan and in
+/// height, unless the station file says otherwise (m): a surveyed station is
+/// good to centimetres; a position read off a site plan needs its own.
+pub const DEFAULT_STATION_TOLERANCE_M: f64 = 0.5;
+/// The same for yaw (degrees).
+pub const DEFAULT_STATION_YAW_TOLERANCE_DEG: f64 = 3.0;
+
 /// A surveyed station: the scan it belongs to, its pose in the site frame,
-/// and the line of the station file that names the scan.
+/// how far registration may place the scan from it, and the line of the
+/// station file that names the scan.
 #[derive(Debug)]
 pub struct SurveyedStation {
     /// The scan's name.
     pub scan: String,
     /// Scanner frame to site frame.
     pub pose: Pose,
+    /// Height and yaw are held only where the station gives them.
+    pub tolerance: register::StationTolerance,
     /// The line of the file that names the scan.
     pub line: u64,
 }
@@ -277,6 +292,19 @@ pub fn parse_stations(path: &Path, text: &str) -> Result<Vec<SurveyedStation>> {
         let (loc, msg) = liftplan_core::location::toml_error(path, text, &e);
         ScanError::format(loc, msg)
     })?;
+    let tolerance = |name: &str, v: &toml::Spanned<f64>| -> Result<f64> {
+        let x = *v.get_ref();
+        if x.is_finite() && x > 0.0 {
+            Ok(x)
+        } else {
+            Err(ScanError::format(
+                Location::in_text(path, text, v.span().start),
+                format!("{name} = {x}: a tolerance must be a positive number"),
+            ))
+        }
+    };
+    let file_plan_m = f.tolerance_m.as_ref().map(|v| tolerance("tolerance_m", v)).transpose()?;
+    let file_yaw_deg = f.yaw_tolerance_deg.as_ref().map(|v| tolerance("yaw_tolerance_deg", v)).transpose()?;
     let mut out = Vec::with_capacity(f.station.len());
     for st in f.station {
         let given = [
@@ -293,7 +321,20 @@ pub fn parse_stations(path: &Path, text: &str) -> Result<Vec<SurveyedStation>> {
                 ));
             }
         }
+        let plan_m = match &st.tolerance_m {
+            Some(v) => tolerance("tolerance_m", v)?,
+            None => file_plan_m.unwrap_or(DEFAULT_STATION_TOLERANCE_M),
+        };
+        let yaw_deg = match &st.yaw_tolerance_deg {
+            Some(v) => tolerance("yaw_tolerance_deg", v)?,
+            None => file_yaw_deg.unwrap_or(DEFAULT_STATION_YAW_TOLERANCE_DEG),
+        };
         out.push(SurveyedStation {
+            tolerance: register::StationTolerance {
+                plan_m,
+                height_m: st.z_m.is_some().then_some(plan_m),
+                yaw_deg: st.yaw_deg.is_some().then_some(yaw_deg),
+            },
             line: liftplan_core::location::line_col(text, st.scan.span().start).0,
             pose: liftplan_core::frame::pose_xyz_yaw(
                 *st.x_m.get_ref(),
@@ -399,9 +440,8 @@ pub fn run(inputs: &[PathBuf], s: &Settings, opts: &RunOptions, out_dir: &Path) 
         }
         None => vec![],
     };
-    let initial = |info: &ScanInfo| -> Option<Pose> {
-        stations.iter().find(|st| st.scan == info.name).map(|st| st.pose).or(info.pose)
-    };
+    let station_of = |info: &ScanInfo| stations.iter().find(|st| st.scan == info.name);
+    let initial = |info: &ScanInfo| -> Option<Pose> { station_of(info).map(|st| st.pose).or(info.pose) };
     let names: Vec<String> = scans.iter().map(|x| x.name.clone()).collect();
     let mut read_counts = vec![0u64; scans.len()];
     let mut memo_counts = (0, 0);
@@ -418,12 +458,18 @@ pub fn run(inputs: &[PathBuf], s: &Settings, opts: &RunOptions, out_dir: &Path) 
             })
             .collect(),
         RegisterMode::Auto => {
+            // The reference is the first scan with a station, so that the
+            // scans are placed in the station file's frame; else the first.
+            let first = scans.iter().position(|x| station_of(x).is_some()).unwrap_or(0);
+            let order: Vec<usize> = std::iter::once(first).chain((0..scans.len()).filter(|&k| k != first)).collect();
             let mut regs = Vec::with_capacity(scans.len());
             let mut files = read::ScanStreamer::default();
-            for (k, info) in scans.iter().enumerate() {
+            for &k in &order {
+                let info = &scans[k];
                 let (fine, coarse, n) = thin_for_registration(&mut files, info, &s.registration, opts.progress)?;
                 read_counts[k] = n;
-                regs.push(RegInput { name: info.name.clone(), fine, coarse, initial: initial(info) });
+                let held = station_of(info).map(|st| st.tolerance);
+                regs.push(RegInput { name: info.name.clone(), fine, coarse, initial: initial(info), held });
             }
             (opts.progress)("register", 0, 1);
             let mut memo = match opts.memo {
@@ -447,7 +493,12 @@ pub fn run(inputs: &[PathBuf], s: &Settings, opts: &RunOptions, out_dir: &Path) 
                 tracing::warn!("{}: registration memo not written: {e}", m.path.display());
             }
             (opts.progress)("register", 1, 1);
-            r
+            // Back in the scans' order.
+            let mut by_scan: Vec<Option<register::RegResult>> = (0..scans.len()).map(|_| None).collect();
+            for (&k, res) in order.iter().zip(r) {
+                by_scan[k] = Some(res);
+            }
+            by_scan.into_iter().flatten().collect()
         }
     };
 
@@ -753,6 +804,49 @@ mod tests {
         assert_eq!((st[0].scan.as_str(), st[0].line), ("scan-1", 2));
         let t = st[0].pose.translation.vector;
         assert!((t.x - 1.0).abs() < 1e-12 && (t.y - 2.0).abs() < 1e-12 && t.z == 0.0, "{t:?}");
+    }
+
+    #[test]
+    fn station_tolerances_come_from_the_station_the_file_or_the_default() {
+        use register::StationTolerance;
+        let text = "tolerance_m = 0.05\n\n[[station]]\nscan = \"a\"\nx_m = 1.0\ny_m = 2.0\nz_m = 3.0\nyaw_deg = 4.0\nyaw_tolerance_deg = 0.5\n\n[[station]]\nscan = \"b\"\nx_m = 1.0\ny_m = 2.0\ntolerance_m = 2.0\n";
+        let (_d, p) = stations(text);
+        let st = read_stations(&p).unwrap();
+        // Height and yaw are held only where the station gives them.
+        assert_eq!(st[0].tolerance, StationTolerance { plan_m: 0.05, height_m: Some(0.05), yaw_deg: Some(0.5) });
+        assert_eq!(st[1].tolerance, StationTolerance { plan_m: 2.0, height_m: None, yaw_deg: None });
+        let (_d, p) = stations("[[station]]\nscan = \"a\"\nx_m = 1.0\ny_m = 2.0\nyaw_deg = 4.0\n");
+        let t = read_stations(&p).unwrap()[0].tolerance;
+        assert_eq!(
+            t,
+            StationTolerance {
+                plan_m: DEFAULT_STATION_TOLERANCE_M,
+                height_m: None,
+                yaw_deg: Some(DEFAULT_STATION_YAW_TOLERANCE_DEG)
+            }
+        );
+
+        for (text, at, what) in [
+            (
+                "tolerance_m = 0.0\n[[station]]\nscan = \"a\"\nx_m = 1.0\ny_m = 2.0\n",
+                "stations.toml:1:15",
+                "tolerance_m = 0",
+            ),
+            (
+                "[[station]]\nscan = \"a\"\nx_m = 1.0\ny_m = 2.0\nyaw_tolerance_deg = -1.0\n",
+                "stations.toml:5:21",
+                "yaw_tolerance_deg = -1",
+            ),
+            (
+                "[[station]]\nscan = \"a\"\nx_m = 1.0\ny_m = 2.0\ntolerance_m = nan\n",
+                "stations.toml:5:15",
+                "tolerance_m = NaN",
+            ),
+        ] {
+            let (_d, p) = stations(text);
+            let e = read_stations(&p).unwrap_err().to_string();
+            assert!(e.contains(at) && e.contains(what) && e.contains("a tolerance must be a positive number"), "{e}");
+        }
     }
 
     #[test]

@@ -11,9 +11,16 @@
 //! 3. **Fine**: robust (Huber) point-to-plane ICP, coarse-to-fine correspondence
 //!    distances, full 6 DOF.
 //! 4. **Many scans**: the first scan is the reference. The others join the
-//!    growing model greedily (best fitness first), each aligned against the union
-//!    of all scans placed so far; then every scan is re-aligned against all the
-//!    others, so errors do not chain from scan to scan.
+//!    growing model greedily (scans held by a station first, then best fitness
+//!    first), each aligned against the union of all scans placed so far; then
+//!    every scan is re-aligned against all the others, so errors do not chain
+//!    from scan to scan.
+//!
+//! **Stations**: a scan with a surveyed station pose ([`RegInput::held`]) is
+//! never placed outside its station's tolerance ([`StationTolerance`]): a
+//! plan-view guess that fits the other scans better does not override a
+//! survey (a van beside the reference once placed a scan 7.7 m and 61 degrees
+//! from its station that way). Such a scan is reported not registered instead.
 //!
 //! A scan whose best alignment overlaps the model less than `min_fitness` is
 //! reported as not registered; the stage never merges it silently.
@@ -439,6 +446,62 @@ pub struct RegInput {
     pub coarse: FeatureCloud,
     /// Pose the file or station file gives, if any.
     pub initial: Option<Pose>,
+    /// Set when `initial` is a surveyed station pose the scan must be placed
+    /// near. Honoured only when the reference (the first scan) has one too:
+    /// only then are the scans placed in the station file's frame.
+    pub held: Option<StationTolerance>,
+}
+
+/// How far registration may place a scan from its surveyed station pose.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StationTolerance {
+    /// Largest distance in plan between the surveyed and the placed scanner (m).
+    pub plan_m: f64,
+    /// Largest height difference (m); `None` when the station gives no height.
+    pub height_m: Option<f64>,
+    /// Largest yaw difference (degrees); `None` when the station gives no yaw.
+    pub yaw_deg: Option<f64>,
+}
+
+/// Where a placed scanner is relative to its surveyed station.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StationOffset {
+    /// Distance in plan (m).
+    pub plan_m: f64,
+    /// Height difference (m, absolute).
+    pub height_m: f64,
+    /// Yaw difference (degrees, absolute, 0..180).
+    pub yaw_deg: f64,
+}
+
+impl StationOffset {
+    /// `placed` (scanner to site) against the surveyed `station` pose.
+    pub fn between(station: &Pose, placed: &Pose) -> StationOffset {
+        let d = placed.translation.vector - station.translation.vector;
+        let x = (station.rotation.inverse() * placed.rotation) * Vec3::x();
+        StationOffset { plan_m: d.x.hypot(d.y), height_m: d.z.abs(), yaw_deg: x.y.atan2(x.x).to_degrees().abs() }
+    }
+
+    pub fn within(&self, t: &StationTolerance) -> bool {
+        self.plan_m <= t.plan_m
+            && t.height_m.is_none_or(|h| self.height_m <= h)
+            && t.yaw_deg.is_none_or(|y| self.yaw_deg <= y)
+    }
+
+    /// "7.7 m in plan, 0.0 m in height and 61.3 degrees" with the limits.
+    fn describe(&self, t: &StationTolerance) -> String {
+        let limit =
+            |v: Option<f64>, unit: &str| v.map_or("not surveyed".to_string(), |v| format!("at most {v} {unit}"));
+        format!(
+            "{:.2} m in plan (at most {} m), {:.2} m in height ({}) and {:.1} degrees in yaw ({})",
+            self.plan_m,
+            t.plan_m,
+            self.height_m,
+            limit(t.height_m, "m"),
+            self.yaw_deg,
+            limit(t.yaw_deg, "degrees")
+        )
+    }
 }
 
 /// Whether a scan's own frame has the scanner at its origin (true for scans
@@ -604,6 +667,12 @@ fn scan_key(inp: &RegInput) -> Key {
             h.update(&[0]);
         }
     }
+    if let Some(t) = &inp.held {
+        h.update(b"held");
+        for v in [Some(t.plan_m), t.height_m, t.yaw_deg] {
+            h.update(&v.map_or(u64::MAX, f64::to_bits).to_le_bytes());
+        }
+    }
     hash_points(&mut h, &inp.fine.pts);
     hash_points(&mut h, &inp.fine.normals);
     hash_points(&mut h, &inp.coarse.pts);
@@ -645,6 +714,12 @@ struct Trial {
     passing: Vec<(Pose, f64, f64, String)>,
     /// The best (fitness, violation) of any candidate, passing or not.
     closest: (f64, f64),
+    /// For a scan held by a station: (fitness, violation) of its station
+    /// pose after ICP.
+    at_station: Option<(f64, f64)>,
+    /// The best-scoring candidate that passed but lies outside its station's
+    /// tolerance: its (fitness, violation) and offset.
+    held_back: Option<(f64, f64, StationOffset)>,
 }
 
 impl Trial {
@@ -659,6 +734,8 @@ impl Trial {
             w.f64(*viol);
             w.str(method);
         }
+        w.f64s(&self.at_station.map_or(vec![], |(fit, viol)| vec![fit, viol]));
+        w.f64s(&self.held_back.map_or(vec![], |(fit, viol, o)| vec![fit, viol, o.plan_m, o.height_m, o.yaw_deg]));
         w.buf
     }
 
@@ -670,7 +747,17 @@ impl Trial {
         for _ in 0..n {
             passing.push((read_pose(&mut r)?, r.f64().ok()?, r.f64().ok()?, r.str().ok()?));
         }
-        r.finish().is_ok().then_some(Trial { passing, closest })
+        let at_station = match r.f64s().ok()?.as_slice() {
+            [] => None,
+            &[fit, viol] => Some((fit, viol)),
+            _ => return None,
+        };
+        let held_back = match r.f64s().ok()?.as_slice() {
+            [] => None,
+            &[fit, viol, plan_m, height_m, yaw_deg] => Some((fit, viol, StationOffset { plan_m, height_m, yaw_deg })),
+            _ => return None,
+        };
+        r.finish().is_ok().then_some(Trial { passing, closest, at_station, held_back })
     }
 }
 
@@ -711,7 +798,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
     // the seed and the scans' places in the list (its RANSAC is seeded from
     // them).
     let mut context = blake3::Hasher::new();
-    context.update(b"liftplan registration v1\0");
+    context.update(b"liftplan registration v2\0");
     context.update(memo.build().as_bytes());
     context.update(b"\0");
     context.update(std::env::consts::ARCH.as_bytes());
@@ -738,6 +825,12 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
         }
         h.update(b"\0end");
         h
+    };
+    // A station's tolerance holds in the station file's frame, which is the
+    // frame scans are placed in only when the reference has a station too.
+    let held = |j: usize| -> Option<(Pose, StationTolerance)> {
+        inputs[0].held?;
+        Some((inputs[j].initial?, inputs[j].held?))
     };
     let mut poses: Vec<Option<Pose>> = vec![None; n];
     let mut results: Vec<Option<RegResult>> = vec![None; n];
@@ -774,6 +867,8 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
         // (scan, pose, fitness, violation, method)
         let mut best: Option<(usize, Pose, f64, f64, String)> = None;
         let mut closest: Vec<(f64, f64)> = vec![(0.0, 1.0); n];
+        let mut held_back: Vec<Option<(f64, f64, StationOffset)>> = vec![None; n];
+        let mut at_station: Vec<Option<(f64, f64)>> = vec![None; n];
         for &j in &pending {
             let mut key = state.clone();
             key.update(b"trial");
@@ -831,16 +926,30 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                         }
                     }
                     let t = std::time::Instant::now();
-                    let mut trial = Trial { passing: vec![], closest: (0.0, 1.0) };
-                    for (init, method) in candidates {
+                    let mut trial = Trial { passing: vec![], closest: (0.0, 1.0), at_station: None, held_back: None };
+                    for (k, (init, method)) in candidates.into_iter().enumerate() {
                         let p = icp(&quick[j], model, init, quick_levels);
                         let (fit, _) = evaluate(&checks[j], model, &p, fit_d, fit_r);
                         let viol = free_space_violations(&quick[j], &p, &seen);
+                        // The station pose is the first candidate.
+                        if k == 0 && held(j).is_some() {
+                            trial.at_station = Some((fit, viol));
+                        }
                         if fit - 10.0 * viol > trial.closest.0 - 10.0 * trial.closest.1 {
                             trial.closest = (fit, viol);
                         }
                         if fit >= s.min_fitness && viol <= s.max_violation {
-                            trial.passing.push((p, fit, viol, method));
+                            // A guess that scores higher must not move a scan
+                            // away from where its station was surveyed.
+                            let off = held(j).map(|(station, tol)| (StationOffset::between(&station, &p), tol));
+                            match off.filter(|(o, tol)| !o.within(tol)) {
+                                Some((o, _)) => {
+                                    if trial.held_back.is_none_or(|(f, v, _)| fit - 10.0 * viol > f - 10.0 * v) {
+                                        trial.held_back = Some((fit, viol, o));
+                                    }
+                                }
+                                None => trial.passing.push((p, fit, viol, method)),
+                            }
                         }
                     }
                     tracing::debug!("candidates {j}: {:?}", t.elapsed());
@@ -849,8 +958,16 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                 }
             };
             closest[j] = trial.closest;
+            held_back[j] = trial.held_back;
+            at_station[j] = trial.at_station;
+            // Scans held by a station go first: their place does not rest on
+            // the scans placed before them, and theirs pins the others'.
             for (p, fit, viol, method) in trial.passing {
-                if best.as_ref().is_none_or(|b| fit - 10.0 * viol > b.2 - 10.0 * b.3) {
+                let rank = |j: usize, fit: f64, viol: f64| (held(j).is_some(), fit - 10.0 * viol);
+                if best
+                    .as_ref()
+                    .is_none_or(|b| rank(j, fit, viol).partial_cmp(&rank(b.0, b.2, b.3)).is_some_and(|o| o.is_gt()))
+                {
                     best = Some((j, p, fit, viol, method));
                 }
             }
@@ -877,20 +994,39 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
             None => {
                 for &j in &pending {
                     let (fit, viol) = closest[j];
-                    results[j] = Some(RegResult {
-                        pose: inputs[j].initial.unwrap_or_else(Pose::identity),
-                        fitness: fit,
-                        rmse_m: 0.0,
-                        method: "none".into(),
-                        registered: false,
-                        warning: Some(format!(
+                    let warning = match (at_station[j], held(j)) {
+                        (Some((fit, viol)), Some((_, tol))) => format!(
+                            "scan '{}' does not register near its station: aligned from the pose the station file gives, it overlaps the scans placed so far by {:.1} % (at least {:.1} % required) and puts {:.1} % of its points where another scanner saw through (at most {:.1} % allowed){}; check that station's pose, or give its real uncertainty (tolerance_m, yaw_tolerance_deg); it is not merged",
+                            inputs[j].name,
+                            100.0 * fit,
+                            100.0 * s.min_fitness,
+                            100.0 * viol,
+                            100.0 * s.max_violation,
+                            match held_back[j] {
+                                Some((fit, _, o)) => format!(
+                                    "; the alignments that fit them (the best overlaps them by {:.1} %) place it {} from its station",
+                                    100.0 * fit,
+                                    o.describe(&tol)
+                                ),
+                                None => String::new(),
+                            }
+                        ),
+                        _ => format!(
                             "scan '{}' does not register: its best alignment overlaps the other scans by {:.1} % (at least {:.1} % required) and puts {:.1} % of its points where another scanner saw through (at most {:.1} % allowed); it is not merged",
                             inputs[j].name,
                             100.0 * fit,
                             100.0 * s.min_fitness,
                             100.0 * viol,
                             100.0 * s.max_violation
-                        )),
+                        ),
+                    };
+                    results[j] = Some(RegResult {
+                        pose: inputs[j].initial.unwrap_or_else(Pose::identity),
+                        fitness: fit,
+                        rmse_m: 0.0,
+                        method: "none".into(),
+                        registered: false,
+                        warning: Some(warning),
                     });
                 }
                 break;
@@ -931,6 +1067,21 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
             r.rmse_m = rmse;
         }
     }
+    // The fine alignment and the refinement may still move a held scan.
+    for (j, r) in results.iter_mut().enumerate() {
+        let (Some(r), Some((station, tol))) = (r.as_mut().filter(|r| r.registered && j > 0), held(j)) else {
+            continue;
+        };
+        let o = StationOffset::between(&station, &r.pose);
+        if !o.within(&tol) {
+            r.registered = false;
+            r.warning = Some(format!(
+                "scan '{}' is not merged: aligned with the other scans it lies {} from the pose the station file gives; check that station's pose, or give its real uncertainty (tolerance_m, yaw_tolerance_deg)",
+                inputs[j].name,
+                o.describe(&tol)
+            ));
+        }
+    }
     // Every registered scan against all the others, in the final poses. The
     // first rounds place scans against one or two others, where a wrong pose
     // can pass the seen-through check (a van beside the reference scan made
@@ -968,7 +1119,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
             if let Some(r) = results[j].as_mut() {
                 r.registered = false;
                 r.warning = Some(format!(
-                    "scan '{}' is not merged: the scans placed against the reference scan '{}' (the first) do not agree with it: {:.1} % of the reference's points lie where they saw through (at most {:.1} %); something beside its scanner (a vehicle, a skip) may have misled the first alignments: rescan that station with its view clear",
+                    "scan '{}' is not merged: the scans placed against the reference scan '{}' do not agree with it: {:.1} % of the reference's points lie where they saw through (at most {:.1} %); something beside its scanner (a vehicle, a skip) may have misled the first alignments: rescan that station with its view clear",
                     inputs[j].name,
                     inputs[0].name,
                     100.0 * share,
@@ -1095,6 +1246,22 @@ pub fn free_space_violations(src: &RegCloud, pose: &Pose, seen: &[(&RangeImage, 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn station_offset_in_plan_height_and_yaw() {
+        let station = liftplan_core::frame::pose_xyz_yaw(10.0, 20.0, 1.5, 350f64.to_radians());
+        let placed = liftplan_core::frame::pose_xyz_yaw(13.0, 24.0, 1.0, 10f64.to_radians());
+        let o = StationOffset::between(&station, &placed);
+        // 20 degrees across north, not 340.
+        assert!((o.plan_m - 5.0).abs() < 1e-12 && (o.height_m - 0.5).abs() < 1e-12 && (o.yaw_deg - 20.0).abs() < 1e-9);
+        let held = |plan_m, height_m, yaw_deg| StationTolerance { plan_m, height_m, yaw_deg };
+        assert!(o.within(&held(5.0, Some(0.5), Some(20.0 + 1e-6))));
+        assert!(!o.within(&held(4.9, None, None)));
+        assert!(!o.within(&held(5.0, Some(0.4), None)));
+        assert!(!o.within(&held(5.0, None, Some(19.0))));
+        // What the station does not give is not held.
+        assert!(o.within(&held(5.0, None, None)));
+    }
 
     #[test]
     fn kabsch_recovers_a_transform() {
