@@ -32,7 +32,12 @@
 //! wrong pose's evidence is thin, so once every scan is placed each is
 //! checked again against all the others ([`FINAL_VIOLATION_FACTOR`]): a scan
 //! that disagrees with them is not merged, and if the reference disagrees,
-//! none of the scans placed against it is.
+//! none of the scans placed against it is. The reference is also placed
+//! again against all the others, as a trial places a scan but with what
+//! stands beside its scanner left out of its plan view: if it fits them
+//! clearly better elsewhere ([`REFERENCE_ELSEWHERE_MARGIN`]), they were
+//! placed against a partial view of it (a van beside it), and none of them
+//! is merged either. Neither check moves a scan; both only refuse.
 //!
 //! Every reduction is summed in fixed-size blocks in a fixed order, so the result
 //! does not depend on the number of threads.
@@ -887,23 +892,10 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                         candidates.push((p, "file pose + ICP".into()));
                     }
                     if s.leveled {
-                        let t = std::time::Instant::now();
-                        let guesses = crate::coarse2d::align(&inputs[j].fine, model_cloud, 30_000);
-                        tracing::debug!("align {j}: {:?}", t.elapsed());
-                        // Rank the plan-view guesses in 3D: overlap of structure, less
-                        // seen-through space. Heights and visibility tell apart shifts
-                        // that look alike from above.
-                        let scores: Vec<f64> = guesses
-                            .par_iter()
-                            .map(|(p, _)| {
-                                evaluate(&checks[j], model, p, 0.5, 0.25).0
-                                    - 10.0 * free_space_violations(&quick[j], p, &seen)
-                            })
-                            .collect();
-                        let mut order: Vec<usize> = (0..guesses.len()).collect();
-                        order.sort_by(|&a, &b| scores[b].total_cmp(&scores[a]));
-                        for &k in order.iter().take(4) {
-                            candidates.push((guesses[k].0, "plan-view correlation + ICP".into()));
+                        let guesses =
+                            plan_view_guesses(&inputs[j].fine, &checks[j], &quick[j], model, model_cloud, &seen, 4);
+                        for p in guesses {
+                            candidates.push((p, "plan-view correlation + ICP".into()));
                         }
                     } else {
                         for i in 0..n {
@@ -1111,19 +1103,77 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
         memo.put(key, w.buf);
         shares
     });
+    // The reference placed again against all the others (scans that are
+    // levelled: plan-view guesses): where a van beside it left it a partial
+    // view, the first rounds placed the others against that view turned 61
+    // degrees, and it fits them as they are better elsewhere.
+    let again = (s.leveled && registered.len() > 1 && final_poses[0].is_some()).then(|| {
+        let key: Key = *state_of(&final_poses, b"reference again").finalize().as_bytes();
+        memo.get(&key).and_then(ReferenceAgain::decode).unwrap_or_else(|| {
+            let at = final_poses[0].unwrap_or(reference_pose);
+            let model = model_of(inputs, &final_poses, Some(0));
+            let model_cloud = RegCloud { pts: model.pts.clone(), normals: model.normals.clone() };
+            let seen: Vec<(&RangeImage, Pose)> =
+                (1..n).filter_map(|i| Some((images[i].as_ref()?, final_poses[i]?))).collect();
+            let score = |p: &Pose| {
+                let fit = evaluate(&checks[0], &model, p, fit_d, fit_r).0;
+                let viol = free_space_violations(&quick[0], p, &seen);
+                [fit - 10.0 * viol, fit, viol]
+            };
+            let here = score(&at);
+            // Leave out what stands beside the scanner (a van fills its
+            // plan view with structure no other scanner saw), where the
+            // scan's frame says where its scanner stood.
+            let far = images[0].is_some().then(|| {
+                let pts = &inputs[0].fine.pts;
+                let idx: Vec<usize> = (0..pts.len()).filter(|&i| pts[i][0].hypot(pts[i][1]) > NEAR_SCANNER_M).collect();
+                subset(&inputs[0].fine, &idx, usize::MAX)
+            });
+            let plan_view = far.as_ref().unwrap_or(&inputs[0].fine);
+            let guesses = plan_view_guesses(plan_view, &checks[0], &quick[0], &model, &model_cloud, &seen, 4);
+            let elsewhere = guesses
+                .into_iter()
+                .map(|g| icp(&quick[0], &model, g, quick_levels))
+                .map(|p| (score(&p), StationOffset::between(&at, &p)))
+                .filter(|(_, o)| o.plan_m.max(o.height_m) > ELSEWHERE_M || o.yaw_deg > ELSEWHERE_DEG)
+                .max_by(|a, b| a.0[0].total_cmp(&b.0[0]));
+            let again = ReferenceAgain { here, elsewhere };
+            memo.put(key, again.encode());
+            again
+        })
+    });
+    // Where the reference fits the others clearly better than where it is.
+    let better = again.as_ref().and_then(|a| {
+        let (e, o) = a.elsewhere.as_ref()?;
+        (e[0] > a.here[0] + REFERENCE_ELSEWHERE_MARGIN).then_some((a.here, *e, *o))
+    });
     let limit = FINAL_VIOLATION_FACTOR * s.max_violation;
     let reference_share = registered.iter().zip(&shares).find(|((j, _), _)| *j == 0).map(|(_, v)| *v);
-    if let Some(share) = reference_share.filter(|v| *v > limit) {
+    let disagreement = match (reference_share.filter(|v| *v > limit), better) {
+        (Some(share), _) => Some(format!(
+            "{:.1} % of the reference's points lie where they saw through (at most {:.1} %)",
+            100.0 * share,
+            100.0 * limit
+        )),
+        (None, Some((here, e, o))) => Some(format!(
+            "placed again against all of them, it fits them better {:.1} m and {:.1} degrees from where they put it (overlap {:.1} %, {:.2} % of its points where they saw through; where it is: {:.1} %, {:.2} %)",
+            o.plan_m,
+            o.yaw_deg,
+            100.0 * e[1],
+            100.0 * e[2],
+            100.0 * here[1],
+            100.0 * here[2]
+        )),
+        (None, None) => None,
+    };
+    if let Some(why) = disagreement {
         // The others were placed, one after another, against the reference.
         for &(j, _) in registered.iter().filter(|(j, _)| *j != 0) {
             if let Some(r) = results[j].as_mut() {
                 r.registered = false;
                 r.warning = Some(format!(
-                    "scan '{}' is not merged: the scans placed against the reference scan '{}' do not agree with it: {:.1} % of the reference's points lie where they saw through (at most {:.1} %); something beside its scanner (a vehicle, a skip) may have misled the first alignments: rescan that station with its view clear",
-                    inputs[j].name,
-                    inputs[0].name,
-                    100.0 * share,
-                    100.0 * limit
+                    "scan '{}' is not merged: the scans placed against the reference scan '{}' do not agree with it: {why}; something beside its scanner (a vehicle, a skip) may have hidden part of its view and misled the first alignments: rescan that station with its view clear, or give the surveyed poses of more stations in the station file",
+                    inputs[j].name, inputs[0].name,
                 ));
             }
         }
@@ -1153,6 +1203,78 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
             })
         })
         .collect()
+}
+
+/// The reference scan placed again, against all the other registered scans
+/// in their final poses, as a trial places a scan.
+struct ReferenceAgain {
+    /// (score, fitness, seen-through share) where the reference is.
+    here: [f64; 3],
+    /// The best-scoring candidate more than [`ELSEWHERE_M`] or
+    /// [`ELSEWHERE_DEG`] from it: its (score, fitness, share) and offset.
+    elsewhere: Option<([f64; 3], StationOffset)>,
+}
+
+/// How far a pose must be from another to count as elsewhere.
+const ELSEWHERE_M: f64 = 0.5;
+const ELSEWHERE_DEG: f64 = 2.0;
+/// Points nearer their scanner than this in plan are left out of the plan
+/// view when the reference is placed again (m).
+const NEAR_SCANNER_M: f64 = 8.0;
+/// By how much (fitness less 10 x seen-through share) the reference must fit
+/// the others better elsewhere for them to count as placed wrongly. In the
+/// van case it fitted them 0.25 better elsewhere; where the others were right
+/// (4, 8, 16 stations all round, 9 over three quarters, a person beside the
+/// reference) no candidate elsewhere scored higher than where it was, the
+/// nearest 0.59 below (reports/scans.md).
+pub const REFERENCE_ELSEWHERE_MARGIN: f64 = 0.1;
+
+impl ReferenceAgain {
+    fn encode(&self) -> Vec<u8> {
+        let mut v = self.here.to_vec();
+        if let Some((e, o)) = &self.elsewhere {
+            v.extend_from_slice(e);
+            v.extend_from_slice(&[o.plan_m, o.height_m, o.yaw_deg]);
+        }
+        let mut w = ByteWriter::new();
+        w.f64s(&v);
+        w.buf
+    }
+
+    fn decode(bytes: &[u8]) -> Option<ReferenceAgain> {
+        let mut r = answer(bytes);
+        let v = r.f64s().ok()?;
+        r.finish().ok()?;
+        let here = [*v.first()?, *v.get(1)?, *v.get(2)?];
+        let elsewhere = match v.len() {
+            3 => None,
+            9 => Some(([v[3], v[4], v[5]], StationOffset { plan_m: v[6], height_m: v[7], yaw_deg: v[8] })),
+            _ => return None,
+        };
+        Some(ReferenceAgain { here, elsewhere })
+    }
+}
+
+/// Candidates for `scan` against `model`: plan-view guesses, ranked in 3D by
+/// overlap of structure less seen-through space (heights and visibility tell
+/// apart shifts that look alike from above), the best `keep`.
+fn plan_view_guesses(
+    scan: &RegCloud,
+    check: &RegCloud,
+    quick: &RegCloud,
+    model: &Target,
+    model_cloud: &RegCloud,
+    seen: &[(&RangeImage, Pose)],
+    keep: usize,
+) -> Vec<Pose> {
+    let guesses = crate::coarse2d::align(scan, model_cloud, 30_000);
+    let scores: Vec<f64> = guesses
+        .par_iter()
+        .map(|(p, _)| evaluate(check, model, p, 0.5, 0.25).0 - 10.0 * free_space_violations(quick, p, seen))
+        .collect();
+    let mut order: Vec<usize> = (0..guesses.len()).collect();
+    order.sort_by(|&a, &b| scores[b].total_cmp(&scores[a]));
+    order.iter().take(keep).map(|&k| guesses[k].0).collect()
 }
 
 /// What a scanner saw, as the nearest range per direction bin, in the scan's
