@@ -323,8 +323,8 @@ every_nth = 9             # keep every Nth point for subsample = "nth"
 # stations = "stations.toml"   # surveyed scanner poses: [[station]] scan, x_m, y_m, z_m, yaw_deg;
 #                              # registration keeps each scan within tolerance_m (plan and height,
 #                              # default 0.5) and yaw_tolerance_deg (default 3) of its station,
-#                              # per station or for the whole file; the first scan with a station
-#                              # is the reference, so the site is in the station file's frame
+#                              # set per station or, at the top of the file, for all; the first
+#                              # scan with a station is the reference (the station file's frame)
 on_unregistered = "fail"  # fail | exclude
 
 [scans.ground]
