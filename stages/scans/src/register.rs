@@ -775,6 +775,12 @@ impl Trial {
 /// same van with eight stations) passes it.
 pub const FINAL_VIOLATION_FACTOR: f64 = 4.0;
 
+/// How registration ranks an alignment: its overlap (0..1) less ten times
+/// the share of its points where a placed scanner saw through.
+fn score(fit: f64, viol: f64) -> f64 {
+    fit - 10.0 * viol
+}
+
 /// The model of the placed scans, built only when a round has a trial or a
 /// placement the memo does not hold.
 struct Round {
@@ -783,8 +789,8 @@ struct Round {
 }
 
 impl Round {
-    fn new(inputs: &[RegInput], poses: &[Option<Pose>]) -> Round {
-        let model = model_of(inputs, poses, None);
+    fn new(inputs: &[RegInput], poses: &[Option<Pose>], except: Option<usize>) -> Round {
+        let model = model_of(inputs, poses, except);
         let model_cloud = RegCloud { pts: model.pts.clone(), normals: model.normals.clone() };
         Round { model, model_cloud }
     }
@@ -885,7 +891,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
             let trial = match memo.get(&key).and_then(Trial::decode) {
                 Some(t) => t,
                 None => {
-                    let Round { model, model_cloud } = round.get_or_insert_with(|| Round::new(inputs, &poses));
+                    let Round { model, model_cloud } = round.get_or_insert_with(|| Round::new(inputs, &poses, None));
                     let model = &*model;
                     let mut candidates: Vec<(Pose, String)> = Vec::new();
                     if let Some(p) = inputs[j].initial {
@@ -927,7 +933,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                         if k == 0 && held(j).is_some() {
                             trial.at_station = Some((fit, viol));
                         }
-                        if fit - 10.0 * viol > trial.closest.0 - 10.0 * trial.closest.1 {
+                        if score(fit, viol) > score(trial.closest.0, trial.closest.1) {
                             trial.closest = (fit, viol);
                         }
                         if fit >= s.min_fitness && viol <= s.max_violation {
@@ -936,7 +942,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                             let off = held(j).map(|(station, tol)| (StationOffset::between(&station, &p), tol));
                             match off.filter(|(o, tol)| !o.within(tol)) {
                                 Some((o, _)) => {
-                                    if trial.held_back.is_none_or(|(f, v, _)| fit - 10.0 * viol > f - 10.0 * v) {
+                                    if trial.held_back.is_none_or(|(f, v, _)| score(fit, viol) > score(f, v)) {
                                         trial.held_back = Some((fit, viol, o));
                                     }
                                 }
@@ -955,7 +961,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
             // Scans held by a station go first: their place does not rest on
             // the scans placed before them, and theirs pins the others'.
             for (p, fit, viol, method) in trial.passing {
-                let rank = |j: usize, fit: f64, viol: f64| (held(j).is_some(), fit - 10.0 * viol);
+                let rank = |j: usize, fit: f64, viol: f64| (held(j).is_some(), score(fit, viol));
                 if best
                     .as_ref()
                     .is_none_or(|b| rank(j, fit, viol).partial_cmp(&rank(b.0, b.2, b.3)).is_some_and(|o| o.is_gt()))
@@ -973,7 +979,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                 let key: Key = *key.finalize().as_bytes();
                 let placed = memo.get(&key).and_then(|b| decode_placed(b, 1)).map(|v| v[0]);
                 let (p, fit, rmse) = placed.unwrap_or_else(|| {
-                    let model = &round.get_or_insert_with(|| Round::new(inputs, &poses)).model;
+                    let model = &round.get_or_insert_with(|| Round::new(inputs, &poses, None)).model;
                     let p = icp(&srcs[j], model, p, &s.icp_distances_m);
                     let (fit, rmse) = evaluate(&checks[j], model, &p, fit_d, fit_r);
                     memo.put(key, encode_placed(&[(p, fit, rmse)]));
@@ -1103,24 +1109,26 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
         memo.put(key, w.buf);
         shares
     });
+    let limit = FINAL_VIOLATION_FACTOR * s.max_violation;
+    let reference_share = registered.iter().zip(&shares).find(|((j, _), _)| *j == 0).map(|(_, v)| *v);
     // The reference placed again against all the others (scans that are
     // levelled: plan-view guesses): where a van beside it left it a partial
     // view, the first rounds placed the others against that view turned 61
-    // degrees, and it fits them as they are better elsewhere.
-    let again = (s.leveled && registered.len() > 1 && final_poses[0].is_some()).then(|| {
+    // degrees, and it fits them as they are better elsewhere. Not needed
+    // where its share has already shown the others wrong.
+    let again = (s.leveled && registered.len() > 1 && reference_share.is_some_and(|v| v <= limit)).then(|| {
         let key: Key = *state_of(&final_poses, b"reference again").finalize().as_bytes();
         memo.get(&key).and_then(ReferenceAgain::decode).unwrap_or_else(|| {
             let at = final_poses[0].unwrap_or(reference_pose);
-            let model = model_of(inputs, &final_poses, Some(0));
-            let model_cloud = RegCloud { pts: model.pts.clone(), normals: model.normals.clone() };
+            let Round { model, model_cloud } = Round::new(inputs, &final_poses, Some(0));
             let seen: Vec<(&RangeImage, Pose)> =
                 (1..n).filter_map(|i| Some((images[i].as_ref()?, final_poses[i]?))).collect();
-            let score = |p: &Pose| {
+            let scored = |p: &Pose| {
                 let fit = evaluate(&checks[0], &model, p, fit_d, fit_r).0;
                 let viol = free_space_violations(&quick[0], p, &seen);
-                [fit - 10.0 * viol, fit, viol]
+                [score(fit, viol), fit, viol]
             };
-            let here = score(&at);
+            let here = scored(&at);
             // Leave out what stands beside the scanner (a van fills its
             // plan view with structure no other scanner saw), where the
             // scan's frame says where its scanner stood.
@@ -1134,7 +1142,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
             let elsewhere = guesses
                 .into_iter()
                 .map(|g| icp(&quick[0], &model, g, quick_levels))
-                .map(|p| (score(&p), StationOffset::between(&at, &p)))
+                .map(|p| (scored(&p), StationOffset::between(&at, &p)))
                 .filter(|(_, o)| o.plan_m.max(o.height_m) > ELSEWHERE_M || o.yaw_deg > ELSEWHERE_DEG)
                 .max_by(|a, b| a.0[0].total_cmp(&b.0[0]));
             let again = ReferenceAgain { here, elsewhere };
@@ -1147,8 +1155,6 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
         let (e, o) = a.elsewhere.as_ref()?;
         (e[0] > a.here[0] + REFERENCE_ELSEWHERE_MARGIN).then_some((a.here, *e, *o))
     });
-    let limit = FINAL_VIOLATION_FACTOR * s.max_violation;
-    let reference_share = registered.iter().zip(&shares).find(|((j, _), _)| *j == 0).map(|(_, v)| *v);
     let disagreement = match (reference_share.filter(|v| *v > limit), better) {
         (Some(share), _) => Some(format!(
             "{:.1} % of the reference's points lie where they saw through (at most {:.1} %)",
@@ -1270,7 +1276,7 @@ fn plan_view_guesses(
     let guesses = crate::coarse2d::align(scan, model_cloud, 30_000);
     let scores: Vec<f64> = guesses
         .par_iter()
-        .map(|(p, _)| evaluate(check, model, p, 0.5, 0.25).0 - 10.0 * free_space_violations(quick, p, seen))
+        .map(|(p, _)| score(evaluate(check, model, p, 0.5, 0.25).0, free_space_violations(quick, p, seen)))
         .collect();
     let mut order: Vec<usize> = (0..guesses.len()).collect();
     order.sort_by(|&a, &b| scores[b].total_cmp(&scores[a]));
