@@ -502,7 +502,10 @@ pub fn run(inputs: &[PathBuf], s: &Settings, opts: &RunOptions, out_dir: &Path) 
         }
     };
 
-    let unregistered: Vec<&register::RegResult> = results.iter().filter(|r| !r.registered).collect();
+    let unregistered: Vec<(String, String)> = (scans.iter().zip(&results))
+        .filter(|(_, r)| !r.registered)
+        .map(|(info, r)| (info.name.clone(), r.warning.clone().unwrap_or_default()))
+        .collect();
     let mut reports: Vec<ScanReport> = scans
         .iter()
         .zip(&results)
@@ -523,8 +526,7 @@ pub fn run(inputs: &[PathBuf], s: &Settings, opts: &RunOptions, out_dir: &Path) 
     std::fs::create_dir_all(out_dir).map_err(|e| ScanError::Io(Location::file(out_dir), e))?;
     write_json(&out_dir.join("registration.json"), &serde_json::json!({ "register": s.register, "scans": reports }))?;
     if !unregistered.is_empty() && s.on_unregistered == OnUnregistered::Fail {
-        let msgs: Vec<String> = unregistered.iter().filter_map(|r| r.warning.clone()).collect();
-        return Err(ScanError::Registration(unregistered_error(&msgs, &out_dir.join("registration.json"))));
+        return Err(ScanError::Registration(unregistered_error(&unregistered, &out_dir.join("registration.json"))));
     }
 
     // Second pass: every registered scan through the thinning filter.
@@ -662,20 +664,38 @@ fn thin(
     })
 }
 
-/// Scans whose reasons an unregistered-scans error spells out; the rest are
-/// counted (a survey of hundreds of scans that do not register would
-/// otherwise make an error of hundreds of lines).
+/// Reasons an unregistered-scans error spells out; the rest are counted (a
+/// survey of hundreds of scans that do not register would otherwise make an
+/// error of hundreds of lines).
 const UNREGISTERED_LISTED: usize = 5;
 
-/// The error for scans that do not register, from each scan's reason.
-fn unregistered_error(reasons: &[String], report: &Path) -> String {
-    let mut text = reasons.iter().take(UNREGISTERED_LISTED).cloned().collect::<Vec<_>>().join("; ");
-    if reasons.len() > UNREGISTERED_LISTED {
-        text += &format!(
-            "; and {} more scans do not register ({} gives every scan's fitness)",
-            reasons.len() - UNREGISTERED_LISTED,
-            report.display()
-        );
+/// The error for scans that do not register, from each scan's name and
+/// reason (which starts "scan '<name>' "). Scans refused for the same reason
+/// (all those placed against a reference that disagrees with them) share one
+/// entry that names them all, instead of the reason said once per scan.
+fn unregistered_error(reasons: &[(String, String)], report: &Path) -> String {
+    // (first scan's reason, the other scans with the same reason)
+    let mut groups: Vec<(&str, &str, Vec<&str>)> = Vec::new();
+    for (name, reason) in reasons {
+        let rest = reason.strip_prefix(&format!("scan '{name}' ")).unwrap_or(reason);
+        match groups.iter_mut().find(|g| g.1 == rest) {
+            Some(g) => g.2.push(name),
+            None => groups.push((reason, rest, vec![])),
+        }
+    }
+    let listed = groups.iter().take(UNREGISTERED_LISTED).map(|(reason, _, same)| match same.as_slice() {
+        [] => reason.to_string(),
+        names => format!(
+            "{reason} (the same for {} {})",
+            if names.len() == 1 { "scan" } else { "scans" },
+            names.iter().map(|n| format!("'{n}'")).collect::<Vec<_>>().join(", ")
+        ),
+    });
+    let mut text = listed.collect::<Vec<_>>().join("; ");
+    let unlisted: usize = groups.iter().skip(UNREGISTERED_LISTED).map(|g| 1 + g.2.len()).sum();
+    if unlisted > 0 {
+        text +=
+            &format!("; and {unlisted} more scans do not register ({} gives every scan's fitness)", report.display());
     }
     text + " (set [scans] on_unregistered = \"exclude\" to leave such scans out, knowing their obstacles will be missing)"
 }
@@ -773,12 +793,42 @@ mod tests {
     #[test]
     fn many_unregistered_scans_make_a_short_error() {
         let report = Path::new("out/registration.json");
-        let reasons: Vec<String> = (0..7).map(|k| format!("scan 's{k}' does not register")).collect();
+        let reasons: Vec<(String, String)> =
+            (0..7).map(|k| (format!("s{k}"), format!("scan 's{k}' does not register (fitness {k} %)"))).collect();
         let e = unregistered_error(&reasons[..2], report);
-        assert!(e.starts_with("scan 's0' does not register; scan 's1' does not register (set [scans]"), "{e}");
+        assert!(
+            e.starts_with(
+                "scan 's0' does not register (fitness 0 %); scan 's1' does not register (fitness 1 %) (set [scans]"
+            ),
+            "{e}"
+        );
         let e = unregistered_error(&reasons, report);
-        assert!(e.contains("'s4' does not register; and 2 more scans do not register (out/registration.json"), "{e}");
+        assert!(
+            e.contains("'s4' does not register (fitness 4 %); and 2 more scans do not register (out/registration.json"),
+            "{e}"
+        );
         assert!(!e.contains("'s5'") && e.ends_with("will be missing)"), "{e}");
+    }
+
+    #[test]
+    fn scans_refused_for_one_reason_share_it() {
+        let report = Path::new("out/registration.json");
+        let why = "is not merged: the scans placed against the reference scan 'r' do not agree with it";
+        let mut reasons: Vec<(String, String)> =
+            ["a", "b", "c"].iter().map(|n| (n.to_string(), format!("scan '{n}' {why}"))).collect();
+        reasons.insert(1, ("d".into(), "scan 'd' does not register".into()));
+        let e = unregistered_error(&reasons, report);
+        assert_eq!(
+            e.split(" (set [scans]").next().unwrap(),
+            format!("scan 'a' {why} (the same for scans 'b', 'c'); scan 'd' does not register")
+        );
+        assert_eq!(e.matches("do not agree").count(), 1, "{e}");
+        // Counted past the listed reasons by scan, not by reason.
+        let mut many: Vec<(String, String)> =
+            (0..5).map(|k| (format!("s{k}"), format!("scan 's{k}' does not register ({k})"))).collect();
+        many.extend(reasons);
+        let e = unregistered_error(&many, report);
+        assert!(e.contains("; and 4 more scans do not register"), "{e}");
     }
 
     fn stations(text: &str) -> (tempfile::TempDir, PathBuf) {
