@@ -21,6 +21,13 @@
 //! plan-view guess that fits the other scans better does not override a
 //! survey (a van beside the reference once placed a scan 7.7 m and 61 degrees
 //! from its station that way). Such a scan is reported not registered instead.
+//! Where no scan fits those placed so far well enough to be placed (a van
+//! beside the reference leaves the others too little of its view), a held
+//! scan that puts no more than `max_violation` of its points where a placed
+//! scanner saw through is placed at its station as surveyed, so that the
+//! others can be placed against it; it is merged only if, aligned with all
+//! the scans, it overlaps them by `min_fitness` and stays within its
+//! tolerance, and if it is not, neither are the scans placed after it.
 //!
 //! A scan whose best alignment overlaps the model less than `min_fitness` is
 //! reported as not registered; the stage never merges it silently.
@@ -867,6 +874,10 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
     // RANSAC inlier counts, computed once per pair (scans that are not levelled).
     let mut coarse: std::collections::HashMap<(usize, usize), Option<(Pose, usize)>> = std::collections::HashMap::new();
     let eps = 1.5 * s.feature_voxel_m;
+    // The scans in the order they were placed, after the reference.
+    let mut order: Vec<usize> = Vec::new();
+    // Held scans placed at their station as surveyed, with their overlap then.
+    let mut surveyed_only: Vec<Option<f64>> = vec![None; n];
     loop {
         let pending: Vec<usize> = (0..n).filter(|&j| poses[j].is_none()).collect();
         if pending.is_empty() {
@@ -986,10 +997,42 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                     (p, fit, rmse)
                 });
                 poses[j] = Some(p);
+                order.push(j);
                 results[j] =
                     Some(RegResult { pose: p, fitness: fit, rmse_m: rmse, method, registered: true, warning: None });
             }
             None => {
+                // No scan fits those placed so far well enough to be placed
+                // by them. A held scan that, at its surveyed pose, puts no
+                // more than the allowed share of its points where a placed
+                // scanner saw through is placed there as surveyed, so that
+                // the others can be placed against it too (a van beside the
+                // reference leaves the others too little of its view). Its
+                // own alignment comes with the refinement, and it is merged
+                // only if it then overlaps the others well enough; see
+                // `unconfirmed` below.
+                let by_survey = pending
+                    .iter()
+                    .copied()
+                    .filter_map(|j| Some((j, at_station[j]?)))
+                    .filter(|(_, (_, viol))| *viol <= s.max_violation)
+                    .max_by(|a, b| score(a.1.0, a.1.1).total_cmp(&score(b.1.0, b.1.1)).then(b.0.cmp(&a.0)));
+                if let Some((j, (station, _))) = by_survey.and_then(|(j, _)| Some((j, held(j)?))) {
+                    let model = &round.get_or_insert_with(|| Round::new(inputs, &poses, None)).model;
+                    let (fit, rmse) = evaluate(&checks[j], model, &station, fit_d, fit_r);
+                    poses[j] = Some(station);
+                    order.push(j);
+                    surveyed_only[j] = Some(fit);
+                    results[j] = Some(RegResult {
+                        pose: station,
+                        fitness: fit,
+                        rmse_m: rmse,
+                        method: "station pose (overlap too small to align by) + refinement".into(),
+                        registered: true,
+                        warning: None,
+                    });
+                    continue;
+                }
                 for &j in &pending {
                     let (fit, viol) = closest[j];
                     let warning = match (at_station[j], held(j)) {
@@ -1080,6 +1123,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
             ));
         }
     }
+    confirm_surveys(&order, &surveyed_only, &mut results, inputs, s.min_fitness);
     // Every registered scan against all the others, in the final poses. The
     // first rounds place scans against one or two others, where a wrong pose
     // can pass the seen-through check (a van beside the reference scan made
@@ -1196,6 +1240,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
             }
         }
     }
+    confirm_surveys(&order, &surveyed_only, &mut results, inputs, s.min_fitness);
     results
         .into_iter()
         .map(|r| {
@@ -1209,6 +1254,46 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
             })
         })
         .collect()
+}
+
+/// Scans placed at their station as surveyed (`surveyed_only`, with their
+/// overlap then) must, aligned with all the scans, overlap them as any placed
+/// scan must (`min_fitness`). Where such a scan is not merged (for that or
+/// any other reason), the survey alone placed it, wrongly or without
+/// confirmation, and the scans placed after it (`order`), perhaps against
+/// it, are not merged either.
+fn confirm_surveys(
+    order: &[usize],
+    surveyed_only: &[Option<f64>],
+    results: &mut [Option<RegResult>],
+    inputs: &[RegInput],
+    min_fitness: f64,
+) {
+    for &j in order {
+        let (Some(at_survey), Some(r)) = (surveyed_only[j], results[j].as_mut()) else { continue };
+        if r.registered && r.fitness < min_fitness {
+            r.registered = false;
+            r.warning = Some(format!(
+                "scan '{}' is not merged: it overlapped the scans placed before it too little to be aligned by them ({:.1} %, at least {:.1} % required), so it was placed at the pose the station file gives; aligned with all the scans, it overlaps them by {:.1} %, still too little to confirm that pose",
+                inputs[j].name,
+                100.0 * at_survey,
+                100.0 * min_fitness,
+                100.0 * r.fitness
+            ));
+        }
+    }
+    let unconfirmed =
+        order.iter().position(|&j| surveyed_only[j].is_some() && results[j].as_ref().is_some_and(|r| !r.registered));
+    let Some(k) = unconfirmed else { return };
+    for &later in &order[k + 1..] {
+        if let Some(r) = results[later].as_mut().filter(|r| r.registered) {
+            r.registered = false;
+            r.warning = Some(format!(
+                "scan '{}' is not merged: it was placed while scan '{}' stood at the pose the station file gives, which the scans did not confirm (see that scan)",
+                inputs[later].name, inputs[order[k]].name
+            ));
+        }
+    }
 }
 
 /// The reference scan placed again, against all the other registered scans
@@ -1389,6 +1474,55 @@ mod tests {
         assert!(!o.within(&held(5.0, None, Some(19.0))));
         // What the station does not give is not held.
         assert!(o.within(&held(5.0, None, None)));
+    }
+
+    #[test]
+    fn scans_placed_after_an_unconfirmed_survey_are_not_merged() {
+        let inputs: Vec<RegInput> = (0..4)
+            .map(|k| RegInput {
+                name: format!("s{k}"),
+                fine: RegCloud::default(),
+                coarse: FeatureCloud::default(),
+                initial: None,
+                held: None,
+            })
+            .collect();
+        let placed = |registered| {
+            Some(RegResult {
+                pose: Pose::identity(),
+                fitness: 0.5,
+                rmse_m: 0.0,
+                method: "m".into(),
+                registered,
+                warning: None,
+            })
+        };
+        // s2, then s1 at its station, then s3.
+        let order = [2, 1, 3];
+        let surveyed_only = [None, Some(0.01), None, None];
+        let mut results = vec![placed(true), placed(true), placed(true), placed(true)];
+        confirm_surveys(&order, &surveyed_only, &mut results, &inputs, 0.02);
+        assert!(results.iter().all(|r| r.as_ref().unwrap().registered), "a confirmed survey refuses nothing");
+        let registered = |results: &[Option<RegResult>]| -> Vec<bool> {
+            results.iter().map(|r| r.as_ref().unwrap().registered).collect()
+        };
+        // Refused for another reason (e.g. too far from its station).
+        results[1] = placed(false);
+        confirm_surveys(&order, &surveyed_only, &mut results, &inputs, 0.02);
+        assert_eq!(
+            registered(&results),
+            [true, false, true, false],
+            "only the scan placed after s1 is refused with it"
+        );
+        let why = results[3].as_ref().unwrap().warning.as_deref().unwrap();
+        assert!(why.starts_with("scan 's3' is not merged: it was placed while scan 's1' stood"), "{why}");
+        // Overlapping the others too little even when aligned with them all.
+        let mut results = vec![placed(true), placed(true), placed(true), placed(true)];
+        results[1].as_mut().unwrap().fitness = 0.015;
+        confirm_surveys(&order, &surveyed_only, &mut results, &inputs, 0.02);
+        assert_eq!(registered(&results), [true, false, true, false]);
+        let own = results[1].as_ref().unwrap().warning.as_deref().unwrap();
+        assert!(own.contains("(1.0 %, at least 2.0 % required)") && own.contains("overlaps them by 1.5 %"), "{own}");
     }
 
     #[test]
