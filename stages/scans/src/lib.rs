@@ -504,7 +504,10 @@ pub fn run(inputs: &[PathBuf], s: &Settings, opts: &RunOptions, out_dir: &Path) 
 
     let unregistered: Vec<(String, String)> = (scans.iter().zip(&results))
         .filter(|(_, r)| !r.registered)
-        .map(|(info, r)| (info.name.clone(), r.warning.clone().unwrap_or_default()))
+        .map(|(info, r)| {
+            let why = r.warning.clone().unwrap_or_else(|| format!("scan '{}' does not register", info.name));
+            (info.name.clone(), why)
+        })
         .collect();
     let mut reports: Vec<ScanReport> = scans
         .iter()

@@ -1012,9 +1012,9 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                 // scanner saw through is placed there as surveyed, so that
                 // the others can be placed against it too (a van beside the
                 // reference leaves the others too little of its view). Its
-                // own alignment comes with the refinement, and it is merged
-                // only if it then overlaps the others well enough; see
-                // `unconfirmed` below.
+                // own alignment comes with the refinement, and the survey is
+                // checked against the scans after it (the reference aligned
+                // with them, and `confirm_surveys`).
                 let by_survey = pending
                     .iter()
                     .copied()
@@ -1133,7 +1133,8 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
     // is. A station surveyed 0.3 m or 2.5 degrees off (within the default
     // tolerance) otherwise put every scan after it that far off, and the
     // reference, aligned with them, moved by just that.
-    if let Some(k) = order.iter().position(|&j| surveyed_only[j].is_some()) {
+    let first_by_survey = order.iter().position(|&j| surveyed_only[j].is_some());
+    if let Some(k) = first_by_survey.filter(|&k| results[order[k]].as_ref().is_some_and(|r| r.registered)) {
         let group: Vec<Option<Pose>> = (0..n)
             .map(|i| {
                 let registered = results[i].as_ref().filter(|r| r.registered && order[k..].contains(&i));
@@ -1147,7 +1148,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
         let o = StationOffset::between(&at, &moved);
         let (fit, _) = evaluate(&checks[0], &model, &moved, fit_d, fit_r);
         let disagrees = o.plan_m.max(o.height_m) > SURVEY_AGREEMENT_M || o.yaw_deg > SURVEY_AGREEMENT_DEG;
-        if let Some(r) = results[j].as_mut().filter(|r| r.registered && (disagrees || fit < s.min_fitness)) {
+        if let Some(r) = results[j].as_mut().filter(|_| disagrees || fit < s.min_fitness) {
             r.registered = false;
             r.warning = Some(format!(
                 "scan '{}' is not merged: it overlapped the scans placed before it too little to be aligned by them, so it was placed at the pose the station file gives, and the scans placed after it against it; the reference scan '{}', aligned with them, {}: the survey of that station and the scans do not agree; check both stations' poses",
@@ -1305,6 +1306,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
 /// (the scans pin that direction weakly), 0.28 m with it 0.3 m off along,
 /// 0.42 m and 0.55 degrees with it 0.5 degrees off. One layout's evidence.
 pub const SURVEY_AGREEMENT_M: f64 = 0.01;
+/// The yaw counterpart of [`SURVEY_AGREEMENT_M`] (degrees).
 pub const SURVEY_AGREEMENT_DEG: f64 = 0.05;
 
 /// Scans placed at their station as surveyed (`surveyed_only`, with their
