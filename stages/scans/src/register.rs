@@ -1135,19 +1135,22 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
     // reference, aligned with them, moved by just that.
     let first_by_survey = order.iter().position(|&j| surveyed_only[j].is_some());
     if let Some(k) = first_by_survey.filter(|&k| results[order[k]].as_ref().is_some_and(|r| r.registered)) {
-        let group: Vec<Option<Pose>> = (0..n)
-            .map(|i| {
-                let registered = results[i].as_ref().filter(|r| r.registered && order[k..].contains(&i));
-                registered.map(|r| r.pose)
-            })
-            .collect();
+        let mut group: Vec<Option<Pose>> = vec![None; n];
+        for &i in &order[k..] {
+            group[i] = results[i].as_ref().filter(|r| r.registered).map(|r| r.pose);
+        }
         let j = order[k];
         let model = model_of(inputs, &group, None);
         let at = reference_pose;
         let moved = icp(&srcs[0], &model, at, &s.icp_distances_m);
         let o = StationOffset::between(&at, &moved);
         let (fit, _) = evaluate(&checks[0], &model, &moved, fit_d, fit_r);
-        let disagrees = o.plan_m.max(o.height_m) > SURVEY_AGREEMENT_M || o.yaw_deg > SURVEY_AGREEMENT_DEG;
+        let agreement = StationTolerance {
+            plan_m: SURVEY_AGREEMENT_M,
+            height_m: Some(SURVEY_AGREEMENT_M),
+            yaw_deg: Some(SURVEY_AGREEMENT_DEG),
+        };
+        let disagrees = !o.within(&agreement);
         if let Some(r) = results[j].as_mut().filter(|_| disagrees || fit < s.min_fitness) {
             r.registered = false;
             r.warning = Some(format!(
