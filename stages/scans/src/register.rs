@@ -25,13 +25,15 @@
 //! beside the reference leaves the others too little of its view), a held
 //! scan that puts no more than `max_violation` of its points where a placed
 //! scanner saw through is placed at its station as surveyed, so that the
-//! others can be placed against it. It is merged only if the reference,
-//! aligned with it and the scans placed after it, stays where it is
-//! ([`SURVEY_AGREEMENT_M`], [`SURVEY_AGREEMENT_DEG`]): otherwise their place
-//! relative to the reference rests on the survey alone, and a survey 0.3 m
-//! off put them all 0.3 m off. It must also, aligned with all the scans,
-//! overlap them by `min_fitness` and stay within its tolerance. If it is not
-//! merged, neither are the scans placed after it.
+//! others can be placed against it. It is merged only if the scans placed
+//! before it (the reference first), aligned as one with it and the scans
+//! placed after it, stay where they are ([`SURVEY_AGREEMENT_M`],
+//! [`SURVEY_AGREEMENT_DEG`]): otherwise their place relative to the
+//! reference rests on the survey alone, and a survey 0.3 m off put them all
+//! 0.3 m off. Each scan placed by its survey is checked so, in the order
+//! placed. It must also, aligned with all the scans, overlap them by
+//! `min_fitness` and stay within its tolerance. If it is not merged,
+//! neither are the scans placed after it.
 //!
 //! A scan whose best alignment overlaps the model less than `min_fitness` is
 //! reported as not registered; the stage never merges it silently.
@@ -606,19 +608,26 @@ pub fn structure(c: &RegCloud, max: usize) -> RegCloud {
 }
 
 fn model_of(inputs: &[RegInput], poses: &[Option<Pose>], except: Option<usize>) -> Target {
-    let mut pts = Vec::new();
-    let mut nrm = Vec::new();
-    for (i, inp) in inputs.iter().enumerate() {
-        let (Some(p), true) = (poses[i], Some(i) != except) else {
-            continue;
-        };
-        pts.extend(inp.fine.pts.iter().map(|x| tf(&p, x)));
-        nrm.extend(inp.fine.normals.iter().map(|n| {
+    let placed = inputs
+        .iter()
+        .enumerate()
+        .filter(|&(i, _)| Some(i) != except)
+        .filter_map(|(i, inp)| Some((&inp.fine, poses[i]?)));
+    let c = placed_cloud(placed);
+    Target::new(c.pts, c.normals)
+}
+
+/// Clouds at their poses, as one cloud in the frame they are placed in.
+fn placed_cloud<'a>(placed: impl Iterator<Item = (&'a RegCloud, Pose)>) -> RegCloud {
+    let mut out = RegCloud::default();
+    for (c, p) in placed {
+        out.pts.extend(c.pts.iter().map(|x| tf(&p, x)));
+        out.normals.extend(c.normals.iter().map(|n| {
             let v = p.rotation * Vec3::new(n[0], n[1], n[2]);
             [v.x, v.y, v.z]
         }));
     }
-    Target::new(pts, nrm)
+    out
 }
 
 /// Places every scan in the frame of the first; see the module docs.
@@ -1013,8 +1022,8 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                 // the others can be placed against it too (a van beside the
                 // reference leaves the others too little of its view). Its
                 // own alignment comes with the refinement, and the survey is
-                // checked against the scans after it (the reference aligned
-                // with them, and `confirm_surveys`).
+                // checked against the scans (those placed before it aligned
+                // with it and those after it, and `confirm_surveys`).
                 let by_survey = pending
                     .iter()
                     .copied()
@@ -1127,46 +1136,48 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
             ));
         }
     }
-    // The first scan placed by its survey and those placed after it agree
-    // with each other; whether they agree with the reference rests on the
-    // survey alone unless the reference, aligned with them, stays where it
-    // is. A station surveyed 0.3 m or 2.5 degrees off (within the default
-    // tolerance) otherwise put every scan after it that far off, and the
-    // reference, aligned with them, moved by just that.
-    let first_by_survey = order.iter().position(|&j| surveyed_only[j].is_some());
-    if let Some(k) = first_by_survey.filter(|&k| results[order[k]].as_ref().is_some_and(|r| r.registered)) {
-        let mut group: Vec<Option<Pose>> = vec![None; n];
-        for &i in &order[k..] {
-            group[i] = results[i].as_ref().filter(|r| r.registered).map(|r| r.pose);
-        }
+    // A scan placed by its survey and those placed after it agree with each
+    // other; whether they agree with the scans placed before it (the
+    // reference first) rests on the survey alone unless those, aligned with
+    // them as one, stay where they are. A station surveyed 0.3 m or 2.5
+    // degrees off (within the default tolerance) otherwise put every scan
+    // after it that far off, and the reference, aligned with them, moved by
+    // just that. Every such scan is checked, in the order placed; once one is
+    // not merged, neither is any scan after it (`confirm_surveys`).
+    for k in (0..order.len()).filter(|&k| surveyed_only[order[k]].is_some()) {
+        let merged = |i: usize| results[i].as_ref().filter(|r| r.registered).map(|r| r.pose);
         let j = order[k];
-        let model = model_of(inputs, &group, None);
-        let at = reference_pose;
-        let moved = icp(&srcs[0], &model, at, &s.icp_distances_m);
-        let o = StationOffset::between(&at, &moved);
-        let (fit, _) = evaluate(&checks[0], &model, &moved, fit_d, fit_r);
-        let agreement = StationTolerance {
-            plan_m: SURVEY_AGREEMENT_M,
-            height_m: Some(SURVEY_AGREEMENT_M),
-            yaw_deg: Some(SURVEY_AGREEMENT_DEG),
+        if merged(j).is_none() {
+            break;
+        }
+        let mut before: Vec<Option<Pose>> = vec![None; n];
+        let mut after: Vec<Option<Pose>> = vec![None; n];
+        for i in std::iter::once(0).chain(order[..k].iter().copied()) {
+            before[i] = merged(i);
+        }
+        for &i in &order[k..] {
+            after[i] = merged(i);
+        }
+        let mut key = state_of(&before, b"survey check");
+        key.update(state_of(&after, b"against").finalize().as_bytes());
+        let key: Key = *key.finalize().as_bytes();
+        let kept = memo.get(&key).and_then(|b| decode_placed(b, 1)).map(|v| (v[0].0, v[0].1));
+        let (correction, fit) = kept.unwrap_or_else(|| {
+            let (correction, fit) = align_as_one(inputs, &srcs, &checks, &before, &after, s);
+            memo.put(key, encode_placed(&[(correction, fit, 0.0)]));
+            (correction, fit)
+        });
+        let Some(why) = survey_disagreement(inputs, &before, &correction, fit, s.min_fitness) else {
+            continue;
         };
-        let disagrees = !o.within(&agreement);
-        if let Some(r) = results[j].as_mut().filter(|_| disagrees || fit < s.min_fitness) {
+        if let Some(r) = results[j].as_mut() {
             r.registered = false;
             r.warning = Some(format!(
-                "scan '{}' is not merged: it overlapped the scans placed before it too little to be aligned by them, so it was placed at the pose the station file gives, and the scans placed after it against it; the reference scan '{}', aligned with them, {}: the survey of that station and the scans do not agree; check both stations' poses",
+                "scan '{}' is not merged: it overlapped the scans placed before it too little to be aligned by them, so it was placed at the pose the station file gives, and the scans placed after it against it; {why}: the survey of that station and the scans do not agree; check the stations' poses",
                 inputs[j].name,
-                inputs[0].name,
-                if fit < s.min_fitness {
-                    format!("overlaps them by {:.1} % (at least {:.1} % required)", 100.0 * fit, 100.0 * s.min_fitness)
-                } else {
-                    format!(
-                        "moves {:.3} m in plan, {:.3} m in height and {:.3} degrees in yaw (at most {} m and {} degrees)",
-                        o.plan_m, o.height_m, o.yaw_deg, SURVEY_AGREEMENT_M, SURVEY_AGREEMENT_DEG
-                    )
-                }
             ));
         }
+        break;
     }
     confirm_surveys(&order, &surveyed_only, &mut results, inputs, s.min_fitness);
     // Every registered scan against all the others, in the final poses. The
@@ -1301,10 +1312,71 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
         .collect()
 }
 
-/// How far the reference may move, aligned with the scans placed by a survey
-/// (the first scan placed at its station as surveyed and those after it),
-/// for the survey and the scans to agree. Measured in the four-station van
-/// case with the second station surveyed: 0.0009 m and 0.005 degrees with the
+/// The scans at `before`, moved as one, aligned (full ICP schedule) with
+/// those at `after`: the correction that moves them, and how much of them
+/// (their structure points, `checks`) then overlaps those.
+fn align_as_one(
+    inputs: &[RegInput],
+    srcs: &[RegCloud],
+    checks: &[RegCloud],
+    before: &[Option<Pose>],
+    after: &[Option<Pose>],
+    s: &RegistrationSettings,
+) -> (Pose, f64) {
+    let model = model_of(inputs, after, None);
+    let placed = |clouds: &[RegCloud]| placed_cloud(clouds.iter().zip(before).filter_map(|(c, p)| Some((c, (*p)?))));
+    let correction = icp(&placed(srcs), &model, Pose::identity(), &s.icp_distances_m);
+    let (fit, _) = evaluate(&placed(checks), &model, &correction, s.fit_distance_m, s.fit_residual_m);
+    (correction, fit)
+}
+
+/// Why the scans at `before`, aligned as one with a scan placed by its
+/// survey and those placed after it ([`align_as_one`]: `correction`, `fit`),
+/// show the survey wrong: they overlap those too little for the alignment
+/// to say anything, or the correction moves one of them beyond
+/// [`SURVEY_AGREEMENT_M`] or [`SURVEY_AGREEMENT_DEG`]. `None` if they agree.
+fn survey_disagreement(
+    inputs: &[RegInput],
+    before: &[Option<Pose>],
+    correction: &Pose,
+    fit: f64,
+    min_fitness: f64,
+) -> Option<String> {
+    let agreement = StationTolerance {
+        plan_m: SURVEY_AGREEMENT_M,
+        height_m: Some(SURVEY_AGREEMENT_M),
+        yaw_deg: Some(SURVEY_AGREEMENT_DEG),
+    };
+    // The first that moves too far is the one told; a NaN offset fails
+    // `within`, and so refuses.
+    let too_far =
+        before.iter().flatten().map(|p| StationOffset::between(p, &(correction * p))).find(|o| !o.within(&agreement));
+    if too_far.is_none() && fit >= min_fitness {
+        return None;
+    }
+    let names: Vec<String> =
+        inputs.iter().zip(before).filter(|(_, p)| p.is_some()).map(|(i, _)| format!("'{}'", i.name)).collect();
+    let (those, verb_s) = match names.as_slice() {
+        [one] => (format!("the reference scan {one}, aligned with them,"), "s"),
+        _ => (format!("the scans placed before it ({}), aligned with them as one,", names.join(", ")), ""),
+    };
+    Some(match too_far {
+        Some(o) => format!(
+            "{those} move{verb_s} {:.3} m in plan, {:.3} m in height and {:.3} degrees in yaw (at most {} m and {} degrees)",
+            o.plan_m, o.height_m, o.yaw_deg, SURVEY_AGREEMENT_M, SURVEY_AGREEMENT_DEG
+        ),
+        None => format!(
+            "{those} overlap{verb_s} them by {:.1} % (at least {:.1} % required)",
+            100.0 * fit,
+            100.0 * min_fitness
+        ),
+    })
+}
+
+/// How far the scans placed before a scan placed by its survey (the
+/// reference first) may move, aligned as one with it and the scans placed
+/// after it, for the survey and the scans to agree. Measured in the
+/// four-station van case with the second station surveyed: 0.0009 m and 0.005 degrees with the
 /// right survey; 0.020 m and 0.023 degrees with the survey 0.1 m off across
 /// (the scans pin that direction weakly), 0.28 m with it 0.3 m off along,
 /// 0.42 m and 0.55 degrees with it 0.5 degrees off. One layout's evidence.
@@ -1579,6 +1651,76 @@ mod tests {
         assert_eq!(registered(&results), [true, false, true, false]);
         let own = results[1].as_ref().unwrap().warning.as_deref().unwrap();
         assert!(own.contains("(1.0 %, at least 2.0 % required)") && own.contains("overlaps them by 1.5 %"), "{own}");
+    }
+
+    /// Points 0.1 m apart on the faces of the box `lo`..`hi` whose outward
+    /// normal is among `faces` (axis, sign), starting `phase` into the grid.
+    fn box_faces(lo: [f64; 3], hi: [f64; 3], faces: &[(usize, f64)], phase: f64) -> RegCloud {
+        let mut c = RegCloud::default();
+        for &(axis, sign) in faces {
+            let (u, v) = ((axis + 1) % 3, (axis + 2) % 3);
+            let steps = |a: usize| ((hi[a] - lo[a] - phase) / 0.1) as usize;
+            for i in 0..=steps(u) {
+                for k in 0..=steps(v) {
+                    let mut p = [0.0; 3];
+                    p[axis] = if sign > 0.0 { hi[axis] } else { lo[axis] };
+                    p[u] = lo[u] + phase + 0.1 * i as f64;
+                    p[v] = lo[v] + phase + 0.1 * k as f64;
+                    let mut n = [0.0; 3];
+                    n[axis] = sign;
+                    c.pts.push(p);
+                    c.normals.push(n);
+                }
+            }
+        }
+        c
+    }
+
+    #[test]
+    fn scans_placed_before_a_survey_are_checked_as_one() {
+        // Two scans placed before a scan placed by its survey, each seeing
+        // one wall and the roof of a shed (neither alone pins it in plan),
+        // and that scan seeing all of it.
+        let shed = ([0.0, 0.0, 0.0], [4.0, 3.0, 2.5]);
+        let all_faces = [(0, -1.0), (0, 1.0), (1, -1.0), (1, 1.0), (2, 1.0)];
+        let clouds = [
+            box_faces(shed.0, shed.1, &[(0, -1.0), (2, 1.0)], 0.0),
+            box_faces(shed.0, shed.1, &[(1, 1.0), (2, 1.0)], 0.0),
+            box_faces(shed.0, shed.1, &all_faces, 0.05),
+        ];
+        let inputs: Vec<RegInput> = clouds
+            .iter()
+            .enumerate()
+            .map(|(k, c)| RegInput {
+                name: format!("s{k}"),
+                fine: c.clone(),
+                coarse: FeatureCloud::default(),
+                initial: None,
+                held: None,
+            })
+            .collect();
+        let s = RegistrationSettings::default();
+        let before = [Some(Pose::identity()), Some(Pose::identity()), None];
+        let verdict = |survey_error: Pose| {
+            let after = [None, None, Some(survey_error)];
+            let (correction, fit) = align_as_one(&inputs, &clouds, &clouds, &before, &after, &s);
+            (correction, survey_disagreement(&inputs, &before, &correction, fit, s.min_fitness))
+        };
+        let (correction, why) = verdict(Pose::identity());
+        assert!(why.is_none(), "a right survey: {why:?} ({correction:?})");
+        // Along the wall the reference sees: only the other scan pins that.
+        let (correction, why) = verdict(liftplan_core::frame::pose_xyz_yaw(0.0, 0.3, 0.0, 0.0));
+        assert!((correction.translation.y - 0.3).abs() < 0.01, "{correction:?}");
+        let why = why.expect("a survey 0.3 m off is refused");
+        assert!(
+            why.starts_with("the scans placed before it ('s0', 's1'), aligned with them as one, move 0.3"),
+            "{why}"
+        );
+        let (_, why) = verdict(liftplan_core::frame::pose_xyz_yaw(0.0, 0.0, 0.0, 0.5_f64.to_radians()));
+        assert!(why.is_some_and(|w| w.contains("degrees in yaw")), "a survey turned 0.5 degrees is refused");
+        // Far from them: nothing to align by, so nothing confirms the survey.
+        let (_, why) = verdict(liftplan_core::frame::pose_xyz_yaw(30.0, 0.0, 0.0, 0.0));
+        assert!(why.is_some_and(|w| w.contains("overlap them by 0.0 %")), "no overlap is refused");
     }
 
     #[test]
