@@ -167,6 +167,32 @@ clearance_m = 1.0
                     eprintln!("the GPU's rows differ from the CPU's");
                     std::process::exit(1);
                 }
+                // The longest-clear-rope table with its dilation on the device.
+                let rope_ms = |gpu: Option<&liftplan_depthmap::gpu::Gpu>| {
+                    (0..repeats.max(1))
+                        .map(|_| CSpace::build_on(&problem, &Settings::default(), gpu))
+                        .map(|b| (b.timings.max_hoist_ms, b))
+                        .min_by(|a, b| a.0.total_cmp(&b.0))
+                        .unwrap()
+                };
+                let (cpu_rope_ms, on_cpu) = rope_ms(None);
+                let (gpu_rope_ms, on_gpu) = rope_ms(Some(&g));
+                let same =
+                    on_gpu.max_hoist.iter().map(|h| h.to_bits()).eq(on_cpu.max_hoist.iter().map(|h| h.to_bits()));
+                println!(
+                    "
+The longest clear rope per cell (hybrid build), its dilation on {}: {gpu_rope_ms:.1} ms \
+                     against {cpu_rope_ms:.1} ms with it on the CPU ({:.2}x; best of {repeats}, the upload and read-back \
+                     inside); on the device: {}; the table equal to the CPU's bit for bit: {}.",
+                    g.name(),
+                    gpu_rope_ms / cpu_rope_ms,
+                    on_gpu.timings.dilation_on_gpu,
+                    if same { "yes" } else { "**NO**" }
+                );
+                if !same {
+                    eprintln!("the GPU's rope table differs from the CPU's");
+                    std::process::exit(1);
+                }
             }
             Err(e) => println!("| box queries on the GPU twin | none: {e} | - | - | - | - | - |"),
         }

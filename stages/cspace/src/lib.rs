@@ -183,6 +183,8 @@ pub struct BuildTimings {
     pub radial_ms: f64,
     pub max_hoist_ms: f64,
     pub hoist_bits_ms: f64,
+    /// Whether the longest-clear-rope dilation ran on a GPU ([`CSpace::build_on`]).
+    pub dilation_on_gpu: bool,
 }
 
 fn ms_since(t: std::time::Instant) -> f64 {
@@ -225,8 +227,18 @@ fn ignored_object(part: PartKind) -> Option<u32> {
 }
 
 impl CSpace {
-    /// Builds the tables for a lift.
+    /// Builds the tables for a lift, on the CPU.
     pub fn build(p: &Problem, s: &Settings) -> CSpace {
+        CSpace::build_on(p, s, None)
+    }
+
+    /// [`CSpace::build`], with the longest-clear-rope table's dilation on
+    /// `gpu` where one is given ([`liftplan_depthmap::gpu::Gpu::window_max`],
+    /// the CPU's bits; where the device refuses it, on the CPU, and
+    /// [`BuildTimings::dilation_on_gpu`] says which). The same tables either
+    /// way. The body and boom rows stay on the CPU: their box-query twin is
+    /// [`by_query::rows_by_query`], and the boom marking has no GPU twin.
+    pub fn build_on(p: &Problem, s: &Settings, gpu: Option<&liftplan_depthmap::gpu::Gpu>) -> CSpace {
         let t0 = std::time::Instant::now();
         let task = p.task;
         let crane = &task.crane;
@@ -287,7 +299,7 @@ impl CSpace {
         };
         cs.timings.radial_ms = ms_since(t_radial);
         let t_hoist = std::time::Instant::now();
-        cs.max_hoist = cs.max_hoist_table(p);
+        cs.max_hoist = cs.max_hoist_table(p, gpu);
         cs.timings.max_hoist_ms = ms_since(t_hoist);
         if s.strategy == Strategy::Full {
             let t_bits = std::time::Instant::now();
@@ -406,7 +418,7 @@ impl CSpace {
     /// overhead structure, where the rope below may be clear): both become "no
     /// clear rope" here, which only sends those rare cells to the exact online
     /// checks.
-    fn max_hoist_table(&self, p: &Problem) -> Vec<f32> {
+    fn max_hoist_table(&mut self, p: &Problem, gpu: Option<&liftplan_depthmap::gpu::Gpu>) -> Vec<f32> {
         let task = p.task;
         let crane = &task.crane;
         let map = p.map;
@@ -416,7 +428,10 @@ impl CSpace {
         // Cells within r of any point of the sheave's cell are within w cells of it.
         let w = (r_max / spec.cell).ceil() as usize + 1;
         let tops = map.pyramid.first().map(|l| l.2.as_slice()).unwrap_or(&[]);
-        let dilated = liftplan_depthmap::dilate::window_max(tops, spec.nx as usize, spec.ny as usize, w);
+        let (nx, ny) = (spec.nx as usize, spec.ny as usize);
+        let on_device = gpu.and_then(|g| g.window_max(tops, nx, ny, w).ok());
+        self.timings.dilation_on_gpu = on_device.is_some();
+        let dilated = on_device.unwrap_or_else(|| liftplan_depthmap::dilate::window_max(tops, nx, ny, w));
         (0..self.nr * self.ns)
             .into_par_iter()
             .map(|idx| {

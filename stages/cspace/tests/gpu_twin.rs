@@ -171,3 +171,29 @@ fn the_ground_is_left_out_for_the_body_only() {
         assert!(rows.cell_hits.iter().flatten().any(|h| h.obj == OBJ_GROUND), "the lowest boom rows reach the ground");
     }
 }
+
+/// The build with its rope dilation on the GPU gives the CPU build's
+/// tables: the longest clear rope of every cell bit for bit, and the rest.
+#[test]
+fn a_build_with_the_dilation_on_gpu_is_the_cpu_build() {
+    let devices = devices();
+    for (crane, tall, seed) in [(r#"model = "ac-700", boom_m = 40.0"#, false, 3), (r#"model = "tower-hh-60""#, true, 5)]
+    {
+        let t = task(crane);
+        let map = site(seed, tall);
+        let p = Problem { task: &t, chart: None, map: &map };
+        let s = Settings { swing_step_deg: 1.0, luff_step_deg: 1.0, trolley_step_m: 1.0, ..Settings::default() };
+        let cpu = CSpace::build(&p, &s);
+        assert!(!cpu.timings.dilation_on_gpu);
+        let limited = cpu.max_hoist.iter().filter(|h| h.is_finite()).count();
+        assert!(limited > 0, "{crane}: some cells should have a longest clear rope");
+        for g in &devices {
+            let dev = CSpace::build_on(&p, &s, Some(g));
+            assert!(dev.timings.dilation_on_gpu, "{crane} on {}: the dilation should run on the device", g.name());
+            let bits = |v: &[f32]| v.iter().map(|h| h.to_bits()).collect::<Vec<u32>>();
+            assert_eq!(bits(&dev.max_hoist), bits(&cpu.max_hoist), "{crane} on {}: longest clear rope", g.name());
+            assert_eq!(dev.cell_hits, cpu.cell_hits);
+            assert_eq!(dev.swing_hits, cpu.swing_hits);
+        }
+    }
+}

@@ -4,8 +4,24 @@
 //! Separable (rows, then columns), each pass the van Herk / Gil-Werman scheme:
 //! three comparisons per cell whatever the window. Cells outside the grid count
 //! as empty (`-inf`). Exact: every output is the maximum of its window.
+//!
+//! The maximum is taken in IEEE total order (`f32::total_cmp`) with NaN read
+//! as empty (`-inf`): so `+0.0` beats `-0.0` wherever both are in a window,
+//! and the result is one bit pattern whatever the order of comparisons. The
+//! GPU twin ([`crate::gpu::Gpu::window_max`]) compares in another order and
+//! gives the same bits.
 
 use rayon::prelude::*;
+
+/// The value a cell counts as: NaN is empty.
+fn canonical(v: f32) -> f32 {
+    if v.is_nan() { f32::NEG_INFINITY } else { v }
+}
+
+/// The larger in IEEE total order (`-0.0` below `+0.0`).
+fn total_max(a: f32, b: f32) -> f32 {
+    if b.total_cmp(&a).is_gt() { b } else { a }
+}
 
 /// `out[i] = max(src[i - w ..= i + w])`, indices outside `src` ignored.
 pub fn window_max_1d(src: &[f32], w: usize, out: &mut [f32]) {
@@ -13,17 +29,17 @@ pub fn window_max_1d(src: &[f32], w: usize, out: &mut [f32]) {
     let b = 2 * w + 1;
     // Padded so that every window is exactly b long and starts at padded i.
     let len = n + 2 * w;
-    let at = |p: usize| if p >= w && p < w + n { src[p - w] } else { f32::NEG_INFINITY };
+    let at = |p: usize| if p >= w && p < w + n { canonical(src[p - w]) } else { f32::NEG_INFINITY };
     let mut g = vec![f32::NEG_INFINITY; len];
     let mut h = vec![f32::NEG_INFINITY; len];
     for p in 0..len {
-        g[p] = if p % b == 0 { at(p) } else { g[p - 1].max(at(p)) };
+        g[p] = if p % b == 0 { at(p) } else { total_max(g[p - 1], at(p)) };
     }
     for p in (0..len).rev() {
-        h[p] = if p % b == b - 1 || p == len - 1 { at(p) } else { h[p + 1].max(at(p)) };
+        h[p] = if p % b == b - 1 || p == len - 1 { at(p) } else { total_max(h[p + 1], at(p)) };
     }
     for (i, o) in out.iter_mut().enumerate().take(n) {
-        *o = h[i].max(g[i + 2 * w]);
+        *o = total_max(h[i], g[i + 2 * w]);
     }
 }
 
@@ -65,19 +81,29 @@ mod tests {
             let grid: Vec<f32> = (0..nx * ny)
                 .map(|_| {
                     s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-                    if s >> 62 == 0 { f32::NEG_INFINITY } else { (s >> 40) as f32 / 1000.0 }
+                    match s >> 60 {
+                        0..=3 => f32::NEG_INFINITY,
+                        4 => f32::NAN,
+                        5 => -0.0,
+                        6 => 0.0,
+                        _ => ((s >> 40) & 0xfffff) as f32 / 1000.0 - 500.0,
+                    }
                 })
                 .collect();
             let got = window_max(&grid, nx, ny, w);
             for j in 0..ny {
                 for i in 0..nx {
+                    // Naively, in the order of the window: NaN empty, +0 over -0.
                     let mut m = f32::NEG_INFINITY;
                     for jj in j.saturating_sub(w)..=(j + w).min(ny - 1) {
                         for ii in i.saturating_sub(w)..=(i + w).min(nx - 1) {
-                            m = m.max(grid[jj * nx + ii]);
+                            let v = grid[jj * nx + ii];
+                            if !v.is_nan() && (v > m || (v == 0.0 && m == 0.0 && v.is_sign_positive())) {
+                                m = v;
+                            }
                         }
                     }
-                    prop_assert_eq!(got[j * nx + i], m);
+                    prop_assert_eq!(got[j * nx + i].to_bits(), m.to_bits());
                 }
             }
         }

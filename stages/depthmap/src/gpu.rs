@@ -44,11 +44,13 @@
 //! again).
 //!
 //! The box queries' and clearances' twin, [`Gpu::upload_map`],
-//! [`Gpu::hits_where`] and [`Gpu::clearances_where`], is in `gpu/screen.rs`.
+//! [`Gpu::hits_where`] and [`Gpu::clearances_where`], is in `gpu/screen.rs`;
+//! the dilation's, [`Gpu::window_max`], in `gpu/dilate.rs`.
 
 use crate::mdm::{GridSpec, Interval, Mode, PointSource, Raw, local_point};
 use wgpu::util::DeviceExt;
 
+mod dilate;
 mod screen;
 pub use screen::{GpuMap, MAX_COORD_M, ScreenCounts};
 
@@ -81,6 +83,8 @@ pub struct Gpu {
     /// The box-query screen (`screen.rs`).
     screen_boxes: wgpu::ComputePipeline,
     clear_boxes: wgpu::ComputePipeline,
+    /// The dilation's twin (`gpu/dilate.rs`).
+    window_max: wgpu::ComputePipeline,
     /// Loop iterations one invocation may run, where the device cuts loops
     /// short (lavapipe: 65535); `None` where the probe ran to its end.
     loop_cap: Option<u32>,
@@ -152,6 +156,10 @@ impl Gpu {
             label: Some("box query screen"),
             source: wgpu::ShaderSource::Wgsl(screen::SHADER.into()),
         });
+        let dilation = dev.device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("dilation"),
+            source: wgpu::ShaderSource::Wgsl(dilate::SHADER.into()),
+        });
         let pipeline_in = |module: &wgpu::ShaderModule, entry: &str| {
             dev.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
                 label: Some(entry),
@@ -177,6 +185,7 @@ impl Gpu {
             large_cells: pipeline("large_cells"),
             screen_boxes: pipeline_in(&screen, "screen_boxes"),
             clear_boxes: pipeline_in(&screen, "clear_boxes"),
+            window_max: pipeline_in(&dilation, "window_max"),
             buffer_limit: device_buffer_limit(&dev.device),
             loop_cap: None,
             dev,

@@ -631,3 +631,38 @@ fn gpu_clearance_cells_written_short_by_the_device_go_to_the_cpu() {
 fn z_order(i: u32, j: u32) -> u32 {
     (0..16).map(|b| ((i >> b) & 1) << (2 * b) | ((j >> b) & 1) << (2 * b + 1)).sum()
 }
+
+/// The dilation's twin gives the CPU's bits: random grids with empty cells,
+/// NaN, both zeros and equal values, windows from none to wider than the
+/// grid, and a depth map's own cell tops.
+#[test]
+fn gpu_and_cpu_dilations_are_equal() {
+    use liftplan_depthmap::dilate::window_max;
+    for_each_gpu(|g| {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
+        let mut grids: Vec<(Vec<f32>, usize, usize, usize)> = Vec::new();
+        for &(nx, ny) in &[(1, 1), (1, 9), (9, 1), (17, 5), (64, 48), (300, 257)] {
+            for &w in &[0usize, 1, 3, 8, 400] {
+                let grid: Vec<f32> = (0..nx * ny)
+                    .map(|_| match rng.random_range(0..10) {
+                        0..=3 => f32::NEG_INFINITY,
+                        4 => f32::NAN,
+                        5 => -0.0,
+                        6 => 0.0,
+                        _ => rng.random_range(0..64) as f32 * 0.25 - 4.0,
+                    })
+                    .collect();
+                grids.push((grid, nx, ny, w));
+            }
+        }
+        let (map, _) = build_cpu(&site(20_000, 3, true), &Settings { cell_m: 0.5, ..Settings::default() }).unwrap();
+        let tops = map.pyramid[0].2.clone();
+        grids.push((tops, map.spec.nx as usize, map.spec.ny as usize, 9));
+        for (grid, nx, ny, w) in &grids {
+            let cpu = window_max(grid, *nx, *ny, *w);
+            let dev = g.window_max(grid, *nx, *ny, *w).unwrap();
+            let bits = |v: &[f32]| v.iter().map(|x| x.to_bits()).collect::<Vec<u32>>();
+            assert_eq!(bits(&dev), bits(&cpu), "{nx} x {ny}, w = {w}");
+        }
+    });
+}
