@@ -1173,7 +1173,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
         if let Some(r) = results[j].as_mut() {
             r.registered = false;
             r.warning = Some(format!(
-                "scan '{}' is not merged: it overlapped the scans placed before it too little to be aligned by them, so it was placed at the pose the station file gives, and the scans placed after it against it; {why}: the survey of that station and the scans do not agree; check the stations' poses",
+                "scan '{}' is not merged: it overlapped the scans placed before it too little to be aligned by them, so it was placed at the pose the station file gives, and the scans placed after it against it; {why}: the survey of that station and the scans do not agree; check the stations' poses, and if they are right, the scans overlap too little to confirm them (a vehicle beside a scanner can hide much of its view): scan again with the view clear, or add a station between them",
                 inputs[j].name,
             ));
         }
@@ -1362,8 +1362,13 @@ fn survey_disagreement(
     };
     Some(match too_far {
         Some(o) => format!(
-            "{those} move{verb_s} {:.3} m in plan, {:.3} m in height and {:.3} degrees in yaw (at most {} m and {} degrees)",
-            o.plan_m, o.height_m, o.yaw_deg, SURVEY_AGREEMENT_M, SURVEY_AGREEMENT_DEG
+            "{those} move{verb_s} {:.3} m in plan, {:.3} m in height and {:.3} degrees in yaw (at most {} m and {} degrees; overlapping them by {:.1} % there)",
+            o.plan_m,
+            o.height_m,
+            o.yaw_deg,
+            SURVEY_AGREEMENT_M,
+            SURVEY_AGREEMENT_DEG,
+            100.0 * fit
         ),
         None => format!(
             "{those} overlap{verb_s} them by {:.1} % (at least {:.1} % required)",
@@ -1713,7 +1718,8 @@ mod tests {
         assert!((correction.translation.y - 0.3).abs() < 0.01, "{correction:?}");
         let why = why.expect("a survey 0.3 m off is refused");
         assert!(
-            why.starts_with("the scans placed before it ('s0', 's1'), aligned with them as one, move 0.3"),
+            why.starts_with("the scans placed before it ('s0', 's1'), aligned with them as one, move 0.3")
+                && why.contains("overlapping them by"),
             "{why}"
         );
         let (_, why) = verdict(liftplan_core::frame::pose_xyz_yaw(0.0, 0.0, 0.0, 0.5_f64.to_radians()));
