@@ -1173,7 +1173,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
         if let Some(r) = results[j].as_mut() {
             r.registered = false;
             r.warning = Some(format!(
-                "scan '{}' is not merged: it overlapped the scans placed before it too little to be aligned by them, so it was placed at the pose the station file gives, and the scans placed after it against it; {why}: the survey of that station and the scans do not agree; check the stations' poses, and if they are right, the scans overlap too little to confirm them (a vehicle beside a scanner can hide much of its view): scan again with the view clear, or add a station between them",
+                "scan '{}' is not merged: it overlapped the scans placed before it too little to be aligned by them, so it was placed at the pose the station file gives, and the scans placed after it against it; {why}",
                 inputs[j].name,
             ));
         }
@@ -1362,7 +1362,7 @@ fn survey_disagreement(
     };
     Some(match too_far {
         Some(o) => format!(
-            "{those} move{verb_s} {:.3} m in plan, {:.3} m in height and {:.3} degrees in yaw (at most {} m and {} degrees; overlapping them by {:.1} % there)",
+            "{those} move{verb_s} {:.3} m in plan, {:.3} m in height and {:.3} degrees in yaw (at most {} m and {} degrees; overlapping them by {:.1} % there): the survey of that station and the scans do not agree; check the stations' poses, and if they are right, the scans overlap too little to pin them (a vehicle beside a scanner can hide much of its view): scan again with the view clear, or add a station between them",
             o.plan_m,
             o.height_m,
             o.yaw_deg,
@@ -1371,7 +1371,7 @@ fn survey_disagreement(
             100.0 * fit
         ),
         None => format!(
-            "{those} overlap{verb_s} them by {:.1} % (at least {:.1} % required)",
+            "{those} overlap{verb_s} them by {:.1} % (at least {:.1} % required): too little to confirm the survey of that station; add a station between them, or leave the scan out",
             100.0 * fit,
             100.0 * min_fitness
         ),
