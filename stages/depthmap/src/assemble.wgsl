@@ -29,15 +29,7 @@ const MAX_DIM: u32 = 65535u;
 
 fn item(g: vec3<u32>) -> u32 { return g.x + g.y * MAX_DIM * GROUP; }
 
-// mdm::f32_key and its inverse, on bit patterns.
-fn key_of(bits: u32) -> u32 {
-    if ((bits & 0x80000000u) != 0u) { return ~bits; }
-    return bits | 0x80000000u;
-}
-fn bits_of(key: u32) -> u32 {
-    if ((key & 0x80000000u) != 0u) { return key & 0x7fffffffu; }
-    return ~key;
-}
+// key_of and bits_of (mdm::f32_key and its inverse) come from keys.wgsl.
 
 // mdm::raster::floor_index: floor(x) clamped to [-1, 2^30] first, so a point
 // far off the grid (a configured extent) converts the same way on both paths.

@@ -54,8 +54,9 @@ mod dilate;
 mod screen;
 pub use screen::{GpuMap, MAX_COORD_M, ScreenCounts};
 
-/// The passes, in WGSL; `{LARGE}` is replaced by [`LARGE`] when compiled.
-const SHADER: &str = include_str!("assemble.wgsl");
+/// The passes, in WGSL, after the key functions they share with the other
+/// shaders (`keys.wgsl`); `{LARGE}` is replaced by [`LARGE`] when compiled.
+const SHADER: &str = concat!(include_str!("keys.wgsl"), include_str!("assemble.wgsl"));
 
 const GROUP: u32 = 256;
 const MERGE_GROUP: u32 = 64;

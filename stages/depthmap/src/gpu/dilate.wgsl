@@ -15,15 +15,9 @@ const GROUP: u32 = 256u;
 const MAX_DIM: u32 = 65535u;
 const NEG_INF: u32 = 0xff800000u;
 
-// IEEE total order as an unsigned order (mdm::f32_key).
-fn key_of(bits: u32) -> u32 {
-    if ((bits & 0x80000000u) != 0u) { return ~bits; }
-    return bits | 0x80000000u;
-}
-fn bits_of(key: u32) -> u32 {
-    if ((key & 0x80000000u) != 0u) { return key & 0x7fffffffu; }
-    return ~key;
-}
+// key_of and bits_of (IEEE total order as an unsigned order) come from
+// keys.wgsl.
+
 // NaN counts as empty.
 fn canonical(bits: u32) -> u32 {
     if ((bits & 0x7fffffffu) > 0x7f800000u) { return NEG_INF; }
