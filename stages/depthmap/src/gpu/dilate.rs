@@ -38,7 +38,7 @@ impl Gpu {
                 self.name()
             ));
         }
-        // Past the grid a window only repeats its edge, and w fits a u32.
+        // A window wider than the grid covers no more of it; so w fits a u32.
         let w = w.min(nx.max(ny)) as u32;
         let words: Vec<u32> = grid.iter().map(|v| v.to_bits()).collect();
         let n = grid.len() as u32;
