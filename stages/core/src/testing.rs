@@ -1,4 +1,5 @@
-//! What the workspace's property tests share: how many cases each runs.
+//! What the workspace's property tests share: how many cases each runs, and
+//! how the readers' tests damage a file.
 //!
 //! Nothing outside tests calls this module, and it must not grow test
 //! fixtures: scenes and files belong to `liftplan-fixtures`.
@@ -27,5 +28,60 @@ pub fn proptest_cases(default: u32) -> u32 {
         Err(std::env::VarError::NotUnicode(v)) => {
             panic!("{CASES_VAR}={v:?}: expected a whole number of cases above zero")
         }
+    }
+}
+
+/// Copy `k` of a file's `bytes`, damaged in one of four ways by `k`: a few
+/// bits flipped; a 32-bit field (a length, a count, a float) overwritten
+/// with an extreme value; the file cut short; a run of it copied over
+/// another place. Deterministic, so a failure names a copy that can be made
+/// again. The readers' tests run a few hundred of these on every test run,
+/// beside the fuzz targets, which need a nightly toolchain.
+pub fn damaged(bytes: &[u8], k: u64) -> Vec<u8> {
+    let mut rng = crate::rng::seeded(k, "damaged copy");
+    let mut at = |n: usize| crate::rng::index(&mut rng, n.max(1));
+    let mut out = bytes.to_vec();
+    if out.len() < 8 {
+        out.truncate(at(out.len() + 1));
+        return out;
+    }
+    match k % 4 {
+        0 => {
+            for _ in 0..1 + at(8) {
+                let i = at(out.len());
+                out[i] ^= 1 << at(8);
+            }
+        }
+        1 => {
+            let i = at(out.len() - 4);
+            let v: u32 = [0xFFFF_FFFF, 0x7FFF_FFFF, 0x8000_0000, 0x7F80_0000, 0x7FC0_0000, 0][at(6)];
+            let v = if at(2) == 0 { v.to_le_bytes() } else { v.to_be_bytes() };
+            out[i..i + 4].copy_from_slice(&v);
+        }
+        2 => out.truncate(at(out.len())),
+        _ => {
+            let len = 1 + at(64.min(out.len() / 2));
+            let (from, to) = (at(out.len() - len), at(out.len() - len));
+            let run = out[from..from + len].to_vec();
+            out[to..to + len].copy_from_slice(&run);
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn damaged_copies_differ_and_repeat() {
+        let file: Vec<u8> = (0..=255).collect();
+        for k in 0..64 {
+            assert_eq!(damaged(&file, k), damaged(&file, k), "copy {k} is made again the same");
+        }
+        // A run copied onto itself, or a bit flipped twice, leaves a copy whole.
+        let whole = (0..64).filter(|&k| damaged(&file, k) == file).count();
+        assert!(whole <= 4, "{whole} of 64 copies undamaged");
+        assert!(damaged(&[1, 2, 3], 5).len() <= 3);
     }
 }

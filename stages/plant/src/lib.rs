@@ -253,7 +253,10 @@ fn caps_for(prims: &[(&rvm::Primitive, usize)]) -> (Vec<tess::Caps>, usize) {
         'n: for dx in -1..=1 {
             for dy in -1..=1 {
                 for dz in -1..=1 {
-                    for &o in grid.get(&[c[0] + dx, c[1] + dy, c[2] + dz]).into_iter().flatten() {
+                    // Saturating: a damaged file's coordinates can round to
+                    // i64::MAX millimetres.
+                    let near = [c[0].saturating_add(dx), c[1].saturating_add(dy), c[2].saturating_add(dz)];
+                    for &o in grid.get(&near).into_iter().flatten() {
                         let f = &ends[o];
                         if o == k || f.prim == e.prim {
                             continue;
