@@ -2,6 +2,7 @@
 //! temporary folder and runs the real executable.
 
 mod backbone;
+mod damaged_files;
 mod demo;
 mod util;
 mod watch;
