@@ -22,7 +22,7 @@ fuzz_target!(|data: &[u8]| {
     let ext = FORMATS[sel as usize % FORMATS.len()];
     let mut body = body.to_vec();
     if ext == "e57" && (sel as usize / FORMATS.len()) % 2 == 1 {
-        write_page_checksums(&mut body);
+        liftplan_core::testing::e57_page_checksums(&mut body);
     }
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join(format!("scan.{ext}"));
@@ -34,24 +34,3 @@ fuzz_target!(|data: &[u8]| {
         }
     }
 });
-
-/// Writes the CRC-32C of each whole 1024-byte page's first 1020 bytes into
-/// its last four, big-endian, as E57 stores them.
-fn write_page_checksums(body: &mut [u8]) {
-    for page in body.chunks_exact_mut(1024) {
-        let crc = crc32c(&page[..1020]);
-        page[1020..].copy_from_slice(&crc.to_be_bytes());
-    }
-}
-
-/// CRC-32C (Castagnoli), bit by bit: fuzz inputs are small.
-fn crc32c(data: &[u8]) -> u32 {
-    let mut crc = !0u32;
-    for &b in data {
-        crc ^= b as u32;
-        for _ in 0..8 {
-            crc = if crc & 1 == 1 { (crc >> 1) ^ 0x82F6_3B78 } else { crc >> 1 };
-        }
-    }
-    !crc
-}
