@@ -1,8 +1,8 @@
 //! What the workspace's property tests share: how many cases each runs, and
 //! how the readers' tests damage a file.
 //!
-//! Nothing outside tests calls this module, and it must not grow test
-//! fixtures: scenes and files belong to `liftplan-fixtures`.
+//! Nothing outside tests and the fuzz targets calls this module, and it must
+//! not grow test fixtures: scenes and files belong to `liftplan-fixtures`.
 
 /// Environment variable that sets every property test's case count.
 pub const CASES_VAR: &str = "PROPTEST_CASES";
