@@ -180,8 +180,7 @@ clearance_m = 1.0
                 let same =
                     on_gpu.max_hoist.iter().map(|h| h.to_bits()).eq(on_cpu.max_hoist.iter().map(|h| h.to_bits()));
                 println!(
-                    "
-The longest clear rope per cell (hybrid build), its dilation on {}: {gpu_rope_ms:.1} ms \
+                    "\nThe longest clear rope per cell (hybrid build), its dilation on {}: {gpu_rope_ms:.1} ms \
                      against {cpu_rope_ms:.1} ms with it on the CPU ({:.2}x; best of {repeats}, the upload and read-back \
                      inside); on the device: {}; the table equal to the CPU's bit for bit: {}.",
                     g.name(),
