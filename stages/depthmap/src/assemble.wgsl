@@ -24,12 +24,8 @@ struct Params {
 @group(0) @binding(10) var<storage, read_write> intervals: array<u32>;
 @group(0) @binding(11) var<storage, read_write> large: array<u32>;
 
-const GROUP: u32 = 256u;
-const MAX_DIM: u32 = 65535u;
-
-fn item(g: vec3<u32>) -> u32 { return g.x + g.y * MAX_DIM * GROUP; }
-
-// key_of and bits_of (mdm::f32_key and its inverse) come from keys.wgsl.
+// GROUP, MAX_DIM, item, key_of and bits_of (mdm::f32_key and its inverse)
+// come from common.wgsl.
 
 // mdm::raster::floor_index: floor(x) clamped to [-1, 2^30] first, so a point
 // far off the grid (a configured extent) converts the same way on both paths.

@@ -54,9 +54,9 @@ mod dilate;
 mod screen;
 pub use screen::{GpuMap, MAX_COORD_M, ScreenCounts};
 
-/// The passes, in WGSL, after the key functions they share with the other
-/// shaders (`keys.wgsl`); `{LARGE}` is replaced by [`LARGE`] when compiled.
-const SHADER: &str = concat!(include_str!("keys.wgsl"), include_str!("assemble.wgsl"));
+/// The passes, in WGSL, after what they share with the dilation's shader
+/// (`common.wgsl`); `{LARGE}` is replaced by [`LARGE`] when compiled.
+const SHADER: &str = concat!(include_str!("common.wgsl"), include_str!("assemble.wgsl"));
 
 const GROUP: u32 = 256;
 const MERGE_GROUP: u32 = 64;

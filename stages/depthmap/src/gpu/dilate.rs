@@ -11,7 +11,7 @@
 
 use super::{Gpu, words_from_bytes, words_to_bytes};
 
-pub(super) const SHADER: &str = concat!(include_str!("../keys.wgsl"), include_str!("dilate.wgsl"));
+pub(super) const SHADER: &str = concat!(include_str!("../common.wgsl"), include_str!("dilate.wgsl"));
 
 impl Gpu {
     /// [`crate::dilate::window_max`] on the device: the same bits.

@@ -11,12 +11,10 @@ struct Params {
 @group(0) @binding(1) var<storage, read> src: array<u32>;
 @group(0) @binding(2) var<storage, read_write> dst: array<u32>;
 
-const GROUP: u32 = 256u;
-const MAX_DIM: u32 = 65535u;
 const NEG_INF: u32 = 0xff800000u;
 
-// key_of and bits_of (IEEE total order as an unsigned order) come from
-// keys.wgsl.
+// item, key_of and bits_of (IEEE total order as an unsigned order) come from
+// common.wgsl.
 
 // NaN counts as empty.
 fn canonical(bits: u32) -> u32 {
@@ -27,7 +25,7 @@ fn canonical(bits: u32) -> u32 {
 // One output cell: the largest of its window along one axis, in total order.
 @compute @workgroup_size(256)
 fn window_max(@builtin(global_invocation_id) g: vec3<u32>) {
-    let c = g.x + g.y * MAX_DIM * GROUP;
+    let c = item(g);
     if (c >= P.nx * P.ny) { return; }
     let i = c % P.nx;
     let j = c / P.nx;
