@@ -1381,10 +1381,11 @@ fn survey_disagreement(
 /// How far the scans placed before a scan placed by its survey (the
 /// reference first) may move, aligned as one with it and the scans placed
 /// after it, for the survey and the scans to agree. Measured in the
-/// four-station van case with the second station surveyed: 0.0009 m and 0.005 degrees with the
-/// right survey; 0.020 m and 0.023 degrees with the survey 0.1 m off across
-/// (the scans pin that direction weakly), 0.28 m with it 0.3 m off along,
-/// 0.42 m and 0.55 degrees with it 0.5 degrees off. One layout's evidence.
+/// four-station van case with the second station surveyed: 0.0009 m and
+/// 0.005 degrees with the right survey; 0.020 m and 0.023 degrees with the
+/// survey 0.1 m off across (the scans pin that direction weakly), 0.28 m
+/// with it 0.3 m off along, 0.42 m and 0.55 degrees with it 0.5 degrees off.
+/// One layout's evidence (reports/scans.md has more).
 pub const SURVEY_AGREEMENT_M: f64 = 0.01;
 /// The yaw counterpart of [`SURVEY_AGREEMENT_M`] (degrees).
 pub const SURVEY_AGREEMENT_DEG: f64 = 0.05;
