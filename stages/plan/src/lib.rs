@@ -152,6 +152,10 @@ pub struct LiftPlan {
 pub struct ValidatorReport {
     pub ok: bool,
     pub samples: usize,
+    /// Of `samples`, those added where two neighbours' distances did not rule
+    /// out a closer approach between them.
+    #[serde(default)]
+    pub refined_samples: usize,
     pub seconds: f64,
     pub problems: Vec<String>,
 }
@@ -397,6 +401,7 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
         validator: ValidatorReport {
             ok: verdict.ok,
             samples: verdict.samples,
+            refined_samples: verdict.refined_samples,
             seconds: verdict.seconds,
             problems: verdict.problems,
         },

@@ -329,14 +329,20 @@ pub struct Verdict {
     pub ok: bool,
     pub moves: Vec<MoveCheck>,
     pub problems: Vec<String>,
+    /// Samples checked, those added between the evenly spaced ones included.
     pub samples: usize,
+    /// Samples added where two neighbours did not rule out a closer approach
+    /// between them.
+    pub refined_samples: usize,
     pub seconds: f64,
 }
 
-fn samples_for(task: &LiftTask, m: &Move, sample_m: f64) -> usize {
+/// The farthest any point of any part (crane, rope, hook, load) moves per
+/// unit of the move's joint (m per rad for swing, luff and load yaw, m per m
+/// for trolley and hoist).
+fn lever_for(task: &LiftTask, m: &Move) -> f64 {
     let crane = &task.crane;
-    let delta = m.delta().abs();
-    let lever = match m.joint {
+    match m.joint {
         liftplan_cspace::Joint::Swing => {
             // Farthest point of any part from the slewing axis.
             let o = crane.slew_center();
@@ -364,8 +370,13 @@ fn samples_for(task: &LiftTask, m: &Move, sample_m: f64) -> usize {
         }
         liftplan_cspace::Joint::Hoist => 1.0,
         liftplan_cspace::Joint::Rotate => 2.0 * task.load.bounding_radius(),
-    };
-    ((delta * lever / sample_m).ceil() as usize).max(1) + 1
+    }
+}
+
+/// Samples evenly spaced along a move that moves `lever_m` per unit of
+/// `delta`, so that no point moves more than `sample_m` between two.
+fn samples_for(delta: f64, lever_m: f64, sample_m: f64) -> usize {
+    ((delta * lever_m / sample_m).ceil() as usize).max(1) + 1
 }
 
 /// Checks one configuration: every part's distance against its requirement and the chart.
@@ -417,8 +428,9 @@ fn check_config(
                 b = b.with_underside_raised(rules.support_m);
             }
         }
-        let nearest = nearest(world, &b, !hanging, (rules.clearance_m * 3.0).max(3.0));
-        if nearest.distance_m < required - 1e-3 {
+        let nearest = nearest(world, &b, !hanging, search_cutoff_m(rules));
+        // Written so that a distance that is not a number fails too.
+        if !(nearest.distance_m >= required - DISTANCE_TOLERANCE_M) {
             problems.push(format!(
                 "{} is {:.3} m from {} (needs {:.2} m)",
                 kind.name(),
@@ -439,6 +451,71 @@ fn check_config(
         });
     }
     (out, problems)
+}
+
+/// Distances below the requirement by no more than this pass (m): the
+/// samples' own tolerance.
+const DISTANCE_TOLERANCE_M: f64 = 1e-3;
+
+/// Two samples whose points are at most this far apart are not split
+/// further (m). Everywhere between them every part is then at least its
+/// requirement less `DISTANCE_TOLERANCE_M + REFINED_GAP_M / 2` (2 mm) from
+/// every obstacle.
+const REFINED_GAP_M: f64 = 2e-3;
+
+/// The most any point may move in one move (m): a crane's longest moves
+/// are a few hundred metres. It bounds the samples, evenly spaced and added
+/// (one per millimetre of movement at most).
+const MAX_MOVED_M: f64 = 10_000.0;
+
+/// How far the point search looks beyond a part (m): a part farther than
+/// this from every scanned point is reported at its mesh distance or at
+/// infinity, so this is the most its distance is known to be.
+fn search_cutoff_m(rules: &Rules) -> f64 {
+    (rules.clearance_m * 3.0).max(3.0)
+}
+
+/// One configuration along a move, at fraction `t` of it, and what it found.
+struct Sample {
+    t: f64,
+    checks: Vec<SampleCheck>,
+    problems: Vec<String>,
+}
+
+/// Whether every part keeps its requirement (less the tolerance) everywhere
+/// between samples `a` and `b`, between which no point moves more than
+/// `gap_m`: each point of a part in between is within `x` of where it was at
+/// `a` and within `gap_m - x` of where it is at `b`, so its distance is at
+/// least `max(d_a - x, d_b - gap_m + x) >= (d_a + d_b - gap_m) / 2`.
+fn gap_holds(a: &[SampleCheck], b: &[SampleCheck], gap_m: f64, cutoff_m: f64) -> bool {
+    let known = |c: &SampleCheck| c.nearest.distance_m.min(cutoff_m);
+    let holds_from = |c: &SampleCheck| known(c) - gap_m >= c.required_m - DISTANCE_TOLERANCE_M;
+    a.iter().all(|ca| match b.iter().find(|cb| cb.part == ca.part) {
+        Some(cb) => (known(ca) + known(cb) - gap_m) / 2.0 >= ca.required_m.max(cb.required_m) - DISTANCE_TOLERANCE_M,
+        None => holds_from(ca),
+    }) && b.iter().filter(|cb| !a.iter().any(|ca| ca.part == cb.part)).all(holds_from)
+}
+
+/// The samples to add between `a` and `b` (in order along the move) so that
+/// [`gap_holds`] between every two neighbours, or they are `REFINED_GAP_M`
+/// apart. `moved_m` is the most a point moves over the whole move; `at`
+/// checks the configuration at a fraction of it. Not below a sample that
+/// already found a problem: the move is rejected anyway.
+fn between(a: &Sample, b: &Sample, moved_m: f64, cutoff_m: f64, at: &(impl Fn(f64) -> Sample + Sync)) -> Vec<Sample> {
+    let gap_m = moved_m * (b.t - a.t);
+    if gap_m <= REFINED_GAP_M
+        || !a.problems.is_empty()
+        || !b.problems.is_empty()
+        || gap_holds(&a.checks, &b.checks, gap_m, cutoff_m)
+    {
+        return Vec::new();
+    }
+    let mid = at(0.5 * (a.t + b.t));
+    let mut out = between(a, &mid, moved_m, cutoff_m, at);
+    let after = between(&mid, b, moved_m, cutoff_m, at);
+    out.push(mid);
+    out.extend(after);
+    out
 }
 
 /// Validates a plan: the moves from pick to set, the first and last being the
@@ -469,26 +546,47 @@ pub fn validate(
         }
     }
     let mut move_checks = Vec::new();
-    let mut total = 0;
+    let (mut total, mut refined) = (0, 0);
+    let cutoff_m = search_cutoff_m(rules);
     for (mi, m) in moves.iter().enumerate() {
-        let n = samples_for(task, m, rules.sample_m);
-        total += n;
+        let lever_m = lever_for(task, m);
+        let moved_m = m.delta().abs() * lever_m;
+        if !(moved_m <= MAX_MOVED_M) {
+            problems.push(format!(
+                "move {} ({:?}) moves a point {moved_m} m, more than the validator checks ({MAX_MOVED_M} m)",
+                mi + 1,
+                m.joint
+            ));
+            continue;
+        }
+        let n = samples_for(m.delta().abs(), lever_m, rules.sample_m);
         let landing = landing_moves.get(mi).copied().unwrap_or(false);
-        let results: Vec<(Vec<SampleCheck>, Vec<String>)> = (0..n)
-            .into_par_iter()
-            .map(|s| {
-                let t = s as f64 / (n - 1).max(1) as f64;
-                let (a, b) = (m.from.to_array(), m.to.to_array());
-                let mut v = a;
-                let j = m.joint.index();
-                v[j] = a[j] + (b[j] - a[j]) * t;
-                check_config(task, chart, world, rules, &Config::from_array(v), landing)
-            })
-            .collect();
+        let at = |t: f64| {
+            let (a, b) = (m.from.to_array(), m.to.to_array());
+            let mut v = a;
+            let j = m.joint.index();
+            v[j] = a[j] + (b[j] - a[j]) * t;
+            let (checks, problems) = check_config(task, chart, world, rules, &Config::from_array(v), landing);
+            Sample { t, checks, problems }
+        };
+        let even: Vec<Sample> = (0..n).into_par_iter().map(|s| at(s as f64 / (n - 1).max(1) as f64)).collect();
+        // Where two neighbours' distances do not rule out a closer approach
+        // between them, more samples there.
+        let added: Vec<Vec<Sample>> =
+            even.par_windows(2).map(|w| between(&w[0], &w[1], moved_m, cutoff_m, &at)).collect();
+        let extra: usize = added.iter().map(Vec::len).sum();
+        total += n + extra;
+        refined += extra;
+        let mut in_order: Vec<Sample> = Vec::with_capacity(n + extra);
+        let mut added = added.into_iter();
+        for s in even {
+            in_order.push(s);
+            in_order.extend(added.next().unwrap_or_default());
+        }
         let mut move_problems: Vec<String> = Vec::new();
         let mut tight: Option<SampleCheck> = None;
         let mut util: Option<SampleCheck> = None;
-        for (checks, probs) in results {
+        for Sample { checks, problems: probs, .. } in in_order {
             for p in probs {
                 if !move_problems.contains(&p) && move_problems.len() < 5 {
                     move_problems.push(p);
@@ -508,7 +606,12 @@ pub fn validate(
             problems.push(format!("move {} ({:?}): {p}", mi + 1, m.joint));
         }
         if let (Some(t), Some(u)) = (tight, util) {
-            move_checks.push(MoveCheck { samples: n, tightest: t, max_utilisation: u, problems: move_problems });
+            move_checks.push(MoveCheck {
+                samples: n + extra,
+                tightest: t,
+                max_utilisation: u,
+                problems: move_problems,
+            });
         }
     }
     Verdict {
@@ -516,6 +619,7 @@ pub fn validate(
         moves: move_checks,
         problems,
         samples: total,
+        refined_samples: refined,
         seconds: t0.elapsed().as_secs_f64(),
     }
 }

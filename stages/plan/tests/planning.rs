@@ -203,3 +203,136 @@ fn tower_crane_plans_over_the_wall_with_the_trolley() {
     let last = plan.moves.last().unwrap().to;
     assert!((t.crane.radius_m(last.radial) - 30f64.hypot(20.0)).abs() < 1e-6);
 }
+
+/// A load turning on its rope past a scanned point: its corner passes the
+/// point at 5 cm between two samples that each see it more than 9 cm away.
+/// Samples alone (0.5 m of corner movement apart, the coarsest setting) pass
+/// the move at an 8 cm clearance; the validator must look between them.
+#[test]
+fn validator_finds_a_closer_approach_between_its_samples() {
+    let t = task(-14.0);
+    let start = t.start();
+    let turned = Config { load_yaw_rad: start.load_yaw_rad + 0.1, ..start };
+    let mid = Config { load_yaw_rad: start.load_yaw_rad + 0.05, ..start };
+    // The point 5 cm out from a corner of the load at mid-turn, at the load's
+    // mid-height, straight out from the rope.
+    let b = t.crane.load_obb(&mid, &t.load);
+    let corner = b.axis(0) * b.half.x + b.axis(1) * b.half.y;
+    let out = liftplan_core::frame::Vec3::new(corner.x, corner.y, 0.0).normalize();
+    let p = b.center + corner + out * 0.05;
+    let world = World::new(&TriMesh::default(), &[[p.x, p.y, p.z]], &[false]).unwrap();
+    let rules = Rules { clearance_m: 0.08, landing: vec![], landing_clearance_m: 0.08, sample_m: 0.5, support_m: 0.05 };
+    let turn = |from: Config, to: Config| Move { joint: Joint::Rotate, from, to };
+    // Either end alone keeps the clearance, and the move is one gap between them.
+    for end in [start, turned] {
+        let v = validate(&t, None, &world, &rules, &[turn(end, end)], &[false]);
+        assert!(v.ok, "{:?}", v.problems);
+        assert!(v.moves[0].tightest.nearest.distance_m > 0.09, "{:?}", v.moves[0].tightest);
+    }
+    let v = validate(&t, None, &world, &rules, &[turn(start, turned)], &[false]);
+    assert!(v.refined_samples > 0 && v.samples == 2 + v.refined_samples, "{} {}", v.samples, v.refined_samples);
+    assert!(!v.ok, "the turn passed: {:?}", v.moves[0].tightest);
+    assert!(
+        v.problems.iter().any(|p| p.contains("load is 0.05") && p.contains("scanned structure")),
+        "{:?}",
+        v.problems
+    );
+    // The same turn with the point 1 m farther out passes without a sample
+    // added: the ends' distances leave no room for a closer approach.
+    let far = p + out * 1.0;
+    let world = World::new(&TriMesh::default(), &[[far.x, far.y, far.z]], &[false]).unwrap();
+    let v = validate(&t, None, &world, &rules, &[turn(start, turned)], &[false]);
+    assert!(v.ok && v.refined_samples == 0, "{:?} {}", v.problems, v.refined_samples);
+}
+
+#[test]
+fn validator_refuses_a_move_it_cannot_sample() {
+    let t = task(-14.0);
+    let start = t.start();
+    let world = World::new(&TriMesh::default(), &[], &[]).unwrap();
+    let rules = Rules { clearance_m: 1.0, landing: vec![], landing_clearance_m: 0.2, sample_m: 0.05, support_m: 0.05 };
+    for swing in [f64::NAN, f64::INFINITY, 1e6] {
+        let to = Config { swing_rad: swing, ..start };
+        let v = validate(&t, None, &world, &rules, &[Move { joint: Joint::Swing, from: start, to }], &[false]);
+        assert!(!v.ok && v.problems.iter().any(|p| p.contains("more than the validator checks")), "{:?}", v.problems);
+    }
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(liftplan_core::testing::proptest_cases(24)))]
+    /// A move whose closest approach, found by samples 1 mm apart, falls
+    /// short of the clearance by 3 mm or more is rejected at the validator's
+    /// coarsest spacing (0.5 m of movement between samples): it may pass a
+    /// part within 2 mm of its requirement, never farther. Scanned points
+    /// stand just off corners of the crane's parts part-way along the move,
+    /// so the closest approach usually lies between two coarse samples, and
+    /// the clearance is set just above it.
+    #[test]
+    fn a_move_that_comes_too_close_between_samples_is_rejected(
+        seed in proptest::prelude::any::<u64>(),
+        tower in proptest::prelude::any::<bool>(),
+        joint in 0usize..4,
+        at in proptest::array::uniform4(0.0f64..1.0),
+        step in 0.2f64..1.0,
+        past in 0.2f64..0.8,
+        short in 0.003f64..0.1,
+    ) {
+        let t = if tower { tower_task() } else { task(-14.0) };
+        let mut u = {
+            let mut s = seed | 1;
+            move || {
+                s ^= s << 13;
+                s ^= s >> 7;
+                s ^= s << 17;
+                (s >> 11) as f64 / (1u64 << 53) as f64
+            }
+        };
+        let lim = t.crane.limits();
+        let joint = [Joint::Swing, Joint::Radial, Joint::Hoist, Joint::Rotate][joint];
+        let j = joint.index();
+        // About 2 m of movement at most, `past` of it before the points.
+        let span = step * [0.04, if tower { 2.0 } else { 0.04 }, 2.0, 0.5][j];
+        let (lo, hi) = match joint {
+            Joint::Radial => lim.radial,
+            Joint::Hoist => (lim.hoist_m.0, lim.hoist_m.0 + (lim.hoist_m.1 - lim.hoist_m.0).min(40.0)),
+            _ => (-10.0, 10.0),
+        };
+        let mut mid = [
+            at[0] * std::f64::consts::TAU,
+            lim.radial.0 + at[1] * (lim.radial.1 - lim.radial.0),
+            lim.hoist_m.0 + at[2] * (lim.hoist_m.1 - lim.hoist_m.0).min(40.0),
+            at[3] * std::f64::consts::TAU,
+        ];
+        mid[j] = mid[j].clamp(lo + span * past, hi - span * (1.0 - past));
+        let (mut from, mut to) = (mid, mid);
+        from[j] -= span * past;
+        to[j] += span * (1.0 - past);
+        let mid = Config::from_array(mid);
+        let pose = t.crane.pose(&mid, &t.load);
+        let points: Vec<[f64; 3]> = (0..3)
+            .map(|_| {
+                let (_, b) = &pose.parts[(u() * pose.parts.len() as f64) as usize % pose.parts.len()];
+                let signs = [0, 1, 2].map(|_| if u() < 0.5 { -1.0 } else { 1.0 });
+                let corner = b.axis(0) * (signs[0] * b.half.x) + b.axis(1) * (signs[1] * b.half.y)
+                    + b.axis(2) * (signs[2] * b.half.z);
+                let p = b.center + corner + corner.normalize() * (0.02 + u() * 0.5);
+                [p.x, p.y, p.z]
+            })
+            .collect();
+        let world = World::new(&TriMesh::default(), &points, &[false; 3]).unwrap();
+        let mv = Move { joint, from: Config::from_array(from), to: Config::from_array(to) };
+        let rules = |clearance_m: f64, sample_m: f64| Rules {
+            clearance_m, landing: vec![], landing_clearance_m: clearance_m, sample_m, support_m: 0.05,
+        };
+        let fine = validate(&t, None, &world, &rules(0.0, 0.001), &[mv], &[false]);
+        let closest = fine.moves[0].tightest.nearest.distance_m;
+        proptest::prop_assume!(closest.is_finite());
+        let coarse = validate(&t, None, &world, &rules(closest + short, 0.5), &[mv], &[false]);
+        proptest::prop_assert!(
+            !coarse.ok,
+            "passed with {} samples ({} added), but {:?} comes {:.4} m from {} at {:?} (needs {:.4})",
+            coarse.samples, coarse.refined_samples, fine.moves[0].tightest.part, closest,
+            fine.moves[0].tightest.nearest.object, fine.moves[0].tightest.config, closest + short
+        );
+    }
+}
