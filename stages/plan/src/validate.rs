@@ -359,17 +359,39 @@ fn lever_for(task: &LiftTask, m: &Move) -> f64 {
         }
         liftplan_cspace::Joint::Radial => {
             if crane.model.is_tower() {
+                // The trolley and what hangs from it move with the radius.
                 1.0
             } else {
-                // Points of the boom and the hanging parts lie within this of the pivot.
-                crane.placement.boom_length_m
-                    + 10.0
-                    + task.load.bounding_radius() * 2.0
-                    + m.from.hoist_m.max(m.to.hoist_m)
+                // The boom turns about its foot pin: each of its points moves
+                // its distance from the pin's axis per radian, and the hanging
+                // parts move as the sheave does.
+                let far = |c: &Config| {
+                    let Some(boom) = crane.part(PartKind::Boom, c, &task.load) else { return 0.0 };
+                    let (along, pin_axis) = (boom.axis(0), boom.axis(1));
+                    let pin = boom.center - along * boom.half.x;
+                    let from_axis = |p: liftplan_core::frame::Point3| {
+                        let v = p - pin;
+                        (v - pin_axis * v.dot(&pin_axis)).norm()
+                    };
+                    boom.corners().into_iter().map(from_axis).fold(from_axis(crane.sheave(c)), f64::max)
+                };
+                far(&m.from).max(far(&m.to))
             }
         }
         liftplan_cspace::Joint::Hoist => 1.0,
-        liftplan_cspace::Joint::Rotate => 2.0 * task.load.bounding_radius(),
+        liftplan_cspace::Joint::Rotate => {
+            // The load and its rigging turn about the hook line.
+            let far = |c: &Config| {
+                let s = crane.sheave(c);
+                [PartKind::Load, PartKind::Rigging]
+                    .into_iter()
+                    .filter_map(|k| crane.part(k, c, &task.load))
+                    .flat_map(|b| b.corners())
+                    .map(|p| (p.x - s.x).hypot(p.y - s.y))
+                    .fold(0.0, f64::max)
+            };
+            far(&m.from).max(far(&m.to))
+        }
     }
 }
 
@@ -628,6 +650,7 @@ pub fn validate(
 mod tests {
     use super::*;
     use liftplan_core::frame::{Mat3, Point3, Vec3, rot_z};
+    use liftplan_cspace::Joint;
     use proptest::prelude::*;
 
     /// Numbers in [0, 1) from `seed` (xorshift): random scenes for the proptests.
@@ -744,6 +767,57 @@ mod tests {
                 let mut got = start.clone();
                 nearest_point(&index, (&pose, &cub), range, ignore_ground, walk_occupied, &mut got);
                 prop_assert_eq!(&got, &want, "walk_occupied {}", walk_occupied);
+            }
+        }
+    }
+
+    fn lift(crane: &str) -> LiftTask {
+        let text = format!(
+            r#"
+id = "L"
+load = {{ name = "skid", mass_t = 5.0, size_m = [6.0, 3.0, 2.5], cog_m = [0.8, -0.4, 0.0] }}
+rigging = {{ mass_t = 0.2, height_m = 3.0 }}
+crane = {{ model = "{crane}", position_m = [0.0, 0.0], ground_z_m = 0.0, heading_deg = 20.0, boom_m = 40.0, chart_config = "none" }}
+pick = {{ x_m = 22.0, y_m = -14.0, z_m = 0.5, yaw_deg = 0.0 }}
+set = {{ x_m = 22.0, y_m = 14.0, z_m = 0.5, yaw_deg = 90.0 }}
+"#
+        );
+        let spec: liftplan_core::lift::LiftSpec = toml::from_str(&text).unwrap();
+        spec.resolve(liftplan_core::crane::builtin(crane).unwrap()).unwrap()
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(liftplan_core::testing::proptest_cases(200)))]
+        /// No corner of any part moves farther than the lever times the
+        /// joint's change: the samples' spacing and the bound between them
+        /// rest on it.
+        #[test]
+        fn no_point_moves_farther_than_the_lever(
+            tower in any::<bool>(),
+            joint in 0usize..4,
+            at in prop::array::uniform4(0.0f64..1.0),
+            delta in -0.3f64..0.3,
+        ) {
+            let task = lift(if tower { "tower-hh-60" } else { "ac-700" });
+            let lim = task.crane.limits();
+            let from = Config {
+                swing_rad: at[0] * std::f64::consts::TAU,
+                radial: lim.radial.0 + at[1] * (lim.radial.1 - lim.radial.0),
+                hoist_m: lim.hoist_m.0 + at[2] * (lim.hoist_m.1 - lim.hoist_m.0),
+                load_yaw_rad: at[3] * std::f64::consts::TAU,
+            };
+            let joint = [Joint::Swing, Joint::Radial, Joint::Hoist, Joint::Rotate][joint];
+            let mut to = from.to_array();
+            to[joint.index()] += delta;
+            let m = Move { joint, from, to: Config::from_array(to) };
+            let lever = lever_for(&task, &m);
+            let (a, b) = (task.crane.pose(&m.from, &task.load), task.crane.pose(&m.to, &task.load));
+            for ((kind, pa), (_, pb)) in a.parts.iter().zip(&b.parts) {
+                for (ca, cb) in pa.corners().iter().zip(pb.corners()) {
+                    let moved = (cb - ca).norm();
+                    prop_assert!(moved <= lever * delta.abs() * (1.0 + 1e-9) + 1e-9,
+                        "{kind:?} corner moved {moved} m for {delta} of {joint:?}, lever {lever}");
+                }
             }
         }
     }
