@@ -135,7 +135,7 @@ enum Command {
     /// like the thesis', then MSPGA against Ali et al.'s GA, RRT-Connect and PRM
     /// and the three C-space strategies on the demo lift. Markdown on stdout.
     #[command(
-        after_help = "Examples:\n  liftplan bench > reports/planner.md    # about 40 minutes on 2 cores\n  liftplan bench --runs 2 --grid-runs 0 --t414-runs 1 --demo-seeds 1"
+        after_help = "Examples:\n  liftplan bench > reports/planner.md    # about 40 minutes on 2 cores\n  liftplan bench --runs 2 --grid-runs 0 --t414-runs 1 --demo-seeds 1\n  liftplan bench --runs 0 --grid-runs 0 --t414-runs 0 --demo-seeds 0 --validator-runs 10 > reports/validator.md"
     )]
     Bench {
         /// Seeds per row of Tables 4.11/4.12 (the thesis: 50).
@@ -150,6 +150,9 @@ enum Command {
         /// Seeds per planner on the demo lift (0 skips it).
         #[arg(long, default_value_t = 3)]
         demo_seeds: u64,
+        /// Seeds per plant for the validator's table (reports/validator.md; 0 skips it).
+        #[arg(long, default_value_t = 0)]
+        validator_runs: u64,
     },
     /// Run the scans stage on loose files.
     #[command(after_help = "Example:\n  liftplan scans a.laz b.e57 -o site.laz --voxel 0.05 --ground-cell 0.5 --json")]
@@ -303,7 +306,7 @@ fn real_main() -> Result<ExitCode> {
             }
             Ok(if rep.ok { ExitCode::SUCCESS } else { ExitCode::from(1) })
         }
-        Command::Bench { runs, grid_runs, t414_runs, demo_seeds } => {
+        Command::Bench { runs, grid_runs, t414_runs, demo_seeds, validator_runs } => {
             use liftplan_plan::bench;
             if runs > 0 || grid_runs > 0 {
                 bench::thesis_tables(runs, grid_runs);
@@ -327,6 +330,10 @@ fn real_main() -> Result<ExitCode> {
                 // The temporary project is removed whatever happened.
                 let _ = std::fs::remove_dir_all(&dir);
                 done?;
+            }
+            if validator_runs > 0 {
+                println!();
+                bench::validator_table(validator_runs);
             }
             Ok(ExitCode::SUCCESS)
         }

@@ -370,7 +370,7 @@ planner = "mspga"         # mspga | ali-ga | rrt-connect | prm
 landing_margin_m = 0.5    # landing zones: load footprint at pick/set grown by this, m
 landing_clearance_m = 0.2 # clearance of hook and load over a landing zone, m
 support_m = 0.05          # obstacles this close under the load at pick/set are its supports, m
-validator_sample_m = 0.05 # validator: largest crane-point movement between samples, m
+validator_sample_m = 0.05 # validator: largest crane-point movement between evenly spaced samples, m (finer where needed)
 
 [plan.ga]                 # Cai 2016, Table 4.10
 population = 100

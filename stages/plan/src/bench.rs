@@ -14,6 +14,8 @@
 //! - Table 4.14: the three C-space strategies on a 376k-triangle plant.
 //! - The demo lift: MSPGA, Ali et al.'s fitness, RRT-Connect and PRM on the
 //!   same checker and validator, then the three C-space strategies.
+//! - The validator between its samples: what confirming the clearance along
+//!   the whole motion costs on the plants above (reports/validator.md).
 //!
 //! Every run is the product's own `plan_lift`: the planner both ways round,
 //! shortcut, and the independent validator; a run succeeds when a validated
@@ -460,6 +462,64 @@ pub fn table_414(runs: u64) {
             cost / k,
             lookups as f64 / k,
             queries as f64 / k,
+        );
+    }
+}
+
+/// What the validator's check between samples costs and finds: the planner
+/// as shipped, `runs` seeds on each plant; for every validated plan, its
+/// samples (evenly spaced and added where two neighbours left room for a
+/// closer approach), the validator's time and the smallest clearance margin.
+pub fn validator_table(runs: u64) {
+    let plants = [plant1(), plant2(), plant3(), plant3_with_columns(14.0), plant_414()];
+    let s = Settings::default();
+    println!("## The validator between its samples, {runs} runs per plant\n");
+    println!(
+        "MSPGA as shipped, 1 m clearance, validator samples {} m of movement apart. Added: samples the validator \
+         put between two neighbours whose distances left room for a part to come closer than its clearance \
+         between them, halving the gap until the bound holds or the gap is 2 mm. Margin: the smallest \
+         clearance less the requirement over every sample of every validated plan (the lift-off and set-down \
+         steps require none). {} threads.\n",
+        s.validator_sample_m,
+        rayon::current_num_threads()
+    );
+    println!(
+        "| plant | triangles | validated | samples per plan | added per plan | plans with samples added | most added in a plan | validator s per plan | slowest validation s | smallest margin mm |"
+    );
+    println!("|---|---|---|---|---|---|---|---|---|---|");
+    for p in &plants {
+        let m = map(&p.mesh);
+        let world = World::new(&p.mesh, &[], &[]).expect("world");
+        let site = Site { map: &m, world: &world, charts: None };
+        let (mut ok, mut samples, mut added, mut with_added, mut most) = (0usize, 0usize, 0usize, 0usize, 0usize);
+        let (mut seconds, mut slowest, mut margin) = (0.0, 0.0f64, f64::INFINITY);
+        for seed in 0..runs {
+            match plan_lift(&p.task, &site, &s, seed) {
+                Ok((lp, _)) => {
+                    let v = &lp.validator;
+                    ok += 1;
+                    samples += v.samples;
+                    added += v.refined_samples;
+                    with_added += usize::from(v.refined_samples > 0);
+                    most = most.max(v.refined_samples);
+                    seconds += v.seconds;
+                    slowest = slowest.max(v.seconds);
+                    for st in &lp.steps {
+                        margin = margin.min(st.min_clearance_m - st.required_clearance_m);
+                    }
+                }
+                Err(e) => eprintln!("{} seed {seed}: {e}", p.name),
+            }
+        }
+        let k = ok.max(1) as f64;
+        println!(
+            "| {} | {} | {ok}/{runs} | {:.0} | {:.0} | {with_added} | {most} | {:.3} | {slowest:.3} | {:.0} |",
+            p.name,
+            p.mesh.triangle_count(),
+            samples as f64 / k,
+            added as f64 / k,
+            seconds / k,
+            margin * 1e3,
         );
     }
 }
