@@ -371,7 +371,7 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
         sample_m: s.validator_sample_m,
         support_m: s.support_m,
     };
-    let verdict = validate::validate(task, chart, site.world, &rules, &all, &landing_flags);
+    let verdict = validate::validate_lift(task, chart, site.world, &rules, &all, &landing_flags);
     if !verdict.ok {
         return Err(lift_err(
             task,

@@ -540,6 +540,100 @@ fn between(a: &Sample, b: &Sample, moved_m: f64, cutoff_m: f64, at: &(impl Fn(f6
     out
 }
 
+/// Whether two configurations put the crane in the same place: equal joint
+/// values, swing and load yaw modulo a turn. A value that is not a number is
+/// never the same.
+fn same_place(a: &Config, b: &Config) -> bool {
+    let close = |x: f64, y: f64| (x - y).abs() <= 1e-9 * (1.0 + x.abs().max(y.abs()));
+    let turn = |x: f64, y: f64| {
+        let d = (x - y).rem_euclid(std::f64::consts::TAU);
+        close(d.min(std::f64::consts::TAU - d), 0.0)
+    };
+    turn(a.swing_rad, b.swing_rad)
+        && close(a.radial, b.radial)
+        && close(a.hoist_m, b.hoist_m)
+        && turn(a.load_yaw_rad, b.load_yaw_rad)
+}
+
+/// Where the moves do not make one path: a move that changes a joint other
+/// than its own (the samples move only its own), or one that does not start
+/// where the one before ends (the crane would jump, unchecked).
+fn path_breaks(moves: &[Move]) -> Vec<String> {
+    let mut out = Vec::new();
+    for (i, m) in moves.iter().enumerate() {
+        let (mut a, mut b) = (m.from.to_array(), m.to.to_array());
+        let j = m.joint.index();
+        (a[j], b[j]) = (0.0, 0.0);
+        if !same_place(&Config::from_array(a), &Config::from_array(b)) {
+            out.push(format!(
+                "move {} ({:?}) changes more than its own joint: {:?} to {:?}",
+                i + 1,
+                m.joint,
+                m.from,
+                m.to
+            ));
+        }
+        if let Some(next) = moves.get(i + 1)
+            && !same_place(&m.to, &next.from)
+        {
+            out.push(format!(
+                "move {} does not start where move {} ends: {:?}, then {:?}",
+                i + 2,
+                i + 1,
+                m.to,
+                next.from
+            ));
+        }
+    }
+    out
+}
+
+/// [`validate`] for a whole lift: also that the moves start with the load at
+/// its pick pose and end with it at its set pose, as the lift asks them
+/// (forward kinematics, to 1 mm and 0.001 rad: the pick and set
+/// configurations come from the crane's inverse kinematics, which this checks
+/// too).
+pub fn validate_lift(
+    task: &LiftTask,
+    chart: Option<&ChartConfig>,
+    world: &World,
+    rules: &Rules,
+    moves: &[Move],
+    landing_moves: &[bool],
+) -> Verdict {
+    let mut v = validate(task, chart, world, rules, moves, landing_moves);
+    let at = |c: &Config, want: &liftplan_core::crane::LoadPose, (verb, which): (&str, &str)| {
+        let got = task.crane.load_pose(c, &task.load);
+        let yaw = (got.yaw_rad - want.yaw_rad).rem_euclid(std::f64::consts::TAU);
+        let off_m = (got.x_m - want.x_m).hypot(got.y_m - want.y_m).hypot(got.z_m - want.z_m);
+        (!(off_m <= 1e-3 && yaw.min(std::f64::consts::TAU - yaw) <= 1e-3)).then(|| {
+            format!(
+                "the path {verb} with the load at ({:.3}, {:.3}, {:.3}) m, yaw {:.2}°, not at its {which} pose ({:.3}, {:.3}, {:.3}) m, yaw {:.2}°",
+                got.x_m,
+                got.y_m,
+                got.z_m,
+                got.yaw_rad.to_degrees(),
+                want.x_m,
+                want.y_m,
+                want.z_m,
+                want.yaw_rad.to_degrees()
+            )
+        })
+    };
+    let ends = match (moves.first(), moves.last()) {
+        (Some(first), Some(last)) => {
+            [at(&first.from, &task.pick_pose, ("starts", "pick")), at(&last.to, &task.set_pose, ("ends", "set"))]
+                .into_iter()
+                .flatten()
+                .collect()
+        }
+        _ => vec!["the path has no moves".to_string()],
+    };
+    v.problems.extend(ends);
+    v.ok = v.problems.is_empty();
+    v
+}
+
 /// Validates a plan: the moves from pick to set, the first and last being the
 /// lift-off and set-down moves (`landing_moves` marks which are).
 pub fn validate(
@@ -567,6 +661,7 @@ pub fn validate(
             }
         }
     }
+    problems.extend(path_breaks(moves));
     let mut move_checks = Vec::new();
     let (mut total, mut refined) = (0, 0);
     let cutoff_m = search_cutoff_m(rules);

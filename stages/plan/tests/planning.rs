@@ -7,7 +7,7 @@ use liftplan_core::mesh::TriMesh;
 use liftplan_cspace::Joint;
 use liftplan_depthmap::mdm::Mdm;
 use liftplan_plan::path::Move;
-use liftplan_plan::validate::{Rules, World, validate};
+use liftplan_plan::validate::{Rules, World, validate, validate_lift};
 use liftplan_plan::{Settings, Site, plan_lift};
 
 fn task(pick_y: f64) -> LiftTask {
@@ -243,6 +243,53 @@ fn validator_finds_a_closer_approach_between_its_samples() {
     let world = World::new(&TriMesh::default(), &[[far.x, far.y, far.z]], &[false]).unwrap();
     let v = validate(&t, None, &world, &rules, &[turn(start, turned)], &[false]);
     assert!(v.ok && v.refined_samples == 0, "{:?} {}", v.problems, v.refined_samples);
+}
+
+/// The validator checks that the moves make one path from the pick pose to
+/// the set pose, not only each move: a planner that dropped or bent a move
+/// would have the crane jump where nothing was checked.
+#[test]
+fn validator_rejects_a_broken_path() {
+    let mesh = site();
+    let m = map(&mesh);
+    let world = World::new(&mesh, &[], &[]).unwrap();
+    let t = task(-14.0);
+    let (plan, _) = plan_lift(&t, &Site { map: &m, world: &world, charts: None }, &quick(), 3).unwrap();
+    let rules = Rules { clearance_m: 1.0, landing: vec![], landing_clearance_m: 0.2, sample_m: 0.05, support_m: 0.05 };
+    let check = |moves: &[Move]| {
+        let landing: Vec<bool> = (0..moves.len()).map(|i| i == 0 || i + 1 == moves.len()).collect();
+        validate_lift(&t, None, &world, &rules, moves, &landing)
+    };
+    let whole = check(&plan.moves);
+    assert!(whole.ok, "{:?}", whole.problems);
+    let n = plan.moves.len();
+    assert!(n >= 4, "{n} moves");
+    // A move left out.
+    let mut gap = plan.moves.clone();
+    gap.remove(2);
+    let v = check(&gap);
+    assert!(v.problems.iter().any(|p| p.contains("does not start where move 2 ends")), "{:?}", v.problems);
+    // A move that also turns the load.
+    let mut bent = plan.moves.clone();
+    let k = bent.iter().position(|mv| mv.joint != Joint::Rotate).unwrap();
+    bent[k].to.load_yaw_rad += 0.2;
+    let v = check(&bent);
+    assert!(
+        v.problems.iter().any(|p| p.contains(&format!("move {} ", k + 1)) && p.contains("more than its own joint")),
+        "{:?}",
+        v.problems
+    );
+    // Stopped short of the set-down, and started after the lift-off.
+    let v = check(&plan.moves[1..n - 1]);
+    assert!(v.problems.iter().any(|p| p.starts_with("the path starts") && p.contains("pick pose")), "{:?}", v.problems);
+    assert!(v.problems.iter().any(|p| p.starts_with("the path ends") && p.contains("set pose")), "{:?}", v.problems);
+    assert!(!check(&[]).ok);
+    // A whole turn of swing more is the same place.
+    let mut turned = plan.moves.clone();
+    turned[n - 1].to.swing_rad += std::f64::consts::TAU;
+    turned[n - 1].from.swing_rad += std::f64::consts::TAU;
+    let v = check(&turned);
+    assert!(!v.problems.iter().any(|p| p.contains("set pose")), "{:?}", v.problems);
 }
 
 #[test]
