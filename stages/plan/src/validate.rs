@@ -6,7 +6,8 @@
 //! sampled so that no point of the crane moves more than `sample_m` (finer than
 //! the planner), and re-reads the load chart at every sample. What it shares
 //! with the planner is the crane's forward kinematics (the part boxes) and the
-//! lift's rules (clearance, landing zones, chart), which it applies itself.
+//! lift's rules (clearance, landing zones, chart, permitted swing range), which
+//! it applies itself.
 //!
 //! A plan it rejects is never written as a plan.
 
@@ -419,6 +420,18 @@ fn check_config(
         && c.hoist_m <= lim.hoist_m.1 + 1e-9)
     {
         problems.push("outside the crane's joint limits".to_string());
+    }
+    if let Some((a, b)) = task.swing_range_rad {
+        // Modulo a turn: the same place whatever the turn count, and a swing
+        // sampled this densely cannot leave the range and come back unseen.
+        let past_a = (c.swing_rad - a).rem_euclid(std::f64::consts::TAU);
+        if !(past_a <= b - a + 1e-9 || past_a >= std::f64::consts::TAU - 1e-9) {
+            problems.push(format!(
+                "outside the permitted swing range ({:.1}° to {:.1}° from the carrier's heading)",
+                a.to_degrees(),
+                b.to_degrees()
+            ));
+        }
     }
     let radius = crane.radius_m(c.radial);
     let (cap, cell, util) = match chart.map(|ch| task.check_capacity(ch, c.radial)) {

@@ -292,6 +292,32 @@ fn validator_rejects_a_broken_path() {
     assert!(!v.problems.iter().any(|p| p.contains("set pose")), "{:?}", v.problems);
 }
 
+/// A lift's permitted slewing range (`swing_range_deg`, e.g. to keep the
+/// load off a road) binds the validator as it binds the planner.
+#[test]
+fn validator_rejects_a_swing_outside_the_permitted_range() {
+    let mut t = task(-14.0);
+    let start = t.start();
+    let (a, b) = (start.swing_rad - 0.5, start.swing_rad + 0.5);
+    t.swing_range_rad = Some((a, b));
+    let world = World::new(&TriMesh::default(), &[], &[]).unwrap();
+    let rules = Rules { clearance_m: 1.0, landing: vec![], landing_clearance_m: 0.2, sample_m: 0.05, support_m: 0.05 };
+    let swing = |from: f64, to: f64| {
+        let mv = Move {
+            joint: Joint::Swing,
+            from: Config { swing_rad: from, ..start },
+            to: Config { swing_rad: to, ..start },
+        };
+        validate(&t, None, &world, &rules, &[mv], &[false])
+    };
+    let outside = |v: &liftplan_plan::validate::Verdict| v.problems.iter().any(|p| p.contains("permitted swing range"));
+    let tau = std::f64::consts::TAU;
+    assert!(!outside(&swing(start.swing_rad, b)), "to the range's end");
+    assert!(!outside(&swing(a + tau, b + tau)), "the same range a turn on");
+    assert!(outside(&swing(start.swing_rad, b + 0.05)), "past the range's end");
+    assert!(outside(&swing(start.swing_rad, a - tau + 0.1)), "the long way round to a permitted swing");
+}
+
 #[test]
 fn validator_refuses_a_move_it_cannot_sample() {
     let t = task(-14.0);
