@@ -4,10 +4,13 @@
 //! grown boxes. It measures exact distances (parry3d, f64) from every crane part
 //! to the original plant triangles and the site points, along every move
 //! sampled so that no point of the crane moves more than `sample_m` (finer than
-//! the planner), and re-reads the load chart at every sample. What it shares
-//! with the planner is the crane's forward kinematics (the part boxes) and the
-//! lift's rules (clearance, landing zones, chart, permitted swing range), which
-//! it applies itself.
+//! the planner) and more finely wherever two samples leave room for a closer
+//! approach between them, so that the clearance holds along the whole motion
+//! to within 2 mm; it re-reads the load chart at every sample, and checks that
+//! the moves make one path from the load's pick pose to its set pose. What it
+//! shares with the planner is the crane's forward kinematics (the part boxes)
+//! and the lift's rules (clearance, landing zones, chart, permitted swing
+//! range), which it applies itself.
 //!
 //! A plan it rejects is never written as a plan.
 
