@@ -413,7 +413,7 @@ fn check_config(
     rules: &Rules,
     c: &Config,
     landing_move: bool,
-) -> (Vec<SampleCheck>, Vec<String>) {
+) -> Sample {
     let crane = &task.crane;
     let mut problems = Vec::new();
     let lim = crane.limits();
@@ -448,8 +448,11 @@ fn check_config(
     if util.is_some_and(|u| u > 100.0 + 1e-9) {
         problems.push(format!("over capacity: {:.1} % at radius {radius:.2} m", util.unwrap_or(0.0)));
     }
-    let load_box = crane.load_obb(c, &task.load);
-    let in_landing = rules.landing.iter().any(|poly| load_box.footprint().iter().all(|p| in_polygon(poly, *p)));
+    let footprint = crane.load_obb(c, &task.load).footprint();
+    let in_landing = rules.landing.iter().any(|poly| footprint.iter().all(|p| in_polygon(poly, *p)));
+    // A lift-off or set-down asks the same of the hanging parts in a zone or not.
+    let zone_margin_m =
+        if landing_move { f64::INFINITY } else { zone_margin_m(&rules.landing, &footprint, in_landing) };
     let mut out = Vec::new();
     for &kind in crane.part_kinds() {
         let dep = kind.dependence();
@@ -488,7 +491,43 @@ fn check_config(
             utilisation_pct: util,
         });
     }
-    (out, problems)
+    Sample { t: 0.0, checks: out, problems, zone_margin_m }
+}
+
+/// Distance from `p` to the nearest edge of `poly` (m).
+fn to_edge_m(poly: &[[f64; 2]], p: [f64; 2]) -> f64 {
+    (0..poly.len())
+        .map(|i| {
+            let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
+            let (ex, ey) = (b[0] - a[0], b[1] - a[1]);
+            let len2 = ex * ex + ey * ey;
+            let t = if len2 > 0.0 { (((p[0] - a[0]) * ex + (p[1] - a[1]) * ey) / len2).clamp(0.0, 1.0) } else { 0.0 };
+            (p[0] - a[0] - t * ex).hypot(p[1] - a[1] - t * ey)
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// How far the load's footprint (its corners) can move before the landing
+/// zones can change what the hanging parts need (m). Inside a zone: its
+/// corners' least distance to that zone's edges, in the zone where that is
+/// largest. Outside every zone: for each zone, the farthest of the corners
+/// outside it (the footprint is in the zone only once all are), the least of
+/// these over the zones. Without zones, infinite.
+fn zone_margin_m(zones: &[Vec<[f64; 2]>], footprint: &[[f64; 2]], inside: bool) -> f64 {
+    if inside {
+        zones
+            .iter()
+            .filter(|poly| footprint.iter().all(|p| in_polygon(poly, *p)))
+            .map(|poly| footprint.iter().map(|p| to_edge_m(poly, *p)).fold(f64::INFINITY, f64::min))
+            .fold(0.0, f64::max)
+    } else {
+        zones
+            .iter()
+            .map(|poly| {
+                footprint.iter().filter(|p| !in_polygon(poly, **p)).map(|p| to_edge_m(poly, *p)).fold(0.0, f64::max)
+            })
+            .fold(f64::INFINITY, f64::min)
+    }
 }
 
 /// Distances below the requirement by no more than this pass (m): the
@@ -518,6 +557,9 @@ struct Sample {
     t: f64,
     checks: Vec<SampleCheck>,
     problems: Vec<String>,
+    /// [`zone_margin_m`] here: while the load moves less than this, the
+    /// hanging parts' requirement stays what it is here.
+    zone_margin_m: f64,
 }
 
 /// Whether every part keeps its requirement (less the tolerance) everywhere
@@ -525,32 +567,51 @@ struct Sample {
 /// `gap_m`: each point of a part in between is within `x` of where it was at
 /// `a` and within `gap_m - x` of where it is at `b`, so its distance is at
 /// least `max(d_a - x, d_b - gap_m + x) >= (d_a + d_b - gap_m) / 2`.
-fn gap_holds(a: &[SampleCheck], b: &[SampleCheck], gap_m: f64, cutoff_m: f64) -> bool {
+///
+/// `hanging_may_need_m`: what the hanging parts may need somewhere between
+/// (the larger of the two clearances) where the load may enter or leave a
+/// landing zone there, else zero.
+fn gap_holds(a: &[SampleCheck], b: &[SampleCheck], gap_m: f64, cutoff_m: f64, hanging_may_need_m: f64) -> bool {
     let known = |c: &SampleCheck| c.nearest.distance_m.min(cutoff_m);
-    let holds_from = |c: &SampleCheck| known(c) - gap_m >= c.required_m - DISTANCE_TOLERANCE_M;
+    let need = |c: &SampleCheck, m: f64| {
+        let m = if c.part.dependence() == Dependence::Full { m.max(hanging_may_need_m) } else { m };
+        m - DISTANCE_TOLERANCE_M
+    };
+    let holds_from = |c: &SampleCheck| known(c) - gap_m >= need(c, c.required_m);
     a.iter().all(|ca| match b.iter().find(|cb| cb.part == ca.part) {
-        Some(cb) => (known(ca) + known(cb) - gap_m) / 2.0 >= ca.required_m.max(cb.required_m) - DISTANCE_TOLERANCE_M,
+        Some(cb) => (known(ca) + known(cb) - gap_m) / 2.0 >= need(ca, ca.required_m.max(cb.required_m)),
         None => holds_from(ca),
     }) && b.iter().filter(|cb| !a.iter().any(|ca| ca.part == cb.part)).all(holds_from)
 }
 
+/// What [`between`] needs to know of a move and the lift.
+struct Gaps {
+    /// The most any point moves over the whole move (m).
+    moved_m: f64,
+    /// [`search_cutoff_m`].
+    cutoff_m: f64,
+    /// The larger of the clearance and the landing clearance (m).
+    hanging_worst_m: f64,
+}
+
 /// The samples to add between `a` and `b` (in order along the move) so that
 /// [`gap_holds`] between every two neighbours, or they are `REFINED_GAP_M`
-/// apart. `moved_m` is the most a point moves over the whole move; `at`
-/// checks the configuration at a fraction of it. Not below a sample that
-/// already found a problem: the move is rejected anyway.
-fn between(a: &Sample, b: &Sample, moved_m: f64, cutoff_m: f64, at: &(impl Fn(f64) -> Sample + Sync)) -> Vec<Sample> {
-    let gap_m = moved_m * (b.t - a.t);
+/// apart; `at` checks the configuration at a fraction of the move. Not
+/// below a sample that already found a problem: the move is rejected anyway.
+fn between(a: &Sample, b: &Sample, g: &Gaps, at: &(impl Fn(f64) -> Sample + Sync)) -> Vec<Sample> {
+    let gap_m = g.moved_m * (b.t - a.t);
+    // The load's footprint moves no more than the gap either.
+    let zones_steady = a.zone_margin_m > gap_m || b.zone_margin_m > gap_m;
     if gap_m <= REFINED_GAP_M
         || !a.problems.is_empty()
         || !b.problems.is_empty()
-        || gap_holds(&a.checks, &b.checks, gap_m, cutoff_m)
+        || gap_holds(&a.checks, &b.checks, gap_m, g.cutoff_m, if zones_steady { 0.0 } else { g.hanging_worst_m })
     {
         return Vec::new();
     }
     let mid = at(0.5 * (a.t + b.t));
-    let mut out = between(a, &mid, moved_m, cutoff_m, at);
-    let after = between(&mid, b, moved_m, cutoff_m, at);
+    let mut out = between(a, &mid, g, at);
+    let after = between(&mid, b, g, at);
     out.push(mid);
     out.extend(after);
     out
@@ -699,14 +760,13 @@ pub fn validate(
             let mut v = a;
             let j = m.joint.index();
             v[j] = a[j] + (b[j] - a[j]) * t;
-            let (checks, problems) = check_config(task, chart, world, rules, &Config::from_array(v), landing);
-            Sample { t, checks, problems }
+            Sample { t, ..check_config(task, chart, world, rules, &Config::from_array(v), landing) }
         };
         let even: Vec<Sample> = (0..n).into_par_iter().map(|s| at(s as f64 / (n - 1).max(1) as f64)).collect();
         // Where two neighbours' distances do not rule out a closer approach
         // between them, more samples there.
-        let added: Vec<Vec<Sample>> =
-            even.par_windows(2).map(|w| between(&w[0], &w[1], moved_m, cutoff_m, &at)).collect();
+        let gaps = Gaps { moved_m, cutoff_m, hanging_worst_m: rules.clearance_m.max(rules.landing_clearance_m) };
+        let added: Vec<Vec<Sample>> = even.par_windows(2).map(|w| between(&w[0], &w[1], &gaps, &at)).collect();
         let extra: usize = added.iter().map(Vec::len).sum();
         total += n + extra;
         refined += extra;
@@ -929,6 +989,57 @@ set = {{ x_m = 22.0, y_m = 14.0, z_m = 0.5, yaw_deg = 90.0 }}
                     prop_assert!(moved <= lever * delta.abs() * (1.0 + 1e-9) + 1e-9,
                         "{kind:?} corner moved {moved} m for {delta} of {joint:?}, lever {lever}");
                 }
+            }
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(liftplan_core::testing::proptest_cases(500)))]
+        /// Moving the footprint's corners less than the zone margin never
+        /// changes whether it is over a landing zone: star-shaped zones with
+        /// notches, footprints in, out and across them.
+        #[test]
+        fn the_zone_margin_keeps_the_landing_rule(
+            seed in any::<u64>(),
+            zones in 1usize..3,
+            centre in prop::array::uniform2(-3.0f64..3.0),
+            half in prop::array::uniform2(0.2f64..3.0),
+            yaw in -3.2f64..3.2,
+        ) {
+            let mut u = unit_stream(seed);
+            let polys: Vec<Vec<[f64; 2]>> = (0..zones)
+                .map(|_| {
+                    let (cx, cy, k) = (u() * 4.0 - 2.0, u() * 4.0 - 2.0, 3 + (u() * 9.0) as usize);
+                    (0..k)
+                        .map(|i| {
+                            let a = (i as f64 + 0.8 * u()) / k as f64 * std::f64::consts::TAU;
+                            let r = 0.5 + u() * 6.0;
+                            [cx + r * a.cos(), cy + r * a.sin()]
+                        })
+                        .collect()
+                })
+                .collect();
+            let (sy, cyaw) = yaw.sin_cos();
+            let footprint: Vec<[f64; 2]> = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
+                .iter()
+                .map(|(a, b)| {
+                    let (x, y) = (a * half[0], b * half[1]);
+                    [centre[0] + x * cyaw - y * sy, centre[1] + x * sy + y * cyaw]
+                })
+                .collect();
+            let over = |f: &[[f64; 2]]| polys.iter().any(|poly| f.iter().all(|p| in_polygon(poly, *p)));
+            let inside = over(&footprint);
+            let margin = zone_margin_m(&polys, &footprint, inside);
+            prop_assume!(margin.is_finite() && margin > 1e-6);
+            for _ in 0..20 {
+                let moved: Vec<[f64; 2]> = footprint
+                    .iter()
+                    .map(|p| {
+                        let (a, r) = (u() * std::f64::consts::TAU, margin * 0.999 * u().sqrt());
+                        [p[0] + r * a.cos(), p[1] + r * a.sin()]
+                    })
+                    .collect();
+                prop_assert_eq!(over(&moved), inside, "margin {} moved {:?} from {:?}", margin, moved, footprint);
             }
         }
     }

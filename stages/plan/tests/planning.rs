@@ -318,6 +318,55 @@ fn validator_rejects_a_swing_outside_the_permitted_range() {
     assert!(outside(&swing(start.swing_rad, a - tau + 0.1)), "the long way round to a permitted swing");
 }
 
+/// Over a landing zone the hanging parts need less clearance. A load whose
+/// corner dips out of the zone between two samples, both inside it, needs the
+/// full clearance there: the validator must not carry the zone's smaller
+/// requirement across the gap.
+#[test]
+fn validator_applies_the_full_clearance_where_the_load_leaves_a_landing_zone_between_samples() {
+    let t = task(-14.0);
+    let start = t.start();
+    let turned = Config { load_yaw_rad: start.load_yaw_rad + 0.1, ..start };
+    let mid = Config { load_yaw_rad: start.load_yaw_rad + 0.05, ..start };
+    // The zone: a 20 m square round the load with a slot 10 cm wide from just
+    // inside one corner of the load at mid-turn out to the square's edge.
+    let b = t.crane.load_obb(&mid, &t.load);
+    let c = [b.center.x, b.center.y];
+    let corner = b.axis(0) * b.half.x + b.axis(1) * b.half.y;
+    let r = corner.x.hypot(corner.y);
+    let (u, n) = ([corner.x / r, corner.y / r], [-corner.y / r, corner.x / r]);
+    let at = |s: f64, q: f64| [c[0] + s * u[0] + q * n[0], c[1] + s * u[1] + q * n[1]];
+    let w = 0.05;
+    let zone = vec![
+        at(-10.0, -10.0),
+        at(10.0, -10.0),
+        at(10.0, -w),
+        at(r - 0.3, -w),
+        at(r - 0.3, w),
+        at(10.0, w),
+        at(10.0, 10.0),
+        at(-10.0, 10.0),
+    ];
+    // One scanned point 0.5 m under the load's centre: as far at every yaw.
+    let p = [b.center.x, b.center.y, b.center.z - b.half.z - 0.5];
+    let world = World::new(&TriMesh::default(), &[p], &[false]).unwrap();
+    let rules =
+        Rules { clearance_m: 1.0, landing: vec![zone], landing_clearance_m: 0.2, sample_m: 0.5, support_m: 0.05 };
+    let turn = |from: Config, to: Config| Move { joint: Joint::Rotate, from, to };
+    let load_check = |c: Config| {
+        let v = validate(&t, None, &world, &rules, &[turn(c, c)], &[false]);
+        let load = v.moves[0].tightest.clone();
+        (v.ok, load.part, load.required_m)
+    };
+    // The ends are over the zone (0.2 m needed, 0.5 m kept); mid-turn is not.
+    for end in [start, turned] {
+        assert_eq!(load_check(end), (true, liftplan_core::crane::PartKind::Load, 0.2));
+    }
+    assert!(!load_check(mid).0);
+    let v = validate(&t, None, &world, &rules, &[turn(start, turned)], &[false]);
+    assert!(v.problems.iter().any(|p| p.contains("load is 0.500") && p.contains("needs 1.00")), "{:?}", v.problems);
+}
+
 #[test]
 fn validator_refuses_a_move_it_cannot_sample() {
     let t = task(-14.0);
