@@ -6,8 +6,9 @@
 //! sampled so that no point of the crane moves more than `sample_m` (finer than
 //! the planner) and more finely wherever two samples leave room for a closer
 //! approach between them, so that the clearance holds along the whole motion
-//! to within 2 mm; it re-reads the load chart at every sample, and checks that
-//! the moves make one path from the load's pick pose to its set pose. What it
+//! to within 2 mm; it keeps the load and its rigging off the crane's own
+//! structure, re-reads the load chart at every sample, and checks that the
+//! moves make one path from the load's pick pose to its set pose. What it
 //! shares with the planner is the crane's forward kinematics (the part boxes)
 //! and the lift's rules (clearance, landing zones, chart, permitted swing
 //! range), which it applies itself.
@@ -491,7 +492,51 @@ fn check_config(
             utilisation_pct: util,
         });
     }
-    Sample { t: 0.0, checks: out, problems, zone_margin_m }
+    let own = own_distances(task, c);
+    for (kind, d, what) in &own {
+        if !(*d >= OWN_CLEARANCE_M - DISTANCE_TOLERANCE_M) {
+            problems
+                .push(format!("{} is {d:.3} m from the crane's {what} (needs {OWN_CLEARANCE_M:.2} m)", kind.name()));
+        }
+    }
+    Sample { t: 0.0, checks: out, own, problems, zone_margin_m }
+}
+
+/// What the load and its rigging must keep from the crane's own structure
+/// (m): they must not touch it. The site's clearance is for swinging past
+/// obstacles; the planner keeps the load off the boom by a shortest rope per
+/// luff row, which this checks independently.
+const OWN_CLEARANCE_M: f64 = 0.01;
+
+/// The distance from the load and from its rigging to the nearest part of the
+/// crane that does not hang (boom, superstructure, counterweight, carrier,
+/// outriggers; mast, jib, counter-jib, cab, trolley), and which part that
+/// is. The hook block and the rope hang from the sheave at the boom's head,
+/// inside the boom's box: they are not checked against it.
+fn own_distances(task: &LiftTask, c: &Config) -> Vec<(PartKind, f64, &'static str)> {
+    let pose = task.crane.pose(c, &task.load);
+    let structure: Vec<(PartKind, (Pose, Cuboid))> = pose
+        .parts
+        .iter()
+        .filter(|(k, _)| k.dependence() != Dependence::Full)
+        .map(|(k, b)| (*k, parry_box(b)))
+        .collect();
+    pose.parts
+        .iter()
+        .filter(|(k, _)| matches!(k, PartKind::Load | PartKind::Rigging))
+        .map(|(k, b)| {
+            let (pose, cub) = parry_box(b);
+            let (d, what) = structure
+                .iter()
+                .map(|(sk, (sp, sc))| {
+                    // Two boxes: parry's distance cannot fail; a NaN box would.
+                    let d = query::distance(&pose, &cub, sp, sc).map(|d| d.distance).unwrap_or(f64::NAN);
+                    (d, sk.name())
+                })
+                .fold((f64::INFINITY, ""), |best, x| if !(x.0 >= best.0) { x } else { best });
+            (*k, d, what)
+        })
+        .collect()
 }
 
 /// Distance from `p` to the nearest edge of `poly` (m).
@@ -556,6 +601,8 @@ fn search_cutoff_m(rules: &Rules) -> f64 {
 struct Sample {
     t: f64,
     checks: Vec<SampleCheck>,
+    /// [`own_distances`] here.
+    own: Vec<(PartKind, f64, &'static str)>,
     problems: Vec<String>,
     /// [`zone_margin_m`] here: while the load moves less than this, the
     /// hanging parts' requirement stays what it is here.
@@ -584,6 +631,16 @@ fn gap_holds(a: &[SampleCheck], b: &[SampleCheck], gap_m: f64, cutoff_m: f64, ha
     }) && b.iter().filter(|cb| !a.iter().any(|ca| ca.part == cb.part)).all(holds_from)
 }
 
+/// [`gap_holds`] for the load's and rigging's distances to the crane's own
+/// structure, which moves too: each moves at most `gap_m`, so the distance
+/// between them changes by at most twice that.
+fn own_gap_holds(a: &[(PartKind, f64, &str)], b: &[(PartKind, f64, &str)], gap_m: f64) -> bool {
+    a.len() == b.len()
+        && a.iter().zip(b).all(|((ka, da, _), (kb, db, _))| {
+            ka == kb && (da + db - 2.0 * gap_m) / 2.0 >= OWN_CLEARANCE_M - DISTANCE_TOLERANCE_M
+        })
+}
+
 /// What [`between`] needs to know of a move and the lift.
 struct Gaps {
     /// The most any point moves over the whole move (m).
@@ -605,7 +662,8 @@ fn between(a: &Sample, b: &Sample, g: &Gaps, at: &(impl Fn(f64) -> Sample + Sync
     if gap_m <= REFINED_GAP_M
         || !a.problems.is_empty()
         || !b.problems.is_empty()
-        || gap_holds(&a.checks, &b.checks, gap_m, g.cutoff_m, if zones_steady { 0.0 } else { g.hanging_worst_m })
+        || (gap_holds(&a.checks, &b.checks, gap_m, g.cutoff_m, if zones_steady { 0.0 } else { g.hanging_worst_m })
+            && own_gap_holds(&a.own, &b.own, gap_m))
     {
         return Vec::new();
     }

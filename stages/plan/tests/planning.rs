@@ -367,6 +367,21 @@ fn validator_applies_the_full_clearance_where_the_load_leaves_a_landing_zone_bet
     assert!(v.problems.iter().any(|p| p.contains("load is 0.500") && p.contains("needs 1.00")), "{:?}", v.problems);
 }
 
+/// The load and its rigging must not touch the crane itself: hoisting the
+/// load up under a steep boom runs it into the boom, with no obstacle on site.
+#[test]
+fn validator_rejects_the_load_hoisted_into_the_boom() {
+    let t = task(-14.0);
+    let world = World::new(&TriMesh::default(), &[], &[]).unwrap();
+    let rules = Rules { clearance_m: 1.0, landing: vec![], landing_clearance_m: 0.2, sample_m: 0.05, support_m: 0.05 };
+    let steep = Config { swing_rad: 0.0, radial: 80f64.to_radians(), hoist_m: 20.0, load_yaw_rad: 0.0 };
+    let up = |to: f64| Move { joint: Joint::Hoist, from: steep, to: Config { hoist_m: to, ..steep } };
+    let v = validate(&t, None, &world, &rules, &[up(15.0)], &[false]);
+    assert!(v.ok, "{:?}", v.problems);
+    let v = validate(&t, None, &world, &rules, &[up(5.0)], &[false]);
+    assert!(v.problems.iter().any(|p| p.contains("from the crane's boom")), "{:?}", v.problems);
+}
+
 #[test]
 fn validator_refuses_a_move_it_cannot_sample() {
     let t = task(-14.0);
