@@ -153,7 +153,7 @@ pub struct ValidatorReport {
     pub ok: bool,
     pub samples: usize,
     /// Of `samples`, those added where two neighbours' distances did not rule
-    /// out a closer approach between them.
+    /// out a part coming closer than its requirement between them.
     #[serde(default)]
     pub refined_samples: usize,
     pub seconds: f64,

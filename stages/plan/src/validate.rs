@@ -4,14 +4,14 @@
 //! grown boxes. It measures exact distances (parry3d, f64) from every crane part
 //! to the original plant triangles and the site points, along every move
 //! sampled so that no point of the crane moves more than `sample_m` (finer than
-//! the planner) and more finely wherever two samples leave room for a closer
-//! approach between them, so that the clearance holds along the whole motion
-//! to within 2 mm; it keeps the load and its rigging off the crane's own
-//! structure, re-reads the load chart at every sample, and checks that the
-//! moves make one path from the load's pick pose to its set pose. What it
-//! shares with the planner is the crane's forward kinematics (the part boxes)
-//! and the lift's rules (clearance, landing zones, chart, permitted swing
-//! range), which it applies itself.
+//! the planner) and more finely wherever two samples leave room for a part to
+//! come closer than its requirement between them, so that the clearance holds
+//! along the whole motion to within 2 mm; it keeps the load and its rigging
+//! off the crane's own structure, re-reads the load chart at every sample, and
+//! checks that the moves make one path from the load's pick pose to its set
+//! pose. What it shares with the planner is the crane's forward kinematics
+//! (the part boxes) and the lift's rules (clearance, landing zones, chart,
+//! permitted swing range), which it applies itself.
 //!
 //! A plan it rejects is never written as a plan.
 
@@ -336,8 +336,8 @@ pub struct Verdict {
     pub problems: Vec<String>,
     /// Samples checked, those added between the evenly spaced ones included.
     pub samples: usize,
-    /// Samples added where two neighbours did not rule out a closer approach
-    /// between them.
+    /// Samples added where two neighbours' distances did not rule out a part
+    /// coming closer than its requirement between them.
     pub refined_samples: usize,
     pub seconds: f64,
 }
@@ -821,8 +821,8 @@ pub fn validate(
             Sample { t, ..check_config(task, chart, world, rules, &Config::from_array(v), landing) }
         };
         let even: Vec<Sample> = (0..n).into_par_iter().map(|s| at(s as f64 / (n - 1).max(1) as f64)).collect();
-        // Where two neighbours' distances do not rule out a closer approach
-        // between them, more samples there.
+        // Where two neighbours' distances do not rule out a part coming
+        // closer than its requirement between them, more samples there.
         let gaps = Gaps { moved_m, cutoff_m, hanging_worst_m: rules.clearance_m.max(rules.landing_clearance_m) };
         let added: Vec<Vec<Sample>> = even.par_windows(2).map(|w| between(&w[0], &w[1], &gaps, &at)).collect();
         let extra: usize = added.iter().map(Vec::len).sum();
