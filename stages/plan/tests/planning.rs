@@ -204,6 +204,18 @@ fn tower_crane_plans_over_the_wall_with_the_trolley() {
     assert!((t.crane.radius_m(last.radial) - 30f64.hypot(20.0)).abs() < 1e-6);
 }
 
+/// A load turning 0.1 rad on its rope after the lift-off: where it starts,
+/// where it ends, its box at mid-turn and one corner of that box (from its
+/// centre).
+fn turn_by_a_tenth(t: &LiftTask) -> (Config, Config, liftplan_core::obb::Obb, liftplan_core::frame::Vec3) {
+    let start = t.start();
+    let turned = Config { load_yaw_rad: start.load_yaw_rad + 0.1, ..start };
+    let mid = Config { load_yaw_rad: start.load_yaw_rad + 0.05, ..start };
+    let b = t.crane.load_obb(&mid, &t.load);
+    let corner = b.axis(0) * b.half.x + b.axis(1) * b.half.y;
+    (start, turned, b, corner)
+}
+
 /// A load turning on its rope past a scanned point: its corner passes the
 /// point at 5 cm between two samples that each see it more than 9 cm away.
 /// Samples alone (0.5 m of corner movement apart, the coarsest setting) pass
@@ -211,13 +223,9 @@ fn tower_crane_plans_over_the_wall_with_the_trolley() {
 #[test]
 fn validator_finds_a_closer_approach_between_its_samples() {
     let t = task(-14.0);
-    let start = t.start();
-    let turned = Config { load_yaw_rad: start.load_yaw_rad + 0.1, ..start };
-    let mid = Config { load_yaw_rad: start.load_yaw_rad + 0.05, ..start };
-    // The point 5 cm out from a corner of the load at mid-turn, at the load's
-    // mid-height, straight out from the rope.
-    let b = t.crane.load_obb(&mid, &t.load);
-    let corner = b.axis(0) * b.half.x + b.axis(1) * b.half.y;
+    let (start, turned, b, corner) = turn_by_a_tenth(&t);
+    // The point 5 cm out from that corner at the load's mid-height, straight
+    // out from the rope.
     let out = liftplan_core::frame::Vec3::new(corner.x, corner.y, 0.0).normalize();
     let p = b.center + corner + out * 0.05;
     let world = World::new(&TriMesh::default(), &[[p.x, p.y, p.z]], &[false]).unwrap();
@@ -325,14 +333,11 @@ fn validator_rejects_a_swing_outside_the_permitted_range() {
 #[test]
 fn validator_applies_the_full_clearance_where_the_load_leaves_a_landing_zone_between_samples() {
     let t = task(-14.0);
-    let start = t.start();
-    let turned = Config { load_yaw_rad: start.load_yaw_rad + 0.1, ..start };
+    let (start, turned, b, corner) = turn_by_a_tenth(&t);
     let mid = Config { load_yaw_rad: start.load_yaw_rad + 0.05, ..start };
     // The zone: a 20 m square round the load with a slot 10 cm wide from just
-    // inside one corner of the load at mid-turn out to the square's edge.
-    let b = t.crane.load_obb(&mid, &t.load);
+    // inside that corner out to the square's edge.
     let c = [b.center.x, b.center.y];
-    let corner = b.axis(0) * b.half.x + b.axis(1) * b.half.y;
     let r = corner.x.hypot(corner.y);
     let (u, n) = ([corner.x / r, corner.y / r], [-corner.y / r, corner.x / r]);
     let at = |s: f64, q: f64| [c[0] + s * u[0] + q * n[0], c[1] + s * u[1] + q * n[1]];
@@ -416,13 +421,9 @@ proptest::proptest! {
     ) {
         let t = if tower { tower_task() } else { task(-14.0) };
         let mut u = {
-            let mut s = seed | 1;
-            move || {
-                s ^= s << 13;
-                s ^= s >> 7;
-                s ^= s << 17;
-                (s >> 11) as f64 / (1u64 << 53) as f64
-            }
+            use rand::{RngExt, SeedableRng};
+            let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+            move || rng.random::<f64>()
         };
         let lim = t.crane.limits();
         let joint = [Joint::Swing, Joint::Radial, Joint::Hoist, Joint::Rotate][joint];
