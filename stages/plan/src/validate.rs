@@ -470,7 +470,11 @@ fn check_config(
                 b = b.with_underside_raised(rules.support_m);
             }
         }
-        let nearest = nearest(world, &b, !hanging, search_cutoff_m(rules));
+        // The superstructure and what turns with it stand just above the
+        // ground the crane is set up on: the scanned ground counts for the
+        // boom, the trolley and what hangs, as it does in the planner.
+        let ignore_ground = dep == Dependence::Swing;
+        let nearest = nearest(world, &b, ignore_ground, search_cutoff_m(rules));
         // Written so that a distance that is not a number fails too.
         if !(nearest.distance_m >= required - DISTANCE_TOLERANCE_M) {
             problems.push(format!(

@@ -387,6 +387,27 @@ fn validator_rejects_the_load_hoisted_into_the_boom() {
     assert!(v.problems.iter().any(|p| p.contains("from the crane's boom")), "{:?}", v.problems);
 }
 
+/// The scanned ground counts for the boom, as it does in the planner: a boom
+/// luffed low over a mound of scanned ground is too close to it. (Only the
+/// superstructure and what turns with it, standing just above the ground
+/// the crane is set up on, leave the ground out.)
+#[test]
+fn validator_keeps_the_boom_clear_of_scanned_ground() {
+    let t = task(-14.0);
+    let low = Config { swing_rad: 0.0, radial: 5f64.to_radians(), hoist_m: 5.0, load_yaw_rad: 0.0 };
+    let boom = t.crane.part(liftplan_core::crane::PartKind::Boom, &low, &t.load).unwrap();
+    // A scanned ground point 0.3 m under the boom, halfway along it.
+    let p = boom.center - boom.axis(2) * (boom.half.z + 0.3);
+    let rules = Rules { clearance_m: 1.0, landing: vec![], landing_clearance_m: 0.2, sample_m: 0.05, support_m: 0.05 };
+    let swing =
+        Move { joint: Joint::Swing, from: Config { swing_rad: -0.05, ..low }, to: Config { swing_rad: 0.05, ..low } };
+    for (ground, as_what) in [(true, "ground (scan)"), (false, "scanned structure")] {
+        let world = World::new(&TriMesh::default(), &[[p.x, p.y, p.z]], &[ground]).unwrap();
+        let v = validate(&t, None, &world, &rules, &[swing], &[false]);
+        assert!(v.problems.iter().any(|q| q.contains("boom is 0.300") && q.contains(as_what)), "{:?}", v.problems);
+    }
+}
+
 #[test]
 fn validator_refuses_a_move_it_cannot_sample() {
     let t = task(-14.0);
