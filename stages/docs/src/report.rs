@@ -280,7 +280,7 @@ pub fn document(
         15.0,
         y,
         w,
-        "The first and the last steps are the vertical lift-off and set-down. Capacity is the chart value (before the reduction) at the largest radius of the step; utilisation is the gross load over the reduced capacity; clearance is the smallest distance the validator measured between any crane part, rope, hook or load and the plant model or scanned points during the step, at samples no more than [plan] validator_sample_m of movement apart (0.05 m by default); between two samples the distance can be up to half that less. Wherever that could take a part closer than its required clearance, the validator samples more finely, down to 2 mm of movement, so the required clearance holds along the whole motion, not only at the samples, to within 2 mm. Swing angles are counter-clockwise positive seen from above.",
+        "The first and the last steps are the vertical lift-off and set-down. Capacity is the chart value (before the reduction) at the largest radius of the step; utilisation is the gross load over the reduced capacity; clearance is the smallest distance the validator measured between any crane part, rope, hook or load and the plant model or scanned points during the step, at samples no more than [plan] validator_sample_m of movement apart (0.05 m by default); between two samples the distance can be up to half that less. Wherever that could take a part closer than its required clearance, the validator samples more finely, down to 2 mm of movement, so the required clearance holds along the whole motion, not only at the samples, to within 2 mm. Swing and load rotation angles are counter-clockwise positive seen from above.",
         8.5,
     );
     if let Some(cs) = cspace {

@@ -498,3 +498,22 @@ pub fn run(
         .map_err(|e| PlanError::Input(Location::file(&pj), e.to_string()))?;
     Ok(RunSummary { lifts: plans.iter().map(|p| p.summary.clone()).collect() })
 }
+
+/// A lift for the unit tests: a 6 x 3 x 2.5 m skid with its centre of
+/// gravity off the box's centre, on one of the built-in cranes (a 40 m boom
+/// where it luffs), heading 20°.
+#[cfg(test)]
+pub(crate) fn test_lift(crane: &str) -> LiftTask {
+    let text = format!(
+        r#"
+id = "L"
+load = {{ name = "skid", mass_t = 5.0, size_m = [6.0, 3.0, 2.5], cog_m = [0.8, -0.4, 0.0] }}
+rigging = {{ mass_t = 0.2, height_m = 3.0 }}
+crane = {{ model = "{crane}", position_m = [0.0, 0.0], ground_z_m = 0.0, heading_deg = 20.0, boom_m = 40.0, chart_config = "none" }}
+pick = {{ x_m = 22.0, y_m = -14.0, z_m = 0.5, yaw_deg = 0.0 }}
+set = {{ x_m = 22.0, y_m = 14.0, z_m = 0.5, yaw_deg = 90.0 }}
+"#
+    );
+    let spec: liftplan_core::lift::LiftSpec = toml::from_str(&text).unwrap();
+    spec.resolve(liftplan_core::crane::builtin(crane).unwrap()).unwrap()
+}

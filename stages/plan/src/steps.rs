@@ -65,7 +65,8 @@ fn describe(task: &LiftTask, m: &Move) -> (String, f64, String, String) {
         }
         Joint::Rotate => {
             let deg = d.to_degrees();
-            ("Rotate load".into(), deg, "°".into(), format!("rotate load {deg:+.1}°"))
+            let dir = if deg >= 0.0 { "counter-clockwise" } else { "clockwise" };
+            ("Rotate load".into(), deg, "°".into(), format!("rotate load {deg:+.1}° ({dir})"))
         }
     }
 }
@@ -212,4 +213,32 @@ pub fn to_csv(steps: &[Step]) -> String {
         ));
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The words "counter-clockwise" and "clockwise" say which way the boom
+    /// and the load turn, seen from above, as the crane's kinematics turn
+    /// them (a rigger reads the words, not the sign).
+    #[test]
+    fn turn_directions_are_the_kinematics_seen_from_above() {
+        let task = crate::test_lift("ac-700");
+        let c = task.start();
+        for (joint, step) in [(Joint::Swing, 0.3), (Joint::Swing, -0.3), (Joint::Rotate, 0.3), (Joint::Rotate, -0.3)] {
+            let mut to = c.to_array();
+            to[joint.index()] += step;
+            let m = Move { joint, from: c, to: Config::from_array(to) };
+            let (_, _, _, text) = describe(&task, &m);
+            // The boom's direction for a swing, the load's long axis for a rotation.
+            let dir = |k: &Config| match joint {
+                Joint::Swing => task.crane.boom_dir(k.swing_rad),
+                _ => task.crane.load_obb(k, &task.load).axis(0),
+            };
+            let turn_z = dir(&m.from).cross(&dir(&m.to)).z;
+            let want = if turn_z > 0.0 { "(counter-clockwise)" } else { "(clockwise)" };
+            assert!(text.ends_with(want), "{joint:?} {step}: '{text}' but the turn's z is {turn_z}");
+        }
+    }
 }

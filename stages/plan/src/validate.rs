@@ -1004,21 +1004,6 @@ mod tests {
         }
     }
 
-    fn lift(crane: &str) -> LiftTask {
-        let text = format!(
-            r#"
-id = "L"
-load = {{ name = "skid", mass_t = 5.0, size_m = [6.0, 3.0, 2.5], cog_m = [0.8, -0.4, 0.0] }}
-rigging = {{ mass_t = 0.2, height_m = 3.0 }}
-crane = {{ model = "{crane}", position_m = [0.0, 0.0], ground_z_m = 0.0, heading_deg = 20.0, boom_m = 40.0, chart_config = "none" }}
-pick = {{ x_m = 22.0, y_m = -14.0, z_m = 0.5, yaw_deg = 0.0 }}
-set = {{ x_m = 22.0, y_m = 14.0, z_m = 0.5, yaw_deg = 90.0 }}
-"#
-        );
-        let spec: liftplan_core::lift::LiftSpec = toml::from_str(&text).unwrap();
-        spec.resolve(liftplan_core::crane::builtin(crane).unwrap()).unwrap()
-    }
-
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(liftplan_core::testing::proptest_cases(200)))]
         /// No corner of any part moves farther than the lever times the
@@ -1031,7 +1016,7 @@ set = {{ x_m = 22.0, y_m = 14.0, z_m = 0.5, yaw_deg = 90.0 }}
             at in prop::array::uniform4(0.0f64..1.0),
             delta in -0.3f64..0.3,
         ) {
-            let task = lift(if tower { "tower-hh-60" } else { "ac-700" });
+            let task = crate::test_lift(if tower { "tower-hh-60" } else { "ac-700" });
             let lim = task.crane.limits();
             let from = Config {
                 swing_rad: at[0] * std::f64::consts::TAU,
