@@ -517,24 +517,32 @@ const OWN_CLEARANCE_M: f64 = 0.01;
 /// outriggers; mast, jib, counter-jib, cab, trolley), and which part that
 /// is. The hook block and the rope hang from the sheave at the boom's head,
 /// inside the boom's box: they are not checked against it.
+///
+/// Parts whose bounding spheres are more than [`OWN_EXACT_WITHIN_M`] apart get
+/// the spheres' gap instead of the exact distance: never more than it, and
+/// plenty for the check and the bound between samples, at a fraction of the
+/// cost (most of the crane is far from the load most of the time).
 fn own_distances(task: &LiftTask, c: &Config) -> Vec<(PartKind, f64, &'static str)> {
     let pose = task.crane.pose(c, &task.load);
-    let structure: Vec<(PartKind, (Pose, Cuboid))> = pose
-        .parts
-        .iter()
-        .filter(|(k, _)| k.dependence() != Dependence::Full)
-        .map(|(k, b)| (*k, parry_box(b)))
-        .collect();
+    let radius = |b: &Obb| b.half.norm();
+    let structure: Vec<(PartKind, &Obb)> =
+        pose.parts.iter().filter(|(k, _)| k.dependence() != Dependence::Full).map(|(k, b)| (*k, b)).collect();
     pose.parts
         .iter()
         .filter(|(k, _)| matches!(k, PartKind::Load | PartKind::Rigging))
         .map(|(k, b)| {
-            let (pose, cub) = parry_box(b);
+            let (p1, c1) = parry_box(b);
             let (d, what) = structure
                 .iter()
-                .map(|(sk, (sp, sc))| {
-                    // Two boxes: parry's distance cannot fail; a NaN box would.
-                    let d = query::distance(&pose, &cub, sp, sc).map(|d| d.distance).unwrap_or(f64::NAN);
+                .map(|(sk, sb)| {
+                    let apart = (sb.center - b.center).norm() - radius(sb) - radius(b);
+                    let d = if apart > OWN_EXACT_WITHIN_M {
+                        apart
+                    } else {
+                        let (p2, c2) = parry_box(sb);
+                        // Two boxes: parry's distance cannot fail; a NaN box would.
+                        query::distance(&p1, &c1, &p2, &c2).map(|d| d.distance).unwrap_or(f64::NAN)
+                    };
                     (d, sk.name())
                 })
                 .fold((f64::INFINITY, ""), |best, x| if !(x.0 >= best.0) { x } else { best });
@@ -542,6 +550,10 @@ fn own_distances(task: &LiftTask, c: &Config) -> Vec<(PartKind, f64, &'static st
         })
         .collect()
 }
+
+/// Within this gap between their bounding spheres (m), [`own_distances`]
+/// measures a part's exact distance.
+const OWN_EXACT_WITHIN_M: f64 = 1.0;
 
 /// Distance from `p` to the nearest edge of `poly` (m).
 fn to_edge_m(poly: &[[f64; 2]], p: [f64; 2]) -> f64 {
@@ -1087,6 +1099,45 @@ mod tests {
                     })
                     .collect();
                 prop_assert_eq!(over(&moved), inside, "margin {} moved {:?} from {:?}", margin, moved, footprint);
+            }
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(liftplan_core::testing::proptest_cases(200)))]
+        /// The load's and rigging's distances to the crane are never more than
+        /// the exact distance to its nearest part, and are that distance
+        /// wherever it is within a metre.
+        #[test]
+        fn own_distances_are_exact_near_and_never_more(
+            tower in any::<bool>(),
+            at in prop::array::uniform4(0.0f64..1.0),
+        ) {
+            let task = crate::test_lift(if tower { "tower-hh-60" } else { "ac-700" });
+            let lim = task.crane.limits();
+            let c = Config {
+                swing_rad: at[0] * std::f64::consts::TAU,
+                radial: lim.radial.0 + at[1] * (lim.radial.1 - lim.radial.0),
+                hoist_m: lim.hoist_m.0 + at[2] * (lim.hoist_m.1 - lim.hoist_m.0).min(30.0),
+                load_yaw_rad: at[3] * std::f64::consts::TAU,
+            };
+            let pose = task.crane.pose(&c, &task.load);
+            for (kind, d, _) in own_distances(&task, &c) {
+                let (_, hb) = pose.parts.iter().find(|(k, _)| *k == kind).unwrap();
+                let (p1, c1) = parry_box(hb);
+                let exact = pose
+                    .parts
+                    .iter()
+                    .filter(|(k, _)| k.dependence() != Dependence::Full)
+                    .map(|(_, b)| {
+                        let (p2, c2) = parry_box(b);
+                        query::distance(&p1, &c1, &p2, &c2).unwrap().distance
+                    })
+                    .fold(f64::INFINITY, f64::min);
+                prop_assert!(d <= exact + 1e-12, "{kind:?}: {d} over the exact {exact}");
+                if exact <= OWN_EXACT_WITHIN_M {
+                    prop_assert!((d - exact).abs() <= 1e-12, "{kind:?}: {d}, exact {exact}");
+                }
             }
         }
     }
