@@ -529,21 +529,39 @@ pub fn highest_below(map: &Mdm, xa: f64, xb: f64, ya: f64, yb: f64, z_max: f32) 
     top
 }
 
-/// Shortest rope at which the load's bounding sphere stays clear of the boom
-/// (Cai eqs. 4.31-4.32): the load hangs `d` below the boom head, so its centre
-/// is `d·cos(luff)` from the boom's axis; that must exceed the sphere radius
-/// plus half the boom depth. A tower crane's jib is level above the hook: the
-/// rope limits suffice.
+/// Shortest rope at which the load and its rigging stay clear of the boom
+/// (after Cai eqs. 4.31-4.32), up to luff `luff_max`. The boom runs from the
+/// sheave down towards the crane, so a point `h` below the sheave and `x`
+/// from the hook line towards the crane is `h·cos(luff) - x·sin(luff)` from
+/// the boom's axis; that must exceed half the boom depth, plus the load's
+/// bounding sphere for its centre (off the hook line by its centre of
+/// gravity) and nothing for the top corners of the rigging (a prism on the
+/// load's footprint up to the hook block), each with [`INTERNAL_MARGIN_M`]
+/// to spare. A tower crane's jib is level above the hook: the rope limits
+/// suffice.
 pub fn min_hoist_for_internal_clearance(crane: &CraneSetup, load: &LoadShape, luff_max: f64) -> f64 {
     match &crane.model.kind {
         liftplan_core::crane::CraneKind::Luffing(l) => {
-            let need = load.bounding_radius() + l.boom.depth_m / 2.0;
-            let d = need / luff_max.cos().max(0.05);
-            d - crane.model.hook.height_m - load.rigging_height_m - load.size_m[2] / 2.0
+            let (sin, cos) = (luff_max.sin().max(0.0), luff_max.cos().max(0.05));
+            let half_depth = l.boom.depth_m / 2.0 + INTERNAL_MARGIN_M;
+            let hook = crane.model.hook.height_m;
+            // The load's centre, `hoist + hook + rigging + half its height` down.
+            let off_line = load.cog_m[0].hypot(load.cog_m[1]);
+            let centre = (load.bounding_radius() + half_depth + off_line * sin) / cos
+                - hook
+                - load.rigging_height_m
+                - load.size_m[2] / 2.0;
+            // The rigging's top corners, `hoist + hook` down.
+            let rigging = (half_depth + load.yaw_invariant_radius() * sin) / cos - hook;
+            centre.max(rigging)
         }
         liftplan_core::crane::CraneKind::Tower(_) => f64::NEG_INFINITY,
     }
 }
+
+/// What [`min_hoist_for_internal_clearance`] keeps between the load or its
+/// rigging and the boom (m); the validator asks for 1 cm.
+pub const INTERNAL_MARGIN_M: f64 = 0.05;
 
 /// A crane joint, for single-joint moves.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]

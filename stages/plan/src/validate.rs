@@ -1142,6 +1142,38 @@ mod tests {
         }
     }
 
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(liftplan_core::testing::proptest_cases(300)))]
+        /// The planner's shortest rope per luff row keeps the load and its
+        /// rigging off the boom by more than the validator asks, at any swing,
+        /// load yaw and longer rope: the planner does not plan what the
+        /// validator would refuse. (The load here hangs off its centre of
+        /// gravity.)
+        #[test]
+        fn the_planners_shortest_rope_keeps_the_load_off_the_boom(
+            luff_deg in 0.0f64..80.0,
+            row_deg in 0.0f64..2.0,
+            more_rope in 0.0f64..3.0,
+            swing in 0.0f64..6.3,
+            yaw in 0.0f64..6.3,
+        ) {
+            let task = crate::test_lift("ac-700");
+            let luff = luff_deg.to_radians();
+            let shortest = liftplan_cspace::min_hoist_for_internal_clearance(
+                &task.crane, &task.load, (luff_deg + row_deg).to_radians());
+            let lim = task.crane.limits();
+            let c = Config { swing_rad: swing, radial: luff, hoist_m: shortest.max(lim.hoist_m.0) + more_rope, load_yaw_rad: yaw };
+            let pose = task.crane.pose(&c, &task.load);
+            let boom = pose.get(PartKind::Boom).unwrap();
+            let (pb, cb) = parry_box(boom);
+            for kind in [PartKind::Load, PartKind::Rigging] {
+                let (ph, ch) = parry_box(pose.get(kind).unwrap());
+                let d = query::distance(&ph, &ch, &pb, &cb).unwrap().distance;
+                prop_assert!(d >= OWN_CLEARANCE_M, "{kind:?} {d} m from the boom at {c:?}");
+            }
+        }
+    }
+
     #[test]
     fn ties_name_the_same_obstacle_on_every_build() {
         // Three points 1 m under a long box's underside: the one in the lowest
