@@ -468,8 +468,9 @@ pub fn table_414(runs: u64) {
 
 /// What the validator's check between samples costs and finds: the planner
 /// as shipped, `runs` seeds on each plant; for every validated plan, its
-/// samples (evenly spaced and added where two neighbours left room for a
-/// closer approach), the validator's time and the smallest clearance margin.
+/// samples (evenly spaced, and added where two neighbours left room for a
+/// part to come closer than its clearance between them), the validator's
+/// time and the smallest clearance margin.
 pub fn validator_table(runs: u64) {
     let plants = [plant1(), plant2(), plant3(), plant3_with_columns(14.0), plant_414()];
     let s = Settings::default();
