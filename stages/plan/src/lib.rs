@@ -517,3 +517,18 @@ set = {{ x_m = 22.0, y_m = 14.0, z_m = 0.5, yaw_deg = 90.0 }}
     let spec: liftplan_core::lift::LiftSpec = toml::from_str(&text).unwrap();
     spec.resolve(liftplan_core::crane::builtin(crane).unwrap()).unwrap()
 }
+
+/// The configuration of `task`'s crane at fractions `at` (each in [0, 1]) of
+/// a turn of swing, of its radial range, of its rope range (no more than
+/// `rope_span_m` of it) and of a turn of load yaw: random configurations for
+/// the unit tests' property tests.
+#[cfg(test)]
+pub(crate) fn test_config(task: &LiftTask, at: [f64; 4], rope_span_m: f64) -> liftplan_core::crane::Config {
+    let lim = task.crane.limits();
+    liftplan_core::crane::Config {
+        swing_rad: at[0] * std::f64::consts::TAU,
+        radial: lim.radial.0 + at[1] * (lim.radial.1 - lim.radial.0),
+        hoist_m: lim.hoist_m.0 + at[2] * (lim.hoist_m.1 - lim.hoist_m.0).min(rope_span_m),
+        load_yaw_rad: at[3] * std::f64::consts::TAU,
+    }
+}

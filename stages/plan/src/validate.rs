@@ -17,7 +17,7 @@
 
 use crate::path::Move;
 use liftplan_core::capacity::ChartConfig;
-use liftplan_core::crane::{Config, Dependence, PartKind};
+use liftplan_core::crane::{Config, CranePose, Dependence, PartKind};
 use liftplan_core::lift::LiftTask;
 use liftplan_core::mesh::TriMesh;
 use liftplan_core::obb::Obb;
@@ -400,10 +400,10 @@ fn lever_for(task: &LiftTask, m: &Move) -> f64 {
     }
 }
 
-/// Samples evenly spaced along a move that moves `lever_m` per unit of
-/// `delta`, so that no point moves more than `sample_m` between two.
-fn samples_for(delta: f64, lever_m: f64, sample_m: f64) -> usize {
-    ((delta * lever_m / sample_m).ceil() as usize).max(1) + 1
+/// Samples evenly spaced along a move in which no point moves more than
+/// `moved_m`, so that none moves more than `sample_m` between two.
+fn samples_for(moved_m: f64, sample_m: f64) -> usize {
+    ((moved_m / sample_m).ceil() as usize).max(1) + 1
 }
 
 /// Checks one configuration: every part's distance against its requirement and the chart.
@@ -454,13 +454,14 @@ fn check_config(
     // A lift-off or set-down asks the same of the hanging parts in a zone or not.
     let zone_margin_m =
         if landing_move { f64::INFINITY } else { zone_margin_m(&rules.landing, &footprint, in_landing) };
+    // Every part's box once, for the site and for the crane's own structure.
+    let pose = crane.pose(c, &task.load);
     let mut out = Vec::new();
-    for &kind in crane.part_kinds() {
+    for &(kind, mut b) in &pose.parts {
         let dep = kind.dependence();
         if dep == Dependence::Fixed {
             continue; // checked once per plan
         }
-        let Some(mut b) = crane.part(kind, c, &task.load) else { continue };
         let hanging = dep == Dependence::Full;
         let mut required = if hanging && in_landing { rules.landing_clearance_m } else { rules.clearance_m };
         if landing_move && hanging {
@@ -496,7 +497,7 @@ fn check_config(
             utilisation_pct: util,
         });
     }
-    let own = own_distances(task, c);
+    let own = own_distances(&pose);
     for (kind, d, what) in &own {
         if !(*d >= OWN_CLEARANCE_M - DISTANCE_TOLERANCE_M) {
             problems
@@ -513,7 +514,7 @@ fn check_config(
 const OWN_CLEARANCE_M: f64 = 0.01;
 
 /// The distance from the load and from its rigging to the nearest part of the
-/// crane that does not hang (boom, superstructure, counterweight, carrier,
+/// crane (at `pose`) that does not hang (boom, superstructure, counterweight, carrier,
 /// outriggers; mast, jib, counter-jib, cab, trolley), and which part that
 /// is. The hook block and the rope hang from the sheave at the boom's head,
 /// inside the boom's box: they are not checked against it.
@@ -522,8 +523,7 @@ const OWN_CLEARANCE_M: f64 = 0.01;
 /// the spheres' gap instead of the exact distance: never more than it, and
 /// plenty for the check and the bound between samples, at a fraction of the
 /// cost (most of the crane is far from the load most of the time).
-fn own_distances(task: &LiftTask, c: &Config) -> Vec<(PartKind, f64, &'static str)> {
-    let pose = task.crane.pose(c, &task.load);
+fn own_distances(pose: &CranePose) -> Vec<(PartKind, f64, &'static str)> {
     let radius = |b: &Obb| b.half.norm();
     let structure: Vec<(PartKind, &Obb)> =
         pose.parts.iter().filter(|(k, _)| k.dependence() != Dependence::Full).map(|(k, b)| (*k, b)).collect();
@@ -696,14 +696,17 @@ fn between(a: &Sample, b: &Sample, g: &Gaps, at: &(impl Fn(f64) -> Sample + Sync
 /// never the same.
 fn same_place(a: &Config, b: &Config) -> bool {
     let close = |x: f64, y: f64| (x - y).abs() <= 1e-9 * (1.0 + x.abs().max(y.abs()));
-    let turn = |x: f64, y: f64| {
-        let d = (x - y).rem_euclid(std::f64::consts::TAU);
-        close(d.min(std::f64::consts::TAU - d), 0.0)
-    };
+    let turn = |x: f64, y: f64| close(turn_apart(x, y), 0.0);
     turn(a.swing_rad, b.swing_rad)
         && close(a.radial, b.radial)
         && close(a.hoist_m, b.hoist_m)
         && turn(a.load_yaw_rad, b.load_yaw_rad)
+}
+
+/// How far apart two angles are (rad, in [0, π]), whatever turn each is on.
+fn turn_apart(x: f64, y: f64) -> f64 {
+    let d = (x - y).rem_euclid(std::f64::consts::TAU);
+    d.min(std::f64::consts::TAU - d)
 }
 
 /// Where the moves do not make one path: a move that changes a joint other
@@ -755,9 +758,8 @@ pub fn validate_lift(
     let mut v = validate(task, chart, world, rules, moves, landing_moves);
     let at = |c: &Config, want: &liftplan_core::crane::LoadPose, (verb, which): (&str, &str)| {
         let got = task.crane.load_pose(c, &task.load);
-        let yaw = (got.yaw_rad - want.yaw_rad).rem_euclid(std::f64::consts::TAU);
         let off_m = (got.x_m - want.x_m).hypot(got.y_m - want.y_m).hypot(got.z_m - want.z_m);
-        (!(off_m <= 1e-3 && yaw.min(std::f64::consts::TAU - yaw) <= 1e-3)).then(|| {
+        (!(off_m <= 1e-3 && turn_apart(got.yaw_rad, want.yaw_rad) <= 1e-3)).then(|| {
             format!(
                 "the path {verb} with the load at ({:.3}, {:.3}, {:.3}) m, yaw {:.2}°, not at its {which} pose ({:.3}, {:.3}, {:.3}) m, yaw {:.2}°",
                 got.x_m,
@@ -827,7 +829,7 @@ pub fn validate(
             ));
             continue;
         }
-        let n = samples_for(m.delta().abs(), lever_m, rules.sample_m);
+        let n = samples_for(moved_m, rules.sample_m);
         let landing = landing_moves.get(mi).copied().unwrap_or(false);
         let at = |t: f64| {
             let (a, b) = (m.from.to_array(), m.to.to_array());
@@ -1029,13 +1031,7 @@ mod tests {
             delta in -0.3f64..0.3,
         ) {
             let task = crate::test_lift(if tower { "tower-hh-60" } else { "ac-700" });
-            let lim = task.crane.limits();
-            let from = Config {
-                swing_rad: at[0] * std::f64::consts::TAU,
-                radial: lim.radial.0 + at[1] * (lim.radial.1 - lim.radial.0),
-                hoist_m: lim.hoist_m.0 + at[2] * (lim.hoist_m.1 - lim.hoist_m.0),
-                load_yaw_rad: at[3] * std::f64::consts::TAU,
-            };
+            let from = crate::test_config(&task, at, f64::INFINITY);
             let joint = [Joint::Swing, Joint::Radial, Joint::Hoist, Joint::Rotate][joint];
             let mut to = from.to_array();
             to[joint.index()] += delta;
@@ -1114,15 +1110,9 @@ mod tests {
             at in prop::array::uniform4(0.0f64..1.0),
         ) {
             let task = crate::test_lift(if tower { "tower-hh-60" } else { "ac-700" });
-            let lim = task.crane.limits();
-            let c = Config {
-                swing_rad: at[0] * std::f64::consts::TAU,
-                radial: lim.radial.0 + at[1] * (lim.radial.1 - lim.radial.0),
-                hoist_m: lim.hoist_m.0 + at[2] * (lim.hoist_m.1 - lim.hoist_m.0).min(30.0),
-                load_yaw_rad: at[3] * std::f64::consts::TAU,
-            };
+            let c = crate::test_config(&task, at, 30.0);
             let pose = task.crane.pose(&c, &task.load);
-            for (kind, d, _) in own_distances(&task, &c) {
+            for (kind, d, _) in own_distances(&pose) {
                 let (_, hb) = pose.parts.iter().find(|(k, _)| *k == kind).unwrap();
                 let (p1, c1) = parry_box(hb);
                 let exact = pose
