@@ -55,13 +55,26 @@ fn quick() -> Settings {
     s
 }
 
-#[test]
-fn plans_over_the_wall_and_the_validator_agrees() {
+/// The validator's rules for `task`'s lifts: 1 m clearance, 0.2 m over a
+/// landing zone (none here), samples 5 cm of movement apart.
+fn rules() -> Rules {
+    Rules { clearance_m: 1.0, landing: vec![], landing_clearance_m: 0.2, sample_m: 0.05, support_m: 0.05 }
+}
+
+/// The lift over the wall, planned (seed 3): the lift, the validator's view
+/// of the site, and the plan.
+fn over_the_wall() -> (LiftTask, World, liftplan_plan::LiftPlan) {
     let mesh = site();
     let m = map(&mesh);
     let world = World::new(&mesh, &[], &[]).unwrap();
     let t = task(-14.0);
     let (plan, _) = plan_lift(&t, &Site { map: &m, world: &world, charts: None }, &quick(), 3).unwrap();
+    (t, world, plan)
+}
+
+#[test]
+fn plans_over_the_wall_and_the_validator_agrees() {
+    let (t, _, plan) = over_the_wall();
     assert!(plan.validator.ok);
     assert_eq!(plan.moves.first().unwrap().from, t.pick);
     assert!((plan.moves.last().unwrap().to.hoist_m - t.set.hoist_m).abs() < 1e-9);
@@ -114,7 +127,7 @@ fn validator_rejects_a_swing_through_the_wall() {
         Move { joint: Joint::Swing, from: start, to: mid },
         Move { joint: Joint::Rotate, from: mid, to: Config { load_yaw_rad: goal.load_yaw_rad, ..mid } },
     ];
-    let rules = Rules { clearance_m: 1.0, landing: vec![], landing_clearance_m: 0.2, sample_m: 0.05, support_m: 0.05 };
+    let rules = rules();
     let v = validate(&t, None, &world, &rules, &moves, &[false, false]);
     assert!(!v.ok);
     assert!(v.problems.iter().any(|p| p.contains("WALL")), "{:?}", v.problems);
@@ -152,7 +165,7 @@ fn validator_rejects_a_step_over_capacity() {
     assert!((t.crane.radius_m(out.radial) - 32.0).abs() < 1e-9);
     let moves =
         vec![Move { joint: Joint::Hoist, from: start, to: up }, Move { joint: Joint::Radial, from: up, to: out }];
-    let rules = Rules { clearance_m: 1.0, landing: vec![], landing_clearance_m: 0.2, sample_m: 0.05, support_m: 0.05 };
+    let rules = rules();
     let tight = chart(3.0);
     let v = validate(&t, Some(tight.config("none").unwrap()), &world, &rules, &moves, &[false, false]);
     assert!(!v.ok, "a luff to 32 m with {:.1} t gross on a 3 t row passed", t.gross_kg() / 1000.0);
@@ -229,7 +242,7 @@ fn validator_finds_a_closer_approach_between_its_samples() {
     let out = liftplan_core::frame::Vec3::new(corner.x, corner.y, 0.0).normalize();
     let p = b.center + corner + out * 0.05;
     let world = World::new(&TriMesh::default(), &[[p.x, p.y, p.z]], &[false]).unwrap();
-    let rules = Rules { clearance_m: 0.08, landing: vec![], landing_clearance_m: 0.08, sample_m: 0.5, support_m: 0.05 };
+    let rules = Rules { clearance_m: 0.08, landing_clearance_m: 0.08, sample_m: 0.5, ..rules() };
     let turn = |from: Config, to: Config| Move { joint: Joint::Rotate, from, to };
     // Either end alone keeps the clearance, and the move is one gap between them.
     for end in [start, turned] {
@@ -258,12 +271,8 @@ fn validator_finds_a_closer_approach_between_its_samples() {
 /// would have the crane jump where nothing was checked.
 #[test]
 fn validator_rejects_a_broken_path() {
-    let mesh = site();
-    let m = map(&mesh);
-    let world = World::new(&mesh, &[], &[]).unwrap();
-    let t = task(-14.0);
-    let (plan, _) = plan_lift(&t, &Site { map: &m, world: &world, charts: None }, &quick(), 3).unwrap();
-    let rules = Rules { clearance_m: 1.0, landing: vec![], landing_clearance_m: 0.2, sample_m: 0.05, support_m: 0.05 };
+    let (t, world, plan) = over_the_wall();
+    let rules = rules();
     let check = |moves: &[Move]| {
         let landing: Vec<bool> = (0..moves.len()).map(|i| i == 0 || i + 1 == moves.len()).collect();
         validate_lift(&t, None, &world, &rules, moves, &landing)
@@ -309,7 +318,7 @@ fn validator_rejects_a_swing_outside_the_permitted_range() {
     let (a, b) = (start.swing_rad - 0.5, start.swing_rad + 0.5);
     t.swing_range_rad = Some((a, b));
     let world = World::new(&TriMesh::default(), &[], &[]).unwrap();
-    let rules = Rules { clearance_m: 1.0, landing: vec![], landing_clearance_m: 0.2, sample_m: 0.05, support_m: 0.05 };
+    let rules = rules();
     let swing = |from: f64, to: f64| {
         let mv = Move {
             joint: Joint::Swing,
@@ -355,8 +364,7 @@ fn validator_applies_the_full_clearance_where_the_load_leaves_a_landing_zone_bet
     // One scanned point 0.5 m under the load's centre: as far at every yaw.
     let p = [b.center.x, b.center.y, b.center.z - b.half.z - 0.5];
     let world = World::new(&TriMesh::default(), &[p], &[false]).unwrap();
-    let rules =
-        Rules { clearance_m: 1.0, landing: vec![zone], landing_clearance_m: 0.2, sample_m: 0.5, support_m: 0.05 };
+    let rules = Rules { landing: vec![zone], sample_m: 0.5, ..rules() };
     let turn = |from: Config, to: Config| Move { joint: Joint::Rotate, from, to };
     let load_check = |c: Config| {
         let v = validate(&t, None, &world, &rules, &[turn(c, c)], &[false]);
@@ -378,7 +386,7 @@ fn validator_applies_the_full_clearance_where_the_load_leaves_a_landing_zone_bet
 fn validator_rejects_the_load_hoisted_into_the_boom() {
     let t = task(-14.0);
     let world = World::new(&TriMesh::default(), &[], &[]).unwrap();
-    let rules = Rules { clearance_m: 1.0, landing: vec![], landing_clearance_m: 0.2, sample_m: 0.05, support_m: 0.05 };
+    let rules = rules();
     let steep = Config { swing_rad: 0.0, radial: 80f64.to_radians(), hoist_m: 20.0, load_yaw_rad: 0.0 };
     let up = |to: f64| Move { joint: Joint::Hoist, from: steep, to: Config { hoist_m: to, ..steep } };
     let v = validate(&t, None, &world, &rules, &[up(15.0)], &[false]);
@@ -398,7 +406,7 @@ fn validator_keeps_the_boom_clear_of_scanned_ground() {
     let boom = t.crane.part(liftplan_core::crane::PartKind::Boom, &low, &t.load).unwrap();
     // A scanned ground point 0.3 m under the boom, halfway along it.
     let p = boom.center - boom.axis(2) * (boom.half.z + 0.3);
-    let rules = Rules { clearance_m: 1.0, landing: vec![], landing_clearance_m: 0.2, sample_m: 0.05, support_m: 0.05 };
+    let rules = rules();
     let swing =
         Move { joint: Joint::Swing, from: Config { swing_rad: -0.05, ..low }, to: Config { swing_rad: 0.05, ..low } };
     for (ground, as_what) in [(true, "ground (scan)"), (false, "scanned structure")] {
@@ -413,7 +421,7 @@ fn validator_refuses_a_move_it_cannot_sample() {
     let t = task(-14.0);
     let start = t.start();
     let world = World::new(&TriMesh::default(), &[], &[]).unwrap();
-    let rules = Rules { clearance_m: 1.0, landing: vec![], landing_clearance_m: 0.2, sample_m: 0.05, support_m: 0.05 };
+    let rules = rules();
     for swing in [f64::NAN, f64::INFINITY, 1e6] {
         let to = Config { swing_rad: swing, ..start };
         let v = validate(&t, None, &world, &rules, &[Move { joint: Joint::Swing, from: start, to }], &[false]);
@@ -480,13 +488,13 @@ proptest::proptest! {
             .collect();
         let world = World::new(&TriMesh::default(), &points, &[false; 3]).unwrap();
         let mv = Move { joint, from: Config::from_array(from), to: Config::from_array(to) };
-        let rules = |clearance_m: f64, sample_m: f64| Rules {
-            clearance_m, landing: vec![], landing_clearance_m: clearance_m, sample_m, support_m: 0.05,
+        let spaced = |clearance_m: f64, sample_m: f64| Rules {
+            clearance_m, landing_clearance_m: clearance_m, sample_m, ..rules()
         };
-        let fine = validate(&t, None, &world, &rules(0.0, 0.001), &[mv], &[false]);
+        let fine = validate(&t, None, &world, &spaced(0.0, 0.001), &[mv], &[false]);
         let closest = fine.moves[0].tightest.nearest.distance_m;
         proptest::prop_assume!(closest.is_finite());
-        let coarse = validate(&t, None, &world, &rules(closest + short, 0.5), &[mv], &[false]);
+        let coarse = validate(&t, None, &world, &spaced(closest + short, 0.5), &[mv], &[false]);
         proptest::prop_assert!(
             !coarse.ok,
             "passed with {} samples ({} added), but {:?} comes {:.4} m from {} at {:?} (needs {:.4})",
