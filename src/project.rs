@@ -336,7 +336,7 @@ threshold_m = 0.5
 scalar = 1.25
 
 [plant]
-tolerance = 0.01          # chord tolerance of the RVM tessellation, m
+tolerance = 0.01          # RVM tessellation: how far outside a primitive its mesh may lie (never inside), m
 cull_caps = true          # leave out end caps hidden inside connected primitives
 unit = "m"                # unit of OBJ/PLY/STL files (glTF is always m)
 up_axis = "z"             # z | y, for OBJ/PLY/STL files (glTF is always Y-up)

@@ -2,7 +2,8 @@
 //!
 //! Reads PDMS/E3D binary RVM exports ([`rvm`], with their `.att` attribute files,
 //! [`att`]) and BIM meshes (OBJ, PLY, STL, glTF/GLB; [`mesh_io`]), tessellates
-//! RVM primitives within a chord tolerance ([`tess`]), leaves out what the
+//! RVM primitives into meshes that enclose them, at most a chord tolerance
+//! outside their surfaces, never inside ([`tess`]), leaves out what the
 //! selection excludes (the item being lifted, insulation, temporary works),
 //! places the result in the site frame and writes:
 //!
@@ -34,7 +35,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 pub const NAME: &str = "plant";
-pub const VERSION: u32 = 1;
+pub const VERSION: u32 = 2;
 
 /// File extensions the stage reads.
 pub const EXTS: &[&str] = &["rvm", "obj", "ply", "stl", "gltf", "glb", "ifc"];
@@ -147,7 +148,8 @@ pub struct Summary {
     pub vertices: usize,
     pub bbox: [f64; 6],
     pub tolerance_m: f64,
-    /// Largest distance from any face to its analytic surface (m).
+    /// Largest distance from any face of an RVM primitive's mesh to its
+    /// analytic surface (m); the faces lie outside the surface, never inside.
     pub max_error_m: f64,
     pub caps_culled: usize,
     pub excluded_groups: Vec<String>,
