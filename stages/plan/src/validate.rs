@@ -465,7 +465,8 @@ fn check_config(
         let hanging = dep == Dependence::Full;
         let mut required = if hanging && in_landing { rules.landing_clearance_m } else { rules.clearance_m };
         if landing_move && hanging {
-            required = 0.0;
+            // Lift-off and set-down: touch nothing but the load's support.
+            required = LANDING_GAP_M;
             if kind == PartKind::Load {
                 // The load may rest on its support.
                 b = b.with_underside_raised(rules.support_m);
@@ -594,6 +595,13 @@ fn zone_margin_m(zones: &[Vec<[f64; 2]>], footprint: &[[f64; 2]], inside: bool) 
 /// Distances below the requirement by no more than this pass (m): the
 /// samples' own tolerance.
 const DISTANCE_TOLERANCE_M: f64 = 1e-3;
+
+/// What the hanging parts keep from everything during the lift-off and the
+/// set-down, the load's support aside (whatever lies within `support_m` under
+/// the load): not a clearance, only "not touching". A distance cannot say by
+/// how much two solids overlap, so a requirement of zero would pass a load
+/// lowered through a beam.
+const LANDING_GAP_M: f64 = 0.01;
 
 /// Two samples whose points are at most this far apart are not split
 /// further (m). Everywhere between them every part is then at least its

@@ -503,3 +503,31 @@ proptest::proptest! {
         );
     }
 }
+
+/// During the lift-off and the set-down the hanging parts may touch nothing
+/// but the load's support: a beam through the load where it rests, or across
+/// the rigging above it, is refused; the bare pad it rests on is not.
+#[test]
+fn validator_rejects_a_set_down_through_an_obstacle() {
+    let t = task(-14.0);
+    let rules = rules();
+    let load = t.crane.load_obb(&t.set, &t.load);
+    let (c, under) = (load.center, load.center.z - load.half.z);
+    let top = load.center.z + load.half.z;
+    let pad = ("PAD", [c.x - 3.0, c.y - 3.0, under - 0.5], [c.x + 3.0, c.y + 3.0, under]);
+    let set_down = Move { joint: Joint::Hoist, from: t.goal(), to: t.set };
+    let check = |extra: Option<(&str, [f64; 3], [f64; 3])>| {
+        let mut mesh = TriMesh::default();
+        for (name, lo, hi) in std::iter::once(pad).chain(extra) {
+            box_part(&mut mesh, name, lo, hi);
+        }
+        let world = World::new(&mesh, &[], &[]).unwrap();
+        validate(&t, None, &world, &rules, &[set_down], &[true])
+    };
+    let v = check(None);
+    assert!(v.ok, "{:?}", v.problems);
+    for (name, z) in [("BEAM-THROUGH-LOAD", under + 0.3), ("BEAM-ACROSS-RIGGING", top + 1.0)] {
+        let v = check(Some((name, [c.x - 3.0, c.y - 0.1, z], [c.x + 3.0, c.y + 0.1, z + 0.1])));
+        assert!(v.problems.iter().any(|p| p.contains(name)), "{name}: {:?}", v.problems);
+    }
+}
