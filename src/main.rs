@@ -544,7 +544,22 @@ fn tempdir_near(output: &Path) -> Result<PathBuf> {
     Ok(d)
 }
 
+/// Mesa's Vulkan driver asks libwayland for a display while wgpu lists the
+/// adapters; where `XDG_RUNTIME_DIR` is unset (a terminal without a desktop
+/// session, CI, a container) libwayland prints "error: XDG_RUNTIME_DIR is
+/// invalid or not set in the environment." for every probe, which reads like
+/// one of liftplan's own errors though nothing is wrong. liftplan opens no
+/// window, so there the variable is pointed at the temporary directory:
+/// libwayland looks for a display socket in it, finds none and says nothing.
+fn quiet_the_wayland_probe() {
+    if cfg!(target_os = "linux") && std::env::var_os("XDG_RUNTIME_DIR").is_none() {
+        // SAFETY: the first thing `main` does, before any thread is started.
+        unsafe { std::env::set_var("XDG_RUNTIME_DIR", std::env::temp_dir()) };
+    }
+}
+
 fn main() -> ExitCode {
+    quiet_the_wayland_probe();
     match real_main() {
         Ok(c) => c,
         Err(e) => {
