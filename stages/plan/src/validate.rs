@@ -479,13 +479,22 @@ fn check_config(
         let nearest = nearest(world, &b, ignore_ground, search_cutoff_m(rules));
         // Written so that a distance that is not a number fails too.
         if !(nearest.distance_m >= required - DISTANCE_TOLERANCE_M) {
-            problems.push(format!(
-                "{} is {:.3} m from {} (needs {:.2} m)",
-                kind.name(),
-                nearest.distance_m,
-                nearest.object,
-                required
-            ));
+            problems.push(if landing_move && hanging {
+                format!(
+                    "{} touches {} during the lift-off or set-down ({:.3} m apart; only the load's support may)",
+                    kind.name(),
+                    nearest.object,
+                    nearest.distance_m
+                )
+            } else {
+                format!(
+                    "{} is {:.3} m from {} (needs {:.2} m)",
+                    kind.name(),
+                    nearest.distance_m,
+                    nearest.object,
+                    required
+                )
+            });
         }
         out.push(SampleCheck {
             config: *c,
