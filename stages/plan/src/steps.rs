@@ -93,7 +93,7 @@ pub fn steps(task: &LiftTask, moves: &[Move], verdict: &Verdict) -> Vec<Step> {
                 capacity_kg: util.and_then(|u| u.capacity_kg),
                 chart_cell: util.and_then(|u| u.chart_cell.clone()),
                 utilisation_pct: util.and_then(|u| u.utilisation_pct),
-                min_clearance_m: tight.map(|t| t.nearest.distance_m).unwrap_or(f64::INFINITY),
+                min_clearance_m: check.map(|c| c.clearance_m).unwrap_or(f64::INFINITY),
                 clearance_part: tight.map(|t| t.part.name().to_string()).unwrap_or_default(),
                 clearance_to: tight.map(|t| t.nearest.object.clone()).unwrap_or_default(),
                 clearance_at: tight.and_then(|t| t.nearest.at),

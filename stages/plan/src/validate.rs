@@ -324,6 +324,16 @@ pub struct MoveCheck {
     pub samples: usize,
     /// The sample with the smallest clearance margin (distance less requirement).
     pub tightest: SampleCheck,
+    /// Along the whole move, between the samples too, every part keeps at
+    /// least its requirement plus this (m): the tightest sample's margin less
+    /// at most half the largest movement between two samples, for distances
+    /// within the point search's cut-off.
+    pub least_margin_m: f64,
+    /// The clearance a step reports: the tightest part's requirement plus
+    /// [`MoveCheck::least_margin_m`], a distance no point of the move comes
+    /// closer than (the tightest sample's distance where that is beyond the
+    /// point search's cut-off, or infinite).
+    pub clearance_m: f64,
     /// The sample with the highest utilisation.
     pub max_utilisation: SampleCheck,
     pub problems: Vec<String>,
@@ -652,16 +662,23 @@ struct Sample {
 /// (the larger of the two clearances) where the load may enter or leave a
 /// landing zone there, else zero.
 fn gap_holds(a: &[SampleCheck], b: &[SampleCheck], gap_m: f64, cutoff_m: f64, hanging_may_need_m: f64) -> bool {
+    gap_margin(a, b, gap_m, cutoff_m, hanging_may_need_m) >= -DISTANCE_TOLERANCE_M
+}
+
+/// The least any part can be beyond its requirement anywhere between samples
+/// `a` and `b` (m; the bound of [`gap_holds`], with the same requirements).
+fn gap_margin(a: &[SampleCheck], b: &[SampleCheck], gap_m: f64, cutoff_m: f64, hanging_may_need_m: f64) -> f64 {
     let known = |c: &SampleCheck| c.nearest.distance_m.min(cutoff_m);
-    let need = |c: &SampleCheck, m: f64| {
-        let m = if c.part.dependence() == Dependence::Full { m.max(hanging_may_need_m) } else { m };
-        m - DISTANCE_TOLERANCE_M
-    };
-    let holds_from = |c: &SampleCheck| known(c) - gap_m >= need(c, c.required_m);
-    a.iter().all(|ca| match b.iter().find(|cb| cb.part == ca.part) {
-        Some(cb) => (known(ca) + known(cb) - gap_m) / 2.0 >= need(ca, ca.required_m.max(cb.required_m)),
-        None => holds_from(ca),
-    }) && b.iter().filter(|cb| !a.iter().any(|ca| ca.part == cb.part)).all(holds_from)
+    let need =
+        |c: &SampleCheck, m: f64| if c.part.dependence() == Dependence::Full { m.max(hanging_may_need_m) } else { m };
+    let from_one = |c: &SampleCheck| known(c) - gap_m - need(c, c.required_m);
+    let from_a = a.iter().map(|ca| match b.iter().find(|cb| cb.part == ca.part) {
+        Some(cb) => (known(ca) + known(cb) - gap_m) / 2.0 - need(ca, ca.required_m.max(cb.required_m)),
+        None => from_one(ca),
+    });
+    let only_b = b.iter().filter(|cb| !a.iter().any(|ca| ca.part == cb.part)).map(from_one);
+    // A margin that is not a number makes the whole one not a number.
+    from_a.chain(only_b).fold(f64::INFINITY, |m, x| if m.is_nan() || x.is_nan() { f64::NAN } else { m.min(x) })
 }
 
 /// [`gap_holds`] for the load's and rigging's distances to the crane's own
@@ -690,12 +707,10 @@ struct Gaps {
 /// below a sample that already found a problem: the move is rejected anyway.
 fn between(a: &Sample, b: &Sample, g: &Gaps, at: &(impl Fn(f64) -> Sample + Sync)) -> Vec<Sample> {
     let gap_m = g.moved_m * (b.t - a.t);
-    // The load's footprint moves no more than the gap either.
-    let zones_steady = a.zone_margin_m > gap_m || b.zone_margin_m > gap_m;
     if gap_m <= REFINED_GAP_M
         || !a.problems.is_empty()
         || !b.problems.is_empty()
-        || (gap_holds(&a.checks, &b.checks, gap_m, g.cutoff_m, if zones_steady { 0.0 } else { g.hanging_worst_m })
+        || (gap_holds(&a.checks, &b.checks, gap_m, g.cutoff_m, hanging_may_need_m(a, b, gap_m, g))
             && own_gap_holds(&a.own, &b.own, gap_m))
     {
         return Vec::new();
@@ -705,6 +720,25 @@ fn between(a: &Sample, b: &Sample, g: &Gaps, at: &(impl Fn(f64) -> Sample + Sync
     let after = between(&mid, b, g, at);
     out.push(mid);
     out.extend(after);
+    out
+}
+
+/// What the hanging parts may need between `a` and `b`, `gap_m` apart: the
+/// larger clearance where the load's footprint (which moves no more than the
+/// gap either) may enter or leave a landing zone there, else nothing more.
+fn hanging_may_need_m(a: &Sample, b: &Sample, gap_m: f64, g: &Gaps) -> f64 {
+    let zones_steady = a.zone_margin_m > gap_m || b.zone_margin_m > gap_m;
+    if zones_steady { 0.0 } else { g.hanging_worst_m }
+}
+
+/// `samples` with `added[k]` put after `samples[k]`.
+fn interleave(samples: Vec<Sample>, added: Vec<Vec<Sample>>) -> Vec<Sample> {
+    let mut out = Vec::with_capacity(samples.len() + added.iter().map(Vec::len).sum::<usize>());
+    let mut added = added.into_iter();
+    for s in samples {
+        out.push(s);
+        out.extend(added.next().unwrap_or_default());
+    }
     out
 }
 
@@ -861,14 +895,21 @@ pub fn validate(
         let gaps = Gaps { moved_m, cutoff_m, hanging_worst_m: rules.clearance_m.max(rules.landing_clearance_m) };
         let added: Vec<Vec<Sample>> = even.par_windows(2).map(|w| between(&w[0], &w[1], &gaps, &at)).collect();
         let extra: usize = added.iter().map(Vec::len).sum();
+        let in_order = interleave(even, added);
         total += n + extra;
         refined += extra;
-        let mut in_order: Vec<Sample> = Vec::with_capacity(n + extra);
-        let mut added = added.into_iter();
-        for s in even {
-            in_order.push(s);
-            in_order.extend(added.next().unwrap_or_default());
-        }
+        // The least margin along the whole move, between the samples too:
+        // what the steps report, a bound no part comes closer than.
+        let margin = |c: &SampleCheck| c.nearest.distance_m.min(cutoff_m) - c.required_m;
+        let least_at_samples_m = in_order.iter().flat_map(|s| &s.checks).map(margin).fold(f64::INFINITY, f64::min);
+        let least_between_m = in_order
+            .windows(2)
+            .map(|w| {
+                let gap_m = moved_m * (w[1].t - w[0].t);
+                gap_margin(&w[0].checks, &w[1].checks, gap_m, cutoff_m, hanging_may_need_m(&w[0], &w[1], gap_m, &gaps))
+            })
+            .fold(f64::INFINITY, f64::min);
+        let least_margin_m = least_at_samples_m.min(least_between_m);
         let mut move_problems: Vec<String> = Vec::new();
         let mut tight: Option<SampleCheck> = None;
         let mut util: Option<SampleCheck> = None;
@@ -892,8 +933,15 @@ pub fn validate(
             problems.push(format!("move {} ({:?}): {p}", mi + 1, m.joint));
         }
         if let (Some(t), Some(u)) = (tight, util) {
+            let clearance_m = if t.nearest.distance_m < cutoff_m {
+                (t.required_m + least_margin_m).min(t.nearest.distance_m).max(0.0)
+            } else {
+                t.nearest.distance_m
+            };
             move_checks.push(MoveCheck {
                 samples: n + extra,
+                least_margin_m,
+                clearance_m,
                 tightest: t,
                 max_utilisation: u,
                 problems: move_problems,
