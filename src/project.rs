@@ -371,6 +371,7 @@ landing_margin_m = 0.5    # landing zones: load footprint at pick/set grown by t
 landing_clearance_m = 0.2 # clearance of hook and load over a landing zone, m
 support_m = 0.05          # obstacles this close under the load at pick/set are its supports, m
 validator_sample_m = 0.05 # validator: largest crane-point movement between evenly spaced samples, m (finer where needed)
+load_cutout_m = 0.1       # scan points this close to the load at pick (0.3 m above it: slings) are taken for the load and not checked, m
 
 [plan.ga]                 # Cai 2016, Table 4.10
 population = 100

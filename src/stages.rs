@@ -125,7 +125,7 @@ fn run_charts(ctx: &Ctx) -> Result<Produced> {
 /// The lifts' load boxes at pick, cut out of the site cloud (the scanned load
 /// must not block its own lift); see `liftplan_plan::load_exclusions`.
 fn exclusions(p: &Project) -> Vec<liftplan_core::obb::Obb> {
-    p.lifts().map(|l| liftplan_plan::load_exclusions(&l)).unwrap_or_default()
+    p.lifts().map(|l| liftplan_plan::load_exclusions(&l, p.raw.plan.load_cutout_m)).unwrap_or_default()
 }
 
 pub fn depthmap() -> StageDef {

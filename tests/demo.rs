@@ -34,6 +34,8 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     // The demo has more inputs (files, settings and code of six stages) than
     // the inputs page shows: all of them are on a last page.
     assert!(text.contains("are listed on the last pages"), "the demo's inputs fit on page 2 now: {text}");
+    // The scanned load cut out of the checks at pick is said, with its count.
+    assert!(text.contains("is not an obstacle to its own lift"), "{text}");
     assert_eq!(
         pages.len(),
         steps.len() + 5,

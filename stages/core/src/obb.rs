@@ -210,6 +210,15 @@ impl Obb {
     }
 
     /// Turned about the vertical only: the third axis is exactly up.
+    /// The box with its top raised by `by_m`, underside unchanged (for boxes
+    /// whose third axis is vertical).
+    pub fn with_top_raised(&self, by_m: f64) -> Obb {
+        let mut o = *self;
+        o.center.z += by_m / 2.0;
+        o.half.z += by_m / 2.0;
+        o
+    }
+
     pub fn is_upright(&self) -> bool {
         let a = self.axes;
         a[(0, 2)] == 0.0 && a[(1, 2)] == 0.0 && a[(2, 2)] == 1.0 && a[(2, 0)] == 0.0 && a[(2, 1)] == 0.0

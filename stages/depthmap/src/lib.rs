@@ -148,11 +148,13 @@ pub struct Inputs {
 }
 
 /// Reads the site cloud, dropping points inside `exclude` (e.g. the load at its
-/// pick position, which the survey scanned but which must not block its own lift).
-pub fn read_cloud(path: &Path, exclude: &[Obb], into: &mut Inputs) -> Result<usize> {
+/// pick position, which the survey scanned but which must not block its own
+/// lift). Returns how many were dropped per box of `exclude` (a point in
+/// several counts for the first).
+pub fn read_cloud(path: &Path, exclude: &[Obb], into: &mut Inputs) -> Result<Vec<usize>> {
     let mut r = las::Reader::from_path(path).map_err(|e| DepthError::Input(Location::file(path), e.to_string()))?;
     let mut data = las::PointDataBuilder::new().for_header(r.header()).build();
-    let mut dropped = 0;
+    let mut dropped = vec![0; exclude.len()];
     loop {
         let n =
             r.fill_points(1 << 20, &mut data).map_err(|e| DepthError::Input(Location::file(path), e.to_string()))?;
@@ -161,8 +163,8 @@ pub fn read_cloud(path: &Path, exclude: &[Obb], into: &mut Inputs) -> Result<usi
         }
         for ((x, y), (z, c)) in data.x().zip(data.y()).zip(data.z().zip(data.classification())) {
             let p = liftplan_core::frame::Point3::new(x, y, z);
-            if exclude.iter().any(|b| b.contains(&p)) {
-                dropped += 1;
+            if let Some(k) = exclude.iter().position(|b| b.contains(&p)) {
+                dropped[k] += 1;
                 continue;
             }
             into.points.push([x, y, z]);
@@ -334,7 +336,7 @@ pub struct Summary {
 
 impl Summary {
     pub fn lines(&self) -> Vec<String> {
-        vec![format!(
+        let mut lines = vec![format!(
             "{} x {} cells of {} m ({:?}), {} intervals in {} cells from {} points and {} triangles ({} ms on {})",
             self.grid.nx,
             self.grid.ny,
@@ -346,7 +348,14 @@ impl Summary {
             self.triangles,
             self.timings.total_ms.round(),
             self.backend
-        )]
+        )];
+        if self.points_excluded > 0 {
+            lines.push(format!(
+                "{} scan points taken for the loads at their pick positions, left out",
+                self.points_excluded
+            ));
+        }
+        lines
     }
 }
 
@@ -365,7 +374,7 @@ pub fn run(
     let mut inp = Inputs::default();
     let mut excluded = 0;
     if let Some(c) = cloud {
-        excluded = read_cloud(c, exclude, &mut inp)?;
+        excluded = read_cloud(c, exclude, &mut inp)?.iter().sum();
     }
     if let Some(m) = mesh {
         inp.mesh = TriMesh::read_artifact(m).map_err(|e| DepthError::Input(Location::file(m), e.to_string()))?;

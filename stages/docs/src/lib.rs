@@ -167,5 +167,5 @@ pub fn run(inp: &Inputs, s: &Settings, gpu_use: liftplan_core::gpu::GpuUse, out_
 }
 
 fn read_points(path: &Path) -> Result<Vec<[f64; 3]>> {
-    liftplan_plan::read_points(path, &[]).map(|(p, _)| p).map_err(|e| io(path, e))
+    liftplan_plan::read_points(path, &[]).map(|(p, _, _)| p).map_err(|e| io(path, e))
 }

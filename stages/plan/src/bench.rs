@@ -545,8 +545,8 @@ pub fn demo_lift(dir: &Path, seeds: u64) -> Result<(), String> {
     let task = spec.resolve(model).map_err(|e| format!("{}: {e}", file.display()))?;
     let map = Mdm::read(&out.join("site.mdm")).map_err(|e| e.to_string())?;
     let mesh = TriMesh::read_artifact(&out.join("plant.mesh")).unwrap_or_default();
-    let excl = crate::load_exclusions(std::slice::from_ref(&task));
-    let (pts, ground) = crate::read_points(&out.join("site.laz"), &excl).map_err(|e| e.to_string())?;
+    let excl = crate::load_exclusions(std::slice::from_ref(&task), crate::Settings::default().load_cutout_m);
+    let (pts, ground, _) = crate::read_points(&out.join("site.laz"), &excl).map_err(|e| e.to_string())?;
     let world = World::new(&mesh, &pts, &ground)?;
     let charts = CapacityTable::read_csv(&out.join("capacity.csv")).ok();
     let site = Site { map: &map, world: &world, charts: charts.as_ref() };

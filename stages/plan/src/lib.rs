@@ -76,6 +76,9 @@ pub struct Settings {
     pub support_m: f64,
     /// Validator: largest displacement of any crane point between samples (m).
     pub validator_sample_m: f64,
+    /// Scan points this close to the load's box at pick (and up to
+    /// [`LOAD_CUTOUT_ABOVE_M`] above it) are taken for the load and left out (m).
+    pub load_cutout_m: f64,
 }
 
 impl Default for Settings {
@@ -89,6 +92,7 @@ impl Default for Settings {
             landing_clearance_m: 0.2,
             support_m: 0.05,
             validator_sample_m: 0.05,
+            load_cutout_m: LOAD_CUTOUT_GROW_M,
         }
     }
 }
@@ -108,19 +112,53 @@ impl Settings {
         if !ok(self.validator_sample_m, 0.001, 0.5) {
             return Err("[plan] validator_sample_m must be between 0.001 and 0.5 m".into());
         }
+        if !ok(self.load_cutout_m, 0.0, 1.0) {
+            return Err("[plan] load_cutout_m must be between 0 and 1 m".into());
+        }
         Ok(())
     }
 }
 
-/// How far the cut-out around a scanned load reaches beyond its box (m): scan
-/// noise and the rigging lying on it.
-pub const LOAD_CUTOUT_GROW_M: f64 = 0.3;
+/// How far the cut-out around a scanned load reaches beyond its box by
+/// default (m, `[plan] load_cutout_m`): scan noise and a few centimetres of
+/// error in the pick pose. Whatever else stands that close to the load at
+/// pick is not seen, so it is kept small; it was 0.3 m, more than the
+/// landing clearance (0.2 m) a part beside the load at pick must keep.
+pub const LOAD_CUTOUT_GROW_M: f64 = 0.1;
+/// How far above the load's box the cut-out reaches at least (m): the slings
+/// lying on the load before the lift.
+pub const LOAD_CUTOUT_ABOVE_M: f64 = 0.3;
+
+/// How far above the load's box the cut-out of `grow_m` reaches (m).
+pub fn cutout_above_m(grow_m: f64) -> f64 {
+    grow_m.max(LOAD_CUTOUT_ABOVE_M)
+}
+
+/// The scan points taken for a lift's load at its pick position and left out
+/// of every check ([`load_exclusions`]).
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+pub struct LoadCutout {
+    /// How far beyond the load's box at pick, sideways and below (m).
+    pub grow_m: f64,
+    /// How far above it (m).
+    pub above_m: f64,
+    /// How many scan points that left out.
+    pub points: usize,
+}
 
 /// The scanned load at its pick position is in the site cloud; these boxes
-/// (the load at pick, grown by [`LOAD_CUTOUT_GROW_M`]) are cut out of it so the
-/// load does not block its own lift. The depth map and the validator use the same boxes.
-pub fn load_exclusions(tasks: &[LiftTask]) -> Vec<Obb> {
-    tasks.iter().map(|t| t.crane.load_obb(&t.pick, &t.load).expanded(LOAD_CUTOUT_GROW_M)).collect()
+/// (the load at pick, grown by `grow_m`, and above it by at least
+/// [`LOAD_CUTOUT_ABOVE_M`]) are cut out of it so the load does not block its
+/// own lift. The depth map and the validator use the same boxes.
+pub fn load_exclusions(tasks: &[LiftTask], grow_m: f64) -> Vec<Obb> {
+    tasks
+        .iter()
+        .map(|t| {
+            let b = t.crane.load_obb(&t.pick, &t.load).expanded(grow_m);
+            let up = cutout_above_m(grow_m) - grow_m;
+            if b.is_upright() { b.with_top_raised(up) } else { b.expanded(up) }
+        })
+        .collect()
 }
 
 /// Everything a planned lift carries into `plan.json`.
@@ -146,6 +184,9 @@ pub struct LiftPlan {
     pub summary: steps::Summary,
     pub validator: ValidatorReport,
     pub planning: PlanningStats,
+    /// Scan points taken for the load at pick (set by [`run`]).
+    #[serde(default)]
+    pub load_cutout: LoadCutout,
 }
 
 #[derive(Debug, Clone, Serialize, Deserialize)]
@@ -422,16 +463,18 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
             convergence_best: stats.best_fitness,
             convergence_mean: stats.mean_fitness,
         },
+        // What was cut out of the cloud for the load is known to `run`.
+        load_cutout: LoadCutout::default(),
     };
     Ok((plan, cs))
 }
 
 /// Reads the site points (dropping the `exclude` boxes) for the validator.
-pub fn read_points(path: &Path, exclude: &[Obb]) -> Result<(Vec<[f64; 3]>, Vec<bool>)> {
+pub fn read_points(path: &Path, exclude: &[Obb]) -> Result<(Vec<[f64; 3]>, Vec<bool>, Vec<usize>)> {
     let mut inp = liftplan_depthmap::Inputs::default();
-    liftplan_depthmap::read_cloud(path, exclude, &mut inp)
+    let dropped = liftplan_depthmap::read_cloud(path, exclude, &mut inp)
         .map_err(|e| PlanError::Input(Location::file(path), e.to_string()))?;
-    Ok((inp.points, inp.ground))
+    Ok((inp.points, inp.ground, dropped))
 }
 
 /// What the stage reports.
@@ -463,10 +506,10 @@ pub fn run(
         Some(p) => TriMesh::read_artifact(p).map_err(|e| PlanError::Input(Location::file(p), e.to_string()))?,
         None => TriMesh::default(),
     };
-    let exclusions = load_exclusions(tasks);
-    let (points, ground) = match cloud_path {
+    let exclusions = load_exclusions(tasks, s.load_cutout_m);
+    let (points, ground, taken_for_loads) = match cloud_path {
         Some(p) => read_points(p, &exclusions)?,
-        None => (vec![], vec![]),
+        None => (vec![], vec![], vec![0; tasks.len()]),
     };
     let world = validate::World::new(&mesh, &points, &ground).map_err(PlanError::Settings)?;
     let charts = match capacity_csv {
@@ -476,8 +519,10 @@ pub fn run(
     let site = Site { map: &map, world: &world, charts: charts.as_ref() };
     std::fs::create_dir_all(out_dir).map_err(|e| PlanError::Input(Location::file(out_dir), e.to_string()))?;
     let mut plans = Vec::new();
-    for task in tasks {
-        let (plan, cs) = plan_lift(task, &site, s, seed)?;
+    for (task, taken) in tasks.iter().zip(taken_for_loads) {
+        let (mut plan, cs) = plan_lift(task, &site, s, seed)?;
+        plan.load_cutout =
+            LoadCutout { grow_m: s.load_cutout_m, above_m: cutout_above_m(s.load_cutout_m), points: taken };
         let io = |p: &Path, e: std::io::Error| PlanError::Input(Location::file(p), e.to_string());
         let csv = out_dir.join(format!("{}.steps.csv", task.id));
         liftplan_core::artifact::write_atomic(&csv, steps::to_csv(&plan.steps).as_bytes()).map_err(|e| io(&csv, e))?;

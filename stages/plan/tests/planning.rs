@@ -613,3 +613,23 @@ fn validator_rejects_a_set_down_through_an_obstacle() {
         );
     }
 }
+
+/// The scan points taken for the load at pick: its box and 0.1 m round it
+/// (0.3 m above, where slings lie), no more: something standing 0.2 m beside
+/// the load, closer than the landing clearance asks, stays in the checks.
+#[test]
+fn only_the_load_and_its_slings_are_cut_out_of_the_scan() {
+    let t = task(-14.0);
+    let cut =
+        liftplan_plan::load_exclusions(std::slice::from_ref(&t), liftplan_plan::Settings::default().load_cutout_m);
+    let load = t.crane.load_obb(&t.pick, &t.load);
+    let c = load.center;
+    let (side, top, under) = (load.axis(0) * load.half.x, c.z + load.half.z, c.z - load.half.z);
+    let at = |p: liftplan_core::frame::Point3| cut[0].contains(&p);
+    assert!(at(c) && at(c + side * 1.01));
+    assert!(at(c + side + load.axis(0) * 0.09), "scan noise beside the load");
+    assert!(!at(c + side + load.axis(0) * 0.2), "an obstacle 0.2 m beside the load");
+    assert!(at(liftplan_core::frame::Point3::new(c.x, c.y, top + 0.29)), "slings on top");
+    assert!(!at(liftplan_core::frame::Point3::new(c.x, c.y, top + 0.35)));
+    assert!(!at(liftplan_core::frame::Point3::new(c.x, c.y, under - 0.2)), "what it stands on, 0.2 m down");
+}
