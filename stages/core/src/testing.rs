@@ -1,8 +1,21 @@
-//! What the workspace's property tests share: how many cases each runs, and
-//! how the readers' tests damage a file.
+//! What the workspace's property tests share: how many cases each runs, a
+//! seeded stream of numbers for random scenes, and how the readers' tests
+//! damage a file.
 //!
 //! Nothing outside tests and the fuzz targets calls this module, and it must
 //! not grow test fixtures: scenes and files belong to `liftplan-fixtures`.
+
+/// Numbers in [0, 1) from `seed` (xorshift): the same stream for the same
+/// seed on every machine, for the random scenes of property tests.
+pub fn unit_stream(seed: u64) -> impl FnMut() -> f64 {
+    let mut s = seed | 1;
+    move || {
+        s ^= s << 13;
+        s ^= s >> 7;
+        s ^= s << 17;
+        (s >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
 
 /// Environment variable that sets every property test's case count.
 pub const CASES_VAR: &str = "PROPTEST_CASES";

@@ -965,16 +965,7 @@ mod tests {
     use liftplan_cspace::Joint;
     use proptest::prelude::*;
 
-    /// Numbers in [0, 1) from `seed` (xorshift): random scenes for the proptests.
-    fn unit_stream(seed: u64) -> impl FnMut() -> f64 {
-        let mut s = seed | 1;
-        move || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 11) as f64 / (1u64 << 53) as f64
-        }
-    }
+    use liftplan_core::testing::unit_stream;
 
     fn clutter(seed: u64) -> TriMesh {
         let mut mesh = TriMesh::default();

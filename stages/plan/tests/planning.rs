@@ -429,6 +429,79 @@ fn validator_refuses_a_move_it_cannot_sample() {
     }
 }
 
+/// A short move of one joint of either built-in crane from a random place,
+/// with three scanned points just off corners of random parts part-way along
+/// it, so that its closest approach usually lies between two coarse samples.
+fn points_off_corners(
+    seed: u64,
+    tower: bool,
+    joint: usize,
+    at: [f64; 4],
+    step: f64,
+    past: f64,
+) -> (LiftTask, World, Move) {
+    let t = if tower { tower_task() } else { task(-14.0) };
+    let mut u = {
+        use rand::{RngExt, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+        move || rng.random::<f64>()
+    };
+    let lim = t.crane.limits();
+    let joint = [Joint::Swing, Joint::Radial, Joint::Hoist, Joint::Rotate][joint];
+    let j = joint.index();
+    // About 2 m of movement at most, `past` of it before the points.
+    let span = step * [0.04, if tower { 2.0 } else { 0.04 }, 2.0, 0.5][j];
+    let (lo, hi) = match joint {
+        Joint::Radial => lim.radial,
+        Joint::Hoist => (lim.hoist_m.0, lim.hoist_m.0 + (lim.hoist_m.1 - lim.hoist_m.0).min(40.0)),
+        _ => (-10.0, 10.0),
+    };
+    let mut mid = [
+        at[0] * std::f64::consts::TAU,
+        lim.radial.0 + at[1] * (lim.radial.1 - lim.radial.0),
+        lim.hoist_m.0 + at[2] * (lim.hoist_m.1 - lim.hoist_m.0).min(40.0),
+        at[3] * std::f64::consts::TAU,
+    ];
+    mid[j] = mid[j].clamp(lo + span * past, hi - span * (1.0 - past));
+    let (mut from, mut to) = (mid, mid);
+    from[j] -= span * past;
+    to[j] += span * (1.0 - past);
+    let mid = Config::from_array(mid);
+    let pose = t.crane.pose(&mid, &t.load);
+    let points: Vec<[f64; 3]> = (0..3)
+        .map(|_| {
+            let (_, b) = &pose.parts[(u() * pose.parts.len() as f64) as usize % pose.parts.len()];
+            let signs = [0, 1, 2].map(|_| if u() < 0.5 { -1.0 } else { 1.0 });
+            let corner = b.axis(0) * (signs[0] * b.half.x)
+                + b.axis(1) * (signs[1] * b.half.y)
+                + b.axis(2) * (signs[2] * b.half.z);
+            let p = b.center + corner + corner.normalize() * (0.02 + u() * 0.5);
+            [p.x, p.y, p.z]
+        })
+        .collect();
+    let world = World::new(&TriMesh::default(), &points, &[false; 3]).unwrap();
+    (t, world, Move { joint, from: Config::from_array(from), to: Config::from_array(to) })
+}
+
+proptest::prop_compose! {
+    /// Random arguments for [`points_off_corners`].
+    fn corner_moves()(
+        seed in proptest::prelude::any::<u64>(),
+        tower in proptest::prelude::any::<bool>(),
+        joint in 0usize..4,
+        at in proptest::array::uniform4(0.0f64..1.0),
+        step in 0.2f64..1.0,
+        past in 0.2f64..0.8,
+    ) -> (u64, bool, usize, [f64; 4], f64, f64) {
+        (seed, tower, joint, at, step, past)
+    }
+}
+
+/// The validator's rules at one clearance everywhere and one sample spacing.
+fn spaced(clearance_m: f64, sample_m: f64) -> Rules {
+    Rules { clearance_m, landing_clearance_m: clearance_m, sample_m, ..rules() }
+}
+
 proptest::proptest! {
     #![proptest_config(proptest::prelude::ProptestConfig::with_cases(liftplan_core::testing::proptest_cases(24)))]
     /// A move whose closest approach, found by samples 1 mm apart, falls
@@ -440,57 +513,10 @@ proptest::proptest! {
     /// the clearance is set just above it.
     #[test]
     fn a_move_that_comes_too_close_between_samples_is_rejected(
-        seed in proptest::prelude::any::<u64>(),
-        tower in proptest::prelude::any::<bool>(),
-        joint in 0usize..4,
-        at in proptest::array::uniform4(0.0f64..1.0),
-        step in 0.2f64..1.0,
-        past in 0.2f64..0.8,
+        (seed, tower, joint, at, step, past) in corner_moves(),
         short in 0.003f64..0.1,
     ) {
-        let t = if tower { tower_task() } else { task(-14.0) };
-        let mut u = {
-            use rand::{RngExt, SeedableRng};
-            let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
-            move || rng.random::<f64>()
-        };
-        let lim = t.crane.limits();
-        let joint = [Joint::Swing, Joint::Radial, Joint::Hoist, Joint::Rotate][joint];
-        let j = joint.index();
-        // About 2 m of movement at most, `past` of it before the points.
-        let span = step * [0.04, if tower { 2.0 } else { 0.04 }, 2.0, 0.5][j];
-        let (lo, hi) = match joint {
-            Joint::Radial => lim.radial,
-            Joint::Hoist => (lim.hoist_m.0, lim.hoist_m.0 + (lim.hoist_m.1 - lim.hoist_m.0).min(40.0)),
-            _ => (-10.0, 10.0),
-        };
-        let mut mid = [
-            at[0] * std::f64::consts::TAU,
-            lim.radial.0 + at[1] * (lim.radial.1 - lim.radial.0),
-            lim.hoist_m.0 + at[2] * (lim.hoist_m.1 - lim.hoist_m.0).min(40.0),
-            at[3] * std::f64::consts::TAU,
-        ];
-        mid[j] = mid[j].clamp(lo + span * past, hi - span * (1.0 - past));
-        let (mut from, mut to) = (mid, mid);
-        from[j] -= span * past;
-        to[j] += span * (1.0 - past);
-        let mid = Config::from_array(mid);
-        let pose = t.crane.pose(&mid, &t.load);
-        let points: Vec<[f64; 3]> = (0..3)
-            .map(|_| {
-                let (_, b) = &pose.parts[(u() * pose.parts.len() as f64) as usize % pose.parts.len()];
-                let signs = [0, 1, 2].map(|_| if u() < 0.5 { -1.0 } else { 1.0 });
-                let corner = b.axis(0) * (signs[0] * b.half.x) + b.axis(1) * (signs[1] * b.half.y)
-                    + b.axis(2) * (signs[2] * b.half.z);
-                let p = b.center + corner + corner.normalize() * (0.02 + u() * 0.5);
-                [p.x, p.y, p.z]
-            })
-            .collect();
-        let world = World::new(&TriMesh::default(), &points, &[false; 3]).unwrap();
-        let mv = Move { joint, from: Config::from_array(from), to: Config::from_array(to) };
-        let spaced = |clearance_m: f64, sample_m: f64| Rules {
-            clearance_m, landing_clearance_m: clearance_m, sample_m, ..rules()
-        };
+        let (t, world, mv) = points_off_corners(seed, tower, joint, at, step, past);
         let fine = validate(&t, None, &world, &spaced(0.0, 0.001), &[mv], &[false]);
         let closest = fine.moves[0].tightest.nearest.distance_m;
         proptest::prop_assume!(closest.is_finite());
@@ -509,61 +535,12 @@ proptest::proptest! {
     /// coarsest. The same scanned points off the parts' corners as above.
     #[test]
     fn the_clearance_a_step_reports_is_never_more_than_the_closest_approach(
-        seed in proptest::prelude::any::<u64>(),
-        tower in proptest::prelude::any::<bool>(),
-        joint in 0usize..4,
-        at in proptest::array::uniform4(0.0f64..1.0),
-        step in 0.2f64..1.0,
-        past in 0.2f64..0.8,
-        short in 0.003f64..0.1,
+        (seed, tower, joint, at, step, past) in corner_moves(),
     ) {
-        let t = if tower { tower_task() } else { task(-14.0) };
-        let mut u = {
-            use rand::{RngExt, SeedableRng};
-            let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
-            move || rng.random::<f64>()
-        };
-        let lim = t.crane.limits();
-        let joint = [Joint::Swing, Joint::Radial, Joint::Hoist, Joint::Rotate][joint];
-        let j = joint.index();
-        // About 2 m of movement at most, `past` of it before the points.
-        let span = step * [0.04, if tower { 2.0 } else { 0.04 }, 2.0, 0.5][j];
-        let (lo, hi) = match joint {
-            Joint::Radial => lim.radial,
-            Joint::Hoist => (lim.hoist_m.0, lim.hoist_m.0 + (lim.hoist_m.1 - lim.hoist_m.0).min(40.0)),
-            _ => (-10.0, 10.0),
-        };
-        let mut mid = [
-            at[0] * std::f64::consts::TAU,
-            lim.radial.0 + at[1] * (lim.radial.1 - lim.radial.0),
-            lim.hoist_m.0 + at[2] * (lim.hoist_m.1 - lim.hoist_m.0).min(40.0),
-            at[3] * std::f64::consts::TAU,
-        ];
-        mid[j] = mid[j].clamp(lo + span * past, hi - span * (1.0 - past));
-        let (mut from, mut to) = (mid, mid);
-        from[j] -= span * past;
-        to[j] += span * (1.0 - past);
-        let mid = Config::from_array(mid);
-        let pose = t.crane.pose(&mid, &t.load);
-        let points: Vec<[f64; 3]> = (0..3)
-            .map(|_| {
-                let (_, b) = &pose.parts[(u() * pose.parts.len() as f64) as usize % pose.parts.len()];
-                let signs = [0, 1, 2].map(|_| if u() < 0.5 { -1.0 } else { 1.0 });
-                let corner = b.axis(0) * (signs[0] * b.half.x) + b.axis(1) * (signs[1] * b.half.y)
-                    + b.axis(2) * (signs[2] * b.half.z);
-                let p = b.center + corner + corner.normalize() * (0.02 + u() * 0.5);
-                [p.x, p.y, p.z]
-            })
-            .collect();
-        let world = World::new(&TriMesh::default(), &points, &[false; 3]).unwrap();
-        let mv = Move { joint, from: Config::from_array(from), to: Config::from_array(to) };
-        let spaced = |clearance_m: f64, sample_m: f64| Rules {
-            clearance_m, landing_clearance_m: clearance_m, sample_m, ..rules()
-        };
+        let (t, world, mv) = points_off_corners(seed, tower, joint, at, step, past);
         let fine = validate(&t, None, &world, &spaced(0.0, 0.001), &[mv], &[false]);
         let closest = fine.moves[0].tightest.nearest.distance_m;
         proptest::prop_assume!(closest.is_finite());
-        let _ = short;
         // The closest approach is at most `closest` (samples 1 mm apart may
         // miss it by half a millimetre, never the other way).
         for sample_m in [0.05, 0.5] {

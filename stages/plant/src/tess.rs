@@ -774,6 +774,8 @@ mod tests {
         }
     }
 
+    use liftplan_core::testing::unit_stream;
+
     /// Points spread over the surface of a primitive's true (untessellated)
     /// solid, from its RVM parameters: the sides, the caps and the bases.
     fn surface_points(shape: &Shape, n: usize, rng: &mut impl FnMut() -> f64) -> Vec<[f64; 3]> {
@@ -958,13 +960,7 @@ mod tests {
         fn every_primitive_lies_inside_its_mesh(shape in curved_shape(), tol in 0.002f64..0.2, seed in any::<u64>()) {
             prop_assume!(snout_is_upright(&shape));
             let t = tessellate(&prim(shape.clone()), tol, [true, true]).unwrap();
-            let mut state = seed | 1;
-            let mut rng = move || {
-                state ^= state << 13;
-                state ^= state >> 7;
-                state ^= state << 17;
-                (state >> 11) as f64 / (1u64 << 53) as f64
-            };
+            let mut rng = unit_stream(seed);
             for p in surface_points(&shape, 240, &mut rng) {
                 let size = p.iter().fold(1.0f64, |m, c| m.max(c.abs()));
                 if winding(&t, p) < 0.5 {
@@ -994,13 +990,7 @@ mod tests {
         for g in &file.groups {
             walk(g, &mut prims);
         }
-        let mut state = 0x9e37_79b9_7f4a_7c15u64;
-        let mut rng = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = unit_stream(0x9e37_79b9_7f4a_7c15);
         let mut checked = 0;
         for p in prims {
             let scale = matrix_scale(&p.matrix);
