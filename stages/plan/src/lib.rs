@@ -342,6 +342,27 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
     if let Err(b) = ck.config(&goal0) {
         return Err(lift_err(task, format!("the configuration above the set position is not allowed: {b}")));
     }
+    let rules = validate::Rules {
+        clearance_m: task.clearance_m,
+        landing: zones.iter().map(|z| z.polygon.clone()).collect(),
+        landing_clearance_m: s.landing_clearance_m,
+        sample_m: s.validator_sample_m,
+        support_m: s.support_m,
+    };
+    // The lift-off and the set-down are the same whatever path is found: the
+    // validator's verdict on them now, before the search, says what blocks
+    // them instead of rejecting every plan at the end.
+    for (what, mv) in [
+        ("lift-off", Move { joint: Joint::Hoist, from: task.pick, to: start }),
+        ("set-down", Move { joint: Joint::Hoist, from: goal0, to: task.set }),
+    ] {
+        let v = validate::validate(task, chart, site.world, &rules, &[mv], &[true]);
+        if !v.ok {
+            let problems: Vec<&str> =
+                v.problems.iter().map(|p| p.strip_prefix("move 1 (Hoist): ").unwrap_or(p)).collect();
+            return Err(lift_err(task, format!("the {what} is not clear: {}", problems.join("; "))));
+        }
+    }
     // Both ways round.
     let short = start.swing_rad + liftplan_core::units::wrap_pi(goal0.swing_rad - start.swing_rad);
     let long = if short >= start.swing_rad { short - std::f64::consts::TAU } else { short + std::f64::consts::TAU };
@@ -405,13 +426,6 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
         to: Config { swing_rad: nodes.last().map(|n| n.swing_rad).unwrap_or(goal0.swing_rad), ..task.set },
     });
     let landing_flags: Vec<bool> = (0..all.len()).map(|i| i == 0 || i == all.len() - 1).collect();
-    let rules = validate::Rules {
-        clearance_m: task.clearance_m,
-        landing: zones.into_iter().map(|z| z.polygon).collect(),
-        landing_clearance_m: s.landing_clearance_m,
-        sample_m: s.validator_sample_m,
-        support_m: s.support_m,
-    };
     let verdict = validate::validate_lift(task, chart, site.world, &rules, &all, &landing_flags);
     if !verdict.ok {
         return Err(lift_err(

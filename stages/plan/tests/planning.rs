@@ -610,3 +610,21 @@ fn only_the_load_and_its_slings_are_cut_out_of_the_scan() {
     assert!(!at(liftplan_core::frame::Point3::new(c.x, c.y, top + 0.35)));
     assert!(!at(liftplan_core::frame::Point3::new(c.x, c.y, under - 0.2)), "what it stands on, 0.2 m down");
 }
+
+/// The planner refuses a lift whose set-down is blocked before it searches,
+/// naming what blocks it, rather than having every plan rejected at the end.
+#[test]
+fn a_blocked_set_down_is_refused_before_planning() {
+    let t = task(-14.0);
+    let load = t.crane.load_obb(&t.set, &t.load);
+    let (c, under) = (load.center, load.center.z - load.half.z);
+    let mut mesh = site();
+    // A bar through the load where it comes to rest, 0.1 m above its
+    // underside: 0.3 m under it at the configuration above the set position,
+    // more than the landing clearance.
+    box_part(&mut mesh, "BAR-THROUGH-SET", [c.x - 3.0, c.y - 0.05, under + 0.1], [c.x + 3.0, c.y + 0.05, under + 0.2]);
+    let m = map(&mesh);
+    let world = World::new(&mesh, &[], &[]).unwrap();
+    let err = plan_lift(&t, &Site { map: &m, world: &world, charts: None }, &quick(), 3).unwrap_err().to_string();
+    assert!(err.contains("the set-down is not clear") && err.contains("BAR-THROUGH-SET"), "{err}");
+}
