@@ -7,10 +7,12 @@
 //!
 //! **Rule** ([`ChartConfig::lookup`]), as charts state it: never interpolate. For
 //! a radius between two listed radii use the row of the next larger radius; for a
-//! boom between two listed lengths use the column of the next longer boom. A radius
-//! or boom outside the listed range, or a blank cell, is not permitted. The charts
-//! stage refuses grids whose capacity rises with radius, so the next larger radius
-//! is always the smaller (safe) value.
+//! boom between two listed lengths use the column of the next longer boom, or the
+//! next shorter boom's where that is less (a chart may list more at a radius for a
+//! longer boom, whose sections telescope differently; a boom in between is then
+//! given the less of the two). A radius or boom outside the listed range, or a
+//! blank cell, is not permitted. The charts stage refuses grids whose capacity
+//! rises with radius, so the next larger radius is always the smaller (safe) value.
 
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -98,6 +100,16 @@ impl ChartConfig {
         let col =
             self.boom_lengths_m.iter().position(|&b| b >= boom_m - TOL_M).unwrap_or(self.boom_lengths_m.len() - 1);
         let row = self.radii_m.iter().position(|&r| r >= radius_m - TOL_M).unwrap_or(self.radii_m.len() - 1);
+        // Between two listed booms, the shorter one's cell where it is less.
+        let col = match (col.checked_sub(1), self.cell(row, col)) {
+            (Some(shorter), Some(longer))
+                if self.boom_lengths_m[col] > boom_m + TOL_M
+                    && self.cell(row, shorter).is_some_and(|s| s.capacity_kg < longer.capacity_kg) =>
+            {
+                shorter
+            }
+            _ => col,
+        };
         match self.cell(row, col) {
             Some(c) => Ok(Capacity {
                 capacity_kg: c.capacity_kg,
@@ -332,6 +344,22 @@ mod tests {
         let k = chart().lookup(15.0, 4.0).unwrap();
         assert_eq!(k.capacity_kg, 35000.0);
         assert_eq!(k.boom_m, 20.0);
+    }
+
+    /// Where a chart lists more at a radius for the longer boom, a boom in
+    /// between gets the shorter boom's (less) value; a listed boom its own.
+    #[test]
+    fn between_booms_never_more_than_the_shorter_boom() {
+        let mut ch = chart();
+        ch.cells[3] = Some(ChartCell { capacity_kg: 45000.0, cell: "C3".into() });
+        let k = ch.lookup(15.0, 4.0).unwrap();
+        assert_eq!((k.capacity_kg, k.boom_m, k.cell.as_str()), (40000.0, 12.0, "B3"));
+        assert_eq!(ch.lookup(20.0, 4.0).unwrap().capacity_kg, 45000.0);
+        // A blank for the shorter boom (out of its reach) leaves the longer's.
+        assert_eq!(ch.lookup(15.0, 3.0).err().map(|_| ()), Some(()));
+        ch.cells[0] = None;
+        ch.cells[1] = Some(ChartCell { capacity_kg: 20000.0, cell: "C2".into() });
+        assert_eq!(ch.lookup(15.0, 3.0).unwrap().capacity_kg, 20000.0);
     }
 
     #[test]
