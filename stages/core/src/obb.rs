@@ -209,7 +209,6 @@ impl Obb {
         (lo <= hi).then_some((lo, hi))
     }
 
-    /// Turned about the vertical only: the third axis is exactly up.
     /// The box with its top raised by `by_m`, underside unchanged (for boxes
     /// whose third axis is vertical).
     pub fn with_top_raised(&self, by_m: f64) -> Obb {
@@ -219,6 +218,7 @@ impl Obb {
         o
     }
 
+    /// Turned about the vertical only: the third axis is exactly up.
     pub fn is_upright(&self) -> bool {
         let a = self.axes;
         a[(0, 2)] == 0.0 && a[(1, 2)] == 0.0 && a[(2, 2)] == 1.0 && a[(2, 0)] == 0.0 && a[(2, 1)] == 0.0

@@ -373,16 +373,18 @@ pub fn document(
     );
     y += 4.0;
     let cut = &plan.load_cutout;
-    y = d.paragraph(
-        15.0,
-        y,
-        w,
-        &format!(
+    let cut_text = if cut.points > 0 {
+        format!(
             "The load as scanned at its pick position is not an obstacle to its own lift: the {} scan points within {:.2} m of its box there ({:.2} m above it, where slings lie) were taken for the load and left out of every check. Anything else standing that close to the load at pick is not seen: check it on site.",
             cut.points, cut.grow_m, cut.above_m
-        ),
-        9.5,
-    );
+        )
+    } else {
+        format!(
+            "No scan point lay within {:.2} m of the load's box at its pick position ({:.2} m above it), so none was left out as the load.",
+            cut.grow_m, cut.above_m
+        )
+    };
+    y = d.paragraph(15.0, y, w, &cut_text, 9.5);
     y += 8.0;
     for role in [
         "Lift engineer (prepared / checked)",

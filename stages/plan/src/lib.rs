@@ -358,9 +358,17 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
     ] {
         let v = validate::validate(task, chart, site.world, &rules, &[mv], &[true]);
         if !v.ok {
-            let problems: Vec<&str> =
-                v.problems.iter().map(|p| p.strip_prefix("move 1 (Hoist): ").unwrap_or(p)).collect();
-            return Err(lift_err(task, format!("the {what} is not clear: {}", problems.join("; "))));
+            // The move's own problems under its name; any other (the crane's
+            // set-up, checked with the first move) as the validator says it.
+            let problems: Vec<String> = v
+                .problems
+                .iter()
+                .map(|p| match p.strip_prefix("move 1 (Hoist): ") {
+                    Some(own) => format!("the {what} is not clear: {own}"),
+                    None => p.clone(),
+                })
+                .collect();
+            return Err(lift_err(task, problems.join("; ")));
         }
     }
     // Both ways round.
