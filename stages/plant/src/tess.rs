@@ -958,7 +958,15 @@ mod tests {
         /// distance to the primitive. Fails with the vertices put on the surface.
         #[test]
         fn every_primitive_lies_inside_its_mesh(shape in curved_shape(), tol in 0.002f64..0.2, seed in any::<u64>()) {
-            prop_assume!(snout_is_upright(&shape));
+            // A snout whose sheared ends cross is taken without its shears
+            // (always upright), not rejected: a soak then runs every case.
+            let shape = match shape {
+                Shape::Snout { radius_b, radius_t, height, offset, .. } if !snout_is_upright(&shape) => {
+                    Shape::Snout { radius_b, radius_t, height, offset, bshear: [0.0; 2], tshear: [0.0; 2] }
+                }
+                other => other,
+            };
+            prop_assert!(snout_is_upright(&shape));
             let t = tessellate(&prim(shape.clone()), tol, [true, true]).unwrap();
             let mut rng = unit_stream(seed);
             for p in surface_points(&shape, 240, &mut rng) {
