@@ -160,7 +160,7 @@ impl Summary {
     pub fn lines(&self) -> Vec<String> {
         let prims: usize = self.primitives.values().sum();
         let mut v = vec![format!(
-            "{} files, {} groups, {prims} primitives -> {} triangles (tolerance {} m, {} caps culled)",
+            "{} files, {} groups, {prims} primitives -> {} triangles (enclosing each primitive, at most {} m outside it; {} caps culled)",
             self.files.len(),
             self.groups,
             self.triangles,
