@@ -138,7 +138,20 @@ pub struct Nearest {
     pub at: Option<[f64; 3]>,
 }
 
-fn nearest(world: &World, b: &Obb, ignore_ground: bool, cutoff_m: f64) -> Nearest {
+/// [`nearest`] leaves out no scanned ground.
+const ALL_GROUND: f64 = f64::NEG_INFINITY;
+/// [`nearest`] leaves out all scanned ground.
+const NO_GROUND: f64 = f64::INFINITY;
+
+/// How high above the level the crane is set up on the scanned ground may be
+/// and still be the ground it stands on (m): uneven ground, mats, kerbs. The
+/// superstructure and what turns with it swing over that ground; ground
+/// higher up, a bank within the counterweight's swing, counts for them.
+const STANDING_GROUND_M: f64 = 0.5;
+
+/// The nearest obstacle to `b`: plant triangles and scanned points, less the
+/// scanned ground at or below `ground_below_z` ([`ALL_GROUND`], [`NO_GROUND`]).
+fn nearest(world: &World, b: &Obb, ground_below_z: f64, cutoff_m: f64) -> Nearest {
     let (pose, cub) = parry_box(b);
     let mut best = Nearest { distance_m: f64::INFINITY, object: String::new(), at: None };
     if let Some(m) = &world.mesh
@@ -156,26 +169,26 @@ fn nearest(world: &World, b: &Obb, ignore_ground: bool, cutoff_m: f64) -> Neares
     let (lo, hi) = (voxel(&aabb.min), voxel(&aabb.max));
     let n_vox = (0..3).map(|a| hi[a] as i64 - lo[a] as i64 + 1).fold(1i64, i64::saturating_mul);
     let walk_occupied = n_vox > world.points.keys.len() as i64;
-    nearest_point(&world.points, (&pose, &cub), (lo, hi), ignore_ground, walk_occupied, &mut best);
+    nearest_point(&world.points, (&pose, &cub), (lo, hi), ground_below_z, walk_occupied, &mut best);
     best
 }
 
 /// Improves `best` with the nearest point to a box among the points of
-/// voxels `lo ..= hi`, the first in the index's order where several are as
-/// near. Walks either the occupied voxels (`walk_occupied`, cheaper when the
+/// voxels `lo ..= hi` (ground points at or below `ground_below_z` left out),
+/// the first in the index's order where several are as near. Walks either the occupied voxels (`walk_occupied`, cheaper when the
 /// range has more voxels than the cloud) or the range's voxels; both visit the
 /// range's occupied voxels in ascending order, so both give the same answer.
 fn nearest_point(
     index: &PointIndex,
     (pose, cub): (&Pose, &Cuboid),
     (lo, hi): ([i32; 3], [i32; 3]),
-    ignore_ground: bool,
+    ground_below_z: f64,
     walk_occupied: bool,
     best: &mut Nearest,
 ) {
     let check = |pts: &[([f64; 3], bool)], best: &mut Nearest| {
         for (p, g) in pts {
-            if ignore_ground && *g {
+            if *g && p[2] <= ground_below_z {
                 continue;
             }
             let d = cub.distance_to_point(pose, Vector::new(p[0], p[1], p[2]), true);
@@ -483,10 +496,12 @@ fn check_config(
             }
         }
         // The superstructure and what turns with it stand just above the
-        // ground the crane is set up on: the scanned ground counts for the
-        // boom, the trolley and what hangs, as it does in the planner.
-        let ignore_ground = dep == Dependence::Swing;
-        let nearest = nearest(world, &b, ignore_ground, search_cutoff_m(rules));
+        // ground the crane is set up on: that ground does not count for them
+        // (ground higher up does); all of it counts for the boom, the trolley
+        // and what hangs, as it does in the planner.
+        let ground_below_z =
+            if dep == Dependence::Swing { task.crane.placement.z_m + STANDING_GROUND_M } else { ALL_GROUND };
+        let nearest = nearest(world, &b, ground_below_z, search_cutoff_m(rules));
         // Written so that a distance that is not a number fails too.
         if !(nearest.distance_m >= required - DISTANCE_TOLERANCE_M) {
             problems.push(if landing_move && hanging {
@@ -858,7 +873,7 @@ pub fn validate(
             }
             if let Some(b) = task.crane.part(kind, &first.from, &task.load) {
                 // It stands on the ground.
-                let n = nearest(world, &b.with_underside_raised(rules.support_m), true, 1.0);
+                let n = nearest(world, &b.with_underside_raised(rules.support_m), NO_GROUND, 1.0);
                 if n.distance_m <= 0.0 {
                     problems.push(format!("crane set-up: {} intersects {}", kind.name(), n.object));
                 }
@@ -1010,7 +1025,7 @@ mod tests {
         ground: &[bool],
         b: &Obb,
         (lo, hi): ([i32; 3], [i32; 3]),
-        ignore_ground: bool,
+        ground_below_z: f64,
         mut best: Nearest,
     ) -> Nearest {
         let (pose, cub) = parry_box(b);
@@ -1018,7 +1033,7 @@ mod tests {
         order.sort_by_key(|&i| (voxel(&points[i]), i));
         for i in order {
             let key = voxel(&points[i]);
-            if !(0..3).all(|a| lo[a] <= key[a] && key[a] <= hi[a]) || (ignore_ground && ground[i]) {
+            if !(0..3).all(|a| lo[a] <= key[a] && key[a] <= hi[a]) || (ground[i] && points[i][2] <= ground_below_z) {
                 continue;
             }
             let p = points[i];
@@ -1047,7 +1062,7 @@ mod tests {
             tilt in -1.5f64..1.5,
             cutoff in 0.3f64..8.0,
             start in prop::option::of(0.0f64..5.0),
-            ignore_ground in any::<bool>(),
+            ground_below_z in prop_oneof![Just(ALL_GROUND), Just(NO_GROUND), -3.0f64..3.0],
         ) {
             let mut u = unit_stream(seed);
             let points: Vec<[f64; 3]> =
@@ -1064,11 +1079,11 @@ mod tests {
                 object: "mesh".into(),
                 at: None,
             };
-            let want = nearest_point_brute(&points, &ground, &b, range, ignore_ground, start.clone());
+            let want = nearest_point_brute(&points, &ground, &b, range, ground_below_z, start.clone());
             let (pose, cub) = parry_box(&b);
             for walk_occupied in [false, true] {
                 let mut got = start.clone();
-                nearest_point(&index, (&pose, &cub), range, ignore_ground, walk_occupied, &mut got);
+                nearest_point(&index, (&pose, &cub), range, ground_below_z, walk_occupied, &mut got);
                 prop_assert_eq!(&got, &want, "walk_occupied {}", walk_occupied);
             }
         }
@@ -1229,7 +1244,7 @@ mod tests {
         let b = Obb::new(Point3::new(0.0, 0.0, 1.0), Mat3::identity(), Vec3::new(10.0, 1.0, 1.0));
         for _ in 0..20 {
             let world = World::new(&TriMesh::default(), &points, &ground).unwrap();
-            let n = nearest(&world, &b, false, 3.0);
+            let n = nearest(&world, &b, ALL_GROUND, 3.0);
             assert_eq!((n.distance_m, n.object.as_str(), n.at), (1.0, "scanned structure", Some([-3.5, 0.5, -1.0])));
         }
     }

@@ -628,3 +628,35 @@ fn a_blocked_set_down_is_refused_before_planning() {
     let err = plan_lift(&t, &Site { map: &m, world: &world, charts: None }, &quick(), 3).unwrap_err().to_string();
     assert!(err.contains("the set-down is not clear") && err.contains("BAR-THROUGH-SET"), "{err}");
 }
+
+/// The counterweight swings over the ground the crane stands on, but not
+/// through a bank: scanned ground more than half a metre above the crane's
+/// set-up level counts for it (it was left out for every part that turns
+/// with the superstructure).
+#[test]
+fn validator_keeps_the_counterweight_off_a_scanned_bank() {
+    let t = task(-14.0);
+    let c = Config { swing_rad: 0.0, radial: 40f64.to_radians(), hoist_m: 20.0, load_yaw_rad: 0.0 };
+    let cw = t.crane.part(liftplan_core::crane::PartKind::Counterweight, &c, &t.load).unwrap();
+    let swing = Move { joint: Joint::Swing, from: c, to: Config { swing_rad: 0.01, ..c } };
+    let check = |p: liftplan_core::frame::Point3, clearance_m: f64| {
+        let world = World::new(&TriMesh::default(), &[[p.x, p.y, p.z]], &[true]).unwrap();
+        let rules = Rules { clearance_m, ..rules() };
+        validate(&t, None, &world, &rules, &[swing], &[false])
+    };
+    // A bank's top 0.3 m behind the counterweight, at its mid-height.
+    let out = cw.axis(0) * (if cw.center.x < 0.0 { -1.0 } else { 1.0 });
+    let bank = cw.center + out * (cw.half.x + 0.3);
+    let v = check(bank, 1.0);
+    assert!(
+        v.problems.iter().any(|p| p.contains("counterweight is 0.3") && p.contains("ground (scan)")),
+        "{:?}",
+        v.problems
+    );
+    // The ground it stands on, under it, does not count even for a clearance
+    // larger than the counterweight's height; ground 0.6 m up does.
+    let under = liftplan_core::frame::Point3::new(cw.center.x, cw.center.y, 0.3);
+    assert!(check(under, 3.5).ok, "{:?}", check(under, 3.5).problems);
+    let raised = liftplan_core::frame::Point3::new(cw.center.x, cw.center.y, 0.6);
+    assert!(!check(raised, 3.5).ok);
+}
