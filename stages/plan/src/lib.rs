@@ -333,7 +333,8 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
     }
     let cs = CSpace::build(&Problem { task, chart, map: site.map }, &s.cspace);
     let zones = landing_zones(task, s);
-    let ck = Checker::new(&cs, site.map, task, zones.clone(), s.cspace.sample_m);
+    let landing: Vec<Vec<[f64; 2]>> = zones.iter().map(|z| z.polygon.clone()).collect();
+    let ck = Checker::new(&cs, site.map, task, zones, s.cspace.sample_m);
     let start = task.start();
     let goal0 = task.goal();
     if let Err(b) = ck.config(&start) {
@@ -344,7 +345,7 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
     }
     let rules = validate::Rules {
         clearance_m: task.clearance_m,
-        landing: zones.iter().map(|z| z.polygon.clone()).collect(),
+        landing,
         landing_clearance_m: s.landing_clearance_m,
         sample_m: s.validator_sample_m,
         support_m: s.support_m,

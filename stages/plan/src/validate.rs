@@ -337,15 +337,12 @@ pub struct MoveCheck {
     pub samples: usize,
     /// The sample with the smallest clearance margin (distance less requirement).
     pub tightest: SampleCheck,
-    /// Along the whole move, between the samples too, every part keeps at
-    /// least its requirement plus this (m): the tightest sample's margin less
-    /// at most half the largest movement between two samples, for distances
-    /// within the point search's cut-off.
-    pub least_margin_m: f64,
-    /// The clearance a step reports: the tightest part's requirement plus
-    /// [`MoveCheck::least_margin_m`], a distance no point of the move comes
-    /// closer than (the tightest sample's distance where that is beyond the
-    /// point search's cut-off, or infinite).
+    /// The clearance a step reports: the tightest part's requirement plus the
+    /// least margin every part keeps along the whole move, between the
+    /// samples too (the tightest sample's margin less at most half the
+    /// largest movement between two samples), so a distance no point of the
+    /// move comes closer than; the tightest sample's distance where that is
+    /// beyond the point search's cut-off, or infinite.
     pub clearance_m: f64,
     /// The sample with the highest utilisation.
     pub max_utilisation: SampleCheck,
@@ -955,7 +952,6 @@ pub fn validate(
             };
             move_checks.push(MoveCheck {
                 samples: n + extra,
-                least_margin_m,
                 clearance_m,
                 tightest: t,
                 max_utilisation: u,
