@@ -36,13 +36,7 @@ proptest! {
         let map = scene::depth_map(scene::site(seed), &[]);
         let s = Settings { swing_step_deg: 2.0, luff_step_deg: 2.0, ..Settings::default() };
         let cs = CSpace::build(&Problem { task: &t, chart: None, map: &map }, &s);
-        let mut r = seed | 1;
-        let mut u = || {
-            r ^= r << 13;
-            r ^= r >> 7;
-            r ^= r << 17;
-            (r >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut u = liftplan_core::testing::unit_stream(seed);
         let boom_len = t.crane.placement.boom_length_m + 2.0 + 3.0;
         // What a box query must add to cover every configuration of a cell.
         let cell_motion = boom_len * (cs.swing_step + cs.radial_step) / 2.0;

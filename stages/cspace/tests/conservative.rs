@@ -70,13 +70,7 @@ proptest! {
         let cs = CSpace::build(&Problem { task: &t, chart: None, map: &map }, &s);
         let ck = Checker::new(&cs, &map, &t, vec![], s.sample_m);
         let lim = t.crane.limits();
-        let mut r = seed | 1;
-        let mut u = || {
-            r ^= r << 13;
-            r ^= r >> 7;
-            r ^= r << 17;
-            (r >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut u = liftplan_core::testing::unit_stream(seed);
         for _ in 0..150 {
             let c = Config {
                 swing_rad: u() * std::f64::consts::TAU,
