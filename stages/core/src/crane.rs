@@ -431,6 +431,11 @@ pub enum PartKind {
     Load,
 }
 
+/// How high above the level the crane is set up on the scanned ground may
+/// be and still be the ground it stands on (m): uneven ground, mats, kerbs
+/// ([`CraneSetup::standing_ground_top_z`]).
+pub const STANDING_GROUND_M: f64 = 0.5;
+
 /// Which joints a part's pose depends on; the hybrid C-space precomputes the
 /// first three classes and checks `Full` online.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -589,6 +594,17 @@ impl CraneSetup {
 
     pub fn slew_center(&self) -> Point3 {
         Point3::new(self.placement.x_m, self.placement.y_m, self.placement.z_m)
+    }
+
+    /// The highest the scanned ground may be and still be the ground the
+    /// crane stands on (m, site frame): the set-up level plus
+    /// [`STANDING_GROUND_M`]. The carrier, outriggers and mast stand on the
+    /// ground, so none of it is an obstacle for them; the superstructure and
+    /// what turns with it swing just above it, so ground up to this height
+    /// is not one for them either, while a bank rising above it is. The
+    /// planner and the validator both apply this rule.
+    pub fn standing_ground_top_z(&self) -> f64 {
+        self.placement.z_m + STANDING_GROUND_M
     }
 
     /// Horizontal unit vector of the boom/jib at `swing_rad`.

@@ -31,7 +31,7 @@
 //! module must not do: mark anything but the boom (other radial parts use box
 //! queries in `lib.rs`).
 
-use crate::{CSpace, CellHit, Problem, counts_for};
+use crate::{CSpace, CellHit, Problem, left_out};
 use liftplan_core::crane::{Boom, PartKind};
 use liftplan_core::frame::{Mat3, Point3, Vec3};
 use liftplan_core::obb::Obb;
@@ -252,7 +252,8 @@ fn cell_rows(
         if zlo > z_ceil {
             break;
         }
-        if zhi < z_floor || !counts_for(PartKind::Boom, iv) {
+        // Every interval counts for the boom ([`left_out`] leaves none out for it).
+        if zhi < z_floor {
             continue;
         }
         run = match run {
@@ -354,6 +355,7 @@ fn distance_range(r: &[f64; 4], ox: f64, oy: f64) -> (f64, f64) {
 /// The boom's table entries, row-major (`k * ns + i`).
 pub(crate) fn boom_hits(cs: &CSpace, p: &Problem, boom: &Boom, clearance: f64) -> Vec<Option<CellHit>> {
     let crane = &p.task.crane;
+    debug_assert!(left_out(crane, PartKind::Boom).is_none(), "the boom marking counts every interval");
     let map = p.map;
     let spec = map.spec;
     let o = crane.slew_center();

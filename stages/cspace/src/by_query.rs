@@ -13,14 +13,14 @@
 //! `CSpace::radial_box`) and give the same rows, entry for entry: the GPU's
 //! box queries return the CPU's answers by construction
 //! ([`liftplan_depthmap::gpu::Gpu::hits_where`]), each part leaves out the
-//! same object on both (`ignored_object`), and a cell or column takes
+//! same intervals on both (`left_out`), and a cell or column takes
 //! the first part, in the crane's part order, that meets something.
 //!
 //! Must not: open a device or choose one (the caller brings it), or stand in
 //! for the boom marking in [`CSpace::build`]: its rows differ from these on a
 //! few hundred cells, and the table must not depend on the machine.
 
-use crate::{CSpace, CellHit, Problem, counts_for, ignored_object};
+use crate::{CSpace, CellHit, Problem, counts_for, left_out};
 use liftplan_core::crane::{Dependence, PartKind};
 use liftplan_core::obb::Obb;
 use liftplan_depthmap::gpu::{Gpu, GpuMap, ScreenCounts};
@@ -55,7 +55,7 @@ pub fn rows_by_query(cs: &CSpace, p: &Problem, on: Queries) -> Result<QueryRows,
         match on {
             Queries::Cpu => Ok(on_cpu(p, kind, boxes)),
             Queries::Gpu(gpu, gpu_map) => {
-                let (answers, counts) = gpu.hits_where(gpu_map, p.map, boxes, ignored_object(kind))?;
+                let (answers, counts) = gpu.hits_where(gpu_map, p.map, boxes, left_out(&p.task.crane, kind))?;
                 screen.add(&counts);
                 Ok(answers)
             }
@@ -107,5 +107,5 @@ fn rows_with<E>(
 
 /// The CPU's exact queries of one part's boxes.
 fn on_cpu(p: &Problem, kind: PartKind, boxes: &[Obb]) -> Vec<Option<Hit>> {
-    boxes.par_iter().map(|b| p.map.hit_where(b, |iv| counts_for(kind, iv))).collect()
+    boxes.par_iter().map(|b| p.map.hit_where(b, |iv| counts_for(&p.task.crane, kind, iv))).collect()
 }

@@ -38,6 +38,7 @@ use liftplan_core::crane::{CraneSetup, Dependence, LoadShape, PartKind};
 use liftplan_core::lift::LiftTask;
 use liftplan_core::obb::Obb;
 use liftplan_depthmap::mdm::{Interval, Mdm, OBJ_GROUND};
+use liftplan_depthmap::query::LeaveOut;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
@@ -213,17 +214,26 @@ fn is_luffing(crane: &CraneSetup) -> bool {
     !crane.model.is_tower()
 }
 
-/// Is an obstacle relevant to a part? The carrier, outriggers and mast stand on
-/// the ground, and the body's underside swings over it: the scanned ground is
-/// not an obstacle for them (the crane's set-up check covers the ground).
-fn counts_for(part: PartKind, iv: &Interval) -> bool {
-    Some(iv.obj) != ignored_object(part)
+/// Is an obstacle relevant to a part? ([`left_out`]).
+fn counts_for(crane: &CraneSetup, part: PartKind, iv: &Interval) -> bool {
+    LeaveOut::counts(left_out(crane, part), iv)
 }
 
-/// The one object a part's box queries leave out ([`counts_for`] in the form
-/// the GPU's queries take).
-fn ignored_object(part: PartKind) -> Option<u32> {
-    matches!(part.dependence(), Dependence::Fixed | Dependence::Swing).then_some(OBJ_GROUND)
+/// What a part's box queries leave out, in the form both the CPU's and the
+/// GPU's queries take. The carrier, outriggers and mast stand on the ground:
+/// no scanned ground is an obstacle for them (the crane's set-up check
+/// covers the ground). The superstructure and what turns with it swing just
+/// above it: ground up to [`CraneSetup::standing_ground_top_z`] is not an
+/// obstacle for them, a bank higher up is, as in the validator. The map's
+/// intervals are the points grown by their radius, so here a ground point
+/// up to that radius below the height still counts: the planner's side of
+/// the rule is the more careful one.
+fn left_out(crane: &CraneSetup, part: PartKind) -> Option<LeaveOut> {
+    match part.dependence() {
+        Dependence::Fixed => Some(LeaveOut::object(OBJ_GROUND)),
+        Dependence::Swing => Some(LeaveOut::up_to(OBJ_GROUND, crane.standing_ground_top_z())),
+        Dependence::SwingRadial | Dependence::Full => None,
+    }
 }
 
 impl CSpace {
@@ -796,7 +806,7 @@ impl<'a> Checker<'a> {
                     } else {
                         cs.cell_motion(crane, &b)
                     };
-                if let Some(h) = self.map.hit_where(&b.expanded(grow), |iv| counts_for(kind, iv)) {
+                if let Some(h) = self.map.hit_where(&b.expanded(grow), |iv| counts_for(crane, kind, iv)) {
                     return Err(self.blocked("collision", Some(kind), Some(h.interval.obj), c));
                 }
             }

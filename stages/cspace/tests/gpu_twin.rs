@@ -146,29 +146,41 @@ fn tower_crane_rows_by_query_match_on_gpu_and_cpu() {
 }
 
 #[test]
-fn the_ground_is_left_out_for_the_body_only() {
-    // Ground alone, rising to a bank as high as the superstructure's
-    // underside from 4 m out (the crane stands in a cut): the body swings
-    // over it, the boom reaches down into it.
-    let t = task(r#"model = "ac-700", boom_m = 40.0"#);
-    let ground: Vec<[f64; 3]> = (0..241 * 241)
-        .map(|n| {
-            let (x, y) = ((n % 241) as f64 * 0.5 - 60.0, (n / 241) as f64 * 0.5 - 60.0);
-            [x, y, if x.hypot(y) > 4.0 { 2.9 } else { -0.1 }]
-        })
-        .collect();
-    let map = scene::depth_map(liftplan_core::mesh::TriMesh::default(), &ground);
-    let p = Problem { task: &t, chart: None, map: &map };
-    let s = Settings { swing_step_deg: 5.0, luff_step_deg: 5.0, ..Settings::default() };
-    let cs = CSpace::build(&p, &s);
-    let mut all = vec![rows_by_query(&cs, &p, Queries::Cpu).unwrap()];
-    for g in devices() {
-        let on = g.upload_map(&map).unwrap();
-        all.push(rows_by_query(&cs, &p, Queries::Gpu(&g, &on)).unwrap());
-    }
-    for rows in all {
-        assert_eq!(blocked(&rows.swing_hits), 0);
-        assert!(rows.cell_hits.iter().flatten().any(|h| h.obj == OBJ_GROUND), "the lowest boom rows reach the ground");
+fn the_ground_counts_for_the_body_only_above_where_the_crane_stands() {
+    // Ground alone, rising from 4 m out: 0.4 m (uneven ground, mats: still
+    // the ground the crane stands on, up to 0.5 m), 0.6 m (a kerb higher
+    // than that), or to a bank as high as the superstructure's underside
+    // (the crane stands in a cut). With a clearance of 2.6 m the body's
+    // boxes reach down to all three: it swings over the first only. The
+    // boom reaches down into all of them.
+    let mut t = task(r#"model = "ac-700", boom_m = 40.0"#);
+    t.clearance_m = 2.6;
+    for (rise, body_blocked) in [(0.4, false), (0.6, true), (2.9, true)] {
+        let ground: Vec<[f64; 3]> = (0..241 * 241)
+            .map(|n| {
+                let (x, y) = ((n % 241) as f64 * 0.5 - 60.0, (n / 241) as f64 * 0.5 - 60.0);
+                [x, y, if x.hypot(y) > 4.0 { rise } else { -0.1 }]
+            })
+            .collect();
+        let map = scene::depth_map(liftplan_core::mesh::TriMesh::default(), &ground);
+        let p = Problem { task: &t, chart: None, map: &map };
+        let s = Settings { swing_step_deg: 5.0, luff_step_deg: 5.0, ..Settings::default() };
+        let cs = CSpace::build(&p, &s);
+        let mut all = vec![rows_by_query(&cs, &p, Queries::Cpu).unwrap()];
+        for g in devices() {
+            let on = g.upload_map(&map).unwrap();
+            all.push(rows_by_query(&cs, &p, Queries::Gpu(&g, &on)).unwrap());
+        }
+        for rows in all {
+            assert_eq!(rows.swing_hits, cs.swing_hits, "the build's swing rows are these box queries");
+            let want = if body_blocked { rows.swing_hits.len() } else { 0 };
+            assert_eq!(blocked(&rows.swing_hits), want, "ground rising {rise} m");
+            assert!(rows.swing_hits.iter().flatten().all(|h| h.obj == OBJ_GROUND));
+            assert!(
+                rows.cell_hits.iter().flatten().any(|h| h.obj == OBJ_GROUND),
+                "the lowest boom rows reach the ground"
+            );
+        }
     }
 }
 

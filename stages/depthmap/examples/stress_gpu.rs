@@ -8,7 +8,7 @@
 //!
 //! On each map, random crane-part boxes and boxes on the 1/16 m lattice (and
 //! those a thousandth of a millimetre higher and lower) are queried on the
-//! device and on the CPU, with and without the ground ignored: box queries,
+//! device and on the CPU, with and without the ground left out (all of it, or up to a height): box queries,
 //! and vertical clearances down and up.
 //!
 //! Prints each map and each query answer that differs and each map the device
@@ -20,12 +20,18 @@
 use liftplan_core::frame::Vec3;
 use liftplan_core::obb::Obb;
 use liftplan_depthmap::mdm::{self, Mode, PointSource, Raw};
-use liftplan_depthmap::query::Vertical;
+use liftplan_depthmap::query::{LeaveOut, Vertical};
 use liftplan_depthmap::{Inputs, Settings, build_cpu, gpu};
 use rand::{RngExt, SeedableRng};
 
 #[path = "../tests/support/boxes.rs"]
 mod boxes;
+
+/// What the queries leave out: nothing, all the ground, and the ground up
+/// to 5 m (a lattice height, which some intervals' tops meet exactly).
+fn leave_outs() -> [Option<LeaveOut>; 3] {
+    [None, Some(LeaveOut::object(mdm::OBJ_GROUND)), Some(LeaveOut::up_to(mdm::OBJ_GROUND, 5.0))]
+}
 
 fn main() {
     let mut g = gpu::open(true).unwrap();
@@ -139,17 +145,17 @@ fn main() {
                 continue;
             }
         };
-        for ignore in [None, Some(mdm::OBJ_GROUND)] {
-            match g.hits_where(&on_gpu, &cpu, &boxes, ignore) {
+        for leave in leave_outs() {
+            match g.hits_where(&on_gpu, &cpu, &boxes, leave) {
                 Ok((hits, counts)) => {
                     left_to_cpu += counts.left_to_cpu as u64;
                     for (k, b) in boxes.iter().enumerate() {
                         queries += 1;
-                        let want = cpu.hit_where(b, |iv| Some(iv.obj) != ignore);
+                        let want = cpu.hit_where(b, |iv| LeaveOut::counts(leave, iv));
                         if hits[k] != want {
                             queries_differ += 1;
                             println!(
-                                "QUERY MISMATCH case {case} box {k} ignoring {ignore:?}: GPU {:?}, CPU {want:?}, {b:?}",
+                                "QUERY MISMATCH case {case} box {k} leaving out {leave:?}: GPU {:?}, CPU {want:?}, {b:?}",
                                 hits[k]
                             );
                         }
@@ -158,16 +164,16 @@ fn main() {
                 Err(e) => println!("case {case}: queries refused: {e}"),
             }
             for way in [Vertical::Down, Vertical::Up] {
-                match g.clearances_where(&on_gpu, &cpu, &boxes, way, ignore) {
+                match g.clearances_where(&on_gpu, &cpu, &boxes, way, leave) {
                     Ok((found, counts)) => {
                         clearance_left += counts.left_to_cpu as u64;
                         for (k, b) in boxes.iter().enumerate() {
                             clearances += 1;
-                            let want = cpu.clearance_where(b, way, |iv| Some(iv.obj) != ignore);
+                            let want = cpu.clearance_where(b, way, |iv| LeaveOut::counts(leave, iv));
                             if found[k] != want {
                                 clearances_differ += 1;
                                 println!(
-                                    "CLEARANCE MISMATCH case {case} box {k} {way:?} ignoring {ignore:?}: GPU {:?}, \
+                                    "CLEARANCE MISMATCH case {case} box {k} {way:?} leaving out {leave:?}: GPU {:?}, \
                                      CPU {want:?}, {b:?}",
                                     found[k]
                                 );

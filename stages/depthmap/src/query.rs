@@ -34,6 +34,52 @@ pub struct Hit {
     pub interval: Interval,
 }
 
+/// Intervals a query leaves out: those of object `obj` whose top is at or
+/// below `up_to_m` (m, site frame). The scanned ground the crane stands on,
+/// for the parts that stand on it or swing just above it, while a bank
+/// rising above that level still counts for them.
+///
+/// The same rule on the CPU ([`LeaveOut::counts`], for [`Mdm::hit_where`]
+/// and [`Mdm::clearance_where`]) and on the GPU
+/// ([`crate::gpu::Gpu::hits_where`], [`crate::gpu::Gpu::clearances_where`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LeaveOut {
+    pub obj: u32,
+    /// Never NaN; `+inf` leaves out the whole object.
+    up_to_m: f32,
+}
+
+impl LeaveOut {
+    /// Leaves out every interval of `obj`.
+    pub fn object(obj: u32) -> LeaveOut {
+        LeaveOut { obj, up_to_m: f32::INFINITY }
+    }
+
+    /// Leaves out the intervals of `obj` whose top is at or below `z_m`:
+    /// `z_m` is rounded down to `f32` (never more left out than asked); a
+    /// NaN leaves nothing out.
+    pub fn up_to(obj: u32, z_m: f64) -> LeaveOut {
+        let mut z = z_m as f32;
+        if (z as f64) > z_m {
+            z = z.next_down();
+        }
+        LeaveOut { obj, up_to_m: if z.is_nan() { f32::NEG_INFINITY } else { z } }
+    }
+
+    /// The height at or below which the object is left out (m).
+    pub fn up_to_m(&self) -> f32 {
+        self.up_to_m
+    }
+
+    /// Whether `iv` counts for a query that leaves out `leave`.
+    pub fn counts(leave: Option<LeaveOut>, iv: &Interval) -> bool {
+        match leave {
+            Some(l) => !(iv.obj == l.obj && iv.zhi <= l.up_to_m),
+            None => true,
+        }
+    }
+}
+
 /// The pyramid tiles a walk over a box's cells starts from (level `lvl`;
 /// columns and rows, inclusive), in row order.
 #[derive(Debug, Clone, PartialEq)]

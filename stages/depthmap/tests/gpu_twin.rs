@@ -4,7 +4,7 @@
 use liftplan_core::frame::{Point3, Vec3};
 use liftplan_core::obb::Obb;
 use liftplan_depthmap::mdm::{self, Mode, PointSource, Raw};
-use liftplan_depthmap::query::Vertical;
+use liftplan_depthmap::query::{LeaveOut, Vertical};
 use liftplan_depthmap::{Inputs, Settings, build, build_cpu, gpu};
 use rand::{RngExt, SeedableRng};
 
@@ -201,14 +201,21 @@ fn gpu_leaves_out_points_off_a_configured_extent_as_the_cpu_does() {
     });
 }
 
+/// What the queries leave out: nothing, all the ground, and the ground up
+/// to 5 m (`site` has ground points on the 1/16 m lattice up to 12.4 m, so
+/// with a radius of 1/16 m some intervals' tops are exactly 5 m).
+fn leave_outs() -> [Option<LeaveOut>; 3] {
+    [None, Some(LeaveOut::object(mdm::OBJ_GROUND)), Some(LeaveOut::up_to(mdm::OBJ_GROUND, 5.0))]
+}
+
 /// A random box over (and around) `site`'s area, `z` its centre height.
 fn random_box(rng: &mut rand_chacha::ChaCha8Rng, z: f64) -> Obb {
     boxes::random_box(rng, [1000.0, 2000.0], [50.0, 40.0], z)
 }
 
 /// The GPU's box queries (device screen, CPU exact test for the rest) give
-/// the CPU's answer for every box, hit for hit, with and without an ignored
-/// object; and the device does clear boxes: every box above the whole site.
+/// the CPU's answer for every box, hit for hit, with and without the ground
+/// (all of it, or up to a height) left out; and the device does clear boxes: every box above the whole site.
 #[test]
 fn gpu_and_cpu_box_queries_agree() {
     for_each_gpu(|g| {
@@ -232,15 +239,15 @@ fn gpu_and_cpu_box_queries_agree() {
             // other slots than their places in the list.
             boxes.insert(0, Obb::axis_aligned(Point3::new(5000.0, 2000.0, 1.0), Vec3::new(1.0, 1.0, 1.0)));
             boxes.insert(1500, Obb::axis_aligned(Point3::new(1000.0, 2.0e6, 1.0), Vec3::new(3.0e6, 1.0, 1.0)));
-            for ignore in [None, Some(mdm::OBJ_GROUND)] {
-                let (hits, counts) = g.hits_where(&on_gpu, &map, &boxes, ignore).unwrap();
+            for leave in leave_outs() {
+                let (hits, counts) = g.hits_where(&on_gpu, &map, &boxes, leave).unwrap();
                 let mut free = 0;
                 for (k, b) in boxes.iter().enumerate() {
-                    let cpu = map.hit_where(b, |iv| Some(iv.obj) != ignore);
-                    assert_eq!(hits[k], cpu, "box {k} ({b:?}), cell {cell}, {mode:?}, ignoring {ignore:?}");
+                    let cpu = map.hit_where(b, |iv| LeaveOut::counts(leave, iv));
+                    assert_eq!(hits[k], cpu, "box {k} ({b:?}), cell {cell}, {mode:?}, leaving out {leave:?}");
                     free += cpu.is_none() as usize;
                 }
-                eprintln!("cell {cell} {mode:?} ignoring {ignore:?}: {} boxes, {free} free, {counts:?}", boxes.len());
+                eprintln!("cell {cell} {mode:?} leaving out {leave:?}: {} boxes, {free} free, {counts:?}", boxes.len());
                 assert!(counts.left_to_cpu >= 1, "the far box must go to the CPU");
                 // The boxes above the site, and the one off the grid.
                 assert!(counts.free_on_gpu > above.len(), "the device must clear the boxes above the site");
@@ -258,9 +265,64 @@ fn gpu_and_cpu_box_queries_agree() {
     });
 }
 
+/// Ground left out up to a height: an interval whose top is exactly that
+/// height is left out, one a hair higher counts, on both paths, for box
+/// queries and clearances both ways.
+#[test]
+fn gpu_leaves_out_ground_up_to_a_height_as_the_cpu_does() {
+    for_each_gpu(|g| {
+        let mut inp = Inputs::default();
+        // A ground point whose interval is [4.875, 5.0] (radius 1/16 m), and
+        // one 2 m away whose interval tops out at 5.0625.
+        for (x, z) in [(1.1, 4.9375), (3.1, 5.0)] {
+            inp.points.push([x, 1.1, z]);
+            inp.ground.push(true);
+        }
+        // Lower, beside the first: what a box above the first finds below
+        // it where that ground is left out. (A device that took that ground
+        // for an obstacle would narrow the answer down to its cell.)
+        inp.points.push([1.35, 1.1, 3.9375]);
+        inp.ground.push(false);
+        let s =
+            Settings { cell_m: 0.25, point_radius_m: 0.0625, extent: vec![0.0, 0.0, 4.0, 2.0], ..Settings::default() };
+        let (map, _) = build_cpu(&inp, &s).unwrap();
+        let on_gpu = g.upload_map(&map).unwrap();
+        let over = |x: f64, z: f64, half_z: f64| Obb::axis_aligned(Point3::new(x, 1.1, z), Vec3::new(0.3, 0.3, half_z));
+        // Each box overlaps its point's interval; the last two hang above them.
+        let boxes = [over(1.1, 5.5, 0.6), over(3.1, 5.5, 0.6), over(1.1, 6.5, 0.25), over(3.1, 6.5, 0.25)];
+        let at = |z: f64| Some(LeaveOut::up_to(mdm::OBJ_GROUND, z));
+        for (leave, hit) in [
+            (None, [true, true]),
+            (at(5.0), [false, true]),
+            (at(4.999), [true, true]),
+            (at(5.0625), [false, false]),
+            (Some(LeaveOut::object(mdm::OBJ_GROUND)), [false, false]),
+        ] {
+            let cpu: Vec<_> = boxes.iter().map(|b| map.hit_where(b, |iv| LeaveOut::counts(leave, iv))).collect();
+            assert_eq!([cpu[0].is_some(), cpu[1].is_some()], hit, "leaving out {leave:?}: {cpu:?}");
+            assert!(cpu[2].is_none() && cpu[3].is_none());
+            let (gpu, _) = g.hits_where(&on_gpu, &map, &boxes, leave).unwrap();
+            assert_eq!(gpu, cpu, "leaving out {leave:?}");
+            for way in [Vertical::Down, Vertical::Up] {
+                let cpu: Vec<_> =
+                    boxes.iter().map(|b| map.clearance_where(b, way, |iv| LeaveOut::counts(leave, iv))).collect();
+                let (gpu, _) = g.clearances_where(&on_gpu, &map, &boxes, way, leave).unwrap();
+                assert_eq!(gpu, cpu, "leaving out {leave:?}, {way:?}");
+                if way == Vertical::Down {
+                    // What hangs above a point that counts finds it below.
+                    let first = cpu[2].map(|c| c.at.interval.obj);
+                    let want = if hit[0] { mdm::OBJ_GROUND } else { mdm::OBJ_SCAN };
+                    assert_eq!(first, Some(want), "leaving out {leave:?}: {cpu:?}");
+                    assert_eq!(cpu[3].is_some(), hit[1], "leaving out {leave:?}: {cpu:?}");
+                }
+            }
+        }
+    });
+}
+
 /// A walk longer than the device's loop budget (lavapipe's loop cap would
 /// otherwise end it silently, which reads as "free") is given up and answered
-/// by the CPU. Here 40,000 cells hold ignored ground at the box's height, and
+/// by the CPU. Here 40,000 cells hold left-out ground at the box's height, and
 /// the one obstacle is in the last cell of the walk.
 #[test]
 fn gpu_box_query_longer_than_the_loop_budget_is_right() {
@@ -280,7 +342,7 @@ fn gpu_box_query_longer_than_the_loop_budget_is_right() {
         let b = Obb::axis_aligned(Point3::new(10.0, 10.0, 99.5), Vec3::new(9.99, 9.99, 0.5));
         let cpu = map.hit_where(&b, |iv| iv.obj != mdm::OBJ_GROUND);
         assert!(cpu.is_some_and(|h| h.interval.obj == mdm::OBJ_SCAN), "{cpu:?}");
-        let (hits, counts) = g.hits_where(&on_gpu, &map, &[b], Some(mdm::OBJ_GROUND)).unwrap();
+        let (hits, counts) = g.hits_where(&on_gpu, &map, &[b], Some(LeaveOut::object(mdm::OBJ_GROUND))).unwrap();
         eprintln!("{counts:?}");
         assert_eq!(hits[0], cpu);
         if g.loop_cap().is_some() {
@@ -308,17 +370,17 @@ fn gpu_box_queries_touching_exactly_are_right() {
         let moved =
             |dz: f64| lattice.iter().map(move |b| Obb::axis_aligned(b.center + Vec3::new(0.0, 0.0, dz), b.half));
         let all: Vec<Obb> = lattice.iter().copied().chain(moved(1e-6)).chain(moved(-1e-6)).collect();
-        for ignore in [None, Some(mdm::OBJ_GROUND)] {
-            let (hits, counts) = g.hits_where(&on_gpu, &map, &all, ignore).unwrap();
-            let cpu: Vec<_> = all.iter().map(|b| map.hit_where(b, |iv| Some(iv.obj) != ignore)).collect();
+        for leave in leave_outs() {
+            let (hits, counts) = g.hits_where(&on_gpu, &map, &all, leave).unwrap();
+            let cpu: Vec<_> = all.iter().map(|b| map.hit_where(b, |iv| LeaveOut::counts(leave, iv))).collect();
             for (k, b) in all.iter().enumerate() {
-                assert_eq!(hits[k], cpu[k], "box {k} ({b:?}), ignoring {ignore:?}");
+                assert_eq!(hits[k], cpu[k], "box {k} ({b:?}), leaving out {leave:?}");
             }
             // A lattice box that meets the map but is free once moved touches it exactly.
             let n = lattice.len();
             let touching =
                 (0..n).filter(|&k| cpu[k].is_some() && (cpu[n + k].is_none() || cpu[2 * n + k].is_none())).count();
-            eprintln!("lattice boxes ignoring {ignore:?}: {counts:?}, {touching} touch the map exactly");
+            eprintln!("lattice boxes leaving out {leave:?}: {counts:?}, {touching} touch the map exactly");
             assert!(touching > 0, "no box touches exactly: the test does not test what it says");
         }
     });
@@ -355,15 +417,15 @@ fn gpu_box_queries_within_roundings_of_a_contact_far_out_are_right() {
                 near.push(Obb::new(b.center + Vec3::new(0.0, 0.0, dz), b.axes, b.half));
             }
         }
-        for ignore in [None, Some(mdm::OBJ_GROUND)] {
-            let (hits, counts) = g.hits_where(&on_gpu, &map, &near, ignore).unwrap();
-            let cpu: Vec<_> = near.iter().map(|b| map.hit_where(b, |iv| Some(iv.obj) != ignore)).collect();
+        for leave in leave_outs() {
+            let (hits, counts) = g.hits_where(&on_gpu, &map, &near, leave).unwrap();
+            let cpu: Vec<_> = near.iter().map(|b| map.hit_where(b, |iv| LeaveOut::counts(leave, iv))).collect();
             for (k, b) in near.iter().enumerate() {
-                assert_eq!(hits[k], cpu[k], "box {k} ({b:?}), ignoring {ignore:?}");
+                assert_eq!(hits[k], cpu[k], "box {k} ({b:?}), leaving out {leave:?}");
             }
             let hit = cpu.iter().filter(|h| h.is_some()).count();
-            eprintln!("{} boxes near a contact ignoring {ignore:?}: {hit} hit, {counts:?}", near.len());
-            if ignore.is_none() {
+            eprintln!("{} boxes near a contact leaving out {leave:?}: {hit} hit, {counts:?}", near.len());
+            if leave.is_none() {
                 // Moved onto the contact or past it, a box hits; short of it,
                 // by a rounding or more, it is free (but where f32 cannot
                 // tell which).
@@ -374,10 +436,10 @@ fn gpu_box_queries_within_roundings_of_a_contact_far_out_are_right() {
                 );
             }
             for way in [Vertical::Down, Vertical::Up] {
-                let (found, _) = g.clearances_where(&on_gpu, &map, &near, way, ignore).unwrap();
+                let (found, _) = g.clearances_where(&on_gpu, &map, &near, way, leave).unwrap();
                 for (k, b) in near.iter().enumerate() {
-                    let cpu = map.clearance_where(b, way, |iv| Some(iv.obj) != ignore);
-                    assert_eq!(found[k], cpu, "box {k} ({b:?}), {way:?}, ignoring {ignore:?}");
+                    let cpu = map.clearance_where(b, way, |iv| LeaveOut::counts(leave, iv));
+                    assert_eq!(found[k], cpu, "box {k} ({b:?}), {way:?}, leaving out {leave:?}");
                 }
             }
         }
@@ -386,7 +448,7 @@ fn gpu_box_queries_within_roundings_of_a_contact_far_out_are_right() {
 
 /// The GPU's clearances (device narrowing, CPU measuring the cells it
 /// keeps) give the CPU's answer for every box, both ways, with and without
-/// an ignored object: gap, cell and interval.
+/// the ground left out (all, or up to a height): gap, cell and interval.
 #[test]
 fn gpu_and_cpu_clearances_agree() {
     for_each_gpu(|g| {
@@ -405,19 +467,19 @@ fn gpu_and_cpu_clearances_agree() {
             boxes.push(Obb::axis_aligned(Point3::new(5000.0, 2000.0, 1.0), Vec3::new(1.0, 1.0, 1.0)));
             boxes.push(Obb::axis_aligned(Point3::new(1000.0, 2.0e6, 1.0), Vec3::new(3.0e6, 1.0, 1.0)));
             for way in [Vertical::Down, Vertical::Up] {
-                for ignore in [None, Some(mdm::OBJ_GROUND)] {
-                    let (found, counts) = g.clearances_where(&on_gpu, &map, &boxes, way, ignore).unwrap();
+                for leave in leave_outs() {
+                    let (found, counts) = g.clearances_where(&on_gpu, &map, &boxes, way, leave).unwrap();
                     let mut some = 0;
                     for (k, b) in boxes.iter().enumerate() {
-                        let cpu = map.clearance_where(b, way, |iv| Some(iv.obj) != ignore);
+                        let cpu = map.clearance_where(b, way, |iv| LeaveOut::counts(leave, iv));
                         assert_eq!(
                             found[k], cpu,
-                            "box {k} ({b:?}), cell {cell}, {mode:?}, {way:?}, ignoring {ignore:?}"
+                            "box {k} ({b:?}), cell {cell}, {mode:?}, {way:?}, leaving out {leave:?}"
                         );
                         some += cpu.is_some() as usize;
                     }
                     eprintln!(
-                        "cell {cell} {mode:?} {way:?} ignoring {ignore:?}: {some} of {} with a gap, {counts:?}",
+                        "cell {cell} {mode:?} {way:?} leaving out {leave:?}: {some} of {} with a gap, {counts:?}",
                         boxes.len()
                     );
                     assert!(some > boxes.len() / 10, "too few boxes have anything {way:?} of them: {some}");
@@ -493,15 +555,15 @@ fn gpu_clearances_touching_exactly_are_right() {
         let lattice: Vec<Obb> =
             (0..2000).map(|_| boxes::lattice_box(&mut rng, [1000.0, 2000.0], [40.0, 30.0], [-16, 420])).collect();
         for way in [Vertical::Down, Vertical::Up] {
-            for ignore in [None, Some(mdm::OBJ_GROUND)] {
-                let (found, counts) = g.clearances_where(&on_gpu, &map, &lattice, way, ignore).unwrap();
+            for leave in leave_outs() {
+                let (found, counts) = g.clearances_where(&on_gpu, &map, &lattice, way, leave).unwrap();
                 let mut touching = 0;
                 for (k, b) in lattice.iter().enumerate() {
-                    let cpu = map.clearance_where(b, way, |iv| Some(iv.obj) != ignore);
-                    assert_eq!(found[k], cpu, "box {k} ({b:?}), {way:?}, ignoring {ignore:?}");
+                    let cpu = map.clearance_where(b, way, |iv| LeaveOut::counts(leave, iv));
+                    assert_eq!(found[k], cpu, "box {k} ({b:?}), {way:?}, leaving out {leave:?}");
                     touching += cpu.is_some_and(|c| c.gap_m == 0.0) as usize;
                 }
-                eprintln!("lattice boxes {way:?} ignoring {ignore:?}: {counts:?}, {touching} touch the map exactly");
+                eprintln!("lattice boxes {way:?} leaving out {leave:?}: {counts:?}, {touching} touch the map exactly");
                 assert!(touching > 0, "no box touches exactly: the test does not test what it says");
             }
         }
@@ -616,11 +678,13 @@ fn gpu_clearance_cells_written_short_by_the_device_go_to_the_cpu() {
             ]),
             Vec3::new(2.3581336917866254, 2.677091779430861, 1.9916232327651597),
         );
-        let ignore = Some(mdm::OBJ_GROUND);
-        let cpu: Vec<_> =
-            [wide, tilted].iter().map(|b| map.clearance_where(b, Vertical::Up, |iv| Some(iv.obj) != ignore)).collect();
+        let leave = Some(LeaveOut::object(mdm::OBJ_GROUND));
+        let cpu: Vec<_> = [wide, tilted]
+            .iter()
+            .map(|b| map.clearance_where(b, Vertical::Up, |iv| LeaveOut::counts(leave, iv)))
+            .collect();
         assert!(cpu[1].is_some_and(|c| c.at.i == 626 && c.at.j == 116), "{cpu:?}");
-        let (found, counts) = g.clearances_where(&on_gpu, &map, &[wide, tilted], Vertical::Up, ignore).unwrap();
+        let (found, counts) = g.clearances_where(&on_gpu, &map, &[wide, tilted], Vertical::Up, leave).unwrap();
         eprintln!("{counts:?}");
         assert_eq!(found, cpu);
     });

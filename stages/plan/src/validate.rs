@@ -143,12 +143,6 @@ const ALL_GROUND: f64 = f64::NEG_INFINITY;
 /// [`nearest`] leaves out all scanned ground.
 const NO_GROUND: f64 = f64::INFINITY;
 
-/// How high above the level the crane is set up on the scanned ground may be
-/// and still be the ground it stands on (m): uneven ground, mats, kerbs. The
-/// superstructure and what turns with it swing over that ground; ground
-/// higher up, a bank within the counterweight's swing, counts for them.
-const STANDING_GROUND_M: f64 = 0.5;
-
 /// The nearest obstacle to `b`: plant triangles and scanned points, less the
 /// scanned ground at or below `ground_below_z` ([`ALL_GROUND`], [`NO_GROUND`]).
 fn nearest(world: &World, b: &Obb, ground_below_z: f64, cutoff_m: f64) -> Nearest {
@@ -492,12 +486,11 @@ fn check_config(
                 b = b.with_underside_raised(rules.support_m);
             }
         }
-        // The superstructure and what turns with it stand just above the
+        // The superstructure and what turns with it swing just above the
         // ground the crane is set up on: that ground does not count for them
-        // (ground higher up does); all of it counts for the boom, the trolley
-        // and what hangs, as it does in the planner.
-        let ground_below_z =
-            if dep == Dependence::Swing { task.crane.placement.z_m + STANDING_GROUND_M } else { ALL_GROUND };
+        // (a bank higher up does); all of it counts for the boom, the trolley
+        // and what hangs. The planner applies the same rule.
+        let ground_below_z = if dep == Dependence::Swing { task.crane.standing_ground_top_z() } else { ALL_GROUND };
         let nearest = nearest(world, &b, ground_below_z, search_cutoff_m(rules));
         // Written so that a distance that is not a number fails too.
         if !(nearest.distance_m >= required - DISTANCE_TOLERANCE_M) {

@@ -62,7 +62,7 @@
 
 use super::{Gpu, words_from_bytes, words_to_bytes};
 use crate::mdm::{Interval, Mdm};
-use crate::query::{Clearance, Hit, Vertical};
+use crate::query::{Clearance, Hit, LeaveOut, Vertical};
 use liftplan_core::obb::Obb;
 use rayon::prelude::*;
 
@@ -70,7 +70,7 @@ use rayon::prelude::*;
 pub(super) const SHADER: &str = include_str!("screen.wgsl");
 
 /// Words a box takes on the device (the shader's layout).
-const BOX_WORDS: usize = 32;
+const BOX_WORDS: usize = 33;
 const SCREEN_GROUP: u32 = 64;
 /// The shader's flag (in a box's word 31) for a box turned about z only.
 const UPRIGHT: u32 = 0x100;
@@ -268,21 +268,21 @@ impl Gpu {
         })
     }
 
-    /// [`Mdm::hit_where`] for every box, with `counts` "every object but
-    /// `ignore`": the device answers what it can prove, the CPU the rest (see
+    /// [`Mdm::hit_where`] for every box, with `counts` "all but what `leave`
+    /// leaves out" ([`LeaveOut::counts`]): the device answers what it can prove, the CPU the rest (see
     /// the module doc). `gpu_map` must be `map` uploaded.
     pub fn hits_where(
         &self,
         gpu_map: &GpuMap,
         map: &Mdm,
         boxes: &[Obb],
-        ignore: Option<u32>,
+        leave: Option<LeaveOut>,
     ) -> Result<(Vec<Option<Hit>>, ScreenCounts), String> {
         gpu_map.check_is(map)?;
         let t0 = std::time::Instant::now();
-        let (verdicts, host) = self.screen(gpu_map, map, boxes, ignore)?;
+        let (verdicts, host) = self.screen(gpu_map, map, boxes, leave)?;
         let t_exact = std::time::Instant::now();
-        let counts_obj = |iv: &Interval| Some(iv.obj) != ignore;
+        let counts_obj = |iv: &Interval| LeaveOut::counts(leave, iv);
         let hits = boxes
             .par_iter()
             .zip(&verdicts)
@@ -310,9 +310,9 @@ impl Gpu {
         gpu_map: &GpuMap,
         map: &Mdm,
         boxes: &[Obb],
-        ignore: Option<u32>,
+        leave: Option<LeaveOut>,
     ) -> Result<(Vec<Verdict>, HostMs), String> {
-        let batch = prepare_batch(map, boxes, ignore);
+        let batch = prepare_batch(map, boxes, leave);
         let mut verdicts: Vec<Verdict> =
             batch.outside.iter().map(|&out| if out { Verdict::Free } else { Verdict::LeftToCpu }).collect();
         let run = Dispatch { pipeline: &self.screen_boxes, way: 0, exact: None, out_binding: 6, out_words: 4 };
@@ -393,8 +393,8 @@ impl Gpu {
         Ok(transfer.as_secs_f64() * 1e3)
     }
 
-    /// [`Mdm::clearance_where`] for every box, with `counts` "every object
-    /// but `ignore`": the device narrows each box's answer down to a few
+    /// [`Mdm::clearance_where`] for every box, with `counts` "all but what
+    /// `leave` leaves out" ([`LeaveOut::counts`]): the device narrows each box's answer down to a few
     /// cells, the CPU measures those exactly (see the module doc). `gpu_map`
     /// must be `map` uploaded.
     pub fn clearances_where(
@@ -403,11 +403,11 @@ impl Gpu {
         map: &Mdm,
         boxes: &[Obb],
         way: Vertical,
-        ignore: Option<u32>,
+        leave: Option<LeaveOut>,
     ) -> Result<(Vec<Option<Clearance>>, ScreenCounts), String> {
         gpu_map.check_is(map)?;
         let t0 = std::time::Instant::now();
-        let mut batch = prepare_batch(map, boxes, ignore);
+        let mut batch = prepare_batch(map, boxes, leave);
         let mut answers: Vec<Narrowed> =
             batch.outside.iter().map(|&out| if out { Narrowed::Nothing } else { Narrowed::LeftToCpu }).collect();
         if gpu_map.height_bound > MAX_HEIGHT_M {
@@ -438,7 +438,7 @@ impl Gpu {
         };
         let transfer = self.dispatch(gpu_map, map, &batch, &run, |k, a| answers[k] = narrowed(map, a))?;
         let t_exact = std::time::Instant::now();
-        let counts_obj = |iv: &Interval| Some(iv.obj) != ignore;
+        let counts_obj = |iv: &Interval| LeaveOut::counts(leave, iv);
         let found = boxes
             .par_iter()
             .zip(&answers)
@@ -494,11 +494,11 @@ struct Batch {
 /// buffer, written once and in parallel: a buffer per box gathered into
 /// another took as long again as preparing the boxes (measured on the
 /// C-space's 118,080 boom boxes).
-fn prepare_batch(map: &Mdm, boxes: &[Obb], ignore: Option<u32>) -> Batch {
+fn prepare_batch(map: &Mdm, boxes: &[Obb], leave: Option<LeaveOut>) -> Batch {
     let t = std::time::Instant::now();
     let mut words = vec![[0u32; BOX_WORDS]; boxes.len()];
     let kinds: Vec<Prepared> =
-        words.par_iter_mut().zip(boxes.par_iter()).map(|(w, b)| prepare(b, map, ignore, w)).collect();
+        words.par_iter_mut().zip(boxes.par_iter()).map(|(w, b)| prepare(b, map, leave, w)).collect();
     let mut batch =
         Batch { outside: vec![false; boxes.len()], sent: Vec::with_capacity(boxes.len()), words, prepare_ms: 0.0 };
     for (k, kind) in kinds.into_iter().enumerate() {
@@ -580,7 +580,7 @@ enum Prepared {
 /// outward, the inner ones (shrunk by it) inward, the outer box's cells, and
 /// where the CPU's walk starts ([`Mdm::hit_where`]), written into `out`
 /// where the box goes up.
-fn prepare(b: &Obb, map: &Mdm, ignore: Option<u32>, out: &mut [u32; BOX_WORDS]) -> Prepared {
+fn prepare(b: &Obb, map: &Mdm, leave: Option<LeaveOut>, out: &mut [u32; BOX_WORDS]) -> Prepared {
     let s = map.spec;
     let local = [b.center.x - s.x0, b.center.y - s.y0, b.center.z];
     let size = b.half.norm();
@@ -600,7 +600,10 @@ fn prepare(b: &Obb, map: &Mdm, ignore: Option<u32>, out: &mut [u32; BOX_WORDS]) 
     for (k, v) in local.iter().enumerate() {
         w[k] = (*v as f32).to_bits();
     }
-    w[3] = ignore.unwrap_or(u32::MAX);
+    w[3] = leave.map_or(u32::MAX, |l| l.obj);
+    // WGSL may assume no infinities: the whole object goes up as "at or
+    // below the largest finite height", which leaves out the same intervals.
+    w[32] = leave.map_or(f32::MAX, |l| l.up_to_m().clamp(f32::MIN, f32::MAX)).to_bits();
     let inner = [b.half[0] - margin, b.half[1] - margin, b.half[2] - margin];
     let inner_ok = inner.iter().all(|h| *h > 0.0);
     for k in 0..3 {

@@ -13,8 +13,8 @@ struct Params {
     pad1: u32,
 }
 @group(0) @binding(0) var<uniform> P: Params;
-// Per box, 32 words (BOX_WORDS in screen.rs):
-//  0..3  centre, ignored object
+// Per box, BOX_WORDS words (BOX_WORDS in screen.rs):
+//  0..3  centre, left-out object (u32::MAX: none)
 //  4..15 per axis k: its xyz and outer half size
 // 16..19 the outer box's cells i0, i1, j0, j1 (inclusive)
 // 20..21 the outer box's z range
@@ -23,6 +23,8 @@ struct Params {
 // 24..26 inner half sizes
 // 27..30 the CPU walk's start tiles ti0, ti1, tj0, tj1 (inclusive)
 // 31     UPRIGHT or 0
+// 32     the height at or below which the left-out object's intervals are
+//        left out (their top; f32::MAX: all of them)
 @group(0) @binding(1) var<storage, read> boxes: array<u32>;
 @group(0) @binding(2) var<storage, read> offsets: array<u32>;
 // Per interval: bottom, top (f32 bits), object.
@@ -48,8 +50,9 @@ const STACK: u32 = 80u;
 const EMPTY: vec2<f32> = vec2<f32>(1.0, -1.0);
 // Word 31's flag for a box whose third axis is exactly up.
 const UPRIGHT: u32 = 0x100u;
+const BOX_WORDS: u32 = 33u;
 
-fn word(b: u32, k: u32) -> f32 { return bitcast<f32>(boxes[32u * b + k]); }
+fn word(b: u32, k: u32) -> f32 { return bitcast<f32>(boxes[BOX_WORDS * b + k]); }
 fn centre(b: u32) -> vec3<f32> { return vec3<f32>(word(b, 0u), word(b, 1u), word(b, 2u)); }
 fn axis(b: u32, k: u32) -> vec3<f32> { return vec3<f32>(word(b, 4u + 4u * k), word(b, 5u + 4u * k), word(b, 6u + 4u * k)); }
 
@@ -246,7 +249,7 @@ fn inner_range(b: u32, x0: f32, x1: f32, y0: f32, y1: f32) -> vec2<f32> {
     let xb = x1 - P.margin;
     let ya = y0 + P.margin;
     let yb = y1 - P.margin;
-    if ((boxes[32u * b + 31u] & UPRIGHT) != 0u) {
+    if ((boxes[BOX_WORDS * b + 31u] & UPRIGHT) != 0u) {
         return upright_inner(b, xa, xb, ya, yb);
     }
     let q = vec4<f32>(xa, xb, ya, yb);
@@ -328,22 +331,23 @@ fn upright_inner(b: u32, xa: f32, xb: f32, ya: f32, yb: f32) -> vec2<f32> {
 fn screen_boxes(@builtin(global_invocation_id) g: vec3<u32>) {
     let b = g.x + g.y * MAX_DIM * GROUP;
     if (b >= P.n) { return; }
-    let ignore = boxes[32u * b + 3u];
-    let i0 = boxes[32u * b + 16u];
-    let i1 = boxes[32u * b + 17u];
-    let j0 = boxes[32u * b + 18u];
-    let j1 = boxes[32u * b + 19u];
-    let start = boxes[32u * b + 22u];
+    let ignore = boxes[BOX_WORDS * b + 3u];
+    let ignore_to = word(b, 32u);
+    let i0 = boxes[BOX_WORDS * b + 16u];
+    let i1 = boxes[BOX_WORDS * b + 17u];
+    let j0 = boxes[BOX_WORDS * b + 18u];
+    let j1 = boxes[BOX_WORDS * b + 19u];
+    let start = boxes[BOX_WORDS * b + 22u];
     verdict[b] = vec4<u32>(GAVE_UP, 0u, 0u, 0u);
     // The CPU's walk (`Mdm::hit_where`): its start tiles row by row, each
     // tile's four children in the order (0,0), (1,0), (0,1), (1,1), so the
     // first contact found is the CPU's. The stack is filled in reverse.
     var stack: array<vec3<u32>, STACK>;
     var sp = 0u;
-    let ti0 = boxes[32u * b + 27u];
-    let ti1 = boxes[32u * b + 28u];
-    let tj0 = boxes[32u * b + 29u];
-    let tj1 = boxes[32u * b + 30u];
+    let ti0 = boxes[BOX_WORDS * b + 27u];
+    let ti1 = boxes[BOX_WORDS * b + 28u];
+    let tj0 = boxes[BOX_WORDS * b + 29u];
+    let tj1 = boxes[BOX_WORDS * b + 30u];
     let starts = (ti1 - ti0 + 1u) * (tj1 - tj0 + 1u);
     if (starts > 16u) { return; }
     var steps = 0u;
@@ -398,7 +402,7 @@ fn screen_boxes(@builtin(global_invocation_id) g: vec3<u32>) {
                     break;
                 }
                 let zhi = bitcast<f32>(intervals[3u * k + 1u]);
-                if (zhi < r.x || intervals[3u * k + 2u] == ignore) { continue; }
+                if (zhi < r.x || (intervals[3u * k + 2u] == ignore && zhi <= ignore_to)) { continue; }
                 // It may meet the box: a hit if it meets what the box surely
                 // has over the cell, else the CPU's exact test must decide.
                 if (!inner_done) {
@@ -485,19 +489,20 @@ fn clear_boxes(@builtin(global_invocation_id) g: vec3<u32>) {
     let slot = CLEAR_WORDS * b;
     narrowed[slot] = GAVE_UP;
     let down = P.way == DOWN;
-    let upright = (boxes[32u * b + 31u] & UPRIGHT) != 0u;
+    let upright = (boxes[BOX_WORDS * b + 31u] & UPRIGHT) != 0u;
     let e = exact[b];
     // An upright box's heights are the CPU's own (`e`, the same over every
     // column it reaches): its gaps need no slack (rounding is monotone, and
     // x - 0 is x), a turned box's bounds do.
     var loose = 1.0;
     if (upright) { loose = 0.0; }
-    let ignore = boxes[32u * b + 3u];
-    let i0 = boxes[32u * b + 16u];
-    let i1 = boxes[32u * b + 17u];
-    let j0 = boxes[32u * b + 18u];
-    let j1 = boxes[32u * b + 19u];
-    let start = boxes[32u * b + 22u];
+    let ignore = boxes[BOX_WORDS * b + 3u];
+    let ignore_to = word(b, 32u);
+    let i0 = boxes[BOX_WORDS * b + 16u];
+    let i1 = boxes[BOX_WORDS * b + 17u];
+    let j0 = boxes[BOX_WORDS * b + 18u];
+    let j1 = boxes[BOX_WORDS * b + 19u];
+    let start = boxes[BOX_WORDS * b + 22u];
     // The CPU walk's start tiles, as in screen_boxes (the order does not
     // matter here, only which cells are walked). This start and the tile
     // step repeat screen_boxes' on purpose: as functions taking the stack by
@@ -505,10 +510,10 @@ fn clear_boxes(@builtin(global_invocation_id) g: vec3<u32>) {
     // passes the array by copy).
     var stack: array<vec3<u32>, STACK>;
     var sp = 0u;
-    let ti0 = boxes[32u * b + 27u];
-    let ti1 = boxes[32u * b + 28u];
-    let tj0 = boxes[32u * b + 29u];
-    let tj1 = boxes[32u * b + 30u];
+    let ti0 = boxes[BOX_WORDS * b + 27u];
+    let ti1 = boxes[BOX_WORDS * b + 28u];
+    let tj0 = boxes[BOX_WORDS * b + 29u];
+    let tj1 = boxes[BOX_WORDS * b + 30u];
     let starts = (ti1 - ti0 + 1u) * (tj1 - tj0 + 1u);
     if (starts > 16u) { return; }
     var steps = 0u;
@@ -598,7 +603,7 @@ fn clear_boxes(@builtin(global_invocation_id) g: vec3<u32>) {
                 higher = true;
                 break;
             }
-            if (intervals[3u * k + 2u] == ignore) { continue; }
+            if (intervals[3u * k + 2u] == ignore && zhi <= ignore_to) { continue; }
             // Down, the box meets the interval if it starts no higher than
             // the box's top, when the box's bottom reaches its top; up,
             // symmetrically. Surely met: it lies that way of what the box
