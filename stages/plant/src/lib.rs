@@ -235,9 +235,17 @@ fn circular_ends(prims: &[(&rvm::Primitive, usize)]) -> Vec<End> {
 /// cap is kept, which is always safe: culling only saves triangles.
 const CAP_CANDIDATES: usize = 64;
 
+/// Radii of two ends this close (m) are the same radius: a file's `f32`
+/// values of one radius differ by far less, a ring this wide left open is far
+/// inside any tolerance.
+const SAME_RADIUS_M: f64 = 1e-6;
+
 /// Caps to emit per primitive: an end is left open when another primitive's end
-/// sits on it (within a millimetre), faces the other way and has about the same
-/// radius, so the cap would be hidden inside the joint.
+/// sits on it (within a millimetre), faces the other way and is at least as
+/// wide ([`SAME_RADIUS_M`]), so the cap would be hidden inside the joint. The
+/// wider end of a joint of two radii keeps its cap: the ring between the two
+/// would otherwise be open (it was, up to 5 % of the radius, until the
+/// twenty-eighth stop).
 fn caps_for(prims: &[(&rvm::Primitive, usize)]) -> (Vec<tess::Caps>, usize) {
     let ends = circular_ends(prims);
     let mut caps = vec![[true, true]; prims.len()];
@@ -269,7 +277,10 @@ fn caps_for(prims: &[(&rvm::Primitive, usize)]) -> (Vec<tess::Caps>, usize) {
                         }
                         let d2: f64 = (0..3).map(|i| (e.center[i] - f.center[i]).powi(2)).sum();
                         let dot: f64 = (0..3).map(|i| e.normal[i] * f.normal[i]).sum();
-                        if d2 < 1e-6 && dot < -0.99 && e.radius <= 1.05 * f.radius {
+                        // The other end's disk must cover this one's: were
+                        // this end wider, the ring between them would be
+                        // left open with both caps culled.
+                        if d2 < 1e-6 && dot < -0.99 && e.radius <= f.radius + SAME_RADIUS_M {
                             hidden = true;
                             break 'n;
                         }
@@ -724,6 +735,30 @@ mod tests {
         assert_eq!(culled, 1);
         assert_eq!(caps[20_000], [false, true]);
         assert!(caps[..20_000].iter().all(|c| *c == [true, true]));
+    }
+
+    /// A joint of two radii culls only the narrower end's cap, which the
+    /// wider end's disk covers; the wider end keeps its cap, else the ring
+    /// between them would be open. Ends of one radius, to the `f32` noise of
+    /// a file, both cull theirs.
+    #[test]
+    fn a_cap_is_culled_only_where_the_other_end_covers_it() {
+        let cylinder = |z: f32, radius: f32| Primitive {
+            role: Role::Primitive,
+            matrix: [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, z],
+            bbox_local: [-radius, -radius, -1.0, radius, radius, 1.0],
+            shape: Shape::Cylinder { radius, height: 2.0 },
+            offset: 0,
+        };
+        for (lower, upper, want) in [
+            (0.5, 0.52, (vec![[true, false], [true, true]], 1)),
+            (0.52, 0.5, (vec![[true, true], [false, true]], 1)),
+            (0.5, 0.500_000_06, (vec![[true, false], [false, true]], 2)),
+        ] {
+            let pair = [cylinder(0.0, lower), cylinder(2.0, upper)];
+            let kept: Vec<(&Primitive, usize)> = pair.iter().map(|p| (p, 0)).collect();
+            assert_eq!(caps_for(&kept), want, "radii {lower} and {upper}");
+        }
     }
 
     /// The budget counts the files read before: a model that fits the room
