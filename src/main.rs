@@ -128,6 +128,12 @@ enum Command {
         /// Configuration for --lookup (default: the only one).
         #[arg(long)]
         config: Option<String>,
+        /// Length unit of grids whose labels name none (as `[charts] length_unit`).
+        #[arg(long, value_name = "m|ft", value_parser = ["m", "ft"])]
+        length_unit: Option<String>,
+        /// Capacity unit of grids whose labels name none (as `[charts] capacity_unit`).
+        #[arg(long, value_name = "t|kg|lb|kips|shortton", value_parser = ["t", "kg", "lb", "kips", "shortton"])]
+        capacity_unit: Option<String>,
         #[arg(long)]
         json: bool,
     },
@@ -393,11 +399,23 @@ fn real_main() -> Result<ExitCode> {
             }
             Ok(ExitCode::SUCCESS)
         }
-        Command::Chart { input, output, lookup, config, json } => {
-            let (configs, reports) = match liftplan_charts::read_chart(&input, &liftplan_charts::Settings::default()) {
+        Command::Chart { input, output, lookup, config, length_unit, capacity_unit, json } => {
+            // The parsers above admit only the units' own names.
+            fn unit<T: serde::de::DeserializeOwned>(u: Option<String>) -> serde_json::Result<Option<T>> {
+                u.map(|u| serde_json::from_value(serde_json::Value::String(u))).transpose()
+            }
+            let settings = liftplan_charts::Settings {
+                length_unit: unit(length_unit)?,
+                capacity_unit: unit(capacity_unit)?,
+                ..Default::default()
+            };
+            let (configs, reports) = match liftplan_charts::read_chart(&input, &settings) {
                 Ok(x) => x,
                 Err(e) => {
                     eprintln!("error: {e}");
+                    if e.to_string().contains("unit found around the chart grid") {
+                        eprintln!("(here: --length-unit and --capacity-unit)");
+                    }
                     return Ok(ExitCode::from(1));
                 }
             };

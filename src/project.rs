@@ -348,6 +348,10 @@ obstructions = true       # keep obstruction volumes
 translate_m = [0.0, 0.0, 0.0]   # place the model in the site frame: rotate about Z, then translate
 rotate_z_deg = 0.0
 
+[charts]
+# length_unit = "m"         # unit of chart grids whose labels name none: m | ft
+# capacity_unit = "t"       # t | kg | lb | kips | shortton; such a grid is refused unless these say
+
 # [[charts.table]]         # describe a chart grid that detection gets wrong
 # file = "chart.xlsx"
 # sheet = "Main boom"

@@ -11,7 +11,9 @@
 //! length (tower crane jibs).
 //!
 //! Units come from the words around the grid (m/ft, t/kg/lb/kips); where none is
-//! found, metres and tonnes are assumed and a warning says so. Values like
+//! found, the project must say (`[charts] length_unit`, `capacity_unit`, or the
+//! grid's `[[charts.table]]` mapping): a chart in pounds and feet read as
+//! tonnes and metres would be thousands of times too strong. Values like
 //! `12,5` are read with a warning; `12.5t` is read if `t` is the grid's unit and
 //! refused otherwise; a grid whose capacity rises with radius is refused with the
 //! cell that rises.
@@ -337,9 +339,15 @@ pub struct Units {
     pub radius: LengthUnit,
     pub boom: LengthUnit,
     pub capacity: MassUnit,
-    /// What was found, for chart.json.
+    /// What was found, and where units the labels do not name came from,
+    /// for chart.json.
     pub found: Vec<String>,
-    pub assumed: bool,
+    /// Whether the labels name the radius' unit; where they do not,
+    /// `radius` and `boom` are metres until the project says otherwise.
+    pub length_named: bool,
+    /// Whether the labels name the capacity's unit; where they do not,
+    /// `capacity` is tonnes until the project says otherwise.
+    pub capacity_named: bool,
 }
 
 fn length_in(text: &str) -> Vec<LengthUnit> {
@@ -431,23 +439,19 @@ pub fn units(sheet: &Sheet, g: &Grid) -> Result<Units, (String, String)> {
     let (radius_label, boom_label) = if g.transposed { (&row_label, &col_label) } else { (&col_label, &row_label) };
     let radius = pick_len(radius_label);
     let boom = pick_len(boom_label);
-    let mut assumed = false;
     if let Some(m) = masses.first() {
         found.push(format!("capacity in {}", m.name()));
-    } else {
-        assumed = true;
     }
     if let Some(r) = radius {
         found.push(format!("radius in {}", r.name()));
-    } else {
-        assumed = true;
     }
     Ok(Units {
         radius: radius.unwrap_or(LengthUnit::M),
         boom: boom.or(radius).unwrap_or(LengthUnit::M),
         capacity: masses.first().copied().unwrap_or(MassUnit::T),
         found,
-        assumed,
+        length_named: radius.is_some(),
+        capacity_named: !masses.is_empty(),
     })
 }
 

@@ -27,6 +27,7 @@ use error::{ChartError, Result};
 use liftplan_core::Location;
 use liftplan_core::capacity::{CapacityTable, ChartConfig};
 use liftplan_core::lift::{CapacityCheck, ChartLimits, LiftTask};
+use liftplan_core::location::cell_ref;
 use liftplan_core::units::{LengthUnit, MassUnit};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -61,6 +62,12 @@ pub struct TableMapping {
 pub struct Settings {
     /// Explicit grids; a sheet named here is not searched automatically.
     pub table: Vec<TableMapping>,
+    /// Length unit of the grids whose labels name none (and whose mapping
+    /// does not say). Without it such a grid is refused.
+    pub length_unit: Option<LengthUnit>,
+    /// Capacity unit of the grids whose labels name none (and whose mapping
+    /// does not say). Without it such a grid is refused.
+    pub capacity_unit: Option<MassUnit>,
 }
 
 /// Parses "C6:P6" into ((row0, col0), (row1, col1)).
@@ -132,6 +139,21 @@ fn grid_from_mapping(path: &Path, m: &TableMapping) -> Result<detect::Grid> {
 
 /// Reads one workbook: its configurations and what was found.
 pub fn read_chart(path: &Path, s: &Settings) -> Result<(Vec<ChartConfig>, Vec<ConfigReport>)> {
+    read_chart_with(path, s, Unnamed::Refuse)
+}
+
+/// What [`read_chart_with`] does with a grid whose labels name no unit
+/// (and which neither its mapping nor `[charts]` gives one).
+#[derive(Clone, Copy, PartialEq)]
+enum Unnamed {
+    /// Refuse it: what a plan reads.
+    Refuse,
+    /// Read it as metres and tonnes, saying so: what `inspect` shows
+    /// (`[charts]` units are not applied).
+    Show,
+}
+
+fn read_chart_with(path: &Path, s: &Settings, unnamed: Unnamed) -> Result<(Vec<ChartConfig>, Vec<ConfigReport>)> {
     let sheets = sheet::read_workbook(path)?;
     let file_name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
     let mut configs = Vec::new();
@@ -173,22 +195,33 @@ pub fn read_chart(path: &Path, s: &Settings) -> Result<(Vec<ChartConfig>, Vec<Co
                 if let Some(l) = m.length_unit {
                     units.radius = l;
                     units.boom = l;
-                    units.assumed = false;
+                    units.length_named = true;
                 }
                 if let Some(c) = m.capacity_unit {
                     units.capacity = c;
+                    units.capacity_named = true;
                 }
             }
-            let mut warnings = Vec::new();
-            if units.assumed && mapping.is_none() {
-                warnings.push(format!(
-                    "{}: no unit found around the grid at {}; assumed radius in {} and capacity in {}",
-                    sh.name,
-                    g.range(),
-                    units.radius.name(),
-                    units.capacity.name()
-                ));
+            if unnamed == Unnamed::Show {
+                show_unnamed(&mut units);
+            } else {
+                units_from_settings(&mut units, s).map_err(|what| {
+                    ChartError::Format(
+                        Location::cell(path, &sh.name, &cell_ref(g.header_row, g.label_col)),
+                        format!(
+                            "no {what} unit found around the chart grid at {}: its labels must name it, or say it \
+                         with [charts] {}",
+                            g.range(),
+                            if what == "length" {
+                                "length_unit = \"m\" (or \"ft\")"
+                            } else {
+                                "capacity_unit = \"t\" (or \"kg\", \"lb\", \"kips\", \"shortton\")"
+                            }
+                        ),
+                    )
+                })?;
             }
+            let mut warnings = Vec::new();
             let c = detect::read_grid(sh, g, &units, &file_name, &name, &mut warnings).map_err(|(cell, msg)| {
                 let cell = cell.split_once('!').map(|x| x.1.to_string()).unwrap_or(cell);
                 ChartError::Format(Location::cell(path, &sh.name, &cell), msg)
@@ -228,6 +261,50 @@ pub fn read_chart(path: &Path, s: &Settings) -> Result<(Vec<ChartConfig>, Vec<Co
         ));
     }
     Ok((configs, reports))
+}
+
+/// Fills the units a grid's labels do not name from `[charts]`, saying so
+/// in `found`; the unit still unnamed (`"length"` or `"capacity"`) is an
+/// error.
+fn units_from_settings(units: &mut detect::Units, s: &Settings) -> std::result::Result<(), &'static str> {
+    if !units.length_named {
+        let l = s.length_unit.ok_or("length")?;
+        units.radius = l;
+        units.boom = l;
+        units.length_named = true;
+        units.found.push(format!("radius in {} (as [charts] length_unit says)", l.name()));
+    }
+    if !units.capacity_named {
+        let c = s.capacity_unit.ok_or("capacity")?;
+        units.capacity = c;
+        units.capacity_named = true;
+        units.found.push(format!("capacity in {} (as [charts] capacity_unit says)", c.name()));
+    }
+    Ok(())
+}
+
+/// Takes the units a grid's labels do not name as metres and tonnes, and
+/// says so in `found` (the `*_named` flags stay false): for showing what a
+/// file holds, never for a plan.
+fn show_unnamed(units: &mut detect::Units) {
+    let unnamed = match (units.length_named, units.capacity_named) {
+        (true, true) => return,
+        (false, false) => "length or capacity",
+        (false, true) => "length",
+        (true, false) => "capacity",
+    };
+    if !units.length_named {
+        (units.radius, units.boom) = (LengthUnit::M, LengthUnit::M);
+    }
+    if !units.capacity_named {
+        units.capacity = MassUnit::T;
+    }
+    units.found.push(format!(
+        "NO {} UNIT NAMED: shown as {} and {}; a project must say its units",
+        unnamed.to_uppercase(),
+        units.radius.name(),
+        units.capacity.name()
+    ));
 }
 
 /// A lift as the chart sees it, for `lifts.json`.
@@ -390,7 +467,7 @@ pub fn run(
 
 /// `liftplan inspect` of a chart workbook.
 pub fn inspect(path: &Path) -> Result<serde_json::Value> {
-    let (configs, reports) = read_chart(path, &Settings::default())?;
+    let (configs, reports) = read_chart_with(path, &Settings::default(), Unnamed::Show)?;
     Ok(serde_json::json!({
         "kind": "chart",
         "format": path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase(),

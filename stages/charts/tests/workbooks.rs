@@ -245,6 +245,7 @@ fn explicit_mapping_wins() {
             length_unit: Some(liftplan_core::units::LengthUnit::Ft),
             capacity_unit: Some(liftplan_core::units::MassUnit::Kips),
         }],
+        ..Default::default()
     };
     let (c, _) = read_chart(&p, &s).unwrap();
     assert_eq!(c[0].name, "mapped");
@@ -252,8 +253,54 @@ fn explicit_mapping_wins() {
     assert!(
         (c[0].lookup(50.0 * M_PER_FT, 10.0 * M_PER_FT).unwrap().capacity_kg - 100.0 * 1000.0 * KG_PER_LB).abs() < 1e-6
     );
-    let (_, auto) = read_chart(&p, &Settings::default()).unwrap();
-    assert!(!auto[0].warnings.is_empty(), "detection must say it assumed units");
+    // Detection finds the grid but no unit: refused, naming the grid, not
+    // read as metres and tonnes (kips as tonnes would be 2.2 times too strong,
+    // pounds 2205 times).
+    let e = read_chart(&p, &Settings::default()).unwrap_err().to_string();
+    assert!(e.contains("[S!C2]") && e.contains("no length unit found") && e.contains("length_unit"), "{e}");
+    let length_only = Settings { length_unit: Some(liftplan_core::units::LengthUnit::Ft), ..Default::default() };
+    let e = read_chart(&p, &length_only).unwrap_err().to_string();
+    assert!(e.contains("no capacity unit found") && e.contains("capacity_unit"), "{e}");
+    // The project says the units of grids whose labels name none.
+    let both = Settings { capacity_unit: Some(liftplan_core::units::MassUnit::Kips), ..length_only };
+    let (c, reports) = read_chart(&p, &both).unwrap();
+    assert!(
+        (c[0].lookup(50.0 * M_PER_FT, 10.0 * M_PER_FT).unwrap().capacity_kg - 100.0 * 1000.0 * KG_PER_LB).abs() < 1e-6
+    );
+    assert!(reports[0].units.found.iter().any(|f| f.contains("as [charts] capacity_unit says")), "{reports:?}");
+    // `inspect` shows what the file holds, saying that it names no unit.
+    let shown = liftplan_charts::inspect(&p).unwrap().to_string();
+    assert!(shown.contains("NO LENGTH OR CAPACITY UNIT NAMED") && shown.contains("\"length_named\":false"), "{shown}");
+}
+
+/// Units the labels name are the chart's, whatever `[charts]` says for
+/// grids whose labels name none.
+#[test]
+fn units_the_labels_name_win_over_the_project_default() {
+    let d = tempfile::tempdir().unwrap();
+    let p = d.path().join("named.xlsx");
+    let mut wb = Workbook::new();
+    let ws = wb.add_worksheet().set_name("S").unwrap();
+    ws.write_string(0, 3, "Capacities in t, lengths in m").unwrap();
+    for (j, b) in [50.0, 80.0].iter().enumerate() {
+        ws.write_number(1, 3 + j as u16, *b).unwrap();
+    }
+    for (i, r) in [10.0, 20.0, 30.0].iter().enumerate() {
+        ws.write_number(2 + i as u32, 2, *r).unwrap();
+        for j in 0..2 {
+            ws.write_number(2 + i as u32, 3 + j, 100.0 - 20.0 * i as f64 - 10.0 * j as f64).unwrap();
+        }
+    }
+    wb.save(&p).unwrap();
+    let s = Settings {
+        length_unit: Some(liftplan_core::units::LengthUnit::Ft),
+        capacity_unit: Some(liftplan_core::units::MassUnit::Lb),
+        ..Default::default()
+    };
+    let (c, reports) = read_chart(&p, &s).unwrap();
+    assert_eq!(c[0].radii_m, vec![10.0, 20.0, 30.0]);
+    assert!((c[0].lookup(50.0, 10.0).unwrap().capacity_kg - 100_000.0).abs() < 1e-6);
+    assert_eq!(reports[0].units.found, vec!["capacity in t", "radius in m"], "{reports:?}");
 }
 
 /// The same chart in Excel's binary workbook format (xlsb) and the legacy

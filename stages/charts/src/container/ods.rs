@@ -388,6 +388,7 @@ mod tests {
                 length_unit: None,
                 capacity_unit: None,
             }],
+            ..Default::default()
         };
         let (configs, _) = crate::read_chart(&path, &mapped).unwrap();
         assert_eq!(configs[0].boom_lengths_m, vec![20.0, 30.0]);
