@@ -3,7 +3,8 @@
 //! Reads every scan the survey team dropped in `scans/` (LAS 1.0–1.4, LAZ, PLY,
 //! E57 with several scans per file, PTS/XYZ text), places them in one frame
 //! ([`register`]), thins them ([`subsample`]), classifies the ground
-//! ([`ground`]) and writes:
+//! ([`ground`]) and writes, everything in metres (a file's coordinates in
+//! the unit its CRS states, else in `[scans] unit`: [`read::units`]):
 //!
 //! | file | what |
 //! |---|---|
@@ -80,6 +81,34 @@ pub enum SubsampleMethod {
     None,
 }
 
+/// The unit of scan files that state none (`[scans] unit`). A unit a file
+/// states (a LAS/LAZ CRS, E57's metres) is that file's, whatever this says.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+pub enum ScanUnit {
+    #[default]
+    #[serde(rename = "m")]
+    Metre,
+    #[serde(rename = "ft")]
+    Foot,
+    #[serde(rename = "us-ft")]
+    UsSurveyFoot,
+}
+
+impl ScanUnit {
+    fn as_stated(self) -> read::StatedUnit {
+        let (name, m) = match self {
+            ScanUnit::Metre => ("metre", 1.0),
+            ScanUnit::Foot => ("foot", 0.3048),
+            ScanUnit::UsSurveyFoot => ("US survey foot", 1200.0 / 3937.0),
+        };
+        read::StatedUnit {
+            horizontal_m: m,
+            vertical_m: m,
+            what: format!("{name} ([scans] unit; the file states none)"),
+        }
+    }
+}
+
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum VoxelPoint {
@@ -112,6 +141,10 @@ pub struct Settings {
     pub spacing: f64,
     /// Keep every Nth point for `subsample = "nth"` (the thesis uses 9).
     pub every_nth: u64,
+    /// Unit of the coordinates of scan files that state none: m | ft |
+    /// us-ft. A LAS/LAZ file whose CRS states its unit, and every E57 file
+    /// (metres by its standard), is read in its own, converted to metres.
+    pub unit: ScanUnit,
     /// Station file with initial poses, relative to the project folder.
     pub stations: Option<PathBuf>,
     /// fail | exclude
@@ -129,6 +162,7 @@ impl Default for Settings {
             voxel_point: VoxelPoint::Centroid,
             spacing: 0.05,
             every_nth: 9,
+            unit: ScanUnit::Metre,
             stations: None,
             on_unregistered: OnUnregistered::Fail,
             ground: GroundSettings::default(),
@@ -201,6 +235,10 @@ pub struct ScanReport {
     pub method: String,
     pub registered: bool,
     pub warning: Option<String>,
+    /// The unit its coordinates were read in, and where that came from.
+    pub unit: String,
+    /// Metres per coordinate unit of x, y and z ([`ScanInfo::to_m`]).
+    pub to_m: [f64; 3],
 }
 
 #[derive(Debug, Clone, Serialize)]
@@ -229,9 +267,30 @@ impl Summary {
                 } else {
                     "NOT REGISTERED".into()
                 };
-                format!("{}: {} points read, {} kept, {}", s.name, s.points_read, s.points_kept, state)
+                let unit = if s.to_m == [1.0; 3] {
+                    String::new()
+                } else {
+                    format!("; coordinates in {}, converted to metres", s.unit)
+                };
+                format!("{}: {} points read, {} kept, {}{unit}", s.name, s.points_read, s.points_kept, state)
             })
+            .chain(self.unit_line())
             .collect()
+    }
+
+    /// The units the scans' coordinates were read in, with how many scans
+    /// each: the lift plan's signer must see where they came from.
+    fn unit_line(&self) -> Option<String> {
+        let mut units: Vec<(&str, usize)> = Vec::new();
+        for s in &self.scans {
+            match units.iter_mut().find(|u| u.0 == s.unit) {
+                Some(u) => u.1 += 1,
+                None => units.push((&s.unit, 1)),
+            }
+        }
+        let shown: Vec<String> =
+            units.iter().map(|(u, n)| format!("{u}: {n} scan{}", if *n == 1 { "" } else { "s" })).collect();
+        (!shown.is_empty()).then(|| format!("coordinate units: {}", shown.join("; ")))
     }
 }
 
@@ -384,11 +443,24 @@ fn check_stations(path: &Path, stations: &[SurveyedStation], scans: &[ScanInfo])
     Ok(())
 }
 
-/// Lists every scan in `inputs` (files in the given order, scans in file order).
-pub fn list_all(inputs: &[PathBuf]) -> Result<Vec<ScanInfo>> {
+/// Lists every scan in `inputs` (files in the given order, scans in file
+/// order), each to be read in metres: in the unit its file states, else in
+/// `unit` ([`ScanInfo::to_m`]).
+pub fn list_all(inputs: &[PathBuf], unit: ScanUnit) -> Result<Vec<ScanInfo>> {
     let mut all = Vec::new();
     for p in inputs {
-        all.extend(read::list_scans(p)?);
+        for mut info in read::list_scans(p)? {
+            let u = info.stated_unit.clone().unwrap_or_else(|| unit.as_stated());
+            info.to_m = [u.horizontal_m, u.horizontal_m, u.vertical_m];
+            if let Some(b) = &mut info.bbox
+                && !b.is_empty()
+            {
+                for k in 0..3 {
+                    (b.min[k], b.max[k]) = (b.min[k] * info.to_m[k], b.max[k] * info.to_m[k]);
+                }
+            }
+            all.push(info);
+        }
     }
     if all.len() > u16::MAX as usize {
         return Err(ScanError::Settings(format!("{} scans: at most {} are supported", all.len(), u16::MAX)));
@@ -428,7 +500,7 @@ pub fn thin_for_registration(
 /// Runs the stage; see the crate docs for what it writes into `out_dir`.
 pub fn run(inputs: &[PathBuf], s: &Settings, opts: &RunOptions, out_dir: &Path) -> Result<Summary> {
     s.check().map_err(ScanError::Settings)?;
-    let scans = list_all(inputs)?;
+    let scans = list_all(inputs, s.unit)?;
     if scans.is_empty() {
         return Err(ScanError::Settings("no scan files given".into()));
     }
@@ -524,6 +596,8 @@ pub fn run(inputs: &[PathBuf], s: &Settings, opts: &RunOptions, out_dir: &Path) 
             method: r.method.clone(),
             registered: r.registered,
             warning: r.warning.clone(),
+            unit: info.stated_unit.clone().unwrap_or_else(|| s.unit.as_stated()).what,
+            to_m: info.to_m,
         })
         .collect();
     std::fs::create_dir_all(out_dir).map_err(|e| ScanError::Io(Location::file(out_dir), e))?;
@@ -773,6 +847,8 @@ mod tests {
             pose: None,
             bbox: None,
             details: Default::default(),
+            stated_unit: None,
+            to_m: [1.0; 3],
         }
     }
 

@@ -501,6 +501,11 @@ pub(super) fn list(path: &Path, format: Format) -> Result<Vec<ScanInfo>> {
     details.insert("vlrs".into(), json!(hdr.vlrs().len()));
     details.insert("evlrs".into(), json!(hdr.evlrs().len()));
     details.insert("crs".into(), json!(hdr.has_crs_vlrs()));
+    let stated_unit = stated_unit(path, hdr)?;
+    details.insert(
+        "unit".into(),
+        json!(stated_unit.as_ref().map(|u| u.what.clone()).unwrap_or_else(|| "none stated".into())),
+    );
     details.insert("system_identifier".into(), json!(hdr.system_identifier()));
     details.insert("generating_software".into(), json!(hdr.generating_software()));
     Ok(vec![ScanInfo {
@@ -512,7 +517,24 @@ pub(super) fn list(path: &Path, format: Format) -> Result<Vec<ScanInfo>> {
         pose: None,
         bbox: Some(raw.bbox),
         details,
+        stated_unit,
+        to_m: [1.0; 3],
     }])
+}
+
+/// The unit the file's CRS (E)VLRs state: the WKT's where it has one (LAS
+/// 1.4 makes it the CRS), else the GeoTIFF keys'.
+fn stated_unit(path: &Path, hdr: &las::Header) -> Result<Option<super::StatedUnit>> {
+    let projection =
+        |id: u16| hdr.all_vlrs().find(|v| v.user_id.trim_end_matches('\0') == "LASF_Projection" && v.record_id == id);
+    let (found, record) = if let Some(v) = projection(2112) {
+        (super::units::from_wkt(&v.data), "WKT CRS (record 2112)")
+    } else if let Some(v) = projection(34735) {
+        (super::units::from_geokeys(&v.data), "GeoTIFF keys (record 34735)")
+    } else {
+        return Ok(None);
+    };
+    found.map_err(|why| ScanError::format(Location::item(path, record), why))
 }
 
 pub(super) fn stream(info: &ScanInfo, f: &mut dyn FnMut(&PointCloud) -> Result<()>) -> Result<u64> {
@@ -720,5 +742,68 @@ mod tests {
                 assert!((p[0] - k as f64 / 100.0).abs() < 1e-9 && p[1] == 2.0 && p[2] == 0.5, "{name} {k}: {p:?}");
             }
         }
+    }
+
+    /// A LAS file with `crs` as its projection record (`record_id`), points
+    /// at (100, 200, 10), (110, 200, 12) in its own numbers.
+    fn las_with_crs(dir: &Path, name: &str, crs: Option<(u16, Vec<u8>)>) -> std::path::PathBuf {
+        let mut b = las::Builder::from((1, 4));
+        b.point_format = las::point::Format::new(0).unwrap();
+        if let Some((record_id, data)) = crs {
+            b.vlrs.push(las::Vlr { user_id: "LASF_Projection".into(), record_id, description: String::new(), data });
+        }
+        let path = dir.join(name);
+        let mut w = las::Writer::from_path(&path, b.into_header().unwrap()).unwrap();
+        for (x, z) in [(100.0, 10.0), (110.0, 12.0)] {
+            w.write_point(las::Point { x, y: 200.0, z, ..Default::default() }).unwrap();
+        }
+        w.close().unwrap();
+        path
+    }
+
+    fn geokeys(keys: &[(u16, u16)]) -> Vec<u8> {
+        let mut w = vec![1u16, 1, 0, keys.len() as u16];
+        for &(id, v) in keys {
+            w.extend([id, 0, 1, v]);
+        }
+        w.iter().flat_map(|x| x.to_le_bytes()).collect()
+    }
+
+    /// A survey in US survey feet (its GeoTIFF keys say so) is read in
+    /// metres; one without a CRS in `[scans] unit`; one whose CRS is in
+    /// degrees is refused, naming the file and the record; `inspect` shows
+    /// the file's own numbers and the unit it states.
+    #[test]
+    fn coordinates_are_read_in_metres_whatever_unit_the_file_states() {
+        let d = tempfile::tempdir().unwrap();
+        let us_ft = 1200.0 / 3937.0;
+        let feet = las_with_crs(d.path(), "ft.las", Some((34735, geokeys(&[(1024, 1), (3072, 2263), (3076, 9003)]))));
+        for unit in [crate::ScanUnit::Metre, crate::ScanUnit::Foot] {
+            let scans = crate::list_all(std::slice::from_ref(&feet), unit).unwrap();
+            let c = super::super::read_all(&scans[0]).unwrap();
+            assert!(
+                (c.xyz[0][0] - 100.0 * us_ft).abs() < 1e-9 && (c.xyz[1][2] - 12.0 * us_ft).abs() < 1e-9,
+                "{:?}",
+                c.xyz
+            );
+            let b = scans[0].bbox.unwrap();
+            assert!((b.max[0] - 110.0 * us_ft).abs() < 1e-6, "{b:?}");
+            assert!(scans[0].stated_unit.as_ref().unwrap().what.contains("US survey foot"));
+        }
+        let bare = las_with_crs(d.path(), "bare.las", None);
+        let c =
+            super::super::read_all(&crate::list_all(std::slice::from_ref(&bare), crate::ScanUnit::Metre).unwrap()[0])
+                .unwrap();
+        assert_eq!(c.xyz[0], [100.0, 200.0, 10.0]);
+        let c =
+            super::super::read_all(&crate::list_all(std::slice::from_ref(&bare), crate::ScanUnit::Foot).unwrap()[0])
+                .unwrap();
+        assert!((c.xyz[0][1] - 200.0 * 0.3048).abs() < 1e-9, "{:?}", c.xyz);
+        let degrees = br#"GEOGCS["WGS 84",DATUM["WGS_1984",SPHEROID["WGS 84",6378137,298.257223563]],UNIT["degree",0.0174532925199433]]"#;
+        let geo = las_with_crs(d.path(), "geo.las", Some((2112, degrees.to_vec())));
+        let e = crate::list_all(&[geo], crate::ScanUnit::Metre).unwrap_err().to_string();
+        assert!(e.contains("geo.las") && e.contains("record 2112") && e.contains("degrees"), "{e}");
+        let shown = crate::inspect(&feet).unwrap().to_string();
+        assert!(shown.contains("US survey foot") && shown.contains("110"), "{shown}");
     }
 }

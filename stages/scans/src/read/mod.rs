@@ -11,6 +11,7 @@ mod e57;
 mod las;
 mod ply;
 mod text;
+pub mod units;
 
 use crate::error::{Result, ScanError};
 use liftplan_core::Location;
@@ -19,6 +20,7 @@ use liftplan_core::frame::{Aabb, Pose};
 use std::path::{Path, PathBuf};
 
 pub use las::precheck as las_precheck;
+pub use units::StatedUnit;
 
 #[cfg(test)]
 thread_local! {
@@ -84,6 +86,14 @@ pub struct ScanInfo {
     pub bbox: Option<Aabb>,
     /// Format details for `inspect` (version, point format, scale, properties...).
     pub details: serde_json::Map<String, serde_json::Value>,
+    /// The unit the file states for its coordinates, if it states one
+    /// ([`units`]).
+    pub stated_unit: Option<StatedUnit>,
+    /// Metres per coordinate unit of x, y and z, which [`stream`] applies:
+    /// ones as listed (the file's own numbers, as `inspect` shows them),
+    /// set by `liftplan_scans::list_all` from the stated unit or the
+    /// project's.
+    pub to_m: [f64; 3],
 }
 
 /// Lists the scans in a file from its header, reading no points.
@@ -104,8 +114,26 @@ pub fn list_scans(path: &Path) -> Result<Vec<ScanInfo>> {
 }
 
 /// Streams the points of one scan in chunks of at most [`CHUNK_POINTS`], in the
-/// scan's own frame. Returns the number of points delivered.
+/// scan's own frame, in metres where [`ScanInfo::to_m`] says how. Returns
+/// the number of points delivered.
 pub fn stream(info: &ScanInfo, f: &mut dyn FnMut(&PointCloud) -> Result<()>) -> Result<u64> {
+    if info.to_m != [1.0; 3] {
+        let mut scaled = PointCloud::default();
+        return stream_as_read(info, &mut |c| {
+            scaled.clone_from(c);
+            for p in &mut scaled.xyz {
+                for (v, m) in p.iter_mut().zip(info.to_m) {
+                    *v *= m;
+                }
+            }
+            f(&scaled)
+        });
+    }
+    stream_as_read(info, f)
+}
+
+/// [`stream`] in the file's own numbers.
+fn stream_as_read(info: &ScanInfo, f: &mut dyn FnMut(&PointCloud) -> Result<()>) -> Result<u64> {
     match info.format {
         Format::Las | Format::Laz => las::stream(info, f),
         Format::Ply => ply::stream(info, f),
@@ -125,7 +153,7 @@ pub struct ScanStreamer {
 
 impl ScanStreamer {
     pub fn stream(&mut self, info: &ScanInfo, f: &mut dyn FnMut(&PointCloud) -> Result<()>) -> Result<u64> {
-        if info.format != Format::E57 {
+        if info.format != Format::E57 || info.to_m != [1.0; 3] {
             return stream(info, f);
         }
         let mut open = match self.e57.take() {

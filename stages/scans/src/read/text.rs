@@ -33,6 +33,8 @@ pub(super) fn list(path: &Path, format: Format) -> Result<Vec<ScanInfo>> {
         pose: None,
         bbox: None,
         details,
+        stated_unit: None,
+        to_m: [1.0; 3],
     }])
 }
 

@@ -1,0 +1,313 @@
+//! The unit a scan file states for its coordinates: a LAS/LAZ file's CRS
+//! (GeoTIFF keys or WKT), E57's metres by its standard.
+//!
+//! A survey in US survey feet read as metres would put every obstacle 3.28
+//! times farther away than it is, so a unit a file states is applied, and one
+//! liftplan cannot apply (degrees of a geographic CRS, a unit it does not
+//! know) is refused. Files that state none are read in `[scans] unit`.
+//!
+//! What this module must not do: guess a unit from an EPSG code (it holds no
+//! EPSG registry), or read past the bytes it is given.
+
+/// The unit a file states, as metres per coordinate unit, and where it says
+/// so.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StatedUnit {
+    /// Metres per unit of x and y.
+    pub horizontal_m: f64,
+    /// Metres per unit of z.
+    pub vertical_m: f64,
+    /// The unit's name and where it was found, for the run's lines.
+    pub what: String,
+}
+
+impl StatedUnit {
+    pub fn metres(what: &str) -> StatedUnit {
+        StatedUnit { horizontal_m: 1.0, vertical_m: 1.0, what: what.into() }
+    }
+
+    pub fn is_metres(&self) -> bool {
+        self.horizontal_m == 1.0 && self.vertical_m == 1.0
+    }
+}
+
+/// GeoTIFF key ids (GeoTIFF 1.1, section 7).
+const GT_MODEL_TYPE: u16 = 1024;
+const GEODETIC_CRS: u16 = 2048;
+const PROJECTED_CRS: u16 = 3072;
+const PROJ_LINEAR_UNITS: u16 = 3076;
+const VERTICAL_UNITS: u16 = 4099;
+/// GTModelTypeGeoKey's value for a geographic 2D CRS (degrees).
+const MODEL_GEOGRAPHIC: u16 = 2;
+
+/// EPSG linear unit codes and metres per unit.
+const LINEAR_UNITS: &[(u16, &str, f64)] = &[
+    (9001, "metre", 1.0),
+    (9002, "foot", 0.3048),
+    (9003, "US survey foot", 1200.0 / 3937.0),
+    (9005, "Clarke's foot", 0.3047972654),
+    (9031, "German legal metre", 1.0000135965),
+    (9036, "kilometre", 1000.0),
+];
+
+fn linear_unit(code: u16, key: &str) -> Result<(&'static str, f64), String> {
+    LINEAR_UNITS
+        .iter()
+        .find(|u| u.0 == code)
+        .map(|u| (u.1, u.2))
+        .ok_or_else(|| format!("its GeoTIFF {key} is EPSG unit {code}, which liftplan does not convert (it takes metre 9001, foot 9002, US survey foot 9003, Clarke's foot 9005, German legal metre 9031, kilometre 9036); reproject the scan to metres or feet"))
+}
+
+/// The unit a GeoTIFF key directory (the `LASF_Projection` record 34735)
+/// states; `None` where it states none (only an EPSG code, say).
+pub fn from_geokeys(data: &[u8]) -> Result<Option<StatedUnit>, String> {
+    let word = |k: usize| data.get(2 * k..2 * k + 2).map(|b| u16::from_le_bytes([b[0], b[1]]));
+    let Some(n) = word(3) else {
+        return Err(format!("its GeoTIFF key directory is {} bytes, shorter than its 8-byte header", data.len()));
+    };
+    if data.len() < 8 + 8 * n as usize {
+        return Err(format!("its GeoTIFF key directory claims {n} keys but holds {} bytes", data.len()));
+    }
+    // Keys whose value is in the directory itself (location 0).
+    let value = |id: u16| {
+        (0..n as usize).find_map(|e| {
+            let at = 4 + 4 * e;
+            (word(at) == Some(id) && word(at + 1) == Some(0)).then(|| word(at + 3)).flatten()
+        })
+    };
+    if value(GT_MODEL_TYPE) == Some(MODEL_GEOGRAPHIC) {
+        let crs = value(GEODETIC_CRS).map(|c| format!(" (EPSG:{c})")).unwrap_or_default();
+        return Err(format!(
+            "its CRS is geographic{crs}: coordinates in degrees; reproject the scan to a projected or local CRS in metres or feet"
+        ));
+    }
+    let Some(code) = value(PROJ_LINEAR_UNITS) else { return Ok(None) };
+    let (name, h) = linear_unit(code, "ProjLinearUnitsGeoKey")?;
+    let (v, vertical) = match value(VERTICAL_UNITS) {
+        Some(c) => {
+            let (vname, v) = linear_unit(c, "VerticalUnitsGeoKey")?;
+            (v, format!("heights in {vname}"))
+        }
+        None => (h, "heights taken in the same unit, as it states none for them".to_string()),
+    };
+    let crs = value(PROJECTED_CRS).map(|c| format!("EPSG:{c}, ")).unwrap_or_default();
+    Ok(Some(StatedUnit { horizontal_m: h, vertical_m: v, what: format!("{name} ({crs}GeoTIFF keys; {vertical})") }))
+}
+
+/// The most a WKT CRS may hold (bytes) and nest (brackets): real ones are a
+/// few kilobytes and a dozen deep.
+const MAX_WKT_BYTES: usize = 1 << 20;
+const MAX_WKT_DEPTH: usize = 64;
+
+/// A WKT node: its keyword and, in order, its quoted or bare values and its
+/// child nodes.
+#[derive(Debug, Default)]
+struct Node {
+    keyword: String,
+    values: Vec<String>,
+    children: Vec<Node>,
+}
+
+impl Node {
+    fn child(&self, keywords: &[&str]) -> Option<&Node> {
+        self.children.iter().find(|c| keywords.iter().any(|k| c.keyword.eq_ignore_ascii_case(k)))
+    }
+}
+
+/// Parses WKT (1 or 2) into its node tree.
+fn parse_wkt(text: &str) -> Result<Node, String> {
+    if text.len() > MAX_WKT_BYTES {
+        return Err(format!("its WKT CRS is {} bytes, more than {MAX_WKT_BYTES}", text.len()));
+    }
+    let mut stack: Vec<Node> = vec![Node::default()];
+    let mut word = String::new();
+    let mut chars = text.chars().peekable();
+    while let Some(c) = chars.next() {
+        match c {
+            '"' => {
+                // A quoted value; "" inside stands for one quote.
+                let mut s = String::new();
+                loop {
+                    match chars.next() {
+                        Some('"') if chars.peek() == Some(&'"') => {
+                            chars.next();
+                            s.push('"');
+                        }
+                        Some('"') => break,
+                        Some(ch) => s.push(ch),
+                        None => return Err("its WKT CRS ends inside a quoted name".into()),
+                    }
+                }
+                if let Some(n) = stack.last_mut() {
+                    n.values.push(s);
+                }
+            }
+            '[' | '(' => {
+                if stack.len() > MAX_WKT_DEPTH {
+                    return Err(format!("its WKT CRS nests deeper than {MAX_WKT_DEPTH}"));
+                }
+                stack.push(Node { keyword: std::mem::take(&mut word).trim().to_string(), ..Node::default() });
+            }
+            ']' | ')' => {
+                let w = std::mem::take(&mut word);
+                let mut done =
+                    stack.pop().filter(|_| !stack.is_empty()).ok_or("its WKT CRS closes a bracket it never opened")?;
+                if !w.trim().is_empty() {
+                    done.values.push(w.trim().to_string());
+                }
+                if let Some(n) = stack.last_mut() {
+                    n.children.push(done);
+                }
+            }
+            ',' => {
+                let w = std::mem::take(&mut word);
+                if !w.trim().is_empty()
+                    && let Some(n) = stack.last_mut()
+                {
+                    n.values.push(w.trim().to_string());
+                }
+            }
+            _ => word.push(c),
+        }
+    }
+    let mut root = stack.pop().filter(|_| stack.is_empty()).ok_or("its WKT CRS leaves a bracket open")?;
+    match root.children.len() {
+        1 => Ok(root.children.remove(0)),
+        0 => Err("its WKT CRS holds no CRS".into()),
+        _ => Err("its WKT CRS holds more than one CRS".into()),
+    }
+}
+
+/// A unit node's name and metres per unit.
+fn unit_of(n: &Node) -> Result<(String, f64), String> {
+    let name = n.values.first().cloned().unwrap_or_default();
+    let factor: f64 = n
+        .values
+        .get(1)
+        .and_then(|v| v.parse().ok())
+        .ok_or_else(|| format!("its WKT CRS's unit \"{name}\" has no conversion factor"))?;
+    if !(factor.is_finite() && (1e-4..=1e4).contains(&factor)) {
+        return Err(format!("its WKT CRS's unit \"{name}\" has the conversion factor {factor}, not a length unit"));
+    }
+    Ok((name, factor))
+}
+
+/// The length unit of a coordinate system node: its own UNIT / LENGTHUNIT,
+/// else its axes' (WKT 2 may give the unit per axis).
+fn length_unit(n: &Node) -> Result<Option<(String, f64)>, String> {
+    if let Some(u) = n.child(&["LENGTHUNIT", "UNIT"]) {
+        return unit_of(u).map(Some);
+    }
+    for axis in n.children.iter().filter(|c| c.keyword.eq_ignore_ascii_case("AXIS")) {
+        if let Some(u) = axis.child(&["LENGTHUNIT", "UNIT"]) {
+            return unit_of(u).map(Some);
+        }
+    }
+    Ok(None)
+}
+
+const GEOGRAPHIC: &[&str] = &["GEOGCS", "GEOGCRS", "GEOGRAPHICCRS", "GEODCRS", "GEODETICCRS"];
+const HORIZONTAL: &[&str] = &["PROJCS", "PROJCRS", "PROJECTEDCRS", "LOCAL_CS", "ENGCRS", "ENGINEERINGCRS", "GEOCCS"];
+const VERTICAL: &[&str] = &["VERT_CS", "VERTCRS", "VERTICALCRS"];
+
+/// The unit a WKT CRS (the `LASF_Projection` record 2112) states; `None`
+/// where it states none.
+pub fn from_wkt(bytes: &[u8]) -> Result<Option<StatedUnit>, String> {
+    let text = String::from_utf8_lossy(bytes);
+    let text = text.trim_end_matches('\0').trim();
+    if text.is_empty() {
+        return Ok(None);
+    }
+    let root = parse_wkt(text)?;
+    let is = |n: &Node, kinds: &[&str]| kinds.iter().any(|k| n.keyword.eq_ignore_ascii_case(k));
+    let compound = is(&root, &["COMPD_CS", "COMPOUNDCRS"]);
+    let horizontal =
+        if compound { root.children.iter().find(|c| is(c, HORIZONTAL) || is(c, GEOGRAPHIC)) } else { Some(&root) };
+    let vertical = if compound { root.children.iter().find(|c| is(c, VERTICAL)) } else { None };
+    let Some(h) = horizontal else { return Ok(None) };
+    if is(h, GEOGRAPHIC) {
+        let name = h.values.first().cloned().unwrap_or_default();
+        return Err(format!(
+            "its CRS is geographic (\"{name}\"): coordinates in degrees; reproject the scan to a projected or local CRS in metres or feet"
+        ));
+    }
+    if !is(h, HORIZONTAL) {
+        return Err(format!("its WKT CRS is a {}, which liftplan does not read coordinates in", h.keyword));
+    }
+    let Some((hname, hf)) = length_unit(h)? else { return Ok(None) };
+    let (vf, vertical) = match vertical.map(length_unit).transpose()?.flatten() {
+        Some((vname, vf)) => (vf, format!("heights in {vname}")),
+        None => (hf, "heights taken in the same unit, as it states none for them".to_string()),
+    };
+    Ok(Some(StatedUnit { horizontal_m: hf, vertical_m: vf, what: format!("{hname} (WKT CRS; {vertical})") }))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn geokeys(keys: &[(u16, u16)]) -> Vec<u8> {
+        let mut w = vec![1u16, 1, 0, keys.len() as u16];
+        for &(id, v) in keys {
+            w.extend([id, 0, 1, v]);
+        }
+        w.iter().flat_map(|x| x.to_le_bytes()).collect()
+    }
+
+    #[test]
+    fn geotiff_keys_state_feet_metres_or_nothing() {
+        let us = from_geokeys(&geokeys(&[(1024, 1), (3072, 2263), (3076, 9003), (4099, 9003)])).unwrap().unwrap();
+        assert_eq!((us.horizontal_m, us.vertical_m), (1200.0 / 3937.0, 1200.0 / 3937.0));
+        assert!(us.what.contains("US survey foot") && us.what.contains("EPSG:2263"), "{}", us.what);
+        let m = from_geokeys(&geokeys(&[(1024, 1), (3072, 32633), (3076, 9001)])).unwrap().unwrap();
+        assert!(m.is_metres() && m.what.contains("same unit"), "{}", m.what);
+        let mixed = from_geokeys(&geokeys(&[(3076, 9002), (4099, 9001)])).unwrap().unwrap();
+        assert_eq!((mixed.horizontal_m, mixed.vertical_m), (0.3048, 1.0));
+        // Only an EPSG code: the unit is not stated here.
+        assert_eq!(from_geokeys(&geokeys(&[(1024, 1), (3072, 2263)])).unwrap(), None);
+        let e = from_geokeys(&geokeys(&[(1024, 2), (2048, 4326)])).unwrap_err();
+        assert!(e.contains("geographic") && e.contains("EPSG:4326"), "{e}");
+        let e = from_geokeys(&geokeys(&[(3076, 9014)])).unwrap_err();
+        assert!(e.contains("9014"), "{e}");
+        let e = from_geokeys(&geokeys(&[(3076, 9001)])[..12]).unwrap_err();
+        assert!(e.contains("claims 1 keys but holds 12 bytes"), "{e}");
+    }
+
+    #[test]
+    fn wkt_states_its_units() {
+        let wkt1 = r#"COMPD_CS["NAD83 / New York Long Island (ftUS) + NAVD88 height (ftUS)",PROJCS["NAD83 / New York Long Island (ftUS)",GEOGCS["NAD83",DATUM["North_American_Datum_1983",SPHEROID["GRS 1980",6378137,298.257222101]],PRIMEM["Greenwich",0],UNIT["degree",0.0174532925199433]],PROJECTION["Lambert_Conformal_Conic_2SP"],PARAMETER["standard_parallel_1",41.0333333333333],UNIT["US survey foot",0.304800609601219,AUTHORITY["EPSG","9003"]],AXIS["Easting",EAST],AXIS["Northing",NORTH]],VERT_CS["NAVD88 height (ftUS)",VERT_DATUM["North American Vertical Datum 1988",2005],UNIT["US survey foot",0.304800609601219],AXIS["Gravity-related height",UP]]]"#;
+        let u = from_wkt(wkt1.as_bytes()).unwrap().unwrap();
+        assert_eq!((u.horizontal_m, u.vertical_m), (0.304800609601219, 0.304800609601219));
+        assert!(u.what.contains("US survey foot") && u.what.contains("heights in US survey foot"), "{}", u.what);
+        let wkt2 = r#"PROJCRS["WGS 84 / UTM zone 33N",BASEGEOGCRS["WGS 84",DATUM["World Geodetic System 1984",ELLIPSOID["WGS 84",6378137,298.257223563,LENGTHUNIT["metre",1]]],ANGLEUNIT["degree",0.0174532925199433]],CONVERSION["UTM zone 33N",METHOD["Transverse Mercator"]],CS[Cartesian,2],AXIS["(E)",east,ORDER[1],LENGTHUNIT["metre",1]],AXIS["(N)",north,ORDER[2],LENGTHUNIT["metre",1]],ID["EPSG",32633]]"#;
+        assert!(from_wkt(wkt2.as_bytes()).unwrap().unwrap().is_metres());
+        let e = from_wkt(br#"GEOGCS["WGS 84",DATUM["WGS_1984"],UNIT["degree",0.0174532925199433]]"#).unwrap_err();
+        assert!(e.contains("geographic") && e.contains("degrees"), "{e}");
+        assert_eq!(from_wkt(b"\0\0").unwrap(), None);
+        for bad in [&b"PROJCS[\"x\""[..], b"PROJCS[\"x\"]]", b"PROJCS[\"x\",UNIT[\"foot\",zero]]"] {
+            assert!(from_wkt(bad).is_err(), "{}", String::from_utf8_lossy(bad));
+        }
+        let deep = "PROJCS[".repeat(10_000);
+        assert!(from_wkt(deep.as_bytes()).unwrap_err().contains("deeper"));
+    }
+
+    proptest! {
+        /// Any bytes give a unit, none or an error: never a panic.
+        #[test]
+        fn any_crs_bytes_read_or_give_an_error(bytes in proptest::collection::vec(any::<u8>(), 0..400)) {
+            let _ = from_geokeys(&bytes);
+            let _ = from_wkt(&bytes);
+        }
+
+        /// Damaged copies of a real WKT read or give an error.
+        #[test]
+        fn damaged_wkt_reads_or_gives_an_error(at in 0usize..200, with in any::<u8>(), cut in 0usize..260) {
+            let mut w = br#"PROJCS["NAD83 / x (ftUS)",GEOGCS["NAD83",UNIT["degree",0.0174532925199433]],UNIT["US survey foot",0.304800609601219],AXIS["Easting",EAST]]"#.to_vec();
+            let at = at % w.len();
+            w[at] = with;
+            w.truncate(cut.min(w.len()));
+            let _ = from_wkt(&w);
+        }
+    }
+}
