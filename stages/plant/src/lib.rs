@@ -153,7 +153,11 @@ pub struct Summary {
     pub max_error_m: f64,
     pub caps_culled: usize,
     pub excluded_groups: Vec<String>,
+    /// RVM line primitives, which have no surface: not in the mesh.
     pub lines_skipped: usize,
+    /// glTF primitives drawn as points or lines ("file: node (mode)"),
+    /// which have no surface: not in the mesh.
+    pub not_surfaces: Vec<String>,
 }
 
 impl Summary {
@@ -174,6 +178,24 @@ impl Summary {
                 self.excluded_groups.len(),
                 shown.join(", "),
                 if self.excluded_groups.len() > 5 { ", ..." } else { "" }
+            ));
+        }
+        // Left out of the obstacles for want of a surface: said here, where
+        // the plan's inputs page shows it, so that a cable drawn as a line
+        // is not taken for checked.
+        if self.lines_skipped > 0 {
+            v.push(format!(
+                "NOT AN OBSTACLE: {} RVM line primitives (no surface to keep; model such items as solids)",
+                self.lines_skipped
+            ));
+        }
+        if !self.not_surfaces.is_empty() {
+            let shown: Vec<&str> = self.not_surfaces.iter().take(5).map(|s| s.as_str()).collect();
+            v.push(format!(
+                "NOT AN OBSTACLE: {} primitives drawn as points or lines (no surface to keep; model such items as solids): {}{}",
+                self.not_surfaces.len(),
+                shown.join(", "),
+                if self.not_surfaces.len() > 5 { ", ..." } else { "" }
             ));
         }
         v
@@ -462,7 +484,13 @@ fn read_model(path: &Path, s: &Settings, summary: &mut Summary, room: u64) -> Re
         "obj" => mesh_io::read_obj(path, imp)?,
         "ply" => mesh_io::read_ply(path, imp)?,
         "stl" => mesh_io::read_stl(path, imp)?,
-        "gltf" | "glb" => mesh_io::read_gltf(path, room)?,
+        "gltf" | "glb" => {
+            let mut skipped = Vec::new();
+            let m = mesh_io::read_gltf_noting(path, room, &mut skipped)?;
+            let file = path.file_name().map(|f| f.to_string_lossy().into_owned()).unwrap_or_default();
+            summary.not_surfaces.extend(skipped.into_iter().map(|s| format!("{file}: {s}")));
+            m
+        }
         "ifc" => {
             return Err(PlantError::at(
                 Location::file(path),
@@ -735,6 +763,18 @@ mod tests {
         assert_eq!(culled, 1);
         assert_eq!(caps[20_000], [false, true]);
         assert!(caps[..20_000].iter().all(|c| *c == [true, true]));
+    }
+
+    /// What has no surface to keep is said in the stage's lines (the PDF's
+    /// inputs page), not left to the console.
+    #[test]
+    fn what_is_not_an_obstacle_is_said() {
+        let s =
+            Summary { lines_skipped: 2, not_surfaces: vec!["site.glb: CABLE-1 (Lines)".into()], ..Default::default() };
+        let lines = s.lines().join("\n");
+        assert!(lines.contains("NOT AN OBSTACLE: 2 RVM line primitives"), "{lines}");
+        assert!(lines.contains("NOT AN OBSTACLE: 1 primitives drawn as points or lines") && lines.contains("CABLE-1"));
+        assert_eq!(Summary::default().lines().len(), 1);
     }
 
     /// A joint of two radii culls only the narrower end's cap, which the

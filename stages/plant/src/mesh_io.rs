@@ -260,9 +260,36 @@ fn load_buffers(path: &Path, doc: &gltf::Document, blob: Option<Vec<u8>>) -> Res
 /// nodes, pass `max_triangles` (a scene may place one mesh many times, so
 /// the file's size does not bound the model's).
 pub fn read_gltf(path: &Path, max_triangles: u64) -> Result<TriMesh> {
+    read_gltf_noting(path, max_triangles, &mut Vec::new())
+}
+
+/// [`read_gltf`], adding to `skipped` a line for each primitive drawn as
+/// points or lines, which has no surface to keep (what is left out of the
+/// obstacles must be said where the plan's signer reads it).
+pub fn read_gltf_noting(path: &Path, max_triangles: u64, skipped: &mut Vec<String>) -> Result<TriMesh> {
     // The gltf crate's validation indexes accessors it has not checked yet and
     // panics on such a file (found by the plant_mesh fuzz target).
-    third_party(path, "the glTF reader", || read_gltf_unguarded(path, max_triangles))?
+    third_party(path, "the glTF reader", || read_gltf_unguarded(path, max_triangles, skipped))?
+}
+
+/// The triangles of a primitive's index list in its drawing mode: a list,
+/// a strip (every three consecutive corners, every other one turned round)
+/// or a fan (the first corner with every two consecutive others); `None`
+/// for points and lines. Triangles with a repeated corner (a strip's
+/// restarts) have no area and are left out.
+fn triangles_of(mode: gltf::mesh::Mode, idx: &[u32]) -> Option<Vec<[u32; 3]>> {
+    use gltf::mesh::Mode;
+    let tris: Vec<[u32; 3]> = match mode {
+        Mode::Triangles => idx.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect(),
+        Mode::TriangleStrip => idx
+            .windows(3)
+            .enumerate()
+            .map(|(k, w)| if k % 2 == 0 { [w[0], w[1], w[2]] } else { [w[1], w[0], w[2]] })
+            .collect(),
+        Mode::TriangleFan => idx.windows(2).skip(1).map(|w| [idx[0], w[0], w[1]]).collect(),
+        Mode::Points | Mode::Lines | Mode::LineLoop | Mode::LineStrip => return None,
+    };
+    Some(tris.into_iter().filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2]).collect())
 }
 
 /// Calls a third-party parser (or a reader built on one), turning a panic
@@ -274,7 +301,7 @@ fn third_party<T>(path: &Path, what: &str, parse: impl FnOnce() -> T) -> Result<
     liftplan_core::guard::run_reader(what, parse).map_err(|why| PlantError::at(Location::file(path), why))
 }
 
-fn read_gltf_unguarded(path: &Path, max_triangles: u64) -> Result<TriMesh> {
+fn read_gltf_unguarded(path: &Path, max_triangles: u64, skipped: &mut Vec<String>) -> Result<TriMesh> {
     let bytes = std::fs::read(path).map_err(|e| PlantError::Io(Location::file(path), e))?;
     let g = gltf::Gltf::from_slice(&bytes)
         .map_err(|e| PlantError::at(Location::file(path), format!("cannot read glTF: {e}")))?;
@@ -309,8 +336,8 @@ fn read_gltf_unguarded(path: &Path, max_triangles: u64) -> Result<TriMesh> {
                 .unwrap_or_else(|| format!("{} node {}", stem(path), node.index()));
             let gid = groups.id(&mut m, &name);
             for prim in mesh.primitives() {
-                if prim.mode() != gltf::mesh::Mode::Triangles {
-                    tracing::warn!("{}: {name}: skipping a primitive drawn as {:?}", path.display(), prim.mode());
+                if triangles_of(prim.mode(), &[]).is_none() {
+                    skipped.push(format!("{name} ({:?})", prim.mode()));
                     continue;
                 }
                 // Counted before the positions are read, since the scene may
@@ -319,7 +346,11 @@ fn read_gltf_unguarded(path: &Path, max_triangles: u64) -> Result<TriMesh> {
                 // every place.
                 let count = |a: Option<gltf::Accessor>| a.map_or(0, |a| a.count() as u64);
                 let corners = count(prim.indices()).max(count(prim.get(&gltf::Semantic::Positions)));
-                if m.triangle_count() as u64 + corners / 3 > max_triangles {
+                let most = match prim.mode() {
+                    gltf::mesh::Mode::Triangles => corners / 3,
+                    _ => corners.saturating_sub(2),
+                };
+                if m.triangle_count() as u64 + most > max_triangles {
                     return Err(PlantError::at(
                         Location::item(path, &name),
                         format!(
@@ -347,7 +378,7 @@ fn read_gltf_unguarded(path: &Path, max_triangles: u64) -> Result<TriMesh> {
                         "an index refers to a vertex that does not exist",
                     ));
                 }
-                let tris: Vec<[u32; 3]> = idx.chunks(3).filter(|c| c.len() == 3).map(|c| [c[0], c[1], c[2]]).collect();
+                let tris = triangles_of(prim.mode(), &idx).unwrap_or_default();
                 m.add_part(gid, false, &verts, &tris);
             }
         }
@@ -389,6 +420,41 @@ mod tests {
         let out = dir.join("scene.gltf");
         std::fs::write(&out, text).unwrap();
         out
+    }
+
+    /// Triangle strips and fans are surfaces: their triangles are kept (they
+    /// were skipped, with a warning on the console only). Points and lines
+    /// have no surface: skipped, and said.
+    #[test]
+    fn gltf_strips_and_fans_are_read_and_lines_are_said() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/plant/damaged-accessor.gltf");
+        let tet = std::fs::read_to_string(&path).unwrap().replace("\"POSITION\": 5", "\"POSITION\": 0");
+        let d = tempfile::tempdir().unwrap();
+        // No index list: the four corners (0,0,0), (1,0,0), (0,1,0), (0,0,1) in order.
+        let drawn = |mode: u32| {
+            let text = tet.replace(", \"indices\": 1}", &format!(", \"mode\": {mode}}}"));
+            assert_ne!(text, tet);
+            let out = d.path().join(format!("mode{mode}.gltf"));
+            std::fs::write(&out, text).unwrap();
+            let mut skipped = Vec::new();
+            let m = read_gltf_noting(&out, crate::MAX_TRIANGLES, &mut skipped).unwrap();
+            (m, skipped)
+        };
+        // Strip: (0, 1, 2), (2, 1, 3); fan: (0, 1, 2), (0, 2, 3). Either
+        // way two triangles over all four corners.
+        for mode in [5, 6] {
+            let (m, skipped) = drawn(mode);
+            assert!(skipped.is_empty());
+            assert_eq!(m.triangles.len(), 2, "mode {mode}: {:?}", m.triangles);
+            let mut used: Vec<[u64; 3]> =
+                m.triangles.iter().flatten().map(|&v| m.vertices[v as usize].map(f64::to_bits)).collect();
+            used.sort_unstable();
+            used.dedup();
+            assert_eq!(used.len(), 4, "mode {mode}: {:?}", m.triangles);
+        }
+        let (m, skipped) = drawn(1);
+        assert!(m.triangles.is_empty());
+        assert_eq!(skipped, vec!["VESSEL-1 (Lines)".to_string()]);
     }
 
     /// glTF nodes must form trees. A chain of nodes each naming the next one
