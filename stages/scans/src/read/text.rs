@@ -1,7 +1,8 @@
 //! PTS and XYZ text exports of common scanner software.
 //!
 //! * PTS: an optional first line with the point count, then `x y z [intensity [r g b]]`
-//!   (Leica Cyclone; intensity -2048..2047 is shifted to 0..4095).
+//!   (Leica Cyclone; intensity -2048..2047 is shifted to 0..4095). A file that
+//!   ends before the count it declares was cut short and is refused.
 //! * XYZ/TXT/CSV: `x y z [r g b]` or `x y z intensity [r g b]`, separated by spaces,
 //!   tabs, commas or semicolons; lines starting with `#` or `//` and a header line
 //!   of words are skipped. Exporters write intensity as 0..1, 12-bit or 16-bit
@@ -183,10 +184,19 @@ pub(super) fn stream(info: &ScanInfo, f: &mut dyn FnMut(&PointCloud) -> Result<(
     if seen == 0 {
         return Err(ScanError::format(Location::file(path), "no points found"));
     }
-    if let Some(d) = declared
-        && d != seen
-    {
-        tracing::warn!("{}: first line declares {d} points, file holds {seen}", path.display());
+    // Fewer points than the count line declares: the file was cut short (a
+    // copy or an export that did not finish), and what it lost may be an
+    // obstacle. More: the count is wrong, nothing is missing.
+    if let Some(d) = declared {
+        if seen < d {
+            return Err(ScanError::format(
+                Location::line(path, lineno, None),
+                format!("the first line declares {d} points but the file ends after {seen} (truncated file)"),
+            ));
+        }
+        if seen > d {
+            tracing::warn!("{}: first line declares {d} points, file holds {seen}", path.display());
+        }
     }
     Ok(seen)
 }
@@ -202,6 +212,16 @@ mod tests {
         std::fs::write(&path, text).unwrap();
         let scans = list_scans(&path).map_err(|e| e.to_string())?;
         read_all(&scans[0]).map_err(|e| e.to_string())
+    }
+
+    /// A PTS file that ends before the points its first line declares is
+    /// cut short, and refused; one holding more reads (its count is wrong).
+    #[test]
+    fn a_pts_file_with_fewer_points_than_declared_is_refused() {
+        let e = read("cut.pts", "3\n0 0 0 10\n1 0 0 10\n").unwrap_err();
+        assert!(e.contains("cut.pts") && e.contains("declares 3 points but the file ends after 2"), "{e}");
+        assert_eq!(read("more.pts", "1\n0 0 0 10\n1 0 0 10\n").unwrap().len(), 2);
+        assert_eq!(read("exact.pts", "2\n0 0 0 10\n1 0 0 10\n").unwrap().len(), 2);
     }
 
     #[test]
@@ -239,8 +259,9 @@ mod tests {
         let c = read("a.pts", "3\n0 0 0 -2048 1 2 3\n1 0 0 0 1 2 3\n2 0 0 2047 1 2 3\n").unwrap();
         assert_eq!(c.intensity, [0, 32768, 65520]);
         assert_eq!(c.rgb[2], [257, 514, 771]);
-        // A wrong count is a warning, not an error.
-        assert_eq!(read("b.pts", "5\n0 0 0\n1 1 1\n").unwrap().len(), 2);
+        // A count below what the file holds is a warning, not an error (one
+        // above it is a file cut short: refused, below).
+        assert_eq!(read("b.pts", "1\n0 0 0\n1 1 1\n").unwrap().len(), 2);
     }
 
     #[test]
