@@ -25,6 +25,9 @@ pub struct PageSize {
 pub const A4: PageSize = PageSize { w: 210.0, h: 297.0 };
 pub const LETTER: PageSize = PageSize { w: 215.9, h: 279.4 };
 
+/// The footer's baseline, from the foot of the page (mm).
+pub const FOOTER_FROM_FOOT_MM: f32 = 10.0;
+
 pub struct Doc {
     doc: PdfDocument,
     regular: FontId,
@@ -35,6 +38,9 @@ pub struct Doc {
     cur: usize,
     /// Text of every page, for tests and the search index.
     pub text: Vec<String>,
+    /// The lowest text baseline or image foot of every page (mm from the
+    /// top), for tests.
+    pub lowest_mm: Vec<f32>,
 }
 
 fn col(c: [u8; 3]) -> Color {
@@ -68,12 +74,13 @@ impl Doc {
         let b = ParsedFont::from_bytes(BOLD, 0, &mut w).ok_or("embedded font DejaVuSans-Bold.ttf does not parse")?;
         let regular = doc.add_font(&r);
         let bold = doc.add_font(&b);
-        Ok(Doc { doc, regular, bold, size, pages: vec![], cur: 0, text: vec![] })
+        Ok(Doc { doc, regular, bold, size, pages: vec![], cur: 0, text: vec![], lowest_mm: vec![] })
     }
 
     pub fn new_page(&mut self) {
         self.pages.push(vec![]);
         self.text.push(String::new());
+        self.lowest_mm.push(0.0);
         self.cur = self.pages.len() - 1;
     }
 
@@ -82,6 +89,15 @@ impl Doc {
             self.new_page();
         }
         &mut self.pages[self.cur]
+    }
+
+    /// Notes that the current page is drawn down to `y` mm from its top:
+    /// never below the footer's line, where it would be cut off or hidden.
+    fn drawn_down_to(&mut self, y: f32) {
+        debug_assert!(y <= self.size.h - FOOTER_FROM_FOOT_MM + 1e-3, "drawn at {y} mm, below the footer");
+        if let Some(low) = self.lowest_mm.get_mut(self.cur) {
+            *low = low.max(y);
+        }
     }
 
     fn pt(&self, x: f32, y: f32) -> Point {
@@ -103,6 +119,7 @@ impl Doc {
             t.push_str(s);
             t.push('\n');
         }
+        self.drawn_down_to(y);
     }
 
     /// Text wrapped to `width` mm; returns the y below the last line.
@@ -169,6 +186,7 @@ impl Doc {
         };
         let id = self.doc.add_image(&raw);
         let h = w * img.height as f32 / img.width as f32;
+        self.drawn_down_to(y + h);
         let dpi = img.width as f32 / (w / 25.4);
         let bl = self.pt(x, y + h);
         self.ops().push(Op::UseXobject {
@@ -228,7 +246,7 @@ impl Doc {
         let n = self.pages.len();
         for i in 0..n {
             self.cur = i;
-            let y = self.size.h - 10.0;
+            let y = self.size.h - FOOTER_FROM_FOOT_MM;
             let w = self.size.w;
             self.line(15.0, y - 5.0, w - 15.0, y - 5.0, 0.5, [150, 150, 150]);
             self.text(15.0, y, footer, 8.0, false, [90, 90, 90]);

@@ -15,13 +15,58 @@ fn opt(v: Option<f64>, digits: usize) -> String {
     v.map(|x| format!("{x:.digits$}")).unwrap_or_else(|| "—".into())
 }
 
-/// Input rows the inputs page has room for beside the chart plot.
+/// Input rows the inputs page shows at most above the chart plot, and at
+/// least where the page has less room left (the chart then goes on).
 const INPUT_ROWS_HERE: usize = 16;
+const MIN_INPUT_ROWS_HERE: usize = 4;
 
 fn heading(d: &mut Doc, y: f32, s: &str) -> f32 {
     d.text(15.0, y, s, 13.0, true, [25, 55, 110]);
     d.line(15.0, y + 2.0, d.size.w - 15.0, y + 2.0, 0.6, [25, 55, 110]);
     y + 9.0
+}
+
+/// Where the inputs page's next `need_mm` go: at `y`, or at the top of a
+/// new "Inputs (continued)" page if they would run past the page's foot. A
+/// survey of many scans has more lines than one page holds, and a line drawn
+/// below the page is a line the signer never sees.
+fn inputs_room(d: &mut Doc, y: f32, need_mm: f32) -> f32 {
+    if y + need_mm <= d.size.h - FOOT_MM {
+        return y;
+    }
+    d.new_page();
+    heading(d, 20.0, "Inputs (continued)")
+}
+
+/// Space kept free at the foot of a page (mm).
+const FOOT_MM: f32 = 15.0;
+
+/// Height of `s` set by [`Doc::paragraph`] `width_mm` wide (mm): its lines,
+/// each word put whole on a line, as the paragraph breaks them.
+fn paragraph_height(s: &str, width_mm: f32, size_pt: f32) -> f32 {
+    let mut lines = 0;
+    let mut line = String::new();
+    for word in s.split_whitespace() {
+        let trial = if line.is_empty() { word.to_string() } else { format!("{line} {word}") };
+        if crate::pdf::text_width_mm(&trial, size_pt) > width_mm && !line.is_empty() {
+            lines += 1;
+            line = word.to_string();
+        } else {
+            line = trial;
+        }
+    }
+    lines += (!line.is_empty()) as usize;
+    lines as f32 * size_pt * 0.3528 * 1.35
+}
+
+/// The stages' lines on the inputs page from `y`, `w` wide, going on to
+/// further pages where they do not fit; returns the y below the last.
+fn input_lines(d: &mut Doc, mut y: f32, lines: &[String], w: f32) -> f32 {
+    for line in lines {
+        y = inputs_room(d, y, paragraph_height(line, w, 9.0));
+        y = d.paragraph(15.0, y, w, line, 9.0);
+    }
+    y
 }
 
 fn key_values(d: &mut Doc, x: f32, mut y: f32, rows: &[(&str, String)], key_w: f32) -> f32 {
@@ -172,11 +217,10 @@ pub fn document(
 
     // Page 2: inputs.
     d.new_page();
-    let mut y = heading(&mut d, 20.0, "Inputs");
-    for line in &inp.input_lines {
-        y = d.paragraph(15.0, y, w, line, 9.0);
-    }
+    let y = heading(&mut d, 20.0, "Inputs");
+    let mut y = input_lines(&mut d, y, &inp.input_lines, w);
     y += 2.0;
+    y = inputs_room(&mut d, y, 5.0 * 5.0);
     y = key_values(
         &mut d,
         15.0,
@@ -218,12 +262,20 @@ pub fn document(
         42.0,
     );
     y += 3.0;
+    let chart_img = chart.map(|c| pictures::chart_plot(c, task, plan, 1200, 600));
+    // The load chart keeps its place on this page where it can: the input
+    // rows take the room left above it, and every input is on the last
+    // pages when some are not here.
+    let chart_mm = chart_img.as_ref().map_or(0.0, |ci| 7.0 + w * ci.height as f32 / ci.width as f32);
+    let rows_fit = ((d.size.h - FOOT_MM - chart_mm - (y + 5.0)) / 4.2).floor().max(0.0) as usize;
+    let rows_here = INPUT_ROWS_HERE.min(rows_fit).max(MIN_INPUT_ROWS_HERE);
+    let appendix = inp.input_hashes.len() > rows_here;
+    let here = if appendix { rows_here - 1 } else { rows_here };
+    y = inputs_room(&mut d, y, 5.0 + 4.2 * (here.min(3) + appendix as usize) as f32);
     d.text(15.0, y, "Inputs and liftplan's code (blake3, first 16 hex digits)", 9.0, true, GREY);
     y += 5.0;
-    // What does not fit here goes on a last page: a signed plan lists every input.
-    let appendix = inp.input_hashes.len() > INPUT_ROWS_HERE;
-    let here = if appendix { INPUT_ROWS_HERE - 1 } else { INPUT_ROWS_HERE };
     for (f, h) in inp.input_hashes.iter().take(here) {
+        y = inputs_room(&mut d, y, 4.2);
         d.text(15.0, y, h, 8.0, false, GREY);
         d.text(50.0, y, f, 8.0, false, INK);
         y += 4.2;
@@ -231,12 +283,13 @@ pub fn document(
     if appendix {
         let more = inp.input_hashes.len() - here;
         let line = format!("... and {more} more: all {} are listed on the last pages", inp.input_hashes.len());
+        y = inputs_room(&mut d, y, 4.2);
         d.text(50.0, y, &line, 8.0, false, INK);
         y += 4.2;
     }
-    let chart_img = chart.map(|c| pictures::chart_plot(c, task, plan, 1200, 600));
     if let Some(ci) = &chart_img {
         y += 4.0;
+        y = inputs_room(&mut d, y, chart_mm - 4.0);
         d.text(15.0, y, "Load chart: capacity after the reduction against radius (steps), gross load (red line), radii used (dots).", 8.5, false, GREY);
         d.image(ci, 15.0, y + 3.0, w);
     }
@@ -421,4 +474,36 @@ pub fn document(
         format!("liftplan {} — {} — lift {} — issued {}", env!("CARGO_PKG_VERSION"), inp.project, task.id, inp.date);
     let bytes = d.finish(&footer, &inp.date);
     Ok((bytes, pages, overview, chart_img))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A survey of many scans has more input lines than one page holds: they
+    /// go on to further pages, none drawn below a page's foot (where the
+    /// signer would never see it), and every one is there.
+    #[test]
+    fn input_lines_run_on_to_further_pages() {
+        let mut d = Doc::new("t", A4).unwrap();
+        d.new_page();
+        let lines: Vec<String> = (0..120)
+            .map(|k| {
+                let long =
+                    if k % 7 == 0 { " and a note long enough to wrap onto a second line of the page" } else { "" };
+                format!("scans: scan-{k}: 289094 points read, 112054 kept, fitness 100 %{long}")
+            })
+            .collect();
+        let y = input_lines(&mut d, 29.0, &lines, A4.w - 30.0);
+        assert!(d.text.len() >= 3, "{} pages", d.text.len());
+        assert!(y <= A4.h - FOOT_MM, "{y}");
+        for (page, low) in d.lowest_mm.iter().enumerate() {
+            assert!(*low <= A4.h - FOOT_MM, "page {page}: text at {low} mm");
+        }
+        let all = d.text.concat();
+        for k in 0..120 {
+            assert!(all.contains(&format!("scan-{k}:")), "scan-{k}");
+        }
+        assert!(d.text[1].starts_with("Inputs (continued)"), "{}", d.text[1]);
+    }
 }

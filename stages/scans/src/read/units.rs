@@ -218,8 +218,17 @@ pub fn from_wkt(bytes: &[u8]) -> Result<Option<StatedUnit>, String> {
     if text.is_empty() {
         return Ok(None);
     }
-    let root = parse_wkt(text)?;
     let is = |n: &Node, kinds: &[&str]| kinds.iter().any(|k| n.keyword.eq_ignore_ascii_case(k));
+    let mut root = parse_wkt(text)?;
+    // A WKT 2 CRS with a transformation to another: the coordinates are in
+    // its source CRS.
+    while is(&root, &["BOUNDCRS"]) {
+        let source = root.children.iter_mut().find(|c| is(c, &["SOURCECRS"]));
+        match source.and_then(|s| (!s.children.is_empty()).then(|| s.children.remove(0))) {
+            Some(crs) => root = crs,
+            None => return Err("its WKT BOUNDCRS has no SOURCECRS".into()),
+        }
+    }
     let compound = is(&root, &["COMPD_CS", "COMPOUNDCRS"]);
     let horizontal =
         if compound { root.children.iter().find(|c| is(c, HORIZONTAL) || is(c, GEOGRAPHIC)) } else { Some(&root) };
@@ -282,6 +291,13 @@ mod tests {
         assert!(u.what.contains("US survey foot") && u.what.contains("heights in US survey foot"), "{}", u.what);
         let wkt2 = r#"PROJCRS["WGS 84 / UTM zone 33N",BASEGEOGCRS["WGS 84",DATUM["World Geodetic System 1984",ELLIPSOID["WGS 84",6378137,298.257223563,LENGTHUNIT["metre",1]]],ANGLEUNIT["degree",0.0174532925199433]],CONVERSION["UTM zone 33N",METHOD["Transverse Mercator"]],CS[Cartesian,2],AXIS["(E)",east,ORDER[1],LENGTHUNIT["metre",1]],AXIS["(N)",north,ORDER[2],LENGTHUNIT["metre",1]],ID["EPSG",32633]]"#;
         assert!(from_wkt(wkt2.as_bytes()).unwrap().unwrap().is_metres());
+        let bound = format!(
+            r#"BOUNDCRS[SOURCECRS[{wkt2}],TARGETCRS[GEOGCRS["WGS 84",CS[ellipsoidal,2]]],ABRIDGEDTRANSFORMATION["x",METHOD["Geocentric translations"]]]"#
+        );
+        assert!(
+            from_wkt(bound.replace("\"metre\",1", "\"foot\",0.3048").as_bytes()).unwrap().unwrap().horizontal_m
+                == 0.3048
+        );
         let e = from_wkt(br#"GEOGCS["WGS 84",DATUM["WGS_1984"],UNIT["degree",0.0174532925199433]]"#).unwrap_err();
         assert!(e.contains("geographic") && e.contains("degrees"), "{e}");
         assert_eq!(from_wkt(b"\0\0").unwrap(), None);
