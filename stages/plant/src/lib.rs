@@ -155,7 +155,8 @@ pub struct Summary {
     pub excluded_groups: Vec<String>,
     /// RVM line primitives, which have no surface: not in the mesh.
     pub lines_skipped: usize,
-    /// glTF primitives drawn as points or lines ("file: node (mode)"),
+    /// glTF primitives drawn as points or lines ("file: node (mode)") and
+    /// OBJ line and point elements ("file: n line or point elements"),
     /// which have no surface: not in the mesh.
     pub not_surfaces: Vec<String>,
 }
@@ -481,7 +482,15 @@ fn read_model(path: &Path, s: &Settings, summary: &mut Summary, room: u64) -> Re
             };
             rvm_to_mesh(path, &f, attrs.as_ref(), s, summary, room)?
         }
-        "obj" => mesh_io::read_obj(path, imp)?,
+        "obj" => {
+            let m = mesh_io::read_obj(path, imp)?;
+            let without = mesh_io::obj_elements_without_surface(path)?;
+            if without > 0 {
+                let file = path.file_name().map(|f| f.to_string_lossy().into_owned()).unwrap_or_default();
+                summary.not_surfaces.push(format!("{file}: {without} line or point elements"));
+            }
+            m
+        }
         "ply" => mesh_io::read_ply(path, imp)?,
         "stl" => mesh_io::read_stl(path, imp)?,
         "gltf" | "glb" => {

@@ -36,6 +36,32 @@ fn check_finite(path: &Path, m: &TriMesh) -> Result<()> {
     m.validate().map_err(|e| PlantError::at(Location::file(path), e))
 }
 
+/// How many `l` (line) and `p` (point) elements an OBJ file holds: tobj
+/// reads faces only, and what has no surface is left out of the obstacles,
+/// which must be said.
+pub fn obj_elements_without_surface(path: &Path) -> Result<usize> {
+    use std::io::{BufRead, Read};
+    let file = std::fs::File::open(path).map_err(|e| PlantError::Io(Location::file(path), e))?;
+    let mut r = std::io::BufReader::with_capacity(1 << 16, file);
+    let (mut n, mut line) = (0usize, Vec::new());
+    loop {
+        line.clear();
+        // Lines are read whole but for their first bytes (a face list may be long).
+        let got =
+            r.by_ref().take(4096).read_until(b'\n', &mut line).map_err(|e| PlantError::Io(Location::file(path), e))?;
+        if got == 0 {
+            break;
+        }
+        let t = line.trim_ascii_start();
+        n += (t.len() > 1 && (t[0] == b'l' || t[0] == b'p') && t[1].is_ascii_whitespace()) as usize;
+        if line.last() != Some(&b'\n') {
+            // The rest of a long line.
+            r.skip_until(b'\n').map_err(|e| PlantError::Io(Location::file(path), e))?;
+        }
+    }
+    Ok(n)
+}
+
 pub fn read_obj(path: &Path, imp: Import) -> Result<TriMesh> {
     let opts = tobj::LoadOptions { triangulate: true, single_index: true, ignore_points: true, ignore_lines: true };
     let file = std::fs::File::open(path).map_err(|e| PlantError::Io(Location::file(path), e))?;
@@ -455,6 +481,22 @@ mod tests {
         let (m, skipped) = drawn(1);
         assert!(m.triangles.is_empty());
         assert_eq!(skipped, vec!["VESSEL-1 (Lines)".to_string()]);
+    }
+
+    /// OBJ line and point elements, which tobj does not read, are counted
+    /// so that the stage can say they are not obstacles.
+    #[test]
+    fn obj_lines_and_points_are_counted() {
+        let d = tempfile::tempdir().unwrap();
+        let path = d.path().join("cable.obj");
+        let long_face = format!("f {}\n", "1 2 3 ".repeat(2000));
+        std::fs::write(
+            &path,
+            format!("o mast\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n{long_face}  l 1 2\np 3\nlo 1\n# l 1 2\n"),
+        )
+        .unwrap();
+        assert!(!read_obj(&path, Import { scale: 1.0, y_up: false }).unwrap().triangles.is_empty());
+        assert_eq!(obj_elements_without_surface(&path).unwrap(), 2);
     }
 
     /// glTF nodes must form trees. A chain of nodes each naming the next one
