@@ -155,9 +155,9 @@ pub struct Summary {
     pub excluded_groups: Vec<String>,
     /// RVM line primitives, which have no surface: not in the mesh.
     pub lines_skipped: usize,
-    /// glTF primitives drawn as points or lines ("file: node (mode)") and
-    /// OBJ line and point elements ("file: n line or point elements"),
-    /// which have no surface: not in the mesh.
+    /// glTF primitives drawn as points or lines ("file: node (mode)"), OBJ
+    /// line and point elements ("file: n line or point elements") and files
+    /// with no faces at all, which have no surface: not in the mesh.
     pub not_surfaces: Vec<String>,
 }
 
@@ -193,7 +193,7 @@ impl Summary {
         if !self.not_surfaces.is_empty() {
             let shown: Vec<&str> = self.not_surfaces.iter().take(5).map(|s| s.as_str()).collect();
             v.push(format!(
-                "NOT AN OBSTACLE: {} primitives drawn as points or lines (no surface to keep; model such items as solids): {}{}",
+                "NOT AN OBSTACLE: {} items without a surface (points, lines; nothing to keep: model such items as solids): {}{}",
                 self.not_surfaces.len(),
                 shown.join(", "),
                 if self.not_surfaces.len() > 5 { ", ..." } else { "" }
@@ -513,6 +513,13 @@ fn read_model(path: &Path, s: &Settings, summary: &mut Summary, room: u64) -> Re
             ));
         }
     };
+    if ext != "rvm" && m.triangles.is_empty() {
+        // A mesh file that makes no surface at all (a point cloud saved as PLY,
+        // a model of lines): nothing of it is an obstacle, which the signer
+        // must read.
+        let file = path.file_name().map(|f| f.to_string_lossy().into_owned()).unwrap_or_default();
+        summary.not_surfaces.push(format!("{file}: no faces at all"));
+    }
     if ext != "rvm" {
         summary.groups += m.groups.len();
         // Selection applies to mesh objects too.
@@ -782,8 +789,23 @@ mod tests {
             Summary { lines_skipped: 2, not_surfaces: vec!["site.glb: CABLE-1 (Lines)".into()], ..Default::default() };
         let lines = s.lines().join("\n");
         assert!(lines.contains("NOT AN OBSTACLE: 2 RVM line primitives"), "{lines}");
-        assert!(lines.contains("NOT AN OBSTACLE: 1 primitives drawn as points or lines") && lines.contains("CABLE-1"));
+        assert!(lines.contains("NOT AN OBSTACLE: 1 items without a surface") && lines.contains("CABLE-1"));
         assert_eq!(Summary::default().lines().len(), 1);
+    }
+
+    /// A plant file that makes no surface at all (a point cloud saved as
+    /// PLY) is said, not merged in as nothing.
+    #[test]
+    fn a_plant_file_without_faces_is_said() {
+        let d = tempfile::tempdir().unwrap();
+        let path = d.path().join("cloud.ply");
+        let header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nend_header\n";
+        std::fs::write(&path, format!("{header}0 0 0\n1 0 0\n0 1 0\n")).unwrap();
+        let mut summary = Summary::default();
+        let m = read_file(&path, &Settings::default(), &mut summary).unwrap();
+        assert!(m.triangles.is_empty());
+        let lines = summary.lines().join("\n");
+        assert!(lines.contains("NOT AN OBSTACLE") && lines.contains("cloud.ply: no faces at all"), "{lines}");
     }
 
     /// A joint of two radii culls only the narrower end's cap, which the
