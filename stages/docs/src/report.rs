@@ -438,6 +438,21 @@ pub fn document(
         )
     };
     y = d.paragraph(15.0, y, w, &cut_text, 9.5);
+    y += 4.0;
+    let level = task.crane.placement.z_m;
+    let set_up_text = match &plan.validator.set_up_ground {
+        Some(g) => format!(
+            "The crane is set up at z = {level:.2} m: the {} scanned ground points under its carrier and outriggers lie at {:.2} to {:.2} m (median {:.2} m).",
+            g.points, g.lowest_m, g.highest_m, g.median_m
+        ),
+        None if task.crane.model.is_tower() => {
+            format!("The tower crane's base is at z = {level:.2} m as the lift gives it. Check it on site.")
+        }
+        None => format!(
+            "The crane is set up at z = {level:.2} m as the lift gives it: no ground was scanned under its carrier and outriggers to check that level against. Check it on site."
+        ),
+    };
+    y = d.paragraph(15.0, y, w, &set_up_text, 9.5);
     y += 8.0;
     for role in [
         "Lift engineer (prepared / checked)",

@@ -199,6 +199,11 @@ pub struct ValidatorReport {
     pub refined_samples: usize,
     pub seconds: f64,
     pub problems: Vec<String>,
+    /// The scanned ground under a mobile crane's carrier and outriggers,
+    /// which must lie at the level the lift sets it up at; `None` where no
+    /// ground was scanned there (the level is then as the lift gives it).
+    #[serde(default)]
+    pub set_up_ground: Option<validate::SetUpGround>,
 }
 
 #[derive(Debug, Clone, Serialize, Deserialize)]
@@ -330,6 +335,9 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
                 ));
             }
         }
+    }
+    if let Some(problem) = validate::crane_set_up_level_problem(task, site.world) {
+        return Err(lift_err(task, problem));
     }
     let cs = CSpace::build(&Problem { task, chart, map: site.map }, &s.cspace);
     let zones = landing_zones(task, s);
@@ -468,6 +476,7 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
             refined_samples: verdict.refined_samples,
             seconds: verdict.seconds,
             problems: verdict.problems,
+            set_up_ground: verdict.set_up_ground,
         },
         planning: PlanningStats {
             seed,

@@ -92,6 +92,81 @@ impl PointIndex {
     fn voxel_points(&self, k: usize) -> &[([f64; 3], bool)] {
         &self.points[self.starts[k]..self.starts[k + 1]]
     }
+
+    /// Heights of the ground points inside any of the plan polygons
+    /// `areas`, at any height.
+    fn ground_heights_in(&self, areas: &[Vec<[f64; 2]>]) -> Vec<f64> {
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for p in areas.iter().flatten() {
+            for a in 0..2 {
+                (lo[a], hi[a]) = (lo[a].min(p[a]), hi[a].max(p[a]));
+            }
+        }
+        if !(lo[0] <= hi[0] && lo[1] <= hi[1]) {
+            return Vec::new();
+        }
+        let (vlo, vhi) = (voxel(&[lo[0], lo[1], 0.0]), voxel(&[hi[0], hi[1], 0.0]));
+        let first = self.keys.partition_point(|k| k[0] < vlo[0]);
+        let end = self.keys.partition_point(|k| k[0] <= vhi[0]);
+        (first..end)
+            .filter(|&k| (vlo[1]..=vhi[1]).contains(&self.keys[k][1]))
+            .flat_map(|k| self.voxel_points(k))
+            .filter(|(p, ground)| *ground && areas.iter().any(|a| in_polygon(a, [p[0], p[1]])))
+            .map(|(p, _)| p[2])
+            .collect()
+    }
+}
+
+/// How far the scanned ground under a mobile crane's carrier and outriggers
+/// may lie from the level the lift sets the crane up at (m): mats, cribbing,
+/// uneven ground. Farther, the lift has the crane at the wrong height (a
+/// site in survey heights with `ground_z_m = 0`, say), and every clearance
+/// of the plan would be measured from a crane that is not where it stands.
+const SET_UP_LEVEL_TOLERANCE_M: f64 = 0.5;
+
+/// The scanned ground under a mobile crane's carrier and outriggers.
+#[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize)]
+pub struct SetUpGround {
+    pub points: usize,
+    /// Median, lowest and highest height of those points (m).
+    pub median_m: f64,
+    pub lowest_m: f64,
+    pub highest_m: f64,
+}
+
+/// [`set_up_ground`] for the crane as the lift sets it up, with the problem
+/// if any, for the planner to refuse such a lift before anything else.
+pub(crate) fn crane_set_up_level_problem(task: &LiftTask, world: &World) -> Option<String> {
+    let footprints: Vec<Vec<[f64; 2]>> = [PartKind::Carrier, PartKind::Outriggers]
+        .into_iter()
+        .filter_map(|kind| task.crane.part(kind, &task.pick, &task.load))
+        .map(|b| b.footprint())
+        .collect();
+    set_up_ground(task, world, &footprints).1
+}
+
+/// The scanned ground under a mobile crane's carrier and outriggers
+/// (`footprints`), if any is scanned there, and the problem if it does not
+/// lie at the level the lift sets the crane up at.
+fn set_up_ground(
+    task: &LiftTask,
+    world: &World,
+    footprints: &[Vec<[f64; 2]>],
+) -> (Option<SetUpGround>, Option<String>) {
+    let mut z = world.points.ground_heights_in(footprints);
+    if z.is_empty() {
+        return (None, None);
+    }
+    z.sort_by(f64::total_cmp);
+    let g = SetUpGround { points: z.len(), median_m: z[z.len() / 2], lowest_m: z[0], highest_m: z[z.len() - 1] };
+    let level = task.crane.placement.z_m;
+    let problem = (!((g.median_m - level).abs() <= SET_UP_LEVEL_TOLERANCE_M)).then(|| {
+        format!(
+            "crane set-up: the lift sets the crane up at z = {level:.2} m (ground_z_m), but the scanned ground under its carrier and outriggers is at {:.2} m (median of {} ground points, {:.2} to {:.2} m): set ground_z_m to the height of the ground it stands on",
+            g.median_m, g.points, g.lowest_m, g.highest_m
+        )
+    });
+    (Some(g), problem)
 }
 
 /// The obstacles, as the validator sees them.
@@ -348,6 +423,9 @@ pub struct Verdict {
     pub ok: bool,
     pub moves: Vec<MoveCheck>,
     pub problems: Vec<String>,
+    /// The scanned ground under a mobile crane's carrier and outriggers, if
+    /// any was scanned there ([`SET_UP_LEVEL_TOLERANCE_M`]).
+    pub set_up_ground: Option<SetUpGround>,
     /// Samples checked, those added between the evenly spaced ones included.
     pub samples: usize,
     /// Samples added where two neighbours' distances did not rule out a part
@@ -855,8 +933,10 @@ pub fn validate(
 ) -> Verdict {
     let t0 = std::time::Instant::now();
     let mut problems = Vec::new();
+    let mut set_up = None;
     // Fixed parts once: they stand on the ground, so only non-ground obstacles count.
     if let Some(first) = moves.first() {
+        let mut footprints = Vec::new();
         for &kind in task.crane.part_kinds() {
             if kind.dependence() != Dependence::Fixed {
                 continue;
@@ -867,8 +947,14 @@ pub fn validate(
                 if n.distance_m <= 0.0 {
                     problems.push(format!("crane set-up: {} intersects {}", kind.name(), n.object));
                 }
+                if matches!(kind, PartKind::Carrier | PartKind::Outriggers) {
+                    footprints.push(b.footprint());
+                }
             }
         }
+        let (ground, problem) = set_up_ground(task, world, &footprints);
+        set_up = ground;
+        problems.extend(problem);
     }
     problems.extend(path_breaks(moves));
     let mut move_checks = Vec::new();
@@ -956,6 +1042,7 @@ pub fn validate(
         ok: problems.is_empty(),
         moves: move_checks,
         problems,
+        set_up_ground: set_up,
         samples: total,
         refined_samples: refined,
         seconds: t0.elapsed().as_secs_f64(),

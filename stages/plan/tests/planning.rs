@@ -706,3 +706,32 @@ liftoff_m = 0.5
     let swung: f64 = plan.moves.iter().map(|m| m.to.swing_rad - m.from.swing_rad).sum();
     assert!(swung.abs() > std::f64::consts::PI, "swung {:.1} degrees", swung.to_degrees());
 }
+
+/// A lift whose crane stands at another height than the scanned ground
+/// under it (a site in survey heights with `ground_z_m = 0`) is refused by
+/// the planner before it plans and by the validator, naming both heights;
+/// ground within half a metre of it (mats, uneven ground) is its ground.
+#[test]
+fn a_crane_set_up_off_the_scanned_ground_is_refused() {
+    let t = task(-14.0);
+    let mesh = site();
+    let m = map(&mesh);
+    // Ground points every 0.5 m over the crane's outrigger square and beyond.
+    let ground_at = |z: f64| -> Vec<[f64; 3]> {
+        (0..41 * 41).map(|n| [(n % 41) as f64 * 0.5 - 10.0, (n / 41) as f64 * 0.5 - 10.0, z]).collect()
+    };
+    let c = Config { swing_rad: 0.3, radial: 40f64.to_radians(), hoist_m: 20.0, load_yaw_rad: 0.0 };
+    let swing = Move { joint: Joint::Swing, from: c, to: Config { swing_rad: 0.31, ..c } };
+    for (z, ok) in [(0.3, true), (-0.4, true), (1.8, false), (-0.7, false)] {
+        let pts = ground_at(z);
+        let world = World::new(&mesh, &pts, &vec![true; pts.len()]).unwrap();
+        let v = validate(&t, None, &world, &rules(), &[swing], &[false]);
+        let said = v.problems.iter().any(|p| p.contains("set ground_z_m") && p.contains(&format!("at {z:.2} m")));
+        assert_eq!(said, !ok, "ground at {z} m: {:?}", v.problems);
+        if !ok {
+            let err =
+                plan_lift(&t, &Site { map: &m, world: &world, charts: None }, &quick(), 3).unwrap_err().to_string();
+            assert!(err.contains("z = 0.00 m (ground_z_m)") && err.contains("median of"), "{err}");
+        }
+    }
+}
