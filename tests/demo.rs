@@ -38,6 +38,8 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     assert!(text.contains("is not an obstacle to its own lift"), "{text}");
     // The crane's set-up level, checked against the scanned ground under it.
     assert!(text.contains("scanned ground points under its carrier and outriggers"), "{text}");
+    // The demo's vessel is set down on its foundation, not above it.
+    assert!(text.contains("At its set position the load rests on"), "{text}");
     assert_eq!(
         pages.len(),
         steps.len() + 5,

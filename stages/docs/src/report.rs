@@ -453,6 +453,22 @@ pub fn document(
         ),
     };
     y = d.paragraph(15.0, y, w, &set_up_text, 9.5);
+    y += 4.0;
+    let support_m = plan.summary.support_m;
+    let set_text = match &plan.summary.set_on {
+        Some(g) if g.gap_m <= support_m + 2e-3 => {
+            format!("At its set position the load rests on {} (within {support_m:.2} m under its underside).", g.object)
+        }
+        Some(g) => format!(
+            "At its set position the load hangs {:.2} m above {}, the nearest thing under it: the set-down ends there, and lowering it further is not part of this plan.",
+            g.gap_m, g.object
+        ),
+        None => format!(
+            "Nothing in the plant model or the scans lies within {:.0} m under the load at its set position: what it is set down on is not part of this plan. Check it on site.",
+            liftplan_plan::validate::SUPPORT_SEARCH_M
+        ),
+    };
+    y = d.paragraph(15.0, y, w, &set_text, 9.5);
     y += 8.0;
     for role in [
         "Lift engineer (prepared / checked)",

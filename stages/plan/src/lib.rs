@@ -451,7 +451,9 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
         ));
     }
     let steps = steps::steps(task, &all, &verdict);
-    let summary = steps::summary(task, &steps, &verdict);
+    let mut summary = steps::summary(task, &steps, &verdict);
+    summary.set_on = validate::set_support(task, site.world, &task.set);
+    summary.support_m = s.support_m;
     let plan = LiftPlan {
         lift: task.id.clone(),
         description: task.description.clone(),

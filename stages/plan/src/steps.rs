@@ -120,12 +120,35 @@ pub struct Summary {
     pub luff_or_trolley: f64,
     pub hoist_m: f64,
     pub rotate_deg: f64,
+    /// What the load rests on at its set position ([`crate::validate::set_support`]).
+    #[serde(default)]
+    pub set_on: Option<crate::validate::SetSupport>,
+    /// How far above its support the load may end and still rest on it (m).
+    #[serde(default)]
+    pub support_m: f64,
 }
 
 impl Summary {
+    /// Where the set-down ends: on its support, above it (the plan ends
+    /// with the load hanging: the rest of the lowering is not planned), or
+    /// over nothing modelled.
+    pub fn set_down_line(&self) -> String {
+        match &self.set_on {
+            Some(s) if s.gap_m <= self.support_m + 2e-3 => format!("set down on {}", s.object),
+            Some(s) => format!(
+                "SET-DOWN ENDS {:.2} m ABOVE {}: lowering it further is not part of this plan",
+                s.gap_m, s.object
+            ),
+            None => format!(
+                "NOTHING MODELLED UNDER THE LOAD at its set position (within {:.0} m): check its support on site",
+                crate::validate::SUPPORT_SEARCH_M
+            ),
+        }
+    }
+
     pub fn line(&self) -> String {
         format!(
-            "lift {}: {} steps, validated; max utilisation {:.0} % (step {}, {}){}; min clearance {:.2} m (step {}, {})",
+            "lift {}: {} steps, validated; max utilisation {:.0} % (step {}, {}){}; min clearance {:.2} m (step {}, {}); {}",
             self.lift,
             self.steps,
             self.max_utilisation_pct,
@@ -134,7 +157,8 @@ impl Summary {
             if self.critical { ", CRITICAL LIFT" } else { "" },
             self.min_clearance_m,
             self.min_clearance_step,
-            self.min_clearance_what
+            self.min_clearance_what,
+            self.set_down_line()
         )
     }
 }
@@ -155,6 +179,8 @@ pub fn summary(task: &LiftTask, steps: &[Step], verdict: &Verdict) -> Summary {
         luff_or_trolley: 0.0,
         hoist_m: 0.0,
         rotate_deg: 0.0,
+        set_on: None,
+        support_m: 0.0,
     };
     for st in steps {
         if let Some(u) = st.utilisation_pct

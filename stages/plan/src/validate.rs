@@ -124,6 +124,45 @@ impl PointIndex {
 /// of the plan would be measured from a crane that is not where it stands.
 const SET_UP_LEVEL_TOLERANCE_M: f64 = 0.5;
 
+/// What the load comes to rest on at its set position: the nearest obstacle
+/// under its footprint and how far below its underside.
+#[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize)]
+pub struct SetSupport {
+    /// From the load's underside down to the obstacle (m, within 2 mm).
+    pub gap_m: f64,
+    pub object: String,
+}
+
+/// How far below the load's underside [`set_support`] looks (m).
+pub const SUPPORT_SEARCH_M: f64 = 5.0;
+
+/// What lies under the load at `c` (its set configuration): the highest
+/// obstacle under its footprint within [`SUPPORT_SEARCH_M`] of its
+/// underside, and the gap to it; `None` where nothing is there. A plan whose
+/// set-down ends with a gap leaves the last of the lowering unplanned.
+pub fn set_support(task: &LiftTask, world: &World, c: &Config) -> Option<SetSupport> {
+    let load = task.crane.load_obb(c, &task.load);
+    let underside = load.center.z - load.half.z;
+    // The slab under the footprint, `h` deep.
+    let slab = |h: f64| {
+        let mut b = load;
+        b.center.z = underside - h / 2.0;
+        b.half.z = h / 2.0;
+        b
+    };
+    let meets = |h: f64| {
+        let n = nearest(world, &slab(h), ALL_GROUND, 0.0);
+        (n.distance_m <= 1e-9).then_some(n.object)
+    };
+    meets(SUPPORT_SEARCH_M)?;
+    let (mut lo, mut hi) = (0.0, SUPPORT_SEARCH_M);
+    while hi - lo > 1e-3 {
+        let mid = 0.5 * (lo + hi);
+        if meets(mid).is_some() { hi = mid } else { lo = mid }
+    }
+    meets(hi).map(|object| SetSupport { gap_m: hi, object })
+}
+
 /// The scanned ground under a mobile crane's carrier and outriggers.
 #[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize)]
 pub struct SetUpGround {

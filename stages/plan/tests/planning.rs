@@ -735,3 +735,20 @@ fn a_crane_set_up_off_the_scanned_ground_is_refused() {
         }
     }
 }
+
+/// What the load rests on at its set position, and a set-down that ends
+/// above it, are said: the test lift's set position is 0.5 m over the slab.
+#[test]
+fn the_set_down_says_what_the_load_rests_on() {
+    let (t, world, plan) = over_the_wall();
+    let on = plan.summary.set_on.clone().unwrap();
+    assert_eq!(on.object, "SLAB");
+    assert!((on.gap_m - 0.5).abs() <= 2e-3, "{on:?}");
+    assert!(plan.summary.line().contains("SET-DOWN ENDS 0.50 m ABOVE SLAB"), "{}", plan.summary.line());
+    // Set down on the slab, and over nothing.
+    let on_slab = Config { hoist_m: t.set.hoist_m + 0.5, ..t.set };
+    let s = liftplan_plan::validate::set_support(&t, &world, &on_slab).unwrap();
+    assert!(s.gap_m <= 2e-3 && s.object == "SLAB", "{s:?}");
+    let bare = World::new(&TriMesh::default(), &[], &[]).unwrap();
+    assert_eq!(liftplan_plan::validate::set_support(&t, &bare, &t.set), None);
+}
