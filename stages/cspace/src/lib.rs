@@ -220,18 +220,16 @@ fn counts_for(crane: &CraneSetup, part: PartKind, iv: &Interval) -> bool {
 }
 
 /// What a part's box queries leave out, in the form both the CPU's and the
-/// GPU's queries take. The carrier, outriggers and mast stand on the ground:
-/// no scanned ground is an obstacle for them (the crane's set-up check
-/// covers the ground). The superstructure and what turns with it swing just
-/// above it: ground up to [`CraneSetup::standing_ground_top_z`] is not an
-/// obstacle for them, a bank higher up is, as in the validator. The map's
+/// GPU's queries take. The carrier, outriggers and mast stand on the ground,
+/// the superstructure and what turns with it swing just above it: ground up
+/// to [`CraneSetup::standing_ground_top_z`] is not an obstacle for them, a
+/// bank higher up is, as in the validator. The map's
 /// intervals are the points grown by their radius, so here a ground point
 /// up to that radius below the height still counts: the planner's side of
 /// the rule is the more careful one.
 fn left_out(crane: &CraneSetup, part: PartKind) -> Option<LeaveOut> {
     match part.dependence() {
-        Dependence::Fixed => Some(LeaveOut::object(OBJ_GROUND)),
-        Dependence::Swing => Some(LeaveOut::up_to(OBJ_GROUND, crane.standing_ground_top_z())),
+        Dependence::Fixed | Dependence::Swing => Some(LeaveOut::up_to(OBJ_GROUND, crane.standing_ground_top_z())),
         Dependence::SwingRadial | Dependence::Full => None,
     }
 }

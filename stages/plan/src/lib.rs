@@ -30,6 +30,7 @@ use liftplan_core::mesh::TriMesh;
 use liftplan_core::obb::Obb;
 use liftplan_cspace::{CSpace, Checker, Joint, LandingZone, Problem};
 use liftplan_depthmap::mdm::Mdm;
+use liftplan_depthmap::query::LeaveOut;
 use path::Move;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -316,15 +317,21 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
             }
         }
     }
-    // The crane's set-up: carrier, outriggers (or mast) stand on the ground;
-    // anything else where they stand is a bad request.
+    // The crane's set-up: at the level of the ground scanned under it, and
+    // carrier, outriggers (or mast) standing on that ground; anything else
+    // where they stand (a bank higher than half a metre above it among them)
+    // is a bad request.
+    if let Some(problem) = validate::crane_set_up_level_problem(task, site.world) {
+        return Err(lift_err(task, problem));
+    }
+    let standing = LeaveOut::up_to(liftplan_depthmap::mdm::OBJ_GROUND, task.crane.standing_ground_top_z());
     for &kind in task.crane.part_kinds() {
         if kind.dependence() != liftplan_core::crane::Dependence::Fixed {
             continue;
         }
         if let Some(b) = task.crane.part(kind, &task.pick, &task.load) {
             let b = b.with_underside_raised(s.support_m);
-            if let Some(h) = site.map.hit_where(&b, |iv| iv.obj != liftplan_depthmap::mdm::OBJ_GROUND) {
+            if let Some(h) = site.map.hit_where(&b, |iv| LeaveOut::counts(Some(standing), iv)) {
                 return Err(lift_err(
                     task,
                     format!(
@@ -335,9 +342,6 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
                 ));
             }
         }
-    }
-    if let Some(problem) = validate::crane_set_up_level_problem(task, site.world) {
-        return Err(lift_err(task, problem));
     }
     let cs = CSpace::build(&Problem { task, chart, map: site.map }, &s.cspace);
     let zones = landing_zones(task, s);

@@ -254,11 +254,9 @@ pub struct Nearest {
 
 /// [`nearest`] leaves out no scanned ground.
 const ALL_GROUND: f64 = f64::NEG_INFINITY;
-/// [`nearest`] leaves out all scanned ground.
-const NO_GROUND: f64 = f64::INFINITY;
 
 /// The nearest obstacle to `b`: plant triangles and scanned points, less the
-/// scanned ground at or below `ground_below_z` ([`ALL_GROUND`], [`NO_GROUND`]).
+/// scanned ground at or below `ground_below_z` ([`ALL_GROUND`]: none).
 fn nearest(world: &World, b: &Obb, ground_below_z: f64, cutoff_m: f64) -> Nearest {
     let (pose, cub) = parry_box(b);
     let mut best = Nearest { distance_m: f64::INFINITY, object: String::new(), at: None };
@@ -973,7 +971,10 @@ pub fn validate(
     let t0 = std::time::Instant::now();
     let mut problems = Vec::new();
     let mut set_up = None;
-    // Fixed parts once: they stand on the ground, so only non-ground obstacles count.
+    // Fixed parts once: they stand on the ground, so only obstacles other
+    // than the ground they stand on count (ground up to half a metre above
+    // their level; a bank higher up, under the carrier or the outrigger
+    // beams, is in the way).
     if let Some(first) = moves.first() {
         let mut footprints = Vec::new();
         for &kind in task.crane.part_kinds() {
@@ -982,7 +983,8 @@ pub fn validate(
             }
             if let Some(b) = task.crane.part(kind, &first.from, &task.load) {
                 // It stands on the ground.
-                let n = nearest(world, &b.with_underside_raised(rules.support_m), NO_GROUND, 1.0);
+                let standing = task.crane.standing_ground_top_z();
+                let n = nearest(world, &b.with_underside_raised(rules.support_m), standing, 1.0);
                 if n.distance_m <= 0.0 {
                     problems.push(format!("crane set-up: {} intersects {}", kind.name(), n.object));
                 }
@@ -1177,7 +1179,7 @@ mod tests {
             tilt in -1.5f64..1.5,
             cutoff in 0.3f64..8.0,
             start in prop::option::of(0.0f64..5.0),
-            ground_below_z in prop_oneof![Just(ALL_GROUND), Just(NO_GROUND), -3.0f64..3.0],
+            ground_below_z in prop_oneof![Just(ALL_GROUND), Just(f64::INFINITY), -3.0f64..3.0],
         ) {
             let mut u = unit_stream(seed);
             let points: Vec<[f64; 3]> =

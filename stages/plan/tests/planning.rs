@@ -752,3 +752,38 @@ fn the_set_down_says_what_the_load_rests_on() {
     let bare = World::new(&TriMesh::default(), &[], &[]).unwrap();
     assert_eq!(liftplan_plan::validate::set_support(&t, &bare, &t.set), None);
 }
+
+/// The carrier and outriggers stand on the ground, but not in a bank: a
+/// patch of scanned ground more than half a metre above the set-up level
+/// under the carrier is refused by the validator and the planner; a kerb
+/// lower than that is ground they stand on.
+#[test]
+fn a_carrier_parked_in_a_bank_is_refused() {
+    let t = task(-14.0);
+    let mesh = site();
+    let c = Config { swing_rad: 0.3, radial: 40f64.to_radians(), hoist_m: 20.0, load_yaw_rad: 0.0 };
+    let swing = Move { joint: Joint::Swing, from: c, to: Config { swing_rad: 0.31, ..c } };
+    // Level ground over the outrigger square, and a 2 m patch under the
+    // carrier's rear (the carrier runs along x, its rear near x = -7.75).
+    let with_patch = |z: f64| -> Vec<[f64; 3]> {
+        let mut pts: Vec<[f64; 3]> =
+            (0..41 * 41).map(|n| [(n % 41) as f64 * 0.5 - 10.0, (n / 41) as f64 * 0.5 - 10.0, 0.0]).collect();
+        pts.extend((0..25).map(|n| [-7.0 + (n % 5) as f64 * 0.4, -0.8 + (n / 5) as f64 * 0.4, z]));
+        pts
+    };
+    for (z, ok) in [(0.3, true), (1.2, false)] {
+        let pts = with_patch(z);
+        let world = World::new(&mesh, &pts, &vec![true; pts.len()]).unwrap();
+        let v = validate(&t, None, &world, &rules(), &[swing], &[false]);
+        let said = v.problems.iter().any(|p| p.contains("crane set-up: carrier intersects ground (scan)"));
+        assert_eq!(said, !ok, "patch at {z} m: {:?}", v.problems);
+        if !ok {
+            let inp =
+                liftplan_depthmap::Inputs { points: pts.clone(), ground: vec![true; pts.len()], mesh: mesh.clone() };
+            let m = liftplan_depthmap::build_cpu(&inp, &liftplan_depthmap::Settings::default()).unwrap().0;
+            let err =
+                plan_lift(&t, &Site { map: &m, world: &world, charts: None }, &quick(), 3).unwrap_err().to_string();
+            assert!(err.contains("crane set-up: the carrier meets ground"), "{err}");
+        }
+    }
+}
