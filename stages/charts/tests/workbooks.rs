@@ -217,13 +217,9 @@ fn bad_cells_are_refused_with_sheet_and_cell() {
     assert!(e.contains("[Chart!C6]") && e.contains("kg"), "{e}");
 }
 
-#[test]
-fn explicit_mapping_wins() {
-    let d = tempfile::tempdir().unwrap();
-    let p = d.path().join("odd.xlsx");
-    // No labels or units at all: detection would assume; the mapping says ft/kips.
-    let mut wb = Workbook::new();
-    let ws = wb.add_worksheet().set_name("S").unwrap();
+/// Booms 50 and 80 across row 2 (D2:E2), radii 10, 20, 30 down column C,
+/// capacities falling with both, and no label or unit anywhere.
+fn small_grid(ws: &mut rust_xlsxwriter::Worksheet) {
     for (j, b) in [50.0, 80.0].iter().enumerate() {
         ws.write_number(1, 3 + j as u16, *b).unwrap();
     }
@@ -233,6 +229,16 @@ fn explicit_mapping_wins() {
             ws.write_number(2 + i as u32, 3 + j, 100.0 - 20.0 * i as f64 - 10.0 * j as f64).unwrap();
         }
     }
+}
+
+#[test]
+fn explicit_mapping_wins() {
+    let d = tempfile::tempdir().unwrap();
+    let p = d.path().join("odd.xlsx");
+    // No labels or units at all: detection would assume; the mapping says ft/kips.
+    let mut wb = Workbook::new();
+    let ws = wb.add_worksheet().set_name("S").unwrap();
+    small_grid(ws);
     wb.save(&p).unwrap();
     let s = Settings {
         table: vec![TableMapping {
@@ -282,15 +288,7 @@ fn units_the_labels_name_win_over_the_project_default() {
     let mut wb = Workbook::new();
     let ws = wb.add_worksheet().set_name("S").unwrap();
     ws.write_string(0, 3, "Capacities in t, lengths in m").unwrap();
-    for (j, b) in [50.0, 80.0].iter().enumerate() {
-        ws.write_number(1, 3 + j as u16, *b).unwrap();
-    }
-    for (i, r) in [10.0, 20.0, 30.0].iter().enumerate() {
-        ws.write_number(2 + i as u32, 2, *r).unwrap();
-        for j in 0..2 {
-            ws.write_number(2 + i as u32, 3 + j, 100.0 - 20.0 * i as f64 - 10.0 * j as f64).unwrap();
-        }
-    }
+    small_grid(ws);
     wb.save(&p).unwrap();
     let s = Settings {
         length_unit: Some(liftplan_core::units::LengthUnit::Ft),

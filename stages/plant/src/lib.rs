@@ -173,13 +173,7 @@ impl Summary {
             self.caps_culled
         )];
         if !self.excluded_groups.is_empty() {
-            let shown: Vec<&str> = self.excluded_groups.iter().take(5).map(|s| s.as_str()).collect();
-            v.push(format!(
-                "excluded {} groups: {}{}",
-                self.excluded_groups.len(),
-                shown.join(", "),
-                if self.excluded_groups.len() > 5 { ", ..." } else { "" }
-            ));
+            v.push(format!("excluded {} groups: {}", self.excluded_groups.len(), first_five(&self.excluded_groups)));
         }
         // Left out of the obstacles for want of a surface: said here, where
         // the plan's inputs page shows it, so that a cable drawn as a line
@@ -191,16 +185,20 @@ impl Summary {
             ));
         }
         if !self.not_surfaces.is_empty() {
-            let shown: Vec<&str> = self.not_surfaces.iter().take(5).map(|s| s.as_str()).collect();
             v.push(format!(
-                "NOT AN OBSTACLE: {} items without a surface (points, lines; nothing to keep: model such items as solids): {}{}",
+                "NOT AN OBSTACLE: {} items without a surface (points, lines; nothing to keep: model such items as solids): {}",
                 self.not_surfaces.len(),
-                shown.join(", "),
-                if self.not_surfaces.len() > 5 { ", ..." } else { "" }
+                first_five(&self.not_surfaces)
             ));
         }
         v
     }
+}
+
+/// The first five of `items`, and "..." when there are more.
+fn first_five(items: &[String]) -> String {
+    let shown: Vec<&str> = items.iter().take(5).map(|s| s.as_str()).collect();
+    format!("{}{}", shown.join(", "), if items.len() > 5 { ", ..." } else { "" })
 }
 
 /// A circular end of a primitive in model coordinates, for cap culling.

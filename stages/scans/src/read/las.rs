@@ -761,14 +761,6 @@ mod tests {
         path
     }
 
-    fn geokeys(keys: &[(u16, u16)]) -> Vec<u8> {
-        let mut w = vec![1u16, 1, 0, keys.len() as u16];
-        for &(id, v) in keys {
-            w.extend([id, 0, 1, v]);
-        }
-        w.iter().flat_map(|x| x.to_le_bytes()).collect()
-    }
-
     /// A survey in US survey feet (its GeoTIFF keys say so) is read in
     /// metres; one without a CRS in `[scans] unit`; one whose CRS is in
     /// degrees is refused, naming the file and the record; `inspect` shows
@@ -777,7 +769,11 @@ mod tests {
     fn coordinates_are_read_in_metres_whatever_unit_the_file_states() {
         let d = tempfile::tempdir().unwrap();
         let us_ft = 1200.0 / 3937.0;
-        let feet = las_with_crs(d.path(), "ft.las", Some((34735, geokeys(&[(1024, 1), (3072, 2263), (3076, 9003)]))));
+        let feet = las_with_crs(
+            d.path(),
+            "ft.las",
+            Some((34735, super::super::units::geokeys(&[(1024, 1), (3072, 2263), (3076, 9003)]))),
+        );
         for unit in [crate::ScanUnit::Metre, crate::ScanUnit::Foot] {
             let scans = crate::list_all(std::slice::from_ref(&feet), unit).unwrap();
             let c = super::super::read_all(&scans[0]).unwrap();

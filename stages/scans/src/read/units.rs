@@ -251,18 +251,21 @@ pub fn from_wkt(bytes: &[u8]) -> Result<Option<StatedUnit>, String> {
     Ok(Some(StatedUnit { horizontal_m: hf, vertical_m: vf, what: format!("{hname} (WKT CRS; {vertical})") }))
 }
 
+/// A GeoTIFF key directory of `keys` (id, value), each held in the
+/// directory itself.
+#[cfg(test)]
+pub(crate) fn geokeys(keys: &[(u16, u16)]) -> Vec<u8> {
+    let mut w = vec![1u16, 1, 0, keys.len() as u16];
+    for &(id, v) in keys {
+        w.extend([id, 0, 1, v]);
+    }
+    w.iter().flat_map(|x| x.to_le_bytes()).collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use proptest::prelude::*;
-
-    fn geokeys(keys: &[(u16, u16)]) -> Vec<u8> {
-        let mut w = vec![1u16, 1, 0, keys.len() as u16];
-        for &(id, v) in keys {
-            w.extend([id, 0, 1, v]);
-        }
-        w.iter().flat_map(|x| x.to_le_bytes()).collect()
-    }
 
     #[test]
     fn geotiff_keys_state_feet_metres_or_nothing() {
