@@ -40,6 +40,8 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     assert!(text.contains("scanned ground points under its carrier and outriggers"), "{text}");
     // The demo's vessel is set down on its foundation, not above it.
     assert!(text.contains("At its set position the load rests on"), "{text}");
+    // The demo's plant model stands where its scans put the site.
+    assert!(text.contains("Plant model against the scans"), "{text}");
     assert_eq!(
         pages.len(),
         steps.len() + 5,

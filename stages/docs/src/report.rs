@@ -469,6 +469,15 @@ pub fn document(
         ),
     };
     y = d.paragraph(15.0, y, w, &set_text, 9.5);
+    y += 4.0;
+    let model_text = match &plan.model_vs_scans {
+        Some(a) => {
+            let line = a.line();
+            format!("{}{}.", line[..1].to_uppercase(), &line[1..])
+        }
+        None => "The plant model and the scans barely overlap (or one of them is missing), so where the model stands in the site was not checked against the scans.".to_string(),
+    };
+    y = d.paragraph(15.0, y, w, &model_text, 9.5);
     y += 8.0;
     for role in [
         "Lift engineer (prepared / checked)",

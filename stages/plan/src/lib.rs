@@ -188,6 +188,10 @@ pub struct LiftPlan {
     /// Scan points taken for the load at pick (set by [`run`]).
     #[serde(default)]
     pub load_cutout: LoadCutout,
+    /// How well the plant model and the scans agree (set by [`run`]; `None`
+    /// where they barely overlap).
+    #[serde(default)]
+    pub model_vs_scans: Option<validate::ModelScanAgreement>,
 }
 
 #[derive(Debug, Clone, Serialize, Deserialize)]
@@ -501,8 +505,10 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
             convergence_best: stats.best_fitness,
             convergence_mean: stats.mean_fitness,
         },
-        // What was cut out of the cloud for the load is known to `run`.
+        // What was cut out of the cloud for the load, and how the model and
+        // the scans agree, are known to `run`.
         load_cutout: LoadCutout::default(),
+        model_vs_scans: None,
     };
     Ok((plan, cs))
 }
@@ -519,11 +525,12 @@ pub fn read_points(path: &Path, exclude: &[Obb]) -> Result<(Vec<[f64; 3]>, Vec<b
 #[derive(Debug, Clone, Serialize)]
 pub struct RunSummary {
     pub lifts: Vec<steps::Summary>,
+    pub model_vs_scans: Option<validate::ModelScanAgreement>,
 }
 
 impl RunSummary {
     pub fn lines(&self) -> Vec<String> {
-        self.lifts.iter().map(|s| s.line()).collect()
+        self.model_vs_scans.iter().map(|a| a.line()).chain(self.lifts.iter().map(|s| s.line())).collect()
     }
 }
 
@@ -555,12 +562,14 @@ pub fn run(
         None => None,
     };
     let site = Site { map: &map, world: &world, charts: charts.as_ref() };
+    let model_vs_scans = validate::model_scan_agreement(&world);
     std::fs::create_dir_all(out_dir).map_err(|e| PlanError::Input(Location::file(out_dir), e.to_string()))?;
     let mut plans = Vec::new();
     for (task, taken) in tasks.iter().zip(taken_for_loads) {
         let (mut plan, cs) = plan_lift(task, &site, s, seed)?;
         plan.load_cutout =
             LoadCutout { grow_m: s.load_cutout_m, above_m: cutout_above_m(s.load_cutout_m), points: taken };
+        plan.model_vs_scans = model_vs_scans.clone();
         let io = |p: &Path, e: std::io::Error| PlanError::Input(Location::file(p), e.to_string());
         let csv = out_dir.join(format!("{}.steps.csv", task.id));
         liftplan_core::artifact::write_atomic(&csv, steps::to_csv(&plan.steps).as_bytes()).map_err(|e| io(&csv, e))?;
@@ -579,7 +588,7 @@ pub fn run(
     let pj = out_dir.join("plan.json");
     liftplan_core::artifact::write_atomic(&pj, json.as_bytes())
         .map_err(|e| PlanError::Input(Location::file(&pj), e.to_string()))?;
-    Ok(RunSummary { lifts: plans.iter().map(|p| p.summary.clone()).collect() })
+    Ok(RunSummary { lifts: plans.iter().map(|p| p.summary.clone()).collect(), model_vs_scans })
 }
 
 /// A lift for the unit tests: a 6 x 3 x 2.5 m skid with its centre of

@@ -117,6 +117,78 @@ impl PointIndex {
     }
 }
 
+/// How well the plant model and the scans agree where both see the site:
+/// of the scanned structure points (ground left out) within
+/// [`AGREEMENT_NEAR_M`] of the model, how many lie within
+/// [`AGREEMENT_CLOSE_M`] of its surface. Scan points lie on what the
+/// scanners saw, so where the model is placed right the points of what it
+/// models lie on it. A model placed wrong in the site frame (a PDMS origin,
+/// a missed `[plant] translate_m`) puts its obstacles where they are not,
+/// and where the scans did not see them nothing else would.
+#[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize)]
+pub struct ModelScanAgreement {
+    /// Scan points within [`AGREEMENT_NEAR_M`] of the model, of those sampled.
+    pub compared: usize,
+    /// Of those, the share within [`AGREEMENT_CLOSE_M`] of it (%).
+    pub close_pct: f64,
+    /// Their median distance to the model (m).
+    pub median_m: f64,
+}
+
+impl ModelScanAgreement {
+    /// Whether fewer than half the scan points near the model lie on it.
+    pub fn disagrees(&self) -> bool {
+        !(self.median_m <= AGREEMENT_CLOSE_M)
+    }
+
+    /// One line for the run's output and the PDF.
+    pub fn line(&self) -> String {
+        let verdict = if self.disagrees() {
+            "CHECK [plant] translate_m and rotate_z_deg: the model may not be where the scans put the site, and its obstacles the scans did not see would then be elsewhere"
+        } else {
+            "they agree"
+        };
+        format!(
+            "plant model against the scans: of {} scanned points within {AGREEMENT_NEAR_M:.0} m of the model, {:.0} % lie within {AGREEMENT_CLOSE_M:.2} m of it (median {:.3} m): {verdict}",
+            self.compared, self.close_pct, self.median_m
+        )
+    }
+}
+
+/// See [`ModelScanAgreement`] (m).
+pub const AGREEMENT_NEAR_M: f64 = 1.0;
+pub const AGREEMENT_CLOSE_M: f64 = 0.1;
+/// Scan points sampled at most: every k-th structure point.
+const AGREEMENT_SAMPLES: usize = 20_000;
+
+/// [`ModelScanAgreement`] of the model and the scans in `world`; `None`
+/// where fewer than 50 sampled scan points lie near the model (the two
+/// barely overlap, or there is no scan or no model).
+pub fn model_scan_agreement(world: &World) -> Option<ModelScanAgreement> {
+    let mesh = world.mesh.as_ref()?;
+    let structure: Vec<&[f64; 3]> = world.points.points.iter().filter(|(_, g)| !g).map(|(p, _)| p).collect();
+    let stride = structure.len().div_ceil(AGREEMENT_SAMPLES).max(1);
+    let mut d: Vec<f64> = structure
+        .par_iter()
+        .step_by(stride)
+        .filter_map(|p| {
+            let q = Vector::new(p[0], p[1], p[2]);
+            let d = mesh.distance_to_point(&Pose::identity(), q, false);
+            (d <= AGREEMENT_NEAR_M).then_some(d)
+        })
+        .collect();
+    if d.len() < 50 {
+        return None;
+    }
+    d.sort_by(f64::total_cmp);
+    let close = d.partition_point(|&x| x <= AGREEMENT_CLOSE_M);
+    Some(ModelScanAgreement {
+        compared: d.len(),
+        close_pct: 100.0 * close as f64 / d.len() as f64,
+        median_m: d[d.len() / 2],
+    })
+}
+
 /// How far the scanned ground under a mobile crane's carrier and outriggers
 /// may lie from the level the lift sets the crane up at (m): mats, cribbing,
 /// uneven ground. Farther, the lift has the crane at the wrong height (a

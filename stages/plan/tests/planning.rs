@@ -787,3 +787,26 @@ fn a_carrier_parked_in_a_bank_is_refused() {
         }
     }
 }
+
+/// The plant model is checked against the scans where both see the site:
+/// scanned points on the wall's face agree with the model; the same points
+/// half a metre off it (a model placed wrong) are said to disagree.
+#[test]
+fn the_plant_model_is_checked_against_the_scans() {
+    let mesh = site();
+    let face = |off: f64| -> Vec<[f64; 3]> {
+        (0..41 * 25).map(|n| [14.0 + (n % 41) as f64 * 0.5, -1.0 - off, (n / 41) as f64 * 0.5]).collect()
+    };
+    let agree = |pts: Vec<[f64; 3]>| {
+        let world = World::new(&mesh, &pts, &vec![false; pts.len()]).unwrap();
+        liftplan_plan::validate::model_scan_agreement(&world)
+    };
+    let a = agree(face(0.0)).unwrap();
+    assert!(!a.disagrees() && a.close_pct == 100.0 && a.median_m < 1e-9, "{a:?}");
+    assert!(a.line().contains("they agree"), "{}", a.line());
+    let off = agree(face(0.5)).unwrap();
+    assert!(off.disagrees() && (off.median_m - 0.5).abs() < 1e-9, "{off:?}");
+    assert!(off.line().contains("CHECK [plant] translate_m"), "{}", off.line());
+    // Too little overlap to say.
+    assert_eq!(agree(face(0.0)[..40].to_vec()), None);
+}
