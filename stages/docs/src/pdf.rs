@@ -66,6 +66,29 @@ pub fn text_width_mm(s: &str, size_pt: f32) -> f32 {
         * 0.3528
 }
 
+/// The lines `s` is broken into `width_mm` wide, each word whole on a line.
+pub fn wrap(s: &str, width_mm: f32, size_pt: f32) -> Vec<String> {
+    let mut lines = Vec::new();
+    let mut line = String::new();
+    for word in s.split_whitespace() {
+        let trial = if line.is_empty() { word.to_string() } else { format!("{line} {word}") };
+        if text_width_mm(&trial, size_pt) > width_mm && !line.is_empty() {
+            lines.push(std::mem::replace(&mut line, word.to_string()));
+        } else {
+            line = trial;
+        }
+    }
+    if !line.is_empty() {
+        lines.push(line);
+    }
+    lines
+}
+
+/// Distance between the baselines of a paragraph's lines (mm).
+pub fn line_height_mm(size_pt: f32) -> f32 {
+    size_pt * 0.3528 * 1.35
+}
+
 impl Doc {
     pub fn new(title: &str, size: PageSize) -> Result<Doc, String> {
         let mut doc = PdfDocument::new(title);
@@ -122,23 +145,11 @@ impl Doc {
         self.drawn_down_to(y);
     }
 
-    /// Text wrapped to `width` mm; returns the y below the last line.
+    /// Text wrapped to `width` mm ([`wrap`]); returns the y below the last line.
     pub fn paragraph(&mut self, x: f32, mut y: f32, width: f32, s: &str, size_pt: f32) -> f32 {
-        let lh = size_pt * 0.3528 * 1.35;
-        let mut line = String::new();
-        for word in s.split_whitespace() {
-            let trial = if line.is_empty() { word.to_string() } else { format!("{line} {word}") };
-            if text_width_mm(&trial, size_pt) > width && !line.is_empty() {
-                self.text(x, y, &line, size_pt, false, [30, 30, 30]);
-                y += lh;
-                line = word.to_string();
-            } else {
-                line = trial;
-            }
-        }
-        if !line.is_empty() {
+        for line in wrap(s, width, size_pt) {
             self.text(x, y, &line, size_pt, false, [30, 30, 30]);
-            y += lh;
+            y += line_height_mm(size_pt);
         }
         y
     }

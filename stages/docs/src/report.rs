@@ -41,29 +41,11 @@ fn inputs_room(d: &mut Doc, y: f32, need_mm: f32) -> f32 {
 /// Space kept free at the foot of a page (mm).
 const FOOT_MM: f32 = 15.0;
 
-/// Height of `s` set by [`Doc::paragraph`] `width_mm` wide (mm): its lines,
-/// each word put whole on a line, as the paragraph breaks them.
-fn paragraph_height(s: &str, width_mm: f32, size_pt: f32) -> f32 {
-    let mut lines = 0;
-    let mut line = String::new();
-    for word in s.split_whitespace() {
-        let trial = if line.is_empty() { word.to_string() } else { format!("{line} {word}") };
-        if crate::pdf::text_width_mm(&trial, size_pt) > width_mm && !line.is_empty() {
-            lines += 1;
-            line = word.to_string();
-        } else {
-            line = trial;
-        }
-    }
-    lines += (!line.is_empty()) as usize;
-    lines as f32 * size_pt * 0.3528 * 1.35
-}
-
 /// The stages' lines on the inputs page from `y`, `w` wide, going on to
 /// further pages where they do not fit; returns the y below the last.
 fn input_lines(d: &mut Doc, mut y: f32, lines: &[String], w: f32) -> f32 {
     for line in lines {
-        y = inputs_room(d, y, paragraph_height(line, w, 9.0));
+        y = inputs_room(d, y, crate::pdf::wrap(line, w, 9.0).len() as f32 * crate::pdf::line_height_mm(9.0));
         y = d.paragraph(15.0, y, w, line, 9.0);
     }
     y
