@@ -229,7 +229,7 @@ impl Gpu {
             return Err("depth map is not consistent (offsets or pyramid do not match its grid)".into());
         }
         if map.intervals.iter().any(|iv| iv.obj == u32::MAX) {
-            // The shader reads u32::MAX as "no object ignored".
+            // The shader reads u32::MAX as "no object left out".
             return Err("depth map has an interval of object id 4294967295, which the GPU queries reserve".into());
         }
         let mut tops = Vec::new();
@@ -269,8 +269,9 @@ impl Gpu {
     }
 
     /// [`Mdm::hit_where`] for every box, with `counts` "all but what `leave`
-    /// leaves out" ([`LeaveOut::counts`]): the device answers what it can prove, the CPU the rest (see
-    /// the module doc). `gpu_map` must be `map` uploaded.
+    /// leaves out" ([`LeaveOut::counts`]): the device answers what it can
+    /// prove, the CPU the rest (see the module doc). `gpu_map` must be `map`
+    /// uploaded.
     pub fn hits_where(
         &self,
         gpu_map: &GpuMap,
@@ -394,9 +395,9 @@ impl Gpu {
     }
 
     /// [`Mdm::clearance_where`] for every box, with `counts` "all but what
-    /// `leave` leaves out" ([`LeaveOut::counts`]): the device narrows each box's answer down to a few
-    /// cells, the CPU measures those exactly (see the module doc). `gpu_map`
-    /// must be `map` uploaded.
+    /// `leave` leaves out" ([`LeaveOut::counts`]): the device narrows each
+    /// box's answer down to a few cells, the CPU measures those exactly (see
+    /// the module doc). `gpu_map` must be `map` uploaded.
     pub fn clearances_where(
         &self,
         gpu_map: &GpuMap,
