@@ -1,8 +1,10 @@
 //! PTS and XYZ text exports of common scanner software.
 //!
 //! * PTS: an optional first line with the point count, then `x y z [intensity [r g b]]`
-//!   (Leica Cyclone; intensity -2048..2047 is shifted to 0..4095). A file that
-//!   ends before the count it declares was cut short and is refused.
+//!   (Leica Cyclone; intensity -2048..2047 is shifted to 0..4095); a
+//!   multi-scan export repeats the count line before each scan. A block that
+//!   ends before the count it declares (a file cut short, two spliced) is
+//!   refused.
 //! * XYZ/TXT/CSV: `x y z [r g b]` or `x y z intensity [r g b]`, separated by spaces,
 //!   tabs, commas or semicolons; lines starting with `#` or `//` and a header line
 //!   of words are skipped. Exporters write intensity as 0..1, 12-bit or 16-bit
@@ -88,7 +90,9 @@ pub(super) fn stream(info: &ScanInfo, f: &mut dyn FnMut(&PointCloud) -> Result<(
     let mut chunk = PointCloud::default();
     let mut seen = 0u64;
     let mut columns: Option<usize> = None;
-    let mut declared: Option<u64> = None;
+    // PTS: the current block's count line (points it declares, points read
+    // before it, its line). Cyclone writes one per scan of a multi-scan file.
+    let mut block: Option<(u64, u64, u64)> = None;
     let pts = info.format == Format::Pts;
     let mut vals: Vec<f64> = Vec::with_capacity(8);
     // Intensities as read, turned into 0..65535 when their chunk is handed on.
@@ -132,8 +136,17 @@ pub(super) fn stream(info: &ScanInfo, f: &mut dyn FnMut(&PointCloud) -> Result<(
                 format!("expected numbers 'x y z ...', found '{}'", t.chars().take(60).collect::<String>()),
             ));
         }
-        if pts && seen == 0 && columns.is_none() && vals.len() == 1 {
-            declared = Some(vals[0] as u64);
+        if pts && vals.len() == 1 {
+            let read = seen + chunk.len() as u64;
+            block_holds(path, block, read, Some(lineno))?;
+            let n = vals[0];
+            if !(n >= 0.0 && n.fract() == 0.0 && n < 1e18) {
+                return Err(ScanError::format(
+                    Location::line(path, lineno, None),
+                    format!("expected a point count (a whole number) or 'x y z ...', found '{}'", t),
+                ));
+            }
+            block = Some((n as u64, read, lineno));
             continue;
         }
         if vals.len() < 3 {
@@ -184,21 +197,33 @@ pub(super) fn stream(info: &ScanInfo, f: &mut dyn FnMut(&PointCloud) -> Result<(
     if seen == 0 {
         return Err(ScanError::format(Location::file(path), "no points found"));
     }
-    // Fewer points than the count line declares: the file was cut short (a
-    // copy or an export that did not finish), and what it lost may be an
-    // obstacle. More: the count is wrong, nothing is missing.
-    if let Some(d) = declared {
-        if seen < d {
-            return Err(ScanError::format(
-                Location::line(path, lineno, None),
-                format!("the first line declares {d} points but the file ends after {seen} (truncated file)"),
-            ));
-        }
-        if seen > d {
-            tracing::warn!("{}: first line declares {d} points, file holds {seen}", path.display());
-        }
-    }
+    block_holds(path, block, seen, None)?;
     Ok(seen)
+}
+
+/// Whether a PTS block (its count line's (declared, points read before it,
+/// line)) holds the points it declares, now that `read` points are read and
+/// the next count line (at `next_line`) or the end of the file is reached.
+/// Fewer: the file was cut short (a copy or an export that did not finish)
+/// or two were spliced, and what it lost may be an obstacle. More: the
+/// count is wrong, nothing is missing.
+fn block_holds(path: &Path, block: Option<(u64, u64, u64)>, read: u64, next_line: Option<u64>) -> Result<()> {
+    let Some((declared, start, line)) = block else { return Ok(()) };
+    let held = read - start;
+    if held < declared {
+        let ends = match next_line {
+            Some(n) => format!("the next count line (line {n}) comes after {held} of them"),
+            None => format!("the file ends after {held} of them (truncated file)"),
+        };
+        return Err(ScanError::format(
+            Location::line(path, line, None),
+            format!("this count line declares {declared} points but {ends}"),
+        ));
+    }
+    if held > declared {
+        tracing::warn!("{}:{line}: count line declares {declared} points, {held} follow", path.display());
+    }
+    Ok(())
 }
 
 #[cfg(test)]
@@ -219,7 +244,15 @@ mod tests {
     #[test]
     fn a_pts_file_with_fewer_points_than_declared_is_refused() {
         let e = read("cut.pts", "3\n0 0 0 10\n1 0 0 10\n").unwrap_err();
-        assert!(e.contains("cut.pts") && e.contains("declares 3 points but the file ends after 2"), "{e}");
+        assert!(e.contains("cut.pts:1") && e.contains("declares 3 points but the file ends after 2"), "{e}");
+        // A multi-scan file (a count line before each scan) reads whole; a
+        // short block before the next count line is refused.
+        let two = "2\n0 0 0 10\n1 0 0 10\n1\n5 5 5 10\n";
+        assert_eq!(read("two.pts", two).unwrap().xyz, [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [5.0, 5.0, 5.0]]);
+        let e = read("short.pts", "3\n0 0 0 10\n1 0 0 10\n1\n5 5 5 10\n").unwrap_err();
+        assert!(e.contains("short.pts:1") && e.contains("the next count line (line 4) comes after 2"), "{e}");
+        let e = read("half.pts", "2.5\n0 0 0 10\n").unwrap_err();
+        assert!(e.contains("half.pts:1") && e.contains("expected a point count"), "{e}");
         assert_eq!(read("more.pts", "1\n0 0 0 10\n1 0 0 10\n").unwrap().len(), 2);
         assert_eq!(read("exact.pts", "2\n0 0 0 10\n1 0 0 10\n").unwrap().len(), 2);
     }
