@@ -20,11 +20,11 @@
 //! for the boom marking in [`CSpace::build`]: its rows differ from these on a
 //! few hundred cells, and the table must not depend on the machine.
 
-use crate::{CSpace, CellHit, Problem, counts_for, left_out};
+use crate::{CSpace, CellHit, Problem, left_out};
 use liftplan_core::crane::{Dependence, PartKind};
 use liftplan_core::obb::Obb;
 use liftplan_depthmap::gpu::{Gpu, GpuMap, ScreenCounts};
-use liftplan_depthmap::query::Hit;
+use liftplan_depthmap::query::{Hit, LeaveOut};
 use rayon::prelude::*;
 use std::convert::Infallible;
 
@@ -107,5 +107,6 @@ fn rows_with<E>(
 
 /// The CPU's exact queries of one part's boxes.
 fn on_cpu(p: &Problem, kind: PartKind, boxes: &[Obb]) -> Vec<Option<Hit>> {
-    boxes.par_iter().map(|b| p.map.hit_where(b, |iv| counts_for(&p.task.crane, kind, iv))).collect()
+    let leave = left_out(&p.task.crane, kind);
+    boxes.par_iter().map(|b| p.map.hit_where(b, |iv| LeaveOut::counts(leave, iv))).collect()
 }

@@ -37,7 +37,7 @@ use liftplan_core::crane::Config;
 use liftplan_core::crane::{CraneSetup, Dependence, LoadShape, PartKind};
 use liftplan_core::lift::LiftTask;
 use liftplan_core::obb::Obb;
-use liftplan_depthmap::mdm::{Interval, Mdm, OBJ_GROUND};
+use liftplan_depthmap::mdm::{Mdm, OBJ_GROUND};
 use liftplan_depthmap::query::LeaveOut;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -212,11 +212,6 @@ fn far_from(b: &Obb, p: &liftplan_core::frame::Point3) -> f64 {
 
 fn is_luffing(crane: &CraneSetup) -> bool {
     !crane.model.is_tower()
-}
-
-/// Is an obstacle relevant to a part? ([`left_out`]).
-fn counts_for(crane: &CraneSetup, part: PartKind, iv: &Interval) -> bool {
-    LeaveOut::counts(left_out(crane, part), iv)
 }
 
 /// What a part's box queries leave out, in the form both the CPU's and the
@@ -804,7 +799,8 @@ impl<'a> Checker<'a> {
                     } else {
                         cs.cell_motion(crane, &b)
                     };
-                if let Some(h) = self.map.hit_where(&b.expanded(grow), |iv| counts_for(crane, kind, iv)) {
+                let leave = left_out(crane, kind);
+                if let Some(h) = self.map.hit_where(&b.expanded(grow), |iv| LeaveOut::counts(leave, iv)) {
                     return Err(self.blocked("collision", Some(kind), Some(h.interval.obj), c));
                 }
             }
