@@ -93,6 +93,14 @@ impl PointIndex {
         &self.points[self.starts[k]..self.starts[k + 1]]
     }
 
+    /// The occupied voxels of the range `lo ..= hi`, in ascending order.
+    /// Voxels are sorted by x first: those of the range's x lie together.
+    fn occupied_in(&self, lo: [i32; 3], hi: [i32; 3]) -> impl Iterator<Item = usize> + '_ {
+        let first = self.keys.partition_point(|k| k[0] < lo[0]);
+        let end = self.keys.partition_point(|k| k[0] <= hi[0]);
+        (first..end).filter(move |&k| (1..3).all(|a| lo[a] <= self.keys[k][a] && self.keys[k][a] <= hi[a]))
+    }
+
     /// Heights of the ground points inside any of the plan polygons
     /// `areas`, at any height.
     fn ground_heights_in(&self, areas: &[Vec<[f64; 2]>]) -> Vec<f64> {
@@ -106,10 +114,7 @@ impl PointIndex {
             return Vec::new();
         }
         let (vlo, vhi) = (voxel(&[lo[0], lo[1], 0.0]), voxel(&[hi[0], hi[1], 0.0]));
-        let first = self.keys.partition_point(|k| k[0] < vlo[0]);
-        let end = self.keys.partition_point(|k| k[0] <= vhi[0]);
-        (first..end)
-            .filter(|&k| (vlo[1]..=vhi[1]).contains(&self.keys[k][1]))
+        self.occupied_in([vlo[0], vlo[1], i32::MIN], [vhi[0], vhi[1], i32::MAX])
             .flat_map(|k| self.voxel_points(k))
             .filter(|(p, ground)| *ground && areas.iter().any(|a| in_polygon(a, [p[0], p[1]])))
             .map(|(p, _)| p[2])
@@ -245,26 +250,23 @@ pub struct SetUpGround {
     pub highest_m: f64,
 }
 
-/// [`set_up_ground`] for the crane as the lift sets it up, with the problem
-/// if any, for the planner to refuse such a lift before anything else.
+/// The problem of [`set_up_ground`], for the planner to refuse such a lift
+/// before anything else.
 pub(crate) fn crane_set_up_level_problem(task: &LiftTask, world: &World) -> Option<String> {
+    set_up_ground(task, world).1
+}
+
+/// The scanned ground under a mobile crane's carrier and outriggers, if any
+/// is scanned there, and the problem if it does not lie at the level the
+/// lift sets the crane up at.
+fn set_up_ground(task: &LiftTask, world: &World) -> (Option<SetUpGround>, Option<String>) {
+    // They stand still whatever the configuration.
     let footprints: Vec<Vec<[f64; 2]>> = [PartKind::Carrier, PartKind::Outriggers]
         .into_iter()
         .filter_map(|kind| task.crane.part(kind, &task.pick, &task.load))
         .map(|b| b.footprint())
         .collect();
-    set_up_ground(task, world, &footprints).1
-}
-
-/// The scanned ground under a mobile crane's carrier and outriggers
-/// (`footprints`), if any is scanned there, and the problem if it does not
-/// lie at the level the lift sets the crane up at.
-fn set_up_ground(
-    task: &LiftTask,
-    world: &World,
-    footprints: &[Vec<[f64; 2]>],
-) -> (Option<SetUpGround>, Option<String>) {
-    let mut z = world.points.ground_heights_in(footprints);
+    let mut z = world.points.ground_heights_in(&footprints);
     if z.is_empty() {
         return (None, None);
     }
@@ -387,12 +389,8 @@ fn nearest_point(
         cub.distance_to_point(pose, Vector::new(c[0], c[1], c[2]), true) - VOXEL_HALF_DIAGONAL_M > best
     };
     if walk_occupied {
-        // Voxels are sorted by x first: those of the range's x lie together.
-        let first = index.keys.partition_point(|k| k[0] < lo[0]);
-        let end = index.keys.partition_point(|k| k[0] <= hi[0]);
-        for k in first..end {
-            let key = &index.keys[k];
-            if (1..3).all(|a| lo[a] <= key[a] && key[a] <= hi[a]) && !far(key, best.distance_m) {
+        for k in index.occupied_in(lo, hi) {
+            if !far(&index.keys[k], best.distance_m) {
                 check(index.voxel_points(k), best);
             }
         }
@@ -1048,7 +1046,6 @@ pub fn validate(
     // their level; a bank higher up, under the carrier or the outrigger
     // beams, is in the way).
     if let Some(first) = moves.first() {
-        let mut footprints = Vec::new();
         for &kind in task.crane.part_kinds() {
             if kind.dependence() != Dependence::Fixed {
                 continue;
@@ -1060,12 +1057,9 @@ pub fn validate(
                 if n.distance_m <= 0.0 {
                     problems.push(format!("crane set-up: {} intersects {}", kind.name(), n.object));
                 }
-                if matches!(kind, PartKind::Carrier | PartKind::Outriggers) {
-                    footprints.push(b.footprint());
-                }
             }
         }
-        let (ground, problem) = set_up_ground(task, world, &footprints);
+        let (ground, problem) = set_up_ground(task, world);
         set_up = ground;
         problems.extend(problem);
     }
