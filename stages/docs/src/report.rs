@@ -7,6 +7,7 @@ use liftplan_core::capacity::ChartConfig;
 use liftplan_core::image::Image;
 use liftplan_core::lift::LiftTask;
 use liftplan_plan::LiftPlan;
+use liftplan_plan::steps::SetDown;
 
 const INK: [u8; 3] = [20, 20, 20];
 const GREY: [u8; 3] = [90, 90, 90];
@@ -436,16 +437,16 @@ pub fn document(
     };
     y = d.paragraph(15.0, y, w, &set_up_text, 9.5);
     y += 4.0;
-    let support_m = plan.summary.support_m;
-    let set_text = match &plan.summary.set_on {
-        Some(g) if g.gap_m <= support_m + 2e-3 => {
-            format!("At its set position the load rests on {} (within {support_m:.2} m under its underside).", g.object)
-        }
-        Some(g) => format!(
+    let set_text = match plan.summary.set_down() {
+        SetDown::Rests(g) => format!(
+            "At its set position the load rests on {} (within {:.2} m under its underside).",
+            g.object, plan.summary.support_m
+        ),
+        SetDown::Above(g) => format!(
             "At its set position the load hangs {:.2} m above {}, the nearest thing under it: the set-down ends there, and lowering it further is not part of this plan.",
             g.gap_m, g.object
         ),
-        None => format!(
+        SetDown::OverNothing => format!(
             "Nothing in the plant model or the scans lies within {:.0} m under the load at its set position: what it is set down on is not part of this plan. Check it on site.",
             liftplan_plan::validate::SUPPORT_SEARCH_M
         ),

@@ -128,18 +128,38 @@ pub struct Summary {
     pub support_m: f64,
 }
 
+/// Where the set-down ends.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum SetDown<'a> {
+    /// On its support: within `support_m` under the load.
+    Rests(&'a crate::validate::SetSupport),
+    /// Above the nearest thing under it: the rest of the lowering is not
+    /// planned.
+    Above(&'a crate::validate::SetSupport),
+    /// Over nothing modelled within [`crate::validate::SUPPORT_SEARCH_M`].
+    OverNothing,
+}
+
 impl Summary {
-    /// Where the set-down ends: on its support, above it (the plan ends
-    /// with the load hanging: the rest of the lowering is not planned), or
-    /// over nothing modelled.
-    pub fn set_down_line(&self) -> String {
+    /// Where the set-down ends ([`Summary::set_on`], [`Summary::support_m`];
+    /// the support's gap is known to 2 mm).
+    pub fn set_down(&self) -> SetDown<'_> {
         match &self.set_on {
-            Some(s) if s.gap_m <= self.support_m + 2e-3 => format!("set down on {}", s.object),
-            Some(s) => format!(
+            Some(s) if s.gap_m <= self.support_m + 2e-3 => SetDown::Rests(s),
+            Some(s) => SetDown::Above(s),
+            None => SetDown::OverNothing,
+        }
+    }
+
+    /// [`Summary::set_down`] for the run's line.
+    pub fn set_down_line(&self) -> String {
+        match self.set_down() {
+            SetDown::Rests(s) => format!("set down on {}", s.object),
+            SetDown::Above(s) => format!(
                 "SET-DOWN ENDS {:.2} m ABOVE {}: lowering it further is not part of this plan",
                 s.gap_m, s.object
             ),
-            None => format!(
+            SetDown::OverNothing => format!(
                 "NOTHING MODELLED UNDER THE LOAD at its set position (within {:.0} m): check its support on site",
                 crate::validate::SUPPORT_SEARCH_M
             ),
