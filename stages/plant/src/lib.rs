@@ -461,6 +461,7 @@ pub fn read_file(path: &Path, s: &Settings, summary: &mut Summary) -> Result<Tri
 
 fn read_model(path: &Path, s: &Settings, summary: &mut Summary, room: u64) -> Result<TriMesh> {
     let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
+    let file = path.file_name().map(|f| f.to_string_lossy().into_owned()).unwrap_or_default();
     let imp = mesh_io::Import { scale: s.unit.to_m(), y_up: s.up_axis == UpAxis::Y };
     let m = match ext.as_str() {
         "rvm" => {
@@ -484,7 +485,6 @@ fn read_model(path: &Path, s: &Settings, summary: &mut Summary, room: u64) -> Re
             let m = mesh_io::read_obj(path, imp)?;
             let without = mesh_io::obj_elements_without_surface(path)?;
             if without > 0 {
-                let file = path.file_name().map(|f| f.to_string_lossy().into_owned()).unwrap_or_default();
                 summary.not_surfaces.push(format!("{file}: {without} line or point elements"));
             }
             m
@@ -494,7 +494,6 @@ fn read_model(path: &Path, s: &Settings, summary: &mut Summary, room: u64) -> Re
         "gltf" | "glb" => {
             let mut skipped = Vec::new();
             let m = mesh_io::read_gltf_noting(path, room, &mut skipped)?;
-            let file = path.file_name().map(|f| f.to_string_lossy().into_owned()).unwrap_or_default();
             summary.not_surfaces.extend(skipped.into_iter().map(|s| format!("{file}: {s}")));
             m
         }
@@ -515,7 +514,6 @@ fn read_model(path: &Path, s: &Settings, summary: &mut Summary, room: u64) -> Re
         // A mesh file that makes no surface at all (a point cloud saved as PLY,
         // a model of lines): nothing of it is an obstacle, which the signer
         // must read.
-        let file = path.file_name().map(|f| f.to_string_lossy().into_owned()).unwrap_or_default();
         summary.not_surfaces.push(format!("{file}: no faces at all"));
     }
     if ext != "rvm" {

@@ -95,6 +95,12 @@ pub enum ScanUnit {
 }
 
 impl ScanUnit {
+    /// The unit `info`'s coordinates are read in: the one its file states,
+    /// else this one.
+    fn for_scan(self, info: &ScanInfo) -> read::StatedUnit {
+        info.stated_unit.clone().unwrap_or_else(|| self.as_stated())
+    }
+
     fn as_stated(self) -> read::StatedUnit {
         let (name, m) = match self {
             ScanUnit::Metre => ("metre", 1.0),
@@ -450,7 +456,7 @@ pub fn list_all(inputs: &[PathBuf], unit: ScanUnit) -> Result<Vec<ScanInfo>> {
     let mut all = Vec::new();
     for p in inputs {
         for mut info in read::list_scans(p)? {
-            let u = info.stated_unit.clone().unwrap_or_else(|| unit.as_stated());
+            let u = unit.for_scan(&info);
             info.to_m = [u.horizontal_m, u.horizontal_m, u.vertical_m];
             if let Some(b) = &mut info.bbox
                 && !b.is_empty()
@@ -596,7 +602,7 @@ pub fn run(inputs: &[PathBuf], s: &Settings, opts: &RunOptions, out_dir: &Path) 
             method: r.method.clone(),
             registered: r.registered,
             warning: r.warning.clone(),
-            unit: info.stated_unit.clone().unwrap_or_else(|| s.unit.as_stated()).what,
+            unit: s.unit.for_scan(info).what,
             to_m: info.to_m,
         })
         .collect();
