@@ -327,35 +327,50 @@ fn upright_inner(b: u32, xa: f32, xb: f32, ya: f32, yb: f32) -> vec2<f32> {
     return vec2<f32>(c.z - word(b, 26u), c.z + word(b, 26u));
 }
 
+// What a box's walk needs of its words (see the layout at the top).
+struct Walk {
+    left_obj: u32,
+    left_to: f32,
+    i0: u32, i1: u32, j0: u32, j1: u32,
+    start: u32,
+    ti0: u32, ti1: u32, tj0: u32, tj1: u32,
+}
+
+fn walk_of(b: u32) -> Walk {
+    let o = BOX_WORDS * b;
+    return Walk(
+        boxes[o + 3u], word(b, 32u),
+        boxes[o + 16u], boxes[o + 17u], boxes[o + 18u], boxes[o + 19u],
+        boxes[o + 22u],
+        boxes[o + 27u], boxes[o + 28u], boxes[o + 29u], boxes[o + 30u],
+    );
+}
+
+// Whether interval `k`, whose top is `zhi`, is left out of box's walk `w`:
+// the CPU's `LeaveOut::counts`, negated.
+fn left_out(w: Walk, k: u32, zhi: f32) -> bool {
+    return intervals[3u * k + 2u] == w.left_obj && zhi <= w.left_to;
+}
+
 @compute @workgroup_size(64)
 fn screen_boxes(@builtin(global_invocation_id) g: vec3<u32>) {
     let b = g.x + g.y * MAX_DIM * GROUP;
     if (b >= P.n) { return; }
-    let ignore = boxes[BOX_WORDS * b + 3u];
-    let ignore_to = word(b, 32u);
-    let i0 = boxes[BOX_WORDS * b + 16u];
-    let i1 = boxes[BOX_WORDS * b + 17u];
-    let j0 = boxes[BOX_WORDS * b + 18u];
-    let j1 = boxes[BOX_WORDS * b + 19u];
-    let start = boxes[BOX_WORDS * b + 22u];
+    let w = walk_of(b);
     verdict[b] = vec4<u32>(GAVE_UP, 0u, 0u, 0u);
     // The CPU's walk (`Mdm::hit_where`): its start tiles row by row, each
     // tile's four children in the order (0,0), (1,0), (0,1), (1,1), so the
     // first contact found is the CPU's. The stack is filled in reverse.
     var stack: array<vec3<u32>, STACK>;
     var sp = 0u;
-    let ti0 = boxes[BOX_WORDS * b + 27u];
-    let ti1 = boxes[BOX_WORDS * b + 28u];
-    let tj0 = boxes[BOX_WORDS * b + 29u];
-    let tj1 = boxes[BOX_WORDS * b + 30u];
-    let starts = (ti1 - ti0 + 1u) * (tj1 - tj0 + 1u);
+    let starts = (w.ti1 - w.ti0 + 1u) * (w.tj1 - w.tj0 + 1u);
     if (starts > 16u) { return; }
     var steps = 0u;
-    for (var tj = tj1 + 1u; tj > tj0; tj--) {
+    for (var tj = w.tj1 + 1u; tj > w.tj0; tj--) {
         steps++;
-        for (var ti = ti1 + 1u; ti > ti0; ti--) {
+        for (var ti = w.ti1 + 1u; ti > w.ti0; ti--) {
             steps++;
-            stack[sp] = vec3<u32>(start, ti - 1u, tj - 1u);
+            stack[sp] = vec3<u32>(w.start, ti - 1u, tj - 1u);
             sp++;
         }
     }
@@ -372,10 +387,10 @@ fn screen_boxes(@builtin(global_invocation_id) g: vec3<u32>) {
         let t = stack[sp];
         let lvl = t.x;
         // The tile's cells, cut to the outer box's (no others can be met).
-        let ci0 = max(t.y << lvl, i0);
-        let ci1 = min(((t.y + 1u) << lvl) - 1u, i1);
-        let cj0 = max(t.z << lvl, j0);
-        let cj1 = min(((t.z + 1u) << lvl) - 1u, j1);
+        let ci0 = max(t.y << lvl, w.i0);
+        let ci1 = min(((t.y + 1u) << lvl) - 1u, w.i1);
+        let cj0 = max(t.z << lvl, w.j0);
+        let cj1 = min(((t.z + 1u) << lvl) - 1u, w.j1);
         if (ci0 > ci1 || cj0 > cj1) { continue; }
         let info = levels[lvl];
         let top = tops[info.x + t.z * info.y + t.y];
@@ -402,7 +417,7 @@ fn screen_boxes(@builtin(global_invocation_id) g: vec3<u32>) {
                     break;
                 }
                 let zhi = bitcast<f32>(intervals[3u * k + 1u]);
-                if (zhi < r.x || (intervals[3u * k + 2u] == ignore && zhi <= ignore_to)) { continue; }
+                if (zhi < r.x || left_out(w, k, zhi)) { continue; }
                 // It may meet the box: a hit if it meets what the box surely
                 // has over the cell, else the CPU's exact test must decide.
                 if (!inner_done) {
@@ -496,13 +511,7 @@ fn clear_boxes(@builtin(global_invocation_id) g: vec3<u32>) {
     // x - 0 is x), a turned box's bounds do.
     var loose = 1.0;
     if (upright) { loose = 0.0; }
-    let ignore = boxes[BOX_WORDS * b + 3u];
-    let ignore_to = word(b, 32u);
-    let i0 = boxes[BOX_WORDS * b + 16u];
-    let i1 = boxes[BOX_WORDS * b + 17u];
-    let j0 = boxes[BOX_WORDS * b + 18u];
-    let j1 = boxes[BOX_WORDS * b + 19u];
-    let start = boxes[BOX_WORDS * b + 22u];
+    let w = walk_of(b);
     // The CPU walk's start tiles, as in screen_boxes (the order does not
     // matter here, only which cells are walked). This start and the tile
     // step repeat screen_boxes' on purpose: as functions taking the stack by
@@ -510,18 +519,14 @@ fn clear_boxes(@builtin(global_invocation_id) g: vec3<u32>) {
     // passes the array by copy).
     var stack: array<vec3<u32>, STACK>;
     var sp = 0u;
-    let ti0 = boxes[BOX_WORDS * b + 27u];
-    let ti1 = boxes[BOX_WORDS * b + 28u];
-    let tj0 = boxes[BOX_WORDS * b + 29u];
-    let tj1 = boxes[BOX_WORDS * b + 30u];
-    let starts = (ti1 - ti0 + 1u) * (tj1 - tj0 + 1u);
+    let starts = (w.ti1 - w.ti0 + 1u) * (w.tj1 - w.tj0 + 1u);
     if (starts > 16u) { return; }
     var steps = 0u;
-    for (var tj = tj1 + 1u; tj > tj0; tj--) {
+    for (var tj = w.tj1 + 1u; tj > w.tj0; tj--) {
         steps++;
-        for (var ti = ti1 + 1u; ti > ti0; ti--) {
+        for (var ti = w.ti1 + 1u; ti > w.ti0; ti--) {
             steps++;
-            stack[sp] = vec3<u32>(start, ti - 1u, tj - 1u);
+            stack[sp] = vec3<u32>(w.start, ti - 1u, tj - 1u);
             sp++;
         }
     }
@@ -542,10 +547,10 @@ fn clear_boxes(@builtin(global_invocation_id) g: vec3<u32>) {
         sp--;
         let t = stack[sp];
         let lvl = t.x;
-        let ci0 = max(t.y << lvl, i0);
-        let ci1 = min(((t.y + 1u) << lvl) - 1u, i1);
-        let cj0 = max(t.z << lvl, j0);
-        let cj1 = min(((t.z + 1u) << lvl) - 1u, j1);
+        let ci0 = max(t.y << lvl, w.i0);
+        let ci1 = min(((t.y + 1u) << lvl) - 1u, w.i1);
+        let cj0 = max(t.z << lvl, w.j0);
+        let cj1 = min(((t.z + 1u) << lvl) - 1u, w.j1);
         if (ci0 > ci1 || cj0 > cj1) { continue; }
         let info = levels[lvl];
         let top = tops[info.x + t.z * info.y + t.y];
@@ -603,7 +608,7 @@ fn clear_boxes(@builtin(global_invocation_id) g: vec3<u32>) {
                 higher = true;
                 break;
             }
-            if (intervals[3u * k + 2u] == ignore && zhi <= ignore_to) { continue; }
+            if (left_out(w, k, zhi)) { continue; }
             // Down, the box meets the interval if it starts no higher than
             // the box's top, when the box's bottom reaches its top; up,
             // symmetrically. Surely met: it lies that way of what the box
