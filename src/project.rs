@@ -320,8 +320,9 @@ voxel = 0.05              # voxel edge, m
 voxel_point = "centroid"  # centroid | nearest
 spacing = 0.05            # minimum point spacing for subsample = "spacing", m
 every_nth = 9             # keep every Nth point for subsample = "nth"
-unit = "m"                # m | ft | us-ft: unit of scan files that state none (a LAS/LAZ CRS's
-                          # unit, and E57's metres, are applied whatever this says)
+# unit = "m"              # m | ft | us-ft: unit of scan files that state none (metres where
+                          # unset; a LAS/LAZ CRS's unit, and E57's metres, are applied whatever
+                          # this says); needed for a LAS/LAZ CRS named by an EPSG code alone
 # stations = "stations.toml"   # surveyed scanner poses: [[station]] scan, x_m, y_m, z_m, yaw_deg;
 #                              # registration keeps each scan within tolerance_m (plan and height,
 #                              # default 0.5) and yaw_tolerance_deg (default 3) of its station,

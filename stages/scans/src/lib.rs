@@ -82,7 +82,8 @@ pub enum SubsampleMethod {
 }
 
 /// The unit of scan files that state none (`[scans] unit`). A unit a file
-/// states (a LAS/LAZ CRS, E57's metres) is that file's, whatever this says.
+/// states (a LAS/LAZ CRS, E57's metres) is that file's, whatever this says;
+/// a file that names a CRS without stating its unit needs this set.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
 pub enum ScanUnit {
     #[default]
@@ -95,23 +96,52 @@ pub enum ScanUnit {
 }
 
 impl ScanUnit {
-    /// The unit `info`'s coordinates are read in: the one its file states,
-    /// else this one.
-    fn for_scan(self, info: &ScanInfo) -> read::StatedUnit {
-        info.stated_unit.clone().unwrap_or_else(|| self.as_stated())
-    }
-
-    fn as_stated(self) -> read::StatedUnit {
-        let (name, m) = match self {
+    fn name_and_metres(self) -> (&'static str, f64) {
+        match self {
             ScanUnit::Metre => ("metre", 1.0),
             ScanUnit::Foot => ("foot", 0.3048),
             ScanUnit::UsSurveyFoot => ("US survey foot", 1200.0 / 3937.0),
-        };
-        read::StatedUnit {
-            horizontal_m: m,
-            vertical_m: m,
-            what: format!("{name} ([scans] unit; the file states none)"),
         }
+    }
+}
+
+/// The unit `info`'s coordinates are read in: the one its file states, else
+/// the project's (`[scans] unit`, metres where unset). A file that names a
+/// CRS without stating its unit (an EPSG code alone) is refused where the
+/// project does not say the unit: a State Plane survey in US feet read as
+/// metres would put every obstacle 3.28 times too far from the crane.
+fn unit_for(project: Option<ScanUnit>, info: &ScanInfo) -> Result<read::StatedUnit> {
+    match (&info.unit, project) {
+        (read::CrsUnit::Stated(u), _) => Ok(u.clone()),
+        (read::CrsUnit::None, Some(p)) => {
+            let (name, m) = p.name_and_metres();
+            Ok(read::StatedUnit {
+                horizontal_m: m,
+                vertical_m: m,
+                what: format!("{name} ([scans] unit; the file states none)"),
+            })
+        }
+        (read::CrsUnit::None, None) => {
+            Ok(read::StatedUnit::metres("metre (the default: the file states none and [scans] unit is not set)"))
+        }
+        (read::CrsUnit::Unstated { crs, heights }, Some(p)) => {
+            let (name, m) = p.name_and_metres();
+            let (v, heights) = match heights {
+                Some((vname, v)) => (*v, format!("heights in {vname}, as the file states")),
+                None => (m, "heights too".into()),
+            };
+            Ok(read::StatedUnit {
+                horizontal_m: m,
+                vertical_m: v,
+                what: format!("{name} ([scans] unit, {heights}; the file's CRS, {crs}, states none)"),
+            })
+        }
+        (read::CrsUnit::Unstated { crs, .. }, None) => Err(ScanError::format(
+            Location::file(&info.path),
+            format!(
+                "its CRS is {crs}, which does not state its unit, and liftplan holds no EPSG registry to look it up (State Plane CRSs are often in US survey feet): set [scans] unit to the CRS's unit, \"m\", \"ft\" or \"us-ft\""
+            ),
+        )),
     }
 }
 
@@ -148,9 +178,11 @@ pub struct Settings {
     /// Keep every Nth point for `subsample = "nth"` (the thesis uses 9).
     pub every_nth: u64,
     /// Unit of the coordinates of scan files that state none: m | ft |
-    /// us-ft. A LAS/LAZ file whose CRS states its unit, and every E57 file
-    /// (metres by its standard), is read in its own, converted to metres.
-    pub unit: ScanUnit,
+    /// us-ft; metres where unset. A LAS/LAZ file whose CRS states its unit,
+    /// and every E57 file (metres by its standard), is read in its own,
+    /// converted to metres; one whose CRS is named without its unit (an
+    /// EPSG code alone) is read in this and refused where it is unset.
+    pub unit: Option<ScanUnit>,
     /// Station file with initial poses, relative to the project folder.
     pub stations: Option<PathBuf>,
     /// fail | exclude
@@ -168,7 +200,7 @@ impl Default for Settings {
             voxel_point: VoxelPoint::Centroid,
             spacing: 0.05,
             every_nth: 9,
-            unit: ScanUnit::Metre,
+            unit: None,
             stations: None,
             on_unregistered: OnUnregistered::Fail,
             ground: GroundSettings::default(),
@@ -451,12 +483,12 @@ fn check_stations(path: &Path, stations: &[SurveyedStation], scans: &[ScanInfo])
 
 /// Lists every scan in `inputs` (files in the given order, scans in file
 /// order), each to be read in metres: in the unit its file states, else in
-/// `unit` ([`ScanInfo::to_m`]).
-pub fn list_all(inputs: &[PathBuf], unit: ScanUnit) -> Result<Vec<ScanInfo>> {
+/// `unit` ([`ScanInfo::to_m`]; see [`unit_for`]).
+pub fn list_all(inputs: &[PathBuf], unit: Option<ScanUnit>) -> Result<Vec<ScanInfo>> {
     let mut all = Vec::new();
     for p in inputs {
         for mut info in read::list_scans(p)? {
-            let u = unit.for_scan(&info);
+            let u = unit_for(unit, &info)?;
             info.to_m = [u.horizontal_m, u.horizontal_m, u.vertical_m];
             if let Some(b) = &mut info.bbox
                 && !b.is_empty()
@@ -590,22 +622,24 @@ pub fn run(inputs: &[PathBuf], s: &Settings, opts: &RunOptions, out_dir: &Path) 
     let mut reports: Vec<ScanReport> = scans
         .iter()
         .zip(&results)
-        .map(|(info, r)| ScanReport {
-            file: liftplan_core::location::shown(&info.path, opts.root),
-            name: info.name.clone(),
-            format: info.format,
-            points_read: 0,
-            points_kept: 0,
-            pose: pose_to_rows(&r.pose),
-            fitness: r.fitness,
-            rmse_m: r.rmse_m,
-            method: r.method.clone(),
-            registered: r.registered,
-            warning: r.warning.clone(),
-            unit: s.unit.for_scan(info).what,
-            to_m: info.to_m,
+        .map(|(info, r)| -> Result<ScanReport> {
+            Ok(ScanReport {
+                file: liftplan_core::location::shown(&info.path, opts.root),
+                name: info.name.clone(),
+                format: info.format,
+                points_read: 0,
+                points_kept: 0,
+                pose: pose_to_rows(&r.pose),
+                fitness: r.fitness,
+                rmse_m: r.rmse_m,
+                method: r.method.clone(),
+                registered: r.registered,
+                warning: r.warning.clone(),
+                unit: unit_for(s.unit, info)?.what,
+                to_m: info.to_m,
+            })
         })
-        .collect();
+        .collect::<Result<_>>()?;
     std::fs::create_dir_all(out_dir).map_err(|e| ScanError::Io(Location::file(out_dir), e))?;
     write_json(&out_dir.join("registration.json"), &serde_json::json!({ "register": s.register, "scans": reports }))?;
     if !unregistered.is_empty() && s.on_unregistered == OnUnregistered::Fail {
@@ -853,7 +887,7 @@ mod tests {
             pose: None,
             bbox: None,
             details: Default::default(),
-            stated_unit: None,
+            unit: read::CrsUnit::None,
             to_m: [1.0; 3],
         }
     }

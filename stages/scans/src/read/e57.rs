@@ -84,7 +84,9 @@ pub(super) fn list(path: &Path) -> Result<Vec<ScanInfo>> {
                 pose: pose_of(pc),
                 bbox,
                 details,
-                stated_unit: Some(super::StatedUnit::metres("metre (E57 coordinates are metres by its standard)")),
+                unit: super::CrsUnit::Stated(super::StatedUnit::metres(
+                    "metre (E57 coordinates are metres by its standard)",
+                )),
                 to_m: [1.0; 3],
             }
         })

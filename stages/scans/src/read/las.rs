@@ -501,11 +501,13 @@ pub(super) fn list(path: &Path, format: Format) -> Result<Vec<ScanInfo>> {
     details.insert("vlrs".into(), json!(hdr.vlrs().len()));
     details.insert("evlrs".into(), json!(hdr.evlrs().len()));
     details.insert("crs".into(), json!(hdr.has_crs_vlrs()));
-    let stated_unit = stated_unit(path, hdr)?;
-    details.insert(
-        "unit".into(),
-        json!(stated_unit.as_ref().map(|u| u.what.clone()).unwrap_or_else(|| "none stated".into())),
-    );
+    let unit = crs_unit(path, hdr)?;
+    let said = match &unit {
+        super::CrsUnit::Stated(u) => u.what.clone(),
+        super::CrsUnit::Unstated { crs, .. } => format!("NOT STATED by its CRS ({crs})"),
+        super::CrsUnit::None => "none stated (no CRS)".into(),
+    };
+    details.insert("unit".into(), json!(said));
     details.insert("system_identifier".into(), json!(hdr.system_identifier()));
     details.insert("generating_software".into(), json!(hdr.generating_software()));
     Ok(vec![ScanInfo {
@@ -517,14 +519,14 @@ pub(super) fn list(path: &Path, format: Format) -> Result<Vec<ScanInfo>> {
         pose: None,
         bbox: Some(raw.bbox),
         details,
-        stated_unit,
+        unit,
         to_m: [1.0; 3],
     }])
 }
 
 /// The unit the file's CRS (E)VLRs state: the WKT's where it has one (LAS
 /// 1.4 makes it the CRS), else the GeoTIFF keys'.
-fn stated_unit(path: &Path, hdr: &las::Header) -> Result<Option<super::StatedUnit>> {
+fn crs_unit(path: &Path, hdr: &las::Header) -> Result<super::CrsUnit> {
     let projection =
         |id: u16| hdr.all_vlrs().find(|v| v.user_id.trim_end_matches('\0') == "LASF_Projection" && v.record_id == id);
     let (found, record) = if let Some(v) = projection(2112) {
@@ -532,9 +534,14 @@ fn stated_unit(path: &Path, hdr: &las::Header) -> Result<Option<super::StatedUni
     } else if let Some(v) = projection(34735) {
         (super::units::from_geokeys(&v.data), "GeoTIFF keys (record 34735)")
     } else {
-        return Ok(None);
+        return Ok(super::CrsUnit::None);
     };
-    found.map_err(|why| ScanError::format(Location::item(path, record), why))
+    match found.map_err(|why| ScanError::format(Location::item(path, record), why))? {
+        super::CrsUnit::Unstated { crs, heights } => {
+            Ok(super::CrsUnit::Unstated { crs: format!("{crs}, in its {record}"), heights })
+        }
+        unit => Ok(unit),
+    }
 }
 
 pub(super) fn stream(info: &ScanInfo, f: &mut dyn FnMut(&PointCloud) -> Result<()>) -> Result<u64> {
@@ -774,7 +781,7 @@ mod tests {
             "ft.las",
             Some((34735, super::super::units::geokeys(&[(1024, 1), (3072, 2263), (3076, 9003)]))),
         );
-        for unit in [crate::ScanUnit::Metre, crate::ScanUnit::Foot] {
+        for unit in [None, Some(crate::ScanUnit::Metre), Some(crate::ScanUnit::Foot)] {
             let scans = crate::list_all(std::slice::from_ref(&feet), unit).unwrap();
             let c = super::super::read_all(&scans[0]).unwrap();
             assert!(
@@ -784,22 +791,58 @@ mod tests {
             );
             let b = scans[0].bbox.unwrap();
             assert!((b.max[0] - 110.0 * us_ft).abs() < 1e-6, "{b:?}");
-            assert!(scans[0].stated_unit.as_ref().unwrap().what.contains("US survey foot"));
+            assert!(matches!(&scans[0].unit, super::super::CrsUnit::Stated(u) if u.what.contains("US survey foot")));
         }
         let bare = las_with_crs(d.path(), "bare.las", None);
-        let c =
-            super::super::read_all(&crate::list_all(std::slice::from_ref(&bare), crate::ScanUnit::Metre).unwrap()[0])
-                .unwrap();
+        let c = super::super::read_all(&crate::list_all(std::slice::from_ref(&bare), None).unwrap()[0]).unwrap();
         assert_eq!(c.xyz[0], [100.0, 200.0, 10.0]);
-        let c =
-            super::super::read_all(&crate::list_all(std::slice::from_ref(&bare), crate::ScanUnit::Foot).unwrap()[0])
-                .unwrap();
+        let c = super::super::read_all(
+            &crate::list_all(std::slice::from_ref(&bare), Some(crate::ScanUnit::Foot)).unwrap()[0],
+        )
+        .unwrap();
         assert!((c.xyz[0][1] - 200.0 * 0.3048).abs() < 1e-9, "{:?}", c.xyz);
         let degrees = br#"GEOGCS["WGS 84",DATUM["WGS_1984",SPHEROID["WGS 84",6378137,298.257223563]],UNIT["degree",0.0174532925199433]]"#;
         let geo = las_with_crs(d.path(), "geo.las", Some((2112, degrees.to_vec())));
-        let e = crate::list_all(&[geo], crate::ScanUnit::Metre).unwrap_err().to_string();
+        let e = crate::list_all(&[geo], Some(crate::ScanUnit::Metre)).unwrap_err().to_string();
         assert!(e.contains("geo.las") && e.contains("record 2112") && e.contains("degrees"), "{e}");
         let shown = crate::inspect(&feet).unwrap().to_string();
         assert!(shown.contains("US survey foot") && shown.contains("110"), "{shown}");
+    }
+
+    /// A file whose CRS is only an EPSG code does not state its unit: it is
+    /// refused unless `[scans] unit` says it (a State Plane survey in US
+    /// feet read as metres puts every obstacle 3.28 times too far), and read
+    /// in that unit when it does; a code of a family in metres by definition
+    /// (UTM) reads in metres.
+    #[test]
+    fn a_crs_named_only_by_its_code_needs_the_project_to_say_its_unit() {
+        let d = tempfile::tempdir().unwrap();
+        let keys = |k: &[(u16, u16)]| Some((34735, super::super::units::geokeys(k)));
+        let state_plane = las_with_crs(d.path(), "sp.las", keys(&[(1024, 1), (3072, 2263)]));
+        let e = crate::list_all(std::slice::from_ref(&state_plane), None).unwrap_err().to_string();
+        assert!(
+            e.contains("sp.las") && e.contains("EPSG:2263") && e.contains("record 34735") && e.contains("[scans] unit"),
+            "{e}"
+        );
+        let us_ft = 1200.0 / 3937.0;
+        let scans = crate::list_all(std::slice::from_ref(&state_plane), Some(crate::ScanUnit::UsSurveyFoot)).unwrap();
+        let c = super::super::read_all(&scans[0]).unwrap();
+        assert!((c.xyz[1][0] - 110.0 * us_ft).abs() < 1e-9 && (c.xyz[1][2] - 12.0 * us_ft).abs() < 1e-9, "{:?}", c.xyz);
+        let c = super::super::read_all(
+            &crate::list_all(std::slice::from_ref(&state_plane), Some(crate::ScanUnit::Metre)).unwrap()[0],
+        )
+        .unwrap();
+        assert_eq!(c.xyz[1], [110.0, 200.0, 12.0]);
+        // Heights the file states stay its own.
+        let with_heights = las_with_crs(d.path(), "sph.las", keys(&[(1024, 1), (3072, 2263), (4099, 9001)]));
+        let c =
+            super::super::read_all(&crate::list_all(&[with_heights], Some(crate::ScanUnit::UsSurveyFoot)).unwrap()[0])
+                .unwrap();
+        assert!((c.xyz[1][0] - 110.0 * us_ft).abs() < 1e-9 && c.xyz[1][2] == 12.0, "{:?}", c.xyz);
+        let utm = las_with_crs(d.path(), "utm.las", keys(&[(1024, 1), (3072, 32632)]));
+        let c = super::super::read_all(&crate::list_all(&[utm], None).unwrap()[0]).unwrap();
+        assert_eq!(c.xyz[1], [110.0, 200.0, 12.0]);
+        let shown = crate::inspect(&state_plane).unwrap().to_string();
+        assert!(shown.contains("NOT STATED") && shown.contains("EPSG:2263"), "{shown}");
     }
 }

@@ -20,7 +20,7 @@ use liftplan_core::frame::{Aabb, Pose};
 use std::path::{Path, PathBuf};
 
 pub use las::precheck as las_precheck;
-pub use units::StatedUnit;
+pub use units::{CrsUnit, StatedUnit};
 
 #[cfg(test)]
 thread_local! {
@@ -86,9 +86,8 @@ pub struct ScanInfo {
     pub bbox: Option<Aabb>,
     /// Format details for `inspect` (version, point format, scale, properties...).
     pub details: serde_json::Map<String, serde_json::Value>,
-    /// The unit the file states for its coordinates, if it states one
-    /// ([`units`]).
-    pub stated_unit: Option<StatedUnit>,
+    /// What the file states of its coordinates' unit ([`units`]).
+    pub unit: CrsUnit,
     /// Metres per coordinate unit of x, y and z, which [`stream`] applies:
     /// ones as listed (the file's own numbers, as `inspect` shows them),
     /// set by `liftplan_scans::list_all` from the stated unit or the

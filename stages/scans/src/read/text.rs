@@ -36,7 +36,7 @@ pub(super) fn list(path: &Path, format: Format) -> Result<Vec<ScanInfo>> {
         pose: None,
         bbox: None,
         details,
-        stated_unit: None,
+        unit: super::CrsUnit::None,
         to_m: [1.0; 3],
     }])
 }
