@@ -42,6 +42,9 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     assert!(text.contains("At its set position the load rests on"), "{text}");
     // The demo's plant model stands where its scans put the site.
     assert!(text.contains("Plant model against the scans"), "{text}");
+    // What the lift passes over that no scan saw (the demo's scans leave a
+    // shadow beside the foundation).
+    assert!(text.contains("What the lift passes over: the load passes over"), "{text}");
     assert_eq!(
         pages.len(),
         steps.len() + 5,

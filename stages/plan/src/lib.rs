@@ -17,6 +17,7 @@
 
 pub mod baselines;
 pub mod bench;
+pub mod coverage;
 pub mod mspga;
 pub mod path;
 pub mod steps;
@@ -530,7 +531,11 @@ pub struct RunSummary {
 
 impl RunSummary {
     pub fn lines(&self) -> Vec<String> {
-        self.model_vs_scans.iter().map(|a| a.line()).chain(self.lifts.iter().map(|s| s.line())).collect()
+        self.model_vs_scans
+            .iter()
+            .map(|a| a.line())
+            .chain(self.lifts.iter().flat_map(|s| std::iter::once(s.line()).chain(s.coverage_line())))
+            .collect()
     }
 }
 
@@ -565,8 +570,10 @@ pub fn run(
     let model_vs_scans = validate::model_scan_agreement(&world);
     std::fs::create_dir_all(out_dir).map_err(|e| PlanError::Input(Location::file(out_dir), e.to_string()))?;
     let mut plans = Vec::new();
-    for (task, taken) in tasks.iter().zip(taken_for_loads) {
+    for ((task, taken), cutout) in tasks.iter().zip(taken_for_loads).zip(&exclusions) {
         let (mut plan, cs) = plan_lift(task, &site, s, seed)?;
+        let scanned_load = if taken > 0 { std::slice::from_ref(cutout) } else { &[] };
+        plan.summary.coverage = Some(coverage::of_lift(task, &plan.moves, &world, scanned_load));
         plan.load_cutout =
             LoadCutout { grow_m: s.load_cutout_m, above_m: cutout_above_m(s.load_cutout_m), points: taken };
         plan.model_vs_scans = model_vs_scans.clone();

@@ -126,6 +126,10 @@ pub struct Summary {
     /// How far above its support the load may end and still rest on it (m).
     #[serde(default)]
     pub support_m: f64,
+    /// What the lift passes over that the scans and the model do not show
+    /// ([`crate::coverage::of_lift`]).
+    #[serde(default)]
+    pub coverage: Option<crate::coverage::Coverage>,
 }
 
 /// Where the set-down ends.
@@ -166,6 +170,11 @@ impl Summary {
         }
     }
 
+    /// [`Summary::coverage`]'s line, for the run's output.
+    pub fn coverage_line(&self) -> Option<String> {
+        self.coverage.as_ref().map(|c| format!("lift {}: {}", self.lift, c.line()))
+    }
+
     pub fn line(&self) -> String {
         format!(
             "lift {}: {} steps, validated; max utilisation {:.0} % (step {}, {}){}; min clearance {:.2} m (step {}, {}); {}",
@@ -201,6 +210,7 @@ pub fn summary(task: &LiftTask, steps: &[Step], verdict: &Verdict) -> Summary {
         rotate_deg: 0.0,
         set_on: None,
         support_m: 0.0,
+        coverage: None,
     };
     for st in steps {
         if let Some(u) = st.utilisation_pct

@@ -45,7 +45,7 @@ pub struct PointIndex {
     pub count: usize,
 }
 
-const VOXEL_M: f64 = 1.0;
+pub(crate) const VOXEL_M: f64 = 1.0;
 
 fn voxel(p: &[f64; 3]) -> [i32; 3] {
     [(p[0] / VOXEL_M).floor() as i32, (p[1] / VOXEL_M).floor() as i32, (p[2] / VOXEL_M).floor() as i32]
@@ -87,6 +87,16 @@ impl PointIndex {
     /// Number of occupied voxels.
     pub fn voxels(&self) -> usize {
         self.keys.len()
+    }
+
+    /// The plan columns (x, y voxel indices) holding a point, each once.
+    pub(crate) fn columns(&self) -> impl Iterator<Item = (i32, i32)> + '_ {
+        // Keys ascend by x, then y: a column's voxels lie together.
+        self.keys
+            .iter()
+            .map(|k| (k[0], k[1]))
+            .enumerate()
+            .filter_map(move |(n, c)| (n == 0 || (self.keys[n - 1][0], self.keys[n - 1][1]) != c).then_some(c))
     }
 
     fn voxel_points(&self, k: usize) -> &[([f64; 3], bool)] {
@@ -481,7 +491,7 @@ pub struct Rules {
     pub support_m: f64,
 }
 
-fn in_polygon(poly: &[[f64; 2]], p: [f64; 2]) -> bool {
+pub(crate) fn in_polygon(poly: &[[f64; 2]], p: [f64; 2]) -> bool {
     // Even-odd rule: independent of the planner's convex test.
     let mut inside = false;
     let n = poly.len();
@@ -544,7 +554,7 @@ pub struct Verdict {
 /// The farthest any point of any part (crane, rope, hook, load) moves per
 /// unit of the move's joint (m per rad for swing, luff and load yaw, m per m
 /// for trolley and hoist).
-fn lever_for(task: &LiftTask, m: &Move) -> f64 {
+pub(crate) fn lever_for(task: &LiftTask, m: &Move) -> f64 {
     let crane = &task.crane;
     match m.joint {
         liftplan_cspace::Joint::Swing => {
@@ -601,7 +611,7 @@ fn lever_for(task: &LiftTask, m: &Move) -> f64 {
 
 /// Samples evenly spaced along a move in which no point moves more than
 /// `moved_m`, so that none moves more than `sample_m` between two.
-fn samples_for(moved_m: f64, sample_m: f64) -> usize {
+pub(crate) fn samples_for(moved_m: f64, sample_m: f64) -> usize {
     ((moved_m / sample_m).ceil() as usize).max(1) + 1
 }
 
@@ -766,7 +776,7 @@ fn own_distances(pose: &CranePose) -> Vec<(PartKind, f64, &'static str)> {
 const OWN_EXACT_WITHIN_M: f64 = 1.0;
 
 /// Distance from `p` to the nearest edge of `poly` (m).
-fn to_edge_m(poly: &[[f64; 2]], p: [f64; 2]) -> f64 {
+pub(crate) fn to_edge_m(poly: &[[f64; 2]], p: [f64; 2]) -> f64 {
     (0..poly.len())
         .map(|i| {
             let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);

@@ -1,0 +1,378 @@
+//! What a planned lift passes over that neither the scans nor the plant
+//! model show.
+//!
+//! The planner and the validator take the site to be what the scans and the
+//! model hold: where neither holds anything, the lift is clear because
+//! nothing was seen there, not because nothing is there. A scan's shadow
+//! behind a building, a rooftop no station saw, or a site beyond the
+//! scanners' range looks free. This module works out, in plan view on a grid
+//! of [`CELL_M`] cells, which cells the lift's parts pass over and which of
+//! those lie farther than [`SEEN_WITHIN_M`] from any scan point (and, of
+//! them, which the plant model does not
+//! reach either), for the load and what hangs with it (which comes low) and
+//! for the rest of the moving crane (the boom and superstructure, high up)
+//! apart, so that the engineer signing the plan knows where to look on site.
+//!
+//! What this module must not do: change what the planner or the validator
+//! sees (an unseen cell is neither an obstacle nor free space to them), or
+//! refuse a plan: a survey rarely sees every square metre, and only the
+//! people on site can say what stands where it did not look.
+
+use crate::path::Move;
+use crate::validate::{World, in_polygon, lever_for, samples_for, to_edge_m};
+use liftplan_core::crane::{Config, Dependence, PartKind};
+use liftplan_core::lift::LiftTask;
+use liftplan_core::obb::Obb;
+use serde::{Deserialize, Serialize};
+use std::collections::{HashMap, HashSet};
+
+/// The plan-view cell (m): the validator's point voxels' width, so a cell
+/// holds a scan point exactly when a voxel column is occupied.
+pub const CELL_M: f64 = crate::validate::VOXEL_M;
+
+/// A cell within this distance (m, in whole cells) of a cell holding a scan
+/// point counts as scanned. Far from a station a scanner's rings on open
+/// ground lie a metre or more apart, and the rays to the farther ring pass
+/// a few centimetres over the gap: anything standing in it would have been
+/// hit and left points in its own cell. What no ray reached (the shadow of
+/// a tank, a site beyond the scanners' range) is wider.
+pub const SEEN_WITHIN_M: f64 = 2.0;
+
+/// How far apart (m of any part's movement) the poses are that the swept
+/// area is made of; each footprint is grown by half of it.
+const SWEEP_SAMPLE_M: f64 = 0.5;
+
+/// The plan area some parts pass over, and how much of it is unseen.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct Area {
+    /// Cells passed over (m²).
+    pub passed_m2: f64,
+    /// Of them, cells farther than [`SEEN_WITHIN_M`] from any scan point
+    /// (m²).
+    pub unscanned_m2: f64,
+    /// Of those, cells the plant model does not reach either (m²).
+    pub unknown_m2: f64,
+    /// The plan extent of the unscanned cells, [xmin, ymin, xmax, ymax]
+    /// (m), if there are any.
+    pub unscanned_within: Option<[f64; 4]>,
+    /// The lowest the parts come over the unscanned cells (site z, m): a
+    /// thing standing there reaches them only if it is that tall.
+    pub unscanned_lowest_z_m: Option<f64>,
+}
+
+/// What one lift passes over ([`of_lift`]).
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct Coverage {
+    /// The grid's cell (m).
+    pub cell_m: f64,
+    /// Whether the project has scans at all.
+    pub scans: bool,
+    /// Under the load, its rigging, the hook block and the rope.
+    pub under_load: Area,
+    /// Under the rest of the crane that moves (boom, superstructure,
+    /// counterweight; a tower crane's jib and trolley).
+    pub under_crane: Area,
+}
+
+impl Coverage {
+    /// Whether the load passes over cells no scan saw (where the project has
+    /// scans).
+    pub fn load_passes_unscanned(&self) -> bool {
+        self.scans && self.under_load.unscanned_m2 > 0.0
+    }
+
+    /// One line for the run's output and the PDF.
+    pub fn line(&self) -> String {
+        let where_ = |a: &Area| match (a.unscanned_within, a.unscanned_lowest_z_m) {
+            (Some(e), Some(z)) => {
+                format!(
+                    " (x {:.0} to {:.0} m, y {:.0} to {:.0} m; no lower than z = {z:.2} m there)",
+                    e[0], e[2], e[1], e[3]
+                )
+            }
+            _ => String::new(),
+        };
+        if !self.scans {
+            return format!(
+                "what the lift passes over: no scans; the load passes over {:.0} m², {:.0} m² of it outside the plant model, where nothing is known{}; the crane's boom and superstructure {:.0} m², {:.0} m² outside the model: check them on site",
+                self.under_load.passed_m2,
+                self.under_load.unknown_m2,
+                where_(&self.under_load),
+                self.under_crane.passed_m2,
+                self.under_crane.unknown_m2
+            );
+        }
+        let load = if self.under_load.unscanned_m2 > 0.0 {
+            format!(
+                "the load passes over {:.0} m², {:.0} m² of it WITH NO SCAN POINT WITHIN {SEEN_WITHIN_M:.0} m{} ({:.0} m² not in the plant model either): CHECK ON SITE what stands there",
+                self.under_load.passed_m2,
+                self.under_load.unscanned_m2,
+                where_(&self.under_load),
+                self.under_load.unknown_m2
+            )
+        } else {
+            format!("the load passes over {:.0} m², all of it scanned", self.under_load.passed_m2)
+        };
+        let crane = if self.under_crane.unscanned_m2 > 0.0 {
+            format!(
+                "the crane's boom and superstructure over {:.0} m², {:.0} m² of it with no scan point within {SEEN_WITHIN_M:.0} m{} ({:.0} m² not in the plant model either)",
+                self.under_crane.passed_m2,
+                self.under_crane.unscanned_m2,
+                where_(&self.under_crane),
+                self.under_crane.unknown_m2
+            )
+        } else {
+            format!("the crane's boom and superstructure over {:.0} m², all of it scanned", self.under_crane.passed_m2)
+        };
+        format!("what the lift passes over: {load}; {crane}")
+    }
+}
+
+type Cell = (i32, i32);
+
+fn cell_of(x: f64, y: f64) -> Cell {
+    ((x / CELL_M).floor() as i32, (y / CELL_M).floor() as i32)
+}
+
+/// The cells a convex plan polygon grown by `grow_m` reaches: those whose
+/// centre lies within `grow_m` plus half a cell's diagonal of it, so that a
+/// cell the grown polygon touches anywhere is among them.
+fn cells_under(poly: &[[f64; 2]], grow_m: f64, mut each: impl FnMut(Cell)) {
+    if poly.is_empty() {
+        return;
+    }
+    let reach = grow_m + CELL_M * std::f64::consts::FRAC_1_SQRT_2;
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for p in poly {
+        for a in 0..2 {
+            (lo[a], hi[a]) = (lo[a].min(p[a]), hi[a].max(p[a]));
+        }
+    }
+    let (c0, c1) = (cell_of(lo[0] - reach, lo[1] - reach), cell_of(hi[0] + reach, hi[1] + reach));
+    for i in c0.0..=c1.0 {
+        for j in c0.1..=c1.1 {
+            let centre = [(i as f64 + 0.5) * CELL_M, (j as f64 + 0.5) * CELL_M];
+            if in_polygon(poly, centre) || to_edge_m(poly, centre) <= reach {
+                each((i, j));
+            }
+        }
+    }
+}
+
+/// The cells the plant model's triangles reach in plan view: their
+/// corners', the cells along their edges, and those whose centre lies inside
+/// them.
+fn modelled_cells(world: &World) -> HashSet<Cell> {
+    let mut cells = HashSet::new();
+    let Some(mesh) = &world.mesh else { return cells };
+    let v = mesh.vertices();
+    for t in mesh.indices() {
+        let tri: Vec<[f64; 2]> = t.iter().map(|&k| [v[k as usize].x, v[k as usize].y]).collect();
+        for e in 0..3 {
+            let (a, b) = (tri[e], tri[(e + 1) % 3]);
+            let steps = ((a[0] - b[0]).hypot(a[1] - b[1]) / (CELL_M / 2.0)).ceil().min(1e6) as usize;
+            for s in 0..=steps {
+                let f = if steps == 0 { 0.0 } else { s as f64 / steps as f64 };
+                cells.insert(cell_of(a[0] + (b[0] - a[0]) * f, a[1] + (b[1] - a[1]) * f));
+            }
+        }
+        let (lo, hi) = (
+            cell_of(
+                tri.iter().map(|p| p[0]).fold(f64::INFINITY, f64::min),
+                tri.iter().map(|p| p[1]).fold(f64::INFINITY, f64::min),
+            ),
+            cell_of(
+                tri.iter().map(|p| p[0]).fold(f64::NEG_INFINITY, f64::max),
+                tri.iter().map(|p| p[1]).fold(f64::NEG_INFINITY, f64::max),
+            ),
+        );
+        for i in lo.0..=hi.0 {
+            for j in lo.1..=hi.1 {
+                let centre = [(i as f64 + 0.5) * CELL_M, (j as f64 + 0.5) * CELL_M];
+                if in_triangle(&tri, centre) {
+                    cells.insert((i, j));
+                }
+            }
+        }
+    }
+    cells
+}
+
+fn in_triangle(t: &[[f64; 2]], p: [f64; 2]) -> bool {
+    let side = |a: [f64; 2], b: [f64; 2]| (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]);
+    let (d0, d1, d2) = (side(t[0], t[1]), side(t[1], t[2]), side(t[2], t[0]));
+    (d0 >= 0.0 && d1 >= 0.0 && d2 >= 0.0) || (d0 <= 0.0 && d1 <= 0.0 && d2 <= 0.0)
+}
+
+/// The plan cells the lift's `moves` pass over, the hanging parts' and the
+/// rest of the moving crane's, each with the lowest those parts come over
+/// it (site z), from poses no more than [`SWEEP_SAMPLE_M`] of movement
+/// apart.
+fn swept_cells(task: &LiftTask, moves: &[Move]) -> (HashMap<Cell, f64>, HashMap<Cell, f64>) {
+    let (mut load, mut crane) = (HashMap::new(), HashMap::new());
+    let hanging = |k: PartKind| matches!(k, PartKind::Load | PartKind::Rigging | PartKind::HookBlock | PartKind::Rope);
+    for m in moves {
+        let moved_m = m.delta().abs() * lever_for(task, m);
+        // A move too long to sample is refused by the validator; here it
+        // is drawn at most 100,000 times.
+        let n = samples_for(moved_m.min(SWEEP_SAMPLE_M * 1e5), SWEEP_SAMPLE_M);
+        let (a, b, j) = (m.from.to_array(), m.to.to_array(), m.joint.index());
+        for s in 0..n {
+            let mut v = a;
+            v[j] = a[j] + (b[j] - a[j]) * s as f64 / (n - 1).max(1) as f64;
+            let c = Config::from_array(v);
+            for (kind, part) in task.crane.pose(&c, &task.load).parts.iter() {
+                if kind.dependence() == Dependence::Fixed {
+                    continue;
+                }
+                let into = if hanging(*kind) { &mut load } else { &mut crane };
+                let bottom = part.corners().iter().map(|p| p.z).fold(f64::INFINITY, f64::min);
+                cells_under(&part.footprint(), SWEEP_SAMPLE_M / 2.0, |c| {
+                    let z = into.entry(c).or_insert(f64::INFINITY);
+                    *z = z.min(bottom);
+                });
+            }
+        }
+    }
+    (load, crane)
+}
+
+/// What `task`'s planned `moves` pass over in `world`. Cells under the
+/// `also_seen` boxes count as scanned (the load at its pick position, whose
+/// scan points were taken for the load and left out of `world`).
+pub fn of_lift(task: &LiftTask, moves: &[Move], world: &World, also_seen: &[Obb]) -> Coverage {
+    let mut scanned: HashSet<Cell> = HashSet::new();
+    let reach = (SEEN_WITHIN_M / CELL_M).round() as i32;
+    for (i, j) in world.points.columns() {
+        for di in -reach..=reach {
+            for dj in -reach..=reach {
+                if di * di + dj * dj <= reach * reach {
+                    scanned.insert((i + di, j + dj));
+                }
+            }
+        }
+    }
+    let scans = world.points.count > 0;
+    for b in also_seen {
+        cells_under(&b.footprint(), -CELL_M * std::f64::consts::FRAC_1_SQRT_2, |c| {
+            scanned.insert(c);
+        });
+    }
+    let modelled = modelled_cells(world);
+    let (load, crane) = swept_cells(task, moves);
+    let area = |cells: &HashMap<Cell, f64>| {
+        let cell2 = CELL_M * CELL_M;
+        let unscanned: Vec<(&Cell, &f64)> = cells.iter().filter(|(c, _)| !scanned.contains(c)).collect();
+        let unknown = unscanned.iter().filter(|(c, _)| !modelled.contains(c)).count();
+        let lowest = unscanned.iter().map(|(_, z)| **z).reduce(f64::min);
+        let within = (!unscanned.is_empty()).then(|| {
+            let (mut e, f) = ([f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY], CELL_M);
+            for &(&(i, j), _) in &unscanned {
+                e = [
+                    e[0].min(i as f64 * f),
+                    e[1].min(j as f64 * f),
+                    e[2].max((i + 1) as f64 * f),
+                    e[3].max((j + 1) as f64 * f),
+                ];
+            }
+            e
+        });
+        Area {
+            passed_m2: cells.len() as f64 * cell2,
+            unscanned_m2: unscanned.len() as f64 * cell2,
+            unknown_m2: unknown as f64 * cell2,
+            unscanned_within: within,
+            unscanned_lowest_z_m: lowest,
+        }
+    };
+    Coverage { cell_m: CELL_M, scans, under_load: area(&load), under_crane: area(&crane) }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use liftplan_core::frame::{Point3, Vec3};
+    use liftplan_core::mesh::TriMesh;
+
+    /// Ground points every 0.5 m over the site, on lines `every_m` apart in
+    /// x, none inside `hole` ([xmin, ymin, xmax, ymax]).
+    fn ground(every_m: f64, hole: Option<[f64; 4]>) -> (Vec<[f64; 3]>, Vec<bool>) {
+        let mut pts = Vec::new();
+        let lines = (140.0 / every_m) as i32;
+        for i in 0..=lines {
+            for j in 0..=280 {
+                let (x, y) = (-70.0 + i as f64 * every_m, -70.0 + j as f64 * 0.5);
+                if hole.is_some_and(|h| h[0] <= x && x <= h[2] && h[1] <= y && y <= h[3]) {
+                    continue;
+                }
+                pts.push([x, y, 0.0]);
+            }
+        }
+        let flags = vec![true; pts.len()];
+        (pts, flags)
+    }
+
+    /// The test lift's load swung at its pick radius to its set bearing:
+    /// it passes over (26, 0), 26 m from the crane, on its way.
+    fn swing() -> (LiftTask, Vec<Move>) {
+        let task = crate::test_lift("ac-700");
+        let to = Config { swing_rad: task.set.swing_rad, ..task.pick };
+        let moves = vec![Move { joint: liftplan_cspace::Joint::Swing, from: task.pick, to }];
+        (task, moves)
+    }
+
+    fn coverage(pts: &(Vec<[f64; 3]>, Vec<bool>), mesh: &TriMesh, also_seen: &[Obb]) -> Coverage {
+        let (task, moves) = swing();
+        let world = World::new(mesh, &pts.0, &pts.1).unwrap();
+        of_lift(&task, &moves, &world, also_seen)
+    }
+
+    /// A hole in the scans under the load's path is found where it is, a
+    /// plant model over it makes it known but not scanned, and scan rings
+    /// a few metres apart leave nothing unseen.
+    #[test]
+    fn what_no_scan_saw_under_the_load_is_found() {
+        let none = TriMesh::default();
+        let full = coverage(&ground(0.5, None), &none, &[]);
+        assert!(full.scans && full.under_load.passed_m2 > 50.0, "{full:?}");
+        assert_eq!((full.under_load.unscanned_m2, full.under_crane.unscanned_m2), (0.0, 0.0), "{full:?}");
+        assert!(!full.load_passes_unscanned() && full.line().contains("all of it scanned"), "{}", full.line());
+        // Rings 2.5 m apart: the rays to the next ring passed over the gap.
+        let rings = coverage(&ground(2.5, None), &none, &[]);
+        assert_eq!(rings.under_load.unscanned_m2, 0.0, "{rings:?}");
+
+        let hole = [21.0, -5.0, 31.0, 5.0];
+        let holed = coverage(&ground(0.5, Some(hole)), &none, &[]);
+        let a = &holed.under_load;
+        assert!(holed.load_passes_unscanned() && a.unscanned_m2 >= 10.0, "{holed:?}");
+        assert_eq!(a.unknown_m2, a.unscanned_m2);
+        let e = a.unscanned_within.unwrap();
+        assert!(e[0] >= hole[0] && e[1] >= hole[1] && e[2] <= hole[2] && e[3] <= hole[3], "{e:?}");
+        // The load hangs from a 40 m boom at its pick rope: well above ground.
+        let z = a.unscanned_lowest_z_m.unwrap();
+        assert!(z > 0.0 && z < 30.0, "{z}");
+        assert!(holed.line().contains("WITH NO SCAN POINT WITHIN 2 m"), "{}", holed.line());
+
+        // A slab in the plant model over the hole: known, though not scanned.
+        let mut slab = TriMesh::default();
+        let g = slab.group_id("SLAB");
+        slab.add_box(g, [20.0, -6.0, 0.0], [32.0, 6.0, 0.3]);
+        let modelled = coverage(&ground(0.5, Some(hole)), &slab, &[]);
+        assert_eq!(modelled.under_load.unscanned_m2, a.unscanned_m2);
+        assert_eq!(modelled.under_load.unknown_m2, 0.0, "{modelled:?}");
+
+        // The load's scan points, taken out at pick, were seen there.
+        let cut = Obb::axis_aligned(Point3::new(26.0, 0.0, 1.0), Vec3::new(6.0, 6.0, 1.0));
+        let seen = coverage(&ground(0.5, Some(hole)), &none, &[cut]);
+        assert_eq!(seen.under_load.unscanned_m2, 0.0, "{seen:?}");
+    }
+
+    /// Without scans, what the plant model does not reach is said.
+    #[test]
+    fn without_scans_what_the_model_does_not_reach_is_said() {
+        let c = coverage(&(vec![], vec![]), &TriMesh::default(), &[]);
+        assert!(!c.scans && !c.load_passes_unscanned(), "{c:?}");
+        assert_eq!(c.under_load.unknown_m2, c.under_load.passed_m2);
+        assert!(c.line().contains("no scans") && c.line().contains("outside the plant model"), "{}", c.line());
+    }
+}
