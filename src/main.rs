@@ -109,6 +109,12 @@ enum Command {
         /// Chord tolerance in metres.
         #[arg(long)]
         tolerance: Option<f64>,
+        /// Length unit of OBJ/PLY/STL files (as `[plant] unit`): m, mm, cm, ft or in.
+        #[arg(long)]
+        unit: Option<String>,
+        /// Up axis of OBJ/PLY/STL files (as `[plant] up_axis`): z or y.
+        #[arg(long)]
+        up_axis: Option<String>,
         /// Print plant.json.
         #[arg(long)]
         json: bool,
@@ -479,11 +485,16 @@ fn real_main() -> Result<ExitCode> {
             }
             Ok(ExitCode::SUCCESS)
         }
-        Command::Plant { inputs, output, tolerance, json } => {
+        Command::Plant { inputs, output, tolerance, unit, up_axis, json } => {
             let mut s = liftplan_plant::Settings::default();
             if let Some(t) = tolerance {
                 s.tolerance = t;
             }
+            // The settings' own parsers admit only their names.
+            let named = |v: Option<String>| v.map(serde_json::Value::String);
+            s.unit =
+                named(unit).map(serde_json::from_value).transpose().context("--unit: expected m, mm, cm, ft or in")?;
+            s.up_axis = named(up_axis).map(serde_json::from_value).transpose().context("--up-axis: expected z or y")?;
             let tmp = tempdir_near(&output)?;
             let report = |what: &str, d: u64, t: u64| progress.report("plant", what, d, t);
             let res = liftplan_plant::run(&inputs, &s, &tmp, None, &report);

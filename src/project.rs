@@ -341,8 +341,9 @@ scalar = 1.25
 [plant]
 tolerance = 0.01          # RVM tessellation: how far outside a primitive its mesh may lie (never inside), m
 cull_caps = true          # leave out end caps hidden inside connected primitives
-unit = "m"                # unit of OBJ/PLY/STL files (glTF is always m)
-up_axis = "z"             # z | y, for OBJ/PLY/STL files (glTF is always Y-up)
+# unit = "mm"             # m | mm | cm | ft | in: unit of OBJ/PLY/STL files, which state none
+# up_axis = "z"            # z | y: their up axis; both must be set where there are such files
+                          # (glTF is always metres and Y-up, RVM millimetres and Z-up)
 include = []              # keep only groups matching these names (* and ? wildcards)
 exclude = []              # leave out groups, e.g. the item being lifted: ["/V-101*"]
 exclude_where = []        # leave out by attribute, e.g. ["Purpose=TEMP*"]

@@ -15,7 +15,13 @@ fuzz_target!(|data: &[u8]| {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join(format!("plant.{ext}"));
     std::fs::write(&path, body).unwrap();
-    let settings = liftplan_plant::Settings::default();
+    // OBJ, PLY and STL need their unit and up axis said; these make the
+    // readers scale and turn every vertex.
+    let settings = liftplan_plant::Settings {
+        unit: Some(liftplan_core::units::LengthUnit::Mm),
+        up_axis: Some(liftplan_plant::UpAxis::Y),
+        ..Default::default()
+    };
     // The budget's room is what `MAX_TRIANGLES` leaves over earlier files:
     // leave 2 M triangles, so that what the check lets through fits the
     // fuzzer's memory limit.

@@ -55,10 +55,13 @@ pub struct Settings {
     pub tolerance: f64,
     /// Leave out end caps that a connected primitive covers.
     pub cull_caps: bool,
-    /// Unit of OBJ/PLY/STL files (glTF is always metres).
-    pub unit: LengthUnit,
-    /// Up axis of OBJ/PLY/STL files (glTF is always Y-up).
-    pub up_axis: UpAxis,
+    /// Unit of OBJ/PLY/STL files (glTF is always metres, RVM millimetres).
+    /// Those files state none, and their exporters differ (millimetres,
+    /// metres, Revit's feet), so a project with such files must say it.
+    pub unit: Option<LengthUnit>,
+    /// Up axis of OBJ/PLY/STL files (glTF is always Y-up), which they do
+    /// not state either: a Y-up model read as Z-up lies on its side.
+    pub up_axis: Option<UpAxis>,
     /// Keep only groups whose name (or an ancestor's) matches one of these
     /// patterns (`*` and `?` wildcards); empty keeps everything.
     pub include: Vec<String>,
@@ -81,8 +84,8 @@ impl Default for Settings {
         Settings {
             tolerance: 0.01,
             cull_caps: true,
-            unit: LengthUnit::M,
-            up_axis: UpAxis::Z,
+            unit: None,
+            up_axis: None,
             include: vec![],
             exclude: vec![],
             exclude_where: vec![],
@@ -159,6 +162,10 @@ pub struct Summary {
     /// line and point elements ("file: n line or point elements") and files
     /// with no faces at all, which have no surface: not in the mesh.
     pub not_surfaces: Vec<String>,
+    /// How OBJ/PLY/STL files were read (`[plant] unit` and `up_axis`), and
+    /// how many there were.
+    pub meshes_read_as: Option<String>,
+    pub meshes_without_frame: usize,
 }
 
 impl Summary {
@@ -174,6 +181,13 @@ impl Summary {
         )];
         if !self.excluded_groups.is_empty() {
             v.push(format!("excluded {} groups: {}", self.excluded_groups.len(), first_five(&self.excluded_groups)));
+        }
+        if let Some(how) = &self.meshes_read_as {
+            v.push(format!(
+                "OBJ/PLY/STL coordinates {how}, as [plant] unit and up_axis say: {} file{}",
+                self.meshes_without_frame,
+                if self.meshes_without_frame == 1 { "" } else { "s" }
+            ));
         }
         // Left out of the obstacles for want of a surface: said here, where
         // the plan's inputs page shows it, so that a cable drawn as a line
@@ -462,7 +476,26 @@ pub fn read_file(path: &Path, s: &Settings, summary: &mut Summary) -> Result<Tri
 fn read_model(path: &Path, s: &Settings, summary: &mut Summary, room: u64) -> Result<TriMesh> {
     let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
     let file = path.file_name().map(|f| f.to_string_lossy().into_owned()).unwrap_or_default();
-    let imp = mesh_io::Import { scale: s.unit.to_m(), y_up: s.up_axis == UpAxis::Y };
+    // Only the formats that state neither need the settings.
+    let imp = || -> Result<mesh_io::Import> {
+        match (s.unit, s.up_axis) {
+            (Some(unit), Some(up)) => Ok(mesh_io::Import { scale: unit.to_m(), y_up: up == UpAxis::Y }),
+            (unit, up) => {
+                let missing: Vec<&str> =
+                    [(unit.is_none(), "unit (m, mm, cm, ft or in)"), (up.is_none(), "up_axis (z or y)")]
+                        .into_iter()
+                        .filter_map(|(m, what)| m.then_some(what))
+                        .collect();
+                Err(PlantError::at(
+                    Location::file(path),
+                    format!(
+                        "a .{ext} file states neither its length unit nor its up axis, and exporters differ (millimetres, metres, Revit's feet; Z or Y up): set [plant] {}",
+                        missing.join(" and ")
+                    ),
+                ))
+            }
+        }
+    };
     let m = match ext.as_str() {
         "rvm" => {
             let f = rvm::read(path)?;
@@ -482,15 +515,15 @@ fn read_model(path: &Path, s: &Settings, summary: &mut Summary, room: u64) -> Re
             rvm_to_mesh(path, &f, attrs.as_ref(), s, summary, room)?
         }
         "obj" => {
-            let m = mesh_io::read_obj(path, imp)?;
+            let m = mesh_io::read_obj(path, imp()?)?;
             let without = mesh_io::obj_elements_without_surface(path)?;
             if without > 0 {
                 summary.not_surfaces.push(format!("{file}: {without} line or point elements"));
             }
             m
         }
-        "ply" => mesh_io::read_ply(path, imp)?,
-        "stl" => mesh_io::read_stl(path, imp)?,
+        "ply" => mesh_io::read_ply(path, imp()?)?,
+        "stl" => mesh_io::read_stl(path, imp()?)?,
         "gltf" | "glb" => {
             let mut skipped = Vec::new();
             let m = mesh_io::read_gltf_noting(path, room, &mut skipped)?;
@@ -510,6 +543,10 @@ fn read_model(path: &Path, s: &Settings, summary: &mut Summary, room: u64) -> Re
             ));
         }
     };
+    if let ("obj" | "ply" | "stl", Some(unit), Some(up)) = (ext.as_str(), s.unit, s.up_axis) {
+        summary.meshes_read_as = Some(format!("in {}, {} up", unit.name(), if up == UpAxis::Y { "Y" } else { "Z" }));
+        summary.meshes_without_frame += 1;
+    }
     if ext != "rvm" && m.triangles.is_empty() {
         // A mesh file that makes no surface at all (a point cloud saved as PLY,
         // a model of lines): nothing of it is an obstacle, which the signer
@@ -640,7 +677,9 @@ pub fn run(
 /// `liftplan inspect` of a plant file.
 pub fn inspect(path: &Path, s: &Settings) -> Result<serde_json::Value> {
     let mut summary = Summary { tolerance_m: s.tolerance, ..Default::default() };
-    let m = read_file(path, s, &mut summary)?;
+    // Where the settings do not say them, an OBJ/PLY/STL file's own numbers.
+    let own = Settings { unit: s.unit.or(Some(LengthUnit::M)), up_axis: s.up_axis.or(Some(UpAxis::Z)), ..s.clone() };
+    let m = read_file(path, &own, &mut summary)?;
     let bb = m.bbox();
     let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
     let mut v = serde_json::json!({
@@ -654,6 +693,11 @@ pub fn inspect(path: &Path, s: &Settings) -> Result<serde_json::Value> {
         "bbox": if bb.is_empty() { serde_json::Value::Null } else { serde_json::json!(bb.to_array()) },
         "tolerance_m": s.tolerance,
     });
+    if matches!(ext.as_str(), "obj" | "ply" | "stl") && (s.unit.is_none() || s.up_axis.is_none()) {
+        v["coordinates"] = serde_json::json!(
+            "the file's own numbers, Z taken as up: an OBJ, PLY or STL file states no unit or up axis"
+        );
+    }
     if ext == "rvm" {
         let f = rvm::read(path)?;
         v["model"] = serde_json::json!(f.model);
@@ -798,10 +842,44 @@ mod tests {
         let header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nend_header\n";
         std::fs::write(&path, format!("{header}0 0 0\n1 0 0\n0 1 0\n")).unwrap();
         let mut summary = Summary::default();
-        let m = read_file(&path, &Settings::default(), &mut summary).unwrap();
+        let s = Settings { unit: Some(LengthUnit::M), up_axis: Some(UpAxis::Z), ..Default::default() };
+        let m = read_file(&path, &s, &mut summary).unwrap();
         assert!(m.triangles.is_empty());
         let lines = summary.lines().join("\n");
         assert!(lines.contains("NOT AN OBSTACLE") && lines.contains("cloud.ply: no faces at all"), "{lines}");
+    }
+
+    /// An OBJ, PLY or STL file states neither its unit nor its up axis: it
+    /// is refused, naming the file and what to set, until `[plant] unit`
+    /// and `up_axis` say them (a model in Revit's feet read as metres puts
+    /// every obstacle 3.28 times too far out; a Y-up model read as Z-up lies
+    /// on its side), then read in them and the run's lines say so.
+    /// `inspect` shows the file's own numbers.
+    #[test]
+    fn a_mesh_file_needs_its_unit_and_up_axis_said() {
+        let d = tempfile::tempdir().unwrap();
+        let path = d.path().join("part.obj");
+        std::fs::write(&path, "v 0 0 0\nv 1000 0 0\nv 0 2000 0\nf 1 2 3\n").unwrap();
+        let read = |unit, up_axis| {
+            let mut summary = Summary::default();
+            read_file(&path, &Settings { unit, up_axis, ..Default::default() }, &mut summary).map(|m| (m, summary))
+        };
+        let e = read(None, None).unwrap_err().to_string();
+        assert!(e.contains("part.obj") && e.contains("[plant] unit") && e.contains("up_axis"), "{e}");
+        let e = read(Some(LengthUnit::Mm), None).unwrap_err().to_string();
+        assert!(e.contains("set [plant] up_axis") && !e.contains("unit ("), "{e}");
+        let (m, summary) = read(Some(LengthUnit::Mm), Some(UpAxis::Y)).unwrap();
+        let b = m.bbox().to_array();
+        // Y up: the file's y (2000 mm) is the height.
+        assert_eq!((b[3], b[5]), (1.0, 2.0), "{b:?}");
+        let lines = summary.lines().join("\n");
+        assert!(
+            lines.contains("OBJ/PLY/STL coordinates in mm, Y up, as [plant] unit and up_axis say: 1 file"),
+            "{lines}"
+        );
+        let shown = inspect(&path, &Settings::default()).unwrap();
+        assert!(shown["coordinates"].as_str().unwrap().contains("own numbers"), "{shown}");
+        assert_eq!(shown["bbox"][3], 1000.0, "{shown}");
     }
 
     /// A joint of two radii culls only the narrower end's cap, which the

@@ -167,7 +167,11 @@ fn damaged_mesh_files_give_a_mesh_or_an_error() {
     // the test's output, and every other panic in it.
     hide_panics_from("/gltf-");
     let dir = tempfile::tempdir().unwrap();
-    let settings = liftplan_plant::Settings::default();
+    let settings = liftplan_plant::Settings {
+        unit: Some(liftplan_core::units::LengthUnit::M),
+        up_axis: Some(liftplan_plant::UpAxis::Z),
+        ..Default::default()
+    };
     // As the fuzz target: the room left is what the budget leaves over
     // earlier files, 2 M triangles here.
     let before = liftplan_plant::MAX_TRIANGLES as usize - 2_000_000;
