@@ -183,6 +183,18 @@ pub fn f32_key(v: f32) -> u32 {
     if b & 0x8000_0000 != 0 { !b } else { b | 0x8000_0000 }
 }
 
+/// The greatest `f32` at most `v`.
+fn f32_at_most(v: f64) -> f32 {
+    let f = v as f32;
+    if f as f64 > v { f.next_down() } else { f }
+}
+
+/// The least `f32` at least `v`.
+fn f32_at_least(v: f64) -> f32 {
+    let f = v as f32;
+    if (f as f64) < v { f.next_up() } else { f }
+}
+
 /// Inverse of [`f32_key`].
 #[inline]
 pub(crate) fn f32_from_key(k: u32) -> f32 {
@@ -260,6 +272,58 @@ impl Mdm {
         levels
     }
 
+    /// This map with `boxes` added as solid objects (their names appended to
+    /// the map's objects): in every cell a box reaches, the box's exact
+    /// height range over the cell, widened to the next `f32` outwards, so a
+    /// box query meets the box wherever it is. For obstacles that are known
+    /// as boxes only after the map is built (another lift's load where it
+    /// stands during this one); a map built with them as triangles would
+    /// hold the same or tighter ranges.
+    pub fn with_boxes(&self, boxes: &[(liftplan_core::obb::Obb, String)]) -> Mdm {
+        let spec = self.spec;
+        let first_obj = self.objects.len() as u32;
+        let mut added: Vec<Vec<Interval>> = vec![Vec::new(); spec.cells()];
+        for (n, (b, _)) in boxes.iter().enumerate() {
+            let a = b.aabb();
+            for j in spec.rows_between(a.min[1], a.max[1]) {
+                for i in spec.cols_between(a.min[0], a.max[0]) {
+                    let r = spec.rect(i, j);
+                    if let Some((lo, hi)) = b.z_range_over_rect(r[0], r[1], r[2], r[3]) {
+                        let zlo = f32_at_most(lo);
+                        let zhi = f32_at_least(hi);
+                        added[(j * spec.nx + i) as usize].push(Interval { zlo, zhi, obj: first_obj + n as u32 });
+                    }
+                }
+            }
+        }
+        let order = |i: &Interval| (f32_key(i.zlo), f32_key(i.zhi), i.obj);
+        let mut counts = Vec::with_capacity(spec.cells());
+        let mut tops = Vec::with_capacity(spec.cells());
+        let mut intervals = Vec::with_capacity(self.intervals.len());
+        for (k, more) in added.iter_mut().enumerate() {
+            let start = intervals.len();
+            intervals.extend_from_slice(&self.intervals[self.offsets[k] as usize..self.offsets[k + 1] as usize]);
+            if !more.is_empty() {
+                intervals.append(more);
+                intervals[start..].sort_unstable_by_key(order);
+                if self.mode == Mode::Single {
+                    // One interval a cell, as the build keeps it: the lowest
+                    // bottom to the highest top, named by the highest.
+                    let cell = &intervals[start..];
+                    let top = cell.iter().fold(cell[0], |a, i| if f32_key(i.zhi) > f32_key(a.zhi) { *i } else { a });
+                    let lo = cell[0].zlo;
+                    intervals.truncate(start);
+                    intervals.push(Interval { zlo: lo, zhi: top.zhi, obj: top.obj });
+                }
+            }
+            counts.push((intervals.len() - start) as u32);
+            tops.push(cell_top(&intervals[start..]));
+        }
+        let mut objects = self.objects.clone();
+        objects.extend(boxes.iter().map(|(_, name)| name.clone()));
+        Mdm::from_cells(spec, self.mode, &counts, intervals, tops, objects)
+    }
+
     pub fn to_bytes(&self) -> Vec<u8> {
         let mut w = ByteWriter::new();
         let s = &self.spec;
@@ -326,5 +390,61 @@ impl Mdm {
         let mut m = Mdm { spec, mode, offsets, intervals, objects, pyramid: vec![] };
         m.build_pyramid();
         Ok(m)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use liftplan_core::frame::{Point3, Vec3, rot_z};
+    use liftplan_core::obb::Obb;
+
+    /// A turned box added to a built map: the cells it stands over hold it,
+    /// by name, from its lowest to its highest point over each, to the next
+    /// `f32` outwards; a box query meets it and one beside it does not; the
+    /// cells it misses are the map's own; a single-level map keeps one
+    /// interval a cell.
+    #[test]
+    fn boxes_added_to_a_map_are_obstacles_there_and_nowhere_else() {
+        let mut mesh = liftplan_core::mesh::TriMesh::default();
+        let g = mesh.group_id("SLAB");
+        mesh.add_box(g, [-10.0, -10.0, -0.3], [10.0, 10.0, 0.0]);
+        for mode in [Mode::Multi, Mode::Single] {
+            let s = crate::Settings { mode, ..Default::default() };
+            let inp = crate::Inputs { points: vec![], ground: vec![], mesh: mesh.clone() };
+            let map = crate::build_cpu(&inp, &s).unwrap().0;
+            let load = Obb::new(Point3::new(2.0, 1.0, 2.5), rot_z(0.5), Vec3::new(2.0, 1.0, 1.0));
+            let with = map.with_boxes(&[(load, "load of lift A at its set position".into())]);
+            assert_eq!(with.objects.last().map(String::as_str), Some("load of lift A at its set position"));
+            let obj = with.objects.len() as u32 - 1;
+            let mut held = 0;
+            for j in 0..map.spec.ny {
+                for i in 0..map.spec.nx {
+                    let r = map.spec.rect(i, j);
+                    let cell = with.cell(i, j);
+                    match load.z_range_over_rect(r[0], r[1], r[2], r[3]) {
+                        Some((lo, hi)) => {
+                            held += 1;
+                            let top = cell.iter().map(|iv| iv.zhi).fold(f32::NEG_INFINITY, f32::max);
+                            assert!(top as f64 >= hi && with.top(i, j) as f64 >= hi, "{i} {j}: {cell:?}");
+                            if mode == Mode::Multi {
+                                let iv = cell.iter().find(|iv| iv.obj == obj).unwrap();
+                                assert!((iv.zlo as f64) <= lo && (iv.zlo as f64) > lo - 1e-6, "{iv:?} {lo}");
+                                assert!((iv.zhi as f64) >= hi && (iv.zhi as f64) < hi + 1e-6, "{iv:?} {hi}");
+                                assert_eq!(cell.len(), map.cell(i, j).len() + 1);
+                            } else {
+                                assert_eq!((cell.len(), cell[0].obj), (1, obj));
+                            }
+                        }
+                        None => assert_eq!(cell, map.cell(i, j), "{i} {j}"),
+                    }
+                }
+            }
+            assert!(held > 20, "{held}");
+            let probe = |x: f64| Obb::axis_aligned(Point3::new(x, 1.0, 2.5), Vec3::new(0.2, 0.2, 0.2));
+            let hit = with.hit(&probe(2.0)).unwrap();
+            assert_eq!(with.object_name(&hit.interval), "load of lift A at its set position");
+            assert!(with.hit(&probe(6.0)).is_none() && map.hit(&probe(2.0)).is_none());
+        }
     }
 }

@@ -461,6 +461,12 @@ pub fn document(
         None => "The plant model and the scans barely overlap (or one of them is missing), so where the model stands in the site was not checked against the scans.".to_string(),
     };
     y = d.paragraph(15.0, y, w, &model_text, 9.5);
+    if let Some(line) = plan.summary.other_loads_line() {
+        // Without its "lift X: " prefix.
+        let said = line.split_once(": ").map_or(line.as_str(), |(_, rest)| rest);
+        y += 4.0;
+        y = d.paragraph(15.0, y, w, &format!("{}{}.", said[..1].to_uppercase(), &said[1..]), 9.5);
+    }
     if let Some(c) = &plan.summary.coverage {
         let line = c.line();
         y += 4.0;

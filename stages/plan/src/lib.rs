@@ -148,6 +148,39 @@ pub struct LoadCutout {
     pub points: usize,
 }
 
+/// The other lifts' loads where they stand while lift `k` of `tasks` is made,
+/// as named boxes: lifts are made in the order the project lists them, so a
+/// load lifted before this one stands at its set position, and one lifted
+/// after it still at its pick position. Their scan points at pick are cut
+/// out of the site cloud for every lift ([`load_exclusions`]); the box
+/// stands for a load not yet lifted whether or not it was scanned. A load
+/// that is this lift's own (set down by an earlier lift where this one picks
+/// it up, or picked up by a later lift where this one sets it down: the same
+/// box in the same place, to 1 cm) is not another.
+pub fn other_loads(tasks: &[LiftTask], k: usize) -> Vec<(Obb, String)> {
+    let this = &tasks[k];
+    let (own_pick, own_set) = (this.crane.load_obb(&this.pick, &this.load), this.crane.load_obb(&this.set, &this.load));
+    tasks
+        .iter()
+        .enumerate()
+        .filter(|&(j, _)| j != k)
+        .filter_map(|(j, t)| {
+            let (at, whence, own) =
+                if j < k { (&t.set, "set position", &own_pick) } else { (&t.pick, "pick position", &own_set) };
+            let b = t.crane.load_obb(at, &t.load);
+            (!same_box(&b, own)).then(|| (b, format!("load of lift {} at its {whence}", t.id)))
+        })
+        .collect()
+}
+
+/// Whether two boxes are one in place: each corner of one within 1 cm of a
+/// corner of the other.
+fn same_box(a: &Obb, b: &Obb) -> bool {
+    let cb = b.corners();
+    a.corners().iter().all(|p| cb.iter().any(|q| (p - q).norm() <= 0.01))
+        && cb.iter().all(|q| a.corners().iter().any(|p| (p - q).norm() <= 0.01))
+}
+
 /// The scanned load at its pick position is in the site cloud; these boxes
 /// (the load at pick, grown by `grow_m`, and above it by at least
 /// [`LOAD_CUTOUT_ABOVE_M`]) are cut out of it so the load does not block its
@@ -534,7 +567,11 @@ impl RunSummary {
         self.model_vs_scans
             .iter()
             .map(|a| a.line())
-            .chain(self.lifts.iter().flat_map(|s| std::iter::once(s.line()).chain(s.coverage_line())))
+            .chain(
+                self.lifts
+                    .iter()
+                    .flat_map(|s| std::iter::once(s.line()).chain(s.other_loads_line()).chain(s.coverage_line())),
+            )
             .collect()
     }
 }
@@ -561,19 +598,26 @@ pub fn run(
         Some(p) => read_points(p, &exclusions)?,
         None => (vec![], vec![], vec![0; tasks.len()]),
     };
-    let world = validate::World::new(&mesh, &points, &ground).map_err(PlanError::Settings)?;
+    let mut world = validate::World::new(&mesh, &points, &ground).map_err(PlanError::Settings)?;
     let charts = match capacity_csv {
         Some(p) => Some(CapacityTable::read_csv(p).map_err(|e| PlanError::Input(Location::file(p), e))?),
         None => None,
     };
-    let site = Site { map: &map, world: &world, charts: charts.as_ref() };
     let model_vs_scans = validate::model_scan_agreement(&world);
+    // Where a load was scanned at its pick position, its cut-out was seen.
+    let scanned_loads: Vec<Obb> =
+        exclusions.iter().zip(&taken_for_loads).filter(|(_, n)| **n > 0).map(|(b, _)| *b).collect();
     std::fs::create_dir_all(out_dir).map_err(|e| PlanError::Input(Location::file(out_dir), e.to_string()))?;
     let mut plans = Vec::new();
-    for ((task, taken), cutout) in tasks.iter().zip(taken_for_loads).zip(&exclusions) {
+    for (k, (task, &taken)) in tasks.iter().zip(&taken_for_loads).enumerate() {
+        // The other lifts' loads where they stand during this one, in the
+        // validator's view and in the planner's map alike.
+        world.others = other_loads(tasks, k);
+        let with_others = (!world.others.is_empty()).then(|| map.with_boxes(&world.others));
+        let site = Site { map: with_others.as_ref().unwrap_or(&map), world: &world, charts: charts.as_ref() };
         let (mut plan, cs) = plan_lift(task, &site, s, seed)?;
-        let scanned_load = if taken > 0 { std::slice::from_ref(cutout) } else { &[] };
-        plan.summary.coverage = Some(coverage::of_lift(task, &plan.moves, &world, scanned_load));
+        plan.summary.coverage = Some(coverage::of_lift(task, &plan.moves, &world, &scanned_loads));
+        plan.summary.other_loads = world.others.iter().map(|(_, name)| name.clone()).collect();
         plan.load_cutout =
             LoadCutout { grow_m: s.load_cutout_m, above_m: cutout_above_m(s.load_cutout_m), points: taken };
         plan.model_vs_scans = model_vs_scans.clone();
@@ -629,5 +673,38 @@ pub(crate) fn test_config(task: &LiftTask, at: [f64; 4], rope_span_m: f64) -> li
         radial: lim.radial.0 + at[1] * (lim.radial.1 - lim.radial.0),
         hoist_m: lim.hoist_m.0 + at[2] * (lim.hoist_m.1 - lim.hoist_m.0).min(rope_span_m),
         load_yaw_rad: at[3] * std::f64::consts::TAU,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Lifts are made in the order listed: during B, A (before it) stands
+    /// where A sets it and C (after it) where C picks it up; a lift that
+    /// picks up what an earlier one set down (D takes B's load on) does
+    /// not meet its own load as another.
+    #[test]
+    fn other_lifts_loads_stand_where_the_order_puts_them() {
+        let lift = |id: &str, pick_y: f64, set_y: f64| {
+            let mut t = test_lift("ac-700");
+            t.id = id.into();
+            t.pick = Config { swing_rad: t.pick.swing_rad + pick_y, ..t.pick };
+            t.set = Config { swing_rad: t.set.swing_rad + set_y, ..t.set };
+            t
+        };
+        let (a, b, c) = (lift("A", 0.0, 0.0), lift("B", 0.3, 0.3), lift("C", 0.6, 0.6));
+        let mut d = lift("D", 0.3, 0.9);
+        d.pick = b.set;
+        let tasks = [a.clone(), b.clone(), c.clone(), d];
+        let during_b = other_loads(&tasks, 1);
+        let names: Vec<&str> = during_b.iter().map(|(_, n)| n.as_str()).collect();
+        // B sets down the load D picks up: D's load is B's own.
+        assert_eq!(names, ["load of lift A at its set position", "load of lift C at its pick position"]);
+        assert!(same_box(&during_b[0].0, &a.crane.load_obb(&a.set, &a.load)));
+        assert!(same_box(&during_b[1].0, &c.crane.load_obb(&c.pick, &c.load)));
+        let during_d: Vec<String> = other_loads(&tasks, 3).into_iter().map(|(_, n)| n).collect();
+        assert_eq!(during_d, ["load of lift A at its set position", "load of lift C at its set position"]);
+        assert!(other_loads(&tasks[..1], 0).is_empty());
     }
 }

@@ -130,6 +130,10 @@ pub struct Summary {
     /// ([`crate::coverage::of_lift`]).
     #[serde(default)]
     pub coverage: Option<crate::coverage::Coverage>,
+    /// The other lifts' loads this lift was planned and checked against
+    /// ([`crate::other_loads`]).
+    #[serde(default)]
+    pub other_loads: Vec<String>,
 }
 
 /// Where the set-down ends.
@@ -168,6 +172,17 @@ impl Summary {
                 crate::validate::SUPPORT_SEARCH_M
             ),
         }
+    }
+
+    /// [`Summary::other_loads`] as a sentence, if there are any.
+    pub fn other_loads_line(&self) -> Option<String> {
+        (!self.other_loads.is_empty()).then(|| {
+            format!(
+                "lift {}: planned and checked with the other lifts' loads where they stand during it (lifts are made in the order the project lists them): {}",
+                self.lift,
+                self.other_loads.join("; ")
+            )
+        })
     }
 
     /// [`Summary::coverage`]'s line, for the run's output.
@@ -211,6 +226,7 @@ pub fn summary(task: &LiftTask, steps: &[Step], verdict: &Verdict) -> Summary {
         set_on: None,
         support_m: 0.0,
         coverage: None,
+        other_loads: Vec::new(),
     };
     for st in steps {
         if let Some(u) = st.utilisation_pct

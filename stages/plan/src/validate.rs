@@ -298,6 +298,10 @@ pub struct World {
     /// Group name per parry triangle.
     pub tri_group: Vec<String>,
     pub points: PointIndex,
+    /// Solid boxes known apart from the model and the scans, with their
+    /// names: the other lifts' loads where they stand during this one
+    /// ([`crate::other_loads`]).
+    pub others: Vec<(Obb, String)>,
 }
 
 impl World {
@@ -312,11 +316,12 @@ impl World {
             )
         };
         let tri_group = (0..mesh.triangles.len()).map(|t| mesh.group_of_triangle(t).to_string()).collect();
-        Ok(World { mesh: parry, tri_group, points: PointIndex::new(points, ground)? })
+        Ok(World { mesh: parry, tri_group, points: PointIndex::new(points, ground)?, others: Vec::new() })
     }
 }
 
-fn parry_box(b: &Obb) -> (Pose, Cuboid) {
+/// A box as parry3d's pose and cuboid.
+pub fn parry_box(b: &Obb) -> (Pose, Cuboid) {
     let col = |k: usize| Vector::new(b.axes[(0, k)], b.axes[(1, k)], b.axes[(2, k)]);
     let rot = parry3d_f64::glamx::DQuat::from_mat3(&parry3d_f64::glamx::DMat3::from_cols(col(0), col(1), col(2)));
     (
@@ -354,6 +359,19 @@ fn nearest(world: &World, b: &Obb, ground_below_z: f64, cutoff_m: f64) -> Neares
             object: world.tri_group.get(tri as usize).cloned().unwrap_or_default(),
             at: Some([on_tri.x, on_tri.y, on_tri.z]),
         };
+    }
+    for (other, name) in &world.others {
+        let (p2, c2) = parry_box(other);
+        // Two boxes: parry's answers cannot fail; a NaN box would, and is
+        // taken as touching.
+        let d = query::distance(&pose, &cub, &p2, &c2).map(|d| d.distance).unwrap_or(0.0);
+        if d < best.distance_m {
+            let at = match query::closest_points(&pose, &cub, &p2, &c2, f64::MAX) {
+                Ok(query::ClosestPoints::WithinMargin(_, q)) => [q.x, q.y, q.z],
+                _ => [other.center.x, other.center.y, other.center.z],
+            };
+            best = Nearest { distance_m: d, object: name.clone(), at: Some(at) };
+        }
     }
     let aabb = b.aabb().expanded(cutoff_m.min(best.distance_m));
     let (lo, hi) = (voxel(&aabb.min), voxel(&aabb.max));

@@ -810,3 +810,37 @@ fn the_plant_model_is_checked_against_the_scans() {
     // Too little overlap to say.
     assert_eq!(agree(face(0.0)[..40].to_vec()), None);
 }
+
+/// Another lift's load where it stands during this lift (here: on top of
+/// the wall, where the lift over the wall takes its load) is an obstacle
+/// to the validator, which refuses the plan made without it and names it,
+/// and to the planner, whose map holds it too: the lift planned with it
+/// goes round it and validates.
+#[test]
+fn another_lifts_load_is_an_obstacle_to_the_planner_and_the_validator() {
+    let (t, _, plan) = over_the_wall();
+    // The load at the top of its way over the wall.
+    let over = plan
+        .moves
+        .iter()
+        .map(|m| m.to)
+        .max_by(|a, b| t.crane.load_obb(a, &t.load).center.z.total_cmp(&t.crane.load_obb(b, &t.load).center.z))
+        .unwrap();
+    let other = (t.crane.load_obb(&over, &t.load), "load of lift T-0 at its set position".to_string());
+    let mesh = site();
+    let mut world = World::new(&mesh, &[], &[]).unwrap();
+    world.others = vec![other.clone()];
+    let landing: Vec<bool> = (0..plan.moves.len()).map(|i| i == 0 || i == plan.moves.len() - 1).collect();
+    let v = validate_lift(&t, None, &world, &rules(), &plan.moves, &landing);
+    assert!(!v.ok && v.problems.iter().any(|p| p.contains("load of lift T-0 at its set position")), "{:?}", v.problems);
+
+    let m = map(&mesh).with_boxes(std::slice::from_ref(&other));
+    let (round, _) = plan_lift(&t, &Site { map: &m, world: &world, charts: None }, &quick(), 3).unwrap();
+    assert!(round.validator.ok && round.moves != plan.moves);
+    let (pb, cb) = liftplan_plan::validate::parry_box(&other.0);
+    for mv in &round.moves[1..round.moves.len() - 1] {
+        let (ph, ch) = liftplan_plan::validate::parry_box(&t.crane.load_obb(&mv.to, &t.load));
+        let d = parry3d_f64::query::distance(&ph, &ch, &pb, &cb).unwrap().distance;
+        assert!(d >= 1.0 - 2e-3, "the load comes {d} m from the other load at {:?}", mv.to);
+    }
+}
