@@ -8,6 +8,7 @@ use liftplan_core::crane::{Config, PartKind};
 use liftplan_core::image::{Image, Rgb};
 use liftplan_core::lift::LiftTask;
 use liftplan_core::mesh::TriMesh;
+use liftplan_core::obb::Obb;
 use liftplan_plan::LiftPlan;
 
 const PLANT: Rgb = [150, 160, 175];
@@ -16,6 +17,8 @@ const BOOM: Rgb = [220, 120, 20];
 const LOAD: Rgb = [40, 110, 200];
 const PATH: Rgb = [200, 30, 60];
 const HOT_SPOT: Rgb = [235, 20, 20];
+/// Other lifts' loads where they stand during this lift.
+pub const OTHER_LOAD: Rgb = [150, 90, 190];
 
 /// The site as the pictures show it: plant mesh and a thinned cloud.
 pub struct SiteView {
@@ -95,8 +98,9 @@ pub fn load_path(task: &LiftTask, plan: &LiftPlan, upto: usize) -> Vec<[f32; 3]>
 
 /// Top view of the whole site with the crane at pick, the load at set (ghost)
 /// and the load path.
-pub fn overview(site: &SiteView, task: &LiftTask, plan: &LiftPlan, w: u32, h: u32) -> Image {
+pub fn overview(site: &SiteView, task: &LiftTask, plan: &LiftPlan, others: &[Obb], w: u32, h: u32) -> Image {
     let mut s = site.base_scene(2.0);
+    s.triangles.extend(others.iter().map(|b| render::obb_batch(b, OTHER_LOAD)));
     s.triangles.extend(crane_batches(task, &plan.start));
     s.triangles.push(render::obb_batch(&task.crane.load_obb(&plan.set, &task.load), [90, 160, 230]));
     s.lines.push(Polyline {
@@ -111,8 +115,9 @@ pub fn overview(site: &SiteView, task: &LiftTask, plan: &LiftPlan, w: u32, h: u3
 }
 
 /// Perspective view at the end of step `n` (1-based) with the path so far.
-pub fn step_view(site: &SiteView, task: &LiftTask, plan: &LiftPlan, n: usize, w: u32, h: u32) -> Image {
+pub fn step_view(site: &SiteView, task: &LiftTask, plan: &LiftPlan, others: &[Obb], n: usize, w: u32, h: u32) -> Image {
     let mut s = site.base_scene(1.5);
+    s.triangles.extend(others.iter().map(|b| render::obb_batch(b, OTHER_LOAD)));
     let end = plan.moves[n - 1].to;
     s.triangles.extend(crane_batches(task, &end));
     let done = load_path(task, plan, n);

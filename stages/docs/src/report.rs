@@ -6,6 +6,7 @@ use crate::{DocsError, Inputs, Paper, Result, Settings};
 use liftplan_core::capacity::ChartConfig;
 use liftplan_core::image::Image;
 use liftplan_core::lift::LiftTask;
+use liftplan_core::obb::Obb;
 use liftplan_plan::LiftPlan;
 use liftplan_plan::steps::SetDown;
 
@@ -184,11 +185,19 @@ pub fn document(
         34.0,
     );
     y += box_h + 6.0;
-    let overview = pictures::overview(site, task, plan, 1400, 1000);
+    // The other lifts' loads where they stand during this one, as the plan
+    // stage checked against them (lifts are made in the order listed).
+    let k = inp.tasks.iter().position(|t| t.id == task.id).unwrap_or(0);
+    let others: Vec<Obb> = liftplan_plan::other_loads(&inp.tasks, k).into_iter().map(|(b, _)| b).collect();
+    let overview = pictures::overview(site, task, plan, &others, 1400, 1000);
     d.text(
         15.0,
         y,
-        "Site overview (top view, north up): crane at the pick position, load path in red, load at set in light blue.",
+        if others.is_empty() {
+            "Site overview (top view, north up): crane at the pick position, load path in red, load at set in light blue."
+        } else {
+            "Site overview (top view, north up): crane at the pick position, load path in red, load at set in light blue, other lifts' loads in violet."
+        },
         8.5,
         false,
         GREY,
@@ -376,7 +385,7 @@ pub fn document(
                 ],
                 40.0,
             );
-            let img = pictures::step_view(site, task, plan, st.n, 1300, 950);
+            let img = pictures::step_view(site, task, plan, &others, st.n, 1300, 950);
             d.image(&img, 15.0, y + 2.0, w);
         }
     }
