@@ -277,6 +277,11 @@ pub struct ScanReport {
     pub unit: String,
     /// Metres per coordinate unit of x, y and z ([`ScanInfo::to_m`]).
     pub to_m: [f64; 3],
+    /// The date its file gives ([`read::ScanDate`]): "2026-10-02
+    /// (acquired)" or "... (file created)".
+    pub date: Option<String>,
+    #[serde(skip)]
+    pub scan_date: Option<read::ScanDate>,
 }
 
 #[derive(Debug, Clone, Serialize)]
@@ -313,7 +318,38 @@ impl Summary {
                 format!("{}: {} points read, {} kept, {}{unit}", s.name, s.points_read, s.points_kept, state)
             })
             .chain(self.unit_line())
+            .chain(std::iter::once(self.date_line()))
             .collect()
+    }
+
+    /// When the scans were taken, as their files say: the signer confirms
+    /// that nothing on site has changed since, so the line says how old
+    /// the survey is and where the dates come from (a LAS file's creation
+    /// date may be its export's, not the survey's).
+    fn date_line(&self) -> String {
+        let plural = |n: usize| if n == 1 { "" } else { "s" };
+        let range = |acquired: bool| {
+            let dates: Vec<read::ScanDate> =
+                self.scans.iter().filter_map(|s| s.scan_date).filter(|d| d.acquired == acquired).collect();
+            let (lo, hi) = (dates.iter().min()?, dates.iter().max()?);
+            let span = if lo == hi { lo.date.to_string() } else { format!("{} to {}", lo.date, hi.date) };
+            Some((span, dates.len()))
+        };
+        let mut said = Vec::new();
+        if let Some((span, n)) = range(true) {
+            said.push(format!("taken {span} ({n} scan{}, as the files record their acquisition)", plural(n)));
+        }
+        if let Some((span, n)) = range(false) {
+            said.push(format!(
+                "files created {span} ({n} scan{}: the LAS files' creation date, which may be the export's, not the survey's)",
+                plural(n)
+            ));
+        }
+        let none = self.scans.iter().filter(|s| s.scan_date.is_none()).count();
+        if none > 0 {
+            said.push(format!("no date in the file for {none} scan{}", plural(none)));
+        }
+        format!("scan dates: {}: ask the survey team when the site was scanned if unsure", said.join("; "))
     }
 
     /// The units the scans' coordinates were read in, with how many scans
@@ -637,6 +673,8 @@ pub fn run(inputs: &[PathBuf], s: &Settings, opts: &RunOptions, out_dir: &Path) 
                 warning: r.warning.clone(),
                 unit: unit_for(s.unit, info)?.what,
                 to_m: info.to_m,
+                date: info.date.map(|d| d.to_string()),
+                scan_date: info.date,
             })
         })
         .collect::<Result<_>>()?;
@@ -860,6 +898,7 @@ pub fn inspect(path: &Path) -> Result<serde_json::Value> {
             "points": n,
             "bbox": if b.is_empty() { serde_json::Value::Null } else { serde_json::json!(b.to_array()) },
             "pose": info.pose.map(|p| pose_to_rows(&p)),
+            "date": info.date.map(|d| d.to_string()),
             "details": info.details,
         }));
     }
@@ -888,6 +927,7 @@ mod tests {
             bbox: None,
             details: Default::default(),
             unit: read::CrsUnit::None,
+            date: None,
             to_m: [1.0; 3],
         }
     }
@@ -1039,5 +1079,56 @@ mod tests {
         let later = "[[station]]\nscan = \"scan-2\"\nx_m = 1.0\ny_m = 2.0\n\n[[station]]\nscan = \"scan-9\"\nx_m = 3.0\ny_m = 4.0\n";
         let (_d, p) = stations(later);
         check_stations(&p, &read_stations(&p).unwrap(), &scans).unwrap();
+    }
+
+    /// The scans' dates are said with where they come from: E57's
+    /// acquisition (GPS seconds since 1980-01-06, a time no scan could
+    /// have refused), a LAS file's creation date, or none.
+    #[test]
+    fn scan_dates_say_where_they_come_from() {
+        let gps = |s: f64| read::ScanDate::from_gps_seconds(s).map(|d| d.date.to_string());
+        assert_eq!(gps(0.0).as_deref(), Some("1980-01-06"));
+        assert_eq!(gps(1.4e9).as_deref(), Some("2024-05-17"));
+        for bad in [f64::NAN, -1.0, 1e20, f64::INFINITY] {
+            assert_eq!(gps(bad), None, "{bad}");
+        }
+        let day =
+            |d: u32, acquired| read::ScanDate { date: chrono::NaiveDate::from_ymd_opt(2026, 10, d).unwrap(), acquired };
+        let report = |date: Option<read::ScanDate>| ScanReport {
+            file: String::new(),
+            name: String::new(),
+            format: read::Format::E57,
+            points_read: 0,
+            points_kept: 0,
+            pose: [[0.0; 4]; 4],
+            fitness: 1.0,
+            rmse_m: 0.0,
+            method: String::new(),
+            registered: true,
+            warning: None,
+            unit: String::new(),
+            to_m: [1.0; 3],
+            date: date.map(|d| d.to_string()),
+            scan_date: date,
+        };
+        let summary = |dates: Vec<Option<read::ScanDate>>| Summary {
+            scans: dates.into_iter().map(report).collect(),
+            points_read: 0,
+            points_out: 0,
+            ground_points: 0,
+            bbox: [0.0; 6],
+            register: RegisterMode::None,
+            subsample: String::new(),
+            registration_answers_reused: 0,
+            registration_answers_worked_out: 0,
+        };
+        let line = summary(vec![Some(day(3, true)), Some(day(2, true)), Some(day(20, false)), None]).date_line();
+        assert_eq!(
+            line,
+            "scan dates: taken 2026-10-02 to 2026-10-03 (2 scans, as the files record their acquisition); files created 2026-10-20 (1 scan: the LAS files' creation date, which may be the export's, not the survey's); no date in the file for 1 scan: ask the survey team when the site was scanned if unsure"
+        );
+        assert!(
+            summary(vec![None]).lines().iter().any(|l| l.starts_with("scan dates: no date in the file for 1 scan"))
+        );
     }
 }

@@ -87,6 +87,7 @@ pub(super) fn list(path: &Path) -> Result<Vec<ScanInfo>> {
                 unit: super::CrsUnit::Stated(super::StatedUnit::metres(
                     "metre (E57 coordinates are metres by its standard)",
                 )),
+                date: pc.acquisition_start.as_ref().and_then(|t| super::ScanDate::from_gps_seconds(t.gps_time)),
                 to_m: [1.0; 3],
             }
         })

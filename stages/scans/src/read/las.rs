@@ -520,6 +520,7 @@ pub(super) fn list(path: &Path, format: Format) -> Result<Vec<ScanInfo>> {
         bbox: Some(raw.bbox),
         details,
         unit,
+        date: hdr.date().map(|date| super::ScanDate { date, acquired: false }),
         to_m: [1.0; 3],
     }])
 }
@@ -844,5 +845,25 @@ mod tests {
         assert_eq!(c.xyz[1], [110.0, 200.0, 12.0]);
         let shown = crate::inspect(&state_plane).unwrap().to_string();
         assert!(shown.contains("NOT STATED") && shown.contains("EPSG:2263"), "{shown}");
+    }
+
+    /// A LAS header's creation date is the scan's date as far as the file
+    /// says, marked as the file's, not the survey's; a header without one
+    /// (day and year 0, against the standard) has none.
+    #[test]
+    fn a_las_files_creation_date_is_read_as_such() {
+        let d = tempfile::tempdir().unwrap();
+        for (name, date) in [("dated.las", chrono::NaiveDate::from_ymd_opt(2026, 10, 2)), ("undated.las", None)] {
+            let mut b = las::Builder::from((1, 4));
+            b.date = date;
+            let path = d.path().join(name);
+            let mut w = las::Writer::from_path(&path, b.into_header().unwrap()).unwrap();
+            w.write_point(las::Point::default()).unwrap();
+            w.close().unwrap();
+            let scans = super::super::list_scans(&path).unwrap();
+            assert_eq!(scans[0].date, date.map(|date| super::super::ScanDate { date, acquired: false }), "{name}");
+        }
+        let shown = crate::inspect(&d.path().join("dated.las")).unwrap().to_string();
+        assert!(shown.contains("2026-10-02 (file created)"), "{shown}");
     }
 }

@@ -70,6 +70,35 @@ impl Format {
     }
 }
 
+/// A date a scan file gives: when the scan was taken (E57's acquisition
+/// start) or only when the file was written (a LAS header's creation date,
+/// which may be the export's, not the survey's).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub struct ScanDate {
+    pub date: chrono::NaiveDate,
+    pub acquired: bool,
+}
+
+impl std::fmt::Display for ScanDate {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{} ({})", self.date, if self.acquired { "acquired" } else { "file created" })
+    }
+}
+
+impl ScanDate {
+    /// The date of a GPS time (seconds since 1980-01-06 00:00 UTC, leap
+    /// seconds aside: a few seconds cannot move a survey's date much), if it
+    /// is a time a scan could have been taken at (1980 to 2200).
+    pub fn from_gps_seconds(s: f64) -> Option<ScanDate> {
+        if !(s.is_finite() && (0.0..=7.0e9).contains(&s)) {
+            return None;
+        }
+        let epoch = chrono::NaiveDate::from_ymd_opt(1980, 1, 6)?;
+        let date = epoch.checked_add_days(chrono::Days::new((s / 86_400.0).floor() as u64))?;
+        Some(ScanDate { date, acquired: true })
+    }
+}
+
 /// One scan inside a file, as its header describes it.
 #[derive(Debug, Clone)]
 pub struct ScanInfo {
@@ -88,6 +117,8 @@ pub struct ScanInfo {
     pub details: serde_json::Map<String, serde_json::Value>,
     /// What the file states of its coordinates' unit ([`units`]).
     pub unit: CrsUnit,
+    /// When the scan was taken, as far as its file says.
+    pub date: Option<ScanDate>,
     /// Metres per coordinate unit of x, y and z, which [`stream`] applies:
     /// ones as listed (the file's own numbers, as `inspect` shows them),
     /// set by `liftplan_scans::list_all` from the stated unit or the

@@ -37,6 +37,7 @@ pub(super) fn list(path: &Path, format: Format) -> Result<Vec<ScanInfo>> {
         bbox: None,
         details,
         unit: super::CrsUnit::None,
+        date: None,
         to_m: [1.0; 3],
     }])
 }
