@@ -271,4 +271,24 @@ mod tests {
             );
         }
     }
+
+    /// An E57 scan's acquisition start (GPS seconds) is its date, as taken.
+    #[test]
+    fn an_e57_scans_acquisition_is_its_date() {
+        use e57::{E57Writer, Record, RecordValue};
+        let d = tempfile::tempdir().unwrap();
+        let path = d.path().join("dated.e57");
+        let mut w = E57Writer::from_file(&path, "liftplan-test").unwrap();
+        for (k, start) in [Some(1.4e9), None].into_iter().enumerate() {
+            let prototype = vec![Record::CARTESIAN_X_F64, Record::CARTESIAN_Y_F64, Record::CARTESIAN_Z_F64];
+            let mut pc = w.add_pointcloud(&format!("scan-{k}"), prototype).unwrap();
+            pc.set_acquisition_start(start.map(|gps_time| e57::DateTime { gps_time, atomic_reference: true }));
+            pc.add_point(vec![RecordValue::Double(0.0), RecordValue::Double(0.0), RecordValue::Double(0.0)]).unwrap();
+            pc.finalize().unwrap();
+        }
+        w.finalize().unwrap();
+        let scans = super::super::list_scans(&path).unwrap();
+        let dates: Vec<Option<String>> = scans.iter().map(|s| s.date.map(|d| d.to_string())).collect();
+        assert_eq!(dates, [Some("2024-05-17 (acquired)".to_string()), None]);
+    }
 }
