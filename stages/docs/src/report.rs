@@ -62,6 +62,14 @@ fn key_values(d: &mut Doc, x: f32, mut y: f32, rows: &[(&str, String)], key_w: f
     y
 }
 
+/// The grid bearing (degrees clockwise from the site's +Y, in [0, 360)) of a
+/// direction `a_rad` counter-clockwise from the site's +X.
+fn grid_bearing_deg(a_rad: f64) -> f64 {
+    let b = (90.0 - a_rad.to_degrees()).rem_euclid(360.0);
+    // Rounding to a tenth must not print 360.0.
+    if b >= 359.95 { 0.0 } else { b }
+}
+
 pub fn document(
     inp: &Inputs,
     s: &Settings,
@@ -325,7 +333,7 @@ pub fn document(
         15.0,
         y,
         w,
-        "The first and the last steps are the vertical lift-off and set-down. Capacity is the chart value (before the reduction) at the largest radius of the step; utilisation is the gross load over the reduced capacity; clearance is a distance that no crane part, rope, hook or load comes closer than to the plant model or the scanned points at any moment of the step, between the validator's samples too: the smallest distance measured at samples no more than [plan] validator_sample_m of movement apart (0.05 m by default), less what the motion between two samples leaves room for (at most half that spacing), so the closest approach may be up to that much more than shown, never less. Wherever the motion between samples could take a part closer than its required clearance, the validator samples more finely, down to 2 mm of movement, so the required clearance holds along the whole motion, not only at the samples, to within 2 mm. Swing and load rotation angles are counter-clockwise positive seen from above.",
+        "The first and the last steps are the vertical lift-off and set-down. Capacity is the chart value (before the reduction) at the largest radius of the step; utilisation is the gross load over the reduced capacity; clearance is a distance that no crane part, rope, hook or load comes closer than to the plant model or the scanned points at any moment of the step, between the validator's samples too: the smallest distance measured at samples no more than [plan] validator_sample_m of movement apart (0.05 m by default), less what the motion between two samples leaves room for (at most half that spacing), so the closest approach may be up to that much more than shown, never less. Wherever the motion between samples could take a part closer than its required clearance, the validator samples more finely, down to 2 mm of movement, so the required clearance holds along the whole motion, not only at the samples, to within 2 mm. Swing and load rotation angles are counter-clockwise positive seen from above. Swing is measured from the carrier's heading (the lift's heading_deg, the crane model's +X axis), load yaw from the site's +X axis; each step's page also gives the boom's grid bearing (clockwise from the site's north, +Y, as the overview is drawn).",
         8.5,
     );
     if let Some(cs) = cspace {
@@ -350,8 +358,9 @@ pub fn document(
                     (
                         "Crane at the end",
                         format!(
-                            "swing {:.1}°, {}, rope {:.2} m, load yaw {:.1}°",
+                            "swing {:.1}° (boom toward grid bearing {:.1}°), {}, rope {:.2} m, load yaw {:.1}°",
                             st.end.swing_rad.to_degrees(),
+                            grid_bearing_deg(task.crane.placement.heading_rad + st.end.swing_rad),
                             if task.crane.model.is_tower() {
                                 format!("trolley {:.2} m", st.end.radial)
                             } else {
@@ -522,6 +531,16 @@ pub fn document(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// East is 90°, north 0°, south-west 225°; never 360.
+    #[test]
+    fn grid_bearings_turn_clockwise_from_north() {
+        for (ccw_from_x, bearing) in
+            [(0.0, 90.0), (90.0, 0.0), (180.0, 270.0), (-135.0, 225.0), (90.01, 0.0), (450.0, 0.0)]
+        {
+            assert!((grid_bearing_deg(f64::to_radians(ccw_from_x)) - bearing).abs() < 1e-9, "{ccw_from_x}");
+        }
+    }
 
     /// A survey of many scans has more input lines than one page holds: they
     /// go on to further pages, none drawn below a page's foot (where the
