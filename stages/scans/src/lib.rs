@@ -297,6 +297,11 @@ pub struct Summary {
     /// memo of earlier runs, and those worked out in this one.
     pub registration_answers_reused: u64,
     pub registration_answers_worked_out: u64,
+    /// What "fitness" means in the lines: a point overlaps the other scans
+    /// within these (m), and a scan needs this share to register.
+    pub fit_distance_m: f64,
+    pub fit_residual_m: f64,
+    pub min_fitness: f64,
 }
 
 impl Summary {
@@ -317,9 +322,24 @@ impl Summary {
                 };
                 format!("{}: {} points read, {} kept, {}{unit}", s.name, s.points_read, s.points_kept, state)
             })
+            .chain(self.fitness_line())
             .chain(self.unit_line())
             .chain(std::iter::once(self.date_line()))
             .collect()
+    }
+
+    /// What the scans' fitness and rmse mean, where registration ran: a
+    /// fitness of 18 % reads as a failure to someone who takes it for a
+    /// score; it is the scan's overlap with the others.
+    fn fitness_line(&self) -> Option<String> {
+        (self.register == RegisterMode::Auto && self.scans.len() > 1).then(|| {
+            format!(
+                "registration: a scan's fitness is the share of its points that overlap the scans placed with it (another scan's point within {:.2} m and its surface within {:.2} m): how much of its view the others share, not a score; it needs {:.0} % to register. rmse: the spread of those points' distances to the others' surfaces. The reference scan fixes the site frame.",
+                self.fit_distance_m,
+                self.fit_residual_m,
+                100.0 * self.min_fitness
+            )
+        })
     }
 
     /// When the scans were taken, as their files say: the signer confirms
@@ -733,6 +753,9 @@ pub fn run(inputs: &[PathBuf], s: &Settings, opts: &RunOptions, out_dir: &Path) 
         },
         registration_answers_reused: memo_counts.0,
         registration_answers_worked_out: memo_counts.1,
+        fit_distance_m: s.registration.fit_distance_m,
+        fit_residual_m: s.registration.fit_residual_m,
+        min_fitness: s.registration.min_fitness,
         scans: reports,
     })
 }
@@ -1121,6 +1144,9 @@ mod tests {
             subsample: String::new(),
             registration_answers_reused: 0,
             registration_answers_worked_out: 0,
+            fit_distance_m: 0.25,
+            fit_residual_m: 0.03,
+            min_fitness: 0.02,
         };
         let line = summary(vec![Some(day(3, true)), Some(day(2, true)), Some(day(20, false)), None]).date_line();
         assert_eq!(
@@ -1129,6 +1155,15 @@ mod tests {
         );
         assert!(
             summary(vec![None]).lines().iter().any(|l| l.starts_with("scan dates: no date in the file for 1 scan"))
+        );
+        // Registration's fitness is explained where it ran on several scans.
+        let mut two = summary(vec![None, None]);
+        assert!(!two.lines().iter().any(|l| l.starts_with("registration:")));
+        two.register = RegisterMode::Auto;
+        let lines = two.lines().join("\n");
+        assert!(
+            lines.contains("within 0.25 m and its surface within 0.03 m") && lines.contains("needs 2 % to register"),
+            "{lines}"
         );
     }
 }
