@@ -66,11 +66,12 @@ pub fn text_width_mm(s: &str, size_pt: f32) -> f32 {
         * 0.3528
 }
 
-/// The lines `s` is broken into `width_mm` wide, each word whole on a line.
+/// The lines `s` is broken into `width_mm` wide, each word whole on a line
+/// where it fits on one ([`break_word`] where it does not).
 pub fn wrap(s: &str, width_mm: f32, size_pt: f32) -> Vec<String> {
     let mut lines = Vec::new();
     let mut line = String::new();
-    for word in s.split_whitespace() {
+    for word in s.split_whitespace().flat_map(|w| break_word(w, width_mm, size_pt)) {
         let trial = if line.is_empty() { word.to_string() } else { format!("{line} {word}") };
         if text_width_mm(&trial, size_pt) > width_mm && !line.is_empty() {
             lines.push(std::mem::replace(&mut line, word.to_string()));
@@ -82,6 +83,41 @@ pub fn wrap(s: &str, width_mm: f32, size_pt: f32) -> Vec<String> {
         lines.push(line);
     }
     lines
+}
+
+/// A word wider than `width_mm` (a plant model's group path, say) in pieces
+/// that fit, each broken after a '/', '-' or '_' where one falls in it, else
+/// between characters; a word that fits, whole.
+fn break_word(word: &str, width_mm: f32, size_pt: f32) -> Vec<&str> {
+    let mut pieces = Vec::new();
+    let mut rest = word;
+    while text_width_mm(rest, size_pt) > width_mm {
+        let (mut fits, mut after_mark) = (0, 0);
+        for (i, c) in rest.char_indices() {
+            let end = i + c.len_utf8();
+            if text_width_mm(&rest[..end], size_pt) > width_mm {
+                break;
+            }
+            fits = end;
+            if matches!(c, '/' | '-' | '_') {
+                after_mark = end;
+            }
+        }
+        // At least one character, however narrow the column.
+        let cut = if after_mark > 0 { after_mark } else { fits.max(rest.chars().next().map_or(1, char::len_utf8)) };
+        pieces.push(&rest[..cut]);
+        rest = &rest[cut..];
+    }
+    if !rest.is_empty() {
+        pieces.push(rest);
+    }
+    pieces
+}
+
+/// A table row's cells as the lines each takes in its column (1.2 mm of
+/// padding each side).
+fn table_cells(widths: &[f32], row: &[String], size_pt: f32) -> Vec<Vec<String>> {
+    row.iter().zip(widths).map(|(cell, w)| wrap(cell, w - 2.4, size_pt)).collect()
 }
 
 /// Distance between the baselines of a paragraph's lines (mm).
@@ -127,8 +163,14 @@ impl Doc {
         Point::new(Mm(x), Mm(self.size.h - y))
     }
 
-    /// Text with its baseline at (x, y) mm from the top-left.
+    /// Text with its baseline at (x, y) mm from the top-left. It must end
+    /// within the sheet (by [`text_width_mm`]'s estimate, with 5 mm to
+    /// spare): what runs off the edge is never read.
     pub fn text(&mut self, x: f32, y: f32, s: &str, size_pt: f32, bold: bool, color: [u8; 3]) {
+        debug_assert!(
+            x + text_width_mm(s, size_pt) <= self.size.w - 5.0,
+            "\"{s}\" drawn from {x} mm runs past the sheet's right edge"
+        );
         let font = if bold { self.bold.clone() } else { self.regular.clone() };
         let pos = self.pt(x, y);
         let ops = self.ops();
@@ -212,8 +254,20 @@ impl Doc {
         h
     }
 
+    /// Height of each of `rows` in a [`Doc::table`] of these `widths` (mm):
+    /// a cell too wide for its column wraps onto more lines.
+    pub fn table_row_heights(widths: &[f32], rows: &[Vec<String>], size_pt: f32) -> Vec<f32> {
+        let (rh, lh) = (size_pt * 0.3528 * 1.9, line_height_mm(size_pt));
+        rows.iter()
+            .map(|row| {
+                rh + lh * (table_cells(widths, row, size_pt).iter().map(Vec::len).max().unwrap_or(1).max(1) - 1) as f32
+            })
+            .collect()
+    }
+
     /// A table with a header row; `widths` in mm, `right` marks right-aligned
-    /// columns. Returns the y below it.
+    /// columns; a cell wider than its column wraps onto more lines. Returns
+    /// the y below it.
     pub fn table(
         &mut self,
         x: f32,
@@ -225,6 +279,7 @@ impl Doc {
         size_pt: f32,
     ) -> f32 {
         let rh = size_pt * 0.3528 * 1.9;
+        let lh = line_height_mm(size_pt);
         let total: f32 = widths.iter().sum();
         self.fill_rect(x, y, total, rh, [225, 232, 242]);
         let mut cx = x;
@@ -236,17 +291,21 @@ impl Doc {
         y += rh;
         self.line(x, y, x + total, y, 0.6, [80, 80, 80]);
         for (ri, row) in rows.iter().enumerate() {
+            let cells = table_cells(widths, row, size_pt);
+            let h = rh + lh * (cells.iter().map(Vec::len).max().unwrap_or(1).max(1) - 1) as f32;
             if ri % 2 == 1 {
-                self.fill_rect(x, y, total, rh, [246, 247, 250]);
+                self.fill_rect(x, y, total, h, [246, 247, 250]);
             }
             let mut cx = x;
-            for (k, cell) in row.iter().enumerate() {
-                let tw = text_width_mm(cell, size_pt);
-                let tx = if right.get(k).copied().unwrap_or(false) { cx + widths[k] - 1.2 - tw } else { cx + 1.2 };
-                self.text(tx, y + rh * 0.68, cell, size_pt, false, [20, 20, 20]);
+            for (k, lines) in cells.iter().enumerate() {
+                for (n, line) in lines.iter().enumerate() {
+                    let tw = text_width_mm(line, size_pt);
+                    let tx = if right.get(k).copied().unwrap_or(false) { cx + widths[k] - 1.2 - tw } else { cx + 1.2 };
+                    self.text(tx, y + rh * 0.68 + lh * n as f32, line, size_pt, false, [20, 20, 20]);
+                }
                 cx += widths[k];
             }
-            y += rh;
+            y += h;
         }
         self.line(x, y, x + total, y, 0.8, [80, 80, 80]);
         y

@@ -53,10 +53,18 @@ fn input_lines(d: &mut Doc, mut y: f32, lines: &[String], w: f32) -> f32 {
     y
 }
 
+/// Rows of a key and its value, the value wrapped to the page's right
+/// margin (15 mm).
 fn key_values(d: &mut Doc, x: f32, mut y: f32, rows: &[(&str, String)], key_w: f32) -> f32 {
+    let width = d.size.w - 15.0 - (x + key_w);
     for (k, v) in rows {
         d.text(x, y, k, 9.0, true, GREY);
-        d.text(x + key_w, y, v, 9.0, false, INK);
+        for (n, line) in crate::pdf::wrap(v, width, 9.0).iter().enumerate() {
+            if n > 0 {
+                y += crate::pdf::line_height_mm(9.0);
+            }
+            d.text(x + key_w, y, line, 9.0, false, INK);
+        }
         y += 5.0;
     }
     y
@@ -317,10 +325,18 @@ pub fn document(
             ]
         })
         .collect();
+    let heights = Doc::table_row_heights(&widths, &rows, 8.0);
     let mut start = 0;
     while start < rows.len() {
-        let fit = (((size.h - 40.0 - y) / 6.0).floor() as usize).max(1);
-        let end = (start + fit).min(rows.len());
+        // As many rows as the page holds above 40 mm from its foot (the
+        // header row included), at least one.
+        let room = size.h - 40.0 - y - 8.0 * 0.3528 * 1.9;
+        let mut end = start + 1;
+        let mut used = heights[start];
+        while end < rows.len() && used + heights[end] <= room {
+            used += heights[end];
+            end += 1;
+        }
         y = d.table(15.0, y, &widths, &right, &header, &rows[start..end], 8.0);
         start = end;
         if start < rows.len() {
@@ -531,6 +547,43 @@ pub fn document(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A value or a table cell too long for the sheet (a plant model's group
+    /// path) wraps within it, broken after its slashes, and all of it is on
+    /// the page; the steps table's rows grow to hold it.
+    #[test]
+    fn long_values_and_cells_wrap_within_the_sheet() {
+        let mut d = Doc::new("t", A4).unwrap();
+        d.new_page();
+        let path = "/SITE/ZONE-A/PIPE-RACK-2/BEAM-17".repeat(5);
+        let y = key_values(
+            &mut d,
+            15.0,
+            30.0,
+            &[("Min clearance", format!("0.12 m, load to {path} (required 1.00 m)"))],
+            42.0,
+        );
+        assert!(y > 30.0 + 5.0 + 2.0 * crate::pdf::line_height_mm(9.0) - 1e-3, "not wrapped: {y}");
+        let rows = vec![vec!["1".to_string(), format!("load – {path}")]];
+        let widths = [20.0, 60.0];
+        let heights = Doc::table_row_heights(&widths, &rows, 8.0);
+        assert!(heights[0] > 3.0 * crate::pdf::line_height_mm(8.0), "{heights:?}");
+        let below = d.table(15.0, y, &widths, &[true, false], &["Step", "Closest obstacle"], &rows, 8.0);
+        assert!((below - y - 8.0 * 0.3528 * 1.9 - heights[0]).abs() < 1e-3);
+        let text = d.text[0].replace('\n', "");
+        assert_eq!(text.matches("/SITE/ZONE-A/PIPE-RACK-2/BEAM-17").count(), 10, "{text}");
+    }
+
+    /// Text that would run past the sheet's right edge is refused (in
+    /// debug builds, as every test's PDF is made).
+    #[test]
+    #[cfg(debug_assertions)]
+    #[should_panic(expected = "runs past the sheet's right edge")]
+    fn text_past_the_right_edge_is_refused() {
+        let mut d = Doc::new("t", A4).unwrap();
+        d.new_page();
+        d.text(15.0, 30.0, &"wide ".repeat(80), 9.0, false, INK);
+    }
 
     /// East is 90°, north 0°, south-west 225°; never 360.
     #[test]
