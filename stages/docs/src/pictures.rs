@@ -20,19 +20,37 @@ const HOT_SPOT: Rgb = [235, 20, 20];
 /// Other lifts' loads where they stand during this lift.
 pub const OTHER_LOAD: Rgb = [150, 90, 190];
 
-/// The site as the pictures show it: plant mesh and a thinned cloud.
+/// The site as the pictures show it: plant mesh and a thinned cloud, in
+/// `f32` metres from [`SiteView::origin`].
 pub struct SiteView {
     pub renderer: render::Renderer,
     pub mesh: TriMesh,
     pub points: Vec<[f32; 3]>,
     pub colors: Vec<Rgb>,
+    /// The site point (whole metres in plan, height 0) the pictures are
+    /// drawn from. A site in survey coordinates (UTM northings of 5,000 km)
+    /// in `f32` would be drawn to the nearest half metre.
+    pub origin: [f64; 3],
 }
 
 impl SiteView {
-    /// Keeps at most `max_points` cloud points (every k-th), coloured by height.
-    pub fn new(renderer: render::Renderer, mesh: TriMesh, points: &[[f64; 3]], max_points: usize) -> SiteView {
+    /// Keeps at most `max_points` cloud points (every k-th), coloured by
+    /// height; everything is drawn from the middle of the site's plan extent.
+    pub fn new(renderer: render::Renderer, mut mesh: TriMesh, points: &[[f64; 3]], max_points: usize) -> SiteView {
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for p in points.iter().chain(&mesh.vertices) {
+            for a in 0..2 {
+                (lo[a], hi[a]) = (lo[a].min(p[a]), hi[a].max(p[a]));
+            }
+        }
+        let mid = |a: usize| if lo[a] <= hi[a] { (0.5 * (lo[a] + hi[a])).round() } else { 0.0 };
+        let origin = [mid(0), mid(1), 0.0];
+        for v in &mut mesh.vertices {
+            *v = [v[0] - origin[0], v[1] - origin[1], v[2] - origin[2]];
+        }
+        let local = |p: &[f64; 3]| [(p[0] - origin[0]) as f32, (p[1] - origin[1]) as f32, (p[2] - origin[2]) as f32];
         let k = points.len().div_ceil(max_points.max(1)).max(1);
-        let kept: Vec<[f32; 3]> = points.iter().step_by(k).map(|p| [p[0] as f32, p[1] as f32, p[2] as f32]).collect();
+        let kept: Vec<[f32; 3]> = points.iter().step_by(k).map(local).collect();
         let (lo, hi) = kept.iter().fold((f32::INFINITY, f32::NEG_INFINITY), |(a, b), p| (a.min(p[2]), b.max(p[2])));
         let colors = kept
             .iter()
@@ -42,7 +60,23 @@ impl SiteView {
                 [(c[0] as f64 * 0.8 + 40.0) as u8, (c[1] as f64 * 0.8 + 40.0) as u8, (c[2] as f64 * 0.8 + 40.0) as u8]
             })
             .collect();
-        SiteView { renderer, mesh, points: kept, colors }
+        SiteView { renderer, mesh, points: kept, colors, origin }
+    }
+
+    /// A site point as the pictures draw it.
+    pub fn local(&self, p: [f64; 3]) -> [f32; 3] {
+        [(p[0] - self.origin[0]) as f32, (p[1] - self.origin[1]) as f32, (p[2] - self.origin[2]) as f32]
+    }
+
+    /// A box in the site as the pictures draw it.
+    fn local_obb(&self, b: &Obb) -> Obb {
+        let mut o = *b;
+        o.center -= nalgebra::Vector3::new(self.origin[0], self.origin[1], self.origin[2]);
+        o
+    }
+
+    fn obb_batch(&self, b: &Obb, color: Rgb) -> TriangleBatch {
+        render::obb_batch(&self.local_obb(b), color)
     }
 
     fn base_scene(&self, point_px: f32) -> Scene {
@@ -62,7 +96,7 @@ impl SiteView {
     }
 }
 
-fn crane_batches(task: &LiftTask, c: &Config) -> Vec<TriangleBatch> {
+fn crane_batches(site: &SiteView, task: &LiftTask, c: &Config) -> Vec<TriangleBatch> {
     task.crane
         .pose(c, &task.load)
         .parts
@@ -74,13 +108,13 @@ fn crane_batches(task: &LiftTask, c: &Config) -> Vec<TriangleBatch> {
                 PartKind::Rope => [40, 40, 40],
                 _ => CRANE,
             };
-            render::obb_batch(b, color)
+            site.obb_batch(b, color)
         })
         .collect()
 }
 
 /// Hook path (load centre) through the moves, sampled along each.
-pub fn load_path(task: &LiftTask, plan: &LiftPlan, upto: usize) -> Vec<[f32; 3]> {
+pub fn load_path(site: &SiteView, task: &LiftTask, plan: &LiftPlan, upto: usize) -> Vec<[f32; 3]> {
     let mut pts = Vec::new();
     for m in plan.moves.iter().take(upto) {
         let (a, b) = (m.from.to_array(), m.to.to_array());
@@ -90,7 +124,7 @@ pub fn load_path(task: &LiftTask, plan: &LiftPlan, upto: usize) -> Vec<[f32; 3]>
             let j = m.joint.index();
             v[j] = a[j] + (b[j] - a[j]) * s as f64 / n as f64;
             let o = task.crane.load_obb(&Config::from_array(v), &task.load);
-            pts.push([o.center.x as f32, o.center.y as f32, o.center.z as f32]);
+            pts.push(site.local([o.center.x, o.center.y, o.center.z]));
         }
     }
     pts
@@ -100,11 +134,11 @@ pub fn load_path(task: &LiftTask, plan: &LiftPlan, upto: usize) -> Vec<[f32; 3]>
 /// and the load path.
 pub fn overview(site: &SiteView, task: &LiftTask, plan: &LiftPlan, others: &[Obb], w: u32, h: u32) -> Image {
     let mut s = site.base_scene(2.0);
-    s.triangles.extend(others.iter().map(|b| render::obb_batch(b, OTHER_LOAD)));
-    s.triangles.extend(crane_batches(task, &plan.start));
-    s.triangles.push(render::obb_batch(&task.crane.load_obb(&plan.set, &task.load), [90, 160, 230]));
+    s.triangles.extend(others.iter().map(|b| site.obb_batch(b, OTHER_LOAD)));
+    s.triangles.extend(crane_batches(site, task, &plan.start));
+    s.triangles.push(site.obb_batch(&task.crane.load_obb(&plan.set, &task.load), [90, 160, 230]));
     s.lines.push(Polyline {
-        points: load_path(task, plan, plan.moves.len()),
+        points: load_path(site, task, plan, plan.moves.len()),
         color: PATH,
         width_px: 3.0,
         on_top: true,
@@ -117,11 +151,11 @@ pub fn overview(site: &SiteView, task: &LiftTask, plan: &LiftPlan, others: &[Obb
 /// Perspective view at the end of step `n` (1-based) with the path so far.
 pub fn step_view(site: &SiteView, task: &LiftTask, plan: &LiftPlan, others: &[Obb], n: usize, w: u32, h: u32) -> Image {
     let mut s = site.base_scene(1.5);
-    s.triangles.extend(others.iter().map(|b| render::obb_batch(b, OTHER_LOAD)));
+    s.triangles.extend(others.iter().map(|b| site.obb_batch(b, OTHER_LOAD)));
     let end = plan.moves[n - 1].to;
-    s.triangles.extend(crane_batches(task, &end));
-    let done = load_path(task, plan, n);
-    let all = load_path(task, plan, plan.moves.len());
+    s.triangles.extend(crane_batches(site, task, &end));
+    let done = load_path(site, task, plan, n);
+    let all = load_path(site, task, plan, plan.moves.len());
     s.lines.push(Polyline { points: all, color: [230, 170, 180], width_px: 2.0, on_top: true });
     s.lines.push(Polyline { points: done, color: PATH, width_px: 3.5, on_top: true });
     // Hot spot: where the validator measured this step's smallest clearance, as
@@ -129,11 +163,10 @@ pub fn step_view(site: &SiteView, task: &LiftTask, plan: &LiftPlan, others: &[Ob
     // is found even when the obstacle hides it.
     if let Some(at) = plan.steps.get(n - 1).and_then(|st| st.clearance_at) {
         let c = nalgebra::Point3::new(at[0], at[1], at[2]);
-        s.triangles.push(render::obb_batch(
-            &liftplan_core::obb::Obb::axis_aligned(c, nalgebra::Vector3::new(0.3, 0.3, 0.3)),
-            HOT_SPOT,
-        ));
-        let (x, y, z) = (at[0] as f32, at[1] as f32, at[2] as f32);
+        s.triangles.push(
+            site.obb_batch(&liftplan_core::obb::Obb::axis_aligned(c, nalgebra::Vector3::new(0.3, 0.3, 0.3)), HOT_SPOT),
+        );
+        let [x, y, z] = site.local(at);
         s.lines.push(Polyline {
             points: vec![[x, y, z], [x, y, z + 4.0]],
             color: HOT_SPOT,
@@ -147,14 +180,17 @@ pub fn step_view(site: &SiteView, task: &LiftTask, plan: &LiftPlan, others: &[Ob
     for c in [plan.start, end, plan.set] {
         for (_, b) in task.crane.pose(&c, &task.load).parts {
             for p in b.corners() {
+                let q = site.local([p.x, p.y, p.z]);
                 for i in 0..3 {
-                    lo[i] = lo[i].min(p[i] as f32);
-                    hi[i] = hi[i].max(p[i] as f32);
+                    lo[i] = lo[i].min(q[i]);
+                    hi[i] = hi[i].max(q[i]);
                 }
             }
         }
     }
-    lo[2] = lo[2].min(0.0);
+    // Down to the ground the crane stands on (a site in survey heights
+    // stands far above 0).
+    lo[2] = lo[2].min(site.local([0.0, 0.0, task.crane.placement.z_m])[2]);
     // Look from behind-left of the crane towards the work area.
     let mid_swing = 0.5 * (plan.start.swing_rad + plan.set.swing_rad) + task.crane.placement.heading_rad;
     let az = (mid_swing + std::f64::consts::PI + 0.6).to_degrees() as f32;
@@ -203,4 +239,50 @@ pub fn chart_plot(chart: &ChartConfig, task: &LiftTask, plan: &LiftPlan, w: u32,
         img.disc(x_of(st.radius_m), y_of(g), 5.0, [200, 40, 40]);
     }
     img
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use liftplan_core::frame::{Point3, Vec3, rot_z};
+
+    /// A site in survey coordinates (a UTM easting and northing, heights
+    /// above a datum) is drawn as the same site near the origin: its points
+    /// and boxes to well under a millimetre, where `f32` site coordinates
+    /// would round them to half a metre.
+    #[test]
+    fn a_site_in_survey_coordinates_is_drawn_as_finely_as_one_at_the_origin() {
+        let near: Vec<[f64; 3]> =
+            (0..2000).map(|k| [(k % 50) as f64 * 0.37, (k / 50) as f64 * 0.41, 0.013 * k as f64]).collect();
+        let shift = [512_345.0, 5_412_345.0, 102.0];
+        let far: Vec<[f64; 3]> = near.iter().map(|p| [p[0] + shift[0], p[1] + shift[1], p[2] + shift[2]]).collect();
+        let mut mesh = TriMesh::default();
+        let g = mesh.group_id("SLAB");
+        mesh.add_box(g, [0.0, 0.0, -0.3], [18.0, 16.0, 0.0]);
+        let mut far_mesh = mesh.clone();
+        for v in &mut far_mesh.vertices {
+            *v = [v[0] + shift[0], v[1] + shift[1], v[2] + shift[2]];
+        }
+        let a = SiteView::new(render::Renderer::Cpu, mesh, &near, 10_000);
+        let b = SiteView::new(render::Renderer::Cpu, far_mesh, &far, 10_000);
+        let (da, db) = (a.origin, b.origin);
+        assert_eq!([db[0] - da[0], db[1] - da[1], db[2] - da[2]], [shift[0], shift[1], 0.0]);
+        let close = |p: [f32; 3], q: [f32; 3]| {
+            (p[0] - q[0]).abs() < 1e-4 && (p[1] - q[1]).abs() < 1e-4 && (q[2] - p[2] - 102.0).abs() < 1e-4
+        };
+        for (p, q) in a.points.iter().zip(&b.points) {
+            assert!(close(*p, *q), "{p:?} {q:?}");
+        }
+        for (p, q) in a.mesh.vertices.iter().zip(&b.mesh.vertices) {
+            let f = |v: &[f64; 3]| [v[0] as f32, v[1] as f32, v[2] as f32];
+            assert!(close(f(p), f(q)), "{p:?} {q:?}");
+        }
+        let load = Obb::new(Point3::new(6.3, 4.1, 2.0), rot_z(0.4), Vec3::new(2.0, 1.0, 1.0));
+        let mut far_load = load;
+        far_load.center += Vec3::new(shift[0], shift[1], shift[2]);
+        let (pa, pb) = (a.obb_batch(&load, LOAD).positions, b.obb_batch(&far_load, LOAD).positions);
+        for (p, q) in pa.iter().zip(&pb) {
+            assert!(close(*p, *q), "{p:?} {q:?}");
+        }
+    }
 }
