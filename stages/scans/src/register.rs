@@ -347,10 +347,22 @@ const BLOCK: usize = 4096;
 /// not be pulled together.
 pub fn icp(src: &RegCloud, target: &Target, init: Pose, distances: &[f64]) -> Pose {
     let mut pose = init;
+    // Rotations are linearised about a point of the scan where it stands, not
+    // about the site's origin: with survey coordinates (a northing of 5,000 km)
+    // a rotation about the origin is almost a translation, and the normal
+    // equations lose the difference.
+    let pivot = |pose: &Pose| match src.pts.first() {
+        Some(p) => {
+            let q = tf(pose, p);
+            Vec3::new(q[0].round(), q[1].round(), q[2].round())
+        }
+        None => Vec3::zeros(),
+    };
     for &d in distances {
         let grid = &target.grid;
         let huber = (d / 20.0).max(0.01);
         for _ in 0..50 {
+            let m = pivot(&pose);
             let blocks: Vec<(na::Matrix6<f64>, na::Vector6<f64>, usize)> = (0..src.pts.len().div_ceil(BLOCK))
                 .into_par_iter()
                 .map(|b| {
@@ -371,7 +383,7 @@ pub fn icp(src: &RegCloud, target: &Target, init: Pose, distances: &[f64]) -> Po
                         let pv = Vec3::new(p[0], p[1], p[2]);
                         let r = (pv - Vec3::new(q[0], q[1], q[2])).dot(&nv);
                         let w = if r.abs() <= huber { 1.0 } else { huber / r.abs() };
-                        let c = pv.cross(&nv);
+                        let c = (pv - m).cross(&nv);
                         let jrow = na::Vector6::new(c.x, c.y, c.z, nv.x, nv.y, nv.z);
                         h += w * jrow * jrow.transpose();
                         g += w * r * jrow;
@@ -395,8 +407,10 @@ pub fn icp(src: &RegCloud, target: &Target, init: Pose, distances: &[f64]) -> Po
             let Some(x) = h.cholesky().map(|c| c.solve(&(-g))) else {
                 break;
             };
+            // The step turns about the pivot, then translates.
             let rot = na::UnitQuaternion::from_scaled_axis(Vec3::new(x[0], x[1], x[2]));
-            let step = Pose::from_parts(na::Translation3::new(x[3], x[4], x[5]), rot);
+            let t = m - rot * m + Vec3::new(x[3], x[4], x[5]);
+            let step = Pose::from_parts(na::Translation3::from(t), rot);
             pose = step * pose;
             if Vec3::new(x[0], x[1], x[2]).norm() < 1e-7 && Vec3::new(x[3], x[4], x[5]).norm() < 1e-6 {
                 break;
@@ -1728,6 +1742,56 @@ mod tests {
         // Far from them: nothing to align by, so nothing confirms the survey.
         let (_, why) = verdict(liftplan_core::frame::pose_xyz_yaw(30.0, 0.0, 0.0, 0.0));
         assert!(why.is_some_and(|w| w.contains("overlap them by 0.0 %")), "no overlap is refused");
+    }
+
+    /// ICP finds the same pose for a scan of a room's corner whether the
+    /// site frame is near the corner or in survey coordinates 5,400 km away
+    /// (where rotations about the site's origin, as it linearised them
+    /// before, are all but translations and the scans did not register).
+    #[test]
+    fn icp_finds_the_pose_as_well_in_survey_coordinates() {
+        let mut site: Vec<([f64; 3], [f64; 3])> = Vec::new();
+        for i in 0..40 {
+            for j in 0..40 {
+                let (a, b) = (0.5 + 0.25 * i as f64, 0.5 + 0.25 * j as f64);
+                site.push(([a, b, 0.0], [0.0, 0.0, 1.0]));
+                if b < 5.0 {
+                    site.push(([0.0, a, b], [1.0, 0.0, 0.0]));
+                    site.push(([a, 0.0, b], [0.0, 1.0, 0.0]));
+                }
+            }
+        }
+        let scanner = liftplan_core::frame::pose_xyz_yaw(4.0, 3.0, 1.5, 0.7);
+        let to_scan = scanner.inverse();
+        let src = RegCloud {
+            pts: site.iter().map(|(p, _)| tf(&to_scan, p)).collect(),
+            normals: site
+                .iter()
+                .map(|(_, n)| {
+                    let m = to_scan.rotation * Vec3::new(n[0], n[1], n[2]);
+                    [m.x, m.y, m.z]
+                })
+                .collect(),
+        };
+        let nudge = Pose::from_parts(
+            na::Translation3::new(0.25, -0.2, 0.1),
+            na::UnitQuaternion::from_euler_angles(0.01, -0.01, 0.05),
+        );
+        for offset in [[0.0; 3], [512_345.0, 5_412_345.0, 102.0]] {
+            let shift = Pose::from_parts(
+                na::Translation3::new(offset[0], offset[1], offset[2]),
+                na::UnitQuaternion::identity(),
+            );
+            let target = Target::new(
+                site.iter().map(|(p, _)| [p[0] + offset[0], p[1] + offset[1], p[2] + offset[2]]).collect(),
+                site.iter().map(|(_, n)| *n).collect(),
+            );
+            let truth = shift * scanner;
+            let found = icp(&src, &target, shift * nudge * scanner, &[1.0, 0.5, 0.25, 0.1]);
+            let off_m = (found.translation.vector - truth.translation.vector).norm();
+            let off_rad = found.rotation.angle_to(&truth.rotation);
+            assert!(off_m < 1e-4 && off_rad < 1e-6, "offset {offset:?}: {off_m} m, {off_rad} rad from the truth");
+        }
     }
 
     #[test]
