@@ -79,6 +79,10 @@ enum Command {
         /// Angular step of the simulated scanners in degrees (smaller is denser).
         #[arg(long, default_value_t = 0.25)]
         scan_step: f64,
+        /// Give the site in survey coordinates (E 512,345, N 5,412,345, heights
+        /// + 102 m), as a site surveyed in a projected CRS is.
+        #[arg(long)]
+        survey_coordinates: bool,
     },
     /// Summarise any input file liftplan reads (scans, plant models, charts).
     #[command(after_help = "Examples:\n  liftplan inspect scans/north.laz\n  liftplan inspect scans/site.e57 --json")]
@@ -289,7 +293,7 @@ fn real_main() -> Result<ExitCode> {
             watch::watch(&dir, &progress, stop)?;
             Ok(ExitCode::SUCCESS)
         }
-        Command::Demo { dir, scan_step } => {
+        Command::Demo { dir, scan_step, survey_coordinates } => {
             let dir = dir.unwrap_or_else(|| PathBuf::from("liftplan-demo"));
             if dir.join(project::FILE).exists() {
                 progress.line(&format!("{} already holds a project: running it again", dir.display()));
@@ -297,7 +301,14 @@ fn real_main() -> Result<ExitCode> {
                 progress.line(&format!("writing the demo project into {}", dir.display()));
                 liftplan_fixtures::demo::write_project(
                     &dir,
-                    &liftplan_fixtures::demo::DemoOptions { scan_step_deg: scan_step },
+                    &liftplan_fixtures::demo::DemoOptions {
+                        scan_step_deg: scan_step,
+                        site_offset_m: if survey_coordinates {
+                            liftplan_fixtures::demo::SURVEY_OFFSET_M
+                        } else {
+                            [0.0; 3]
+                        },
+                    },
                 )
                 .map_err(anyhow::Error::msg)?;
             }

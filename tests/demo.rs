@@ -209,3 +209,30 @@ fn demo_outputs_depend_on_neither_the_thread_count_nor_the_folder_name() {
         }
     }
 }
+
+/// The demo with its site in survey coordinates (a UTM easting and
+/// northing, heights 102 m above the datum: the surveyed station, the
+/// plant's placement and the lift all given there) runs end to end as the
+/// demo does: every scan registers (ICP once lost its rotations 100 km from
+/// the origin), the lift plans and validates at the utilisation the set
+/// radius gives, and the PDF is written.
+#[test]
+fn the_demo_in_survey_coordinates_runs_end_to_end() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("utm");
+    let out = liftplan(&["demo", dir.to_str().unwrap(), "--survey-coordinates", "-q"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let toml = std::fs::read_to_string(dir.join("liftplan.toml")).unwrap();
+    assert!(toml.contains("position_m = [512345.000, 5412345.000], ground_z_m = 102.000"), "{toml}");
+    let reg: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join("out").join("registration.json")).unwrap()).unwrap();
+    let scans = reg["scans"].as_array().unwrap();
+    assert!(scans.len() == 4 && scans.iter().all(|s| s["registered"] == true), "{reg}");
+    let plan: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join("out").join("plan.json")).unwrap()).unwrap();
+    let lift = &plan["lifts"][0];
+    assert_eq!(lift["validator"]["ok"], true, "{lift}");
+    let util = lift["summary"]["max_utilisation_pct"].as_f64().unwrap();
+    assert!((util - 51.0).abs() < 0.5, "{util}");
+    assert!(dir.join("out").join("V-101.pdf").is_file());
+}
