@@ -102,28 +102,27 @@ impl Coverage {
                 self.under_crane.unknown_m2
             );
         }
-        let load = if self.under_load.unscanned_m2 > 0.0 {
-            format!(
-                "the load passes over {:.0} m², {:.0} m² of it WITH NO SCAN POINT WITHIN {SEEN_WITHIN_M:.0} m{} ({:.0} m² not in the plant model either): CHECK ON SITE what stands there",
-                self.under_load.passed_m2,
-                self.under_load.unscanned_m2,
-                where_(&self.under_load),
-                self.under_load.unknown_m2
-            )
-        } else {
-            format!("the load passes over {:.0} m², all of it scanned", self.under_load.passed_m2)
+        // What the load passes over unseen asks for a look on site; what
+        // only the boom does, high up, is said.
+        let part = |who: &str, a: &Area, loud: bool| {
+            if a.unscanned_m2 > 0.0 {
+                let unseen = if loud { "WITH NO SCAN POINT WITHIN" } else { "with no scan point within" };
+                let unseen = format!("{unseen} {SEEN_WITHIN_M:.0} m");
+                format!(
+                    "{who} {:.0} m², {:.0} m² of it {}{} ({:.0} m² not in the plant model either){}",
+                    a.passed_m2,
+                    a.unscanned_m2,
+                    unseen,
+                    where_(a),
+                    a.unknown_m2,
+                    if loud { ": CHECK ON SITE what stands there" } else { "" }
+                )
+            } else {
+                format!("{who} {:.0} m², all of it scanned", a.passed_m2)
+            }
         };
-        let crane = if self.under_crane.unscanned_m2 > 0.0 {
-            format!(
-                "the crane's boom and superstructure over {:.0} m², {:.0} m² of it with no scan point within {SEEN_WITHIN_M:.0} m{} ({:.0} m² not in the plant model either)",
-                self.under_crane.passed_m2,
-                self.under_crane.unscanned_m2,
-                where_(&self.under_crane),
-                self.under_crane.unknown_m2
-            )
-        } else {
-            format!("the crane's boom and superstructure over {:.0} m², all of it scanned", self.under_crane.passed_m2)
-        };
+        let load = part("the load passes over", &self.under_load, true);
+        let crane = part("the crane's boom and superstructure over", &self.under_crane, false);
         format!("what the lift passes over: {load}; {crane}")
     }
 }
