@@ -84,9 +84,8 @@ pub enum SubsampleMethod {
 /// The unit of scan files that state none (`[scans] unit`). A unit a file
 /// states (a LAS/LAZ CRS, E57's metres) is that file's, whatever this says;
 /// a file that names a CRS without stating its unit needs this set.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 pub enum ScanUnit {
-    #[default]
     #[serde(rename = "m")]
     Metre,
     #[serde(rename = "ft")]
@@ -277,11 +276,9 @@ pub struct ScanReport {
     pub unit: String,
     /// Metres per coordinate unit of x, y and z ([`ScanInfo::to_m`]).
     pub to_m: [f64; 3],
-    /// The date its file gives ([`read::ScanDate`]): "2026-10-02
-    /// (acquired)" or "... (file created)".
-    pub date: Option<String>,
-    #[serde(skip)]
-    pub scan_date: Option<read::ScanDate>,
+    /// The date its file gives ([`read::ScanDate`]; "2026-10-02
+    /// (acquired)" or "... (file created)" in JSON).
+    pub date: Option<read::ScanDate>,
 }
 
 #[derive(Debug, Clone, Serialize)]
@@ -350,7 +347,7 @@ impl Summary {
         let plural = |n: usize| if n == 1 { "" } else { "s" };
         let range = |acquired: bool| {
             let dates: Vec<read::ScanDate> =
-                self.scans.iter().filter_map(|s| s.scan_date).filter(|d| d.acquired == acquired).collect();
+                self.scans.iter().filter_map(|s| s.date).filter(|d| d.acquired == acquired).collect();
             let (lo, hi) = (dates.iter().min()?, dates.iter().max()?);
             let span = if lo == hi { lo.date.to_string() } else { format!("{} to {}", lo.date, hi.date) };
             Some((span, dates.len()))
@@ -365,7 +362,7 @@ impl Summary {
                 plural(n)
             ));
         }
-        let none = self.scans.iter().filter(|s| s.scan_date.is_none()).count();
+        let none = self.scans.iter().filter(|s| s.date.is_none()).count();
         if none > 0 {
             said.push(format!("no date in the file for {none} scan{}", plural(none)));
         }
@@ -693,8 +690,7 @@ pub fn run(inputs: &[PathBuf], s: &Settings, opts: &RunOptions, out_dir: &Path) 
                 warning: r.warning.clone(),
                 unit: unit_for(s.unit, info)?.what,
                 to_m: info.to_m,
-                date: info.date.map(|d| d.to_string()),
-                scan_date: info.date,
+                date: info.date,
             })
         })
         .collect::<Result<_>>()?;
@@ -1131,8 +1127,7 @@ mod tests {
             warning: None,
             unit: String::new(),
             to_m: [1.0; 3],
-            date: date.map(|d| d.to_string()),
-            scan_date: date,
+            date,
         };
         let summary = |dates: Vec<Option<read::ScanDate>>| Summary {
             scans: dates.into_iter().map(report).collect(),

@@ -79,6 +79,13 @@ pub struct ScanDate {
     pub acquired: bool,
 }
 
+/// As its display: "2026-10-02 (acquired)".
+impl serde::Serialize for ScanDate {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        s.collect_str(self)
+    }
+}
+
 impl std::fmt::Display for ScanDate {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(f, "{} ({})", self.date, if self.acquired { "acquired" } else { "file created" })
