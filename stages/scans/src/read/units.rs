@@ -132,7 +132,12 @@ pub fn from_geokeys(data: &[u8]) -> Result<CrsUnit, String> {
         })
     };
     let model = value(GT_MODEL_TYPE);
-    if model == Some(MODEL_GEOGRAPHIC) {
+    let projected = value(PROJECTED_CRS).is_some_and(|c| c != 0);
+    // A geodetic CRS with no projection over it, whether or not the model
+    // type says so, is in degrees.
+    if model == Some(MODEL_GEOGRAPHIC)
+        || (model != Some(MODEL_PROJECTED) && !projected && value(GEODETIC_CRS).is_some())
+    {
         let crs = value(GEODETIC_CRS).map(|c| format!(" (EPSG:{c})")).unwrap_or_default();
         return Err(format!(
             "its CRS is geographic{crs}: coordinates in degrees; reproject the scan to a projected or local CRS in metres or feet"
@@ -157,7 +162,7 @@ pub fn from_geokeys(data: &[u8]) -> Result<CrsUnit, String> {
                 let heights = heights.map(|(n, v)| (n.to_string(), v));
                 return Ok(CrsUnit::Unstated { crs: format!("EPSG:{c}, named by its code only"), heights });
             }
-            None if model == Some(MODEL_PROJECTED) || value(GEODETIC_CRS).is_some() || heights.is_some() => {
+            None if model == Some(MODEL_PROJECTED) || projected || heights.is_some() => {
                 let heights = heights.map(|(n, v)| (n.to_string(), v));
                 return Ok(CrsUnit::Unstated {
                     crs: "a CRS with no code and no ProjLinearUnitsGeoKey".into(),
@@ -399,8 +404,12 @@ mod tests {
             assert_eq!(metric_crs(not_metric), None, "{not_metric}");
         }
         assert_eq!(from_geokeys(&geokeys(&[])).unwrap(), CrsUnit::None);
-        let e = from_geokeys(&geokeys(&[(1024, 2), (2048, 4326)])).unwrap_err();
-        assert!(e.contains("geographic") && e.contains("EPSG:4326"), "{e}");
+        // Geographic, whether the model type says so or only a geodetic CRS
+        // with no projection is named.
+        for keys in [&[(1024, 2), (2048, 4326)][..], &[(2048, 4326)]] {
+            let e = from_geokeys(&geokeys(keys)).unwrap_err();
+            assert!(e.contains("geographic") && e.contains("EPSG:4326"), "{e}");
+        }
         let e = from_geokeys(&geokeys(&[(1024, 3), (3076, 9001)])).unwrap_err();
         assert!(e.contains("geocentric"), "{e}");
         let e = from_geokeys(&geokeys(&[(3076, 9014)])).unwrap_err();
