@@ -686,11 +686,11 @@ mod tests {
     /// not meet its own load as another.
     #[test]
     fn other_lifts_loads_stand_where_the_order_puts_them() {
-        let lift = |id: &str, pick_y: f64, set_y: f64| {
+        let lift = |id: &str, pick_turn: f64, set_turn: f64| {
             let mut t = test_lift("ac-700");
             t.id = id.into();
-            t.pick = Config { swing_rad: t.pick.swing_rad + pick_y, ..t.pick };
-            t.set = Config { swing_rad: t.set.swing_rad + set_y, ..t.set };
+            t.pick = Config { swing_rad: t.pick.swing_rad + pick_turn, ..t.pick };
+            t.set = Config { swing_rad: t.set.swing_rad + set_turn, ..t.set };
             t
         };
         let (a, b, c) = (lift("A", 0.0, 0.0), lift("B", 0.3, 0.3), lift("C", 0.6, 0.6));

@@ -174,15 +174,19 @@ impl Summary {
         }
     }
 
-    /// [`Summary::other_loads`] as a sentence, if there are any.
-    pub fn other_loads_line(&self) -> Option<String> {
+    /// [`Summary::other_loads`] said, if there are any.
+    pub fn other_loads_said(&self) -> Option<String> {
         (!self.other_loads.is_empty()).then(|| {
             format!(
-                "lift {}: planned and checked with the other lifts' loads where they stand during it (lifts are made in the order the project lists them): {}",
-                self.lift,
+                "planned and checked with the other lifts' loads where they stand during this one (lifts are made in the order the project lists them): {}",
                 self.other_loads.join("; ")
             )
         })
+    }
+
+    /// [`Summary::other_loads_said`] for the run's output.
+    pub fn other_loads_line(&self) -> Option<String> {
+        self.other_loads_said().map(|said| format!("lift {}: {said}", self.lift))
     }
 
     /// [`Summary::coverage`]'s line, for the run's output.

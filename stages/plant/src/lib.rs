@@ -165,7 +165,7 @@ pub struct Summary {
     /// How OBJ/PLY/STL files were read (`[plant] unit` and `up_axis`), and
     /// how many there were.
     pub meshes_read_as: Option<String>,
-    pub meshes_without_frame: usize,
+    pub unitless_mesh_files: usize,
 }
 
 impl Summary {
@@ -185,8 +185,8 @@ impl Summary {
         if let Some(how) = &self.meshes_read_as {
             v.push(format!(
                 "OBJ/PLY/STL coordinates {how}, as [plant] unit and up_axis say: {} file{}",
-                self.meshes_without_frame,
-                if self.meshes_without_frame == 1 { "" } else { "s" }
+                self.unitless_mesh_files,
+                if self.unitless_mesh_files == 1 { "" } else { "s" }
             ));
         }
         // Left out of the obstacles for want of a surface: said here, where
@@ -545,7 +545,7 @@ fn read_model(path: &Path, s: &Settings, summary: &mut Summary, room: u64) -> Re
     };
     if let ("obj" | "ply" | "stl", Some(unit), Some(up)) = (ext.as_str(), s.unit, s.up_axis) {
         summary.meshes_read_as = Some(format!("in {}, {} up", unit.name(), if up == UpAxis::Y { "Y" } else { "Z" }));
-        summary.meshes_without_frame += 1;
+        summary.unitless_mesh_files += 1;
     }
     if ext != "rvm" && m.triangles.is_empty() {
         // A mesh file that makes no surface at all (a point cloud saved as PLY,
