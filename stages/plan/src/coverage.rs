@@ -158,23 +158,16 @@ fn cells_under(poly: &[[f64; 2]], grow_m: f64, mut each: impl FnMut(Cell)) {
     }
 }
 
-/// The cells the plant model's triangles reach in plan view: their
-/// corners', the cells along their edges, and those whose centre lies inside
-/// them.
-fn modelled_cells(world: &World) -> HashSet<Cell> {
+/// The cells of `window` (the least and greatest cell, inclusive) that the
+/// plant model's triangles reach in plan view. Only the window's cells are
+/// tried, so a model in the wrong unit (a kilometre-wide triangle) costs no
+/// more than one that fits.
+fn modelled_cells(world: &World, window: (Cell, Cell)) -> HashSet<Cell> {
     let mut cells = HashSet::new();
     let Some(mesh) = &world.mesh else { return cells };
     let v = mesh.vertices();
     for t in mesh.indices() {
         let tri: Vec<[f64; 2]> = t.iter().map(|&k| [v[k as usize].x, v[k as usize].y]).collect();
-        for e in 0..3 {
-            let (a, b) = (tri[e], tri[(e + 1) % 3]);
-            let steps = ((a[0] - b[0]).hypot(a[1] - b[1]) / (CELL_M / 2.0)).ceil().min(1e6) as usize;
-            for s in 0..=steps {
-                let f = if steps == 0 { 0.0 } else { s as f64 / steps as f64 };
-                cells.insert(cell_of(a[0] + (b[0] - a[0]) * f, a[1] + (b[1] - a[1]) * f));
-            }
-        }
         let (lo, hi) = (
             cell_of(
                 tri.iter().map(|p| p[0]).fold(f64::INFINITY, f64::min),
@@ -185,10 +178,10 @@ fn modelled_cells(world: &World) -> HashSet<Cell> {
                 tri.iter().map(|p| p[1]).fold(f64::NEG_INFINITY, f64::max),
             ),
         );
-        for i in lo.0..=hi.0 {
-            for j in lo.1..=hi.1 {
-                let centre = [(i as f64 + 0.5) * CELL_M, (j as f64 + 0.5) * CELL_M];
-                if in_triangle(&tri, centre) {
+        for i in lo.0.max(window.0.0)..=hi.0.min(window.1.0) {
+            for j in lo.1.max(window.0.1)..=hi.1.min(window.1.1) {
+                let square = [i as f64 * CELL_M, j as f64 * CELL_M, (i + 1) as f64 * CELL_M, (j + 1) as f64 * CELL_M];
+                if triangle_meets_square(&tri, square) {
                     cells.insert((i, j));
                 }
             }
@@ -197,10 +190,23 @@ fn modelled_cells(world: &World) -> HashSet<Cell> {
     cells
 }
 
-fn in_triangle(t: &[[f64; 2]], p: [f64; 2]) -> bool {
-    let side = |a: [f64; 2], b: [f64; 2]| (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]);
-    let (d0, d1, d2) = (side(t[0], t[1]), side(t[1], t[2]), side(t[2], t[0]));
-    (d0 >= 0.0 && d1 >= 0.0 && d2 >= 0.0) || (d0 <= 0.0 && d1 <= 0.0 && d2 <= 0.0)
+/// Whether a plan triangle and a square [x0, y0, x1, y1] share a point
+/// (separating axes: the square's two and the triangle's three edge
+/// normals).
+fn triangle_meets_square(t: &[[f64; 2]], sq: [f64; 4]) -> bool {
+    let corners = [[sq[0], sq[1]], [sq[2], sq[1]], [sq[2], sq[3]], [sq[0], sq[3]]];
+    let apart_along = |axis: [f64; 2]| {
+        let along = |p: &[f64; 2]| p[0] * axis[0] + p[1] * axis[1];
+        let (tl, th) = t.iter().map(along).fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| (l.min(x), h.max(x)));
+        let (sl, sh) =
+            corners.iter().map(along).fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| (l.min(x), h.max(x)));
+        th < sl || sh < tl
+    };
+    let edges = (0..3).map(|e| {
+        let (a, b) = (t[e], t[(e + 1) % 3]);
+        [a[1] - b[1], b[0] - a[0]]
+    });
+    !([[1.0, 0.0], [0.0, 1.0]].into_iter().chain(edges).any(apart_along))
 }
 
 /// The plan cells the lift's `moves` pass over, the hanging parts' and the
@@ -257,8 +263,12 @@ pub fn of_lift(task: &LiftTask, moves: &[Move], world: &World, also_seen: &[Obb]
             scanned.insert(c);
         });
     }
-    let modelled = modelled_cells(world);
     let (load, crane) = swept_cells(task, moves);
+    let mut window = ((i32::MAX, i32::MAX), (i32::MIN, i32::MIN));
+    for &(i, j) in load.keys().chain(crane.keys()) {
+        window = ((window.0.0.min(i), window.0.1.min(j)), (window.1.0.max(i), window.1.1.max(j)));
+    }
+    let modelled = modelled_cells(world, window);
     let area = |cells: &HashMap<Cell, f64>| {
         let cell2 = CELL_M * CELL_M;
         let unscanned: Vec<(&Cell, &f64)> = cells.iter().filter(|(c, _)| !scanned.contains(c)).collect();
@@ -364,6 +374,21 @@ mod tests {
         let cut = Obb::axis_aligned(Point3::new(26.0, 0.0, 1.0), Vec3::new(6.0, 6.0, 1.0));
         let seen = coverage(&ground(0.5, Some(hole)), &none, &[cut]);
         assert_eq!(seen.under_load.unscanned_m2, 0.0, "{seen:?}");
+    }
+
+    /// A triangle meets a cell wherever they share a point: a sliver across
+    /// it with no corner in it and missing its centre (a pipe's long side),
+    /// one touching its edge; not one beside it.
+    #[test]
+    fn triangles_meet_the_cells_they_cross() {
+        let cell = [0.0, 0.0, 1.0, 1.0];
+        let sliver = [[-5.0, 0.1], [6.0, 0.12], [6.0, 0.14]];
+        assert!(triangle_meets_square(&sliver, cell));
+        assert!(triangle_meets_square(&[[1.0, 0.5], [3.0, 0.5], [3.0, 2.0]], cell));
+        assert!(!triangle_meets_square(&[[1.1, 0.5], [3.0, 0.5], [3.0, 2.0]], cell));
+        // Beside the cell's corner: its bounding box overlaps the cell, its
+        // long edge's normal parts them.
+        assert!(!triangle_meets_square(&[[0.8, 1.9], [1.9, 0.8], [3.0, 3.0]], cell));
     }
 
     /// Without scans, what the plant model does not reach is said.
