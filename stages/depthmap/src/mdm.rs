@@ -282,7 +282,9 @@ impl Mdm {
     pub fn with_boxes(&self, boxes: &[(liftplan_core::obb::Obb, String)]) -> Mdm {
         let spec = self.spec;
         let first_obj = self.objects.len() as u32;
-        let mut added: Vec<Vec<Interval>> = vec![Vec::new(); spec.cells()];
+        // (cell, interval) for the cells the boxes reach, in cell order: no
+        // per-cell list for a grid of millions of cells.
+        let mut added: Vec<(usize, Interval)> = Vec::new();
         for (n, (b, _)) in boxes.iter().enumerate() {
             let a = b.aabb();
             for j in spec.rows_between(a.min[1], a.max[1]) {
@@ -291,7 +293,7 @@ impl Mdm {
                     if let Some((lo, hi)) = b.z_range_over_rect(r[0], r[1], r[2], r[3]) {
                         let zlo = f32_at_most(lo);
                         let zhi = f32_at_least(hi);
-                        added[(j * spec.nx + i) as usize].push(Interval { zlo, zhi, obj: first_obj + n as u32 });
+                        added.push(((j * spec.nx + i) as usize, Interval { zlo, zhi, obj: first_obj + n as u32 }));
                     }
                 }
             }
@@ -300,11 +302,17 @@ impl Mdm {
         let mut counts = Vec::with_capacity(spec.cells());
         let mut tops = Vec::with_capacity(spec.cells());
         let mut intervals = Vec::with_capacity(self.intervals.len());
-        for (k, more) in added.iter_mut().enumerate() {
+        added.sort_by_key(|(k, iv)| (*k, order(iv)));
+        let mut next = added.iter().peekable();
+        for k in 0..spec.cells() {
             let start = intervals.len();
             intervals.extend_from_slice(&self.intervals[self.offsets[k] as usize..self.offsets[k + 1] as usize]);
-            if !more.is_empty() {
-                intervals.append(more);
+            let mut more = false;
+            while let Some((_, iv)) = next.next_if(|(c, _)| *c == k) {
+                intervals.push(*iv);
+                more = true;
+            }
+            if more {
                 intervals[start..].sort_unstable_by_key(order);
                 if self.mode == Mode::Single {
                     // One interval a cell, as the build keeps it: the lowest
