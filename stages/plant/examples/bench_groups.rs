@@ -69,7 +69,13 @@ fn main() {
             ("OBJ, exclude one object", obj_file(dir.path(), n), vec!["PART-000000".to_string()]),
         ];
         for (what, path, exclude) in cases {
-            let settings = liftplan_plant::Settings { exclude, ..Default::default() };
+            // The OBJ files are written in metres, Z up, as the project says.
+            let settings = liftplan_plant::Settings {
+                exclude,
+                unit: Some(liftplan_core::units::LengthUnit::M),
+                up_axis: Some(liftplan_plant::UpAxis::Z),
+                ..Default::default()
+            };
             let mut summary = liftplan_plant::Summary::default();
             let t = Instant::now();
             let mesh = liftplan_plant::read_file(&path, &settings, &mut summary).expect("the model read");
