@@ -19,6 +19,8 @@ const PATH: Rgb = [200, 30, 60];
 const HOT_SPOT: Rgb = [235, 20, 20];
 /// Other lifts' loads where they stand during this lift.
 pub const OTHER_LOAD: Rgb = [150, 90, 190];
+/// Ground the load passes over that no scan saw.
+pub const UNSEEN: Rgb = [25, 25, 25];
 
 /// The site as the pictures show it: plant mesh and a thinned cloud, in
 /// `f32` metres from [`SiteView::origin`].
@@ -113,6 +115,23 @@ fn crane_batches(site: &SiteView, task: &LiftTask, c: &Config) -> Vec<TriangleBa
         .collect()
 }
 
+/// The cells the load passes over that no scan saw, as flat tiles at the
+/// crane's set-up level, one batch.
+fn unseen_batch(site: &SiteView, c: &liftplan_plan::coverage::Coverage, z_m: f64) -> TriangleBatch {
+    let mut positions = Vec::new();
+    let mut triangles = Vec::new();
+    for &[i, j] in &c.under_load.unscanned_cells {
+        let (x0, y0) = (i as f64 * c.cell_m, j as f64 * c.cell_m);
+        let n = positions.len() as u32;
+        for (dx, dy) in [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)] {
+            positions.push(site.local([x0 + dx * c.cell_m, y0 + dy * c.cell_m, z_m + 0.05]));
+        }
+        triangles.push([n, n + 1, n + 2]);
+        triangles.push([n, n + 2, n + 3]);
+    }
+    TriangleBatch { positions, triangles, color: UNSEEN }
+}
+
 /// Hook path (load centre) through the moves, sampled along each.
 pub fn load_path(site: &SiteView, task: &LiftTask, plan: &LiftPlan, upto: usize) -> Vec<[f32; 3]> {
     let mut pts = Vec::new();
@@ -135,6 +154,11 @@ pub fn load_path(site: &SiteView, task: &LiftTask, plan: &LiftPlan, upto: usize)
 pub fn overview(site: &SiteView, task: &LiftTask, plan: &LiftPlan, others: &[Obb], w: u32, h: u32) -> Image {
     let mut s = site.base_scene(2.0);
     s.triangles.extend(others.iter().map(|b| site.obb_batch(b, OTHER_LOAD)));
+    if let Some(c) = &plan.summary.coverage
+        && !c.under_load.unscanned_cells.is_empty()
+    {
+        s.triangles.push(unseen_batch(site, c, task.crane.placement.z_m));
+    }
     s.triangles.extend(crane_batches(site, task, &plan.start));
     s.triangles.push(site.obb_batch(&task.crane.load_obb(&plan.set, &task.load), [90, 160, 230]));
     s.lines.push(Polyline {
@@ -284,5 +308,28 @@ mod tests {
         for (p, q) in pa.iter().zip(&pb) {
             assert!(close(*p, *q), "{p:?} {q:?}");
         }
+    }
+
+    /// The ground no scan saw under the load is drawn as one tile per cell
+    /// the plan lists, just above the crane's set-up level, where the cells
+    /// are in the site.
+    #[test]
+    fn unseen_cells_are_tiles_where_the_plan_lists_them() {
+        let site =
+            SiteView::new(render::Renderer::Cpu, TriMesh::default(), &[[100.0, 200.0, 0.0], [140.0, 260.0, 1.0]], 10);
+        let c = liftplan_plan::coverage::Coverage {
+            cell_m: 1.0,
+            scans: true,
+            under_load: liftplan_plan::coverage::Area {
+                unscanned_cells: vec![[118, 229], [119, 229]],
+                ..Default::default()
+            },
+            ..Default::default()
+        };
+        let b = unseen_batch(&site, &c, 102.0);
+        assert_eq!((b.positions.len(), b.triangles.len(), b.color), (8, 4, UNSEEN));
+        let o = site.origin;
+        assert_eq!(b.positions[0], [(118.0 - o[0]) as f32, (229.0 - o[1]) as f32, 102.05]);
+        assert_eq!(b.positions[6], [(120.0 - o[0]) as f32, (230.0 - o[1]) as f32, 102.05]);
     }
 }

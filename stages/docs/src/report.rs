@@ -221,18 +221,21 @@ pub fn document(
     let k = inp.tasks.iter().position(|t| t.id == task.id).unwrap_or(0);
     let others: Vec<Obb> = liftplan_plan::other_loads(&inp.tasks, k).into_iter().map(|(b, _)| b).collect();
     let overview = pictures::overview(site, task, plan, &others, 1400, 1000);
-    d.text(
-        15.0,
-        y,
-        if others.is_empty() {
-            "Site overview (top view, north up): crane at the pick position, load path in red, load at set in light blue."
+    let caption = format!(
+        "Site overview (top view, north up): crane at the pick position, load path in red, load at set in light blue{}{}.",
+        if others.is_empty() { "" } else { ", other lifts' loads in violet" },
+        if plan.summary.coverage.as_ref().is_some_and(|c| !c.under_load.unscanned_cells.is_empty()) {
+            ", ground under the load that no scan saw in black"
         } else {
-            "Site overview (top view, north up): crane at the pick position, load path in red, load at set in light blue, other lifts' loads in violet."
-        },
-        8.5,
-        false,
-        GREY,
+            ""
+        }
     );
+    for (n, line) in crate::pdf::wrap(&caption, w, 8.5).iter().enumerate() {
+        if n > 0 {
+            y += crate::pdf::line_height_mm(8.5);
+        }
+        d.text(15.0, y, line, 8.5, false, GREY);
+    }
     y += 3.0;
     let avail = size.h - 22.0 - y;
     let img_w = (avail * 1.4).min(w);

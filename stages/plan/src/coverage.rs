@@ -58,7 +58,15 @@ pub struct Area {
     /// The lowest the parts come over the unscanned cells (site z, m): a
     /// thing standing there reaches them only if it is that tall.
     pub unscanned_lowest_z_m: Option<f64>,
+    /// The unscanned cells (indices of [`CELL_M`] cells: cell (i, j) spans
+    /// x from i·CELL_M, y from j·CELL_M), in order, at most
+    /// [`MAX_CELLS_LISTED`], for the pictures.
+    #[serde(default)]
+    pub unscanned_cells: Vec<[i32; 2]>,
 }
+
+/// The most unscanned cells an [`Area`] lists.
+pub const MAX_CELLS_LISTED: usize = 20_000;
 
 /// What one lift passes over ([`of_lift`]).
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
@@ -286,12 +294,16 @@ pub fn of_lift(task: &LiftTask, moves: &[Move], world: &World, also_seen: &[Obb]
             }
             e
         });
+        let mut listed: Vec<[i32; 2]> = unscanned.iter().map(|(c, _)| [c.0, c.1]).collect();
+        listed.sort_unstable();
+        listed.truncate(MAX_CELLS_LISTED);
         Area {
             passed_m2: cells.len() as f64 * cell2,
             unscanned_m2: unscanned.len() as f64 * cell2,
             unknown_m2: unknown as f64 * cell2,
             unscanned_within: within,
             unscanned_lowest_z_m: lowest,
+            unscanned_cells: listed,
         }
     };
     Coverage { cell_m: CELL_M, scans, under_load: area(&load), under_crane: area(&crane) }
@@ -357,6 +369,10 @@ mod tests {
         assert_eq!(a.unknown_m2, a.unscanned_m2);
         let e = a.unscanned_within.unwrap();
         assert!(e[0] >= hole[0] && e[1] >= hole[1] && e[2] <= hole[2] && e[3] <= hole[3], "{e:?}");
+        // Listed, in order, for the pictures: every one inside the hole.
+        assert_eq!(a.unscanned_cells.len() as f64, a.unscanned_m2);
+        assert!(a.unscanned_cells.windows(2).all(|w| w[0] < w[1]));
+        assert!(a.unscanned_cells.iter().all(|c| hole[0] <= c[0] as f64 && (c[0] + 1) as f64 <= hole[2]));
         // The load hangs from a 40 m boom at its pick rope: well above ground.
         let z = a.unscanned_lowest_z_m.unwrap();
         assert!(z > 0.0 && z < 30.0, "{z}");
