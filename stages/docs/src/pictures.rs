@@ -39,20 +39,18 @@ impl SiteView {
     /// Keeps at most `max_points` cloud points (every k-th), coloured by
     /// height; everything is drawn from the middle of the site's plan extent.
     pub fn new(renderer: render::Renderer, mut mesh: TriMesh, points: &[[f64; 3]], max_points: usize) -> SiteView {
-        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-        for p in points.iter().chain(&mesh.vertices) {
-            for a in 0..2 {
-                (lo[a], hi[a]) = (lo[a].min(p[a]), hi[a].max(p[a]));
-            }
-        }
-        let mid = |a: usize| if lo[a] <= hi[a] { (0.5 * (lo[a] + hi[a])).round() } else { 0.0 };
-        let origin = [mid(0), mid(1), 0.0];
+        let site = liftplan_core::frame::Aabb::from_points(points.iter().chain(&mesh.vertices));
+        let origin = if site.is_empty() {
+            [0.0; 3]
+        } else {
+            let c = site.center();
+            [c[0].round(), c[1].round(), 0.0]
+        };
         for v in &mut mesh.vertices {
             *v = [v[0] - origin[0], v[1] - origin[1], v[2] - origin[2]];
         }
-        let local = |p: &[f64; 3]| [(p[0] - origin[0]) as f32, (p[1] - origin[1]) as f32, (p[2] - origin[2]) as f32];
         let k = points.len().div_ceil(max_points.max(1)).max(1);
-        let kept: Vec<[f32; 3]> = points.iter().step_by(k).map(local).collect();
+        let kept: Vec<[f32; 3]> = points.iter().step_by(k).map(|p| to_local(origin, *p)).collect();
         let (lo, hi) = kept.iter().fold((f32::INFINITY, f32::NEG_INFINITY), |(a, b), p| (a.min(p[2]), b.max(p[2])));
         let colors = kept
             .iter()
@@ -67,7 +65,7 @@ impl SiteView {
 
     /// A site point as the pictures draw it.
     pub fn local(&self, p: [f64; 3]) -> [f32; 3] {
-        [(p[0] - self.origin[0]) as f32, (p[1] - self.origin[1]) as f32, (p[2] - self.origin[2]) as f32]
+        to_local(self.origin, p)
     }
 
     /// A box in the site as the pictures draw it.
@@ -96,6 +94,11 @@ impl SiteView {
         }
         s
     }
+}
+
+/// Site point `p` in `f32` metres from `origin`.
+fn to_local(origin: [f64; 3], p: [f64; 3]) -> [f32; 3] {
+    [(p[0] - origin[0]) as f32, (p[1] - origin[1]) as f32, (p[2] - origin[2]) as f32]
 }
 
 fn crane_batches(site: &SiteView, task: &LiftTask, c: &Config) -> Vec<TriangleBatch> {

@@ -19,7 +19,7 @@
 //! people on site can say what stands where it did not look.
 
 use crate::path::Move;
-use crate::validate::{World, in_polygon, lever_for, samples_for, to_edge_m};
+use crate::validate::{World, in_polygon, lever_for, plan_bounds, samples_for, to_edge_m};
 use liftplan_core::crane::{Config, Dependence, PartKind};
 use liftplan_core::lift::LiftTask;
 use liftplan_core::obb::Obb;
@@ -145,16 +145,8 @@ fn cell_of(x: f64, y: f64) -> Cell {
 /// centre lies within `grow_m` plus half a cell's diagonal of it, so that a
 /// cell the grown polygon touches anywhere is among them.
 fn cells_under(poly: &[[f64; 2]], grow_m: f64, mut each: impl FnMut(Cell)) {
-    if poly.is_empty() {
-        return;
-    }
+    let Some((lo, hi)) = plan_bounds(poly) else { return };
     let reach = grow_m + CELL_M * std::f64::consts::FRAC_1_SQRT_2;
-    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-    for p in poly {
-        for a in 0..2 {
-            (lo[a], hi[a]) = (lo[a].min(p[a]), hi[a].max(p[a]));
-        }
-    }
     let (c0, c1) = (cell_of(lo[0] - reach, lo[1] - reach), cell_of(hi[0] + reach, hi[1] + reach));
     for i in c0.0..=c1.0 {
         for j in c0.1..=c1.1 {
@@ -176,16 +168,8 @@ fn modelled_cells(world: &World, window: (Cell, Cell)) -> HashSet<Cell> {
     let v = mesh.vertices();
     for t in mesh.indices() {
         let tri: Vec<[f64; 2]> = t.iter().map(|&k| [v[k as usize].x, v[k as usize].y]).collect();
-        let (lo, hi) = (
-            cell_of(
-                tri.iter().map(|p| p[0]).fold(f64::INFINITY, f64::min),
-                tri.iter().map(|p| p[1]).fold(f64::INFINITY, f64::min),
-            ),
-            cell_of(
-                tri.iter().map(|p| p[0]).fold(f64::NEG_INFINITY, f64::max),
-                tri.iter().map(|p| p[1]).fold(f64::NEG_INFINITY, f64::max),
-            ),
-        );
+        let Some((lo, hi)) = plan_bounds(&tri) else { continue };
+        let (lo, hi) = (cell_of(lo[0], lo[1]), cell_of(hi[0], hi[1]));
         for i in lo.0.max(window.0.0)..=hi.0.min(window.1.0) {
             for j in lo.1.max(window.0.1)..=hi.1.min(window.1.1) {
                 let square = [i as f64 * CELL_M, j as f64 * CELL_M, (i + 1) as f64 * CELL_M, (j + 1) as f64 * CELL_M];

@@ -114,15 +114,7 @@ impl PointIndex {
     /// Heights of the ground points inside any of the plan polygons
     /// `areas`, at any height.
     fn ground_heights_in(&self, areas: &[Vec<[f64; 2]>]) -> Vec<f64> {
-        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-        for p in areas.iter().flatten() {
-            for a in 0..2 {
-                (lo[a], hi[a]) = (lo[a].min(p[a]), hi[a].max(p[a]));
-            }
-        }
-        if !(lo[0] <= hi[0] && lo[1] <= hi[1]) {
-            return Vec::new();
-        }
+        let Some((lo, hi)) = plan_bounds(areas.iter().flatten()) else { return Vec::new() };
         let (vlo, vhi) = (voxel(&[lo[0], lo[1], 0.0]), voxel(&[hi[0], hi[1], 0.0]));
         self.occupied_in([vlo[0], vlo[1], i32::MIN], [vhi[0], vhi[1], i32::MAX])
             .flat_map(|k| self.voxel_points(k))
@@ -507,6 +499,18 @@ pub struct Rules {
     pub sample_m: f64,
     /// Obstacles within this distance of the load's underside at pick/set are its supports.
     pub support_m: f64,
+}
+
+/// The least and greatest x and y of plan points, `None` where there are
+/// none.
+pub(crate) fn plan_bounds<'a>(pts: impl IntoIterator<Item = &'a [f64; 2]>) -> Option<([f64; 2], [f64; 2])> {
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for p in pts {
+        for a in 0..2 {
+            (lo[a], hi[a]) = (lo[a].min(p[a]), hi[a].max(p[a]));
+        }
+    }
+    (lo[0] <= hi[0] && lo[1] <= hi[1]).then_some((lo, hi))
 }
 
 pub(crate) fn in_polygon(poly: &[[f64; 2]], p: [f64; 2]) -> bool {
