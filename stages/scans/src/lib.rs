@@ -543,6 +543,7 @@ pub fn list_all(inputs: &[PathBuf], unit: Option<ScanUnit>) -> Result<Vec<ScanIn
         for mut info in read::list_scans(p)? {
             let u = unit_for(unit, &info)?;
             info.to_m = [u.horizontal_m, u.horizontal_m, u.vertical_m];
+            info.read_in = u.what;
             if let Some(b) = &mut info.bbox
                 && !b.is_empty()
             {
@@ -675,25 +676,23 @@ pub fn run(inputs: &[PathBuf], s: &Settings, opts: &RunOptions, out_dir: &Path) 
     let mut reports: Vec<ScanReport> = scans
         .iter()
         .zip(&results)
-        .map(|(info, r)| -> Result<ScanReport> {
-            Ok(ScanReport {
-                file: liftplan_core::location::shown(&info.path, opts.root),
-                name: info.name.clone(),
-                format: info.format,
-                points_read: 0,
-                points_kept: 0,
-                pose: pose_to_rows(&r.pose),
-                fitness: r.fitness,
-                rmse_m: r.rmse_m,
-                method: r.method.clone(),
-                registered: r.registered,
-                warning: r.warning.clone(),
-                unit: unit_for(s.unit, info)?.what,
-                to_m: info.to_m,
-                date: info.date,
-            })
+        .map(|(info, r)| ScanReport {
+            file: liftplan_core::location::shown(&info.path, opts.root),
+            name: info.name.clone(),
+            format: info.format,
+            points_read: 0,
+            points_kept: 0,
+            pose: pose_to_rows(&r.pose),
+            fitness: r.fitness,
+            rmse_m: r.rmse_m,
+            method: r.method.clone(),
+            registered: r.registered,
+            warning: r.warning.clone(),
+            unit: info.read_in.clone(),
+            to_m: info.to_m,
+            date: info.date,
         })
-        .collect::<Result<_>>()?;
+        .collect();
     std::fs::create_dir_all(out_dir).map_err(|e| ScanError::Io(Location::file(out_dir), e))?;
     write_json(&out_dir.join("registration.json"), &serde_json::json!({ "register": s.register, "scans": reports }))?;
     if !unregistered.is_empty() && s.on_unregistered == OnUnregistered::Fail {
@@ -948,6 +947,7 @@ mod tests {
             unit: read::CrsUnit::None,
             date: None,
             to_m: [1.0; 3],
+            read_in: String::new(),
         }
     }
 

@@ -131,6 +131,9 @@ pub struct ScanInfo {
     /// set by `liftplan_scans::list_all` from the stated unit or the
     /// project's.
     pub to_m: [f64; 3],
+    /// The unit `to_m` is for and where it came from, for the run's lines
+    /// (set with it).
+    pub read_in: String,
 }
 
 /// Lists the scans in a file from its header, reading no points.

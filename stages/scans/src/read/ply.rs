@@ -128,6 +128,7 @@ pub(super) fn list(path: &Path) -> Result<Vec<ScanInfo>> {
         unit: super::CrsUnit::None,
         date: None,
         to_m: [1.0; 3],
+        read_in: String::new(),
     }])
 }
 

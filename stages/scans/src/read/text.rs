@@ -39,6 +39,7 @@ pub(super) fn list(path: &Path, format: Format) -> Result<Vec<ScanInfo>> {
         unit: super::CrsUnit::None,
         date: None,
         to_m: [1.0; 3],
+        read_in: String::new(),
     }])
 }
 
