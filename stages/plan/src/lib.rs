@@ -370,12 +370,22 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
         if let Some(b) = task.crane.part(kind, &task.pick, &task.load) {
             let b = b.with_underside_raised(s.support_m);
             if let Some(h) = site.map.hit_where(&b, |iv| LeaveOut::counts(Some(standing), iv)) {
+                // Where, so the engineer can find it on the drawings or on site.
+                let r = site.map.spec.rect(h.i, h.j);
+                let name = kind.name();
                 return Err(lift_err(
                     task,
                     format!(
-                        "crane set-up: the {} meets {}; move the crane or clear its footprint",
-                        kind.name(),
-                        site.map.object_name(&h.interval)
+                        "crane set-up: the {name} {} {} in the cell at x {:.2} to {:.2} m, y {:.2} to {:.2} m, where it reaches from z = {:.2} to {:.2} m (the crane is set up at z = {:.2} m); move the crane or clear its footprint",
+                        if name.ends_with('s') { "meet" } else { "meets" },
+                        site.map.object_name(&h.interval),
+                        r[0],
+                        r[1],
+                        r[2],
+                        r[3],
+                        h.interval.zlo,
+                        h.interval.zhi,
+                        task.crane.placement.z_m
                     ),
                 ));
             }

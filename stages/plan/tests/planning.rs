@@ -783,7 +783,8 @@ fn a_carrier_parked_in_a_bank_is_refused() {
             let m = liftplan_depthmap::build_cpu(&inp, &liftplan_depthmap::Settings::default()).unwrap().0;
             let err =
                 plan_lift(&t, &Site { map: &m, world: &world, charts: None }, &quick(), 3).unwrap_err().to_string();
-            assert!(err.contains("crane set-up: the carrier meets ground"), "{err}");
+            assert!(err.contains("crane set-up: the carrier meets ground (scan) in the cell at x -7.25 to -7.00 m, y -1.00 to -0.75 m"), "{err}");
+            assert!(err.contains("where it reaches from z = 1.1"), "{err}");
         }
     }
 }
