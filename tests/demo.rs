@@ -36,6 +36,9 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     assert!(text.contains("are listed on the last pages"), "the demo's inputs fit on page 2 now: {text}");
     // The scanned load cut out of the checks at pick is said, with its count.
     assert!(text.contains("is not an obstacle to its own lift"), "{text}");
+    // The demo's vessel was scanned on its trailer as its box says.
+    assert!(text.contains("The load as scanned at its pick position:"), "{text}");
+    assert!(text.contains("agree with the scans"), "{text}");
     // The crane's set-up level, checked against the scanned ground under it.
     assert!(text.contains("scanned ground points under its carrier and outriggers"), "{text}");
     // The demo's vessel is set down on its foundation, not above it.

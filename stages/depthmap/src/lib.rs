@@ -152,9 +152,21 @@ pub struct Inputs {
 /// lift). Returns how many were dropped per box of `exclude` (a point in
 /// several counts for the first).
 pub fn read_cloud(path: &Path, exclude: &[Obb], into: &mut Inputs) -> Result<Vec<usize>> {
+    let mut dropped = vec![0; exclude.len()];
+    read_cloud_with(path, exclude, into, |k, _| dropped[k] += 1)?;
+    Ok(dropped)
+}
+
+/// [`read_cloud`], handing each dropped point to `dropped` with the index of
+/// the box of `exclude` that took it (the first that holds it).
+pub fn read_cloud_with(
+    path: &Path,
+    exclude: &[Obb],
+    into: &mut Inputs,
+    mut dropped: impl FnMut(usize, [f64; 3]),
+) -> Result<()> {
     let mut r = las::Reader::from_path(path).map_err(|e| DepthError::Input(Location::file(path), e.to_string()))?;
     let mut data = las::PointDataBuilder::new().for_header(r.header()).build();
-    let mut dropped = vec![0; exclude.len()];
     loop {
         let n =
             r.fill_points(1 << 20, &mut data).map_err(|e| DepthError::Input(Location::file(path), e.to_string()))?;
@@ -164,14 +176,14 @@ pub fn read_cloud(path: &Path, exclude: &[Obb], into: &mut Inputs) -> Result<Vec
         for ((x, y), (z, c)) in data.x().zip(data.y()).zip(data.z().zip(data.classification())) {
             let p = liftplan_core::frame::Point3::new(x, y, z);
             if let Some(k) = exclude.iter().position(|b| b.contains(&p)) {
-                dropped[k] += 1;
+                dropped(k, [x, y, z]);
                 continue;
             }
             into.points.push([x, y, z]);
             into.ground.push(c == class::GROUND);
         }
     }
-    Ok(dropped)
+    Ok(())
 }
 
 /// Builds the depth map on the CPU.

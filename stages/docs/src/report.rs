@@ -49,6 +49,15 @@ fn room_on_page(d: &mut Doc, y: f32, need_mm: f32, continued: &str) -> f32 {
 /// A paragraph of the sign-off page at `y`, on a further page if it does
 /// not fit on this one (the more a site's checks have to say, the more the
 /// page holds); returns the y below it.
+/// A clause as a sentence: its first letter upper-case, a full stop after.
+fn sentence(clause: &str) -> String {
+    let mut c = clause.chars();
+    match c.next() {
+        Some(f) => format!("{}{}.", f.to_uppercase(), c.as_str()),
+        None => String::new(),
+    }
+}
+
 fn sign_off_paragraph(d: &mut Doc, y: f32, w: f32, text: &str) -> f32 {
     let need = crate::pdf::wrap(text, w, 9.5).len() as f32 * crate::pdf::line_height_mm(9.5);
     let y = room_on_page(d, y, need, "Review and sign-off (continued)");
@@ -466,11 +475,15 @@ pub fn document(
         )
     } else {
         format!(
-            "No scan point lay within {:.2} m of the load's box at its pick position ({:.2} m above it), so none was left out as the load.",
+            "No scan point lay within {:.2} m of the load's box at its pick position ({:.2} m above it), so none was left out as the load. If the load was on site when the scans were taken, check its pick position.",
             cut.grow_m, cut.above_m
         )
     };
     y = sign_off_paragraph(&mut d, y, w, &cut_text);
+    if let Some(l) = plan.summary.load_as_scanned.as_ref().filter(|_| cut.points > 0) {
+        y += 4.0;
+        y = sign_off_paragraph(&mut d, y, w, &sentence(&l.said()));
+    }
     y += 4.0;
     let level = task.crane.placement.z_m;
     let set_up_text = match &plan.validator.set_up_ground {
@@ -505,20 +518,18 @@ pub fn document(
     y += 4.0;
     let model_text = match &plan.model_vs_scans {
         Some(a) => {
-            let line = a.line();
-            format!("{}{}.", line[..1].to_uppercase(), &line[1..])
+            sentence(&a.line())
         }
         None => "The plant model and the scans barely overlap (or one of them is missing), so where the model stands in the site was not checked against the scans.".to_string(),
     };
     y = sign_off_paragraph(&mut d, y, w, &model_text);
     if let Some(said) = plan.summary.other_loads_said() {
         y += 4.0;
-        y = sign_off_paragraph(&mut d, y, w, &format!("{}{}.", said[..1].to_uppercase(), &said[1..]));
+        y = sign_off_paragraph(&mut d, y, w, &sentence(&said));
     }
     if let Some(c) = &plan.summary.coverage {
-        let line = c.line();
         y += 4.0;
-        y = sign_off_paragraph(&mut d, y, w, &format!("{}{}.", line[..1].to_uppercase(), &line[1..]));
+        y = sign_off_paragraph(&mut d, y, w, &sentence(&c.line()));
     }
     y += 8.0;
     for role in [

@@ -18,6 +18,7 @@
 pub mod baselines;
 pub mod bench;
 pub mod coverage;
+pub mod load_scan;
 pub mod mspga;
 pub mod path;
 pub mod steps;
@@ -558,11 +559,12 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
 }
 
 /// Reads the site points (dropping the `exclude` boxes) for the validator.
-pub fn read_points(path: &Path, exclude: &[Obb]) -> Result<(Vec<[f64; 3]>, Vec<bool>, Vec<usize>)> {
+pub fn read_points(path: &Path, exclude: &[Obb]) -> Result<(Vec<[f64; 3]>, Vec<bool>, Vec<Vec<[f64; 3]>>)> {
     let mut inp = liftplan_depthmap::Inputs::default();
-    let dropped = liftplan_depthmap::read_cloud(path, exclude, &mut inp)
+    let mut taken = vec![Vec::new(); exclude.len()];
+    liftplan_depthmap::read_cloud_with(path, exclude, &mut inp, |k, p| taken[k].push(p))
         .map_err(|e| PlanError::Input(Location::file(path), e.to_string()))?;
-    Ok((inp.points, inp.ground, dropped))
+    Ok((inp.points, inp.ground, taken))
 }
 
 /// What the stage reports.
@@ -577,11 +579,12 @@ impl RunSummary {
         self.model_vs_scans
             .iter()
             .map(|a| a.line())
-            .chain(
-                self.lifts
-                    .iter()
-                    .flat_map(|s| std::iter::once(s.line()).chain(s.other_loads_line()).chain(s.coverage_line())),
-            )
+            .chain(self.lifts.iter().flat_map(|s| {
+                std::iter::once(s.line())
+                    .chain(s.other_loads_line())
+                    .chain(s.coverage_line())
+                    .chain(s.load_as_scanned_line())
+            }))
             .collect()
     }
 }
@@ -606,7 +609,7 @@ pub fn run(
     let exclusions = load_exclusions(tasks, s.load_cutout_m);
     let (points, ground, taken_for_loads) = match cloud_path {
         Some(p) => read_points(p, &exclusions)?,
-        None => (vec![], vec![], vec![0; tasks.len()]),
+        None => (vec![], vec![], vec![Vec::new(); tasks.len()]),
     };
     let mut world = validate::World::new(&mesh, &points, &ground).map_err(PlanError::Settings)?;
     let charts = match capacity_csv {
@@ -616,10 +619,10 @@ pub fn run(
     let model_vs_scans = validate::model_scan_agreement(&world);
     // Where a load was scanned at its pick position, its cut-out was seen.
     let scanned_loads: Vec<Obb> =
-        exclusions.iter().zip(&taken_for_loads).filter(|(_, n)| **n > 0).map(|(b, _)| *b).collect();
+        exclusions.iter().zip(&taken_for_loads).filter(|(_, t)| !t.is_empty()).map(|(b, _)| *b).collect();
     std::fs::create_dir_all(out_dir).map_err(|e| PlanError::Input(Location::file(out_dir), e.to_string()))?;
     let mut plans = Vec::new();
-    for (k, (task, &taken)) in tasks.iter().zip(&taken_for_loads).enumerate() {
+    for (k, (task, taken)) in tasks.iter().zip(&taken_for_loads).enumerate() {
         // The other lifts' loads where they stand during this one, in the
         // validator's view and in the planner's map alike.
         world.others = other_loads(tasks, k);
@@ -628,8 +631,9 @@ pub fn run(
         let (mut plan, cs) = plan_lift(task, &site, s, seed)?;
         plan.summary.coverage = Some(coverage::of_lift(task, &plan.moves, &world, &scanned_loads));
         plan.summary.other_loads = world.others.iter().map(|(_, name)| name.clone()).collect();
-        plan.load_cutout =
-            LoadCutout { grow_m: s.load_cutout_m, above_m: cutout_above_m(s.load_cutout_m), points: taken };
+        let above_m = cutout_above_m(s.load_cutout_m);
+        plan.load_cutout = LoadCutout { grow_m: s.load_cutout_m, above_m, points: taken.len() };
+        plan.summary.load_as_scanned = cloud_path.map(|_| load_scan::of_pick(task, taken, above_m));
         plan.model_vs_scans = model_vs_scans.clone();
         let io = |p: &Path, e: std::io::Error| PlanError::Input(Location::file(p), e.to_string());
         let csv = out_dir.join(format!("{}.steps.csv", task.id));

@@ -134,6 +134,10 @@ pub struct Summary {
     /// ([`crate::other_loads`]).
     #[serde(default)]
     pub other_loads: Vec<String>,
+    /// What the scans show of the load at its pick position, against its box
+    /// ([`crate::load_scan::of_pick`]; `None` without scans).
+    #[serde(default)]
+    pub load_as_scanned: Option<crate::load_scan::LoadAsScanned>,
 }
 
 /// Where the set-down ends.
@@ -189,6 +193,11 @@ impl Summary {
         self.other_loads_said().map(|said| format!("lift {}: {said}", self.lift))
     }
 
+    /// [`Summary::load_as_scanned`]'s line, for the run's output.
+    pub fn load_as_scanned_line(&self) -> Option<String> {
+        self.load_as_scanned.as_ref().map(|l| format!("lift {}: {}", self.lift, l.said()))
+    }
+
     /// [`Summary::coverage`]'s line, for the run's output.
     pub fn coverage_line(&self) -> Option<String> {
         self.coverage.as_ref().map(|c| format!("lift {}: {}", self.lift, c.line()))
@@ -230,6 +239,7 @@ pub fn summary(task: &LiftTask, steps: &[Step], verdict: &Verdict) -> Summary {
         set_on: None,
         support_m: 0.0,
         coverage: None,
+        load_as_scanned: None,
         other_loads: Vec::new(),
     };
     for st in steps {
