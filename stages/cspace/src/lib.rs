@@ -102,14 +102,20 @@ impl Settings {
     }
 }
 
+/// Why a configuration fails a box query: the part's box is grown by the
+/// clearance (less in a landing zone) and by the motion a sample stands for,
+/// so a hit says the part comes closer to the obstacle than that, which
+/// includes touching it; it is not a collision as such.
+pub const TOO_CLOSE: &str = "closer than the clearance allows";
+
 /// Why a configuration or a move is not allowed.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Blocked {
-    /// What is wrong: "collision", "clearance", "capacity", "internal clearance", "joint limit".
+    /// What is wrong: [`TOO_CLOSE`], "capacity", "internal clearance", "joint limit".
     pub reason: String,
-    /// The crane part concerned (for collisions).
+    /// The crane part concerned (for box queries).
     pub part: Option<PartKind>,
-    /// The obstacle (object name from the depth map) for collisions.
+    /// The obstacle (object name from the depth map) for box queries.
     pub object: Option<String>,
     pub at: Config,
 }
@@ -122,7 +128,7 @@ impl std::fmt::Display for Blocked {
             write!(f, ": {}", p.name())?;
         }
         if let Some(o) = &self.object {
-            write!(f, " meets {o}")?;
+            write!(f, " and {o}")?;
         }
         write!(
             f,
@@ -773,7 +779,7 @@ impl<'a> Checker<'a> {
     fn cell_structure_ok(&self, i: u32, k: u32, c: &Config) -> Result<(), Blocked> {
         let cs = self.cs;
         match cs.swing_hits[i as usize].or(cs.cell_hits[(k * cs.ns + i) as usize]) {
-            Some(h) => Err(self.blocked("collision", Some(h.part), Some(h.obj), c)),
+            Some(h) => Err(self.blocked(TOO_CLOSE, Some(h.part), Some(h.obj), c)),
             None => Ok(()),
         }
     }
@@ -801,7 +807,7 @@ impl<'a> Checker<'a> {
                     };
                 let leave = left_out(crane, kind);
                 if let Some(h) = self.map.hit_where(&b.expanded(grow), |iv| LeaveOut::counts(leave, iv)) {
-                    return Err(self.blocked("collision", Some(kind), Some(h.interval.obj), c));
+                    return Err(self.blocked(TOO_CLOSE, Some(kind), Some(h.interval.obj), c));
                 }
             }
         }
@@ -820,7 +826,7 @@ impl<'a> Checker<'a> {
             let grown = b.expanded(clearance).expanded_by_motion(sweep.horizontal_m, sweep.vertical_m);
             if let Some(h) = self.map.hit(&grown) {
                 self.count_n(true, queried);
-                return Err(self.blocked("collision", Some(kind), Some(h.interval.obj), c));
+                return Err(self.blocked(TOO_CLOSE, Some(kind), Some(h.interval.obj), c));
             }
         }
         self.count_n(true, parts.len() as u64);

@@ -398,11 +398,19 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
     let ck = Checker::new(&cs, site.map, task, zones, s.cspace.sample_m);
     let start = task.start();
     let goal0 = task.goal();
+    // A box query's refusal is a clearance, not a collision: say which.
+    let why = |b: &liftplan_cspace::Blocked| {
+        if b.reason == liftplan_cspace::TOO_CLOSE {
+            format!("{b} (clearance_m {:.2} m, {:.2} m in a landing zone)", task.clearance_m, s.landing_clearance_m)
+        } else {
+            b.to_string()
+        }
+    };
     if let Err(b) = ck.config(&start) {
-        return Err(lift_err(task, format!("the lifted-off pick configuration is not allowed: {b}")));
+        return Err(lift_err(task, format!("the lifted-off pick configuration is not allowed: {}", why(&b))));
     }
     if let Err(b) = ck.config(&goal0) {
-        return Err(lift_err(task, format!("the configuration above the set position is not allowed: {b}")));
+        return Err(lift_err(task, format!("the configuration above the set position is not allowed: {}", why(&b))));
     }
     let rules = validate::Rules {
         clearance_m: task.clearance_m,

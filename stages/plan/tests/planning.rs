@@ -113,6 +113,21 @@ fn pick_inside_an_obstacle_is_refused_with_part_and_object() {
         plan_lift(&task(-14.0), &Site { map: &m, world: &world, charts: None }, &quick(), 1).unwrap_err().to_string();
     assert!(err.contains("BEAM-OVER-PICK"), "{err}");
     assert!(err.contains("lifted-off pick"), "{err}");
+    // A post 0.1 m beside the load, within the landing zone's clearance but
+    // not touching: said as too close, with the clearances, not as a collision.
+    let mut mesh = site();
+    box_part(&mut mesh, "POST-BESIDE-PICK", [24.1, -14.2, 0.0], [24.5, -13.8, 6.0]);
+    let m = map(&mesh);
+    let world = World::new(&mesh, &[], &[]).unwrap();
+    let err =
+        plan_lift(&task(-14.0), &Site { map: &m, world: &world, charts: None }, &quick(), 1).unwrap_err().to_string();
+    assert!(
+        err.contains(
+            "lifted-off pick configuration is not allowed: closer than the clearance allows: load and POST-BESIDE-PICK"
+        ),
+        "{err}"
+    );
+    assert!(err.contains("(clearance_m 1.00 m, 0.20 m in a landing zone)"), "{err}");
 }
 
 #[test]
