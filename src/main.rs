@@ -220,6 +220,10 @@ fn print_report(rep: &pipeline::RunReport, json: bool, progress: &Progress) {
             _ => String::new(),
         };
         progress.line(&format!("{:>9} {:<6} {:6.2}s{}", s.name, status, s.seconds, extra));
+        // `-q` quiets progress, not failures: a run that fails says why.
+        if let (true, Some(e)) = (progress.is_quiet(), &s.error) {
+            eprintln!("error: stage {} failed: {e}", s.name);
+        }
         for l in &s.lines {
             progress.line(&format!("          {l}"));
         }

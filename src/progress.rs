@@ -79,6 +79,11 @@ impl Progress {
     }
 
     /// A line of stage output (not a progress update).
+    /// Whether progress output is off (`-q`); errors are still printed.
+    pub fn is_quiet(&self) -> bool {
+        self.quiet
+    }
+
     pub fn line(&self, text: &str) {
         if self.quiet {
             return;

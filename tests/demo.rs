@@ -117,6 +117,18 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     let plan: serde_json::Value =
         serde_json::from_slice(&std::fs::read(dir.join("out").join("plan.json")).unwrap()).unwrap();
     assert!((plan["lifts"][0]["gross_kg"].as_f64().unwrap() - 17_000.0).abs() < 1e-6);
+
+    // Without its load chart the lift is not planned: a plan whose capacity
+    // was never checked must not read as validated.
+    let charts = dir.join("charts");
+    let aside = tmp.path().join("charts-aside");
+    std::fs::rename(&charts, &aside).unwrap();
+    std::fs::create_dir(&charts).unwrap();
+    let o = liftplan(&["run", d, "-q"]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success(), "planned without a load chart:\n{stderr}");
+    assert!(stderr.contains("lift 'V-101': no load chart was read"), "{stderr}");
+    assert!(stderr.contains("put the crane's load chart"), "{stderr}");
 }
 
 /// `line` with every date written as `YYYY-MM-DD` replaced by `DATE`.

@@ -620,10 +620,16 @@ pub fn run(
         None => (vec![], vec![], vec![Vec::new(); tasks.len()]),
     };
     let mut world = validate::World::new(&mesh, &points, &ground).map_err(PlanError::Settings)?;
-    let charts = match capacity_csv {
-        Some(p) => Some(CapacityTable::read_csv(p).map_err(|e| PlanError::Input(Location::file(p), e))?),
-        None => None,
+    // A plan whose capacity was never checked must not read as validated:
+    // without a chart there is nothing to check it against.
+    let Some(capacity_csv) = capacity_csv else {
+        return Err(PlanError::Lift {
+            lift: tasks.first().map(|t| t.id.clone()).unwrap_or_default(),
+            message: "no load chart was read (the charts folder holds no chart file), so the crane's capacity cannot be checked and no plan is made: put the crane's load chart (.xlsx, .xlsm, .xlsb, .xls or .ods) in the charts folder and name its configuration in chart_config".into(),
+        });
     };
+    let charts =
+        CapacityTable::read_csv(capacity_csv).map_err(|e| PlanError::Input(Location::file(capacity_csv), e))?;
     let model_vs_scans = validate::model_scan_agreement(&world);
     // Where a load was scanned at its pick position, its cut-out was seen.
     let scanned_loads: Vec<Obb> =
@@ -635,7 +641,7 @@ pub fn run(
         // validator's view and in the planner's map alike.
         world.others = other_loads(tasks, k);
         let with_others = (!world.others.is_empty()).then(|| map.with_boxes(&world.others));
-        let site = Site { map: with_others.as_ref().unwrap_or(&map), world: &world, charts: charts.as_ref() };
+        let site = Site { map: with_others.as_ref().unwrap_or(&map), world: &world, charts: Some(&charts) };
         let (mut plan, cs) = plan_lift(task, &site, s, seed)?;
         plan.summary.coverage = Some(coverage::of_lift(task, &plan.moves, &world, &scanned_loads));
         plan.summary.other_loads = world.others.iter().map(|(_, name)| name.clone()).collect();
