@@ -83,6 +83,10 @@ enum Command {
         /// + 102 m), as a site surveyed in a projected CRS is.
         #[arg(long)]
         survey_coordinates: bool,
+        /// Make the lift with the built-in hammerhead tower crane instead of
+        /// the all-terrain crane.
+        #[arg(long)]
+        tower: bool,
     },
     /// Summarise any input file liftplan reads (scans, plant models, charts).
     #[command(after_help = "Examples:\n  liftplan inspect scans/north.laz\n  liftplan inspect scans/site.e57 --json")]
@@ -297,7 +301,7 @@ fn real_main() -> Result<ExitCode> {
             watch::watch(&dir, &progress, stop)?;
             Ok(ExitCode::SUCCESS)
         }
-        Command::Demo { dir, scan_step, survey_coordinates } => {
+        Command::Demo { dir, scan_step, survey_coordinates, tower } => {
             let dir = dir.unwrap_or_else(|| PathBuf::from("liftplan-demo"));
             if dir.join(project::FILE).exists() {
                 progress.line(&format!("{} already holds a project: running it again", dir.display()));
@@ -312,6 +316,7 @@ fn real_main() -> Result<ExitCode> {
                         } else {
                             [0.0; 3]
                         },
+                        tower_crane: tower,
                     },
                 )
                 .map_err(anyhow::Error::msg)?;
@@ -491,7 +496,7 @@ fn real_main() -> Result<ExitCode> {
                 }
             } else if !json {
                 for r in &reports {
-                    println!("'{}': {} booms x {} radii [{}!{}]", r.name, r.boom_lengths, r.radii, r.sheet, r.range);
+                    println!("'{}': {} x {} radii [{}!{}]", r.name, r.columns_said(), r.radii, r.sheet, r.range);
                 }
                 println!("wrote {} ({} rows)", output.display(), table.rows().len());
             }

@@ -251,3 +251,30 @@ fn the_demo_in_survey_coordinates_runs_end_to_end() {
     assert!((util - 51.0).abs() < 0.5, "{util}");
     assert!(dir.join("out").join("V-101.pdf").is_file());
 }
+
+/// The demo made with the built-in tower crane: planned, validated, and its
+/// PDF speaks of a jib, a trolley and a foundation, never of a boom,
+/// outriggers or a carrier it does not have.
+#[test]
+fn the_tower_crane_demo_runs_and_its_pdf_names_a_tower_cranes_parts() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("tower");
+    let out = liftplan(&["demo", dir.to_str().unwrap(), "--tower", "-q"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let plan: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join("out").join("plan.json")).unwrap()).unwrap();
+    let lift = &plan["lifts"][0];
+    assert_eq!(lift["validator"]["ok"], true, "{lift}");
+    assert_eq!(lift["crane_model"], "Hammerhead tower crane, 60 m jib (approx.)", "{lift}");
+    let doc = lopdf::Document::load(dir.join("out").join("V-101.pdf")).unwrap();
+    let pages: Vec<u32> = doc.get_pages().keys().copied().collect();
+    let text = doc.extract_text(&pages).unwrap().replace('\n', " ");
+    for said in ["jib toward grid bearing", "trolley", "foundation, mast and its ties", "one column (any boom or jib)"]
+    {
+        assert!(text.contains(said), "{said:?} not in the PDF:\n{text}");
+    }
+    let text = text.replace("any boom or jib", "");
+    for unsaid in ["outrigger", "carrier", "superstructure", "boom", "luff"] {
+        assert!(!text.to_lowercase().contains(unsaid), "{unsaid:?} in a tower crane's PDF:\n{text}");
+    }
+}

@@ -101,11 +101,20 @@ pub struct ConfigReport {
     pub range: String,
     pub transposed: bool,
     pub boom_lengths: usize,
+    /// One capacity column that holds for any boom (a tower crane's jib).
+    pub any_boom: bool,
     pub radii: usize,
     pub permitted_cells: usize,
     pub units: detect::Units,
     pub title: String,
     pub warnings: Vec<String>,
+}
+
+impl ConfigReport {
+    /// The chart's columns: "12 booms", or one column for any boom or jib.
+    pub fn columns_said(&self) -> String {
+        if self.any_boom { "one column (any boom or jib)".to_string() } else { format!("{} booms", self.boom_lengths) }
+    }
 }
 
 fn grid_from_mapping(path: &Path, m: &TableMapping) -> Result<detect::Grid> {
@@ -233,6 +242,7 @@ fn read_chart_with(path: &Path, s: &Settings, unnamed: Unnamed) -> Result<(Vec<C
                 range: g.range(),
                 transposed: g.transposed,
                 boom_lengths: c.boom_lengths_m.len(),
+                any_boom: c.boom_independent(),
                 radii: c.radii_m.len(),
                 permitted_cells: c.cells.iter().filter(|x| x.is_some()).count(),
                 units,
@@ -372,9 +382,9 @@ impl Summary {
             .iter()
             .map(|c| {
                 format!(
-                    "'{}': {} booms x {} radii from {} [{}!{}] ({})",
+                    "'{}': {} x {} radii from {} [{}!{}] ({})",
                     c.name,
-                    c.boom_lengths,
+                    c.columns_said(),
                     c.radii,
                     c.file,
                     c.sheet,

@@ -371,6 +371,55 @@ impl CraneModel {
     pub fn is_tower(&self) -> bool {
         matches!(self.kind, CraneKind::Tower(_))
     }
+
+    /// The words the plan's text uses for this kind of crane's parts and
+    /// motions: a tower crane's PDF must not speak of its outriggers.
+    pub fn words(&self) -> CraneWords {
+        if self.is_tower() {
+            CraneWords {
+                arm: "jib",
+                radial_motion: "trolleying",
+                heading: "the crane's heading (the lift's heading_deg, the crane model's +X axis along the jib)",
+                moving_structure: "jib, counter-jib and trolley",
+                body: "the jib, counter-jib, counterweight or cab",
+                radial_part: "the trolley",
+                set_up: "foundation, mast and its ties, counterweight",
+                support_loads: "the loads on the crane's foundation and ties",
+            }
+        } else {
+            CraneWords {
+                arm: "boom",
+                radial_motion: "luffing",
+                heading: "the carrier's heading (the lift's heading_deg, the crane model's +X axis)",
+                moving_structure: "boom and superstructure",
+                body: "the superstructure, cockpit or counterweight",
+                radial_part: "the boom",
+                set_up: "ground bearing, outriggers, counterweight",
+                support_loads: "ground bearing pressure and outrigger loads",
+            }
+        }
+    }
+}
+
+/// Names for a crane's parts and motions in the plan's text ([`CraneModel::words`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CraneWords {
+    /// What reaches out and carries the hook: "boom" or "jib".
+    pub arm: &'static str,
+    /// The motion that changes the radius: "luffing" or "trolleying".
+    pub radial_motion: &'static str,
+    /// What swing is measured from.
+    pub heading: &'static str,
+    /// What moves with swing besides what hangs, as one phrase.
+    pub moving_structure: &'static str,
+    /// What turns with swing alone (the C-space picture's red).
+    pub body: &'static str,
+    /// What moves with the radius too (the C-space picture's orange).
+    pub radial_part: &'static str,
+    /// What to check of the set-up on site.
+    pub set_up: &'static str,
+    /// The loads the crane puts on what it stands on, which the plan does not work out.
+    pub support_loads: &'static str,
 }
 
 /// Where a crane stands for a lift, in the site frame.

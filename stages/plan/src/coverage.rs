@@ -80,6 +80,9 @@ pub struct Coverage {
     /// Under the rest of the crane that moves (boom, superstructure,
     /// counterweight; a tower crane's jib and trolley).
     pub under_crane: Area,
+    /// What [`Coverage::under_crane`] is under, in words ("boom and
+    /// superstructure"; "jib, counter-jib and trolley").
+    pub crane_parts: String,
 }
 
 impl Coverage {
@@ -102,10 +105,11 @@ impl Coverage {
         };
         if !self.scans {
             return format!(
-                "what the lift passes over: no scans; the load passes over {:.0} m², {:.0} m² of it outside the plant model, where nothing is known{}; the crane's boom and superstructure {:.0} m², {:.0} m² outside the model: check them on site",
+                "what the lift passes over: no scans; the load passes over {:.0} m², {:.0} m² of it outside the plant model, where nothing is known{}; the crane's {} {:.0} m², {:.0} m² outside the model: check them on site",
                 self.under_load.passed_m2,
                 self.under_load.unknown_m2,
                 where_(&self.under_load),
+                self.crane_parts,
                 self.under_crane.passed_m2,
                 self.under_crane.unknown_m2
             );
@@ -130,7 +134,7 @@ impl Coverage {
             }
         };
         let load = part("the load passes over", &self.under_load, true);
-        let crane = part("the crane's boom and superstructure over", &self.under_crane, false);
+        let crane = part(&format!("the crane's {} over", self.crane_parts), &self.under_crane, false);
         format!("what the lift passes over: {load}; {crane}")
     }
 }
@@ -290,7 +294,13 @@ pub fn of_lift(task: &LiftTask, moves: &[Move], world: &World, also_seen: &[Obb]
             unscanned_cells: listed,
         }
     };
-    Coverage { cell_m: CELL_M, scans, under_load: area(&load), under_crane: area(&crane) }
+    Coverage {
+        cell_m: CELL_M,
+        scans,
+        under_load: area(&load),
+        under_crane: area(&crane),
+        crane_parts: task.crane.model.words().moving_structure.to_string(),
+    }
 }
 
 #[cfg(test)]

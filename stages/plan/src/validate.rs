@@ -662,7 +662,7 @@ fn check_config(
         let past_a = (c.swing_rad - a).rem_euclid(std::f64::consts::TAU);
         if !(past_a <= b - a + 1e-9 || past_a >= std::f64::consts::TAU - 1e-9) {
             problems.push(format!(
-                "outside the permitted swing range ({:.1}° to {:.1}° from the carrier's heading)",
+                "outside the permitted swing range ({:.1}° to {:.1}° from the crane's heading, heading_deg)",
                 a.to_degrees(),
                 b.to_degrees()
             ));
