@@ -241,6 +241,23 @@ fn run_docs(ctx: &Ctx) -> Result<Produced> {
             }
         }
     }
+    // Every clearance rests on the crane model's boxes: say whose they are.
+    let mut models: Vec<&str> = p.raw.lift.iter().map(|l| l.crane.model.as_str()).collect();
+    models.sort();
+    models.dedup();
+    for name in models {
+        let file = p.path(&p.raw.paths.cranes).join(format!("{name}.toml"));
+        let m = p.crane_model(name)?;
+        let whence = if file.is_file() {
+            format!("in {}", file.strip_prefix(&p.dir).unwrap_or(&file).display())
+        } else {
+            format!("built into liftplan {}", env!("CARGO_PKG_VERSION"))
+        };
+        input_lines.push(format!(
+            "crane: '{name}', {whence}, from {}: every clearance is measured from its boxes; check them on site",
+            m.source
+        ));
+    }
     // The plan's and this document's own code, so the PDF names every build
     // that had a hand in it.
     for (stage, code) in [("plan", env!("LIFTPLAN_CODE_PLAN")), ("docs", env!("LIFTPLAN_CODE_DOCS"))] {

@@ -36,6 +36,8 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     assert!(text.contains("are listed on the last pages"), "the demo's inputs fit on page 2 now: {text}");
     // The scanned load cut out of the checks at pick is said, with its count.
     assert!(text.contains("is not an obstacle to its own lift"), "{text}");
+    // Whose boxes the crane's are: every clearance is measured from them.
+    assert!(text.contains("crane: 'ac-700', built into liftplan"), "{text}");
     // The demo's vessel was scanned on its trailer as its box says.
     assert!(text.contains("The load as scanned at its pick position:"), "{text}");
     assert!(text.contains("agree with the scans"), "{text}");

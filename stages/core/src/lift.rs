@@ -239,6 +239,22 @@ impl LiftSpec {
         let load =
             LoadShape { size_m: self.load.size_m, cog_m: self.load.cog_m, rigging_height_m: self.rigging.height_m };
         let solve = |which: &str, p: &PoseSpec| -> Result<(Config, LoadPose), String> {
+            let given = [
+                ("x_m", p.x_m),
+                ("y_m", p.y_m),
+                ("z_m", p.z_m),
+                ("swing_deg", p.swing_deg),
+                ("luff_deg", p.luff_deg),
+                ("trolley_m", p.trolley_m),
+                ("hoist_m", p.hoist_m),
+                ("yaw_deg", Some(p.yaw_deg)),
+            ];
+            if let Some((key, v)) = given.iter().find(|(_, v)| v.is_some_and(|v| !v.is_finite())) {
+                return Err(format!(
+                    "lift '{id}': {which}.{key} must be a finite number, found {}",
+                    v.unwrap_or_default()
+                ));
+            }
             let yaw = p.yaw_deg.to_radians();
             match (p.x_m, p.y_m, p.z_m, p.swing_deg, p.hoist_m) {
                 (Some(x), Some(y), Some(z), None, None) if p.luff_deg.is_none() && p.trolley_m.is_none() => {
@@ -356,6 +372,19 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         let mut s = spec();
         s.id = "a b".into();
         assert!(s.resolve(crate::crane::builtin("ltm-1100").unwrap()).is_err());
+    }
+
+    /// TOML has `nan` and `inf`: a position given so is named, not solved.
+    #[test]
+    fn a_position_that_is_not_a_number_is_named() {
+        let mut s = spec();
+        s.pick.x_m = Some(f64::NAN);
+        let e = s.resolve(crate::crane::builtin("ltm-1100").unwrap()).unwrap_err();
+        assert!(e.contains("pick.x_m must be a finite number, found NaN"), "{e}");
+        let mut s = spec();
+        s.set.yaw_deg = f64::INFINITY;
+        let e = s.resolve(crate::crane::builtin("ltm-1100").unwrap()).unwrap_err();
+        assert!(e.contains("set.yaw_deg must be a finite number, found inf"), "{e}");
     }
 
     #[test]
