@@ -502,6 +502,26 @@ pub fn document(
     y += 4.0;
     let level = task.crane.placement.z_m;
     let set_up_text = match &plan.validator.set_up_ground {
+        Some(g) if task.crane.model.is_tower() => {
+            let off = level - g.median_m;
+            let flag = if off.abs() > liftplan_plan::validate::SET_UP_LEVEL_TOLERANCE_M {
+                format!(
+                    " THE BASE IS {:.2} m {} THE GROUND AROUND THE MAST: check that its foundation stands so, or set ground_z_m.",
+                    off.abs(),
+                    if off > 0.0 { "ABOVE" } else { "BELOW" }
+                )
+            } else {
+                String::new()
+            };
+            format!(
+                "The tower crane's base is at z = {level:.2} m as the lift gives it: the {} scanned ground points within {:.0} m of its mast lie at {:.2} to {:.2} m (median {:.2} m).{flag} Check the base on site.",
+                g.points,
+                liftplan_plan::validate::TOWER_GROUND_AROUND_M,
+                g.lowest_m,
+                g.highest_m,
+                g.median_m
+            )
+        }
         Some(g) => format!(
             "The crane is set up at z = {level:.2} m: the {} scanned ground points under its carrier and outriggers lie at {:.2} to {:.2} m (median {:.2} m).",
             g.points, g.lowest_m, g.highest_m, g.median_m

@@ -201,7 +201,10 @@ pub fn model_scan_agreement(world: &World) -> Option<ModelScanAgreement> {
 /// uneven ground. Farther, the lift has the crane at the wrong height (a
 /// site in survey heights with `ground_z_m = 0`, say), and every clearance
 /// of the plan would be measured from a crane that is not where it stands.
-const SET_UP_LEVEL_TOLERANCE_M: f64 = 0.5;
+pub const SET_UP_LEVEL_TOLERANCE_M: f64 = 0.5;
+
+/// How far around a tower crane's mast the scanned ground is read (m).
+pub const TOWER_GROUND_AROUND_M: f64 = 3.0;
 
 /// What the load comes to rest on at its set position: the nearest obstacle
 /// under its footprint and how far below its underside.
@@ -242,7 +245,8 @@ pub fn set_support(task: &LiftTask, world: &World, c: &Config) -> Option<SetSupp
     meets(hi).map(|object| SetSupport { gap_m: hi, object })
 }
 
-/// The scanned ground under a mobile crane's carrier and outriggers.
+/// The scanned ground under a mobile crane's carrier and outriggers, or
+/// within [`TOWER_GROUND_AROUND_M`] of a tower crane's mast.
 #[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize)]
 pub struct SetUpGround {
     pub points: usize,
@@ -262,12 +266,24 @@ pub(crate) fn crane_set_up_level_problem(task: &LiftTask, world: &World) -> Opti
 /// is scanned there, and the problem if it does not lie at the level the
 /// lift sets the crane up at.
 fn set_up_ground(task: &LiftTask, world: &World) -> (Option<SetUpGround>, Option<String>) {
-    // They stand still whatever the configuration.
-    let footprints: Vec<Vec<[f64; 2]>> = [PartKind::Carrier, PartKind::Outriggers]
-        .into_iter()
-        .filter_map(|kind| task.crane.part(kind, &task.pick, &task.load))
-        .map(|b| b.footprint())
-        .collect();
+    let tower = task.crane.model.is_tower();
+    // They stand still whatever the configuration. A tower crane's mast
+    // stands on a foundation (a block in the ground, a raised plinth, a
+    // building's frame): the ground beside it, not under it, is what the
+    // scans show, and its level is said, not checked.
+    let footprints: Vec<Vec<[f64; 2]>> = if tower {
+        task.crane
+            .part(PartKind::Mast, &task.pick, &task.load)
+            .map(|b| b.expanded(TOWER_GROUND_AROUND_M).footprint())
+            .into_iter()
+            .collect()
+    } else {
+        [PartKind::Carrier, PartKind::Outriggers]
+            .into_iter()
+            .filter_map(|kind| task.crane.part(kind, &task.pick, &task.load))
+            .map(|b| b.footprint())
+            .collect()
+    };
     let mut z = world.points.ground_heights_in(&footprints);
     if z.is_empty() {
         return (None, None);
@@ -275,7 +291,7 @@ fn set_up_ground(task: &LiftTask, world: &World) -> (Option<SetUpGround>, Option
     z.sort_by(f64::total_cmp);
     let g = SetUpGround { points: z.len(), median_m: z[z.len() / 2], lowest_m: z[0], highest_m: z[z.len() - 1] };
     let level = task.crane.placement.z_m;
-    let problem = (!((g.median_m - level).abs() <= SET_UP_LEVEL_TOLERANCE_M)).then(|| {
+    let problem = (!tower && !((g.median_m - level).abs() <= SET_UP_LEVEL_TOLERANCE_M)).then(|| {
         format!(
             "crane set-up: the lift sets the crane up at z = {level:.2} m (ground_z_m), but the scanned ground under its carrier and outriggers is at {:.2} m (median of {} ground points, {:.2} to {:.2} m): set ground_z_m to the height of the ground it stands on",
             g.median_m, g.points, g.lowest_m, g.highest_m

@@ -232,6 +232,31 @@ fn tower_crane_plans_over_the_wall_with_the_trolley() {
     assert!((t.crane.radius_m(last.radial) - 30f64.hypot(20.0)).abs() < 1e-6);
 }
 
+/// A tower crane's base is not checked against the ground as a mobile
+/// crane's is (its foundation may stand proud of it), but the scanned ground
+/// around its mast is measured for the PDF: a base on a plinth 2 m above
+/// the ground around the mast is said, not refused; no ground beyond 3 m of
+/// the mast is counted.
+#[test]
+fn the_ground_around_a_tower_cranes_mast_is_measured_not_refused() {
+    let t = tower_task();
+    let mesh = site();
+    let c = Config { swing_rad: 0.3, radial: 20.0, hoist_m: 20.0, load_yaw_rad: 0.0 };
+    let swing = Move { joint: Joint::Swing, from: c, to: Config { swing_rad: 0.31, ..c } };
+    // Ground at -2 m within 3 m of the mast (2 m wide), and at 9 m beyond.
+    let pts: Vec<[f64; 3]> = (0..81 * 81)
+        .map(|n| {
+            let (x, y) = ((n % 81) as f64 * 0.25 - 10.0, (n / 81) as f64 * 0.25 - 10.0);
+            [x, y, if x.abs().max(y.abs()) <= 4.1 { -2.0 } else { 9.0 }]
+        })
+        .collect();
+    let world = World::new(&mesh, &pts, &vec![true; pts.len()]).unwrap();
+    let v = validate(&t, None, &world, &rules(), &[swing], &[false]);
+    assert!(!v.problems.iter().any(|p| p.contains("crane set-up")), "{:?}", v.problems);
+    let g = v.set_up_ground.expect("the ground around the mast is measured");
+    assert!(g.points > 100 && g.median_m == -2.0 && g.highest_m == -2.0, "{g:?}");
+}
+
 /// A load turning 0.1 rad on its rope after the lift-off: where it starts,
 /// where it ends, its box at mid-turn and one corner of that box (from its
 /// centre).
