@@ -513,7 +513,7 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
     }
     let steps = steps::steps(task, &all, &verdict);
     let mut summary = steps::summary(task, &steps, &verdict);
-    summary.set_on = validate::set_support(task, site.world, &task.set);
+    summary.set_on = validate::set_support(task, site.world, &task.set, s.support_m);
     summary.support_m = s.support_m;
     let plan = LiftPlan {
         lift: task.id.clone(),

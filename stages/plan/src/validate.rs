@@ -222,14 +222,21 @@ pub const SUPPORT_SEARCH_M: f64 = 5.0;
 /// obstacle under its footprint within [`SUPPORT_SEARCH_M`] of its
 /// underside, and the gap to it; `None` where nothing is there. A plan whose
 /// set-down ends with a gap leaves the last of the lowering unplanned.
-pub fn set_support(task: &LiftTask, world: &World, c: &Config) -> Option<SetSupport> {
+///
+/// A support whose top lies up to `reach_up_m` above the underside (the
+/// validator lets the load rest that far into its support, `[plan]
+/// support_m`) is met at a gap of 0: a model's foundation whose top is a
+/// rounding above the set level holds the load's underside inside its
+/// solid, where no face of it is near, and was found only at its bottom.
+pub fn set_support(task: &LiftTask, world: &World, c: &Config, reach_up_m: f64) -> Option<SetSupport> {
     let load = task.crane.load_obb(c, &task.load);
     let underside = load.center.z - load.half.z;
-    // The slab under the footprint, `h` deep.
+    // The slab under the footprint, from `reach_up_m` above the underside
+    // to `h` below it.
     let slab = |h: f64| {
         let mut b = load;
-        b.center.z = underside - h / 2.0;
-        b.half.z = h / 2.0;
+        b.center.z = underside + (reach_up_m - h) / 2.0;
+        b.half.z = (reach_up_m + h) / 2.0;
         b
     };
     let meets = |h: f64| {

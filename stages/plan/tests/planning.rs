@@ -787,10 +787,15 @@ fn the_set_down_says_what_the_load_rests_on() {
     assert!(plan.summary.line().contains("SET-DOWN ENDS 0.50 m ABOVE SLAB"), "{}", plan.summary.line());
     // Set down on the slab, and over nothing.
     let on_slab = Config { hoist_m: t.set.hoist_m + 0.5, ..t.set };
-    let s = liftplan_plan::validate::set_support(&t, &world, &on_slab).unwrap();
+    let s = liftplan_plan::validate::set_support(&t, &world, &on_slab, 0.05).unwrap();
+    assert!(s.gap_m <= 2e-3 && s.object == "SLAB", "{s:?}");
+    // Set 3 cm into the slab (a model's top a rounding or a little above the
+    // set level): it rests on the slab, not 0.27 m above the slab's bottom.
+    let into_slab = Config { hoist_m: t.set.hoist_m + 0.53, ..t.set };
+    let s = liftplan_plan::validate::set_support(&t, &world, &into_slab, 0.05).unwrap();
     assert!(s.gap_m <= 2e-3 && s.object == "SLAB", "{s:?}");
     let bare = World::new(&TriMesh::default(), &[], &[]).unwrap();
-    assert_eq!(liftplan_plan::validate::set_support(&t, &bare, &t.set), None);
+    assert_eq!(liftplan_plan::validate::set_support(&t, &bare, &t.set, 0.05), None);
 }
 
 /// The carrier and outriggers stand on the ground, but not in a bank: a
