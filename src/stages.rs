@@ -4,7 +4,7 @@
 
 use crate::pipeline::{Ctx, Produced, StageDef};
 use crate::project::Project;
-use anyhow::Result;
+use anyhow::{Context, Result};
 use std::path::PathBuf;
 
 pub const SCAN_EXTS: &[&str] = &["las", "laz", "ply", "e57", "pts", "xyz", "txt", "asc", "csv"];
@@ -213,7 +213,13 @@ pub fn docs() -> StageDef {
         // The GPU setting is part of the key: the GPU twin's pictures agree with the
         // CPU's within a tolerance, not bit for bit.
         settings: |p: &Project| serde_json::json!({ "docs": p.raw.docs, "lifts": p.raw.lift, "project": p.raw.project.name, "gpu": p.raw.gpu.use_ }),
-        reads: &[("plan", "*"), ("scans", "site.laz"), ("plant", "plant.mesh"), ("charts", "capacity.csv")],
+        reads: &[
+            ("plan", "*"),
+            ("scans", "site.laz"),
+            ("scans", "registration.json"),
+            ("plant", "plant.mesh"),
+            ("charts", "capacity.csv"),
+        ],
         applicable: |_, _, up| up.contains_key("plan"),
         run: run_docs,
     }
@@ -265,6 +271,19 @@ fn run_docs(ctx: &Ctx) -> Result<Produced> {
     }
     input_hashes.sort();
     input_hashes.dedup();
+    // Scans left out unregistered: what only they saw is missing.
+    let mut scans_left_out = (Vec::new(), 0);
+    if let Some(reg) = ctx.upstream_file("scans", "registration.json") {
+        let r: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(&reg)?).with_context(|| format!("reading {}", reg.display()))?;
+        let scans = r["scans"].as_array().cloned().unwrap_or_default();
+        scans_left_out.1 = scans.len();
+        scans_left_out.0 = scans
+            .iter()
+            .filter(|s| s["registered"] == false)
+            .map(|s| s["name"].as_str().unwrap_or("?").to_string())
+            .collect();
+    }
     let inputs = liftplan_docs::Inputs {
         project: p.raw.project.name.clone(),
         date: liftplan_docs::today(),
@@ -276,6 +295,7 @@ fn run_docs(ctx: &Ctx) -> Result<Produced> {
         plan_dir: plan_dir.clone(),
         input_lines,
         input_hashes,
+        scans_left_out,
     };
     let summary = liftplan_docs::run(&inputs, &p.raw.docs, p.raw.gpu.use_, ctx.out)?;
     let mut outputs = Vec::new();

@@ -286,3 +286,27 @@ fn the_tower_crane_demo_runs_and_its_pdf_names_a_tower_cranes_parts() {
         assert!(!text.to_lowercase().contains(unsaid), "{unsaid:?} in a tower crane's PDF:\n{text}");
     }
 }
+
+/// Scans that do not register and are left out as the project asks are
+/// named on the sign-off page: what only they saw is missing from the plan.
+/// (The demo's scans taken at a coarse step do not register.)
+#[test]
+fn scans_left_out_unregistered_are_named_on_the_sign_off_page() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("coarse");
+    let d = dir.to_str().unwrap();
+    let o = liftplan(&["demo", d, "--scan-step", "0.5", "-q"]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && stderr.contains("does not register"), "{stderr}");
+    let toml_path = dir.join("liftplan.toml");
+    let t = std::fs::read_to_string(&toml_path).unwrap();
+    std::fs::write(&toml_path, t.replace("register = \"auto\"", "register = \"auto\"\non_unregistered = \"exclude\""))
+        .unwrap();
+    let o = liftplan(&["run", d, "-q"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let doc = lopdf::Document::load(dir.join("out").join("V-101.pdf")).unwrap();
+    let pages: Vec<u32> = doc.get_pages().keys().copied().collect();
+    let text = doc.extract_text(&pages).unwrap().replace('\n', " ");
+    assert!(text.contains("3 of the 4 scans DID NOT REGISTER AND WERE LEFT OUT"), "{text}");
+    assert!(text.contains("scan-2, scan-3, scan-4"), "{text}");
+}

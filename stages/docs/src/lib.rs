@@ -73,6 +73,10 @@ pub struct Inputs {
     pub input_lines: Vec<String>,
     /// Input files and their blake3 hashes (short).
     pub input_hashes: Vec<(String, String)>,
+    /// Scans that did not register and were left out of the site cloud
+    /// (`[scans] on_unregistered = "exclude"`), by name, and how many scans
+    /// there were in all.
+    pub scans_left_out: (Vec<String>, usize),
 }
 
 #[derive(Debug, Clone, Serialize)]

@@ -558,6 +558,20 @@ pub fn document(
         None => "The plant model and the scans barely overlap (or one of them is missing), so where the model stands in the site was not checked against the scans.".to_string(),
     };
     y = sign_off_paragraph(&mut d, y, w, &model_text);
+    let (left_out, scans) = &inp.scans_left_out;
+    if !left_out.is_empty() {
+        y += 4.0;
+        y = sign_off_paragraph(
+            &mut d,
+            y,
+            w,
+            &format!(
+                "{} of the {scans} scans DID NOT REGISTER AND WERE LEFT OUT, as [scans] on_unregistered = \"exclude\" asks: {}. Whatever only they saw is not an obstacle in this plan: CHECK ON SITE what stands where they looked, or have them registered.",
+                left_out.len(),
+                left_out.join(", ")
+            ),
+        );
+    }
     if let Some(said) = plan.summary.other_loads_said() {
         y += 4.0;
         y = sign_off_paragraph(&mut d, y, w, &sentence(&said));
