@@ -356,7 +356,9 @@ pub fn status(project: &Project) -> Result<Vec<StageStatus>> {
             });
             continue;
         }
-        let blocked: Vec<&str> = def.reads.iter().map(|r| r.0).filter(|s| stale_upstream.contains(s)).collect();
+        let mut blocked: Vec<&str> = def.reads.iter().map(|r| r.0).filter(|s| stale_upstream.contains(s)).collect();
+        // A stage may read several files of one upstream stage: name it once.
+        blocked.dedup();
         if !blocked.is_empty() {
             out.push(StageStatus {
                 name: def.name.into(),
