@@ -36,6 +36,10 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     assert!(text.contains("are listed on the last pages"), "the demo's inputs fit on page 2 now: {text}");
     // The scanned load cut out of the checks at pick is said, with its count.
     assert!(text.contains("is not an obstacle to its own lift"), "{text}");
+    // The cover names what the sign-off page asks to check (the demo's
+    // scans leave a shadow beside the foundation).
+    let cover = doc.extract_text(&pages[..1]).unwrap().replace('\n', " ");
+    assert!(cover.contains("CHECK FIRST ground under the load that no scan saw (sign-off page)"), "{cover}");
     // Whose boxes the crane's are: every clearance is measured from them.
     assert!(text.contains("crane: 'ac-700', built into liftplan"), "{text}");
     // The demo's vessel was scanned on its trailer as its box says.
@@ -309,4 +313,5 @@ fn scans_left_out_unregistered_are_named_on_the_sign_off_page() {
     let text = doc.extract_text(&pages).unwrap().replace('\n', " ");
     assert!(text.contains("3 of the 4 scans DID NOT REGISTER AND WERE LEFT OUT"), "{text}");
     assert!(text.contains("scan-2, scan-3, scan-4"), "{text}");
+    assert!(text.contains("3 scans left out unregistered; ground under the load that no scan saw"), "{text}");
 }

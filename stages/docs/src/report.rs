@@ -94,6 +94,36 @@ fn key_values(d: &mut Doc, x: f32, mut y: f32, rows: &[(&str, String)], key_w: f
     y
 }
 
+/// What the sign-off page flags for a check on site or in the inputs, in a
+/// few words each, for the cover.
+fn checks_before_signing(inp: &Inputs, task: &LiftTask, plan: &LiftPlan) -> Vec<String> {
+    let sm = &plan.summary;
+    let mut v = Vec::new();
+    if !inp.scans_left_out.0.is_empty() {
+        v.push(format!("{} scans left out unregistered", inp.scans_left_out.0.len()));
+    }
+    if plan.model_vs_scans.as_ref().is_some_and(|a| a.disagrees()) {
+        v.push("the plant model disagrees with the scans".to_string());
+    }
+    if sm.coverage.as_ref().is_some_and(|c| c.load_passes_unscanned()) {
+        v.push("ground under the load that no scan saw".to_string());
+    }
+    if plan.load_cutout.points > 0 && sm.load_as_scanned.as_ref().is_some_and(|l| l.needs_checking()) {
+        v.push("the load's size or pick position against its scan".to_string());
+    }
+    match sm.set_down() {
+        SetDown::Rests(_) => {}
+        SetDown::Above(_) => v.push("the set-down ends above its support".to_string()),
+        SetDown::OverNothing => v.push("nothing known under the set position".to_string()),
+    }
+    if let Some(g) = plan.validator.set_up_ground.as_ref().filter(|_| task.crane.model.is_tower())
+        && (task.crane.placement.z_m - g.median_m).abs() > liftplan_plan::validate::SET_UP_LEVEL_TOLERANCE_M
+    {
+        v.push("the tower crane's base level".to_string());
+    }
+    v
+}
+
 /// The grid bearing (degrees clockwise from the site's +Y, in [0, 360)) of a
 /// direction `a_rad` counter-clockwise from the site's +X.
 fn grid_bearing_deg(a_rad: f64) -> f64 {
@@ -171,7 +201,60 @@ pub fn document(
     // Summary box.
     y += 3.0;
     let ok = plan.validator.ok;
-    let box_h = 36.0;
+    let crit = if sm.critical {
+        format!("CRITICAL LIFT (over {:.0} %)", task.critical_pct)
+    } else {
+        format!("not critical (limit {:.0} %)", task.critical_pct)
+    };
+    let mut rows = vec![
+        (
+            "Max utilisation",
+            format!(
+                "{:.1} % in step {} — chart cell {}",
+                sm.max_utilisation_pct, sm.max_utilisation_step, sm.max_utilisation_cell
+            ),
+        ),
+        ("Critical lift", crit),
+        (
+            "Min clearance",
+            format!(
+                "{:.2} m in step {} ({}); required {:.2} m, {:.2} m over landing zones",
+                sm.min_clearance_m,
+                sm.min_clearance_step,
+                sm.min_clearance_what,
+                plan.clearance_m,
+                plan.landing_clearance_m
+            ),
+        ),
+        (
+            "Motion",
+            format!(
+                "{} steps: swing {:.1}°, {} {:.1}{}, hoist/lower {:.2} m, rotate {:.1}°",
+                sm.steps,
+                sm.swing_deg,
+                if task.crane.model.is_tower() { "trolley" } else { "luff" },
+                sm.luff_or_trolley,
+                if task.crane.model.is_tower() { " m" } else { "°" },
+                sm.hoist_m,
+                sm.rotate_deg
+            ),
+        ),
+    ];
+    // What the sign-off page asks the signer to check, named on the cover
+    // where it is read first.
+    let checks = checks_before_signing(inp, task, plan);
+    if !checks.is_empty() {
+        rows.push(("CHECK FIRST", format!("{} (sign-off page)", checks.join("; "))));
+    }
+    let (key_x, key_w) = (19.0, 34.0);
+    let value_w = d.size.w - 15.0 - (key_x + key_w);
+    let rows_h: f32 = rows
+        .iter()
+        .map(|(_, v)| {
+            5.0 + (crate::pdf::wrap(v, value_w, 9.0).len().max(1) - 1) as f32 * crate::pdf::line_height_mm(9.0)
+        })
+        .sum();
+    let box_h = 16.0 + rows_h;
     d.fill_rect(15.0, y, w, box_h, if ok { [232, 245, 233] } else { [251, 233, 231] });
     d.frame(15.0, y, w, box_h, 1.0, if ok { [46, 125, 50] } else { [198, 40, 40] });
     let verdict = if ok {
@@ -180,51 +263,7 @@ pub fn document(
         "REJECTED — do not lift".to_string()
     };
     d.text(19.0, y + 7.0, &verdict, 11.0, true, if ok { [27, 94, 32] } else { [183, 28, 28] });
-    let crit = if sm.critical {
-        format!("CRITICAL LIFT (over {:.0} %)", task.critical_pct)
-    } else {
-        format!("not critical (limit {:.0} %)", task.critical_pct)
-    };
-    key_values(
-        &mut d,
-        19.0,
-        y + 14.0,
-        &[
-            (
-                "Max utilisation",
-                format!(
-                    "{:.1} % in step {} — chart cell {}",
-                    sm.max_utilisation_pct, sm.max_utilisation_step, sm.max_utilisation_cell
-                ),
-            ),
-            ("Critical lift", crit),
-            (
-                "Min clearance",
-                format!(
-                    "{:.2} m in step {} ({}); required {:.2} m, {:.2} m over landing zones",
-                    sm.min_clearance_m,
-                    sm.min_clearance_step,
-                    sm.min_clearance_what,
-                    plan.clearance_m,
-                    plan.landing_clearance_m
-                ),
-            ),
-            (
-                "Motion",
-                format!(
-                    "{} steps: swing {:.1}°, {} {:.1}{}, hoist/lower {:.2} m, rotate {:.1}°",
-                    sm.steps,
-                    sm.swing_deg,
-                    if task.crane.model.is_tower() { "trolley" } else { "luff" },
-                    sm.luff_or_trolley,
-                    if task.crane.model.is_tower() { " m" } else { "°" },
-                    sm.hoist_m,
-                    sm.rotate_deg
-                ),
-            ),
-        ],
-        34.0,
-    );
+    key_values(&mut d, key_x, y + 14.0, &rows, key_w);
     y += box_h + 6.0;
     // The other lifts' loads where they stand during this one, as the plan
     // stage checked against them (lifts are made in the order listed).
