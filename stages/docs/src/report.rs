@@ -116,12 +116,19 @@ fn checks_before_signing(inp: &Inputs, task: &LiftTask, plan: &LiftPlan) -> Vec<
         SetDown::Above(_) => v.push("the set-down ends above its support".to_string()),
         SetDown::OverNothing => v.push("nothing known under the set position".to_string()),
     }
-    if let Some(g) = plan.validator.set_up_ground.as_ref().filter(|_| task.crane.model.is_tower())
-        && (task.crane.placement.z_m - g.median_m).abs() > liftplan_plan::validate::SET_UP_LEVEL_TOLERANCE_M
-    {
+    if tower_base_off_ground_m(task, plan).is_some() {
         v.push("the tower crane's base level".to_string());
     }
     v
+}
+
+/// How far a tower crane's base stands above (+) or below (-) the median of
+/// the scanned ground around its mast, where that is more than the set-up
+/// tolerance.
+fn tower_base_off_ground_m(task: &LiftTask, plan: &LiftPlan) -> Option<f64> {
+    let g = plan.validator.set_up_ground.as_ref().filter(|_| task.crane.model.is_tower())?;
+    let off = task.crane.placement.z_m - g.median_m;
+    (off.abs() > liftplan_plan::validate::SET_UP_LEVEL_TOLERANCE_M).then_some(off)
 }
 
 /// The grid bearing (degrees clockwise from the site's +Y, in [0, 360)) of a
@@ -542,15 +549,13 @@ pub fn document(
     let level = task.crane.placement.z_m;
     let set_up_text = match &plan.validator.set_up_ground {
         Some(g) if task.crane.model.is_tower() => {
-            let off = level - g.median_m;
-            let flag = if off.abs() > liftplan_plan::validate::SET_UP_LEVEL_TOLERANCE_M {
-                format!(
+            let flag = match tower_base_off_ground_m(task, plan) {
+                Some(off) => format!(
                     " THE BASE IS {:.2} m {} THE GROUND AROUND THE MAST: check that its foundation stands so, or set ground_z_m.",
                     off.abs(),
                     if off > 0.0 { "ABOVE" } else { "BELOW" }
-                )
-            } else {
-                String::new()
+                ),
+                None => String::new(),
             };
             format!(
                 "The tower crane's base is at z = {level:.2} m as the lift gives it: the {} scanned ground points within {:.0} m of its mast lie at {:.2} to {:.2} m (median {:.2} m).{flag} Check the base on site.",

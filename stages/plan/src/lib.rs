@@ -609,6 +609,16 @@ pub fn run(
     out_dir: &Path,
 ) -> Result<RunSummary> {
     s.check().map_err(PlanError::Settings)?;
+    // A plan whose capacity was never checked must not read as validated:
+    // without a chart there is nothing to check it against.
+    let Some(capacity_csv) = capacity_csv else {
+        return Err(PlanError::Lift {
+            lift: tasks.first().map(|t| t.id.clone()).unwrap_or_default(),
+            message: "no load chart was read (the charts folder holds no chart file), so the crane's capacity cannot be checked and no plan is made: put the crane's load chart (.xlsx, .xlsm, .xlsb, .xls or .ods) in the charts folder and name its configuration in chart_config".into(),
+        });
+    };
+    let charts =
+        CapacityTable::read_csv(capacity_csv).map_err(|e| PlanError::Input(Location::file(capacity_csv), e))?;
     let map = Mdm::read(map_path).map_err(|e| PlanError::Input(Location::file(map_path), e.to_string()))?;
     let mesh = match mesh_path {
         Some(p) => TriMesh::read_artifact(p).map_err(|e| PlanError::Input(Location::file(p), e.to_string()))?,
@@ -620,16 +630,6 @@ pub fn run(
         None => (vec![], vec![], vec![Vec::new(); tasks.len()]),
     };
     let mut world = validate::World::new(&mesh, &points, &ground).map_err(PlanError::Settings)?;
-    // A plan whose capacity was never checked must not read as validated:
-    // without a chart there is nothing to check it against.
-    let Some(capacity_csv) = capacity_csv else {
-        return Err(PlanError::Lift {
-            lift: tasks.first().map(|t| t.id.clone()).unwrap_or_default(),
-            message: "no load chart was read (the charts folder holds no chart file), so the crane's capacity cannot be checked and no plan is made: put the crane's load chart (.xlsx, .xlsm, .xlsb, .xls or .ods) in the charts folder and name its configuration in chart_config".into(),
-        });
-    };
-    let charts =
-        CapacityTable::read_csv(capacity_csv).map_err(|e| PlanError::Input(Location::file(capacity_csv), e))?;
     let model_vs_scans = validate::model_scan_agreement(&world);
     // Where a load was scanned at its pick position, its cut-out was seen.
     let scanned_loads: Vec<Obb> =
