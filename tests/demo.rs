@@ -124,6 +124,32 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
         serde_json::from_slice(&std::fs::read(dir.join("out").join("plan.json")).unwrap()).unwrap();
     assert!((plan["lifts"][0]["gross_kg"].as_f64().unwrap() - 17_000.0).abs() < 1e-6);
 
+    // A lift that sets its load back where it picked it (a test lift) has
+    // no step but the lift-off and the set-down, and no clearance of its
+    // own to report (JSON has no infinity: its plan must still be read by
+    // the docs stage); the load rests on the trailer whose top 0.1 m went
+    // with the load's cut-out, not 0.10 m above it.
+    let t13 = t.replace("mass_t = 12.0", "mass_t = 13.0");
+    let set_back = t13.replace(
+        "set = { x_m = 30.0, y_m = 2.0, z_m = 1.2, yaw_deg = 0.0 }",
+        "set = { x_m = 6.0, y_m = -16.0, z_m = 1.2, yaw_deg = 90.0 }",
+    );
+    assert_ne!(set_back, t13);
+    std::fs::write(&toml_path, set_back).unwrap();
+    let r = run_json(&dir);
+    assert_eq!(stage(&r, "depthmap")["status"], "fresh", "{r}");
+    assert_eq!(stage(&r, "docs")["status"], "ran", "{r}");
+    let plan: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join("out").join("plan.json")).unwrap()).unwrap();
+    assert_eq!(plan["lifts"][0]["steps"].as_array().unwrap().len(), 2, "{plan}");
+    assert_eq!(plan["lifts"][0]["summary"]["min_clearance_m"], serde_json::Value::Null);
+    let doc = lopdf::Document::load(&pdf_path).unwrap();
+    let pages: Vec<u32> = doc.get_pages().keys().copied().collect();
+    let text = doc.extract_text(&pages).unwrap().replace('\n', " ");
+    assert!(text.contains("no step between the lift-off and the set-down"), "{text}");
+    assert!(text.contains("went with the load's cut-out at pick"), "{text}");
+    assert!(!text.contains("SET-DOWN ENDS"), "{text}");
+
     // Without its load chart the lift is not planned: a plan whose capacity
     // was never checked must not read as validated.
     let charts = dir.join("charts");

@@ -94,6 +94,12 @@ fn key_values(d: &mut Doc, x: f32, mut y: f32, rows: &[(&str, String)], key_w: f
     y
 }
 
+/// A step's clearance for the steps table: "none near" where nothing lay
+/// within the validator's search.
+fn clearance_cell(m: f64) -> String {
+    if m.is_finite() { format!("{m:.2}") } else { "none near".to_string() }
+}
+
 /// What the sign-off page flags for a check on site or in the inputs, in a
 /// few words each, for the cover.
 fn checks_before_signing(inp: &Inputs, task: &LiftTask, plan: &LiftPlan) -> Vec<String> {
@@ -224,14 +230,23 @@ pub fn document(
         ("Critical lift", crit),
         (
             "Min clearance",
-            format!(
-                "{:.2} m in step {} ({}); required {:.2} m, {:.2} m over landing zones",
-                sm.min_clearance_m,
-                sm.min_clearance_step,
-                sm.min_clearance_what,
-                plan.clearance_m,
-                plan.landing_clearance_m
-            ),
+            if sm.min_clearance_m.is_finite() {
+                format!(
+                    "{:.2} m in step {} ({}); required {:.2} m, {:.2} m over landing zones",
+                    sm.min_clearance_m,
+                    sm.min_clearance_step,
+                    sm.min_clearance_what,
+                    plan.clearance_m,
+                    plan.landing_clearance_m
+                )
+            } else if sm.steps <= 2 {
+                "no step between the lift-off and the set-down (the load is set back where it was lifted)".to_string()
+            } else {
+                format!(
+                    "nothing within the validator's search ({:.2} m) in any step between the lift-off and the set-down",
+                    liftplan_plan::validate::search_cutoff_m(plan.clearance_m)
+                )
+            },
         ),
         (
             "Motion",
@@ -394,7 +409,7 @@ pub fn document(
                 format!("{:.2}", st.radius_m),
                 opt(st.capacity_kg.map(|c| c / 1000.0), 1),
                 opt(st.utilisation_pct, 1),
-                format!("{:.2}", st.min_clearance_m),
+                clearance_cell(st.min_clearance_m),
                 format!("{} – {}", st.clearance_part, st.clearance_to),
             ]
         })
@@ -480,14 +495,22 @@ pub fn document(
                     ),
                     (
                         "Min clearance",
-                        format!(
-                            "{:.2} m, {} to {} (required {:.2} m){}",
-                            st.min_clearance_m,
-                            st.clearance_part,
-                            st.clearance_to,
-                            st.required_clearance_m,
-                            if st.clearance_at.is_some() { "; red flag in the picture" } else { "" }
-                        ),
+                        if st.min_clearance_m.is_finite() {
+                            format!(
+                                "{:.2} m, {} to {} (required {:.2} m){}",
+                                st.min_clearance_m,
+                                st.clearance_part,
+                                st.clearance_to,
+                                st.required_clearance_m,
+                                if st.clearance_at.is_some() { "; red flag in the picture" } else { "" }
+                            )
+                        } else {
+                            format!(
+                                "nothing within the validator's search ({:.2} m; required {:.2} m)",
+                                liftplan_plan::validate::search_cutoff_m(plan.clearance_m),
+                                st.required_clearance_m
+                            )
+                        },
                     ),
                 ],
                 40.0,
@@ -580,6 +603,10 @@ pub fn document(
     y = sign_off_paragraph(&mut d, y, w, &set_up_text);
     y += 4.0;
     let set_text = match plan.summary.set_down() {
+        SetDown::Rests(g) if plan.summary.set_in_cutout_m > 0.0 => format!(
+            "At its set position the load rests on {} (found {:.2} m under its underside, where the scans' top {:.2} m went with the load's cut-out at pick).",
+            g.object, g.gap_m, plan.summary.set_in_cutout_m
+        ),
         SetDown::Rests(g) => format!(
             "At its set position the load rests on {} (within {:.2} m under its underside).",
             g.object, plan.summary.support_m

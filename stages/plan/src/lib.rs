@@ -644,6 +644,12 @@ pub fn run(
         let site = Site { map: with_others.as_ref().unwrap_or(&map), world: &world, charts: Some(&charts) };
         let (mut plan, cs) = plan_lift(task, &site, s, seed)?;
         plan.summary.coverage = Some(coverage::of_lift(task, &plan.moves, &world, &scanned_loads));
+        // The support's top under a set position inside a load's cut-out
+        // went with the scanned load.
+        let set_box = task.crane.load_obb(&task.set, &task.load).expanded(s.support_m);
+        if scanned_loads.iter().any(|b| b.intersects(&set_box)) {
+            plan.summary.set_in_cutout_m = s.load_cutout_m;
+        }
         plan.summary.other_loads = world.others.iter().map(|(_, name)| name.clone()).collect();
         let above_m = cutout_above_m(s.load_cutout_m);
         plan.load_cutout = LoadCutout { grow_m: s.load_cutout_m, above_m, points: taken.len() };

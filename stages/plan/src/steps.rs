@@ -29,7 +29,9 @@ pub struct Step {
     pub chart_cell: Option<String>,
     /// Highest utilisation during the step (%).
     pub utilisation_pct: Option<f64>,
-    /// Smallest clearance during the step (m), which part, to what, and what was required.
+    /// Smallest clearance during the step (m), which part, to what, and what
+    /// was required; infinite where nothing lay within the validator's search.
+    #[serde(with = "distance_json")]
     pub min_clearance_m: f64,
     pub clearance_part: String,
     pub clearance_to: String,
@@ -113,6 +115,10 @@ pub struct Summary {
     pub max_utilisation_step: usize,
     pub max_utilisation_cell: String,
     pub critical: bool,
+    /// Least clearance of the steps between the lift-off and the set-down
+    /// (m); infinite where there are none, or nothing lay within the
+    /// validator's search in any.
+    #[serde(with = "distance_json")]
     pub min_clearance_m: f64,
     pub min_clearance_step: usize,
     pub min_clearance_what: String,
@@ -126,6 +132,13 @@ pub struct Summary {
     /// How far above its support the load may end and still rest on it (m).
     #[serde(default)]
     pub support_m: f64,
+    /// Where the set position lies in a load's cut-out at pick (a lift that
+    /// sets its load back, or where a later lift picks it up), how far the
+    /// cut-out reaches below the load (m): the support's top that far down
+    /// was taken with the scanned load, so a gap up to it is the scans', not
+    /// the plan's.
+    #[serde(default)]
+    pub set_in_cutout_m: f64,
     /// What the lift passes over that the scans and the model do not show
     /// ([`crate::coverage::of_lift`]).
     #[serde(default)]
@@ -138,6 +151,22 @@ pub struct Summary {
     /// ([`crate::load_scan::of_pick`]; `None` without scans).
     #[serde(default)]
     pub load_as_scanned: Option<crate::load_scan::LoadAsScanned>,
+}
+
+/// Serde for a distance that may be infinite (nothing within the
+/// validator's search): JSON has no infinity, so it is written as null and
+/// read back as infinite (a plan whose distance was written so could not be
+/// read by the docs stage).
+mod distance_json {
+    use serde::{Deserialize, Deserializer, Serializer};
+
+    pub fn serialize<S: Serializer>(v: &f64, s: S) -> Result<S::Ok, S::Error> {
+        if v.is_finite() { s.serialize_f64(*v) } else { s.serialize_none() }
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+        Ok(Option::<f64>::deserialize(d)?.unwrap_or(f64::INFINITY))
+    }
 }
 
 /// Where the set-down ends.
@@ -157,7 +186,7 @@ impl Summary {
     /// the support's gap is known to 2 mm).
     pub fn set_down(&self) -> SetDown<'_> {
         match &self.set_on {
-            Some(s) if s.gap_m <= self.support_m + 2e-3 => SetDown::Rests(s),
+            Some(s) if s.gap_m <= self.support_m + self.set_in_cutout_m + 2e-3 => SetDown::Rests(s),
             Some(s) => SetDown::Above(s),
             None => SetDown::OverNothing,
         }
@@ -205,16 +234,23 @@ impl Summary {
 
     pub fn line(&self) -> String {
         format!(
-            "lift {}: {} steps, validated; max utilisation {:.0} % (step {}, {}){}; min clearance {:.2} m (step {}, {}); {}",
+            "lift {}: {} steps, validated; max utilisation {:.0} % (step {}, {}){}; {}; {}",
             self.lift,
             self.steps,
             self.max_utilisation_pct,
             self.max_utilisation_step,
             self.max_utilisation_cell,
             if self.critical { ", CRITICAL LIFT" } else { "" },
-            self.min_clearance_m,
-            self.min_clearance_step,
-            self.min_clearance_what,
+            if self.min_clearance_m.is_finite() {
+                format!(
+                    "min clearance {:.2} m (step {}, {})",
+                    self.min_clearance_m, self.min_clearance_step, self.min_clearance_what
+                )
+            } else if self.steps <= 2 {
+                "no step between the lift-off and the set-down".to_string()
+            } else {
+                "nothing within the validator's search in any step between the lift-off and the set-down".to_string()
+            },
             self.set_down_line()
         )
     }
@@ -238,6 +274,7 @@ pub fn summary(task: &LiftTask, steps: &[Step], verdict: &Verdict) -> Summary {
         rotate_deg: 0.0,
         set_on: None,
         support_m: 0.0,
+        set_in_cutout_m: 0.0,
         coverage: None,
         load_as_scanned: None,
         other_loads: Vec::new(),

@@ -731,7 +731,7 @@ fn check_config(
         // (a bank higher up does); all of it counts for the boom, the trolley
         // and what hangs. The planner applies the same rule.
         let ground_below_z = if dep == Dependence::Swing { task.crane.standing_ground_top_z() } else { ALL_GROUND };
-        let nearest = nearest(world, &b, ground_below_z, search_cutoff_m(rules));
+        let nearest = nearest(world, &b, ground_below_z, search_cutoff_m(rules.clearance_m));
         // Written so that a distance that is not a number fails too.
         if !(nearest.distance_m >= required - DISTANCE_TOLERANCE_M) {
             problems.push(if landing_move && hanging {
@@ -881,8 +881,10 @@ const MAX_MOVED_M: f64 = 10_000.0;
 /// How far the point search looks beyond a part (m): a part farther than
 /// this from every scanned point is reported at its mesh distance or at
 /// infinity, so this is the most its distance is known to be.
-fn search_cutoff_m(rules: &Rules) -> f64 {
-    (rules.clearance_m * 3.0).max(3.0)
+/// How far the validator looks for the nearest obstacle (m), for a lift of
+/// `clearance_m`: beyond it a distance is reported as infinite.
+pub fn search_cutoff_m(clearance_m: f64) -> f64 {
+    (clearance_m * 3.0).max(3.0)
 }
 
 /// One configuration along a move, at fraction `t` of it, and what it found.
@@ -1121,7 +1123,7 @@ pub fn validate(
     problems.extend(path_breaks(moves));
     let mut move_checks = Vec::new();
     let (mut total, mut refined) = (0, 0);
-    let cutoff_m = search_cutoff_m(rules);
+    let cutoff_m = search_cutoff_m(rules.clearance_m);
     for (mi, m) in moves.iter().enumerate() {
         let lever_m = lever_for(task, m);
         let moved_m = m.delta().abs() * lever_m;
