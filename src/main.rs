@@ -401,18 +401,20 @@ fn real_main() -> Result<ExitCode> {
         }
         Command::Options { stage } => {
             let defs = pipeline::stages();
+            fn section<T: serde::Serialize>(name: &str, value: T) -> Result<String> {
+                Ok(toml::to_string_pretty(&std::collections::BTreeMap::from([(name, value)]))?)
+            }
+            // Each stage's own section of liftplan.toml, with its defaults.
             let settings = |name: &str| -> Result<String> {
-                Ok(match name {
-                    liftplan_plant::NAME => toml::to_string_pretty(&std::collections::BTreeMap::from([(
-                        "plant",
-                        liftplan_plant::Settings::default(),
-                    )]))?,
-                    liftplan_scans::NAME => toml::to_string_pretty(&std::collections::BTreeMap::from([(
-                        "scans",
-                        liftplan_scans::Settings::default(),
-                    )]))?,
-                    _ => String::new(),
-                })
+                match name {
+                    liftplan_scans::NAME => section("scans", liftplan_scans::Settings::default()),
+                    liftplan_plant::NAME => section("plant", liftplan_plant::Settings::default()),
+                    liftplan_charts::NAME => section("charts", liftplan_charts::Settings::default()),
+                    liftplan_depthmap::NAME => section("depthmap", liftplan_depthmap::Settings::default()),
+                    liftplan_plan::NAME => section("plan", liftplan_plan::Settings::default()),
+                    liftplan_docs::NAME => section("docs", liftplan_docs::Settings::default()),
+                    _ => Ok(String::new()),
+                }
             };
             if let Some(s) = &stage
                 && !defs.iter().any(|d| d.name == s)
@@ -422,6 +424,16 @@ fn real_main() -> Result<ExitCode> {
             }
             for d in defs.iter().filter(|d| stage.as_deref().is_none_or(|s| s == d.name)) {
                 println!("# stage {} (version {}): {}\n{}", d.name, d.version, d.about, settings(d.name)?);
+            }
+            if stage.is_none() {
+                let p = project::RawProject::default();
+                println!(
+                    "# every stage: where the inputs are, the GPU, watching and the cache\n{}\n{}\n{}\n{}",
+                    section("paths", p.paths)?,
+                    section("gpu", p.gpu)?,
+                    section("watch", p.watch)?,
+                    section("cache", p.cache)?
+                );
             }
             Ok(ExitCode::SUCCESS)
         }

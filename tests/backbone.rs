@@ -313,3 +313,35 @@ fn clean_and_version() {
     let v = ok(&["--version"]);
     assert!(String::from_utf8_lossy(&v.stdout).starts_with("liftplan "));
 }
+
+/// `liftplan options` gives every stage's section of liftplan.toml with its
+/// defaults (it gave only the scans' and the plant's), and what it prints
+/// reads back as a project file.
+#[test]
+fn options_list_every_stages_settings_as_a_project_file() {
+    let o = ok(&["options"]);
+    let text = String::from_utf8_lossy(&o.stdout).to_string();
+    for section in [
+        "[scans]",
+        "[plant]",
+        "[charts]",
+        "[depthmap]",
+        "[plan]",
+        "[plan.ga]",
+        "[plan.cspace]",
+        "[docs]",
+        "[gpu]",
+        "[cache]",
+    ] {
+        assert!(text.contains(&format!("\n{section}\n")), "no {section} in:\n{text}");
+    }
+    assert!(text.contains("load_cutout_m = 0.1"), "{text}");
+    let t = tempfile::tempdir().unwrap();
+    let dir = t.path().join("p");
+    ok(&["init", dir.to_str().unwrap()]);
+    std::fs::write(dir.join("liftplan.toml"), &text).unwrap();
+    ok(&["status", dir.to_str().unwrap()]);
+    let one = ok(&["options", "plan"]);
+    let one = String::from_utf8_lossy(&one.stdout);
+    assert!(one.contains("[plan]") && !one.contains("[scans]"), "{one}");
+}
