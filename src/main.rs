@@ -470,10 +470,6 @@ fn real_main() -> Result<ExitCode> {
                         _ => {}
                     }
                 }
-                let (Some(b), Some(r)) = (boom, radius) else {
-                    eprintln!("error: --lookup expects boom=B,radius=R in metres, got '{q}'");
-                    return Ok(ExitCode::from(2));
-                };
                 let cfg = match &config {
                     Some(name) => table.config(name).map_err(|e| anyhow::anyhow!("{e}"))?,
                     None if table.configs.len() == 1 => &table.configs[0],
@@ -486,14 +482,28 @@ fn real_main() -> Result<ExitCode> {
                         return Ok(ExitCode::from(2));
                     }
                 };
+                // A chart of one column for any boom (a tower crane's jib)
+                // needs no boom length.
+                let any_boom = cfg.boom_independent();
+                let (Some(b), Some(r)) = (boom.or(any_boom.then_some(0.0)), radius) else {
+                    eprintln!(
+                        "error: --lookup expects boom=B,radius=R in metres (radius=R alone for a chart of one column for any boom), got '{q}'"
+                    );
+                    return Ok(ExitCode::from(2));
+                };
                 match cfg.lookup(b, r) {
                     Ok(c) => {
                         if !json {
+                            let column = if any_boom {
+                                "one column for any boom or jib".to_string()
+                            } else {
+                                format!("column {} m", c.boom_m)
+                            };
+                            let at = if any_boom { String::new() } else { format!("boom {b} m, ") };
                             println!(
-                                "{:.3} t at boom {b} m, radius {r} m (chart row {} m, column {} m, cell {})",
+                                "{:.3} t at {at}radius {r} m (chart row {} m, {column}, cell {})",
                                 c.capacity_kg / 1000.0,
                                 c.radius_m,
-                                c.boom_m,
                                 c.cell
                             );
                         }

@@ -345,3 +345,27 @@ fn options_list_every_stages_settings_as_a_project_file() {
     let one = String::from_utf8_lossy(&one.stdout);
     assert!(one.contains("[plan]") && !one.contains("[scans]"), "{one}");
 }
+
+/// `liftplan chart --lookup` reads one capacity: boom and radius for a
+/// chart with boom columns, the radius alone for a tower crane's chart of
+/// one column (which it printed as "boom 0 m, column 0 m").
+#[test]
+fn chart_lookup_takes_the_radius_alone_for_a_chart_of_one_column() {
+    let t = tempfile::tempdir().unwrap();
+    let (mobile, tower) = (t.path().join("ac700.xlsx"), t.path().join("tower.xlsx"));
+    liftplan_fixtures::chart::write_demo_chart(&mobile).unwrap();
+    liftplan_fixtures::chart::write_demo_tower_chart(&tower).unwrap();
+    let csv = t.path().join("c.csv");
+    let c = csv.to_str().unwrap();
+    let o = ok(&["chart", tower.to_str().unwrap(), "-o", c, "--lookup", "radius=37.6"]);
+    let said = String::from_utf8_lossy(&o.stdout);
+    assert!(said.starts_with("18.900 t at radius 37.6 m (chart row 38 m, one column for any boom or jib"), "{said}");
+    let o =
+        ok(&["chart", mobile.to_str().unwrap(), "-o", c, "--config", "Main boom 360", "--lookup", "boom=40,radius=29"]);
+    let said = String::from_utf8_lossy(&o.stdout);
+    assert!(said.starts_with("33.400 t at boom 40 m, radius 29 m (chart row 30 m, column 41.8 m"), "{said}");
+    let o =
+        liftplan(&["chart", mobile.to_str().unwrap(), "-o", c, "--config", "Main boom 360", "--lookup", "radius=29"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("expects boom=B,radius=R"));
+}
