@@ -21,13 +21,46 @@ pub fn inspect(path: &Path) -> Result<serde_json::Value> {
     if ext == "mdm" {
         return Ok(liftplan_depthmap::inspect(path)?);
     }
+    if ext == "toml" {
+        return inspect_toml(path);
+    }
     bail!(
-        "{}: liftplan does not read .{ext} files (scans: {}; plant: {}; charts: {}; depth maps: mdm)",
+        "{}: liftplan does not read .{ext} files (scans: {}; plant: {}; charts: {}; depth maps: mdm; crane models and station files: toml)",
         path.display(),
         crate::stages::SCAN_EXTS.join(", "),
         liftplan_plant::EXTS.join(", "),
         liftplan_charts::EXTS.join(", ")
     )
+}
+
+/// The .toml files liftplan reads besides the project file: crane models
+/// (`cranes/*.toml`) and scanner station files.
+fn inspect_toml(path: &Path) -> Result<serde_json::Value> {
+    let text = std::fs::read_to_string(path).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    if path.file_name().is_some_and(|n| n == crate::project::FILE) {
+        bail!(
+            "{}: a project file; `liftplan status` shows what it asks for and `liftplan options` every setting",
+            path.display()
+        );
+    }
+    let table: toml::Table = text.parse().map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    if table.contains_key("station") {
+        let stations = liftplan_scans::parse_stations(path, &text)?;
+        return Ok(serde_json::json!({
+            "file": path.display().to_string(),
+            "kind": "scanner stations",
+            "stations": stations.iter().map(|s| {
+                let t = s.pose.translation;
+                serde_json::json!({ "scan": s.scan, "line": s.line, "x_m": t.x, "y_m": t.y, "z_m": t.z })
+            }).collect::<Vec<_>>(),
+        }));
+    }
+    let m = liftplan_core::crane::CraneModel::from_toml(path, &text).map_err(|e| anyhow::anyhow!("{e}"))?;
+    let mut v = serde_json::json!({ "file": path.display().to_string(), "kind": "crane model" });
+    if let (Some(o), serde_json::Value::Object(model)) = (v.as_object_mut(), serde_json::to_value(&m)?) {
+        o.extend(model.into_iter().map(|(k, x)| (if k == "kind" { "crane".to_string() } else { k }, x)));
+    }
+    Ok(v)
 }
 
 /// A few readable lines for the terminal.

@@ -369,3 +369,27 @@ fn chart_lookup_takes_the_radius_alone_for_a_chart_of_one_column() {
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("expects boom=B,radius=R"));
 }
+
+/// `liftplan inspect` reads the .toml inputs too: a crane model (its boxes,
+/// whose dimensions every clearance rests on) and a station file; the
+/// project file is pointed to `status` and `options`.
+#[test]
+fn inspect_shows_a_crane_model_and_a_station_file() {
+    let t = tempfile::tempdir().unwrap();
+    let crane = t.path().join("my-crane.toml");
+    std::fs::write(&crane, liftplan_core::crane::builtin_text("ltm-1100").unwrap()).unwrap();
+    let o = ok(&["inspect", crane.to_str().unwrap(), "--json"]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["kind"], "crane model", "{v}");
+    assert_eq!(v["name"], "LTM 1100-5.2 (approx.)", "{v}");
+    assert_eq!(v["crane"]["outriggers"]["spread_length_m"], 8.7, "{v}");
+    let stations = t.path().join("stations.toml");
+    std::fs::write(&stations, "[[station]]\nscan = \"north\"\nx_m = 1.0\ny_m = 2.0\nz_m = 3.0\n").unwrap();
+    let o = ok(&["inspect", stations.to_str().unwrap(), "--json"]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["stations"][0]["scan"], "north", "{v}");
+    let project = t.path().join("liftplan.toml");
+    std::fs::write(&project, "").unwrap();
+    let o = liftplan(&["inspect", project.to_str().unwrap()]);
+    assert!(String::from_utf8_lossy(&o.stderr).contains("a project file; `liftplan status`"));
+}
