@@ -334,6 +334,10 @@ pub struct LiftReport {
     pub max_utilisation_pct: f64,
     pub critical: bool,
     pub critical_pct: f64,
+    /// A luffing crane's chart configuration of one capacity column, not
+    /// one per boom length: the boom length it was made for is not known
+    /// here (a sheet per boom length is a common layout), so it is said.
+    pub one_column_for_boom_m: Option<f64>,
 }
 
 /// Radial resolution of the chart limits: 0.05 degrees of luff, or 5 cm of trolley.
@@ -364,6 +368,7 @@ pub fn lift_report(task: &LiftTask, table: &CapacityTable) -> Result<LiftReport>
         max_utilisation_pct: max_u,
         critical: max_u > task.critical_pct,
         critical_pct: task.critical_pct,
+        one_column_for_boom_m: (!tower && cfg.boom_independent()).then_some(task.crane.placement.boom_length_m),
     })
 }
 
@@ -413,6 +418,12 @@ impl Summary {
                 l.gross_kg / 1000.0,
                 if l.critical { " - CRITICAL LIFT" } else { "" }
             ));
+            if let Some(boom) = l.one_column_for_boom_m {
+                v.push(format!(
+                    "lift {}: chart configuration '{}' has one capacity column, not one per boom length: CHECK THAT IT IS THE CHART FOR THE {boom:.1} m BOOM the lift sets up",
+                    l.id, l.chart_config
+                ));
+            }
         }
         v
     }

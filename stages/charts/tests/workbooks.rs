@@ -321,3 +321,37 @@ fn an_xlsb_chart_reads_as_its_xls_twin() {
         assert_eq!(b.cell.replace("chart.xlsb", "chart.xls"), s.cell);
     }
 }
+
+/// A chart of one capacity column: for a tower crane it is its jib's; for a
+/// luffing crane it may be one boom length's sheet, which the lift's boom
+/// must be (said, since the chart does not say it); and a chart by boom
+/// length is refused for a tower crane, saying why (it read "boom length
+/// 0.00 m is shorter than the chart's shortest boom").
+#[test]
+fn a_chart_of_one_column_and_a_chart_by_boom_length_meet_the_right_crane() {
+    let d = tempfile::tempdir().unwrap();
+    let (one, by_boom) = (d.path().join("tower.xlsx"), d.path().join("ac700.xlsx"));
+    liftplan_fixtures::chart::write_demo_tower_chart(&one).unwrap();
+    liftplan_fixtures::chart::write_demo_chart(&by_boom).unwrap();
+    let table =
+        |p: &Path| liftplan_core::capacity::CapacityTable { configs: read_chart(p, &Settings::default()).unwrap().0 };
+    let lift = |crane: &str, config: &str| {
+        let boom = if crane == "ac-700" { ", \"boom_m\": 40.0" } else { "" };
+        let spec: liftplan_core::lift::LiftSpec = serde_json::from_str(&format!(
+            r#"{{ "id": "L", "load": {{ "mass_t": 5.0, "size_m": [4.0, 2.0, 2.0] }},
+                "crane": {{ "model": "{crane}", "position_m": [0.0, 0.0], "heading_deg": 0.0, "chart_config": "{config}"{boom} }},
+                "pick": {{ "x_m": 20.0, "y_m": 0.0, "z_m": 0.0 }}, "set": {{ "x_m": 0.0, "y_m": 25.0, "z_m": 0.0 }} }}"#
+        ))
+        .unwrap();
+        spec.resolve(liftplan_core::crane::builtin(crane).unwrap()).unwrap()
+    };
+    let tower_on_jib = liftplan_charts::lift_report(&lift("tower-hh-60", "Jib 60 m"), &table(&one)).unwrap();
+    assert!(tower_on_jib.pick.is_some() && tower_on_jib.one_column_for_boom_m.is_none(), "{tower_on_jib:?}");
+    let luffing_on_one = liftplan_charts::lift_report(&lift("ac-700", "Jib 60 m"), &table(&one)).unwrap();
+    assert_eq!(luffing_on_one.one_column_for_boom_m, Some(40.0));
+    let s = liftplan_charts::Summary { files: vec![], configs: vec![], rows: 0, lifts: vec![luffing_on_one] };
+    assert!(s.lines().iter().any(|l| l.contains("CHECK THAT IT IS THE CHART FOR THE 40.0 m BOOM")), "{:?}", s.lines());
+    let tower_by_boom = liftplan_charts::lift_report(&lift("tower-hh-60", "Main boom 360"), &table(&by_boom)).unwrap();
+    let e = tower_by_boom.pick_error.unwrap();
+    assert!(e.contains("lists capacities by boom length (16.00 to 62.40 m), which a tower crane does not have"), "{e}");
+}

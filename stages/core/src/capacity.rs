@@ -63,6 +63,10 @@ pub enum CapacityError {
     RadiusBeyondChart { radius_m: f64, max_m: f64 },
     #[error("the chart permits no lift at radius {radius_m:.2} m with boom {boom_m:.2} m (blank cell {cell})")]
     NotPermitted { boom_m: f64, radius_m: f64, cell: String },
+    #[error(
+        "the chart lists capacities by boom length ({min_m:.2} to {max_m:.2} m), which a tower crane does not have: name a chart configuration of one capacity column, for its jib"
+    )]
+    ByBoomForTower { min_m: f64, max_m: f64 },
 }
 
 impl ChartConfig {

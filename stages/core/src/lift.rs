@@ -436,7 +436,15 @@ impl LiftTask {
         radial: f64,
     ) -> Result<CapacityCheck, crate::capacity::CapacityError> {
         let r = self.crane.radius_m(radial);
-        let boom = if self.crane.model.is_tower() { 0.0 } else { self.crane.placement.boom_length_m };
+        let tower = self.crane.model.is_tower();
+        if tower && !chart.boom_independent() {
+            let b = &chart.boom_lengths_m;
+            return Err(crate::capacity::CapacityError::ByBoomForTower {
+                min_m: b.first().copied().unwrap_or(0.0),
+                max_m: b.last().copied().unwrap_or(0.0),
+            });
+        }
+        let boom = if tower { 0.0 } else { self.crane.placement.boom_length_m };
         let c = chart.lookup(boom, r)?;
         let eff = self.effective_capacity_kg(c.capacity_kg);
         Ok(CapacityCheck {
