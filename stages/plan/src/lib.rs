@@ -240,8 +240,9 @@ pub struct ValidatorReport {
     pub seconds: f64,
     pub problems: Vec<String>,
     /// The scanned ground under a mobile crane's carrier and outriggers,
-    /// which must lie at the level the lift sets it up at; `None` where no
-    /// ground was scanned there (the level is then as the lift gives it).
+    /// which must lie at the level the lift sets it up at, or within 3 m of
+    /// a tower crane's mast (said, not checked); `None` where no ground was
+    /// scanned there (the level is then as the lift gives it).
     #[serde(default)]
     pub set_up_ground: Option<validate::SetUpGround>,
 }
