@@ -219,6 +219,7 @@ pub fn docs() -> StageDef {
             ("scans", "registration.json"),
             ("plant", "plant.mesh"),
             ("charts", "capacity.csv"),
+            ("charts", "lifts.json"),
         ],
         applicable: |_, _, up| up.contains_key("plan"),
         run: run_docs,
@@ -284,6 +285,17 @@ fn run_docs(ctx: &Ctx) -> Result<Produced> {
             .map(|s| s["name"].as_str().unwrap_or("?").to_string())
             .collect();
     }
+    // Lifts on a chart of one column: which boom it is for, the chart does not say.
+    let mut one_column_charts = Vec::new();
+    if let Some(lj) = ctx.upstream_file("charts", "lifts.json") {
+        let r: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(&lj)?).with_context(|| format!("reading {}", lj.display()))?;
+        for l in r["lifts"].as_array().into_iter().flatten() {
+            if let (Some(id), Some(boom)) = (l["id"].as_str(), l["one_column_for_boom_m"].as_f64()) {
+                one_column_charts.push((id.to_string(), boom));
+            }
+        }
+    }
     let inputs = liftplan_docs::Inputs {
         project: p.raw.project.name.clone(),
         date: liftplan_docs::today(),
@@ -296,6 +308,7 @@ fn run_docs(ctx: &Ctx) -> Result<Produced> {
         input_lines,
         input_hashes,
         scans_left_out,
+        one_column_charts,
     };
     let summary = liftplan_docs::run(&inputs, &p.raw.docs, p.raw.gpu.use_, ctx.out)?;
     let mut outputs = Vec::new();

@@ -315,6 +315,20 @@ fn the_tower_crane_demo_runs_and_its_pdf_names_a_tower_cranes_parts() {
     for unsaid in ["outrigger", "carrier", "superstructure", "boom", "luff"] {
         assert!(!text.to_lowercase().contains(unsaid), "{unsaid:?} in a tower crane's PDF:\n{text}");
     }
+
+    // The all-terrain crane on the tower crane's chart of one column: the
+    // chart does not say which boom it is for, so the cover asks.
+    let toml_path = dir.join("liftplan.toml");
+    let t = std::fs::read_to_string(&toml_path).unwrap();
+    let start = t.find("crane = {").unwrap();
+    let end = start + t[start..].find('\n').unwrap();
+    let mobile = r#"crane = { model = "ac-700", position_m = [0.0, 0.0], ground_z_m = 0.0, heading_deg = 0.0, boom_m = 40.0, chart_config = "Jib 60 m" }"#;
+    std::fs::write(&toml_path, format!("{}{mobile}{}", &t[..start], &t[end..])).unwrap();
+    let o = liftplan(&["run", dir.to_str().unwrap(), "-q"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let doc = lopdf::Document::load(dir.join("out").join("V-101.pdf")).unwrap();
+    let cover = doc.extract_text(&[1]).unwrap().replace('\n', " ");
+    assert!(cover.contains("CHECK FIRST that the chart of one column is the 40.0 m boom's"), "{cover}");
 }
 
 /// Scans that do not register and are left out as the project asks are

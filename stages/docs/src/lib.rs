@@ -77,6 +77,10 @@ pub struct Inputs {
     /// (`[scans] on_unregistered = "exclude"`), by name, and how many scans
     /// there were in all.
     pub scans_left_out: (Vec<String>, usize),
+    /// Lifts of a luffing crane whose chart configuration has one capacity
+    /// column, not one per boom length, with the boom length the chart must
+    /// be for (the charts stage's `one_column_for_boom_m`).
+    pub one_column_charts: Vec<(String, f64)>,
 }
 
 #[derive(Debug, Clone, Serialize)]

@@ -105,6 +105,9 @@ fn clearance_cell(m: f64) -> String {
 fn checks_before_signing(inp: &Inputs, task: &LiftTask, plan: &LiftPlan) -> Vec<String> {
     let sm = &plan.summary;
     let mut v = Vec::new();
+    if let Some((_, boom)) = inp.one_column_charts.iter().find(|(id, _)| *id == task.id) {
+        v.push(format!("that the chart of one column is the {boom:.1} m boom's"));
+    }
     if !inp.scans_left_out.0.is_empty() {
         v.push(format!("{} scans left out unregistered", inp.scans_left_out.0.len()));
     }
