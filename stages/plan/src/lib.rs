@@ -176,6 +176,16 @@ pub fn other_loads(tasks: &[LiftTask], k: usize) -> Vec<(Obb, String)> {
 
 /// Whether two boxes are one in place: each corner of one within 1 cm of a
 /// corner of the other.
+/// Whether lift `k` of `tasks` picks up a load an earlier lift set down
+/// there (the same box in the same place, to 1 cm): then the load was not
+/// there when the site was scanned, and its pick position cannot be
+/// compared with the scans.
+pub fn picks_what_an_earlier_lift_set(tasks: &[LiftTask], k: usize) -> bool {
+    let t = &tasks[k];
+    let pick = t.crane.load_obb(&t.pick, &t.load);
+    tasks[..k].iter().any(|e| same_box(&e.crane.load_obb(&e.set, &e.load), &pick))
+}
+
 fn same_box(a: &Obb, b: &Obb) -> bool {
     let cb = b.corners();
     a.corners().iter().all(|p| cb.iter().any(|q| (p - q).norm() <= 0.01))
@@ -654,7 +664,9 @@ pub fn run(
         plan.summary.other_loads = world.others.iter().map(|(_, name)| name.clone()).collect();
         let above_m = cutout_above_m(s.load_cutout_m);
         plan.load_cutout = LoadCutout { grow_m: s.load_cutout_m, above_m, points: taken.len() };
-        plan.summary.load_as_scanned = cloud_path.map(|_| load_scan::of_pick(task, taken, above_m));
+        plan.summary.load_as_scanned = cloud_path
+            .filter(|_| !picks_what_an_earlier_lift_set(tasks, k))
+            .map(|_| load_scan::of_pick(task, taken, above_m));
         plan.model_vs_scans = model_vs_scans.clone();
         let io = |p: &Path, e: std::io::Error| PlanError::Input(Location::file(p), e.to_string());
         let csv = out_dir.join(format!("{}.steps.csv", task.id));
@@ -741,5 +753,8 @@ mod tests {
         let during_d: Vec<String> = other_loads(&tasks, 3).into_iter().map(|(_, n)| n).collect();
         assert_eq!(during_d, ["load of lift A at its set position", "load of lift C at its set position"]);
         assert!(other_loads(&tasks[..1], 0).is_empty());
+        // D takes on what B set down: its load was not there when scanned.
+        let handed_on: Vec<bool> = (0..tasks.len()).map(|k| picks_what_an_earlier_lift_set(&tasks, k)).collect();
+        assert_eq!(handed_on, [false, false, false, true]);
     }
 }
