@@ -272,11 +272,14 @@ fn run_docs(ctx: &Ctx) -> Result<Produced> {
     }
     input_hashes.sort();
     input_hashes.dedup();
+    let upstream_json = |stage: &str, file: &str| -> Result<Option<serde_json::Value>> {
+        let Some(f) = ctx.upstream_file(stage, file) else { return Ok(None) };
+        let bytes = std::fs::read(&f).with_context(|| format!("reading {}", f.display()))?;
+        Ok(Some(serde_json::from_slice(&bytes).with_context(|| format!("reading {}", f.display()))?))
+    };
     // Scans left out unregistered: what only they saw is missing.
     let mut scans_left_out = (Vec::new(), 0);
-    if let Some(reg) = ctx.upstream_file("scans", "registration.json") {
-        let r: serde_json::Value =
-            serde_json::from_slice(&std::fs::read(&reg)?).with_context(|| format!("reading {}", reg.display()))?;
+    if let Some(r) = upstream_json("scans", "registration.json")? {
         let scans = r["scans"].as_array().cloned().unwrap_or_default();
         scans_left_out.1 = scans.len();
         scans_left_out.0 = scans
@@ -287,9 +290,7 @@ fn run_docs(ctx: &Ctx) -> Result<Produced> {
     }
     // Lifts on a chart of one column: which boom it is for, the chart does not say.
     let mut one_column_charts = Vec::new();
-    if let Some(lj) = ctx.upstream_file("charts", "lifts.json") {
-        let r: serde_json::Value =
-            serde_json::from_slice(&std::fs::read(&lj)?).with_context(|| format!("reading {}", lj.display()))?;
+    if let Some(r) = upstream_json("charts", "lifts.json")? {
         for l in r["lifts"].as_array().into_iter().flatten() {
             if let (Some(id), Some(boom)) = (l["id"].as_str(), l["one_column_for_boom_m"].as_f64()) {
                 one_column_charts.push((id.to_string(), boom));

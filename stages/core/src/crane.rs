@@ -378,6 +378,7 @@ impl CraneModel {
         if self.is_tower() {
             CraneWords {
                 arm: "jib",
+                radial_axis: "trolley",
                 radial_motion: "trolleying",
                 heading: "the crane's heading (the lift's heading_deg, the crane model's +X axis along the jib)",
                 moving_structure: "jib, counter-jib and trolley",
@@ -389,6 +390,7 @@ impl CraneModel {
         } else {
             CraneWords {
                 arm: "boom",
+                radial_axis: "luff",
                 radial_motion: "luffing",
                 heading: "the carrier's heading (the lift's heading_deg, the crane model's +X axis)",
                 moving_structure: "boom and superstructure",
@@ -406,6 +408,8 @@ impl CraneModel {
 pub struct CraneWords {
     /// What reaches out and carries the hook: "boom" or "jib".
     pub arm: &'static str,
+    /// The joint that sets the radius: "luff" or "trolley".
+    pub radial_axis: &'static str,
     /// The motion that changes the radius: "luffing" or "trolleying".
     pub radial_motion: &'static str,
     /// What swing is measured from.

@@ -297,7 +297,7 @@ impl LiftSpec {
             if c.radial < lim.radial.0 - 1e-9 || c.radial > lim.radial.1 + 1e-9 {
                 return Err(format!(
                     "lift '{id}': {which} is outside the crane's {} range",
-                    if crane.model.is_tower() { "trolley" } else { "luff" }
+                    crane.model.words().radial_axis
                 ));
             }
             if c.hoist_m - self.liftoff_m < lim.hoist_m.0 - 1e-9 || c.hoist_m > lim.hoist_m.1 + 1e-9 {

@@ -46,9 +46,6 @@ fn room_on_page(d: &mut Doc, y: f32, need_mm: f32, continued: &str) -> f32 {
     heading(d, 20.0, continued)
 }
 
-/// A paragraph of the sign-off page at `y`, on a further page if it does
-/// not fit on this one (the more a site's checks have to say, the more the
-/// page holds); returns the y below it.
 /// A clause as a sentence: its first letter upper-case, a full stop after.
 fn sentence(clause: &str) -> String {
     let mut c = clause.chars();
@@ -58,6 +55,9 @@ fn sentence(clause: &str) -> String {
     }
 }
 
+/// A paragraph of the sign-off page at `y`, on a further page if it does
+/// not fit on this one (the more a site's checks have to say, the more the
+/// page holds); returns the y below it.
 fn sign_off_paragraph(d: &mut Doc, y: f32, w: f32, text: &str) -> f32 {
     let need = crate::pdf::wrap(text, w, 9.5).len() as f32 * crate::pdf::line_height_mm(9.5);
     let y = room_on_page(d, y, need, "Review and sign-off (continued)");
@@ -79,6 +79,14 @@ fn input_lines(d: &mut Doc, mut y: f32, lines: &[String], w: f32) -> f32 {
 
 /// Rows of a key and its value, the value wrapped to the page's right
 /// margin (15 mm).
+/// How tall [`key_values`] draws `rows` at `x` with keys `key_w` wide (mm).
+fn key_values_height(d: &Doc, x: f32, rows: &[(&str, String)], key_w: f32) -> f32 {
+    let width = d.size.w - 15.0 - (x + key_w);
+    rows.iter()
+        .map(|(_, v)| 5.0 + (crate::pdf::wrap(v, width, 9.0).len().max(1) - 1) as f32 * crate::pdf::line_height_mm(9.0))
+        .sum()
+}
+
 fn key_values(d: &mut Doc, x: f32, mut y: f32, rows: &[(&str, String)], key_w: f32) -> f32 {
     let width = d.size.w - 15.0 - (x + key_w);
     for (k, v) in rows {
@@ -257,7 +265,7 @@ pub fn document(
                 "{} steps: swing {:.1}°, {} {:.1}{}, hoist/lower {:.2} m, rotate {:.1}°",
                 sm.steps,
                 sm.swing_deg,
-                if task.crane.model.is_tower() { "trolley" } else { "luff" },
+                words.radial_axis,
                 sm.luff_or_trolley,
                 if task.crane.model.is_tower() { " m" } else { "°" },
                 sm.hoist_m,
@@ -272,14 +280,7 @@ pub fn document(
         rows.push(("CHECK FIRST", format!("{} (sign-off page)", checks.join("; "))));
     }
     let (key_x, key_w) = (19.0, 34.0);
-    let value_w = d.size.w - 15.0 - (key_x + key_w);
-    let rows_h: f32 = rows
-        .iter()
-        .map(|(_, v)| {
-            5.0 + (crate::pdf::wrap(v, value_w, 9.0).len().max(1) - 1) as f32 * crate::pdf::line_height_mm(9.0)
-        })
-        .sum();
-    let box_h = 16.0 + rows_h;
+    let box_h = 16.0 + key_values_height(&d, key_x, &rows, key_w);
     d.fill_rect(15.0, y, w, box_h, if ok { [232, 245, 233] } else { [251, 233, 231] });
     d.frame(15.0, y, w, box_h, 1.0, if ok { [46, 125, 50] } else { [198, 40, 40] });
     let verdict = if ok {
@@ -450,10 +451,7 @@ pub fn document(
         if img_w > 60.0 {
             let caption = format!(
                 "C-space of the crane at its position: swing across, {} up. Red: {} comes closer than the clearance to something; orange: {} does; grey hatching: outside the load chart for this load. The blue line is the planned path of {}.",
-                if task.crane.model.is_tower() { "trolley" } else { "luff" },
-                words.body,
-                words.radial_part,
-                words.radial_part
+                words.radial_axis, words.body, words.radial_part, words.radial_part
             );
             let y2 = d.paragraph(15.0, y, w, &caption, 8.0);
             d.image(cs, 15.0, y2, img_w.min(w * (size.h - 25.0 - y2) / (size.h - 25.0 - y)));

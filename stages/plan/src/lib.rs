@@ -160,18 +160,25 @@ pub struct LoadCutout {
 /// box in the same place, to 1 cm) is not another.
 pub fn other_loads(tasks: &[LiftTask], k: usize) -> Vec<(Obb, String)> {
     let this = &tasks[k];
-    let (own_pick, own_set) = (this.crane.load_obb(&this.pick, &this.load), this.crane.load_obb(&this.set, &this.load));
     tasks
         .iter()
         .enumerate()
         .filter(|&(j, _)| j != k)
         .filter_map(|(j, t)| {
-            let (at, whence, own) =
-                if j < k { (&t.set, "set position", &own_pick) } else { (&t.pick, "pick position", &own_set) };
-            let b = t.crane.load_obb(at, &t.load);
-            (!same_box(&b, own)).then(|| (b, format!("load of lift {} at its {whence}", t.id)))
+            let (at, whence, own) = if j < k {
+                (&t.set, "set position", hands_on(t, this))
+            } else {
+                (&t.pick, "pick position", hands_on(this, t))
+            };
+            (!own).then(|| (t.crane.load_obb(at, &t.load), format!("load of lift {} at its {whence}", t.id)))
         })
         .collect()
+}
+
+/// Whether `later` picks up the load `earlier` sets down: the same box in
+/// the same place, to 1 cm.
+fn hands_on(earlier: &LiftTask, later: &LiftTask) -> bool {
+    same_box(&earlier.crane.load_obb(&earlier.set, &earlier.load), &later.crane.load_obb(&later.pick, &later.load))
 }
 
 /// Whether two boxes are one in place: each corner of one within 1 cm of a
@@ -181,9 +188,7 @@ pub fn other_loads(tasks: &[LiftTask], k: usize) -> Vec<(Obb, String)> {
 /// there when the site was scanned, and its pick position cannot be
 /// compared with the scans.
 pub fn picks_what_an_earlier_lift_set(tasks: &[LiftTask], k: usize) -> bool {
-    let t = &tasks[k];
-    let pick = t.crane.load_obb(&t.pick, &t.load);
-    tasks[..k].iter().any(|e| same_box(&e.crane.load_obb(&e.set, &e.load), &pick))
+    tasks[..k].iter().any(|e| hands_on(e, &tasks[k]))
 }
 
 fn same_box(a: &Obb, b: &Obb) -> bool {
