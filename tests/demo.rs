@@ -150,6 +150,31 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     assert!(text.contains("went with the load's cut-out at pick"), "{text}");
     assert!(!text.contains("SET-DOWN ENDS"), "{text}");
 
+    // A second lift takes the vessel from its foundation to the yard: its
+    // load was not there when scanned, so its pick is not compared with the
+    // scans, and the points its cut-out takes are the foundation's top.
+    let second = t13.clone()
+        + r#"
+[[lift]]
+id = "V-101-back"
+description = "Vessel V-101 from its foundation to the yard"
+load = { name = "vessel V-101", mass_t = 13.0, size_m = [8.0, 3.0, 3.0], cog_m = [0.2, 0.0, -0.1] }
+rigging = { mass_t = 0.5, height_m = 4.0 }
+crane = { model = "ac-700", position_m = [0.0, 0.0], ground_z_m = 0.0, heading_deg = 0.0, boom_m = 40.0, chart_config = "Main boom 360" }
+pick = { x_m = 30.0, y_m = 2.0, z_m = 1.2, yaw_deg = 0.0 }
+set = { x_m = -15.0, y_m = 10.0, z_m = 0.0, yaw_deg = 0.0 }
+clearance_m = 1.0
+liftoff_m = 0.5
+"#;
+    std::fs::write(&toml_path, second).unwrap();
+    let r = run_json(&dir);
+    assert_eq!(stage(&r, "plan")["status"], "ran", "{r}");
+    let doc = lopdf::Document::load(dir.join("out").join("V-101-back.pdf")).unwrap();
+    let pages: Vec<u32> = doc.get_pages().keys().copied().collect();
+    let text = doc.extract_text(&pages).unwrap().replace('\n', " ");
+    assert!(text.contains("picked up where lift V-101 sets it down, so it was not there when the scans"), "{text}");
+    assert!(!text.contains("The load as scanned at its pick position"), "{text}");
+
     // Without its load chart the lift is not planned: a plan whose capacity
     // was never checked must not read as validated.
     let charts = dir.join("charts");

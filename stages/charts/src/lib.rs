@@ -412,12 +412,20 @@ impl Summary {
                 .as_ref()
                 .map(|c| format!("{:.0} % at {:.1} m", c.utilisation_pct, c.radius_m))
                 .unwrap_or_else(|| format!("NOT PERMITTED ({})", l.set_error.clone().unwrap_or_default()));
-            v.push(format!(
-                "lift {}: gross {:.2} t, pick {pick}, set {set}{}",
-                l.id,
-                l.gross_kg / 1000.0,
-                if l.critical { " - CRITICAL LIFT" } else { "" }
-            ));
+            // Over 100 % is more than critical: the lift cannot be made so.
+            let over: Vec<&str> = [("pick", &l.pick), ("set", &l.set)]
+                .into_iter()
+                .filter(|(_, c)| c.as_ref().is_some_and(|c| c.utilisation_pct > 100.0))
+                .map(|(at, _)| at)
+                .collect();
+            let flag = if !over.is_empty() {
+                format!(" - OVER CAPACITY AT {}", over.join(" AND ").to_uppercase())
+            } else if l.critical {
+                " - CRITICAL LIFT".to_string()
+            } else {
+                String::new()
+            };
+            v.push(format!("lift {}: gross {:.2} t, pick {pick}, set {set}{flag}", l.id, l.gross_kg / 1000.0));
             if let Some(boom) = l.one_column_for_boom_m {
                 v.push(format!(
                     "lift {}: chart configuration '{}' has one capacity column, not one per boom length: CHECK THAT IT IS THE CHART FOR THE {boom:.1} m BOOM the lift sets up",

@@ -355,3 +355,40 @@ fn a_chart_of_one_column_and_a_chart_by_boom_length_meet_the_right_crane() {
     let e = tower_by_boom.pick_error.unwrap();
     assert!(e.contains("lists capacities by boom length (16.00 to 62.40 m), which a tower crane does not have"), "{e}");
 }
+
+/// The charts stage's line for a lift flags a load over the chart's
+/// capacity as over capacity, naming where, not as a critical lift (a lift
+/// at 204 % read "CRITICAL LIFT", as one at 80 % does).
+#[test]
+fn a_lift_over_capacity_is_said_so_not_called_critical() {
+    let d = tempfile::tempdir().unwrap();
+    let path = d.path().join("ac700.xlsx");
+    liftplan_fixtures::chart::write_demo_chart(&path).unwrap();
+    let table = liftplan_core::capacity::CapacityTable { configs: read_chart(&path, &Settings::default()).unwrap().0 };
+    let report = |mass_t: f64| {
+        let spec: liftplan_core::lift::LiftSpec = serde_json::from_str(&format!(
+            r#"{{ "id": "L", "load": {{ "mass_t": {mass_t}, "size_m": [4.0, 2.0, 2.0] }},
+                "crane": {{ "model": "ac-700", "position_m": [0.0, 0.0], "heading_deg": 0.0, "chart_config": "Main boom 360", "boom_m": 40.0 }},
+                "pick": {{ "x_m": 15.0, "y_m": 0.0, "z_m": 0.0 }}, "set": {{ "x_m": 0.0, "y_m": 25.0, "z_m": 0.0 }} }}"#
+        ))
+        .unwrap();
+        let task = spec.resolve(liftplan_core::crane::builtin("ac-700").unwrap()).unwrap();
+        liftplan_charts::lift_report(&task, &table).unwrap()
+    };
+    let line = |mass_t: f64| {
+        let s = liftplan_charts::Summary { files: vec![], configs: vec![], rows: 0, lifts: vec![report(mass_t)] };
+        s.lines().pop().unwrap()
+    };
+    // Utilisation grows with the load's mass: find the masses that load the
+    // set position (the farther) to 90 % and 120 %, the pick staying under.
+    let (u1, u2) = (report(1.0).set.unwrap().utilisation_pct, report(2.0).set.unwrap().utilisation_pct);
+    let mass_for = |pct: f64| 1.0 + (pct - u1) / (u2 - u1);
+    let critical = line(mass_for(90.0));
+    assert!(critical.ends_with(" - CRITICAL LIFT"), "{critical}");
+    let over = line(mass_for(120.0));
+    assert!(report(mass_for(120.0)).pick.unwrap().utilisation_pct < 100.0, "{over}");
+    assert!(over.ends_with(" - OVER CAPACITY AT SET"), "{over}");
+    assert!(!over.contains("CRITICAL"), "{over}");
+    let both = line(mass_for(400.0));
+    assert!(both.ends_with(" - OVER CAPACITY AT PICK AND SET"), "{both}");
+}

@@ -553,16 +553,23 @@ pub fn document(
     );
     y += 4.0;
     let cut = &plan.load_cutout;
-    let cut_text = if cut.points > 0 {
-        format!(
+    let cut_text = match &cut.set_by {
+        Some(earlier) if cut.points > 0 => format!(
+            "The load is picked up where lift {earlier} sets it down, so it was not there when the scans were taken: the {} scan points within {:.2} m of its box there ({:.2} m above it) are the top of what it stands on, and were left out of every check with it. Anything else standing that close to the load is not seen: check it on site.",
+            cut.points, cut.grow_m, cut.above_m
+        ),
+        Some(earlier) => format!(
+            "The load is picked up where lift {earlier} sets it down, so it was not there when the scans were taken; no scan point lay within {:.2} m of its box there ({:.2} m above it).",
+            cut.grow_m, cut.above_m
+        ),
+        None if cut.points > 0 => format!(
             "The load as scanned at its pick position is not an obstacle to its own lift: the {} scan points within {:.2} m of its box there ({:.2} m above it, where slings lie) were taken for the load and left out of every check. Anything else standing that close to the load at pick is not seen: check it on site.",
             cut.points, cut.grow_m, cut.above_m
-        )
-    } else {
-        format!(
+        ),
+        None => format!(
             "No scan point lay within {:.2} m of the load's box at its pick position ({:.2} m above it), so none was left out as the load. If the load was on site when the scans were taken, check its pick position.",
             cut.grow_m, cut.above_m
-        )
+        ),
     };
     y = sign_off_paragraph(&mut d, y, w, &cut_text);
     if let Some(l) = plan.summary.load_as_scanned.as_ref().filter(|_| cut.points > 0) {

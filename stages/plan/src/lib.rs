@@ -147,6 +147,11 @@ pub struct LoadCutout {
     pub above_m: f64,
     /// How many scan points that left out.
     pub points: usize,
+    /// The earlier lift that sets the load down where this one picks it up
+    /// ([`lift_that_set_the_pick`]): then the load was not there when
+    /// scanned, and the points taken are its support's top.
+    #[serde(default)]
+    pub set_by: Option<String>,
 }
 
 /// The other lifts' loads where they stand while lift `k` of `tasks` is made,
@@ -181,16 +186,17 @@ fn hands_on(earlier: &LiftTask, later: &LiftTask) -> bool {
     same_box(&earlier.crane.load_obb(&earlier.set, &earlier.load), &later.crane.load_obb(&later.pick, &later.load))
 }
 
-/// Whether two boxes are one in place: each corner of one within 1 cm of a
-/// corner of the other.
-/// Whether lift `k` of `tasks` picks up a load an earlier lift set down
-/// there (the same box in the same place, to 1 cm): then the load was not
-/// there when the site was scanned, and its pick position cannot be
-/// compared with the scans.
-pub fn picks_what_an_earlier_lift_set(tasks: &[LiftTask], k: usize) -> bool {
-    tasks[..k].iter().any(|e| hands_on(e, &tasks[k]))
+/// The last earlier lift that sets down where lift `k` of `tasks` picks up
+/// (the same box in the same place, to 1 cm), if one does: then the load
+/// was not there when the site was scanned, its pick position cannot be
+/// compared with the scans, and the points its cut-out takes are its
+/// support's, not the load's.
+pub fn lift_that_set_the_pick(tasks: &[LiftTask], k: usize) -> Option<&LiftTask> {
+    tasks[..k].iter().rev().find(|e| hands_on(e, &tasks[k]))
 }
 
+/// Whether two boxes are one in place: each corner of one within 1 cm of a
+/// corner of the other.
 fn same_box(a: &Obb, b: &Obb) -> bool {
     let cb = b.corners();
     a.corners().iter().all(|p| cb.iter().any(|q| (p - q).norm() <= 0.01))
@@ -668,10 +674,10 @@ pub fn run(
         }
         plan.summary.other_loads = world.others.iter().map(|(_, name)| name.clone()).collect();
         let above_m = cutout_above_m(s.load_cutout_m);
-        plan.load_cutout = LoadCutout { grow_m: s.load_cutout_m, above_m, points: taken.len() };
-        plan.summary.load_as_scanned = cloud_path
-            .filter(|_| !picks_what_an_earlier_lift_set(tasks, k))
-            .map(|_| load_scan::of_pick(task, taken, above_m));
+        let set_by = lift_that_set_the_pick(tasks, k).map(|e| e.id.clone());
+        plan.summary.load_as_scanned =
+            cloud_path.filter(|_| set_by.is_none()).map(|_| load_scan::of_pick(task, taken, above_m));
+        plan.load_cutout = LoadCutout { grow_m: s.load_cutout_m, above_m, points: taken.len(), set_by };
         plan.model_vs_scans = model_vs_scans.clone();
         let io = |p: &Path, e: std::io::Error| PlanError::Input(Location::file(p), e.to_string());
         let csv = out_dir.join(format!("{}.steps.csv", task.id));
@@ -759,7 +765,8 @@ mod tests {
         assert_eq!(during_d, ["load of lift A at its set position", "load of lift C at its set position"]);
         assert!(other_loads(&tasks[..1], 0).is_empty());
         // D takes on what B set down: its load was not there when scanned.
-        let handed_on: Vec<bool> = (0..tasks.len()).map(|k| picks_what_an_earlier_lift_set(&tasks, k)).collect();
-        assert_eq!(handed_on, [false, false, false, true]);
+        let set_by: Vec<Option<&str>> =
+            (0..tasks.len()).map(|k| lift_that_set_the_pick(&tasks, k).map(|e| e.id.as_str())).collect();
+        assert_eq!(set_by, [None, None, None, Some("B")]);
     }
 }
