@@ -177,6 +177,14 @@ impl LiftTask {
     }
 }
 
+/// The longest side of a load's box liftplan takes (m): more is a length
+/// given in millimetres, not a load.
+pub const MAX_LOAD_SIDE_M: f64 = 150.0;
+/// The tallest rigging (m).
+pub const MAX_RIGGING_HEIGHT_M: f64 = 100.0;
+/// The largest clearance or lift-off (m).
+pub const MAX_CLEARANCE_M: f64 = 20.0;
+
 impl LiftSpec {
     /// Checks the request against the crane model and solves pick and set.
     pub fn resolve(&self, model: CraneModel) -> Result<LiftTask, String> {
@@ -198,9 +206,21 @@ impl LiftSpec {
                 Err(format!("lift '{id}': {name} must be zero or positive, found {v}"))
             }
         };
+        // Lengths are in metres: one given in millimetres (a load 8000 m
+        // long) read as "the load would need -2967.92 m of rope".
+        let metres = |name: &str, v: f64, max_m: f64| {
+            if v <= max_m {
+                Ok(())
+            } else {
+                Err(format!(
+                    "lift '{id}': {name} = {v} m is more than {max_m} m, beyond any lift liftplan plans: lengths are in metres (was it given in millimetres?)"
+                ))
+            }
+        };
         pos("load.mass_t", self.load.mass_t)?;
         for (i, s) in self.load.size_m.iter().enumerate() {
             pos(&format!("load.size_m[{i}]"), *s)?;
+            metres(&format!("load.size_m[{i}]"), *s, MAX_LOAD_SIDE_M)?;
         }
         for (i, c) in self.load.cog_m.iter().enumerate() {
             if !(c.abs() <= self.load.size_m[i] / 2.0) {
@@ -210,8 +230,11 @@ impl LiftSpec {
         nonneg("rigging.mass_t", self.rigging.mass_t)?;
         nonneg("rigging.height_m", self.rigging.height_m)?;
         nonneg("crane.deductions_t", self.crane.deductions_t)?;
+        metres("rigging.height_m", self.rigging.height_m, MAX_RIGGING_HEIGHT_M)?;
         pos("clearance_m", self.clearance_m)?;
+        metres("clearance_m", self.clearance_m, MAX_CLEARANCE_M)?;
         nonneg("liftoff_m", self.liftoff_m)?;
+        metres("liftoff_m", self.liftoff_m, MAX_CLEARANCE_M)?;
         if !(0.0..100.0).contains(&self.capacity_reduction_pct) {
             return Err(format!(
                 "lift '{id}': capacity_reduction_pct must be in 0..100, found {}",
@@ -385,6 +408,30 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         s.set.yaw_deg = f64::INFINITY;
         let e = s.resolve(crate::crane::builtin("ltm-1100").unwrap()).unwrap_err();
         assert!(e.contains("set.yaw_deg must be a finite number, found inf"), "{e}");
+    }
+
+    /// Lengths are metres: one given in millimetres is named as such, not
+    /// solved (it read "the load would need -2967.92 m of rope").
+    #[test]
+    fn a_length_in_millimetres_is_named() {
+        let crane = || crate::crane::builtin("ltm-1100").unwrap();
+        let mut s = spec();
+        s.load.size_m = [6000.0, 3000.0, 3000.0];
+        let e = s.resolve(crane()).unwrap_err();
+        assert!(e.contains("load.size_m[0] = 6000 m is more than 150 m"), "{e}");
+        assert!(e.contains("was it given in millimetres?"), "{e}");
+        let mut s = spec();
+        s.clearance_m = 1000.0;
+        assert!(s.resolve(crane()).unwrap_err().contains("clearance_m = 1000 m"));
+        let mut s = spec();
+        s.liftoff_m = 500.0;
+        assert!(s.resolve(crane()).unwrap_err().contains("liftoff_m = 500 m"));
+        let mut s = spec();
+        s.rigging.height_m = 3000.0;
+        assert!(s.resolve(crane()).unwrap_err().contains("rigging.height_m = 3000 m"));
+        let mut s = spec();
+        s.load.size_m = [MAX_LOAD_SIDE_M, 3.0, 3.0];
+        assert!(s.resolve(crane()).is_ok());
     }
 
     #[test]

@@ -353,6 +353,20 @@ fn search(
 /// Plans, shortens, validates one lift.
 pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Result<(LiftPlan, CSpace)> {
     let t0 = std::time::Instant::now();
+    // The planned path starts lifted off and ends above the set position:
+    // there the load must keep the landing zone's clearance from what it
+    // stands on, or the search would start inside it (it was refused as
+    // "the lifted-off pick configuration is not allowed: closer than the
+    // clearance allows: load and scanned structure", naming no key).
+    if task.liftoff_m + 1e-9 < s.landing_clearance_m {
+        return Err(lift_err(
+            task,
+            format!(
+                "liftoff_m {:.2} m is less than the clearance the load keeps over its pick and set positions ([plan] landing_clearance_m, {:.2} m): lifted off, it would still be within it of what it stands on; set liftoff_m to {:.2} m or more",
+                task.liftoff_m, s.landing_clearance_m, s.landing_clearance_m
+            ),
+        ));
+    }
     let chart: Option<&ChartConfig> = match site.charts {
         Some(t) => Some(t.config(&task.chart_config).map_err(|e| lift_err(task, e.to_string()))?),
         None => None,

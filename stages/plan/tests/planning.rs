@@ -130,6 +130,23 @@ fn pick_inside_an_obstacle_is_refused_with_part_and_object() {
     assert!(err.contains("(clearance_m 1.00 m, 0.20 m in a landing zone)"), "{err}");
 }
 
+/// A lift-off shorter than the landing zone's clearance leaves the load
+/// within it of its support: refused naming the key, before the search.
+#[test]
+fn a_lift_off_within_the_landing_clearance_is_refused_naming_the_key() {
+    let mesh = site();
+    let m = map(&mesh);
+    let world = World::new(&mesh, &[], &[]).unwrap();
+    let site = Site { map: &m, world: &world, charts: None };
+    let mut t = task(-14.0);
+    t.liftoff_m = 0.1;
+    let err = plan_lift(&t, &site, &quick(), 1).unwrap_err().to_string();
+    assert!(err.contains("liftoff_m 0.10 m is less than the clearance the load keeps"), "{err}");
+    assert!(err.contains("set liftoff_m to 0.20 m or more"), "{err}");
+    t.liftoff_m = 0.2;
+    assert!(plan_lift(&t, &site, &quick(), 1).is_ok());
+}
+
 #[test]
 fn validator_rejects_a_swing_through_the_wall() {
     let mesh = site();
