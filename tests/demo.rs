@@ -175,6 +175,19 @@ liftoff_m = 0.5
     assert!(text.contains("picked up where lift V-101 sets it down, so it was not there when the scans"), "{text}");
     assert!(!text.contains("The load as scanned at its pick position"), "{text}");
 
+    // The vessel declared on the ground under its trailer: refused, and the
+    // refusal says what the scans show of the load (its own top, beyond the
+    // cut-out, is the "scanned structure" it meets).
+    let on_ground = t13.replace("z_m = 1.2, yaw_deg = 90.0", "z_m = 0.0, yaw_deg = 90.0");
+    assert_ne!(on_ground, t13);
+    std::fs::write(&toml_path, on_ground).unwrap();
+    let o = liftplan(&["run", d, "-q"]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success(), "planned with the load in its trailer:\n{stderr}");
+    assert!(stderr.contains("the load as scanned at its pick position:"), "{stderr}");
+    assert!(stderr.contains("ABOVE ITS BOX'S TOP"), "{stderr}");
+    std::fs::write(&toml_path, &t13).unwrap();
+
     // Without its load chart the lift is not planned: a plan whose capacity
     // was never checked must not read as validated.
     let charts = dir.join("charts");

@@ -678,7 +678,18 @@ pub fn run(
         world.others = other_loads(tasks, k);
         let with_others = (!world.others.is_empty()).then(|| map.with_boxes(&world.others));
         let site = Site { map: with_others.as_ref().unwrap_or(&map), world: &world, charts: Some(&charts) };
-        let (mut plan, cs) = plan_lift(task, &site, s, seed)?;
+        let above_m = cutout_above_m(s.load_cutout_m);
+        let set_by = lift_that_set_the_pick(tasks, k).map(|e| e.id.clone());
+        let as_scanned = cloud_path.filter(|_| set_by.is_none()).map(|_| load_scan::of_pick(task, taken, above_m));
+        // A lift refused where the scans contradict the load's box is most
+        // often refused for it (the load's own points beyond the cut-out
+        // read as "scanned structure"): say what the scans show.
+        let (mut plan, cs) = plan_lift(task, &site, s, seed).map_err(|e| match (e, &as_scanned) {
+            (PlanError::Lift { lift, message }, Some(l)) if l.points > 0 && l.needs_checking() => {
+                PlanError::Lift { lift, message: format!("{message}; {}", l.said()) }
+            }
+            (e, _) => e,
+        })?;
         plan.summary.coverage = Some(coverage::of_lift(task, &plan.moves, &world, &scanned_loads));
         // The support's top under a set position inside a load's cut-out
         // went with the scanned load.
@@ -687,10 +698,7 @@ pub fn run(
             plan.summary.set_in_cutout_m = s.load_cutout_m;
         }
         plan.summary.other_loads = world.others.iter().map(|(_, name)| name.clone()).collect();
-        let above_m = cutout_above_m(s.load_cutout_m);
-        let set_by = lift_that_set_the_pick(tasks, k).map(|e| e.id.clone());
-        plan.summary.load_as_scanned =
-            cloud_path.filter(|_| set_by.is_none()).map(|_| load_scan::of_pick(task, taken, above_m));
+        plan.summary.load_as_scanned = as_scanned;
         plan.load_cutout = LoadCutout { grow_m: s.load_cutout_m, above_m, points: taken.len(), set_by };
         plan.model_vs_scans = model_vs_scans.clone();
         let io = |p: &Path, e: std::io::Error| PlanError::Input(Location::file(p), e.to_string());
