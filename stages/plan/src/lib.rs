@@ -299,6 +299,147 @@ fn lift_err(task: &LiftTask, message: impl Into<String>) -> PlanError {
     PlanError::Lift { lift: task.id.clone(), message: message.into() }
 }
 
+/// Why the search found no path, as far as the planner's tables tell. Each
+/// way round, the swing x radius grid between the pick and the set is walked
+/// from the pick's cell with the load on the shortest rope each cell allows
+/// (hung highest), at the pick's or the set's load yaw: where the set's cell
+/// cannot be reached, it says how far the load gets and what blocks the next
+/// swing (the body or boom, the chart, or the load too close to something);
+/// where it can, that the search failed to find the way. The tables are
+/// conservative for whole cells, so a way finer than a cell is not seen.
+fn why_no_path(ck: &Checker, start: &Config, goal: &Config, ways: &[(&str, f64)]) -> String {
+    use rayon::prelude::*;
+    let cs = ck.cs;
+    let nr = cs.nr as usize;
+    let cell = |swing: f64, k: usize| -> std::result::Result<(), liftplan_cspace::Blocked> {
+        let mut first = None;
+        for yaw in [start.load_yaw_rad, goal.load_yaw_rad] {
+            let c = Config {
+                swing_rad: swing,
+                radial: cs.row_center(k as u32),
+                hoist_m: cs.row_min_hoist[k],
+                load_yaw_rad: yaw,
+            };
+            match ck.config(&c) {
+                Ok(()) => return Ok(()),
+                Err(b) => {
+                    first.get_or_insert(b);
+                }
+            }
+        }
+        Err(first.expect("two yaws tried"))
+    };
+    let what_blocks = |b: &liftplan_cspace::Blocked| match (b.part, &b.object) {
+        (Some(part), Some(o)) => format!("{} and {o}", part.name()),
+        (Some(part), None) => format!("{} ({})", part.name(), b.reason),
+        _ => b.reason.clone(),
+    };
+    // Where the load is what meets something, how high it hangs there at
+    // most: what the engineer weighs against the rigging and the boom.
+    let load_height = |blocked: &[&liftplan_cspace::Blocked]| {
+        blocked
+            .iter()
+            .filter(|b| b.part == Some(liftplan_core::crane::PartKind::Load))
+            .map(|b| ck.task.crane.load_obb(&b.at, &ck.task.load).aabb().min[2])
+            .reduce(f64::max)
+            .map(|z| format!(" (the load's underside no higher than z = {z:.2} m there, on the shortest rope)"))
+            .unwrap_or_default()
+    };
+    let (Some(k0), Some(k1)) = (cs.row(start.radial), cs.row(goal.radial)) else {
+        return "the pick or the set lies outside the crane's radial range".into();
+    };
+    let deg = |swing: f64| liftplan_core::units::wrap_pi(swing).to_degrees();
+    let mut said = Vec::new();
+    for (label, gs) in ways {
+        let n = ((gs - start.swing_rad).abs() / cs.swing_step).ceil().max(1.0) as usize;
+        let at = |j: usize| start.swing_rad + (gs - start.swing_rad) * j as f64 / n as f64;
+        let grid: Vec<Vec<std::result::Result<(), liftplan_cspace::Blocked>>> =
+            (0..=n).into_par_iter().map(|j| (0..nr).map(|k| cell(at(j), k)).collect()).collect();
+        // Cells reached from the pick's, moving one joint a cell at a time.
+        let mut reached = vec![vec![false; nr]; n + 1];
+        let mut todo = vec![(0usize, k0 as usize)];
+        if grid[0][k0 as usize].is_ok() {
+            reached[0][k0 as usize] = true;
+        } else {
+            todo.clear();
+        }
+        while let Some((j, k)) = todo.pop() {
+            let next = [(j + 1, k), (j.wrapping_sub(1), k), (j, k + 1), (j, k.wrapping_sub(1))];
+            for (a, b) in next {
+                if a <= n && b < nr && !reached[a][b] && grid[a][b].is_ok() {
+                    reached[a][b] = true;
+                    todo.push((a, b));
+                }
+            }
+        }
+        let line = if reached[n][k1 as usize] {
+            "the planner's tables show a way at the shortest rope, cell by cell, which the search did not find"
+                .to_string()
+        } else if let Err(b) = &grid[0][k0 as usize] {
+            format!("at the pick the load on the shortest rope is not clear: {}", what_blocks(b))
+        } else if let Err(b) = &grid[n][k1 as usize] {
+            format!("above the set position the load on the shortest rope is not clear: {}", what_blocks(b))
+        } else if reached[n].iter().any(|&r| r) {
+            // Between the radii it reaches there and the set's.
+            let k1 = k1 as usize;
+            let near = (0..nr).filter(|&k| reached[n][k]).min_by_key(|&k| k.abs_diff(k1)).unwrap_or(k1);
+            let between = if near < k1 { near..k1 } else { k1..near };
+            let blocked: Vec<&liftplan_cspace::Blocked> = between.filter_map(|k| grid[n][k].as_ref().err()).collect();
+            format!(
+                "the load reaches the set's swing on the shortest rope, but not its radius: in between, {}{}",
+                dedup_counted(blocked.iter().map(|b| what_blocks(b)), None).join(", "),
+                load_height(&blocked)
+            )
+        } else {
+            let far = (0..=n).rev().find(|&j| reached[j].iter().any(|&r| r)).unwrap_or(0);
+            // What blocks the next swing's rows, most often first.
+            let blocked: Vec<&liftplan_cspace::Blocked> =
+                grid.get(far + 1).into_iter().flatten().filter_map(|c| c.as_ref().err()).collect();
+            let what = dedup_counted(blocked.iter().map(|b| what_blocks(b)), Some(nr));
+            format!(
+                "the load gets no farther than swing {:.1}° from the crane's heading (the pick is at {:.1}°, the set at {:.1}°), even on the shortest rope: at {:.1}° {}{}",
+                deg(at(far)),
+                deg(start.swing_rad),
+                deg(*gs),
+                deg(at(far + 1)),
+                if what.is_empty() { "no radius joins on".to_string() } else { what.join(", ") },
+                load_height(&blocked)
+            )
+        };
+        said.push((*label, line));
+    }
+    let said: Vec<String> = match said.as_slice() {
+        [] => return "the permitted swing range holds neither way round".into(),
+        [(_, a), (_, b)] if a == b => vec![format!("both ways round, {a}")],
+        _ => said.iter().map(|(label, line)| format!("{label}, {line}")).collect(),
+    };
+    format!(
+        "{}; try another crane position, a longer boom, shorter rigging, or a larger population or more generations",
+        said.join("; ")
+    )
+}
+
+/// The three most frequent of `said`, most often first, each with how many
+/// of `of` radii it blocks where that is given.
+fn dedup_counted(said: impl Iterator<Item = String>, of: Option<usize>) -> Vec<String> {
+    let mut counted: Vec<(String, usize)> = Vec::new();
+    for w in said {
+        match counted.iter_mut().find(|(x, _)| *x == w) {
+            Some(e) => e.1 += 1,
+            None => counted.push((w, 1)),
+        }
+    }
+    counted.sort_by_key(|e| std::cmp::Reverse(e.1));
+    counted
+        .iter()
+        .take(3)
+        .map(|(w, c)| match of {
+            Some(of) => format!("{w} at {c} of {of} radii"),
+            None => w.clone(),
+        })
+        .collect()
+}
+
 /// The landing zones of a lift.
 pub fn landing_zones(task: &LiftTask, s: &Settings) -> Vec<LandingZone> {
     [task.pick, task.set]
@@ -512,12 +653,20 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
     }
     candidates.sort_by(|a, b| a.0.total_cmp(&b.0));
     let Some((m, label, nodes, moves, d, sc, stats)) = candidates.into_iter().next() else {
+        let ways: Vec<(&str, f64)> = [("the short way round", short), ("the long way round", long)]
+            .into_iter()
+            .filter(|(_, gs)| {
+                task.swing_range_rad.is_none_or(|(a, b)| start.swing_rad.min(*gs) >= a && start.swing_rad.max(*gs) <= b)
+            })
+            .collect();
         return Err(lift_err(
             task,
             format!(
-                "no collision-free, chart-compliant path found ({} run(s) of up to {} generations of {} strings each way); \
-                 try a larger population or more generations, another crane position, or check the obstacles in the C-space picture",
-                attempts, s.ga.max_generations, s.ga.population
+                "no collision-free, chart-compliant path found ({} run(s) of up to {} generations of {} strings each way): {}",
+                attempts,
+                s.ga.max_generations,
+                s.ga.population,
+                why_no_path(&ck, &start, &goal0, &ways)
             ),
         ));
     };

@@ -147,6 +147,36 @@ fn a_lift_off_within_the_landing_clearance_is_refused_naming_the_key() {
     assert!(plan_lift(&t, &site, &quick(), 1).is_ok());
 }
 
+/// A wall too tall to lift the load over, with the swing held to the short
+/// way round: the refusal says how far the load gets and what stops it,
+/// how high the load hangs there at most, and what to change (it said
+/// only "try a larger population ..., or check the obstacles in the C-space
+/// picture", a picture that a failed plan does not write).
+#[test]
+fn no_path_says_how_far_the_load_gets_and_what_stops_it() {
+    let mut mesh = TriMesh::default();
+    box_part(&mut mesh, "TALL-WALL", [14.0, -1.0, 0.0], [40.0, 1.0, 30.0]);
+    // Closing the way between the wall and the crane, over its body.
+    box_part(&mut mesh, "BRIDGE", [-5.0, -1.0, 20.0], [14.0, 1.0, 30.0]);
+    box_part(&mut mesh, "SLAB", [-40.0, -40.0, -0.3], [60.0, 40.0, 0.0]);
+    let m = map(&mesh);
+    let world = World::new(&mesh, &[], &[]).unwrap();
+    let mut t = task(-14.0);
+    t.swing_range_rad = Some((-60f64.to_radians(), 60f64.to_radians()));
+    let Err(e) = plan_lift(&t, &Site { map: &m, world: &world, charts: None }, &quick(), 1) else {
+        panic!("planned through a wall 30 m tall");
+    };
+    let err = e.to_string();
+    assert!(err.contains("no collision-free, chart-compliant path found"), "{err}");
+    assert!(err.contains("the short way round, the load gets no farther than swing"), "{err}");
+    assert!(!err.contains("long way"), "{err}");
+    assert!(err.contains("and TALL-WALL at ") || err.contains("and BRIDGE at "), "{err}");
+    assert!(err.contains("try another crane position"), "{err}");
+    // The pick is at -32.5° from the heading, the wall across 0°.
+    let far: f64 = err.split("no farther than swing ").nth(1).unwrap().split('°').next().unwrap().parse().unwrap();
+    assert!((-32.5..0.0).contains(&far), "{err}");
+}
+
 #[test]
 fn validator_rejects_a_swing_through_the_wall() {
     let mesh = site();
