@@ -602,10 +602,13 @@ pub struct JointLimits {
 pub enum IkError {
     #[error("the hook would be {radius_m:.2} m from the slewing axis; this crane reaches {min_m:.2} to {max_m:.2} m")]
     OutOfReach { radius_m: f64, min_m: f64, max_m: f64 },
+    /// The load's underside at `z_m` would need a rope of `hoist_m`; at the
+    /// same radius the rope's range hangs it from `lowest_z_m` to
+    /// `highest_z_m`.
     #[error(
-        "the load would need {hoist_m:.2} m of rope; the crane allows {min_m:.2} to {max_m:.2} m (load too high or too low for this boom position)"
+        "the load's underside at z = {z_m:.2} m is out of the hook's reach there: at this radius, with the hook block, rigging and load below the rope, it can hang from z = {lowest_z_m:.2} to {highest_z_m:.2} m (rope {min_m:.2} to {max_m:.2} m; it would need {hoist_m:.2} m)"
     )]
-    RopeOutOfRange { hoist_m: f64, min_m: f64, max_m: f64 },
+    RopeOutOfRange { z_m: f64, hoist_m: f64, min_m: f64, max_m: f64, lowest_z_m: f64, highest_z_m: f64 },
 }
 
 /// A crane model placed on site for one lift.
@@ -919,7 +922,14 @@ impl CraneSetup {
         let (h, _) = self.sheave_height_and_radius(radial);
         let hoist = o.z + h - self.model.hook.height_m - load.rigging_height_m - load.size_m[2] - pose.z_m;
         if !(hoist >= lim.hoist_m.0 - 1e-9 && hoist <= lim.hoist_m.1 + 1e-9) {
-            return Err(IkError::RopeOutOfRange { hoist_m: hoist, min_m: lim.hoist_m.0, max_m: lim.hoist_m.1 });
+            return Err(IkError::RopeOutOfRange {
+                z_m: pose.z_m,
+                hoist_m: hoist,
+                min_m: lim.hoist_m.0,
+                max_m: lim.hoist_m.1,
+                lowest_z_m: pose.z_m - (lim.hoist_m.1 - hoist),
+                highest_z_m: pose.z_m + (hoist - lim.hoist_m.0),
+            });
         }
         Ok(Config { swing_rad: swing, radial, hoist_m: hoist, load_yaw_rad: pose.yaw_rad })
     }
@@ -1001,7 +1011,11 @@ mod tests {
         let e = c.inverse(&LoadPose { x_m: 200.0, y_m: 0.0, z_m: 0.0, yaw_rad: 0.0 }, &load()).unwrap_err();
         assert!(matches!(e, IkError::OutOfReach { .. }));
         let e = c.inverse(&LoadPose { x_m: 30.0, y_m: 0.0, z_m: 80.0, yaw_rad: 0.0 }, &load()).unwrap_err();
-        assert!(matches!(e, IkError::RopeOutOfRange { .. }), "{e}");
+        let IkError::RopeOutOfRange { highest_z_m, .. } = e else { panic!("{e}") };
+        // The highest it reaches, it is solved at, on the shortest rope.
+        let top = c.inverse(&LoadPose { x_m: 30.0, y_m: 0.0, z_m: highest_z_m, yaw_rad: 0.0 }, &load()).unwrap();
+        assert!((top.hoist_m - c.limits().hoist_m.0).abs() < 1e-9);
+        assert!(e.to_string().contains("the load's underside at z = 80.00 m is out of the hook's reach there"), "{e}");
     }
 
     #[test]
