@@ -27,6 +27,13 @@ pub const NOISE_M: f64 = 0.05;
 /// height (above the support) is said to be seen over too little of it.
 pub const SPAN_SHARE_MIN: f64 = 0.5;
 
+/// A load whose highest scanned point lies more than this below its box's
+/// top is said to stand lower (or be shorter) than its box (m): a load
+/// standing lower than pick `z_m` says is carried through the whole lift
+/// that much lower than the plan shows, the cut-out having taken its lower
+/// part for the box's.
+pub const TOP_BELOW_M: f64 = 0.25;
+
 /// What the scan points taken for a load at its pick position show.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct LoadAsScanned {
@@ -46,6 +53,10 @@ pub struct LoadAsScanned {
     /// How far above the box the cut-out reaches (m): anything higher was
     /// not taken and stays an obstacle.
     pub cutout_above_m: f64,
+    /// How far the highest of them lies below the box's top (m; 0 where one
+    /// reaches it, or there are none).
+    #[serde(default)]
+    pub top_below_m: f64,
 }
 
 /// What `taken` (the scan points the cut-out took for `task`'s load, site
@@ -77,7 +88,8 @@ pub fn of_pick(task: &LiftTask, taken: &[[f64; 3]], cutout_above_m: f64) -> Load
         }
     }
     let span_m = std::array::from_fn(|a| if points > 0 { hi[a] - lo[a] } else { 0.0 });
-    LoadAsScanned { box_m: task.load.size_m, points, span_m, above_top, above_top_max_m, cutout_above_m }
+    let top_below_m = if points > 0 { (hz - hi[2]).max(0.0) } else { 0.0 };
+    LoadAsScanned { box_m: task.load.size_m, points, span_m, above_top, above_top_max_m, cutout_above_m, top_below_m }
 }
 
 impl LoadAsScanned {
@@ -96,7 +108,13 @@ impl LoadAsScanned {
 
     /// Whether the engineer has something to check.
     pub fn needs_checking(&self) -> bool {
-        self.points == 0 || self.above_top > 0 || !self.short_axes().is_empty()
+        self.points == 0 || self.above_top > 0 || self.top_below() || !self.short_axes().is_empty()
+    }
+
+    /// Whether its highest point lies more than [`TOP_BELOW_M`] below the
+    /// box's top.
+    pub fn top_below(&self) -> bool {
+        self.points > 0 && self.top_below_m > TOP_BELOW_M
     }
 
     /// One sentence, for the run's output and the sign-off page.
@@ -125,6 +143,11 @@ impl LoadAsScanned {
             s += &format!(
                 "; {} of them up to {:.2} m ABOVE ITS BOX'S TOP: slings lying on it, or a load taller than size_m says or standing higher than pick z_m says, which keeps less clearance than the plan shows: CHECK THE LOAD'S HEIGHT (the cut-out takes points up to {:.2} m above the box; anything higher stays an obstacle)",
                 self.above_top, self.above_top_max_m, self.cutout_above_m
+            );
+        } else if self.top_below() {
+            s += &format!(
+                "; the highest of them {:.2} m BELOW ITS BOX'S TOP: a load standing lower than pick z_m says, carried that much lower through the whole lift than the plan shows (less clearance under it), or shorter than size_m says, or a top the scans did not see: CHECK ITS PICK z_m",
+                self.top_below_m
             );
         } else {
             s += ", none above its top";
@@ -209,6 +232,23 @@ mod tests {
         assert!(s.said().contains("CHECK THE LOAD'S HEIGHT"), "{}", s.said());
         // Within scan noise of the top is on it.
         assert_eq!(of_pick(&t, &scanned(&t, 0.04, 1.0), 0.3).above_top, 0);
+    }
+
+    /// A load standing 0.5 m lower than its box (its pick z_m 0.5 m too
+    /// high): the cut-out takes its lower part for the box's, and its top
+    /// lies 0.5 m under the box's, which is said; a top 0.1 m under it is
+    /// scan noise and the load's own shape.
+    #[test]
+    fn a_load_standing_lower_than_its_box_is_said() {
+        let t = crate::test_lift("ltm-1100");
+        let s = of_pick(&t, &scanned(&t, -0.5, 1.0), 0.3);
+        assert!((s.top_below_m - 0.5).abs() < 1e-6, "{s:?}");
+        assert!(s.short_axes().is_empty() && s.above_top == 0, "{s:?}");
+        assert!(s.needs_checking());
+        assert!(s.said().contains("the highest of them 0.50 m BELOW ITS BOX'S TOP"), "{}", s.said());
+        assert!(s.said().contains("CHECK ITS PICK z_m"), "{}", s.said());
+        let s = of_pick(&t, &scanned(&t, -0.1, 1.0), 0.3);
+        assert!(!s.needs_checking(), "{}", s.said());
     }
 
     /// A box placed over a third of the load (its pick position 4 m off
