@@ -583,11 +583,36 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
             b.to_string()
         }
     };
+    // A load declared lower than the top of what it stands on meets that
+    // where it is lifted off (or lowered onto it): say by how much.
+    let sunk = |at: &Config, key: &str| {
+        let load = task.crane.load_obb(at, &task.load);
+        let (c, underside) = (load.center, load.aabb().min[2]);
+        // Under the load, not beside it: a square within its footprint at
+        // any yaw. What starts under its lower half: a slab it is sunk
+        // through starts above its underside.
+        let r = load.half.x.min(load.half.y) * std::f64::consts::FRAC_1_SQRT_2;
+        let top = liftplan_cspace::highest_below(site.map, c.x - r, c.x + r, c.y - r, c.y + r, c.z as f32) as f64;
+        if top > underside + 0.02 {
+            format!(
+                "; the load's underside there, z = {underside:.2} m, is about {:.2} m below the top of what stands under it (about z = {top:.2} m, as the depth map holds it): CHECK {key}",
+                top - underside
+            )
+        } else {
+            String::new()
+        }
+    };
+    let load_part = |b: &liftplan_cspace::Blocked| b.part == Some(liftplan_core::crane::PartKind::Load);
     if let Err(b) = ck.config(&start) {
-        return Err(lift_err(task, format!("the lifted-off pick configuration is not allowed: {}", why(&b))));
+        let hint = if load_part(&b) { sunk(&task.pick, "pick z_m") } else { String::new() };
+        return Err(lift_err(task, format!("the lifted-off pick configuration is not allowed: {}{hint}", why(&b))));
     }
     if let Err(b) = ck.config(&goal0) {
-        return Err(lift_err(task, format!("the configuration above the set position is not allowed: {}", why(&b))));
+        let hint = if load_part(&b) { sunk(&task.set, "set z_m") } else { String::new() };
+        return Err(lift_err(
+            task,
+            format!("the configuration above the set position is not allowed: {}{hint}", why(&b)),
+        ));
     }
     let rules = validate::Rules {
         clearance_m: task.clearance_m,
@@ -599,9 +624,9 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
     // The lift-off and the set-down are the same whatever path is found: the
     // validator's verdict on them now, before the search, says what blocks
     // them instead of rejecting every plan at the end.
-    for (what, mv) in [
-        ("lift-off", Move { joint: Joint::Hoist, from: task.pick, to: start }),
-        ("set-down", Move { joint: Joint::Hoist, from: goal0, to: task.set }),
+    for (what, mv, at, key) in [
+        ("lift-off", Move { joint: Joint::Hoist, from: task.pick, to: start }, &task.pick, "pick z_m"),
+        ("set-down", Move { joint: Joint::Hoist, from: goal0, to: task.set }, &task.set, "set z_m"),
     ] {
         let v = validate::validate(task, chart, site.world, &rules, &[mv], &[true]);
         if !v.ok {
@@ -615,7 +640,12 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
                     None => p.clone(),
                 })
                 .collect();
-            return Err(lift_err(task, problems.join("; ")));
+            let hint = if v.problems.iter().any(|p| p.starts_with("move 1 (Hoist): load ")) {
+                sunk(at, key)
+            } else {
+                String::new()
+            };
+            return Err(lift_err(task, format!("{}{hint}", problems.join("; "))));
         }
     }
     // Both ways round.

@@ -130,6 +130,45 @@ fn pick_inside_an_obstacle_is_refused_with_part_and_object() {
     assert!(err.contains("(clearance_m 1.00 m, 0.20 m in a landing zone)"), "{err}");
 }
 
+/// A set position declared into the slab it is set on: refused, saying by
+/// how much the load's underside lies below the slab's top.
+#[test]
+fn a_set_position_below_the_top_of_its_support_says_by_how_much() {
+    let mesh = site();
+    let m = map(&mesh);
+    let world = World::new(&mesh, &[], &[]).unwrap();
+    let mut spec: LiftSpec = toml::from_str(&format!(
+        "{}\n",
+        r#"
+id = "T-1"
+load = { name = "skid", mass_t = 5.0, size_m = [4.0, 2.0, 2.0] }
+crane = { model = "ac-700", position_m = [0.0, 0.0], heading_deg = 0.0, boom_m = 40.0, chart_config = "none" }
+pick = { x_m = 22.0, y_m = -14.0, z_m = 0.5, yaw_deg = 0.0 }
+set = { x_m = 22.0, y_m = 14.0, z_m = -0.2, yaw_deg = 90.0 }
+"#
+    ))
+    .unwrap();
+    let t = spec.clone().resolve(builtin("ac-700").unwrap()).unwrap();
+    let err = plan_lift(&t, &Site { map: &m, world: &world, charts: None }, &quick(), 1).unwrap_err().to_string();
+    assert!(err.contains("the set-down is not clear: load touches SLAB"), "{err}");
+    assert!(
+        err.contains("the load's underside there, z = -0.20 m, is about 0.20 m below the top of what stands under it (about z = 0.00 m"),
+        "{err}"
+    );
+    // Deeper, the load lifted off above it is already too close.
+    spec.set.z_m = Some(-0.6);
+    let t = spec.clone().resolve(builtin("ac-700").unwrap()).unwrap();
+    let err = plan_lift(&t, &Site { map: &m, world: &world, charts: None }, &quick(), 1).unwrap_err().to_string();
+    assert!(err.contains("the configuration above the set position is not allowed"), "{err}");
+    assert!(err.contains("is about 0.60 m below the top of what stands under it (about z = 0.00 m, as the depth map holds it): CHECK set z_m"), "{err}");
+    // Set on the slab, it is not said.
+    spec.set.z_m = Some(0.0);
+    let t = spec.resolve(builtin("ac-700").unwrap()).unwrap();
+    if let Err(e) = plan_lift(&t, &Site { map: &m, world: &world, charts: None }, &quick(), 1) {
+        assert!(!e.to_string().contains("below the top of what stands under it"), "{e}");
+    }
+}
+
 /// A lift-off shorter than the landing zone's clearance leaves the load
 /// within it of its support: refused naming the key, before the search.
 #[test]
