@@ -289,13 +289,55 @@ pub fn key(stage: &str, version: u32, inputs: &BTreeMap<String, String>) -> Stri
     h.finalize().to_hex()[..32].to_string()
 }
 
+/// What [`publish`] did in `out/`.
+#[derive(Debug, Default)]
+pub struct Published {
+    /// Outputs rewritten.
+    pub written: Vec<String>,
+    /// Files the stage made before and no longer makes (a lift taken out of
+    /// the project, or renamed), moved to `out/superseded/`.
+    pub superseded: Vec<String>,
+}
+
+/// Where [`publish`] moves what a stage no longer makes.
+pub const SUPERSEDED_DIR: &str = "superseded";
+
 /// Copies outputs into `out/` where their content changed; `out/` is touched
-/// only after a stage succeeded, one file at a time by atomic rename.
-pub fn publish(out_dir: &Path, entry_dir: &Path, m: &Manifest) -> Result<Vec<String>> {
+/// only after a stage succeeded, one file at a time by atomic rename. What
+/// the stage published before and no longer makes is moved to
+/// `out/superseded/`: a lift's plan left in `out/` after the lift was taken
+/// out of the project, or renamed, would read as current, VALIDATED.
+pub fn publish(out_dir: &Path, entry_dir: &Path, m: &Manifest) -> Result<Published> {
     std::fs::create_dir_all(out_dir)?;
     let man_path = out_dir.join(".manifest.json");
     let mut man: BTreeMap<String, String> =
         std::fs::read_to_string(&man_path).ok().and_then(|t| serde_json::from_str(&t).ok()).unwrap_or_default();
+    let by_path = out_dir.join(".published.json");
+    let mut by_stage: BTreeMap<String, Vec<String>> =
+        std::fs::read_to_string(&by_path).ok().and_then(|t| serde_json::from_str(&t).ok()).unwrap_or_default();
+    let mut superseded = Vec::new();
+    let before = by_stage.get(&m.stage).cloned().unwrap_or_default();
+    // Only names of files in out/ itself or below it, as a stage writes them:
+    // the list is a file in out/, which anyone may edit.
+    let plain = |name: &str| {
+        let p = Path::new(name);
+        p.components().count() > 0 && p.components().all(|c| matches!(c, std::path::Component::Normal(_)))
+    };
+    for name in before.iter().filter(|n| !m.outputs.contains_key(*n) && plain(n)) {
+        let from = out_dir.join(name);
+        if from.is_file() {
+            let to = out_dir.join(SUPERSEDED_DIR).join(name);
+            if let Some(parent) = to.parent() {
+                std::fs::create_dir_all(parent)?;
+            }
+            std::fs::rename(&from, &to).with_context(|| format!("moving {name} to {}", to.display()))?;
+            superseded.push(name.clone());
+        }
+        man.remove(name);
+    }
+    let now: Vec<String> = m.outputs.keys().cloned().collect();
+    let listed_changed = before != now;
+    by_stage.insert(m.stage.clone(), now);
     let mut written = Vec::new();
     for (name, hash) in &m.outputs {
         let dest = out_dir.join(name);
@@ -316,8 +358,58 @@ pub fn publish(out_dir: &Path, entry_dir: &Path, m: &Manifest) -> Result<Vec<Str
         man.insert(name.clone(), hash.clone());
         written.push(name.clone());
     }
-    if !written.is_empty() {
+    if !written.is_empty() || !superseded.is_empty() {
         liftplan_core::artifact::write_atomic(&man_path, serde_json::to_string_pretty(&man)?.as_bytes())?;
     }
-    Ok(written)
+    if listed_changed {
+        liftplan_core::artifact::write_atomic(&by_path, serde_json::to_string_pretty(&by_stage)?.as_bytes())?;
+    }
+    Ok(Published { written, superseded })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn manifest(outputs: &[&str]) -> Manifest {
+        Manifest {
+            stage: "docs".into(),
+            version: 1,
+            key: "k".into(),
+            inputs: BTreeMap::new(),
+            settings: serde_json::Value::Null,
+            outputs: outputs.iter().map(|o| (o.to_string(), format!("hash of {o}"))).collect(),
+            summary: serde_json::Value::Null,
+            lines: vec![],
+            seconds: 0.0,
+        }
+    }
+
+    /// What a stage no longer makes moves to out/superseded/, and only
+    /// that: not another stage's file, not a file outside out/ that an
+    /// edited list names.
+    #[test]
+    fn what_a_stage_no_longer_makes_is_moved_aside() {
+        let d = tempfile::tempdir().unwrap();
+        let (entry, out) = (d.path().join("entry"), d.path().join("out"));
+        std::fs::create_dir_all(&entry).unwrap();
+        for f in ["A.pdf", "B.pdf"] {
+            std::fs::write(entry.join(f), f).unwrap();
+        }
+        let p = publish(&out, &entry, &manifest(&["A.pdf", "B.pdf"])).unwrap();
+        assert_eq!(p.written, ["A.pdf", "B.pdf"]);
+        assert!(p.superseded.is_empty());
+        std::fs::write(out.join("other-stage.json"), "x").unwrap();
+        let p = publish(&out, &entry, &manifest(&["A.pdf"])).unwrap();
+        assert_eq!(p.superseded, ["B.pdf"]);
+        assert!(!out.join("B.pdf").exists() && out.join("superseded").join("B.pdf").is_file());
+        assert!(out.join("A.pdf").is_file() && out.join("other-stage.json").is_file());
+        // An edited list naming a file outside out/ moves nothing.
+        std::fs::write(d.path().join("precious"), "keep").unwrap();
+        std::fs::write(out.join(".published.json"), r#"{ "docs": ["A.pdf", "../precious", "/etc/hostname"] }"#)
+            .unwrap();
+        let p = publish(&out, &entry, &manifest(&["A.pdf"])).unwrap();
+        assert!(p.superseded.is_empty(), "{p:?}");
+        assert!(d.path().join("precious").is_file());
+    }
 }

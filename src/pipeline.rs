@@ -114,6 +114,10 @@ pub struct StageReport {
     /// Output files rewritten in out/ by this run.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub published: Vec<String>,
+    /// Files this stage made before and no longer makes, moved by this run
+    /// to `out/superseded/` ([`cache::publish`]).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub superseded: Vec<String>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub error: Option<String>,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -207,6 +211,7 @@ fn run_stages(project: &Project, defs: &[StageDef], opts: &RunOptions, progress:
             seconds: 0.0,
             outputs: vec![],
             published: vec![],
+            superseded: vec![],
             error: None,
             reason: None,
             lines: vec![],
@@ -293,9 +298,18 @@ fn run_stages(project: &Project, defs: &[StageDef], opts: &RunOptions, progress:
                 }
             };
             let dir = cache.entry_dir(def.name, &key);
-            rep.published = cache::publish(&project.out_dir(), &dir, &m)?;
+            let published = cache::publish(&project.out_dir(), &dir, &m)?;
+            rep.published = published.written;
             rep.outputs = m.outputs.keys().map(|o| format!("out/{o}")).collect();
             rep.lines = m.lines.clone();
+            if !published.superseded.is_empty() {
+                rep.lines.push(format!(
+                    "no longer made (a lift taken out of the project or renamed), moved to out/{}/: {}",
+                    cache::SUPERSEDED_DIR,
+                    published.superseded.join(", ")
+                ));
+                rep.superseded = published.superseded;
+            }
             upstream.insert(def.name, (dir, m));
             Ok(())
         })();

@@ -174,6 +174,16 @@ liftoff_m = 0.5
     let text = doc.extract_text(&pages).unwrap().replace('\n', " ");
     assert!(text.contains("picked up where lift V-101 sets it down, so it was not there when the scans"), "{text}");
     assert!(!text.contains("The load as scanned at its pick position"), "{text}");
+    // That lift taken out again: its plan is not left in out/ as if current.
+    std::fs::write(&toml_path, &t13).unwrap();
+    let r = run_json(&dir);
+    let superseded = |name: &str| stage(&r, name)["superseded"].as_array().cloned().unwrap_or_default();
+    assert!(superseded("docs").contains(&serde_json::json!("V-101-back.pdf")), "{r}");
+    assert!(superseded("plan").contains(&serde_json::json!("V-101-back.steps.csv")), "{r}");
+    assert!(!dir.join("out").join("V-101-back.pdf").exists());
+    assert!(!dir.join("out").join("V-101-back.steps.csv").exists());
+    assert!(dir.join("out").join("superseded").join("V-101-back.pdf").is_file());
+    assert!(dir.join("out").join("V-101.pdf").is_file());
 
     // The vessel declared on the ground under its trailer: refused, and the
     // refusal says what the scans show of the load (its own top, beyond the

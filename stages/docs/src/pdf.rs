@@ -85,6 +85,23 @@ pub fn wrap(s: &str, width_mm: f32, size_pt: f32) -> Vec<String> {
     lines
 }
 
+/// `s` as it fits on one line `width_mm` wide: whole where it fits, else cut
+/// between characters and ended with "...".
+pub fn shortened(s: &str, width_mm: f32, size_pt: f32) -> String {
+    if text_width_mm(s, size_pt) <= width_mm {
+        return s.to_string();
+    }
+    let mut cut = String::new();
+    for c in s.chars() {
+        let trial = format!("{cut}{c}...");
+        if text_width_mm(&trial, size_pt) > width_mm {
+            break;
+        }
+        cut.push(c);
+    }
+    format!("{}...", cut.trim_end())
+}
+
 /// A word wider than `width_mm` (a plant model's group path, say) in pieces
 /// that fit, each broken after a '/', '-' or '_' where one falls in it, else
 /// between characters; a word that fits, whole.
@@ -319,8 +336,11 @@ impl Doc {
             let y = self.size.h - FOOTER_FROM_FOOT_MM;
             let w = self.size.w;
             self.line(15.0, y - 5.0, w - 15.0, y - 5.0, 0.5, [150, 150, 150]);
-            self.text(15.0, y, footer, 8.0, false, [90, 90, 90]);
             let p = format!("page {} of {}", i + 1, n);
+            // The footer leaves room for the page number, however long the
+            // project's name in it.
+            let room = w - 30.0 - text_width_mm(&p, 8.0) - 6.0;
+            self.text(15.0, y, &shortened(footer, room, 8.0), 8.0, false, [90, 90, 90]);
             self.text(w - 15.0 - text_width_mm(&p, 8.0), y, &p, 8.0, false, [90, 90, 90]);
         }
         let pages: Vec<PdfPage> =

@@ -1,6 +1,6 @@
 //! The layout of one lift's document.
 
-use crate::pdf::{A4, Doc, LETTER};
+use crate::pdf::{A4, Doc, LETTER, line_height_mm, shortened, text_width_mm, wrap};
 use crate::pictures::{self, SiteView};
 use crate::{DocsError, Inputs, Paper, Result, Settings};
 use liftplan_core::capacity::ChartConfig;
@@ -176,9 +176,15 @@ pub fn document(
 
     // Page 1: cover and summary.
     d.new_page();
-    d.text(15.0, 22.0, &format!("Lift plan {}", task.id), 22.0, true, [25, 55, 110]);
-    d.text(15.0, 30.0, &task.description, 11.0, false, INK);
-    let mut y = 40.0;
+    // A long lift id and a description of a paragraph wrap, pushing the
+    // rest down.
+    let mut title_y = 22.0;
+    for (k, line) in wrap(&format!("Lift plan {}", task.id), w, 22.0).iter().enumerate() {
+        title_y = 22.0 + k as f32 * line_height_mm(22.0);
+        d.text(15.0, title_y, line, 22.0, true, [25, 55, 110]);
+    }
+    let below_description = d.paragraph(15.0, title_y + 8.0, w, &task.description, 11.0);
+    let mut y = (below_description + 4.6).max(40.0);
     y = key_values(
         &mut d,
         15.0,
@@ -692,8 +698,14 @@ pub fn document(
         }
     }
     let pages = d.text.len();
-    let footer =
-        format!("liftplan {} — {} — lift {} — issued {}", env!("CARGO_PKG_VERSION"), inp.project, task.id, inp.date);
+    // The project's name is what gives way in the footer, not the lift or
+    // the date (the footer itself is shortened to leave the page number).
+    let head = format!("liftplan {} — ", env!("CARGO_PKG_VERSION"));
+    let tail = format!(" — lift {} — issued {}", task.id, inp.date);
+    let room = size.w - 30.0 - text_width_mm("page 99 of 99", 8.0) - 6.0;
+    let project =
+        shortened(&inp.project, (room - text_width_mm(&head, 8.0) - text_width_mm(&tail, 8.0)).max(20.0), 8.0);
+    let footer = format!("{head}{project}{tail}");
     let bytes = d.finish(&footer, &inp.date);
     Ok((bytes, pages, overview, chart_img))
 }
