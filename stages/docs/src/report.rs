@@ -156,6 +156,30 @@ fn grid_bearing_deg(a_rad: f64) -> f64 {
     if b >= 359.95 { 0.0 } else { b }
 }
 
+/// The cover's title and the lift's description from the top of the page;
+/// returns the y where the rest begins. A long lift id and a description of
+/// a paragraph wrap, pushing the rest down.
+fn cover_heading(d: &mut Doc, w: f32, id: &str, description: &str) -> f32 {
+    let mut title_y = 22.0;
+    for (k, line) in wrap(&format!("Lift plan {id}"), w, 22.0).iter().enumerate() {
+        title_y = 22.0 + k as f32 * line_height_mm(22.0);
+        d.text(15.0, title_y, line, 22.0, true, [25, 55, 110]);
+    }
+    let below_description = d.paragraph(15.0, title_y + 8.0, w, description, 11.0);
+    (below_description + 4.6).max(40.0)
+}
+
+/// Every page's footer on a sheet `sheet_w_mm` wide. The project's name is
+/// what gives way, not the lift or the date (the footer itself is shortened
+/// to leave the page number).
+fn footer(sheet_w_mm: f32, project: &str, id: &str, date: &str) -> String {
+    let head = format!("liftplan {} — ", env!("CARGO_PKG_VERSION"));
+    let tail = format!(" — lift {id} — issued {date}");
+    let room = sheet_w_mm - 30.0 - text_width_mm("page 99 of 99", 8.0) - 6.0;
+    let project = shortened(project, (room - text_width_mm(&head, 8.0) - text_width_mm(&tail, 8.0)).max(20.0), 8.0);
+    format!("{head}{project}{tail}")
+}
+
 pub fn document(
     inp: &Inputs,
     s: &Settings,
@@ -176,15 +200,7 @@ pub fn document(
 
     // Page 1: cover and summary.
     d.new_page();
-    // A long lift id and a description of a paragraph wrap, pushing the
-    // rest down.
-    let mut title_y = 22.0;
-    for (k, line) in wrap(&format!("Lift plan {}", task.id), w, 22.0).iter().enumerate() {
-        title_y = 22.0 + k as f32 * line_height_mm(22.0);
-        d.text(15.0, title_y, line, 22.0, true, [25, 55, 110]);
-    }
-    let below_description = d.paragraph(15.0, title_y + 8.0, w, &task.description, 11.0);
-    let mut y = (below_description + 4.6).max(40.0);
+    let mut y = cover_heading(&mut d, w, &task.id, &task.description);
     y = key_values(
         &mut d,
         15.0,
@@ -698,21 +714,42 @@ pub fn document(
         }
     }
     let pages = d.text.len();
-    // The project's name is what gives way in the footer, not the lift or
-    // the date (the footer itself is shortened to leave the page number).
-    let head = format!("liftplan {} — ", env!("CARGO_PKG_VERSION"));
-    let tail = format!(" — lift {} — issued {}", task.id, inp.date);
-    let room = size.w - 30.0 - text_width_mm("page 99 of 99", 8.0) - 6.0;
-    let project =
-        shortened(&inp.project, (room - text_width_mm(&head, 8.0) - text_width_mm(&tail, 8.0)).max(20.0), 8.0);
-    let footer = format!("{head}{project}{tail}");
-    let bytes = d.finish(&footer, &inp.date);
+    let bytes = d.finish(&footer(size.w, &inp.project, &task.id, &inp.date), &inp.date);
     Ok((bytes, pages, overview, chart_img))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A long lift id, description and project name stay on the sheet: the
+    /// title and the description wrap (they ran off its right edge, which
+    /// `Doc::text` asserts against in tests), and the footer shortens the
+    /// project's name, keeping the lift and the date.
+    #[test]
+    fn a_long_id_description_and_project_name_stay_on_the_sheet() {
+        let mut d = Doc::new("t", A4).unwrap();
+        d.new_page();
+        let w = A4.w - 30.0;
+        assert_eq!(cover_heading(&mut d, w, "V-101", "Vessel V-101 onto its foundation"), 40.0);
+        let id = "V-101-horizontal-separator-from-trailer-to-foundation-east-of-rack";
+        let description = "Vessel V-101 from the low-loader trailer parked on the north access road, over pipe rack PR-3 and the cable tray, onto its foundation FDN-V101 east of the rack";
+        let mut d = Doc::new("t", A4).unwrap();
+        d.new_page();
+        let y = cover_heading(&mut d, w, id, description);
+        assert!(y > 40.0 + 2.0 * line_height_mm(11.0), "{y}");
+        let text = d.text[0].replace('\n', "");
+        assert!(text.contains("cable tray") && text.contains("east-of-rack"), "{text}");
+        let project = "Raffinerie Nord — Erweiterung der Destillationsanlage Block 7, Los 3: Montage der Behälter";
+        let f = footer(A4.w, project, "V-101", "2026-12-03");
+        assert!(f.starts_with("liftplan ") && f.ends_with(" — lift V-101 — issued 2026-12-03"), "{f}");
+        assert!(f.contains("Raffinerie Nord") && f.contains("..."), "{f}");
+        assert!(text_width_mm(&f, 8.0) <= A4.w - 30.0 - text_width_mm("page 99 of 99", 8.0) - 6.0 + 1e-3, "{f}");
+        assert_eq!(
+            footer(A4.w, "demo", "V-101", "2026-12-03"),
+            format!("liftplan {} — demo — lift V-101 — issued 2026-12-03", env!("CARGO_PKG_VERSION"))
+        );
+    }
 
     /// Sign-off paragraphs that do not fit go on to a further page, none
     /// drawn below a page's foot.
