@@ -36,6 +36,20 @@ fn inputs_room(d: &mut Doc, y: f32, need_mm: f32) -> f32 {
     room_on_page(d, y, need_mm, "Inputs (continued)")
 }
 
+/// One input's row at `y` (on a new page under `continued` where it does
+/// not fit): its hash, and its name whole, wrapped where it is long (a
+/// chart's file name ran off the sheet); returns the y below it.
+fn input_row(d: &mut Doc, y: f32, name: &str, hash: &str, continued: &str) -> f32 {
+    let lines = wrap(name, d.size.w - 15.0 - 50.0, 8.0);
+    let mut y = room_on_page(d, y, 4.2 * lines.len() as f32, continued);
+    d.text(15.0, y, hash, 8.0, false, GREY);
+    for line in &lines {
+        d.text(50.0, y, line, 8.0, false, INK);
+        y += 4.2;
+    }
+    y
+}
+
 /// Where the next `need_mm` go: at `y`, or under `continued` at the top of
 /// a new page if they would run past the page's foot.
 fn room_on_page(d: &mut Doc, y: f32, need_mm: f32, continued: &str) -> f32 {
@@ -398,10 +412,7 @@ pub fn document(
     d.text(15.0, y, "Inputs and liftplan's code (blake3, first 16 hex digits)", 9.0, true, GREY);
     y += 5.0;
     for (f, h) in inp.input_hashes.iter().take(here) {
-        y = inputs_room(&mut d, y, 4.2);
-        d.text(15.0, y, h, 8.0, false, GREY);
-        d.text(50.0, y, f, 8.0, false, INK);
-        y += 4.2;
+        y = input_row(&mut d, y, f, h, "Inputs (continued)");
     }
     if appendix {
         let more = inp.input_hashes.len() - here;
@@ -704,13 +715,7 @@ pub fn document(
         d.text(15.0, y, "blake3 of each input file, of each stage's settings and of the code that ran each stage, first 16 hex digits", 9.0, false, GREY);
         y += 6.0;
         for (f, h) in &inp.input_hashes {
-            if y > size.h - 20.0 {
-                d.new_page();
-                y = heading(&mut d, 20.0, "Inputs and liftplan's code (continued)");
-            }
-            d.text(15.0, y, h, 8.0, false, GREY);
-            d.text(50.0, y, f, 8.0, false, INK);
-            y += 4.2;
+            y = input_row(&mut d, y, f, h, "Inputs and liftplan's code (continued)");
         }
     }
     let pages = d.text.len();
@@ -722,7 +727,8 @@ pub fn document(
 mod tests {
     use super::*;
 
-    /// A long lift id, description and project name stay on the sheet: the
+    /// A long lift id, description, project name and input file name stay on
+    /// the sheet: the
     /// title and the description wrap (they ran off its right edge, which
     /// `Doc::text` asserts against in tests), and the footer shortens the
     /// project's name, keeping the lift and the date.
@@ -745,6 +751,11 @@ mod tests {
         assert!(f.starts_with("liftplan ") && f.ends_with(" — lift V-101 — issued 2026-12-03"), "{f}");
         assert!(f.contains("Raffinerie Nord") && f.contains("..."), "{f}");
         assert!(text_width_mm(&f, 8.0) <= A4.w - 30.0 - text_width_mm("page 99 of 99", 8.0) - 6.0 + 1e-3, "{f}");
+        // An input's file name is listed whole, wrapped.
+        let chart = "file:charts/Terex Demag AC700 Lastmomenttabelle Hauptausleger 360 Grad Abstützbasis 13,0 x 13,0 m (gültig ab 2019).xlsx";
+        let below = input_row(&mut d, 100.0, chart, "0123456789abcdef", "Inputs (continued)");
+        assert!((below - 100.0 - 2.0 * 4.2).abs() < 1e-3, "{below}");
+        assert!(d.text[0].replace('\n', "").contains("(gültig ab 2019).xlsx"));
         assert_eq!(
             footer(A4.w, "demo", "V-101", "2026-12-03"),
             format!("liftplan {} — demo — lift V-101 — issued 2026-12-03", env!("CARGO_PKG_VERSION"))
