@@ -313,8 +313,8 @@ impl LiftSpec {
                 )),
             }
         };
-        let (pick, pick_pose) = solve("pick", &self.pick)?;
-        let (set, set_pose) = solve("set", &self.set)?;
+        let (mut pick, pick_pose) = solve("pick", &self.pick)?;
+        let (mut set, set_pose) = solve("set", &self.set)?;
         let lim = crane.limits();
         for (which, c) in [("pick", &pick), ("set", &set)] {
             if c.radial < lim.radial.0 - 1e-9 || c.radial > lim.radial.1 + 1e-9 {
@@ -331,9 +331,29 @@ impl LiftSpec {
             }
         }
         let swing_range_rad = match self.swing_range_deg {
-            Some([a, b]) if a < b => Some((a.to_radians(), b.to_radians())),
+            Some([a_deg, b_deg]) if a_deg < b_deg && b_deg - a_deg <= 360.0 && a_deg >= -360.0 && b_deg <= 360.0 => {
+                let (a, b) = (a_deg.to_radians(), b_deg.to_radians());
+                // The pick and the set where the range holds them: a range
+                // across ±180° ([90, 270] behind the carrier) holds a pick
+                // solved at -160° as 200°, and the planner and the validator
+                // compare swing with the range as numbers.
+                for (which, c) in [("pick", &mut pick), ("set", &mut set)] {
+                    let turns = ((a - c.swing_rad) / std::f64::consts::TAU).ceil();
+                    let inside = c.swing_rad + turns * std::f64::consts::TAU;
+                    if inside > b + 1e-9 {
+                        return Err(format!(
+                            "lift '{id}': the {which}, at swing {:.1}° from the crane's heading, is outside swing_range_deg [{a_deg}, {b_deg}]",
+                            c.swing_rad.to_degrees(),
+                        ));
+                    }
+                    c.swing_rad = inside;
+                }
+                Some((a, b))
+            }
             Some(_) => {
-                return Err(format!("lift '{id}': swing_range_deg must be [min, max] with min < max"));
+                return Err(format!(
+                    "lift '{id}': swing_range_deg must be [min, max] with min < max, within -360..360 and at most a full turn (leave it out for a crane free to slew)"
+                ));
             }
             None => None,
         };
@@ -432,6 +452,29 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         let mut s = spec();
         s.load.size_m = [MAX_LOAD_SIDE_M, 3.0, 3.0];
         assert!(s.resolve(crane()).is_ok());
+    }
+
+    /// A permitted swing range holds the pick and the set as its numbers
+    /// say, across ±180° too; outside it, the position is named.
+    #[test]
+    fn a_swing_range_holds_the_pick_and_set_or_names_them() {
+        let crane = || crate::crane::builtin("ltm-1100").unwrap();
+        let free = spec().resolve(crane()).unwrap();
+        // The pick is at about 14°, the set at about 119°.
+        let (p, s) = (free.pick.swing_rad.to_degrees(), free.set.swing_rad.to_degrees());
+        assert!((10.0..20.0).contains(&p) && (115.0..125.0).contains(&s), "{p} {s}");
+        let mut sp = spec();
+        sp.swing_range_deg = Some([-350.0, 0.0]);
+        let t = sp.resolve(crane()).unwrap();
+        assert!((t.pick.swing_rad.to_degrees() - (p - 360.0)).abs() < 1e-9);
+        assert!((t.set.swing_rad.to_degrees() - (s - 360.0)).abs() < 1e-9);
+        let mut sp = spec();
+        sp.swing_range_deg = Some([0.0, 90.0]);
+        let e = sp.resolve(crane()).unwrap_err();
+        assert!(e.contains("the set, at swing 11") && e.contains("is outside swing_range_deg [0, 90]"), "{e}");
+        let mut sp = spec();
+        sp.swing_range_deg = Some([-10.0, 400.0]);
+        assert!(sp.resolve(crane()).unwrap_err().contains("at most a full turn"));
     }
 
     #[test]
