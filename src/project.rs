@@ -432,7 +432,15 @@ keep = 3                  # runs' outputs each stage keeps in .liftplan/cache (t
 # crane = { model = "ltm-1100", position_m = [0.0, 0.0], ground_z_m = 0.0, heading_deg = 0.0, boom_m = 40.0, chart_config = "main boom, 360 deg" }
 # pick = { x_m = 6.0, y_m = -16.0, z_m = 1.2, yaw_deg = 90.0 }
 # set = { x_m = 30.0, y_m = 2.0, z_m = 1.2, yaw_deg = 0.0 }
-# clearance_m = 1.0
+# # pick and set: the load's centre x, y and its underside's z (m), its yaw (degrees);
+# # or a crane configuration: swing_deg, luff_deg (or trolley_m), hoist_m, yaw_deg.
+# # crane may also give deductions_t: what the chart's notes deduct (a stowed jib), t.
+# clearance_m = 1.0            # kept by every part from everything, m
+# liftoff_m = 0.5              # vertical lift-off at the pick and set-down at the set, m
+# critical_pct = 75.0          # utilisation over which the lift is flagged critical, %
+# capacity_reduction_pct = 0.0 # taken off every chart value (site rules, wind), %
+# swing_range_deg = [-120.0, 120.0] # permitted slewing sector from the crane's heading;
+#                                   # leave it out for a crane free to slew
 "#;
 
 /// Creates a project folder with the template and the input folders.
@@ -451,4 +459,28 @@ pub fn init(dir: &Path) -> Result<()> {
         liftplan_core::artifact::write_atomic(&example, text.as_bytes())?;
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    /// The template's example lift, uncommented as its comment says, is a
+    /// lift liftplan takes, every key it shows included.
+    #[test]
+    fn the_templates_example_lift_uncommented_resolves() {
+        let lift: String = super::TEMPLATE
+            .split("# A lift: uncomment and edit.\n")
+            .nth(1)
+            .expect("the template has an example lift")
+            .lines()
+            .map(|l| l.strip_prefix("# ").unwrap_or(l))
+            .collect::<Vec<_>>()
+            .join("\n");
+        let v: toml::Value = toml::from_str(&lift).unwrap_or_else(|e| panic!("{e}\n{lift}"));
+        let spec: liftplan_core::lift::LiftSpec = v["lift"][0].clone().try_into().unwrap();
+        for key in ["liftoff_m", "critical_pct", "capacity_reduction_pct", "swing_range_deg"] {
+            assert!(v["lift"][0].get(key).is_some(), "{key} is not shown");
+        }
+        let task = spec.resolve(liftplan_core::crane::builtin("ltm-1100").unwrap()).unwrap();
+        assert_eq!(task.id, "V-101");
+    }
 }
