@@ -198,6 +198,25 @@ liftoff_m = 0.5
     assert!(stderr.contains("ABOVE ITS BOX'S TOP"), "{stderr}");
     std::fs::write(&toml_path, &t13).unwrap();
 
+    // The plant model placed 2 m off the scans (a wrong translate_m): no
+    // plan, and the move that puts it on them is said; planned with it
+    // where it is only when asked to, and then said in the PDF.
+    let off = t13.replace("translate_m = [-500.0, -300.0, 0.0]", "translate_m = [-498.0, -300.0, 0.0]");
+    assert_ne!(off, t13);
+    std::fs::write(&toml_path, &off).unwrap();
+    let o = liftplan(&["run", d, "-q"]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success(), "planned with the model 2 m off:\n{stderr}");
+    assert!(stderr.contains("the model lies on the scans when moved by x -2.00 m, y +0.00 m"), "{stderr}");
+    std::fs::write(&toml_path, format!("{off}\n[plan]\nmodel_off_scans = \"warn\"\n")).unwrap();
+    let r = run_json(&dir);
+    assert_eq!(stage(&r, "docs")["status"], "ran", "{r}");
+    let doc = lopdf::Document::load(&pdf_path).unwrap();
+    let pages: Vec<u32> = doc.get_pages().keys().copied().collect();
+    let text = doc.extract_text(&pages).unwrap().replace('\n', " ");
+    assert!(text.contains("moved by x -2.00 m"), "{text}");
+    std::fs::write(&toml_path, &t13).unwrap();
+
     // Without its load chart the lift is not planned: a plan whose capacity
     // was never checked must not read as validated.
     let charts = dir.join("charts");

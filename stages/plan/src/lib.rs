@@ -48,6 +48,8 @@ pub enum PlanError {
     Settings(String),
     #[error("lift '{lift}': {message}")]
     Lift { lift: String, message: String },
+    #[error("{0}")]
+    ModelOffScans(String),
 }
 
 pub type Result<T> = std::result::Result<T, PlanError>;
@@ -82,6 +84,22 @@ pub struct Settings {
     /// Scan points this close to the load's box at pick (and up to
     /// [`LOAD_CUTOUT_ABOVE_M`] above it) are taken for the load and left out (m).
     pub load_cutout_m: f64,
+    /// What a plant model that lies on the scans only when moved does to
+    /// the plan ([`validate::model_offset_to_scans`]).
+    pub model_off_scans: ModelOffScans,
+}
+
+/// `[plan] model_off_scans`: a plant model placed off the scans puts its
+/// obstacles where they are not, and leaves those only it shows (what the
+/// scans did not see) out of where they are.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum ModelOffScans {
+    /// No plan: the move that puts it on the scans is said.
+    #[default]
+    Refuse,
+    /// Plan with the model where it is; the run and the PDF say it is off.
+    Warn,
 }
 
 impl Default for Settings {
@@ -96,6 +114,7 @@ impl Default for Settings {
             support_m: 0.05,
             validator_sample_m: 0.05,
             load_cutout_m: LOAD_CUTOUT_GROW_M,
+            model_off_scans: ModelOffScans::Refuse,
         }
     }
 }
@@ -846,6 +865,14 @@ pub fn run(
     };
     let mut world = validate::World::new(&mesh, &points, &ground).map_err(PlanError::Settings)?;
     let model_vs_scans = validate::model_scan_agreement(&world);
+    if let Some(a) = &model_vs_scans
+        && let (true, Some(_), ModelOffScans::Refuse) = (a.disagrees(), a.fits_moved_by, s.model_off_scans)
+    {
+        return Err(PlanError::ModelOffScans(format!(
+            "no plan is made: {}; correct [plant] translate_m by that move (or rotate_z_deg), or set [plan] model_off_scans = \"warn\" to plan with the model where it is",
+            a.line()
+        )));
+    }
     // Where a load was scanned at its pick position, its cut-out was seen.
     let scanned_loads: Vec<Obb> =
         exclusions.iter().zip(&taken_for_loads).filter(|(_, t)| !t.is_empty()).map(|(b, _)| *b).collect();

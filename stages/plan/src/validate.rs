@@ -140,6 +140,12 @@ pub struct ModelScanAgreement {
     pub close_pct: f64,
     /// Their median distance to the model (m).
     pub median_m: f64,
+    /// Where the model disagrees: the horizontal move (m, site x and y)
+    /// that puts it on the scans, and the share of the points then within
+    /// [`AGREEMENT_CLOSE_M`] of it (%), where one is found
+    /// ([`model_offset_to_scans`]).
+    #[serde(default)]
+    pub fits_moved_by: Option<([f64; 2], f64)>,
 }
 
 impl ModelScanAgreement {
@@ -150,10 +156,16 @@ impl ModelScanAgreement {
 
     /// One line for the run's output and the PDF.
     pub fn line(&self) -> String {
-        let verdict = if self.disagrees() {
-            "CHECK [plant] translate_m and rotate_z_deg: the model may not be where the scans put the site, and its obstacles the scans did not see would then be elsewhere"
-        } else {
-            "they agree"
+        let verdict = match (self.disagrees(), self.fits_moved_by) {
+            (true, Some(([dx, dy], pct))) => {
+                // No "-0.00 m" for a move that is none along an axis.
+                let (dx, dy) = (if dx.abs() < 0.005 { 0.0 } else { dx }, if dy.abs() < 0.005 { 0.0 } else { dy });
+                format!(
+                "the model lies on the scans when moved by x {dx:+.2} m, y {dy:+.2} m ({pct:.0} % of the points within {AGREEMENT_CLOSE_M:.2} m of it then): CHECK [plant] translate_m and rotate_z_deg: as it is, its obstacles the scans did not see are elsewhere"
+                )
+            }
+            (true, None) => "CHECK [plant] translate_m and rotate_z_deg: the model may not be where the scans put the site, and its obstacles the scans did not see would then be elsewhere".to_string(),
+            (false, _) => "they agree".to_string(),
         };
         format!(
             "plant model against the scans: of {} scanned points within {AGREEMENT_NEAR_M:.0} m of the model, {:.0} % lie within {AGREEMENT_CLOSE_M:.2} m of it (median {:.3} m): {verdict}",
@@ -189,11 +201,84 @@ pub fn model_scan_agreement(world: &World) -> Option<ModelScanAgreement> {
     }
     d.sort_by(f64::total_cmp);
     let close = d.partition_point(|&x| x <= AGREEMENT_CLOSE_M);
+    let median_m = d[d.len() / 2];
+    let sampled: Vec<[f64; 3]> = structure.iter().step_by(stride).map(|p| **p).collect();
+    let fits_moved_by = (median_m > AGREEMENT_CLOSE_M).then(|| model_offset_to_scans(mesh, &sampled)).flatten();
     Some(ModelScanAgreement {
         compared: d.len(),
         close_pct: 100.0 * close as f64 / d.len() as f64,
-        median_m: d[d.len() / 2],
+        median_m,
+        fits_moved_by,
     })
+}
+
+/// How far a model may be off for [`model_offset_to_scans`] to find it (m).
+pub const OFFSET_SEARCH_M: f64 = 4.0;
+
+/// The horizontal move of `mesh` that puts it on the scan points `points`,
+/// and the share of the points near it then within [`AGREEMENT_CLOSE_M`] of
+/// it (%), where the move is more than 5 cm and then more than half of them
+/// are: point-to-plane alignment in x and y of the points within
+/// [`OFFSET_SEARCH_M`] of the model, each step trusting only points closer
+/// than the last step's spread. It informs the engineer's `[plant]
+/// translate_m`; the model is not moved. A rotation is not sought.
+pub fn model_offset_to_scans(mesh: &ParryMesh, points: &[[f64; 3]]) -> Option<([f64; 2], f64)> {
+    let near = |t: [f64; 2], within: f64| -> Vec<(Vector, f64)> {
+        points
+            .par_iter()
+            .filter_map(|p| {
+                let q = Vector::new(p[0] - t[0], p[1] - t[1], p[2]);
+                let on = mesh.project_point(&Pose::identity(), q, false).point;
+                let d = (q - on).length();
+                (d <= within).then_some((q - on, d))
+            })
+            .collect()
+    };
+    let mut t = [0.0f64; 2];
+    let mut within = OFFSET_SEARCH_M;
+    for _ in 0..30 {
+        let pairs = near(t, within);
+        if pairs.len() < 50 {
+            return None;
+        }
+        // Each point off the model by e along n (the direction from its
+        // nearest model point): the move in x, y that best cancels them.
+        let (mut a, mut b) = ([[0.0f64; 2]; 2], [0.0f64; 2]);
+        for (r, d) in &pairs {
+            if *d < 1e-6 {
+                continue;
+            }
+            let n = [r.x / d, r.y / d];
+            for i in 0..2 {
+                for j in 0..2 {
+                    a[i][j] += n[i] * n[j];
+                }
+                b[i] += n[i] * d;
+            }
+        }
+        let mut ds: Vec<f64> = pairs.iter().map(|(_, d)| *d).collect();
+        ds.sort_by(f64::total_cmp);
+        let median = ds[ds.len() / 2];
+        let det = a[0][0] * a[1][1] - a[0][1] * a[1][0];
+        if !(det.abs() > 1e-9 * (a[0][0] + a[1][1]).powi(2)) {
+            // On the model already (the points off it give no direction),
+            // or only faces of one direction: nothing more to find.
+            if median <= AGREEMENT_CLOSE_M {
+                break;
+            }
+            return None;
+        }
+        let step = [(b[0] * a[1][1] - b[1] * a[0][1]) / det, (a[0][0] * b[1] - a[1][0] * b[0]) / det];
+        t = [t[0] + step[0], t[1] + step[1]];
+        within = (3.0 * median).clamp(AGREEMENT_NEAR_M, OFFSET_SEARCH_M);
+        if step[0].hypot(step[1]) < 1e-3 {
+            break;
+        }
+    }
+    let after = near(t, AGREEMENT_NEAR_M);
+    let close = after.iter().filter(|(_, d)| *d <= AGREEMENT_CLOSE_M).count();
+    let pct = 100.0 * close as f64 / after.len().max(1) as f64;
+    (t[0].hypot(t[1]) > 0.05 && after.len() >= 50 && pct > 50.0).then_some((t, pct))
 }
 
 /// How far the scanned ground under a mobile crane's carrier and outriggers

@@ -939,6 +939,22 @@ fn the_plant_model_is_checked_against_the_scans() {
     let off = agree(face(0.5)).unwrap();
     assert!(off.disagrees() && (off.median_m - 0.5).abs() < 1e-9, "{off:?}");
     assert!(off.line().contains("CHECK [plant] translate_m"), "{}", off.line());
+    // One face alone does not say how far along it the model is off.
+    assert_eq!(off.fits_moved_by, None, "{off:?}");
+    // Two faces of the wall, scanned 0.3 m west and 0.5 m south of where
+    // the model has them: the move that puts the model on them is found.
+    let (dx, dy) = (-0.3, -0.5);
+    let mut pts: Vec<[f64; 3]> =
+        (0..41 * 24).map(|n| [14.0 + dx + (n % 41) as f64 * 0.5, -1.0 + dy, 0.5 + (n / 41) as f64 * 0.5]).collect();
+    pts.extend((0..9 * 24).map(|n| [14.0 + dx, -1.0 + dy + (n % 9) as f64 * 0.25, 0.5 + (n / 9) as f64 * 0.5]));
+    let moved = agree(pts).unwrap();
+    let ([mx, my], pct) = moved.fits_moved_by.unwrap_or_else(|| panic!("no move found: {moved:?}"));
+    assert!((mx - dx).abs() < 0.02 && (my - dy).abs() < 0.02 && pct > 90.0, "{moved:?}");
+    assert!(
+        moved.line().contains("the model lies on the scans when moved by x -0.30 m, y -0.50 m"),
+        "{}",
+        moved.line()
+    );
     // Too little overlap to say.
     assert_eq!(agree(face(0.0)[..40].to_vec()), None);
 }
