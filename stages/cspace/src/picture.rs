@@ -8,10 +8,27 @@ const FREE: Rgb = [238, 244, 238];
 const BODY: Rgb = [200, 60, 50];
 const BOOM: Rgb = [235, 150, 60];
 const CHART: Rgb = [150, 150, 160];
+const OUT_OF_SWING_RANGE: Rgb = [70, 70, 80];
+
+/// Whether `swing` (rad) lies in the permitted range `(a, b)` (rad, from
+/// the heading, possibly across ±180°) by some whole number of turns.
+fn in_swing_range(swing: f64, (a, b): (f64, f64)) -> bool {
+    let tau = std::f64::consts::TAU;
+    let inside = swing + ((a - swing) / tau).ceil() * tau;
+    inside <= b + 1e-12
+}
 
 /// Draws the tables; `path` holds (swing rad, radial) points joined by lines,
-/// `marks` labelled points (pick, set).
-pub fn draw(cs: &CSpace, gross_kg: f64, reduction_pct: f64, path: &[(f64, f64)], marks: &[(&str, f64, f64)]) -> Image {
+/// `marks` labelled points (pick, set); swing outside `swing_range` (the
+/// lift's permitted range, rad) is hatched dark.
+pub fn draw(
+    cs: &CSpace,
+    gross_kg: f64,
+    reduction_pct: f64,
+    swing_range: Option<(f64, f64)>,
+    path: &[(f64, f64)],
+    marks: &[(&str, f64, f64)],
+) -> Image {
     let (ml, mb, mt, mr) = (70i64, 50i64, 30i64, 20i64);
     let w = 1000i64;
     let h = 420i64;
@@ -35,6 +52,9 @@ pub fn draw(cs: &CSpace, gross_kg: f64, reduction_pct: f64, path: &[(f64, f64)],
             }
             if !cap_ok && (px + py) % 6 < 3 {
                 c = CHART;
+            }
+            if swing_range.is_some_and(|r| !in_swing_range(cs.swing_center(i), r)) && (px - py).rem_euclid(6) < 3 {
+                c = OUT_OF_SWING_RANGE;
             }
             img.set(ml + px, mt + py, c);
         }
@@ -79,4 +99,22 @@ pub fn draw(cs: &CSpace, gross_kg: f64, reduction_pct: f64, path: &[(f64, f64)],
         img.text(x as i64 + 8, y as i64 - 16, label, 2, [20, 60, 160]);
     }
     img
+}
+
+#[cfg(test)]
+mod tests {
+    use super::in_swing_range;
+
+    /// A permitted range across ±180° holds the swings behind the heading
+    /// by whole turns, whichever way they are written.
+    #[test]
+    fn the_permitted_swing_range_holds_swings_by_whole_turns() {
+        let r = |a: f64, b: f64| (a.to_radians(), b.to_radians());
+        let behind = r(90.0, 270.0);
+        assert!(in_swing_range(200f64.to_radians(), behind));
+        assert!(in_swing_range((-160f64).to_radians(), behind));
+        assert!(!in_swing_range(10f64.to_radians(), behind));
+        let front = r(-60.0, 60.0);
+        assert!(in_swing_range(350f64.to_radians(), front) && !in_swing_range(90f64.to_radians(), front));
+    }
 }

@@ -21,6 +21,9 @@ const HOT_SPOT: Rgb = [235, 20, 20];
 pub const OTHER_LOAD: Rgb = [150, 90, 190];
 /// Ground the load passes over that no scan saw.
 pub const UNSEEN: Rgb = [25, 25, 25];
+/// Ground only the crane's boom or superstructure passes over that no scan
+/// saw, in the pictures.
+pub const UNSEEN_UNDER_CRANE: Rgb = [130, 130, 130];
 
 /// The site as the pictures show it: plant mesh and a thinned cloud, in
 /// `f32` metres from [`SiteView::origin`].
@@ -118,12 +121,18 @@ fn crane_batches(site: &SiteView, task: &LiftTask, c: &Config) -> Vec<TriangleBa
         .collect()
 }
 
-/// The cells the load passes over that no scan saw, as flat tiles at the
-/// crane's set-up level, one batch.
-fn unseen_batch(site: &SiteView, c: &liftplan_plan::coverage::Coverage, z_m: f64) -> TriangleBatch {
+/// Cells of `area` that no scan saw, as flat tiles of `color` just above
+/// the crane's set-up level `z_m`, one batch.
+fn unseen_batch(
+    site: &SiteView,
+    c: &liftplan_plan::coverage::Coverage,
+    area: &liftplan_plan::coverage::Area,
+    z_m: f64,
+    color: [u8; 3],
+) -> TriangleBatch {
     let mut positions = Vec::new();
     let mut triangles = Vec::new();
-    for &[i, j] in &c.under_load.unscanned_cells {
+    for &[i, j] in &area.unscanned_cells {
         let (x0, y0) = (i as f64 * c.cell_m, j as f64 * c.cell_m);
         let n = positions.len() as u32;
         for (dx, dy) in [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)] {
@@ -132,7 +141,7 @@ fn unseen_batch(site: &SiteView, c: &liftplan_plan::coverage::Coverage, z_m: f64
         triangles.push([n, n + 1, n + 2]);
         triangles.push([n, n + 2, n + 3]);
     }
-    TriangleBatch { positions, triangles, color: UNSEEN }
+    TriangleBatch { positions, triangles, color }
 }
 
 /// Hook path (load centre) through the moves, sampled along each.
@@ -157,10 +166,16 @@ pub fn load_path(site: &SiteView, task: &LiftTask, plan: &LiftPlan, upto: usize)
 pub fn overview(site: &SiteView, task: &LiftTask, plan: &LiftPlan, others: &[Obb], w: u32, h: u32) -> Image {
     let mut s = site.base_scene(2.0);
     s.triangles.extend(others.iter().map(|b| site.obb_batch(b, OTHER_LOAD)));
-    if let Some(c) = &plan.summary.coverage
-        && !c.under_load.unscanned_cells.is_empty()
-    {
-        s.triangles.push(unseen_batch(site, c, task.crane.placement.z_m));
+    // What only the crane's boom or superstructure passes over unseen, in
+    // grey under what the load does, in black.
+    if let Some(c) = &plan.summary.coverage {
+        let z = task.crane.placement.z_m;
+        if !c.under_crane.unscanned_cells.is_empty() {
+            s.triangles.push(unseen_batch(site, c, &c.under_crane, z, UNSEEN_UNDER_CRANE));
+        }
+        if !c.under_load.unscanned_cells.is_empty() {
+            s.triangles.push(unseen_batch(site, c, &c.under_load, z + 0.01, UNSEEN));
+        }
     }
     s.triangles.extend(crane_batches(site, task, &plan.start));
     s.triangles.push(site.obb_batch(&task.crane.load_obb(&plan.set, &task.load), [90, 160, 230]));
@@ -329,8 +344,10 @@ mod tests {
             },
             ..Default::default()
         };
-        let b = unseen_batch(&site, &c, 102.0);
+        let b = unseen_batch(&site, &c, &c.under_load, 102.0, UNSEEN);
         assert_eq!((b.positions.len(), b.triangles.len(), b.color), (8, 4, UNSEEN));
+        // Under the crane only: none listed here, no tile.
+        assert!(unseen_batch(&site, &c, &c.under_crane, 102.0, UNSEEN_UNDER_CRANE).triangles.is_empty());
         let o = site.origin;
         assert_eq!(b.positions[0], [(118.0 - o[0]) as f32, (229.0 - o[1]) as f32, 102.05]);
         assert_eq!(b.positions[6], [(120.0 - o[0]) as f32, (230.0 - o[1]) as f32, 102.05]);

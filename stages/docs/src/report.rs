@@ -335,10 +335,16 @@ pub fn document(
     let caption = format!(
         "Site overview (top view, north up): crane at the pick position, load path in red, load at set in light blue{}{}.",
         if others.is_empty() { "" } else { ", other lifts' loads in violet" },
-        if plan.summary.coverage.as_ref().is_some_and(|c| !c.under_load.unscanned_cells.is_empty()) {
-            ", ground under the load that no scan saw in black"
-        } else {
-            ""
+        match plan
+            .summary
+            .coverage
+            .as_ref()
+            .map(|c| { (!c.under_load.unscanned_cells.is_empty(), !c.under_crane.unscanned_cells.is_empty()) })
+        {
+            Some((true, true)) => ", ground no scan saw under the load in black, under the crane only in grey",
+            Some((true, false)) => ", ground under the load that no scan saw in black",
+            Some((false, true)) => ", ground under the crane that no scan saw in grey",
+            _ => "",
         }
     );
     for (n, line) in crate::pdf::wrap(&caption, w, 8.5).iter().enumerate() {
@@ -483,8 +489,16 @@ pub fn document(
         let img_w = w.min((size.h - 25.0 - y) * cs.width as f32 / cs.height as f32);
         if img_w > 60.0 {
             let caption = format!(
-                "C-space of the crane at its position: swing across, {} up. Red: {} comes closer than the clearance to something; orange: {} does; grey hatching: outside the load chart for this load. The blue line is the planned path of {}.",
-                words.radial_axis, words.body, words.radial_part, words.radial_part
+                "C-space of the crane at its position: swing across, {} up. Red: {} comes closer than the clearance to something; orange: {} does; grey hatching: outside the load chart for this load{}. The blue line is the planned path of {}.",
+                words.radial_axis,
+                words.body,
+                words.radial_part,
+                if task.swing_range_rad.is_some() {
+                    "; dark hatching: outside the lift's permitted swing range"
+                } else {
+                    ""
+                },
+                words.radial_part
             );
             let y2 = d.paragraph(15.0, y, w, &caption, 8.0);
             d.image(cs, 15.0, y2, img_w.min(w * (size.h - 25.0 - y2) / (size.h - 25.0 - y)));

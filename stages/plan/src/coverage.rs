@@ -120,13 +120,18 @@ impl Coverage {
             if a.unscanned_m2 > 0.0 {
                 let unseen = if loud { "WITH NO SCAN POINT WITHIN" } else { "with no scan point within" };
                 let unseen = format!("{unseen} {SEEN_WITHIN_M:.0} m");
+                // "(0 m² not in the plant model either)" read oddly.
+                let model = if a.unknown_m2 < 0.5 {
+                    "the plant model covers all of it".to_string()
+                } else {
+                    format!("{:.0} m² not in the plant model either", a.unknown_m2)
+                };
                 format!(
-                    "{who} {:.0} m², {:.0} m² of it {}{} ({:.0} m² not in the plant model either){}",
+                    "{who} {:.0} m², {:.0} m² of it {}{} ({model}){}",
                     a.passed_m2,
                     a.unscanned_m2,
                     unseen,
                     where_(a),
-                    a.unknown_m2,
                     if loud { ": CHECK ON SITE what stands there" } else { "" }
                 )
             } else {
@@ -379,6 +384,8 @@ mod tests {
         let modelled = coverage(&ground(0.5, Some(hole)), &slab, &[]);
         assert_eq!(modelled.under_load.unscanned_m2, a.unscanned_m2);
         assert_eq!(modelled.under_load.unknown_m2, 0.0, "{modelled:?}");
+        assert!(modelled.line().contains("(the plant model covers all of it)"), "{}", modelled.line());
+        assert!(holed.line().contains(" m² not in the plant model either"), "{}", holed.line());
 
         // The load's scan points, taken out at pick, were seen there.
         let cut = Obb::axis_aligned(Point3::new(26.0, 0.0, 1.0), Vec3::new(6.0, 6.0, 1.0));

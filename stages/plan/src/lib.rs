@@ -916,9 +916,16 @@ pub fn run(
             .map(|c| (c.swing_rad, c.radial))
             .collect();
         let marks = [("PICK", task.pick.swing_rad, task.pick.radial), ("SET", task.set.swing_rad, task.set.radial)];
-        liftplan_cspace::picture::draw(&cs, task.gross_kg(), task.capacity_reduction_pct, &pts, &marks)
-            .write_png(&png)
-            .map_err(|e| io(&png, e))?;
+        liftplan_cspace::picture::draw(
+            &cs,
+            task.gross_kg(),
+            task.capacity_reduction_pct,
+            task.swing_range_rad,
+            &pts,
+            &marks,
+        )
+        .write_png(&png)
+        .map_err(|e| io(&png, e))?;
         plans.push(plan);
     }
     let json = serde_json::to_string_pretty(&serde_json::json!({ "lifts": plans })).unwrap_or_default();
