@@ -380,6 +380,7 @@ landing_clearance_m = 0.2 # clearance of hook and load over a landing zone, m
 support_m = 0.05          # obstacles this close under the load at pick/set are its supports, m
 validator_sample_m = 0.05 # validator: largest crane-point movement between evenly spaced samples, m (finer where needed)
 load_cutout_m = 0.1       # scan points this close to the load at pick (0.3 m above it: slings) are taken for the load and not checked, m
+model_off_scans = "refuse" # refuse | warn: a plant model that lies on the scans only when moved
 
 [plan.ga]                 # Cai 2016, Table 4.10
 population = 100
