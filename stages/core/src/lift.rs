@@ -338,14 +338,12 @@ impl LiftSpec {
                 // solved at -160° as 200°, and the planner and the validator
                 // compare swing with the range as numbers.
                 for (which, c) in [("pick", &mut pick), ("set", &mut set)] {
-                    let turns = ((a - c.swing_rad) / std::f64::consts::TAU).ceil();
-                    let inside = c.swing_rad + turns * std::f64::consts::TAU;
-                    if inside > b + 1e-9 {
+                    let Some(inside) = crate::units::swing_into_range(c.swing_rad, a, b) else {
                         return Err(format!(
                             "lift '{id}': the {which}, at swing {:.1}° from the crane's heading, is outside swing_range_deg [{a_deg}, {b_deg}]",
                             c.swing_rad.to_degrees(),
                         ));
-                    }
+                    };
                     c.swing_rad = inside;
                 }
                 Some((a, b))

@@ -89,6 +89,15 @@ impl MassUnit {
     }
 }
 
+/// `swing` (rad) moved by whole turns into the range `[a, b]` (rad, from
+/// the crane's heading, possibly across ±180°: [90°, 270°] behind it holds
+/// -160° as 200°), if the range holds it.
+pub fn swing_into_range(swing: f64, a: f64, b: f64) -> Option<f64> {
+    let tau = std::f64::consts::TAU;
+    let inside = swing + ((a - swing) / tau).ceil() * tau;
+    (inside <= b + 1e-9).then_some(inside)
+}
+
 /// Wraps an angle to (-pi, pi].
 pub fn wrap_pi(a: f64) -> f64 {
     let two_pi = std::f64::consts::TAU;

@@ -10,12 +10,10 @@ const BOOM: Rgb = [235, 150, 60];
 const CHART: Rgb = [150, 150, 160];
 const OUT_OF_SWING_RANGE: Rgb = [70, 70, 80];
 
-/// Whether `swing` (rad) lies in the permitted range `(a, b)` (rad, from
-/// the heading, possibly across ±180°) by some whole number of turns.
+/// Whether `swing` (rad) lies in the permitted range `(a, b)` by some whole
+/// number of turns.
 fn in_swing_range(swing: f64, (a, b): (f64, f64)) -> bool {
-    let tau = std::f64::consts::TAU;
-    let inside = swing + ((a - swing) / tau).ceil() * tau;
-    inside <= b + 1e-12
+    liftplan_core::units::swing_into_range(swing, a, b).is_some()
 }
 
 /// Draws the tables; `path` holds (swing rad, radial) points joined by lines,

@@ -459,6 +459,12 @@ fn dedup_counted(said: impl Iterator<Item = String>, of: Option<usize>) -> Vec<S
         .collect()
 }
 
+/// Whether swinging from `from` to `to` (rad, as numbers: the way round is
+/// in their difference) stays within the lift's permitted swing range.
+fn way_permitted(task: &LiftTask, from: f64, to: f64) -> bool {
+    task.swing_range_rad.is_none_or(|(a, b)| from.min(to) >= a && from.max(to) <= b)
+}
+
 /// The landing zones of a lift.
 pub fn landing_zones(task: &LiftTask, s: &Settings) -> Vec<LandingZone> {
     [task.pick, task.set]
@@ -685,9 +691,7 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
         };
         for (label, gs) in [("short way", short), ("long way", long)] {
             let goal = Config { swing_rad: gs, ..goal0 };
-            if let Some((a, b)) = task.swing_range_rad
-                && !(start.swing_rad.min(gs) >= a && start.swing_rad.max(gs) <= b)
-            {
+            if !way_permitted(task, start.swing_rad, gs) {
                 continue;
             }
             let purpose = format!("plan/{}/{label}{restart}", task.id);
@@ -704,9 +708,7 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
     let Some((m, label, nodes, moves, d, sc, stats)) = candidates.into_iter().next() else {
         let ways: Vec<(&str, f64)> = [("the short way round", short), ("the long way round", long)]
             .into_iter()
-            .filter(|(_, gs)| {
-                task.swing_range_rad.is_none_or(|(a, b)| start.swing_rad.min(*gs) >= a && start.swing_rad.max(*gs) <= b)
-            })
+            .filter(|(_, gs)| way_permitted(task, start.swing_rad, *gs))
             .collect();
         return Err(lift_err(
             task,
