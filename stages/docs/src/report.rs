@@ -339,7 +339,7 @@ pub fn document(
             .summary
             .coverage
             .as_ref()
-            .map(|c| { (!c.under_load.unscanned_cells.is_empty(), !c.under_crane.unscanned_cells.is_empty()) })
+            .map(|c| (!c.under_load.unscanned_cells.is_empty(), !c.under_crane.unscanned_cells.is_empty()))
         {
             Some((true, true)) => ", ground no scan saw under the load in black, under the crane only in grey",
             Some((true, false)) => ", ground under the load that no scan saw in black",
