@@ -140,12 +140,45 @@ pub struct ModelScanAgreement {
     pub close_pct: f64,
     /// Their median distance to the model (m).
     pub median_m: f64,
-    /// Where the model disagrees: the horizontal move (m, site x and y)
-    /// that puts it on the scans, and the share of the points then within
-    /// [`AGREEMENT_CLOSE_M`] of it (%), where one is found
-    /// ([`model_offset_to_scans`]).
+    /// Where the model disagrees: the move that puts it on the scans, where
+    /// one is found ([`model_offset_to_scans`]).
     #[serde(default)]
-    pub fits_moved_by: Option<([f64; 2], f64)>,
+    pub fits_moved_by: Option<ModelMove>,
+}
+
+/// A plant model's move in plan onto the scans: turned by `turn_deg`
+/// (counter-clockwise seen from above) about the site point `about_m`, then
+/// moved by `by_m`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, serde::Deserialize)]
+pub struct ModelMove {
+    /// Site x and y (m).
+    pub by_m: [f64; 2],
+    pub turn_deg: f64,
+    /// Site x and y (m).
+    pub about_m: [f64; 2],
+    /// The share of the scan points near the model within
+    /// [`AGREEMENT_CLOSE_M`] of it once moved (%).
+    pub close_pct: f64,
+}
+
+impl ModelMove {
+    /// The move in words.
+    pub fn said(&self) -> String {
+        // No "-0.00 m" for a move that is none along an axis.
+        let tidy = |v: f64, below: f64| if v.abs() < below { 0.0 } else { v };
+        let (dx, dy) = (tidy(self.by_m[0], 0.005), tidy(self.by_m[1], 0.005));
+        let turn = tidy(self.turn_deg, 0.005);
+        if turn == 0.0 {
+            format!("moved by x {dx:+.2} m, y {dy:+.2} m")
+        } else if dx == 0.0 && dy == 0.0 {
+            format!("turned by {turn:+.2}° about x {:.1} m, y {:.1} m", self.about_m[0], self.about_m[1])
+        } else {
+            format!(
+                "turned by {turn:+.2}° about x {:.1} m, y {:.1} m and moved by x {dx:+.2} m, y {dy:+.2} m",
+                self.about_m[0], self.about_m[1]
+            )
+        }
+    }
 }
 
 impl ModelScanAgreement {
@@ -157,13 +190,11 @@ impl ModelScanAgreement {
     /// One line for the run's output and the PDF.
     pub fn line(&self) -> String {
         let verdict = match (self.disagrees(), self.fits_moved_by) {
-            (true, Some(([dx, dy], pct))) => {
-                // No "-0.00 m" for a move that is none along an axis.
-                let (dx, dy) = (if dx.abs() < 0.005 { 0.0 } else { dx }, if dy.abs() < 0.005 { 0.0 } else { dy });
-                format!(
-                "the model lies on the scans when moved by x {dx:+.2} m, y {dy:+.2} m ({pct:.0} % of the points within {AGREEMENT_CLOSE_M:.2} m of it then): CHECK [plant] translate_m and rotate_z_deg: as it is, its obstacles the scans did not see are elsewhere"
-                )
-            }
+            (true, Some(m)) => format!(
+                "the model lies on the scans when {} ({:.0} % of the points within {AGREEMENT_CLOSE_M:.2} m of it then): CHECK [plant] translate_m and rotate_z_deg: as it is, its obstacles the scans did not see are elsewhere",
+                m.said(),
+                m.close_pct
+            ),
             (true, None) => "CHECK [plant] translate_m and rotate_z_deg: the model may not be where the scans put the site, and its obstacles the scans did not see would then be elsewhere".to_string(),
             (false, _) => "they agree".to_string(),
         };
@@ -215,70 +246,137 @@ pub fn model_scan_agreement(world: &World) -> Option<ModelScanAgreement> {
 /// How far a model may be off for [`model_offset_to_scans`] to find it (m).
 pub const OFFSET_SEARCH_M: f64 = 4.0;
 
-/// The horizontal move of `mesh` that puts it on the scan points `points`,
-/// and the share of the points near it then within [`AGREEMENT_CLOSE_M`] of
-/// it (%), where the move is more than 5 cm and then more than half of them
-/// are: point-to-plane alignment in x and y of the points within
-/// [`OFFSET_SEARCH_M`] of the model, each step trusting only points closer
-/// than the last step's spread. It informs the engineer's `[plant]
-/// translate_m`; the model is not moved. A rotation is not sought.
-pub fn model_offset_to_scans(mesh: &ParryMesh, points: &[[f64; 3]]) -> Option<([f64; 2], f64)> {
-    let near = |t: [f64; 2], within: f64| -> Vec<(Vector, f64)> {
+/// The move in plan of `mesh` (a turn about z and a shift in x and y) that
+/// puts it on the scan points `points`, where the move is more than 5 cm at
+/// the points and then more than half of those near the model lie within
+/// [`AGREEMENT_CLOSE_M`] of it: point-to-plane alignment of the points
+/// within [`OFFSET_SEARCH_M`] of the model, each step trusting only points
+/// closer than three times the last step's median distance. It informs the
+/// engineer's `[plant] translate_m` and `rotate_z_deg`; the model is not
+/// moved. Heights are not sought.
+pub fn model_offset_to_scans(mesh: &ParryMesh, points: &[[f64; 3]]) -> Option<ModelMove> {
+    // The scan points in the model's frame, given the model's move so far
+    // (turned by `w` about `c`, then shifted by `t`), and how far each lies
+    // off the model: the offset from its nearest model point.
+    let to_model = |p: &[f64; 3], t: [f64; 2], w: f64, c: [f64; 2]| {
+        let (x, y) = (p[0] - c[0] - t[0], p[1] - c[1] - t[1]);
+        let (sin, cos) = (-w).sin_cos();
+        Vector::new(c[0] + x * cos - y * sin, c[1] + x * sin + y * cos, p[2])
+    };
+    let near = |t: [f64; 2], w: f64, c: [f64; 2], within: f64| -> Vec<(Vector, Vector, f64)> {
         points
             .par_iter()
             .filter_map(|p| {
-                let q = Vector::new(p[0] - t[0], p[1] - t[1], p[2]);
+                let q = to_model(p, t, w, c);
                 let on = mesh.project_point(&Pose::identity(), q, false).point;
                 let d = (q - on).length();
-                (d <= within).then_some((q - on, d))
+                (d <= within).then_some((on, q - on, d))
             })
             .collect()
     };
-    let mut t = [0.0f64; 2];
-    let mut within = OFFSET_SEARCH_M;
-    for _ in 0..30 {
-        let pairs = near(t, within);
+    let first = near([0.0, 0.0], 0.0, [0.0, 0.0], OFFSET_SEARCH_M);
+    if first.len() < 50 {
+        return None;
+    }
+    // Turned about the points' centre, and weighed by their spread about it,
+    // so that a turn and a shift are alike in size.
+    let c = {
+        let n = first.len() as f64;
+        [first.iter().map(|(on, _, _)| on.x).sum::<f64>() / n, first.iter().map(|(on, _, _)| on.y).sum::<f64>() / n]
+    };
+    let spread = (first.iter().map(|(on, _, _)| (on.x - c[0]).powi(2) + (on.y - c[1]).powi(2)).sum::<f64>()
+        / first.len() as f64)
+        .sqrt()
+        .max(1.0);
+    let (mut t, mut w, mut within) = ([0.0f64; 2], 0.0f64, OFFSET_SEARCH_M);
+    for _ in 0..40 {
+        let pairs = near(t, w, c, within);
         if pairs.len() < 50 {
             return None;
         }
-        // Each point off the model by e along n (the direction from its
-        // nearest model point): the move in x, y that best cancels them.
-        let (mut a, mut b) = ([[0.0f64; 2]; 2], [0.0f64; 2]);
-        for (r, d) in &pairs {
+        let mut ds: Vec<f64> = pairs.iter().map(|(_, _, d)| *d).collect();
+        ds.sort_by(f64::total_cmp);
+        let median = ds[ds.len() / 2];
+        // Each point off the model by d along n (from its nearest model
+        // point): the model's shift (x, y) and turn (about c, in metres at
+        // the spread) in its own frame that best cancel them.
+        let (mut a, mut b) = ([[0.0f64; 3]; 3], [0.0f64; 3]);
+        for (on, r, d) in &pairs {
             if *d < 1e-6 {
                 continue;
             }
             let n = [r.x / d, r.y / d];
-            for i in 0..2 {
-                for j in 0..2 {
-                    a[i][j] += n[i] * n[j];
+            let turn = (n[1] * (on.x - c[0]) - n[0] * (on.y - c[1])) / spread;
+            let row = [n[0], n[1], turn];
+            for i in 0..3 {
+                for j in 0..3 {
+                    a[i][j] += row[i] * row[j];
                 }
-                b[i] += n[i] * d;
+                b[i] += row[i] * d;
             }
         }
-        let mut ds: Vec<f64> = pairs.iter().map(|(_, d)| *d).collect();
-        ds.sort_by(f64::total_cmp);
-        let median = ds[ds.len() / 2];
-        let det = a[0][0] * a[1][1] - a[0][1] * a[1][0];
-        if !(det.abs() > 1e-9 * (a[0][0] + a[1][1]).powi(2)) {
-            // On the model already (the points off it give no direction),
-            // or only faces of one direction: nothing more to find.
+        let Some(step) = solve3(a, b) else {
+            // On the model already (the points off it give no direction), or
+            // faces of too few directions to say: nothing more to find.
             if median <= AGREEMENT_CLOSE_M {
                 break;
             }
             return None;
-        }
-        let step = [(b[0] * a[1][1] - b[1] * a[0][1]) / det, (a[0][0] * b[1] - a[1][0] * b[0]) / det];
-        t = [t[0] + step[0], t[1] + step[1]];
+        };
+        // In the site frame: the shift turned by the turn so far.
+        let (sin, cos) = w.sin_cos();
+        t = [t[0] + step[0] * cos - step[1] * sin, t[1] + step[0] * sin + step[1] * cos];
+        w += step[2] / spread;
         within = (3.0 * median).clamp(AGREEMENT_NEAR_M, OFFSET_SEARCH_M);
-        if step[0].hypot(step[1]) < 1e-3 {
+        if step[0].hypot(step[1]).max(step[2].abs()) < 1e-3 {
             break;
         }
     }
-    let after = near(t, AGREEMENT_NEAR_M);
-    let close = after.iter().filter(|(_, d)| *d <= AGREEMENT_CLOSE_M).count();
-    let pct = 100.0 * close as f64 / after.len().max(1) as f64;
-    (t[0].hypot(t[1]) > 0.05 && after.len() >= 50 && pct > 50.0).then_some((t, pct))
+    let after = near(t, w, c, AGREEMENT_NEAR_M);
+    let close = after.iter().filter(|(_, _, d)| *d <= AGREEMENT_CLOSE_M).count();
+    let close_pct = 100.0 * close as f64 / after.len().max(1) as f64;
+    let moved_m = t[0].hypot(t[1]).max(w.abs() * spread);
+    if !(moved_m > 0.05 && after.len() >= 50 && close_pct > 50.0) {
+        return None;
+    }
+    // A turn and a shift are one turn about another point, the one the
+    // move leaves where it is (a model turned about its own origin by a
+    // wrong rotate_z_deg is turned back about that origin); said so where
+    // that point is near the site.
+    let (sin, cos) = w.sin_cos();
+    let det = 2.0 * (1.0 - cos);
+    if w.abs().to_degrees() >= 0.05 && det > 0.0 {
+        let f = [c[0] + ((1.0 - cos) * t[0] - sin * t[1]) / det, c[1] + (sin * t[0] + (1.0 - cos) * t[1]) / det];
+        if (f[0] - c[0]).hypot(f[1] - c[1]) <= TURN_ABOUT_WITHIN_M {
+            return Some(ModelMove { by_m: [0.0, 0.0], turn_deg: w.to_degrees(), about_m: f, close_pct });
+        }
+    }
+    Some(ModelMove { by_m: t, turn_deg: w.to_degrees(), about_m: c, close_pct })
+}
+
+/// How far from the scan points a turn that moves a model onto them may be
+/// said to be about, rather than a turn about them and a shift (m).
+const TURN_ABOUT_WITHIN_M: f64 = 5_000.0;
+
+/// `a x = b` for a symmetric 3 x 3 `a`, by Cramer's rule; `None` where `a`
+/// is near singular (faces of too few directions to fix all three).
+fn solve3(a: [[f64; 3]; 3], b: [f64; 3]) -> Option<[f64; 3]> {
+    let det = |m: [[f64; 3]; 3]| {
+        m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+            + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
+    };
+    let d = det(a);
+    let scale = (a[0][0] + a[1][1] + a[2][2]).powi(3);
+    if !(d.abs() > 1e-9 * scale) {
+        return None;
+    }
+    Some(std::array::from_fn(|k| {
+        let mut m = a;
+        for i in 0..3 {
+            m[i][k] = b[i];
+        }
+        det(m) / d
+    }))
 }
 
 /// How far the scanned ground under a mobile crane's carrier and outriggers

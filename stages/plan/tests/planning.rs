@@ -923,6 +923,15 @@ fn a_carrier_parked_in_a_bank_is_refused() {
 /// The plant model is checked against the scans where both see the site:
 /// scanned points on the wall's face agree with the model; the same points
 /// half a metre off it (a model placed wrong) are said to disagree.
+/// Points every 0.5 m on the wall's south face and west end, as scanned
+/// with the wall `dx`, `dy` off where the model has it.
+fn wall_faces(dx: f64, dy: f64) -> Vec<[f64; 3]> {
+    let mut pts: Vec<[f64; 3]> =
+        (0..41 * 24).map(|n| [14.0 + dx + (n % 41) as f64 * 0.5, -1.0 + dy, 0.5 + (n / 41) as f64 * 0.5]).collect();
+    pts.extend((0..9 * 24).map(|n| [14.0 + dx, -1.0 + dy + (n % 9) as f64 * 0.25, 0.5 + (n / 9) as f64 * 0.5]));
+    pts
+}
+
 #[test]
 fn the_plant_model_is_checked_against_the_scans() {
     let mesh = site();
@@ -944,17 +953,42 @@ fn the_plant_model_is_checked_against_the_scans() {
     // Two faces of the wall, scanned 0.3 m west and 0.5 m south of where
     // the model has them: the move that puts the model on them is found.
     let (dx, dy) = (-0.3, -0.5);
-    let mut pts: Vec<[f64; 3]> =
-        (0..41 * 24).map(|n| [14.0 + dx + (n % 41) as f64 * 0.5, -1.0 + dy, 0.5 + (n / 41) as f64 * 0.5]).collect();
-    pts.extend((0..9 * 24).map(|n| [14.0 + dx, -1.0 + dy + (n % 9) as f64 * 0.25, 0.5 + (n / 9) as f64 * 0.5]));
-    let moved = agree(pts).unwrap();
-    let ([mx, my], pct) = moved.fits_moved_by.unwrap_or_else(|| panic!("no move found: {moved:?}"));
-    assert!((mx - dx).abs() < 0.02 && (my - dy).abs() < 0.02 && pct > 90.0, "{moved:?}");
+    let moved = agree(wall_faces(dx, dy)).unwrap();
+    let m = moved.fits_moved_by.unwrap_or_else(|| panic!("no move found: {moved:?}"));
+    assert!((m.by_m[0] - dx).abs() < 0.02 && (m.by_m[1] - dy).abs() < 0.02 && m.close_pct > 90.0, "{moved:?}");
+    assert!(m.turn_deg.abs() < 0.01, "{m:?}");
     assert!(
         moved.line().contains("the model lies on the scans when moved by x -0.30 m, y -0.50 m"),
         "{}",
         moved.line()
     );
+    // The same faces scanned turned by 2° about (20, 0) (a wrong
+    // rotate_z_deg): the turn is found, and the move it makes where the
+    // points are.
+    let turn = 2f64.to_radians();
+    let turned: Vec<[f64; 3]> = wall_faces(0.0, 0.0)
+        .iter()
+        .map(|p| {
+            let (x, y) = (p[0] - 20.0, p[1]);
+            [20.0 + x * turn.cos() - y * turn.sin(), x * turn.sin() + y * turn.cos(), p[2]]
+        })
+        .collect();
+    let a = agree(turned).unwrap();
+    let m = a.fits_moved_by.unwrap_or_else(|| panic!("no turn found: {a:?}"));
+    assert!((m.turn_deg - 2.0).abs() < 0.05 && m.close_pct > 90.0, "{m:?}");
+    // Turned about another point, the same move: it takes the wall's far
+    // corner where the 2° turn about (20, 0) does.
+    let (w, o) = (m.turn_deg.to_radians(), m.about_m);
+    let corner = [34.0 - o[0], -1.0 - o[1]];
+    let moved_to = [
+        o[0] + corner[0] * w.cos() - corner[1] * w.sin() + m.by_m[0],
+        o[1] + corner[0] * w.sin() + corner[1] * w.cos() + m.by_m[1],
+    ];
+    let want = [20.0 + 14.0 * turn.cos() + turn.sin(), 14.0 * turn.sin() - turn.cos()];
+    assert!((moved_to[0] - want[0]).abs() < 0.03 && (moved_to[1] - want[1]).abs() < 0.03, "{m:?} {moved_to:?}");
+    // Said as the one turn it is, about the point it leaves where it is.
+    assert!(m.by_m == [0.0, 0.0] && (m.about_m[0] - 20.0).abs() < 0.5 && m.about_m[1].abs() < 0.5, "{m:?}");
+    assert!(a.line().contains("the model lies on the scans when turned by +2.0"), "{}", a.line());
     // Too little overlap to say.
     assert_eq!(agree(face(0.0)[..40].to_vec()), None);
 }
