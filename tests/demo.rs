@@ -215,6 +215,19 @@ liftoff_m = 0.5
     let pages: Vec<u32> = doc.get_pages().keys().copied().collect();
     let text = doc.extract_text(&pages).unwrap().replace('\n', " ");
     assert!(text.contains("moved by x -2.00 m"), "{text}");
+    // The model 100 m north of the scanned site (a wrong datum): the scans
+    // barely meet it, so where it stands is unchecked, which the cover asks
+    // to check first.
+    let beside = t13.replace("translate_m = [-500.0, -300.0, 0.0]", "translate_m = [-500.0, -200.0, 0.0]");
+    std::fs::write(&toml_path, &beside).unwrap();
+    let r = run_json(&dir);
+    assert_eq!(stage(&r, "docs")["status"], "ran", "{r}");
+    let doc = lopdf::Document::load(&pdf_path).unwrap();
+    let pages: Vec<u32> = doc.get_pages().keys().copied().collect();
+    let cover = doc.extract_text(&pages[..1]).unwrap().replace('\n', " ");
+    assert!(cover.contains("where the plant model stands (the scans barely meet it)"), "{cover}");
+    let text = doc.extract_text(&pages).unwrap().replace('\n', " ");
+    assert!(text.contains("THE PLANT MODEL AND THE SCANS BARELY MEET"), "{text}");
     std::fs::write(&toml_path, &t13).unwrap();
 
     // Without its load chart the lift is not planned: a plan whose capacity

@@ -124,6 +124,13 @@ fn clearance_cell(m: f64) -> String {
 
 /// What the sign-off page flags for a check on site or in the inputs, in a
 /// few words each, for the cover.
+/// Whether a plant model and scans were both given but barely meet, so
+/// that where the model stands was not checked (a model a datum off in
+/// height, or beside the scanned area).
+fn model_unchecked(inp: &Inputs, plan: &LiftPlan) -> bool {
+    inp.mesh.is_some() && inp.cloud.is_some() && plan.model_vs_scans.is_none()
+}
+
 fn checks_before_signing(inp: &Inputs, task: &LiftTask, plan: &LiftPlan) -> Vec<String> {
     let sm = &plan.summary;
     let mut v = Vec::new();
@@ -135,6 +142,9 @@ fn checks_before_signing(inp: &Inputs, task: &LiftTask, plan: &LiftPlan) -> Vec<
     }
     if plan.model_vs_scans.as_ref().is_some_and(|a| a.disagrees()) {
         v.push("the plant model disagrees with the scans".to_string());
+    }
+    if model_unchecked(inp, plan) {
+        v.push("where the plant model stands (the scans barely meet it)".to_string());
     }
     if sm.coverage.as_ref().is_some_and(|c| c.load_passes_unscanned()) {
         v.push("ground under the load that no scan saw".to_string());
@@ -681,7 +691,8 @@ pub fn document(
         Some(a) => {
             sentence(&a.line())
         }
-        None => "The plant model and the scans barely overlap (or one of them is missing), so where the model stands in the site was not checked against the scans.".to_string(),
+        None if model_unchecked(inp, plan) => "THE PLANT MODEL AND THE SCANS BARELY MEET, so where the model stands in the site was not checked against the scans: CHECK [plant] translate_m and rotate_z_deg (a model off by a height datum, or beside the scanned area, meets none of the scans).".to_string(),
+        None => "There is no plant model or no scans, so where the model stands in the site was not checked against the scans.".to_string(),
     };
     y = sign_off_paragraph(&mut d, y, w, &model_text);
     let (left_out, scans) = &inp.scans_left_out;
