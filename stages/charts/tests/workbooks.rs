@@ -322,6 +322,20 @@ fn an_xlsb_chart_reads_as_its_xls_twin() {
     }
 }
 
+/// A lift of a 4 x 2 x 2 m load of `mass_t` on the built-in `crane` (its
+/// 40 m boom where it luffs) at the origin, with chart configuration
+/// `config`, picked at x `pick_x_m` and set 25 m north of the crane.
+fn lift_on(crane: &str, config: &str, mass_t: f64, pick_x_m: f64) -> liftplan_core::lift::LiftTask {
+    let boom = if crane == "ac-700" { ", \"boom_m\": 40.0" } else { "" };
+    let spec: liftplan_core::lift::LiftSpec = serde_json::from_str(&format!(
+        r#"{{ "id": "L", "load": {{ "mass_t": {mass_t}, "size_m": [4.0, 2.0, 2.0] }},
+            "crane": {{ "model": "{crane}", "position_m": [0.0, 0.0], "heading_deg": 0.0, "chart_config": "{config}"{boom} }},
+            "pick": {{ "x_m": {pick_x_m}, "y_m": 0.0, "z_m": 0.0 }}, "set": {{ "x_m": 0.0, "y_m": 25.0, "z_m": 0.0 }} }}"#
+    ))
+    .unwrap();
+    spec.resolve(liftplan_core::crane::builtin(crane).unwrap()).unwrap()
+}
+
 /// A chart of one capacity column: for a tower crane it is its jib's; for a
 /// luffing crane it may be one boom length's sheet, which the lift's boom
 /// must be (said, since the chart does not say it); and a chart by boom
@@ -335,16 +349,7 @@ fn a_chart_of_one_column_and_a_chart_by_boom_length_meet_the_right_crane() {
     liftplan_fixtures::chart::write_demo_chart(&by_boom).unwrap();
     let table =
         |p: &Path| liftplan_core::capacity::CapacityTable { configs: read_chart(p, &Settings::default()).unwrap().0 };
-    let lift = |crane: &str, config: &str| {
-        let boom = if crane == "ac-700" { ", \"boom_m\": 40.0" } else { "" };
-        let spec: liftplan_core::lift::LiftSpec = serde_json::from_str(&format!(
-            r#"{{ "id": "L", "load": {{ "mass_t": 5.0, "size_m": [4.0, 2.0, 2.0] }},
-                "crane": {{ "model": "{crane}", "position_m": [0.0, 0.0], "heading_deg": 0.0, "chart_config": "{config}"{boom} }},
-                "pick": {{ "x_m": 20.0, "y_m": 0.0, "z_m": 0.0 }}, "set": {{ "x_m": 0.0, "y_m": 25.0, "z_m": 0.0 }} }}"#
-        ))
-        .unwrap();
-        spec.resolve(liftplan_core::crane::builtin(crane).unwrap()).unwrap()
-    };
+    let lift = |crane: &str, config: &str| lift_on(crane, config, 5.0, 20.0);
     let tower_on_jib = liftplan_charts::lift_report(&lift("tower-hh-60", "Jib 60 m"), &table(&one)).unwrap();
     assert!(tower_on_jib.pick.is_some() && tower_on_jib.one_column_for_boom_m.is_none(), "{tower_on_jib:?}");
     let luffing_on_one = liftplan_charts::lift_report(&lift("ac-700", "Jib 60 m"), &table(&one)).unwrap();
@@ -365,16 +370,8 @@ fn a_lift_over_capacity_is_said_so_not_called_critical() {
     let path = d.path().join("ac700.xlsx");
     liftplan_fixtures::chart::write_demo_chart(&path).unwrap();
     let table = liftplan_core::capacity::CapacityTable { configs: read_chart(&path, &Settings::default()).unwrap().0 };
-    let report = |mass_t: f64| {
-        let spec: liftplan_core::lift::LiftSpec = serde_json::from_str(&format!(
-            r#"{{ "id": "L", "load": {{ "mass_t": {mass_t}, "size_m": [4.0, 2.0, 2.0] }},
-                "crane": {{ "model": "ac-700", "position_m": [0.0, 0.0], "heading_deg": 0.0, "chart_config": "Main boom 360", "boom_m": 40.0 }},
-                "pick": {{ "x_m": 15.0, "y_m": 0.0, "z_m": 0.0 }}, "set": {{ "x_m": 0.0, "y_m": 25.0, "z_m": 0.0 }} }}"#
-        ))
-        .unwrap();
-        let task = spec.resolve(liftplan_core::crane::builtin("ac-700").unwrap()).unwrap();
-        liftplan_charts::lift_report(&task, &table).unwrap()
-    };
+    let report =
+        |mass_t: f64| liftplan_charts::lift_report(&lift_on("ac-700", "Main boom 360", mass_t, 15.0), &table).unwrap();
     let line = |mass_t: f64| {
         let s = liftplan_charts::Summary { files: vec![], configs: vec![], rows: 0, lifts: vec![report(mass_t)] };
         s.lines().pop().unwrap()
