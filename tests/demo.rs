@@ -215,6 +215,16 @@ liftoff_m = 0.5
     let pages: Vec<u32> = doc.get_pages().keys().copied().collect();
     let text = doc.extract_text(&pages).unwrap().replace('\n', " ");
     assert!(text.contains("moved by x -2.00 m"), "{text}");
+    // The model 0.3 m high (a height datum): its walls still lie on the
+    // scans (85 % of the points near it, median 5 mm), but its tops do not,
+    // and the move down is said; it read "they agree", and the load met
+    // the model's foundation at its set-down ("CHECK set z_m").
+    let high = t13.replace("translate_m = [-500.0, -300.0, 0.0]", "translate_m = [-500.0, -300.0, 0.3]");
+    std::fs::write(&toml_path, &high).unwrap();
+    let o = liftplan(&["run", d, "-q"]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success(), "planned with the model 0.3 m high:\n{stderr}");
+    assert!(stderr.contains("the model lies on the scans when moved by z -0.30 m"), "{stderr}");
     // The model 100 m north of the scanned site (a wrong datum): the scans
     // barely meet it, so where it stands is unchecked, which the cover asks
     // to check first.

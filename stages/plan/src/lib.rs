@@ -151,6 +151,11 @@ pub const LOAD_CUTOUT_GROW_M: f64 = 0.1;
 /// lying on the load before the lift.
 pub const LOAD_CUTOUT_ABOVE_M: f64 = 0.3;
 
+/// How much higher the plant model may have the top of what a load stands
+/// on than the scans have it before a refusal there names the model's
+/// height (m): more than scan noise and thinning.
+pub const SUPPORT_TOPS_DIFFER_M: f64 = 0.03;
+
 /// How far above the load's box the cut-out of `grow_m` reaches (m).
 pub fn cutout_above_m(grow_m: f64) -> f64 {
     grow_m.max(LOAD_CUTOUT_ABOVE_M)
@@ -609,7 +614,10 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
         }
     };
     // A load declared lower than the top of what it stands on meets that
-    // where it is lifted off (or lowered onto it): say by how much.
+    // where it is lifted off (or lowered onto it): say by how much. Where
+    // that top is the plant model's and the scans have it lower, the model
+    // may stand too high (a height datum within the model-against-scans
+    // check's 0.1 m): say both.
     let sunk = |at: &Config, key: &str| {
         let load = task.crane.load_obb(at, &task.load);
         let (c, underside) = (load.center, load.aabb().min[2]);
@@ -617,14 +625,32 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
         // any yaw. What starts under its lower half: a slab it is sunk
         // through starts above its underside.
         let r = load.half.x.min(load.half.y) * std::f64::consts::FRAC_1_SQRT_2;
-        let top = liftplan_cspace::highest_below(site.map, c.x - r, c.x + r, c.y - r, c.y + r, c.z as f32) as f64;
-        if top > underside + 0.02 {
-            format!(
-                "; the load's underside there, z = {underside:.2} m, is about {:.2} m below the top of what stands under it (about z = {top:.2} m, as the depth map holds it): CHECK {key}",
-                top - underside
-            )
-        } else {
-            String::new()
+        let map = site.map;
+        let mut top: Option<&liftplan_depthmap::mdm::Interval> = None;
+        for j in map.spec.rows_between(c.y - r, c.y + r) {
+            for i in map.spec.cols_between(c.x - r, c.x + r) {
+                for iv in map.cell(i, j).iter().filter(|iv| (iv.zlo as f64) < c.z) {
+                    if top.is_none_or(|t| iv.zhi > t.zhi) {
+                        top = Some(iv);
+                    }
+                }
+            }
+        }
+        let Some(top) = top.filter(|t| t.zhi as f64 > underside + 0.02) else { return String::new() };
+        let z = top.zhi as f64;
+        let modelled = top.obj != liftplan_depthmap::mdm::OBJ_SCAN && top.obj != liftplan_depthmap::mdm::OBJ_GROUND;
+        let scanned = site.world.points.highest_in([c.x - r, c.y - r], [c.x + r, c.y + r], c.z);
+        match scanned.filter(|&scanned| modelled && scanned < z - SUPPORT_TOPS_DIFFER_M) {
+            Some(scanned) => format!(
+                "; the load's underside there, z = {underside:.2} m, is about {:.2} m below the top of what stands under it as the plant model has it ({}, up to z = {z:.2} m), but the scans have that top at z = {scanned:.2} m: CHECK [plant] translate_m's height (the model may stand {:.2} m too high) or {key}",
+                z - underside,
+                map.object_name(top),
+                z - scanned
+            ),
+            None => format!(
+                "; the load's underside there, z = {underside:.2} m, is about {:.2} m below the top of what stands under it (about z = {z:.2} m, as the depth map holds it): CHECK {key}",
+                z - underside
+            ),
         }
     };
     let load_part = |b: &liftplan_cspace::Blocked| b.part == Some(liftplan_core::crane::PartKind::Load);

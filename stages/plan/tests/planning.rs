@@ -7,7 +7,7 @@ use liftplan_core::mesh::TriMesh;
 use liftplan_cspace::Joint;
 use liftplan_depthmap::mdm::Mdm;
 use liftplan_plan::path::Move;
-use liftplan_plan::validate::{Rules, World, validate, validate_lift};
+use liftplan_plan::validate::{AGREEMENT_CLOSE_M, Rules, World, validate, validate_lift};
 use liftplan_plan::{Settings, Site, plan_lift};
 
 fn task(pick_y: f64) -> LiftTask {
@@ -153,6 +153,17 @@ set = { x_m = 22.0, y_m = 14.0, z_m = -0.2, yaw_deg = 90.0 }
     assert!(err.contains("the set-down is not clear: load touches SLAB"), "{err}");
     assert!(
         err.contains("the load's underside there, z = -0.20 m, is about 0.20 m below the top of what stands under it (about z = 0.00 m"),
+        "{err}"
+    );
+    // The scans have the slab's top there at z = -0.2 m, where the load is
+    // set: the model may stand too high, and the refusal says both.
+    let scanned: Vec<[f64; 3]> =
+        (0..21 * 21).map(|n| [17.0 + (n % 21) as f64 * 0.5, 9.0 + (n / 21) as f64 * 0.5, -0.2]).collect();
+    let scanned_world = World::new(&mesh, &scanned, &vec![true; scanned.len()]).unwrap();
+    let err =
+        plan_lift(&t, &Site { map: &m, world: &scanned_world, charts: None }, &quick(), 1).unwrap_err().to_string();
+    assert!(
+        err.contains("is about 0.20 m below the top of what stands under it as the plant model has it (SLAB, up to z = 0.00 m), but the scans have that top at z = -0.20 m: CHECK [plant] translate_m's height (the model may stand 0.20 m too high) or set z_m"),
         "{err}"
     );
     // Deeper, the load lifted off above it is already too close.
@@ -989,6 +1000,29 @@ fn the_plant_model_is_checked_against_the_scans() {
     // Said as the one turn it is, about the point it leaves where it is.
     assert!(m.by_m == [0.0, 0.0] && (m.about_m[0] - 20.0).abs() < 0.5 && m.about_m[1].abs() < 0.5, "{m:?}");
     assert!(a.line().contains("the model lies on the scans when turned by +2.0"), "{}", a.line());
+    // The wall's faces and its top scanned 0.4 m higher than the model has
+    // them (a height datum): most points still lie on the model's faces,
+    // so the points' median is small, but the move up is found.
+    let with_top = |dx: f64, dy: f64, dz: f64| -> Vec<[f64; 3]> {
+        let mut pts: Vec<[f64; 3]> = wall_faces(dx, dy).iter().map(|p| [p[0], p[1], p[2] + dz]).collect();
+        pts.extend(
+            (0..41 * 5).map(|n| [14.0 + dx + (n % 41) as f64 * 0.5, -1.0 + dy + (n / 41) as f64 * 0.5, 12.0 + dz]),
+        );
+        pts
+    };
+    let high = agree(with_top(0.0, 0.0, 0.4)).unwrap();
+    let m = high.fits_moved_by.unwrap_or_else(|| panic!("no move found: {high:?}"));
+    assert!(high.median_m < AGREEMENT_CLOSE_M && high.disagrees(), "{high:?}");
+    assert!((m.z_m - 0.4).abs() < 0.02 && m.by_m[0].abs() < 0.02 && m.by_m[1].abs() < 0.02, "{m:?}");
+    assert!(high.line().contains("the model lies on the scans when moved by z +0.40 m"), "{}", high.line());
+    // And 0.3 m west, 0.2 m north and 0.4 m up at once.
+    let all = agree(with_top(-0.3, 0.2, 0.4)).unwrap();
+    assert!(all.line().contains("moved by x -0.30 m, y +0.20 m, z +0.40 m"), "{}", all.line());
+    // Walls alone (below their top) do not say the height: none is sought.
+    let walls: Vec<[f64; 3]> =
+        wall_faces(-0.3, -0.5).iter().filter(|p| p[2] < 11.0).map(|p| [p[0], p[1], p[2] - 0.3]).collect();
+    let walls = agree(walls).unwrap();
+    assert!(walls.fits_moved_by.is_some_and(|m| m.z_m == 0.0), "{walls:?}");
     // Too little overlap to say.
     assert_eq!(agree(face(0.0)[..40].to_vec()), None);
 }
