@@ -422,11 +422,12 @@ impl CSpace {
     /// a rectangle query per cell.
     ///
     /// Where the dilated top reaches the sheave, something in the envelope's
-    /// square is at or above the sheave; the exact query would either find it
-    /// crossing the sheave height (no clear rope) or entirely above it (an
-    /// overhead structure, where the rope below may be clear): both become "no
-    /// clear rope" here, which only sends those rare cells to the exact online
-    /// checks.
+    /// square is at or above the sheave: crossing the sheave height (no clear
+    /// rope) or entirely above it (an overhead structure, where the rope
+    /// below may be clear). Those cells get the exact rectangle query: taken
+    /// as "no clear rope", an overhead structure sent every hanging-part
+    /// check under it to box queries (the demo under its plant model 100 m
+    /// up searched for 25 s instead of 1 s).
     fn max_hoist_table(&mut self, p: &Problem, gpu: Option<&liftplan_depthmap::gpu::Gpu>) -> Vec<f32> {
         let task = p.task;
         let crane = &task.crane;
@@ -453,7 +454,7 @@ impl CSpace {
                 let top = dilated[cj as usize * spec.nx as usize + ci as usize];
                 let motion = self.sheave_motion(crane, c.radial);
                 if top != f32::NEG_INFINITY && top as f64 >= sheave.z + motion {
-                    return f32::NEG_INFINITY;
+                    return self.cell_max_hoist(p, i, k);
                 }
                 Self::rope_clear_of(task, sheave.z - motion, top)
             })
