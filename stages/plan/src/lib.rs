@@ -653,13 +653,51 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
             ),
         }
     };
+    // What the load meets where only scan points stand, with no name to
+    // find it by: where the nearest of them is, and on which side of the
+    // load. At the pick it is most often the load itself, standing off the
+    // position, yaw or size the lift gives it, beyond the cut-out.
+    let scanned_near = |at: &Config, at_pick: bool| {
+        let load = task.crane.load_obb(at, &task.load);
+        let Some((p, d)) = validate::nearest_scanned_point(site.world, &load, task.clearance_m + 1.0) else {
+            return String::new();
+        };
+        let l = load.to_local(&liftplan_core::frame::Point3::new(p[0], p[1], p[2]));
+        let excess = [0, 1, 2].map(|a| l[a].abs() - load.half[a]);
+        let side = match (0..3).max_by(|&a, &b| excess[a].total_cmp(&excess[b])).unwrap_or(2) {
+            _ if excess.iter().all(|e| *e <= 0.0) => "inside the load's box",
+            0 => "beyond an end of the load's box (its size_m[0] side)",
+            1 => "beside the load's box (its size_m[1] side)",
+            _ if l[2] > 0.0 => "above the load's box",
+            _ => "under the load's box",
+        };
+        let load_itself = if at_pick && side != "under the load's box" {
+            ": if that is the load itself (standing off its pick position or yaw, or larger than size_m says, where the cut-out does not reach it), CHECK pick x_m, y_m, yaw_deg and size_m against the scans"
+        } else {
+            ""
+        };
+        format!(
+            "; the scanned point nearest the load there is at x {:.2}, y {:.2}, z {:.2} m, {d:.2} m {side}{load_itself}",
+            p[0], p[1], p[2]
+        )
+    };
+    let scanned = |b: &liftplan_cspace::Blocked| matches!(b.object.as_deref(), Some(o) if o == "scanned structure" || o == "ground (scan)");
     let load_part = |b: &liftplan_cspace::Blocked| b.part == Some(liftplan_core::crane::PartKind::Load);
+    // Said by how much the load is sunk into its support, or else where
+    // the scan point it meets is.
+    let hint = |b: &liftplan_cspace::Blocked, at: &Config, lifted: &Config, key: &str, at_pick: bool| {
+        if !load_part(b) {
+            return String::new();
+        }
+        let sunk = sunk(at, key);
+        if sunk.is_empty() && scanned(b) { scanned_near(lifted, at_pick) } else { sunk }
+    };
     if let Err(b) = ck.config(&start) {
-        let hint = if load_part(&b) { sunk(&task.pick, "pick z_m") } else { String::new() };
+        let hint = hint(&b, &task.pick, &start, "pick z_m", true);
         return Err(lift_err(task, format!("the lifted-off pick configuration is not allowed: {}{hint}", why(&b))));
     }
     if let Err(b) = ck.config(&goal0) {
-        let hint = if load_part(&b) { sunk(&task.set, "set z_m") } else { String::new() };
+        let hint = hint(&b, &task.set, &goal0, "set z_m", false);
         return Err(lift_err(
             task,
             format!("the configuration above the set position is not allowed: {}{hint}", why(&b)),

@@ -674,6 +674,19 @@ fn nearest(world: &World, b: &Obb, ground_below_z: f64, cutoff_m: f64) -> Neares
     best
 }
 
+/// The scanned point (ground or not) nearest `b` within `cutoff_m`, and its
+/// distance; `None` where none is that near.
+pub fn nearest_scanned_point(world: &World, b: &Obb, cutoff_m: f64) -> Option<([f64; 3], f64)> {
+    let (pose, cub) = parry_box(b);
+    let mut best = Nearest { distance_m: cutoff_m, object: String::new(), at: None };
+    let aabb = b.aabb().expanded(cutoff_m);
+    let (lo, hi) = (voxel(&aabb.min), voxel(&aabb.max));
+    let n_vox = (0..3).map(|a| hi[a] as i64 - lo[a] as i64 + 1).fold(1i64, i64::saturating_mul);
+    let walk_occupied = n_vox > world.points.keys.len() as i64;
+    nearest_point(&world.points, (&pose, &cub), (lo, hi), ALL_GROUND, walk_occupied, &mut best);
+    best.at.map(|p| (p, best.distance_m))
+}
+
 /// Improves `best` with the nearest point to a box among the points of
 /// voxels `lo ..= hi` (ground points at or below `ground_below_z` left out),
 /// the first in the index's order where several are as near. Walks either the occupied voxels (`walk_occupied`, cheaper when the

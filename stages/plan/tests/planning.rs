@@ -197,6 +197,30 @@ fn a_lift_off_within_the_landing_clearance_is_refused_naming_the_key() {
     assert!(plan_lift(&t, &site, &quick(), 1).is_ok());
 }
 
+/// What the load meets at its pick where only scan points stand (no name
+/// to find it by) is placed: the nearest scan point and the side of the
+/// load it is on, and, at the pick, that it may be the load itself standing
+/// off its declared position (here: the scans have its east end 0.12 m
+/// beyond the box the lift gives it).
+#[test]
+fn scan_points_the_load_meets_at_its_pick_are_placed() {
+    let mesh = site();
+    let t = task(-14.0);
+    // The load's box at pick: x 20 to 24, y -15 to -13, z 0.5 to 2.5.
+    let end: Vec<[f64; 3]> =
+        (0..21 * 19).map(|n| [24.12, -15.0 + (n % 21) as f64 * 0.1, 0.6 + (n / 21) as f64 * 0.1]).collect();
+    let world = World::new(&mesh, &end, &vec![false; end.len()]).unwrap();
+    let inp = liftplan_depthmap::Inputs { points: end.clone(), ground: vec![false; end.len()], mesh: mesh.clone() };
+    let m = liftplan_depthmap::build_cpu(&inp, &liftplan_depthmap::Settings::default()).unwrap().0;
+    let err = plan_lift(&t, &Site { map: &m, world: &world, charts: None }, &quick(), 1).unwrap_err().to_string();
+    assert!(err.contains("the lifted-off pick configuration is not allowed"), "{err}");
+    assert!(
+        err.contains("the scanned point nearest the load there is at x 24.12, y -15.00, z 1.00 m, 0.12 m beyond an end of the load's box (its size_m[0] side): if that is the load itself"),
+        "{err}"
+    );
+    assert!(err.contains("CHECK pick x_m, y_m, yaw_deg and size_m against the scans"), "{err}");
+}
+
 /// A wall too tall to lift the load over, with the swing held to the short
 /// way round: the refusal says how far the load gets and what stops it,
 /// how high the load hangs there at most, and what to change (it said
