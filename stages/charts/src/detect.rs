@@ -554,23 +554,45 @@ pub fn read_grid(
     let radii_m: Vec<f64> = radii_raw.iter().map(|r| r * u.radius.to_m()).collect();
     let booms_m: Vec<f64> = booms_raw.iter().map(|b| b * u.boom.to_m()).collect();
     let mut cells = vec![None; radii_m.len() * booms_m.len()];
+    let cell_of = |ri: usize, bi: usize| {
+        if g.transposed {
+            (g.rows[bi], g.value_cols[ri])
+        } else {
+            (g.rows[ri], g.value_cols[if g.boom_independent { 0 } else { bi }])
+        }
+    };
     for (ri, _) in radii_m.iter().enumerate() {
         for (bi, _) in booms_m.iter().enumerate() {
-            let (row, col) = if g.transposed {
-                (g.rows[bi], g.value_cols[ri])
-            } else {
-                (g.rows[ri], g.value_cols[if g.boom_independent { 0 } else { bi }])
-            };
+            let (row, col) = cell_of(ri, bi);
             let here = at(row, col);
             let v = parse_capacity(sheet.get(row, col), u.capacity, warnings, &here).map_err(|m| (here.clone(), m))?;
             cells[ri * booms_m.len() + bi] =
                 v.map(|x| ChartCell { capacity_kg: x * u.capacity.to_kg(), cell: format!("{file_label} [{here}]") });
         }
     }
-    // Capacity must not rise with radius.
+    // Capacity must not rise with radius; a column broken by a cell with
+    // none (a blank or '-' between two capacities) is read as not
+    // permitted there, which is safe but rarely what the chart means.
     for bi in 0..booms_m.len() {
         let mut prev: Option<(f64, usize)> = None;
         for ri in 0..radii_m.len() {
+            if let Some((_, pri)) = prev
+                && ri > pri + 1
+                && cells[ri * booms_m.len() + bi].is_some()
+            {
+                let (first, last) = (cell_of(pri + 1, bi), cell_of(ri - 1, bi));
+                let span = if first == last {
+                    at(first.0, first.1)
+                } else {
+                    format!("{}:{}", at(first.0, first.1), cell_ref(last.0, last.1))
+                };
+                warnings.push(format!(
+                    "{span}: no capacity between {:.2} m and {:.2} m on the {:.2} m boom, between two capacities: read as not permitted there (no lift is planned at those radii); a load chart's column is unbroken, check the cells",
+                    radii_m[pri],
+                    radii_m[ri],
+                    booms_m[bi]
+                ));
+            }
             if let Some(c) = &cells[ri * booms_m.len() + bi] {
                 if let Some((p, pri)) = prev
                     && c.capacity_kg > p * (1.0 + 1e-9)
@@ -818,6 +840,35 @@ mod tests {
         let e = read_grid(&s, g, &u, "c.xlsx", "x", &mut vec![]).unwrap_err();
         assert_eq!(e.0, "Main!B4");
         assert!(e.1.contains("rises with radius"), "{}", e.1);
+    }
+
+    /// A capacity missing between two others in a boom's column (a cell
+    /// deleted by mistake) is read as not permitted, and said with its
+    /// cells; blanks at a column's ends (the boom cannot reach so close or
+    /// so far) are not.
+    #[test]
+    fn a_column_broken_between_two_capacities_is_said() {
+        let s = sheet(&[
+            &["Radius m", "Boom m", "", ""],
+            &["", "12", "20", "28"],
+            &["3", "50", "", ""],
+            &["4", "40", "35", ""],
+            &["6", "30", "-", "20"],
+            &["8", "", "", "18"],
+            &["10", "", "22", "15"],
+        ]);
+        let g = &find_grids(&s).unwrap()[0];
+        let u = units(&s, g).unwrap();
+        let mut w = vec![];
+        let c = read_grid(&s, g, &u, "c.xlsx", "x", &mut w).unwrap();
+        assert!(c.lookup(20.0, 7.0).is_err());
+        assert_eq!(w.len(), 1, "{w:?}");
+        assert!(
+            w[0].starts_with(
+                "Main!C5:C6: no capacity between 4.00 m and 10.00 m on the 20.00 m boom, between two capacities"
+            ),
+            "{w:?}"
+        );
     }
 
     #[test]
