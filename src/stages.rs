@@ -220,6 +220,9 @@ pub fn docs() -> StageDef {
             ("plant", "plant.mesh"),
             ("charts", "capacity.csv"),
             ("charts", "lifts.json"),
+            // The warnings reading each configuration gave, which the
+            // sign-off page repeats for the lift's.
+            ("charts", "chart.json"),
         ],
         applicable: |_, _, up| up.contains_key("plan"),
         run: run_docs,
@@ -297,6 +300,17 @@ fn run_docs(ctx: &Ctx) -> Result<Produced> {
             }
         }
     }
+    // What reading each chart configuration warned of, for the lifts on it.
+    let mut chart_warnings = Vec::new();
+    if let Some(r) = upstream_json("charts", "chart.json")? {
+        for c in r["configs"].as_array().into_iter().flatten() {
+            let warnings: Vec<String> =
+                c["warnings"].as_array().into_iter().flatten().filter_map(|w| w.as_str().map(str::to_string)).collect();
+            if let (Some(name), false) = (c["name"].as_str(), warnings.is_empty()) {
+                chart_warnings.push((name.to_string(), warnings));
+            }
+        }
+    }
     let inputs = liftplan_docs::Inputs {
         project: p.raw.project.name.clone(),
         date: liftplan_docs::today(),
@@ -310,6 +324,7 @@ fn run_docs(ctx: &Ctx) -> Result<Produced> {
         input_hashes,
         scans_left_out,
         one_column_charts,
+        chart_warnings,
     };
     let summary = liftplan_docs::run(&inputs, &p.raw.docs, p.raw.gpu.use_, ctx.out)?;
     let mut outputs = Vec::new();

@@ -240,6 +240,25 @@ liftoff_m = 0.5
     assert!(text.contains("THE PLANT MODEL AND THE SCANS BARELY MEET"), "{text}");
     std::fs::write(&toml_path, &t13).unwrap();
 
+    // A capacity on the lift's chart configuration typed with a footnote
+    // mark ("41.5*", Main boom 360!H28): read with a warning, which the
+    // cover's CHECK FIRST and the sign-off page repeat (the mark may
+    // restrict the value; it was said on the inputs page only).
+    let chart_path = dir.join("charts").join("ac700-illustrative.xlsx");
+    liftplan_fixtures::chart::write_demo_chart_with(&chart_path, Some((21, 6, "41.5*"))).unwrap();
+    let r = run_json(&dir);
+    assert_eq!(stage(&r, "docs")["status"], "ran", "{r}");
+    let doc = lopdf::Document::load(&pdf_path).unwrap();
+    let pages: Vec<u32> = doc.get_pages().keys().copied().collect();
+    let cover = doc.extract_text(&pages[..1]).unwrap().replace('\n', " ");
+    assert!(cover.contains("the load chart cells read with a warning"), "{cover}");
+    let text = doc.extract_text(&pages).unwrap().replace('\n', " ");
+    assert!(
+        text.contains("READING THE LOAD CHART'S CONFIGURATION 'Main boom 360' WARNED: Main boom 360!H28: footnote mark dropped from '41.5*'"),
+        "{text}"
+    );
+    liftplan_fixtures::chart::write_demo_chart(&chart_path).unwrap();
+
     // Without its load chart the lift is not planned: a plan whose capacity
     // was never checked must not read as validated.
     let charts = dir.join("charts");

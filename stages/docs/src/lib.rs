@@ -81,6 +81,10 @@ pub struct Inputs {
     /// column, not one per boom length, with the boom length the chart must
     /// be for (the charts stage's `one_column_for_boom_m`).
     pub one_column_charts: Vec<(String, f64)>,
+    /// What reading each chart configuration warned of (a value read from
+    /// text, a footnote mark dropped, a column broken between two
+    /// capacities), by configuration name.
+    pub chart_warnings: Vec<(String, Vec<String>)>,
 }
 
 #[derive(Debug, Clone, Serialize)]

@@ -140,6 +140,9 @@ fn checks_before_signing(inp: &Inputs, task: &LiftTask, plan: &LiftPlan) -> Vec<
     if !inp.scans_left_out.0.is_empty() {
         v.push(format!("{} scans left out unregistered", inp.scans_left_out.0.len()));
     }
+    if let Some(w) = chart_warnings(inp, task) {
+        v.push(format!("the load chart cells read with a warning ({})", w.len()));
+    }
     if plan.model_vs_scans.as_ref().is_some_and(|a| a.disagrees()) {
         v.push("the plant model disagrees with the scans".to_string());
     }
@@ -161,6 +164,11 @@ fn checks_before_signing(inp: &Inputs, task: &LiftTask, plan: &LiftPlan) -> Vec<
         v.push("the tower crane's base level".to_string());
     }
     v
+}
+
+/// What reading the lift's chart configuration warned of, where it did.
+fn chart_warnings<'a>(inp: &'a Inputs, task: &LiftTask) -> Option<&'a [String]> {
+    inp.chart_warnings.iter().find(|(name, w)| *name == task.chart_config && !w.is_empty()).map(|(_, w)| w.as_slice())
 }
 
 /// How far a tower crane's base stands above (+) or below (-) the median of
@@ -695,6 +703,19 @@ pub fn document(
         None => "There is no plant model or no scans, so where the model stands in the site was not checked against the scans.".to_string(),
     };
     y = sign_off_paragraph(&mut d, y, w, &model_text);
+    if let Some(warned) = chart_warnings(inp, task) {
+        y += 4.0;
+        y = sign_off_paragraph(
+            &mut d,
+            y,
+            w,
+            &format!(
+                "READING THE LOAD CHART'S CONFIGURATION '{}' WARNED: {}. The capacities this plan checks were read so: CHECK THOSE CELLS against the chart the crane's owner issued (a footnote may restrict the value it marks).",
+                task.chart_config,
+                warned.join("; ")
+            ),
+        );
+    }
     let (left_out, scans) = &inp.scans_left_out;
     if !left_out.is_empty() {
         y += 4.0;
