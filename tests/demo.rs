@@ -225,6 +225,16 @@ liftoff_m = 0.5
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert!(!o.status.success(), "planned with the model 0.3 m high:\n{stderr}");
     assert!(stderr.contains("the model lies on the scans when moved by z -0.30 m"), "{stderr}");
+    // The vessel left in the plant model, where it is installed: the load
+    // set there meets its own copy, named as such (it read "CHECK set z_m").
+    let kept = t13.replace("exclude = [\"/V-101\"]", "");
+    assert_ne!(kept, t13);
+    std::fs::write(&toml_path, &kept).unwrap();
+    let o = liftplan(&["run", d, "-q"]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success(), "planned with the vessel in the model at its set position:\n{stderr}");
+    assert!(stderr.contains("the plant model's /V-101 fills the load's box there"), "{stderr}");
+    assert!(stderr.contains("[plant] exclude = [\"/V-101\"]"), "{stderr}");
     // The model 100 m north of the scanned site (a wrong datum): the scans
     // barely meet it, so where it stands is unchecked, which the cover asks
     // to check first.

@@ -683,11 +683,24 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
     };
     let scanned = |b: &liftplan_cspace::Blocked| matches!(b.object.as_deref(), Some(o) if o == "scanned structure" || o == "ground (scan)");
     let load_part = |b: &liftplan_cspace::Blocked| b.part == Some(liftplan_core::crane::PartKind::Load);
-    // Said by how much the load is sunk into its support, or else where
-    // the scan point it meets is.
+    // A plant model holds what a lift installs where it is installed: the
+    // load at its set position meets its own copy there.
+    let itself_in_the_model = |at: &Config| {
+        validate::model_group_filling(site.world, &task.crane.load_obb(at, &task.load)).map(|(name, share)| {
+            format!(
+                "; the plant model's {name} fills the load's box there (their bounding boxes {:.0} % alike): if it is this load where it is installed, leave it out of the plant model ([plant] exclude = [\"{name}\"])",
+                share * 100.0
+            )
+        })
+    };
+    // Said as the load's own copy in the model, or by how much the load is
+    // sunk into its support, or else where the scan point it meets is.
     let hint = |b: &liftplan_cspace::Blocked, at: &Config, lifted: &Config, key: &str, at_pick: bool| {
         if !load_part(b) {
             return String::new();
+        }
+        if let Some(itself) = itself_in_the_model(at) {
+            return itself;
         }
         let sunk = sunk(at, key);
         if sunk.is_empty() && scanned(b) { scanned_near(lifted, at_pick) } else { sunk }
@@ -730,7 +743,7 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
                 })
                 .collect();
             let hint = if v.problems.iter().any(|p| p.starts_with("move 1 (Hoist): load ")) {
-                sunk(at, key)
+                itself_in_the_model(at).unwrap_or_else(|| sunk(at, key))
             } else {
                 String::new()
             };

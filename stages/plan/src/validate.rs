@@ -687,6 +687,54 @@ pub fn nearest_scanned_point(world: &World, b: &Obb, cutoff_m: f64) -> Option<([
     best.at.map(|p| (p, best.distance_m))
 }
 
+/// The plant model's group that fills the box `b` as a copy of what it
+/// stands for would (their bounding boxes' overlap more than half their
+/// union), with that share; `None` where none does. A plant model holds
+/// the equipment a lift installs where it is installed: at the set
+/// position the load meets itself.
+pub fn model_group_filling(world: &World, b: &Obb) -> Option<(String, f64)> {
+    let mesh = world.mesh.as_ref()?;
+    let target = b.aabb();
+    // The groups near the box (a model's faces lie on it, a rounding in or out).
+    let near = target.expanded(0.1);
+    let mut boxes: HashMap<&str, liftplan_core::frame::Aabb> = HashMap::new();
+    for (t, group) in world.tri_group.iter().enumerate() {
+        let tri = mesh.triangle(t as u32);
+        let (lo, hi) = (tri.a.min(tri.b).min(tri.c), tri.a.max(tri.b).max(tri.c));
+        if (0..3).any(|a| hi[a] < near.min[a] || lo[a] > near.max[a]) {
+            continue;
+        }
+        let e = boxes.entry(group.as_str()).or_insert_with(liftplan_core::frame::Aabb::empty);
+        e.grow([lo.x, lo.y, lo.z]);
+        e.grow([hi.x, hi.y, hi.z]);
+    }
+    // Only groups near the box were gathered: each group's whole box, for
+    // those.
+    for (t, group) in world.tri_group.iter().enumerate() {
+        if let Some(e) = boxes.get_mut(group.as_str()) {
+            let tri = mesh.triangle(t as u32);
+            for p in [tri.a, tri.b, tri.c] {
+                e.grow([p.x, p.y, p.z]);
+            }
+        }
+    }
+    let volume = |a: &liftplan_core::frame::Aabb| (0..3).map(|i| (a.max[i] - a.min[i]).max(0.0)).product::<f64>();
+    boxes
+        .into_iter()
+        .map(|(name, a)| {
+            let overlap = liftplan_core::frame::Aabb {
+                min: std::array::from_fn(|i| a.min[i].max(target.min[i])),
+                max: std::array::from_fn(|i| a.max[i].min(target.max[i])),
+            };
+            let shared = volume(&overlap);
+            (name, shared / (volume(&a) + volume(&target) - shared).max(1e-12))
+        })
+        .filter(|(_, share)| *share > 0.5)
+        // The best, and of equal shares the first by name: one answer.
+        .max_by(|a, b| a.1.total_cmp(&b.1).then_with(|| b.0.cmp(a.0)))
+        .map(|(name, share)| (name.to_string(), share))
+}
+
 /// Improves `best` with the nearest point to a box among the points of
 /// voxels `lo ..= hi` (ground points at or below `ground_below_z` left out),
 /// the first in the index's order where several are as near. Walks either the occupied voxels (`walk_occupied`, cheaper when the

@@ -221,6 +221,35 @@ fn scan_points_the_load_meets_at_its_pick_are_placed() {
     assert!(err.contains("CHECK pick x_m, y_m, yaw_deg and size_m against the scans"), "{err}");
 }
 
+/// A plant model holds what a lift installs where it is installed: the
+/// load set there meets its own copy, which the refusal names as such and
+/// says how to leave out (it read as the load sunk 2 m into its support:
+/// "CHECK set z_m").
+#[test]
+fn the_load_itself_in_the_plant_model_at_its_set_position_is_named() {
+    let mut mesh = site();
+    // The load's box at its set position: x 21 to 23, y 12 to 16, z 0.5 to 2.5.
+    box_part(&mut mesh, "SKID-7", [21.0, 12.0, 0.5], [23.0, 16.0, 2.5]);
+    let world = World::new(&mesh, &[], &[]).unwrap();
+    let m = map(&mesh);
+    let err =
+        plan_lift(&task(-14.0), &Site { map: &m, world: &world, charts: None }, &quick(), 1).unwrap_err().to_string();
+    assert!(err.contains("the configuration above the set position is not allowed"), "{err}");
+    assert!(
+        err.contains("the plant model's SKID-7 fills the load's box there (their bounding boxes 100 % alike): if it is this load where it is installed, leave it out of the plant model ([plant] exclude = [\"SKID-7\"])"),
+        "{err}"
+    );
+    assert!(!err.contains("CHECK set z_m"), "{err}");
+    // A part of the model beside the set position is not taken for the load.
+    let mut mesh = site();
+    box_part(&mut mesh, "PUMP", [21.0, 16.3, 0.0], [23.0, 17.0, 2.5]);
+    let world = World::new(&mesh, &[], &[]).unwrap();
+    let m = map(&mesh);
+    if let Err(e) = plan_lift(&task(-14.0), &Site { map: &m, world: &world, charts: None }, &quick(), 1) {
+        assert!(!e.to_string().contains("fills the load's box"), "{e}");
+    }
+}
+
 /// A wall too tall to lift the load over, with the swing held to the short
 /// way round: the refusal says how far the load gets and what stops it,
 /// how high the load hangs there at most, and what to change (it said
