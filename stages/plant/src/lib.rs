@@ -156,6 +156,12 @@ pub struct Summary {
     pub max_error_m: f64,
     pub caps_culled: usize,
     pub excluded_groups: Vec<String>,
+    /// `[plant] exclude` patterns that matched no group (each with the
+    /// nearest group name, where one is near): nothing was left out for them.
+    pub exclude_unmatched: Vec<String>,
+    /// Every group name met, for checking the selection's patterns.
+    #[serde(skip)]
+    pub seen_groups: Vec<String>,
     /// RVM line primitives, which have no surface: not in the mesh.
     pub lines_skipped: usize,
     /// glTF primitives drawn as points or lines ("file: node (mode)"), OBJ
@@ -182,6 +188,9 @@ impl Summary {
         if !self.excluded_groups.is_empty() {
             v.push(format!("excluded {} groups: {}", self.excluded_groups.len(), first_five(&self.excluded_groups)));
         }
+        for p in &self.exclude_unmatched {
+            v.push(format!("[plant] exclude {p} matches no group: NOTHING WAS LEFT OUT for it"));
+        }
         if let Some(how) = &self.meshes_read_as {
             v.push(format!(
                 "OBJ/PLY/STL coordinates {how}, as [plant] unit and up_axis say: {} file{}",
@@ -207,6 +216,39 @@ impl Summary {
         }
         v
     }
+}
+
+/// The name in `names` nearest `pattern` by edit distance (case ignored),
+/// where it is at most a quarter of the pattern's length (and at least 2)
+/// away; of equal distances the first.
+fn nearest_name<'a>(pattern: &str, names: &'a [String]) -> Option<&'a str> {
+    let p: Vec<char> = pattern.to_lowercase().chars().collect();
+    let limit = (p.len() / 4).max(2);
+    let mut best: Option<(usize, &str)> = None;
+    let mut row: Vec<usize> = Vec::new();
+    for name in names {
+        let n: Vec<char> = name.to_lowercase().chars().collect();
+        if n.len().abs_diff(p.len()) > limit {
+            continue;
+        }
+        // Levenshtein, one row at a time.
+        row.clear();
+        row.extend(0..=n.len());
+        for (i, pc) in p.iter().enumerate() {
+            let mut diag = row[0];
+            row[0] = i + 1;
+            for (j, nc) in n.iter().enumerate() {
+                let next = (diag + usize::from(pc != nc)).min(row[j] + 1).min(row[j + 1] + 1);
+                diag = row[j + 1];
+                row[j + 1] = next;
+            }
+        }
+        let d = row[n.len()];
+        if d <= limit && best.is_none_or(|(bd, _)| d < bd) {
+            best = Some((d, name));
+        }
+    }
+    best.map(|(_, n)| n)
 }
 
 /// The first five of `items`, and "..." when there are more.
@@ -372,7 +414,9 @@ pub fn rvm_to_mesh(
         kept: &mut Vec<(&'a rvm::Primitive, usize)>,
         names: &mut Vec<String>,
         excluded: &mut Vec<String>,
+        seen: &mut Vec<String>,
     ) {
+        seen.push(g.name.clone());
         if s.exclude.iter().any(|p| glob(p, &g.name)) || matches_where(attrs, &g.name, &s.exclude_where) {
             excluded.push(g.name.clone());
             return;
@@ -399,11 +443,11 @@ pub fn rvm_to_mesh(
             }
         }
         for c in &g.children {
-            go(c, included, attrs, s, kept, names, excluded);
+            go(c, included, attrs, s, kept, names, excluded, seen);
         }
     }
     for g in &file.groups {
-        go(g, None, attrs, s, &mut kept, &mut group_names, &mut summary.excluded_groups);
+        go(g, None, attrs, s, &mut kept, &mut group_names, &mut summary.excluded_groups, &mut summary.seen_groups);
     }
     summary.groups += file.group_count();
     for (k, n) in file.primitive_counts() {
@@ -567,6 +611,7 @@ fn select_mesh(m: TriMesh, s: &Settings, summary: &mut Summary) -> TriMesh {
         .groups
         .iter()
         .map(|g| {
+            summary.seen_groups.push(g.clone());
             let inc = s.include.is_empty() || s.include.iter().any(|p| glob(p, g));
             let exc = s.exclude.iter().any(|p| glob(p, g));
             if exc {
@@ -651,6 +696,30 @@ pub fn run(
         summary.files.push(liftplan_core::location::shown(p, root));
     }
     progress("read", inputs.len() as u64, inputs.len() as u64);
+    // A selection pattern that matches no group is most often a typo. An
+    // include's would leave out of the obstacles what it was meant to keep
+    // (with every include a typo, the whole model): refused. An exclude's
+    // leaves in what it was meant to leave out, which errs on the safe
+    // side: said.
+    let unmatched = |patterns: &[String]| -> Vec<String> {
+        patterns
+            .iter()
+            .filter(|p| !summary.seen_groups.iter().any(|g| glob(p, g)))
+            .map(|p| match nearest_name(p, &summary.seen_groups) {
+                Some(n) => format!("'{p}' (is it '{n}'?)"),
+                None => format!("'{p}'"),
+            })
+            .collect()
+    };
+    let include_unmatched = unmatched(&s.include);
+    if !include_unmatched.is_empty() && !summary.seen_groups.is_empty() {
+        return Err(PlantError::Settings(format!(
+            "include {} matches no group of the model: what it was meant to keep would be no obstacle to any lift; correct it (the model's groups are named like {})",
+            include_unmatched.join(", "),
+            first_five(&summary.seen_groups)
+        )));
+    }
+    summary.exclude_unmatched = unmatched(&s.exclude);
     let pose = liftplan_core::frame::pose_xyz_yaw(
         s.translate_m[0],
         s.translate_m[1],
@@ -776,6 +845,39 @@ mod tests {
         let path = dir.join("plant.rvm");
         std::fs::write(&path, rvm::write(&RvmFile { groups: vec![group], ..Default::default() })).unwrap();
         path
+    }
+
+    /// A selection pattern that matches no group is a typo: an include's
+    /// would leave out of the obstacles what it was meant to keep (all of
+    /// the model here, which was planned with as nothing), so it is
+    /// refused; an exclude's leaves in what it was meant to leave out, and
+    /// is said, with the group it most likely meant.
+    #[test]
+    fn selection_patterns_that_match_nothing_are_named() {
+        let d = tempfile::tempdir().unwrap();
+        let path = tori_file(d.path(), 1, 1.0);
+        let out = d.path().join("out");
+        let run_with = |s: Settings| run(std::slice::from_ref(&path), &s, &out, None, &|_, _, _| {});
+        let e = run_with(Settings { include: vec!["/ELBOW".into(), "/ELB*".into()], ..Default::default() })
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("include '/ELBOW' (is it '/ELBOWS'?) matches no group of the model: what it was meant to keep would be no obstacle"),
+            "{e}"
+        );
+        assert!(!e.contains("'/ELB*'") && e.contains("named like /ELBOWS"), "{e}");
+        let summary =
+            run_with(Settings { exclude: vec!["/ELBOWZ".into(), "/PUMP-9".into()], ..Default::default() }).unwrap();
+        assert!(summary.triangles > 0);
+        let lines = summary.lines().join("\n");
+        assert!(
+            lines
+                .contains("[plant] exclude '/ELBOWZ' (is it '/ELBOWS'?) matches no group: NOTHING WAS LEFT OUT for it"),
+            "{lines}"
+        );
+        assert!(lines.contains("[plant] exclude '/PUMP-9' matches no group"), "{lines}");
+        let summary = run_with(Settings { exclude: vec!["/elbows".into()], ..Default::default() }).unwrap();
+        assert!(summary.exclude_unmatched.is_empty() && summary.triangles == 0, "{summary:?}");
     }
 
     /// A model whose tessellation would pass the plant's triangle budget is
