@@ -1,0 +1,121 @@
+//! What a refusal at the pick or the set adds about why the load meets
+//! something there, so that the engineer knows which input to correct: its
+//! own copy in the plant model, a support it is declared sunk into (and
+//! whether the model or the scans put that support's top there), or where
+//! the scan point it meets stands.
+//!
+//! Words only: nothing here decides whether a lift is planned.
+
+use crate::{Site, validate};
+use liftplan_core::crane::{Config, PartKind};
+use liftplan_core::frame::Point3;
+use liftplan_core::lift::LiftTask;
+use liftplan_depthmap::mdm::{Interval, OBJ_GROUND, OBJ_SCAN};
+
+/// How much higher the plant model may have the top of what a load stands
+/// on than the scans have it before a refusal there names the model's
+/// height (m): more than scan noise and thinning.
+pub const SUPPORT_TOPS_DIFFER_M: f64 = 0.03;
+
+/// The hint for a refusal `blocked` of the load at its pick or set: the load
+/// resting at `at`, checked at `lifted`; `key` names the position's height
+/// (`pick z_m`, `set z_m`). Empty where the load is not what is blocked.
+pub(crate) fn for_load(
+    task: &LiftTask,
+    site: &Site,
+    blocked: &liftplan_cspace::Blocked,
+    at: &Config,
+    lifted: &Config,
+    key: &str,
+    at_pick: bool,
+) -> String {
+    if blocked.part != Some(PartKind::Load) {
+        return String::new();
+    }
+    if let Some(itself) = itself_in_the_model(task, site, at) {
+        return itself;
+    }
+    let sunk = sunk(task, site, at, key);
+    let scanned = matches!(blocked.object.as_deref(), Some("scanned structure" | "ground (scan)"));
+    if sunk.is_empty() && scanned { scanned_near(task, site, lifted, at_pick) } else { sunk }
+}
+
+/// A plant model holds what a lift installs where it is installed: the load
+/// at its set position meets its own copy there.
+pub(crate) fn itself_in_the_model(task: &LiftTask, site: &Site, at: &Config) -> Option<String> {
+    validate::model_group_filling(site.world, &task.crane.load_obb(at, &task.load)).map(|(name, share)| {
+        format!(
+            "; the plant model's {name} fills the load's box there (their bounding boxes {:.0} % alike): if it is this load where it is installed, leave it out of the plant model ([plant] exclude = [\"{name}\"])",
+            share * 100.0
+        )
+    })
+}
+
+/// A load declared lower than the top of what it stands on meets that where
+/// it is lifted off (or lowered onto it): by how much. Where that top is
+/// the plant model's and the scans have it lower, the model may stand too
+/// high (a height datum within the model-against-scans check's 0.1 m): both.
+pub(crate) fn sunk(task: &LiftTask, site: &Site, at: &Config, key: &str) -> String {
+    let load = task.crane.load_obb(at, &task.load);
+    let (c, underside) = (load.center, load.aabb().min[2]);
+    // Under the load, not beside it: a square within its footprint at any
+    // yaw. What starts under its lower half: a slab it is sunk through
+    // starts above its underside.
+    let r = load.half.x.min(load.half.y) * std::f64::consts::FRAC_1_SQRT_2;
+    let map = site.map;
+    let mut top: Option<&Interval> = None;
+    for j in map.spec.rows_between(c.y - r, c.y + r) {
+        for i in map.spec.cols_between(c.x - r, c.x + r) {
+            for iv in map.cell(i, j).iter().filter(|iv| (iv.zlo as f64) < c.z) {
+                if top.is_none_or(|t| iv.zhi > t.zhi) {
+                    top = Some(iv);
+                }
+            }
+        }
+    }
+    let Some(top) = top.filter(|t| t.zhi as f64 > underside + 0.02) else { return String::new() };
+    let z = top.zhi as f64;
+    let modelled = top.obj != OBJ_SCAN && top.obj != OBJ_GROUND;
+    let scanned = site.world.points.highest_in([c.x - r, c.y - r], [c.x + r, c.y + r], c.z);
+    match scanned.filter(|&scanned| modelled && scanned < z - SUPPORT_TOPS_DIFFER_M) {
+        Some(scanned) => format!(
+            "; the load's underside there, z = {underside:.2} m, is about {:.2} m below the top of what stands under it as the plant model has it ({}, up to z = {z:.2} m), but the scans have that top at z = {scanned:.2} m: CHECK [plant] translate_m's height (the model may stand {:.2} m too high) or {key}",
+            z - underside,
+            map.object_name(top),
+            z - scanned
+        ),
+        None => format!(
+            "; the load's underside there, z = {underside:.2} m, is about {:.2} m below the top of what stands under it (about z = {z:.2} m, as the depth map holds it): CHECK {key}",
+            z - underside
+        ),
+    }
+}
+
+/// What the load meets at `at` where only scan points stand, with no name
+/// to find it by: where the nearest of them is, and on which side of the
+/// load. At the pick it is most often the load itself, standing off the
+/// position, yaw or size the lift gives it, beyond the cut-out.
+pub(crate) fn scanned_near(task: &LiftTask, site: &Site, at: &Config, at_pick: bool) -> String {
+    let load = task.crane.load_obb(at, &task.load);
+    let Some((p, d)) = validate::nearest_scanned_point(site.world, &load, task.clearance_m + 1.0) else {
+        return String::new();
+    };
+    let l = load.to_local(&Point3::new(p[0], p[1], p[2]));
+    let excess = [0, 1, 2].map(|a| l[a].abs() - load.half[a]);
+    let side = match (0..3).max_by(|&a, &b| excess[a].total_cmp(&excess[b])).unwrap_or(2) {
+        _ if excess.iter().all(|e| *e <= 0.0) => "inside the load's box",
+        0 => "beyond an end of the load's box (its size_m[0] side)",
+        1 => "beside the load's box (its size_m[1] side)",
+        _ if l[2] > 0.0 => "above the load's box",
+        _ => "under the load's box",
+    };
+    let load_itself = if at_pick && side != "under the load's box" {
+        ": if that is the load itself (standing off its pick position or yaw, or larger than size_m says, where the cut-out does not reach it), CHECK pick x_m, y_m, yaw_deg and size_m against the scans"
+    } else {
+        ""
+    };
+    format!(
+        "; the scanned point nearest the load there is at x {:.2}, y {:.2}, z {:.2} m, {d:.2} m {side}{load_itself}",
+        p[0], p[1], p[2]
+    )
+}
