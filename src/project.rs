@@ -440,6 +440,8 @@ keep = 3                  # runs' outputs each stage keeps in .liftplan/cache (t
 # liftoff_m = 0.5              # vertical lift-off at the pick and set-down at the set, m
 # critical_pct = 75.0          # utilisation over which the lift is flagged critical, %
 # capacity_reduction_pct = 0.0 # taken off every chart value (site rules, wind), %
+# radius_allowance_m = 0.0     # added to every radius before the chart is read
+#                              # (the boom bending under load), m
 # swing_range_deg = [-120.0, 120.0] # permitted slewing sector from the crane's heading;
 #                                   # leave it out for a crane free to slew
 "#;
@@ -478,7 +480,7 @@ mod tests {
             .join("\n");
         let v: toml::Value = toml::from_str(&lift).unwrap_or_else(|e| panic!("{e}\n{lift}"));
         let spec: liftplan_core::lift::LiftSpec = v["lift"][0].clone().try_into().unwrap();
-        for key in ["liftoff_m", "critical_pct", "capacity_reduction_pct", "swing_range_deg"] {
+        for key in ["liftoff_m", "critical_pct", "capacity_reduction_pct", "radius_allowance_m", "swing_range_deg"] {
             assert!(v["lift"][0].get(key).is_some(), "{key} is not shown");
         }
         let task = spec.resolve(liftplan_core::crane::builtin("ltm-1100").unwrap()).unwrap();

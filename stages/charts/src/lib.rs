@@ -324,6 +324,8 @@ pub struct LiftReport {
     pub chart_config: String,
     pub gross_kg: f64,
     pub capacity_reduction_pct: f64,
+    /// Added to every radius before the chart was read (m).
+    pub radius_allowance_m: f64,
     pub pick: Option<CapacityCheck>,
     pub set: Option<CapacityCheck>,
     pub pick_error: Option<String>,
@@ -359,6 +361,7 @@ pub fn lift_report(task: &LiftTask, table: &CapacityTable) -> Result<LiftReport>
         chart_config: task.chart_config.clone(),
         gross_kg: task.gross_kg(),
         capacity_reduction_pct: task.capacity_reduction_pct,
+        radius_allowance_m: task.radius_allowance_m,
         pick_error: pick.as_ref().err().map(|e| e.to_string()),
         set_error: set.as_ref().err().map(|e| e.to_string()),
         pick: pick.ok(),
@@ -425,7 +428,12 @@ impl Summary {
             } else {
                 String::new()
             };
-            v.push(format!("lift {}: gross {:.2} t, pick {pick}, set {set}{flag}", l.id, l.gross_kg / 1000.0));
+            let farther = if l.radius_allowance_m > 0.0 {
+                format!(" (the chart read {:.2} m farther out, radius_allowance_m)", l.radius_allowance_m)
+            } else {
+                String::new()
+            };
+            v.push(format!("lift {}: gross {:.2} t, pick {pick}, set {set}{farther}{flag}", l.id, l.gross_kg / 1000.0));
             if let Some(boom) = l.one_column_for_boom_m {
                 v.push(format!(
                     "lift {}: chart configuration '{}' has one capacity column, not one per boom length: CHECK THAT IT IS THE CHART FOR THE {boom:.1} m BOOM the lift sets up",

@@ -107,6 +107,11 @@ pub struct LiftSpec {
     /// Capacity reduction applied to every chart value (site rules, wind), percent.
     #[serde(default)]
     pub capacity_reduction_pct: f64,
+    /// Added to every radius before the chart is read (m): an allowance for
+    /// the boom bending under load, which lengthens the radius the rigid
+    /// crane model plans with.
+    #[serde(default)]
+    pub radius_allowance_m: f64,
     /// Utilisation above which the lift is flagged critical, percent.
     #[serde(default = "default_critical")]
     pub critical_pct: f64,
@@ -145,6 +150,8 @@ pub struct LiftTask {
     pub clearance_m: f64,
     pub liftoff_m: f64,
     pub capacity_reduction_pct: f64,
+    /// Added to every radius before the chart is read (m).
+    pub radius_allowance_m: f64,
     pub critical_pct: f64,
     pub swing_range_rad: Option<(f64, f64)>,
 }
@@ -184,6 +191,10 @@ pub const MAX_LOAD_SIDE_M: f64 = 150.0;
 pub const MAX_RIGGING_HEIGHT_M: f64 = 100.0;
 /// The largest clearance or lift-off (m).
 pub const MAX_CLEARANCE_M: f64 = 20.0;
+/// The largest radius allowance liftplan takes (m): a boom bending more
+/// than this under its load is beyond what a chart read farther out stands
+/// for.
+pub const MAX_RADIUS_ALLOWANCE_M: f64 = 10.0;
 
 impl LiftSpec {
     /// Checks the request against the crane model and solves pick and set.
@@ -235,6 +246,8 @@ impl LiftSpec {
         metres("clearance_m", self.clearance_m, MAX_CLEARANCE_M)?;
         nonneg("liftoff_m", self.liftoff_m)?;
         metres("liftoff_m", self.liftoff_m, MAX_CLEARANCE_M)?;
+        nonneg("radius_allowance_m", self.radius_allowance_m)?;
+        metres("radius_allowance_m", self.radius_allowance_m, MAX_RADIUS_ALLOWANCE_M)?;
         if !(0.0..100.0).contains(&self.capacity_reduction_pct) {
             return Err(format!(
                 "lift '{id}': capacity_reduction_pct must be in 0..100, found {}",
@@ -372,6 +385,7 @@ impl LiftSpec {
             clearance_m: self.clearance_m,
             liftoff_m: self.liftoff_m,
             capacity_reduction_pct: self.capacity_reduction_pct,
+            radius_allowance_m: self.radius_allowance_m,
             critical_pct: self.critical_pct,
             swing_range_rad,
         })
@@ -452,6 +466,39 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         assert!(s.resolve(crane()).is_ok());
     }
 
+    /// A radius allowance (for the boom bending under load) reads the chart
+    /// that much farther out, in every capacity check the planner, the
+    /// validator and the charts stage make; it is a length in metres.
+    #[test]
+    fn the_radius_allowance_reads_the_chart_farther_out() {
+        let crane = || crate::crane::builtin("ltm-1100").unwrap();
+        // One boom, rows every 2 m from 4 to 60 m: (100 - r) t.
+        let radii_m: Vec<f64> = (2..=30).map(|k| 2.0 * k as f64).collect();
+        let cells = radii_m
+            .iter()
+            .map(|r| Some(crate::capacity::ChartCell { capacity_kg: (100.0 - r) * 1000.0, cell: format!("r{r}") }))
+            .collect();
+        let chart = crate::capacity::ChartConfig { name: "main".into(), boom_lengths_m: vec![40.0], radii_m, cells };
+        let plain = spec().resolve(crane()).unwrap();
+        let mut s = spec();
+        s.radius_allowance_m = 3.0;
+        let allowed = s.resolve(crane()).unwrap();
+        let (a, b) = (
+            plain.check_capacity(&chart, plain.pick.radial).unwrap(),
+            allowed.check_capacity(&chart, allowed.pick.radial).unwrap(),
+        );
+        assert_eq!(a.radius_m, b.radius_m);
+        let row = |r: f64| 2.0 * (r / 2.0).ceil();
+        assert_eq!(a.capacity.cell, format!("r{}", row(a.radius_m)), "{a:?}");
+        assert_eq!(b.capacity.cell, format!("r{}", row(a.radius_m + 3.0)), "{b:?}");
+        assert!(b.utilisation_pct > a.utilisation_pct);
+        let mut s = spec();
+        s.radius_allowance_m = -0.5;
+        assert!(s.resolve(crane()).unwrap_err().contains("radius_allowance_m"));
+        s.radius_allowance_m = 500.0;
+        assert!(s.resolve(crane()).unwrap_err().contains("radius_allowance_m = 500 m is more than 10 m"));
+    }
+
     /// A permitted swing range holds the pick and the set as its numbers
     /// say, across ±180° too; outside it, the position is named.
     #[test]
@@ -509,6 +556,8 @@ impl ChartLimits {
 /// utilisation.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct CapacityCheck {
+    /// The rigid crane's radius (m); the chart was read at this plus the
+    /// lift's `radius_allowance_m`.
     pub radius_m: f64,
     pub capacity: crate::capacity::Capacity,
     /// Chart capacity after the configured reduction (kg).
@@ -533,7 +582,7 @@ impl LiftTask {
             });
         }
         let boom = if tower { 0.0 } else { self.crane.placement.boom_length_m };
-        let c = chart.lookup(boom, r)?;
+        let c = chart.lookup(boom, r + self.radius_allowance_m)?;
         let eff = self.effective_capacity_kg(c.capacity_kg);
         Ok(CapacityCheck {
             radius_m: r,

@@ -241,7 +241,7 @@ pub fn step_view(site: &SiteView, task: &LiftTask, plan: &LiftPlan, others: &[Ob
 }
 
 /// Capacity against radius for the lift's boom, the gross load, and the
-/// radius of every step.
+/// radius every step reads the chart at.
 pub fn chart_plot(chart: &ChartConfig, task: &LiftTask, plan: &LiftPlan, w: u32, h: u32) -> Image {
     let mut img = Image::new(w, h, [255, 255, 255]);
     let (ml, mr, mt, mb) = (80.0, 20.0, 20.0, 50.0);
@@ -277,8 +277,9 @@ pub fn chart_plot(chart: &ChartConfig, task: &LiftTask, plan: &LiftPlan, w: u32,
     let g = task.gross_kg();
     img.line(ml, y_of(g), w as f64 - mr, y_of(g), 2.0, [200, 40, 40]);
     img.text((w as f64 - mr - 150.0) as i64, y_of(g) as i64 - 18, "GROSS LOAD", 2, [200, 40, 40]);
+    // Where the chart was read: the radius plus the lift's allowance.
     for st in &plan.steps {
-        img.disc(x_of(st.radius_m), y_of(g), 5.0, [200, 40, 40]);
+        img.disc(x_of(st.radius_m + task.radius_allowance_m), y_of(g), 5.0, [200, 40, 40]);
     }
     img
 }

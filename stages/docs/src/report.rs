@@ -400,6 +400,17 @@ pub fn document(
             ),
             ("Capacity reduction", format!("{:.1} % of the chart value", task.capacity_reduction_pct)),
             (
+                "Radius allowance",
+                if task.radius_allowance_m > 0.0 {
+                    format!(
+                        "{:.2} m added to every radius before the chart is read (the {} bending under load)",
+                        task.radius_allowance_m, words.arm
+                    )
+                } else {
+                    "none: the chart is read at the rigid crane's radius (radius_allowance_m)".to_string()
+                },
+            ),
+            (
                 "Pick (load underside)",
                 format!(
                     "({:.2}, {:.2}, {:.2}) m, yaw {:.1}°",
@@ -447,9 +458,24 @@ pub fn document(
     }
     if let Some(ci) = &chart_img {
         y += 4.0;
-        y = inputs_room(&mut d, y, chart_mm - 4.0);
-        d.text(15.0, y, "Load chart: capacity after the reduction against radius (steps), gross load (red line), radii used (dots).", 8.5, false, GREY);
-        d.image(ci, 15.0, y + 3.0, w);
+        let caption = if task.radius_allowance_m > 0.0 {
+            format!(
+                "Load chart: capacity after the reduction against radius (steps), gross load (red line), radii read (dots: each step's plus the {:.2} m allowance).",
+                task.radius_allowance_m
+            )
+        } else {
+            "Load chart: capacity after the reduction against radius (steps), gross load (red line), radii used (dots)."
+                .to_string()
+        };
+        // The image below the caption's last line.
+        let lines = crate::pdf::wrap(&caption, w, 8.5);
+        let more = (lines.len().max(1) - 1) as f32 * crate::pdf::line_height_mm(8.5);
+        y = inputs_room(&mut d, y, chart_mm - 4.0 + more);
+        for line in lines {
+            d.text(15.0, y, &line, 8.5, false, GREY);
+            y += crate::pdf::line_height_mm(8.5);
+        }
+        d.image(ci, 15.0, y + 3.0 - crate::pdf::line_height_mm(8.5), w);
     }
 
     // Page 3: the steps.
@@ -499,7 +525,7 @@ pub fn document(
         15.0,
         y,
         w,
-        &format!("The first and the last steps are the vertical lift-off and set-down. Capacity is the chart value (before the reduction) at the largest radius of the step; utilisation is the gross load over the reduced capacity; clearance is a distance that no crane part, rope, hook or load comes closer than to the plant model or the scanned points at any moment of the step, between the validator's samples too: the smallest distance measured at samples no more than [plan] validator_sample_m of movement apart (0.05 m by default), less what the motion between two samples leaves room for (at most half that spacing), so the closest approach may be up to that much more than shown, never less. Wherever the motion between samples could take a part closer than its required clearance, the validator samples more finely, down to 2 mm of movement, so the required clearance holds along the whole motion, not only at the samples, to within 2 mm. Swing and load rotation angles are counter-clockwise positive seen from above. Swing is measured from {heading}, load yaw from the site's +X axis; each step's page also gives the {arm}'s grid bearing (clockwise from the site's north, +Y, as the overview is drawn).", heading = words.heading, arm = words.arm),
+        &format!("The first and the last steps are the vertical lift-off and set-down. Capacity is the chart value (before the reduction) at the largest radius of the step{allowance}; utilisation is the gross load over the reduced capacity; clearance is a distance that no crane part, rope, hook or load comes closer than to the plant model or the scanned points at any moment of the step, between the validator's samples too: the smallest distance measured at samples no more than [plan] validator_sample_m of movement apart (0.05 m by default), less what the motion between two samples leaves room for (at most half that spacing), so the closest approach may be up to that much more than shown, never less. Wherever the motion between samples could take a part closer than its required clearance, the validator samples more finely, down to 2 mm of movement, so the required clearance holds along the whole motion, not only at the samples, to within 2 mm. Swing and load rotation angles are counter-clockwise positive seen from above. Swing is measured from {heading}, load yaw from the site's +X axis; each step's page also gives the {arm}'s grid bearing (clockwise from the site's north, +Y, as the overview is drawn).", heading = words.heading, arm = words.arm, allowance = if task.radius_allowance_m > 0.0 { format!(" plus the radius allowance ({:.2} m)", task.radius_allowance_m) } else { String::new() }),
         8.5,
     );
     if let Some(cs) = cspace {
@@ -604,7 +630,12 @@ pub fn document(
         y,
         w,
         &format!(
-            "What this plan does not model: the {arm} bending under load (the crane is taken as rigid, so the loaded radius is longer than planned), wind on the load and the {arm} ({}), the load swinging on its rope when slewing, {} or hoisting starts or stops (the clearance kept around every part, {:.2} m and less over the landing zones, is the only margin for it), and {}.",
+            "What this plan does not model: the {arm} bending under load (the crane is taken as rigid, so the loaded radius is longer than planned{}), wind on the load and the {arm} ({}), the load swinging on its rope when slewing, {} or hoisting starts or stops (the clearance kept around every part, {:.2} m and less over the landing zones, is the only margin for it), and {}.",
+            if task.radius_allowance_m > 0.0 {
+                format!("; the chart is read {:.2} m farther out for it, as this lift asks", task.radius_allowance_m)
+            } else {
+                "; no radius allowance is taken for it, radius_allowance_m".to_string()
+            },
             if task.capacity_reduction_pct > 0.0 {
                 format!("chart values are reduced by {} % as this lift asks, nothing more", task.capacity_reduction_pct)
             } else {
