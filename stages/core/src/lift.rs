@@ -154,9 +154,25 @@ pub struct LiftTask {
     pub radius_allowance_m: f64,
     pub critical_pct: f64,
     pub swing_range_rad: Option<(f64, f64)>,
+    /// Whether the pick and the set were given as crane configurations
+    /// (swing, luff or trolley, hoist) rather than load poses: which key
+    /// sets their height.
+    pub by_configuration: [bool; 2],
 }
 
 impl LiftTask {
+    /// The key that sets the height of the pick (`at_pick`) or the set, as
+    /// the lift gives it: `pick z_m`, or `pick hoist_m` for a position given
+    /// as a crane configuration.
+    pub fn height_key(&self, at_pick: bool) -> &'static str {
+        match (at_pick, self.by_configuration[usize::from(!at_pick)]) {
+            (true, false) => "pick z_m",
+            (true, true) => "pick hoist_m",
+            (false, false) => "set z_m",
+            (false, true) => "set hoist_m",
+        }
+    }
+
     /// Load + rigging + hook block + deductions, in kg.
     pub fn gross_kg(&self) -> f64 {
         self.load_mass_kg + self.rigging_mass_kg + self.crane.model.hook.mass_kg + self.deductions_kg
@@ -388,6 +404,7 @@ impl LiftSpec {
             radius_allowance_m: self.radius_allowance_m,
             critical_pct: self.critical_pct,
             swing_range_rad,
+            by_configuration: [self.pick.swing_deg.is_some(), self.set.swing_deg.is_some()],
         })
     }
 }

@@ -610,11 +610,11 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
         }
     };
     if let Err(b) = ck.config(&start) {
-        let hint = hints::for_load(task, site, &b, &task.pick, &start, "pick z_m", true);
+        let hint = hints::for_load(task, site, &b, &task.pick, &start, task.height_key(true), true);
         return Err(lift_err(task, format!("the lifted-off pick configuration is not allowed: {}{hint}", why(&b))));
     }
     if let Err(b) = ck.config(&goal0) {
-        let hint = hints::for_load(task, site, &b, &task.set, &goal0, "set z_m", false);
+        let hint = hints::for_load(task, site, &b, &task.set, &goal0, task.height_key(false), false);
         return Err(lift_err(
             task,
             format!("the configuration above the set position is not allowed: {}{hint}", why(&b)),
@@ -631,8 +631,8 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
     // validator's verdict on them now, before the search, says what blocks
     // them instead of rejecting every plan at the end.
     for (what, mv, at, key) in [
-        ("lift-off", Move { joint: Joint::Hoist, from: task.pick, to: start }, &task.pick, "pick z_m"),
-        ("set-down", Move { joint: Joint::Hoist, from: goal0, to: task.set }, &task.set, "set z_m"),
+        ("lift-off", Move { joint: Joint::Hoist, from: task.pick, to: start }, &task.pick, task.height_key(true)),
+        ("set-down", Move { joint: Joint::Hoist, from: goal0, to: task.set }, &task.set, task.height_key(false)),
     ] {
         let v = validate::validate(task, chart, site.world, &rules, &[mv], &[true]);
         if !v.ok {

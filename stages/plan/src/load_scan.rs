@@ -45,6 +45,10 @@ pub struct LoadAsScanned {
     /// How far those points spread along the box's x, y and z (m); 0 where
     /// there are none.
     pub span_m: [f64; 3],
+    /// The key that sets the pick's height, as the lift gives it (`pick
+    /// z_m`, or `pick hoist_m` for a pick given as a crane configuration).
+    #[serde(default = "pick_z_m")]
+    pub height_key: String,
     /// How many of them stand more than [`NOISE_M`] above the box's top.
     pub above_top: usize,
     /// How far the highest of them stands above the box's top (m; 0 where
@@ -89,7 +93,20 @@ pub fn of_pick(task: &LiftTask, taken: &[[f64; 3]], cutout_above_m: f64) -> Load
     }
     let span_m = std::array::from_fn(|a| if points > 0 { hi[a] - lo[a] } else { 0.0 });
     let top_below_m = if points > 0 { (hz - hi[2]).max(0.0) } else { 0.0 };
-    LoadAsScanned { box_m: task.load.size_m, points, span_m, above_top, above_top_max_m, cutout_above_m, top_below_m }
+    LoadAsScanned {
+        box_m: task.load.size_m,
+        points,
+        span_m,
+        height_key: task.height_key(true).to_string(),
+        above_top,
+        above_top_max_m,
+        cutout_above_m,
+        top_below_m,
+    }
+}
+
+fn pick_z_m() -> String {
+    "pick z_m".to_string()
 }
 
 impl LoadAsScanned {
@@ -141,13 +158,15 @@ impl LoadAsScanned {
         }
         if self.above_top > 0 {
             s += &format!(
-                "; {} of them up to {:.2} m ABOVE ITS BOX'S TOP: slings lying on it, or a load taller than size_m says or standing higher than pick z_m says, which keeps less clearance than the plan shows: CHECK THE LOAD'S HEIGHT (the cut-out takes points up to {:.2} m above the box; anything higher stays an obstacle)",
-                self.above_top, self.above_top_max_m, self.cutout_above_m
+                "; {} of them up to {:.2} m ABOVE ITS BOX'S TOP: slings lying on it, or a load taller than size_m says or standing higher than {} says, which keeps less clearance than the plan shows: CHECK THE LOAD'S HEIGHT (the cut-out takes points up to {:.2} m above the box; anything higher stays an obstacle)",
+                self.above_top, self.above_top_max_m, self.height_key, self.cutout_above_m
             );
         } else if self.top_below() {
             s += &format!(
-                "; the highest of them {:.2} m BELOW ITS BOX'S TOP: a load standing lower than pick z_m says, carried that much lower through the whole lift than the plan shows (less clearance under it), or shorter than size_m says, or a top the scans did not see: CHECK ITS PICK z_m",
-                self.top_below_m
+                "; the highest of them {:.2} m BELOW ITS BOX'S TOP: a load standing lower than {} says, carried that much lower through the whole lift than the plan shows (less clearance under it), or shorter than size_m says, or a top the scans did not see: CHECK ITS {}",
+                self.top_below_m,
+                self.height_key,
+                self.height_key.replacen("pick", "PICK", 1)
             );
         } else {
             s += ", none above its top";
@@ -249,6 +268,15 @@ mod tests {
         assert!(s.said().contains("CHECK ITS PICK z_m"), "{}", s.said());
         let s = of_pick(&t, &scanned(&t, -0.1, 1.0), 0.3);
         assert!(!s.needs_checking(), "{}", s.said());
+        // A pick given as a crane configuration: its rope sets the height.
+        let mut t = t;
+        t.by_configuration = [true, false];
+        let s = of_pick(&t, &scanned(&t, -0.5, 1.0), 0.3);
+        assert!(
+            s.said().contains("lower than pick hoist_m says") && s.said().contains("CHECK ITS PICK hoist_m"),
+            "{}",
+            s.said()
+        );
     }
 
     /// A box placed over a third of the load (its pick position 4 m off
