@@ -269,6 +269,25 @@ liftoff_m = 0.5
     );
     liftplan_fixtures::chart::write_demo_chart(&chart_path).unwrap();
 
+    // Without scans (the plant model alone), the cover asks to check first
+    // what only scans would have shown: the ground under the load outside
+    // the model, and the level the crane is set up at (it asked nothing).
+    let scans = dir.join("scans");
+    let scans_aside = tmp.path().join("scans-aside");
+    std::fs::rename(&scans, &scans_aside).unwrap();
+    std::fs::create_dir(&scans).unwrap();
+    let no_stations: String = t13.lines().filter(|l| !l.starts_with("stations =")).collect::<Vec<_>>().join("\n");
+    std::fs::write(&toml_path, &no_stations).unwrap();
+    let r = run_json(&dir);
+    assert_eq!(stage(&r, "docs")["status"], "ran", "{r}");
+    let doc = lopdf::Document::load(&pdf_path).unwrap();
+    let cover = doc.extract_text(&[1]).unwrap().replace('\n', " ");
+    assert!(cover.contains("ground under the load outside the plant model (there are no scans)"), "{cover}");
+    assert!(cover.contains("the crane's set-up level (no ground was scanned under it)"), "{cover}");
+    std::fs::remove_dir(&scans).unwrap();
+    std::fs::rename(&scans_aside, &scans).unwrap();
+    std::fs::write(&toml_path, &t13).unwrap();
+
     // Without its load chart the lift is not planned: a plan whose capacity
     // was never checked must not read as validated.
     let charts = dir.join("charts");

@@ -152,6 +152,16 @@ fn checks_before_signing(inp: &Inputs, task: &LiftTask, plan: &LiftPlan) -> Vec<
     if sm.coverage.as_ref().is_some_and(|c| c.load_passes_unscanned()) {
         v.push("ground under the load that no scan saw".to_string());
     }
+    if sm.coverage.as_ref().is_some_and(|c| c.load_passes_unknown()) {
+        v.push("ground under the load outside the plant model (there are no scans)".to_string());
+    }
+    if plan.validator.set_up_ground.is_none() {
+        v.push(if task.crane.model.is_tower() {
+            "the tower crane's base level (no ground was scanned around its mast)".to_string()
+        } else {
+            "the crane's set-up level (no ground was scanned under it)".to_string()
+        });
+    }
     if plan.load_cutout.points > 0 && sm.load_as_scanned.as_ref().is_some_and(|l| l.needs_checking()) {
         v.push("the load's size or pick position against its scan".to_string());
     }
@@ -398,17 +408,18 @@ pub fn document(
                 "Lift-off / set-down",
                 format!("{:.2} m, vertical; contact allowed only with the support under the load", task.liftoff_m),
             ),
-            ("Capacity reduction", format!("{:.1} % of the chart value", task.capacity_reduction_pct)),
+            // One row for both ways the chart is read less than printed.
             (
-                "Radius allowance",
-                if task.radius_allowance_m > 0.0 {
-                    format!(
-                        "{:.2} m added to every radius before the chart is read (the {} bending under load)",
-                        task.radius_allowance_m, words.arm
-                    )
-                } else {
-                    "none: the chart is read at the rigid crane's radius (radius_allowance_m)".to_string()
-                },
+                "Capacity reduction",
+                format!(
+                    "{:.1} % of the chart value; {}",
+                    task.capacity_reduction_pct,
+                    if task.radius_allowance_m > 0.0 {
+                        format!("read {:.2} m farther out than planned (radius_allowance_m)", task.radius_allowance_m)
+                    } else {
+                        "read at the radius planned (no radius_allowance_m)".to_string()
+                    }
+                ),
             ),
             (
                 "Pick (load underside)",

@@ -92,6 +92,12 @@ impl Coverage {
         self.scans && self.under_load.unscanned_m2 > 0.0
     }
 
+    /// Whether the load passes over cells neither a scan (where the project
+    /// has none) nor the plant model tells anything of.
+    pub fn load_passes_unknown(&self) -> bool {
+        !self.scans && self.under_load.unknown_m2 > 0.0
+    }
+
     /// One line for the run's output and the PDF.
     pub fn line(&self) -> String {
         let where_ = |a: &Area| match (a.unscanned_within, a.unscanned_lowest_z_m) {
