@@ -49,6 +49,18 @@ fn scene(seed: u64, roofed: bool) -> Mdm {
     liftplan_depthmap::build_cpu(&inp, &liftplan_depthmap::Settings { cell_m: 0.5, ..Default::default() }).unwrap().0
 }
 
+/// A configuration anywhere in the crane's swing and radial range, with up
+/// to 30 m of rope more than the shortest, from the unit stream `u`.
+fn random_config(t: &LiftTask, u: &mut impl FnMut() -> f64) -> Config {
+    let lim = t.crane.limits();
+    Config {
+        swing_rad: u() * std::f64::consts::TAU,
+        radial: lim.radial.0 + u() * (lim.radial.1 - lim.radial.0),
+        hoist_m: lim.hoist_m.0 + u() * 30.0,
+        load_yaw_rad: u() * 3.0,
+    }
+}
+
 /// Exact: every part that the tables or online checks cover, grown by the clearance.
 fn exact_free(t: &LiftTask, map: &Mdm, c: &Config) -> bool {
     t.crane.part_kinds().iter().all(|&k| {
@@ -78,12 +90,7 @@ proptest! {
         let lim = t.crane.limits();
         let mut u = liftplan_core::testing::unit_stream(seed);
         for _ in 0..150 {
-            let c = Config {
-                swing_rad: u() * std::f64::consts::TAU,
-                radial: lim.radial.0 + u() * (lim.radial.1 - lim.radial.0),
-                hoist_m: lim.hoist_m.0 + u() * 30.0,
-                load_yaw_rad: u() * 3.0,
-            };
+            let c = random_config(&t, &mut u);
             if ck.config(&c).is_ok() {
                 prop_assert!(exact_free(&t, &map, &c), "checker says free, exact check collides at {c:?}");
             }
@@ -134,16 +141,10 @@ fn a_structure_above_the_boom_leaves_the_rope_below_it_clear() {
     let map = scene(7, true);
     let cs = CSpace::build(&Problem { task: &t, chart: None, map: &map }, &s);
     let ck = Checker::new(&cs, &map, &t, vec![], s.sample_m);
-    let lim = t.crane.limits();
     let mut u = liftplan_core::testing::unit_stream(7);
     let mut passed = 0;
     for _ in 0..400 {
-        let c = Config {
-            swing_rad: u() * std::f64::consts::TAU,
-            radial: lim.radial.0 + u() * (lim.radial.1 - lim.radial.0),
-            hoist_m: lim.hoist_m.0 + u() * 30.0,
-            load_yaw_rad: u() * 3.0,
-        };
+        let c = random_config(&t, &mut u);
         if ck.config(&c).is_ok() {
             passed += 1;
             assert!(exact_free(&t, &map, &c), "checker says free, exact check collides at {c:?}");
