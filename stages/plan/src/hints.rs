@@ -32,7 +32,8 @@ pub(crate) fn for_load(
     if blocked.part != Some(PartKind::Load) {
         return String::new();
     }
-    if let Some(itself) = itself_in_the_model(task, site, at) {
+    let yaw_key = if at_pick { "pick yaw_deg" } else { "set yaw_deg" };
+    if let Some(itself) = itself_in_the_model(task, site, at, yaw_key) {
         return itself;
     }
     let sunk = sunk(task, site, at, key);
@@ -42,13 +43,19 @@ pub(crate) fn for_load(
 
 /// A plant model holds what a lift installs where it is installed: the load
 /// at its set position meets its own copy there.
-pub(crate) fn itself_in_the_model(task: &LiftTask, site: &Site, at: &Config) -> Option<String> {
-    validate::model_group_filling(site.world, &task.crane.load_obb(at, &task.load)).map(|(name, share)| {
-        format!(
-            "; the plant model's {name} fills the load's box there (their bounding boxes {:.0} % alike): if it is this load where it is installed, leave it out of the plant model ([plant] exclude = [\"{name}\"])",
-            share * 100.0
-        )
-    })
+pub(crate) fn itself_in_the_model(task: &LiftTask, site: &Site, at: &Config, yaw_key: &str) -> Option<String> {
+    let copy = validate::model_group_filling(site.world, &task.crane.load_obb(at, &task.load))?;
+    let name = &copy.group;
+    let turned = if copy.turned { format!(" turned a quarter turn from the load's {yaw_key}") } else { String::new() };
+    let yaw = if copy.turned {
+        format!(", and CHECK {yaw_key}: the model has it turned 90° from it")
+    } else {
+        String::new()
+    };
+    Some(format!(
+        "; the plant model's {name} fills the load's box there{turned} (their bounding boxes {:.0} % alike): if it is this load where it is installed, leave it out of the plant model ([plant] exclude = [\"{name}\"]){yaw}",
+        copy.share * 100.0
+    ))
 }
 
 /// A load declared lower than the top of what it stands on meets that where

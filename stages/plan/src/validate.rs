@@ -687,52 +687,69 @@ pub fn nearest_scanned_point(world: &World, b: &Obb, cutoff_m: f64) -> Option<([
     best.at.map(|p| (p, best.distance_m))
 }
 
+/// A plant model group that fills a load's box as a copy of the load would
+/// ([`model_group_filling`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ModelCopy {
+    pub group: String,
+    /// The share of the two boxes' union they have in common.
+    pub share: f64,
+    /// The copy stands turned a quarter turn from the box.
+    pub turned: bool,
+}
+
 /// The plant model's group that fills the box `b` as a copy of what it
-/// stands for would (their bounding boxes' overlap more than half their
-/// union), with that share; `None` where none does. A plant model holds
+/// stands for would: in `b`'s own frame, the group's bounding box and `b`
+/// share more than half their union, with `b` as it is or turned a quarter
+/// turn about the vertical; `None` where none does. A plant model holds
 /// the equipment a lift installs where it is installed: at the set
-/// position the load meets itself.
-pub fn model_group_filling(world: &World, b: &Obb) -> Option<(String, f64)> {
+/// position the load meets itself (turned, where the set's yaw is a
+/// quarter turn off).
+pub fn model_group_filling(world: &World, b: &Obb) -> Option<ModelCopy> {
     let mesh = world.mesh.as_ref()?;
-    let target = b.aabb();
     // The groups near the box (a model's faces lie on it, a rounding in or out).
-    let near = target.expanded(0.1);
-    let mut boxes: HashMap<&str, liftplan_core::frame::Aabb> = HashMap::new();
+    let near = b.aabb().expanded(0.1);
+    let mut groups: HashMap<&str, liftplan_core::frame::Aabb> = HashMap::new();
     for (t, group) in world.tri_group.iter().enumerate() {
         let tri = mesh.triangle(t as u32);
         let (lo, hi) = (tri.a.min(tri.b).min(tri.c), tri.a.max(tri.b).max(tri.c));
         if (0..3).any(|a| hi[a] < near.min[a] || lo[a] > near.max[a]) {
             continue;
         }
-        let e = boxes.entry(group.as_str()).or_insert_with(liftplan_core::frame::Aabb::empty);
-        e.grow([lo.x, lo.y, lo.z]);
-        e.grow([hi.x, hi.y, hi.z]);
+        groups.entry(group.as_str()).or_insert_with(liftplan_core::frame::Aabb::empty);
     }
-    // Only groups near the box were gathered: each group's whole box, for
-    // those.
+    // Each of those groups' whole extent in the box's frame.
     for (t, group) in world.tri_group.iter().enumerate() {
-        if let Some(e) = boxes.get_mut(group.as_str()) {
+        if let Some(e) = groups.get_mut(group.as_str()) {
             let tri = mesh.triangle(t as u32);
             for p in [tri.a, tri.b, tri.c] {
-                e.grow([p.x, p.y, p.z]);
+                let l = b.to_local(&liftplan_core::frame::Point3::new(p.x, p.y, p.z));
+                e.grow([l.x, l.y, l.z]);
             }
         }
     }
     let volume = |a: &liftplan_core::frame::Aabb| (0..3).map(|i| (a.max[i] - a.min[i]).max(0.0)).product::<f64>();
-    boxes
+    let share = |a: &liftplan_core::frame::Aabb, half: [f64; 3]| {
+        let target = liftplan_core::frame::Aabb { min: half.map(|h| -h), max: half };
+        let overlap = liftplan_core::frame::Aabb {
+            min: std::array::from_fn(|i| a.min[i].max(target.min[i])),
+            max: std::array::from_fn(|i| a.max[i].min(target.max[i])),
+        };
+        let shared = volume(&overlap);
+        shared / (volume(a) + volume(&target) - shared).max(1e-12)
+    };
+    let half = [b.half.x, b.half.y, b.half.z];
+    groups
         .into_iter()
         .map(|(name, a)| {
-            let overlap = liftplan_core::frame::Aabb {
-                min: std::array::from_fn(|i| a.min[i].max(target.min[i])),
-                max: std::array::from_fn(|i| a.max[i].min(target.max[i])),
-            };
-            let shared = volume(&overlap);
-            (name, shared / (volume(&a) + volume(&target) - shared).max(1e-12))
+            let (as_is, turned) = (share(&a, half), share(&a, [half[1], half[0], half[2]]));
+            let copy = ModelCopy { group: name.to_string(), share: as_is.max(turned), turned: turned > as_is };
+            (name, copy)
         })
-        .filter(|(_, share)| *share > 0.5)
+        .filter(|(_, c)| c.share > 0.5)
         // The best, and of equal shares the first by name: one answer.
-        .max_by(|a, b| a.1.total_cmp(&b.1).then_with(|| b.0.cmp(a.0)))
-        .map(|(name, share)| (name.to_string(), share))
+        .max_by(|a, b| a.1.share.total_cmp(&b.1.share).then_with(|| b.0.cmp(a.0)))
+        .map(|(_, c)| c)
 }
 
 /// Improves `best` with the nearest point to a box among the points of

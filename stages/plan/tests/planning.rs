@@ -239,7 +239,20 @@ fn the_load_itself_in_the_plant_model_at_its_set_position_is_named() {
         err.contains("the plant model's SKID-7 fills the load's box there (their bounding boxes 100 % alike): if it is this load where it is installed, leave it out of the plant model ([plant] exclude = [\"SKID-7\"])"),
         "{err}"
     );
-    assert!(!err.contains("CHECK set z_m"), "{err}");
+    assert!(!err.contains("CHECK set z_m") && !err.contains("turned"), "{err}");
+    // The copy along x where the set's yaw turns the load along y: the
+    // set's yaw is a quarter turn off what the model shows.
+    let mut mesh = site();
+    box_part(&mut mesh, "SKID-7", [20.0, 13.0, 0.5], [24.0, 15.0, 2.5]);
+    let world = World::new(&mesh, &[], &[]).unwrap();
+    let m = map(&mesh);
+    let err =
+        plan_lift(&task(-14.0), &Site { map: &m, world: &world, charts: None }, &quick(), 1).unwrap_err().to_string();
+    assert!(
+        err.contains("the plant model's SKID-7 fills the load's box there turned a quarter turn from the load's set yaw_deg (their bounding boxes 100 % alike)"),
+        "{err}"
+    );
+    assert!(err.contains("and CHECK set yaw_deg: the model has it turned 90° from it"), "{err}");
     // A part of the model beside the set position is not taken for the load.
     let mut mesh = site();
     box_part(&mut mesh, "PUMP", [21.0, 16.3, 0.0], [23.0, 17.0, 2.5]);
