@@ -37,7 +37,7 @@ use liftplan_core::crane::Config;
 use liftplan_core::crane::{CraneSetup, Dependence, LoadShape, PartKind};
 use liftplan_core::lift::LiftTask;
 use liftplan_core::obb::Obb;
-use liftplan_depthmap::mdm::{Mdm, OBJ_GROUND};
+use liftplan_depthmap::mdm::{Interval, Mdm, OBJ_GROUND};
 use liftplan_depthmap::query::LeaveOut;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -525,13 +525,20 @@ pub fn highest_below(map: &Mdm, xa: f64, xb: f64, ya: f64, yb: f64, z_max: f32) 
     if fast < z_max {
         return fast;
     }
+    highest_interval_below(map, xa, xb, ya, yb, z_max).map_or(f32::NEG_INFINITY, |iv| iv.zhi)
+}
+
+/// The interval with the highest top among those starting below `z_max`
+/// over a plan rectangle (of equal tops, the first met), cell by cell: what
+/// [`highest_below`] finds, with the object it belongs to.
+pub fn highest_interval_below(map: &Mdm, xa: f64, xb: f64, ya: f64, yb: f64, z_max: f32) -> Option<&Interval> {
     let s = map.spec;
-    let mut top = f32::NEG_INFINITY;
+    let mut top: Option<&Interval> = None;
     for j in s.rows_between(ya, yb) {
         for i in s.cols_between(xa, xb) {
-            for iv in map.cell(i, j) {
-                if iv.zlo < z_max {
-                    top = top.max(iv.zhi);
+            for iv in map.cell(i, j).iter().filter(|iv| iv.zlo < z_max) {
+                if top.is_none_or(|t| iv.zhi > t.zhi) {
+                    top = Some(iv);
                 }
             }
         }

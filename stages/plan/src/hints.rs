@@ -10,7 +10,7 @@ use crate::{Site, validate};
 use liftplan_core::crane::{Config, PartKind};
 use liftplan_core::frame::Point3;
 use liftplan_core::lift::LiftTask;
-use liftplan_depthmap::mdm::{Interval, OBJ_GROUND, OBJ_SCAN};
+use liftplan_depthmap::mdm::{OBJ_GROUND, OBJ_SCAN};
 
 /// How much higher the plant model may have the top of what a load stands
 /// on than the scans have it before a refusal there names the model's
@@ -32,8 +32,7 @@ pub(crate) fn for_load(
     if blocked.part != Some(PartKind::Load) {
         return String::new();
     }
-    let yaw_key = if at_pick { "pick yaw_deg" } else { "set yaw_deg" };
-    if let Some(itself) = itself_in_the_model(task, site, at, yaw_key) {
+    if let Some(itself) = itself_in_the_model(task, site, at, at_pick) {
         return itself;
     }
     let sunk = sunk(task, site, at, key);
@@ -43,7 +42,8 @@ pub(crate) fn for_load(
 
 /// A plant model holds what a lift installs where it is installed: the load
 /// at its set position meets its own copy there.
-pub(crate) fn itself_in_the_model(task: &LiftTask, site: &Site, at: &Config, yaw_key: &str) -> Option<String> {
+pub(crate) fn itself_in_the_model(task: &LiftTask, site: &Site, at: &Config, at_pick: bool) -> Option<String> {
+    let yaw_key = if at_pick { "pick yaw_deg" } else { "set yaw_deg" };
     let copy = validate::model_group_filling(site.world, &task.crane.load_obb(at, &task.load))?;
     let name = &copy.group;
     let turned = if copy.turned { format!(" turned a quarter turn from the load's {yaw_key}") } else { String::new() };
@@ -70,16 +70,7 @@ pub(crate) fn sunk(task: &LiftTask, site: &Site, at: &Config, key: &str) -> Stri
     // starts above its underside.
     let r = load.half.x.min(load.half.y) * std::f64::consts::FRAC_1_SQRT_2;
     let map = site.map;
-    let mut top: Option<&Interval> = None;
-    for j in map.spec.rows_between(c.y - r, c.y + r) {
-        for i in map.spec.cols_between(c.x - r, c.x + r) {
-            for iv in map.cell(i, j).iter().filter(|iv| (iv.zlo as f64) < c.z) {
-                if top.is_none_or(|t| iv.zhi > t.zhi) {
-                    top = Some(iv);
-                }
-            }
-        }
-    }
+    let top = liftplan_cspace::highest_interval_below(map, c.x - r, c.x + r, c.y - r, c.y + r, c.z as f32);
     let Some(top) = top.filter(|t| t.zhi as f64 > underside + 0.02) else { return String::new() };
     let z = top.zhi as f64;
     let modelled = top.obj != OBJ_SCAN && top.obj != OBJ_GROUND;

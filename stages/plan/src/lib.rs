@@ -647,13 +647,8 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
                 })
                 .collect();
             let hint = if v.problems.iter().any(|p| p.starts_with("move 1 (Hoist): load ")) {
-                hints::itself_in_the_model(
-                    task,
-                    site,
-                    at,
-                    if what == "lift-off" { "pick yaw_deg" } else { "set yaw_deg" },
-                )
-                .unwrap_or_else(|| hints::sunk(task, site, at, key))
+                hints::itself_in_the_model(task, site, at, what == "lift-off")
+                    .unwrap_or_else(|| hints::sunk(task, site, at, key))
             } else {
                 String::new()
             };
