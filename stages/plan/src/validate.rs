@@ -184,11 +184,12 @@ impl ModelMove {
         let (dx, dy) = (tidy(self.by_m[0], 0.005), tidy(self.by_m[1], 0.005));
         let dz = tidy(self.z_m, 0.005);
         let turn = tidy(self.turn_deg, 0.005);
-        let shift = match (dx != 0.0 || dy != 0.0 || turn == 0.0, dz != 0.0) {
+        let shift = match (dx != 0.0 || dy != 0.0, dz != 0.0) {
             (true, false) => format!("moved by x {dx:+.2} m, y {dy:+.2} m"),
-            (true, true) if dx == 0.0 && dy == 0.0 => format!("moved by z {dz:+.2} m"),
             (true, true) => format!("moved by x {dx:+.2} m, y {dy:+.2} m, z {dz:+.2} m"),
             (false, true) => format!("moved by z {dz:+.2} m"),
+            // No move at all is said as one, not as nothing.
+            (false, false) if turn == 0.0 => format!("moved by x {dx:+.2} m, y {dy:+.2} m"),
             (false, false) => String::new(),
         };
         match (turn != 0.0, shift.is_empty()) {
@@ -319,11 +320,15 @@ pub fn model_offset_to_scans(mesh: &ParryMesh, points: &[[f64; 3]]) -> Option<Mo
             })
             .collect()
     };
-    let close_share = |pairs: &[Off]| {
-        100.0 * pairs.iter().filter(|o| o.d <= AGREEMENT_CLOSE_M).count() as f64 / pairs.len().max(1) as f64
+    // Of the points at distances `ds`, the share within AGREEMENT_CLOSE_M (%).
+    let close_share = |ds: &mut dyn Iterator<Item = f64>| {
+        let (n, close) =
+            ds.fold((0usize, 0usize), |(n, close), d| (n + 1, close + usize::from(d <= AGREEMENT_CLOSE_M)));
+        100.0 * close as f64 / n.max(1) as f64
     };
-    let before_pct = close_share(&near([0.0; 3], 0.0, [0.0, 0.0], AGREEMENT_NEAR_M));
     let first = near([0.0; 3], 0.0, [0.0, 0.0], OFFSET_SEARCH_M);
+    // As the model is: the points near it among those within the search.
+    let before_pct = close_share(&mut first.iter().map(|o| o.d).filter(|d| *d <= AGREEMENT_NEAR_M));
     if first.len() < 50 {
         return None;
     }
@@ -397,7 +402,7 @@ pub fn model_offset_to_scans(mesh: &ParryMesh, points: &[[f64; 3]]) -> Option<Mo
         }
     }
     let after = near(t, w, c, AGREEMENT_NEAR_M);
-    let close_pct = close_share(&after);
+    let close_pct = close_share(&mut after.iter().map(|o| o.d));
     let moved_m = t[0].hypot(t[1]).max(t[2].abs()).max(w.abs() * spread);
     // Of the points off the model, the move puts at least half on it, and
     // they are not a handful.
@@ -666,12 +671,27 @@ fn nearest(world: &World, b: &Obb, ground_below_z: f64, cutoff_m: f64) -> Neares
             best = Nearest { distance_m: d, object: name.clone(), at: Some(at) };
         }
     }
+    nearer_scan_point(world, b, (&pose, &cub), cutoff_m, ground_below_z, &mut best);
+    best
+}
+
+/// Improves `best` with the nearest scan point to `b` (as `pose`, `cub`)
+/// within `cutoff_m` and nearer than `best` (ground points at or below
+/// `ground_below_z` left out), reading the voxels around the box the
+/// cheaper way.
+fn nearer_scan_point(
+    world: &World,
+    b: &Obb,
+    (pose, cub): (&Pose, &Cuboid),
+    cutoff_m: f64,
+    ground_below_z: f64,
+    best: &mut Nearest,
+) {
     let aabb = b.aabb().expanded(cutoff_m.min(best.distance_m));
     let (lo, hi) = (voxel(&aabb.min), voxel(&aabb.max));
     let n_vox = (0..3).map(|a| hi[a] as i64 - lo[a] as i64 + 1).fold(1i64, i64::saturating_mul);
     let walk_occupied = n_vox > world.points.keys.len() as i64;
-    nearest_point(&world.points, (&pose, &cub), (lo, hi), ground_below_z, walk_occupied, &mut best);
-    best
+    nearest_point(&world.points, (pose, cub), (lo, hi), ground_below_z, walk_occupied, best);
 }
 
 /// The scanned point (ground or not) nearest `b` within `cutoff_m`, and its
@@ -679,11 +699,7 @@ fn nearest(world: &World, b: &Obb, ground_below_z: f64, cutoff_m: f64) -> Neares
 pub fn nearest_scanned_point(world: &World, b: &Obb, cutoff_m: f64) -> Option<([f64; 3], f64)> {
     let (pose, cub) = parry_box(b);
     let mut best = Nearest { distance_m: cutoff_m, object: String::new(), at: None };
-    let aabb = b.aabb().expanded(cutoff_m);
-    let (lo, hi) = (voxel(&aabb.min), voxel(&aabb.max));
-    let n_vox = (0..3).map(|a| hi[a] as i64 - lo[a] as i64 + 1).fold(1i64, i64::saturating_mul);
-    let walk_occupied = n_vox > world.points.keys.len() as i64;
-    nearest_point(&world.points, (&pose, &cub), (lo, hi), ALL_GROUND, walk_occupied, &mut best);
+    nearer_scan_point(world, b, (&pose, &cub), cutoff_m, ALL_GROUND, &mut best);
     best.at.map(|p| (p, best.distance_m))
 }
 
