@@ -597,9 +597,9 @@ pub fn read_grid(
                 if let Some((p, pri)) = prev
                     && c.capacity_kg > p * (1.0 + 1e-9)
                 {
-                    let cell = c.cell.rsplit('[').next().unwrap_or("").trim_end_matches(']').to_string();
+                    let (row, col) = cell_of(ri, bi);
                     return Err((
-                        cell,
+                        at(row, col),
                         format!(
                             "capacity rises with radius: {:.3} t at {:.2} m is more than {:.3} t at {:.2} m (boom {:.2} m); a load chart never does, check the cell or the layout",
                             c.capacity_kg / 1000.0,
