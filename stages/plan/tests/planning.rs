@@ -227,13 +227,19 @@ fn scan_points_the_load_meets_at_its_pick_are_placed() {
 /// "CHECK set z_m").
 #[test]
 fn the_load_itself_in_the_plant_model_at_its_set_position_is_named() {
-    let mut mesh = site();
+    // The test lift on the site with one more box of the model: the
+    // refusal, or none where it plans.
+    let with_box = |name: &str, lo: [f64; 3], hi: [f64; 3]| {
+        let mut mesh = site();
+        box_part(&mut mesh, name, lo, hi);
+        let world = World::new(&mesh, &[], &[]).unwrap();
+        let m = map(&mesh);
+        plan_lift(&task(-14.0), &Site { map: &m, world: &world, charts: None }, &quick(), 1)
+            .err()
+            .map(|e| e.to_string())
+    };
     // The load's box at its set position: x 21 to 23, y 12 to 16, z 0.5 to 2.5.
-    box_part(&mut mesh, "SKID-7", [21.0, 12.0, 0.5], [23.0, 16.0, 2.5]);
-    let world = World::new(&mesh, &[], &[]).unwrap();
-    let m = map(&mesh);
-    let err =
-        plan_lift(&task(-14.0), &Site { map: &m, world: &world, charts: None }, &quick(), 1).unwrap_err().to_string();
+    let err = with_box("SKID-7", [21.0, 12.0, 0.5], [23.0, 16.0, 2.5]).unwrap();
     assert!(err.contains("the configuration above the set position is not allowed"), "{err}");
     assert!(
         err.contains("the plant model's SKID-7 fills the load's box there (their bounding boxes 100 % alike): if it is this load where it is installed, leave it out of the plant model ([plant] exclude = [\"SKID-7\"])"),
@@ -242,24 +248,15 @@ fn the_load_itself_in_the_plant_model_at_its_set_position_is_named() {
     assert!(!err.contains("CHECK set z_m") && !err.contains("turned"), "{err}");
     // The copy along x where the set's yaw turns the load along y: the
     // set's yaw is a quarter turn off what the model shows.
-    let mut mesh = site();
-    box_part(&mut mesh, "SKID-7", [20.0, 13.0, 0.5], [24.0, 15.0, 2.5]);
-    let world = World::new(&mesh, &[], &[]).unwrap();
-    let m = map(&mesh);
-    let err =
-        plan_lift(&task(-14.0), &Site { map: &m, world: &world, charts: None }, &quick(), 1).unwrap_err().to_string();
+    let err = with_box("SKID-7", [20.0, 13.0, 0.5], [24.0, 15.0, 2.5]).unwrap();
     assert!(
         err.contains("the plant model's SKID-7 fills the load's box there turned a quarter turn from the load's set yaw_deg (their bounding boxes 100 % alike)"),
         "{err}"
     );
     assert!(err.contains("and CHECK set yaw_deg: the model has it turned 90° from it"), "{err}");
     // A part of the model beside the set position is not taken for the load.
-    let mut mesh = site();
-    box_part(&mut mesh, "PUMP", [21.0, 16.3, 0.0], [23.0, 17.0, 2.5]);
-    let world = World::new(&mesh, &[], &[]).unwrap();
-    let m = map(&mesh);
-    if let Err(e) = plan_lift(&task(-14.0), &Site { map: &m, world: &world, charts: None }, &quick(), 1) {
-        assert!(!e.to_string().contains("fills the load's box"), "{e}");
+    if let Some(e) = with_box("PUMP", [21.0, 16.3, 0.0], [23.0, 17.0, 2.5]) {
+        assert!(!e.contains("fills the load's box"), "{e}");
     }
 }
 
