@@ -369,6 +369,43 @@ impl TriMesh {
     }
 }
 
+/// A group the plant stage left out of the mesh (`[plant] exclude`), as the
+/// smallest upright box around it in the site frame
+/// ([`crate::obb::smallest_upright_box`]): most often the equipment a lift
+/// installs, drawn in the model where it is installed, which the planner
+/// compares with the lift's set position. Not an obstacle.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct ModelBox {
+    pub name: String,
+    pub center_m: [f64; 3],
+    /// Half sizes along the box's axes: the first along its longer side.
+    pub half_m: [f64; 3],
+    /// The first axis' direction, counter-clockwise from the site's +X, in
+    /// (-90, 90] degrees.
+    pub yaw_deg: f64,
+}
+
+impl ModelBox {
+    /// The box around `points` (site frame), or `None` where none is finite.
+    pub fn around(name: &str, points: &[[f64; 3]]) -> Option<ModelBox> {
+        let b = crate::obb::smallest_upright_box(points)?;
+        Some(ModelBox {
+            name: name.to_string(),
+            center_m: [b.center.x, b.center.y, b.center.z],
+            half_m: [b.half.x, b.half.y, b.half.z],
+            yaw_deg: b.axes[(1, 0)].atan2(b.axes[(0, 0)]).to_degrees(),
+        })
+    }
+
+    pub fn obb(&self) -> crate::obb::Obb {
+        crate::obb::Obb::new(
+            Point3::from(self.center_m),
+            crate::frame::rot_z(self.yaw_deg.to_radians()),
+            crate::frame::Vec3::from(self.half_m),
+        )
+    }
+}
+
 pub fn tri_area(a: Point3, b: Point3, c: Point3) -> f64 {
     0.5 * (b - a).cross(&(c - a)).norm()
 }

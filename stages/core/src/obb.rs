@@ -278,6 +278,70 @@ pub fn convex_hull_2d(points: &[[f64; 2]]) -> Vec<[f64; 2]> {
     hull
 }
 
+/// The upright box (turned about Z only) of least footprint holding every
+/// finite point of `points`, its first axis along the footprint's longer
+/// side; `None` where no point is finite. What stands in a plant model as a
+/// group is compared so with a load's box, whatever way the model turns it.
+///
+/// The least-area rectangle around a convex polygon has a side on one of its
+/// edges; where the hull has more edges than [`MAX_HULL_EDGES_TRIED`], every
+/// tenth of a degree is tried instead (a rectangle at most a few millimetres
+/// per metre larger), so that the work stays bounded.
+pub fn smallest_upright_box(points: &[[f64; 3]]) -> Option<Obb> {
+    let finite: Vec<&[f64; 3]> = points.iter().filter(|p| p.iter().all(|v| v.is_finite())).collect();
+    let (z_lo, z_hi) =
+        finite.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| (lo.min(p[2]), hi.max(p[2])));
+    if finite.is_empty() {
+        return None;
+    }
+    let hull = convex_hull_2d(&finite.iter().map(|p| [p[0], p[1]]).collect::<Vec<_>>());
+    let quarter = std::f64::consts::FRAC_PI_2;
+    let mut angles: Vec<f64> = if hull.len() <= MAX_HULL_EDGES_TRIED {
+        (0..hull.len())
+            .map(|i| {
+                let (a, b) = (hull[i], hull[(i + 1) % hull.len()]);
+                (b[1] - a[1]).atan2(b[0] - a[0]).rem_euclid(quarter)
+            })
+            .collect()
+    } else {
+        (0..900).map(|k| k as f64 * quarter / 900.0).collect()
+    };
+    angles.push(0.0);
+    angles.sort_by(f64::total_cmp);
+    // Along direction `a` and across it: each extent's low and high end.
+    let extents = |a: f64| {
+        let (u, v) = ([a.cos(), a.sin()], [-a.sin(), a.cos()]);
+        hull.iter().fold([f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY], |e, p| {
+            let (pu, pv) = (p[0] * u[0] + p[1] * u[1], p[0] * v[0] + p[1] * v[1]);
+            [e[0].min(pu), e[1].max(pu), e[2].min(pv), e[3].max(pv)]
+        })
+    };
+    let area = |e: &[f64; 4]| (e[1] - e[0]) * (e[3] - e[2]);
+    // The least area, and of (nearly) equal areas the smallest angle: one answer.
+    let (a, e) =
+        angles.iter().map(|&a| (a, extents(a))).fold(None, |best: Option<(f64, [f64; 4])>, (a, e)| match best {
+            Some((_, b)) if area(&b) <= area(&e) * (1.0 + 1e-9) + 1e-12 => best,
+            _ => Some((a, e)),
+        })?;
+    let (mut half_u, mut half_v) = ((e[1] - e[0]) / 2.0, (e[3] - e[2]) / 2.0);
+    let (cu, cv) = ((e[0] + e[1]) / 2.0, (e[2] + e[3]) / 2.0);
+    let (u, v) = (Vec3::new(a.cos(), a.sin(), 0.0), Vec3::new(-a.sin(), a.cos(), 0.0));
+    let center = Point3::new(u.x * cu + v.x * cv, u.y * cu + v.y * cv, (z_lo + z_hi) / 2.0);
+    let mut yaw = a;
+    if half_v > half_u {
+        std::mem::swap(&mut half_u, &mut half_v);
+        yaw += quarter;
+    }
+    // The long side's direction, in (-90, 90] degrees.
+    if yaw > quarter {
+        yaw -= std::f64::consts::PI;
+    }
+    Some(Obb::new(center, crate::frame::rot_z(yaw), Vec3::new(half_u, half_v, (z_hi - z_lo) / 2.0)))
+}
+
+/// Past this many hull edges [`smallest_upright_box`] tries fixed angles.
+pub const MAX_HULL_EDGES_TRIED: usize = 2048;
+
 /// The x-range covered by a convex polygon inside the horizontal strip
 /// `y0 <= y <= y1`, or `None` when the polygon misses the strip.
 pub fn strip_x_range(poly: &[[f64; 2]], y0: f64, y1: f64) -> Option<(f64, f64)> {
@@ -482,5 +546,53 @@ mod tests {
         let r = strip_x_range(&[[0.0, 0.0], [2.0, 0.0], [0.0, 2.0]], 1.0, 1.5).unwrap();
         assert!((r.0 - 0.0).abs() < 1e-12 && (r.1 - 1.0).abs() < 1e-12);
         assert!(strip_x_range(&[[0.0, 0.0], [2.0, 0.0], [0.0, 2.0]], 3.0, 4.0).is_none());
+    }
+
+    proptest! {
+        /// The corners of an upright box, and points inside it, give the box
+        /// back: its centre, its sizes (the longer first) and its long side's
+        /// direction (a half turn is the same box).
+        #[test]
+        fn the_smallest_upright_box_of_a_box_is_that_box(
+            cx in -50.0..50.0f64, cy in -50.0..50.0f64, cz in -5.0..20.0f64,
+            hx in 0.2..6.0f64, hy in 0.2..6.0f64, hz in 0.1..3.0f64,
+            yaw in -3.2..3.2f64, inside in proptest::collection::vec((-1.0..1.0f64, -1.0..1.0f64, -1.0..1.0f64), 0..20),
+        ) {
+            prop_assume!((hx - hy).abs() > 0.01);
+            let b = Obb::new(Point3::new(cx, cy, cz), rot_z(yaw), Vec3::new(hx, hy, hz));
+            let mut pts: Vec<[f64; 3]> = b.corners().iter().map(|c| [c.x, c.y, c.z]).collect();
+            pts.extend(inside.iter().map(|&(u, v, w)| {
+                let p = b.center + b.axis(0) * (u * hx) + b.axis(1) * (v * hy) + b.axis(2) * (w * hz);
+                [p.x, p.y, p.z]
+            }));
+            let found = smallest_upright_box(&pts).unwrap();
+            prop_assert!((found.center - b.center).norm() < 1e-6, "{found:?}");
+            let (long, short) = if hx > hy { (hx, hy) } else { (hy, hx) };
+            prop_assert!((found.half - Vec3::new(long, short, hz)).norm() < 1e-6, "{found:?}");
+            let long_axis = if hx > hy { b.axis(0) } else { b.axis(1) };
+            prop_assert!(found.axis(0).dot(&long_axis).abs() > 1.0 - 1e-9);
+            let yaw_found = found.axes[(1, 0)].atan2(found.axes[(0, 0)]);
+            prop_assert!(yaw_found > -std::f64::consts::FRAC_PI_2 - 1e-12 && yaw_found <= std::f64::consts::FRAC_PI_2 + 1e-12);
+        }
+    }
+
+    #[test]
+    fn the_smallest_upright_box_leaves_out_what_is_not_finite_and_stays_bounded() {
+        assert!(smallest_upright_box(&[]).is_none());
+        assert!(smallest_upright_box(&[[f64::NAN, 0.0, 0.0], [f64::INFINITY, 1.0, 1.0]]).is_none());
+        let one = smallest_upright_box(&[[1.0, 2.0, 3.0], [f64::NAN, 0.0, 0.0]]).unwrap();
+        assert_eq!((one.center, one.half), (Point3::new(1.0, 2.0, 3.0), Vec3::zeros()));
+        // A cylinder's rim of 100,000 points: more hull edges than are tried
+        // one by one; a box of the circle's diameter all the same.
+        let n = 100_000;
+        let rim: Vec<[f64; 3]> = (0..n)
+            .map(|k| {
+                let a = k as f64 / n as f64 * std::f64::consts::TAU;
+                [10.0 + 2.0 * a.cos(), -3.0 + 2.0 * a.sin(), (k % 2) as f64]
+            })
+            .collect();
+        let b = smallest_upright_box(&rim).unwrap();
+        assert!((b.center - Point3::new(10.0, -3.0, 0.5)).norm() < 1e-6, "{b:?}");
+        assert!((b.half.x - 2.0).abs() < 1e-3 && (b.half.y - 2.0).abs() < 1e-3 && b.half.z == 0.5, "{b:?}");
     }
 }

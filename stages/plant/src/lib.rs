@@ -159,6 +159,13 @@ pub struct Summary {
     /// `[plant] exclude` patterns that matched no group (each with the
     /// nearest group name, where one is near): nothing was left out for them.
     pub exclude_unmatched: Vec<String>,
+    /// Where each excluded group stands, as the smallest upright box around
+    /// it in the site frame (one per name).
+    pub excluded_boxes: Vec<liftplan_core::mesh::ModelBox>,
+    /// The excluded groups' points in model coordinates, by name, until
+    /// they are placed and boxed.
+    #[serde(skip)]
+    pub excluded_points: Vec<(String, Vec<[f64; 3]>)>,
     /// Every group name met, for checking the selection's patterns.
     #[serde(skip)]
     pub seen_groups: Vec<String>,
@@ -413,12 +420,41 @@ pub fn rvm_to_mesh(
         s: &Settings,
         kept: &mut Vec<(&'a rvm::Primitive, usize)>,
         names: &mut Vec<String>,
-        excluded: &mut Vec<String>,
+        excluded: &mut Vec<(String, Vec<[f64; 3]>)>,
         seen: &mut Vec<String>,
     ) {
         seen.push(g.name.clone());
+        let role_ok = |p: &rvm::Primitive| match p.role {
+            rvm::Role::Primitive => true,
+            rvm::Role::Insulation => s.insulation,
+            rvm::Role::Obstruction => s.obstructions,
+        };
         if s.exclude.iter().any(|p| glob(p, &g.name)) || matches_where(attrs, &g.name, &s.exclude_where) {
-            excluded.push(g.name.clone());
+            // Where it stands, for comparing with a lift's set position: the
+            // corners of its primitives' boxes (the file's own, in each
+            // primitive's frame), not tessellated, so that leaving out a
+            // large part of a model costs nothing.
+            fn corners(g: &rvm::Group, role_ok: &dyn Fn(&rvm::Primitive) -> bool, out: &mut Vec<[f64; 3]>) {
+                for p in g.primitives.iter().filter(|p| role_ok(p)) {
+                    let b = p.bbox_local.map(f64::from);
+                    out.extend((0..8).map(|k| {
+                        tess::transform(
+                            &p.matrix,
+                            [
+                                b[if k & 1 == 0 { 0 } else { 3 }],
+                                b[if k & 2 == 0 { 1 } else { 4 }],
+                                b[if k & 4 == 0 { 2 } else { 5 }],
+                            ],
+                        )
+                    }));
+                }
+                for c in &g.children {
+                    corners(c, role_ok, out);
+                }
+            }
+            let mut points = Vec::new();
+            corners(g, &role_ok, &mut points);
+            excluded.push((g.name.clone(), points));
             return;
         }
         // `None`: no include pattern matched yet on the way down.
@@ -431,23 +467,21 @@ pub fn rvm_to_mesh(
         if included == Some(true) && !g.primitives.is_empty() {
             let id = names.len();
             names.push(g.name.clone());
-            for p in &g.primitives {
-                let role_ok = match p.role {
-                    rvm::Role::Primitive => true,
-                    rvm::Role::Insulation => s.insulation,
-                    rvm::Role::Obstruction => s.obstructions,
-                };
-                if role_ok {
-                    kept.push((p, id));
-                }
+            for p in g.primitives.iter().filter(|p| role_ok(p)) {
+                kept.push((p, id));
             }
         }
         for c in &g.children {
             go(c, included, attrs, s, kept, names, excluded, seen);
         }
     }
+    let mut excluded = Vec::new();
     for g in &file.groups {
-        go(g, None, attrs, s, &mut kept, &mut group_names, &mut summary.excluded_groups, &mut summary.seen_groups);
+        go(g, None, attrs, s, &mut kept, &mut group_names, &mut excluded, &mut summary.seen_groups);
+    }
+    for (name, points) in excluded {
+        summary.excluded_groups.push(name.clone());
+        summary.excluded_points.push((name, points));
     }
     summary.groups += file.group_count();
     for (k, n) in file.primitive_counts() {
@@ -620,6 +654,26 @@ fn select_mesh(m: TriMesh, s: &Settings, summary: &mut Summary) -> TriMesh {
             inc && !exc
         })
         .collect();
+    // Where each excluded group stands: its triangles' corners, in one pass
+    // over the triangles whatever the number of groups.
+    let slot: Vec<Option<usize>> = m
+        .groups
+        .iter()
+        .scan(0, |n, g| {
+            Some(s.exclude.iter().any(|p| glob(p, g)).then(|| {
+                *n += 1;
+                *n - 1
+            }))
+        })
+        .collect();
+    let mut points: Vec<Vec<[f64; 3]>> = vec![Vec::new(); slot.iter().flatten().count()];
+    for (t, p) in m.triangles.iter().zip(&m.part_of) {
+        if let Some(k) = slot[m.parts[*p as usize].group as usize] {
+            points[k].extend(t.iter().map(|&v| m.vertices[v as usize]));
+        }
+    }
+    let names = m.groups.iter().zip(&slot).filter(|(_, k)| k.is_some()).map(|(g, _)| g.clone());
+    summary.excluded_points.extend(names.zip(points));
     if keep.iter().all(|k| *k) {
         return m;
     }
@@ -727,6 +781,16 @@ pub fn run(
         s.rotate_z_deg.to_radians(),
     );
     mesh.transform(&pose);
+    // One box per name, over every file that has it, placed as the mesh is.
+    let mut by_name: BTreeMap<String, Vec<[f64; 3]>> = BTreeMap::new();
+    for (name, points) in std::mem::take(&mut summary.excluded_points) {
+        by_name.entry(name).or_default().extend(points.into_iter().map(|p| {
+            let q = pose * liftplan_core::frame::Point3::from(p);
+            [q.x, q.y, q.z]
+        }));
+    }
+    summary.excluded_boxes =
+        by_name.iter().filter_map(|(name, points)| liftplan_core::mesh::ModelBox::around(name, points)).collect();
     summary.triangles = mesh.triangle_count();
     summary.vertices = mesh.vertices.len();
     let bb: Aabb = mesh.bbox();
@@ -878,6 +942,75 @@ mod tests {
         assert!(lines.contains("[plant] exclude '/PUMP-9' matches no group"), "{lines}");
         let summary = run_with(Settings { exclude: vec!["/elbows".into()], ..Default::default() }).unwrap();
         assert!(summary.exclude_unmatched.is_empty() && summary.triangles == 0, "{summary:?}");
+    }
+
+    /// A group left out of the model is kept as the box around it, placed as
+    /// the mesh is ([plant] translate_m, rotate_z_deg), for the planner to
+    /// compare with a lift's set position: its children's primitives
+    /// included, whichever way the model turns it; an OBJ object likewise.
+    #[test]
+    fn excluded_groups_are_boxed_where_they_stand() {
+        let d = tempfile::tempdir().unwrap();
+        // A 4 x 1 x 1 m box turned 30° about Z at (5, 6, 1), in a child
+        // group of the one excluded, and a 1 m cube beside it in the parent.
+        let (c, s30) = (30f32.to_radians().cos(), 30f32.to_radians().sin());
+        let turned = Primitive {
+            role: Role::Primitive,
+            matrix: [c, s30, 0.0, -s30, c, 0.0, 0.0, 0.0, 1.0, 5.0, 6.0, 1.0],
+            bbox_local: [-2.0, -0.5, -0.5, 2.0, 0.5, 0.5],
+            shape: Shape::Box { lengths: [4.0, 1.0, 1.0] },
+            offset: 0,
+        };
+        let cube = Primitive {
+            matrix: [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 20.0, 0.0, 0.5],
+            bbox_local: [-0.5, -0.5, -0.5, 0.5, 0.5, 0.5],
+            shape: Shape::Box { lengths: [1.0, 1.0, 1.0] },
+            ..turned.clone()
+        };
+        let vessel = Group { name: "/V-1/SHELL".into(), primitives: vec![turned], ..Default::default() };
+        let file = RvmFile {
+            groups: vec![
+                Group { name: "/V-1".into(), children: vec![vessel], ..Default::default() },
+                Group { name: "/PUMP".into(), primitives: vec![cube], ..Default::default() },
+            ],
+            ..Default::default()
+        };
+        let path = d.path().join("plant.rvm");
+        std::fs::write(&path, rvm::write(&file)).unwrap();
+        let s = Settings {
+            exclude: vec!["/V-1".into()],
+            translate_m: [-1.0, -2.0, 0.5],
+            rotate_z_deg: 90.0,
+            ..Default::default()
+        };
+        let summary = run(std::slice::from_ref(&path), &s, &d.path().join("out"), None, &|_, _, _| {}).unwrap();
+        assert_eq!(summary.excluded_groups, ["/V-1"]);
+        let [b] = summary.excluded_boxes.as_slice() else { panic!("{:?}", summary.excluded_boxes) };
+        // Turned 90° about the model's origin, then moved: (5, 6, 1) ->
+        // (-6, 5, 1) -> (-7, 3, 1.5); the long side at 30° + 90°.
+        assert_eq!(b.name, "/V-1");
+        let near = |a: [f64; 3], e: [f64; 3]| (0..3).all(|i| (a[i] - e[i]).abs() < 1e-5);
+        assert!(near(b.center_m, [-7.0, 3.0, 1.5]) && near(b.half_m, [2.0, 0.5, 0.5]), "{b:?}");
+        assert!((b.yaw_deg - (-60.0)).abs() < 1e-4, "{b:?}");
+        let json: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(d.path().join("out/plant.json")).unwrap()).unwrap();
+        assert_eq!(json["excluded_boxes"][0]["name"], "/V-1");
+        // An OBJ object left out is boxed from its vertices.
+        let obj = d.path().join("skid.obj");
+        std::fs::write(
+            &obj,
+            "o SKID\nv 0 0 0\nv 3 0 0\nv 3 2 0\nv 0 2 1\nf 1 2 3\nf 1 3 4\no KEEP\nv 9 9 0\nv 10 9 0\nv 10 10 0\nf 5 6 7\n",
+        )
+        .unwrap();
+        let s = Settings {
+            exclude: vec!["SKID".into()],
+            unit: Some(LengthUnit::M),
+            up_axis: Some(UpAxis::Z),
+            ..Default::default()
+        };
+        let summary = run(&[obj], &s, &d.path().join("out2"), None, &|_, _, _| {}).unwrap();
+        let [b] = summary.excluded_boxes.as_slice() else { panic!("{:?}", summary.excluded_boxes) };
+        assert!(b.name == "SKID" && near(b.center_m, [1.5, 1.0, 0.5]) && near(b.half_m, [1.5, 1.0, 0.5]), "{b:?}");
     }
 
     /// A model whose tessellation would pass the plant's triangle budget is
