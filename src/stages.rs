@@ -175,7 +175,14 @@ pub fn plan() -> StageDef {
         about: "plan each lift (MSPGA on the hybrid C-space) and validate it independently",
         inputs: |p: &Project| Ok(p.crane_files()),
         settings: |p: &Project| serde_json::json!({ "plan": p.raw.plan, "lifts": p.raw.lift, "seed": p.raw.project.seed }),
-        reads: &[("depthmap", "site.mdm"), ("scans", "site.laz"), ("plant", "plant.mesh"), ("charts", "capacity.csv")],
+        reads: &[
+            ("depthmap", "site.mdm"),
+            ("scans", "site.laz"),
+            ("plant", "plant.mesh"),
+            // The groups left out of the model, against the lifts' positions.
+            ("plant", "plant.json"),
+            ("charts", "capacity.csv"),
+        ],
         applicable: |p, _, up| !p.raw.lift.is_empty() && up.contains_key("depthmap"),
         run: run_plan,
     }
@@ -189,6 +196,7 @@ fn run_plan(ctx: &Ctx) -> Result<Produced> {
         &tasks,
         &map,
         ctx.upstream_file("plant", "plant.mesh").as_deref(),
+        ctx.upstream_file("plant", "plant.json").as_deref(),
         ctx.upstream_file("scans", "site.laz").as_deref(),
         ctx.upstream_file("charts", "capacity.csv").as_deref(),
         &p.raw.plan,

@@ -47,8 +47,10 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     assert!(text.contains("agree with the scans"), "{text}");
     // The crane's set-up level, checked against the scanned ground under it.
     assert!(text.contains("scanned ground points under its carrier and outriggers"), "{text}");
-    // The demo's vessel is set down on its foundation, not above it.
+    // The demo's vessel is set down on its foundation, not above it, where
+    // the plant model (which draws it, left out of the obstacles) has it.
     assert!(text.contains("At its set position the load rests on"), "{text}");
+    assert!(text.replace('\n', " ").contains("set position agrees with the plant model's /V-101"), "{text}");
     // The demo's plant model stands where its scans put the site.
     assert!(text.contains("Plant model against the scans"), "{text}");
     // What the lift passes over that no scan saw (the demo's scans leave a
@@ -235,6 +237,28 @@ liftoff_m = 0.5
     assert!(!o.status.success(), "planned with the vessel in the model at its set position:\n{stderr}");
     assert!(stderr.contains("the plant model's /V-101 fills the load's box there"), "{stderr}");
     assert!(stderr.contains("[plant] exclude = [\"/V-101\"]"), "{stderr}");
+    // The vessel set crosswise on its foundation (yaw 90° for 0°): planned
+    // (it rests on the foundation), but the plant model's copy of it, left
+    // out of the obstacles, has it a quarter turn from that, which the
+    // cover asks to check first (nothing said it once the copy was excluded).
+    let crosswise = t13.replace(
+        "set = { x_m = 30.0, y_m = 2.0, z_m = 1.2, yaw_deg = 0.0 }",
+        "set = { x_m = 30.0, y_m = 2.0, z_m = 1.2, yaw_deg = 90.0 }",
+    );
+    assert_ne!(crosswise, t13);
+    std::fs::write(&toml_path, &crosswise).unwrap();
+    let r = run_json(&dir);
+    assert_eq!(stage(&r, "docs")["status"], "ran", "{r}");
+    let plan: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join("out").join("plan.json")).unwrap()).unwrap();
+    let against = &plan["lifts"][0]["summary"]["against_model"][0];
+    assert!(against["object"] == "/V-101" && (against["turn_deg"].as_f64().unwrap() - 90.0).abs() < 0.01, "{against}");
+    let doc = lopdf::Document::load(&pdf_path).unwrap();
+    let pages: Vec<u32> = doc.get_pages().keys().copied().collect();
+    let cover = doc.extract_text(&pages[..1]).unwrap().replace('\n', " ");
+    assert!(cover.contains("the set position against the plant model's /V-101"), "{cover}");
+    let text = doc.extract_text(&pages).unwrap().replace('\n', " ");
+    assert!(text.contains("the model has it turned 90° from set yaw_deg: CHECK set yaw_deg"), "{text}");
     // The model 100 m north of the scanned site (a wrong datum): the scans
     // barely meet it, so where it stands is unchecked, which the cover asks
     // to check first.

@@ -165,6 +165,9 @@ fn checks_before_signing(inp: &Inputs, task: &LiftTask, plan: &LiftPlan) -> Vec<
     if plan.load_cutout.points > 0 && sm.load_as_scanned.as_ref().is_some_and(|l| l.needs_checking()) {
         v.push("the load's size or pick position against its scan".to_string());
     }
+    for a in sm.against_model.iter().filter(|a| !a.agrees()) {
+        v.push(format!("the {} position against the plant model's {}", a.at, a.object));
+    }
     match sm.set_down() {
         SetDown::Rests(_) => {}
         SetDown::Above(_) => v.push("the set-down ends above its support".to_string()),
@@ -735,6 +738,10 @@ pub fn document(
             liftplan_plan::validate::SUPPORT_SEARCH_M
         ),
     };
+    // Where the plant model draws the load, how the lift's positions stand
+    // against it.
+    let against: Vec<String> = plan.summary.against_model.iter().map(|a| sentence(&a.said())).collect();
+    let set_text = if against.is_empty() { set_text } else { format!("{set_text} {}", against.join(" ")) };
     y = sign_off_paragraph(&mut d, y, w, &set_text);
     y += 4.0;
     let model_text = match &plan.model_vs_scans {

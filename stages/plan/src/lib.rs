@@ -20,6 +20,7 @@ pub mod bench;
 pub mod coverage;
 mod hints;
 pub mod load_scan;
+pub mod model_copy;
 pub mod mspga;
 pub mod path;
 pub mod steps;
@@ -793,6 +794,21 @@ pub fn read_points(path: &Path, exclude: &[Obb]) -> Result<(Vec<[f64; 3]>, Vec<b
     Ok((inp.points, inp.ground, taken))
 }
 
+/// The groups the plant stage left out of the model, as plant.json has them
+/// (none in a plant.json written before it had them).
+fn excluded_boxes(path: &Path) -> Result<Vec<liftplan_core::mesh::ModelBox>> {
+    #[derive(serde::Deserialize)]
+    struct PlantJson {
+        #[serde(default)]
+        excluded_boxes: Vec<liftplan_core::mesh::ModelBox>,
+    }
+    let bytes = std::fs::read(path).map_err(|e| PlanError::Input(Location::file(path), e.to_string()))?;
+    let j: PlantJson = serde_json::from_slice(&bytes).map_err(|e| {
+        PlanError::Input(Location::file(path), format!("line {}, column {}: {e}", e.line(), e.column()))
+    })?;
+    Ok(j.excluded_boxes)
+}
+
 /// What the stage reports.
 #[derive(Debug, Clone, Serialize)]
 pub struct RunSummary {
@@ -810,6 +826,7 @@ impl RunSummary {
                     .chain(s.other_loads_line())
                     .chain(s.coverage_line())
                     .chain(s.load_as_scanned_line())
+                    .chain(s.against_model_lines())
             }))
             .collect()
     }
@@ -820,6 +837,7 @@ pub fn run(
     tasks: &[LiftTask],
     map_path: &Path,
     mesh_path: Option<&Path>,
+    plant_json: Option<&Path>,
     cloud_path: Option<&Path>,
     capacity_csv: Option<&Path>,
     s: &Settings,
@@ -841,6 +859,10 @@ pub fn run(
     let mesh = match mesh_path {
         Some(p) => TriMesh::read_artifact(p).map_err(|e| PlanError::Input(Location::file(p), e.to_string()))?,
         None => TriMesh::default(),
+    };
+    let left_out = match plant_json {
+        Some(p) => excluded_boxes(p)?,
+        None => Vec::new(),
     };
     let exclusions = load_exclusions(tasks, s.load_cutout_m);
     let (points, ground, taken_for_loads) = match cloud_path {
@@ -889,6 +911,7 @@ pub fn run(
         }
         plan.summary.other_loads = world.others.iter().map(|(_, name)| name.clone()).collect();
         plan.summary.load_as_scanned = as_scanned;
+        plan.summary.against_model = model_copy::of_lift(task, &left_out);
         plan.load_cutout = LoadCutout { grow_m: s.load_cutout_m, above_m, points: taken.len(), set_by };
         plan.model_vs_scans = model_vs_scans.clone();
         let io = |p: &Path, e: std::io::Error| PlanError::Input(Location::file(p), e.to_string());

@@ -151,6 +151,10 @@ pub struct Summary {
     /// ([`crate::load_scan::of_pick`]; `None` without scans).
     #[serde(default)]
     pub load_as_scanned: Option<crate::load_scan::LoadAsScanned>,
+    /// The pick and set against the plant model's copy of the load, where
+    /// one was left out of the model there ([`crate::model_copy::of_lift`]).
+    #[serde(default)]
+    pub against_model: Vec<crate::model_copy::AgainstModel>,
 }
 
 /// Serde for a distance that may be infinite (nothing within the
@@ -227,6 +231,11 @@ impl Summary {
         self.load_as_scanned.as_ref().map(|l| format!("lift {}: {}", self.lift, l.said()))
     }
 
+    /// [`Summary::against_model`], a line each.
+    pub fn against_model_lines(&self) -> impl Iterator<Item = String> + '_ {
+        self.against_model.iter().map(|a| format!("lift {}: {}", self.lift, a.said()))
+    }
+
     /// [`Summary::coverage`]'s line, for the run's output.
     pub fn coverage_line(&self) -> Option<String> {
         self.coverage.as_ref().map(|c| format!("lift {}: {}", self.lift, c.line()))
@@ -278,6 +287,7 @@ pub fn summary(task: &LiftTask, steps: &[Step], verdict: &Verdict) -> Summary {
         coverage: None,
         load_as_scanned: None,
         other_loads: Vec::new(),
+        against_model: Vec::new(),
     };
     for st in steps {
         if let Some(u) = st.utilisation_pct

@@ -1,0 +1,279 @@
+//! The lift's pick and set positions against the plant model's own copy of
+//! the load: a plant model draws the equipment a lift installs where it is
+//! installed, and the project leaves it out of the obstacles (`[plant]
+//! exclude`). Where such a group stands at the set position (or at the pick,
+//! for equipment taken out), it says where the design puts the load, so a
+//! set position typed off it, a yaw a quarter turn off or a load box smaller
+//! than the model's are named here.
+//!
+//! Words only: nothing here decides whether a lift is planned; the set-down
+//! checks and the validator stand as they are.
+
+use liftplan_core::crane::Config;
+use liftplan_core::lift::LiftTask;
+use liftplan_core::mesh::ModelBox;
+use serde::{Deserialize, Serialize};
+
+/// Farther than this apart (m), in plan or in height, a position differs
+/// from the model's copy: what the model against the scans allows.
+pub const PLACE_TOLERANCE_M: f64 = 0.1;
+
+/// Past [`PLACE_TOLERANCE_M`] by less than this (m) is within it: a
+/// distance said as "0.10 m" is not flagged for the model's single-precision
+/// numbers.
+const ROUNDING_M: f64 = 0.005;
+
+/// Turned more than this from the model's copy (degrees), a position
+/// differs from it (an 8 m load's ends move 0.14 m at 2°).
+pub const TURN_TOLERANCE_DEG: f64 = 2.0;
+
+/// A footprint whose sides differ by less than this (m) has no long side
+/// to compare the turn by: it is compared a quarter turn at a time.
+const SQUARE_WITHIN_M: f64 = 0.1;
+
+/// Each of a group's sizes (long side, short side, height) within this
+/// factor of the load's, for the group to be taken as the load's copy.
+const ALIKE_FACTOR: f64 = 2.0;
+
+/// One position of a lift against the model's copy of its load.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct AgainstModel {
+    /// `pick` or `set`.
+    pub at: String,
+    /// The group left out of the model (`[plant] exclude`).
+    pub object: String,
+    /// From the load's box to the model's copy: its centre in plan and its
+    /// underside (m, site frame).
+    pub offset_m: [f64; 3],
+    /// The copy's long side against the load's (degrees counter-clockwise,
+    /// in (-90, 90]; in (-45, 45] where either footprint is square).
+    pub turn_deg: f64,
+    /// Long side, short side and height of the copy's box and of the load's (m).
+    pub model_size_m: [f64; 3],
+    pub load_size_m: [f64; 3],
+    /// The keys that set this position: in plan, its height and its yaw.
+    pub keys: [String; 3],
+}
+
+impl AgainstModel {
+    pub fn plan_offset_m(&self) -> f64 {
+        self.offset_m[0].hypot(self.offset_m[1])
+    }
+
+    pub fn turned(&self) -> bool {
+        self.turn_deg.abs() > TURN_TOLERANCE_DEG
+    }
+
+    pub fn moved(&self) -> bool {
+        self.plan_offset_m() > PLACE_TOLERANCE_M + ROUNDING_M
+    }
+
+    pub fn raised(&self) -> bool {
+        self.offset_m[2].abs() > PLACE_TOLERANCE_M + ROUNDING_M
+    }
+
+    /// The copy is larger than the load's box in some size.
+    pub fn larger(&self) -> bool {
+        (0..3).any(|i| self.model_size_m[i] > self.load_size_m[i] + PLACE_TOLERANCE_M + ROUNDING_M)
+    }
+
+    pub fn agrees(&self) -> bool {
+        !(self.turned() || self.moved() || self.raised() || self.larger())
+    }
+
+    /// One sentence without its full stop, for the run's line and the PDF.
+    pub fn said(&self) -> String {
+        let (at, object) = (&self.at, &self.object);
+        let [xy_key, z_key, yaw_key] = &self.keys;
+        let left_out = "(left out of the obstacles as the load, [plant] exclude)";
+        if self.agrees() {
+            return format!(
+                "the {at} position agrees with the plant model's {object} {left_out}: {:.2} m apart in plan, {:.2} m in height, turned {:.1}° from it",
+                self.plan_offset_m(),
+                self.offset_m[2].abs(),
+                self.turn_deg.abs()
+            );
+        }
+        let mut differs = Vec::new();
+        if self.turned() {
+            // A quarter turn is a quarter turn either way.
+            let way = match self.turn_deg {
+                t if t.abs() >= 89.5 => "",
+                t if t > 0.0 => " anticlockwise",
+                _ => " clockwise",
+            };
+            differs.push(format!(
+                "the model has it turned {:.0}°{way} from {yaw_key}: CHECK {yaw_key}",
+                self.turn_deg.abs()
+            ));
+        }
+        if self.moved() {
+            let [dx, dy, _] = self.offset_m;
+            let part = |d: f64, pos: &str, neg: &str| {
+                (d.abs() >= 0.005).then(|| format!("{:.2} m {}", d.abs(), if d > 0.0 { pos } else { neg }))
+            };
+            let way: Vec<String> = [part(dx, "east (+x)", "west (-x)"), part(dy, "north (+y)", "south (-y)")]
+                .into_iter()
+                .flatten()
+                .collect();
+            differs.push(format!("the model has it {} of it: CHECK {xy_key}", way.join(" and ")));
+        }
+        if self.raised() {
+            let dz = self.offset_m[2];
+            differs.push(format!(
+                "the model has its underside {:.2} m {}: CHECK {z_key}",
+                dz.abs(),
+                if dz > 0.0 { "higher" } else { "lower" }
+            ));
+        }
+        if self.larger() {
+            let [m, l] =
+                [self.model_size_m, self.load_size_m].map(|s| format!("{:.2} x {:.2} x {:.2} m", s[0], s[1], s[2]));
+            differs.push(format!(
+                "the model's copy is {m} (long side, short side, height), larger than the load's box of {l}: CHECK size_m (a box smaller than the load keeps too little clearance)"
+            ));
+        }
+        format!(
+            "THE {} POSITION DIFFERS FROM THE PLANT MODEL'S {object} {left_out}: {}",
+            at.to_uppercase(),
+            differs.join("; ")
+        )
+    }
+}
+
+/// The lift's pick and set against the copies of its load among `boxes`
+/// (the groups left out of the plant model), each where one stands there.
+pub fn of_lift(task: &LiftTask, boxes: &[ModelBox]) -> Vec<AgainstModel> {
+    [(true, &task.pick), (false, &task.set)]
+        .into_iter()
+        .filter_map(|(at_pick, c)| at(task, boxes, c, at_pick))
+        .collect()
+}
+
+fn at(task: &LiftTask, boxes: &[ModelBox], c: &Config, at_pick: bool) -> Option<AgainstModel> {
+    let load = task.crane.load_obb(c, &task.load);
+    let load_long_x = load.half.x >= load.half.y;
+    let load_size = sizes(load.half.x, load.half.y, load.half.z);
+    let load_yaw = load.axes[(1, 0)].atan2(load.axes[(0, 0)]).to_degrees() + if load_long_x { 0.0 } else { 90.0 };
+    let reach = |h: [f64; 3]| h[0].hypot(h[1]);
+    let load_reach = reach([load.half.x, load.half.y, 0.0]);
+    let alike =
+        |m: [f64; 3]| (0..3).all(|i| m[i] <= load_size[i] * ALIKE_FACTOR && m[i] * ALIKE_FACTOR >= load_size[i]);
+    let copy = boxes
+        .iter()
+        .map(|b| {
+            let d = [b.center_m[0] - load.center.x, b.center_m[1] - load.center.y];
+            (b, d[0].hypot(d[1]))
+        })
+        .filter(|(b, d)| *d <= load_reach.max(reach(b.half_m)) && alike(sizes(b.half_m[0], b.half_m[1], b.half_m[2])))
+        // The nearest, and of equally near the first by name: one answer.
+        .min_by(|a, b| a.1.total_cmp(&b.1).then_with(|| a.0.name.cmp(&b.0.name)))?
+        .0;
+    let model_size = sizes(copy.half_m[0], copy.half_m[1], copy.half_m[2]);
+    let square = |s: [f64; 3]| s[0] - s[1] < SQUARE_WITHIN_M;
+    let period = if square(model_size) || square(load_size) { 90.0 } else { 180.0 };
+    let turn = (copy.yaw_deg - load_yaw).rem_euclid(period);
+    let turn = if turn > period / 2.0 { turn - period } else { turn };
+    let which = if at_pick { "pick" } else { "set" };
+    let xy_key = if task.by_configuration[usize::from(!at_pick)] {
+        let radial = if task.crane.model.is_tower() { "trolley_m" } else { "luff_deg" };
+        format!("{which} swing_deg and {radial}")
+    } else {
+        format!("{which} x_m and y_m")
+    };
+    Some(AgainstModel {
+        at: which.to_string(),
+        object: copy.name.clone(),
+        offset_m: [
+            copy.center_m[0] - load.center.x,
+            copy.center_m[1] - load.center.y,
+            (copy.center_m[2] - copy.half_m[2]) - (load.center.z - load.half.z),
+        ],
+        turn_deg: turn,
+        model_size_m: model_size,
+        load_size_m: load_size,
+        keys: [xy_key, task.height_key(at_pick).to_string(), format!("{which} yaw_deg")],
+    })
+}
+
+/// Long side, short side and height from half sizes.
+fn sizes(hx: f64, hy: f64, hz: f64) -> [f64; 3] {
+    [2.0 * hx.max(hy), 2.0 * hx.min(hy), 2.0 * hz]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The test lift's skid (6 x 3 x 2.5 m) set at (22, 14) with its
+    /// underside at 0.5 m, its long side along +y (yaw 90°); a model copy of
+    /// it there, moved, turned or sized as asked.
+    fn copy_at(dx: f64, dz: f64, yaw_deg: f64, half: [f64; 3]) -> ModelBox {
+        ModelBox { name: "/SKID-1".into(), center_m: [22.0 + dx, 14.0, 0.5 + dz + half[2]], half_m: half, yaw_deg }
+    }
+
+    const SKID: [f64; 3] = [3.0, 1.5, 1.25];
+
+    fn set_against(b: ModelBox) -> Option<AgainstModel> {
+        let task = crate::test_lift("ac-700");
+        let found = of_lift(&task, &[b]);
+        assert!(found.len() <= 1 && found.iter().all(|a| a.at == "set"), "{found:?}");
+        found.into_iter().next()
+    }
+
+    /// A set position is compared with the model's copy of its load, and
+    /// each way it is off it is named with the key that sets it.
+    #[test]
+    fn a_set_position_off_the_models_copy_of_its_load_is_named() {
+        let a = set_against(copy_at(0.0, 0.0, 90.0, SKID)).unwrap();
+        assert!(a.agrees(), "{a:?}");
+        assert!(a.said().starts_with("the set position agrees with the plant model's /SKID-1"), "{}", a.said());
+        // Its long side the other way (-90° is the same box as 90°).
+        assert!(set_against(copy_at(0.0, 0.0, -90.0, SKID)).unwrap().agrees());
+        let turned = set_against(copy_at(0.0, 0.0, 0.0, SKID)).unwrap();
+        assert!(turned.turned() && !turned.moved() && !turned.raised() && !turned.larger(), "{turned:?}");
+        assert!(
+            turned.said().starts_with("THE SET POSITION DIFFERS FROM THE PLANT MODEL'S /SKID-1")
+                && turned.said().ends_with("the model has it turned 90° from set yaw_deg: CHECK set yaw_deg"),
+            "{}",
+            turned.said()
+        );
+        let a = set_against(copy_at(0.0, 0.0, 85.0, SKID)).unwrap();
+        assert!(a.said().contains("turned 5° clockwise from set yaw_deg"), "{}", a.said());
+        assert!(set_against(copy_at(0.0, 0.0, 88.5, SKID)).unwrap().agrees());
+        let a = set_against(copy_at(0.3, 0.0, 90.0, SKID)).unwrap();
+        assert!(a.said().contains("the model has it 0.30 m east (+x) of it: CHECK set x_m and y_m"), "{}", a.said());
+        let a = set_against(copy_at(0.0, 0.2, 90.0, SKID)).unwrap();
+        assert!(a.said().contains("the model has its underside 0.20 m higher: CHECK set z_m"), "{}", a.said());
+        let a = set_against(copy_at(0.0, 0.0, 90.0, [3.5, 1.5, 1.25])).unwrap();
+        assert!(
+            a.said().contains("the model's copy is 7.00 x 3.00 x 2.50 m (long side, short side, height), larger than the load's box of 6.00 x 3.00 x 2.50 m: CHECK size_m"),
+            "{}",
+            a.said()
+        );
+        // Within the tolerance (0.10 m, as said) in each way at once.
+        assert!(set_against(copy_at(0.1, 0.1, 90.0, [3.05, 1.5, 1.25])).unwrap().agrees());
+        // Smaller than the load's box: the box holds it.
+        assert!(set_against(copy_at(0.0, 0.0, 90.0, [2.8, 1.4, 1.2])).unwrap().agrees());
+        // Not a copy of the load: beyond its footprint, or unlike it in size
+        // (a scaffold 30 m long over the set position).
+        assert!(set_against(copy_at(6.0, 0.0, 90.0, SKID)).is_none());
+        assert!(set_against(copy_at(0.0, 0.0, 90.0, [15.0, 1.5, 1.25])).is_none());
+    }
+
+    /// A position given as a crane configuration is named by its keys; a
+    /// copy at the pick (equipment taken out) is compared there.
+    #[test]
+    fn positions_are_named_by_the_keys_that_set_them() {
+        let mut task = crate::test_lift("ac-700");
+        task.by_configuration = [true, true];
+        let at_set = of_lift(&task, &[copy_at(0.3, 0.2, 0.0, SKID)]);
+        let said = at_set[0].said();
+        for key in ["CHECK set yaw_deg", "CHECK set swing_deg and luff_deg", "CHECK set hoist_m"] {
+            assert!(said.contains(key), "{key}: {said}");
+        }
+        let at_pick = ModelBox { center_m: [22.0, -14.0, 0.5 + 1.25], yaw_deg: 0.0, ..copy_at(0.0, 0.0, 0.0, SKID) };
+        let found = of_lift(&crate::test_lift("ac-700"), &[at_pick]);
+        assert!(found.len() == 1 && found[0].at == "pick" && found[0].agrees(), "{found:?}");
+    }
+}
