@@ -50,7 +50,10 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     // The demo's vessel is set down on its foundation, not above it, where
     // the plant model (which draws it, left out of the obstacles) has it.
     assert!(text.contains("At its set position the load rests on"), "{text}");
-    assert!(text.replace('\n', " ").contains("set position agrees with the plant model's /V-101"), "{text}");
+    let flat = text.replace('\n', " ");
+    assert!(flat.contains("the plant model's /V-101 (left out as the load) stands at the set position"), "{text}");
+    // ... with its centre of gravity over the foundation.
+    assert!(flat.contains("Its centre of gravity lies 1.26 m inside the edge of what holds it"), "{text}");
     // The demo's plant model stands where its scans put the site.
     assert!(text.contains("Plant model against the scans"), "{text}");
     // What the lift passes over that no scan saw (the demo's scans leave a
@@ -259,6 +262,22 @@ liftoff_m = 0.5
     assert!(cover.contains("the set position against the plant model's /V-101"), "{cover}");
     let text = doc.extract_text(&pages).unwrap().replace('\n', " ");
     assert!(text.contains("the model has it turned 90° from set yaw_deg: CHECK set yaw_deg"), "{text}");
+    // The vessel set 5 m east along its foundation, its centre of gravity
+    // 0.7 m beyond the foundation's end: planned, and "set down on
+    // /FDN-V101" was all it said; the cover now asks to check it first.
+    let overhung = t13.replace(
+        "set = { x_m = 30.0, y_m = 2.0, z_m = 1.2, yaw_deg = 0.0 }",
+        "set = { x_m = 35.0, y_m = 2.0, z_m = 1.2, yaw_deg = 0.0 }",
+    );
+    std::fs::write(&toml_path, &overhung).unwrap();
+    let r = run_json(&dir);
+    assert_eq!(stage(&r, "docs")["status"], "ran", "{r}");
+    let doc = lopdf::Document::load(&pdf_path).unwrap();
+    let pages: Vec<u32> = doc.get_pages().keys().copied().collect();
+    let cover = doc.extract_text(&pages[..1]).unwrap().replace('\n', " ");
+    assert!(cover.contains("the load's centre of gravity over what holds it at its set position"), "{cover}");
+    let text = doc.extract_text(&pages).unwrap().replace('\n', " ");
+    assert!(text.contains("BEYOND THE EDGE OF WHAT HOLDS IT"), "{text}");
     // The model 100 m north of the scanned site (a wrong datum): the scans
     // barely meet it, so where it stands is unchecked, which the cover asks
     // to check first.

@@ -165,6 +165,9 @@ fn checks_before_signing(inp: &Inputs, task: &LiftTask, plan: &LiftPlan) -> Vec<
     if plan.load_cutout.points > 0 && sm.load_as_scanned.as_ref().is_some_and(|l| l.needs_checking()) {
         v.push("the load's size or pick position against its scan".to_string());
     }
+    if sm.set_on.as_ref().is_some_and(|s| s.tips()) {
+        v.push("the load's centre of gravity over what holds it at its set position".to_string());
+    }
     for a in sm.against_model.iter().filter(|a| !a.agrees()) {
         v.push(format!("the {} position against the plant model's {}", a.at, a.object));
     }
@@ -738,10 +741,28 @@ pub fn document(
             liftplan_plan::validate::SUPPORT_SEARCH_M
         ),
     };
-    // Where the plant model draws the load, how the lift's positions stand
-    // against it.
-    let against: Vec<String> = plan.summary.against_model.iter().map(|a| sentence(&a.said())).collect();
-    let set_text = if against.is_empty() { set_text } else { format!("{set_text} {}", against.join(" ")) };
+    // Whether what holds it is under its centre of gravity; where the plant
+    // model draws the load, how the lift's positions stand against it. What
+    // is as it should be in one sentence, for the signatures to stay on
+    // the page; what is not, each in its own.
+    let on = plan.summary.set_on.as_ref();
+    let fine: Vec<String> = on
+        .filter(|s| !s.tips())
+        .and_then(|s| s.cog_inside_m)
+        .map(|m| format!("its centre of gravity lies {m:.2} m inside the edge of what holds it"))
+        .into_iter()
+        .chain(plan.summary.against_model.iter().filter(|a| a.agrees()).map(|a| a.agrees_clause()))
+        .collect();
+    let flagged = on
+        .filter(|s| s.tips())
+        .and_then(|s| s.cog_said())
+        .into_iter()
+        .chain(plan.summary.against_model.iter().filter(|a| !a.agrees()).map(|a| a.said()));
+    let set_text = std::iter::once(set_text)
+        .chain((!fine.is_empty()).then(|| sentence(&fine.join(", and "))))
+        .chain(flagged.map(|f| sentence(&f)))
+        .collect::<Vec<_>>()
+        .join(" ");
     y = sign_off_paragraph(&mut d, y, w, &set_text);
     y += 4.0;
     let model_text = match &plan.model_vs_scans {

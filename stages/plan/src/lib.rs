@@ -909,6 +909,13 @@ pub fn run(
         if scanned_loads.iter().any(|b| b.intersects(&set_box)) {
             plan.summary.set_in_cutout_m = s.load_cutout_m;
         }
+        // Where the load comes to rest, whether what holds it is under its
+        // centre of gravity (unknown where the support's top went with a
+        // load's cut-out).
+        if let Some(on) = plan.summary.set_on.as_mut().filter(|_| plan.summary.set_in_cutout_m == 0.0) {
+            on.cog_inside_m =
+                Some(validate::cog_over_support_m(task, &world, &task.set, on.gap_m, s.support_m, s.support_m));
+        }
         plan.summary.other_loads = world.others.iter().map(|(_, name)| name.clone()).collect();
         plan.summary.load_as_scanned = as_scanned;
         plan.summary.against_model = model_copy::of_lift(task, &left_out);

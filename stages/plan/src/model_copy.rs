@@ -81,6 +81,17 @@ impl AgainstModel {
         !(self.turned() || self.moved() || self.raised() || self.larger())
     }
 
+    /// [`AgainstModel::agrees`] said in few words, for the PDF.
+    pub fn agrees_clause(&self) -> String {
+        format!(
+            "the plant model's {} (left out as the load) stands at the {} position to {:.2} m and {:.1}°",
+            self.object,
+            self.at,
+            self.plan_offset_m().max(self.offset_m[2].abs()),
+            self.turn_deg.abs()
+        )
+    }
+
     /// One sentence without its full stop, for the run's line and the PDF.
     pub fn said(&self) -> String {
         let (at, object) = (&self.at, &self.object);

@@ -198,11 +198,17 @@ impl Summary {
 
     /// [`Summary::set_down`] for the run's line.
     pub fn set_down_line(&self) -> String {
+        let tips = |s: &crate::validate::SetSupport| match s.cog_said() {
+            Some(said) if s.tips() => format!(", BUT {said}"),
+            _ => String::new(),
+        };
         match self.set_down() {
-            SetDown::Rests(s) => format!("set down on {}", s.object),
+            SetDown::Rests(s) => format!("set down on {}{}", s.object, tips(s)),
             SetDown::Above(s) => format!(
-                "SET-DOWN ENDS {:.2} m ABOVE {}: lowering it further is not part of this plan",
-                s.gap_m, s.object
+                "SET-DOWN ENDS {:.2} m ABOVE {}: lowering it further is not part of this plan{}",
+                s.gap_m,
+                s.object,
+                tips(s)
             ),
             SetDown::OverNothing => format!(
                 "NOTHING MODELLED UNDER THE LOAD at its set position (within {:.0} m): check its support on site",

@@ -496,7 +496,51 @@ pub struct SetSupport {
     /// From the load's underside down to the obstacle (m, within 2 mm).
     pub gap_m: f64,
     pub object: String,
+    /// How far inside the edge of what the load comes to rest on its centre
+    /// of gravity lies, in plan (m; negative: beyond it, where nothing known
+    /// holds it): [`cog_over_support_m`]. `None` where it was not measured
+    /// (the support's top went with a load's cut-out).
+    #[serde(default)]
+    pub cog_inside_m: Option<f64>,
 }
+
+impl SetSupport {
+    /// The load's centre of gravity is not known to lie over what holds it
+    /// ([`COG_INSIDE_SUPPORT_M`]).
+    pub fn tips(&self) -> bool {
+        self.cog_inside_m.is_some_and(|m| !(m >= COG_INSIDE_SUPPORT_M))
+    }
+
+    /// [`SetSupport::cog_inside_m`] said, where it was measured.
+    pub fn cog_said(&self) -> Option<String> {
+        let m = self.cog_inside_m?;
+        let shown = "(as the scans and the plant model show what is under it, in cells of 0.2 m)";
+        Some(if !self.tips() {
+            format!("its centre of gravity lies {m:.2} m inside the edge of what holds it {shown}")
+        } else if m >= 0.0 {
+            format!(
+                "ITS CENTRE OF GRAVITY LIES ONLY {m:.2} m INSIDE THE EDGE OF WHAT HOLDS IT {shown}: it may tip when the slings slacken; CHECK the set position and cog_m"
+            )
+        } else if m.is_finite() {
+            format!(
+                "ITS CENTRE OF GRAVITY LIES {:.2} m BEYOND THE EDGE OF WHAT HOLDS IT {shown}: it tips when the slings slacken, unless more holds it than they show; CHECK the set position and cog_m",
+                -m
+            )
+        } else {
+            "NOTHING WAS FOUND TO HOLD IT under its footprint: CHECK the set position".to_string()
+        })
+    }
+}
+
+/// A load whose centre of gravity lies less than this inside the edge of
+/// what it rests on (m) is said to tip: what holds it is known to a cell of
+/// the contact search, its centre of gravity to what the lift gives.
+pub const COG_INSIDE_SUPPORT_M: f64 = 0.1;
+
+/// The contact search's cell under a load (m): its footprint in cells this
+/// wide, at most [`SUPPORT_CELLS_MAX`] a side.
+const SUPPORT_CELL_M: f64 = 0.2;
+const SUPPORT_CELLS_MAX: usize = 60;
 
 /// How far below the load's underside [`set_support`] looks (m).
 pub const SUPPORT_SEARCH_M: f64 = 5.0;
@@ -532,7 +576,57 @@ pub fn set_support(task: &LiftTask, world: &World, c: &Config, reach_up_m: f64) 
         let mid = 0.5 * (lo + hi);
         if meets(mid).is_some() { hi = mid } else { lo = mid }
     }
-    meets(hi).map(|object| SetSupport { gap_m: hi, object })
+    let object = meets(hi)?;
+    Some(SetSupport { gap_m: hi, object, cog_inside_m: None })
+}
+
+/// How far inside the edge of what the load at `c` rests on its centre of
+/// gravity lies, in plan (m; negative beyond it), the load resting `gap_m`
+/// lower than at `c` (the gap [`set_support`] found). What it rests on: the
+/// cells of its footprint ([`SUPPORT_CELL_M`]) under which an obstacle's top
+/// lies within `band_m` below that level (or up to `reach_up_m` above it).
+/// The answer is a lower bound: the hull of the touching cells' centres,
+/// less a cell's half diagonal (each touching cell holds a point of the
+/// support within that of its centre). A load set with its centre of
+/// gravity beyond the edge of its foundation tips off it when the slings
+/// slacken; nothing else checked that.
+pub fn cog_over_support_m(task: &LiftTask, world: &World, c: &Config, gap_m: f64, band_m: f64, reach_up_m: f64) -> f64 {
+    let load = task.crane.load_obb(c, &task.load);
+    let rest = load.center.z - load.half.z - gap_m;
+    let cells = |half: f64| ((2.0 * half / SUPPORT_CELL_M).ceil() as usize).clamp(1, SUPPORT_CELLS_MAX);
+    let (nu, nv) = (cells(load.half.x), cells(load.half.y));
+    let (du, dv) = (2.0 * load.half.x / nu as f64, 2.0 * load.half.y / nv as f64);
+    let centres: Vec<liftplan_core::frame::Point3> = (0..nu)
+        .flat_map(|i| (0..nv).map(move |j| (i, j)))
+        .map(|(i, j)| {
+            let (u, v) = (-load.half.x + (i as f64 + 0.5) * du, -load.half.y + (j as f64 + 0.5) * dv);
+            load.center + load.axis(0) * u + load.axis(1) * v
+        })
+        .collect();
+    let touching: Vec<[f64; 2]> = centres
+        .par_iter()
+        .filter(|p| {
+            let column = Obb::new(
+                liftplan_core::frame::Point3::new(p.x, p.y, rest + (reach_up_m - band_m) / 2.0),
+                load.axes,
+                liftplan_core::frame::Vec3::new(du / 2.0, dv / 2.0, (reach_up_m + band_m) / 2.0),
+            );
+            nearest(world, &column, ALL_GROUND, 0.0).distance_m <= 1e-9
+        })
+        .map(|p| [p.x, p.y])
+        .collect();
+    let cog = load.center + load.axis(0) * task.load.cog_m[0] + load.axis(1) * task.load.cog_m[1];
+    let cog = [cog.x, cog.y];
+    let slack = 0.5 * du.hypot(dv);
+    let hull = liftplan_core::obb::convex_hull_2d(&touching);
+    // A hull of one or two points (a post, a rail) holds nothing inside it.
+    let inside = match hull.len() {
+        0 => return f64::NEG_INFINITY,
+        1 | 2 => -to_edge_m(&hull, cog),
+        _ if in_polygon(&hull, cog) => to_edge_m(&hull, cog),
+        _ => -to_edge_m(&hull, cog),
+    };
+    inside - slack
 }
 
 /// The scanned ground under a mobile crane's carrier and outriggers, or

@@ -958,6 +958,66 @@ fn the_set_down_says_what_the_load_rests_on() {
     assert_eq!(liftplan_plan::validate::set_support(&t, &bare, &t.set, 0.05), None);
 }
 
+/// Where the load comes to rest, what holds it must be under its centre of
+/// gravity: the test lift's load (4 x 2 m, its long side along +y) set at
+/// (22, 14) with its underside at 0.5 m, on plinths and rails whose tops
+/// lie there (or scan points), is measured from its centre of gravity to
+/// the edge of what holds it, never more than that (a lower bound).
+#[test]
+fn the_load_tips_where_its_centre_of_gravity_is_beyond_what_holds_it() {
+    use liftplan_plan::validate::cog_over_support_m;
+    let t = task(-14.0);
+    let on = |boxes: &[([f64; 3], [f64; 3])], cog_along_m: f64| {
+        let mut mesh = TriMesh::default();
+        for (k, (lo, hi)) in boxes.iter().enumerate() {
+            box_part(&mut mesh, &format!("PLINTH-{k}"), *lo, *hi);
+        }
+        let world = World::new(&mesh, &[], &[]).unwrap();
+        let mut t = t.clone();
+        t.load.cog_m[0] = cog_along_m;
+        cog_over_support_m(&t, &world, &t.set, 0.0, 0.05, 0.05)
+    };
+    let within = |m: f64, truth: f64| m <= truth && m >= truth - 0.35;
+    // A plinth under all of it: 1 m from its centre of gravity to its sides.
+    let m = on(&[([20.0, 11.0, 0.0], [24.0, 17.0, 0.5])], 0.0);
+    assert!(within(m, 1.0), "{m}");
+    // Its centre of gravity 1.5 m along it: 0.5 m from its end.
+    let m = on(&[([20.0, 11.0, 0.0], [24.0, 17.0, 0.5])], 1.5);
+    assert!(within(m, 0.5), "{m}");
+    // A plinth under its south end only, to 0.5 m short of its centre of
+    // gravity; one 0.3 m lower under the rest holds nothing at that level.
+    let m = on(&[([20.0, 11.0, 0.0], [24.0, 13.5, 0.5]), ([20.0, 13.5, 0.0], [24.0, 17.0, 0.2])], 0.0);
+    assert!(within(m, -0.5), "{m}");
+    // Two rails (saddles) under its ends hold it between them; one does not.
+    let rails = [([20.0, 12.0, 0.0], [24.0, 12.6, 0.5]), ([20.0, 15.4, 0.0], [24.0, 16.0, 0.5])];
+    let m = on(&rails, 0.0);
+    assert!(within(m, 1.0), "{m}");
+    let m = on(&rails[..1], 0.0);
+    assert!(within(m, -1.4), "{m}");
+    assert_eq!(on(&[], 0.0), f64::NEG_INFINITY);
+    // Scan points on a plinth's top, as a survey shows it.
+    let top: Vec<[f64; 3]> =
+        (0..41 * 61).map(|n| [20.0 + (n % 41) as f64 * 0.1, 11.0 + (n / 41) as f64 * 0.1, 0.5]).collect();
+    let world = World::new(&TriMesh::default(), &top, &vec![false; top.len()]).unwrap();
+    let m = cog_over_support_m(&t, &world, &t.set, 0.0, 0.05, 0.05);
+    assert!(within(m, 1.0), "{m}");
+    // Said on the run's line where it tips, and on the PDF's page as it is.
+    let (_, _, mut plan) = over_the_wall();
+    let support =
+        |m: f64| liftplan_plan::validate::SetSupport { gap_m: 0.0, object: "PLINTH".into(), cog_inside_m: Some(m) };
+    plan.summary.set_on = Some(support(-0.64));
+    let line = plan.summary.line();
+    assert!(
+        line.contains("set down on PLINTH, BUT ITS CENTRE OF GRAVITY LIES 0.64 m BEYOND THE EDGE OF WHAT HOLDS IT"),
+        "{line}"
+    );
+    plan.summary.set_on = Some(support(0.05));
+    assert!(plan.summary.line().contains("ONLY 0.05 m INSIDE THE EDGE"), "{}", plan.summary.line());
+    plan.summary.set_on = Some(support(0.76));
+    assert!(plan.summary.line().ends_with("set down on PLINTH"), "{}", plan.summary.line());
+    assert!(support(0.76).cog_said().unwrap().starts_with("its centre of gravity lies 0.76 m inside"));
+}
+
 /// The carrier and outriggers stand on the ground, but not in a bank: a
 /// patch of scanned ground more than half a metre above the set-up level
 /// under the carrier is refused by the validator and the planner; a kerb
