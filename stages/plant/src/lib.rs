@@ -157,7 +157,8 @@ pub struct Summary {
     pub caps_culled: usize,
     pub excluded_groups: Vec<String>,
     /// `[plant] exclude` patterns that matched no group (each with the
-    /// nearest group name, where one is near): nothing was left out for them.
+    /// nearest group name, where one is near) and `exclude_where` rules no
+    /// group's attributes met, each with its key: nothing was left out for them.
     pub exclude_unmatched: Vec<String>,
     /// Where each excluded group stands, as the smallest upright box around
     /// it in the site frame (one per name).
@@ -166,6 +167,12 @@ pub struct Summary {
     /// they are placed and boxed.
     #[serde(skip)]
     pub excluded_points: Vec<(String, Vec<[f64; 3]>)>,
+    /// `[plant] exclude_where` rules some group's attributes met, and how
+    /// many attribute files were read, for saying those that met none.
+    #[serde(skip)]
+    pub exclude_where_matched: std::collections::BTreeSet<String>,
+    #[serde(skip)]
+    pub attribute_files: usize,
     /// Every group name met, for checking the selection's patterns.
     #[serde(skip)]
     pub seen_groups: Vec<String>,
@@ -196,7 +203,7 @@ impl Summary {
             v.push(format!("excluded {} groups: {}", self.excluded_groups.len(), first_five(&self.excluded_groups)));
         }
         for p in &self.exclude_unmatched {
-            v.push(format!("[plant] exclude {p} matches no group: NOTHING WAS LEFT OUT for it"));
+            v.push(format!("[plant] {p} matches no group: NOTHING WAS LEFT OUT for it"));
         }
         if let Some(how) = &self.meshes_read_as {
             v.push(format!(
@@ -476,8 +483,15 @@ pub fn rvm_to_mesh(
         }
     }
     let mut excluded = Vec::new();
+    let first_seen = summary.seen_groups.len();
     for g in &file.groups {
         go(g, None, attrs, s, &mut kept, &mut group_names, &mut excluded, &mut summary.seen_groups);
+    }
+    // Which exclude_where rules this file's attributes meet.
+    for rule in &s.exclude_where {
+        if summary.seen_groups[first_seen..].iter().any(|g| matches_where(attrs, g, std::slice::from_ref(rule))) {
+            summary.exclude_where_matched.insert(rule.clone());
+        }
     }
     for (name, points) in excluded {
         summary.excluded_groups.push(name.clone());
@@ -579,6 +593,7 @@ fn read_model(path: &Path, s: &Settings, summary: &mut Summary, room: u64) -> Re
             let f = rvm::read(path)?;
             let att_path = path.with_extension("att");
             let attrs = if att_path.exists() {
+                summary.attribute_files += 1;
                 Some(att::read(&att_path)?)
             } else {
                 if !s.exclude_where.is_empty() {
@@ -773,7 +788,12 @@ pub fn run(
             first_five(&summary.seen_groups)
         )));
     }
-    summary.exclude_unmatched = unmatched(&s.exclude);
+    summary.exclude_unmatched = unmatched(&s.exclude).into_iter().map(|p| format!("exclude {p}")).collect();
+    let no_attributes =
+        if summary.attribute_files == 0 { " (no RVM file has an .att attribute file beside it)" } else { "" };
+    for rule in s.exclude_where.iter().filter(|r| !summary.exclude_where_matched.contains(*r)) {
+        summary.exclude_unmatched.push(format!("exclude_where '{rule}'{no_attributes}"));
+    }
     let pose = liftplan_core::frame::pose_xyz_yaw(
         s.translate_m[0],
         s.translate_m[1],
@@ -942,6 +962,48 @@ mod tests {
         assert!(lines.contains("[plant] exclude '/PUMP-9' matches no group"), "{lines}");
         let summary = run_with(Settings { exclude: vec!["/elbows".into()], ..Default::default() }).unwrap();
         assert!(summary.exclude_unmatched.is_empty() && summary.triangles == 0, "{summary:?}");
+    }
+
+    /// `[plant] exclude_where` leaves out the groups whose attributes (the
+    /// .att file beside the RVM) meet a rule; a rule that none meets is
+    /// said like an unmatched exclude (it was not: a typo in it left in
+    /// what it was meant to leave out, without a word), and so is every
+    /// rule where no attribute file was read.
+    #[test]
+    fn exclude_where_rules_that_meet_nothing_are_named() {
+        let d = tempfile::tempdir().unwrap();
+        let path = tori_file(d.path(), 1, 1.0);
+        let out = d.path().join("out");
+        let run_with = |exclude: &[&str], rules: &[&str]| {
+            let s = Settings {
+                exclude: exclude.iter().map(|e| e.to_string()).collect(),
+                exclude_where: rules.iter().map(|r| r.to_string()).collect(),
+                ..Default::default()
+            };
+            run(std::slice::from_ref(&path), &s, &out, None, &|_, _, _| {}).unwrap()
+        };
+        let said = |summary: &Summary| summary.lines().join("\n");
+        let without = run_with(&[], &["Purpose=TEMP*"]);
+        assert!(without.triangles > 0);
+        assert!(
+            said(&without).contains("[plant] exclude_where 'Purpose=TEMP*' (no RVM file has an .att attribute file beside it) matches no group: NOTHING WAS LEFT OUT for it"),
+            "{}",
+            said(&without)
+        );
+        std::fs::write(
+            path.with_extension("att"),
+            "CADC_Attributes_File v1.0 , start: NEW , end: END\nNEW /ELBOWS\n Purpose:= TEMPORARY\nEND\n",
+        )
+        .unwrap();
+        let left_out = run_with(&[], &["Purpose=TEMP*"]);
+        assert!(left_out.triangles == 0 && left_out.excluded_groups == ["/ELBOWS"], "{left_out:?}");
+        assert!(left_out.exclude_unmatched.is_empty(), "{left_out:?}");
+        let typo = run_with(&[], &["Purpose=TMP*", "Purpose=TEMP*"]);
+        assert_eq!(typo.exclude_unmatched, ["exclude_where 'Purpose=TMP*'"]);
+        assert!(said(&typo).contains("[plant] exclude_where 'Purpose=TMP*' matches no group"), "{}", said(&typo));
+        // Met by a group an exclude pattern left out first: met all the same.
+        let both = run_with(&["/ELBOWS"], &["Purpose=TEMP*"]);
+        assert!(both.exclude_unmatched.is_empty(), "{both:?}");
     }
 
     /// A group left out of the model is kept as the box around it, placed as
