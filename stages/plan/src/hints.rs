@@ -7,6 +7,7 @@
 //! Words only: nothing here decides whether a lift is planned.
 
 use crate::{Site, validate};
+use liftplan_core::capacity::{CapacityTable, ChartConfig};
 use liftplan_core::crane::{Config, PartKind};
 use liftplan_core::frame::Point3;
 use liftplan_core::lift::LiftTask;
@@ -116,4 +117,72 @@ pub(crate) fn scanned_near(task: &LiftTask, site: &Site, at: &Config, at_pick: b
         "; the scanned point nearest the load there is at x {:.2}, y {:.2}, z {:.2} m, {d:.2} m {side}{load_itself}",
         p[0], p[1], p[2]
     )
+}
+
+/// What a pick or set over capacity (at `radius_m`, the rigid crane's) could
+/// be lifted with instead, as far as the charts read tell: how far out the
+/// lift's boom and configuration carry the gross load (the crane set up that
+/// much nearer), and which of the configuration's other boom lengths, and
+/// which other configurations of the same chart file, carry it there. Each
+/// read as the lift reads its own (its radius allowance and capacity
+/// reduction). Words only: the lift is refused all the same.
+pub(crate) fn over_capacity(
+    task: &LiftTask,
+    table: &CapacityTable,
+    chart: &ChartConfig,
+    what: &str,
+    radius_m: f64,
+) -> String {
+    let gross = task.gross_kg();
+    let tower = task.crane.model.is_tower();
+    let boom = if tower { 0.0 } else { task.crane.placement.boom_length_m };
+    let allowance = task.radius_allowance_m;
+    let carries = |c: &ChartConfig, boom_m: f64, r: f64| {
+        c.lookup(boom_m, r + allowance).ok().filter(|k| task.effective_capacity_kg(k.capacity_kg) >= gross)
+    };
+    let on_boom = if tower { String::new() } else { format!(" on its {boom:.2} m boom") };
+    let farthest =
+        chart.radii_m.iter().rev().find_map(|&row| carries(chart, boom, row - allowance).map(|k| (row - allowance, k)));
+    let mut said = match farthest.filter(|(r, _)| *r > 0.0) {
+        Some((r, k)) => format!(
+            "; '{}'{on_boom} carries {gross:.0} kg out to a radius of {r:.2} m ({}): the crane set up with its slewing axis that near the {what} position could lift it",
+            chart.name, k.cell
+        ),
+        None => format!("; '{}'{on_boom} carries {gross:.0} kg at no radius", chart.name),
+    };
+    let used = chart.lookup(boom, radius_m + allowance).ok().map(|k| k.boom_m);
+    let booms: Vec<String> = if tower {
+        Vec::new()
+    } else {
+        chart
+            .boom_lengths_m
+            .iter()
+            .filter(|&&b| Some(b) != used)
+            .filter_map(|&b| {
+                carries(chart, b, radius_m)
+                    .map(|k| format!("the {b:.2} m boom ({:.0} kg, {}; boom_m)", k.capacity_kg, k.cell))
+            })
+            .collect()
+    };
+    let file =
+        |c: &ChartConfig| c.cells.iter().flatten().next().map(|k| k.cell.split(" [").next().unwrap_or("").to_string());
+    let configs: Vec<String> = table
+        .configs
+        .iter()
+        .filter(|c| c.name != chart.name && file(c).is_some() && file(c) == file(chart))
+        .filter_map(|c| {
+            carries(c, boom, radius_m)
+                .map(|k| format!("'{}' ({:.0} kg, {}; chart_config)", c.name, k.capacity_kg, k.cell))
+        })
+        .collect();
+    let others: Vec<String> = booms.into_iter().chain(configs).collect();
+    said += &if others.is_empty() {
+        format!(
+            "; at {radius_m:.2} m no other {}configuration of its chart file carries it",
+            if tower { "" } else { "boom length and no other " }
+        )
+    } else {
+        format!("; at {radius_m:.2} m it is carried by {}", others.join(", "))
+    };
+    said
 }

@@ -547,12 +547,15 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
                     return Err(lift_err(
                         task,
                         format!(
-                            "{what} is over capacity: gross {:.0} kg at radius {:.2} m, chart {} gives {:.0} kg ({:.0} kg after the reduction)",
+                            "{what} is over capacity: gross {:.0} kg at radius {:.2} m, chart {} gives {:.0} kg ({:.0} kg after the reduction){}",
                             task.gross_kg(),
                             k.radius_m,
                             k.capacity.cell,
                             k.capacity.capacity_kg,
-                            k.effective_kg
+                            k.effective_kg,
+                            site.charts
+                                .map(|t| hints::over_capacity(task, t, ch, what, k.radius_m))
+                                .unwrap_or_default()
                         ),
                     ));
                 }

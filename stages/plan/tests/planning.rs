@@ -327,6 +327,47 @@ fn chart(far_capacity_t: f64) -> liftplan_core::capacity::CapacityTable {
     CapacityTable::from_rows(&rows)
 }
 
+/// A pick over capacity says what would carry it, as the charts read tell:
+/// how far out the lift's boom and configuration carry it, and which other
+/// boom length and which configuration of the same chart file carry it at
+/// that radius (a configuration of another crane's chart file is not one).
+#[test]
+fn a_pick_over_capacity_says_what_would_carry_it() {
+    use liftplan_core::capacity::{CapacityRow, CapacityTable};
+    let row = |config: &str, file: &str, boom_m: f64, radius_m: f64, t: f64| CapacityRow {
+        config: config.into(),
+        boom_m,
+        radius_m,
+        capacity_kg: t * 1000.0,
+        cell: format!("{file} [{config}!R{radius_m}B{boom_m}]"),
+    };
+    let mut rows = Vec::new();
+    for (r, at40, at30, heavy) in
+        [(10.0, 50.0, 50.0, 60.0), (20.0, 50.0, 50.0, 60.0), (28.0, 3.0, 10.0, 20.0), (40.0, 3.0, 5.0, 20.0)]
+    {
+        rows.push(row("none", "test.xlsx", 40.0, r, at40));
+        rows.push(row("none", "test.xlsx", 30.0, r, at30));
+        rows.push(row("heavy", "test.xlsx", 40.0, r, heavy));
+        rows.push(row("other crane", "other.xlsx", 40.0, r, heavy));
+    }
+    let table = CapacityTable::from_rows(&rows);
+    let mesh = site();
+    let m = map(&mesh);
+    let world = World::new(&mesh, &[], &[]).unwrap();
+    let t = task(-14.0);
+    let e = plan_lift(&t, &Site { map: &m, world: &world, charts: Some(&table) }, &quick(), 3).unwrap_err().to_string();
+    assert!(e.contains("pick is over capacity") && e.contains("gives 3000 kg"), "{e}");
+    assert!(
+        e.contains("'none' on its 40.00 m boom carries 8700 kg out to a radius of 20.00 m (test.xlsx [none!R20B40]): the crane set up with its slewing axis that near the pick position could lift it"),
+        "{e}"
+    );
+    assert!(
+        e.contains("it is carried by the 30.00 m boom (10000 kg, test.xlsx [none!R28B30]; boom_m), 'heavy' (20000 kg, test.xlsx [heavy!R28B40]; chart_config)"),
+        "{e}"
+    );
+    assert!(!e.contains("other crane"), "{e}");
+}
+
 #[test]
 fn validator_rejects_a_step_over_capacity() {
     let mesh = site();
