@@ -326,7 +326,7 @@ pub fn publish(out_dir: &Path, entry_dir: &Path, m: &Manifest) -> Result<Publish
     for name in before.iter().filter(|n| !m.outputs.contains_key(*n) && plain(n)) {
         let from = out_dir.join(name);
         if from.is_file() {
-            let to = out_dir.join(SUPERSEDED_DIR).join(name);
+            let to = unused_name(&out_dir.join(SUPERSEDED_DIR).join(name));
             if let Some(parent) = to.parent() {
                 std::fs::create_dir_all(parent)?;
             }
@@ -366,6 +366,27 @@ pub fn publish(out_dir: &Path, entry_dir: &Path, m: &Manifest) -> Result<Publish
     }
     Ok(Published { written, superseded })
 }
+
+/// `path` where no file has that name, else the first of `stem.2.ext`,
+/// `stem.3.ext`, ... that is free: a lift taken out twice (or renamed, then
+/// renamed back and out again) leaves each plan it had, none renamed over
+/// another. Past [`MAX_SUPERSEDED_COPIES`] the last is replaced.
+fn unused_name(path: &Path) -> std::path::PathBuf {
+    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    // "V-101.steps.csv" numbers as "V-101.2.steps.csv": the extension a
+    // viewer opens it by stays at the end.
+    let (stem, ext) = match name.split_once('.') {
+        Some((stem, ext)) if !stem.is_empty() => (stem.to_string(), format!(".{ext}")),
+        _ => (name.clone(), String::new()),
+    };
+    std::iter::once(path.to_path_buf())
+        .chain((2..=MAX_SUPERSEDED_COPIES).map(|k| path.with_file_name(format!("{stem}.{k}{ext}"))))
+        .find(|p| !p.exists())
+        .unwrap_or_else(|| path.with_file_name(format!("{stem}.{MAX_SUPERSEDED_COPIES}{ext}")))
+}
+
+/// How many copies of one name `out/superseded/` keeps.
+pub const MAX_SUPERSEDED_COPIES: usize = 1000;
 
 #[cfg(test)]
 mod tests {
@@ -411,5 +432,27 @@ mod tests {
         let p = publish(&out, &entry, &manifest(&["A.pdf"])).unwrap();
         assert!(p.superseded.is_empty(), "{p:?}");
         assert!(d.path().join("precious").is_file());
+    }
+
+    /// A plan superseded twice keeps both copies: the second was renamed
+    /// over the first, which was lost.
+    #[test]
+    fn a_name_superseded_twice_keeps_both_copies() {
+        let d = tempfile::tempdir().unwrap();
+        let (entry, out) = (d.path().join("entry"), d.path().join("out"));
+        std::fs::create_dir_all(&entry).unwrap();
+        for version in ["first", "second"] {
+            std::fs::write(entry.join("B.steps.csv"), version).unwrap();
+            let mut with_b = manifest(&["B.steps.csv"]);
+            with_b.outputs.insert("B.steps.csv".into(), format!("hash of {version}"));
+            publish(&out, &entry, &with_b).unwrap();
+            let p = publish(&out, &entry, &manifest(&[])).unwrap();
+            assert_eq!(p.superseded, ["B.steps.csv"]);
+        }
+        let aside = out.join(SUPERSEDED_DIR);
+        assert_eq!(std::fs::read_to_string(aside.join("B.steps.csv")).unwrap(), "first");
+        assert_eq!(std::fs::read_to_string(aside.join("B.2.steps.csv")).unwrap(), "second");
+        assert_eq!(unused_name(&aside.join("B.steps.csv")), aside.join("B.3.steps.csv"));
+        assert_eq!(unused_name(&aside.join("README")), aside.join("README"));
     }
 }
