@@ -177,6 +177,9 @@ pub struct CSpace {
     pub row_chart_cell: Vec<String>,
     /// Shortest rope that keeps the load clear of the boom (internal clearance), per row.
     pub row_min_hoist: Vec<f64>,
+    /// How far from the slewing axis, in plan, the crane's parts that stand
+    /// or swing reach at most (m): a load farther off cannot meet them.
+    pub own_reach_m: f64,
     pub build_ms: f64,
     /// Where the build time went.
     pub timings: BuildTimings,
@@ -273,6 +276,7 @@ impl CSpace {
             row_capacity_kg: vec![],
             row_chart_cell: vec![],
             row_min_hoist: vec![],
+            own_reach_m: own_reach_m(task),
             build_ms: 0.0,
             timings: BuildTimings::default(),
         };
@@ -456,9 +460,48 @@ impl CSpace {
                 if top != f32::NEG_INFINITY && top as f64 >= sheave.z + motion {
                     return self.cell_max_hoist(p, i, k);
                 }
-                Self::rope_clear_of(task, sheave.z - motion, top)
+                Self::rope_clear_of(task, sheave.z - motion, top).min(self.own_rope_cap(task, i, k))
             })
             .collect()
+    }
+
+    /// Longest rope at which the hanging parts' yaw-invariant envelope,
+    /// anywhere in cell (i, k), keeps [`INTERNAL_MARGIN_M`] off the crane's
+    /// own parts that stand or swing (carrier, outriggers, superstructure,
+    /// counterweight; a tower crane's mast and cab): under one it stays above
+    /// its top, beside one that reaches up to the sheave no rope is vouched
+    /// for (the exact check decides), and what lies above the sheave (a
+    /// tower crane's jib) it hangs below. The map holds none of them, so a
+    /// load picked beside the crane was planned through its carrier, which
+    /// the validator refused. The boom is kept off by the row's shortest rope.
+    fn own_rope_cap(&self, task: &LiftTask, i: u32, k: u32) -> f32 {
+        let crane = &task.crane;
+        let c = self.cell_center(i, k, 0.0);
+        let sheave = crane.sheave(&c);
+        let motion = self.sheave_motion(crane, c.radial);
+        let r = Self::envelope_radius(task) + INTERNAL_MARGIN_M + motion;
+        let o = crane.slew_center();
+        if (sheave.x - o.x).hypot(sheave.y - o.y) - r * std::f64::consts::SQRT_2 > self.own_reach_m {
+            return f32::INFINITY;
+        }
+        let mut cap = f32::INFINITY;
+        for &kind in crane.part_kinds() {
+            if !matches!(kind.dependence(), Dependence::Fixed | Dependence::Swing) {
+                continue;
+            }
+            let Some(b) = crane.part(kind, &c, &task.load) else { continue };
+            let a = b.aabb();
+            let beside =
+                (0..2).all(|d| a.min[d] - r <= [sheave.x, sheave.y][d] && [sheave.x, sheave.y][d] <= a.max[d] + r);
+            if !beside || a.min[2] >= sheave.z + motion {
+                continue;
+            }
+            if a.max[2] >= sheave.z - motion {
+                return f32::NEG_INFINITY;
+            }
+            cap = cap.min((sheave.z - motion - a.max[2] - INTERNAL_MARGIN_M - Self::hang_below_rope(task)) as f32);
+        }
+        cap
     }
 
     /// Longest rope at which the hanging parts' yaw-invariant envelope,
@@ -473,7 +516,7 @@ impl CSpace {
         let z_lo = sheave.z - motion;
         let z_hi = (sheave.z + motion) as f32;
         let top = highest_below(p.map, sheave.x - r, sheave.x + r, sheave.y - r, sheave.y + r, z_hi);
-        Self::rope_clear_of(task, z_lo, top)
+        Self::rope_clear_of(task, z_lo, top).min(self.own_rope_cap(task, i, k))
     }
 
     /// Longest rope with the load's underside the clearance above `top` (the
@@ -500,6 +543,7 @@ impl CSpace {
                 let sheave = crane.sheave(&c0);
                 let motion = self.sheave_motion(crane, c0.radial);
                 let r = Self::envelope_radius(task) + task.clearance_m + motion;
+                let own_cap = self.own_rope_cap(task, i, k) as f64;
                 for b in 0..nh {
                     let h_lo = lim.hoist_m.0 + b as f64 * s.full_hoist_step_m;
                     let h_hi = h_lo + s.full_hoist_step_m;
@@ -509,7 +553,7 @@ impl CSpace {
                         liftplan_core::frame::Point3::new(sheave.x, sheave.y, 0.5 * (bottom + sheave.z + motion)),
                         liftplan_core::frame::Vec3::new(r, r, 0.5 * (sheave.z + motion - bottom)),
                     );
-                    if p.map.collides(&column) {
+                    if h_hi > own_cap || p.map.collides(&column) {
                         bits |= 1 << b;
                     }
                 }
@@ -517,6 +561,21 @@ impl CSpace {
             })
             .collect()
     }
+}
+
+/// [`CSpace::own_reach_m`]: the parts that swing turn about the slewing
+/// axis, so one swing gives their reach at every swing.
+fn own_reach_m(task: &LiftTask) -> f64 {
+    let crane = &task.crane;
+    let o = crane.slew_center();
+    crane
+        .part_kinds()
+        .iter()
+        .filter(|k| matches!(k.dependence(), Dependence::Fixed | Dependence::Swing))
+        .filter_map(|&k| crane.part(k, &task.pick, &task.load))
+        .flat_map(|b| b.corners())
+        .map(|p| (p.x - o.x).hypot(p.y - o.y))
+        .fold(0.0, f64::max)
 }
 
 /// Highest top of intervals starting below `z_max` over a plan rectangle.
@@ -838,6 +897,33 @@ impl<'a> Checker<'a> {
             }
         }
         self.count_n(true, parts.len() as u64);
+        // The load and its rigging off the crane's own parts that stand or
+        // swing, as the validator asks ([`Self::own_rope_cap`]).
+        let crane = &self.task.crane;
+        let o = crane.slew_center();
+        for (kind, b) in parts.iter().filter(|(k, _)| matches!(k, PartKind::Load | PartKind::Rigging)) {
+            let grown = b.expanded(INTERNAL_MARGIN_M).expanded_by_motion(sweep.horizontal_m, sweep.vertical_m);
+            // Most of the time the load is far out: nothing of the crane there.
+            let plan_radius = grown.half.x.hypot(grown.half.y);
+            if (grown.center.x - o.x).hypot(grown.center.y - o.y) - plan_radius > self.cs.own_reach_m {
+                continue;
+            }
+            for &own in crane.part_kinds() {
+                if !matches!(own.dependence(), Dependence::Fixed | Dependence::Swing) {
+                    continue;
+                }
+                if let Some(o) = crane.part(own, c, &self.task.load)
+                    && grown.intersects(&o)
+                {
+                    return Err(Blocked {
+                        reason: TOO_CLOSE.into(),
+                        part: Some(*kind),
+                        object: Some(format!("the crane's {}", own.name())),
+                        at: *c,
+                    });
+                }
+            }
+        }
         Ok(())
     }
 

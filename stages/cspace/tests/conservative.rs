@@ -164,3 +164,82 @@ fn a_structure_above_the_boom_leaves_the_rope_below_it_clear() {
         assert!(r >= o, "cell {k}: longest clear rope {r} under the roof, {o} without it");
     }
 }
+
+/// The load and its rigging clear of the crane's own parts that stand or
+/// swing (carrier, outriggers, superstructure, counterweight), as the
+/// validator asks (1 cm).
+fn off_the_crane(t: &LiftTask, c: &Config) -> bool {
+    let own: Vec<_> = t
+        .crane
+        .part_kinds()
+        .iter()
+        .filter(|k| matches!(k.dependence(), Dependence::Fixed | Dependence::Swing))
+        .filter_map(|&k| t.crane.part(k, c, &t.load))
+        .collect();
+    t.crane.hanging_parts(c, &t.load)[..2].iter().all(|(_, b)| own.iter().all(|o| !b.expanded(0.01).intersects(o)))
+}
+
+/// Near the crane, with rope enough to reach the ground, the checker passes
+/// no configuration and no hoist or swing move where the load or its
+/// rigging meets the crane's own carrier, outriggers or superstructure (the
+/// depth map holds none of them): with a trailer parked beside the crane
+/// and nothing else in the way, a plan went through the carrier, which the
+/// validator refused ("load is 0.000 m from the crane's carrier").
+#[test]
+fn the_load_keeps_off_the_crane_it_hangs_from() {
+    let t = task();
+    // Nothing near the crane: one post far off, for the map to have an extent.
+    let mut mesh = TriMesh::default();
+    let g = mesh.group_id("FAR");
+    mesh.add_box(g, [-45.0, -45.0, 0.0], [-44.0, -44.0, 1.0]);
+    let inp = liftplan_depthmap::Inputs { points: vec![], ground: vec![], mesh };
+    let map = liftplan_depthmap::build_cpu(&inp, &liftplan_depthmap::Settings { cell_m: 0.5, ..Default::default() })
+        .unwrap()
+        .0;
+    let lim = t.crane.limits();
+    let mut u = liftplan_core::testing::unit_stream(11);
+    for strategy in [Strategy::Hybrid, Strategy::Full, Strategy::Online] {
+        let s = Settings { swing_step_deg: 2.0, luff_step_deg: 2.0, strategy, ..Settings::default() };
+        let cs = CSpace::build(&Problem { task: &t, chart: None, map: &map }, &s);
+        let ck = Checker::new(&cs, &map, &t, vec![], s.sample_m);
+        let (mut passed, mut kept_off) = (0, 0);
+        for _ in 0..300 {
+            // The steepest fifth of the boom's range (the hook within about
+            // 12 m of the crane), the load's underside 1 m below the ground
+            // to 5 m above it (the carrier's height).
+            let mut c = Config {
+                swing_rad: u() * std::f64::consts::TAU,
+                radial: lim.radial.1 - u() * 0.2 * (lim.radial.1 - lim.radial.0),
+                hoist_m: 0.0,
+                load_yaw_rad: u() * 3.0,
+            };
+            let hang = t.crane.model.hook.height_m + t.load.rigging_height_m + t.load.size_m[2];
+            c.hoist_m = (t.crane.sheave(&c).z - hang - (6.0 * u() - 1.0)).clamp(lim.hoist_m.0, lim.hoist_m.1);
+            match ck.config(&c) {
+                Ok(()) => {
+                    passed += 1;
+                    assert!(off_the_crane(&t, &c), "{strategy:?}: passed with the load on the crane at {c:?}");
+                }
+                Err(b) if b.object.as_deref().is_some_and(|o| o.starts_with("the crane's")) => kept_off += 1,
+                Err(_) => {}
+            }
+            for (joint, to) in [
+                (Joint::Hoist, lim.hoist_m.0 + u() * (lim.hoist_m.1 - lim.hoist_m.0)),
+                (Joint::Swing, c.swing_rad + (u() - 0.5) * 2.0),
+            ] {
+                if ck.motion(&c, joint, to).is_ok() {
+                    for k in 0..=200 {
+                        let mut a = c.to_array();
+                        a[joint.index()] += (to - a[joint.index()]) * k as f64 / 200.0;
+                        let q = Config::from_array(a);
+                        assert!(
+                            off_the_crane(&t, &q),
+                            "{strategy:?}: {joint:?} move passed through the crane at {q:?}"
+                        );
+                    }
+                }
+            }
+        }
+        assert!(passed > 30 && kept_off > 30, "{strategy:?}: {passed} passed, {kept_off} kept off the crane");
+    }
+}
