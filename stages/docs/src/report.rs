@@ -165,6 +165,9 @@ fn checks_before_signing(inp: &Inputs, task: &LiftTask, plan: &LiftPlan) -> Vec<
     if plan.load_cutout.points > 0 && sm.load_as_scanned.as_ref().is_some_and(|l| l.needs_checking()) {
         v.push("the load's size or pick position against its scan".to_string());
     }
+    if !sm.passes_left_out.is_empty() {
+        v.push("what [plant] exclude left out of the model, in the lift's way".to_string());
+    }
     if sm.set_on.as_ref().is_some_and(|s| s.tips()) {
         v.push("the load's centre of gravity over what holds it at its set position".to_string());
     }
@@ -773,6 +776,12 @@ pub fn document(
         None => "There is no plant model or no scans, so where the model stands in the site was not checked against the scans.".to_string(),
     };
     y = sign_off_paragraph(&mut d, y, w, &model_text);
+    if let Some(said) =
+        liftplan_plan::model_copy::PassesLeftOut::said(&plan.summary.passes_left_out, plan.summary.clearance_m)
+    {
+        y += 4.0;
+        y = sign_off_paragraph(&mut d, y, w, &sentence(&said));
+    }
     if let Some(warned) = chart_warnings(inp, task) {
         y += 4.0;
         y = sign_off_paragraph(

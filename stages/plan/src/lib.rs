@@ -922,6 +922,8 @@ pub fn run(
         plan.summary.other_loads = world.others.iter().map(|(_, name)| name.clone()).collect();
         plan.summary.load_as_scanned = as_scanned;
         plan.summary.against_model = model_copy::of_lift(task, &left_out);
+        plan.summary.passes_left_out =
+            model_copy::passes_left_out(task, &plan.moves, &left_out, &plan.summary.against_model, &world);
         plan.load_cutout = LoadCutout { grow_m: s.load_cutout_m, above_m, points: taken.len(), set_by };
         plan.model_vs_scans = model_vs_scans.clone();
         let io = |p: &Path, e: std::io::Error| PlanError::Input(Location::file(p), e.to_string());

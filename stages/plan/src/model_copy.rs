@@ -207,6 +207,95 @@ fn at(task: &LiftTask, boxes: &[ModelBox], c: &Config, at_pick: bool) -> Option<
     })
 }
 
+/// A group the plant stage left out that the lift passes through (or within
+/// its clearance of), where the scans show nothing of it: no obstacle to
+/// the plan, and nothing else stands there to keep clear of.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PassesLeftOut {
+    pub object: String,
+    /// The first step that meets it, and the crane's part that does.
+    pub step: usize,
+    pub part: String,
+}
+
+impl PassesLeftOut {
+    pub fn said(passes: &[PassesLeftOut], clearance_m: f64) -> Option<String> {
+        let first = passes.first()?;
+        let listed: Vec<String> = passes
+            .iter()
+            .take(MAX_PASSES_SAID)
+            .map(|p| format!("the {} at {} in step {}", p.part, p.object, p.step))
+            .collect();
+        let more = passes.len().saturating_sub(MAX_PASSES_SAID);
+        Some(format!(
+            "THE LIFT PASSES THROUGH WHAT [plant] EXCLUDE LEFT OUT OF THE PLANT MODEL (the box around it, grown by clearance_m {clearance_m:.2} m), WHERE THE SCANS SHOW NOTHING OF IT: {}{}; it is no obstacle to this plan: if it stands on site, CHECK [plant] exclude (is {} meant to be left out?)",
+            listed.join(", "),
+            if more > 0 { format!(" and {more} more") } else { String::new() },
+            first.object
+        ))
+    }
+}
+
+/// How many [`PassesLeftOut`] a line names.
+const MAX_PASSES_SAID: usize = 5;
+
+/// How far apart the configurations [`passes_left_out`] tries lie, as the
+/// farthest part moves (m).
+const PASS_SAMPLE_M: f64 = 0.5;
+
+/// The groups among `boxes` (left out of the plant model) that some part of
+/// the crane or what hangs from it meets along `moves`, each box grown by
+/// the lift's clearance and half a sample's motion (so that nothing passes
+/// between two samples unseen), where no scan point lies in the group's
+/// box; not the copies of the load ([`of_lift`]'s `copies`), which it meets
+/// by design.
+pub fn passes_left_out(
+    task: &LiftTask,
+    moves: &[crate::path::Move],
+    boxes: &[ModelBox],
+    copies: &[AgainstModel],
+    world: &crate::validate::World,
+) -> Vec<PassesLeftOut> {
+    let grown: Vec<(&ModelBox, liftplan_core::obb::Obb)> = boxes
+        .iter()
+        .filter(|b| !copies.iter().any(|c| c.object == b.name))
+        .filter(|b| crate::validate::nearest_scanned_point(world, &b.obb(), 1e-6).is_none())
+        .map(|b| (b, b.obb().expanded(task.clearance_m + PASS_SAMPLE_M / 2.0)))
+        .collect();
+    let mut found: Vec<PassesLeftOut> = Vec::new();
+    if grown.is_empty() {
+        return found;
+    }
+    for (i, m) in moves.iter().enumerate() {
+        let moved_m = m.delta().abs() * crate::validate::lever_for(task, m);
+        let n = crate::validate::samples_for(moved_m.min(PASS_SAMPLE_M * 1e5), PASS_SAMPLE_M);
+        let (a, b, j) = (m.from.to_array(), m.to.to_array(), m.joint.index());
+        for s in 0..n {
+            let mut v = a;
+            v[j] = a[j] + (b[j] - a[j]) * s as f64 / (n - 1).max(1) as f64;
+            let pose = task.crane.pose(&Config::from_array(v), &task.load);
+            for (kind, part) in &pose.parts {
+                let reach = part.aabb();
+                for (group, b) in &grown {
+                    if found.iter().any(|f| f.object == group.name) {
+                        continue;
+                    }
+                    let near = b.aabb();
+                    let apart = (0..3).any(|k| reach.max[k] < near.min[k] || reach.min[k] > near.max[k]);
+                    if !apart && part.intersects(b) {
+                        found.push(PassesLeftOut {
+                            object: group.name.clone(),
+                            step: i + 1,
+                            part: kind.name().to_string(),
+                        });
+                    }
+                }
+            }
+        }
+    }
+    found
+}
+
 /// Long side, short side and height from half sizes.
 fn sizes(hx: f64, hy: f64, hz: f64) -> [f64; 3] {
     [2.0 * hx.max(hy), 2.0 * hx.min(hy), 2.0 * hz]
@@ -286,5 +375,53 @@ mod tests {
         let at_pick = ModelBox { center_m: [22.0, -14.0, 0.5 + 1.25], yaw_deg: 0.0, ..copy_at(0.0, 0.0, 0.0, SKID) };
         let found = of_lift(&crate::test_lift("ac-700"), &[at_pick]);
         assert!(found.len() == 1 && found[0].at == "pick" && found[0].agrees(), "{found:?}");
+    }
+
+    /// What the lift passes through among the groups left out of the model
+    /// is said where the scans show nothing of it; not where they do (it was
+    /// kept clear of as scanned), and not the load's own copy.
+    #[test]
+    fn what_the_lift_passes_through_that_was_left_out_is_named() {
+        use crate::path::Move;
+        use crate::validate::World;
+        let task = crate::test_lift("ac-700");
+        let swing = Move {
+            joint: liftplan_cspace::Joint::Swing,
+            from: task.pick,
+            to: Config { swing_rad: task.set.swing_rad, ..task.pick },
+        };
+        let mid = Config { swing_rad: 0.5 * (task.pick.swing_rad + task.set.swing_rad), ..task.pick };
+        let on_the_way = task.crane.load_obb(&mid, &task.load);
+        let in_the_way = ModelBox {
+            name: "/SCAFFOLD-3".into(),
+            center_m: [on_the_way.center.x, on_the_way.center.y, on_the_way.center.z],
+            half_m: [1.0, 1.0, 1.0],
+            yaw_deg: 0.0,
+        };
+        let copy = copy_at(0.0, 0.0, 90.0, SKID);
+        let boxes = [in_the_way.clone(), copy];
+        let copies = of_lift(&task, &boxes);
+        assert_eq!(copies.len(), 1);
+        let bare = World::new(&liftplan_core::mesh::TriMesh::default(), &[], &[]).unwrap();
+        let found = passes_left_out(&task, std::slice::from_ref(&swing), &boxes, &copies, &bare);
+        assert!(found.len() == 1 && found[0].object == "/SCAFFOLD-3" && found[0].step == 1, "{found:?}");
+        // What hangs meets it first (the load or its slings, as sampled).
+        assert!(["load", "rigging"].contains(&found[0].part.as_str()), "{found:?}");
+        let said = PassesLeftOut::said(&found, task.clearance_m).unwrap();
+        assert!(
+            said.contains("WHERE THE SCANS SHOW NOTHING OF IT: the ") && said.contains(" at /SCAFFOLD-3 in step 1"),
+            "{said}"
+        );
+        // Scanned: kept clear of as the scans show it.
+        let c = in_the_way.center_m;
+        let scanned = World::new(&liftplan_core::mesh::TriMesh::default(), &[c], &[false]).unwrap();
+        assert!(passes_left_out(&task, std::slice::from_ref(&swing), &boxes, &copies, &scanned).is_empty());
+        // Off the way (20 m over the load the rope passes it), beyond the
+        // crane's reach: nothing to say.
+        let over = ModelBox { center_m: [c[0], c[1], c[2] + 20.0], ..in_the_way.clone() };
+        let found = passes_left_out(&task, std::slice::from_ref(&swing), &[over], &[], &bare);
+        assert!(found.len() == 1 && found[0].part == "hoist rope", "{found:?}");
+        let aside = ModelBox { center_m: [c[0] + 60.0, c[1], c[2]], ..in_the_way };
+        assert!(passes_left_out(&task, std::slice::from_ref(&swing), &[aside], &[], &bare).is_empty());
     }
 }

@@ -155,6 +155,13 @@ pub struct Summary {
     /// one was left out of the model there ([`crate::model_copy::of_lift`]).
     #[serde(default)]
     pub against_model: Vec<crate::model_copy::AgainstModel>,
+    /// Groups left out of the plant model that the lift passes through,
+    /// where the scans show nothing of them ([`crate::model_copy::passes_left_out`]).
+    #[serde(default)]
+    pub passes_left_out: Vec<crate::model_copy::PassesLeftOut>,
+    /// The lift's clearance (m), for saying them.
+    #[serde(default)]
+    pub clearance_m: f64,
 }
 
 /// Serde for a distance that may be infinite (nothing within the
@@ -237,9 +244,14 @@ impl Summary {
         self.load_as_scanned.as_ref().map(|l| format!("lift {}: {}", self.lift, l.said()))
     }
 
-    /// [`Summary::against_model`], a line each.
+    /// [`Summary::against_model`], a line each, and
+    /// [`Summary::passes_left_out`] in one.
     pub fn against_model_lines(&self) -> impl Iterator<Item = String> + '_ {
-        self.against_model.iter().map(|a| format!("lift {}: {}", self.lift, a.said()))
+        self.against_model
+            .iter()
+            .map(|a| a.said())
+            .chain(crate::model_copy::PassesLeftOut::said(&self.passes_left_out, self.clearance_m))
+            .map(|said| format!("lift {}: {said}", self.lift))
     }
 
     /// [`Summary::coverage`]'s line, for the run's output.
@@ -294,6 +306,8 @@ pub fn summary(task: &LiftTask, steps: &[Step], verdict: &Verdict) -> Summary {
         load_as_scanned: None,
         other_loads: Vec::new(),
         against_model: Vec::new(),
+        passes_left_out: Vec::new(),
+        clearance_m: task.clearance_m,
     };
     for st in steps {
         if let Some(u) = st.utilisation_pct
