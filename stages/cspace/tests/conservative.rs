@@ -243,3 +243,29 @@ fn the_load_keeps_off_the_crane_it_hangs_from() {
         assert!(passed > 30 && kept_off > 30, "{strategy:?}: {passed} passed, {kept_off} kept off the crane");
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(liftplan_core::testing::proptest_cases(64)))]
+    /// The highest top below a height over a rectangle is never lower than
+    /// the cell-by-cell walk's: the pyramid's blocks where they answer
+    /// (they may reach past the rectangle), else down the pyramid exactly
+    /// the walk's. Stopped at `enough`, it is that, or a top at or above
+    /// `enough` and no higher than it.
+    #[test]
+    fn the_highest_top_below_a_height_is_the_walks(
+        seed in any::<u64>(), roofed in any::<bool>(),
+        x in -50.0..50.0f64, y in -50.0..50.0f64, w in 0.0..30.0f64, h in 0.0..30.0f64,
+        z_max in -1.0..80.0f32, enough in -1.0..80.0f32,
+    ) {
+        let map = scene(seed, roofed);
+        let walk = liftplan_cspace::highest_interval_below(&map, x, x + w, y, y + h, z_max)
+            .map_or(f32::NEG_INFINITY, |iv| iv.zhi);
+        let below = liftplan_cspace::highest_below(&map, x, x + w, y, y + h, z_max);
+        prop_assert!(below >= walk, "{} under the walk's {}", below, walk);
+        if map.max_top_in(x, x + w, y, y + h) >= z_max {
+            prop_assert_eq!(below.to_bits(), walk.to_bits());
+        }
+        let until = liftplan_cspace::highest_below_until(&map, (x, x + w, y, y + h), z_max, enough);
+        prop_assert!(until.to_bits() == below.to_bits() || (until >= enough && until <= below), "{} of {}", until, below);
+    }
+}
