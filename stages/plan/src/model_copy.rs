@@ -119,15 +119,10 @@ impl AgainstModel {
             ));
         }
         if self.moved() {
-            let [dx, dy, _] = self.offset_m;
-            let part = |d: f64, pos: &str, neg: &str| {
-                (d.abs() >= 0.005).then(|| format!("{:.2} m {}", d.abs(), if d > 0.0 { pos } else { neg }))
-            };
-            let way: Vec<String> = [part(dx, "east (+x)", "west (-x)"), part(dy, "north (+y)", "south (-y)")]
-                .into_iter()
-                .flatten()
-                .collect();
-            differs.push(format!("the model has it {} of it: CHECK {xy_key}", way.join(" and ")));
+            // In the site frame's axes, as the model's move onto the scans is said.
+            // No "-0.00" for a rounding below zero.
+            let [dx, dy] = [0, 1].map(|a| if self.offset_m[a].abs() < 0.005 { 0.0 } else { self.offset_m[a] });
+            differs.push(format!("the model has it x {dx:+.2} m, y {dy:+.2} m from it: CHECK {xy_key}"));
         }
         if self.raised() {
             let dz = self.offset_m[2];
@@ -342,7 +337,11 @@ mod tests {
         assert!(a.said().contains("turned 5° clockwise from set yaw_deg"), "{}", a.said());
         assert!(set_against(copy_at(0.0, 0.0, 88.5, SKID)).unwrap().agrees());
         let a = set_against(copy_at(0.3, 0.0, 90.0, SKID)).unwrap();
-        assert!(a.said().contains("the model has it 0.30 m east (+x) of it: CHECK set x_m and y_m"), "{}", a.said());
+        assert!(
+            a.said().contains("the model has it x +0.30 m, y +0.00 m from it: CHECK set x_m and y_m"),
+            "{}",
+            a.said()
+        );
         let a = set_against(copy_at(0.0, 0.2, 90.0, SKID)).unwrap();
         assert!(a.said().contains("the model has its underside 0.20 m higher: CHECK set z_m"), "{}", a.said());
         let a = set_against(copy_at(0.0, 0.0, 90.0, [3.5, 1.5, 1.25])).unwrap();
