@@ -682,9 +682,16 @@ fn select_mesh(m: TriMesh, s: &Settings, summary: &mut Summary) -> TriMesh {
         })
         .collect();
     let mut points: Vec<Vec<[f64; 3]>> = vec![Vec::new(); slot.iter().flatten().count()];
+    // Each vertex once per group (most are shared by several triangles):
+    // no more points than the mesh has vertices, whatever is left out.
+    let mut last_slot = vec![usize::MAX; m.vertices.len()];
     for (t, p) in m.triangles.iter().zip(&m.part_of) {
         if let Some(k) = slot[m.parts[*p as usize].group as usize] {
-            points[k].extend(t.iter().map(|&v| m.vertices[v as usize]));
+            for &v in t {
+                if std::mem::replace(&mut last_slot[v as usize], k) != k {
+                    points[k].push(m.vertices[v as usize]);
+                }
+            }
         }
     }
     let names = m.groups.iter().zip(&slot).filter(|(_, k)| k.is_some()).map(|(g, _)| g.clone());
