@@ -195,10 +195,7 @@ liftoff_m = 0.5
     // cut-out, is the "scanned structure" it meets).
     let on_ground = t13.replace("z_m = 1.2, yaw_deg = 90.0", "z_m = 0.0, yaw_deg = 90.0");
     assert_ne!(on_ground, t13);
-    std::fs::write(&toml_path, on_ground).unwrap();
-    let o = liftplan(&["run", d, "-q"]);
-    let stderr = String::from_utf8_lossy(&o.stderr);
-    assert!(!o.status.success(), "planned with the load in its trailer:\n{stderr}");
+    let stderr = refused_with(&dir, &on_ground, "planned with the load in its trailer");
     assert!(stderr.contains("the load as scanned at its pick position:"), "{stderr}");
     assert!(stderr.contains("ABOVE ITS BOX'S TOP"), "{stderr}");
     std::fs::write(&toml_path, &t13).unwrap();
@@ -208,36 +205,22 @@ liftoff_m = 0.5
     // where it is only when asked to, and then said in the PDF.
     let off = t13.replace("translate_m = [-500.0, -300.0, 0.0]", "translate_m = [-498.0, -300.0, 0.0]");
     assert_ne!(off, t13);
-    std::fs::write(&toml_path, &off).unwrap();
-    let o = liftplan(&["run", d, "-q"]);
-    let stderr = String::from_utf8_lossy(&o.stderr);
-    assert!(!o.status.success(), "planned with the model 2 m off:\n{stderr}");
+    let stderr = refused_with(&dir, &off, "planned with the model 2 m off");
     assert!(stderr.contains("the model lies on the scans when moved by x -2.00 m, y +0.00 m"), "{stderr}");
-    std::fs::write(&toml_path, format!("{off}\n[plan]\nmodel_off_scans = \"warn\"\n")).unwrap();
-    let r = run_json(&dir);
-    assert_eq!(stage(&r, "docs")["status"], "ran", "{r}");
-    let doc = lopdf::Document::load(&pdf_path).unwrap();
-    let pages: Vec<u32> = doc.get_pages().keys().copied().collect();
-    let text = doc.extract_text(&pages).unwrap().replace('\n', " ");
+    let (_, text) = planned_with(&dir, &format!("{off}\n[plan]\nmodel_off_scans = \"warn\"\n"));
     assert!(text.contains("moved by x -2.00 m"), "{text}");
     // The model 0.3 m high (a height datum): its walls still lie on the
     // scans (85 % of the points near it, median 5 mm), but its tops do not,
     // and the move down is said; it read "they agree", and the load met
     // the model's foundation at its set-down ("CHECK set z_m").
     let high = t13.replace("translate_m = [-500.0, -300.0, 0.0]", "translate_m = [-500.0, -300.0, 0.3]");
-    std::fs::write(&toml_path, &high).unwrap();
-    let o = liftplan(&["run", d, "-q"]);
-    let stderr = String::from_utf8_lossy(&o.stderr);
-    assert!(!o.status.success(), "planned with the model 0.3 m high:\n{stderr}");
+    let stderr = refused_with(&dir, &high, "planned with the model 0.3 m high");
     assert!(stderr.contains("the model lies on the scans when moved by z -0.30 m"), "{stderr}");
     // The vessel left in the plant model, where it is installed: the load
     // set there meets its own copy, named as such (it read "CHECK set z_m").
     let kept = t13.replace("exclude = [\"/V-101\"]", "");
     assert_ne!(kept, t13);
-    std::fs::write(&toml_path, &kept).unwrap();
-    let o = liftplan(&["run", d, "-q"]);
-    let stderr = String::from_utf8_lossy(&o.stderr);
-    assert!(!o.status.success(), "planned with the vessel in the model at its set position:\n{stderr}");
+    let stderr = refused_with(&dir, &kept, "planned with the vessel in the model at its set position");
     assert!(stderr.contains("the plant model's /V-101 fills the load's box there"), "{stderr}");
     assert!(stderr.contains("[plant] exclude = [\"/V-101\"]"), "{stderr}");
     // The vessel set crosswise on its foundation (yaw 90° for 0°): planned
@@ -249,18 +232,12 @@ liftoff_m = 0.5
         "set = { x_m = 30.0, y_m = 2.0, z_m = 1.2, yaw_deg = 90.0 }",
     );
     assert_ne!(crosswise, t13);
-    std::fs::write(&toml_path, &crosswise).unwrap();
-    let r = run_json(&dir);
-    assert_eq!(stage(&r, "docs")["status"], "ran", "{r}");
+    let (cover, text) = planned_with(&dir, &crosswise);
     let plan: serde_json::Value =
         serde_json::from_slice(&std::fs::read(dir.join("out").join("plan.json")).unwrap()).unwrap();
     let against = &plan["lifts"][0]["summary"]["against_model"][0];
     assert!(against["object"] == "/V-101" && (against["turn_deg"].as_f64().unwrap() - 90.0).abs() < 0.01, "{against}");
-    let doc = lopdf::Document::load(&pdf_path).unwrap();
-    let pages: Vec<u32> = doc.get_pages().keys().copied().collect();
-    let cover = doc.extract_text(&pages[..1]).unwrap().replace('\n', " ");
     assert!(cover.contains("the set position against the plant model's /V-101"), "{cover}");
-    let text = doc.extract_text(&pages).unwrap().replace('\n', " ");
     assert!(text.contains("the model has it turned 90° from set yaw_deg: CHECK set yaw_deg"), "{text}");
     // The vessel set 5 m east along its foundation, its centre of gravity
     // 0.7 m beyond the foundation's end: planned, and "set down on
@@ -269,27 +246,15 @@ liftoff_m = 0.5
         "set = { x_m = 30.0, y_m = 2.0, z_m = 1.2, yaw_deg = 0.0 }",
         "set = { x_m = 35.0, y_m = 2.0, z_m = 1.2, yaw_deg = 0.0 }",
     );
-    std::fs::write(&toml_path, &overhung).unwrap();
-    let r = run_json(&dir);
-    assert_eq!(stage(&r, "docs")["status"], "ran", "{r}");
-    let doc = lopdf::Document::load(&pdf_path).unwrap();
-    let pages: Vec<u32> = doc.get_pages().keys().copied().collect();
-    let cover = doc.extract_text(&pages[..1]).unwrap().replace('\n', " ");
+    let (cover, text) = planned_with(&dir, &overhung);
     assert!(cover.contains("the load's centre of gravity over what holds it at its set position"), "{cover}");
-    let text = doc.extract_text(&pages).unwrap().replace('\n', " ");
     assert!(text.contains("BEYOND THE EDGE OF WHAT HOLDS IT"), "{text}");
     // The model 100 m north of the scanned site (a wrong datum): the scans
     // barely meet it, so where it stands is unchecked, which the cover asks
     // to check first.
     let beside = t13.replace("translate_m = [-500.0, -300.0, 0.0]", "translate_m = [-500.0, -200.0, 0.0]");
-    std::fs::write(&toml_path, &beside).unwrap();
-    let r = run_json(&dir);
-    assert_eq!(stage(&r, "docs")["status"], "ran", "{r}");
-    let doc = lopdf::Document::load(&pdf_path).unwrap();
-    let pages: Vec<u32> = doc.get_pages().keys().copied().collect();
-    let cover = doc.extract_text(&pages[..1]).unwrap().replace('\n', " ");
+    let (cover, text) = planned_with(&dir, &beside);
     assert!(cover.contains("where the plant model stands (the scans barely meet it)"), "{cover}");
-    let text = doc.extract_text(&pages).unwrap().replace('\n', " ");
     assert!(text.contains("THE PLANT MODEL AND THE SCANS BARELY MEET"), "{text}");
     std::fs::write(&toml_path, &t13).unwrap();
 
@@ -299,13 +264,8 @@ liftoff_m = 0.5
     // restrict the value; it was said on the inputs page only).
     let chart_path = dir.join("charts").join("ac700-illustrative.xlsx");
     liftplan_fixtures::chart::write_demo_chart_with(&chart_path, Some((21, 6, "41.5*"))).unwrap();
-    let r = run_json(&dir);
-    assert_eq!(stage(&r, "docs")["status"], "ran", "{r}");
-    let doc = lopdf::Document::load(&pdf_path).unwrap();
-    let pages: Vec<u32> = doc.get_pages().keys().copied().collect();
-    let cover = doc.extract_text(&pages[..1]).unwrap().replace('\n', " ");
+    let (cover, text) = planned_with(&dir, &t13);
     assert!(cover.contains("the load chart cells read with a warning"), "{cover}");
-    let text = doc.extract_text(&pages).unwrap().replace('\n', " ");
     assert!(
         text.contains("READING THE LOAD CHART'S CONFIGURATION 'Main boom 360' WARNED: Main boom 360!H28: footnote mark dropped from '41.5*'"),
         "{text}"
@@ -320,11 +280,7 @@ liftoff_m = 0.5
     std::fs::rename(&scans, &scans_aside).unwrap();
     std::fs::create_dir(&scans).unwrap();
     let no_stations: String = t13.lines().filter(|l| !l.starts_with("stations =")).collect::<Vec<_>>().join("\n");
-    std::fs::write(&toml_path, &no_stations).unwrap();
-    let r = run_json(&dir);
-    assert_eq!(stage(&r, "docs")["status"], "ran", "{r}");
-    let doc = lopdf::Document::load(&pdf_path).unwrap();
-    let cover = doc.extract_text(&[1]).unwrap().replace('\n', " ");
+    let (cover, _) = planned_with(&dir, &no_stations);
     assert!(cover.contains("ground under the load outside the plant model (there are no scans)"), "{cover}");
     assert!(cover.contains("the crane's set-up level (no ground was scanned under it)"), "{cover}");
     // The pipe rack left out as well, with no scans to show it: the lift
@@ -334,14 +290,8 @@ liftoff_m = 0.5
     // its way.
     let rack_out = no_stations.replace("exclude = [\"/V-101\"]", "exclude = [\"/V-101\", \"/RACK-1*\"]");
     assert_ne!(rack_out, no_stations);
-    std::fs::write(&toml_path, &rack_out).unwrap();
-    let r = run_json(&dir);
-    assert_eq!(stage(&r, "docs")["status"], "ran", "{r}");
-    let doc = lopdf::Document::load(&pdf_path).unwrap();
-    let pages: Vec<u32> = doc.get_pages().keys().copied().collect();
-    let cover = doc.extract_text(&pages[..1]).unwrap().replace('\n', " ");
+    let (cover, text) = planned_with(&dir, &rack_out);
     assert!(cover.contains("what [plant] exclude left out of the model, in the lift's way"), "{cover}");
-    let text = doc.extract_text(&pages).unwrap().replace('\n', " ");
     assert!(
         text.contains("THE LIFT PASSES THROUGH WHAT [plant] EXCLUDE LEFT OUT") && text.contains("/RACK-1"),
         "{text}"
@@ -356,11 +306,31 @@ liftoff_m = 0.5
     let aside = tmp.path().join("charts-aside");
     std::fs::rename(&charts, &aside).unwrap();
     std::fs::create_dir(&charts).unwrap();
-    let o = liftplan(&["run", d, "-q"]);
-    let stderr = String::from_utf8_lossy(&o.stderr);
-    assert!(!o.status.success(), "planned without a load chart:\n{stderr}");
+    let stderr = refused_with(&dir, &t13, "planned without a load chart");
     assert!(stderr.contains("lift 'V-101': no load chart was read"), "{stderr}");
     assert!(stderr.contains("put the crane's load chart"), "{stderr}");
+}
+
+/// Writes `toml` as the demo project's file in `dir` and runs the project
+/// to its PDF: the text of the cover and of the whole PDF, each on one line.
+fn planned_with(dir: &std::path::Path, toml: &str) -> (String, String) {
+    std::fs::write(dir.join("liftplan.toml"), toml).unwrap();
+    let r = run_json(dir);
+    assert_eq!(stage(&r, "docs")["status"], "ran", "{r}");
+    let doc = lopdf::Document::load(dir.join("out").join("V-101.pdf")).unwrap();
+    let pages: Vec<u32> = doc.get_pages().keys().copied().collect();
+    let one_line = |p: &[u32]| doc.extract_text(p).unwrap().replace('\n', " ");
+    (one_line(&pages[..1]), one_line(&pages))
+}
+
+/// Writes `toml` as the demo project's file in `dir` and runs the project,
+/// which must fail (`what` says what a success would mean): what it said.
+fn refused_with(dir: &std::path::Path, toml: &str, what: &str) -> String {
+    std::fs::write(dir.join("liftplan.toml"), toml).unwrap();
+    let o = liftplan(&["run", dir.to_str().unwrap(), "-q"]);
+    let stderr = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert!(!o.status.success(), "{what}:\n{stderr}");
+    stderr
 }
 
 /// `line` with every date written as `YYYY-MM-DD` replaced by `DATE`.
