@@ -202,6 +202,8 @@ fn run_stages(project: &Project, defs: &[StageDef], opts: &RunOptions, progress:
     let mut upstream: BTreeMap<&'static str, (PathBuf, Manifest)> = BTreeMap::new();
     let mut reports = Vec::new();
     let mut failed = false;
+    // Stages that failed, or were not run because one they read failed.
+    let mut stopped: std::collections::BTreeSet<&'static str> = std::collections::BTreeSet::new();
     let mut past_until = false;
     for def in defs {
         let mut rep = StageReport {
@@ -216,8 +218,13 @@ fn run_stages(project: &Project, defs: &[StageDef], opts: &RunOptions, progress:
             reason: None,
             lines: vec![],
         };
-        if failed {
-            rep.reason = Some("an earlier stage failed".into());
+        // A failed stage stops only the stages that read it (and theirs):
+        // the others still run, so that one run names every input's
+        // problem (a damaged scan and a plant file in a unit not stated
+        // were found one run apart), and their outputs stay current.
+        if let Some(upstream_failed) = def.reads.iter().map(|(s, _)| *s).find(|s| stopped.contains(s)) {
+            rep.reason = Some(format!("the {upstream_failed} stage it reads failed"));
+            stopped.insert(def.name);
             reports.push(rep);
             continue;
         }
@@ -318,6 +325,7 @@ fn run_stages(project: &Project, defs: &[StageDef], opts: &RunOptions, progress:
             rep.status = Status::Failed;
             rep.error = Some(format!("{e:#}"));
             failed = true;
+            stopped.insert(def.name);
         }
         if opts.until.as_deref() == Some(def.name) {
             past_until = true;

@@ -231,6 +231,18 @@ fn bad_scan_fails_the_stage_naming_the_file() {
     assert_eq!(s["status"], "failed");
     assert!(s["error"].as_str().unwrap().contains("south.laz"), "{s}");
     assert!(!dir.join("out/site.laz").exists());
+    // A plant file in a unit not stated, in the same run: the plant stage
+    // still runs and says so (it was skipped, "an earlier stage failed",
+    // and found one run later); what reads the scans is not run.
+    std::fs::write(dir.join("plant/skid.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+    let o = liftplan(&["run", dir.to_str().unwrap(), "--json", "-q"]);
+    assert_eq!(o.status.code(), Some(1));
+    let rep: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(stage(&rep, "scans")["status"], "failed");
+    let plant = stage(&rep, "plant");
+    assert!(plant["status"] == "failed" && plant["error"].as_str().unwrap().contains("skid.obj"), "{plant}");
+    let depthmap = stage(&rep, "depthmap");
+    assert!(depthmap["status"] == "skipped" && depthmap["reason"] == "the scans stage it reads failed", "{depthmap}");
 }
 
 #[test]
