@@ -867,6 +867,8 @@ pub fn run(
         Some(p) => excluded_boxes(p)?,
         None => Vec::new(),
     };
+    // The groups left out that are some lift's load (at its pick or set).
+    let loads: Vec<String> = tasks.iter().flat_map(|t| model_copy::of_lift(t, &left_out)).map(|a| a.object).collect();
     let exclusions = load_exclusions(tasks, s.load_cutout_m);
     let (points, ground, taken_for_loads) = match cloud_path {
         Some(p) => read_points(p, &exclusions)?,
@@ -922,8 +924,7 @@ pub fn run(
         plan.summary.other_loads = world.others.iter().map(|(_, name)| name.clone()).collect();
         plan.summary.load_as_scanned = as_scanned;
         plan.summary.against_model = model_copy::of_lift(task, &left_out);
-        plan.summary.passes_left_out =
-            model_copy::passes_left_out(task, &plan.moves, &left_out, &plan.summary.against_model, &world);
+        plan.summary.passes_left_out = model_copy::passes_left_out(task, &plan.moves, &left_out, &loads, &world);
         plan.load_cutout = LoadCutout { grow_m: s.load_cutout_m, above_m, points: taken.len(), set_by };
         plan.model_vs_scans = model_vs_scans.clone();
         let io = |p: &Path, e: std::io::Error| PlanError::Input(Location::file(p), e.to_string());

@@ -242,18 +242,20 @@ const PASS_SAMPLE_M: f64 = 0.5;
 /// the crane or what hangs from it meets along `moves`, each box grown by
 /// the lift's clearance and half a sample's motion (so that nothing passes
 /// between two samples unseen), where no scan point lies in the group's
-/// box; not the copies of the load ([`of_lift`]'s `copies`), which it meets
-/// by design.
+/// box; not the `loads`, the groups that are copies of a lift's load
+/// ([`of_lift`] of every lift): this lift's meets it by design, and another
+/// lift's stands there, as an obstacle, only while that lift has set it
+/// (the planner keeps clear of it then, [`crate::other_loads`]).
 pub fn passes_left_out(
     task: &LiftTask,
     moves: &[crate::path::Move],
     boxes: &[ModelBox],
-    copies: &[AgainstModel],
+    loads: &[String],
     world: &crate::validate::World,
 ) -> Vec<PassesLeftOut> {
     let grown: Vec<(&ModelBox, liftplan_core::obb::Obb)> = boxes
         .iter()
-        .filter(|b| !copies.iter().any(|c| c.object == b.name))
+        .filter(|b| !loads.contains(&b.name))
         .filter(|b| crate::validate::nearest_scanned_point(world, &b.obb(), 1e-6).is_none())
         .map(|b| (b, b.obb().expanded(task.clearance_m + PASS_SAMPLE_M / 2.0)))
         .collect();
@@ -399,8 +401,8 @@ mod tests {
         };
         let copy = copy_at(0.0, 0.0, 90.0, SKID);
         let boxes = [in_the_way.clone(), copy];
-        let copies = of_lift(&task, &boxes);
-        assert_eq!(copies.len(), 1);
+        let copies: Vec<String> = of_lift(&task, &boxes).into_iter().map(|a| a.object).collect();
+        assert_eq!(copies, ["/SKID-1"]);
         let bare = World::new(&liftplan_core::mesh::TriMesh::default(), &[], &[]).unwrap();
         let found = passes_left_out(&task, std::slice::from_ref(&swing), &boxes, &copies, &bare);
         assert!(found.len() == 1 && found[0].object == "/SCAFFOLD-3" && found[0].step == 1, "{found:?}");
@@ -411,6 +413,10 @@ mod tests {
             said.contains("WHERE THE SCANS SHOW NOTHING OF IT: the ") && said.contains(" at /SCAFFOLD-3 in step 1"),
             "{said}"
         );
+        // Another lift's load (a vessel this skid is set on): where it
+        // stands during this lift it is an obstacle as that lift's load.
+        let loads = ["/SCAFFOLD-3".to_string(), "/SKID-1".to_string()];
+        assert!(passes_left_out(&task, std::slice::from_ref(&swing), &boxes, &loads, &bare).is_empty());
         // Scanned: kept clear of as the scans show it.
         let c = in_the_way.center_m;
         let scanned = World::new(&liftplan_core::mesh::TriMesh::default(), &[c], &[false]).unwrap();
