@@ -241,8 +241,8 @@ const PASS_SAMPLE_M: f64 = 0.5;
 /// The groups among `boxes` (left out of the plant model) that some part of
 /// the crane or what hangs from it meets along `moves`, each box grown by
 /// the lift's clearance and half a sample's motion (so that nothing passes
-/// between two samples unseen), where no scan point lies in the group's
-/// box; not the `loads`, the groups that are copies of a lift's load
+/// between two samples unseen), where no scan point but ground lies in the
+/// group's box; not the `loads`, the groups that are copies of a lift's load
 /// ([`of_lift`] of every lift): this lift's meets it by design, and another
 /// lift's stands there, as an obstacle, only while that lift has set it
 /// (the planner keeps clear of it then, [`crate::other_loads`]).
@@ -256,7 +256,7 @@ pub fn passes_left_out(
     let grown: Vec<(&ModelBox, liftplan_core::obb::Obb)> = boxes
         .iter()
         .filter(|b| !loads.contains(&b.name))
-        .filter(|b| crate::validate::nearest_scanned_point(world, &b.obb(), 1e-6).is_none())
+        .filter(|b| !crate::validate::scanned_structure_in(world, &b.obb()))
         .map(|b| (b, b.obb().expanded(task.clearance_m + PASS_SAMPLE_M / 2.0)))
         .collect();
     let mut found: Vec<PassesLeftOut> = Vec::new();
@@ -417,10 +417,13 @@ mod tests {
         // stands during this lift it is an obstacle as that lift's load.
         let loads = ["/SCAFFOLD-3".to_string(), "/SKID-1".to_string()];
         assert!(passes_left_out(&task, std::slice::from_ref(&swing), &boxes, &loads, &bare).is_empty());
-        // Scanned: kept clear of as the scans show it.
+        // Scanned: kept clear of as the scans show it; ground in the box's
+        // foot is not it.
         let c = in_the_way.center_m;
         let scanned = World::new(&liftplan_core::mesh::TriMesh::default(), &[c], &[false]).unwrap();
         assert!(passes_left_out(&task, std::slice::from_ref(&swing), &boxes, &copies, &scanned).is_empty());
+        let ground = World::new(&liftplan_core::mesh::TriMesh::default(), &[c], &[true]).unwrap();
+        assert_eq!(passes_left_out(&task, std::slice::from_ref(&swing), &boxes, &copies, &ground).len(), 1);
         // Off the way (20 m over the load the rope passes it), beyond the
         // crane's reach: nothing to say.
         let over = ModelBox { center_m: [c[0], c[1], c[2] + 20.0], ..in_the_way.clone() };

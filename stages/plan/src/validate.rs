@@ -797,6 +797,16 @@ pub fn nearest_scanned_point(world: &World, b: &Obb, cutoff_m: f64) -> Option<([
     best.at.map(|p| (p, best.distance_m))
 }
 
+/// Whether a scan point other than ground lies in `b`: whether the scans
+/// saw anything standing there (ground points lie in the foot of any box
+/// standing on the ground).
+pub fn scanned_structure_in(world: &World, b: &Obb) -> bool {
+    let (pose, cub) = parry_box(b);
+    let mut best = Nearest { distance_m: 1e-6, object: String::new(), at: None };
+    nearer_scan_point(world, b, (&pose, &cub), 1e-6, f64::INFINITY, &mut best);
+    best.at.is_some()
+}
+
 /// A plant model group that fills a load's box as a copy of the load would
 /// ([`model_group_filling`]).
 #[derive(Debug, Clone, PartialEq)]
