@@ -253,12 +253,17 @@ pub fn passes_left_out(
     loads: &[String],
     world: &crate::validate::World,
 ) -> Vec<PassesLeftOut> {
-    let grown: Vec<(&ModelBox, liftplan_core::obb::Obb)> = boxes
+    let grown: Vec<(&ModelBox, liftplan_core::obb::Obb, liftplan_core::frame::Aabb)> = boxes
         .iter()
         .filter(|b| !loads.contains(&b.name))
         .filter(|b| !crate::validate::scanned_structure_in(world, &b.obb()))
-        .map(|b| (b, b.obb().expanded(task.clearance_m + PASS_SAMPLE_M / 2.0)))
+        .map(|b| {
+            let grown = b.obb().expanded(task.clearance_m + PASS_SAMPLE_M / 2.0);
+            (b, grown, grown.aabb())
+        })
         .collect();
+    // Each group is said once, at the first step that meets it.
+    let mut met = vec![false; grown.len()];
     let mut found: Vec<PassesLeftOut> = Vec::new();
     if grown.is_empty() {
         return found;
@@ -273,13 +278,13 @@ pub fn passes_left_out(
             let pose = task.crane.pose(&Config::from_array(v), &task.load);
             for (kind, part) in &pose.parts {
                 let reach = part.aabb();
-                for (group, b) in &grown {
-                    if found.iter().any(|f| f.object == group.name) {
+                for (g, (group, b, near)) in grown.iter().enumerate() {
+                    if met[g] {
                         continue;
                     }
-                    let near = b.aabb();
                     let apart = (0..3).any(|k| reach.max[k] < near.min[k] || reach.min[k] > near.max[k]);
                     if !apart && part.intersects(b) {
+                        met[g] = true;
                         found.push(PassesLeftOut {
                             object: group.name.clone(),
                             step: i + 1,
