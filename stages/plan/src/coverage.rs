@@ -19,8 +19,8 @@
 //! people on site can say what stands where it did not look.
 
 use crate::path::Move;
-use crate::validate::{World, in_polygon, lever_for, plan_bounds, samples_for, to_edge_m};
-use liftplan_core::crane::{Config, Dependence, PartKind};
+use crate::validate::{World, configs_along, in_polygon, plan_bounds, to_edge_m};
+use liftplan_core::crane::{Dependence, PartKind};
 use liftplan_core::lift::LiftTask;
 use liftplan_core::obb::Obb;
 use serde::{Deserialize, Serialize};
@@ -224,15 +224,7 @@ fn swept_cells(task: &LiftTask, moves: &[Move]) -> (HashMap<Cell, f64>, HashMap<
     let (mut load, mut crane) = (HashMap::new(), HashMap::new());
     let hanging = |k: PartKind| matches!(k, PartKind::Load | PartKind::Rigging | PartKind::HookBlock | PartKind::Rope);
     for m in moves {
-        let moved_m = m.delta().abs() * lever_for(task, m);
-        // A move too long to sample is refused by the validator; here it
-        // is drawn at most 100,000 times.
-        let n = samples_for(moved_m.min(SWEEP_SAMPLE_M * 1e5), SWEEP_SAMPLE_M);
-        let (a, b, j) = (m.from.to_array(), m.to.to_array(), m.joint.index());
-        for s in 0..n {
-            let mut v = a;
-            v[j] = a[j] + (b[j] - a[j]) * s as f64 / (n - 1).max(1) as f64;
-            let c = Config::from_array(v);
+        for c in configs_along(task, m, SWEEP_SAMPLE_M) {
             for (kind, part) in task.crane.pose(&c, &task.load).parts.iter() {
                 if kind.dependence() == Dependence::Fixed {
                     continue;
@@ -317,6 +309,7 @@ pub fn of_lift(task: &LiftTask, moves: &[Move], world: &World, also_seen: &[Obb]
 #[cfg(test)]
 mod tests {
     use super::*;
+    use liftplan_core::crane::Config;
     use liftplan_core::frame::{Point3, Vec3};
     use liftplan_core::mesh::TriMesh;
 

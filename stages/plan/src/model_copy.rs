@@ -269,13 +269,8 @@ pub fn passes_left_out(
         return found;
     }
     for (i, m) in moves.iter().enumerate() {
-        let moved_m = m.delta().abs() * crate::validate::lever_for(task, m);
-        let n = crate::validate::samples_for(moved_m.min(PASS_SAMPLE_M * 1e5), PASS_SAMPLE_M);
-        let (a, b, j) = (m.from.to_array(), m.to.to_array(), m.joint.index());
-        for s in 0..n {
-            let mut v = a;
-            v[j] = a[j] + (b[j] - a[j]) * s as f64 / (n - 1).max(1) as f64;
-            let pose = task.crane.pose(&Config::from_array(v), &task.load);
+        for c in crate::validate::configs_along(task, m, PASS_SAMPLE_M) {
+            let pose = task.crane.pose(&c, &task.load);
             for (kind, part) in &pose.parts {
                 let reach = part.aabb();
                 for (g, (group, b, near)) in grown.iter().enumerate() {

@@ -1130,6 +1130,22 @@ pub(crate) fn lever_for(task: &LiftTask, m: &Move) -> f64 {
     }
 }
 
+/// The configurations evenly spaced along `m` so that no point of the crane
+/// moves more than `sample_m` between two, from its start to its end. A
+/// move too long to sample is refused by the validator; here it is drawn
+/// at most 100,000 times. For the reports drawn from a plan (what it
+/// passes over, what it passes through); the validator samples on its own.
+pub(crate) fn configs_along(task: &LiftTask, m: &Move, sample_m: f64) -> impl Iterator<Item = Config> + use<> {
+    let moved_m = m.delta().abs() * lever_for(task, m);
+    let n = samples_for(moved_m.min(sample_m * 1e5), sample_m);
+    let (a, b, j) = (m.from.to_array(), m.to.to_array(), m.joint.index());
+    (0..n).map(move |s| {
+        let mut v = a;
+        v[j] = a[j] + (b[j] - a[j]) * s as f64 / (n - 1).max(1) as f64;
+        Config::from_array(v)
+    })
+}
+
 /// Samples evenly spaced along a move in which no point moves more than
 /// `moved_m`, so that none moves more than `sample_m` between two.
 pub(crate) fn samples_for(moved_m: f64, sample_m: f64) -> usize {
