@@ -791,20 +791,23 @@ fn nearer_scan_point(
 /// The scanned point (ground or not) nearest `b` within `cutoff_m`, and its
 /// distance; `None` where none is that near.
 pub fn nearest_scanned_point(world: &World, b: &Obb, cutoff_m: f64) -> Option<([f64; 3], f64)> {
-    let (pose, cub) = parry_box(b);
-    let mut best = Nearest { distance_m: cutoff_m, object: String::new(), at: None };
-    nearer_scan_point(world, b, (&pose, &cub), cutoff_m, ALL_GROUND, &mut best);
-    best.at.map(|p| (p, best.distance_m))
+    nearest_scan(world, b, cutoff_m, ALL_GROUND)
 }
 
 /// Whether a scan point other than ground lies in `b`: whether the scans
 /// saw anything standing there (ground points lie in the foot of any box
 /// standing on the ground).
 pub fn scanned_structure_in(world: &World, b: &Obb) -> bool {
+    nearest_scan(world, b, 1e-6, f64::INFINITY).is_some()
+}
+
+/// The scan point nearest `b` within `cutoff_m` and its distance, ground
+/// points at or below `ground_below_z` left out.
+fn nearest_scan(world: &World, b: &Obb, cutoff_m: f64, ground_below_z: f64) -> Option<([f64; 3], f64)> {
     let (pose, cub) = parry_box(b);
-    let mut best = Nearest { distance_m: 1e-6, object: String::new(), at: None };
-    nearer_scan_point(world, b, (&pose, &cub), 1e-6, f64::INFINITY, &mut best);
-    best.at.is_some()
+    let mut best = Nearest { distance_m: cutoff_m, object: String::new(), at: None };
+    nearer_scan_point(world, b, (&pose, &cub), cutoff_m, ground_below_z, &mut best);
+    best.at.map(|p| (p, best.distance_m))
 }
 
 /// A plant model group that fills a load's box as a copy of the load would
