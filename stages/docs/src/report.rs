@@ -750,9 +750,7 @@ pub fn document(
     // the page; what is not, each in its own.
     let on = plan.summary.set_on.as_ref();
     let fine: Vec<String> = on
-        .filter(|s| !s.tips())
-        .and_then(|s| s.cog_inside_m)
-        .map(|m| format!("its centre of gravity lies {m:.2} m inside the edge of what holds it"))
+        .and_then(|s| s.cog_inside_said())
         .into_iter()
         .chain(plan.summary.against_model.iter().filter(|a| a.agrees()).map(|a| a.agrees_clause()))
         .collect();

@@ -511,12 +511,18 @@ impl SetSupport {
         self.cog_inside_m.is_some_and(|m| !(m >= COG_INSIDE_SUPPORT_M))
     }
 
+    /// Where the load does not tip, how far inside its centre of gravity lies, in few words.
+    pub fn cog_inside_said(&self) -> Option<String> {
+        let m = self.cog_inside_m.filter(|_| !self.tips())?;
+        Some(format!("its centre of gravity lies {m:.2} m inside the edge of what holds it"))
+    }
+
     /// [`SetSupport::cog_inside_m`] said, where it was measured.
     pub fn cog_said(&self) -> Option<String> {
         let m = self.cog_inside_m?;
         let shown = "(as the scans and the plant model show what is under it, in cells of 0.2 m)";
-        Some(if !self.tips() {
-            format!("its centre of gravity lies {m:.2} m inside the edge of what holds it {shown}")
+        Some(if let Some(inside) = self.cog_inside_said() {
+            format!("{inside} {shown}")
         } else if m >= 0.0 {
             format!(
                 "ITS CENTRE OF GRAVITY LIES ONLY {m:.2} m INSIDE THE EDGE OF WHAT HOLDS IT {shown}: it may tip when the slings slacken; CHECK the set position and cog_m"
