@@ -485,11 +485,7 @@ impl CSpace {
             return f32::INFINITY;
         }
         let mut cap = f32::INFINITY;
-        for &kind in crane.part_kinds() {
-            if !matches!(kind.dependence(), Dependence::Fixed | Dependence::Swing) {
-                continue;
-            }
-            let Some(b) = crane.part(kind, &c, &task.load) else { continue };
+        for (_, b) in standing_parts(task, &c) {
             let a = b.aabb();
             let beside =
                 (0..2).all(|d| a.min[d] - r <= [sheave.x, sheave.y][d] && [sheave.x, sheave.y][d] <= a.max[d] + r);
@@ -570,16 +566,24 @@ impl CSpace {
 /// [`CSpace::own_reach_m`]: the parts that swing turn about the slewing
 /// axis, so one swing gives their reach at every swing.
 fn own_reach_m(task: &LiftTask) -> f64 {
+    let o = task.crane.slew_center();
+    standing_parts(task, &task.pick)
+        .flat_map(|(_, b)| b.corners())
+        .map(|p| (p.x - o.x).hypot(p.y - o.y))
+        .fold(0.0, f64::max)
+}
+
+/// The crane's parts that stand or swing at `c` (carrier, outriggers,
+/// superstructure, counterweight; a tower crane's mast, cab and jibs): those
+/// the hanging parts are kept off besides the boom, which the depth map
+/// does not hold.
+fn standing_parts<'a>(task: &'a LiftTask, c: &'a Config) -> impl Iterator<Item = (PartKind, Obb)> + 'a {
     let crane = &task.crane;
-    let o = crane.slew_center();
     crane
         .part_kinds()
         .iter()
         .filter(|k| matches!(k.dependence(), Dependence::Fixed | Dependence::Swing))
-        .filter_map(|&k| crane.part(k, &task.pick, &task.load))
-        .flat_map(|b| b.corners())
-        .map(|p| (p.x - o.x).hypot(p.y - o.y))
-        .fold(0.0, f64::max)
+        .filter_map(move |&k| crane.part(k, c, &task.load).map(|b| (k, b)))
 }
 
 /// Highest top of intervals starting below `z_max` over a plan rectangle.
@@ -987,13 +991,8 @@ impl<'a> Checker<'a> {
             if (grown.center.x - o.x).hypot(grown.center.y - o.y) - plan_radius > self.cs.own_reach_m {
                 continue;
             }
-            for &own in crane.part_kinds() {
-                if !matches!(own.dependence(), Dependence::Fixed | Dependence::Swing) {
-                    continue;
-                }
-                if let Some(o) = crane.part(own, c, &self.task.load)
-                    && grown.intersects(&o)
-                {
+            for (own, o) in standing_parts(self.task, c) {
+                if grown.intersects(&o) {
                     return Err(Blocked {
                         reason: TOO_CLOSE.into(),
                         part: Some(*kind),
