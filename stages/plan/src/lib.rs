@@ -867,8 +867,11 @@ pub fn run(
         Some(p) => excluded_boxes(p)?,
         None => Vec::new(),
     };
-    // The groups left out that are some lift's load (at its pick or set).
-    let loads: Vec<String> = tasks.iter().flat_map(|t| model_copy::of_lift(t, &left_out)).map(|a| a.object).collect();
+    // Each lift's pick and set against the groups left out, and those that
+    // are some lift's load.
+    let against_model: Vec<Vec<model_copy::AgainstModel>> =
+        tasks.iter().map(|t| model_copy::of_lift(t, &left_out)).collect();
+    let loads: Vec<String> = against_model.iter().flatten().map(|a| a.object.clone()).collect();
     let exclusions = load_exclusions(tasks, s.load_cutout_m);
     let (points, ground, taken_for_loads) = match cloud_path {
         Some(p) => read_points(p, &exclusions)?,
@@ -923,7 +926,7 @@ pub fn run(
         }
         plan.summary.other_loads = world.others.iter().map(|(_, name)| name.clone()).collect();
         plan.summary.load_as_scanned = as_scanned;
-        plan.summary.against_model = model_copy::of_lift(task, &left_out);
+        plan.summary.against_model = against_model[k].clone();
         plan.summary.passes_left_out = model_copy::passes_left_out(task, &plan.moves, &left_out, &loads, &world);
         plan.load_cutout = LoadCutout { grow_m: s.load_cutout_m, above_m, points: taken.len(), set_by };
         plan.model_vs_scans = model_vs_scans.clone();
