@@ -259,15 +259,17 @@ liftoff_m = 0.5
     std::fs::write(&toml_path, &t13).unwrap();
 
     // A capacity on the lift's chart configuration typed with a footnote
-    // mark ("41.5*", Main boom 360!H28): read with a warning, which the
+    // mark ("41.5 (1)", Main boom 360!H28): read with a warning, which the
     // cover's CHECK FIRST and the sign-off page repeat (the mark may
-    // restrict the value; it was said on the inputs page only).
+    // restrict the value; it was said on the inputs page only), quoting the
+    // note the mark points at (the chart's note 1, under its grid).
     let chart_path = dir.join("charts").join("ac700-illustrative.xlsx");
-    liftplan_fixtures::chart::write_demo_chart_with(&chart_path, Some((21, 6, "41.5*"))).unwrap();
+    liftplan_fixtures::chart::write_demo_chart_with(&chart_path, Some((21, 6, "41.5 (1)"))).unwrap();
     let (cover, text) = planned_with(&dir, &t13);
     assert!(cover.contains("the load chart cells read with a warning"), "{cover}");
+    let note_row = 10 + liftplan_fixtures::chart::demo_radii_m().len();
     assert!(
-        text.contains("READING THE LOAD CHART'S CONFIGURATION 'Main boom 360' WARNED: Main boom 360!H28: footnote mark dropped from '41.5*'"),
+        text.contains(&format!("READING THE LOAD CHART'S CONFIGURATION 'Main boom 360' WARNED: Main boom 360!H28: footnote mark dropped from '41.5 (1)'; its footnote, Main boom 360!A{note_row}, reads: \"Capacities include the hook block and slings; deduct them from the load.\"")),
         "{text}"
     );
     liftplan_fixtures::chart::write_demo_chart(&chart_path).unwrap();

@@ -455,12 +455,164 @@ pub fn units(sheet: &Sheet, g: &Grid) -> Result<Units, (String, String)> {
     })
 }
 
-/// A capacity cell's value: `Ok(None)` for "not permitted".
+/// The mark a chart puts after a capacity to point at a footnote: "8.4*",
+/// "8.4**", "8.4¹", "8.4 (2)".
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum FootnoteMark {
+    /// That many asterisks.
+    Stars(usize),
+    /// A note's number, written as a superscript or in brackets.
+    Number(u32),
+}
+
+impl FootnoteMark {
+    /// Splits a trailing mark off a cell's text: the text before it and the
+    /// mark, or `None` where the text ends in none.
+    pub fn split(t: &str) -> Option<(&str, FootnoteMark)> {
+        if t.ends_with(')')
+            && let Some(i) = t.rfind('(')
+            && i > 0
+            && (1..=3).contains(&(t.len() - i - 2))
+            && t[i + 1..t.len() - 1].chars().all(|c| c.is_ascii_digit())
+        {
+            let n = t[i + 1..t.len() - 1].parse().ok()?;
+            return Some((t[..i].trim_end(), FootnoteMark::Number(n)));
+        }
+        let before = t.trim_end_matches('*');
+        if before.len() < t.len() {
+            return Some((before.trim_end(), FootnoteMark::Stars(t.len() - before.len())));
+        }
+        let last = t.chars().last()?;
+        let n = SUPERSCRIPT_DIGITS.iter().position(|&c| c == last)?;
+        Some((t[..t.len() - last.len_utf8()].trim_end(), FootnoteMark::Number(n as u32)))
+    }
+
+    /// The mark a note (a cell's text) opens with and its text after it:
+    /// "* ...", "** ...", "(2) ...", "2) ...", "2. ...", "2: ...", "² ...",
+    /// "Note 2: ...", after a leading "Notes:" where the first note shares
+    /// that cell. The text is empty where the cell holds only the mark.
+    pub fn leading(note: &str) -> Option<(FootnoteMark, &str)> {
+        let mut s = note.trim();
+        for lead in ["notes:", "note:", "remarks:", "footnotes:", "note "] {
+            if s.get(..lead.len()).is_some_and(|l| l.eq_ignore_ascii_case(lead)) {
+                s = s[lead.len()..].trim_start();
+                break;
+            }
+        }
+        let digits_end = |x: &str| x.find(|c: char| !c.is_ascii_digit()).unwrap_or(x.len());
+        let number = |d: &str| (1..=3).contains(&d.len()).then(|| d.parse().ok()).flatten();
+        let (mark, rest) = if let Some(after) = s.strip_prefix('(') {
+            let end = digits_end(after);
+            (FootnoteMark::Number(number(&after[..end])?), after[end..].strip_prefix(')')?)
+        } else if s.starts_with('*') {
+            let after = s.trim_start_matches('*');
+            (FootnoteMark::Stars(s.len() - after.len()), after)
+        } else if s.starts_with(|c: char| SUPERSCRIPT_DIGITS.contains(&c)) {
+            let end = s.find(|c: char| !SUPERSCRIPT_DIGITS.contains(&c)).unwrap_or(s.len());
+            let d: String = s[..end]
+                .chars()
+                .filter_map(|c| SUPERSCRIPT_DIGITS.iter().position(|&x| x == c))
+                .map(|i| char::from(b'0' + i as u8))
+                .collect();
+            (FootnoteMark::Number(number(&d)?), &s[end..])
+        } else {
+            let end = digits_end(s);
+            let after = s[end..].strip_prefix([')', '.', ':'])?;
+            // "2) ...", not "25 t ..." or "2.5 m ...".
+            if !(after.is_empty() || after.starts_with(char::is_whitespace)) {
+                return None;
+            }
+            (FootnoteMark::Number(number(&s[..end])?), after)
+        };
+        Some((mark, rest.trim_start_matches([':', '.', ')', '-', ' ', '\u{a0}']).trim()))
+    }
+
+    /// As written in a cell.
+    pub fn said(&self) -> String {
+        match *self {
+            FootnoteMark::Stars(n) => "*".repeat(n),
+            FootnoteMark::Number(n) => format!("({n})"),
+        }
+    }
+}
+
+const SUPERSCRIPT_DIGITS: [char; 10] = ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'];
+
+/// The longest footnote quoted in a warning, in characters.
+const FOOTNOTE_QUOTED_CHARS: usize = 300;
+
+/// Where a sheet's notes are: the text cells that open with a footnote
+/// mark, by mark, in the sheet's order. Built in one pass over the sheet,
+/// so a chart with many marks does not walk it once for each.
+#[derive(Debug, Default)]
+pub struct SheetNotes(std::collections::HashMap<FootnoteMark, Vec<(u32, u32)>>);
+
+impl SheetNotes {
+    pub fn of(sheet: &Sheet) -> SheetNotes {
+        let mut notes = SheetNotes::default();
+        for (&(r, c), v) in &sheet.cells {
+            if let Val::Text(t) = v
+                && let Some((mark, _)) = FootnoteMark::leading(t)
+            {
+                notes.0.entry(mark).or_default().push((r, c));
+            }
+        }
+        notes
+    }
+
+    /// The note a mark in grid `g` points at: the first cell outside the
+    /// grid that opens with the mark and says something (the nearest below
+    /// the grid first, as notes are printed under their table), with the
+    /// text cells after it on its row (a note typed across the row).
+    /// Returns the cell and the note's text.
+    pub fn find(&self, sheet: &Sheet, g: &Grid, mark: FootnoteMark) -> Option<(String, String)> {
+        let first_col = g.label_col.min(*g.value_cols.first().unwrap_or(&g.label_col));
+        let last_col = g.label_col.max(*g.value_cols.last().unwrap_or(&g.label_col));
+        let last_row = *g.rows.last().unwrap_or(&g.header_row);
+        let in_grid = |r: u32, c: u32| r >= g.header_row && r <= last_row && c >= first_col && c <= last_col;
+        let text_of = |&(r, c): &(u32, u32)| {
+            let (_, opened) = sheet.text(r, c).and_then(FootnoteMark::leading)?;
+            let mut text = opened.to_string();
+            for (_, v) in sheet.cells.range((r, c + 1)..=(r, u32::MAX)) {
+                if text.chars().count() > FOOTNOTE_QUOTED_CHARS {
+                    break;
+                }
+                if let Val::Text(t) = v
+                    && !t.trim().is_empty()
+                {
+                    if !text.is_empty() {
+                        text.push(' ');
+                    }
+                    text.push_str(t.trim());
+                }
+            }
+            (!text.is_empty()).then_some((r, c, text))
+        };
+        let cells = self.0.get(&mark)?.iter().filter(|&&(r, c)| !in_grid(r, c));
+        let below = cells.clone().filter(|&&(r, _)| r > last_row).find_map(text_of);
+        let (r, c, text) = below.or_else(|| cells.clone().find_map(text_of))?;
+        // One line, as it is quoted in a sentence (a cell may hold line breaks).
+        let mut text = text
+            .split(|c: char| c.is_whitespace() || c.is_control())
+            .filter(|w| !w.is_empty())
+            .collect::<Vec<_>>()
+            .join(" ");
+        if text.chars().count() > FOOTNOTE_QUOTED_CHARS {
+            text = text.chars().take(FOOTNOTE_QUOTED_CHARS).collect::<String>() + "...";
+        }
+        Some((format!("{}!{}", sheet.name, cell_ref(r, c)), text))
+    }
+}
+
+/// A capacity cell's value: `Ok(None)` for "not permitted". A footnote mark
+/// after it is dropped with a warning that ends with what `footnote` says of
+/// the note it points at.
 pub fn parse_capacity(
     v: Option<&Val>,
     unit: MassUnit,
     warnings: &mut Vec<String>,
     at: &str,
+    footnote: &mut dyn FnMut(FootnoteMark) -> String,
 ) -> Result<Option<f64>, String> {
     let t = match v {
         None => return Ok(None),
@@ -479,19 +631,13 @@ pub fn parse_capacity(
     if NOT_PERMITTED.contains(&t.to_lowercase().as_str()) {
         return Ok(None);
     }
-    // Footnote marks: "8.4*", "8.4¹", "8.4 (2)".
-    let mut s: &str = t;
-    if s.ends_with(')')
-        && let Some(i) = s.rfind('(')
-        && s[i + 1..s.len() - 1].chars().all(|c| c.is_ascii_digit())
-        && i > 0
-    {
-        s = s[..i].trim_end();
-    }
-    let s = s.trim_end_matches(['*', '¹', '²', '³', '⁴', '⁵']).trim_end().to_string();
-    if s != t {
-        warnings.push(format!("{at}: footnote mark dropped from '{t}'"));
-    }
+    let s = match FootnoteMark::split(t) {
+        Some((before, mark)) => {
+            warnings.push(format!("{at}: footnote mark dropped from '{t}'{}", footnote(mark)));
+            before.to_string()
+        }
+        None => t.to_string(),
+    };
     // Split a trailing unit.
     let num_end = s
         .char_indices()
@@ -554,6 +700,23 @@ pub fn read_grid(
     let radii_m: Vec<f64> = radii_raw.iter().map(|r| r * u.radius.to_m()).collect();
     let booms_m: Vec<f64> = booms_raw.iter().map(|b| b * u.boom.to_m()).collect();
     let mut cells = vec![None; radii_m.len() * booms_m.len()];
+    // Each mark's note is looked for once (a column may carry the same mark
+    // in every cell).
+    let mut said: std::collections::HashMap<FootnoteMark, String> = Default::default();
+    let mut notes: Option<SheetNotes> = None;
+    let mut footnote = |mark: FootnoteMark| {
+        let notes = notes.get_or_insert_with(|| SheetNotes::of(sheet));
+        said.entry(mark)
+            .or_insert_with(|| match notes.find(sheet, g, mark) {
+                Some((cell, text)) => format!("; its footnote, {cell}, reads: \"{text}\""),
+                None => format!(
+                    "; no footnote marked '{}' was found on sheet {}: read the chart's notes for it",
+                    mark.said(),
+                    sheet.name
+                ),
+            })
+            .clone()
+    };
     let cell_of = |ri: usize, bi: usize| {
         if g.transposed {
             (g.rows[bi], g.value_cols[ri])
@@ -565,7 +728,8 @@ pub fn read_grid(
         for (bi, _) in booms_m.iter().enumerate() {
             let (row, col) = cell_of(ri, bi);
             let here = at(row, col);
-            let v = parse_capacity(sheet.get(row, col), u.capacity, warnings, &here).map_err(|m| (here.clone(), m))?;
+            let v = parse_capacity(sheet.get(row, col), u.capacity, warnings, &here, &mut footnote)
+                .map_err(|m| (here.clone(), m))?;
             cells[ri * booms_m.len() + bi] =
                 v.map(|x| ChartCell { capacity_kg: x * u.capacity.to_kg(), cell: format!("{file_label} [{here}]") });
         }
@@ -874,19 +1038,95 @@ mod tests {
     #[test]
     fn typos_read_or_refused_with_the_cell() {
         let mut w = vec![];
-        assert_eq!(parse_capacity(Some(&Val::Text("12,5".into())), MassUnit::T, &mut w, "S!C3").unwrap(), Some(12.5));
-        assert!(w[0].contains("S!C3"));
-        assert_eq!(parse_capacity(Some(&Val::Text("12.5t".into())), MassUnit::T, &mut w, "S!C4").unwrap(), Some(12.5));
-        assert!(
-            parse_capacity(Some(&Val::Text("12.5kg".into())), MassUnit::T, &mut w, "S!C5").unwrap_err().contains("kg")
-        );
-        assert!(parse_capacity(Some(&Val::Text("heavy".into())), MassUnit::T, &mut w, "S!C6").is_err());
-        assert_eq!(parse_capacity(Some(&Val::Text("—".into())), MassUnit::T, &mut w, "S!C7").unwrap(), None);
-        assert_eq!(parse_capacity(Some(&Val::Text("8.4*".into())), MassUnit::T, &mut w, "S!C8").unwrap(), Some(8.4));
+        let mut no_note = |_| String::new();
         assert_eq!(
-            parse_capacity(Some(&Val::Text("12,500".into())), MassUnit::Lb, &mut w, "S!C9").unwrap(),
+            parse_capacity(Some(&Val::Text("12,5".into())), MassUnit::T, &mut w, "S!C3", &mut no_note).unwrap(),
+            Some(12.5)
+        );
+        assert!(w[0].contains("S!C3"));
+        assert_eq!(
+            parse_capacity(Some(&Val::Text("12.5t".into())), MassUnit::T, &mut w, "S!C4", &mut no_note).unwrap(),
+            Some(12.5)
+        );
+        assert!(
+            parse_capacity(Some(&Val::Text("12.5kg".into())), MassUnit::T, &mut w, "S!C5", &mut no_note)
+                .unwrap_err()
+                .contains("kg")
+        );
+        assert!(parse_capacity(Some(&Val::Text("heavy".into())), MassUnit::T, &mut w, "S!C6", &mut no_note).is_err());
+        assert_eq!(
+            parse_capacity(Some(&Val::Text("—".into())), MassUnit::T, &mut w, "S!C7", &mut no_note).unwrap(),
+            None
+        );
+        assert_eq!(
+            parse_capacity(Some(&Val::Text("8.4*".into())), MassUnit::T, &mut w, "S!C8", &mut no_note).unwrap(),
+            Some(8.4)
+        );
+        assert_eq!(
+            parse_capacity(Some(&Val::Text("12,500".into())), MassUnit::Lb, &mut w, "S!C9", &mut no_note).unwrap(),
             Some(12500.0)
         );
+    }
+
+    /// A capacity with a footnote mark is read without it, and the warning
+    /// quotes the note the mark points at (it may restrict the value: "over
+    /// the rear only"), or says none was found; each way a chart writes a
+    /// mark and numbers its notes.
+    #[test]
+    fn a_footnote_marks_capacity_is_read_with_its_note_quoted() {
+        let read = |mark: &str, notes: &[&[&str]]| {
+            let marked = ["6", "30", mark, "20"];
+            let mut rows: Vec<&[&str]> = vec![
+                &["Radius m", "Boom m", "", ""],
+                &["", "12", "20", "28"],
+                &["3", "50", "", ""],
+                &["4", "40", "35", ""],
+                &marked,
+                &["", "", "", ""],
+            ];
+            rows.extend_from_slice(notes);
+            let s = sheet(&rows);
+            let g = &find_grids(&s).unwrap()[0];
+            let u = units(&s, g).unwrap();
+            let mut w = vec![];
+            let c = read_grid(&s, g, &u, "c.xlsx", "x", &mut w).unwrap();
+            assert_eq!(c.lookup(20.0, 6.0).unwrap().capacity_kg, 28000.0, "{mark}");
+            assert_eq!(w.len(), 1, "{w:?}");
+            w.remove(0)
+        };
+        // A line break in the note's cell is a space in the sentence.
+        let rear: &[&str] = &["* Over the rear only,\noutriggers fully extended.", "", "", ""];
+        assert_eq!(
+            read("28*", &[rear]),
+            "Main!C5: footnote mark dropped from '28*'; its footnote, Main!A7, reads: \"Over the rear only, outriggers fully extended.\""
+        );
+        // Two stars point at the note with two, not the one with one.
+        let two: &[&str] = &["** With the jib stowed", "", "", ""];
+        assert!(read("28**", &[rear, two]).ends_with("its footnote, Main!A8, reads: \"With the jib stowed\""));
+        // Numbered notes, the first sharing its cell with "Notes:", a note
+        // typed across its row's cells.
+        let numbered: [&[&str]; 3] = [
+            &["Notes: 1) hook block weight must be deducted", "", "", ""],
+            &["2)", "360 deg", "on outriggers", ""],
+            &["(3) Not over the front", "", "", ""],
+        ];
+        assert!(read("28 (1)", &numbered).ends_with("Main!A7, reads: \"hook block weight must be deducted\""));
+        assert!(read("28²", &numbered).ends_with("Main!A8, reads: \"360 deg on outriggers\""));
+        assert!(read("28 (3)", &numbered).ends_with("Main!A9, reads: \"Not over the front\""));
+        // A value is not a note: "2.5 m ..." does not open note 2.
+        let value: &[&str] = &["2.5 m minimum radius", "", "", ""];
+        assert_eq!(
+            read("28 (2)", &[value]),
+            "Main!C5: footnote mark dropped from '28 (2)'; no footnote marked '(2)' was found on sheet Main: read the chart's notes for it"
+        );
+        assert!(
+            read("28*", &[two])
+                .ends_with("no footnote marked '*' was found on sheet Main: read the chart's notes for it")
+        );
+        // A long note is cut.
+        let long = format!("* {}", "x".repeat(400));
+        let cut = read("28*", &[&[long.as_str(), "", "", ""]]);
+        assert!(cut.ends_with("...\"") && cut.len() < 420, "{cut}");
     }
 
     #[test]
