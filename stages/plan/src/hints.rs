@@ -8,7 +8,7 @@
 
 use crate::{Site, validate};
 use liftplan_core::capacity::{CapacityTable, ChartConfig};
-use liftplan_core::crane::{Config, PartKind};
+use liftplan_core::crane::{Config, CraneSetup, IkError, LoadPose, PartKind, Placement};
 use liftplan_core::frame::Point3;
 use liftplan_core::lift::LiftTask;
 use liftplan_depthmap::mdm::{OBJ_GROUND, OBJ_SCAN};
@@ -119,13 +119,41 @@ pub(crate) fn scanned_near(task: &LiftTask, site: &Site, at: &Config, at_pick: b
     )
 }
 
+/// Why the lift's crane with a boom of `boom_m` could not hold the load at
+/// `pose` (the pick or set position), where it could not: the crane model
+/// has no such boom, the position is beyond its reach, or the boom's head
+/// stands too low (or too high for the rope) there. A chart may list a
+/// boom that carries the load at a radius where that boom cannot hang it at
+/// the height asked.
+fn boom_cannot_hold(task: &LiftTask, boom_m: f64, pose: &LoadPose, what: &str) -> Option<String> {
+    let placement = Placement { boom_length_m: boom_m, ..task.crane.placement };
+    let setup = match CraneSetup::new(task.crane.model.clone(), placement) {
+        Ok(s) => s,
+        Err(_) => return Some(format!("the crane model {} has no {boom_m:.2} m boom", task.crane.model.name)),
+    };
+    match setup.inverse(pose, &task.load) {
+        Ok(_) => None,
+        Err(IkError::OutOfReach { radius_m, min_m, max_m }) => Some(format!(
+            "with it the crane reaches {min_m:.2} to {max_m:.2} m from its slewing axis, not the {what} position's {radius_m:.2} m"
+        )),
+        Err(IkError::RopeOutOfRange { z_m, hoist_m, min_m, highest_z_m, .. }) if hoist_m < min_m => Some(format!(
+            "its head stands too low there: it hangs the load's underside at z = {highest_z_m:.2} m at the highest, under the {what} position's z = {z_m:.2} m"
+        )),
+        Err(IkError::RopeOutOfRange { hoist_m, max_m, .. }) => Some(format!(
+            "its head stands too high there for the rope: the {what} position needs {hoist_m:.2} m of rope, the crane has {max_m:.2} m"
+        )),
+    }
+}
+
 /// What a pick or set over capacity (at `radius_m`, the rigid crane's) could
 /// be lifted with instead, as far as the charts read tell: how far out the
 /// lift's boom and configuration carry the gross load (the crane set up that
 /// much nearer), and which of the configuration's other boom lengths, and
 /// which other configurations of the same chart file, carry it there. Each
 /// read as the lift reads its own (its radius allowance and capacity
-/// reduction). Words only: the lift is refused all the same.
+/// reduction); a boom length that could not hang the load at the position
+/// (too short to reach it, its head too low) is said to be so. Words only:
+/// the lift is refused all the same.
 pub(crate) fn over_capacity(
     task: &LiftTask,
     table: &CapacityTable,
@@ -151,19 +179,20 @@ pub(crate) fn over_capacity(
         None => format!("; '{}'{on_boom} carries {gross:.0} kg at no radius", chart.name),
     };
     let used = chart.lookup(boom, radius_m + allowance).ok().map(|k| k.boom_m);
-    let booms: Vec<String> = if tower {
-        Vec::new()
-    } else {
-        chart
-            .boom_lengths_m
-            .iter()
-            .filter(|&&b| Some(b) != used)
-            .filter_map(|&b| {
-                carries(chart, b, radius_m)
-                    .map(|k| format!("the {b:.2} m boom ({:.0} kg, {}; boom_m)", k.capacity_kg, k.cell))
-            })
-            .collect()
-    };
+    let pose = if what == "pick" { &task.pick_pose } else { &task.set_pose };
+    // The other boom lengths that carry it there: those that can hang the
+    // load at the position, and those that cannot (said apart, with why).
+    let (mut booms, mut booms_cannot) = (Vec::new(), Vec::new());
+    for &b in chart.boom_lengths_m.iter().filter(|&&b| !tower && Some(b) != used) {
+        let Some(k) = carries(chart, b, radius_m) else { continue };
+        match boom_cannot_hold(task, b, pose, what) {
+            None => booms.push(format!("the {b:.2} m boom ({:.0} kg, {}; boom_m)", k.capacity_kg, k.cell)),
+            Some(why) => booms_cannot.push(format!(
+                "; the chart's {b:.2} m boom carries it at {radius_m:.2} m ({:.0} kg, {}), BUT {why}",
+                k.capacity_kg, k.cell
+            )),
+        }
+    }
     let file =
         |c: &ChartConfig| c.cells.iter().flatten().next().map(|k| k.cell.split(" [").next().unwrap_or("").to_string());
     let configs: Vec<String> = table
@@ -175,14 +204,16 @@ pub(crate) fn over_capacity(
                 .map(|k| format!("'{}' ({:.0} kg, {}; chart_config)", c.name, k.capacity_kg, k.cell))
         })
         .collect();
-    let others: Vec<String> = booms.into_iter().chain(configs).collect();
-    said += &if others.is_empty() {
+    booms.extend(configs);
+    said += &if booms.is_empty() {
         format!(
-            "; at {radius_m:.2} m no other {}configuration of its chart file carries it",
-            if tower { "" } else { "boom length and no other " }
+            "; at {radius_m:.2} m no other {}configuration of its chart file carries it{}",
+            if tower { "" } else { "boom length and no other " },
+            if booms_cannot.is_empty() { "" } else { " where the crane could hang it" }
         )
     } else {
-        format!("; at {radius_m:.2} m it is carried by {}", others.join(", "))
+        format!("; at {radius_m:.2} m it is carried by {}", booms.join(", "))
     };
+    said += &booms_cannot.concat();
     said
 }

@@ -349,6 +349,13 @@ fn a_pick_over_capacity_says_what_would_carry_it() {
         rows.push(row("none", "test.xlsx", 30.0, r, at30));
         rows.push(row("heavy", "test.xlsx", 40.0, r, heavy));
         rows.push(row("other crane", "other.xlsx", 40.0, r, heavy));
+        // Booms the chart lists that could not hang the load at the pick
+        // (26.08 m from the slewing axis, its underside at 0.5 m): too short
+        // to reach it, too short to lift it high enough there, and longer
+        // than the crane model's longest (62.4 m).
+        for b in [20.0, 29.0, 70.0] {
+            rows.push(row("none", "test.xlsx", b, r, heavy));
+        }
     }
     let table = CapacityTable::from_rows(&rows);
     let mesh = site();
@@ -362,10 +369,21 @@ fn a_pick_over_capacity_says_what_would_carry_it() {
         "{e}"
     );
     assert!(
-        e.contains("it is carried by the 30.00 m boom (10000 kg, test.xlsx [none!R28B30]; boom_m), 'heavy' (20000 kg, test.xlsx [heavy!R28B40]; chart_config)"),
+        e.contains("it is carried by the 30.00 m boom (10000 kg, test.xlsx [none!R28B30]; boom_m), 'heavy' (20000 kg, test.xlsx [heavy!R28B40]; chart_config); the chart's 20.00 m boom carries it at 26.08 m (20000 kg, test.xlsx [none!R28B20]), BUT with it the crane reaches "),
         "{e}"
     );
+    assert!(e.contains(" m from its slewing axis, not the pick position's 26.08 m; the chart's 29.00 m boom carries it at 26.08 m (20000 kg, test.xlsx [none!R28B29]), BUT its head stands too low there: it hangs the load's underside at z = "), "{e}");
+    assert!(e.contains(" m at the highest, under the pick position's z = 0.50 m; the chart's 70.00 m boom carries it at 26.08 m (20000 kg, test.xlsx [none!R28B70]), BUT the crane model AC 700 (approx.) has no 70.00 m boom"), "{e}");
     assert!(!e.contains("other crane"), "{e}");
+    // Only a boom that cannot reach the pick carries it there.
+    let short: Vec<CapacityRow> =
+        rows.iter().filter(|r| r.config == "none" && [40.0, 20.0].contains(&r.boom_m)).cloned().collect();
+    let table = CapacityTable::from_rows(&short);
+    let e = plan_lift(&t, &Site { map: &m, world: &world, charts: Some(&table) }, &quick(), 3).unwrap_err().to_string();
+    assert!(
+        e.contains("at 26.08 m no other boom length and no other configuration of its chart file carries it where the crane could hang it; the chart's 20.00 m boom carries it at 26.08 m"),
+        "{e}"
+    );
 }
 
 #[test]
