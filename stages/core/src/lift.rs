@@ -516,6 +516,37 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         assert!(s.resolve(crane()).unwrap_err().contains("radius_allowance_m = 500 m is more than 10 m"));
     }
 
+    /// A motion between two radii reads the chart's cell at each end and at
+    /// every row between, with the radius allowance, each once; the same
+    /// cells a capacity check at each radius between would read.
+    #[test]
+    fn a_motion_reads_the_chart_cells_between_its_radii() {
+        let radii_m: Vec<f64> = (2..=30).map(|k| 2.0 * k as f64).collect();
+        let cells = radii_m
+            .iter()
+            .map(|r| Some(crate::capacity::ChartCell { capacity_kg: (100.0 - r) * 1000.0, cell: format!("r{r}") }))
+            .collect();
+        let chart = crate::capacity::ChartConfig { name: "main".into(), boom_lengths_m: vec![40.0], radii_m, cells };
+        let crane = || crate::crane::builtin("ltm-1100").unwrap();
+        let plain = spec().resolve(crane()).unwrap();
+        assert_eq!(plain.chart_cells_between(&chart, 9.0, 14.5), ["r10", "r12", "r14", "r16"]);
+        assert_eq!(plain.chart_cells_between(&chart, 14.5, 9.0), ["r10", "r12", "r14", "r16"]);
+        assert_eq!(plain.chart_cells_between(&chart, 10.0, 10.0), ["r10"]);
+        // Beyond the chart's last row no cell is read.
+        assert_eq!(plain.chart_cells_between(&chart, 58.5, 70.0), ["r60"]);
+        let mut s = spec();
+        s.radius_allowance_m = 1.0;
+        let allowed = s.resolve(crane()).unwrap();
+        assert_eq!(allowed.chart_cells_between(&chart, 9.0, 14.5), ["r10", "r12", "r14", "r16"]);
+        assert_eq!(allowed.chart_cells_between(&chart, 9.5, 9.5), ["r12"]);
+        // Every radius between reads one of them.
+        for k in 0..=55 {
+            let r = 9.0 + 0.1 * k as f64;
+            let read = plain.chart_cells_between(&chart, r, r);
+            assert!(plain.chart_cells_between(&chart, 9.0, 14.5).contains(&read[0]), "{r}");
+        }
+    }
+
     /// A permitted swing range holds the pick and the set as its numbers
     /// say, across ±180° too; outside it, the position is named.
     #[test]
@@ -607,6 +638,26 @@ impl LiftTask {
             effective_kg: eff,
             capacity: c,
         })
+    }
+
+    /// The chart cells a motion between the working radii `from_m` and
+    /// `to_m` reads, as [`Self::check_capacity`] reads them (with the radius
+    /// allowance, by the chart's rule): the cell at each end and at every
+    /// chart row between, each once, from the smaller radius out. A radius
+    /// the chart gives no capacity at reads none.
+    pub fn chart_cells_between(&self, chart: &crate::capacity::ChartConfig, from_m: f64, to_m: f64) -> Vec<String> {
+        let boom = if self.crane.model.is_tower() { 0.0 } else { self.crane.placement.boom_length_m };
+        let (lo, hi) = (from_m.min(to_m) + self.radius_allowance_m, from_m.max(to_m) + self.radius_allowance_m);
+        let rows = chart.radii_m.iter().copied().filter(|&r| r > lo && r < hi);
+        let mut cells: Vec<String> = Vec::new();
+        for r in std::iter::once(lo).chain(rows).chain(std::iter::once(hi)) {
+            if let Ok(c) = chart.lookup(boom, r)
+                && !cells.contains(&c.cell)
+            {
+                cells.push(c.cell);
+            }
+        }
+        cells
     }
 
     /// The radial ranges where the chart carries the gross load, resolved at

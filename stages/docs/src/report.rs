@@ -190,6 +190,57 @@ fn chart_warnings<'a>(inp: &'a Inputs, task: &LiftTask) -> Option<&'a [String]> 
     inp.chart_warnings.iter().find(|(name, w)| *name == task.chart_config && !w.is_empty()).map(|(_, w)| w.as_slice())
 }
 
+/// Which of the cells the chart's warnings name (a warning opens with its
+/// `sheet!cell`) this plan's steps read, and in which steps, as a clause;
+/// or that they read none. A step reads the cells between the radii it
+/// starts and ends at ([`LiftTask::chart_cells_between`]).
+fn warned_cells_read(task: &LiftTask, plan: &LiftPlan, chart: &ChartConfig, warned: &[String]) -> String {
+    let mut read: Vec<(String, Vec<usize>)> = Vec::new();
+    let mut from_m = task.crane.radius_m(plan.start.radial);
+    for step in &plan.steps {
+        for cell in task.chart_cells_between(chart, from_m, step.radius_m) {
+            // "file [sheet!cell]": the cell as the warnings name it.
+            let Some(at) = cell.rsplit_once(" [").map(|(_, c)| c.trim_end_matches(']').to_string()) else { continue };
+            if !warned.iter().any(|w| w.split(": ").next() == Some(at.as_str())) {
+                continue;
+            }
+            match read.iter_mut().find(|(c, _)| *c == at) {
+                Some((_, steps)) if steps.last() != Some(&step.n) => steps.push(step.n),
+                Some(_) => {}
+                None => read.push((at, vec![step.n])),
+            }
+        }
+        from_m = step.radius_m;
+    }
+    if read.is_empty() {
+        return "; no step of this plan reads a cell they name".to_string();
+    }
+    let said: Vec<String> = read
+        .iter()
+        .map(|(cell, steps)| format!("{cell} in step{} {}", if steps.len() > 1 { "s" } else { "" }, runs(steps)))
+        .collect();
+    format!("; THIS PLAN READS {}", said.join("; "))
+}
+
+/// Increasing step numbers as runs: "2, 3 to 8, 10".
+fn runs(n: &[usize]) -> String {
+    let mut said: Vec<String> = Vec::new();
+    let mut k = 0;
+    while k < n.len() {
+        let mut end = k;
+        while end + 1 < n.len() && n[end + 1] == n[end] + 1 {
+            end += 1;
+        }
+        said.push(match end - k {
+            0 => n[k].to_string(),
+            1 => format!("{}, {}", n[k], n[end]),
+            _ => format!("{} to {}", n[k], n[end]),
+        });
+        k = end + 1;
+    }
+    said.join(", ")
+}
+
 /// How far a tower crane's base stands above (+) or below (-) the median of
 /// the scanned ground around its mast, where that is more than the set-up
 /// tolerance.
@@ -787,9 +838,10 @@ pub fn document(
             y,
             w,
             &format!(
-                "READING THE LOAD CHART'S CONFIGURATION '{}' WARNED: {}. The capacities this plan checks were read so: CHECK THOSE CELLS against the chart the crane's owner issued (a footnote may restrict the value it marks).",
+                "READING THE LOAD CHART'S CONFIGURATION '{}' WARNED: {}. The capacities this plan checks were read so: CHECK THOSE CELLS against the chart the crane's owner issued (a footnote may restrict the value it marks){}.",
                 task.chart_config,
-                warned.join("; ")
+                warned.join("; "),
+                chart.map(|c| warned_cells_read(task, plan, c, warned)).unwrap_or_default()
             ),
         );
     }
@@ -849,6 +901,14 @@ pub fn document(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn step_numbers_are_said_as_runs() {
+        assert_eq!(runs(&[3]), "3");
+        assert_eq!(runs(&[3, 4]), "3, 4");
+        assert_eq!(runs(&[2, 3, 4, 5, 8, 10, 11]), "2 to 5, 8, 10, 11");
+        assert_eq!(runs(&[]), "");
+    }
 
     /// A long lift id, description, project name and input file name stay on
     /// the sheet: the
