@@ -277,11 +277,13 @@ liftoff_m = 0.5
         text.contains("(a footnote may restrict the value it marks); THIS PLAN READS Main boom 360!H28 in steps "),
         "{text}"
     );
+    assert!(cover.contains("the load chart cells read with a warning (1; the steps read 1 of them)"), "{cover}");
     // A mark on a cell at a radius the lift never works at (11 m): said, and
     // that no step reads it.
     let at_11_m = format!("{}*", liftplan_fixtures::chart::demo_capacity_t(11.0, 41.8, 1.0).unwrap());
     liftplan_fixtures::chart::write_demo_chart_with(&chart_path, Some((10, 6, &at_11_m))).unwrap();
-    let (_, text) = planned_with(&dir, &t13);
+    let (cover, text) = planned_with(&dir, &t13);
+    assert!(cover.contains("the load chart cells read with a warning (1; no step reads them)"), "{cover}");
     assert!(
         text.contains(&format!("Main boom 360!H17: footnote mark dropped from '{at_11_m}'; no footnote marked '*' was found on sheet Main boom 360: read the chart's notes for it. The capacities this plan checks were read so: CHECK THOSE CELLS against the chart the crane's owner issued (a footnote may restrict the value it marks); no step of this plan reads a cell they name.")),
         "{text}"

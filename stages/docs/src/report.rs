@@ -131,7 +131,7 @@ fn model_unchecked(inp: &Inputs, plan: &LiftPlan) -> bool {
     inp.mesh.is_some() && inp.cloud.is_some() && plan.model_vs_scans.is_none()
 }
 
-fn checks_before_signing(inp: &Inputs, task: &LiftTask, plan: &LiftPlan) -> Vec<String> {
+fn checks_before_signing(inp: &Inputs, task: &LiftTask, plan: &LiftPlan, chart: Option<&ChartConfig>) -> Vec<String> {
     let sm = &plan.summary;
     let mut v = Vec::new();
     if let Some((_, boom)) = inp.one_column_charts.iter().find(|(id, _)| *id == task.id) {
@@ -141,7 +141,16 @@ fn checks_before_signing(inp: &Inputs, task: &LiftTask, plan: &LiftPlan) -> Vec<
         v.push(format!("{} scans left out unregistered", inp.scans_left_out.0.len()));
     }
     if let Some(w) = chart_warnings(inp, task) {
-        v.push(format!("the load chart cells read with a warning ({})", w.len()));
+        let read = chart.map(|c| warned_cells_read(task, plan, c, w).len());
+        v.push(format!(
+            "the load chart cells read with a warning ({}{})",
+            w.len(),
+            match read {
+                Some(0) => "; no step reads them".to_string(),
+                Some(n) => format!("; the steps read {n} of them"),
+                None => String::new(),
+            }
+        ));
     }
     if plan.model_vs_scans.as_ref().is_some_and(|a| a.disagrees()) {
         v.push("the plant model disagrees with the scans".to_string());
@@ -191,10 +200,15 @@ fn chart_warnings<'a>(inp: &'a Inputs, task: &LiftTask) -> Option<&'a [String]> 
 }
 
 /// Which of the cells the chart's warnings name (a warning opens with its
-/// `sheet!cell`) this plan's steps read, and in which steps, as a clause;
-/// or that they read none. A step reads the cells between the radii it
-/// starts and ends at ([`LiftTask::chart_cells_between`]).
-fn warned_cells_read(task: &LiftTask, plan: &LiftPlan, chart: &ChartConfig, warned: &[String]) -> String {
+/// `sheet!cell`) this plan's steps read, and in which steps. A step reads
+/// the cells between the radii it starts and ends at
+/// ([`LiftTask::chart_cells_between`]).
+fn warned_cells_read(
+    task: &LiftTask,
+    plan: &LiftPlan,
+    chart: &ChartConfig,
+    warned: &[String],
+) -> Vec<(String, Vec<usize>)> {
     let mut read: Vec<(String, Vec<usize>)> = Vec::new();
     let mut from_m = task.crane.radius_m(plan.start.radial);
     for step in &plan.steps {
@@ -212,6 +226,11 @@ fn warned_cells_read(task: &LiftTask, plan: &LiftPlan, chart: &ChartConfig, warn
         }
         from_m = step.radius_m;
     }
+    read
+}
+
+/// [`warned_cells_read`] as a clause of the sign-off page's sentence.
+fn warned_cells_said(read: &[(String, Vec<usize>)]) -> String {
     if read.is_empty() {
         return "; no step of this plan reads a cell they name".to_string();
     }
@@ -399,7 +418,7 @@ pub fn document(
     ];
     // What the sign-off page asks the signer to check, named on the cover
     // where it is read first.
-    let checks = checks_before_signing(inp, task, plan);
+    let checks = checks_before_signing(inp, task, plan, chart);
     if !checks.is_empty() {
         rows.push(("CHECK FIRST", format!("{} (sign-off page)", checks.join("; "))));
     }
@@ -841,7 +860,7 @@ pub fn document(
                 "READING THE LOAD CHART'S CONFIGURATION '{}' WARNED: {}. The capacities this plan checks were read so: CHECK THOSE CELLS against the chart the crane's owner issued (a footnote may restrict the value it marks){}.",
                 task.chart_config,
                 warned.join("; "),
-                chart.map(|c| warned_cells_read(task, plan, c, warned)).unwrap_or_default()
+                chart.map(|c| warned_cells_said(&warned_cells_read(task, plan, c, warned))).unwrap_or_default()
             ),
         );
     }
