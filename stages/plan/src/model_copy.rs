@@ -211,6 +211,10 @@ pub struct PassesLeftOut {
     /// The first step that meets it, and the crane's part that does.
     pub step: usize,
     pub part: String,
+    /// The scans show other parts of the group, none near where the lift
+    /// passes through its box.
+    #[serde(default)]
+    pub partly_scanned: bool,
 }
 
 impl PassesLeftOut {
@@ -219,7 +223,18 @@ impl PassesLeftOut {
         let listed: Vec<String> = passes
             .iter()
             .take(MAX_PASSES_SAID)
-            .map(|p| format!("the {} at {} in step {}", p.part, p.object, p.step))
+            .map(|p| {
+                let partly = if p.partly_scanned {
+                    format!(
+                        " (the scans show other parts of it, none within {:.0} m of where the {} passes beyond the clearance: a part in their shadow, or where the box holds none of it)",
+                        crate::coverage::SEEN_WITHIN_M,
+                        p.part
+                    )
+                } else {
+                    String::new()
+                };
+                format!("the {} at {} in step {}{partly}", p.part, p.object, p.step)
+            })
             .collect();
         let more = passes.len().saturating_sub(MAX_PASSES_SAID);
         Some(format!(
@@ -242,7 +257,10 @@ const PASS_SAMPLE_M: f64 = 0.5;
 /// the crane or what hangs from it meets along `moves`, each box grown by
 /// the lift's clearance and half a sample's motion (so that nothing passes
 /// between two samples unseen), where no scan point but ground lies in the
-/// group's box; not the `loads`, the groups that are copies of a lift's load
+/// group's box, or, where some do, none lies in it within the clearance and
+/// [`crate::coverage::SEEN_WITHIN_M`] of the part that meets it there (the
+/// scans saw part of the group, not that: a part in their shadow); not the
+/// `loads`, the groups that are copies of a lift's load
 /// ([`of_lift`] of every lift): this lift's meets it by design, and another
 /// lift's stands there, as an obstacle, only while that lift has set it
 /// (the planner keeps clear of it then, [`crate::other_loads`]).
@@ -253,15 +271,15 @@ pub fn passes_left_out(
     loads: &[String],
     world: &crate::validate::World,
 ) -> Vec<PassesLeftOut> {
-    let grown: Vec<(&ModelBox, liftplan_core::obb::Obb, liftplan_core::frame::Aabb)> = boxes
+    let grown: Vec<(&ModelBox, liftplan_core::obb::Obb, liftplan_core::frame::Aabb, bool)> = boxes
         .iter()
         .filter(|b| !loads.contains(&b.name))
-        .filter(|b| !crate::validate::scanned_structure_in(world, &b.obb()))
         .map(|b| {
             let grown = b.obb().expanded(task.clearance_m + PASS_SAMPLE_M / 2.0);
-            (b, grown, grown.aabb())
+            (b, grown, grown.aabb(), crate::validate::scanned_structure_in(world, &b.obb()))
         })
         .collect();
+    let seen_within_m = task.clearance_m + PASS_SAMPLE_M / 2.0 + crate::coverage::SEEN_WITHIN_M;
     // Each group is said once, at the first step that meets it.
     let mut met = vec![false; grown.len()];
     let mut found: Vec<PassesLeftOut> = Vec::new();
@@ -273,19 +291,24 @@ pub fn passes_left_out(
             let pose = task.crane.pose(&c, &task.load);
             for (kind, part) in &pose.parts {
                 let reach = part.aabb();
-                for (g, (group, b, near)) in grown.iter().enumerate() {
+                for (g, (group, b, near, scanned)) in grown.iter().enumerate() {
                     if met[g] {
                         continue;
                     }
                     let apart = (0..3).any(|k| reach.max[k] < near.min[k] || reach.min[k] > near.max[k]);
-                    if !apart && part.intersects(b) {
-                        met[g] = true;
-                        found.push(PassesLeftOut {
-                            object: group.name.clone(),
-                            step: i + 1,
-                            part: kind.name().to_string(),
-                        });
+                    if apart || !part.intersects(b) {
+                        continue;
                     }
+                    if *scanned && crate::validate::scanned_structure_near(world, part, seen_within_m, &group.obb()) {
+                        continue;
+                    }
+                    met[g] = true;
+                    found.push(PassesLeftOut {
+                        object: group.name.clone(),
+                        step: i + 1,
+                        part: kind.name().to_string(),
+                        partly_scanned: *scanned,
+                    });
                 }
             }
         }
@@ -424,6 +447,35 @@ mod tests {
         assert!(passes_left_out(&task, std::slice::from_ref(&swing), &boxes, &copies, &scanned).is_empty());
         let ground = World::new(&liftplan_core::mesh::TriMesh::default(), &[c], &[true]).unwrap();
         assert_eq!(passes_left_out(&task, std::slice::from_ref(&swing), &boxes, &copies, &ground).len(), 1);
+        // A group 16 m long across the way, scanned at its far end only (the
+        // rest in the scans' shadow): where the lift passes through it, 7.5 m
+        // from what the scans show of it, it is named as partly scanned; a
+        // point of it near where the lift passes (1 m along) vouches for it.
+        let o = task.crane.slew_center();
+        let out = (c[1] - o.y).atan2(c[0] - o.x);
+        let across = ModelBox { half_m: [8.0, 1.0, 1.0], yaw_deg: out.to_degrees(), ..in_the_way.clone() };
+        let along = |d: f64| [c[0] + d * out.cos(), c[1] + d * out.sin(), c[2]];
+        let far_end = World::new(&liftplan_core::mesh::TriMesh::default(), &[along(7.5)], &[false]).unwrap();
+        let found = passes_left_out(&task, std::slice::from_ref(&swing), std::slice::from_ref(&across), &[], &far_end);
+        assert!(found.len() == 1 && found[0].partly_scanned, "{found:?}");
+        let said = PassesLeftOut::said(&found, task.clearance_m).unwrap();
+        assert!(
+            said.contains(" at /SCAFFOLD-3 in step 1 (the scans show other parts of it, none within 2 m of where the "),
+            "{said}"
+        );
+        let near =
+            World::new(&liftplan_core::mesh::TriMesh::default(), &[along(7.5), along(1.0)], &[false, false]).unwrap();
+        assert!(
+            passes_left_out(&task, std::slice::from_ref(&swing), std::slice::from_ref(&across), &[], &near).is_empty()
+        );
+        // Ground there is not it.
+        let near_ground =
+            World::new(&liftplan_core::mesh::TriMesh::default(), &[along(7.5), along(1.0)], &[false, true]).unwrap();
+        assert_eq!(
+            passes_left_out(&task, std::slice::from_ref(&swing), std::slice::from_ref(&across), &[], &near_ground)
+                .len(),
+            1
+        );
         // Off the way (20 m over the load the rope passes it), beyond the
         // crane's reach: nothing to say.
         let over = ModelBox { center_m: [c[0], c[1], c[2] + 20.0], ..in_the_way.clone() };

@@ -807,6 +807,44 @@ pub fn scanned_structure_in(world: &World, b: &Obb) -> bool {
     nearest_scan(world, b, 1e-6, f64::INFINITY).is_some()
 }
 
+/// Whether a scan point other than ground lies in `inside` (grown by
+/// `SCAN_ON_FACE_M`, as points on its faces scatter both ways) within
+/// `within_m` of `near`: whether the scans saw something of `inside` near
+/// where `near` is.
+pub fn scanned_structure_near(world: &World, near: &Obb, within_m: f64, inside: &Obb) -> bool {
+    let inside = inside.expanded(SCAN_ON_FACE_M);
+    let (near_pose, near_cub) = parry_box(near);
+    let (in_pose, in_cub) = parry_box(&inside);
+    let (a, b) = (near.aabb().expanded(within_m), inside.aabb());
+    let (min, max) = ([0, 1, 2].map(|k| a.min[k].max(b.min[k])), [0, 1, 2].map(|k| a.max[k].min(b.max[k])));
+    if (0..3).any(|k| min[k] > max[k]) {
+        return false;
+    }
+    let (lo, hi) = (voxel(&min), voxel(&max));
+    let index = &world.points;
+    let holds = |k: usize| {
+        index.voxel_points(k).iter().any(|(p, ground)| {
+            let v = Vector::new(p[0], p[1], p[2]);
+            !*ground
+                && in_cub.distance_to_point(&in_pose, v, true) <= 0.0
+                && near_cub.distance_to_point(&near_pose, v, true) <= within_m
+        })
+    };
+    let n_vox = (0..3).map(|a| hi[a] as i64 - lo[a] as i64 + 1).fold(1i64, i64::saturating_mul);
+    if n_vox > index.keys.len() as i64 {
+        index.occupied_in(lo, hi).any(holds)
+    } else {
+        (lo[0]..=hi[0]).any(|x| {
+            (lo[1]..=hi[1])
+                .any(|y| (lo[2]..=hi[2]).any(|z| index.place.get(&[x, y, z]).is_some_and(|&k| holds(k as usize))))
+        })
+    }
+}
+
+/// How far outside a model box's faces a scan point of what the box holds
+/// may lie (m): scan noise and a model drawn to the nearest few centimetres.
+const SCAN_ON_FACE_M: f64 = 0.1;
+
 /// The scan point nearest `b` within `cutoff_m` and its distance, ground
 /// points at or below `ground_below_z` left out.
 fn nearest_scan(world: &World, b: &Obb, cutoff_m: f64, ground_below_z: f64) -> Option<([f64; 3], f64)> {
