@@ -383,6 +383,11 @@ pub struct ModelBox {
     /// The first axis' direction, counter-clockwise from the site's +X, in
     /// (-90, 90] degrees.
     pub yaw_deg: f64,
+    /// The boxes around its parts (an RVM group's primitives, each its own
+    /// smallest upright box), where the model gives them and they are not
+    /// too many: tighter than the one box around an L-shaped or sparse group.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub parts: Vec<ModelBox>,
 }
 
 impl ModelBox {
@@ -394,7 +399,13 @@ impl ModelBox {
             center_m: [b.center.x, b.center.y, b.center.z],
             half_m: [b.half.x, b.half.y, b.half.z],
             yaw_deg: b.axes[(1, 0)].atan2(b.axes[(0, 0)]).to_degrees(),
+            parts: Vec::new(),
         })
+    }
+
+    /// The boxes that hold it: its parts' where it has them, else itself.
+    pub fn boxes(&self) -> &[ModelBox] {
+        if self.parts.is_empty() { std::slice::from_ref(self) } else { &self.parts }
     }
 
     pub fn obb(&self) -> crate::obb::Obb {

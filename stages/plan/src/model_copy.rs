@@ -238,7 +238,7 @@ impl PassesLeftOut {
             .collect();
         let more = passes.len().saturating_sub(MAX_PASSES_SAID);
         Some(format!(
-            "THE LIFT PASSES THROUGH WHAT [plant] EXCLUDE LEFT OUT OF THE PLANT MODEL (the box around it, grown by clearance_m {clearance_m:.2} m), WHERE THE SCANS SHOW NOTHING OF IT: {}{}; it is no obstacle to this plan: if it stands on site, CHECK [plant] exclude (is {} meant to be left out?)",
+            "THE LIFT PASSES THROUGH WHAT [plant] EXCLUDE LEFT OUT OF THE PLANT MODEL (the box around it, or around each of its primitives, grown by clearance_m {clearance_m:.2} m), WHERE THE SCANS SHOW NOTHING OF IT: {}{}; it is no obstacle to this plan: if it stands on site, CHECK [plant] exclude (is {} meant to be left out?)",
             listed.join(", "),
             if more > 0 { format!(" and {more} more") } else { String::new() },
             first.object
@@ -254,7 +254,9 @@ const MAX_PASSES_SAID: usize = 5;
 const PASS_SAMPLE_M: f64 = 0.5;
 
 /// The groups among `boxes` (left out of the plant model) that some part of
-/// the crane or what hangs from it meets along `moves`, each box grown by
+/// the crane or what hangs from it meets along `moves`, each box (or each of
+/// its parts' boxes, [`ModelBox::boxes`]: an L-shaped group is not met in
+/// its empty corner) grown by
 /// the lift's clearance and half a sample's motion (so that nothing passes
 /// between two samples unseen), where no scan point but ground lies in the
 /// group's box, or, where some do, none lies in it within the clearance and
@@ -271,12 +273,23 @@ pub fn passes_left_out(
     loads: &[String],
     world: &crate::validate::World,
 ) -> Vec<PassesLeftOut> {
-    let grown: Vec<(&ModelBox, liftplan_core::obb::Obb, liftplan_core::frame::Aabb, bool)> = boxes
+    // Each group's boxes (its parts' where it has them) grown, with their
+    // bounds, and whether the scans saw anything of it.
+    type Grown = (liftplan_core::obb::Obb, liftplan_core::frame::Aabb);
+    let grown: Vec<(&ModelBox, Grown, Vec<Grown>, bool)> = boxes
         .iter()
         .filter(|b| !loads.contains(&b.name))
         .map(|b| {
-            let grown = b.obb().expanded(task.clearance_m + PASS_SAMPLE_M / 2.0);
-            (b, grown, grown.aabb(), crate::validate::scanned_structure_in(world, &b.obb()))
+            let grown = b
+                .boxes()
+                .iter()
+                .map(|p| {
+                    let g = p.obb().expanded(task.clearance_m + PASS_SAMPLE_M / 2.0);
+                    (g, g.aabb())
+                })
+                .collect();
+            let whole = b.obb().expanded(task.clearance_m + PASS_SAMPLE_M / 2.0);
+            (b, (whole, whole.aabb()), grown, crate::validate::scanned_structure_in(world, &b.obb()))
         })
         .collect();
     let seen_within_m = task.clearance_m + PASS_SAMPLE_M / 2.0 + crate::coverage::SEEN_WITHIN_M;
@@ -291,12 +304,19 @@ pub fn passes_left_out(
             let pose = task.crane.pose(&c, &task.load);
             for (kind, part) in &pose.parts {
                 let reach = part.aabb();
-                for (g, (group, b, near, scanned)) in grown.iter().enumerate() {
+                for (g, (group, (whole, whole_near), boxes, scanned)) in grown.iter().enumerate() {
                     if met[g] {
                         continue;
                     }
-                    let apart = (0..3).any(|k| reach.max[k] < near.min[k] || reach.min[k] > near.max[k]);
-                    if apart || !part.intersects(b) {
+                    let apart = |near: &liftplan_core::frame::Aabb| {
+                        (0..3).any(|k| reach.max[k] < near.min[k] || reach.min[k] > near.max[k])
+                    };
+                    // The group's own box first: most parts of the crane are
+                    // far from most groups.
+                    if apart(whole_near)
+                        || !part.intersects(whole)
+                        || !boxes.iter().any(|(b, near)| !apart(near) && part.intersects(b))
+                    {
                         continue;
                     }
                     if *scanned && crate::validate::scanned_structure_near(world, part, seen_within_m, &group.obb()) {
@@ -329,7 +349,13 @@ mod tests {
     /// underside at 0.5 m, its long side along +y (yaw 90°); a model copy of
     /// it there, moved, turned or sized as asked.
     fn copy_at(dx: f64, dz: f64, yaw_deg: f64, half: [f64; 3]) -> ModelBox {
-        ModelBox { name: "/SKID-1".into(), center_m: [22.0 + dx, 14.0, 0.5 + dz + half[2]], half_m: half, yaw_deg }
+        ModelBox {
+            name: "/SKID-1".into(),
+            center_m: [22.0 + dx, 14.0, 0.5 + dz + half[2]],
+            half_m: half,
+            yaw_deg,
+            parts: Vec::new(),
+        }
     }
 
     const SKID: [f64; 3] = [3.0, 1.5, 1.25];
@@ -421,6 +447,7 @@ mod tests {
             center_m: [on_the_way.center.x, on_the_way.center.y, on_the_way.center.z],
             half_m: [1.0, 1.0, 1.0],
             yaw_deg: 0.0,
+            parts: Vec::new(),
         };
         let copy = copy_at(0.0, 0.0, 90.0, SKID);
         let boxes = [in_the_way.clone(), copy];
@@ -476,6 +503,29 @@ mod tests {
                 .len(),
             1
         );
+        // A group whose box the lift passes through, but none of its parts
+        // (an L whose empty corner it passes): nothing met; through a part
+        // of it: met.
+        let wide = ModelBox { half_m: [10.0, 10.0, 1.0], ..in_the_way.clone() };
+        let aside_part =
+            ModelBox { center_m: [c[0] + 8.0 * out.cos(), c[1] + 8.0 * out.sin(), c[2]], ..in_the_way.clone() };
+        let l_shaped = ModelBox {
+            parts: vec![
+                aside_part.clone(),
+                ModelBox { center_m: [c[0] - 8.0 * out.cos(), c[1] - 8.0 * out.sin(), c[2]], ..aside_part.clone() },
+            ],
+            ..wide.clone()
+        };
+        assert_eq!(
+            passes_left_out(&task, std::slice::from_ref(&swing), std::slice::from_ref(&wide), &[], &bare).len(),
+            1
+        );
+        assert!(
+            passes_left_out(&task, std::slice::from_ref(&swing), std::slice::from_ref(&l_shaped), &[], &bare)
+                .is_empty()
+        );
+        let through_a_part = ModelBox { parts: vec![aside_part, in_the_way.clone()], ..wide };
+        assert_eq!(passes_left_out(&task, std::slice::from_ref(&swing), &[through_a_part], &[], &bare).len(), 1);
         // Off the way (20 m over the load the rope passes it), beyond the
         // crane's reach: nothing to say.
         let over = ModelBox { center_m: [c[0], c[1], c[2] + 20.0], ..in_the_way.clone() };

@@ -164,9 +164,10 @@ pub struct Summary {
     /// it in the site frame (one per name).
     pub excluded_boxes: Vec<liftplan_core::mesh::ModelBox>,
     /// The excluded groups' points in model coordinates, by name, until
-    /// they are placed and boxed.
+    /// they are placed and boxed, and whether they come in eights, the
+    /// corners of each primitive's box (RVM), which are boxed as its parts.
     #[serde(skip)]
-    pub excluded_points: Vec<(String, Vec<[f64; 3]>)>,
+    pub excluded_points: Vec<(String, Vec<[f64; 3]>, bool)>,
     /// `[plant] exclude_where` rules some group's attributes met, and how
     /// many attribute files were read, for saying those that met none.
     #[serde(skip)]
@@ -495,7 +496,7 @@ pub fn rvm_to_mesh(
     }
     for (name, points) in excluded {
         summary.excluded_groups.push(name.clone());
-        summary.excluded_points.push((name, points));
+        summary.excluded_points.push((name, points, true));
     }
     summary.groups += file.group_count();
     for (k, n) in file.primitive_counts() {
@@ -695,7 +696,7 @@ fn select_mesh(m: TriMesh, s: &Settings, summary: &mut Summary) -> TriMesh {
         }
     }
     let names = m.groups.iter().zip(&slot).filter(|(_, k)| k.is_some()).map(|(g, _)| g.clone());
-    summary.excluded_points.extend(names.zip(points));
+    summary.excluded_points.extend(names.zip(points).map(|(n, p)| (n, p, false)));
     if keep.iter().all(|k| *k) {
         return m;
     }
@@ -747,6 +748,11 @@ fn keep_groups(m: &TriMesh, keep: &[bool]) -> TriMesh {
     }
     out
 }
+
+/// The most primitives' boxes kept, over all groups left out, as the parts
+/// of their groups' boxes: past it a group keeps only its own box (a model
+/// left out whole would otherwise write a box per primitive).
+const MAX_EXCLUDED_PARTS: usize = 20_000;
 
 /// Runs the stage on `inputs`, writing into `out_dir`; plant.json names the
 /// files relative to `root` (the project folder) where given.
@@ -808,16 +814,31 @@ pub fn run(
         s.rotate_z_deg.to_radians(),
     );
     mesh.transform(&pose);
-    // One box per name, over every file that has it, placed as the mesh is.
-    let mut by_name: BTreeMap<String, Vec<[f64; 3]>> = BTreeMap::new();
-    for (name, points) in std::mem::take(&mut summary.excluded_points) {
-        by_name.entry(name).or_default().extend(points.into_iter().map(|p| {
+    // One box per name, over every file that has it, placed as the mesh is,
+    // with its primitives' boxes as its parts while there are not too many.
+    let mut by_name: BTreeMap<String, (Vec<[f64; 3]>, bool)> = BTreeMap::new();
+    for (name, points, in_eights) in std::mem::take(&mut summary.excluded_points) {
+        let (all, eights) = by_name.entry(name).or_insert((Vec::new(), true));
+        *eights &= in_eights;
+        all.extend(points.into_iter().map(|p| {
             let q = pose * liftplan_core::frame::Point3::from(p);
             [q.x, q.y, q.z]
         }));
     }
-    summary.excluded_boxes =
-        by_name.iter().filter_map(|(name, points)| liftplan_core::mesh::ModelBox::around(name, points)).collect();
+    let mut parts_left = MAX_EXCLUDED_PARTS;
+    summary.excluded_boxes = by_name
+        .iter()
+        .filter_map(|(name, (points, in_eights))| {
+            let mut b = liftplan_core::mesh::ModelBox::around(name, points)?;
+            let n = points.len() / 8;
+            if *in_eights && n > 1 && n <= parts_left {
+                b.parts =
+                    points.chunks_exact(8).filter_map(|c| liftplan_core::mesh::ModelBox::around(name, c)).collect();
+                parts_left -= n;
+            }
+            Some(b)
+        })
+        .collect();
     summary.triangles = mesh.triangle_count();
     summary.vertices = mesh.vertices.len();
     let bb: Aabb = mesh.bbox();
@@ -1080,6 +1101,55 @@ mod tests {
         let summary = run(&[obj], &s, &d.path().join("out2"), None, &|_, _, _| {}).unwrap();
         let [b] = summary.excluded_boxes.as_slice() else { panic!("{:?}", summary.excluded_boxes) };
         assert!(b.name == "SKID" && near(b.center_m, [1.5, 1.0, 0.5]) && near(b.half_m, [1.5, 1.0, 0.5]), "{b:?}");
+    }
+
+    /// An RVM group left out keeps its primitives' boxes as its parts (an
+    /// L of two beams is not its empty corner), in plant.json too; an OBJ
+    /// object, whose vertices are no primitives, keeps its one box.
+    #[test]
+    fn an_excluded_groups_primitives_are_its_parts() {
+        let d = tempfile::tempdir().unwrap();
+        let beam = |x: f32, y: f32, lengths: [f32; 3]| Primitive {
+            role: Role::Primitive,
+            matrix: [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, x, y, 0.5],
+            bbox_local: [-lengths[0] / 2.0, -lengths[1] / 2.0, -0.5, lengths[0] / 2.0, lengths[1] / 2.0, 0.5],
+            shape: Shape::Box { lengths },
+            offset: 0,
+        };
+        let l = Group {
+            name: "/L".into(),
+            primitives: vec![beam(5.0, 0.0, [10.0, 1.0, 1.0]), beam(0.0, 5.5, [1.0, 10.0, 1.0])],
+            ..Default::default()
+        };
+        let file = RvmFile { groups: vec![l], ..Default::default() };
+        let path = d.path().join("plant.rvm");
+        std::fs::write(&path, rvm::write(&file)).unwrap();
+        let s = Settings { exclude: vec!["/L".into()], ..Default::default() };
+        let summary = run(std::slice::from_ref(&path), &s, &d.path().join("out"), None, &|_, _, _| {}).unwrap();
+        let [b] = summary.excluded_boxes.as_slice() else { panic!("{:?}", summary.excluded_boxes) };
+        let near = |a: [f64; 3], e: [f64; 3]| (0..3).all(|i| (a[i] - e[i]).abs() < 1e-5);
+        let [x, y] = b.parts.as_slice() else { panic!("{b:?}") };
+        assert!(near(x.center_m, [5.0, 0.0, 0.5]) && near(x.half_m, [5.0, 0.5, 0.5]), "{x:?}");
+        assert!(near(y.center_m, [0.0, 5.5, 0.5]) && near(y.half_m, [5.0, 0.5, 0.5]), "{y:?}");
+        // The empty corner is in the group's box, in none of its parts.
+        let corner = liftplan_core::frame::Point3::new(3.0, 3.0, 0.5);
+        let inside = |m: &liftplan_core::mesh::ModelBox| m.obb().contains(&corner);
+        assert!(inside(b) && !b.boxes().iter().any(inside), "{b:?}");
+        let json: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(d.path().join("out/plant.json")).unwrap()).unwrap();
+        assert_eq!(json["excluded_boxes"][0]["parts"].as_array().map(Vec::len), Some(2));
+        // An OBJ object: no parts, its own box.
+        let obj = d.path().join("skid.obj");
+        std::fs::write(&obj, "o SKID\nv 0 0 0\nv 3 0 0\nv 3 2 0\nv 0 2 1\nf 1 2 3\nf 1 3 4\n").unwrap();
+        let s = Settings {
+            exclude: vec!["SKID".into()],
+            unit: Some(LengthUnit::M),
+            up_axis: Some(UpAxis::Z),
+            ..Default::default()
+        };
+        let summary = run(&[obj], &s, &d.path().join("out2"), None, &|_, _, _| {}).unwrap();
+        let [b] = summary.excluded_boxes.as_slice() else { panic!("{:?}", summary.excluded_boxes) };
+        assert!(b.parts.is_empty() && b.boxes().len() == 1, "{b:?}");
     }
 
     /// A model whose tessellation would pass the plant's triangle budget is
