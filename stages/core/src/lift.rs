@@ -483,19 +483,24 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         assert!(s.resolve(crane()).is_ok());
     }
 
+    /// One boom (40 m), rows every 2 m from 4 to 60 m: (100 - r) t, each
+    /// cell named `r<radius>`.
+    fn chart_every_2_m() -> crate::capacity::ChartConfig {
+        let radii_m: Vec<f64> = (2..=30).map(|k| 2.0 * k as f64).collect();
+        let cells = radii_m
+            .iter()
+            .map(|r| Some(crate::capacity::ChartCell { capacity_kg: (100.0 - r) * 1000.0, cell: format!("r{r}") }))
+            .collect();
+        crate::capacity::ChartConfig { name: "main".into(), boom_lengths_m: vec![40.0], radii_m, cells }
+    }
+
     /// A radius allowance (for the boom bending under load) reads the chart
     /// that much farther out, in every capacity check the planner, the
     /// validator and the charts stage make; it is a length in metres.
     #[test]
     fn the_radius_allowance_reads_the_chart_farther_out() {
         let crane = || crate::crane::builtin("ltm-1100").unwrap();
-        // One boom, rows every 2 m from 4 to 60 m: (100 - r) t.
-        let radii_m: Vec<f64> = (2..=30).map(|k| 2.0 * k as f64).collect();
-        let cells = radii_m
-            .iter()
-            .map(|r| Some(crate::capacity::ChartCell { capacity_kg: (100.0 - r) * 1000.0, cell: format!("r{r}") }))
-            .collect();
-        let chart = crate::capacity::ChartConfig { name: "main".into(), boom_lengths_m: vec![40.0], radii_m, cells };
+        let chart = chart_every_2_m();
         let plain = spec().resolve(crane()).unwrap();
         let mut s = spec();
         s.radius_allowance_m = 3.0;
@@ -521,12 +526,7 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
     /// cells a capacity check at each radius between would read.
     #[test]
     fn a_motion_reads_the_chart_cells_between_its_radii() {
-        let radii_m: Vec<f64> = (2..=30).map(|k| 2.0 * k as f64).collect();
-        let cells = radii_m
-            .iter()
-            .map(|r| Some(crate::capacity::ChartCell { capacity_kg: (100.0 - r) * 1000.0, cell: format!("r{r}") }))
-            .collect();
-        let chart = crate::capacity::ChartConfig { name: "main".into(), boom_lengths_m: vec![40.0], radii_m, cells };
+        let chart = chart_every_2_m();
         let crane = || crate::crane::builtin("ltm-1100").unwrap();
         let plain = spec().resolve(crane()).unwrap();
         assert_eq!(plain.chart_cells_between(&chart, 9.0, 14.5), ["r10", "r12", "r14", "r16"]);

@@ -1101,11 +1101,13 @@ mod tests {
         let summary = run(&[obj], &s, &d.path().join("out2"), None, &|_, _, _| {}).unwrap();
         let [b] = summary.excluded_boxes.as_slice() else { panic!("{:?}", summary.excluded_boxes) };
         assert!(b.name == "SKID" && near(b.center_m, [1.5, 1.0, 0.5]) && near(b.half_m, [1.5, 1.0, 0.5]), "{b:?}");
+        // Its vertices are no primitives: no parts, its own box.
+        assert!(b.parts.is_empty() && b.boxes().len() == 1, "{b:?}");
     }
 
     /// An RVM group left out keeps its primitives' boxes as its parts (an
-    /// L of two beams is not its empty corner), in plant.json too; an OBJ
-    /// object, whose vertices are no primitives, keeps its one box.
+    /// L of two beams is not its empty corner), in plant.json too (an OBJ
+    /// object keeps its one box: `excluded_groups_are_boxed_where_they_stand`).
     #[test]
     fn an_excluded_groups_primitives_are_its_parts() {
         let d = tempfile::tempdir().unwrap();
@@ -1138,18 +1140,6 @@ mod tests {
         let json: serde_json::Value =
             serde_json::from_slice(&std::fs::read(d.path().join("out/plant.json")).unwrap()).unwrap();
         assert_eq!(json["excluded_boxes"][0]["parts"].as_array().map(Vec::len), Some(2));
-        // An OBJ object: no parts, its own box.
-        let obj = d.path().join("skid.obj");
-        std::fs::write(&obj, "o SKID\nv 0 0 0\nv 3 0 0\nv 3 2 0\nv 0 2 1\nf 1 2 3\nf 1 3 4\n").unwrap();
-        let s = Settings {
-            exclude: vec!["SKID".into()],
-            unit: Some(LengthUnit::M),
-            up_axis: Some(UpAxis::Z),
-            ..Default::default()
-        };
-        let summary = run(&[obj], &s, &d.path().join("out2"), None, &|_, _, _| {}).unwrap();
-        let [b] = summary.excluded_boxes.as_slice() else { panic!("{:?}", summary.excluded_boxes) };
-        assert!(b.parts.is_empty() && b.boxes().len() == 1, "{b:?}");
     }
 
     /// A model whose tessellation would pass the plant's triangle budget is
