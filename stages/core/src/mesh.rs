@@ -383,9 +383,10 @@ pub struct ModelBox {
     /// The first axis' direction, counter-clockwise from the site's +X, in
     /// (-90, 90] degrees.
     pub yaw_deg: f64,
-    /// The boxes around its parts (an RVM group's primitives, each its own
-    /// smallest upright box), where the model gives them and they are not
-    /// too many: tighter than the one box around an L-shaped or sparse group.
+    /// The boxes around its parts (an RVM group's primitives, a mesh's
+    /// connected pieces, each its own smallest upright box), where it has
+    /// more than one and they are not too many: tighter than the one box
+    /// around an L-shaped or sparse group.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub parts: Vec<ModelBox>,
 }

@@ -238,7 +238,7 @@ impl PassesLeftOut {
             .collect();
         let more = passes.len().saturating_sub(MAX_PASSES_SAID);
         Some(format!(
-            "THE LIFT PASSES THROUGH WHAT [plant] EXCLUDE LEFT OUT OF THE PLANT MODEL (the box around it, or around each of its primitives, grown by clearance_m {clearance_m:.2} m), WHERE THE SCANS SHOW NOTHING OF IT: {}{}; it is no obstacle to this plan: if it stands on site, CHECK [plant] exclude (is {} meant to be left out?)",
+            "THE LIFT PASSES THROUGH WHAT [plant] EXCLUDE LEFT OUT OF THE PLANT MODEL (the box around it, or around each of its parts, grown by clearance_m {clearance_m:.2} m), WHERE THE SCANS SHOW NOTHING OF IT: {}{}; it is no obstacle to this plan: if it stands on site, CHECK [plant] exclude (is {} meant to be left out?)",
             listed.join(", "),
             if more > 0 { format!(" and {more} more") } else { String::new() },
             first.object

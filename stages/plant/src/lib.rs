@@ -164,10 +164,11 @@ pub struct Summary {
     /// it in the site frame (one per name).
     pub excluded_boxes: Vec<liftplan_core::mesh::ModelBox>,
     /// The excluded groups' points in model coordinates, by name, until
-    /// they are placed and boxed, and whether they come in eights, the
-    /// corners of each primitive's box (RVM), which are boxed as its parts.
+    /// they are placed and boxed, and where each of its parts' points end
+    /// (an RVM primitive's box corners, a mesh's connected piece), which are
+    /// boxed as its parts.
     #[serde(skip)]
-    pub excluded_points: Vec<(String, Vec<[f64; 3]>, bool)>,
+    pub excluded_points: Vec<(String, Vec<[f64; 3]>, Vec<usize>)>,
     /// `[plant] exclude_where` rules some group's attributes met, and how
     /// many attribute files were read, for saying those that met none.
     #[serde(skip)]
@@ -496,7 +497,8 @@ pub fn rvm_to_mesh(
     }
     for (name, points) in excluded {
         summary.excluded_groups.push(name.clone());
-        summary.excluded_points.push((name, points, true));
+        let ends = (1..=points.len() / 8).map(|k| 8 * k).collect();
+        summary.excluded_points.push((name, points, ends));
     }
     summary.groups += file.group_count();
     for (k, n) in file.primitive_counts() {
@@ -682,21 +684,53 @@ fn select_mesh(m: TriMesh, s: &Settings, summary: &mut Summary) -> TriMesh {
             }))
         })
         .collect();
-    let mut points: Vec<Vec<[f64; 3]>> = vec![Vec::new(); slot.iter().flatten().count()];
-    // Each vertex once per group (most are shared by several triangles):
-    // no more points than the mesh has vertices, whatever is left out.
-    let mut last_slot = vec![usize::MAX; m.vertices.len()];
-    for (t, p) in m.triangles.iter().zip(&m.part_of) {
-        if let Some(k) = slot[m.parts[*p as usize].group as usize] {
-            for &v in t {
-                if std::mem::replace(&mut last_slot[v as usize], k) != k {
-                    points[k].push(m.vertices[v as usize]);
+    let excluded = slot.iter().flatten().count();
+    let mut members: Vec<Vec<u32>> = vec![Vec::new(); excluded];
+    if excluded > 0 {
+        // Each group's connected pieces (triangles that share vertices) are
+        // its parts: a scaffold's tubes, the two beams of an L.
+        let mut parent: Vec<u32> = (0..m.vertices.len() as u32).collect();
+        fn root(parent: &mut [u32], mut v: u32) -> u32 {
+            while parent[v as usize] != v {
+                parent[v as usize] = parent[parent[v as usize] as usize];
+                v = parent[v as usize];
+            }
+            v
+        }
+        let of_excluded = |p: &u32| slot[m.parts[*p as usize].group as usize];
+        for (t, _) in m.triangles.iter().zip(&m.part_of).filter(|(_, p)| of_excluded(p).is_some()) {
+            for &v in &t[1..] {
+                let (a, b) = (root(&mut parent, t[0]), root(&mut parent, v));
+                if a != b {
+                    parent[b as usize] = a;
                 }
             }
         }
+        // Each vertex once per group (most are shared by several triangles):
+        // no more points than the mesh has vertices, whatever is left out.
+        // (Slots as u32 beside the pieces' u32 parents: 8 bytes a vertex.)
+        let mut last_slot = vec![u32::MAX; m.vertices.len()];
+        for (t, p) in m.triangles.iter().zip(&m.part_of) {
+            if let Some(k) = of_excluded(p) {
+                for &v in t {
+                    if std::mem::replace(&mut last_slot[v as usize], k as u32) != k as u32 {
+                        members[k].push(v);
+                    }
+                }
+            }
+        }
+        let mut by_piece: Vec<(u32, u32)> = Vec::new();
+        let names = m.groups.iter().zip(&slot).filter(|(_, k)| k.is_some()).map(|(g, _)| g.clone());
+        for (name, vertices) in names.zip(members) {
+            by_piece.clear();
+            by_piece.extend(vertices.iter().map(|&v| (root(&mut parent, v), v)));
+            by_piece.sort_unstable();
+            let points = by_piece.iter().map(|&(_, v)| m.vertices[v as usize]).collect();
+            let ends =
+                (1..=by_piece.len()).filter(|&i| i == by_piece.len() || by_piece[i].0 != by_piece[i - 1].0).collect();
+            summary.excluded_points.push((name, points, ends));
+        }
     }
-    let names = m.groups.iter().zip(&slot).filter(|(_, k)| k.is_some()).map(|(g, _)| g.clone());
-    summary.excluded_points.extend(names.zip(points).map(|(n, p)| (n, p, false)));
     if keep.iter().all(|k| *k) {
         return m;
     }
@@ -749,8 +783,8 @@ fn keep_groups(m: &TriMesh, keep: &[bool]) -> TriMesh {
     out
 }
 
-/// The most primitives' boxes kept, over all groups left out, as the parts
-/// of their groups' boxes: past it a group keeps only its own box (a model
+/// The most parts' boxes kept (RVM primitives, a mesh's connected pieces),
+/// over all groups left out: past it a group keeps only its own box (a model
 /// left out whole would otherwise write a box per primitive).
 const MAX_EXCLUDED_PARTS: usize = 20_000;
 
@@ -815,11 +849,12 @@ pub fn run(
     );
     mesh.transform(&pose);
     // One box per name, over every file that has it, placed as the mesh is,
-    // with its primitives' boxes as its parts while there are not too many.
-    let mut by_name: BTreeMap<String, (Vec<[f64; 3]>, bool)> = BTreeMap::new();
-    for (name, points, in_eights) in std::mem::take(&mut summary.excluded_points) {
-        let (all, eights) = by_name.entry(name).or_insert((Vec::new(), true));
-        *eights &= in_eights;
+    // with its parts' boxes while there are not too many.
+    let mut by_name: BTreeMap<String, (Vec<[f64; 3]>, Vec<usize>)> = BTreeMap::new();
+    for (name, points, ends) in std::mem::take(&mut summary.excluded_points) {
+        let (all, all_ends) = by_name.entry(name).or_default();
+        let before = all.len();
+        all_ends.extend(ends.iter().map(|e| before + e));
         all.extend(points.into_iter().map(|p| {
             let q = pose * liftplan_core::frame::Point3::from(p);
             [q.x, q.y, q.z]
@@ -828,13 +863,15 @@ pub fn run(
     let mut parts_left = MAX_EXCLUDED_PARTS;
     summary.excluded_boxes = by_name
         .iter()
-        .filter_map(|(name, (points, in_eights))| {
+        .filter_map(|(name, (points, ends))| {
             let mut b = liftplan_core::mesh::ModelBox::around(name, points)?;
-            let n = points.len() / 8;
-            if *in_eights && n > 1 && n <= parts_left {
-                b.parts =
-                    points.chunks_exact(8).filter_map(|c| liftplan_core::mesh::ModelBox::around(name, c)).collect();
-                parts_left -= n;
+            if ends.len() > 1 && ends.len() <= parts_left {
+                let starts = std::iter::once(0).chain(ends.iter().copied());
+                b.parts = starts
+                    .zip(ends)
+                    .filter_map(|(from, &to)| liftplan_core::mesh::ModelBox::around(name, &points[from..to]))
+                    .collect();
+                parts_left -= ends.len();
             }
             Some(b)
         })
@@ -1106,10 +1143,11 @@ mod tests {
     }
 
     /// An RVM group left out keeps its primitives' boxes as its parts (an
-    /// L of two beams is not its empty corner), in plant.json too (an OBJ
-    /// object keeps its one box: `excluded_groups_are_boxed_where_they_stand`).
+    /// L of two beams is not its empty corner), in plant.json too; an OBJ
+    /// object its connected pieces' (one piece: its one box,
+    /// `excluded_groups_are_boxed_where_they_stand`).
     #[test]
-    fn an_excluded_groups_primitives_are_its_parts() {
+    fn an_excluded_groups_primitives_or_pieces_are_its_parts() {
         let d = tempfile::tempdir().unwrap();
         let beam = |x: f32, y: f32, lengths: [f32; 3]| Primitive {
             role: Role::Primitive,
@@ -1140,6 +1178,27 @@ mod tests {
         let json: serde_json::Value =
             serde_json::from_slice(&std::fs::read(d.path().join("out/plant.json")).unwrap()).unwrap();
         assert_eq!(json["excluded_boxes"][0]["parts"].as_array().map(Vec::len), Some(2));
+        // The same L as an OBJ object of two separate quads: its connected
+        // pieces are its parts.
+        let obj = d.path().join("l.obj");
+        std::fs::write(
+            &obj,
+            "o L\nv 0 -0.5 0\nv 10 -0.5 0\nv 10 0.5 1\nv 0 0.5 1\nf 1 2 3\nf 1 3 4\n\
+             v -0.5 0.5 0\nv 0.5 0.5 0\nv 0.5 10.5 1\nv -0.5 10.5 1\nf 5 6 7\nf 5 7 8\n",
+        )
+        .unwrap();
+        let s = Settings {
+            exclude: vec!["L".into()],
+            unit: Some(LengthUnit::M),
+            up_axis: Some(UpAxis::Z),
+            ..Default::default()
+        };
+        let summary = run(&[obj], &s, &d.path().join("out2"), None, &|_, _, _| {}).unwrap();
+        let [b] = summary.excluded_boxes.as_slice() else { panic!("{:?}", summary.excluded_boxes) };
+        let [x, y] = b.parts.as_slice() else { panic!("{b:?}") };
+        assert!(near(x.center_m, [5.0, 0.0, 0.5]) && near(x.half_m, [5.0, 0.5, 0.5]), "{x:?}");
+        assert!(near(y.center_m, [0.0, 5.5, 0.5]) && near(y.half_m, [5.0, 0.5, 0.5]), "{y:?}");
+        assert!(inside(b) && !b.boxes().iter().any(inside), "{b:?}");
     }
 
     /// A model whose tessellation would pass the plant's triangle budget is
