@@ -278,6 +278,11 @@ liftoff_m = 0.5
         "{text}"
     );
     assert!(cover.contains("the load chart cells read with a warning (1; the steps read 1 of them)"), "{cover}");
+    // And the pages of those steps say so, quoting the warning.
+    assert!(
+        text.contains("Chart warning THIS STEP READS A CELL THE CHART WARNED OF: Main boom 360!H28: footnote mark dropped from '41.5 (1)'"),
+        "{text}"
+    );
     // A mark on a cell at a radius the lift never works at (11 m): said, and
     // that no step reads it.
     let at_11_m = format!("{}*", liftplan_fixtures::chart::demo_capacity_t(11.0, 41.8, 1.0).unwrap());

@@ -641,9 +641,30 @@ pub fn document(
 
     // One page per step.
     if s.step_pictures {
+        // The chart cells read with a warning, and the steps that read them.
+        let warned = chart_warnings(inp, task).unwrap_or_default();
+        let warned_read = match chart {
+            Some(c) if !warned.is_empty() => warned_cells_read(task, plan, c, warned),
+            _ => Vec::new(),
+        };
         for st in &plan.steps {
             d.new_page();
             let mut y = heading(&mut d, 20.0, &format!("Step {} of {}: {}", st.n, plan.steps.len(), st.text));
+            let chart_warned: Vec<&str> = warned_read
+                .iter()
+                .filter(|(_, steps)| steps.contains(&st.n))
+                .flat_map(|(cell, _)| warned.iter().filter(move |w| w.split(": ").next() == Some(cell.as_str())))
+                .map(String::as_str)
+                .collect();
+            let chart_warning = (!chart_warned.is_empty()).then(|| {
+                (
+                    "Chart warning",
+                    format!(
+                        "THIS STEP READS A CELL THE CHART WARNED OF: {}: CHECK IT against the chart the crane's owner issued",
+                        chart_warned.join("; ")
+                    ),
+                )
+            });
             y = key_values(
                 &mut d,
                 15.0,
@@ -694,7 +715,10 @@ pub fn document(
                             )
                         },
                     ),
-                ],
+                ]
+                .into_iter()
+                .chain(chart_warning)
+                .collect::<Vec<_>>(),
                 40.0,
             );
             let img = pictures::step_view(site, task, plan, &others, st.n, 1300, 950);
