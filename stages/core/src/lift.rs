@@ -629,8 +629,7 @@ impl LiftTask {
                 max_m: b.last().copied().unwrap_or(0.0),
             });
         }
-        let boom = if tower { 0.0 } else { self.crane.placement.boom_length_m };
-        let c = chart.lookup(boom, r + self.radius_allowance_m)?;
+        let c = chart.lookup(self.chart_boom_m(), r + self.radius_allowance_m)?;
         let eff = self.effective_capacity_kg(c.capacity_kg);
         Ok(CapacityCheck {
             radius_m: r,
@@ -640,13 +639,19 @@ impl LiftTask {
         })
     }
 
+    /// The boom length the chart is read at: the lift's boom, or 0 for a
+    /// tower crane, whose chart has one column for any jib.
+    pub fn chart_boom_m(&self) -> f64 {
+        if self.crane.model.is_tower() { 0.0 } else { self.crane.placement.boom_length_m }
+    }
+
     /// The chart cells a motion between the working radii `from_m` and
     /// `to_m` reads, as [`Self::check_capacity`] reads them (with the radius
     /// allowance, by the chart's rule): the cell at each end and at every
     /// chart row between, each once, from the smaller radius out. A radius
     /// the chart gives no capacity at reads none.
     pub fn chart_cells_between(&self, chart: &crate::capacity::ChartConfig, from_m: f64, to_m: f64) -> Vec<String> {
-        let boom = if self.crane.model.is_tower() { 0.0 } else { self.crane.placement.boom_length_m };
+        let boom = self.chart_boom_m();
         let (lo, hi) = (from_m.min(to_m) + self.radius_allowance_m, from_m.max(to_m) + self.radius_allowance_m);
         let rows = chart.radii_m.iter().copied().filter(|&r| r > lo && r < hi);
         let mut cells: Vec<String> = Vec::new();

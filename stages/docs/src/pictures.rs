@@ -245,7 +245,7 @@ pub fn step_view(site: &SiteView, task: &LiftTask, plan: &LiftPlan, others: &[Ob
 pub fn chart_plot(chart: &ChartConfig, task: &LiftTask, plan: &LiftPlan, w: u32, h: u32) -> Image {
     let mut img = Image::new(w, h, [255, 255, 255]);
     let (ml, mr, mt, mb) = (80.0, 20.0, 20.0, 50.0);
-    let boom = if task.crane.model.is_tower() { 0.0 } else { task.crane.placement.boom_length_m };
+    let boom = task.chart_boom_m();
     let rmax = chart.radii_m.last().copied().unwrap_or(50.0).max(1.0);
     let pts: Vec<(f64, f64)> = (0..=400)
         .filter_map(|i| {

@@ -163,7 +163,7 @@ pub(crate) fn over_capacity(
 ) -> String {
     let gross = task.gross_kg();
     let tower = task.crane.model.is_tower();
-    let boom = if tower { 0.0 } else { task.crane.placement.boom_length_m };
+    let boom = task.chart_boom_m();
     let allowance = task.radius_allowance_m;
     let carries = |c: &ChartConfig, boom_m: f64, r: f64| {
         c.lookup(boom_m, r + allowance).ok().filter(|k| task.effective_capacity_kg(k.capacity_kg) >= gross)
