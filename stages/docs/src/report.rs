@@ -131,7 +131,13 @@ fn model_unchecked(inp: &Inputs, plan: &LiftPlan) -> bool {
     inp.mesh.is_some() && inp.cloud.is_some() && plan.model_vs_scans.is_none()
 }
 
-fn checks_before_signing(inp: &Inputs, task: &LiftTask, plan: &LiftPlan, chart: Option<&ChartConfig>) -> Vec<String> {
+/// `warned_read`: [`warned_cells_read`], where the chart was read.
+fn checks_before_signing(
+    inp: &Inputs,
+    task: &LiftTask,
+    plan: &LiftPlan,
+    warned_read: Option<&[(String, Vec<usize>)]>,
+) -> Vec<String> {
     let sm = &plan.summary;
     let mut v = Vec::new();
     if let Some((_, boom)) = inp.one_column_charts.iter().find(|(id, _)| *id == task.id) {
@@ -141,7 +147,7 @@ fn checks_before_signing(inp: &Inputs, task: &LiftTask, plan: &LiftPlan, chart: 
         v.push(format!("{} scans left out unregistered", inp.scans_left_out.0.len()));
     }
     if let Some(w) = chart_warnings(inp, task) {
-        let read = chart.map(|c| warned_cells_read(task, plan, c, w).len());
+        let read = warned_read.map(<[_]>::len);
         v.push(format!(
             "the load chart cells read with a warning ({}{})",
             w.len(),
@@ -418,7 +424,13 @@ pub fn document(
     ];
     // What the sign-off page asks the signer to check, named on the cover
     // where it is read first.
-    let checks = checks_before_signing(inp, task, plan, chart);
+    // The chart cells read with a warning and the steps that read them,
+    // for the cover, the steps' pages and the sign-off page.
+    let warned_read = match (chart, chart_warnings(inp, task)) {
+        (Some(c), Some(w)) => Some(warned_cells_read(task, plan, c, w)),
+        _ => None,
+    };
+    let checks = checks_before_signing(inp, task, plan, warned_read.as_deref());
     if !checks.is_empty() {
         rows.push(("CHECK FIRST", format!("{} (sign-off page)", checks.join("; "))));
     }
@@ -641,17 +653,13 @@ pub fn document(
 
     // One page per step.
     if s.step_pictures {
-        // The chart cells read with a warning, and the steps that read them.
         let warned = chart_warnings(inp, task).unwrap_or_default();
-        let warned_read = match chart {
-            Some(c) if !warned.is_empty() => warned_cells_read(task, plan, c, warned),
-            _ => Vec::new(),
-        };
         for st in &plan.steps {
             d.new_page();
             let mut y = heading(&mut d, 20.0, &format!("Step {} of {}: {}", st.n, plan.steps.len(), st.text));
             let chart_warned: Vec<&str> = warned_read
                 .iter()
+                .flatten()
                 .filter(|(_, steps)| steps.contains(&st.n))
                 .flat_map(|(cell, _)| warned.iter().filter(move |w| w.split(": ").next() == Some(cell.as_str())))
                 .map(String::as_str)
@@ -884,7 +892,7 @@ pub fn document(
                 "READING THE LOAD CHART'S CONFIGURATION '{}' WARNED: {}. The capacities this plan checks were read so: CHECK THOSE CELLS against the chart the crane's owner issued (a footnote may restrict the value it marks){}.",
                 task.chart_config,
                 warned.join("; "),
-                chart.map(|c| warned_cells_said(&warned_cells_read(task, plan, c, warned))).unwrap_or_default()
+                warned_read.as_deref().map(warned_cells_said).unwrap_or_default()
             ),
         );
     }
