@@ -111,6 +111,28 @@ impl PointIndex {
         (first..end).filter(move |&k| (1..3).all(|a| lo[a] <= self.keys[k][a] && self.keys[k][a] <= hi[a]))
     }
 
+    /// Whether the range `lo ..= hi` has more voxels than are occupied in
+    /// all: then walking the occupied ones is cheaper than looking up each
+    /// voxel of the range.
+    fn walk_occupied(&self, lo: [i32; 3], hi: [i32; 3]) -> bool {
+        let n_vox = (0..3).map(|a| hi[a] as i64 - lo[a] as i64 + 1).fold(1i64, i64::saturating_mul);
+        n_vox > self.keys.len() as i64
+    }
+
+    /// The occupied voxels of the range `lo ..= hi`, found the cheaper way
+    /// ([`Self::walk_occupied`]).
+    fn voxels_in(&self, lo: [i32; 3], hi: [i32; 3]) -> Box<dyn Iterator<Item = usize> + '_> {
+        if self.walk_occupied(lo, hi) {
+            Box::new(self.occupied_in(lo, hi))
+        } else {
+            Box::new((lo[0]..=hi[0]).flat_map(move |x| {
+                (lo[1]..=hi[1]).flat_map(move |y| {
+                    (lo[2]..=hi[2]).filter_map(move |z| self.place.get(&[x, y, z]).map(|&k| k as usize))
+                })
+            }))
+        }
+    }
+
     /// The highest point (ground or not) in the plan rectangle `lo ..= hi`
     /// lower than `below_z`; `None` where none is.
     pub fn highest_in(&self, lo: [f64; 2], hi: [f64; 2], below_z: f64) -> Option<f64> {
@@ -789,8 +811,7 @@ fn nearer_scan_point(
 ) {
     let aabb = b.aabb().expanded(cutoff_m.min(best.distance_m));
     let (lo, hi) = (voxel(&aabb.min), voxel(&aabb.max));
-    let n_vox = (0..3).map(|a| hi[a] as i64 - lo[a] as i64 + 1).fold(1i64, i64::saturating_mul);
-    let walk_occupied = n_vox > world.points.keys.len() as i64;
+    let walk_occupied = world.points.walk_occupied(lo, hi);
     nearest_point(&world.points, (pose, cub), (lo, hi), ground_below_z, walk_occupied, best);
 }
 
@@ -820,25 +841,15 @@ pub fn scanned_structure_near(world: &World, near: &Obb, within_m: f64, inside: 
     if (0..3).any(|k| min[k] > max[k]) {
         return false;
     }
-    let (lo, hi) = (voxel(&min), voxel(&max));
     let index = &world.points;
-    let holds = |k: usize| {
+    index.voxels_in(voxel(&min), voxel(&max)).any(|k| {
         index.voxel_points(k).iter().any(|(p, ground)| {
             let v = Vector::new(p[0], p[1], p[2]);
             !*ground
                 && in_cub.distance_to_point(&in_pose, v, true) <= 0.0
                 && near_cub.distance_to_point(&near_pose, v, true) <= within_m
         })
-    };
-    let n_vox = (0..3).map(|a| hi[a] as i64 - lo[a] as i64 + 1).fold(1i64, i64::saturating_mul);
-    if n_vox > index.keys.len() as i64 {
-        index.occupied_in(lo, hi).any(holds)
-    } else {
-        (lo[0]..=hi[0]).any(|x| {
-            (lo[1]..=hi[1])
-                .any(|y| (lo[2]..=hi[2]).any(|z| index.place.get(&[x, y, z]).is_some_and(|&k| holds(k as usize))))
-        })
-    }
+    })
 }
 
 /// How far outside a model box's faces a scan point of what the box holds
