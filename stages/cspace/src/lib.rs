@@ -982,8 +982,7 @@ impl<'a> Checker<'a> {
         self.count_n(true, parts.len() as u64);
         // The load and its rigging off the crane's own parts that stand or
         // swing, as the validator asks ([`Self::own_rope_cap`]).
-        let crane = &self.task.crane;
-        let o = crane.slew_center();
+        let o = self.task.crane.slew_center();
         for (kind, b) in parts.iter().filter(|(k, _)| matches!(k, PartKind::Load | PartKind::Rigging)) {
             let grown = b.expanded(INTERNAL_MARGIN_M).expanded_by_motion(sweep.horizontal_m, sweep.vertical_m);
             // Most of the time the load is far out: nothing of the crane there.
@@ -991,8 +990,8 @@ impl<'a> Checker<'a> {
             if (grown.center.x - o.x).hypot(grown.center.y - o.y) - plan_radius > self.cs.own_reach_m {
                 continue;
             }
-            for (own, o) in standing_parts(self.task, c) {
-                if grown.intersects(&o) {
+            for (own, own_box) in standing_parts(self.task, c) {
+                if grown.intersects(&own_box) {
                     return Err(Blocked {
                         reason: TOO_CLOSE.into(),
                         part: Some(*kind),
