@@ -563,13 +563,18 @@ impl SheetNotes {
     /// The note a mark in grid `g` points at: the first cell outside the
     /// grid that opens with the mark and says something (the nearest below
     /// the grid first, as notes are printed under their table), with the
-    /// text cells after it on its row (a note typed across the row).
-    /// Returns the cell and the note's text.
-    pub fn find(&self, sheet: &Sheet, g: &Grid, mark: FootnoteMark) -> Option<(String, String)> {
-        let first_col = g.label_col.min(*g.value_cols.first().unwrap_or(&g.label_col));
-        let last_col = g.label_col.max(*g.value_cols.last().unwrap_or(&g.label_col));
-        let last_row = *g.rows.last().unwrap_or(&g.header_row);
-        let in_grid = |r: u32, c: u32| r >= g.header_row && r <= last_row && c >= first_col && c <= last_col;
+    /// text cells after it on its row (a note typed across the row). On a
+    /// sheet of notes (`g` is `None`), the first such cell. Returns the cell
+    /// and the note's text.
+    pub fn find(&self, sheet: &Sheet, g: Option<&Grid>, mark: FootnoteMark) -> Option<(String, String)> {
+        // The grid's rows and columns (none on a sheet of notes).
+        let span = g.map(|g| {
+            let last_row = *g.rows.last().unwrap_or(&g.header_row);
+            let first_col = g.label_col.min(*g.value_cols.first().unwrap_or(&g.label_col));
+            let last_col = g.label_col.max(*g.value_cols.last().unwrap_or(&g.label_col));
+            (g.header_row..=last_row, first_col..=last_col)
+        });
+        let in_grid = |r: u32, c: u32| span.as_ref().is_some_and(|(rows, cols)| rows.contains(&r) && cols.contains(&c));
         let text_of = |&(r, c): &(u32, u32)| {
             let (_, opened) = sheet.text(r, c).and_then(FootnoteMark::leading)?;
             let mut text = opened.to_string();
@@ -589,7 +594,8 @@ impl SheetNotes {
             (!text.is_empty()).then_some((r, c, text))
         };
         let cells = self.0.get(&mark)?.iter().filter(|&&(r, c)| !in_grid(r, c));
-        let below = cells.clone().filter(|&&(r, _)| r > last_row).find_map(text_of);
+        let below =
+            span.as_ref().and_then(|(rows, _)| cells.clone().filter(|&&(r, _)| r > *rows.end()).find_map(text_of));
         let (r, c, text) = below.or_else(|| cells.clone().find_map(text_of))?;
         // One line, as it is quoted in a sentence (a cell may hold line breaks).
         let mut text = text
@@ -601,6 +607,28 @@ impl SheetNotes {
             text = text.chars().take(FOOTNOTE_QUOTED_CHARS).collect::<String>() + "...";
         }
         Some((format!("{}!{}", sheet.name, cell_ref(r, c)), text))
+    }
+}
+
+/// The workbook's sheets that hold no chart grid (a sheet of notes, a
+/// cover): where a footnote is looked for when the grid's own sheet has
+/// none, as a workbook may keep a chart's notes on a sheet of their own.
+/// Each sheet's notes are indexed on the first mark looked for.
+#[derive(Debug, Default)]
+pub struct NoteSheets<'a>(Vec<(&'a Sheet, std::cell::OnceCell<SheetNotes>)>);
+
+impl<'a> NoteSheets<'a> {
+    pub fn new(sheets: impl IntoIterator<Item = &'a Sheet>) -> NoteSheets<'a> {
+        NoteSheets(sheets.into_iter().map(|s| (s, std::cell::OnceCell::new())).collect())
+    }
+
+    /// Each sheet's note marked `mark`, in the workbook's order: (cell, text).
+    pub fn find(&self, mark: FootnoteMark) -> Vec<(String, String)> {
+        self.0.iter().filter_map(|(s, notes)| notes.get_or_init(|| SheetNotes::of(s)).find(s, None, mark)).collect()
+    }
+
+    pub fn names(&self) -> Vec<&str> {
+        self.0.iter().map(|(s, _)| s.name.as_str()).collect()
     }
 }
 
@@ -672,6 +700,41 @@ pub fn parse_capacity(
     }
 }
 
+/// What a capacity's warning says of the note its mark points at: the note
+/// on the grid's own sheet, else on the workbook's sheets without a chart
+/// (naming any other note there that opens with the same mark, as which
+/// applies is then for the engineer to read), else that none was found.
+fn footnote_said(sheet: &Sheet, g: &Grid, notes: &SheetNotes, note_sheets: &NoteSheets, mark: FootnoteMark) -> String {
+    if let Some((cell, text)) = notes.find(sheet, Some(g), mark) {
+        return format!("; its footnote, {cell}, reads: \"{text}\"");
+    }
+    let elsewhere = note_sheets.find(mark);
+    let Some(((cell, text), more)) = elsewhere.split_first() else {
+        let others = note_sheets.names();
+        let also = if others.is_empty() {
+            String::new()
+        } else {
+            format!(" nor on the workbook's sheets without a chart ({})", others.join(", "))
+        };
+        return format!(
+            "; no footnote marked '{}' was found on sheet {}{also}: read the chart's notes for it",
+            mark.said(),
+            sheet.name
+        );
+    };
+    let more = if more.is_empty() {
+        String::new()
+    } else {
+        let cells: Vec<&str> = more.iter().map(|(c, _)| c.as_str()).collect();
+        format!("; {} also open with '{}': check which note applies", cells.join(", "), mark.said())
+    };
+    format!(
+        "; none is marked '{}' on sheet {}, and the footnote so marked on a sheet of notes, {cell}, reads: \"{text}\"{more}",
+        mark.said(),
+        sheet.name
+    )
+}
+
 /// Reads a located grid into a chart configuration. Errors are (cell, message).
 pub fn read_grid(
     sheet: &Sheet,
@@ -679,6 +742,7 @@ pub fn read_grid(
     u: &Units,
     file_label: &str,
     name: &str,
+    note_sheets: &NoteSheets,
     warnings: &mut Vec<String>,
 ) -> Result<ChartConfig, (String, String)> {
     let at = |r: u32, c: u32| format!("{}!{}", sheet.name, cell_ref(r, c));
@@ -706,16 +770,7 @@ pub fn read_grid(
     let mut notes: Option<SheetNotes> = None;
     let mut footnote = |mark: FootnoteMark| {
         let notes = notes.get_or_insert_with(|| SheetNotes::of(sheet));
-        said.entry(mark)
-            .or_insert_with(|| match notes.find(sheet, g, mark) {
-                Some((cell, text)) => format!("; its footnote, {cell}, reads: \"{text}\""),
-                None => format!(
-                    "; no footnote marked '{}' was found on sheet {}: read the chart's notes for it",
-                    mark.said(),
-                    sheet.name
-                ),
-            })
-            .clone()
+        said.entry(mark).or_insert_with(|| footnote_said(sheet, g, notes, note_sheets, mark)).clone()
     };
     let cell_of = |ri: usize, bi: usize| {
         if g.transposed {
@@ -989,7 +1044,7 @@ mod tests {
         let u = units(&s, g).unwrap();
         assert_eq!((u.radius, u.capacity), (LengthUnit::M, MassUnit::T));
         let mut w = vec![];
-        let c = read_grid(&s, g, &u, "c.xlsx", "main", &mut w).unwrap();
+        let c = read_grid(&s, g, &u, "c.xlsx", "main", &NoteSheets::default(), &mut w).unwrap();
         assert_eq!(c.boom_lengths_m, vec![12.0, 20.0, 28.0]);
         assert_eq!(c.lookup(20.0, 4.0).unwrap().capacity_kg, 35000.0);
         assert!(c.lookup(20.0, 3.0).is_err());
@@ -1001,7 +1056,7 @@ mod tests {
         let s = sheet(&[&["Radius m", "Boom m", ""], &["", "12", "20"], &["3", "50", "30"], &["4", "55", "28"]]);
         let g = &find_grids(&s).unwrap()[0];
         let u = units(&s, g).unwrap();
-        let e = read_grid(&s, g, &u, "c.xlsx", "x", &mut vec![]).unwrap_err();
+        let e = read_grid(&s, g, &u, "c.xlsx", "x", &NoteSheets::default(), &mut vec![]).unwrap_err();
         assert_eq!(e.0, "Main!B4");
         assert!(e.1.contains("rises with radius"), "{}", e.1);
     }
@@ -1024,7 +1079,7 @@ mod tests {
         let g = &find_grids(&s).unwrap()[0];
         let u = units(&s, g).unwrap();
         let mut w = vec![];
-        let c = read_grid(&s, g, &u, "c.xlsx", "x", &mut w).unwrap();
+        let c = read_grid(&s, g, &u, "c.xlsx", "x", &NoteSheets::default(), &mut w).unwrap();
         assert!(c.lookup(20.0, 7.0).is_err());
         assert_eq!(w.len(), 1, "{w:?}");
         assert!(
@@ -1089,7 +1144,7 @@ mod tests {
             let g = &find_grids(&s).unwrap()[0];
             let u = units(&s, g).unwrap();
             let mut w = vec![];
-            let c = read_grid(&s, g, &u, "c.xlsx", "x", &mut w).unwrap();
+            let c = read_grid(&s, g, &u, "c.xlsx", "x", &NoteSheets::default(), &mut w).unwrap();
             assert_eq!(c.lookup(20.0, 6.0).unwrap().capacity_kg, 28000.0, "{mark}");
             assert_eq!(w.len(), 1, "{w:?}");
             w.remove(0)
@@ -1165,7 +1220,7 @@ mod tests {
         assert_eq!(g.len(), 1, "{g:?}");
         assert!(g[0].boom_independent);
         let u = units(&s, &g[0]).unwrap();
-        let c = read_grid(&s, &g[0], &u, "t.xlsx", "jib", &mut vec![]).unwrap();
+        let c = read_grid(&s, &g[0], &u, "t.xlsx", "jib", &NoteSheets::default(), &mut vec![]).unwrap();
         assert!(c.boom_independent());
         assert_eq!(c.lookup(55.0, 25.0).unwrap().capacity_kg, 8100.0);
     }

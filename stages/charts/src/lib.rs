@@ -168,6 +168,9 @@ fn read_chart_with(path: &Path, s: &Settings, unnamed: Unnamed) -> Result<(Vec<C
     let mut configs = Vec::new();
     let mut reports = Vec::new();
     let mut not_searched = Vec::new();
+    // The grids of every sheet first, so that a footnote can be looked for
+    // on the sheets that hold none (a sheet of notes).
+    let mut sheet_grids: Vec<Vec<(detect::Grid, Option<&TableMapping>)>> = Vec::with_capacity(sheets.len());
     for sh in &sheets {
         let mapped: Vec<&TableMapping> = s.table.iter().filter(|t| t.file == file_name && t.sheet == sh.name).collect();
         let mut grids: Vec<(detect::Grid, Option<&TableMapping>)> = Vec::new();
@@ -190,6 +193,16 @@ fn read_chart_with(path: &Path, s: &Settings, unnamed: Unnamed) -> Result<(Vec<C
                 grids.push((grid_from_mapping(path, m)?, Some(m)));
             }
         }
+        sheet_grids.push(grids);
+    }
+    let note_sheets = detect::NoteSheets::new(
+        sheets
+            .iter()
+            .zip(&sheet_grids)
+            .filter(|(sh, grids)| grids.is_empty() && sh.cells.len() <= detect::MAX_SEARCHED_CELLS)
+            .map(|(sh, _)| sh),
+    );
+    for (sh, grids) in sheets.iter().zip(&sheet_grids) {
         let single = grids.len() == 1;
         for (k, (g, mapping)) in grids.iter().enumerate() {
             let name = match mapping {
@@ -231,10 +244,12 @@ fn read_chart_with(path: &Path, s: &Settings, unnamed: Unnamed) -> Result<(Vec<C
                 })?;
             }
             let mut warnings = Vec::new();
-            let c = detect::read_grid(sh, g, &units, &file_name, &name, &mut warnings).map_err(|(cell, msg)| {
-                let cell = cell.split_once('!').map(|x| x.1.to_string()).unwrap_or(cell);
-                ChartError::Format(Location::cell(path, &sh.name, &cell), msg)
-            })?;
+            let c = detect::read_grid(sh, g, &units, &file_name, &name, &note_sheets, &mut warnings).map_err(
+                |(cell, msg)| {
+                    let cell = cell.split_once('!').map(|x| x.1.to_string()).unwrap_or(cell);
+                    ChartError::Format(Location::cell(path, &sh.name, &cell), msg)
+                },
+            )?;
             reports.push(ConfigReport {
                 name: name.clone(),
                 file: file_name.clone(),

@@ -389,3 +389,64 @@ fn a_lift_over_capacity_is_said_so_not_called_critical() {
     let both = line(mass_for(400.0));
     assert!(both.ends_with(" - OVER CAPACITY AT PICK AND SET"), "{both}");
 }
+
+/// A workbook that keeps its chart's notes on a sheet of their own: a
+/// footnote mark is looked up there when the chart's sheet has no note of
+/// that mark, never on another chart's sheet (whose notes are its own), and
+/// a second sheet of notes with the same mark is named, not chosen between.
+#[test]
+fn a_footnote_on_a_sheet_of_notes_is_quoted() {
+    let d = tempfile::tempdir().unwrap();
+    let p = d.path().join("notes.xlsx");
+    let grid = |ws: &mut rust_xlsxwriter::Worksheet, marked: &str| {
+        ws.write_string(0, 0, "Radius m").unwrap();
+        ws.write_string(0, 1, "Boom m / capacity t").unwrap();
+        small_grid(ws);
+        ws.write_string(3, 3, marked).unwrap();
+    };
+    let mut wb = Workbook::new();
+    wb.add_worksheet().set_name("Cover").unwrap().write_string(0, 0, "AC 700 load charts, issue 4").unwrap();
+    grid(wb.add_worksheet().set_name("Chart 1").unwrap(), "80*");
+    let ws = wb.add_worksheet().set_name("Chart 2").unwrap();
+    grid(ws, "80*");
+    ws.write_string(7, 0, "* Over the front only").unwrap();
+    let ws = wb.add_worksheet().set_name("Chart 3").unwrap();
+    grid(ws, "80 (3)");
+    let ws = wb.add_worksheet().set_name("Notes").unwrap();
+    ws.write_string(0, 0, "Notes").unwrap();
+    ws.write_string(1, 0, "*").unwrap();
+    ws.write_string(1, 1, "Over the rear only, 140 t counterweight").unwrap();
+    ws.write_string(2, 0, "(2) With the jib stowed").unwrap();
+    wb.save(&p).unwrap();
+    let warning_of = |p: &Path, sheet: &str| {
+        let (_, reports) = read_chart(p, &Settings::default()).unwrap();
+        let r = reports.iter().find(|r| r.sheet == sheet).unwrap();
+        assert_eq!(r.warnings.len(), 1, "{:?}", r.warnings);
+        r.warnings[0].clone()
+    };
+    assert_eq!(
+        warning_of(&p, "Chart 1"),
+        "Chart 1!D4: footnote mark dropped from '80*'; none is marked '*' on sheet Chart 1, and the footnote so \
+         marked on a sheet of notes, Notes!A2, reads: \"Over the rear only, 140 t counterweight\""
+    );
+    // A chart's own note first.
+    assert!(warning_of(&p, "Chart 2").ends_with("its footnote, Chart 2!A8, reads: \"Over the front only\""));
+    assert_eq!(
+        warning_of(&p, "Chart 3"),
+        "Chart 3!D4: footnote mark dropped from '80 (3)'; no footnote marked '(3)' was found on sheet Chart 3 nor \
+         on the workbook's sheets without a chart (Cover, Notes): read the chart's notes for it"
+    );
+    // Two sheets of notes with a note marked '*': the first is quoted, the
+    // other named.
+    let ws = wb.add_worksheet().set_name("Remarks").unwrap();
+    ws.write_string(4, 1, "* Tyres, not outriggers").unwrap();
+    wb.save(&p).unwrap();
+    assert!(
+        warning_of(&p, "Chart 1").ends_with(
+            "Notes!A2, reads: \"Over the rear only, 140 t counterweight\"; Remarks!B5 also open with '*': check which \
+             note applies"
+        ),
+        "{}",
+        warning_of(&p, "Chart 1")
+    );
+}
