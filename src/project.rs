@@ -444,6 +444,10 @@ keep = 3                  # runs' outputs each stage keeps in .liftplan/cache (t
 #                              # (the boom bending under load), m
 # swing_range_deg = [-120.0, 120.0] # permitted slewing sector from the crane's heading;
 #                                   # leave it out for a crane free to slew
+# ground = { mat_m = [2.5, 2.5], allowable_kpa = 200.0 } # each outrigger pad's mat (m) and
+#                              # what the ground may bear (kPa), for the pressure under
+#                              # the pads: estimated from the crane file's [masses]; crane
+#                              # may also give counterweight_t, the counterweight rigged
 "#;
 
 /// Creates a project folder with the template and the input folders.
@@ -480,7 +484,9 @@ mod tests {
             .join("\n");
         let v: toml::Value = toml::from_str(&lift).unwrap_or_else(|e| panic!("{e}\n{lift}"));
         let spec: liftplan_core::lift::LiftSpec = v["lift"][0].clone().try_into().unwrap();
-        for key in ["liftoff_m", "critical_pct", "capacity_reduction_pct", "radius_allowance_m", "swing_range_deg"] {
+        for key in
+            ["liftoff_m", "critical_pct", "capacity_reduction_pct", "radius_allowance_m", "swing_range_deg", "ground"]
+        {
             assert!(v["lift"][0].get(key).is_some(), "{key} is not shown");
         }
         let task = spec.resolve(liftplan_core::crane::builtin("ltm-1100").unwrap()).unwrap();

@@ -40,6 +40,17 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     // scans leave a shadow beside the foundation).
     let cover = doc.extract_text(&pages[..1]).unwrap().replace('\n', " ");
     assert!(cover.contains("CHECK FIRST ground under the load that no scan saw (sign-off page)"), "{cover}");
+    // The outrigger pads at their most, estimated from the built-in crane
+    // file's masses, and the pressure under the demo's mats: on the cover,
+    // on the steps' pages and on the sign-off page.
+    let pads = "104.2 t (1022 kN) on the rear left pad (x -3.25 m, y 5.75 m); 163 kPa under its 2.50 x 2.50 m mat, allowable 200 kPa";
+    assert!(cover.contains(&format!("Outrigger pads in step 1, the most: {pads}; an estimate")), "{cover}");
+    let flat = text.replace('\n', " ");
+    assert!(flat.contains(&format!("Outrigger pads the most: {pads}")), "{text}");
+    assert!(
+        flat.contains("Outrigger pads at their most (an estimate from the crane file's masses): step 1, 104.2 t on the rear left pad; 163 kPa"),
+        "{text}"
+    );
     // Whose boxes the crane's are: every clearance is measured from them.
     assert!(text.contains("crane: 'ac-700', built into liftplan"), "{text}");
     // The demo's vessel was scanned on its trailer as its box says.
@@ -50,7 +61,6 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     // The demo's vessel is set down on its foundation, not above it, where
     // the plant model (which draws it, left out of the obstacles) has it.
     assert!(text.contains("At its set position the load rests on"), "{text}");
-    let flat = text.replace('\n', " ");
     assert!(flat.contains("the plant model's /V-101 (left out as the load) stands at the set position"), "{text}");
     // ... with its centre of gravity over the foundation.
     assert!(flat.contains("Its centre of gravity lies 1.26 m inside the edge of what holds it"), "{text}");
@@ -256,6 +266,13 @@ liftoff_m = 0.5
     let (cover, text) = planned_with(&dir, &beside);
     assert!(cover.contains("where the plant model stands (the scans barely meet it)"), "{cover}");
     assert!(text.contains("THE PLANT MODEL AND THE SCANS BARELY MEET"), "{text}");
+    // Mats too small for what the ground may bear: the cover asks to check
+    // the ground under the pads first.
+    let small_mats = t13.replace("mat_m = [2.5, 2.5]", "mat_m = [1.5, 1.5]");
+    assert_ne!(small_mats, t13);
+    let (cover, text) = planned_with(&dir, &small_mats);
+    assert!(cover.contains("the ground under the outrigger pads (more than it may bear)"), "{cover}");
+    assert!(text.contains("kPa under its 1.50 x 1.50 m mat, MORE THAN THE 200 kPa THE GROUND MAY BEAR"), "{text}");
     std::fs::write(&toml_path, &t13).unwrap();
 
     // A capacity on the lift's chart configuration typed with a footnote

@@ -140,6 +140,30 @@ pub struct Trolley {
     pub height_m: f64,
 }
 
+/// A mobile crane's masses, for its outrigger loads ([`crate::outriggers`]):
+/// each at its part's box centre in the crane file, the boom's along its
+/// axis. Optional in the crane file; no outrigger load is worked out
+/// without them. Whoever writes them answers for them: a manufacturer's
+/// outrigger load figures govern.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Masses {
+    /// The carrier with its outrigger boxes, at the carrier box's centre (t).
+    pub carrier_t: f64,
+    /// The superstructure with its winches and cockpit, counterweight and
+    /// boom not included, at the superstructure box's centre (t).
+    pub superstructure_t: f64,
+    /// The counterweight as rigged for the chart configuration lifted with,
+    /// at the counterweight box's centre (t); a lift's `crane =
+    /// { counterweight_t }` overrides it.
+    pub counterweight_t: f64,
+    /// The boom with its head (t).
+    pub boom_t: f64,
+    /// Where the boom's centre of gravity lies along it from its pivot, as a
+    /// share of its length (0 to 1).
+    pub boom_cog_frac: f64,
+}
+
 /// The crane file as written: every section optional, checked by [`CraneModel::from_raw`].
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -159,6 +183,7 @@ struct RawCrane {
     counter_jib: Option<CounterJib>,
     cab: Option<BoxPart>,
     trolley: Option<Trolley>,
+    masses: Option<Masses>,
     hook: HookBlock,
     speeds: Speeds,
 }
@@ -171,6 +196,8 @@ pub struct LuffingCrane {
     pub cockpit: BoxPart,
     pub counterweight: BoxPart,
     pub boom: Boom,
+    /// For the outrigger loads; `None` where the crane file gives none.
+    pub masses: Option<Masses>,
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -265,6 +292,7 @@ impl CraneModel {
                     cockpit: r.cockpit.ok_or_else(|| missing("cockpit"))?,
                     counterweight: r.counterweight.ok_or_else(|| missing("counterweight"))?,
                     boom: r.boom.ok_or_else(|| missing("boom"))?,
+                    masses: r.masses,
                 })
             }
             "tower" => {
@@ -275,6 +303,7 @@ impl CraneModel {
                         ("superstructure", r.superstructure.is_some()),
                         ("cockpit", r.cockpit.is_some()),
                         ("boom", r.boom.is_some()),
+                        ("masses", r.masses.is_some()),
                     ],
                     "luffing",
                 )?;
@@ -330,6 +359,24 @@ impl CraneModel {
                 boxp("superstructure", &l.superstructure)?;
                 boxp("cockpit", &l.cockpit)?;
                 boxp("counterweight", &l.counterweight)?;
+                if let Some(m) = &l.masses {
+                    for (name, t) in [
+                        ("masses.carrier_t", m.carrier_t),
+                        ("masses.superstructure_t", m.superstructure_t),
+                        ("masses.counterweight_t", m.counterweight_t),
+                        ("masses.boom_t", m.boom_t),
+                    ] {
+                        if !(t.is_finite() && (0.0..=10_000.0).contains(&t)) {
+                            return Err(format!("{name} must be a mass in tonnes from 0 to 10000, found {t}"));
+                        }
+                    }
+                    if !(m.boom_cog_frac > 0.0 && m.boom_cog_frac < 1.0) {
+                        return Err(format!(
+                            "masses.boom_cog_frac must lie between 0 and 1 (a share of the boom's length from its pivot), found {}",
+                            m.boom_cog_frac
+                        ));
+                    }
+                }
                 pos("outriggers.spread_length_m", l.outriggers.spread_length_m)?;
                 pos("outriggers.spread_width_m", l.outriggers.spread_width_m)?;
                 pos("boom.width_m", l.boom.width_m)?;
@@ -960,6 +1007,22 @@ mod tests {
             let m = builtin(n).unwrap();
             assert!(!m.source.is_empty(), "{n} must say where its dimensions come from");
         }
+    }
+
+    /// A crane file's masses are checked; a tower crane has none.
+    #[test]
+    fn masses_are_checked() {
+        let ac = builtin_text("ac-700").unwrap();
+        let bad = ac.replace("boom_cog_frac = 0.4", "boom_cog_frac = 1.4");
+        let e = CraneModel::from_toml(Path::new("c.toml"), &bad).unwrap_err().to_string();
+        assert!(e.contains("masses.boom_cog_frac must lie between 0 and 1"), "{e}");
+        let bad = ac.replace("boom_t = 38.0", "boom_t = -38.0");
+        let e = CraneModel::from_toml(Path::new("c.toml"), &bad).unwrap_err().to_string();
+        assert!(e.contains("masses.boom_t must be a mass in tonnes"), "{e}");
+        let masses = &ac[ac.find("[masses]").unwrap()..ac.find("[hook]").unwrap()];
+        let tower = builtin_text("tower-hh-60").unwrap().replace("[speeds]", &format!("{masses}[speeds]"));
+        let e = CraneModel::from_toml(Path::new("t.toml"), &tower).unwrap_err().to_string();
+        assert!(e.contains("section [masses] belongs to a luffing crane"), "{e}");
     }
 
     #[test]

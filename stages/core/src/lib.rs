@@ -14,6 +14,7 @@
 //! | [`cloud`] | point clouds (columns) |
 //! | [`mesh`] | triangle meshes with part/group provenance |
 //! | [`crane`] | crane model files, placement, forward and inverse kinematics |
+//! | [`outriggers`] | a mobile crane's pad loads and the pressure under its mats |
 //! | [`capacity`] | load-chart grids and the never-interpolate-upwards rule |
 //! | [`lift`] | the lift request and its validated form |
 //! | [`artifact`] | checked binary artifact files and atomic writes |
@@ -43,6 +44,7 @@ pub mod lift;
 pub mod location;
 pub mod mesh;
 pub mod obb;
+pub mod outriggers;
 pub mod rng;
 pub mod testing;
 pub mod units;

@@ -66,6 +66,23 @@ pub struct CraneSpec {
     /// Extra deductions the chart's notes require (e.g. stowed jib), tonnes.
     #[serde(default)]
     pub deductions_t: f64,
+    /// The counterweight rigged (t), for the outrigger loads; the crane
+    /// file's `[masses] counterweight_t` where left out.
+    #[serde(default)]
+    pub counterweight_t: Option<f64>,
+}
+
+/// The mats under the outrigger pads and what the ground may bear, for the
+/// pressure each pad puts on it.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GroundSpec {
+    /// A pad's mat, length by width (m).
+    pub mat_m: [f64; 2],
+    /// The bearing pressure the ground may take (kPa = kN/m²), as the site's
+    /// ground assessment gives it.
+    #[serde(default)]
+    pub allowable_kpa: Option<f64>,
 }
 
 /// Pick or set: a load pose (`x_m`, `y_m`, `z_m`, `yaw_deg`) or a configuration
@@ -118,6 +135,9 @@ pub struct LiftSpec {
     /// Permitted slewing range relative to the carrier heading, degrees.
     #[serde(default)]
     pub swing_range_deg: Option<[f64; 2]>,
+    /// The outrigger pads' mats and the ground's allowable bearing pressure.
+    #[serde(default)]
+    pub ground: Option<GroundSpec>,
 }
 
 fn default_clearance() -> f64 {
@@ -158,6 +178,9 @@ pub struct LiftTask {
     /// (swing, luff or trolley, hoist) rather than load poses: which key
     /// sets their height.
     pub by_configuration: [bool; 2],
+    /// The counterweight rigged (kg), where the lift says it.
+    pub counterweight_kg: Option<f64>,
+    pub ground: Option<GroundSpec>,
 }
 
 impl LiftTask {
@@ -176,6 +199,13 @@ impl LiftTask {
     /// Load + rigging + hook block + deductions, in kg.
     pub fn gross_kg(&self) -> f64 {
         self.load_mass_kg + self.rigging_mass_kg + self.crane.model.hook.mass_kg + self.deductions_kg
+    }
+
+    /// The outrigger pads' loads at `c` ([`crate::outriggers::pad_loads`]),
+    /// the gross load on the hook; `None` for a tower crane or a crane file
+    /// without masses.
+    pub fn pad_loads(&self, c: &Config) -> Option<crate::outriggers::PadLoads> {
+        crate::outriggers::pad_loads(&self.crane, c.swing_rad, c.radial, self.gross_kg(), self.counterweight_kg)
     }
 
     /// Capacity after the configured reduction.
@@ -384,6 +414,38 @@ impl LiftSpec {
             }
             None => None,
         };
+        let masses = match &crane.model.kind {
+            crate::crane::CraneKind::Luffing(l) => l.masses,
+            crate::crane::CraneKind::Tower(_) => None,
+        };
+        if masses.is_none() && (self.crane.counterweight_t.is_some() || self.ground.is_some()) {
+            let key = if self.ground.is_some() { "ground" } else { "crane counterweight_t" };
+            return Err(format!(
+                "lift '{id}': {key} is for the outrigger loads, and the crane model {} gives no [masses] to work them out from{}",
+                crane.model.name,
+                if crane.model.is_tower() { " (a tower crane has no outriggers)" } else { "" }
+            ));
+        }
+        if let Some(t) = self.crane.counterweight_t
+            && !(t.is_finite() && (0.0..=10_000.0).contains(&t))
+        {
+            return Err(format!(
+                "lift '{id}': crane counterweight_t must be a mass in tonnes from 0 to 10000, found {t}"
+            ));
+        }
+        if let Some(g) = &self.ground {
+            if !g.mat_m.iter().all(|v| v.is_finite() && *v > 0.0 && *v <= 100.0) {
+                return Err(format!(
+                    "lift '{id}': ground mat_m must be a mat's length and width, each above 0 and at most 100 m, found {:?}",
+                    g.mat_m
+                ));
+            }
+            if let Some(p) = g.allowable_kpa
+                && !(p.is_finite() && p > 0.0)
+            {
+                return Err(format!("lift '{id}': ground allowable_kpa must be a positive pressure in kPa, found {p}"));
+            }
+        }
         Ok(LiftTask {
             id: id.clone(),
             description: self.description.clone(),
@@ -405,6 +467,8 @@ impl LiftSpec {
             critical_pct: self.critical_pct,
             swing_range_rad,
             by_configuration: [self.pick.swing_deg.is_some(), self.set.swing_deg.is_some()],
+            counterweight_kg: self.crane.counterweight_t.map(|t| t * KG_PER_TONNE),
+            ground: self.ground,
         })
     }
 }
@@ -413,18 +477,17 @@ impl LiftSpec {
 mod tests {
     use super::*;
 
-    fn spec() -> LiftSpec {
-        toml::from_str(
-            r#"
+    const SPEC: &str = r#"
 id = "V-101"
 load = { mass_t = 12.5, size_m = [6.0, 3.0, 3.0] }
 rigging = { mass_t = 0.4, height_m = 3.0 }
 crane = { model = "ltm-1100", position_m = [0.0, 0.0], heading_deg = 0.0, boom_m = 40.0, chart_config = "main" }
 pick = { x_m = 20.0, y_m = 5.0, z_m = 0.0, yaw_deg = 0.0 }
 set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
-"#,
-        )
-        .unwrap()
+"#;
+
+    fn spec() -> LiftSpec {
+        toml::from_str(SPEC).unwrap()
     }
 
     #[test]
@@ -568,6 +631,34 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         let mut sp = spec();
         sp.swing_range_deg = Some([-10.0, 400.0]);
         assert!(sp.resolve(crane()).unwrap_err().contains("at most a full turn"));
+    }
+
+    /// The outrigger keys need a crane file with masses, and sane values.
+    #[test]
+    fn the_outrigger_keys_need_masses_and_sane_values() {
+        let with = |ground: &str, counterweight: &str, crane: &str| {
+            let text = format!(
+                "{}ground = {ground}\n",
+                SPEC.replace("chart_config = \"main\"", &format!("chart_config = \"main\"{counterweight}"))
+                    .replace("\"ltm-1100\"", &format!("\"{crane}\""))
+            );
+            let sp: LiftSpec = toml::from_str(&text).unwrap_or_else(|e| panic!("{e}\n{text}"));
+            sp.resolve(crate::crane::builtin(crane).unwrap())
+        };
+        let t = with("{ mat_m = [2.0, 2.0], allowable_kpa = 250.0 }", ", counterweight_t = 20.0", "ltm-1100").unwrap();
+        assert_eq!(t.counterweight_kg, Some(20_000.0));
+        assert_eq!(t.ground.unwrap().mat_m, [2.0, 2.0]);
+        let light = t.pad_loads(&t.pick).unwrap().total_kg;
+        let full = with("{ mat_m = [2.0, 2.0] }", "", "ltm-1100").unwrap();
+        assert!((full.pad_loads(&full.pick).unwrap().total_kg - light - 17_000.0).abs() < 1e-6);
+        let e = with("{ mat_m = [0.0, 2.0] }", "", "ltm-1100").unwrap_err();
+        assert!(e.contains("ground mat_m must be"), "{e}");
+        let e = with("{ mat_m = [2.0, 2.0], allowable_kpa = -5.0 }", "", "ltm-1100").unwrap_err();
+        assert!(e.contains("allowable_kpa must be a positive pressure"), "{e}");
+        let e = with("{ mat_m = [2.0, 2.0] }", ", counterweight_t = -1.0", "ltm-1100").unwrap_err();
+        assert!(e.contains("counterweight_t must be a mass"), "{e}");
+        let e = with("{ mat_m = [2.0, 2.0] }", "", "tower-hh-60").unwrap_err();
+        assert!(e.contains("gives no [masses]") && e.contains("a tower crane has no outriggers"), "{e}");
     }
 
     #[test]

@@ -183,6 +183,11 @@ fn checks_before_signing(
     if !sm.passes_left_out.is_empty() {
         v.push("what [plant] exclude left out of the model, in the lift's way".to_string());
     }
+    if !sm.pads_tip_in.is_empty() {
+        v.push("the crane file's masses (they would tip the crane)".to_string());
+    } else if sm.highest_pad.is_some_and(|(_, p)| p.needs_checking(task.ground.as_ref())) {
+        v.push("the ground under the outrigger pads (more than it may bear)".to_string());
+    }
     if sm.set_on.as_ref().is_some_and(|s| s.tips()) {
         v.push("the load's centre of gravity over what holds it at its set position".to_string());
     }
@@ -422,6 +427,15 @@ pub fn document(
             ),
         ),
     ];
+    if let Some((n, p)) = sm.highest_pad {
+        rows.push((
+            "Outrigger pads",
+            format!(
+                "in step {n}, the most: {}; an estimate from the crane file's masses (sign-off page)",
+                p.said(task.ground.as_ref())
+            ),
+        ));
+    }
     // What the sign-off page asks the signer to check, named on the cover
     // where it is read first.
     // The chart cells read with a warning and the steps that read them,
@@ -627,7 +641,7 @@ pub fn document(
         15.0,
         y,
         w,
-        &format!("The first and the last steps are the vertical lift-off and set-down. Capacity is the chart value (before the reduction) at the largest radius of the step{allowance}; utilisation is the gross load over the reduced capacity; clearance is a distance that no crane part, rope, hook or load comes closer than to the plant model or the scanned points at any moment of the step, between the validator's samples too: the smallest distance measured at samples no more than [plan] validator_sample_m of movement apart (0.05 m by default), less what the motion between two samples leaves room for (at most half that spacing), so the closest approach may be up to that much more than shown, never less. Wherever the motion between samples could take a part closer than its required clearance, the validator samples more finely, down to 2 mm of movement, so the required clearance holds along the whole motion, not only at the samples, to within 2 mm. Swing and load rotation angles are counter-clockwise positive seen from above. Swing is measured from {heading}, load yaw from the site's +X axis; each step's page also gives the {arm}'s grid bearing (clockwise from the site's north, +Y, as the overview is drawn).", heading = words.heading, arm = words.arm, allowance = if task.radius_allowance_m > 0.0 { format!(" plus the radius allowance ({:.2} m)", task.radius_allowance_m) } else { String::new() }),
+        &format!("The first and the last steps are the vertical lift-off and set-down. Capacity is the chart value (before the reduction) at the largest radius of the step{allowance}; utilisation is the gross load over the reduced capacity; clearance is a distance that no crane part, rope, hook or load comes closer than to the plant model or the scanned points at any moment of the step, between the validator's samples too: the smallest distance measured at samples no more than [plan] validator_sample_m of movement apart (0.05 m by default), less what the motion between two samples leaves room for (at most half that spacing), so the closest approach may be up to that much more than shown, never less. Wherever the motion between samples could take a part closer than its required clearance, the validator samples more finely, down to 2 mm of movement, so the required clearance holds along the whole motion, not only at the samples, to within 2 mm. Swing and load rotation angles are counter-clockwise positive seen from above. Swing is measured from {heading}, load yaw from the site's +X axis; each step's page also gives the {arm}'s grid bearing (clockwise from the site's north, +Y, as the overview is drawn).{pads}", heading = words.heading, arm = words.arm, pads = if plan.summary.highest_pad.is_some() { " Each step's page gives the most an outrigger pad carries during the step, an estimate from the crane file's masses: the weight of crane and load shared among the four pads as by a rigid frame (a quarter each, plus each pad's share of the moment about their centre; where that would pull a pad, it lifts and the other three carry it all), each mass at its part's centre and the gross load under the rope's sheave, at both ends of the step and every half degree of swing and luff between; wind, the load swinging and dynamic factors are not in it, and the crane manufacturer's outrigger loads govern." } else { "" }, allowance = if task.radius_allowance_m > 0.0 { format!(" plus the radius allowance ({:.2} m)", task.radius_allowance_m) } else { String::new() }),
         8.5,
     );
     if let Some(cs) = cspace {
@@ -725,6 +739,7 @@ pub fn document(
                     ),
                 ]
                 .into_iter()
+                .chain(st.pads.map(|p| ("Outrigger pads", format!("the most: {}", p.said(task.ground.as_ref())))))
                 .chain(chart_warning)
                 .collect::<Vec<_>>(),
                 40.0,
@@ -747,6 +762,13 @@ pub fn document(
         ),
     );
     y += 4.0;
+    let support_loads = match (plan.summary.highest_pad, task.ground) {
+        (None, _) => words.support_loads.to_string(),
+        (Some(_), Some(_)) => {
+            "outrigger loads (estimated only)".to_string()
+        }
+        (Some(_), None) => "outrigger loads (estimated only) and ground bearing pressure (the lift gives no mats: ground = { mat_m, allowable_kpa })".to_string(),
+    };
     y = sign_off_paragraph(
         &mut d,
         y,
@@ -765,7 +787,7 @@ pub fn document(
             },
             words.radial_motion,
             task.clearance_m,
-            words.support_loads,
+            support_loads,
             arm = words.arm
         ),
     );
@@ -825,6 +847,10 @@ pub fn document(
         None => format!(
             "The crane is set up at z = {level:.2} m as the lift gives it: no ground was scanned under its carrier and outriggers to check that level against. Check it on site."
         ),
+    };
+    let set_up_text = match plan.summary.pads_said_briefly() {
+        Some(said) => format!("{set_up_text} {}", sentence(&said)),
+        None => set_up_text,
     };
     y = sign_off_paragraph(&mut d, y, w, &set_up_text);
     y += 4.0;

@@ -826,6 +826,7 @@ impl RunSummary {
             .map(|a| a.line())
             .chain(self.lifts.iter().flat_map(|s| {
                 std::iter::once(s.line())
+                    .chain(s.pads_line())
                     .chain(s.other_loads_line())
                     .chain(s.coverage_line())
                     .chain(s.load_as_scanned_line())

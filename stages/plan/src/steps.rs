@@ -5,7 +5,8 @@
 use crate::path::Move;
 use crate::validate::Verdict;
 use liftplan_core::crane::Config;
-use liftplan_core::lift::LiftTask;
+use liftplan_core::lift::{GroundSpec, LiftTask};
+use liftplan_core::outriggers::{G_M_S2, Pad, pressure_kpa};
 use liftplan_cspace::Joint;
 use serde::{Deserialize, Serialize};
 
@@ -39,6 +40,118 @@ pub struct Step {
     #[serde(default)]
     pub clearance_at: Option<[f64; 3]>,
     pub required_clearance_m: f64,
+    /// The most an outrigger pad carries during the step; `None` for a
+    /// tower crane or a crane file without masses.
+    #[serde(default)]
+    pub pads: Option<StepPads>,
+}
+
+/// The most an outrigger pad carries during a step, from the crane file's
+/// masses ([`liftplan_core::outriggers`]): an estimate, for the ground
+/// under the pads and its mats, not the manufacturer's figures.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct StepPads {
+    pub pad: Pad,
+    pub load_kg: f64,
+    /// The pad's centre (site frame, m).
+    pub at_m: [f64; 2],
+    /// Whether at some moment of the step a pad lifts off and three carry
+    /// the crane.
+    pub pad_lifts: bool,
+    /// Whether at some moment the centre of gravity of crane and load lies
+    /// outside the pads.
+    pub tips: bool,
+}
+
+/// Swing and luff between the samples of [`pads_during`] (rad): a pad's
+/// load changes with the cosine of the swing, so its most between two
+/// samples a degree apart is within 0.004 % of theirs.
+const PAD_SAMPLE_RAD: f64 = std::f64::consts::PI / 360.0;
+
+/// The pads' most during a move: their loads at both ends and every half
+/// degree of swing and luff between (hoisting and turning the load change
+/// none of them).
+pub fn pads_during(task: &LiftTask, m: &Move) -> Option<StepPads> {
+    let (a, b) = (m.from.to_array(), m.to.to_array());
+    let turn = (b[0] - a[0]).abs() + if task.crane.model.is_tower() { 0.0 } else { (b[1] - a[1]).abs() };
+    let n = ((turn / PAD_SAMPLE_RAD).ceil() as usize).clamp(1, 100_000);
+    let mut most: Option<StepPads> = None;
+    for i in 0..=n {
+        let t = i as f64 / n as f64;
+        let c = Config::from_array(std::array::from_fn(|k| a[k] + (b[k] - a[k]) * t));
+        let loads = task.pad_loads(&c)?;
+        let (pad, load_kg) = loads.highest();
+        let here = StepPads {
+            pad,
+            load_kg,
+            at_m: liftplan_core::outriggers::pad_at(&task.crane, pad)?,
+            pad_lifts: loads.loads_kg.contains(&0.0),
+            tips: loads.tips,
+        };
+        most = Some(match most {
+            Some(m) if m.load_kg >= here.load_kg => {
+                StepPads { pad_lifts: m.pad_lifts || here.pad_lifts, tips: m.tips || here.tips, ..m }
+            }
+            Some(m) => StepPads { pad_lifts: m.pad_lifts || here.pad_lifts, tips: m.tips || here.tips, ..here },
+            None => here,
+        });
+    }
+    most
+}
+
+impl StepPads {
+    /// The pad's load in words, and the pressure under its mat where the
+    /// lift gives one: "84.2 t (826 kN) on the front left pad (x 8.25 m,
+    /// y 5.75 m); 206 kPa under its 2.00 x 2.00 m mat, allowable 250 kPa".
+    pub fn said(&self, ground: Option<&GroundSpec>) -> String {
+        self.said_as(ground, false)
+    }
+
+    /// [`StepPads::said`] without the force and the pad's place: "84.2 t on
+    /// the front left pad; 206 kPa ...", for the sign-off page, where the
+    /// cover and the step's page give them.
+    pub fn said_briefly(&self, ground: Option<&GroundSpec>) -> String {
+        self.said_as(ground, true)
+    }
+
+    fn said_as(&self, ground: Option<&GroundSpec>, brief: bool) -> String {
+        let mut s = if brief {
+            format!("{:.1} t on the {} pad", self.load_kg / 1000.0, self.pad.name())
+        } else {
+            format!(
+                "{:.1} t ({:.0} kN) on the {} pad (x {:.2} m, y {:.2} m)",
+                self.load_kg / 1000.0,
+                self.load_kg * G_M_S2 / 1000.0,
+                self.pad.name(),
+                self.at_m[0],
+                self.at_m[1]
+            )
+        };
+        if let Some(g) = ground {
+            let kpa = pressure_kpa(self.load_kg, g.mat_m);
+            s += &format!("; {kpa:.0} kPa under its {:.2} x {:.2} m mat", g.mat_m[0], g.mat_m[1]);
+            match g.allowable_kpa {
+                Some(allowed) if kpa > allowed => {
+                    s +=
+                        &format!(", MORE THAN THE {allowed:.0} kPa THE GROUND MAY BEAR: a larger mat or a ground check")
+                }
+                Some(allowed) => s += &format!(", allowable {allowed:.0} kPa"),
+                None => s += " (no allowable pressure given: ground allowable_kpa)",
+            }
+        }
+        if self.tips {
+            s += "; THE CRANE FILE'S MASSES PUT THE CENTRE OF GRAVITY OUTSIDE THE PADS: the crane would tip, so its [masses] or the chart are wrong";
+        } else if self.pad_lifts {
+            s += "; a pad lifts off (three carry the crane)";
+        }
+        s
+    }
+
+    /// Whether the ground's allowable pressure is exceeded, or the crane
+    /// would tip: what the signer must check first.
+    pub fn needs_checking(&self, ground: Option<&GroundSpec>) -> bool {
+        self.tips || ground.is_some_and(|g| g.allowable_kpa.is_some_and(|a| pressure_kpa(self.load_kg, g.mat_m) > a))
+    }
 }
 
 fn describe(task: &LiftTask, m: &Move) -> (String, f64, String, String) {
@@ -100,6 +213,7 @@ pub fn steps(task: &LiftTask, moves: &[Move], verdict: &Verdict) -> Vec<Step> {
                 clearance_to: tight.map(|t| t.nearest.object.clone()).unwrap_or_default(),
                 clearance_at: tight.and_then(|t| t.nearest.at),
                 required_clearance_m: tight.map(|t| t.required_m).unwrap_or(0.0),
+                pads: pads_during(task, m),
             }
         })
         .collect()
@@ -162,6 +276,16 @@ pub struct Summary {
     /// The lift's clearance (m), for saying them.
     #[serde(default)]
     pub clearance_m: f64,
+    /// The step in which an outrigger pad carries the most, and that most
+    /// ([`Step::pads`]).
+    #[serde(default)]
+    pub highest_pad: Option<(usize, StepPads)>,
+    /// The steps in which the crane file's masses would tip the crane.
+    #[serde(default)]
+    pub pads_tip_in: Vec<usize>,
+    /// The lift's mats and ground, for saying the pressure.
+    #[serde(default)]
+    pub ground: Option<GroundSpec>,
 }
 
 /// Serde for a distance that may be infinite (nothing within the
@@ -254,6 +378,44 @@ impl Summary {
             .map(|said| format!("lift {}: {said}", self.lift))
     }
 
+    /// [`Summary::highest_pad`] in words: the most a pad carries, in which
+    /// step, and any step where the crane would tip.
+    pub fn pads_said(&self) -> Option<String> {
+        self.pads_said_as(false)
+    }
+
+    /// [`Summary::pads_said`] in brief ([`StepPads::said_briefly`]), for
+    /// the sign-off page.
+    pub fn pads_said_briefly(&self) -> Option<String> {
+        self.pads_said_as(true)
+    }
+
+    fn pads_said_as(&self, brief: bool) -> Option<String> {
+        let (n, p) = self.highest_pad?;
+        let tips = match self.pads_tip_in.as_slice() {
+            [] => String::new(),
+            [one] => format!(" (the crane would tip in step {one})"),
+            many => format!(" (the crane would tip in {} steps)", many.len()),
+        };
+        let ground = self.ground.as_ref();
+        Some(if brief {
+            format!(
+                "outrigger pads at their most (an estimate from the crane file's masses): step {n}{tips}, {}",
+                p.said_briefly(ground)
+            )
+        } else {
+            format!(
+                "outrigger pads (estimated from the crane file's masses) at their most: in step {n}{tips}, {}; the crane manufacturer's outrigger loads govern",
+                p.said(ground)
+            )
+        })
+    }
+
+    /// [`Summary::pads_said`] for the run's output.
+    pub fn pads_line(&self) -> Option<String> {
+        self.pads_said().map(|said| format!("lift {}: {said}", self.lift))
+    }
+
     /// [`Summary::coverage`]'s line, for the run's output.
     pub fn coverage_line(&self) -> Option<String> {
         self.coverage.as_ref().map(|c| format!("lift {}: {}", self.lift, c.line()))
@@ -308,8 +470,19 @@ pub fn summary(task: &LiftTask, steps: &[Step], verdict: &Verdict) -> Summary {
         against_model: Vec::new(),
         passes_left_out: Vec::new(),
         clearance_m: task.clearance_m,
+        highest_pad: None,
+        pads_tip_in: Vec::new(),
+        ground: task.ground,
     };
     for st in steps {
+        if let Some(p) = st.pads
+            && s.highest_pad.is_none_or(|(_, h)| p.load_kg > h.load_kg)
+        {
+            s.highest_pad = Some((st.n, p));
+        }
+        if st.pads.is_some_and(|p| p.tips) {
+            s.pads_tip_in.push(st.n);
+        }
         if let Some(u) = st.utilisation_pct
             && u > s.max_utilisation_pct
         {
@@ -341,12 +514,12 @@ fn csv_field(s: &str) -> String {
 
 pub fn to_csv(steps: &[Step]) -> String {
     let mut out = String::from(
-        "step,operation,amount,unit,swing_deg,radial,hoist_m,load_yaw_deg,radius_m,load_height_m,capacity_kg,chart_cell,utilisation_pct,min_clearance_m,clearance_part,clearance_to\n",
+        "step,operation,amount,unit,swing_deg,radial,hoist_m,load_yaw_deg,radius_m,load_height_m,capacity_kg,chart_cell,utilisation_pct,min_clearance_m,clearance_part,clearance_to,max_pad_kg,max_pad\n",
     );
     for s in steps {
         let opt = |v: Option<f64>, p: usize| v.map(|x| format!("{x:.p$}")).unwrap_or_default();
         out.push_str(&format!(
-            "{},{},{:.3},{},{:.3},{:.5},{:.3},{:.3},{:.3},{:.3},{},{},{},{:.3},{},{}\n",
+            "{},{},{:.3},{},{:.3},{:.5},{:.3},{:.3},{:.3},{:.3},{},{},{},{:.3},{},{},{},{}\n",
             s.n,
             csv_field(&s.operation),
             s.amount,
@@ -363,6 +536,8 @@ pub fn to_csv(steps: &[Step]) -> String {
             s.min_clearance_m,
             csv_field(&s.clearance_part),
             csv_field(&s.clearance_to),
+            opt(s.pads.map(|p| p.load_kg), 0),
+            s.pads.map(|p| p.pad.name()).unwrap_or_default(),
         ));
     }
     out
@@ -393,5 +568,50 @@ mod tests {
             let want = if turn_z > 0.0 { "(counter-clockwise)" } else { "(clockwise)" };
             assert!(text.ends_with(want), "{joint:?} {step}: '{text}' but the turn's z is {turn_z}");
         }
+    }
+
+    /// A swing through the bearing at which a pad carries most: the most
+    /// is found between the move's ends, to within the sampling's bound of
+    /// a fine search; a hoist, which moves nothing that weighs on the pads
+    /// but along the rope, reads its ends. How it is said, with mats the
+    /// ground bears and mats it does not.
+    #[test]
+    fn the_pads_most_is_found_between_a_moves_ends_and_said() {
+        let task = crate::test_lift("ac-700");
+        let at = |deg: f64| Config { swing_rad: deg.to_radians(), ..task.start() };
+        // The rear-heavy crane's counterweight over the rear left pad of its
+        // square spread: swing -45°.
+        let m = Move { joint: Joint::Swing, from: at(-80.0), to: at(-10.0) };
+        let most = pads_during(&task, &m).unwrap();
+        assert_eq!(most.pad, Pad::RearLeft);
+        let fine =
+            (0..=70_000).map(|i| task.pad_loads(&at(-80.0 + i as f64 * 1e-3)).unwrap().highest().1).fold(0.0, f64::max);
+        let ends = task.pad_loads(&m.from).unwrap().highest().1.max(task.pad_loads(&m.to).unwrap().highest().1);
+        assert!(fine > ends + 1000.0, "{fine} {ends}");
+        assert!(most.load_kg <= fine + 1e-6 && most.load_kg > fine * (1.0 - 1e-6), "{most:?} {fine}");
+        let mut up = m.from.to_array();
+        up[Joint::Hoist.index()] -= 3.0;
+        let hoist = Move { joint: Joint::Hoist, from: m.from, to: Config::from_array(up) };
+        assert_eq!(pads_during(&task, &hoist).unwrap().load_kg, task.pad_loads(&m.from).unwrap().highest().1);
+        // Said, with the pressure under mats the ground bears, or not.
+        let kpa = pressure_kpa(most.load_kg, [3.0, 3.0]);
+        let bears = GroundSpec { mat_m: [3.0, 3.0], allowable_kpa: Some(kpa + 1.0) };
+        assert!(!most.needs_checking(Some(&bears)));
+        assert!(
+            most.said(Some(&bears))
+                .ends_with(&format!("; {kpa:.0} kPa under its 3.00 x 3.00 m mat, allowable {:.0} kPa", kpa + 1.0))
+        );
+        let not = GroundSpec { allowable_kpa: Some(kpa - 1.0), ..bears };
+        assert!(most.needs_checking(Some(&not)));
+        assert!(most.said(Some(&not)).contains("MORE THAN THE"), "{}", most.said(Some(&not)));
+        let unknown = GroundSpec { allowable_kpa: None, ..bears };
+        assert!(!most.needs_checking(Some(&unknown)) && !most.needs_checking(None));
+        assert!(most.said(Some(&unknown)).ends_with("(no allowable pressure given: ground allowable_kpa)"));
+        // A tower crane has no outriggers.
+        let tower = crate::test_lift("tower-hh-60");
+        let t = tower.start();
+        assert!(
+            pads_during(&tower, &Move { joint: Joint::Swing, from: t, to: Config { swing_rad: 1.0, ..t } }).is_none()
+        );
     }
 }
