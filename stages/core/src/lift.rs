@@ -208,6 +208,15 @@ impl LiftTask {
         crate::outriggers::pad_loads(&self.crane, c.swing_rad, c.radial, self.gross_kg(), self.counterweight_kg)
     }
 
+    /// The counterweight the outrigger loads are worked out with (kg), and
+    /// whether the lift says it (`crane counterweight_t`) rather than the
+    /// crane file; `None` where there are no masses.
+    pub fn counterweight_used_kg(&self) -> Option<(f64, bool)> {
+        let crate::crane::CraneKind::Luffing(l) = &self.crane.model.kind else { return None };
+        let file = l.masses?.counterweight_t * KG_PER_TONNE;
+        Some(self.counterweight_kg.map_or((file, false), |kg| (kg, true)))
+    }
+
     /// Capacity after the configured reduction.
     pub fn effective_capacity_kg(&self, chart_kg: f64) -> f64 {
         chart_kg * (1.0 - self.capacity_reduction_pct / 100.0)
@@ -647,9 +656,11 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         };
         let t = with("{ mat_m = [2.0, 2.0], allowable_kpa = 250.0 }", ", counterweight_t = 20.0", "ltm-1100").unwrap();
         assert_eq!(t.counterweight_kg, Some(20_000.0));
+        assert_eq!(t.counterweight_used_kg(), Some((20_000.0, true)));
         assert_eq!(t.ground.unwrap().mat_m, [2.0, 2.0]);
         let light = t.pad_loads(&t.pick).unwrap().total_kg;
         let full = with("{ mat_m = [2.0, 2.0] }", "", "ltm-1100").unwrap();
+        assert_eq!(full.counterweight_used_kg(), Some((37_000.0, false)));
         assert!((full.pad_loads(&full.pick).unwrap().total_kg - light - 17_000.0).abs() < 1e-6);
         let e = with("{ mat_m = [0.0, 2.0] }", "", "ltm-1100").unwrap_err();
         assert!(e.contains("ground mat_m must be"), "{e}");

@@ -428,10 +428,17 @@ pub fn document(
         ),
     ];
     if let Some((n, p)) = sm.highest_pad {
+        let counterweight = match sm.pads_counterweight {
+            Some((kg, true)) => format!(" with the lift's counterweight, {:.1} t", kg / 1000.0),
+            Some((kg, false)) => {
+                format!(" with its counterweight, {:.1} t (crane counterweight_t sets the one rigged)", kg / 1000.0)
+            }
+            None => String::new(),
+        };
         rows.push((
             "Outrigger pads",
             format!(
-                "in step {n}, the most: {}; an estimate from the crane file's masses (sign-off page)",
+                "in step {n}, the most: {}; an estimate from the crane file's masses{counterweight} (sign-off page)",
                 p.said(task.ground.as_ref())
             ),
         ));

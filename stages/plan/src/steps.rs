@@ -283,6 +283,10 @@ pub struct Summary {
     /// The steps in which the crane file's masses would tip the crane.
     #[serde(default)]
     pub pads_tip_in: Vec<usize>,
+    /// The counterweight the pads' loads were worked out with (kg), and
+    /// whether the lift said it ([`LiftTask::counterweight_used_kg`]).
+    #[serde(default)]
+    pub pads_counterweight: Option<(f64, bool)>,
     /// The lift's mats and ground, for saying the pressure.
     #[serde(default)]
     pub ground: Option<GroundSpec>,
@@ -398,6 +402,11 @@ impl Summary {
             many => format!(" (the crane would tip in {} steps)", many.len()),
         };
         let ground = self.ground.as_ref();
+        let counterweight = match self.pads_counterweight {
+            Some((kg, true)) => format!(", with the lift's {:.1} t counterweight", kg / 1000.0),
+            Some((kg, false)) => format!(", with the crane file's {:.1} t counterweight", kg / 1000.0),
+            None => String::new(),
+        };
         Some(if brief {
             format!(
                 "outrigger pads at their most (an estimate from the crane file's masses): step {n}{tips}, {}",
@@ -405,7 +414,7 @@ impl Summary {
             )
         } else {
             format!(
-                "outrigger pads (estimated from the crane file's masses) at their most: in step {n}{tips}, {}; the crane manufacturer's outrigger loads govern",
+                "outrigger pads (estimated from the crane file's masses{counterweight}) at their most: in step {n}{tips}, {}; the crane manufacturer's outrigger loads govern",
                 p.said(ground)
             )
         })
@@ -472,6 +481,7 @@ pub fn summary(task: &LiftTask, steps: &[Step], verdict: &Verdict) -> Summary {
         clearance_m: task.clearance_m,
         highest_pad: None,
         pads_tip_in: Vec::new(),
+        pads_counterweight: task.counterweight_used_kg(),
         ground: task.ground,
     };
     for st in steps {
