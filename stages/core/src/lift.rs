@@ -205,7 +205,16 @@ impl LiftTask {
     /// the gross load on the hook; `None` for a tower crane or a crane file
     /// without masses.
     pub fn pad_loads(&self, c: &Config) -> Option<crate::outriggers::PadLoads> {
-        crate::outriggers::pad_loads(&self.crane, c.swing_rad, c.radial, self.gross_kg(), self.counterweight_kg)
+        self.pad_loads_hanging(c, self.gross_kg())
+    }
+
+    /// [`LiftTask::pad_loads`] with `hanging_kg` on the hook. Where the chart's
+    /// deductions weigh (a stowed jib on the boom, a heavier hook block) the
+    /// lift does not say: at the hook they load the pads in front of the
+    /// crane more, and elsewhere those behind it, so a pad's most is the
+    /// higher of the gross load and the gross load less the deductions.
+    pub fn pad_loads_hanging(&self, c: &Config, hanging_kg: f64) -> Option<crate::outriggers::PadLoads> {
+        crate::outriggers::pad_loads(&self.crane, c.swing_rad, c.radial, hanging_kg, self.counterweight_kg)
     }
 
     /// The counterweight the outrigger loads are worked out with (kg), and

@@ -70,7 +70,9 @@ const PAD_SAMPLE_RAD: f64 = std::f64::consts::PI / 360.0;
 
 /// The pads' most during a move: their loads at both ends and every half
 /// degree of swing and luff between (hoisting and turning the load change
-/// none of them).
+/// none of them), each the higher of the gross load on the hook and the
+/// gross load less the chart's deductions
+/// ([`LiftTask::pad_loads_hanging`]).
 pub fn pads_during(task: &LiftTask, m: &Move) -> Option<StepPads> {
     let (a, b) = (m.from.to_array(), m.to.to_array());
     let turn = (b[0] - a[0]).abs() + if task.crane.model.is_tower() { 0.0 } else { (b[1] - a[1]).abs() };
@@ -79,7 +81,8 @@ pub fn pads_during(task: &LiftTask, m: &Move) -> Option<StepPads> {
     for i in 0..=n {
         let t = i as f64 / n as f64;
         let c = Config::from_array(std::array::from_fn(|k| a[k] + (b[k] - a[k]) * t));
-        let loads = task.pad_loads(&c)?;
+        let (loads, without) = (task.pad_loads(&c)?, task.pad_loads_hanging(&c, task.gross_kg() - task.deductions_kg)?);
+        let loads = if without.highest().1 > loads.highest().1 { without } else { loads };
         let (pad, load_kg) = loads.highest();
         let here = StepPads {
             pad,
@@ -599,6 +602,15 @@ mod tests {
         let ends = task.pad_loads(&m.from).unwrap().highest().1.max(task.pad_loads(&m.to).unwrap().highest().1);
         assert!(fine > ends + 1000.0, "{fine} {ends}");
         assert!(most.load_kg <= fine + 1e-6 && most.load_kg > fine * (1.0 - 1e-6), "{most:?} {fine}");
+        // The chart's deductions (somewhere on the crane, the lift does not
+        // say where) weigh least on a rear pad at the hook: its most is the
+        // one without them.
+        let mut deducting = task.clone();
+        deducting.deductions_kg = 8000.0;
+        let rear = pads_during(&deducting, &m).unwrap();
+        assert_eq!((rear.pad, rear.load_kg), (most.pad, most.load_kg));
+        let at_hook = deducting.pad_loads(&at(-45.0)).unwrap().highest().1;
+        assert!(at_hook < most.load_kg - 1000.0, "{at_hook} {most:?}");
         let mut up = m.from.to_array();
         up[Joint::Hoist.index()] -= 3.0;
         let hoist = Move { joint: Joint::Hoist, from: m.from, to: Config::from_array(up) };
