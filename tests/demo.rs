@@ -266,6 +266,29 @@ liftoff_m = 0.5
     let (cover, text) = planned_with(&dir, &beside);
     assert!(cover.contains("where the plant model stands (the scans barely meet it)"), "{cover}");
     assert!(text.contains("THE PLANT MODEL AND THE SCANS BARELY MEET"), "{text}");
+    // A drain buried 1.2 m under the rear left pad (the plant model's
+    // origin is 500 m east and 300 m north): named on the sign-off page,
+    // and the cover asks to check it first.
+    let drain = dir.join("plant").join("ug-drain.obj");
+    let (x, y) = ([496.5, 497.0], [305.0, 306.5]);
+    let (z_lo, z_hi) = (-1.8, -1.2);
+    let mut obj = String::from("o UG-DRAIN-1\n");
+    for i in 0..8 {
+        obj += &format!("v {} {} {}\n", x[i & 1], y[(i >> 1) & 1], if i >> 2 == 0 { z_lo } else { z_hi });
+    }
+    obj += "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
+    std::fs::write(&drain, obj).unwrap();
+    let with_obj = t13.replace("[plant]\n", "[plant]\nunit = \"m\"\nup_axis = \"z\"\n");
+    assert_ne!(with_obj, t13);
+    let (cover, text) = planned_with(&dir, &with_obj);
+    assert!(cover.contains("what lies in the ground under the outrigger pads"), "{cover}");
+    assert!(
+        text.contains(
+            "IN THE GROUND UNDER THE OUTRIGGER PADS: UG-DRAIN-1 1.20 m below the set-up level under the rear left pad"
+        ),
+        "{text}"
+    );
+    std::fs::remove_file(&drain).unwrap();
     // Mats too small for what the ground may bear: the cover asks to check
     // the ground under the pads first.
     let small_mats = t13.replace("mat_m = [2.5, 2.5]", "mat_m = [1.5, 1.5]");

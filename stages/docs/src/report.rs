@@ -183,6 +183,9 @@ fn checks_before_signing(
     if !sm.passes_left_out.is_empty() {
         v.push("what [plant] exclude left out of the model, in the lift's way".to_string());
     }
+    if !sm.under_pads.is_empty() {
+        v.push("what lies in the ground under the outrigger pads".to_string());
+    }
     if !sm.pads_tip_in.is_empty() {
         v.push("the crane file's masses (they would tip the crane)".to_string());
     } else if sm.highest_pad.is_some_and(|(_, p)| p.needs_checking(task.ground.as_ref())) {
@@ -856,6 +859,10 @@ pub fn document(
         ),
     };
     let set_up_text = match plan.summary.pads_said_briefly() {
+        Some(said) => format!("{set_up_text} {}", sentence(&said)),
+        None => set_up_text,
+    };
+    let set_up_text = match plan.summary.under_pads_said() {
         Some(said) => format!("{set_up_text} {}", sentence(&said)),
         None => set_up_text,
     };

@@ -827,6 +827,7 @@ impl RunSummary {
             .chain(self.lifts.iter().flat_map(|s| {
                 std::iter::once(s.line())
                     .chain(s.pads_line())
+                    .chain(s.under_pads_line())
                     .chain(s.other_loads_line())
                     .chain(s.coverage_line())
                     .chain(s.load_as_scanned_line())
@@ -912,6 +913,7 @@ pub fn run(
             (e, _) => e,
         })?;
         plan.summary.coverage = Some(coverage::of_lift(task, &plan.moves, &world, &scanned_loads));
+        plan.summary.under_pads = validate::under_pads(task, &world);
         // The support's top under a set position inside a load's cut-out
         // went with the scanned load.
         let set_box = task.crane.load_obb(&task.set, &task.load).expanded(s.support_m);

@@ -290,6 +290,10 @@ pub struct Summary {
     /// whether the lift said it ([`LiftTask::counterweight_used_kg`]).
     #[serde(default)]
     pub pads_counterweight: Option<(f64, bool)>,
+    /// What stands in the ground under the outrigger pads
+    /// ([`crate::validate::under_pads`]).
+    #[serde(default)]
+    pub under_pads: Vec<crate::validate::UnderPad>,
     /// The lift's mats and ground, for saying the pressure.
     #[serde(default)]
     pub ground: Option<GroundSpec>,
@@ -423,6 +427,21 @@ impl Summary {
         })
     }
 
+    /// [`Summary::under_pads`] in words, where anything is there.
+    pub fn under_pads_said(&self) -> Option<String> {
+        (!self.under_pads.is_empty()).then(|| {
+            format!(
+                "IN THE GROUND UNDER THE OUTRIGGER PADS: {}: CHECK what it is and what it bears before the crane is set up (a buried pipe, duct, culvert, pit or foundation edge under a loaded pad can give way)",
+                self.under_pads.iter().map(|u| u.said()).collect::<Vec<_>>().join("; ")
+            )
+        })
+    }
+
+    /// [`Summary::under_pads_said`] for the run's output.
+    pub fn under_pads_line(&self) -> Option<String> {
+        self.under_pads_said().map(|said| format!("lift {}: {said}", self.lift))
+    }
+
     /// [`Summary::pads_said`] for the run's output.
     pub fn pads_line(&self) -> Option<String> {
         self.pads_said().map(|said| format!("lift {}: {said}", self.lift))
@@ -485,6 +504,7 @@ pub fn summary(task: &LiftTask, steps: &[Step], verdict: &Verdict) -> Summary {
         highest_pad: None,
         pads_tip_in: Vec::new(),
         pads_counterweight: task.counterweight_used_kg(),
+        under_pads: Vec::new(),
         ground: task.ground,
     };
     for st in steps {

@@ -712,6 +712,93 @@ fn set_up_ground(task: &LiftTask, world: &World) -> (Option<SetUpGround>, Option
     (Some(g), problem)
 }
 
+/// What stands in the ground under an outrigger pad: the plant model's
+/// object or the scans' points (ground left out) in the pad's zone
+/// ([`under_pads`]).
+#[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize)]
+pub struct UnderPad {
+    pub pad: liftplan_core::outriggers::Pad,
+    /// The plant model's group, or "scanned structure".
+    pub object: String,
+    /// How far below the set-up level its highest part in the zone lies (m).
+    pub depth_m: f64,
+    /// The zone: how far it reaches from the pad's centre each way in plan,
+    /// and how deep below the set-up level (m).
+    pub zone_half_m: f64,
+    pub zone_depth_m: f64,
+}
+
+impl UnderPad {
+    pub fn said(&self) -> String {
+        // Its top at the zone's top may lie higher: the zone starts there.
+        let top = if self.depth_m <= SET_UP_LEVEL_TOLERANCE_M + 2e-3 {
+            format!("reaching up to {SET_UP_LEVEL_TOLERANCE_M:.2} m below the set-up level or higher")
+        } else {
+            format!("{:.2} m below the set-up level", self.depth_m)
+        };
+        format!(
+            "{} {top} under the {} pad (within {:.1} m of its centre and {:.1} m deep)",
+            self.object,
+            self.pad.name(),
+            self.zone_half_m,
+            self.zone_depth_m
+        )
+    }
+}
+
+/// Where a lift gives no mats, the pad's own float, as a square (m).
+pub const PAD_FLOAT_M: f64 = 1.0;
+
+/// What stands in the ground under each outrigger pad of a mobile crane,
+/// deeper than [`SET_UP_LEVEL_TOLERANCE_M`] below the set-up level (the
+/// ground the crane stands on lies within that): a buried pipe, a duct, a
+/// culvert, a foundation's edge or a pit under a loaded pad can give way or
+/// be crushed. The zone is where a pad's load spreads in the ground, as the
+/// common rule has it: down to twice the mat's larger side (at least 2 m),
+/// widening by one in two, as a box of the width it reaches at its foot.
+/// The nearest thing in each zone, with the depth of its top, or none.
+/// A tower crane stands on its foundation: nothing.
+pub fn under_pads(task: &LiftTask, world: &World) -> Vec<UnderPad> {
+    use liftplan_core::outriggers::{Pad, pad_at};
+    if task.crane.model.is_tower() {
+        return Vec::new();
+    }
+    let mat = task.ground.map_or([PAD_FLOAT_M; 2], |g| g.mat_m);
+    let zone_depth_m = (2.0 * mat[0].max(mat[1])).max(2.0);
+    let zone_half_m = mat[0].max(mat[1]) / 2.0 + zone_depth_m / 2.0;
+    let level = task.crane.placement.z_m;
+    let top = level - SET_UP_LEVEL_TOLERANCE_M;
+    let bottom = level - zone_depth_m;
+    // The zone from `from_z` up to its top.
+    let zone = |at: [f64; 2], from_z: f64| {
+        Obb::new(
+            liftplan_core::frame::Point3::new(at[0], at[1], (top + from_z) / 2.0),
+            liftplan_core::frame::Mat3::identity(),
+            liftplan_core::frame::Vec3::new(zone_half_m, zone_half_m, (top - from_z) / 2.0),
+        )
+    };
+    let meets = |at: [f64; 2], from_z: f64| {
+        let n = nearest(world, &zone(at, from_z), f64::INFINITY, 0.0);
+        (n.distance_m <= 1e-9).then_some(n.object)
+    };
+    Pad::ALL
+        .iter()
+        .filter_map(|&pad| {
+            let at = pad_at(&task.crane, pad)?;
+            meets(at, bottom)?;
+            // The top of what is there: the highest foot of the zone that
+            // still meets it.
+            let (mut lo, mut hi) = (bottom, top - 1e-3);
+            while hi - lo > 1e-3 {
+                let mid = 0.5 * (lo + hi);
+                if meets(at, mid).is_some() { lo = mid } else { hi = mid }
+            }
+            let object = meets(at, lo)?;
+            Some(UnderPad { pad, object, depth_m: level - lo, zone_half_m, zone_depth_m })
+        })
+        .collect()
+}
+
 /// The obstacles, as the validator sees them.
 pub struct World {
     pub mesh: Option<ParryMesh>,
@@ -2023,6 +2110,60 @@ mod tests {
                 prop_assert!(d >= OWN_CLEARANCE_M, "{kind:?} {d} m from the boom at {c:?}");
             }
         }
+    }
+
+    /// What lies in the ground under the outrigger pads: a pipe buried
+    /// under one pad is named with the depth of its top, in the zone the
+    /// pad's load spreads into; nothing within the set-up tolerance, beyond
+    /// the zone or in the scanned ground is; a pit's scanned sides are; a
+    /// tower crane has no pads.
+    #[test]
+    fn what_lies_in_the_ground_under_the_pads_is_named() {
+        use liftplan_core::outriggers::{Pad, pad_at};
+        let mut task = crate::test_lift("ac-700");
+        task.ground = Some(liftplan_core::lift::GroundSpec { mat_m: [2.0, 2.0], allowable_kpa: None });
+        let at = pad_at(&task.crane, Pad::RearLeft).unwrap();
+        // The zone: 4 m deep, within 1 + 2 = 3 m of the pad's centre.
+        let buried = |offset_m: f64, top_z: f64, height_m: f64| {
+            let mut mesh = TriMesh::default();
+            let g = mesh.group_id("/UG-DRAIN-1");
+            let (x, y) = (at[0] + offset_m, at[1]);
+            mesh.add_box(g, [x - 0.3, y - 1.0, top_z - height_m], [x + 0.3, y + 1.0, top_z]);
+            World::new(&mesh, &[], &[]).unwrap()
+        };
+        let pipe = |offset_m: f64, top_z: f64| buried(offset_m, top_z, 0.6);
+        let under = under_pads(&task, &pipe(1.0, -1.2));
+        assert_eq!(under.len(), 1, "{under:?}");
+        let u = &under[0];
+        assert_eq!((u.pad, u.object.as_str()), (Pad::RearLeft, "/UG-DRAIN-1"));
+        assert!((u.depth_m - 1.2).abs() < 2e-3 && u.zone_half_m == 3.0 && u.zone_depth_m == 4.0, "{u:?}");
+        assert!(
+            u.said().starts_with("/UG-DRAIN-1 1.20 m below the set-up level under the rear left pad"),
+            "{}",
+            u.said()
+        );
+        // Within the set-up tolerance (the ground the crane stands on), or
+        // beyond the zone: not named.
+        assert!(under_pads(&task, &buried(1.0, -0.1, 0.35)).is_empty());
+        // A pipe whose top lies within it and its foot below it: named, at
+        // the zone's top.
+        let high = &under_pads(&task, &pipe(1.0, -0.3))[0];
+        assert!((high.depth_m - 0.5).abs() < 2e-3, "{high:?}");
+        assert!(high.said().starts_with("/UG-DRAIN-1 reaching up to 0.50 m below the set-up level or higher under"));
+        assert!(under_pads(&task, &pipe(3.5, -1.2)).is_empty());
+        assert!(under_pads(&task, &pipe(1.0, -4.7)).is_empty());
+        // A pit's scanned sides under the pad are; its scanned floor, ground,
+        // is not.
+        let pit = [[at[0], at[1], -1.5], [at[0] + 0.5, at[1], -0.8]];
+        let seen = under_pads(&task, &World::new(&TriMesh::default(), &pit, &[true, false]).unwrap());
+        assert_eq!(seen.len(), 1, "{seen:?}");
+        assert!(seen[0].object == "scanned structure" && (seen[0].depth_m - 0.8).abs() < 2e-3, "{seen:?}");
+        assert!(under_pads(&task, &World::new(&TriMesh::default(), &pit, &[true, true]).unwrap()).is_empty());
+        // Without mats, the pad's float: a zone of 2 m, within 1.5 m.
+        task.ground = None;
+        assert!(under_pads(&task, &pipe(1.0, -1.2))[0].zone_half_m == 1.5);
+        assert!(under_pads(&task, &pipe(2.0, -1.2)).is_empty());
+        assert!(under_pads(&crate::test_lift("tower-hh-60"), &pipe(0.0, -1.2)).is_empty());
     }
 
     #[test]
