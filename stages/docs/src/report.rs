@@ -431,13 +431,7 @@ pub fn document(
         ),
     ];
     if let Some((n, p)) = sm.highest_pad {
-        let counterweight = match sm.pads_counterweight {
-            Some((kg, true)) => format!(" with the lift's counterweight, {:.1} t", kg / 1000.0),
-            Some((kg, false)) => {
-                format!(" with its counterweight, {:.1} t (crane counterweight_t sets the one rigged)", kg / 1000.0)
-            }
-            None => String::new(),
-        };
+        let counterweight = sm.pads_counterweight_said().map(|c| format!(" with {c}")).unwrap_or_default();
         rows.push((
             "Outrigger pads",
             format!(

@@ -65,7 +65,8 @@ pub struct StepPads {
 
 /// Swing and luff between the samples of [`pads_during`] (rad): a pad's
 /// load changes with the cosine of the swing, so its most between two
-/// samples a degree apart is within 0.004 % of theirs.
+/// samples half a degree apart exceeds theirs by at most 1 - cos 0.25°
+/// (0.001 %) of its swing's share.
 const PAD_SAMPLE_RAD: f64 = std::f64::consts::PI / 360.0;
 
 /// The pads' most during a move: their loads at both ends and every half
@@ -409,11 +410,7 @@ impl Summary {
             many => format!(" (the crane would tip in {} steps)", many.len()),
         };
         let ground = self.ground.as_ref();
-        let counterweight = match self.pads_counterweight {
-            Some((kg, true)) => format!(", with the lift's {:.1} t counterweight", kg / 1000.0),
-            Some((kg, false)) => format!(", with the crane file's {:.1} t counterweight", kg / 1000.0),
-            None => String::new(),
-        };
+        let counterweight = self.pads_counterweight_said().map(|c| format!(", with {c}")).unwrap_or_default();
         Some(if brief {
             format!(
                 "outrigger pads at their most (an estimate from the crane file's masses): step {n}{tips}, {}",
@@ -424,6 +421,19 @@ impl Summary {
                 "outrigger pads (estimated from the crane file's masses{counterweight}) at their most: in step {n}{tips}, {}; the crane manufacturer's outrigger loads govern",
                 p.said(ground)
             )
+        })
+    }
+
+    /// The counterweight the pads' estimate used, and whose it is: "the
+    /// lift's 70.0 t counterweight", or the crane file's, which the lift can
+    /// change.
+    pub fn pads_counterweight_said(&self) -> Option<String> {
+        self.pads_counterweight.map(|(kg, lifts)| match lifts {
+            true => format!("the lift's {:.1} t counterweight", kg / 1000.0),
+            false => format!(
+                "the crane file's {:.1} t counterweight (crane counterweight_t sets the one rigged)",
+                kg / 1000.0
+            ),
         })
     }
 
