@@ -289,6 +289,27 @@ liftoff_m = 0.5
         "{text}"
     );
     std::fs::remove_file(&drain).unwrap();
+    // The chart configuration with the 70 t counterweight: the pads are
+    // worked out with the counterweight its name states, and the lift's
+    // own counterweight_t that differs from it is to be checked first.
+    let cw70 = t13.replace("chart_config = \"Main boom 360\" }", "chart_config = \"Main boom 360 CW 70t\" }");
+    assert_ne!(cw70, t13);
+    let (cover, _) = planned_with(&dir, &cw70);
+    assert!(
+        cover.contains("an estimate from the crane file's masses with the 70.0 t counterweight its chart configuration 'Main boom 360 CW 70t' names"),
+        "{cover}"
+    );
+    let most_t = |cover: &str| {
+        let at = cover.find("Outrigger pads in step").unwrap();
+        let from = at + cover[at..].find("the most: ").unwrap() + "the most: ".len();
+        cover[from..from + cover[from..].find(" t (").unwrap()].parse::<f64>().unwrap()
+    };
+    let with_70 = most_t(&cover);
+    let cw140 = cw70.replace("\"Main boom 360 CW 70t\" }", "\"Main boom 360 CW 70t\", counterweight_t = 140.0 }");
+    let (cover, _) = planned_with(&dir, &cw140);
+    // The rear pads carry 70 t more between them.
+    assert!(most_t(&cover) > with_70 + 20.0, "{with_70} t with 70 t of counterweight: {cover}");
+    assert!(cover.contains("the counterweight (the lift's is not its chart configuration's)"), "{cover}");
     // Mats too small for what the ground may bear: the cover asks to check
     // the ground under the pads first.
     let small_mats = t13.replace("mat_m = [2.5, 2.5]", "mat_m = [1.5, 1.5]");

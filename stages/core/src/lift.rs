@@ -85,6 +85,49 @@ pub struct GroundSpec {
     pub allowable_kpa: Option<f64>,
 }
 
+/// Whose counterweight the outrigger loads are worked out with
+/// ([`LiftTask::counterweight_used_kg`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum CounterweightFrom {
+    /// The lift's `crane counterweight_t`.
+    Lift,
+    /// The one the lift's chart configuration's name states.
+    ChartConfig,
+    /// The crane file's `[masses] counterweight_t`.
+    CraneFile,
+}
+
+/// The counterweight a chart configuration's name states, in kg: "Main
+/// boom 360 CW 70t", "counterweight 42.5 t", "Ballast: 140 t",
+/// "Gegengewicht 70 t". `None` where it states none, or two that differ.
+pub fn counterweight_named_kg(name: &str) -> Option<f64> {
+    let lower = name.to_lowercase();
+    let mut found: Option<f64> = None;
+    for key in ["counterweight", "counter-weight", "counter weight", "ballast", "gegengewicht", "cw"] {
+        let mut from = 0;
+        while let Some(i) = lower[from..].find(key).map(|i| i + from) {
+            from = i + key.len();
+            // A whole word: "cw" not inside "screw".
+            if lower[..i].chars().next_back().is_some_and(char::is_alphanumeric) {
+                continue;
+            }
+            let rest = lower[from..].trim_start_matches([' ', ':', '=', '\u{a0}']);
+            let digits = rest.find(|c: char| !(c.is_ascii_digit() || c == '.' || c == ',')).unwrap_or(rest.len());
+            let after = rest[digits..].trim_start();
+            let is_tonnes = after.starts_with('t') && !after[1..].starts_with(char::is_alphanumeric);
+            let Ok(t) = rest[..digits].replace(',', ".").parse::<f64>() else { continue };
+            if !(is_tonnes && t.is_finite() && t > 0.0 && t <= 10_000.0) {
+                continue;
+            }
+            match found {
+                Some(f) if (f - t * KG_PER_TONNE).abs() > 1e-6 => return None,
+                _ => found = Some(t * KG_PER_TONNE),
+            }
+        }
+    }
+    found
+}
+
 /// Pick or set: a load pose (`x_m`, `y_m`, `z_m`, `yaw_deg`) or a configuration
 /// (`swing_deg`, `luff_deg` or `trolley_m`, `hoist_m`, `yaw_deg`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -214,16 +257,30 @@ impl LiftTask {
     /// crane more, and elsewhere those behind it, so a pad's most is the
     /// higher of the gross load and the gross load less the deductions.
     pub fn pad_loads_hanging(&self, c: &Config, hanging_kg: f64) -> Option<crate::outriggers::PadLoads> {
-        crate::outriggers::pad_loads(&self.crane, c.swing_rad, c.radial, hanging_kg, self.counterweight_kg)
+        let counterweight_kg = self.counterweight_used_kg().map(|(kg, _)| kg);
+        crate::outriggers::pad_loads(&self.crane, c.swing_rad, c.radial, hanging_kg, counterweight_kg)
     }
 
     /// The counterweight the outrigger loads are worked out with (kg), and
-    /// whether the lift says it (`crane counterweight_t`) rather than the
-    /// crane file; `None` where there are no masses.
-    pub fn counterweight_used_kg(&self) -> Option<(f64, bool)> {
+    /// whose it is: the lift's (`crane counterweight_t`), else the one its
+    /// chart configuration's name states ([`counterweight_named_kg`]: the
+    /// chart is read for what is rigged), else the crane file's; `None`
+    /// where there are no masses.
+    pub fn counterweight_used_kg(&self) -> Option<(f64, CounterweightFrom)> {
         let crate::crane::CraneKind::Luffing(l) = &self.crane.model.kind else { return None };
         let file = l.masses?.counterweight_t * KG_PER_TONNE;
-        Some(self.counterweight_kg.map_or((file, false), |kg| (kg, true)))
+        Some(match (self.counterweight_kg, counterweight_named_kg(&self.chart_config)) {
+            (Some(kg), _) => (kg, CounterweightFrom::Lift),
+            (None, Some(kg)) => (kg, CounterweightFrom::ChartConfig),
+            (None, None) => (file, CounterweightFrom::CraneFile),
+        })
+    }
+
+    /// Where the lift's `crane counterweight_t` is not what its chart
+    /// configuration's name states (more than 0.05 t apart): the two (kg).
+    pub fn counterweight_disagrees_kg(&self) -> Option<[f64; 2]> {
+        let (lift, named) = (self.counterweight_kg?, counterweight_named_kg(&self.chart_config)?);
+        ((lift - named).abs() > 50.0).then_some([lift, named])
     }
 
     /// Capacity after the configured reduction.
@@ -665,11 +722,11 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         };
         let t = with("{ mat_m = [2.0, 2.0], allowable_kpa = 250.0 }", ", counterweight_t = 20.0", "ltm-1100").unwrap();
         assert_eq!(t.counterweight_kg, Some(20_000.0));
-        assert_eq!(t.counterweight_used_kg(), Some((20_000.0, true)));
+        assert_eq!(t.counterweight_used_kg(), Some((20_000.0, CounterweightFrom::Lift)));
         assert_eq!(t.ground.unwrap().mat_m, [2.0, 2.0]);
         let light = t.pad_loads(&t.pick).unwrap().total_kg;
         let full = with("{ mat_m = [2.0, 2.0] }", "", "ltm-1100").unwrap();
-        assert_eq!(full.counterweight_used_kg(), Some((37_000.0, false)));
+        assert_eq!(full.counterweight_used_kg(), Some((37_000.0, CounterweightFrom::CraneFile)));
         assert!((full.pad_loads(&full.pick).unwrap().total_kg - light - 17_000.0).abs() < 1e-6);
         let e = with("{ mat_m = [0.0, 2.0] }", "", "ltm-1100").unwrap_err();
         assert!(e.contains("ground mat_m must be"), "{e}");
@@ -679,6 +736,42 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         assert!(e.contains("counterweight_t must be a mass"), "{e}");
         let e = with("{ mat_m = [2.0, 2.0] }", "", "tower-hh-60").unwrap_err();
         assert!(e.contains("gives no [masses]") && e.contains("a tower crane has no outriggers"), "{e}");
+    }
+
+    /// A chart configuration's name may state its counterweight: read so,
+    /// and only so ("CW 70t", not "screw 70 t", "70 to 80 t" or two that
+    /// differ).
+    #[test]
+    fn a_chart_configurations_counterweight_is_read_from_its_name() {
+        for (name, kg) in [
+            ("Main boom 360 CW 70t", Some(70_000.0)),
+            ("Main boom, counterweight 42.5 t, 360°", Some(42_500.0)),
+            ("Ballast: 140 t", Some(140_000.0)),
+            ("Hauptausleger Gegengewicht 70 t", Some(70_000.0)),
+            ("CW 70t (counterweight 70 t)", Some(70_000.0)),
+            ("Main boom 360", None),
+            ("screw 70 t", None),
+            ("CW 70 to 80 t", None),
+            ("CW 70t / CW 140t", None),
+            ("CW 70 kg", None),
+        ] {
+            assert_eq!(counterweight_named_kg(name), kg, "{name}");
+        }
+        let with = |config: &str, counterweight: &str| {
+            let text = SPEC.replace("chart_config = \"main\"", &format!("chart_config = \"{config}\"{counterweight}"));
+            toml::from_str::<LiftSpec>(&text).unwrap().resolve(crate::crane::builtin("ltm-1100").unwrap()).unwrap()
+        };
+        let t = with("main CW 20t", "");
+        assert_eq!(t.counterweight_used_kg(), Some((20_000.0, CounterweightFrom::ChartConfig)));
+        // The pads are worked out with it: 17 t less than the file's 37 t.
+        let file = with("main", "");
+        let total = |t: &LiftTask| t.pad_loads(&t.pick).unwrap().total_kg;
+        assert!((total(&file) - total(&t) - 17_000.0).abs() < 1e-6);
+        assert_eq!(t.counterweight_disagrees_kg(), None);
+        let t = with("main CW 20t", ", counterweight_t = 37.0");
+        assert_eq!(t.counterweight_used_kg(), Some((37_000.0, CounterweightFrom::Lift)));
+        assert_eq!(t.counterweight_disagrees_kg(), Some([37_000.0, 20_000.0]));
+        assert_eq!(with("main CW 20t", ", counterweight_t = 20.0").counterweight_disagrees_kg(), None);
     }
 
     #[test]

@@ -186,6 +186,9 @@ fn checks_before_signing(
     if !sm.under_pads.is_empty() {
         v.push("what lies in the ground under the outrigger pads".to_string());
     }
+    if sm.counterweight_disagrees_kg.is_some() {
+        v.push("the counterweight (the lift's is not its chart configuration's)".to_string());
+    }
     if !sm.pads_tip_in.is_empty() {
         v.push("the crane file's masses (they would tip the crane)".to_string());
     } else if sm.highest_pad.is_some_and(|(_, p)| p.needs_checking(task.ground.as_ref())) {

@@ -5,7 +5,7 @@
 use crate::path::Move;
 use crate::validate::Verdict;
 use liftplan_core::crane::Config;
-use liftplan_core::lift::{GroundSpec, LiftTask};
+use liftplan_core::lift::{CounterweightFrom, GroundSpec, LiftTask};
 use liftplan_core::outriggers::{G_M_S2, Pad, pressure_kpa};
 use liftplan_cspace::Joint;
 use serde::{Deserialize, Serialize};
@@ -288,9 +288,16 @@ pub struct Summary {
     #[serde(default)]
     pub pads_tip_in: Vec<usize>,
     /// The counterweight the pads' loads were worked out with (kg), and
-    /// whether the lift said it ([`LiftTask::counterweight_used_kg`]).
+    /// whose it is ([`LiftTask::counterweight_used_kg`]).
     #[serde(default)]
-    pub pads_counterweight: Option<(f64, bool)>,
+    pub pads_counterweight: Option<(f64, CounterweightFrom)>,
+    /// The lift's counterweight and the one its chart configuration's name
+    /// states, where they differ ([`LiftTask::counterweight_disagrees_kg`]).
+    #[serde(default)]
+    pub counterweight_disagrees_kg: Option<[f64; 2]>,
+    /// The lift's chart configuration, for saying whose counterweight.
+    #[serde(default)]
+    pub chart_config: String,
     /// What stands in the ground under the outrigger pads
     /// ([`crate::validate::under_pads`]).
     #[serde(default)]
@@ -428,12 +435,21 @@ impl Summary {
     /// lift's 70.0 t counterweight", or the crane file's, which the lift can
     /// change.
     pub fn pads_counterweight_said(&self) -> Option<String> {
-        self.pads_counterweight.map(|(kg, lifts)| match lifts {
-            true => format!("the lift's {:.1} t counterweight", kg / 1000.0),
-            false => format!(
-                "the crane file's {:.1} t counterweight (crane counterweight_t sets the one rigged)",
-                kg / 1000.0
+        let (kg, from) = self.pads_counterweight?;
+        let t = kg / 1000.0;
+        Some(match (from, self.counterweight_disagrees_kg) {
+            (CounterweightFrom::Lift, Some([_, named])) => format!(
+                "the lift's {t:.1} t counterweight, NOT THE {:.1} t ITS CHART CONFIGURATION '{}' NAMES: CHECK crane counterweight_t against what is rigged",
+                named / 1000.0,
+                self.chart_config
             ),
+            (CounterweightFrom::Lift, None) => format!("the lift's {t:.1} t counterweight"),
+            (CounterweightFrom::ChartConfig, _) => {
+                format!("the {t:.1} t counterweight its chart configuration '{}' names", self.chart_config)
+            }
+            (CounterweightFrom::CraneFile, _) => {
+                format!("the crane file's {t:.1} t counterweight (crane counterweight_t sets the one rigged)")
+            }
         })
     }
 
@@ -514,6 +530,8 @@ pub fn summary(task: &LiftTask, steps: &[Step], verdict: &Verdict) -> Summary {
         highest_pad: None,
         pads_tip_in: Vec::new(),
         pads_counterweight: task.counterweight_used_kg(),
+        counterweight_disagrees_kg: task.counterweight_disagrees_kg(),
+        chart_config: task.chart_config.clone(),
         under_pads: Vec::new(),
         ground: task.ground,
     };
