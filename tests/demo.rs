@@ -306,10 +306,15 @@ liftoff_m = 0.5
     };
     let with_70 = most_t(&cover);
     let cw140 = cw70.replace("\"Main boom 360 CW 70t\" }", "\"Main boom 360 CW 70t\", counterweight_t = 140.0 }");
-    let (cover, _) = planned_with(&dir, &cw140);
+    let (cover, text) = planned_with(&dir, &cw140);
     // The rear pads carry 70 t more between them.
     assert!(most_t(&cover) > with_70 + 20.0, "{with_70} t with 70 t of counterweight: {cover}");
     assert!(cover.contains("the counterweight (the lift's is not its chart configuration's)"), "{cover}");
+    // The sign-off page, where the cover sends the signer, says why.
+    assert!(
+        text.contains("(an estimate from the crane file's masses, with the lift's 140.0 t counterweight, NOT THE 70.0 t ITS CHART CONFIGURATION 'Main boom 360 CW 70t' NAMES: CHECK crane counterweight_t against what is rigged)"),
+        "{text}"
+    );
     // Mats too small for what the ground may bear: the cover asks to check
     // the ground under the pads first.
     let small_mats = t13.replace("mat_m = [2.5, 2.5]", "mat_m = [1.5, 1.5]");

@@ -419,8 +419,11 @@ impl Summary {
         let ground = self.ground.as_ref();
         let counterweight = self.pads_counterweight_said().map(|c| format!(", with {c}")).unwrap_or_default();
         Some(if brief {
+            // The counterweight only where it is to be checked (the cover
+            // gives it always).
+            let counterweight = if self.counterweight_disagrees_kg.is_some() { counterweight.as_str() } else { "" };
             format!(
-                "outrigger pads at their most (an estimate from the crane file's masses): step {n}{tips}, {}",
+                "outrigger pads at their most (an estimate from the crane file's masses{counterweight}): step {n}{tips}, {}",
                 p.said_briefly(ground)
             )
         } else {
