@@ -6,7 +6,8 @@
 //! site for one lift (position, heading, boom length) and maps a configuration to
 //! the OBB of every part, as in the thesis (ch. 4.2, 4.4.1: body, cockpit,
 //! counterweight, boom, load) plus the carrier, outriggers, hoist rope and hook
-//! block that a real site needs.
+//! block that a real site needs. A mobile crane's file may also give its
+//! [`Masses`], from which [`crate::outriggers`] estimates its pad loads.
 //!
 //! A [`Config`] is the thesis' 4-DOF configuration in SI units:
 //! * luffing mobile crane: (swing, luff angle, hoist rope length, load yaw);
