@@ -257,7 +257,7 @@ impl LiftTask {
     /// crane more, and elsewhere those behind it, so a pad's most is the
     /// higher of the gross load and the gross load less the deductions.
     pub fn pad_loads_hanging(&self, c: &Config, hanging_kg: f64) -> Option<crate::outriggers::PadLoads> {
-        let counterweight_kg = self.counterweight_used_kg().map(|(kg, _)| kg);
+        let (counterweight_kg, _) = self.counterweight_used_kg()?;
         crate::outriggers::pad_loads(&self.crane, c.swing_rad, c.radial, hanging_kg, counterweight_kg)
     }
 

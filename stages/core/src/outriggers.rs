@@ -18,6 +18,7 @@
 //! are not in it.
 
 use crate::crane::{CraneKind, CraneSetup};
+use crate::frame::{Vec3, rot_z};
 use serde::{Deserialize, Serialize};
 
 /// Standard gravity (m/s²), for pad loads in kilonewtons.
@@ -87,22 +88,26 @@ impl PadLoads {
 pub fn pad_at(setup: &CraneSetup, pad: Pad) -> Option<[f64; 2]> {
     let CraneKind::Luffing(l) = &setup.model.kind else { return None };
     let [sx, sy] = pad.signs();
-    let local =
-        [l.carrier.center_x_m + sx * l.outriggers.spread_length_m / 2.0, sy * l.outriggers.spread_width_m / 2.0];
-    let (sin, cos) = setup.placement.heading_rad.sin_cos();
-    Some([setup.placement.x_m + local[0] * cos - local[1] * sin, setup.placement.y_m + local[0] * sin + local[1] * cos])
+    let local = Vec3::new(
+        l.carrier.center_x_m + sx * l.outriggers.spread_length_m / 2.0,
+        sy * l.outriggers.spread_width_m / 2.0,
+        0.0,
+    );
+    // Placed as the carrier and outriggers are (`CraneSetup::part`).
+    let at = setup.slew_center() + rot_z(setup.placement.heading_rad) * local;
+    Some([at.x, at.y])
 }
 
 /// The pads' loads of a mobile crane at swing `swing_rad` and luff
-/// `luff_rad`, with `hanging_kg` on the hook and the counterweight
-/// `counterweight_kg` (the crane file's where `None`). `None` for a tower
-/// crane or a crane file without masses.
+/// `luff_rad`, with `hanging_kg` on the hook and `counterweight_kg` rigged
+/// (which one is the lift's to say: [`crate::lift::LiftTask::counterweight_used_kg`]).
+/// `None` for a tower crane or a crane file without masses.
 pub fn pad_loads(
     setup: &CraneSetup,
     swing_rad: f64,
     luff_rad: f64,
     hanging_kg: f64,
-    counterweight_kg: Option<f64>,
+    counterweight_kg: f64,
 ) -> Option<PadLoads> {
     let CraneKind::Luffing(l) = &setup.model.kind else { return None };
     let m = l.masses?;
@@ -115,10 +120,7 @@ pub fn pad_loads(
     let parts = [
         (m.carrier_t * t, [l.carrier.center_x_m, l.carrier.center_y_m]),
         (m.superstructure_t * t, turned(l.superstructure.center_x_m, l.superstructure.center_y_m)),
-        (
-            counterweight_kg.unwrap_or(m.counterweight_t * t),
-            turned(l.counterweight.center_x_m, l.counterweight.center_y_m),
-        ),
+        (counterweight_kg, turned(l.counterweight.center_x_m, l.counterweight.center_y_m)),
         (m.boom_t * t, turned(l.boom.pivot_x_m + m.boom_cog_frac * boom_len * luff_rad.cos(), 0.0)),
         (hanging_kg, turned(radius, 0.0)),
     ];
@@ -171,6 +173,9 @@ pub fn pressure_kpa(load_kg: f64, mat_m: [f64; 2]) -> f64 {
 mod tests {
     use super::*;
     use crate::crane::{CraneModel, Placement};
+
+    /// The hand-sum crane's counterweight, as its file gives it.
+    const FILE_COUNTERWEIGHT_KG: f64 = 20_000.0;
 
     /// A crane whose masses stand where a hand sum is easy: the slewing
     /// axis over the pads' centre, a 10 by 8 m spread.
@@ -246,24 +251,24 @@ hoist_m_s = 0.2
     #[test]
     fn pad_loads_match_a_hand_sum() {
         let c = crane(0.0);
-        let l = pad_loads(&c, 0.0, 0.0, 10_000.0, None).unwrap();
+        let l = pad_loads(&c, 0.0, 0.0, 10_000.0, FILE_COUNTERWEIGHT_KG).unwrap();
         assert!((l.total_kg - 90_000.0).abs() < 1e-6);
         assert!((l.cog_m[0] - 220.0 / 90.0).abs() < 1e-9 && l.cog_m[1].abs() < 1e-9, "{l:?}");
         for (got, want) in l.loads_kg.iter().zip([33_500.0, 33_500.0, 11_500.0, 11_500.0]) {
             assert!((got - want).abs() < 1e-6, "{l:?}");
         }
         assert!(!l.tips);
-        let side = pad_loads(&c, 90f64.to_radians(), 0.0, 10_000.0, None).unwrap();
+        let side = pad_loads(&c, 90f64.to_radians(), 0.0, 10_000.0, FILE_COUNTERWEIGHT_KG).unwrap();
         for (got, want) in side.loads_kg.iter().zip([36_250.0, 8_750.0, 36_250.0, 8_750.0]) {
             assert!((got - want).abs() < 1e-6, "{side:?}");
         }
         assert_eq!(side.highest().0, Pad::FrontLeft);
         // Luffed up to 60°, the boom's centre comes in to 5 m and the hook
         // to 10 m: 50 + 100 - 80 = 70 t m.
-        let up = pad_loads(&c, 0.0, 60f64.to_radians(), 10_000.0, None).unwrap();
+        let up = pad_loads(&c, 0.0, 60f64.to_radians(), 10_000.0, FILE_COUNTERWEIGHT_KG).unwrap();
         assert!((up.loads_kg[0] - (22_500.0 + 70_000.0 / 20.0)).abs() < 1e-6, "{up:?}");
-        // The lift's counterweight overrides the file's.
-        let heavy = pad_loads(&c, 0.0, 0.0, 10_000.0, Some(60_000.0)).unwrap();
+        // A heavier counterweight than the file's.
+        let heavy = pad_loads(&c, 0.0, 0.0, 10_000.0, 60_000.0).unwrap();
         assert!((heavy.total_kg - 130_000.0).abs() < 1e-6);
         // The pads' weights always sum to the whole.
         for l in [l, side, up, heavy] {
@@ -277,7 +282,7 @@ hoist_m_s = 0.2
     fn a_pad_lifts_and_then_the_crane_tips() {
         let c = crane(0.0);
         let corner = 38.66f64.to_radians(); // towards the front-left pad, (5, 4)
-        let l = pad_loads(&c, corner, 0.0, 20_000.0, None).unwrap();
+        let l = pad_loads(&c, corner, 0.0, 20_000.0, FILE_COUNTERWEIGHT_KG).unwrap();
         assert_eq!(l.loads_kg[3], 0.0, "the rear right pad lifts: {l:?}");
         assert!(l.loads_kg.iter().all(|&x| x >= 0.0) && !l.tips, "{l:?}");
         assert!((l.loads_kg.iter().sum::<f64>() - l.total_kg).abs() < 1e-6);
@@ -285,7 +290,7 @@ hoist_m_s = 0.2
         let mx: f64 = Pad::ALL.iter().zip(&l.loads_kg).map(|(p, k)| k * p.signs()[0] * 5.0).sum();
         let my: f64 = Pad::ALL.iter().zip(&l.loads_kg).map(|(p, k)| k * p.signs()[1] * 4.0).sum();
         assert!((mx - l.total_kg * l.cog_m[0]).abs() < 1e-3 && (my - l.total_kg * l.cog_m[1]).abs() < 1e-3);
-        let over = pad_loads(&c, corner, 0.0, 400_000.0, None).unwrap();
+        let over = pad_loads(&c, corner, 0.0, 400_000.0, FILE_COUNTERWEIGHT_KG).unwrap();
         assert!(over.tips, "{over:?}");
     }
 
