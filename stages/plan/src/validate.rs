@@ -594,16 +594,9 @@ pub fn set_support(task: &LiftTask, world: &World, c: &Config, reach_up_m: f64) 
         b.half.z = (reach_up_m + h) / 2.0;
         b
     };
-    let meets = |h: f64| {
-        let n = nearest(world, &slab(h), ALL_GROUND, 0.0);
-        (n.distance_m <= 1e-9).then_some(n.object)
-    };
+    let meets = |h: f64| touching(world, &slab(h), ALL_GROUND);
     meets(SUPPORT_SEARCH_M)?;
-    let (mut lo, mut hi) = (0.0, SUPPORT_SEARCH_M);
-    while hi - lo > 1e-3 {
-        let mid = 0.5 * (lo + hi);
-        if meets(mid).is_some() { hi = mid } else { lo = mid }
-    }
+    let (_, hi) = bisect_mm(0.0, SUPPORT_SEARCH_M, |h| meets(h).is_none());
     let object = meets(hi)?;
     Some(SetSupport { gap_m: hi, object, cog_inside_m: None })
 }
@@ -639,7 +632,7 @@ pub fn cog_over_support_m(task: &LiftTask, world: &World, c: &Config, gap_m: f64
                 load.axes,
                 liftplan_core::frame::Vec3::new(du / 2.0, dv / 2.0, (reach_up_m + band_m) / 2.0),
             );
-            nearest(world, &column, ALL_GROUND, 0.0).distance_m <= 1e-9
+            touching(world, &column, ALL_GROUND).is_some()
         })
         .map(|p| [p.x, p.y])
         .collect();
@@ -777,10 +770,7 @@ pub fn under_pads(task: &LiftTask, world: &World) -> Vec<UnderPad> {
             liftplan_core::frame::Vec3::new(zone_half_m, zone_half_m, (top - from_z) / 2.0),
         )
     };
-    let meets = |at: [f64; 2], from_z: f64| {
-        let n = nearest(world, &zone(at, from_z), f64::INFINITY, 0.0);
-        (n.distance_m <= 1e-9).then_some(n.object)
-    };
+    let meets = |at: [f64; 2], from_z: f64| touching(world, &zone(at, from_z), f64::INFINITY);
     Pad::ALL
         .iter()
         .filter_map(|&pad| {
@@ -788,11 +778,7 @@ pub fn under_pads(task: &LiftTask, world: &World) -> Vec<UnderPad> {
             meets(at, bottom)?;
             // The top of what is there: the highest foot of the zone that
             // still meets it.
-            let (mut lo, mut hi) = (bottom, top - 1e-3);
-            while hi - lo > 1e-3 {
-                let mid = 0.5 * (lo + hi);
-                if meets(at, mid).is_some() { lo = mid } else { hi = mid }
-            }
+            let (lo, _) = bisect_mm(bottom, top - 1e-3, |z| meets(at, z).is_some());
             let object = meets(at, lo)?;
             Some(UnderPad { pad, object, depth_m: level - lo, zone_half_m, zone_depth_m })
         })
@@ -846,6 +832,24 @@ pub struct Nearest {
     /// the triangle's point nearest the part's centre), for the pictures'
     /// hot-spot markers.
     pub at: Option<[f64; 3]>,
+}
+
+/// What `b` touches (the nearest obstacle at no distance), scanned ground
+/// at or below `ground_below_z` left out ([`nearest`]).
+fn touching(world: &World, b: &Obb, ground_below_z: f64) -> Option<String> {
+    let n = nearest(world, b, ground_below_z, 0.0);
+    (n.distance_m <= 1e-9).then_some(n.object)
+}
+
+/// Where a property that `holds` at `holds_at` and not at `fails_at` (m)
+/// stops holding, to 1 mm: the last value it was seen to hold at and the
+/// first it was seen to fail at (the gap and depth searches).
+fn bisect_mm(mut holds_at: f64, mut fails_at: f64, holds: impl Fn(f64) -> bool) -> (f64, f64) {
+    while (fails_at - holds_at).abs() > 1e-3 {
+        let mid = 0.5 * (holds_at + fails_at);
+        if holds(mid) { holds_at = mid } else { fails_at = mid }
+    }
+    (holds_at, fails_at)
 }
 
 /// [`nearest`] leaves out no scanned ground.
