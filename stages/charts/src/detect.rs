@@ -610,25 +610,44 @@ impl SheetNotes {
     }
 }
 
+/// A sheet and its notes, indexed on the first mark looked for
+/// ([`SheetNotes::of`]) and then kept: a sheet with several grids, or a
+/// sheet of notes asked for each grid's marks, is indexed once.
+#[derive(Debug)]
+pub struct LazyNotes<'a> {
+    sheet: &'a Sheet,
+    notes: std::cell::OnceCell<SheetNotes>,
+}
+
+impl<'a> LazyNotes<'a> {
+    pub fn new(sheet: &'a Sheet) -> LazyNotes<'a> {
+        LazyNotes { sheet, notes: std::cell::OnceCell::new() }
+    }
+
+    /// [`SheetNotes::find`] on this sheet.
+    pub fn find(&self, g: Option<&Grid>, mark: FootnoteMark) -> Option<(String, String)> {
+        self.notes.get_or_init(|| SheetNotes::of(self.sheet)).find(self.sheet, g, mark)
+    }
+}
+
 /// The workbook's sheets that hold no chart grid (a sheet of notes, a
 /// cover): where a footnote is looked for when the grid's own sheet has
 /// none, as a workbook may keep a chart's notes on a sheet of their own.
-/// Each sheet's notes are indexed on the first mark looked for.
 #[derive(Debug, Default)]
-pub struct NoteSheets<'a>(Vec<(&'a Sheet, std::cell::OnceCell<SheetNotes>)>);
+pub struct NoteSheets<'a>(Vec<LazyNotes<'a>>);
 
 impl<'a> NoteSheets<'a> {
     pub fn new(sheets: impl IntoIterator<Item = &'a Sheet>) -> NoteSheets<'a> {
-        NoteSheets(sheets.into_iter().map(|s| (s, std::cell::OnceCell::new())).collect())
+        NoteSheets(sheets.into_iter().map(LazyNotes::new).collect())
     }
 
     /// Each sheet's note marked `mark`, in the workbook's order: (cell, text).
     pub fn find(&self, mark: FootnoteMark) -> Vec<(String, String)> {
-        self.0.iter().filter_map(|(s, notes)| notes.get_or_init(|| SheetNotes::of(s)).find(s, None, mark)).collect()
+        self.0.iter().filter_map(|notes| notes.find(None, mark)).collect()
     }
 
     pub fn names(&self) -> Vec<&str> {
-        self.0.iter().map(|(s, _)| s.name.as_str()).collect()
+        self.0.iter().map(|notes| notes.sheet.name.as_str()).collect()
     }
 }
 
@@ -704,8 +723,8 @@ pub fn parse_capacity(
 /// on the grid's own sheet, else on the workbook's sheets without a chart
 /// (naming any other note there that opens with the same mark, as which
 /// applies is then for the engineer to read), else that none was found.
-fn footnote_said(sheet: &Sheet, g: &Grid, notes: &SheetNotes, note_sheets: &NoteSheets, mark: FootnoteMark) -> String {
-    if let Some((cell, text)) = notes.find(sheet, Some(g), mark) {
+fn footnote_said(sheet: &Sheet, g: &Grid, notes: &LazyNotes, note_sheets: &NoteSheets, mark: FootnoteMark) -> String {
+    if let Some((cell, text)) = notes.find(Some(g), mark) {
         return format!("; its footnote, {cell}, reads: \"{text}\"");
     }
     let elsewhere = note_sheets.find(mark);
@@ -742,7 +761,7 @@ pub fn read_grid(
     u: &Units,
     file_label: &str,
     name: &str,
-    note_sheets: &NoteSheets,
+    (notes, note_sheets): (&LazyNotes, &NoteSheets),
     warnings: &mut Vec<String>,
 ) -> Result<ChartConfig, (String, String)> {
     let at = |r: u32, c: u32| format!("{}!{}", sheet.name, cell_ref(r, c));
@@ -767,9 +786,7 @@ pub fn read_grid(
     // Each mark's note is looked for once (a column may carry the same mark
     // in every cell).
     let mut said: std::collections::HashMap<FootnoteMark, String> = Default::default();
-    let mut notes: Option<SheetNotes> = None;
     let mut footnote = |mark: FootnoteMark| {
-        let notes = notes.get_or_insert_with(|| SheetNotes::of(sheet));
         said.entry(mark).or_insert_with(|| footnote_said(sheet, g, notes, note_sheets, mark)).clone()
     };
     let cell_of = |ri: usize, bi: usize| {
@@ -1044,7 +1061,7 @@ mod tests {
         let u = units(&s, g).unwrap();
         assert_eq!((u.radius, u.capacity), (LengthUnit::M, MassUnit::T));
         let mut w = vec![];
-        let c = read_grid(&s, g, &u, "c.xlsx", "main", &NoteSheets::default(), &mut w).unwrap();
+        let c = read_grid(&s, g, &u, "c.xlsx", "main", (&LazyNotes::new(&s), &NoteSheets::default()), &mut w).unwrap();
         assert_eq!(c.boom_lengths_m, vec![12.0, 20.0, 28.0]);
         assert_eq!(c.lookup(20.0, 4.0).unwrap().capacity_kg, 35000.0);
         assert!(c.lookup(20.0, 3.0).is_err());
@@ -1056,7 +1073,8 @@ mod tests {
         let s = sheet(&[&["Radius m", "Boom m", ""], &["", "12", "20"], &["3", "50", "30"], &["4", "55", "28"]]);
         let g = &find_grids(&s).unwrap()[0];
         let u = units(&s, g).unwrap();
-        let e = read_grid(&s, g, &u, "c.xlsx", "x", &NoteSheets::default(), &mut vec![]).unwrap_err();
+        let e = read_grid(&s, g, &u, "c.xlsx", "x", (&LazyNotes::new(&s), &NoteSheets::default()), &mut vec![])
+            .unwrap_err();
         assert_eq!(e.0, "Main!B4");
         assert!(e.1.contains("rises with radius"), "{}", e.1);
     }
@@ -1079,7 +1097,7 @@ mod tests {
         let g = &find_grids(&s).unwrap()[0];
         let u = units(&s, g).unwrap();
         let mut w = vec![];
-        let c = read_grid(&s, g, &u, "c.xlsx", "x", &NoteSheets::default(), &mut w).unwrap();
+        let c = read_grid(&s, g, &u, "c.xlsx", "x", (&LazyNotes::new(&s), &NoteSheets::default()), &mut w).unwrap();
         assert!(c.lookup(20.0, 7.0).is_err());
         assert_eq!(w.len(), 1, "{w:?}");
         assert!(
@@ -1144,7 +1162,7 @@ mod tests {
             let g = &find_grids(&s).unwrap()[0];
             let u = units(&s, g).unwrap();
             let mut w = vec![];
-            let c = read_grid(&s, g, &u, "c.xlsx", "x", &NoteSheets::default(), &mut w).unwrap();
+            let c = read_grid(&s, g, &u, "c.xlsx", "x", (&LazyNotes::new(&s), &NoteSheets::default()), &mut w).unwrap();
             assert_eq!(c.lookup(20.0, 6.0).unwrap().capacity_kg, 28000.0, "{mark}");
             assert_eq!(w.len(), 1, "{w:?}");
             w.remove(0)
@@ -1220,7 +1238,8 @@ mod tests {
         assert_eq!(g.len(), 1, "{g:?}");
         assert!(g[0].boom_independent);
         let u = units(&s, &g[0]).unwrap();
-        let c = read_grid(&s, &g[0], &u, "t.xlsx", "jib", &NoteSheets::default(), &mut vec![]).unwrap();
+        let c = read_grid(&s, &g[0], &u, "t.xlsx", "jib", (&LazyNotes::new(&s), &NoteSheets::default()), &mut vec![])
+            .unwrap();
         assert!(c.boom_independent());
         assert_eq!(c.lookup(55.0, 25.0).unwrap().capacity_kg, 8100.0);
     }

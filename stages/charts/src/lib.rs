@@ -203,6 +203,7 @@ fn read_chart_with(path: &Path, s: &Settings, unnamed: Unnamed) -> Result<(Vec<C
             .map(|(sh, _)| sh),
     );
     for (sh, grids) in sheets.iter().zip(&sheet_grids) {
+        let own_notes = detect::LazyNotes::new(sh);
         let single = grids.len() == 1;
         for (k, (g, mapping)) in grids.iter().enumerate() {
             let name = match mapping {
@@ -244,12 +245,11 @@ fn read_chart_with(path: &Path, s: &Settings, unnamed: Unnamed) -> Result<(Vec<C
                 })?;
             }
             let mut warnings = Vec::new();
-            let c = detect::read_grid(sh, g, &units, &file_name, &name, &note_sheets, &mut warnings).map_err(
-                |(cell, msg)| {
+            let c = detect::read_grid(sh, g, &units, &file_name, &name, (&own_notes, &note_sheets), &mut warnings)
+                .map_err(|(cell, msg)| {
                     let cell = cell.split_once('!').map(|x| x.1.to_string()).unwrap_or(cell);
                     ChartError::Format(Location::cell(path, &sh.name, &cell), msg)
-                },
-            )?;
+                })?;
             reports.push(ConfigReport {
                 name: name.clone(),
                 file: file_name.clone(),
