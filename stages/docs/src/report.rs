@@ -232,7 +232,7 @@ fn warned_cells_read(
         for cell in task.chart_cells_between(chart, from_m, step.radius_m) {
             // "file [sheet!cell]": the cell as the warnings name it.
             let Some(at) = cell.rsplit_once(" [").map(|(_, c)| c.trim_end_matches(']').to_string()) else { continue };
-            if !warned.iter().any(|w| w.split(": ").next() == Some(at.as_str())) {
+            if !warned.iter().any(|w| warned_cell(w) == at) {
                 continue;
             }
             match read.iter_mut().find(|(c, _)| *c == at) {
@@ -244,6 +244,11 @@ fn warned_cells_read(
         from_m = step.radius_m;
     }
     read
+}
+
+/// The cell a chart warning names ("Main boom 360!H28: footnote mark ...").
+fn warned_cell(warning: &str) -> &str {
+    warning.split(": ").next().unwrap_or_default()
 }
 
 /// [`warned_cells_read`] as a clause of the sign-off page's sentence.
@@ -682,7 +687,7 @@ pub fn document(
                 .iter()
                 .flatten()
                 .filter(|(_, steps)| steps.contains(&st.n))
-                .flat_map(|(cell, _)| warned.iter().filter(move |w| w.split(": ").next() == Some(cell.as_str())))
+                .flat_map(|(cell, _)| warned.iter().filter(move |w| warned_cell(w) == cell))
                 .map(String::as_str)
                 .collect();
             let chart_warning = (!chart_warned.is_empty()).then(|| {
@@ -855,14 +860,11 @@ pub fn document(
             "The crane is set up at z = {level:.2} m as the lift gives it: no ground was scanned under its carrier and outriggers to check that level against. Check it on site."
         ),
     };
-    let set_up_text = match plan.summary.pads_said_briefly() {
-        Some(said) => format!("{set_up_text} {}", sentence(&said)),
-        None => set_up_text,
-    };
-    let set_up_text = match plan.summary.under_pads_said() {
-        Some(said) => format!("{set_up_text} {}", sentence(&said)),
-        None => set_up_text,
-    };
+    // The pads' loads and what lies under them, with the set-up.
+    let set_up_text = std::iter::once(set_up_text)
+        .chain(plan.summary.pads_said_briefly().into_iter().chain(plan.summary.under_pads_said()).map(|s| sentence(&s)))
+        .collect::<Vec<_>>()
+        .join(" ");
     y = sign_off_paragraph(&mut d, y, w, &set_up_text);
     y += 4.0;
     let set_text = match plan.summary.set_down() {
