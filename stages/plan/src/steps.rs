@@ -82,8 +82,13 @@ pub fn pads_during(task: &LiftTask, m: &Move) -> Option<StepPads> {
     for i in 0..=n {
         let t = i as f64 / n as f64;
         let c = Config::from_array(std::array::from_fn(|k| a[k] + (b[k] - a[k]) * t));
-        let (loads, without) = (task.pad_loads(&c)?, task.pad_loads_hanging(&c, task.gross_kg() - task.deductions_kg)?);
-        let loads = if without.highest().1 > loads.highest().1 { without } else { loads };
+        let mut loads = task.pad_loads(&c)?;
+        if task.deductions_kg > 0.0 {
+            let without = task.pad_loads_hanging(&c, task.gross_kg() - task.deductions_kg)?;
+            if without.highest().1 > loads.highest().1 {
+                loads = without;
+            }
+        }
         let (pad, load_kg) = loads.highest();
         let here = StepPads {
             pad,
