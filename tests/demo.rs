@@ -315,6 +315,20 @@ liftoff_m = 0.5
         text.contains("(an estimate from the crane file's masses, with the lift's 140.0 t counterweight, NOT THE 70.0 t ITS CHART CONFIGURATION 'Main boom 360 CW 70t' NAMES: CHECK crane counterweight_t against what is rigged)"),
         "{text}"
     );
+    // A load too heavy for the chart where the crane stands: the refusal
+    // names the nearest crane position, at the height of the ground scanned
+    // there, where the lift plans; given it, the lift plans there.
+    let heavy = t13.replace("mass_t = 13.0", "mass_t = 40.0");
+    let stderr = refused_with(&dir, &heavy, "a 40 t vessel on a 31.4 t chart cell planned");
+    let flat = stderr.replace('\n', " ");
+    let at = flat.find("; the crane set up at position_m = [").unwrap_or_else(|| panic!("{flat}"));
+    let named = &flat[at + "; the crane set up at ".len()..];
+    let named = &named[..named.find(" (the ground scanned there; ").unwrap_or_else(|| panic!("{flat}"))];
+    assert!(flat.contains("and there the lift plans and passes the validator in "), "{flat}");
+    let given = heavy.replace("position_m = [0.0, 0.0], ground_z_m = 0.0, heading_deg = 0.0", named);
+    assert_ne!(given, heavy, "{named}");
+    let (cover, _) = planned_with(&dir, &given);
+    assert!(cover.contains("CRITICAL LIFT"), "{named}: {cover}");
     // Mats too small for what the ground may bear: the cover asks to check
     // the ground under the pads first.
     let small_mats = t13.replace("mat_m = [2.5, 2.5]", "mat_m = [1.5, 1.5]");

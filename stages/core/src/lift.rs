@@ -449,38 +449,12 @@ impl LiftSpec {
         };
         let (mut pick, pick_pose) = solve("pick", &self.pick)?;
         let (mut set, set_pose) = solve("set", &self.set)?;
-        let lim = crane.limits();
-        for (which, c) in [("pick", &pick), ("set", &set)] {
-            if c.radial < lim.radial.0 - 1e-9 || c.radial > lim.radial.1 + 1e-9 {
-                return Err(format!(
-                    "lift '{id}': {which} is outside the crane's {} range",
-                    crane.model.words().radial_axis
-                ));
-            }
-            if c.hoist_m - self.liftoff_m < lim.hoist_m.0 - 1e-9 || c.hoist_m > lim.hoist_m.1 + 1e-9 {
-                return Err(format!(
-                    "lift '{id}': {which} needs {:.2} m of rope and lift-off needs {:.2} m less; the crane allows {:.2}..{:.2} m",
-                    c.hoist_m, self.liftoff_m, lim.hoist_m.0, lim.hoist_m.1
-                ));
-            }
-        }
+        within_reach(id, &crane, self.liftoff_m, &pick, &set)?;
         let swing_range_rad = match self.swing_range_deg {
             Some([a_deg, b_deg]) if a_deg < b_deg && b_deg - a_deg <= 360.0 && a_deg >= -360.0 && b_deg <= 360.0 => {
-                let (a, b) = (a_deg.to_radians(), b_deg.to_radians());
-                // The pick and the set where the range holds them: a range
-                // across ±180° ([90, 270] behind the carrier) holds a pick
-                // solved at -160° as 200°, and the planner and the validator
-                // compare swing with the range as numbers.
-                for (which, c) in [("pick", &mut pick), ("set", &mut set)] {
-                    let Some(inside) = crate::units::swing_into_range(c.swing_rad, a, b) else {
-                        return Err(format!(
-                            "lift '{id}': the {which}, at swing {:.1}° from the crane's heading, is outside swing_range_deg [{a_deg}, {b_deg}]",
-                            c.swing_rad.to_degrees(),
-                        ));
-                    };
-                    c.swing_rad = inside;
-                }
-                Some((a, b))
+                let range = (a_deg.to_radians(), b_deg.to_radians());
+                into_swing_range(id, range, &format!("[{a_deg}, {b_deg}]"), &mut pick, &mut set)?;
+                Some(range)
             }
             Some(_) => {
                 return Err(format!(
@@ -545,6 +519,72 @@ impl LiftSpec {
             counterweight_kg: self.crane.counterweight_t.map(|t| t * KG_PER_TONNE),
             ground: self.ground,
         })
+    }
+}
+
+/// The pick and the set within the crane's radial range and its rope's,
+/// the lift-off's rope included.
+fn within_reach(id: &str, crane: &CraneSetup, liftoff_m: f64, pick: &Config, set: &Config) -> Result<(), String> {
+    let lim = crane.limits();
+    for (which, c) in [("pick", pick), ("set", set)] {
+        if c.radial < lim.radial.0 - 1e-9 || c.radial > lim.radial.1 + 1e-9 {
+            return Err(format!(
+                "lift '{id}': {which} is outside the crane's {} range",
+                crane.model.words().radial_axis
+            ));
+        }
+        if c.hoist_m - liftoff_m < lim.hoist_m.0 - 1e-9 || c.hoist_m > lim.hoist_m.1 + 1e-9 {
+            return Err(format!(
+                "lift '{id}': {which} needs {:.2} m of rope and lift-off needs {:.2} m less; the crane allows {:.2}..{:.2} m",
+                c.hoist_m, liftoff_m, lim.hoist_m.0, lim.hoist_m.1
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The pick's and the set's swing where the permitted range `(a, b)` (rad,
+/// `shown` as the lift gives it) holds them: a range across ±180° ([90,
+/// 270] behind the carrier) holds a pick solved at -160° as 200°, and the
+/// planner and the validator compare swing with the range as numbers.
+fn into_swing_range(
+    id: &str,
+    (a, b): (f64, f64),
+    shown: &str,
+    pick: &mut Config,
+    set: &mut Config,
+) -> Result<(), String> {
+    for (which, c) in [("pick", pick), ("set", set)] {
+        let Some(inside) = crate::units::swing_into_range(c.swing_rad, a, b) else {
+            return Err(format!(
+                "lift '{id}': the {which}, at swing {:.1}° from the crane's heading, is outside swing_range_deg {shown}",
+                c.swing_rad.to_degrees(),
+            ));
+        };
+        c.swing_rad = inside;
+    }
+    Ok(())
+}
+
+impl LiftTask {
+    /// This lift with its crane set up at `placement` instead, the pick and
+    /// the set solved again from their load poses, as [`LiftSpec::resolve`]
+    /// solves them: where else the crane could stand. Err where the crane
+    /// cannot hold either there (beyond its reach, its rope, or the lift's
+    /// permitted swing range), or the placement is not one for it.
+    pub fn moved_to(&self, placement: Placement) -> Result<LiftTask, String> {
+        let id = &self.id;
+        let crane = CraneSetup::new(self.crane.model.clone(), placement).map_err(|e| format!("lift '{id}': {e}"))?;
+        let solve = |which: &str, pose: &LoadPose| {
+            crane.inverse(pose, &self.load).map_err(|e| format!("lift '{id}': {which} position cannot be reached: {e}"))
+        };
+        let (mut pick, mut set) = (solve("pick", &self.pick_pose)?, solve("set", &self.set_pose)?);
+        within_reach(id, &crane, self.liftoff_m, &pick, &set)?;
+        if let Some((a, b)) = self.swing_range_rad {
+            let shown = format!("[{:.1}, {:.1}]", a.to_degrees(), b.to_degrees());
+            into_swing_range(id, (a, b), &shown, &mut pick, &mut set)?;
+        }
+        Ok(LiftTask { crane, pick, set, by_configuration: [false, false], ..self.clone() })
     }
 }
 
@@ -706,6 +746,44 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         let mut sp = spec();
         sp.swing_range_deg = Some([-10.0, 400.0]);
         assert!(sp.resolve(crane()).unwrap_err().contains("at most a full turn"));
+    }
+
+    /// A lift moved to another crane position solves its pick and set as
+    /// the lift file given that position would, its swing range held, and
+    /// says where the crane there cannot hold them.
+    #[test]
+    fn a_lift_moved_elsewhere_solves_as_its_file_would() {
+        let crane = || crate::crane::builtin("ltm-1100").unwrap();
+        let mut sp = spec();
+        sp.swing_range_deg = Some([-180.0, 180.0]);
+        let t = sp.resolve(crane()).unwrap();
+        let to = Placement { x_m: 5.0, y_m: 12.0, z_m: 0.3, heading_rad: 30f64.to_radians(), ..t.crane.placement };
+        let moved = t.moved_to(to).unwrap();
+        let mut there = sp.clone();
+        there.crane.position_m = [5.0, 12.0];
+        there.crane.ground_z_m = 0.3;
+        there.crane.heading_deg = 30.0;
+        let fresh = there.resolve(crane()).unwrap();
+        for (a, b) in [(moved.pick, fresh.pick), (moved.set, fresh.set)] {
+            assert!(a.to_array().iter().zip(b.to_array()).all(|(x, y)| (x - y).abs() < 1e-12), "{a:?} {b:?}");
+        }
+        assert_eq!(moved.crane.placement, fresh.crane.placement);
+        assert_ne!(moved.pick, t.pick);
+        // Beyond the crane's reach, outside the swing range, off the boom's range.
+        let far = Placement { x_m: 200.0, ..to };
+        assert!(
+            t.moved_to(far).unwrap_err().contains("pick position cannot be reached"),
+            "{:?}",
+            t.moved_to(far).err()
+        );
+        let mut sp = spec();
+        sp.swing_range_deg = Some([-60.0, 130.0]);
+        let t = sp.resolve(crane()).unwrap();
+        let turned = Placement { heading_rad: std::f64::consts::PI, ..t.crane.placement };
+        let e = t.moved_to(turned).unwrap_err();
+        assert!(e.contains("is outside swing_range_deg [-60.0, 130.0]"), "{e}");
+        let e = t.moved_to(Placement { boom_length_m: 500.0, ..t.crane.placement }).unwrap_err();
+        assert!(e.contains("boom length 500 m is outside"), "{e}");
     }
 
     /// The outrigger keys need a crane file with masses, and sane values.

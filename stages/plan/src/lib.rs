@@ -23,6 +23,7 @@ pub mod load_scan;
 pub mod model_copy;
 pub mod mspga;
 pub mod path;
+pub mod positions;
 pub mod steps;
 pub mod validate;
 
@@ -518,8 +519,78 @@ fn search(
     }
 }
 
+/// What the lift's carrier and outriggers (or mast) meet where it sets the
+/// crane up, if anything: they stand on the ground, and anything else where
+/// they stand (a bank higher than half a metre above it among them) is a
+/// bad request. Whether that ground lies at the lift's level is
+/// [`validate::crane_set_up_level_problem`]'s.
+fn set_up_blocked(task: &LiftTask, site: &Site, s: &Settings) -> Option<String> {
+    let standing = LeaveOut::up_to(liftplan_depthmap::mdm::OBJ_GROUND, task.crane.standing_ground_top_z());
+    for &kind in task.crane.part_kinds() {
+        if kind.dependence() != liftplan_core::crane::Dependence::Fixed {
+            continue;
+        }
+        if let Some(b) = task.crane.part(kind, &task.pick, &task.load) {
+            let b = b.with_underside_raised(s.support_m);
+            if let Some(h) = site.map.hit_where(&b, |iv| LeaveOut::counts(Some(standing), iv)) {
+                // Where, so the engineer can find it on the drawings or on site.
+                let r = site.map.spec.rect(h.i, h.j);
+                let name = kind.name();
+                return Some(format!(
+                    "crane set-up: the {name} {} {} in the cell at x {:.2} to {:.2} m, y {:.2} to {:.2} m, where it reaches from z = {:.2} to {:.2} m (the crane is set up at z = {:.2} m); move the crane or clear its footprint",
+                    if name.ends_with('s') { "meet" } else { "meets" },
+                    site.map.object_name(&h.interval),
+                    r[0],
+                    r[1],
+                    r[2],
+                    r[3],
+                    h.interval.zlo,
+                    h.interval.zhi,
+                    task.crane.placement.z_m
+                ));
+            }
+        }
+    }
+    None
+}
+
+/// The validator's rules for `task`, its landing zones' outlines given.
+fn validate_rules(task: &LiftTask, s: &Settings, landing: Vec<Vec<[f64; 2]>>) -> validate::Rules {
+    validate::Rules {
+        clearance_m: task.clearance_m,
+        landing,
+        landing_clearance_m: s.landing_clearance_m,
+        sample_m: s.validator_sample_m,
+        support_m: s.support_m,
+    }
+}
+
+/// The lift-off: the hook raises the load `liftoff_m` off its pick support.
+fn lift_off(task: &LiftTask) -> Move {
+    Move { joint: Joint::Hoist, from: task.pick, to: task.start() }
+}
+
+/// The set-down, as checked before the search: from `liftoff_m` above the
+/// set position onto it, at the set's own swing.
+fn set_down(task: &LiftTask) -> Move {
+    Move { joint: Joint::Hoist, from: task.goal(), to: task.set }
+}
+
 /// Plans, shortens, validates one lift.
 pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Result<(LiftPlan, CSpace)> {
+    plan_lift_hinting(task, site, s, seed, true)
+}
+
+/// [`plan_lift`]; where `positions` is false, a refusal does not search
+/// for another crane position ([`positions::search`] plans at those it
+/// tries with this, and a refusal there must not search again).
+pub(crate) fn plan_lift_hinting(
+    task: &LiftTask,
+    site: &Site,
+    s: &Settings,
+    seed: u64,
+    positions: bool,
+) -> Result<(LiftPlan, CSpace)> {
     let t0 = std::time::Instant::now();
     // The planned path starts lifted off and ends above the set position:
     // there the load must keep the landing zone's clearance from what it
@@ -539,6 +610,12 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
         Some(t) => Some(t.config(&task.chart_config).map_err(|e| lift_err(task, e.to_string()))?),
         None => None,
     };
+    // Where else the crane could stand, for a refusal that moving it may
+    // answer.
+    let elsewhere = |chart: Option<&ChartConfig>| match chart.filter(|_| positions) {
+        Some(ch) => positions::search(task, site, ch, s, seed).said(&ch.name),
+        None => String::new(),
+    };
     for (what, c) in [("pick", &task.pick), ("set", &task.set)] {
         if let Some(ch) = chart {
             match task.check_capacity(ch, c.radial) {
@@ -547,7 +624,7 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
                     return Err(lift_err(
                         task,
                         format!(
-                            "{what} is over capacity: gross {:.0} kg at radius {:.2} m, chart {} gives {:.0} kg ({:.0} kg after the reduction){}",
+                            "{what} is over capacity: gross {:.0} kg at radius {:.2} m, chart {} gives {:.0} kg ({:.0} kg after the reduction){}{}",
                             task.gross_kg(),
                             k.radius_m,
                             k.capacity.cell,
@@ -555,7 +632,8 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
                             k.effective_kg,
                             site.charts
                                 .map(|t| hints::over_capacity(task, t, ch, what, k.radius_m))
-                                .unwrap_or_default()
+                                .unwrap_or_default(),
+                            elsewhere(Some(ch))
                         ),
                     ));
                 }
@@ -564,40 +642,12 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
         }
     }
     // The crane's set-up: at the level of the ground scanned under it, and
-    // carrier, outriggers (or mast) standing on that ground; anything else
-    // where they stand (a bank higher than half a metre above it among them)
-    // is a bad request.
+    // standing clear on it.
     if let Some(problem) = validate::crane_set_up_level_problem(task, site.world) {
         return Err(lift_err(task, problem));
     }
-    let standing = LeaveOut::up_to(liftplan_depthmap::mdm::OBJ_GROUND, task.crane.standing_ground_top_z());
-    for &kind in task.crane.part_kinds() {
-        if kind.dependence() != liftplan_core::crane::Dependence::Fixed {
-            continue;
-        }
-        if let Some(b) = task.crane.part(kind, &task.pick, &task.load) {
-            let b = b.with_underside_raised(s.support_m);
-            if let Some(h) = site.map.hit_where(&b, |iv| LeaveOut::counts(Some(standing), iv)) {
-                // Where, so the engineer can find it on the drawings or on site.
-                let r = site.map.spec.rect(h.i, h.j);
-                let name = kind.name();
-                return Err(lift_err(
-                    task,
-                    format!(
-                        "crane set-up: the {name} {} {} in the cell at x {:.2} to {:.2} m, y {:.2} to {:.2} m, where it reaches from z = {:.2} to {:.2} m (the crane is set up at z = {:.2} m); move the crane or clear its footprint",
-                        if name.ends_with('s') { "meet" } else { "meets" },
-                        site.map.object_name(&h.interval),
-                        r[0],
-                        r[1],
-                        r[2],
-                        r[3],
-                        h.interval.zlo,
-                        h.interval.zhi,
-                        task.crane.placement.z_m
-                    ),
-                ));
-            }
-        }
+    if let Some(problem) = set_up_blocked(task, site, s) {
+        return Err(lift_err(task, format!("{problem}{}", elsewhere(chart))));
     }
     let cs = CSpace::build(&Problem { task, chart, map: site.map }, &s.cspace);
     let zones = landing_zones(task, s);
@@ -624,19 +674,13 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
             format!("the configuration above the set position is not allowed: {}{hint}", why(&b)),
         ));
     }
-    let rules = validate::Rules {
-        clearance_m: task.clearance_m,
-        landing,
-        landing_clearance_m: s.landing_clearance_m,
-        sample_m: s.validator_sample_m,
-        support_m: s.support_m,
-    };
+    let rules = validate_rules(task, s, landing);
     // The lift-off and the set-down are the same whatever path is found: the
     // validator's verdict on them now, before the search, says what blocks
     // them instead of rejecting every plan at the end.
     for (what, mv, at, key) in [
-        ("lift-off", Move { joint: Joint::Hoist, from: task.pick, to: start }, &task.pick, task.height_key(true)),
-        ("set-down", Move { joint: Joint::Hoist, from: goal0, to: task.set }, &task.set, task.height_key(false)),
+        ("lift-off", lift_off(task), &task.pick, task.height_key(true)),
+        ("set-down", set_down(task), &task.set, task.height_key(false)),
     ] {
         let v = validate::validate(task, chart, site.world, &rules, &[mv], &[true]);
         if !v.ok {
@@ -699,11 +743,12 @@ pub fn plan_lift(task: &LiftTask, site: &Site, s: &Settings, seed: u64) -> Resul
         return Err(lift_err(
             task,
             format!(
-                "no collision-free, chart-compliant path found ({} run(s) of up to {} generations of {} strings each way): {}",
+                "no collision-free, chart-compliant path found ({} run(s) of up to {} generations of {} strings each way): {}{}",
                 attempts,
                 s.ga.max_generations,
                 s.ga.population,
-                why_no_path(&ck, &start, &goal0, &ways)
+                why_no_path(&ck, &start, &goal0, &ways),
+                elsewhere(chart)
             ),
         ));
     };

@@ -667,16 +667,15 @@ pub(crate) fn crane_set_up_level_problem(task: &LiftTask, world: &World) -> Opti
     set_up_ground(task, world).1
 }
 
-/// The scanned ground under a mobile crane's carrier and outriggers, if any
-/// is scanned there, and the problem if it does not lie at the level the
-/// lift sets the crane up at.
-fn set_up_ground(task: &LiftTask, world: &World) -> (Option<SetUpGround>, Option<String>) {
-    let tower = task.crane.model.is_tower();
+/// The heights of the scanned ground under a mobile crane's carrier and
+/// outriggers, or within [`TOWER_GROUND_AROUND_M`] of a tower crane's mast,
+/// lowest first.
+pub(crate) fn set_up_ground_heights(task: &LiftTask, world: &World) -> Vec<f64> {
     // They stand still whatever the configuration. A tower crane's mast
     // stands on a foundation (a block in the ground, a raised plinth, a
     // building's frame): the ground beside it, not under it, is what the
     // scans show, and its level is said, not checked.
-    let footprints: Vec<Vec<[f64; 2]>> = if tower {
+    let footprints: Vec<Vec<[f64; 2]>> = if task.crane.model.is_tower() {
         task.crane
             .part(PartKind::Mast, &task.pick, &task.load)
             .map(|b| b.expanded(TOWER_GROUND_AROUND_M).footprint())
@@ -690,10 +689,19 @@ fn set_up_ground(task: &LiftTask, world: &World) -> (Option<SetUpGround>, Option
             .collect()
     };
     let mut z = world.points.ground_heights_in(&footprints);
+    z.sort_by(f64::total_cmp);
+    z
+}
+
+/// The scanned ground under a mobile crane's carrier and outriggers, if any
+/// is scanned there, and the problem if it does not lie at the level the
+/// lift sets the crane up at.
+fn set_up_ground(task: &LiftTask, world: &World) -> (Option<SetUpGround>, Option<String>) {
+    let tower = task.crane.model.is_tower();
+    let z = set_up_ground_heights(task, world);
     if z.is_empty() {
         return (None, None);
     }
-    z.sort_by(f64::total_cmp);
     let g = SetUpGround { points: z.len(), median_m: z[z.len() / 2], lowest_m: z[0], highest_m: z[z.len() - 1] };
     let level = task.crane.placement.z_m;
     let problem = (!tower && !((g.median_m - level).abs() <= SET_UP_LEVEL_TOLERANCE_M)).then(|| {

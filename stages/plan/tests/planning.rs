@@ -10,7 +10,7 @@ use liftplan_plan::path::Move;
 use liftplan_plan::validate::{AGREEMENT_CLOSE_M, Rules, World, validate, validate_lift};
 use liftplan_plan::{Settings, Site, plan_lift};
 
-fn task(pick_y: f64) -> LiftTask {
+fn spec_of(pick_y: f64) -> LiftSpec {
     let text = format!(
         r#"
 id = "T-1"
@@ -24,8 +24,11 @@ clearance_m = 1.0
 liftoff_m = 0.5
 "#
     );
-    let spec: LiftSpec = toml::from_str(&text).unwrap();
-    spec.resolve(builtin("ac-700").unwrap()).unwrap()
+    toml::from_str(&text).unwrap()
+}
+
+fn task(pick_y: f64) -> LiftTask {
+    spec_of(pick_y).resolve(builtin("ac-700").unwrap()).unwrap()
 }
 
 fn box_part(mesh: &mut TriMesh, name: &str, lo: [f64; 3], hi: [f64; 3]) {
@@ -1241,4 +1244,109 @@ fn another_lifts_load_is_an_obstacle_to_the_planner_and_the_validator() {
         let d = parry3d_f64::query::distance(&ph, &ch, &pb, &cb).unwrap().distance;
         assert!(d >= 1.0 - 2e-3, "the load comes {d} m from the other load at {:?}", mv.to);
     }
+}
+
+/// A chart for the test crane's 40 m boom carrying 50 t out to `reach_m`
+/// and 3 t beyond.
+fn chart_reaching(reach_m: f64) -> liftplan_core::capacity::CapacityTable {
+    use liftplan_core::capacity::{CapacityRow, CapacityTable};
+    let rows: Vec<CapacityRow> = [(10.0, 50.0), (reach_m, 50.0), (reach_m + 2.0, 3.0), (40.0, 3.0)]
+        .iter()
+        .enumerate()
+        .map(|(i, &(r, t))| CapacityRow {
+            config: "none".into(),
+            boom_m: 40.0,
+            radius_m: r,
+            capacity_kg: t * 1000.0,
+            cell: format!("test.xlsx [none!B{}]", i + 2),
+        })
+        .collect();
+    CapacityTable::from_rows(&rows)
+}
+
+/// A lift over capacity where the crane stands names the nearest position
+/// from which the chart carries the load at both the pick and the set, the
+/// crane stands clear, and the lift plans; given that position, the lift
+/// file plans the same there. Where the chart's reach cannot span the pick
+/// and the set, or every such position stands on the wall, it says so.
+#[test]
+fn a_lift_over_capacity_names_a_crane_position_where_it_plans() {
+    use liftplan_plan::positions::{self, Found};
+    let mesh = site();
+    let m = map(&mesh);
+    let world = World::new(&mesh, &[], &[]).unwrap();
+    let t = task(-14.0);
+    let table = chart_reaching(24.0);
+    let chart = table.config("none").unwrap();
+    let site = Site { map: &m, world: &world, charts: Some(&table) };
+    let e = plan_lift(&t, &site, &quick(), 3).unwrap_err().to_string();
+    assert!(e.contains("pick is over capacity"), "{e}");
+    let Found::Tried(tried) = positions::search(&t, &site, chart, &quick(), 3) else { panic!("{e}") };
+    let at = tried.last().unwrap();
+    let Ok(steps) = at.outcome else { panic!("{tried:?}") };
+    assert!(
+        e.contains(&format!(
+            "; the crane set up at position_m = [{:.1}, {:.1}], heading_deg = {:.0}, ground_z_m = 0.00 (the lift's: no ground is scanned there; ",
+            at.x_m, at.y_m, at.heading_deg
+        )) && e.contains(&format!("and there the lift plans and passes the validator in {steps} steps")),
+        "{e}"
+    );
+    // Within the chart's reach of both, clear of the wall, nearer than any
+    // position said to be refused before it.
+    for (hook, r) in [([22.0, -14.0], at.pick.1), ([22.0, 14.0], at.set.1)] {
+        assert!(((at.x_m - hook[0]).hypot(at.y_m - hook[1]) - r).abs() < 1e-6 && r <= 24.0, "{at:?}");
+    }
+    assert!(at.x_m < 14.0 - 3.0 || at.x_m > 34.0 + 3.0 || at.y_m.abs() > 4.0, "{at:?}");
+    assert!(tried.windows(2).all(|w| w[0].moved_m <= w[1].moved_m), "{tried:?}");
+    // The lift file given that position plans there, the same.
+    let mut spec = spec_of(-14.0);
+    spec.crane.position_m = [at.x_m, at.y_m];
+    spec.crane.heading_deg = at.heading_deg;
+    let there = spec.resolve(builtin("ac-700").unwrap()).unwrap();
+    let (plan, _) = plan_lift(&there, &site, &quick(), 3).unwrap();
+    assert_eq!(plan.steps.len(), steps);
+    assert!(plan.summary.max_utilisation_pct <= 100.0);
+    // A planner's map without the wall, a validator's world with it: every
+    // plan passes through the wall and is rejected, at each position tried
+    // once (a refusal there searches no further).
+    let mut slab = TriMesh::default();
+    box_part(&mut slab, "SLAB", [-40.0, -40.0, -0.3], [60.0, 40.0, 0.0]);
+    let blind = map(&slab);
+    let unseen = Site { map: &blind, world: &world, charts: Some(&table) };
+    let Found::Tried(tried) = positions::search(&t, &unseen, chart, &quick(), 3) else { panic!("no position tried") };
+    assert!(tried.len() == positions::MOST_PLANNED && tried.iter().all(|t| t.outcome.is_err()), "{tried:?}");
+    let e = plan_lift(&t, &unseen, &quick(), 3).unwrap_err().to_string();
+    assert!(e.contains(&format!("; at the {} crane position(s) nearest the lift's where it carries the load at both and stands clear, the lift does not plan (nearer, others, the lift is refused at position_m = [", positions::MOST_PLANNED)), "{e}");
+    assert_eq!(e.matches("the validator rejected the plan").count(), positions::MOST_PLANNED, "{e}");
+    // A crane set up on the wall: where else it could stand, too.
+    let mut on_wall = spec_of(-14.0);
+    on_wall.crane.position_m = [20.0, 0.0];
+    let on_wall = on_wall.resolve(builtin("ac-700").unwrap()).unwrap();
+    let e = plan_lift(&on_wall, &site, &quick(), 3).unwrap_err().to_string();
+    assert!(e.contains("crane set-up: the carrier meets WALL"), "{e}");
+    let Found::Tried(tried) = positions::search(&on_wall, &site, chart, &quick(), 3) else { panic!("{e}") };
+    let at = tried.last().unwrap();
+    assert!(at.outcome.is_ok() && at.moved_m < 15.0, "{tried:?}");
+    assert!(
+        e.contains(&format!(
+            "; move the crane or clear its footprint; the crane set up at position_m = [{:.1}, {:.1}]",
+            at.x_m, at.y_m
+        )),
+        "{e}"
+    );
+    // A reach of 16 m spans the two only over the wall.
+    let table = chart_reaching(16.0);
+    let site = Site { map: &m, world: &world, charts: Some(&table) };
+    let found = positions::search(&t, &site, table.config("none").unwrap(), &quick(), 3);
+    assert!(matches!(found, Found::NoClearSetUp { looked_at } if looked_at > 10), "{found:?}");
+    let e = plan_lift(&t, &site, &quick(), 3).unwrap_err().to_string();
+    assert!(e.contains("crane positions nearest the lift's within the reach of 'none' of both the pick and the set, none stands clear (its carrier and outriggers on ground level within 0.50 m, the boom and the load clear at the lift-off and the set-down)"), "{e}");
+    // A reach of 12 m does not span them.
+    let table = chart_reaching(12.0);
+    let site = Site { map: &m, world: &world, charts: Some(&table) };
+    let e = plan_lift(&t, &site, &quick(), 3).unwrap_err().to_string();
+    assert!(
+        e.contains("; no crane position carries it at both: the pick and the set lie more than twice 12.00 m apart"),
+        "{e}"
+    );
 }
