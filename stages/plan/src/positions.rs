@@ -35,8 +35,9 @@ pub const GRID_M: f64 = 0.5;
 pub const MOST_LOOKED_AT: usize = 5000;
 /// How many positions whose set-up is clear are planned in full, at most.
 pub const MOST_PLANNED: usize = 3;
-/// How far apart positions planned in full stand, at least (m): the next
-/// position along a wall that refused the last is refused for it too.
+/// How far apart positions planned in full stand, at least, and from the
+/// lift's own (m): the next position along a wall that refused the last is
+/// refused for it too.
 pub const APART_M: f64 = 3.0;
 /// The carrier's headings tried at each position, from the lift's (°).
 pub const HEADINGS: [f64; 8] = [0.0, 90.0, 180.0, 270.0, 45.0, 135.0, 225.0, 315.0];
@@ -125,25 +126,26 @@ impl Found {
                         t.outcome.as_ref().err().map(|why| format!("at {}: {}", t.where_said(), first_clause(why)))
                     })
                     .collect();
-                let refused = if refused.is_empty() {
-                    String::new()
-                } else {
-                    format!(
-                        " (nearer, {}, the lift is refused {})",
-                        if refused.len() == 1 { "one" } else { "others" },
-                        refused.join("; ")
-                    )
-                };
                 match tried.iter().find(|t| t.outcome.is_ok()) {
                     Some(t) => format!(
-                        "; the crane set up at {} carries it at both ({}), and there the lift plans and passes the validator in {} steps{refused}: a position to CHECK on site (access, the ground's strength, what lies under the pads) before it is given to the lift",
+                        "; the crane set up at {} carries it at both ({}), and there the lift plans and passes the validator in {} steps{}: a position to CHECK on site (access, the ground's strength, what lies under the pads) before it is given to the lift",
                         t.where_said(),
                         t.carries_said(),
-                        t.outcome.as_ref().map_or(0, |n| *n)
+                        t.outcome.as_ref().map_or(0, |n| *n),
+                        if refused.is_empty() {
+                            String::new()
+                        } else {
+                            format!(
+                                " (nearer, {}, the lift is refused {})",
+                                if refused.len() == 1 { "one" } else { "others" },
+                                refused.join("; ")
+                            )
+                        }
                     ),
                     None => format!(
-                        "; at the {} crane position(s) nearest the lift's where it carries the load at both and stands clear, the lift does not plan{refused}",
-                        tried.len()
+                        "; at the {} crane position(s) nearest the lift's where it carries the load at both and stands clear, the lift is refused too: {}",
+                        tried.len(),
+                        refused.join("; ")
                     ),
                 }
             }
@@ -151,11 +153,19 @@ impl Found {
     }
 }
 
-/// A refusal's first clause: the rest (hints, lists) would bury the others.
+/// A refusal's first clause, the lift's name left out: up to its first
+/// ": " where what comes before says what refused it ("no collision-free,
+/// chart-compliant path found (...)", "the validator rejected the plan"),
+/// else up to its first "; " ("crane set-up: the carrier meets ..."). The
+/// rest (why, hints) would bury the positions among them.
 fn first_clause(why: &str) -> String {
     let why = why.split_once(": ").map_or(why, |(lift, rest)| if lift.starts_with("lift '") { rest } else { why });
-    let cut = why.find("; ").unwrap_or(why.len());
-    why[..cut].to_string()
+    let colon = why.match_indices(':').map(|(at, _)| at).find(|&at| why[at + 1..].starts_with(char::is_whitespace));
+    let cut = match colon {
+        Some(at) if at >= 25 => at,
+        _ => why.find("; ").unwrap_or(why.len()),
+    };
+    why[..cut].trim_end_matches(',').to_string()
 }
 
 /// The farthest working radius (m) at which `chart` carries the lift's
@@ -216,7 +226,9 @@ pub fn search(task: &LiftTask, site: &Site, chart: &ChartConfig, s: &Settings, s
         if clear.len() >= MOST_PLANNED || looked_at >= MOST_LOOKED_AT {
             break;
         }
-        if clear.iter().any(|(t, _)| (t.x_m - at[0]).hypot(t.y_m - at[1]) < APART_M) {
+        // The lift's own position was refused, and one near it is most
+        // often refused for the same.
+        if moved_m < APART_M || clear.iter().any(|(t, _)| (t.x_m - at[0]).hypot(t.y_m - at[1]) < APART_M) {
             continue;
         }
         looked_at += 1;
@@ -345,15 +357,15 @@ mod tests {
         let found = Found::Tried(vec![tried(3.0, Err(refused.into())), tried(6.5, Ok(9))]);
         assert_eq!(
             found.said("Main"),
-            "; the crane set up at position_m = [6.5, -2.5], heading_deg = 90, ground_z_m = 0.12 (the ground scanned there; 6.5 m from the lift's position) carries it at both (pick 72 % at 16.00 m, set 98 % at 21.79 m: a critical lift there, above its critical_pct), and there the lift plans and passes the validator in 9 steps (nearer, one, the lift is refused at position_m = [3.0, -2.5], heading_deg = 90, ground_z_m = 0.12 (the ground scanned there; 3.0 m from the lift's position): no collision-free, chart-compliant path found (1 run(s)): the boom meets RACK): a position to CHECK on site (access, the ground's strength, what lies under the pads) before it is given to the lift"
+            "; the crane set up at position_m = [6.5, -2.5], heading_deg = 90, ground_z_m = 0.12 (the ground scanned there; 6.5 m from the lift's position) carries it at both (pick 72 % at 16.00 m, set 98 % at 21.79 m: a critical lift there, above its critical_pct), and there the lift plans and passes the validator in 9 steps (nearer, one, the lift is refused at position_m = [3.0, -2.5], heading_deg = 90, ground_z_m = 0.12 (the ground scanned there; 3.0 m from the lift's position): no collision-free, chart-compliant path found (1 run(s))): a position to CHECK on site (access, the ground's strength, what lies under the pads) before it is given to the lift"
         );
         let none = Found::Tried(vec![
             tried(3.0, Err(refused.into())),
             tried(6.5, Err("lift 'V-101': crane set-up: x".into())),
         ]);
         let said = none.said("Main");
-        assert!(said.starts_with("; at the 2 crane position(s) nearest the lift's where it carries the load at both and stands clear, the lift does not plan (nearer, others, the lift is refused at position_m = [3.0"), "{said}");
-        assert!(said.ends_with("3.0 m from the lift's position): no collision-free, chart-compliant path found (1 run(s)): the boom meets RACK; at position_m = [6.5, -2.5], heading_deg = 90, ground_z_m = 0.12 (the ground scanned there; 6.5 m from the lift's position): crane set-up: x)"), "{said}");
+        assert!(said.starts_with("; at the 2 crane position(s) nearest the lift's where it carries the load at both and stands clear, the lift is refused too: at position_m = [3.0"), "{said}");
+        assert!(said.ends_with("3.0 m from the lift's position): no collision-free, chart-compliant path found (1 run(s)); at position_m = [6.5, -2.5], heading_deg = 90, ground_z_m = 0.12 (the ground scanned there; 6.5 m from the lift's position): crane set-up: x"), "{said}");
         assert_eq!(Found::NotSearched.said("Main"), "");
     }
 }

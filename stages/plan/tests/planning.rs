@@ -1316,7 +1316,7 @@ fn a_lift_over_capacity_names_a_crane_position_where_it_plans() {
     let Found::Tried(tried) = positions::search(&t, &unseen, chart, &quick(), 3) else { panic!("no position tried") };
     assert!(tried.len() == positions::MOST_PLANNED && tried.iter().all(|t| t.outcome.is_err()), "{tried:?}");
     let e = plan_lift(&t, &unseen, &quick(), 3).unwrap_err().to_string();
-    assert!(e.contains(&format!("; at the {} crane position(s) nearest the lift's where it carries the load at both and stands clear, the lift does not plan (nearer, others, the lift is refused at position_m = [", positions::MOST_PLANNED)), "{e}");
+    assert!(e.contains(&format!("; at the {} crane position(s) nearest the lift's where it carries the load at both and stands clear, the lift is refused too: at position_m = [", positions::MOST_PLANNED)), "{e}");
     assert_eq!(e.matches("the validator rejected the plan").count(), positions::MOST_PLANNED, "{e}");
     // A crane set up on the wall: where else it could stand, too.
     let mut on_wall = spec_of(-14.0);
