@@ -731,8 +731,9 @@ pub struct UnderPad {
 
 impl UnderPad {
     pub fn said(&self) -> String {
-        // Its top at the zone's top may lie higher: the zone starts there.
-        let top = if self.depth_m <= SET_UP_LEVEL_TOLERANCE_M + 2e-3 {
+        // Found at the top of the zone below the scanned ground's tolerance,
+        // its top may lie higher: the scans' search starts there.
+        let top = if (self.depth_m - SET_UP_LEVEL_TOLERANCE_M).abs() <= 2e-3 {
             format!("reaching up to {SET_UP_LEVEL_TOLERANCE_M:.2} m below the set-up level or higher")
         } else {
             format!("{:.2} m below the set-up level", self.depth_m)
@@ -750,11 +751,13 @@ impl UnderPad {
 /// Where a lift gives no mats, the pad's own float, as a square (m).
 pub const PAD_FLOAT_M: f64 = 1.0;
 
-/// What stands in the ground under each outrigger pad of a mobile crane,
-/// deeper than [`SET_UP_LEVEL_TOLERANCE_M`] below the set-up level (the
-/// ground the crane stands on lies within that): a buried pipe, a duct, a
-/// culvert, a foundation's edge or a pit under a loaded pad can give way or
-/// be crushed. The zone is where a pad's load spreads in the ground, as the
+/// What stands in the ground under each outrigger pad of a mobile crane: a
+/// buried pipe, a duct, a culvert, a foundation's edge or a pit under a
+/// loaded pad can give way or be crushed. The plant model's objects whose
+/// top lies more than [`BURIED_BELOW_M`] below the set-up level (nearer is
+/// the surface it stands on); and deeper than [`SET_UP_LEVEL_TOLERANCE_M`]
+/// below it (the scanned ground lies within that), the scans' structure and
+/// anything of the model reaching down there. The zone is where a pad's load spreads in the ground, as the
 /// common rule has it: down to twice the mat's larger side (at least 2 m),
 /// widening by one in two, as a box of the width it reaches at its foot.
 /// The nearest thing in each zone, with the depth of its top, or none.
@@ -783,6 +786,13 @@ pub fn under_pads(task: &LiftTask, world: &World) -> Vec<UnderPad> {
         .iter()
         .filter_map(|&pad| {
             let at = pad_at(&task.crane, pad)?;
+            // Nearer the surface than the scanned ground's tolerance, the
+            // plant model's buried things (the scans see only the ground
+            // there).
+            let column = [at[0] - zone_half_m, at[1] - zone_half_m, at[0] + zone_half_m, at[1] + zone_half_m];
+            if let Some((object, top_z)) = buried_in_column(world, column, top, level - BURIED_BELOW_M) {
+                return Some(UnderPad { pad, object, depth_m: level - top_z, zone_half_m, zone_depth_m });
+            }
             meets(at, bottom)?;
             // The top of what is there: the highest foot of the zone that
             // still meets it.
@@ -791,6 +801,72 @@ pub fn under_pads(task: &LiftTask, world: &World) -> Vec<UnderPad> {
             Some(UnderPad { pad, object, depth_m: level - lo, zone_half_m, zone_depth_m })
         })
         .collect()
+}
+
+/// How far below the set-up level the top of a plant model's object must
+/// lie to be buried (m): one whose top is nearer is the surface the crane
+/// stands on (a slab, paving), as the load's support is within `[plan]
+/// support_m` of it.
+pub const BURIED_BELOW_M: f64 = 0.05;
+
+/// The plant model's object whose top, within the plan rectangle `column`
+/// ([x0, y0, x1, y1]), lies highest above `from_z` and no higher than
+/// `buried_z`, and that top: a buried pipe or duct under the pad, not the
+/// slab it stands on (a group reaching above `buried_z` there is the
+/// surface, or stands on it). Each group's top is its triangles' highest
+/// point inside the column (each triangle clipped to it), exact where the
+/// zone's box search would bisect.
+fn buried_in_column(world: &World, column: [f64; 4], from_z: f64, buried_z: f64) -> Option<(String, f64)> {
+    let mesh = world.mesh.as_ref()?;
+    let v = mesh.vertices();
+    let mut tops: std::collections::BTreeMap<&str, f64> = std::collections::BTreeMap::new();
+    for (t, idx) in mesh.indices().iter().enumerate() {
+        let tri = idx.map(|k| [v[k as usize].x, v[k as usize].y, v[k as usize].z]);
+        if tri.iter().all(|p| p[2] <= from_z)
+            || tri.iter().all(|p| p[0] < column[0])
+            || tri.iter().all(|p| p[0] > column[2])
+            || tri.iter().all(|p| p[1] < column[1])
+            || tri.iter().all(|p| p[1] > column[3])
+        {
+            continue;
+        }
+        let Some(z) = highest_in_rectangle(&tri, column) else { continue };
+        let group = world.tri_group.get(t).map(String::as_str).unwrap_or_default();
+        let top = tops.entry(group).or_insert(f64::NEG_INFINITY);
+        *top = top.max(z);
+    }
+    tops.into_iter()
+        .filter(|(_, z)| *z > from_z && *z <= buried_z)
+        .max_by(|a, b| a.1.total_cmp(&b.1))
+        .map(|(g, z)| (g.to_string(), z))
+}
+
+/// The highest point of a triangle inside the vertical prism over the plan
+/// rectangle [x0, y0, x1, y1], if any part of it lies over it: the triangle
+/// clipped to each side in turn (a plane's height is linear, so the highest
+/// point is a corner of what is left).
+fn highest_in_rectangle(tri: &[[f64; 3]; 3], r: [f64; 4]) -> Option<f64> {
+    let mut poly: Vec<[f64; 3]> = tri.to_vec();
+    // Each side as (axis, bound, keep the side above it).
+    for (axis, bound, above) in [(0, r[0], true), (0, r[2], false), (1, r[1], true), (1, r[3], false)] {
+        let inside = |p: &[f64; 3]| if above { p[axis] >= bound } else { p[axis] <= bound };
+        let mut out = Vec::with_capacity(poly.len() + 2);
+        for k in 0..poly.len() {
+            let (a, b) = (poly[k], poly[(k + 1) % poly.len()]);
+            if inside(&a) {
+                out.push(a);
+            }
+            if inside(&a) != inside(&b) {
+                let f = (bound - a[axis]) / (b[axis] - a[axis]);
+                out.push([a[0] + f * (b[0] - a[0]), a[1] + f * (b[1] - a[1]), a[2] + f * (b[2] - a[2])]);
+            }
+        }
+        poly = out;
+        if poly.is_empty() {
+            return None;
+        }
+    }
+    poly.iter().map(|p| p[2]).reduce(f64::max)
 }
 
 /// The obstacles, as the validator sees them.
@@ -2154,14 +2230,33 @@ mod tests {
             "{}",
             u.said()
         );
-        // Within the set-up tolerance (the ground the crane stands on), or
-        // beyond the zone: not named.
-        assert!(under_pads(&task, &buried(1.0, -0.1, 0.35)).is_empty());
-        // A pipe whose top lies within it and its foot below it: named, at
-        // the zone's top.
+        // A shallow duct, within the scanned ground's tolerance: the model's
+        // is named with its top, however far down it reaches, its sloping
+        // top's highest point over the zone found (a triangle clipped to it).
+        let shallow = &under_pads(&task, &buried(1.0, -0.1, 0.35))[0];
+        assert!((shallow.depth_m - 0.1).abs() < 1e-9 && shallow.object == "/UG-DRAIN-1", "{shallow:?}");
+        assert!(shallow.said().starts_with("/UG-DRAIN-1 0.10 m below the set-up level under the rear left pad"));
         let high = &under_pads(&task, &pipe(1.0, -0.3))[0];
-        assert!((high.depth_m - 0.5).abs() < 2e-3, "{high:?}");
-        assert!(high.said().starts_with("/UG-DRAIN-1 reaching up to 0.50 m below the set-up level or higher under"));
+        assert!((high.depth_m - 0.3).abs() < 1e-9, "{high:?}");
+        let mut mesh = TriMesh::default();
+        let g = mesh.group_id("/DUCT-SLOPED");
+        let corners = [[at[0] - 10.0, at[1], -0.45], [at[0] + 10.0, at[1], -0.05], [at[0], at[1] + 10.0, -0.25]];
+        mesh.add_part(g, false, &corners, &[[0, 1, 2]]);
+        let sloped = under_pads(&task, &World::new(&mesh, &[], &[]).unwrap());
+        let sloped = sloped.iter().find(|u| u.pad == Pad::RearLeft).unwrap();
+        // x at[0] + 3 is the zone's edge: 0.05 + 0.4 * 7 / 20 below it.
+        assert!((sloped.depth_m - 0.19).abs() < 1e-9, "{sloped:?}");
+        // The slab the crane stands on (its top within 5 cm of the set-up
+        // level), with a duct under it: the duct is named, the slab not.
+        let mut mesh = TriMesh::default();
+        let slab = mesh.group_id("/SLAB");
+        mesh.add_box(slab, [at[0] - 5.0, at[1] - 5.0, -0.25], [at[0] + 5.0, at[1] + 5.0, -0.02]);
+        assert!(under_pads(&task, &World::new(&mesh, &[], &[]).unwrap()).is_empty());
+        let duct = mesh.group_id("/DUCT-1");
+        mesh.add_box(duct, [at[0] - 0.2, at[1] - 4.0, -0.6], [at[0] + 0.2, at[1] + 4.0, -0.3]);
+        let under = under_pads(&task, &World::new(&mesh, &[], &[]).unwrap());
+        assert!(under.len() == 1 && under[0].object == "/DUCT-1" && (under[0].depth_m - 0.3).abs() < 1e-9, "{under:?}");
+        // Beyond the zone: not named.
         assert!(under_pads(&task, &pipe(3.5, -1.2)).is_empty());
         assert!(under_pads(&task, &pipe(1.0, -4.7)).is_empty());
         // A pit's scanned sides under the pad are; its scanned floor, ground,
