@@ -448,6 +448,10 @@ keep = 3                  # runs' outputs each stage keeps in .liftplan/cache (t
 #                              # what the ground may bear (kPa), for the pressure under
 #                              # the pads: estimated from the crane file's [masses]; crane
 #                              # may also give counterweight_t, the counterweight rigged
+# wind = { chart_ms = 9.8, cw = 1.2 } # the chart's permissible wind speed (m/s) and the
+#                              # load's drag coefficient, for the wind speed it may be
+#                              # lifted in (mobile cranes); area_m2: its area facing the
+#                              # wind, else its box's largest side
 "#;
 
 /// Creates a project folder with the template and the input folders.
@@ -484,12 +488,19 @@ mod tests {
             .join("\n");
         let v: toml::Value = toml::from_str(&lift).unwrap_or_else(|e| panic!("{e}\n{lift}"));
         let spec: liftplan_core::lift::LiftSpec = v["lift"][0].clone().try_into().unwrap();
-        for key in
-            ["liftoff_m", "critical_pct", "capacity_reduction_pct", "radius_allowance_m", "swing_range_deg", "ground"]
-        {
+        for key in [
+            "liftoff_m",
+            "critical_pct",
+            "capacity_reduction_pct",
+            "radius_allowance_m",
+            "swing_range_deg",
+            "ground",
+            "wind",
+        ] {
             assert!(v["lift"][0].get(key).is_some(), "{key} is not shown");
         }
         let task = spec.resolve(liftplan_core::crane::builtin("ltm-1100").unwrap()).unwrap();
         assert_eq!(task.id, "V-101");
+        assert!(task.permissible_wind().is_some());
     }
 }

@@ -39,13 +39,25 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     // The cover names what the sign-off page asks to check (the demo's
     // scans leave a shadow beside the foundation).
     let cover = doc.extract_text(&pages[..1]).unwrap().replace('\n', " ");
-    assert!(cover.contains("CHECK FIRST ground under the load that no scan saw (sign-off page)"), "{cover}");
+    assert!(
+        cover.contains("CHECK FIRST ground under the load that no scan saw; the wind speed the load may be lifted in (less than the chart's) (sign-off page)"),
+        "{cover}"
+    );
+    // The wind speed the vessel may be lifted in: its 24 m² side at cW 1.2
+    // on 16 t of hook load (12 t, 0.5 t of slings, the 3.5 t hook block),
+    // 9.8 m/s · √(1.2 · 16 / 28.8) = 8.0 m/s; on the cover and the
+    // sign-off page, where the cover sends the signer.
+    assert!(
+        cover.contains("Wind AT MOST 8.0 m/s FOR THIS LOAD, less than the chart's: the chart's 9.8 m/s holds for up to 1.2 m² of wind area per tonne of hook load; this load catches 28.8 m²"),
+        "{cover}"
+    );
+    let flat = text.replace('\n', " ");
+    assert!(flat.contains("on site and the wind (AT MOST 8.0 m/s FOR THIS LOAD: cover)"), "{text}");
     // The outrigger pads at their most, estimated from the built-in crane
     // file's masses, and the pressure under the demo's mats: on the cover,
     // on the steps' pages and on the sign-off page.
     let pads = "104.2 t (1022 kN) on the rear left pad (x -3.25 m, y 5.75 m); 163 kPa under its 2.50 x 2.50 m mat, allowable 200 kPa";
     assert!(cover.contains(&format!("Outrigger pads in step 1, the most: {pads}; an estimate")), "{cover}");
-    let flat = text.replace('\n', " ");
     assert!(flat.contains(&format!("Outrigger pads the most: {pads}")), "{text}");
     assert!(
         flat.contains("Outrigger pads at their most (an estimate from the crane file's masses): step 1, 104.2 t on the rear left pad; 163 kPa"),
@@ -329,6 +341,25 @@ liftoff_m = 0.5
     assert_ne!(given, heavy, "{named}");
     let (cover, _) = planned_with(&dir, &given);
     assert!(cover.contains("CRITICAL LIFT"), "{named}: {cover}");
+    // A load of little area: the chart's speed, nothing to check first; a
+    // lift without wind: not worked out, to check first.
+    let compact =
+        t13.replace("wind = { chart_ms = 9.8, cw = 1.2 }", "wind = { chart_ms = 9.8, cw = 1.2, area_m2 = 5.0 }");
+    assert_ne!(compact, t13);
+    let (cover, text) = planned_with(&dir, &compact);
+    assert!(
+        cover.contains("Wind at most 9.8 m/s, the chart's: ") && !cover.contains("the wind speed the load"),
+        "{cover}"
+    );
+    assert!(text.contains("the wind (at most the chart's 9.8 m/s: cover)"), "{text}");
+    let calm = t13.replace("wind = { chart_ms = 9.8, cw = 1.2 }", "");
+    let (cover, text) = planned_with(&dir, &calm);
+    assert!(cover.contains("Wind not worked out: the lift gives no wind = { chart_ms, cw }"), "{cover}");
+    assert!(
+        cover.contains("the wind speed the load may be lifted in (not worked out: the lift gives no wind)"),
+        "{cover}"
+    );
+    assert!(text.contains("the speed this load may be lifted in is not worked out: wind)"), "{text}");
     // Mats too small for what the ground may bear: the cover asks to check
     // the ground under the pads first.
     let small_mats = t13.replace("mat_m = [2.5, 2.5]", "mat_m = [1.5, 1.5]");

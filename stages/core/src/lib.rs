@@ -17,6 +17,7 @@
 //! | [`outriggers`] | a mobile crane's pad loads and the pressure under its mats |
 //! | [`capacity`] | load-chart grids and the never-interpolate-upwards rule |
 //! | [`lift`] | the lift request and its validated form |
+//! | [`wind`] | the wind speed up to which a mobile crane may lift a load |
 //! | [`artifact`] | checked binary artifact files and atomic writes |
 //! | [`image`] | RGB rasters, PNG output, labels and colour ramps |
 //! | [`rng`] | the seeded random streams |
@@ -48,5 +49,6 @@ pub mod outriggers;
 pub mod rng;
 pub mod testing;
 pub mod units;
+pub mod wind;
 
 pub use location::{Location, Place};

@@ -181,6 +181,10 @@ pub struct LiftSpec {
     /// The outrigger pads' mats and the ground's allowable bearing pressure.
     #[serde(default)]
     pub ground: Option<GroundSpec>,
+    /// The chart's permissible wind speed and the load's drag, for the wind
+    /// speed up to which this load may be lifted.
+    #[serde(default)]
+    pub wind: Option<crate::wind::WindSpec>,
 }
 
 fn default_clearance() -> f64 {
@@ -224,6 +228,7 @@ pub struct LiftTask {
     /// The counterweight rigged (kg), where the lift says it.
     pub counterweight_kg: Option<f64>,
     pub ground: Option<GroundSpec>,
+    pub wind: Option<crate::wind::WindSpec>,
 }
 
 impl LiftTask {
@@ -281,6 +286,14 @@ impl LiftTask {
     pub fn counterweight_disagrees_kg(&self) -> Option<[f64; 2]> {
         let (lift, named) = (self.counterweight_kg?, counterweight_named_kg(&self.chart_config)?);
         ((lift - named).abs() > 50.0).then_some([lift, named])
+    }
+
+    /// The wind speed up to which the load may be lifted, where the lift
+    /// gives `wind`: its hook load is the load, the slings and the hook
+    /// block (the chart's deductions do not hang in the wind).
+    pub fn permissible_wind(&self) -> Option<crate::wind::PermissibleWind> {
+        let hook_load_kg = self.load_mass_kg + self.rigging_mass_kg + self.crane.model.hook.mass_kg;
+        self.wind.as_ref().map(|w| crate::wind::PermissibleWind::of(w, self.load.size_m, hook_load_kg))
     }
 
     /// Capacity after the configured reduction.
@@ -475,6 +488,17 @@ impl LiftSpec {
                 if crane.model.is_tower() { " (a tower crane has no outriggers)" } else { "" }
             ));
         }
+        if let Some(w) = &self.wind {
+            if crane.model.is_tower() {
+                return Err(format!(
+                    "lift '{id}': wind is worked out as a mobile crane's chart gives it (EN 13000: its speed for up to 1.2 m² per tonne), and {} is a tower crane: its manufacturer's in-service wind rules apply",
+                    crane.model.name
+                ));
+            }
+            if let Some(problem) = w.problem() {
+                return Err(format!("lift '{id}': {problem}"));
+            }
+        }
         if let Some(t) = self.crane.counterweight_t
             && !(t.is_finite() && (0.0..=10_000.0).contains(&t))
         {
@@ -518,6 +542,7 @@ impl LiftSpec {
             by_configuration: [self.pick.swing_deg.is_some(), self.set.swing_deg.is_some()],
             counterweight_kg: self.crane.counterweight_t.map(|t| t * KG_PER_TONNE),
             ground: self.ground,
+            wind: self.wind,
         })
     }
 }
@@ -784,6 +809,29 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         assert!(e.contains("is outside swing_range_deg [-60.0, 130.0]"), "{e}");
         let e = t.moved_to(Placement { boom_length_m: 500.0, ..t.crane.placement }).unwrap_err();
         assert!(e.contains("boom length 500 m is outside"), "{e}");
+    }
+
+    /// A lift's wind: worked out on the hook load (load, slings and hook
+    /// block, not the chart's deductions); refused for a tower crane and
+    /// for values no lift has.
+    #[test]
+    fn the_wind_key_is_checked_and_worked_out_on_the_hook_load() {
+        let mut sp = spec();
+        sp.crane.deductions_t = 2.0;
+        sp.wind = Some(crate::wind::WindSpec { chart_ms: 9.8, cw: 1.2, area_m2: None });
+        let t = sp.resolve(crate::crane::builtin("ltm-1100").unwrap()).unwrap();
+        let w = t.permissible_wind().unwrap();
+        assert!((w.hook_load_kg - (12500.0 + 400.0 + 1100.0)).abs() < 1e-9, "{w:?}");
+        assert_eq!(w.area_m2, 18.0);
+        assert!(spec().resolve(crate::crane::builtin("ltm-1100").unwrap()).unwrap().permissible_wind().is_none());
+        let mut bad = sp.clone();
+        bad.wind = Some(crate::wind::WindSpec { chart_ms: 98.0, cw: 1.2, area_m2: None });
+        let e = bad.resolve(crate::crane::builtin("ltm-1100").unwrap()).unwrap_err();
+        assert!(e.starts_with("lift 'V-101': wind chart_ms must be a wind speed in m/s"), "{e}");
+        sp.crane.model = "tower-hh-60".into();
+        sp.crane.boom_m = None;
+        let e = sp.resolve(crate::crane::builtin("tower-hh-60").unwrap()).unwrap_err();
+        assert!(e.contains("is a tower crane: its manufacturer's in-service wind rules apply"), "{e}");
     }
 
     /// The outrigger keys need a crane file with masses, and sane values.

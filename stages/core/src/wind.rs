@@ -1,0 +1,174 @@
+//! The wind speed up to which a mobile crane may lift a given load.
+//!
+//! A mobile crane's load chart gives one permissible wind speed for a
+//! configuration (EN 13000): it holds for a load of up to 1.2 m² of wind
+//! area per tonne of hook load. A load that catches more wind (a vessel, a
+//! panel, a roof truss) may be lifted only at a lower speed, which the
+//! crane manufacturers' rule (Liebherr's "method 2", the same in their
+//! operating manuals) gives as
+//!
+//! ```text
+//! v_max = v_chart · √(1.2 m²/t · m_H / A_W),   A_W = A_P · c_W
+//! ```
+//!
+//! with `m_H` the hook load in tonnes (load, slings, hook block), `A_P` the
+//! load's projected area facing the wind and `c_W` its drag coefficient;
+//! where that comes out above the chart's speed, the chart's governs. The
+//! 1.2 is the chart's assumption, not a drag coefficient.
+//!
+//! This module only works out that speed. It must not decide whether a lift
+//! may go ahead: the wind on site on the day is the crane driver's to read,
+//! and the manufacturer's wind rules govern.
+
+use serde::{Deserialize, Serialize};
+
+/// Wind area per tonne of hook load a mobile crane's chart speed holds
+/// for (m²/t).
+pub const CHART_AREA_PER_TONNE_M2: f64 = 1.2;
+
+/// A lift's `wind`: what the chart allows and what the load catches.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct WindSpec {
+    /// The permissible wind speed the load chart gives for the
+    /// configuration (m/s).
+    pub chart_ms: f64,
+    /// The load's drag coefficient.
+    pub cw: f64,
+    /// The load's projected area facing the wind (m²); where left out, its
+    /// box's largest side.
+    #[serde(default)]
+    pub area_m2: Option<f64>,
+}
+
+impl WindSpec {
+    /// Why the values are not ones a lift can have, naming the key.
+    pub fn problem(&self) -> Option<String> {
+        let ok = |v: f64, hi: f64| v.is_finite() && v > 0.0 && v <= hi;
+        if !ok(self.chart_ms, 50.0) {
+            return Some(format!(
+                "wind chart_ms must be a wind speed in m/s, above 0 and at most 50, found {}",
+                self.chart_ms
+            ));
+        }
+        if !ok(self.cw, 5.0) {
+            return Some(format!(
+                "wind cw must be a drag coefficient above 0 and at most 5 (1.2 to 2.4 for most loads), found {}",
+                self.cw
+            ));
+        }
+        match self.area_m2 {
+            Some(a) if !ok(a, 10_000.0) => {
+                Some(format!("wind area_m2 must be an area in m², above 0 and at most 10000, found {a}"))
+            }
+            _ => None,
+        }
+    }
+}
+
+/// The permissible wind speed for a load, and what it was worked out from.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct PermissibleWind {
+    pub chart_ms: f64,
+    pub cw: f64,
+    /// The projected area (m²), and where it is the box's largest side,
+    /// that side's length and height (m).
+    pub area_m2: f64,
+    pub box_side_m: Option<[f64; 2]>,
+    /// Load, slings and hook block (kg).
+    pub hook_load_kg: f64,
+    /// `area_m2 · cw` (m²).
+    pub wind_area_m2: f64,
+    /// The speed the load may be lifted up to (m/s): the chart's or less.
+    pub permissible_ms: f64,
+}
+
+impl PermissibleWind {
+    /// Works it out for `spec`, a load box of `size_m` (length, width,
+    /// height) and a hook load of `hook_load_kg`.
+    pub fn of(spec: &WindSpec, size_m: [f64; 3], hook_load_kg: f64) -> PermissibleWind {
+        let side = [size_m[0].max(size_m[1]), size_m[2]];
+        let (area_m2, box_side_m) = match spec.area_m2 {
+            Some(a) => (a, None),
+            None => (side[0] * side[1], Some(side)),
+        };
+        let wind_area_m2 = area_m2 * spec.cw;
+        let reduced = spec.chart_ms * (CHART_AREA_PER_TONNE_M2 * hook_load_kg / 1000.0 / wind_area_m2).sqrt();
+        PermissibleWind {
+            chart_ms: spec.chart_ms,
+            cw: spec.cw,
+            area_m2,
+            box_side_m,
+            hook_load_kg,
+            wind_area_m2,
+            permissible_ms: reduced.min(spec.chart_ms),
+        }
+    }
+
+    /// Whether the load catches more wind than the chart's speed holds for.
+    pub fn reduced(&self) -> bool {
+        self.permissible_ms < self.chart_ms
+    }
+
+    /// In words, for the PDF.
+    pub fn said(&self) -> String {
+        let area = match self.box_side_m {
+            Some([l, h]) => format!("{:.1} m² of its box's largest side, {l:.2} x {h:.2} m,", self.area_m2),
+            None => format!("{:.1} m² (wind area_m2)", self.area_m2),
+        };
+        let per_tonne = self.wind_area_m2 / (self.hook_load_kg / 1000.0);
+        format!(
+            "{}: the chart's {:.1} m/s holds for up to {CHART_AREA_PER_TONNE_M2:.1} m² of wind area per tonne of hook load; this load catches {:.1} m² ({area} at cW {:.2}) on {:.1} t, {per_tonne:.2} m² per tonne (v = v_chart · √(1.2 m²/t · m_H / A_W)); the crane manufacturer's wind rules govern",
+            if self.reduced() {
+                format!("AT MOST {:.1} m/s FOR THIS LOAD, less than the chart's", self.permissible_ms)
+            } else {
+                format!("at most {:.1} m/s, the chart's", self.permissible_ms)
+            },
+            self.chart_ms,
+            self.wind_area_m2,
+            self.cw,
+            self.hook_load_kg / 1000.0
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The manufacturer's two worked examples: a standard load (85 t, 50 m²
+    /// at cW 1.2, chart 9 m/s: 11.73 m/s, so the chart's 9 m/s governs) and
+    /// a large one (65 t, 200 m² at cW 1.4, chart 11.1 m/s: 5.86 m/s).
+    #[test]
+    fn the_worked_examples_come_out() {
+        let standard =
+            PermissibleWind::of(&WindSpec { chart_ms: 9.0, cw: 1.2, area_m2: Some(50.0) }, [1.0; 3], 85_000.0);
+        assert_eq!(standard.permissible_ms, 9.0);
+        assert!(!standard.reduced());
+        let unreduced = 9.0 * (1.2f64 * 85.0 / 60.0).sqrt();
+        assert!((unreduced - 11.73).abs() < 5e-3, "{unreduced}");
+        let large =
+            PermissibleWind::of(&WindSpec { chart_ms: 11.1, cw: 1.4, area_m2: Some(200.0) }, [1.0; 3], 65_000.0);
+        assert!((large.permissible_ms - 5.86).abs() < 5e-3 && large.reduced(), "{large:?}");
+        assert!(large.said().starts_with("AT MOST 5.9 m/s FOR THIS LOAD, less than the chart's: the chart's 11.1 m/s holds for up to 1.2 m² of wind area per tonne of hook load; this load catches 280.0 m² (200.0 m² (wind area_m2) at cW 1.40) on 65.0 t, 4.31 m² per tonne"), "{}", large.said());
+        // Without an area, the box's largest side: 8 x 3 m of an 8 x 3 x 3 m box.
+        let vessel =
+            PermissibleWind::of(&WindSpec { chart_ms: 9.8, cw: 1.2, area_m2: None }, [3.0, 8.0, 3.0], 12_900.0);
+        assert_eq!((vessel.area_m2, vessel.box_side_m), (24.0, Some([8.0, 3.0])));
+        assert!((vessel.permissible_ms - 9.8 * (1.2f64 * 12.9 / 28.8).sqrt()).abs() < 1e-12);
+        assert!(
+            vessel.said().contains("(24.0 m² of its box's largest side, 8.00 x 3.00 m, at cW 1.20)"),
+            "{}",
+            vessel.said()
+        );
+    }
+
+    #[test]
+    fn values_no_lift_has_are_named() {
+        let w = |chart_ms, cw, area_m2| WindSpec { chart_ms, cw, area_m2 }.problem();
+        assert_eq!(w(9.8, 1.2, None), None);
+        assert!(w(0.0, 1.2, None).unwrap().contains("wind chart_ms"));
+        assert!(w(9.8, f64::NAN, None).unwrap().contains("wind cw"));
+        assert!(w(9.8, 1.2, Some(-3.0)).unwrap().contains("wind area_m2"));
+    }
+}
