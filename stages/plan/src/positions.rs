@@ -9,8 +9,9 @@
 //! farthest carrying radius of both the pick and the set, nearest to the
 //! lift's own position first (those within the lift's `critical_pct` before
 //! those above it), at the lift's heading first and then turned in steps of
-//! 45°. Each is checked, at the height of the ground scanned there, as the
-//! planner checks the lift before it searches: the set-up (level ground,
+//! 45° (not where the lift gives a swing range, which turns with it). Each
+//! is checked, at the height of the ground scanned there, as the planner
+//! checks the lift before it searches: the set-up (level ground,
 //! carrier and outriggers clear), the lift-off and the set-down by the
 //! validator, and where the search would start and end by the planner's
 //! checker (online, no tables built). The first few that pass, [`APART_M`]
@@ -39,7 +40,8 @@ pub const MOST_PLANNED: usize = 3;
 /// lift's own (m): the next position along a wall that refused the last is
 /// refused for it too.
 pub const APART_M: f64 = 3.0;
-/// The carrier's headings tried at each position, from the lift's (°).
+/// The carrier's headings tried at each position, from the lift's (°);
+/// the lift's alone where it gives a permitted swing range.
 pub const HEADINGS: [f64; 8] = [0.0, 90.0, 180.0, 270.0, 45.0, 135.0, 225.0, 315.0];
 
 /// A position the crane was tried at.
@@ -220,6 +222,10 @@ pub fn search(task: &LiftTask, site: &Site, chart: &ChartConfig, s: &Settings, s
     carried.sort_by(|a, b| {
         a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)).then(a.2[0].total_cmp(&b.2[0])).then(a.2[1].total_cmp(&b.2[1]))
     });
+    // A permitted swing range turns with the carrier: whether it stands
+    // for the chart's sector or for where the site lets the load go, only
+    // at the lift's heading does it mean what the lift says.
+    let headings: &[f64] = if task.swing_range_rad.is_some() { &HEADINGS[..1] } else { &HEADINGS };
     let mut clear: Vec<(Tried, LiftTask)> = Vec::new();
     let mut looked_at = 0;
     for &(_, moved_m, at, ..) in &carried {
@@ -232,7 +238,7 @@ pub fn search(task: &LiftTask, site: &Site, chart: &ChartConfig, s: &Settings, s
             continue;
         }
         looked_at += 1;
-        if let Some(found) = HEADINGS.iter().find_map(|turn| set_up_at(task, site, chart, s, at, *turn, moved_m)) {
+        if let Some(found) = headings.iter().find_map(|turn| set_up_at(task, site, chart, s, at, *turn, moved_m)) {
             clear.push(found);
         }
     }

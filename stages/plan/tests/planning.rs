@@ -1318,6 +1318,17 @@ fn a_lift_over_capacity_names_a_crane_position_where_it_plans() {
     let e = plan_lift(&t, &unseen, &quick(), 3).unwrap_err().to_string();
     assert!(e.contains(&format!("; at the {} crane position(s) nearest the lift's where it carries the load at both and stands clear, the lift is refused too: at position_m = [", positions::MOST_PLANNED)), "{e}");
     assert_eq!(e.matches("the validator rejected the plan").count(), positions::MOST_PLANNED, "{e}");
+    // A lift with a permitted swing range keeps its heading: the range
+    // turns with the carrier. At heading 0 the carrier meets the wall
+    // wherever the chart reaches both (the position found above is turned).
+    assert_ne!(at.heading_deg, 0.0);
+    let mut ranged = spec_of(-14.0);
+    ranged.swing_range_deg = Some([-180.0, 180.0]);
+    let ranged = ranged.resolve(builtin("ac-700").unwrap()).unwrap();
+    match positions::search(&ranged, &site, chart, &quick(), 3) {
+        Found::Tried(tried) => assert!(tried.iter().all(|t| t.heading_deg == 0.0), "{tried:?}"),
+        found => assert!(matches!(found, Found::NoClearSetUp { .. }), "{found:?}"),
+    }
     // A crane set up on the wall: where else it could stand, too.
     let mut on_wall = spec_of(-14.0);
     on_wall.crane.position_m = [20.0, 0.0];
