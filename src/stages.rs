@@ -310,8 +310,15 @@ fn run_docs(ctx: &Ctx) -> Result<Produced> {
     }
     // What reading each chart configuration warned of, for the lifts on it.
     let mut chart_warnings = Vec::new();
+    let mut chart_wind = Vec::new();
     if let Some(r) = upstream_json("charts", "chart.json")? {
         for c in r["configs"].as_array().into_iter().flatten() {
+            // A chart.json written before it had them has none.
+            let stated: Vec<liftplan_core::capacity::StatedOnChart> =
+                serde_json::from_value(c["wind_ms"].clone()).unwrap_or_default();
+            if let (Some(name), false) = (c["name"].as_str(), stated.is_empty()) {
+                chart_wind.push((name.to_string(), stated));
+            }
             let warnings: Vec<String> =
                 c["warnings"].as_array().into_iter().flatten().filter_map(|w| w.as_str().map(str::to_string)).collect();
             if let (Some(name), false) = (c["name"].as_str(), warnings.is_empty()) {
@@ -333,6 +340,7 @@ fn run_docs(ctx: &Ctx) -> Result<Produced> {
         scans_left_out,
         one_column_charts,
         chart_warnings,
+        chart_wind,
     };
     let summary = liftplan_docs::run(&inputs, &p.raw.docs, p.raw.gpu.use_, ctx.out)?;
     let mut outputs = Vec::new();

@@ -45,10 +45,11 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     );
     // The wind speed the vessel may be lifted in: its 24 m² side at cW 1.2
     // on 16 t of hook load (12 t, 0.5 t of slings, the 3.5 t hook block),
-    // 9.8 m/s · √(1.2 · 16 / 28.8) = 8.0 m/s; on the cover and the
-    // sign-off page, where the cover sends the signer.
+    // 9.8 m/s · √(1.2 · 16 / 28.8) = 8.0 m/s, the chart's 9.8 m/s read from
+    // its sheet's note; on the cover and the sign-off page, where the cover
+    // sends the signer.
     assert!(
-        cover.contains("Wind AT MOST 8.0 m/s FOR THIS LOAD, less than the chart's: the chart's 9.8 m/s holds for up to 1.2 m² of wind area per tonne of hook load; this load catches 28.8 m²"),
+        cover.contains("Wind AT MOST 8.0 m/s FOR THIS LOAD, less than the chart's: the chart's 9.8 m/s (Main boom 360!A51) holds for up to 1.2 m² of wind area per tonne of hook load; this load catches 28.8 m²"),
         "{cover}"
     );
     let flat = text.replace('\n', " ");
@@ -342,9 +343,9 @@ liftoff_m = 0.5
     let (cover, _) = planned_with(&dir, &given);
     assert!(cover.contains("CRITICAL LIFT"), "{named}: {cover}");
     // A load of little area: the chart's speed, nothing to check first; a
-    // lift without wind: not worked out, to check first.
-    let compact =
-        t13.replace("wind = { chart_ms = 9.8, cw = 1.2 }", "wind = { chart_ms = 9.8, cw = 1.2, area_m2 = 5.0 }");
+    // lift without wind: not worked out, to check first; a lift's chart_ms
+    // that is not what the chart's sheet states: said, to check first.
+    let compact = t13.replace("wind = { cw = 1.2 }", "wind = { cw = 1.2, area_m2 = 5.0 }");
     assert_ne!(compact, t13);
     let (cover, text) = planned_with(&dir, &compact);
     assert!(
@@ -352,14 +353,18 @@ liftoff_m = 0.5
         "{cover}"
     );
     assert!(text.contains("the wind (at most the chart's 9.8 m/s: cover)"), "{text}");
-    let calm = t13.replace("wind = { chart_ms = 9.8, cw = 1.2 }", "");
+    let calm = t13.replace("wind = { cw = 1.2 }", "");
     let (cover, text) = planned_with(&dir, &calm);
-    assert!(cover.contains("Wind not worked out: the lift gives no wind = { chart_ms, cw }"), "{cover}");
     assert!(
-        cover.contains("the wind speed the load may be lifted in (not worked out: the lift gives no wind)"),
+        cover.contains("Wind not worked out: the lift gives no wind = { cw }, the load's drag coefficient (its chart's sheet states 9.8 m/s (Main boom 360!A51))"),
         "{cover}"
     );
-    assert!(text.contains("the speed this load may be lifted in is not worked out: wind)"), "{text}");
+    assert!(cover.contains("the wind speed the load may be lifted in (not worked out)"), "{cover}");
+    assert!(text.contains("the speed this load may be lifted in is not worked out: cover)"), "{text}");
+    let other = t13.replace("wind = { cw = 1.2 }", "wind = { chart_ms = 11.0, cw = 1.2 }");
+    let (cover, _) = planned_with(&dir, &other);
+    assert!(cover.contains("BUT THE CHART'S SHEET STATES 9.8 m/s (Main boom 360!A51): CHECK wind chart_ms"), "{cover}");
+    assert!(cover.contains("the chart's wind speed (the lift's chart_ms is not what its sheet states)"), "{cover}");
     // Mats too small for what the ground may bear: the cover asks to check
     // the ground under the pads first.
     let small_mats = t13.replace("mat_m = [2.5, 2.5]", "mat_m = [1.5, 1.5]");

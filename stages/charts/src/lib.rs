@@ -22,6 +22,7 @@ pub mod container;
 pub mod detect;
 pub mod error;
 pub mod sheet;
+pub mod stated;
 
 use error::{ChartError, Result};
 use liftplan_core::Location;
@@ -108,9 +109,25 @@ pub struct ConfigReport {
     pub units: detect::Units,
     pub title: String,
     pub warnings: Vec<String>,
+    /// The wind speeds (m/s) and counterweights (kg) its sheet states in
+    /// words beside the grid ([`stated`]).
+    pub wind_ms: Vec<liftplan_core::capacity::StatedOnChart>,
+    pub counterweight_kg: Vec<liftplan_core::capacity::StatedOnChart>,
 }
 
 impl ConfigReport {
+    /// What its sheet states in words, for the run's line: "; states wind
+    /// 9.8 m/s (A51), counterweight 140 t (A3)", cells on its own sheet;
+    /// empty where it states neither.
+    pub fn stated_said(&self) -> String {
+        let cell = |c: &str| c.rsplit_once('!').map_or(c, |(_, a1)| a1).to_string();
+        let wind = self.wind_ms.iter().map(|w| format!("wind {:.1} m/s ({})", w.value, cell(&w.cell)));
+        let cw =
+            self.counterweight_kg.iter().map(|c| format!("counterweight {} t ({})", c.value / 1000.0, cell(&c.cell)));
+        let all: Vec<String> = wind.chain(cw).collect();
+        if all.is_empty() { String::new() } else { format!("; states {}", all.join(", ")) }
+    }
+
     /// The chart's columns: "12 booms", or one column for any boom or jib.
     pub fn columns_said(&self) -> String {
         if self.any_boom { "one column (any boom or jib)".to_string() } else { format!("{} booms", self.boom_lengths) }
@@ -206,6 +223,11 @@ fn read_chart_with(path: &Path, s: &Settings, unnamed: Unnamed) -> Result<(Vec<C
         let own_notes = detect::LazyNotes::new(sh);
         let single = grids.len() == 1;
         for (k, (g, mapping)) in grids.iter().enumerate() {
+            // What the sheet states in words for this grid: on the rows
+            // from the grid before it (or the sheet's top) to the next.
+            let band_from = k.checked_sub(1).map_or(0, |b| grid_last_row(&grids[b].0) + 1);
+            let band_to = grids.get(k + 1).map_or(u32::MAX, |(next, _)| next.header_row.saturating_sub(1));
+            let stated = stated::on_sheet(sh, band_from..=band_to.max(band_from));
             let name = match mapping {
                 Some(m) => m.config.clone(),
                 None if single => sh.name.clone(),
@@ -263,6 +285,8 @@ fn read_chart_with(path: &Path, s: &Settings, unnamed: Unnamed) -> Result<(Vec<C
                 units,
                 title: g.title.clone(),
                 warnings,
+                wind_ms: stated.wind_ms,
+                counterweight_kg: stated.counterweight_kg,
             });
             configs.push(c);
         }
@@ -286,6 +310,11 @@ fn read_chart_with(path: &Path, s: &Settings, unnamed: Unnamed) -> Result<(Vec<C
         ));
     }
     Ok((configs, reports))
+}
+
+/// The last row of a grid (its header's where it has no rows).
+fn grid_last_row(g: &detect::Grid) -> u32 {
+    *g.rows.last().unwrap_or(&g.header_row)
 }
 
 /// Fills the units a grid's labels do not name from `[charts]`, saying so
@@ -405,14 +434,15 @@ impl Summary {
             .iter()
             .map(|c| {
                 format!(
-                    "'{}': {} x {} radii from {} [{}!{}] ({})",
+                    "'{}': {} x {} radii from {} [{}!{}] ({}){}",
                     c.name,
                     c.columns_said(),
                     c.radii,
                     c.file,
                     c.sheet,
                     c.range,
-                    c.units.found.join(", ")
+                    c.units.found.join(", "),
+                    c.stated_said()
                 )
             })
             .collect();

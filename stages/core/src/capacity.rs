@@ -39,6 +39,16 @@ pub struct ChartConfig {
 }
 
 /// A capacity read from the chart, with the row and column that gave it.
+/// A value a chart sheet states in words beside its grid (a wind speed in
+/// m/s, a counterweight in kg), the cell it is in (`Sheet!A3`) and the
+/// cell's text.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct StatedOnChart {
+    pub value: f64,
+    pub cell: String,
+    pub text: String,
+}
+
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Capacity {
     pub capacity_kg: f64,

@@ -288,12 +288,44 @@ impl LiftTask {
         ((lift - named).abs() > 50.0).then_some([lift, named])
     }
 
-    /// The wind speed up to which the load may be lifted, where the lift
-    /// gives `wind`: its hook load is the load, the slings and the hook
-    /// block (the chart's deductions do not hang in the wind).
-    pub fn permissible_wind(&self) -> Option<crate::wind::PermissibleWind> {
+    /// The wind speed up to which the load may be lifted: from the lift's
+    /// `wind`, its chart's speed the lift's `chart_ms` or else the one its
+    /// chart's sheet states (`stated`, each speed it states once); its hook
+    /// load the load, the slings and the hook block (the chart's deductions
+    /// do not hang in the wind). Err: why it is not worked out. With it, the
+    /// speeds the sheet states that the lift's `chart_ms` is not.
+    pub fn permissible_wind(
+        &self,
+        stated: &[crate::capacity::StatedOnChart],
+    ) -> Result<(crate::wind::PermissibleWind, Vec<crate::capacity::StatedOnChart>), String> {
+        let listed =
+            || stated.iter().map(|s| format!("{:.1} m/s ({})", s.value, s.cell)).collect::<Vec<_>>().join(", ");
+        let Some(spec) = &self.wind else {
+            return Err(if stated.is_empty() {
+                "the lift gives no wind = { chart_ms, cw } (the chart's permissible wind speed and the load's drag coefficient)".to_string()
+            } else {
+                format!(
+                    "the lift gives no wind = {{ cw }}, the load's drag coefficient (its chart's sheet states {})",
+                    listed()
+                )
+            });
+        };
         let hook_load_kg = self.load_mass_kg + self.rigging_mass_kg + self.crane.model.hook.mass_kg;
-        self.wind.as_ref().map(|w| crate::wind::PermissibleWind::of(w, self.load.size_m, hook_load_kg))
+        let (chart_ms, cell) = match (spec.chart_ms, stated) {
+            (Some(v), _) => (v, None),
+            (None, [one]) => (one.value, Some(one.cell.clone())),
+            (None, []) => {
+                return Err("the lift's wind gives no chart_ms, and its chart's sheet states no wind speed".to_string());
+            }
+            (None, _) => {
+                return Err(format!(
+                    "the lift's wind gives no chart_ms, and its chart's sheet states several wind speeds, {}: give chart_ms",
+                    listed()
+                ));
+            }
+        };
+        let other: Vec<_> = stated.iter().filter(|s| (s.value - chart_ms).abs() > 0.05).cloned().collect();
+        Ok((crate::wind::PermissibleWind::of(chart_ms, cell, spec, self.load.size_m, hook_load_kg), other))
     }
 
     /// Capacity after the configured reduction.
@@ -818,14 +850,29 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
     fn the_wind_key_is_checked_and_worked_out_on_the_hook_load() {
         let mut sp = spec();
         sp.crane.deductions_t = 2.0;
-        sp.wind = Some(crate::wind::WindSpec { chart_ms: 9.8, cw: 1.2, area_m2: None });
+        sp.wind = Some(crate::wind::WindSpec { chart_ms: Some(9.8), cw: 1.2, area_m2: None });
         let t = sp.resolve(crate::crane::builtin("ltm-1100").unwrap()).unwrap();
-        let w = t.permissible_wind().unwrap();
-        assert!((w.hook_load_kg - (12500.0 + 400.0 + 1100.0)).abs() < 1e-9, "{w:?}");
-        assert_eq!(w.area_m2, 18.0);
-        assert!(spec().resolve(crate::crane::builtin("ltm-1100").unwrap()).unwrap().permissible_wind().is_none());
+        let stated =
+            |v: f64, cell: &str| crate::capacity::StatedOnChart { value: v, cell: cell.into(), text: String::new() };
+        let (w, other) = t.permissible_wind(&[]).unwrap();
+        assert!((w.hook_load_kg - (12500.0 + 400.0 + 1100.0)).abs() < 1e-9 && other.is_empty(), "{w:?}");
+        assert_eq!((w.area_m2, w.chart_cell.as_deref()), (18.0, None));
+        // The lift's speed governs; one the sheet states otherwise is said.
+        let (w, other) = t.permissible_wind(&[stated(9.8, "M!A1"), stated(7.0, "M!A2")]).unwrap();
+        assert!(w.chart_ms == 9.8 && other == [stated(7.0, "M!A2")], "{other:?}");
+        // Without chart_ms, the one speed the sheet states; of two, none.
+        let mut from_chart = sp.clone();
+        from_chart.wind = Some(crate::wind::WindSpec { chart_ms: None, cw: 1.2, area_m2: None });
+        let t = from_chart.resolve(crate::crane::builtin("ltm-1100").unwrap()).unwrap();
+        let (w, _) = t.permissible_wind(&[stated(9.0, "M!A1")]).unwrap();
+        assert_eq!((w.chart_ms, w.chart_cell.as_deref()), (9.0, Some("M!A1")));
+        let e = t.permissible_wind(&[stated(9.0, "M!A1"), stated(7.0, "M!A2")]).unwrap_err();
+        assert!(e.contains("states several wind speeds, 9.0 m/s (M!A1), 7.0 m/s (M!A2): give chart_ms"), "{e}");
+        assert!(t.permissible_wind(&[]).unwrap_err().contains("states no wind speed"));
+        let none = spec().resolve(crate::crane::builtin("ltm-1100").unwrap()).unwrap();
+        assert!(none.permissible_wind(&[stated(9.0, "M!A1")]).unwrap_err().contains("the lift gives no wind = { cw }"));
         let mut bad = sp.clone();
-        bad.wind = Some(crate::wind::WindSpec { chart_ms: 98.0, cw: 1.2, area_m2: None });
+        bad.wind = Some(crate::wind::WindSpec { chart_ms: Some(98.0), cw: 1.2, area_m2: None });
         let e = bad.resolve(crate::crane::builtin("ltm-1100").unwrap()).unwrap_err();
         assert!(e.starts_with("lift 'V-101': wind chart_ms must be a wind speed in m/s"), "{e}");
         sp.crane.model = "tower-hh-60".into();

@@ -31,8 +31,9 @@ pub const CHART_AREA_PER_TONNE_M2: f64 = 1.2;
 #[serde(deny_unknown_fields)]
 pub struct WindSpec {
     /// The permissible wind speed the load chart gives for the
-    /// configuration (m/s).
-    pub chart_ms: f64,
+    /// configuration (m/s); where left out, the one its sheet states.
+    #[serde(default)]
+    pub chart_ms: Option<f64>,
     /// The load's drag coefficient.
     pub cw: f64,
     /// The load's projected area facing the wind (m²); where left out, its
@@ -45,11 +46,10 @@ impl WindSpec {
     /// Why the values are not ones a lift can have, naming the key.
     pub fn problem(&self) -> Option<String> {
         let ok = |v: f64, hi: f64| v.is_finite() && v > 0.0 && v <= hi;
-        if !ok(self.chart_ms, 50.0) {
-            return Some(format!(
-                "wind chart_ms must be a wind speed in m/s, above 0 and at most 50, found {}",
-                self.chart_ms
-            ));
+        if let Some(v) = self.chart_ms
+            && !ok(v, 50.0)
+        {
+            return Some(format!("wind chart_ms must be a wind speed in m/s, above 0 and at most 50, found {v}"));
         }
         if !ok(self.cw, 5.0) {
             return Some(format!(
@@ -67,9 +67,12 @@ impl WindSpec {
 }
 
 /// The permissible wind speed for a load, and what it was worked out from.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct PermissibleWind {
     pub chart_ms: f64,
+    /// Where the chart's speed was read from its sheet (`Sheet!A41`), not
+    /// given by the lift.
+    pub chart_cell: Option<String>,
     pub cw: f64,
     /// The projected area (m²), and where it is the box's largest side,
     /// that side's length and height (m).
@@ -84,24 +87,32 @@ pub struct PermissibleWind {
 }
 
 impl PermissibleWind {
-    /// Works it out for `spec`, a load box of `size_m` (length, width,
-    /// height) and a hook load of `hook_load_kg`.
-    pub fn of(spec: &WindSpec, size_m: [f64; 3], hook_load_kg: f64) -> PermissibleWind {
+    /// Works it out for the chart's speed `chart_ms` (read from `chart_cell`
+    /// where the sheet states it), `spec`'s drag and area, a load box of
+    /// `size_m` (length, width, height) and a hook load of `hook_load_kg`.
+    pub fn of(
+        chart_ms: f64,
+        chart_cell: Option<String>,
+        spec: &WindSpec,
+        size_m: [f64; 3],
+        hook_load_kg: f64,
+    ) -> PermissibleWind {
         let side = [size_m[0].max(size_m[1]), size_m[2]];
         let (area_m2, box_side_m) = match spec.area_m2 {
             Some(a) => (a, None),
             None => (side[0] * side[1], Some(side)),
         };
         let wind_area_m2 = area_m2 * spec.cw;
-        let reduced = spec.chart_ms * (CHART_AREA_PER_TONNE_M2 * hook_load_kg / 1000.0 / wind_area_m2).sqrt();
+        let reduced = chart_ms * (CHART_AREA_PER_TONNE_M2 * hook_load_kg / 1000.0 / wind_area_m2).sqrt();
         PermissibleWind {
-            chart_ms: spec.chart_ms,
+            chart_ms,
+            chart_cell,
             cw: spec.cw,
             area_m2,
             box_side_m,
             hook_load_kg,
             wind_area_m2,
-            permissible_ms: reduced.min(spec.chart_ms),
+            permissible_ms: reduced.min(chart_ms),
         }
     }
 
@@ -117,8 +128,9 @@ impl PermissibleWind {
             None => format!("{:.1} m² (wind area_m2)", self.area_m2),
         };
         let per_tonne = self.wind_area_m2 / (self.hook_load_kg / 1000.0);
+        let from = self.chart_cell.as_ref().map(|c| format!(" ({c})")).unwrap_or_default();
         format!(
-            "{}: the chart's {:.1} m/s holds for up to {CHART_AREA_PER_TONNE_M2:.1} m² of wind area per tonne of hook load; this load catches {:.1} m² ({area} at cW {:.2}) on {:.1} t, {per_tonne:.2} m² per tonne (v = v_chart · √(1.2 m²/t · m_H / A_W)); the crane manufacturer's wind rules govern",
+            "{}: the chart's {:.1} m/s{from} holds for up to {CHART_AREA_PER_TONNE_M2:.1} m² of wind area per tonne of hook load; this load catches {:.1} m² ({area} at cW {:.2}) on {:.1} t, {per_tonne:.2} m² per tonne (v = v_chart · √(1.2 m²/t · m_H / A_W)); the crane manufacturer's wind rules govern",
             if self.reduced() {
                 format!("AT MOST {:.1} m/s FOR THIS LOAD, less than the chart's", self.permissible_ms)
             } else {
@@ -141,19 +153,34 @@ mod tests {
     /// a large one (65 t, 200 m² at cW 1.4, chart 11.1 m/s: 5.86 m/s).
     #[test]
     fn the_worked_examples_come_out() {
-        let standard =
-            PermissibleWind::of(&WindSpec { chart_ms: 9.0, cw: 1.2, area_m2: Some(50.0) }, [1.0; 3], 85_000.0);
+        let standard = PermissibleWind::of(
+            9.0,
+            None,
+            &WindSpec { chart_ms: None, cw: 1.2, area_m2: Some(50.0) },
+            [1.0; 3],
+            85_000.0,
+        );
         assert_eq!(standard.permissible_ms, 9.0);
         assert!(!standard.reduced());
         let unreduced = 9.0 * (1.2f64 * 85.0 / 60.0).sqrt();
         assert!((unreduced - 11.73).abs() < 5e-3, "{unreduced}");
-        let large =
-            PermissibleWind::of(&WindSpec { chart_ms: 11.1, cw: 1.4, area_m2: Some(200.0) }, [1.0; 3], 65_000.0);
+        let large = PermissibleWind::of(
+            11.1,
+            None,
+            &WindSpec { chart_ms: None, cw: 1.4, area_m2: Some(200.0) },
+            [1.0; 3],
+            65_000.0,
+        );
         assert!((large.permissible_ms - 5.86).abs() < 5e-3 && large.reduced(), "{large:?}");
         assert!(large.said().starts_with("AT MOST 5.9 m/s FOR THIS LOAD, less than the chart's: the chart's 11.1 m/s holds for up to 1.2 m² of wind area per tonne of hook load; this load catches 280.0 m² (200.0 m² (wind area_m2) at cW 1.40) on 65.0 t, 4.31 m² per tonne"), "{}", large.said());
         // Without an area, the box's largest side: 8 x 3 m of an 8 x 3 x 3 m box.
-        let vessel =
-            PermissibleWind::of(&WindSpec { chart_ms: 9.8, cw: 1.2, area_m2: None }, [3.0, 8.0, 3.0], 12_900.0);
+        let vessel = PermissibleWind::of(
+            9.8,
+            Some("Main!A41".into()),
+            &WindSpec { chart_ms: None, cw: 1.2, area_m2: None },
+            [3.0, 8.0, 3.0],
+            12_900.0,
+        );
         assert_eq!((vessel.area_m2, vessel.box_side_m), (24.0, Some([8.0, 3.0])));
         assert!((vessel.permissible_ms - 9.8 * (1.2f64 * 12.9 / 28.8).sqrt()).abs() < 1e-12);
         assert!(
@@ -164,11 +191,19 @@ mod tests {
     }
 
     #[test]
+    fn the_charts_cell_is_said() {
+        let spec = WindSpec { chart_ms: None, cw: 1.2, area_m2: None };
+        let vessel = PermissibleWind::of(9.8, Some("Main!A41".into()), &spec, [3.0, 8.0, 3.0], 12_900.0);
+        assert!(vessel.said().contains(": the chart's 9.8 m/s (Main!A41) holds for"), "{}", vessel.said());
+    }
+
+    #[test]
     fn values_no_lift_has_are_named() {
         let w = |chart_ms, cw, area_m2| WindSpec { chart_ms, cw, area_m2 }.problem();
-        assert_eq!(w(9.8, 1.2, None), None);
-        assert!(w(0.0, 1.2, None).unwrap().contains("wind chart_ms"));
-        assert!(w(9.8, f64::NAN, None).unwrap().contains("wind cw"));
-        assert!(w(9.8, 1.2, Some(-3.0)).unwrap().contains("wind area_m2"));
+        assert_eq!(w(Some(9.8), 1.2, None), None);
+        assert_eq!(w(None, 1.2, None), None);
+        assert!(w(Some(0.0), 1.2, None).unwrap().contains("wind chart_ms"));
+        assert!(w(Some(9.8), f64::NAN, None).unwrap().contains("wind cw"));
+        assert!(w(Some(9.8), 1.2, Some(-3.0)).unwrap().contains("wind area_m2"));
     }
 }

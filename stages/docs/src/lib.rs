@@ -85,6 +85,8 @@ pub struct Inputs {
     /// text, a footnote mark dropped, a column broken between two
     /// capacities), by configuration name.
     pub chart_warnings: Vec<(String, Vec<String>)>,
+    /// The wind speeds each chart configuration's sheet states, by name.
+    pub chart_wind: Vec<(String, Vec<liftplan_core::capacity::StatedOnChart>)>,
 }
 
 #[derive(Debug, Clone, Serialize)]
