@@ -182,6 +182,9 @@ pub fn plan() -> StageDef {
             // The groups left out of the model, against the lifts' positions.
             ("plant", "plant.json"),
             ("charts", "capacity.csv"),
+            // The counterweight each configuration's sheet states, for the
+            // outrigger loads.
+            ("charts", "chart.json"),
         ],
         applicable: |p, _, up| !p.raw.lift.is_empty() && up.contains_key("depthmap"),
         run: run_plan,
@@ -190,7 +193,23 @@ pub fn plan() -> StageDef {
 
 fn run_plan(ctx: &Ctx) -> Result<Produced> {
     let p = ctx.project;
-    let tasks = p.lifts()?;
+    let mut tasks = p.lifts()?;
+    // The counterweight each lift's chart configuration's sheet states,
+    // where it states one (a chart.json written before it had them has none).
+    if let Some(f) = ctx.upstream_file("charts", "chart.json") {
+        let bytes = std::fs::read(&f).with_context(|| format!("reading {}", f.display()))?;
+        let r: serde_json::Value =
+            serde_json::from_slice(&bytes).with_context(|| format!("reading {}", f.display()))?;
+        for c in r["configs"].as_array().into_iter().flatten() {
+            let stated: Vec<liftplan_core::capacity::StatedOnChart> =
+                serde_json::from_value(c["counterweight_kg"].clone()).unwrap_or_default();
+            if let ([one], Some(name)) = (&stated[..], c["name"].as_str()) {
+                for t in tasks.iter_mut().filter(|t| t.chart_config == name) {
+                    t.chart_sheet_counterweight = Some(one.clone());
+                }
+            }
+        }
+    }
     let map = ctx.upstream_file("depthmap", "site.mdm").ok_or_else(|| anyhow::anyhow!("no depth map"))?;
     let summary = liftplan_plan::run(
         &tasks,

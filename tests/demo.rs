@@ -59,6 +59,8 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     // on the steps' pages and on the sign-off page.
     let pads = "104.2 t (1022 kN) on the rear left pad (x -3.25 m, y 5.75 m); 163 kPa under its 2.50 x 2.50 m mat, allowable 200 kPa";
     assert!(cover.contains(&format!("Outrigger pads in step 1, the most: {pads}; an estimate")), "{cover}");
+    // ... with the counterweight the chart's sheet states in its title.
+    assert!(cover.contains("with the 140.0 t counterweight its chart's sheet states (Main boom 360!A3)"), "{cover}");
     assert!(flat.contains(&format!("Outrigger pads the most: {pads}")), "{text}");
     assert!(
         flat.contains("Outrigger pads at their most (an estimate from the crane file's masses): step 1, 104.2 t on the rear left pad; 163 kPa"),
@@ -365,6 +367,13 @@ liftoff_m = 0.5
     let (cover, _) = planned_with(&dir, &other);
     assert!(cover.contains("BUT THE CHART'S SHEET STATES 9.8 m/s (Main boom 360!A51): CHECK wind chart_ms"), "{cover}");
     assert!(cover.contains("the chart's wind speed (the lift's chart_ms is not what its sheet states)"), "{cover}");
+    // A lift's counterweight that is not the one the chart's sheet states.
+    let cw100 = t13
+        .replace("chart_config = \"Main boom 360\" }", "chart_config = \"Main boom 360\", counterweight_t = 100.0 }");
+    assert_ne!(cw100, t13);
+    let (cover, text) = planned_with(&dir, &cw100);
+    assert!(cover.contains("the counterweight (the lift's is not its chart configuration's)"), "{cover}");
+    assert!(text.contains("with the lift's 100.0 t counterweight, NOT THE 140.0 t ITS CHART'S SHEET STATES (Main boom 360!A3): CHECK crane counterweight_t"), "{text}");
     // Mats too small for what the ground may bear: the cover asks to check
     // the ground under the pads first.
     let small_mats = t13.replace("mat_m = [2.5, 2.5]", "mat_m = [1.5, 1.5]");

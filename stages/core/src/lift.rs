@@ -93,6 +93,9 @@ pub enum CounterweightFrom {
     Lift,
     /// The one the lift's chart configuration's name states.
     ChartConfig,
+    /// The one its chart's sheet states beside the grid
+    /// ([`LiftTask::chart_sheet_counterweight`]).
+    ChartSheet,
     /// The crane file's `[masses] counterweight_t`.
     CraneFile,
 }
@@ -229,6 +232,10 @@ pub struct LiftTask {
     pub counterweight_kg: Option<f64>,
     pub ground: Option<GroundSpec>,
     pub wind: Option<crate::wind::WindSpec>,
+    /// The counterweight the lift's chart configuration's sheet states in
+    /// words beside its grid, where it states one ("Counterweight 140 t",
+    /// its cell): set by the stage that has read the chart, none until then.
+    pub chart_sheet_counterweight: Option<crate::capacity::StatedOnChart>,
 }
 
 impl LiftTask {
@@ -267,25 +274,36 @@ impl LiftTask {
     }
 
     /// The counterweight the outrigger loads are worked out with (kg), and
-    /// whose it is: the lift's (`crane counterweight_t`), else the one its
-    /// chart configuration's name states ([`counterweight_named_kg`]: the
-    /// chart is read for what is rigged), else the crane file's; `None`
-    /// where there are no masses.
+    /// whose it is: the lift's (`crane counterweight_t`), else its chart's
+    /// ([`Self::chart_counterweight_kg`]: the chart is read for what is
+    /// rigged), else the crane file's; `None` where there are no masses.
     pub fn counterweight_used_kg(&self) -> Option<(f64, CounterweightFrom)> {
         let crate::crane::CraneKind::Luffing(l) = &self.crane.model.kind else { return None };
         let file = l.masses?.counterweight_t * KG_PER_TONNE;
-        Some(match (self.counterweight_kg, counterweight_named_kg(&self.chart_config)) {
+        Some(match (self.counterweight_kg, self.chart_counterweight_kg()) {
             (Some(kg), _) => (kg, CounterweightFrom::Lift),
-            (None, Some(kg)) => (kg, CounterweightFrom::ChartConfig),
+            (None, Some((kg, from))) => (kg, from),
             (None, None) => (file, CounterweightFrom::CraneFile),
         })
     }
 
-    /// Where the lift's `crane counterweight_t` is not what its chart
-    /// configuration's name states (more than 0.05 t apart): the two (kg).
+    /// The counterweight the lift's chart states (kg): the one its
+    /// configuration's name states ([`counterweight_named_kg`]), else the
+    /// one its sheet states beside the grid.
+    pub fn chart_counterweight_kg(&self) -> Option<(f64, CounterweightFrom)> {
+        match (counterweight_named_kg(&self.chart_config), &self.chart_sheet_counterweight) {
+            (Some(kg), _) => Some((kg, CounterweightFrom::ChartConfig)),
+            (None, Some(stated)) => Some((stated.value, CounterweightFrom::ChartSheet)),
+            (None, None) => None,
+        }
+    }
+
+    /// Where the lift's `crane counterweight_t` is not what its chart states
+    /// ([`Self::chart_counterweight_kg`]; more than 0.05 t apart): the two
+    /// (kg).
     pub fn counterweight_disagrees_kg(&self) -> Option<[f64; 2]> {
-        let (lift, named) = (self.counterweight_kg?, counterweight_named_kg(&self.chart_config)?);
-        ((lift - named).abs() > 50.0).then_some([lift, named])
+        let (lift, (chart, _)) = (self.counterweight_kg?, self.chart_counterweight_kg()?);
+        ((lift - chart).abs() > 50.0).then_some([lift, chart])
     }
 
     /// The wind speed up to which the load may be lifted: from the lift's
@@ -575,6 +593,7 @@ impl LiftSpec {
             counterweight_kg: self.crane.counterweight_t.map(|t| t * KG_PER_TONNE),
             ground: self.ground,
             wind: self.wind,
+            chart_sheet_counterweight: None,
         })
     }
 }
@@ -945,6 +964,19 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         assert_eq!(t.counterweight_used_kg(), Some((37_000.0, CounterweightFrom::Lift)));
         assert_eq!(t.counterweight_disagrees_kg(), Some([37_000.0, 20_000.0]));
         assert_eq!(with("main CW 20t", ", counterweight_t = 20.0").counterweight_disagrees_kg(), None);
+        // The one its chart's sheet states, where the name states none;
+        // the name's where both do; the lift's over either.
+        let sheet = crate::capacity::StatedOnChart { value: 25_000.0, cell: "main!A3".into(), text: "CW 25 t".into() };
+        let mut t = with("main", "");
+        t.chart_sheet_counterweight = Some(sheet.clone());
+        assert_eq!(t.counterweight_used_kg(), Some((25_000.0, CounterweightFrom::ChartSheet)));
+        assert!((total(&file) - total(&t) - 12_000.0).abs() < 1e-6);
+        let mut t = with("main CW 20t", "");
+        t.chart_sheet_counterweight = Some(sheet.clone());
+        assert_eq!(t.counterweight_used_kg(), Some((20_000.0, CounterweightFrom::ChartConfig)));
+        let mut t = with("main", ", counterweight_t = 37.0");
+        t.chart_sheet_counterweight = Some(sheet);
+        assert_eq!(t.counterweight_disagrees_kg(), Some([37_000.0, 25_000.0]));
     }
 
     #[test]

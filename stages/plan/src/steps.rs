@@ -303,6 +303,10 @@ pub struct Summary {
     /// The lift's chart configuration, for saying whose counterweight.
     #[serde(default)]
     pub chart_config: String,
+    /// The cell of the chart's sheet that states the counterweight the
+    /// chart's is ([`CounterweightFrom::ChartSheet`]), for saying where.
+    #[serde(default)]
+    pub chart_counterweight_cell: Option<String>,
     /// What stands in the ground under the outrigger pads
     /// ([`crate::validate::under_pads`]).
     #[serde(default)]
@@ -445,15 +449,23 @@ impl Summary {
     pub fn pads_counterweight_said(&self) -> Option<String> {
         let (kg, from) = self.pads_counterweight?;
         let t = kg / 1000.0;
+        // Whose the chart's counterweight is: its configuration's name's,
+        // or its sheet's cell's.
+        let charts = |upper: bool| match (&self.chart_counterweight_cell, upper) {
+            (Some(cell), false) => format!("its chart's sheet states ({cell})"),
+            (Some(cell), true) => format!("ITS CHART'S SHEET STATES ({cell})"),
+            (None, false) => format!("its chart configuration '{}' names", self.chart_config),
+            (None, true) => format!("ITS CHART CONFIGURATION '{}' NAMES", self.chart_config),
+        };
         Some(match (from, self.counterweight_disagrees_kg) {
             (CounterweightFrom::Lift, Some([_, named])) => format!(
-                "the lift's {t:.1} t counterweight, NOT THE {:.1} t ITS CHART CONFIGURATION '{}' NAMES: CHECK crane counterweight_t against what is rigged",
+                "the lift's {t:.1} t counterweight, NOT THE {:.1} t {}: CHECK crane counterweight_t against what is rigged",
                 named / 1000.0,
-                self.chart_config
+                charts(true)
             ),
             (CounterweightFrom::Lift, None) => format!("the lift's {t:.1} t counterweight"),
-            (CounterweightFrom::ChartConfig, _) => {
-                format!("the {t:.1} t counterweight its chart configuration '{}' names", self.chart_config)
+            (CounterweightFrom::ChartConfig | CounterweightFrom::ChartSheet, _) => {
+                format!("the {t:.1} t counterweight {}", charts(false))
             }
             (CounterweightFrom::CraneFile, _) => {
                 format!("the crane file's {t:.1} t counterweight (crane counterweight_t sets the one rigged)")
@@ -540,6 +552,10 @@ pub fn summary(task: &LiftTask, steps: &[Step], verdict: &Verdict) -> Summary {
         pads_counterweight: task.counterweight_used_kg(),
         counterweight_disagrees_kg: task.counterweight_disagrees_kg(),
         chart_config: task.chart_config.clone(),
+        chart_counterweight_cell: task
+            .chart_counterweight_kg()
+            .filter(|(_, from)| *from == CounterweightFrom::ChartSheet)
+            .and_then(|_| task.chart_sheet_counterweight.as_ref().map(|s| s.cell.clone())),
         under_pads: Vec::new(),
         ground: task.ground,
     };
