@@ -311,7 +311,7 @@ impl LiftTask {
     /// chart's sheet states (`stated`, each speed it states once); its hook
     /// load the load, the slings and the hook block (the chart's deductions
     /// do not hang in the wind). Err: why it is not worked out. With it, the
-    /// speeds the sheet states that the lift's `chart_ms` is not.
+    /// speeds the sheet states where the lift's `chart_ms` is none of them.
     pub fn permissible_wind(
         &self,
         stated: &[crate::capacity::StatedOnChart],
@@ -342,7 +342,10 @@ impl LiftTask {
                 ));
             }
         };
-        let other: Vec<_> = stated.iter().filter(|s| (s.value - chart_ms).abs() > 0.05).cloned().collect();
+        // A sheet may state several speeds (one for long booms): the lift's
+        // is to be checked only where it is none of them.
+        let stated_too = stated.iter().any(|s| (s.value - chart_ms).abs() <= 0.05);
+        let other = if stated_too { Vec::new() } else { stated.to_vec() };
         Ok((crate::wind::PermissibleWind::of(chart_ms, cell, spec, self.load.size_m, hook_load_kg), other))
     }
 
@@ -876,9 +879,12 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         let (w, other) = t.permissible_wind(&[]).unwrap();
         assert!((w.hook_load_kg - (12500.0 + 400.0 + 1100.0)).abs() < 1e-9 && other.is_empty(), "{w:?}");
         assert_eq!((w.area_m2, w.chart_cell.as_deref()), (18.0, None));
-        // The lift's speed governs; one the sheet states otherwise is said.
+        // The lift's speed governs; where the sheet states others and not
+        // it, they are said.
         let (w, other) = t.permissible_wind(&[stated(9.8, "M!A1"), stated(7.0, "M!A2")]).unwrap();
-        assert!(w.chart_ms == 9.8 && other == [stated(7.0, "M!A2")], "{other:?}");
+        assert!(w.chart_ms == 9.8 && other.is_empty(), "{other:?}");
+        let (_, other) = t.permissible_wind(&[stated(9.0, "M!A1"), stated(7.0, "M!A2")]).unwrap();
+        assert_eq!(other, [stated(9.0, "M!A1"), stated(7.0, "M!A2")]);
         // Without chart_ms, the one speed the sheet states; of two, none.
         let mut from_chart = sp.clone();
         from_chart.wind = Some(crate::wind::WindSpec { chart_ms: None, cw: 1.2, area_m2: None });

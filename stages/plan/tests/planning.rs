@@ -311,23 +311,28 @@ fn validator_rejects_a_swing_through_the_wall() {
     assert!(v.problems.iter().any(|p| p.contains("WALL")), "{:?}", v.problems);
 }
 
+/// A chart configuration "none" for the test crane's 40 m boom: its rows
+/// (radius m, capacity t), their cells on the chart's `sheet`.
+fn chart_of(rows: &[(f64, f64)], sheet: &str) -> liftplan_core::capacity::CapacityTable {
+    use liftplan_core::capacity::{CapacityRow, CapacityTable};
+    let rows: Vec<CapacityRow> = rows
+        .iter()
+        .enumerate()
+        .map(|(i, &(r, t))| CapacityRow {
+            config: "none".into(),
+            boom_m: 40.0,
+            radius_m: r,
+            capacity_kg: t * 1000.0,
+            cell: format!("test.xlsx [{sheet}!B{}]", i + 2),
+        })
+        .collect();
+    CapacityTable::from_rows(&rows)
+}
+
 /// A chart for the test crane's 40 m boom: ample capacity up to 28 m radius,
 /// less than the test load's gross weight beyond.
 fn chart(far_capacity_t: f64) -> liftplan_core::capacity::CapacityTable {
-    use liftplan_core::capacity::{CapacityRow, CapacityTable};
-    let rows: Vec<CapacityRow> =
-        [(10.0, 50.0), (20.0, 50.0), (28.0, 50.0), (34.0, far_capacity_t), (40.0, far_capacity_t)]
-            .iter()
-            .enumerate()
-            .map(|(i, &(r, t))| CapacityRow {
-                config: "none".into(),
-                boom_m: 40.0,
-                radius_m: r,
-                capacity_kg: t * 1000.0,
-                cell: format!("test.xlsx [main!B{}]", i + 2),
-            })
-            .collect();
-    CapacityTable::from_rows(&rows)
+    chart_of(&[(10.0, 50.0), (20.0, 50.0), (28.0, 50.0), (34.0, far_capacity_t), (40.0, far_capacity_t)], "main")
 }
 
 /// A pick over capacity says what would carry it, as the charts read tell:
@@ -1249,19 +1254,7 @@ fn another_lifts_load_is_an_obstacle_to_the_planner_and_the_validator() {
 /// A chart for the test crane's 40 m boom carrying 50 t out to `reach_m`
 /// and 3 t beyond.
 fn chart_reaching(reach_m: f64) -> liftplan_core::capacity::CapacityTable {
-    use liftplan_core::capacity::{CapacityRow, CapacityTable};
-    let rows: Vec<CapacityRow> = [(10.0, 50.0), (reach_m, 50.0), (reach_m + 2.0, 3.0), (40.0, 3.0)]
-        .iter()
-        .enumerate()
-        .map(|(i, &(r, t))| CapacityRow {
-            config: "none".into(),
-            boom_m: 40.0,
-            radius_m: r,
-            capacity_kg: t * 1000.0,
-            cell: format!("test.xlsx [none!B{}]", i + 2),
-        })
-        .collect();
-    CapacityTable::from_rows(&rows)
+    chart_of(&[(10.0, 50.0), (reach_m, 50.0), (reach_m + 2.0, 3.0), (40.0, 3.0)], "none")
 }
 
 /// A lift over capacity where the crane stands names the nearest position
