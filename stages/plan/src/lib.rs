@@ -663,15 +663,27 @@ pub(crate) fn plan_lift_hinting(
             b.to_string()
         }
     };
+    // Where the crane's own structure (its boom, its superstructure) meets
+    // something there, another position may clear it; what the load meets
+    // at its pick or set moves with it.
+    let structure = |b: &liftplan_cspace::Blocked| {
+        use liftplan_core::crane::PartKind;
+        b.part.is_some_and(|k| !matches!(k, PartKind::Load | PartKind::Rigging | PartKind::HookBlock | PartKind::Rope))
+    };
     if let Err(b) = ck.config(&start) {
         let hint = hints::for_load(task, site, &b, &task.pick, &start, task.height_key(true), true);
-        return Err(lift_err(task, format!("the lifted-off pick configuration is not allowed: {}{hint}", why(&b))));
+        let elsewhere = if structure(&b) { elsewhere(chart) } else { String::new() };
+        return Err(lift_err(
+            task,
+            format!("the lifted-off pick configuration is not allowed: {}{hint}{elsewhere}", why(&b)),
+        ));
     }
     if let Err(b) = ck.config(&goal0) {
         let hint = hints::for_load(task, site, &b, &task.set, &goal0, task.height_key(false), false);
+        let elsewhere = if structure(&b) { elsewhere(chart) } else { String::new() };
         return Err(lift_err(
             task,
-            format!("the configuration above the set position is not allowed: {}{hint}", why(&b)),
+            format!("the configuration above the set position is not allowed: {}{hint}{elsewhere}", why(&b)),
         ));
     }
     let rules = validate_rules(task, s, landing);

@@ -1,6 +1,7 @@
 //! Where else a mobile crane could stand, for a lift refused where the lift
 //! sets it up (the chart does not carry the load at the pick or the set,
-//! the carrier or outriggers meet something, or no path is found): the
+//! the carrier or outriggers meet something, the boom meets something at
+//! the pick or the set, or no path is found): the
 //! nearest position from which its chart configuration carries the gross
 //! load at both, the crane stands clear on level ground, and the whole lift
 //! plans and passes the validator.

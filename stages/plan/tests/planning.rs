@@ -1260,8 +1260,10 @@ fn chart_reaching(reach_m: f64) -> liftplan_core::capacity::CapacityTable {
 /// A lift over capacity where the crane stands names the nearest position
 /// from which the chart carries the load at both the pick and the set, the
 /// crane stands clear, and the lift plans; given that position, the lift
-/// file plans the same there. Where the chart's reach cannot span the pick
-/// and the set, or every such position stands on the wall, it says so.
+/// file plans the same there. So does a lift whose crane stands on the wall,
+/// or whose boom meets a mast at the pick (not one whose load meets
+/// something there). Where the chart's reach cannot span the pick and the
+/// set, or every such position stands on the wall, it says so.
 #[test]
 fn a_lift_over_capacity_names_a_crane_position_where_it_plans() {
     use liftplan_plan::positions::{self, Found};
@@ -1338,6 +1340,27 @@ fn a_lift_over_capacity_names_a_crane_position_where_it_plans() {
         )),
         "{e}"
     );
+    // A mast between the crane and the pick that the boom meets there: the
+    // crane's own structure, which another position clears.
+    let mut masted = self::site();
+    box_part(&mut masted, "MAST", [11.3, -8.0, 0.0], [12.3, -7.0, 40.0]);
+    let masted_map = map(&masted);
+    let masted_world = World::new(&masted, &[], &[]).unwrap();
+    let ample = chart_reaching(30.0);
+    let at_mast = Site { map: &masted_map, world: &masted_world, charts: Some(&ample) };
+    let e = plan_lift(&t, &at_mast, &quick(), 3).unwrap_err().to_string();
+    assert!(e.contains("the lifted-off pick configuration is not allowed") && e.contains("boom and MAST"), "{e}");
+    assert!(e.contains("; the crane set up at position_m = [") && e.contains("and there the lift plans"), "{e}");
+    // A load that meets something at its pick moves with the crane: no
+    // position is searched.
+    let mut crate_at_pick = self::site();
+    box_part(&mut crate_at_pick, "CRATE", [23.5, -14.5, 0.0], [24.5, -13.5, 4.0]);
+    let crate_map = map(&crate_at_pick);
+    let crate_world = World::new(&crate_at_pick, &[], &[]).unwrap();
+    let e = plan_lift(&t, &Site { map: &crate_map, world: &crate_world, charts: Some(&ample) }, &quick(), 3)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("load and CRATE") && !e.contains("position_m") && !e.contains("crane positions"), "{e}");
     // A reach of 16 m spans the two only over the wall.
     let table = chart_reaching(16.0);
     let site = Site { map: &m, world: &world, charts: Some(&table) };
