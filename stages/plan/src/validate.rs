@@ -733,7 +733,9 @@ impl UnderPad {
     pub fn said(&self) -> String {
         // Found at the top of the zone below the scanned ground's tolerance,
         // its top may lie higher: the scans' search starts there.
-        let top = if (self.depth_m - SET_UP_LEVEL_TOLERANCE_M).abs() <= 2e-3 {
+        let top = if self.depth_m <= BURIED_BELOW_M {
+            "reaching up to the set-up level".to_string()
+        } else if (self.depth_m - SET_UP_LEVEL_TOLERANCE_M).abs() <= 2e-3 {
             format!("reaching up to {SET_UP_LEVEL_TOLERANCE_M:.2} m below the set-up level or higher")
         } else {
             format!("{:.2} m below the set-up level", self.depth_m)
@@ -781,26 +783,41 @@ pub fn under_pads(task: &LiftTask, world: &World) -> Vec<UnderPad> {
             liftplan_core::frame::Vec3::new(zone_half_m, zone_half_m, (top - from_z) / 2.0),
         )
     };
-    let meets = |at: [f64; 2], from_z: f64| touching(world, &zone(at, from_z), f64::INFINITY);
-    Pad::ALL
-        .iter()
-        .filter_map(|&pad| {
-            let at = pad_at(&task.crane, pad)?;
-            // Nearer the surface than the scanned ground's tolerance, the
-            // plant model's buried things (the scans see only the ground
-            // there).
-            let column = [at[0] - zone_half_m, at[1] - zone_half_m, at[0] + zone_half_m, at[1] + zone_half_m];
-            if let Some((object, top_z)) = buried_in_column(world, column, top, level - BURIED_BELOW_M) {
-                return Some(UnderPad { pad, object, depth_m: level - top_z, zone_half_m, zone_depth_m });
-            }
-            meets(at, bottom)?;
-            // The top of what is there: the highest foot of the zone that
-            // still meets it.
+    // What the model does not name: scanned structure (the ground left
+    // out) and the other lifts' loads.
+    let meets = |at: [f64; 2], from_z: f64| {
+        let b = zone(at, from_z);
+        if nearest_scan(world, &b, 1e-9, f64::INFINITY).is_some() {
+            return Some("scanned structure".to_string());
+        }
+        world.others.iter().find(|(o, _)| o.intersects(&b)).map(|(_, name)| name.clone())
+    };
+    let mut under = Vec::new();
+    for pad in Pad::ALL {
+        let Some(at) = pad_at(&task.crane, pad) else { continue };
+        let said = |object: String, depth_m: f64| UnderPad { pad, object, depth_m, zone_half_m, zone_depth_m };
+        // The plant model's groups, each with its own top over the zone:
+        // those buried (their top more than BURIED_BELOW_M down), and those
+        // from the surface down into the zone below the scanned ground's
+        // tolerance (a foundation's edge).
+        let column = [at[0] - zone_half_m, at[1] - zone_half_m, at[0] + zone_half_m, at[1] + zone_half_m];
+        let mut here: Vec<UnderPad> = model_in_column(world, column, bottom)
+            .into_iter()
+            .filter(|(_, high, low)| *high > bottom && (*high <= level - BURIED_BELOW_M || *low < top))
+            .map(|(group, high, _)| said(group, (level - high).max(0.0)))
+            .collect();
+        // The scans' structure and the other loads, nearest first: the top
+        // of what is there, the highest foot of the zone that still meets it.
+        if meets(at, bottom).is_some() {
             let (lo, _) = bisect_mm(bottom, top - 1e-3, |z| meets(at, z).is_some());
-            let object = meets(at, lo)?;
-            Some(UnderPad { pad, object, depth_m: level - lo, zone_half_m, zone_depth_m })
-        })
-        .collect()
+            if let Some(object) = meets(at, lo) {
+                here.push(said(object, level - lo));
+            }
+        }
+        here.sort_by(|a, b| a.depth_m.total_cmp(&b.depth_m).then(a.object.cmp(&b.object)));
+        under.extend(here);
+    }
+    under
 }
 
 /// How far below the set-up level the top of a plant model's object must
@@ -809,17 +826,14 @@ pub fn under_pads(task: &LiftTask, world: &World) -> Vec<UnderPad> {
 /// support_m` of it.
 pub const BURIED_BELOW_M: f64 = 0.05;
 
-/// The plant model's object whose top, within the plan rectangle `column`
-/// ([x0, y0, x1, y1]), lies highest above `from_z` and no higher than
-/// `buried_z`, and that top: a buried pipe or duct under the pad, not the
-/// slab it stands on (a group reaching above `buried_z` there is the
-/// surface, or stands on it). Each group's top is its triangles' highest
-/// point inside the column (each triangle clipped to it), exact where the
-/// zone's box search would bisect.
-fn buried_in_column(world: &World, column: [f64; 4], from_z: f64, buried_z: f64) -> Option<(String, f64)> {
-    let mesh = world.mesh.as_ref()?;
+/// The plant model's groups inside the vertical prism over the plan
+/// rectangle `column` ([x0, y0, x1, y1]) above `from_z`, each with its
+/// highest and lowest point there (each triangle clipped to the prism), in
+/// the groups' order.
+fn model_in_column(world: &World, column: [f64; 4], from_z: f64) -> Vec<(String, f64, f64)> {
+    let Some(mesh) = world.mesh.as_ref() else { return Vec::new() };
     let v = mesh.vertices();
-    let mut tops: std::collections::BTreeMap<&str, f64> = std::collections::BTreeMap::new();
+    let mut spans: std::collections::BTreeMap<&str, (f64, f64)> = std::collections::BTreeMap::new();
     for (t, idx) in mesh.indices().iter().enumerate() {
         let tri = idx.map(|k| [v[k as usize].x, v[k as usize].y, v[k as usize].z]);
         if tri.iter().all(|p| p[2] <= from_z)
@@ -830,22 +844,19 @@ fn buried_in_column(world: &World, column: [f64; 4], from_z: f64, buried_z: f64)
         {
             continue;
         }
-        let Some(z) = highest_in_rectangle(&tri, column) else { continue };
+        let Some((low, high)) = span_in_rectangle(&tri, column) else { continue };
         let group = world.tri_group.get(t).map(String::as_str).unwrap_or_default();
-        let top = tops.entry(group).or_insert(f64::NEG_INFINITY);
-        *top = top.max(z);
+        let span = spans.entry(group).or_insert((f64::NEG_INFINITY, f64::INFINITY));
+        *span = (span.0.max(high), span.1.min(low));
     }
-    tops.into_iter()
-        .filter(|(_, z)| *z > from_z && *z <= buried_z)
-        .max_by(|a, b| a.1.total_cmp(&b.1))
-        .map(|(g, z)| (g.to_string(), z))
+    spans.into_iter().map(|(g, (high, low))| (g.to_string(), high, low)).collect()
 }
 
-/// The highest point of a triangle inside the vertical prism over the plan
-/// rectangle [x0, y0, x1, y1], if any part of it lies over it: the triangle
-/// clipped to each side in turn (a plane's height is linear, so the highest
-/// point is a corner of what is left).
-fn highest_in_rectangle(tri: &[[f64; 3]; 3], r: [f64; 4]) -> Option<f64> {
+/// The lowest and highest point of a triangle inside the vertical prism
+/// over the plan rectangle [x0, y0, x1, y1], if any part of it lies over
+/// it: the triangle clipped to each side in turn (a plane's height is
+/// linear, so they are corners of what is left).
+fn span_in_rectangle(tri: &[[f64; 3]; 3], r: [f64; 4]) -> Option<(f64, f64)> {
     let mut poly: Vec<[f64; 3]> = tri.to_vec();
     // Each side as (axis, bound, keep the side above it).
     for (axis, bound, above) in [(0, r[0], true), (0, r[2], false), (1, r[1], true), (1, r[3], false)] {
@@ -866,7 +877,8 @@ fn highest_in_rectangle(tri: &[[f64; 3]; 3], r: [f64; 4]) -> Option<f64> {
             return None;
         }
     }
-    poly.iter().map(|p| p[2]).reduce(f64::max)
+    let z = poly.iter().map(|p| p[2]);
+    Some((z.clone().fold(f64::INFINITY, f64::min), z.fold(f64::NEG_INFINITY, f64::max)))
 }
 
 /// The obstacles, as the validator sees them.
@@ -2256,6 +2268,20 @@ mod tests {
         mesh.add_box(duct, [at[0] - 0.2, at[1] - 4.0, -0.6], [at[0] + 0.2, at[1] + 4.0, -0.3]);
         let under = under_pads(&task, &World::new(&mesh, &[], &[]).unwrap());
         assert!(under.len() == 1 && under[0].object == "/DUCT-1" && (under[0].depth_m - 0.3).abs() < 1e-9, "{under:?}");
+        // Every thing under the pad, shallowest first: a drain under the
+        // duct, and a foundation from the surface down past the tolerance.
+        let drain = mesh.group_id("/UG-DRAIN-2");
+        mesh.add_box(drain, [at[0] - 3.0, at[1] + 0.5, -2.0], [at[0] + 3.0, at[1] + 1.0, -1.5]);
+        let foundation = mesh.group_id("/FDN-9");
+        mesh.add_box(foundation, [at[0] + 2.0, at[1] - 2.0, -1.2], [at[0] + 6.0, at[1] + 2.0, 0.3]);
+        let under = under_pads(&task, &World::new(&mesh, &[], &[]).unwrap());
+        let named: Vec<(&str, f64)> = under.iter().map(|u| (u.object.as_str(), u.depth_m)).collect();
+        assert_eq!(named, [("/FDN-9", 0.0), ("/DUCT-1", 0.3), ("/UG-DRAIN-2", 1.5)], "{under:?}");
+        assert!(
+            under[0].said().starts_with("/FDN-9 reaching up to the set-up level under the rear left pad"),
+            "{}",
+            under[0].said()
+        );
         // Beyond the zone: not named.
         assert!(under_pads(&task, &pipe(3.5, -1.2)).is_empty());
         assert!(under_pads(&task, &pipe(1.0, -4.7)).is_empty());
