@@ -223,11 +223,12 @@ fn read_chart_with(path: &Path, s: &Settings, unnamed: Unnamed) -> Result<(Vec<C
         let own_notes = detect::LazyNotes::new(sh);
         let single = grids.len() == 1;
         for (k, (g, mapping)) in grids.iter().enumerate() {
-            // What the sheet states in words for this grid: on the rows
-            // from the grid before it (or the sheet's top) to the next.
-            let band_from = k.checked_sub(1).map_or(0, |b| grid_last_row(&grids[b].0) + 1);
-            let band_to = grids.get(k + 1).map_or(u32::MAX, |(next, _)| next.header_row.saturating_sub(1));
-            let stated = stated::on_sheet(sh, band_from..=band_to.max(band_from));
+            // What the sheet states in words for this grid: on its rows,
+            // its title's just above it, and the notes under it down to the
+            // next grid's title (or the sheet's top and end).
+            let band_from = k.checked_sub(1).map_or(0, |b| title_from(g).max(grid_last_row(&grids[b].0) + 1));
+            let band_to = grids.get(k + 1).map_or(u32::MAX, |(next, _)| title_from(next).saturating_sub(1));
+            let stated = stated::on_sheet(sh, band_from..=band_to.max(grid_last_row(g)));
             let name = match mapping {
                 Some(m) => m.config.clone(),
                 None if single => sh.name.clone(),
@@ -315,6 +316,15 @@ fn read_chart_with(path: &Path, s: &Settings, unnamed: Unnamed) -> Result<(Vec<C
 /// The last row of a grid (its header's where it has no rows).
 fn grid_last_row(g: &detect::Grid) -> u32 {
     *g.rows.last().unwrap_or(&g.header_row)
+}
+
+/// The rows just above a grid's header that are its own (its title, its
+/// configuration line, its labels) rather than the notes of the grid above.
+const TITLE_ROWS: u32 = 3;
+
+/// The first of a grid's own rows above its header.
+fn title_from(g: &detect::Grid) -> u32 {
+    g.header_row.saturating_sub(TITLE_ROWS)
 }
 
 /// Fills the units a grid's labels do not name from `[charts]`, saying so
@@ -564,6 +574,8 @@ pub fn inspect(path: &Path) -> Result<serde_json::Value> {
             "radius_range_m": [c.radii_m.first(), c.radii_m.last()],
             "units": r.units,
             "warnings": r.warnings,
+            "wind_ms": r.wind_ms,
+            "counterweight_kg": r.counterweight_kg,
         })).collect::<Vec<_>>(),
     }))
 }

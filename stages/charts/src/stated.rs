@@ -68,6 +68,10 @@ pub fn on_sheet(sheet: &Sheet, rows: std::ops::RangeInclusive<u32>) -> Stated {
             });
         }
     };
+    // Side by side, a grid's rows may lie above the grid before it ends.
+    if rows.is_empty() {
+        return stated;
+    }
     for (&(r, c), v) in sheet.cells.range((*rows.start(), 0)..=(*rows.end(), u32::MAX)) {
         let Val::Text(text) = v else { continue };
         for ms in wind_speeds_ms(text) {
@@ -110,5 +114,8 @@ mod tests {
         assert_eq!((s.wind_ms[0].value, s.wind_ms[0].cell.as_str()), (9.8, "Main!A41"));
         assert_eq!((s.counterweight_kg[0].value, s.counterweight_kg[0].cell.as_str()), (140_000.0, "Main!A3"));
         assert_eq!(on_sheet(&sheet, 0..=60).wind_ms.len(), 2);
+        #[allow(clippy::reversed_empty_ranges)]
+        let none = on_sheet(&sheet, 9..=3);
+        assert!(none.wind_ms.is_empty() && none.counterweight_kg.is_empty());
     }
 }

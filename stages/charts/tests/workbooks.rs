@@ -450,3 +450,49 @@ fn a_footnote_on_a_sheet_of_notes_is_quoted() {
         warning_of(&p, "Chart 1")
     );
 }
+
+/// What a sheet states in words beside its grids: each grid's title just
+/// above it and its notes under it, down to the next grid's title, are its
+/// own. `inspect` shows them.
+#[test]
+fn the_wind_speed_and_counterweight_a_sheet_states_are_read_per_grid() {
+    let d = tempfile::tempdir().unwrap();
+    let p = d.path().join("stated.xlsx");
+    let mut wb = Workbook::new();
+    let ws = wb.add_worksheet().set_name("S").unwrap();
+    let grid = |ws: &mut rust_xlsxwriter::Worksheet, row0: u32, title: &str| {
+        ws.write_string(row0, 0, title).unwrap();
+        ws.write_string(row0 + 1, 0, "Radius m").unwrap();
+        ws.write_string(row0 + 1, 1, "Boom m / capacity t").unwrap();
+        for (j, b) in [50.0, 80.0].iter().enumerate() {
+            ws.write_number(row0 + 2, 3 + j as u16, *b).unwrap();
+        }
+        for (i, r) in [10.0, 20.0, 30.0].iter().enumerate() {
+            ws.write_number(row0 + 3 + i as u32, 2, *r).unwrap();
+            for j in 0..2 {
+                ws.write_number(row0 + 3 + i as u32, 3 + j, 100.0 - 20.0 * i as f64 - 10.0 * j as f64).unwrap();
+            }
+        }
+    };
+    grid(ws, 0, "Main boom, counterweight 70 t");
+    ws.write_string(7, 0, "Permissible wind speed 9.8 m/s").unwrap();
+    grid(ws, 10, "Main boom, counterweight 140 t");
+    ws.write_string(17, 0, "Max. wind speed 25.2 km/h with the jib").unwrap();
+    wb.save(&p).unwrap();
+    let (_, reports) = read_chart(&p, &Settings::default()).unwrap();
+    assert_eq!(reports.len(), 2, "{reports:?}");
+    let values = |v: &[liftplan_core::capacity::StatedOnChart]| -> Vec<(f64, String)> {
+        v.iter().map(|s| ((s.value * 1000.0).round() / 1000.0, s.cell.clone())).collect()
+    };
+    assert_eq!(values(&reports[0].wind_ms), [(9.8, "S!A8".to_string())]);
+    assert_eq!(values(&reports[0].counterweight_kg), [(70_000.0, "S!A1".to_string())]);
+    assert_eq!(values(&reports[1].wind_ms), [(7.0, "S!A18".to_string())]);
+    assert_eq!(values(&reports[1].counterweight_kg), [(140_000.0, "S!A11".to_string())]);
+    assert!(
+        reports[0].stated_said().starts_with("; states wind 9.8 m/s (A8), counterweight 70 t (A1)"),
+        "{}",
+        reports[0].stated_said()
+    );
+    let shown = liftplan_charts::inspect(&p).unwrap().to_string();
+    assert!(shown.contains("\"wind_ms\":[{\"cell\":\"S!A8\""), "{shown}");
+}
