@@ -10,7 +10,7 @@
 use crate::cache::{self, Cache, FileHashes, Manifest};
 use crate::progress::Progress;
 use crate::project::Project;
-use anyhow::{Result, anyhow};
+use anyhow::{Context, Result, anyhow};
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -45,6 +45,14 @@ impl Ctx<'_> {
     pub fn upstream_file(&self, stage: &str, file: &str) -> Option<PathBuf> {
         let (dir, m) = self.upstream.get(stage)?;
         m.outputs.contains_key(file).then(|| dir.join(file))
+    }
+
+    /// An upstream stage's JSON output, read; `None` where that stage did
+    /// not write it.
+    pub fn upstream_json(&self, stage: &str, file: &str) -> Result<Option<serde_json::Value>> {
+        let Some(f) = self.upstream_file(stage, file) else { return Ok(None) };
+        let bytes = std::fs::read(&f).with_context(|| format!("reading {}", f.display()))?;
+        Ok(Some(serde_json::from_slice(&bytes).with_context(|| format!("reading {}", f.display()))?))
     }
 
     pub fn report(&self, stage: &str) -> impl Fn(&str, u64, u64) + Sync + '_ {

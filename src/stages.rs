@@ -4,7 +4,7 @@
 
 use crate::pipeline::{Ctx, Produced, StageDef};
 use crate::project::Project;
-use anyhow::{Context, Result};
+use anyhow::Result;
 use std::path::PathBuf;
 
 pub const SCAN_EXTS: &[&str] = &["las", "laz", "ply", "e57", "pts", "xyz", "txt", "asc", "csv"];
@@ -191,19 +191,33 @@ pub fn plan() -> StageDef {
     }
 }
 
+/// What each chart configuration's sheet states under `key` of chart.json
+/// (`wind_ms`, `counterweight_kg`), by configuration name, for those that
+/// state any (a chart.json written before it had them states none).
+fn chart_stated(
+    chart_json: &serde_json::Value,
+    key: &str,
+) -> Vec<(String, Vec<liftplan_core::capacity::StatedOnChart>)> {
+    chart_json["configs"]
+        .as_array()
+        .into_iter()
+        .flatten()
+        .filter_map(|c| {
+            let stated: Vec<liftplan_core::capacity::StatedOnChart> =
+                serde_json::from_value(c[key].clone()).unwrap_or_default();
+            Some((c["name"].as_str()?.to_string(), stated)).filter(|(_, s)| !s.is_empty())
+        })
+        .collect()
+}
+
 fn run_plan(ctx: &Ctx) -> Result<Produced> {
     let p = ctx.project;
     let mut tasks = p.lifts()?;
     // The counterweight each lift's chart configuration's sheet states,
-    // where it states one (a chart.json written before it had them has none).
-    if let Some(f) = ctx.upstream_file("charts", "chart.json") {
-        let bytes = std::fs::read(&f).with_context(|| format!("reading {}", f.display()))?;
-        let r: serde_json::Value =
-            serde_json::from_slice(&bytes).with_context(|| format!("reading {}", f.display()))?;
-        for c in r["configs"].as_array().into_iter().flatten() {
-            let stated: Vec<liftplan_core::capacity::StatedOnChart> =
-                serde_json::from_value(c["counterweight_kg"].clone()).unwrap_or_default();
-            if let ([one], Some(name)) = (&stated[..], c["name"].as_str()) {
+    // where it states one.
+    if let Some(r) = ctx.upstream_json("charts", "chart.json")? {
+        for (name, stated) in chart_stated(&r, "counterweight_kg") {
+            if let [one] = &stated[..] {
                 for t in tasks.iter_mut().filter(|t| t.chart_config == name) {
                     t.chart_sheet_counterweight = Some(one.clone());
                 }
@@ -302,14 +316,9 @@ fn run_docs(ctx: &Ctx) -> Result<Produced> {
     }
     input_hashes.sort();
     input_hashes.dedup();
-    let upstream_json = |stage: &str, file: &str| -> Result<Option<serde_json::Value>> {
-        let Some(f) = ctx.upstream_file(stage, file) else { return Ok(None) };
-        let bytes = std::fs::read(&f).with_context(|| format!("reading {}", f.display()))?;
-        Ok(Some(serde_json::from_slice(&bytes).with_context(|| format!("reading {}", f.display()))?))
-    };
     // Scans left out unregistered: what only they saw is missing.
     let mut scans_left_out = (Vec::new(), 0);
-    if let Some(r) = upstream_json("scans", "registration.json")? {
+    if let Some(r) = ctx.upstream_json("scans", "registration.json")? {
         let scans = r["scans"].as_array().cloned().unwrap_or_default();
         scans_left_out.1 = scans.len();
         scans_left_out.0 = scans
@@ -320,7 +329,7 @@ fn run_docs(ctx: &Ctx) -> Result<Produced> {
     }
     // Lifts on a chart of one column: which boom it is for, the chart does not say.
     let mut one_column_charts = Vec::new();
-    if let Some(r) = upstream_json("charts", "lifts.json")? {
+    if let Some(r) = ctx.upstream_json("charts", "lifts.json")? {
         for l in r["lifts"].as_array().into_iter().flatten() {
             if let (Some(id), Some(boom)) = (l["id"].as_str(), l["one_column_for_boom_m"].as_f64()) {
                 one_column_charts.push((id.to_string(), boom));
@@ -330,14 +339,9 @@ fn run_docs(ctx: &Ctx) -> Result<Produced> {
     // What reading each chart configuration warned of, for the lifts on it.
     let mut chart_warnings = Vec::new();
     let mut chart_wind = Vec::new();
-    if let Some(r) = upstream_json("charts", "chart.json")? {
+    if let Some(r) = ctx.upstream_json("charts", "chart.json")? {
+        chart_wind = chart_stated(&r, "wind_ms");
         for c in r["configs"].as_array().into_iter().flatten() {
-            // A chart.json written before it had them has none.
-            let stated: Vec<liftplan_core::capacity::StatedOnChart> =
-                serde_json::from_value(c["wind_ms"].clone()).unwrap_or_default();
-            if let (Some(name), false) = (c["name"].as_str(), stated.is_empty()) {
-                chart_wind.push((name.to_string(), stated));
-            }
             let warnings: Vec<String> =
                 c["warnings"].as_array().into_iter().flatten().filter_map(|w| w.as_str().map(str::to_string)).collect();
             if let (Some(name), false) = (c["name"].as_str(), warnings.is_empty()) {
