@@ -253,7 +253,13 @@ impl LiftTask {
 
     /// Load + rigging + hook block + deductions, in kg.
     pub fn gross_kg(&self) -> f64 {
-        self.load_mass_kg + self.rigging_mass_kg + self.crane.model.hook.mass_kg + self.deductions_kg
+        self.hook_load_kg() + self.deductions_kg
+    }
+
+    /// What hangs from the rope: load, rigging and hook block, in kg (the
+    /// chart's deductions, a stowed jib, do not).
+    pub fn hook_load_kg(&self) -> f64 {
+        self.load_mass_kg + self.rigging_mass_kg + self.crane.model.hook.mass_kg
     }
 
     /// The outrigger pads' loads at `c` ([`crate::outriggers::pad_loads`]),
@@ -328,7 +334,6 @@ impl LiftTask {
                 )
             });
         };
-        let hook_load_kg = self.load_mass_kg + self.rigging_mass_kg + self.crane.model.hook.mass_kg;
         let (chart_ms, cell) = match (spec.chart_ms, stated) {
             (Some(v), _) => (v, None),
             (None, [one]) => (one.value, Some(one.cell.clone())),
@@ -346,7 +351,7 @@ impl LiftTask {
         // is to be checked only where it is none of them.
         let stated_too = stated.iter().any(|s| (s.value - chart_ms).abs() <= 0.05);
         let other = if stated_too { Vec::new() } else { stated.to_vec() };
-        Ok((crate::wind::PermissibleWind::of(chart_ms, cell, spec, self.load.size_m, hook_load_kg), other))
+        Ok((crate::wind::PermissibleWind::of(chart_ms, cell, spec, self.load.size_m, self.hook_load_kg()), other))
     }
 
     /// Capacity after the configured reduction.

@@ -84,7 +84,7 @@ pub fn pads_during(task: &LiftTask, m: &Move) -> Option<StepPads> {
         let c = Config::from_array(std::array::from_fn(|k| a[k] + (b[k] - a[k]) * t));
         let mut loads = task.pad_loads(&c)?;
         if task.deductions_kg > 0.0 {
-            let without = task.pad_loads_hanging(&c, task.gross_kg() - task.deductions_kg)?;
+            let without = task.pad_loads_hanging(&c, task.hook_load_kg())?;
             if without.highest().1 > loads.highest().1 {
                 loads = without;
             }
