@@ -293,16 +293,16 @@ fn set_up_at(
     };
     let pick = moved.check_capacity(chart, moved.pick.radial).ok().filter(|k| k.effective_kg >= moved.gross_kg())?;
     let set = moved.check_capacity(chart, moved.set.radial).ok().filter(|k| k.effective_kg >= moved.gross_kg())?;
-    if crate::validate::crane_set_up_level_problem(&moved, site.world).is_some()
-        || crate::set_up_blocked(&moved, site, s).is_some()
-    {
+    // Its level is the ground's there (the planner's level check cannot
+    // fail at the median it checks against): what it stands on is not.
+    if crate::set_up_blocked(&moved, site, s).is_some() {
         return None;
     }
     // The lift-off and the set-down there, as the validator sees them: a
     // boom that meets what stands between the crane and the pick or the set
     // refuses the lift there whatever path is searched.
-    let landing = crate::landing_zones(&moved, s).into_iter().map(|z| z.polygon).collect();
-    let rules = crate::validate_rules(&moved, s, landing);
+    let zones = crate::landing_zones(&moved, s);
+    let rules = crate::validate_rules(&moved, s, zones.iter().map(|z| z.polygon.clone()).collect());
     for mv in [crate::lift_off(&moved), crate::set_down(&moved)] {
         if !crate::validate::validate(&moved, Some(chart), site.world, &rules, &[mv], &[true]).ok {
             return None;
@@ -316,7 +316,7 @@ fn set_up_at(
         &liftplan_cspace::Problem { task: &moved, chart: Some(chart), map: site.map },
         &online,
     );
-    let ck = liftplan_cspace::Checker::new(&cs, site.map, &moved, crate::landing_zones(&moved, s), s.cspace.sample_m);
+    let ck = liftplan_cspace::Checker::new(&cs, site.map, &moved, zones, s.cspace.sample_m);
     if ck.config(&moved.start()).is_err() || ck.config(&moved.goal()).is_err() {
         return None;
     }

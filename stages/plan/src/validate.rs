@@ -755,15 +755,16 @@ pub const PAD_FLOAT_M: f64 = 1.0;
 
 /// What stands in the ground under each outrigger pad of a mobile crane: a
 /// buried pipe, a duct, a culvert, a foundation's edge or a pit under a
-/// loaded pad can give way or be crushed. The plant model's objects whose
+/// loaded pad can give way or be crushed. The zone is where a pad's load
+/// spreads in the ground, as the common rule has it: down to twice the
+/// mat's larger side (at least 2 m), widening by one in two, as a box of
+/// the width it reaches at its foot. In it, every plant model group whose
 /// top lies more than [`BURIED_BELOW_M`] below the set-up level (nearer is
-/// the surface it stands on); and deeper than [`SET_UP_LEVEL_TOLERANCE_M`]
-/// below it (the scanned ground lies within that), the scans' structure and
-/// anything of the model reaching down there. The zone is where a pad's load spreads in the ground, as the
-/// common rule has it: down to twice the mat's larger side (at least 2 m),
-/// widening by one in two, as a box of the width it reaches at its foot.
-/// The nearest thing in each zone, with the depth of its top, or none.
-/// A tower crane stands on its foundation: nothing.
+/// the surface it stands on) or that reaches from the surface down below
+/// [`SET_UP_LEVEL_TOLERANCE_M`], and the nearest scanned structure or other
+/// lift's load below that tolerance (the scanned ground lies within it),
+/// each with the depth of its top, shallowest first per pad. A tower crane
+/// stands on its foundation: nothing.
 pub fn under_pads(task: &LiftTask, world: &World) -> Vec<UnderPad> {
     use liftplan_core::outriggers::{Pad, pad_at};
     if task.crane.model.is_tower() {
@@ -787,7 +788,7 @@ pub fn under_pads(task: &LiftTask, world: &World) -> Vec<UnderPad> {
     // out) and the other lifts' loads.
     let meets = |at: [f64; 2], from_z: f64| {
         let b = zone(at, from_z);
-        if nearest_scan(world, &b, 1e-9, f64::INFINITY).is_some() {
+        if scanned_structure_in(world, &b) {
             return Some("scanned structure".to_string());
         }
         world.others.iter().find(|(o, _)| o.intersects(&b)).map(|(_, name)| name.clone())
