@@ -220,13 +220,18 @@ fn bad_cells_are_refused_with_sheet_and_cell() {
 /// Booms 50 and 80 across row 2 (D2:E2), radii 10, 20, 30 down column C,
 /// capacities falling with both, and no label or unit anywhere.
 fn small_grid(ws: &mut rust_xlsxwriter::Worksheet) {
+    small_grid_at(ws, 1);
+}
+
+/// [`small_grid`] with its boom lengths on row `booms_row` (0-based).
+fn small_grid_at(ws: &mut rust_xlsxwriter::Worksheet, booms_row: u32) {
     for (j, b) in [50.0, 80.0].iter().enumerate() {
-        ws.write_number(1, 3 + j as u16, *b).unwrap();
+        ws.write_number(booms_row, 3 + j as u16, *b).unwrap();
     }
     for (i, r) in [10.0, 20.0, 30.0].iter().enumerate() {
-        ws.write_number(2 + i as u32, 2, *r).unwrap();
+        ws.write_number(booms_row + 1 + i as u32, 2, *r).unwrap();
         for j in 0..2 {
-            ws.write_number(2 + i as u32, 3 + j, 100.0 - 20.0 * i as f64 - 10.0 * j as f64).unwrap();
+            ws.write_number(booms_row + 1 + i as u32, 3 + j, 100.0 - 20.0 * i as f64 - 10.0 * j as f64).unwrap();
         }
     }
 }
@@ -464,15 +469,7 @@ fn the_wind_speed_and_counterweight_a_sheet_states_are_read_per_grid() {
         ws.write_string(row0, 0, title).unwrap();
         ws.write_string(row0 + 1, 0, "Radius m").unwrap();
         ws.write_string(row0 + 1, 1, "Boom m / capacity t").unwrap();
-        for (j, b) in [50.0, 80.0].iter().enumerate() {
-            ws.write_number(row0 + 2, 3 + j as u16, *b).unwrap();
-        }
-        for (i, r) in [10.0, 20.0, 30.0].iter().enumerate() {
-            ws.write_number(row0 + 3 + i as u32, 2, *r).unwrap();
-            for j in 0..2 {
-                ws.write_number(row0 + 3 + i as u32, 3 + j, 100.0 - 20.0 * i as f64 - 10.0 * j as f64).unwrap();
-            }
-        }
+        small_grid_at(ws, row0 + 2);
     };
     grid(ws, 0, "Main boom, counterweight 70 t");
     ws.write_string(7, 0, "Permissible wind speed 9.8 m/s").unwrap();
