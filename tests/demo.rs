@@ -342,8 +342,18 @@ liftoff_m = 0.5
     assert!(flat.contains("and there the lift plans and passes the validator in "), "{flat}");
     let given = heavy.replace("position_m = [0.0, 0.0], ground_z_m = 0.0, heading_deg = 0.0", named);
     assert_ne!(given, heavy, "{named}");
+    // With what its pads put on the ground, nothing found under them: the
+    // same pad and load the plan there has at its most.
+    assert!(flat.contains("nothing of the plant model or the scans in the ground under them"), "{flat}");
+    let pads = &flat[flat.find(", its outrigger pads at their most ").unwrap_or_else(|| panic!("{flat}"))..];
+    let pads = &pads[", its outrigger pads at their most ".len()..pads.find(" pad; ").unwrap()];
     let (cover, _) = planned_with(&dir, &given);
     assert!(cover.contains("CRITICAL LIFT"), "{named}: {cover}");
+    let (load, pad) = pads.split_once(" t on the ").unwrap();
+    assert!(
+        cover.contains(&format!("{load} t (")) && cover.contains(&format!("on the {pad} pad (x ")),
+        "{pads}: {cover}"
+    );
     // A load of little area: the chart's speed, nothing to check first; a
     // lift without wind: not worked out, to check first; a lift's chart_ms
     // that is not what the chart's sheet states: said, to check first.

@@ -20,15 +20,28 @@
 //! ([`crate::plan_lift`]), so that one said to plan plans again, the same,
 //! when the lift file is given it; a refusal there searches no further.
 //!
+//! What the outrigger pads bear on is looked at too, as for the lift's own
+//! position: what the plant model or the scans hold in the ground under
+//! them ([`crate::validate::under_pads`]) and the pressure under their mats
+//! against the lift's `ground.allowable_kpa` (at the pick and the set as a
+//! position is looked at, through the whole lift once planned). A position
+//! where either is to be checked is passed over for one where neither is,
+//! and named with it only where none such plans (the few nearest looked
+//! at, as many as are planned in full).
+//!
 //! Words only: nothing here moves a lift's crane. The engineer puts the
 //! position in the lift file and the lift is planned and checked anew. What
 //! the site holds beyond the scans and the plant model (access, the ground's
-//! strength, what is buried) is not known here, and is said to be checked.
+//! strength, what is buried that neither holds) is not known here, and is
+//! said to be checked.
 
+use crate::steps::{StepPads, pads_at};
+use crate::validate::UnderPad;
 use crate::{Settings, Site};
 use liftplan_core::capacity::ChartConfig;
 use liftplan_core::crane::Placement;
-use liftplan_core::lift::LiftTask;
+use liftplan_core::lift::{GroundSpec, LiftTask};
+use liftplan_core::outriggers::pressure_kpa;
 
 /// The grid positions are tried on (m).
 pub const GRID_M: f64 = 0.5;
@@ -62,11 +75,76 @@ pub struct Tried {
     pub set: (f64, f64),
     /// Above the lift's `critical_pct` at either.
     pub critical: bool,
-    /// The planned lift's steps, or why it was refused there.
-    pub outcome: Result<usize, String>,
+    /// The most loaded pad: at the pick and the set as the position is
+    /// looked at, through the whole lift once it is planned there (none
+    /// where the crane file gives no outrigger geometry or masses).
+    pub pads: Option<StepPads>,
+    /// The lift's mats and ground, for the pads' pressure.
+    pub ground: Option<GroundSpec>,
+    /// What the plant model or the scans hold in the ground under its pads.
+    pub under_pads: Vec<UnderPad>,
+    pub outcome: Outcome,
+}
+
+/// What came of a position whose set-up is clear.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Outcome {
+    /// The lift plans there and passes the validator, in so many steps.
+    Planned { steps: usize },
+    /// Why the lift was refused there.
+    Refused(String),
+    /// Not planned: what its pads bear on is to be checked, and a position
+    /// where it is not planned first.
+    NotPlanned,
 }
 
 impl Tried {
+    /// The planned lift's steps, where it plans there.
+    pub fn planned_steps(&self) -> Option<usize> {
+        match self.outcome {
+            Outcome::Planned { steps } => Some(steps),
+            _ => None,
+        }
+    }
+
+    /// Whether what its pads bear on is to be checked: something in the
+    /// ground under them, more pressure under a mat than the ground may
+    /// bear, or the crane file's masses tipping the crane.
+    pub fn pads_to_check(&self) -> bool {
+        !self.under_pads.is_empty() || self.pads.is_some_and(|p| p.needs_checking(self.ground.as_ref()))
+    }
+
+    /// What is to be checked of its pads, in brief: "IN THE GROUND UNDER
+    /// ITS PADS: DUCT 0.30 m below ...; 230 kPa UNDER THE REAR RIGHT PAD'S
+    /// 2.50 x 2.50 m MAT, MORE THAN THE 200 kPa THE GROUND MAY BEAR".
+    fn pads_to_check_said(&self) -> String {
+        let mut said = Vec::new();
+        if !self.under_pads.is_empty() {
+            said.push(format!(
+                "IN THE GROUND UNDER ITS PADS: {}",
+                self.under_pads.iter().map(|u| u.said()).collect::<Vec<_>>().join("; ")
+            ));
+        }
+        if let Some(p) = self.pads {
+            if let Some((g, allowed)) = self.ground.and_then(|g| Some((g, g.allowable_kpa?))) {
+                let kpa = pressure_kpa(p.load_kg, g.mat_m);
+                if kpa > allowed {
+                    said.push(format!(
+                        "{kpa:.0} kPa UNDER THE {} PAD'S {:.2} x {:.2} m MAT ({:.1} t, an estimate), MORE THAN THE {allowed:.0} kPa THE GROUND MAY BEAR",
+                        p.pad.name().to_uppercase(),
+                        g.mat_m[0],
+                        g.mat_m[1],
+                        p.load_kg / 1000.0
+                    ));
+                }
+            }
+            if p.tips {
+                said.push("THE CRANE FILE'S MASSES PUT THE CENTRE OF GRAVITY OUTSIDE THE PADS".into());
+            }
+        }
+        said.join("; ")
+    }
+
     fn where_said(&self) -> String {
         format!(
             "position_m = [{:.1}, {:.1}], heading_deg = {:.0}, ground_z_m = {:.2} ({}; {:.1} m from the lift's position)",
@@ -109,6 +187,16 @@ pub enum Found {
 }
 
 impl Found {
+    /// The position named: the first where the lift plans and its pads are
+    /// not to be checked, else the first where it plans (its index among
+    /// those tried).
+    pub fn chosen(&self) -> Option<usize> {
+        let Found::Tried(tried) = self else { return None };
+        let planned = |t: &&Tried| t.planned_steps().is_some();
+        let first = |clean: bool| tried.iter().position(|t| planned(&t) && (!clean || !t.pads_to_check()));
+        first(true).or_else(|| first(false))
+    }
+
     /// The words appended to the refusal.
     pub fn said(&self, chart_name: &str) -> String {
         match self {
@@ -123,34 +211,59 @@ impl Found {
                 crate::validate::SET_UP_LEVEL_TOLERANCE_M
             ),
             Found::Tried(tried) => {
-                let refused: Vec<String> = tried
+                let refused = |t: &Tried| match &t.outcome {
+                    Outcome::Refused(why) => Some(format!("at {}: {}", t.where_said(), first_clause(why))),
+                    _ => None,
+                };
+                let Some(k) = self.chosen() else {
+                    let refused: Vec<String> = tried.iter().filter_map(refused).collect();
+                    return format!(
+                        "; at the {} crane position(s) nearest the lift's where it carries the load at both and stands clear, the lift is refused too: {}",
+                        refused.len(),
+                        refused.join("; ")
+                    );
+                };
+                let t = &tried[k];
+                // Those refused before it, and those nearer passed over for
+                // what their pads bear on.
+                let before: Vec<String> = tried
                     .iter()
-                    .filter_map(|t| {
-                        t.outcome.as_ref().err().map(|why| format!("at {}: {}", t.where_said(), first_clause(why)))
+                    .enumerate()
+                    .filter_map(|(i, o)| match &o.outcome {
+                        Outcome::Refused(_) if i < k => refused(o).map(|r| format!("refused {r}")),
+                        Outcome::Planned { .. } | Outcome::NotPlanned
+                            if i != k && o.pads_to_check() && o.moved_m < t.moved_m =>
+                        {
+                            Some(format!("passed over at {}: {}", o.where_said(), o.pads_to_check_said()))
+                        }
+                        _ => None,
                     })
                     .collect();
-                match tried.iter().find(|t| t.outcome.is_ok()) {
-                    Some(t) => format!(
-                        "; the crane set up at {} carries it at both ({}), and there the lift plans and passes the validator in {} steps{}: a position to CHECK on site (access, the ground's strength, what lies under the pads) before it is given to the lift",
-                        t.where_said(),
-                        t.carries_said(),
-                        t.outcome.as_ref().map_or(0, |n| *n),
-                        if refused.is_empty() {
-                            String::new()
-                        } else {
-                            format!(
-                                " (nearer, {}, the lift is refused {})",
-                                if refused.len() == 1 { "one" } else { "others" },
-                                refused.join("; ")
-                            )
-                        }
-                    ),
-                    None => format!(
-                        "; at the {} crane position(s) nearest the lift's where it carries the load at both and stands clear, the lift is refused too: {}",
-                        tried.len(),
-                        refused.join("; ")
-                    ),
-                }
+                let pads = if t.pads_to_check() {
+                    format!(", BUT {}", t.pads_to_check_said())
+                } else {
+                    let most = t.pads.map(|p| {
+                        format!(
+                            ", its outrigger pads at their most {} (an estimate)",
+                            p.said_briefly(t.ground.as_ref())
+                        )
+                    });
+                    format!(
+                        "{}, nothing of the plant model or the scans in the ground under them",
+                        most.unwrap_or_default()
+                    )
+                };
+                format!(
+                    "; the crane set up at {} carries it at both ({}), and there the lift plans and passes the validator in {} steps{pads}{}: a position to CHECK on site (access, the ground's strength, what is buried that neither the plant model nor the scans hold) before it is given to the lift",
+                    t.where_said(),
+                    t.carries_said(),
+                    t.planned_steps().unwrap_or_default(),
+                    if before.is_empty() {
+                        String::new()
+                    } else {
+                        format!(" (tried before it: {})", before.join("; "))
+                    }
+                )
             }
         }
     }
@@ -227,7 +340,12 @@ pub fn search(task: &LiftTask, site: &Site, chart: &ChartConfig, s: &Settings, s
     // for the chart's sector or for where the site lets the load go, only
     // at the lift's heading does it mean what the lift says.
     let headings: &[f64] = if task.swing_range_rad.is_some() { &HEADINGS[..1] } else { &HEADINGS };
-    let mut clear: Vec<(Tried, LiftTask)> = Vec::new();
+    // Those whose pads' ground is to be checked apart: passed over for
+    // those where it is not, kept (the nearest few) where none such plans.
+    let (mut clear, mut to_check): (Vec<(Tried, LiftTask)>, Vec<(Tried, LiftTask)>) = (Vec::new(), Vec::new());
+    let near = |kept: &[(Tried, LiftTask)], at: [f64; 2]| {
+        kept.iter().any(|(t, _)| (t.x_m - at[0]).hypot(t.y_m - at[1]) < APART_M)
+    };
     let mut looked_at = 0;
     for &(_, moved_m, at, ..) in &carried {
         if clear.len() >= MOST_PLANNED || looked_at >= MOST_LOOKED_AT {
@@ -235,27 +353,57 @@ pub fn search(task: &LiftTask, site: &Site, chart: &ChartConfig, s: &Settings, s
         }
         // The lift's own position was refused, and one near it is most
         // often refused for the same.
-        if moved_m < APART_M || clear.iter().any(|(t, _)| (t.x_m - at[0]).hypot(t.y_m - at[1]) < APART_M) {
+        if moved_m < APART_M || near(&clear, at) {
             continue;
         }
         looked_at += 1;
-        if let Some(found) = headings.iter().find_map(|turn| set_up_at(task, site, chart, s, at, *turn, moved_m)) {
-            clear.push(found);
+        // At each position, the first heading whose set-up is clear and
+        // whose pads' ground is not to be checked (turning the carrier
+        // moves the pads), else the first whose set-up is clear.
+        // What lies under the pads is looked for (it walks the model's
+        // triangles) only where their pressure does not already pass the
+        // position over, and where one passed over is kept.
+        let mut checked = None;
+        for turn in headings {
+            let Some(mut found) = set_up_at(task, site, chart, s, at, *turn, moved_m) else { continue };
+            if !found.0.pads_to_check() {
+                found.0.under_pads = crate::validate::under_pads(&found.1, site.world);
+                if !found.0.pads_to_check() {
+                    clear.push(found);
+                    checked = None;
+                    break;
+                }
+            }
+            checked = checked.or(Some(found));
+        }
+        if let Some(mut found) = checked.filter(|_| to_check.len() < MOST_PLANNED && !near(&to_check, at)) {
+            if found.0.under_pads.is_empty() {
+                found.0.under_pads = crate::validate::under_pads(&found.1, site.world);
+            }
+            to_check.push(found);
         }
     }
-    if clear.is_empty() {
+    if clear.is_empty() && to_check.is_empty() {
         return Found::NoClearSetUp { looked_at };
     }
+    // Planned in turn until one plans whose pads are not to be checked,
+    // through the whole lift; those left are not planned.
     let mut tried = Vec::new();
-    for (mut t, moved) in clear {
-        t.outcome = crate::plan_lift_hinting(&moved, site, s, seed, false)
-            .map(|(plan, _)| plan.steps.len())
-            .map_err(|e| e.to_string());
-        let planned = t.outcome.is_ok();
-        tried.push(t);
-        if planned {
-            break;
+    let mut found_clean = false;
+    for (mut t, moved) in clear.into_iter().chain(to_check) {
+        if found_clean {
+            t.outcome = Outcome::NotPlanned;
+        } else {
+            t.outcome = match crate::plan_lift_hinting(&moved, site, s, seed, false) {
+                Ok((plan, _)) => {
+                    t.pads = plan.summary.highest_pad.map(|(_, p)| p).or(t.pads);
+                    Outcome::Planned { steps: plan.steps.len() }
+                }
+                Err(e) => Outcome::Refused(e.to_string()),
+            };
+            found_clean = t.planned_steps().is_some() && !t.pads_to_check();
         }
+        tried.push(t);
     }
     Found::Tried(tried)
 }
@@ -320,6 +468,12 @@ fn set_up_at(
     if ck.config(&moved.start()).is_err() || ck.config(&moved.goal()).is_err() {
         return None;
     }
+    // The most loaded pad at the pick and the set (the planned lift's most
+    // replaces it); what lies under the pads is the caller's to look for.
+    let pads = [moved.start(), moved.goal()]
+        .iter()
+        .filter_map(|c| pads_at(&moved, c))
+        .max_by(|a, b| a.load_kg.total_cmp(&b.load_kg));
     let tried = Tried {
         x_m: at[0],
         y_m: at[1],
@@ -330,7 +484,10 @@ fn set_up_at(
         pick: (pick.utilisation_pct, pick.radius_m),
         set: (set.utilisation_pct, set.radius_m),
         critical: pick.utilisation_pct.max(set.utilisation_pct) > task.critical_pct,
-        outcome: Ok(0),
+        pads,
+        ground: moved.ground,
+        under_pads: Vec::new(),
+        outcome: Outcome::NotPlanned,
     };
     Some((tried, moved))
 }
@@ -339,7 +496,7 @@ fn set_up_at(
 mod tests {
     use super::*;
 
-    fn tried(x_m: f64, outcome: Result<usize, String>) -> Tried {
+    fn tried(x_m: f64, outcome: Outcome) -> Tried {
         Tried {
             x_m,
             y_m: -2.5,
@@ -350,6 +507,9 @@ mod tests {
             pick: (72.4, 16.0),
             set: (98.1, 21.79),
             critical: true,
+            pads: None,
+            ground: None,
+            under_pads: Vec::new(),
             outcome,
         }
     }
@@ -361,14 +521,56 @@ mod tests {
     fn the_positions_tried_are_said() {
         let refused =
             "lift 'V-101': no collision-free, chart-compliant path found (1 run(s)): the boom meets RACK; more";
-        let found = Found::Tried(vec![tried(3.0, Err(refused.into())), tried(6.5, Ok(9))]);
+        let found =
+            Found::Tried(vec![tried(3.0, Outcome::Refused(refused.into())), tried(6.5, Outcome::Planned { steps: 9 })]);
         assert_eq!(
             found.said("Main"),
-            "; the crane set up at position_m = [6.5, -2.5], heading_deg = 90, ground_z_m = 0.12 (the ground scanned there; 6.5 m from the lift's position) carries it at both (pick 72 % at 16.00 m, set 98 % at 21.79 m: a critical lift there, above its critical_pct), and there the lift plans and passes the validator in 9 steps (nearer, one, the lift is refused at position_m = [3.0, -2.5], heading_deg = 90, ground_z_m = 0.12 (the ground scanned there; 3.0 m from the lift's position): no collision-free, chart-compliant path found (1 run(s))): a position to CHECK on site (access, the ground's strength, what lies under the pads) before it is given to the lift"
+            "; the crane set up at position_m = [6.5, -2.5], heading_deg = 90, ground_z_m = 0.12 (the ground scanned there; 6.5 m from the lift's position) carries it at both (pick 72 % at 16.00 m, set 98 % at 21.79 m: a critical lift there, above its critical_pct), and there the lift plans and passes the validator in 9 steps, nothing of the plant model or the scans in the ground under them (tried before it: refused at position_m = [3.0, -2.5], heading_deg = 90, ground_z_m = 0.12 (the ground scanned there; 3.0 m from the lift's position): no collision-free, chart-compliant path found (1 run(s))): a position to CHECK on site (access, the ground's strength, what is buried that neither the plant model nor the scans hold) before it is given to the lift"
         );
+        assert_eq!(found.chosen(), Some(1));
+        // The pads' most and the pressure under their mats; a nearer
+        // position with a duct under a pad, passed over, and one farther
+        // whose mats the ground would not bear, not planned.
+        let ground = GroundSpec { mat_m: [2.5, 2.5], allowable_kpa: Some(200.0) };
+        let pads = |load_kg: f64| StepPads {
+            pad: liftplan_core::outriggers::Pad::RearRight,
+            load_kg,
+            at_m: [14.25, -3.25],
+            pad_lifts: false,
+            tips: false,
+        };
+        let duct = UnderPad {
+            pad: liftplan_core::outriggers::Pad::FrontLeft,
+            object: "DUCT".into(),
+            depth_m: 0.3,
+            zone_half_m: 2.75,
+            zone_depth_m: 5.0,
+        };
+        let with = |mut t: Tried, load_kg: f64, under: Vec<UnderPad>| {
+            (t.pads, t.ground, t.under_pads) = (Some(pads(load_kg)), Some(ground), under);
+            t
+        };
+        let found = Found::Tried(vec![
+            with(tried(6.5, Outcome::Planned { steps: 9 }), 118_600.0, vec![]),
+            with(tried(4.0, Outcome::NotPlanned), 100_000.0, vec![duct.clone()]),
+            with(tried(9.0, Outcome::NotPlanned), 140_000.0, vec![]),
+        ]);
+        assert_eq!(found.chosen(), Some(0));
+        let said = found.said("Main");
+        assert!(said.contains("in 9 steps, its outrigger pads at their most 118.6 t on the rear right pad; 186 kPa under its 2.50 x 2.50 m mat, allowable 200 kPa (an estimate), nothing of the plant model or the scans in the ground under them (tried before it: passed over at position_m = [4.0, -2.5], heading_deg = 90, ground_z_m = 0.12 (the ground scanned there; 4.0 m from the lift's position): IN THE GROUND UNDER ITS PADS: DUCT 0.30 m below the set-up level under the front left pad (within 2.8 m of its centre and 5.0 m deep)): a position"), "{said}");
+        assert!(!said.contains("[9.0"), "{said}");
+        // Where only positions to check plan, the first is named with what
+        // is to be checked.
+        let found = Found::Tried(vec![
+            with(tried(6.5, Outcome::Planned { steps: 9 }), 140_000.0, vec![duct.clone()]),
+            with(tried(9.0, Outcome::Planned { steps: 8 }), 140_000.0, vec![]),
+        ]);
+        assert_eq!(found.chosen(), Some(0));
+        let said = found.said("Main");
+        assert!(said.contains("in 9 steps, BUT IN THE GROUND UNDER ITS PADS: DUCT 0.30 m below the set-up level under the front left pad (within 2.8 m of its centre and 5.0 m deep); 220 kPa UNDER THE REAR RIGHT PAD'S 2.50 x 2.50 m MAT (140.0 t, an estimate), MORE THAN THE 200 kPa THE GROUND MAY BEAR: a position"), "{said}");
         let none = Found::Tried(vec![
-            tried(3.0, Err(refused.into())),
-            tried(6.5, Err("lift 'V-101': crane set-up: x".into())),
+            tried(3.0, Outcome::Refused(refused.into())),
+            tried(6.5, Outcome::Refused("lift 'V-101': crane set-up: x".into())),
         ]);
         let said = none.said("Main");
         assert!(said.starts_with("; at the 2 crane position(s) nearest the lift's where it carries the load at both and stands clear, the lift is refused too: at position_m = [3.0"), "{said}");

@@ -81,22 +81,7 @@ pub fn pads_during(task: &LiftTask, m: &Move) -> Option<StepPads> {
     let mut most: Option<StepPads> = None;
     for i in 0..=n {
         let t = i as f64 / n as f64;
-        let c = Config::from_array(std::array::from_fn(|k| a[k] + (b[k] - a[k]) * t));
-        let mut loads = task.pad_loads(&c)?;
-        if task.deductions_kg > 0.0 {
-            let without = task.pad_loads_hanging(&c, task.hook_load_kg())?;
-            if without.highest().1 > loads.highest().1 {
-                loads = without;
-            }
-        }
-        let (pad, load_kg) = loads.highest();
-        let here = StepPads {
-            pad,
-            load_kg,
-            at_m: liftplan_core::outriggers::pad_at(&task.crane, pad)?,
-            pad_lifts: loads.loads_kg.contains(&0.0),
-            tips: loads.tips,
-        };
+        let here = pads_at(task, &Config::from_array(std::array::from_fn(|k| a[k] + (b[k] - a[k]) * t)))?;
         most = Some(match most {
             Some(m) if m.load_kg >= here.load_kg => {
                 StepPads { pad_lifts: m.pad_lifts || here.pad_lifts, tips: m.tips || here.tips, ..m }
@@ -106,6 +91,26 @@ pub fn pads_during(task: &LiftTask, m: &Move) -> Option<StepPads> {
         });
     }
     most
+}
+
+/// The pads at one configuration: the most loaded, the higher of the
+/// gross load on the hook and the gross load less the chart's deductions.
+pub fn pads_at(task: &LiftTask, c: &Config) -> Option<StepPads> {
+    let mut loads = task.pad_loads(c)?;
+    if task.deductions_kg > 0.0 {
+        let without = task.pad_loads_hanging(c, task.hook_load_kg())?;
+        if without.highest().1 > loads.highest().1 {
+            loads = without;
+        }
+    }
+    let (pad, load_kg) = loads.highest();
+    Some(StepPads {
+        pad,
+        load_kg,
+        at_m: liftplan_core::outriggers::pad_at(&task.crane, pad)?,
+        pad_lifts: loads.loads_kg.contains(&0.0),
+        tips: loads.tips,
+    })
 }
 
 impl StepPads {

@@ -1257,6 +1257,84 @@ fn chart_reaching(reach_m: f64) -> liftplan_core::capacity::CapacityTable {
     chart_of(&[(10.0, 50.0), (reach_m, 50.0), (reach_m + 2.0, 3.0), (40.0, 3.0)], "none")
 }
 
+/// What the outrigger pads bear on is looked at, at a crane position named
+/// for a lift, as at the lift's own: a duct buried under a pad of the
+/// position named passes it over for another, where nothing lies under the
+/// pads, and which plans there; where the ground may bear less than the
+/// mats put on it wherever the crane stands, the first position where the
+/// lift plans is named with it, to be checked.
+#[test]
+fn a_crane_position_with_a_duct_under_its_pads_is_passed_over() {
+    use liftplan_core::outriggers::{Pad, pad_at};
+    use liftplan_plan::positions::{self, Found};
+    let table = chart_reaching(24.0);
+    let chart = table.config("none").unwrap();
+    let searched = |mesh: &TriMesh, t: &LiftTask| {
+        let (m, world) = (map(mesh), World::new(mesh, &[], &[]).unwrap());
+        let site = Site { map: &m, world: &world, charts: Some(&table) };
+        let found = positions::search(t, &site, chart, &quick(), 3);
+        let (Found::Tried(tried), Some(k)) = (&found, found.chosen()) else { panic!("{found:?}") };
+        let e = plan_lift(t, &site, &quick(), 3).unwrap_err().to_string();
+        (tried[k].clone(), found.said("none"), e)
+    };
+    let t = task(-14.0);
+    let (first, said, _) = searched(&site(), &t);
+    assert!(
+        first.under_pads.is_empty()
+            && said.contains("nothing of the plant model or the scans in the ground under them"),
+        "{said}"
+    );
+    // A duct 0.4 m under the slab, under that position's front left pad.
+    let given = |x_m: f64, y_m: f64, heading_deg: f64| {
+        let mut spec = spec_of(-14.0);
+        (spec.crane.position_m, spec.crane.heading_deg) = ([x_m, y_m], heading_deg);
+        spec.resolve(builtin("ac-700").unwrap()).unwrap()
+    };
+    let pad = pad_at(&given(first.x_m, first.y_m, first.heading_deg).crane, Pad::FrontLeft).unwrap();
+    let mut ducted = site();
+    box_part(&mut ducted, "DUCT", [pad[0] - 0.3, pad[1] - 0.3, -0.7], [pad[0] + 0.3, pad[1] + 0.3, -0.4]);
+    let (other, said, e) = searched(&ducted, &t);
+    assert!(other.under_pads.is_empty() && other.planned_steps().is_some(), "{other:?}");
+    assert!((other.x_m, other.y_m, other.heading_deg) != (first.x_m, first.y_m, first.heading_deg), "{said}");
+    assert!(
+        e.ends_with(&said) && said.contains("nothing of the plant model or the scans in the ground under them"),
+        "{said}"
+    );
+    // Given that position, the lift plans there with nothing under its pads.
+    let (m, world) = (map(&ducted), World::new(&ducted, &[], &[]).unwrap());
+    let there = given(other.x_m, other.y_m, other.heading_deg);
+    plan_lift(&there, &Site { map: &m, world: &world, charts: Some(&table) }, &quick(), 3).unwrap();
+    assert!(liftplan_plan::validate::under_pads(&there, &world).is_empty());
+    assert!(!liftplan_plan::validate::under_pads(&given(first.x_m, first.y_m, first.heading_deg), &world).is_empty());
+    // A culvert under the pads at every heading there: another position,
+    // farther, with the one passed over named, and its culvert.
+    let mut culverted = site();
+    box_part(
+        &mut culverted,
+        "CULVERT",
+        [first.x_m - 9.0, first.y_m - 9.0, -0.7],
+        [first.x_m + 9.0, first.y_m + 9.0, -0.4],
+    );
+    let (farther, said, _) = searched(&culverted, &t);
+    assert!(farther.under_pads.is_empty() && farther.moved_m > first.moved_m, "{farther:?}");
+    assert!(
+        said.contains(&format!(
+            " (tried before it: passed over at position_m = [{:.1}, {:.1}], heading_deg = {:.0}",
+            first.x_m, first.y_m, first.heading_deg
+        )) && said
+            .contains("IN THE GROUND UNDER ITS PADS: CULVERT 0.40 m below the set-up level under the front left pad"),
+        "{said}"
+    );
+    // Mats the ground bears nowhere: the first position that plans, with
+    // what its mats put on the ground.
+    let mut soft = spec_of(-14.0);
+    soft.ground = Some(liftplan_core::lift::GroundSpec { mat_m: [1.0, 1.0], allowable_kpa: Some(50.0) });
+    let soft = soft.resolve(builtin("ac-700").unwrap()).unwrap();
+    let (named, said, _) = searched(&site(), &soft);
+    assert!(named.planned_steps().is_some() && named.pads_to_check(), "{named:?}");
+    assert!(said.contains(" steps, BUT ") && said.contains("MORE THAN THE 50 kPa THE GROUND MAY BEAR"), "{said}");
+}
+
 /// A lift over capacity where the crane stands names the nearest position
 /// from which the chart carries the load at both the pick and the set, the
 /// crane stands clear, and the lift plans; given that position, the lift
@@ -1276,9 +1354,10 @@ fn a_lift_over_capacity_names_a_crane_position_where_it_plans() {
     let site = Site { map: &m, world: &world, charts: Some(&table) };
     let e = plan_lift(&t, &site, &quick(), 3).unwrap_err().to_string();
     assert!(e.contains("pick is over capacity"), "{e}");
-    let Found::Tried(tried) = positions::search(&t, &site, chart, &quick(), 3) else { panic!("{e}") };
-    let at = tried.last().unwrap();
-    let Ok(steps) = at.outcome else { panic!("{tried:?}") };
+    let found = positions::search(&t, &site, chart, &quick(), 3);
+    let (Found::Tried(tried), Some(k)) = (&found, found.chosen()) else { panic!("{e}: {found:?}") };
+    let at = &tried[k];
+    let steps = at.planned_steps().unwrap();
     assert!(
         e.contains(&format!(
             "; the crane set up at position_m = [{:.1}, {:.1}], heading_deg = {:.0}, ground_z_m = 0.00 (the lift's: no ground is scanned there; ",
@@ -1309,7 +1388,11 @@ fn a_lift_over_capacity_names_a_crane_position_where_it_plans() {
     let blind = map(&slab);
     let unseen = Site { map: &blind, world: &world, charts: Some(&table) };
     let Found::Tried(tried) = positions::search(&t, &unseen, chart, &quick(), 3) else { panic!("no position tried") };
-    assert!(tried.len() == positions::MOST_PLANNED && tried.iter().all(|t| t.outcome.is_err()), "{tried:?}");
+    assert!(
+        tried.len() == positions::MOST_PLANNED
+            && tried.iter().all(|t| matches!(t.outcome, positions::Outcome::Refused(_))),
+        "{tried:?}"
+    );
     let e = plan_lift(&t, &unseen, &quick(), 3).unwrap_err().to_string();
     assert!(e.contains(&format!("; at the {} crane position(s) nearest the lift's where it carries the load at both and stands clear, the lift is refused too: at position_m = [", positions::MOST_PLANNED)), "{e}");
     assert_eq!(e.matches("the validator rejected the plan").count(), positions::MOST_PLANNED, "{e}");
@@ -1330,9 +1413,10 @@ fn a_lift_over_capacity_names_a_crane_position_where_it_plans() {
     let on_wall = on_wall.resolve(builtin("ac-700").unwrap()).unwrap();
     let e = plan_lift(&on_wall, &site, &quick(), 3).unwrap_err().to_string();
     assert!(e.contains("crane set-up: the carrier meets WALL"), "{e}");
-    let Found::Tried(tried) = positions::search(&on_wall, &site, chart, &quick(), 3) else { panic!("{e}") };
-    let at = tried.last().unwrap();
-    assert!(at.outcome.is_ok() && at.moved_m < 15.0, "{tried:?}");
+    let found = positions::search(&on_wall, &site, chart, &quick(), 3);
+    let (Found::Tried(tried), Some(k)) = (&found, found.chosen()) else { panic!("{e}: {found:?}") };
+    let at = &tried[k];
+    assert!(at.planned_steps().is_some() && at.moved_m < 15.0, "{tried:?}");
     assert!(
         e.contains(&format!(
             "; move the crane or clear its footprint; the crane set up at position_m = [{:.1}, {:.1}]",
