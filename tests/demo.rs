@@ -354,6 +354,18 @@ liftoff_m = 0.5
         cover.contains(&format!("{load} t (")) && cover.contains(&format!("on the {pad} pad (x ")),
         "{pads}: {cover}"
     );
+    // A load the chart carries above critical_pct where the crane stands:
+    // the cover names where it would not be; given that position, it is not.
+    let critical = t13.replace("mass_t = 13.0", "mass_t = 26.0");
+    let (cover, _) = planned_with(&dir, &critical);
+    let lead = "CRITICAL LIFT (over 75 %); not critical with the crane set up at ";
+    let named = &cover[cover.find(lead).unwrap_or_else(|| panic!("{cover}")) + lead.len()..];
+    let named = &named[..named.find(" (the ground scanned there; ").unwrap_or_else(|| panic!("{cover}"))];
+    assert!(cover.contains("; there the lift plans and passes the validator in "), "{cover}");
+    let given = critical.replace("position_m = [0.0, 0.0], ground_z_m = 0.0, heading_deg = 0.0", named);
+    assert_ne!(given, critical, "{named}");
+    let (cover, _) = planned_with(&dir, &given);
+    assert!(cover.contains("not critical (limit 75 %)"), "{named}: {cover}");
     // A load of little area: the chart's speed, nothing to check first; a
     // lift without wind: not worked out, to check first; a lift's chart_ms
     // that is not what the chart's sheet states: said, to check first.

@@ -414,7 +414,9 @@ pub fn document(
     y += 3.0;
     let ok = plan.validator.ok;
     let crit = if sm.critical {
-        format!("CRITICAL LIFT (over {:.0} %)", task.critical_pct)
+        // Where the crane could stand for it not to be, where one was found.
+        let elsewhere = sm.not_critical_at.as_ref().map(|said| format!("; {said}")).unwrap_or_default();
+        format!("CRITICAL LIFT (over {:.0} %){elsewhere}", task.critical_pct)
     } else {
         format!("not critical (limit {:.0} %)", task.critical_pct)
     };

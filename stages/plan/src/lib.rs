@@ -613,7 +613,7 @@ pub(crate) fn plan_lift_hinting(
     // Where else the crane could stand, for a refusal that moving it may
     // answer.
     let elsewhere = |chart: Option<&ChartConfig>| match chart.filter(|_| positions) {
-        Some(ch) => positions::search(task, site, ch, s, seed).said(&ch.name),
+        Some(ch) => positions::search(task, site, ch, s, seed, positions::Sought::Plans).said(&ch.name),
         None => String::new(),
     };
     for (what, c) in [("pick", &task.pick), ("set", &task.set)] {
@@ -884,6 +884,7 @@ impl RunSummary {
             .chain(self.lifts.iter().flat_map(|s| {
                 std::iter::once(s.line())
                     .chain(s.pads_line())
+                    .chain(s.not_critical_line())
                     .chain(s.under_pads_line())
                     .chain(s.other_loads_line())
                     .chain(s.coverage_line())
@@ -971,6 +972,13 @@ pub fn run(
         })?;
         plan.summary.coverage = Some(coverage::of_lift(task, &plan.moves, &world, &scanned_loads));
         plan.summary.under_pads = validate::under_pads(task, &world);
+        // A critical lift: where its crane could stand for it not to be.
+        if plan.summary.critical
+            && let Ok(chart) = charts.config(&task.chart_config)
+        {
+            let found = positions::search(task, &site, chart, s, seed, positions::Sought::NotCritical);
+            plan.summary.not_critical_at = found.not_critical_said(task.critical_pct);
+        }
         // The support's top under a set position inside a load's cut-out
         // went with the scanned load.
         let set_box = task.crane.load_obb(&task.set, &task.load).expanded(s.support_m);

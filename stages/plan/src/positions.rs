@@ -89,8 +89,12 @@ pub struct Tried {
 /// What came of a position whose set-up is clear.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Outcome {
-    /// The lift plans there and passes the validator, in so many steps.
-    Planned { steps: usize },
+    /// The lift plans there and passes the validator, in so many steps, at
+    /// most so much of the chart's capacity (%).
+    Planned { steps: usize, most_pct: f64 },
+    /// Sought where the lift is not critical: it plans there, but above its
+    /// `critical_pct` (its most, %, and in which step).
+    Critical { most_pct: f64, step: usize },
     /// Why the lift was refused there.
     Refused(String),
     /// Not planned: what its pads bear on is to be checked, and a position
@@ -102,7 +106,7 @@ impl Tried {
     /// The planned lift's steps, where it plans there.
     pub fn planned_steps(&self) -> Option<usize> {
         match self.outcome {
-            Outcome::Planned { steps } => Some(steps),
+            Outcome::Planned { steps, .. } => Some(steps),
             _ => None,
         }
     }
@@ -145,6 +149,14 @@ impl Tried {
         said.join("; ")
     }
 
+    /// Where it was refused, and the first clause of why.
+    fn refused_said(&self) -> Option<String> {
+        match &self.outcome {
+            Outcome::Refused(why) => Some(format!("at {}: {}", self.where_said(), first_clause(why))),
+            _ => None,
+        }
+    }
+
     fn where_said(&self) -> String {
         format!(
             "position_m = [{:.1}, {:.1}], heading_deg = {:.0}, ground_z_m = {:.2} ({}; {:.1} m from the lift's position)",
@@ -167,6 +179,16 @@ impl Tried {
             if self.critical { ": a critical lift there, above its critical_pct" } else { "" }
         )
     }
+}
+
+/// What a search seeks.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Sought {
+    /// For a lift refused where its crane stands: a position where it plans.
+    Plans,
+    /// For a lift that plans above its `critical_pct`: a position where it
+    /// plans within it, at both ends and through the whole lift.
+    NotCritical,
 }
 
 /// What the search found.
@@ -210,63 +232,89 @@ impl Found {
                 chart_name,
                 crate::validate::SET_UP_LEVEL_TOLERANCE_M
             ),
-            Found::Tried(tried) => {
-                let refused = |t: &Tried| match &t.outcome {
-                    Outcome::Refused(why) => Some(format!("at {}: {}", t.where_said(), first_clause(why))),
-                    _ => None,
-                };
-                let Some(k) = self.chosen() else {
-                    let refused: Vec<String> = tried.iter().filter_map(refused).collect();
-                    return format!(
+            Found::Tried(tried) => match self.chosen() {
+                Some(k) => format!(
+                    "; the crane set up at {} carries it at both ({}), and there {}",
+                    tried[k].where_said(),
+                    tried[k].carries_said(),
+                    planned_said(tried, k)
+                ),
+                None => {
+                    let refused: Vec<String> = tried.iter().filter_map(Tried::refused_said).collect();
+                    format!(
                         "; at the {} crane position(s) nearest the lift's where it carries the load at both and stands clear, the lift is refused too: {}",
                         refused.len(),
                         refused.join("; ")
-                    );
-                };
-                let t = &tried[k];
-                // Those refused before it, and those nearer passed over for
-                // what their pads bear on.
-                let before: Vec<String> = tried
-                    .iter()
-                    .enumerate()
-                    .filter_map(|(i, o)| match &o.outcome {
-                        Outcome::Refused(_) if i < k => refused(o).map(|r| format!("refused {r}")),
-                        Outcome::Planned { .. } | Outcome::NotPlanned
-                            if i != k && o.pads_to_check() && o.moved_m < t.moved_m =>
-                        {
-                            Some(format!("passed over at {}: {}", o.where_said(), o.pads_to_check_said()))
-                        }
-                        _ => None,
-                    })
-                    .collect();
-                let pads = if t.pads_to_check() {
-                    format!(", BUT {}", t.pads_to_check_said())
-                } else {
-                    let most = t.pads.map(|p| {
-                        format!(
-                            ", its outrigger pads at their most {} (an estimate)",
-                            p.said_briefly(t.ground.as_ref())
-                        )
-                    });
-                    format!(
-                        "{}, nothing of the plant model or the scans in the ground under them",
-                        most.unwrap_or_default()
                     )
-                };
-                format!(
-                    "; the crane set up at {} carries it at both ({}), and there the lift plans and passes the validator in {} steps{pads}{}: a position to CHECK on site (access, the ground's strength, what is buried that neither the plant model nor the scans hold) before it is given to the lift",
-                    t.where_said(),
-                    t.carries_said(),
-                    t.planned_steps().unwrap_or_default(),
-                    if before.is_empty() {
-                        String::new()
-                    } else {
-                        format!(" (tried before it: {})", before.join("; "))
-                    }
-                )
-            }
+                }
+            },
         }
     }
+
+    /// For a critical lift searched [`Sought::NotCritical`]: where it is
+    /// not, or at how many positions looked at it is critical or refused
+    /// too.
+    pub fn not_critical_said(&self, critical_pct: f64) -> Option<String> {
+        match self {
+            Found::NotSearched | Found::OutOfReach { .. } => None,
+            Found::NoClearSetUp { looked_at: 0 } => Some(format!(
+                "its chart carries the load within {critical_pct:.0} % at both the pick and the set from no crane position"
+            )),
+            Found::NoClearSetUp { looked_at } => Some(format!(
+                "of the {looked_at} crane positions nearest the lift's where its chart carries the load within {critical_pct:.0} % at the pick and the set, none stands clear"
+            )),
+            Found::Tried(tried) => Some(match self.chosen() {
+                Some(k) => format!(
+                    "not critical with the crane set up at {}: {}; there {}",
+                    tried[k].where_said(),
+                    tried[k].carries_said(),
+                    planned_said(tried, k)
+                ),
+                None => format!(
+                    "at the {} crane position(s) nearest the lift's where its chart carries the load within {critical_pct:.0} % at the pick and the set and it stands clear, the lift is critical or refused too",
+                    tried.len()
+                ),
+            }),
+        }
+    }
+}
+
+/// The words for the position named (`tried[k]`): it plans there, in so
+/// many steps; what its pads bear on; those tried before it; what to check.
+fn planned_said(tried: &[Tried], k: usize) -> String {
+    let t = &tried[k];
+    // Those refused or critical before it, and those nearer passed over
+    // for what their pads bear on.
+    let before: Vec<String> = tried
+        .iter()
+        .enumerate()
+        .filter_map(|(i, o)| match &o.outcome {
+            Outcome::Refused(_) if i < k => o.refused_said().map(|r| format!("refused {r}")),
+            Outcome::Critical { most_pct, step } if i < k => {
+                Some(format!("critical at {} ({most_pct:.1} % in step {step})", o.where_said()))
+            }
+            Outcome::Planned { .. } | Outcome::NotPlanned if i != k && o.pads_to_check() && o.moved_m < t.moved_m => {
+                Some(format!("passed over at {}: {}", o.where_said(), o.pads_to_check_said()))
+            }
+            _ => None,
+        })
+        .collect();
+    let pads = if t.pads_to_check() {
+        format!(", BUT {}", t.pads_to_check_said())
+    } else {
+        let most = t
+            .pads
+            .map(|p| format!(", its outrigger pads at their most {} (an estimate)", p.said_briefly(t.ground.as_ref())));
+        format!("{}, nothing of the plant model or the scans in the ground under them", most.unwrap_or_default())
+    };
+    let (steps, most_pct) = match t.outcome {
+        Outcome::Planned { steps, most_pct } => (steps, most_pct),
+        _ => (0, 0.0),
+    };
+    format!(
+        "the lift plans and passes the validator in {steps} steps (at most {most_pct:.1} % of the chart's capacity){pads}{}: a position to CHECK on site (access, the ground's strength, what is buried that neither the plant model nor the scans hold) before it is given to the lift",
+        if before.is_empty() { String::new() } else { format!(" (tried before it: {})", before.join("; ")) }
+    )
 }
 
 /// A refusal's first clause, the lift's name left out: up to its first
@@ -304,7 +352,7 @@ fn utilisation_at(task: &LiftTask, chart: &ChartConfig, boom_m: f64, r_m: f64) -
 }
 
 /// Where else the lift's crane could stand (the module's docs).
-pub fn search(task: &LiftTask, site: &Site, chart: &ChartConfig, s: &Settings, seed: u64) -> Found {
+pub fn search(task: &LiftTask, site: &Site, chart: &ChartConfig, s: &Settings, seed: u64, sought: Sought) -> Found {
     if task.crane.model.is_tower() || task.by_configuration.iter().any(|b| *b) {
         return Found::NotSearched;
     }
@@ -330,6 +378,9 @@ pub fn search(task: &LiftTask, site: &Site, chart: &ChartConfig, s: &Settings, s
                 continue;
             };
             let critical = up.max(us) > task.critical_pct;
+            if critical && sought == Sought::NotCritical {
+                continue;
+            }
             carried.push((critical, (at[0] - home.x_m).hypot(at[1] - home.y_m), at, (up, rp), (us, rs)));
         }
     }
@@ -352,8 +403,10 @@ pub fn search(task: &LiftTask, site: &Site, chart: &ChartConfig, s: &Settings, s
             break;
         }
         // The lift's own position was refused, and one near it is most
-        // often refused for the same.
-        if moved_m < APART_M || near(&clear, at) {
+        // often refused for the same; where it was critical, a step nearer
+        // the pick or the set may be all it takes.
+        let off_own_m = if sought == Sought::Plans { APART_M } else { GRID_M / 2.0 };
+        if moved_m < off_own_m || near(&clear, at) {
             continue;
         }
         looked_at += 1;
@@ -397,7 +450,14 @@ pub fn search(task: &LiftTask, site: &Site, chart: &ChartConfig, s: &Settings, s
             t.outcome = match crate::plan_lift_hinting(&moved, site, s, seed, false) {
                 Ok((plan, _)) => {
                     t.pads = plan.summary.highest_pad.map(|(_, p)| p).or(t.pads);
-                    Outcome::Planned { steps: plan.steps.len() }
+                    let most_pct = plan.summary.max_utilisation_pct;
+                    // Critical through the lift, not at its ends alone.
+                    t.critical |= plan.summary.critical;
+                    if sought == Sought::NotCritical && plan.summary.critical {
+                        Outcome::Critical { most_pct, step: plan.summary.max_utilisation_step }
+                    } else {
+                        Outcome::Planned { steps: plan.steps.len(), most_pct }
+                    }
                 }
                 Err(e) => Outcome::Refused(e.to_string()),
             };
@@ -521,11 +581,13 @@ mod tests {
     fn the_positions_tried_are_said() {
         let refused =
             "lift 'V-101': no collision-free, chart-compliant path found (1 run(s)): the boom meets RACK; more";
-        let found =
-            Found::Tried(vec![tried(3.0, Outcome::Refused(refused.into())), tried(6.5, Outcome::Planned { steps: 9 })]);
+        let found = Found::Tried(vec![
+            tried(3.0, Outcome::Refused(refused.into())),
+            tried(6.5, Outcome::Planned { steps: 9, most_pct: 98.1 }),
+        ]);
         assert_eq!(
             found.said("Main"),
-            "; the crane set up at position_m = [6.5, -2.5], heading_deg = 90, ground_z_m = 0.12 (the ground scanned there; 6.5 m from the lift's position) carries it at both (pick 72 % at 16.00 m, set 98 % at 21.79 m: a critical lift there, above its critical_pct), and there the lift plans and passes the validator in 9 steps, nothing of the plant model or the scans in the ground under them (tried before it: refused at position_m = [3.0, -2.5], heading_deg = 90, ground_z_m = 0.12 (the ground scanned there; 3.0 m from the lift's position): no collision-free, chart-compliant path found (1 run(s))): a position to CHECK on site (access, the ground's strength, what is buried that neither the plant model nor the scans hold) before it is given to the lift"
+            "; the crane set up at position_m = [6.5, -2.5], heading_deg = 90, ground_z_m = 0.12 (the ground scanned there; 6.5 m from the lift's position) carries it at both (pick 72 % at 16.00 m, set 98 % at 21.79 m: a critical lift there, above its critical_pct), and there the lift plans and passes the validator in 9 steps (at most 98.1 % of the chart's capacity), nothing of the plant model or the scans in the ground under them (tried before it: refused at position_m = [3.0, -2.5], heading_deg = 90, ground_z_m = 0.12 (the ground scanned there; 3.0 m from the lift's position): no collision-free, chart-compliant path found (1 run(s))): a position to CHECK on site (access, the ground's strength, what is buried that neither the plant model nor the scans hold) before it is given to the lift"
         );
         assert_eq!(found.chosen(), Some(1));
         // The pads' most and the pressure under their mats; a nearer
@@ -551,23 +613,23 @@ mod tests {
             t
         };
         let found = Found::Tried(vec![
-            with(tried(6.5, Outcome::Planned { steps: 9 }), 118_600.0, vec![]),
+            with(tried(6.5, Outcome::Planned { steps: 9, most_pct: 98.1 }), 118_600.0, vec![]),
             with(tried(4.0, Outcome::NotPlanned), 100_000.0, vec![duct.clone()]),
             with(tried(9.0, Outcome::NotPlanned), 140_000.0, vec![]),
         ]);
         assert_eq!(found.chosen(), Some(0));
         let said = found.said("Main");
-        assert!(said.contains("in 9 steps, its outrigger pads at their most 118.6 t on the rear right pad; 186 kPa under its 2.50 x 2.50 m mat, allowable 200 kPa (an estimate), nothing of the plant model or the scans in the ground under them (tried before it: passed over at position_m = [4.0, -2.5], heading_deg = 90, ground_z_m = 0.12 (the ground scanned there; 4.0 m from the lift's position): IN THE GROUND UNDER ITS PADS: DUCT 0.30 m below the set-up level under the front left pad (within 2.8 m of its centre and 5.0 m deep)): a position"), "{said}");
+        assert!(said.contains("in 9 steps (at most 98.1 % of the chart's capacity), its outrigger pads at their most 118.6 t on the rear right pad; 186 kPa under its 2.50 x 2.50 m mat, allowable 200 kPa (an estimate), nothing of the plant model or the scans in the ground under them (tried before it: passed over at position_m = [4.0, -2.5], heading_deg = 90, ground_z_m = 0.12 (the ground scanned there; 4.0 m from the lift's position): IN THE GROUND UNDER ITS PADS: DUCT 0.30 m below the set-up level under the front left pad (within 2.8 m of its centre and 5.0 m deep)): a position"), "{said}");
         assert!(!said.contains("[9.0"), "{said}");
         // Where only positions to check plan, the first is named with what
         // is to be checked.
         let found = Found::Tried(vec![
-            with(tried(6.5, Outcome::Planned { steps: 9 }), 140_000.0, vec![duct.clone()]),
-            with(tried(9.0, Outcome::Planned { steps: 8 }), 140_000.0, vec![]),
+            with(tried(6.5, Outcome::Planned { steps: 9, most_pct: 98.1 }), 140_000.0, vec![duct.clone()]),
+            with(tried(9.0, Outcome::Planned { steps: 8, most_pct: 98.1 }), 140_000.0, vec![]),
         ]);
         assert_eq!(found.chosen(), Some(0));
         let said = found.said("Main");
-        assert!(said.contains("in 9 steps, BUT IN THE GROUND UNDER ITS PADS: DUCT 0.30 m below the set-up level under the front left pad (within 2.8 m of its centre and 5.0 m deep); 220 kPa UNDER THE REAR RIGHT PAD'S 2.50 x 2.50 m MAT (140.0 t, an estimate), MORE THAN THE 200 kPa THE GROUND MAY BEAR: a position"), "{said}");
+        assert!(said.contains("in 9 steps (at most 98.1 % of the chart's capacity), BUT IN THE GROUND UNDER ITS PADS: DUCT 0.30 m below the set-up level under the front left pad (within 2.8 m of its centre and 5.0 m deep); 220 kPa UNDER THE REAR RIGHT PAD'S 2.50 x 2.50 m MAT (140.0 t, an estimate), MORE THAN THE 200 kPa THE GROUND MAY BEAR: a position"), "{said}");
         let none = Found::Tried(vec![
             tried(3.0, Outcome::Refused(refused.into())),
             tried(6.5, Outcome::Refused("lift 'V-101': crane set-up: x".into())),
@@ -576,5 +638,26 @@ mod tests {
         assert!(said.starts_with("; at the 2 crane position(s) nearest the lift's where it carries the load at both and stands clear, the lift is refused too: at position_m = [3.0"), "{said}");
         assert!(said.ends_with("3.0 m from the lift's position): no collision-free, chart-compliant path found (1 run(s)); at position_m = [6.5, -2.5], heading_deg = 90, ground_z_m = 0.12 (the ground scanned there; 6.5 m from the lift's position): crane set-up: x"), "{said}");
         assert_eq!(Found::NotSearched.said("Main"), "");
+        // Sought where a critical lift is not: one critical through the
+        // lift (its ends within critical_pct) before the one named.
+        let calm = |mut t: Tried, outcome| {
+            (t.critical, t.pick, t.set, t.outcome) = (false, (45.0, 16.18), (73.0, 27.77), outcome);
+            t
+        };
+        let found = Found::Tried(vec![
+            calm(tried(2.5, Outcome::Refused("x".into())), Outcome::Critical { most_pct: 78.2, step: 6 }),
+            calm(tried(4.0, Outcome::NotPlanned), Outcome::Planned { steps: 13, most_pct: 72.8 }),
+        ]);
+        assert_eq!(
+            found.not_critical_said(75.0).unwrap(),
+            "not critical with the crane set up at position_m = [4.0, -2.5], heading_deg = 90, ground_z_m = 0.12 (the ground scanned there; 4.0 m from the lift's position): pick 45 % at 16.18 m, set 73 % at 27.77 m; there the lift plans and passes the validator in 13 steps (at most 72.8 % of the chart's capacity), nothing of the plant model or the scans in the ground under them (tried before it: critical at position_m = [2.5, -2.5], heading_deg = 90, ground_z_m = 0.12 (the ground scanned there; 2.5 m from the lift's position) (78.2 % in step 6)): a position to CHECK on site (access, the ground's strength, what is buried that neither the plant model nor the scans hold) before it is given to the lift"
+        );
+        let none =
+            Found::Tried(vec![calm(tried(2.5, Outcome::NotPlanned), Outcome::Critical { most_pct: 78.2, step: 6 })]);
+        assert_eq!(
+            none.not_critical_said(75.0).unwrap(),
+            "at the 1 crane position(s) nearest the lift's where its chart carries the load within 75 % at the pick and the set and it stands clear, the lift is critical or refused too"
+        );
+        assert_eq!(Found::NotSearched.not_critical_said(75.0), None);
     }
 }

@@ -316,6 +316,10 @@ pub struct Summary {
     /// ([`crate::validate::under_pads`]).
     #[serde(default)]
     pub under_pads: Vec<crate::validate::UnderPad>,
+    /// For a critical lift, where its crane could stand for it not to be
+    /// ([`crate::positions::Found::not_critical_said`]), in words.
+    #[serde(default)]
+    pub not_critical_at: Option<String>,
     /// The lift's mats and ground, for saying the pressure.
     #[serde(default)]
     pub ground: Option<GroundSpec>,
@@ -488,6 +492,11 @@ impl Summary {
         })
     }
 
+    /// [`Summary::not_critical_at`] for the run's output.
+    pub fn not_critical_line(&self) -> Option<String> {
+        self.not_critical_at.as_ref().map(|said| format!("lift {}: critical; {said}", self.lift))
+    }
+
     /// [`Summary::under_pads_said`] for the run's output.
     pub fn under_pads_line(&self) -> Option<String> {
         self.under_pads_said().map(|said| format!("lift {}: {said}", self.lift))
@@ -562,6 +571,7 @@ pub fn summary(task: &LiftTask, steps: &[Step], verdict: &Verdict) -> Summary {
             .filter(|(_, from)| *from == CounterweightFrom::ChartSheet)
             .and_then(|_| task.chart_sheet_counterweight.as_ref().map(|s| s.cell.clone())),
         under_pads: Vec::new(),
+        not_critical_at: None,
         ground: task.ground,
     };
     for st in steps {

@@ -1257,6 +1257,52 @@ fn chart_reaching(reach_m: f64) -> liftplan_core::capacity::CapacityTable {
     chart_of(&[(10.0, 50.0), (reach_m, 50.0), (reach_m + 2.0, 3.0), (40.0, 3.0)], "none")
 }
 
+/// A lift that plans above its critical_pct: the search for where it would
+/// not be names the nearest position from which the chart carries it within
+/// critical_pct at the pick and the set and the whole lift plans within it;
+/// given that position, the lift plans there, not critical. Where the chart
+/// carries it within critical_pct from nowhere, that is said.
+#[test]
+fn a_critical_lift_names_a_crane_position_where_it_is_not() {
+    use liftplan_plan::positions::{self, Found, Sought};
+    let mesh = site();
+    let (m, world) = (map(&mesh), World::new(&mesh, &[], &[]).unwrap());
+    let table = chart_of(&[(10.0, 50.0), (24.0, 50.0), (26.0, 10.5), (40.0, 10.5)], "none");
+    let chart = table.config("none").unwrap();
+    let site = Site { map: &m, world: &world, charts: Some(&table) };
+    let t = task(-14.0);
+    let (plan, _) = plan_lift(&t, &site, &quick(), 3).unwrap();
+    assert!(plan.summary.critical, "{:?}", plan.summary);
+    let found = positions::search(&t, &site, chart, &quick(), 3, Sought::NotCritical);
+    let (Found::Tried(tried), Some(k)) = (&found, found.chosen()) else { panic!("{found:?}") };
+    let at = &tried[k];
+    assert!(!at.critical && at.pick.0.max(at.set.0) <= t.critical_pct && at.moved_m > 0.0, "{at:?}");
+    let said = found.not_critical_said(t.critical_pct).unwrap();
+    assert!(
+        said.starts_with(&format!(
+            "not critical with the crane set up at position_m = [{:.1}, {:.1}], heading_deg = {:.0}, ground_z_m = 0.00 (the lift's: no ground is scanned there; {:.1} m from the lift's position): pick ",
+            at.x_m, at.y_m, at.heading_deg, at.moved_m
+        )) && said.contains("; there the lift plans and passes the validator in "),
+        "{said}"
+    );
+    // Given that position, the lift plans there, the same, not critical.
+    let mut spec = spec_of(-14.0);
+    (spec.crane.position_m, spec.crane.heading_deg) = ([at.x_m, at.y_m], at.heading_deg);
+    let there = spec.resolve(builtin("ac-700").unwrap()).unwrap();
+    let (plan, _) = plan_lift(&there, &site, &quick(), 3).unwrap();
+    assert!(!plan.summary.critical && Some(plan.steps.len()) == at.planned_steps(), "{:?}", plan.summary);
+    // A chart that carries it within critical_pct nowhere.
+    let low = chart_of(&[(10.0, 10.5), (40.0, 10.5)], "none");
+    let site = Site { map: &m, world: &world, charts: Some(&low) };
+    let (plan, _) = plan_lift(&t, &site, &quick(), 3).unwrap();
+    assert!(plan.summary.critical);
+    let found = positions::search(&t, &site, low.config("none").unwrap(), &quick(), 3, Sought::NotCritical);
+    assert_eq!(
+        found.not_critical_said(t.critical_pct).unwrap(),
+        "its chart carries the load within 75 % at both the pick and the set from no crane position"
+    );
+}
+
 /// What the outrigger pads bear on is looked at, at a crane position named
 /// for a lift, as at the lift's own: a duct buried under a pad of the
 /// position named passes it over for another, where nothing lies under the
@@ -1272,7 +1318,7 @@ fn a_crane_position_with_a_duct_under_its_pads_is_passed_over() {
     let searched = |mesh: &TriMesh, t: &LiftTask| {
         let (m, world) = (map(mesh), World::new(mesh, &[], &[]).unwrap());
         let site = Site { map: &m, world: &world, charts: Some(&table) };
-        let found = positions::search(t, &site, chart, &quick(), 3);
+        let found = positions::search(t, &site, chart, &quick(), 3, positions::Sought::Plans);
         let (Found::Tried(tried), Some(k)) = (&found, found.chosen()) else { panic!("{found:?}") };
         let e = plan_lift(t, &site, &quick(), 3).unwrap_err().to_string();
         (tried[k].clone(), found.said("none"), e)
@@ -1332,7 +1378,10 @@ fn a_crane_position_with_a_duct_under_its_pads_is_passed_over() {
     let soft = soft.resolve(builtin("ac-700").unwrap()).unwrap();
     let (named, said, _) = searched(&site(), &soft);
     assert!(named.planned_steps().is_some() && named.pads_to_check(), "{named:?}");
-    assert!(said.contains(" steps, BUT ") && said.contains("MORE THAN THE 50 kPa THE GROUND MAY BEAR"), "{said}");
+    assert!(
+        said.contains(" of the chart's capacity), BUT ") && said.contains("MORE THAN THE 50 kPa THE GROUND MAY BEAR"),
+        "{said}"
+    );
 }
 
 /// A lift over capacity where the crane stands names the nearest position
@@ -1354,7 +1403,7 @@ fn a_lift_over_capacity_names_a_crane_position_where_it_plans() {
     let site = Site { map: &m, world: &world, charts: Some(&table) };
     let e = plan_lift(&t, &site, &quick(), 3).unwrap_err().to_string();
     assert!(e.contains("pick is over capacity"), "{e}");
-    let found = positions::search(&t, &site, chart, &quick(), 3);
+    let found = positions::search(&t, &site, chart, &quick(), 3, positions::Sought::Plans);
     let (Found::Tried(tried), Some(k)) = (&found, found.chosen()) else { panic!("{e}: {found:?}") };
     let at = &tried[k];
     let steps = at.planned_steps().unwrap();
@@ -1387,7 +1436,9 @@ fn a_lift_over_capacity_names_a_crane_position_where_it_plans() {
     box_part(&mut slab, "SLAB", [-40.0, -40.0, -0.3], [60.0, 40.0, 0.0]);
     let blind = map(&slab);
     let unseen = Site { map: &blind, world: &world, charts: Some(&table) };
-    let Found::Tried(tried) = positions::search(&t, &unseen, chart, &quick(), 3) else { panic!("no position tried") };
+    let Found::Tried(tried) = positions::search(&t, &unseen, chart, &quick(), 3, positions::Sought::Plans) else {
+        panic!("no position tried")
+    };
     assert!(
         tried.len() == positions::MOST_PLANNED
             && tried.iter().all(|t| matches!(t.outcome, positions::Outcome::Refused(_))),
@@ -1403,7 +1454,7 @@ fn a_lift_over_capacity_names_a_crane_position_where_it_plans() {
     let mut ranged = spec_of(-14.0);
     ranged.swing_range_deg = Some([-180.0, 180.0]);
     let ranged = ranged.resolve(builtin("ac-700").unwrap()).unwrap();
-    match positions::search(&ranged, &site, chart, &quick(), 3) {
+    match positions::search(&ranged, &site, chart, &quick(), 3, positions::Sought::Plans) {
         Found::Tried(tried) => assert!(tried.iter().all(|t| t.heading_deg == 0.0), "{tried:?}"),
         found => assert!(matches!(found, Found::NoClearSetUp { .. }), "{found:?}"),
     }
@@ -1413,7 +1464,7 @@ fn a_lift_over_capacity_names_a_crane_position_where_it_plans() {
     let on_wall = on_wall.resolve(builtin("ac-700").unwrap()).unwrap();
     let e = plan_lift(&on_wall, &site, &quick(), 3).unwrap_err().to_string();
     assert!(e.contains("crane set-up: the carrier meets WALL"), "{e}");
-    let found = positions::search(&on_wall, &site, chart, &quick(), 3);
+    let found = positions::search(&on_wall, &site, chart, &quick(), 3, positions::Sought::Plans);
     let (Found::Tried(tried), Some(k)) = (&found, found.chosen()) else { panic!("{e}: {found:?}") };
     let at = &tried[k];
     assert!(at.planned_steps().is_some() && at.moved_m < 15.0, "{tried:?}");
@@ -1448,7 +1499,7 @@ fn a_lift_over_capacity_names_a_crane_position_where_it_plans() {
     // A reach of 16 m spans the two only over the wall.
     let table = chart_reaching(16.0);
     let site = Site { map: &m, world: &world, charts: Some(&table) };
-    let found = positions::search(&t, &site, table.config("none").unwrap(), &quick(), 3);
+    let found = positions::search(&t, &site, table.config("none").unwrap(), &quick(), 3, positions::Sought::Plans);
     assert!(matches!(found, Found::NoClearSetUp { looked_at } if looked_at > 10), "{found:?}");
     let e = plan_lift(&t, &site, &quick(), 3).unwrap_err().to_string();
     assert!(e.contains("crane positions nearest the lift's within the reach of 'none' of both the pick and the set, none stands clear (its carrier and outriggers on ground level within 0.50 m, the boom and the load clear at the lift-off and the set-down)"), "{e}");
