@@ -4,7 +4,11 @@
 //! the pick or the set, or no path is found): the
 //! nearest position from which its chart configuration carries the gross
 //! load at both, the crane stands clear on level ground, and the whole lift
-//! plans and passes the validator.
+//! plans and passes the validator. For a lift that plans but above its
+//! `critical_pct`, the same search names the nearest position where it
+//! would not be critical ([`Sought::NotCritical`]): the chart within
+//! `critical_pct` at the pick and the set, the planned lift within it
+//! throughout (positions a grid step from the lift's own are tried too).
 //!
 //! Positions are tried on a grid of [`GRID_M`] within the configuration's
 //! farthest carrying radius of both the pick and the set, nearest to the
