@@ -604,7 +604,7 @@ pub fn set_support(task: &LiftTask, world: &World, c: &Config, reach_up_m: f64) 
 /// How far inside the edge of what the load at `c` rests on its centre of
 /// gravity lies, in plan (m; negative beyond it), the load resting `gap_m`
 /// lower than at `c` (the gap [`set_support`] found). What it rests on: the
-/// cells of its footprint ([`SUPPORT_CELL_M`]) under which an obstacle's top
+/// cells of its footprint (`SUPPORT_CELL_M`, 0.2 m) under which an obstacle's top
 /// lies within `band_m` below that level (or up to `reach_up_m` above it).
 /// The answer is a lower bound: the hull of the touching cells' centres,
 /// less a cell's half diagonal (each touching cell holds a point of the
