@@ -223,12 +223,8 @@ fn read_chart_with(path: &Path, s: &Settings, unnamed: Unnamed) -> Result<(Vec<C
         let own_notes = detect::LazyNotes::new(sh);
         let single = grids.len() == 1;
         for (k, (g, mapping)) in grids.iter().enumerate() {
-            // What the sheet states in words for this grid: on its rows,
-            // its title's just above it, and the notes under it down to the
-            // next grid's title (or the sheet's top and end).
-            let band_from = k.checked_sub(1).map_or(0, |b| title_from(g).max(grid_last_row(&grids[b].0) + 1));
-            let band_to = grids.get(k + 1).map_or(u32::MAX, |(next, _)| title_from(next).saturating_sub(1));
-            let stated = stated::on_sheet(sh, band_from..=band_to.max(grid_last_row(g)));
+            let (rows, cols) = stated_region(grids, k);
+            let stated = stated::on_sheet(sh, rows, cols);
             let name = match mapping {
                 Some(m) => m.config.clone(),
                 None if single => sh.name.clone(),
@@ -316,6 +312,51 @@ fn read_chart_with(path: &Path, s: &Settings, unnamed: Unnamed) -> Result<(Vec<C
 /// The last row of a grid (its header's where it has no rows).
 fn grid_last_row(g: &detect::Grid) -> u32 {
     *g.rows.last().unwrap_or(&g.header_row)
+}
+
+fn grid_last_col(g: &detect::Grid) -> u32 {
+    *g.value_cols.last().unwrap_or(&g.label_col)
+}
+
+/// The rows and columns of a sheet whose words are the `k`th grid's own
+/// ([`stated::on_sheet`]). Its rows: its title's just above its header
+/// ([`TITLE_ROWS`]), its own, and the notes under it down to the title of
+/// the next grid below it (from the sheet's top where none is above it, to
+/// its end where none is below). Its columns: from the column after the
+/// grid beside it on its left (its title and labels lie left of its
+/// numbers) to its own last column where another stands beside it on its
+/// right, else the whole sheet's width. Side by side, each grid's title and
+/// notes are then its own, not also its neighbour's.
+fn stated_region(
+    grids: &[(detect::Grid, Option<&TableMapping>)],
+    k: usize,
+) -> (std::ops::RangeInclusive<u32>, std::ops::RangeInclusive<u32>) {
+    let g = &grids[k].0;
+    // Beside it: sharing rows, in other columns.
+    let beside = |o: &detect::Grid| {
+        title_from(o) <= grid_last_row(g)
+            && title_from(g) <= grid_last_row(o)
+            && (o.label_col > grid_last_col(g) || grid_last_col(o) < g.label_col)
+    };
+    let others = || grids.iter().enumerate().filter(|(i, _)| *i != k).map(|(_, (o, _))| o);
+    let (mut col_from, mut col_to) = (0, u32::MAX);
+    for o in others().filter(|o| beside(o)) {
+        if o.label_col > grid_last_col(g) {
+            col_to = grid_last_col(g);
+        } else {
+            col_from = col_from.max(grid_last_col(o) + 1);
+        }
+    }
+    // Above and below it: the others in its columns.
+    let (mut row_from, mut row_to) = (0, u32::MAX);
+    for o in others().filter(|o| !beside(o) && o.label_col <= col_to && grid_last_col(o) >= col_from) {
+        if o.header_row < g.header_row {
+            row_from = row_from.max(title_from(g)).max(grid_last_row(o) + 1);
+        } else {
+            row_to = row_to.min(title_from(o).saturating_sub(1));
+        }
+    }
+    (row_from..=row_to.max(grid_last_row(g)), col_from..=col_to)
 }
 
 /// The rows just above a grid's header that are its own (its title, its

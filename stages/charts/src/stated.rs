@@ -49,15 +49,15 @@ pub fn wind_speeds_ms(text: &str) -> Vec<f64> {
     out
 }
 
-/// What the text cells of `sheet` in `rows` (inclusive) state, each value
-/// once (the first cell stating it), in the sheet's order.
+/// What the text cells of `sheet` in `rows` and `cols` (inclusive) state,
+/// each value once (the first cell stating it), in the sheet's order.
 pub struct Stated {
     pub wind_ms: Vec<StatedOnChart>,
     pub counterweight_kg: Vec<StatedOnChart>,
 }
 
-/// Reads [`Stated`] from the text cells of `sheet` in `rows`.
-pub fn on_sheet(sheet: &Sheet, rows: std::ops::RangeInclusive<u32>) -> Stated {
+/// Reads [`Stated`] from the text cells of `sheet` in `rows` and `cols`.
+pub fn on_sheet(sheet: &Sheet, rows: std::ops::RangeInclusive<u32>, cols: std::ops::RangeInclusive<u32>) -> Stated {
     let mut stated = Stated { wind_ms: Vec::new(), counterweight_kg: Vec::new() };
     let keep = |into: &mut Vec<StatedOnChart>, value: f64, r: u32, c: u32, text: &str| {
         if !into.iter().any(|s| (s.value - value).abs() <= 1e-6 * value.abs().max(1.0)) {
@@ -74,6 +74,9 @@ pub fn on_sheet(sheet: &Sheet, rows: std::ops::RangeInclusive<u32>) -> Stated {
     }
     for (&(r, c), v) in sheet.cells.range((*rows.start(), 0)..=(*rows.end(), u32::MAX)) {
         let Val::Text(text) = v else { continue };
+        if !cols.contains(&c) {
+            continue;
+        }
         for ms in wind_speeds_ms(text) {
             keep(&mut stated.wind_ms, ms, r, c, text);
         }
@@ -109,13 +112,13 @@ mod tests {
         sheet.cells.insert((40, 0), Val::Text("4) Permissible wind speed 9.8 m/s.".into()));
         sheet.cells.insert((41, 3), Val::Text("wind: 9.8 m/s".into()));
         sheet.cells.insert((50, 0), Val::Text("wind 12 m/s".into()));
-        let s = on_sheet(&sheet, 0..=45);
+        let s = on_sheet(&sheet, 0..=45, 0..=u32::MAX);
         assert_eq!(s.wind_ms.len(), 1);
         assert_eq!((s.wind_ms[0].value, s.wind_ms[0].cell.as_str()), (9.8, "Main!A41"));
         assert_eq!((s.counterweight_kg[0].value, s.counterweight_kg[0].cell.as_str()), (140_000.0, "Main!A3"));
-        assert_eq!(on_sheet(&sheet, 0..=60).wind_ms.len(), 2);
+        assert_eq!(on_sheet(&sheet, 0..=60, 0..=u32::MAX).wind_ms.len(), 2);
         #[allow(clippy::reversed_empty_ranges)]
-        let none = on_sheet(&sheet, 9..=3);
+        let none = on_sheet(&sheet, 9..=3, 0..=u32::MAX);
         assert!(none.wind_ms.is_empty() && none.counterweight_kg.is_empty());
     }
 }

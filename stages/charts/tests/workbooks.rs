@@ -225,13 +225,18 @@ fn small_grid(ws: &mut rust_xlsxwriter::Worksheet) {
 
 /// [`small_grid`] with its boom lengths on row `booms_row` (0-based).
 fn small_grid_at(ws: &mut rust_xlsxwriter::Worksheet, booms_row: u32) {
+    small_grid_at_col(ws, booms_row, 0);
+}
+
+/// [`small_grid_at`] moved `col0` columns right.
+fn small_grid_at_col(ws: &mut rust_xlsxwriter::Worksheet, booms_row: u32, col0: u16) {
     for (j, b) in [50.0, 80.0].iter().enumerate() {
-        ws.write_number(booms_row, 3 + j as u16, *b).unwrap();
+        ws.write_number(booms_row, col0 + 3 + j as u16, *b).unwrap();
     }
     for (i, r) in [10.0, 20.0, 30.0].iter().enumerate() {
-        ws.write_number(booms_row + 1 + i as u32, 2, *r).unwrap();
+        ws.write_number(booms_row + 1 + i as u32, col0 + 2, *r).unwrap();
         for j in 0..2 {
-            ws.write_number(booms_row + 1 + i as u32, 3 + j, 100.0 - 20.0 * i as f64 - 10.0 * j as f64).unwrap();
+            ws.write_number(booms_row + 1 + i as u32, col0 + 3 + j, 100.0 - 20.0 * i as f64 - 10.0 * j as f64).unwrap();
         }
     }
 }
@@ -492,4 +497,35 @@ fn the_wind_speed_and_counterweight_a_sheet_states_are_read_per_grid() {
     );
     let shown = liftplan_charts::inspect(&p).unwrap().to_string();
     assert!(shown.contains("\"wind_ms\":[{\"cell\":\"S!A8\""), "{shown}");
+    // Side by side, over two rows (a grid of grids): each one's title and
+    // the notes under it are its own, not its neighbour's.
+    let p = d.path().join("beside.xlsx");
+    let mut wb = Workbook::new();
+    let ws = wb.add_worksheet().set_name("S").unwrap();
+    let grid = |ws: &mut rust_xlsxwriter::Worksheet, row0: u32, col0: u16, title: &str, note: &str| {
+        ws.write_string(row0, col0, title).unwrap();
+        ws.write_string(row0 + 1, col0, "Radius m").unwrap();
+        ws.write_string(row0 + 1, col0 + 1, "Boom m / capacity t").unwrap();
+        small_grid_at_col(ws, row0 + 2, col0);
+        ws.write_string(row0 + 7, col0, note).unwrap();
+    };
+    grid(ws, 0, 0, "Main boom, counterweight 70 t", "Permissible wind speed 9.8 m/s");
+    grid(ws, 0, 6, "Main boom, counterweight 140 t", "Permissible wind speed 11.1 m/s");
+    grid(ws, 10, 0, "Main boom, counterweight 100 t", "Max. wind speed 25.2 km/h");
+    grid(ws, 10, 6, "Main boom, counterweight 40 t", "Max. wind speed 36 km/h");
+    wb.save(&p).unwrap();
+    let (_, reports) = read_chart(&p, &Settings::default()).unwrap();
+    let facts: Vec<(Vec<(f64, String)>, Vec<(f64, String)>)> =
+        reports.iter().map(|r| (values(&r.wind_ms), values(&r.counterweight_kg))).collect();
+    let at = |ms: f64, wind: &str, kg: f64, cw: &str| (vec![(ms, format!("S!{wind}"))], vec![(kg, format!("S!{cw}"))]);
+    assert_eq!(
+        facts,
+        [
+            at(9.8, "A8", 70_000.0, "A1"),
+            at(11.1, "G8", 140_000.0, "G1"),
+            at(7.0, "A18", 100_000.0, "A11"),
+            at(10.0, "G18", 40_000.0, "G11")
+        ],
+        "{reports:?}"
+    );
 }
