@@ -52,6 +52,15 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
         cover.contains("Wind AT MOST 8.0 m/s FOR THIS LOAD, less than the chart's: the chart's 9.8 m/s (Main boom 360!A51) holds for up to 1.2 m² of wind area per tonne of hook load; this load catches 28.8 m²"),
         "{cover}"
     );
+    // It is the gust at the boom head: the highest the lift raises it, and
+    // the mean wind at 10 m above the ground that gusts to 8.0 m/s there.
+    let lead = "it is the 3 s gust at the boom head, which rises to ";
+    let head = &cover[cover.find(lead).unwrap_or_else(|| panic!("{cover}")) + lead.len()..];
+    let head_m: f64 = head[..head.find(" m above the crane's ground").unwrap()].parse().unwrap();
+    let mean = &head[head.find("a 10-minute mean wind of ").unwrap() + "a 10-minute mean wind of ".len()..];
+    let mean_ms: f64 = mean[..mean.find(" m/s at 10 m above the ground gusts to ").unwrap()].parse().unwrap();
+    let want = 8.0 / liftplan_core::wind::gust_factor(head_m);
+    assert!(head_m > 20.0 && head_m < 45.0 && (mean_ms - want).abs() < 0.06, "{head_m} m, {mean_ms} m/s: {cover}");
     let flat = text.replace('\n', " ");
     assert!(flat.contains("on site and the wind (AT MOST 8.0 m/s FOR THIS LOAD: cover)"), "{text}");
     // The outrigger pads at their most, estimated from the built-in crane

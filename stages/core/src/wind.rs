@@ -16,7 +16,19 @@
 //! where that comes out above the chart's speed, the chart's governs. The
 //! 1.2 is the chart's assumption, not a drag coefficient.
 //!
-//! This module only works out that speed. It must not decide whether a lift
+//! The chart's speed is that of the 3-second gust at the boom head, where a
+//! mobile crane's anemometer sits. A forecast gives the 10-minute mean wind
+//! at 10 m above the ground; EN 13000 relates the two by the gust's height
+//! profile
+//!
+//! ```text
+//! v(z) = [(z / 10 m)^0.14 + 0.4] · v_10
+//! ```
+//!
+//! so the highest the lift raises the boom head gives the mean wind at
+//! 10 m that gusts to the permissible speed there ([`gust_factor`]).
+//!
+//! This module only works out those speeds. It must not decide whether a lift
 //! may go ahead: the wind on site on the day is the crane driver's to read,
 //! and the manufacturer's wind rules govern.
 
@@ -25,6 +37,13 @@ use serde::{Deserialize, Serialize};
 /// Wind area per tonne of hook load a mobile crane's chart speed holds
 /// for (m²/t).
 pub const CHART_AREA_PER_TONNE_M2: f64 = 1.2;
+
+/// EN 13000's 3-second gust at `height_m` above the ground over the
+/// 10-minute mean wind speed at 10 m: (z / 10 m)^0.14 + 0.4, heights under
+/// 10 m taken as 10 m (1.4 there).
+pub fn gust_factor(height_m: f64) -> f64 {
+    (height_m.max(10.0) / 10.0).powf(0.14) + 0.4
+}
 
 /// A lift's `wind`: what the chart allows and what the load catches.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -84,6 +103,10 @@ pub struct PermissibleWind {
     pub wind_area_m2: f64,
     /// The speed the load may be lifted up to (m/s): the chart's or less.
     pub permissible_ms: f64,
+    /// The highest the boom head rises in the lift, above the ground the
+    /// crane stands on (m), where the plan is known.
+    #[serde(default)]
+    pub boom_head_m: Option<f64>,
 }
 
 impl PermissibleWind {
@@ -113,7 +136,15 @@ impl PermissibleWind {
             hook_load_kg,
             wind_area_m2,
             permissible_ms: reduced.min(chart_ms),
+            boom_head_m: None,
         }
+    }
+
+    /// The 10-minute mean wind speed at 10 m above the ground that gusts to
+    /// the permissible speed at the highest the boom head rises (m/s), where
+    /// that height is known ([`gust_factor`]).
+    pub fn mean_at_10m_ms(&self) -> Option<f64> {
+        self.boom_head_m.map(|z| self.permissible_ms / gust_factor(z))
     }
 
     /// Whether the load catches more wind than the chart's speed holds for.
@@ -129,8 +160,15 @@ impl PermissibleWind {
         };
         let per_tonne = self.wind_area_m2 / (self.hook_load_kg / 1000.0);
         let from = self.chart_cell.as_ref().map(|c| format!(" ({c})")).unwrap_or_default();
+        let at_height = match (self.boom_head_m, self.mean_at_10m_ms()) {
+            (Some(z), Some(mean)) => format!(
+                "; it is the 3 s gust at the boom head, which rises to {z:.1} m above the crane's ground in this lift, where a 10-minute mean wind of {mean:.1} m/s at 10 m above the ground gusts to {:.1} m/s (EN 13000's profile, v(z) = [(z/10 m)^0.14 + 0.4] · v_10)",
+                self.permissible_ms
+            ),
+            _ => String::new(),
+        };
         format!(
-            "{}: the chart's {:.1} m/s{from} holds for up to {CHART_AREA_PER_TONNE_M2:.1} m² of wind area per tonne of hook load; this load catches {:.1} m² ({area} at cW {:.2}) on {:.1} t, {per_tonne:.2} m² per tonne (v = v_chart · √(1.2 m²/t · m_H / A_W)); the crane manufacturer's wind rules govern",
+            "{}: the chart's {:.1} m/s{from} holds for up to {CHART_AREA_PER_TONNE_M2:.1} m² of wind area per tonne of hook load; this load catches {:.1} m² ({area} at cW {:.2}) on {:.1} t, {per_tonne:.2} m² per tonne (v = v_chart · √(1.2 m²/t · m_H / A_W)){at_height}; the crane manufacturer's wind rules govern",
             if self.reduced() {
                 format!("AT MOST {:.1} m/s FOR THIS LOAD, less than the chart's", self.permissible_ms)
             } else {
@@ -185,6 +223,29 @@ mod tests {
         assert!((vessel.permissible_ms - 9.8 * (1.2f64 * 12.9 / 28.8).sqrt()).abs() < 1e-12);
         assert!(
             vessel.said().contains("(24.0 m² of its box's largest side, 8.00 x 3.00 m, at cW 1.20)"),
+            "{}",
+            vessel.said()
+        );
+    }
+
+    /// EN 13000's gust profile: 1.4 times the 10 m mean at 10 m and below,
+    /// 1.65 at 50 m; the mean at 10 m for the permissible speed at the
+    /// boom head's highest, said with it.
+    #[test]
+    fn the_mean_wind_at_10_m_is_worked_out_for_the_boom_heads_height() {
+        assert_eq!(gust_factor(10.0), 1.4);
+        assert_eq!(gust_factor(3.0), 1.4);
+        assert!((gust_factor(50.0) - (5f64.powf(0.14) + 0.4)).abs() < 1e-15);
+        assert!((gust_factor(50.0) - 1.6527).abs() < 1e-4, "{}", gust_factor(50.0));
+        let spec = WindSpec { chart_ms: None, cw: 1.2, area_m2: None };
+        let mut vessel = PermissibleWind::of(9.8, None, &spec, [3.0, 8.0, 3.0], 12_900.0);
+        assert_eq!(vessel.mean_at_10m_ms(), None);
+        assert!(!vessel.said().contains("boom head"), "{}", vessel.said());
+        vessel.boom_head_m = Some(50.0);
+        let mean = vessel.mean_at_10m_ms().unwrap();
+        assert!((mean * gust_factor(50.0) - vessel.permissible_ms).abs() < 1e-12);
+        assert!(
+            vessel.said().contains(&format!("; it is the 3 s gust at the boom head, which rises to 50.0 m above the crane's ground in this lift, where a 10-minute mean wind of {mean:.1} m/s at 10 m above the ground gusts to {:.1} m/s (EN 13000's profile, v(z) = [(z/10 m)^0.14 + 0.4] · v_10); the crane manufacturer's wind rules govern", vessel.permissible_ms)),
             "{}",
             vessel.said()
         );

@@ -234,6 +234,16 @@ fn wind_of(
     task.permissible_wind(stated)
 }
 
+/// The highest the boom head rises in the plan, above the ground the crane
+/// stands on (m): at the end of a move, as a luff raises or lowers it
+/// steadily and a swing, hoist or turn of the load leaves it.
+fn boom_head_highest_m(task: &LiftTask, plan: &LiftPlan) -> f64 {
+    std::iter::once(&plan.start)
+        .chain(plan.moves.iter().map(|m| &m.to))
+        .map(|c| task.crane.sheave(c).z - task.crane.placement.z_m)
+        .fold(f64::NEG_INFINITY, f64::max)
+}
+
 /// What reading the lift's chart configuration warned of, where it did.
 fn chart_warnings<'a>(inp: &'a Inputs, task: &LiftTask) -> Option<&'a [String]> {
     inp.chart_warnings.iter().find(|(name, w)| *name == task.chart_config && !w.is_empty()).map(|(_, w)| w.as_slice())
@@ -474,9 +484,15 @@ pub fn document(
         ));
     }
     if !task.crane.model.is_tower() {
+        // With the height the boom head rises to, for the mean wind at
+        // 10 m a forecast gives.
+        let at_head = wind_of(inp, task).map(|(mut w, other)| {
+            w.boom_head_m = Some(boom_head_highest_m(task, plan));
+            (w, other)
+        });
         rows.push((
             "Wind",
-            match wind_of(inp, task) {
+            match at_head {
                 Ok((w, other)) if other.is_empty() => w.said(),
                 Ok((w, other)) => format!(
                     "{}; BUT THE CHART'S SHEET STATES {}: CHECK wind chart_ms against the chart",

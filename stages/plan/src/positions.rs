@@ -101,8 +101,8 @@ pub enum Outcome {
     Critical { most_pct: f64, step: usize },
     /// Why the lift was refused there.
     Refused(String),
-    /// Not planned: what its pads bear on is to be checked, and a position
-    /// where it is not planned first.
+    /// Not planned: another position planned before it with nothing of its
+    /// pads to check.
     NotPlanned,
 }
 
