@@ -169,9 +169,43 @@ pub fn pressure_kpa(load_kg: f64, mat_m: [f64; 2]) -> f64 {
     load_kg * G_M_S2 / 1000.0 / (mat_m[0] * mat_m[1])
 }
 
+/// The mat to look for (m), where one of `mat_m` puts more than
+/// `allowable_kpa` on the ground under `load_kg`: of the same proportions,
+/// each side rounded up to [`MAT_STEP_M`], large enough that the same even
+/// spread under it stays within it. Whether a mat that size spreads the load
+/// evenly (its stiffness) is not known here.
+pub fn mat_bearing_m(load_kg: f64, mat_m: [f64; 2], allowable_kpa: f64) -> [f64; 2] {
+    let grow = (pressure_kpa(load_kg, mat_m) / allowable_kpa).sqrt().max(1.0);
+    let up = |side: f64| {
+        let steps = (side * grow / MAT_STEP_M - 1e-9).ceil();
+        // Rounding of the step itself: the side a whole number of steps.
+        (steps * MAT_STEP_M * 100.0).round() / 100.0
+    };
+    mat_m.map(up)
+}
+
+/// The step mats' sides are said in (m).
+pub const MAT_STEP_M: f64 = 0.1;
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The mat said bears it, each side a whole step, and no step smaller
+    /// would; a mat that bears it already is kept.
+    #[test]
+    fn the_mat_that_bears_a_pad_is_the_smallest_of_its_proportions() {
+        let load_kg = 104_200.0;
+        for (mat, allowed) in [([1.5, 1.5], 200.0), ([2.0, 1.2], 150.0), ([1.0, 1.0], 455.0)] {
+            let m = mat_bearing_m(load_kg, mat, allowed);
+            assert!(pressure_kpa(load_kg, m) <= allowed, "{mat:?} {m:?}");
+            assert!(m.iter().all(|s| ((s / MAT_STEP_M) - (s / MAT_STEP_M).round()).abs() < 1e-9), "{m:?}");
+            let smaller = m.map(|s| s - MAT_STEP_M);
+            assert!(pressure_kpa(load_kg, smaller) > allowed, "{mat:?} {m:?}");
+        }
+        assert_eq!(mat_bearing_m(load_kg, [3.0, 3.0], 200.0), [3.0, 3.0]);
+        assert_eq!(mat_bearing_m(load_kg, [1.5, 1.5], 200.0), [2.3, 2.3]);
+    }
     use crate::crane::{CraneModel, Placement};
 
     /// The hand-sum crane's counterweight, as its file gives it.

@@ -146,8 +146,11 @@ impl StepPads {
             s += &format!("; {kpa:.0} kPa under its {:.2} x {:.2} m mat", g.mat_m[0], g.mat_m[1]);
             match g.allowable_kpa {
                 Some(allowed) if kpa > allowed => {
-                    s +=
-                        &format!(", MORE THAN THE {allowed:.0} kPa THE GROUND MAY BEAR: a larger mat or a ground check")
+                    let m = liftplan_core::outriggers::mat_bearing_m(self.load_kg, g.mat_m, allowed);
+                    s += &format!(
+                        ", MORE THAN THE {allowed:.0} kPa THE GROUND MAY BEAR: a mat of at least {:.2} x {:.2} m (spreading it as evenly) or a ground check",
+                        m[0], m[1]
+                    )
                 }
                 Some(allowed) => s += &format!(", allowable {allowed:.0} kPa"),
                 None => s += " (no allowable pressure given: ground allowable_kpa)",
@@ -712,7 +715,18 @@ mod tests {
         );
         let not = GroundSpec { allowable_kpa: Some(kpa - 1.0), ..bears };
         assert!(most.needs_checking(Some(&not)));
-        assert!(most.said(Some(&not)).contains("MORE THAN THE"), "{}", most.said(Some(&not)));
+        let m = liftplan_core::outriggers::mat_bearing_m(most.load_kg, [3.0, 3.0], kpa - 1.0);
+        assert!(m[0] > 3.0 && pressure_kpa(most.load_kg, m) <= kpa - 1.0, "{m:?}");
+        assert!(
+            most.said(Some(&not)).ends_with(&format!(
+                ", MORE THAN THE {:.0} kPa THE GROUND MAY BEAR: a mat of at least {:.2} x {:.2} m (spreading it as evenly) or a ground check",
+                kpa - 1.0,
+                m[0],
+                m[1]
+            )),
+            "{}",
+            most.said(Some(&not))
+        );
         let unknown = GroundSpec { allowable_kpa: None, ..bears };
         assert!(!most.needs_checking(Some(&unknown)) && !most.needs_checking(None));
         assert!(most.said(Some(&unknown)).ends_with("(no allowable pressure given: ground allowable_kpa)"));
