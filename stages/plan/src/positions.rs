@@ -137,12 +137,15 @@ impl Tried {
             if let Some((g, allowed)) = self.ground.and_then(|g| Some((g, g.allowable_kpa?))) {
                 let kpa = pressure_kpa(p.load_kg, g.mat_m);
                 if kpa > allowed {
+                    let m = liftplan_core::outriggers::mat_bearing_m(p.load_kg, g.mat_m, allowed);
                     said.push(format!(
-                        "{kpa:.0} kPa UNDER THE {} PAD'S {:.2} x {:.2} m MAT ({:.1} t, an estimate), MORE THAN THE {allowed:.0} kPa THE GROUND MAY BEAR",
+                        "{kpa:.0} kPa UNDER THE {} PAD'S {:.2} x {:.2} m MAT ({:.1} t, an estimate), MORE THAN THE {allowed:.0} kPa THE GROUND MAY BEAR (a mat of at least {:.2} x {:.2} m)",
                         p.pad.name().to_uppercase(),
                         g.mat_m[0],
                         g.mat_m[1],
-                        p.load_kg / 1000.0
+                        p.load_kg / 1000.0,
+                        m[0],
+                        m[1]
                     ));
                 }
             }
@@ -633,7 +636,7 @@ mod tests {
         ]);
         assert_eq!(found.chosen(), Some(0));
         let said = found.said("Main");
-        assert!(said.contains("in 9 steps (at most 98.1 % of the chart's capacity), BUT IN THE GROUND UNDER ITS PADS: DUCT 0.30 m below the set-up level under the front left pad (within 2.8 m of its centre and 5.0 m deep); 220 kPa UNDER THE REAR RIGHT PAD'S 2.50 x 2.50 m MAT (140.0 t, an estimate), MORE THAN THE 200 kPa THE GROUND MAY BEAR: a position"), "{said}");
+        assert!(said.contains("in 9 steps (at most 98.1 % of the chart's capacity), BUT IN THE GROUND UNDER ITS PADS: DUCT 0.30 m below the set-up level under the front left pad (within 2.8 m of its centre and 5.0 m deep); 220 kPa UNDER THE REAR RIGHT PAD'S 2.50 x 2.50 m MAT (140.0 t, an estimate), MORE THAN THE 200 kPa THE GROUND MAY BEAR (a mat of at least 2.70 x 2.70 m): a position"), "{said}");
         let none = Found::Tried(vec![
             tried(3.0, Outcome::Refused(refused.into())),
             tried(6.5, Outcome::Refused("lift 'V-101': crane set-up: x".into())),
