@@ -190,6 +190,7 @@ pub const MAT_STEP_M: f64 = 0.1;
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::crane::{CraneModel, Placement};
 
     /// The mat said bears it, each side a whole step, and no step smaller
     /// would; a mat that bears it already is kept.
@@ -206,7 +207,6 @@ mod tests {
         assert_eq!(mat_bearing_m(load_kg, [3.0, 3.0], 200.0), [3.0, 3.0]);
         assert_eq!(mat_bearing_m(load_kg, [1.5, 1.5], 200.0), [2.3, 2.3]);
     }
-    use crate::crane::{CraneModel, Placement};
 
     /// The hand-sum crane's counterweight, as its file gives it.
     const FILE_COUNTERWEIGHT_KG: f64 = 20_000.0;
