@@ -453,6 +453,10 @@ keep = 3                  # runs' outputs each stage keeps in .liftplan/cache (t
 #                              # coefficient, for the wind speed it may be
 #                              # lifted in (mobile cranes); area_m2: its area facing the
 #                              # wind, else its box's largest side
+# not_over = [{ name = "control room", corners_m = [[40.0, -10.0], [52.0, -10.0], [52.0, 4.0], [40.0, 4.0]] }]
+#                              # areas the load must never be over (their corners in
+#                              # plan, in order around them, m); the planner keeps the
+#                              # load's footprint 0.25 m off them
 "#;
 
 /// Creates a project folder with the template and the input folders.
@@ -497,11 +501,13 @@ mod tests {
             "swing_range_deg",
             "ground",
             "wind",
+            "not_over",
         ] {
             assert!(v["lift"][0].get(key).is_some(), "{key} is not shown");
         }
         let task = spec.resolve(liftplan_core::crane::builtin("ltm-1100").unwrap()).unwrap();
         assert_eq!(task.id, "V-101");
         assert!(task.permissible_wind(&[]).is_ok());
+        assert_eq!(task.not_over[0].name, "control room");
     }
 }

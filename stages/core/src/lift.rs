@@ -188,6 +188,59 @@ pub struct LiftSpec {
     /// speed up to which this load may be lifted.
     #[serde(default)]
     pub wind: Option<crate::wind::WindSpec>,
+    /// Areas the load must never be over (an occupied building, a road,
+    /// live plant), in plan, in the frame of the pick and the set.
+    #[serde(default)]
+    pub not_over: Vec<NotOver>,
+}
+
+/// An area the load must never be over: its footprint (the plan outline of
+/// its box) keeps out of the polygon `corners_m` ([x, y] in metres, in
+/// order around it) at every moment of the lift.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct NotOver {
+    pub name: String,
+    pub corners_m: Vec<[f64; 2]>,
+}
+
+/// How far the planner keeps the load's footprint off a `not_over` area
+/// (m): at least the validator's half spacing of its samples at its
+/// coarsest setting, so that a path the planner finds clear the validator
+/// finds clear too.
+pub const NOT_OVER_MARGIN_M: f64 = 0.25;
+
+/// The most `not_over` areas a lift may give, and corners an area may have.
+pub const MAX_NOT_OVER: usize = 100;
+pub const MAX_NOT_OVER_CORNERS: usize = 1000;
+
+impl NotOver {
+    /// Why it is not an area a lift can give, naming the key.
+    fn problem(&self, k: usize) -> Option<String> {
+        let n = self.corners_m.len();
+        if self.name.trim().is_empty() {
+            return Some(format!("not_over[{k}] needs a name (what the area is: \"control room\")"));
+        }
+        if !(3..=MAX_NOT_OVER_CORNERS).contains(&n) {
+            return Some(format!(
+                "not_over '{}' needs 3 to {MAX_NOT_OVER_CORNERS} corners_m ([x, y] in metres, in order around it), found {n}",
+                self.name
+            ));
+        }
+        if let Some(c) = self.corners_m.iter().find(|c| !(c[0].is_finite() && c[1].is_finite())) {
+            return Some(format!("not_over '{}' has a corner that is not a finite [x, y] in metres: {c:?}", self.name));
+        }
+        let twice_area: f64 = (0..n)
+            .map(|i| {
+                let (a, b) = (self.corners_m[i], self.corners_m[(i + 1) % n]);
+                a[0] * b[1] - b[0] * a[1]
+            })
+            .sum();
+        if !(twice_area.abs() > 2e-4) {
+            return Some(format!("not_over '{}' encloses no area: give its corners_m in order around it", self.name));
+        }
+        None
+    }
 }
 
 fn default_clearance() -> f64 {
@@ -232,6 +285,8 @@ pub struct LiftTask {
     pub counterweight_kg: Option<f64>,
     pub ground: Option<GroundSpec>,
     pub wind: Option<crate::wind::WindSpec>,
+    /// Areas the load must never be over ([`NotOver`]).
+    pub not_over: Vec<NotOver>,
     /// The counterweight the lift's chart configuration's sheet states in
     /// words beside its grid, where it states one ("Counterweight 140 t",
     /// its cell): set by the stage that has read the chart, none until then.
@@ -577,6 +632,26 @@ impl LiftSpec {
                 return Err(format!("lift '{id}': ground allowable_kpa must be a positive pressure in kPa, found {p}"));
             }
         }
+        if self.not_over.len() > MAX_NOT_OVER {
+            return Err(format!("lift '{id}': at most {MAX_NOT_OVER} not_over areas, found {}", self.not_over.len()));
+        }
+        if let Some(why) = self.not_over.iter().enumerate().find_map(|(k, a)| a.problem(k)) {
+            return Err(format!("lift '{id}': {why}"));
+        }
+        // The load is lifted from and set down outside them.
+        for (which, c) in [("pick", &pick), ("set", &set)] {
+            let footprint = crane.load_obb(c, &load).footprint();
+            if let Some(a) = self
+                .not_over
+                .iter()
+                .find(|a| crate::obb::footprint_near_area(&footprint, &a.corners_m, NOT_OVER_MARGIN_M))
+            {
+                return Err(format!(
+                    "lift '{id}': the load at the {which} is over not_over '{}' or within {NOT_OVER_MARGIN_M} m of it: a load is lifted and set down outside the areas it must not be over",
+                    a.name
+                ));
+            }
+        }
         Ok(LiftTask {
             id: id.clone(),
             description: self.description.clone(),
@@ -601,6 +676,7 @@ impl LiftSpec {
             counterweight_kg: self.crane.counterweight_t.map(|t| t * KG_PER_TONNE),
             ground: self.ground,
             wind: self.wind,
+            not_over: self.not_over.clone(),
             chart_sheet_counterweight: None,
         })
     }
@@ -706,6 +782,43 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         let mut s = spec();
         s.id = "a b".into();
         assert!(s.resolve(crate::crane::builtin("ltm-1100").unwrap()).is_err());
+    }
+
+    /// The areas a load must never be over: taken as given, refused naming
+    /// the key where one is no area, and where the load stands over one (or
+    /// within the planner's margin of it) at the pick or the set.
+    #[test]
+    fn areas_the_load_must_not_be_over_are_checked_as_given() {
+        let crane = || crate::crane::builtin("ltm-1100").unwrap();
+        let area = |name: &str, x0: f64, y0: f64, x1: f64, y1: f64| NotOver {
+            name: name.into(),
+            corners_m: vec![[x0, y0], [x1, y0], [x1, y1], [x0, y1]],
+        };
+        let with = |areas: Vec<NotOver>| {
+            let mut sp = spec();
+            sp.not_over = areas;
+            sp.resolve(crane())
+        };
+        let t = with(vec![area("road", 0.0, -30.0, 4.0, 30.0)]).unwrap();
+        assert_eq!(t.not_over[0].name, "road");
+        // The pick's load spans x 17 to 23 m, y 3.5 to 6.5 m.
+        let e = with(vec![area("control room", 22.0, 0.0, 30.0, 4.0)]).unwrap_err();
+        assert!(e.contains("the load at the pick is over not_over 'control room' or within 0.25 m of it"), "{e}");
+        let e = with(vec![area("edge", 23.1, 0.0, 30.0, 4.0)]).unwrap_err();
+        assert!(e.contains("the load at the pick is over not_over 'edge'"), "{e}");
+        assert!(with(vec![area("off", 23.3, 0.0, 30.0, 4.0)]).is_ok());
+        let mut two = area("line", 0.0, 0.0, 1.0, 1.0);
+        two.corners_m.truncate(2);
+        assert!(with(vec![two]).unwrap_err().contains("not_over 'line' needs 3 to 1000 corners_m"));
+        let flat = NotOver { name: "flat".into(), corners_m: vec![[0.0, 0.0], [5.0, 0.0], [10.0, 0.0]] };
+        assert!(with(vec![flat]).unwrap_err().contains("not_over 'flat' encloses no area"));
+        let unnamed = area(" ", 0.0, 0.0, 1.0, 1.0);
+        assert!(with(vec![unnamed]).unwrap_err().contains("not_over[0] needs a name"));
+        let nan = area("nan", 0.0, 0.0, f64::NAN, 1.0);
+        assert!(with(vec![nan]).unwrap_err().contains("not_over 'nan' has a corner that is not a finite"));
+        assert!(
+            with(vec![area("a", 0.0, 0.0, 1.0, 1.0); MAX_NOT_OVER + 1]).unwrap_err().contains("at most 100 not_over")
+        );
     }
 
     /// TOML has `nan` and `inf`: a position given so is named, not solved.

@@ -251,6 +251,55 @@ impl Obb {
     }
 }
 
+/// Whether the convex `footprint` comes within `within_m` of `area`, a
+/// simple polygon with its corners in order either way round: one holds a
+/// corner of the other, or an edge of one passes within `within_m` of an
+/// edge of the other (crossing it or not).
+pub fn footprint_near_area(footprint: &[[f64; 2]], area: &[[f64; 2]], within_m: f64) -> bool {
+    if footprint.is_empty() || area.len() < 3 {
+        return false;
+    }
+    if in_polygon_2d(area, footprint[0]) || (footprint.len() >= 3 && in_polygon_2d(footprint, area[0])) {
+        return true;
+    }
+    edges_2d(footprint).any(|(a, b)| edges_2d(area).any(|(c, d)| segment_distance_2d(a, b, c, d) <= within_m))
+}
+
+/// A closed polygon's edges, the last back to the first.
+fn edges_2d(p: &[[f64; 2]]) -> impl Iterator<Item = ([f64; 2], [f64; 2])> + '_ {
+    let n = p.len();
+    (0..n).map(move |i| (p[i], p[(i + 1) % n]))
+}
+
+/// Whether `p` lies inside the simple polygon `poly` (the even-odd rule).
+pub fn in_polygon_2d(poly: &[[f64; 2]], p: [f64; 2]) -> bool {
+    let mut inside = false;
+    let n = poly.len();
+    for i in 0..n {
+        let (a, b) = (poly[i], poly[(i + 1) % n]);
+        if (a[1] > p[1]) != (b[1] > p[1]) && p[0] < a[0] + (p[1] - a[1]) / (b[1] - a[1]) * (b[0] - a[0]) {
+            inside = !inside;
+        }
+    }
+    inside
+}
+
+/// The least distance between segments `ab` and `cd` in the plane.
+fn segment_distance_2d(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> f64 {
+    let cross = |o: [f64; 2], p: [f64; 2], q: [f64; 2]| (p[0] - o[0]) * (q[1] - o[1]) - (p[1] - o[1]) * (q[0] - o[0]);
+    let (d1, d2, d3, d4) = (cross(c, d, a), cross(c, d, b), cross(a, b, c), cross(a, b, d));
+    if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0)) && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0)) {
+        return 0.0;
+    }
+    let to_segment = |p: [f64; 2], s: [f64; 2], e: [f64; 2]| {
+        let (vx, vy) = (e[0] - s[0], e[1] - s[1]);
+        let len2 = vx * vx + vy * vy;
+        let t = if len2 > 0.0 { (((p[0] - s[0]) * vx + (p[1] - s[1]) * vy) / len2).clamp(0.0, 1.0) } else { 0.0 };
+        (p[0] - s[0] - t * vx).hypot(p[1] - s[1] - t * vy)
+    };
+    to_segment(a, c, d).min(to_segment(b, c, d)).min(to_segment(c, a, b)).min(to_segment(d, a, b))
+}
+
 /// Convex hull (Andrew's monotone chain), counter-clockwise, without repeats.
 pub fn convex_hull_2d(points: &[[f64; 2]]) -> Vec<[f64; 2]> {
     let mut p: Vec<[f64; 2]> = points.to_vec();
@@ -379,6 +428,31 @@ mod tests {
     use super::*;
     use crate::frame::rot_z;
     use proptest::prelude::*;
+
+    /// A footprint over an area, in it, holding it, crossing a thin strip
+    /// of it with no corner inside either, near an L-shaped area's notch
+    /// but not over it, and within a distance of its edge.
+    #[test]
+    fn a_footprint_near_an_area_is_found_however_they_meet() {
+        let square = |x: f64, y: f64, h: f64| vec![[x - h, y - h], [x + h, y - h], [x + h, y + h], [x - h, y + h]];
+        let area = square(0.0, 0.0, 5.0);
+        assert!(footprint_near_area(&square(1.0, 1.0, 1.0), &area, 0.0));
+        assert!(footprint_near_area(&square(0.0, 0.0, 9.0), &area, 0.0));
+        assert!(footprint_near_area(&square(5.5, 0.0, 1.0), &area, 0.0));
+        assert!(!footprint_near_area(&square(7.0, 0.0, 1.0), &area, 0.0));
+        assert!(!footprint_near_area(&square(7.0, 0.0, 1.0), &area, 0.99));
+        assert!(footprint_near_area(&square(7.0, 0.0, 1.0), &area, 1.01));
+        // A long footprint across a strip, no corner of either inside the other.
+        let strip = vec![[-0.2, -10.0], [0.2, -10.0], [0.2, 10.0], [-0.2, 10.0]];
+        let across = vec![[-3.0, -0.5], [3.0, -0.5], [3.0, 0.5], [-3.0, 0.5]];
+        assert!(footprint_near_area(&across, &strip, 0.0));
+        // An L (clockwise): a footprint in its notch is not over it.
+        let l = vec![[0.0, 0.0], [0.0, 10.0], [2.0, 10.0], [2.0, 2.0], [10.0, 2.0], [10.0, 0.0]];
+        assert!(!footprint_near_area(&square(6.0, 6.0, 1.0), &l, 0.0));
+        assert!(footprint_near_area(&square(6.0, 1.0, 0.5), &l, 0.0));
+        assert!(footprint_near_area(&square(6.0, 6.0, 1.0), &l, 3.0));
+        assert!(!footprint_near_area(&[], &l, 1.0) && !footprint_near_area(&square(0.0, 0.0, 1.0), &l[..2], 1.0));
+    }
 
     /// Lattice samples of the box volume inside the column: every one must lie
     /// within the exact range.

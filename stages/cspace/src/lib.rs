@@ -108,6 +108,10 @@ impl Settings {
 /// includes touching it; it is not a collision as such.
 pub const TOO_CLOSE: &str = "closer than the clearance allows";
 
+/// A [`Blocked::reason`]: the load over an area the lift says it must not be
+/// over (`not_over`).
+pub const OVER_NOT_OVER: &str = "over an area the load must not be over";
+
 /// Why a configuration or a move is not allowed.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Blocked {
@@ -1035,11 +1039,55 @@ impl<'a> Checker<'a> {
         cs.hoist_bits[idx] & (1 << b_hi) == 0
     }
 
+    /// The load's footprint, grown by `grow_m` in plan, off every area the
+    /// lift says the load must not be over, by
+    /// [`liftplan_core::lift::NOT_OVER_MARGIN_M`]. Not in the tables: an area is
+    /// no obstacle to anything but the load, at any height.
+    fn not_over_ok(&self, c: &Config, grow_m: f64) -> Result<(), Blocked> {
+        if self.task.not_over.is_empty() {
+            return Ok(());
+        }
+        let footprint = self.task.crane.load_obb(c, &self.task.load).footprint();
+        let within_m = grow_m + liftplan_core::lift::NOT_OVER_MARGIN_M;
+        match self
+            .task
+            .not_over
+            .iter()
+            .find(|a| liftplan_core::obb::footprint_near_area(&footprint, &a.corners_m, within_m))
+        {
+            None => Ok(()),
+            Some(a) => Err(Blocked {
+                reason: OVER_NOT_OVER.into(),
+                part: Some(PartKind::Load),
+                object: Some(format!("not_over '{}'", a.name)),
+                at: *c,
+            }),
+        }
+    }
+
+    /// [`Self::not_over_ok`] over the joint range [x0, x1] of a move: the
+    /// middle's footprint grown by half the range's horizontal travel
+    /// covers the range; where it meets an area the range is halved, down
+    /// to pieces of `sample_m` travel, which must pass.
+    fn not_over_piece(&self, a: &[f64; 4], joint: Joint, x0: f64, x1: f64, lever: f64) -> Result<(), Blocked> {
+        let travel = (x1 - x0).abs() * lever;
+        let xm = 0.5 * (x0 + x1);
+        let sweep = Sweep::of(joint, is_luffing(&self.task.crane), travel / 2.0);
+        match self.not_over_ok(&self.with(a, joint, xm), sweep.horizontal_m) {
+            Err(_) if travel > self.sample_m && sweep.horizontal_m > 0.0 => {
+                self.not_over_piece(a, joint, x0, xm, lever)?;
+                self.not_over_piece(a, joint, xm, x1, lever)
+            }
+            done => done,
+        }
+    }
+
     /// Everything at one configuration: limits, capacity, internal clearance,
-    /// body, boom and the hanging parts.
+    /// body, boom, the hanging parts and the areas the load must not be over.
     pub fn config(&self, c: &Config) -> Result<(), Blocked> {
         self.limits_ok(c)?;
         self.structure_ok(c)?;
+        self.not_over_ok(c, 0.0)?;
         if self.hanging_lookup(c, c.hoist_m) {
             return Ok(());
         }
@@ -1077,6 +1125,9 @@ impl<'a> Checker<'a> {
             Joint::Hoist => 1.0,
             Joint::Rotate => self.task.load.bounding_radius() * 2.0,
         };
+        if !self.task.not_over.is_empty() {
+            self.not_over_piece(&from.to_array(), joint, v0, to, lever)?;
+        }
         if self.cs.strategy == Strategy::Online {
             self.motion_sampled(from, joint, to, lever)
         } else {

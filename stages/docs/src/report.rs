@@ -563,59 +563,74 @@ pub fn document(
     let y = heading(&mut d, 20.0, "Inputs");
     let mut y = input_lines(&mut d, y, &inp.input_lines, w);
     y += 2.0;
-    y = inputs_room(&mut d, y, 5.0 * 5.0);
-    y = key_values(
-        &mut d,
-        15.0,
-        y,
-        &[
-            (
-                "Clearance",
-                format!(
-                    "{:.2} m to every obstacle; hook and load over the landing zones {:.2} m",
-                    task.clearance_m, plan.landing_clearance_m
-                ),
+    let mut rows = vec![
+        (
+            "Clearance",
+            format!(
+                "{:.2} m to every obstacle; hook and load over the landing zones {:.2} m",
+                task.clearance_m, plan.landing_clearance_m
             ),
-            (
-                "Lift-off / set-down",
-                format!("{:.2} m, vertical; contact allowed only with the support under the load", task.liftoff_m),
+        ),
+        (
+            "Lift-off / set-down",
+            format!("{:.2} m, vertical; contact allowed only with the support under the load", task.liftoff_m),
+        ),
+        // One row for both ways the chart is read less than printed.
+        (
+            "Capacity reduction",
+            format!(
+                "{:.1} % of the chart value; {}",
+                task.capacity_reduction_pct,
+                if task.radius_allowance_m > 0.0 {
+                    format!("read {:.2} m farther out than planned (radius_allowance_m)", task.radius_allowance_m)
+                } else {
+                    "read at the radius planned (no radius_allowance_m)".to_string()
+                }
             ),
-            // One row for both ways the chart is read less than printed.
-            (
-                "Capacity reduction",
-                format!(
-                    "{:.1} % of the chart value; {}",
-                    task.capacity_reduction_pct,
-                    if task.radius_allowance_m > 0.0 {
-                        format!("read {:.2} m farther out than planned (radius_allowance_m)", task.radius_allowance_m)
-                    } else {
-                        "read at the radius planned (no radius_allowance_m)".to_string()
-                    }
-                ),
+        ),
+        (
+            "Pick (load underside)",
+            format!(
+                "({:.2}, {:.2}, {:.2}) m, yaw {:.1}°",
+                task.pick_pose.x_m,
+                task.pick_pose.y_m,
+                task.pick_pose.z_m,
+                task.pick_pose.yaw_rad.to_degrees()
             ),
-            (
-                "Pick (load underside)",
-                format!(
-                    "({:.2}, {:.2}, {:.2}) m, yaw {:.1}°",
-                    task.pick_pose.x_m,
-                    task.pick_pose.y_m,
-                    task.pick_pose.z_m,
-                    task.pick_pose.yaw_rad.to_degrees()
-                ),
+        ),
+        (
+            "Set (load underside)",
+            format!(
+                "({:.2}, {:.2}, {:.2}) m, yaw {:.1}°",
+                task.set_pose.x_m,
+                task.set_pose.y_m,
+                task.set_pose.z_m,
+                task.set_pose.yaw_rad.to_degrees()
             ),
-            (
-                "Set (load underside)",
-                format!(
-                    "({:.2}, {:.2}, {:.2}) m, yaw {:.1}°",
-                    task.set_pose.x_m,
-                    task.set_pose.y_m,
-                    task.set_pose.z_m,
-                    task.set_pose.yaw_rad.to_degrees()
-                ),
+        ),
+    ];
+    if !task.not_over.is_empty() {
+        let areas: Vec<String> = task
+            .not_over
+            .iter()
+            .map(|a| {
+                let (lo, hi) = a.corners_m.iter().fold(([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]), |(lo, hi), c| {
+                    ([lo[0].min(c[0]), lo[1].min(c[1])], [hi[0].max(c[0]), hi[1].max(c[1])])
+                });
+                format!("{} (x {:.1} to {:.1} m, y {:.1} to {:.1} m)", a.name, lo[0], hi[0], lo[1], hi[1])
+            })
+            .collect();
+        rows.push((
+            "Never over",
+            format!(
+                "{} (not_over): the planner keeps the load's footprint {:.2} m off each; the validator checks it never comes over one",
+                areas.join("; "),
+                liftplan_core::lift::NOT_OVER_MARGIN_M
             ),
-        ],
-        42.0,
-    );
+        ));
+    }
+    y = inputs_room(&mut d, y, 5.0 * rows.len() as f32);
+    y = key_values(&mut d, 15.0, y, &rows, 42.0);
     y += 3.0;
     let chart_img = chart.map(|c| pictures::chart_plot(c, task, plan, 1200, 600));
     // The load chart keeps its place on this page where it can: the input

@@ -18,7 +18,7 @@
 use crate::path::Move;
 use liftplan_core::capacity::ChartConfig;
 use liftplan_core::crane::{Config, CranePose, Dependence, PartKind};
-use liftplan_core::lift::LiftTask;
+use liftplan_core::lift::{LiftTask, NotOver};
 use liftplan_core::mesh::TriMesh;
 use liftplan_core::obb::Obb;
 use parry3d_f64::math::{Pose, Vector};
@@ -1398,6 +1398,28 @@ pub(crate) fn samples_for(moved_m: f64, sample_m: f64) -> usize {
     ((moved_m / sample_m).ceil() as usize).max(1) + 1
 }
 
+/// The first of the lift's `not_over` areas the load comes over during the
+/// move: its footprint at samples at most `sample_m` of travel apart
+/// (`moved_m` over the move, the farthest any point goes), each grown by
+/// half the travel between two, so that every moment of the move is
+/// covered. The planner keeps it farther off
+/// ([`liftplan_core::lift::NOT_OVER_MARGIN_M`]).
+fn over_not_over<'a>(task: &'a LiftTask, m: &Move, moved_m: f64, sample_m: f64) -> Option<&'a NotOver> {
+    if task.not_over.is_empty() {
+        return None;
+    }
+    let k = samples_for(moved_m, sample_m) - 1;
+    let grow_m = moved_m / k as f64 / 2.0;
+    let (a, b) = (m.from.to_array(), m.to.to_array());
+    let j = m.joint.index();
+    (0..=k).find_map(|i| {
+        let mut v = a;
+        v[j] = a[j] + (b[j] - a[j]) * i as f64 / k as f64;
+        let footprint = task.crane.load_obb(&Config::from_array(v), &task.load).footprint();
+        task.not_over.iter().find(|area| liftplan_core::obb::footprint_near_area(&footprint, &area.corners_m, grow_m))
+    })
+}
+
 /// Checks one configuration: every part's distance against its requirement and the chart.
 fn check_config(
     task: &LiftTask,
@@ -1904,6 +1926,9 @@ pub fn validate(
             .fold(f64::INFINITY, f64::min);
         let least_margin_m = least_at_samples_m.min(least_between_m);
         let mut move_problems: Vec<String> = Vec::new();
+        if let Some(area) = over_not_over(task, m, moved_m, rules.sample_m) {
+            move_problems.push(format!("the load comes over not_over '{}'", area.name));
+        }
         let mut tight: Option<SampleCheck> = None;
         let mut util: Option<SampleCheck> = None;
         for Sample { checks, problems: probs, .. } in in_order {

@@ -1257,6 +1257,50 @@ fn chart_reaching(reach_m: f64) -> liftplan_core::capacity::CapacityTable {
     chart_of(&[(10.0, 50.0), (reach_m, 50.0), (reach_m + 2.0, 3.0), (40.0, 3.0)], "none")
 }
 
+/// An area the load must never be over, across the short way from the pick
+/// to the set: the plan made without it takes the load over it, and the
+/// validator given the area refuses that plan naming it; the plan made
+/// with it goes round, keeps the load's footprint off it at every sample
+/// of every move, and passes the validator.
+#[test]
+fn the_load_is_never_over_an_area_it_must_not_be_over() {
+    use liftplan_core::lift::{NOT_OVER_MARGIN_M, NotOver};
+    use liftplan_core::obb::footprint_near_area;
+    let mut slab = TriMesh::default();
+    box_part(&mut slab, "SLAB", [-60.0, -60.0, -0.3], [60.0, 60.0, 0.0]);
+    let m = map(&slab);
+    let world = World::new(&slab, &[], &[]).unwrap();
+    let site = Site { map: &m, world: &world, charts: None };
+    let free = task(-14.0);
+    let (direct, _) = plan_lift(&free, &site, &quick(), 3).unwrap();
+    let road = NotOver { name: "ROAD".into(), corners_m: vec![[15.0, -3.0], [40.0, -3.0], [40.0, 3.0], [15.0, 3.0]] };
+    let mut spec = spec_of(-14.0);
+    spec.not_over = vec![road.clone()];
+    let kept = spec.resolve(builtin("ac-700").unwrap()).unwrap();
+    // The footprint along a plan's moves, every 2 cm of the load's travel.
+    let comes_over = |moves: &[liftplan_plan::path::Move], within_m: f64| {
+        moves.iter().any(|mv| {
+            let (a, b) = (mv.from.to_array(), mv.to.to_array());
+            let j = mv.joint.index();
+            let travel = (b[j] - a[j]).abs() * if j == 0 { 30.0 } else { 40.0 };
+            let n = (travel / 0.02).ceil().max(1.0) as usize;
+            (0..=n).any(|i| {
+                let mut v = a;
+                v[j] = a[j] + (b[j] - a[j]) * i as f64 / n as f64;
+                let c = liftplan_core::crane::Config::from_array(v);
+                footprint_near_area(&kept.crane.load_obb(&c, &kept.load).footprint(), &road.corners_m, within_m)
+            })
+        })
+    };
+    assert!(comes_over(&direct.moves, 0.0), "the direct plan does not cross the road: the test shows nothing");
+    let landing: Vec<bool> = (0..direct.moves.len()).map(|i| i == 0 || i == direct.moves.len() - 1).collect();
+    let v = validate_lift(&kept, None, &world, &rules(), &direct.moves, &landing);
+    assert!(!v.ok && v.problems.iter().any(|p| p.contains("the load comes over not_over 'ROAD'")), "{:?}", v.problems);
+    let (round, _) = plan_lift(&kept, &site, &quick(), 3).unwrap();
+    assert!(round.validator.ok, "{:?}", round.validator.problems);
+    assert!(!comes_over(&round.moves, NOT_OVER_MARGIN_M - 0.02), "{:?}", round.moves);
+}
+
 /// A lift that plans above its critical_pct: the search for where it would
 /// not be names the nearest position from which the chart carries it within
 /// critical_pct at the pick and the set and the whole lift plans within it;
