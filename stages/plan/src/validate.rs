@@ -1258,17 +1258,10 @@ pub(crate) fn plan_bounds<'a>(pts: impl IntoIterator<Item = &'a [f64; 2]>) -> Op
     (lo[0] <= hi[0] && lo[1] <= hi[1]).then_some((lo, hi))
 }
 
+/// Whether `p` lies in the polygon by the even-odd rule: independent of the
+/// planner's convex test of its landing zones.
 pub(crate) fn in_polygon(poly: &[[f64; 2]], p: [f64; 2]) -> bool {
-    // Even-odd rule: independent of the planner's convex test.
-    let mut inside = false;
-    let n = poly.len();
-    for i in 0..n {
-        let (a, b) = (poly[i], poly[(i + 1) % n]);
-        if (a[1] > p[1]) != (b[1] > p[1]) && p[0] < a[0] + (p[1] - a[1]) / (b[1] - a[1]) * (b[0] - a[0]) {
-            inside = !inside;
-        }
-    }
-    inside
+    liftplan_core::obb::in_polygon_2d(poly, p)
 }
 
 /// What one sample found.
