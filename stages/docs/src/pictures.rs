@@ -24,6 +24,8 @@ pub const UNSEEN: Rgb = [25, 25, 25];
 /// Ground only the crane's boom or superstructure passes over that no scan
 /// saw, in the pictures.
 pub const UNSEEN_UNDER_CRANE: Rgb = [130, 130, 130];
+/// The outline of an area the load must never be over (`not_over`).
+pub const NOT_OVER: Rgb = [20, 150, 60];
 
 /// The site as the pictures show it: plant mesh and a thinned cloud, in
 /// `f32` metres from [`SiteView::origin`].
@@ -179,6 +181,13 @@ pub fn overview(site: &SiteView, task: &LiftTask, plan: &LiftPlan, others: &[Obb
     }
     s.triangles.extend(crane_batches(site, task, &plan.start));
     s.triangles.push(site.obb_batch(&task.crane.load_obb(&plan.set, &task.load), [90, 160, 230]));
+    // The areas the load must never be over, outlined on the ground.
+    for a in &task.not_over {
+        let z = task.crane.placement.z_m + 0.05;
+        let mut points: Vec<[f32; 3]> = a.corners_m.iter().map(|c| site.local([c[0], c[1], z])).collect();
+        points.extend(points.first().copied());
+        s.lines.push(Polyline { points, color: NOT_OVER, width_px: 2.5, on_top: true });
+    }
     s.lines.push(Polyline {
         points: load_path(site, task, plan, plan.moves.len()),
         color: PATH,

@@ -533,8 +533,9 @@ pub fn document(
     let others: Vec<Obb> = liftplan_plan::other_loads(&inp.tasks, k).into_iter().map(|(b, _)| b).collect();
     let overview = pictures::overview(site, task, plan, &others, 1400, 1000);
     let caption = format!(
-        "Site overview (top view, north up): crane at the pick position, load path in red, load at set in light blue{}{}.",
+        "Site overview (top view, north up): crane at the pick position, load path in red, load at set in light blue{}{}{}.",
         if others.is_empty() { "" } else { ", other lifts' loads in violet" },
+        if task.not_over.is_empty() { "" } else { ", areas the load must never be over outlined in green" },
         match plan
             .summary
             .coverage
