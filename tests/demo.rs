@@ -406,13 +406,14 @@ liftoff_m = 0.5
     assert!(cover.contains("the counterweight (the lift's is not its chart configuration's)"), "{cover}");
     assert!(text.contains("with the lift's 100.0 t counterweight, NOT THE 140.0 t ITS CHART'S SHEET STATES (Main boom 360!A3): CHECK crane counterweight_t"), "{text}");
     // An area the load must never be over: on the inputs page, with the
-    // margin the planner keeps.
+    // margin the planner keeps, and outlined in the site overview.
     let fenced = t13.replace(
         "wind = { cw = 1.2 }",
         "wind = { cw = 1.2 }\nnot_over = [{ name = \"CONTROL ROOM\", corners_m = [[-30.0, -10.0], [-20.0, -10.0], [-20.0, 0.0], [-30.0, 0.0]] }]",
     );
     assert_ne!(fenced, t13);
-    let (_, text) = planned_with(&dir, &fenced);
+    let (cover, text) = planned_with(&dir, &fenced);
+    assert!(cover.contains("areas the load must never be over outlined in green"), "{cover}");
     assert!(
         text.replace('\n', " ").contains("CONTROL ROOM (x -30.0 to -20.0 m, y -10.0 to 0.0 m) (not_over): the planner keeps the load's footprint 0.25 m off each; the validator checks it never comes over one"),
         "{text}"
