@@ -181,13 +181,7 @@ pub fn overview(site: &SiteView, task: &LiftTask, plan: &LiftPlan, others: &[Obb
     }
     s.triangles.extend(crane_batches(site, task, &plan.start));
     s.triangles.push(site.obb_batch(&task.crane.load_obb(&plan.set, &task.load), [90, 160, 230]));
-    // The areas the load must never be over, outlined on the ground.
-    for a in &task.not_over {
-        let z = task.crane.placement.z_m + 0.05;
-        let mut points: Vec<[f32; 3]> = a.corners_m.iter().map(|c| site.local([c[0], c[1], z])).collect();
-        points.extend(points.first().copied());
-        s.lines.push(Polyline { points, color: NOT_OVER, width_px: 2.5, on_top: true });
-    }
+    s.lines.extend(not_over_outlines(site, task));
     s.lines.push(Polyline {
         points: load_path(site, task, plan, plan.moves.len()),
         color: PATH,
@@ -199,6 +193,20 @@ pub fn overview(site: &SiteView, task: &LiftTask, plan: &LiftPlan, others: &[Obb
     site.renderer.render(&s, &cam, w, h, 2)
 }
 
+/// The areas the load must never be over, outlined on the ground the crane
+/// stands on, drawn over everything.
+fn not_over_outlines(site: &SiteView, task: &LiftTask) -> Vec<Polyline> {
+    let z = task.crane.placement.z_m + 0.05;
+    task.not_over
+        .iter()
+        .map(|a| {
+            let mut points: Vec<[f32; 3]> = a.corners_m.iter().map(|c| site.local([c[0], c[1], z])).collect();
+            points.extend(points.first().copied());
+            Polyline { points, color: NOT_OVER, width_px: 2.5, on_top: true }
+        })
+        .collect()
+}
+
 /// Perspective view at the end of step `n` (1-based) with the path so far.
 pub fn step_view(site: &SiteView, task: &LiftTask, plan: &LiftPlan, others: &[Obb], n: usize, w: u32, h: u32) -> Image {
     let mut s = site.base_scene(1.5);
@@ -207,6 +215,7 @@ pub fn step_view(site: &SiteView, task: &LiftTask, plan: &LiftPlan, others: &[Ob
     s.triangles.extend(crane_batches(site, task, &end));
     let done = load_path(site, task, plan, n);
     let all = load_path(site, task, plan, plan.moves.len());
+    s.lines.extend(not_over_outlines(site, task));
     s.lines.push(Polyline { points: all, color: [230, 170, 180], width_px: 2.0, on_top: true });
     s.lines.push(Polyline { points: done, color: PATH, width_px: 3.5, on_top: true });
     // Hot spot: where the validator measured this step's smallest clearance, as
