@@ -210,9 +210,11 @@ pub struct NotOver {
 /// finds clear too.
 pub const NOT_OVER_MARGIN_M: f64 = 0.25;
 
-/// The most `not_over` areas a lift may give, and corners an area may have.
-pub const MAX_NOT_OVER: usize = 100;
-pub const MAX_NOT_OVER_CORNERS: usize = 1000;
+/// The most `not_over` areas a lift may give, and corners an area may have:
+/// the planner tests the load's footprint against them at every
+/// configuration it checks, so a lift file cannot make that unbounded.
+pub const MAX_NOT_OVER: usize = 50;
+pub const MAX_NOT_OVER_CORNERS: usize = 200;
 
 impl NotOver {
     /// Why it is not an area a lift can give, naming the key.
@@ -809,7 +811,7 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         assert!(with(vec![area("off", 23.3, 0.0, 30.0, 4.0)]).is_ok());
         let mut two = area("line", 0.0, 0.0, 1.0, 1.0);
         two.corners_m.truncate(2);
-        assert!(with(vec![two]).unwrap_err().contains("not_over 'line' needs 3 to 1000 corners_m"));
+        assert!(with(vec![two]).unwrap_err().contains("not_over 'line' needs 3 to 200 corners_m"));
         let flat = NotOver { name: "flat".into(), corners_m: vec![[0.0, 0.0], [5.0, 0.0], [10.0, 0.0]] };
         assert!(with(vec![flat]).unwrap_err().contains("not_over 'flat' encloses no area"));
         let unnamed = area(" ", 0.0, 0.0, 1.0, 1.0);
@@ -817,7 +819,7 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         let nan = area("nan", 0.0, 0.0, f64::NAN, 1.0);
         assert!(with(vec![nan]).unwrap_err().contains("not_over 'nan' has a corner that is not a finite"));
         assert!(
-            with(vec![area("a", 0.0, 0.0, 1.0, 1.0); MAX_NOT_OVER + 1]).unwrap_err().contains("at most 100 not_over")
+            with(vec![area("a", 0.0, 0.0, 1.0, 1.0); MAX_NOT_OVER + 1]).unwrap_err().contains("at most 50 not_over")
         );
     }
 

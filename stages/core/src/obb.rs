@@ -259,6 +259,16 @@ pub fn footprint_near_area(footprint: &[[f64; 2]], area: &[[f64; 2]], within_m: 
     if footprint.is_empty() || area.len() < 3 {
         return false;
     }
+    // Far apart in plan: nothing to test edge by edge.
+    let bounds = |p: &[[f64; 2]]| {
+        p.iter().fold([f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY], |b, q| {
+            [b[0].min(q[0]), b[1].min(q[1]), b[2].max(q[0]), b[3].max(q[1])]
+        })
+    };
+    let (f, a) = (bounds(footprint), bounds(area));
+    if f[0] > a[2] + within_m || a[0] > f[2] + within_m || f[1] > a[3] + within_m || a[1] > f[3] + within_m {
+        return false;
+    }
     if in_polygon_2d(area, footprint[0]) || (footprint.len() >= 3 && in_polygon_2d(footprint, area[0])) {
         return true;
     }
