@@ -215,6 +215,8 @@ pub const NOT_OVER_MARGIN_M: f64 = 0.25;
 /// configuration it checks, so a lift file cannot make that unbounded.
 pub const MAX_NOT_OVER: usize = 50;
 pub const MAX_NOT_OVER_CORNERS: usize = 200;
+/// The longest name an area may have (characters): the PDF says it.
+pub const MAX_NOT_OVER_NAME: usize = 100;
 
 impl NotOver {
     /// Why it is not an area a lift can give, naming the key.
@@ -222,6 +224,9 @@ impl NotOver {
         let n = self.corners_m.len();
         if self.name.trim().is_empty() {
             return Some(format!("not_over[{k}] needs a name (what the area is: \"control room\")"));
+        }
+        if self.name.chars().count() > MAX_NOT_OVER_NAME {
+            return Some(format!("not_over[{k}]'s name is longer than {MAX_NOT_OVER_NAME} characters"));
         }
         if !(3..=MAX_NOT_OVER_CORNERS).contains(&n) {
             return Some(format!(
@@ -814,6 +819,8 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         assert!(with(vec![two]).unwrap_err().contains("not_over 'line' needs 3 to 200 corners_m"));
         let flat = NotOver { name: "flat".into(), corners_m: vec![[0.0, 0.0], [5.0, 0.0], [10.0, 0.0]] };
         assert!(with(vec![flat]).unwrap_err().contains("not_over 'flat' encloses no area"));
+        let long = area(&"x".repeat(MAX_NOT_OVER_NAME + 1), 0.0, 0.0, 1.0, 1.0);
+        assert!(with(vec![long]).unwrap_err().contains("not_over[0]'s name is longer than 100 characters"));
         let unnamed = area(" ", 0.0, 0.0, 1.0, 1.0);
         assert!(with(vec![unnamed]).unwrap_err().contains("not_over[0] needs a name"));
         let nan = area("nan", 0.0, 0.0, f64::NAN, 1.0);

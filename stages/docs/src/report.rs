@@ -611,9 +611,12 @@ pub fn document(
         ),
     ];
     if !task.not_over.is_empty() {
-        let areas: Vec<String> = task
+        // The first few by name and extent: the row must fit its page.
+        const NAMED: usize = 10;
+        let mut areas: Vec<String> = task
             .not_over
             .iter()
+            .take(NAMED)
             .map(|a| {
                 let (lo, hi) = a.corners_m.iter().fold(([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]), |(lo, hi), c| {
                     ([lo[0].min(c[0]), lo[1].min(c[1])], [hi[0].max(c[0]), hi[1].max(c[1])])
@@ -621,6 +624,9 @@ pub fn document(
                 format!("{} (x {:.1} to {:.1} m, y {:.1} to {:.1} m)", a.name, lo[0], hi[0], lo[1], hi[1])
             })
             .collect();
+        if task.not_over.len() > NAMED {
+            areas.push(format!("and {} more", task.not_over.len() - NAMED));
+        }
         rows.push((
             "Never over",
             format!(
@@ -630,7 +636,8 @@ pub fn document(
             ),
         ));
     }
-    y = inputs_room(&mut d, y, 5.0 * rows.len() as f32);
+    let need_mm = key_values_height(&d, 15.0, &rows, 42.0);
+    y = inputs_room(&mut d, y, need_mm);
     y = key_values(&mut d, 15.0, y, &rows, 42.0);
     y += 3.0;
     let chart_img = chart.map(|c| pictures::chart_plot(c, task, plan, 1200, 600));
