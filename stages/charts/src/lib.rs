@@ -110,17 +110,21 @@ pub struct ConfigReport {
     pub title: String,
     pub warnings: Vec<String>,
     /// The wind speeds (m/s) and counterweights (kg) its sheet states in
-    /// words beside the grid ([`stated`]).
+    /// words beside the grid ([`stated`]); the wind speeds, where it states
+    /// none, those the workbook's sheets of notes (sheets without a grid)
+    /// state.
     pub wind_ms: Vec<liftplan_core::capacity::StatedOnChart>,
     pub counterweight_kg: Vec<liftplan_core::capacity::StatedOnChart>,
 }
 
 impl ConfigReport {
     /// What its sheet states in words, for the run's line: "; states wind
-    /// 9.8 m/s (A51), counterweight 140 t (A3)", cells on its own sheet;
-    /// empty where it states neither.
+    /// 9.8 m/s (A51), counterweight 140 t (A3)", cells on its own sheet
+    /// without its name ("Notes!A4" on a sheet of notes); empty where it
+    /// states neither.
     pub fn stated_said(&self) -> String {
-        let cell = |c: &str| c.rsplit_once('!').map_or(c, |(_, a1)| a1).to_string();
+        let own = format!("{}!", self.sheet);
+        let cell = |c: &str| c.strip_prefix(&own).unwrap_or(c).to_string();
         let wind = self.wind_ms.iter().map(|w| format!("wind {:.1} m/s ({})", w.value, cell(&w.cell)));
         let cw =
             self.counterweight_kg.iter().map(|c| format!("counterweight {} t ({})", c.value / 1000.0, cell(&c.cell)));
@@ -219,6 +223,19 @@ fn read_chart_with(path: &Path, s: &Settings, unnamed: Unnamed) -> Result<(Vec<C
             .filter(|(sh, grids)| grids.is_empty() && sh.cells.len() <= detect::MAX_SEARCHED_CELLS)
             .map(|(sh, _)| sh),
     );
+    // The wind speeds the sheets of notes state, each once, for the grids
+    // whose own region states none.
+    let mut notes_wind: Vec<liftplan_core::capacity::StatedOnChart> = Vec::new();
+    for (sh, grids) in sheets.iter().zip(&sheet_grids) {
+        if !grids.is_empty() || sh.cells.len() > detect::MAX_SEARCHED_CELLS {
+            continue;
+        }
+        for w in stated::on_sheet(sh, 0..=u32::MAX, 0..=u32::MAX).wind_ms {
+            if !notes_wind.iter().any(|n| (n.value - w.value).abs() <= 1e-6 * w.value.abs().max(1.0)) {
+                notes_wind.push(w);
+            }
+        }
+    }
     for (sh, grids) in sheets.iter().zip(&sheet_grids) {
         let own_notes = detect::LazyNotes::new(sh);
         let single = grids.len() == 1;
@@ -282,7 +299,7 @@ fn read_chart_with(path: &Path, s: &Settings, unnamed: Unnamed) -> Result<(Vec<C
                 units,
                 title: g.title.clone(),
                 warnings,
-                wind_ms: stated.wind_ms,
+                wind_ms: if stated.wind_ms.is_empty() { notes_wind.clone() } else { stated.wind_ms },
                 counterweight_kg: stated.counterweight_kg,
             });
             configs.push(c);

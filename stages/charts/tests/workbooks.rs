@@ -461,6 +461,36 @@ fn a_footnote_on_a_sheet_of_notes_is_quoted() {
     );
 }
 
+/// A workbook whose wind speed is stated on a sheet of notes (a sheet with
+/// no grid): the grids whose own region states none take it, with its
+/// sheet named; a grid that states its own keeps its own.
+#[test]
+fn a_sheet_of_notes_states_the_wind_speed_for_grids_that_state_none() {
+    let d = tempfile::tempdir().unwrap();
+    let p = d.path().join("notes.xlsx");
+    let mut wb = Workbook::new();
+    let ws = wb.add_worksheet().set_name("Main").unwrap();
+    ws.write_string(0, 0, "Radius m").unwrap();
+    ws.write_string(0, 1, "Boom m / capacity t").unwrap();
+    small_grid(ws);
+    let ws = wb.add_worksheet().set_name("Jib").unwrap();
+    ws.write_string(0, 0, "Radius m").unwrap();
+    ws.write_string(0, 1, "Boom m / capacity t").unwrap();
+    small_grid(ws);
+    ws.write_string(6, 0, "Permissible wind speed 7.0 m/s").unwrap();
+    let ws = wb.add_worksheet().set_name("Notes").unwrap();
+    ws.write_string(0, 0, "General notes").unwrap();
+    ws.write_string(3, 0, "Permissible wind speed 9.0 m/s (3 s gust)").unwrap();
+    wb.save(&p).unwrap();
+    let (_, reports) = read_chart(&p, &Settings::default()).unwrap();
+    let main = reports.iter().find(|r| r.sheet == "Main").unwrap();
+    let jib = reports.iter().find(|r| r.sheet == "Jib").unwrap();
+    assert_eq!(main.wind_ms.iter().map(|w| (w.value, w.cell.as_str())).collect::<Vec<_>>(), [(9.0, "Notes!A4")]);
+    assert_eq!(jib.wind_ms.iter().map(|w| (w.value, w.cell.as_str())).collect::<Vec<_>>(), [(7.0, "Jib!A7")]);
+    assert_eq!(main.stated_said(), "; states wind 9.0 m/s (Notes!A4)");
+    assert_eq!(jib.stated_said(), "; states wind 7.0 m/s (A7)");
+}
+
 /// What a sheet states in words beside its grids: each grid's title just
 /// above it and its notes under it, down to the next grid's title, are its
 /// own. `inspect` shows them.
