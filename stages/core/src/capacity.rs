@@ -38,7 +38,6 @@ pub struct ChartConfig {
     pub cells: Vec<Option<ChartCell>>,
 }
 
-/// A capacity read from the chart, with the row and column that gave it.
 /// A value a chart sheet states in words beside its grid (a wind speed in
 /// m/s, a counterweight in kg), the cell it is in (`Sheet!A3`) and the
 /// cell's text.
@@ -49,6 +48,7 @@ pub struct StatedOnChart {
     pub text: String,
 }
 
+/// A capacity read from the chart, with the row and column that gave it.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Capacity {
     pub capacity_kg: f64,
