@@ -260,13 +260,9 @@ pub fn footprint_near_area(footprint: &[[f64; 2]], area: &[[f64; 2]], within_m: 
         return false;
     }
     // Far apart in plan: nothing to test edge by edge.
-    let bounds = |p: &[[f64; 2]]| {
-        p.iter().fold([f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY], |b, q| {
-            [b[0].min(q[0]), b[1].min(q[1]), b[2].max(q[0]), b[3].max(q[1])]
-        })
-    };
-    let (f, a) = (bounds(footprint), bounds(area));
-    if f[0] > a[2] + within_m || a[0] > f[2] + within_m || f[1] > a[3] + within_m || a[1] > f[3] + within_m {
+    if let (Some((f_lo, f_hi)), Some((a_lo, a_hi))) = (plan_bounds(footprint), plan_bounds(area))
+        && (0..2).any(|k| f_lo[k] > a_hi[k] + within_m || a_lo[k] > f_hi[k] + within_m)
+    {
         return false;
     }
     if in_polygon_2d(area, footprint[0]) || (footprint.len() >= 3 && in_polygon_2d(footprint, area[0])) {
@@ -279,6 +275,18 @@ pub fn footprint_near_area(footprint: &[[f64; 2]], area: &[[f64; 2]], within_m: 
 fn edges_2d(p: &[[f64; 2]]) -> impl Iterator<Item = ([f64; 2], [f64; 2])> + '_ {
     let n = p.len();
     (0..n).map(move |i| (p[i], p[(i + 1) % n]))
+}
+
+/// The least and greatest x and y of plan points, `None` where there are
+/// none.
+pub fn plan_bounds<'a>(pts: impl IntoIterator<Item = &'a [f64; 2]>) -> Option<([f64; 2], [f64; 2])> {
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for p in pts {
+        for a in 0..2 {
+            (lo[a], hi[a]) = (lo[a].min(p[a]), hi[a].max(p[a]));
+        }
+    }
+    (lo[0] <= hi[0] && lo[1] <= hi[1]).then_some((lo, hi))
 }
 
 /// Whether `p` lies inside the simple polygon `poly` (the even-odd rule).

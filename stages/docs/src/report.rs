@@ -617,11 +617,11 @@ pub fn document(
             .not_over
             .iter()
             .take(NAMED)
-            .map(|a| {
-                let (lo, hi) = a.corners_m.iter().fold(([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]), |(lo, hi), c| {
-                    ([lo[0].min(c[0]), lo[1].min(c[1])], [hi[0].max(c[0]), hi[1].max(c[1])])
-                });
-                format!("{} (x {:.1} to {:.1} m, y {:.1} to {:.1} m)", a.name, lo[0], hi[0], lo[1], hi[1])
+            .map(|a| match liftplan_core::obb::plan_bounds(&a.corners_m) {
+                Some((lo, hi)) => {
+                    format!("{} (x {:.1} to {:.1} m, y {:.1} to {:.1} m)", a.name, lo[0], hi[0], lo[1], hi[1])
+                }
+                None => a.name.clone(),
             })
             .collect();
         if task.not_over.len() > NAMED {

@@ -1246,17 +1246,7 @@ pub struct Rules {
     pub support_m: f64,
 }
 
-/// The least and greatest x and y of plan points, `None` where there are
-/// none.
-pub(crate) fn plan_bounds<'a>(pts: impl IntoIterator<Item = &'a [f64; 2]>) -> Option<([f64; 2], [f64; 2])> {
-    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-    for p in pts {
-        for a in 0..2 {
-            (lo[a], hi[a]) = (lo[a].min(p[a]), hi[a].max(p[a]));
-        }
-    }
-    (lo[0] <= hi[0] && lo[1] <= hi[1]).then_some((lo, hi))
-}
+pub(crate) use liftplan_core::obb::plan_bounds;
 
 /// Whether `p` lies in the polygon by the even-odd rule: independent of the
 /// planner's convex test of its landing zones.
