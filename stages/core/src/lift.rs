@@ -416,6 +416,16 @@ impl LiftTask {
         Ok((crate::wind::PermissibleWind::of(chart_ms, cell, spec, self.load.size_m, self.hook_load_kg()), other))
     }
 
+    /// The first of the lift's `not_over` areas the load's footprint at `c`
+    /// (the plan outline of its box) comes within `within_m` of.
+    pub fn not_over_near(&self, c: &Config, within_m: f64) -> Option<&NotOver> {
+        if self.not_over.is_empty() {
+            return None;
+        }
+        let footprint = self.crane.load_obb(c, &self.load).footprint();
+        self.not_over.iter().find(|a| crate::obb::footprint_near_area(&footprint, &a.corners_m, within_m))
+    }
+
     /// Capacity after the configured reduction.
     pub fn effective_capacity_kg(&self, chart_kg: f64) -> f64 {
         chart_kg * (1.0 - self.capacity_reduction_pct / 100.0)
@@ -645,21 +655,7 @@ impl LiftSpec {
         if let Some(why) = self.not_over.iter().enumerate().find_map(|(k, a)| a.problem(k)) {
             return Err(format!("lift '{id}': {why}"));
         }
-        // The load is lifted from and set down outside them.
-        for (which, c) in [("pick", &pick), ("set", &set)] {
-            let footprint = crane.load_obb(c, &load).footprint();
-            if let Some(a) = self
-                .not_over
-                .iter()
-                .find(|a| crate::obb::footprint_near_area(&footprint, &a.corners_m, NOT_OVER_MARGIN_M))
-            {
-                return Err(format!(
-                    "lift '{id}': the load at the {which} is over not_over '{}' or within {NOT_OVER_MARGIN_M} m of it: a load is lifted and set down outside the areas it must not be over",
-                    a.name
-                ));
-            }
-        }
-        Ok(LiftTask {
+        let task = LiftTask {
             id: id.clone(),
             description: self.description.clone(),
             crane,
@@ -685,7 +681,17 @@ impl LiftSpec {
             wind: self.wind,
             not_over: self.not_over.clone(),
             chart_sheet_counterweight: None,
-        })
+        };
+        // The load is lifted from and set down outside them.
+        for (which, c) in [("pick", &task.pick), ("set", &task.set)] {
+            if let Some(a) = task.not_over_near(c, NOT_OVER_MARGIN_M) {
+                return Err(format!(
+                    "lift '{id}': the load at the {which} is over not_over '{}' or within {NOT_OVER_MARGIN_M} m of it: a load is lifted and set down outside the areas it must not be over",
+                    a.name
+                ));
+            }
+        }
+        Ok(task)
     }
 }
 

@@ -1044,17 +1044,7 @@ impl<'a> Checker<'a> {
     /// [`liftplan_core::lift::NOT_OVER_MARGIN_M`]. Not in the tables: an area is
     /// no obstacle to anything but the load, at any height.
     fn not_over_ok(&self, c: &Config, grow_m: f64) -> Result<(), Blocked> {
-        if self.task.not_over.is_empty() {
-            return Ok(());
-        }
-        let footprint = self.task.crane.load_obb(c, &self.task.load).footprint();
-        let within_m = grow_m + liftplan_core::lift::NOT_OVER_MARGIN_M;
-        match self
-            .task
-            .not_over
-            .iter()
-            .find(|a| liftplan_core::obb::footprint_near_area(&footprint, &a.corners_m, within_m))
-        {
+        match self.task.not_over_near(c, grow_m + liftplan_core::lift::NOT_OVER_MARGIN_M) {
             None => Ok(()),
             Some(a) => Err(Blocked {
                 reason: OVER_NOT_OVER.into(),

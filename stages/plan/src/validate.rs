@@ -1398,8 +1398,7 @@ fn over_not_over<'a>(task: &'a LiftTask, m: &Move, moved_m: f64, sample_m: f64) 
     (0..=k).find_map(|i| {
         let mut v = a;
         v[j] = a[j] + (b[j] - a[j]) * i as f64 / k as f64;
-        let footprint = task.crane.load_obb(&Config::from_array(v), &task.load).footprint();
-        task.not_over.iter().find(|area| liftplan_core::obb::footprint_near_area(&footprint, &area.corners_m, grow_m))
+        task.not_over_near(&Config::from_array(v), grow_m)
     })
 }
 
