@@ -45,7 +45,6 @@ use crate::{Settings, Site};
 use liftplan_core::capacity::ChartConfig;
 use liftplan_core::crane::Placement;
 use liftplan_core::lift::{GroundSpec, LiftTask};
-use liftplan_core::outriggers::pressure_kpa;
 
 /// The grid positions are tried on (m).
 pub const GRID_M: f64 = 0.5;
@@ -134,11 +133,8 @@ impl Tried {
             ));
         }
         if let Some(p) = self.pads {
-            if let Some((g, allowed)) = self.ground.and_then(|g| Some((g, g.allowable_kpa?))) {
-                let kpa = pressure_kpa(p.load_kg, g.mat_m);
-                if kpa > allowed {
-                    let m = liftplan_core::outriggers::mat_bearing_m(p.load_kg, g.mat_m, allowed);
-                    said.push(format!(
+            if let (Some(g), Some((kpa, allowed, m))) = (self.ground, p.over_allowable(self.ground.as_ref())) {
+                said.push(format!(
                         "{kpa:.0} kPa UNDER THE {} PAD'S {:.2} x {:.2} m MAT ({:.1} t, an estimate), MORE THAN THE {allowed:.0} kPa THE GROUND MAY BEAR (a mat of at least {:.2} x {:.2} m)",
                         p.pad.name().to_uppercase(),
                         g.mat_m[0],
@@ -147,7 +143,6 @@ impl Tried {
                         m[0],
                         m[1]
                     ));
-                }
             }
             if p.tips {
                 said.push("THE CRANE FILE'S MASSES PUT THE CENTRE OF GRAVITY OUTSIDE THE PADS".into());

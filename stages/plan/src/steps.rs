@@ -144,16 +144,15 @@ impl StepPads {
         if let Some(g) = ground {
             let kpa = pressure_kpa(self.load_kg, g.mat_m);
             s += &format!("; {kpa:.0} kPa under its {:.2} x {:.2} m mat", g.mat_m[0], g.mat_m[1]);
-            match g.allowable_kpa {
-                Some(allowed) if kpa > allowed => {
-                    let m = liftplan_core::outriggers::mat_bearing_m(self.load_kg, g.mat_m, allowed);
+            match (g.allowable_kpa, self.over_allowable(Some(g))) {
+                (_, Some((_, allowed, m))) => {
                     s += &format!(
                         ", MORE THAN THE {allowed:.0} kPa THE GROUND MAY BEAR: a mat of at least {:.2} x {:.2} m (spreading it as evenly) or a ground check",
                         m[0], m[1]
                     )
                 }
-                Some(allowed) => s += &format!(", allowable {allowed:.0} kPa"),
-                None => s += " (no allowable pressure given: ground allowable_kpa)",
+                (Some(allowed), None) => s += &format!(", allowable {allowed:.0} kPa"),
+                (None, None) => s += " (no allowable pressure given: ground allowable_kpa)",
             }
         }
         if self.tips {
@@ -167,7 +166,17 @@ impl StepPads {
     /// Whether the ground's allowable pressure is exceeded, or the crane
     /// would tip: what the signer must check first.
     pub fn needs_checking(&self, ground: Option<&GroundSpec>) -> bool {
-        self.tips || ground.is_some_and(|g| g.allowable_kpa.is_some_and(|a| pressure_kpa(self.load_kg, g.mat_m) > a))
+        self.tips || self.over_allowable(ground).is_some()
+    }
+
+    /// Where the pressure under its mat is more than the ground may bear:
+    /// that pressure and the allowable (kPa), and the mat that would bear
+    /// it ([`liftplan_core::outriggers::mat_bearing_m`], m).
+    pub fn over_allowable(&self, ground: Option<&GroundSpec>) -> Option<(f64, f64, [f64; 2])> {
+        let g = ground?;
+        let (kpa, allowed) = (pressure_kpa(self.load_kg, g.mat_m), g.allowable_kpa?);
+        (kpa > allowed)
+            .then(|| (kpa, allowed, liftplan_core::outriggers::mat_bearing_m(self.load_kg, g.mat_m, allowed)))
     }
 }
 
