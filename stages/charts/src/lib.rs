@@ -216,24 +216,19 @@ fn read_chart_with(path: &Path, s: &Settings, unnamed: Unnamed) -> Result<(Vec<C
         }
         sheet_grids.push(grids);
     }
-    let note_sheets = detect::NoteSheets::new(
-        sheets
-            .iter()
-            .zip(&sheet_grids)
-            .filter(|(sh, grids)| grids.is_empty() && sh.cells.len() <= detect::MAX_SEARCHED_CELLS)
-            .map(|(sh, _)| sh),
-    );
+    let notes: Vec<&sheet::Sheet> = sheets
+        .iter()
+        .zip(&sheet_grids)
+        .filter(|(sh, grids)| grids.is_empty() && sh.cells.len() <= detect::MAX_SEARCHED_CELLS)
+        .map(|(sh, _)| sh)
+        .collect();
+    let note_sheets = detect::NoteSheets::new(notes.iter().copied());
     // The wind speeds the sheets of notes state, each once, for the grids
     // whose own region states none.
     let mut notes_wind: Vec<liftplan_core::capacity::StatedOnChart> = Vec::new();
-    for (sh, grids) in sheets.iter().zip(&sheet_grids) {
-        if !grids.is_empty() || sh.cells.len() > detect::MAX_SEARCHED_CELLS {
-            continue;
-        }
+    for sh in &notes {
         for w in stated::on_sheet(sh, 0..=u32::MAX, 0..=u32::MAX).wind_ms {
-            if !notes_wind.iter().any(|n| (n.value - w.value).abs() <= 1e-6 * w.value.abs().max(1.0)) {
-                notes_wind.push(w);
-            }
+            stated::keep_once(&mut notes_wind, w);
         }
     }
     for (sh, grids) in sheets.iter().zip(&sheet_grids) {

@@ -56,17 +56,22 @@ pub struct Stated {
     pub counterweight_kg: Vec<StatedOnChart>,
 }
 
+/// Adds `stated` to `into` unless a value the same (to a millionth) is
+/// there already: each value once, the first cell stating it.
+pub fn keep_once(into: &mut Vec<StatedOnChart>, stated: StatedOnChart) {
+    if !into.iter().any(|s| (s.value - stated.value).abs() <= 1e-6 * stated.value.abs().max(1.0)) {
+        into.push(stated);
+    }
+}
+
 /// Reads [`Stated`] from the text cells of `sheet` in `rows` and `cols`.
 pub fn on_sheet(sheet: &Sheet, rows: std::ops::RangeInclusive<u32>, cols: std::ops::RangeInclusive<u32>) -> Stated {
     let mut stated = Stated { wind_ms: Vec::new(), counterweight_kg: Vec::new() };
     let keep = |into: &mut Vec<StatedOnChart>, value: f64, r: u32, c: u32, text: &str| {
-        if !into.iter().any(|s| (s.value - value).abs() <= 1e-6 * value.abs().max(1.0)) {
-            into.push(StatedOnChart {
-                value,
-                cell: format!("{}!{}", sheet.name, cell_ref(r, c)),
-                text: text.to_string(),
-            });
-        }
+        keep_once(
+            into,
+            StatedOnChart { value, cell: format!("{}!{}", sheet.name, cell_ref(r, c)), text: text.to_string() },
+        )
     };
     // Side by side, a grid's rows may lie above the grid before it ends.
     if rows.is_empty() {
