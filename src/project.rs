@@ -453,10 +453,13 @@ keep = 3                  # runs' outputs each stage keeps in .liftplan/cache (t
 #                              # coefficient, for the wind speed it may be
 #                              # lifted in (mobile cranes); area_m2: its area facing the
 #                              # wind, else its box's largest side
-# not_over = [{ name = "control room", corners_m = [[40.0, -10.0], [52.0, -10.0], [52.0, 4.0], [40.0, 4.0]] }]
+# not_over = [{ name = "control room", corners_m = [[40.0, -10.0], [52.0, -10.0], [52.0, 4.0], [40.0, 4.0]] },
+#             { name = "railway", corners_m = [[-20.0, -30.0], [-14.0, -30.0], [-14.0, 30.0], [-20.0, 30.0]], crane_too = true }]
 #                              # areas the load must never be over (their corners in
 #                              # plan, in order around them, m); the planner keeps the
-#                              # load's footprint 0.25 m off them
+#                              # load's footprint 0.25 m off them; crane_too: the crane's
+#                              # boom, counterweight, rope and hook may not be over it
+#                              # either (no oversailing)
 "#;
 
 /// Creates a project folder with the template and the input folders.
@@ -509,5 +512,6 @@ mod tests {
         assert_eq!(task.id, "V-101");
         assert!(task.permissible_wind(&[]).is_ok());
         assert_eq!(task.not_over[0].name, "control room");
+        assert!(!task.not_over[0].crane_too && task.not_over[1].crane_too);
     }
 }

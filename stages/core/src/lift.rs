@@ -6,7 +6,7 @@
 //! configurations. The gross load the chart must carry is load + rigging + hook
 //! block + configured deductions (ICE-Planner's "total load").
 
-use crate::crane::{Config, CraneModel, CraneSetup, LoadPose, LoadShape, Placement};
+use crate::crane::{Config, CraneModel, CraneSetup, Dependence, LoadPose, LoadShape, PartKind, Placement};
 use crate::units::KG_PER_TONNE;
 use serde::{Deserialize, Serialize};
 
@@ -202,6 +202,12 @@ pub struct LiftSpec {
 pub struct NotOver {
     pub name: String,
     pub corners_m: Vec<[f64; 2]>,
+    /// The crane may not be over it either (may not oversail it: a
+    /// railway, a neighbour's property): nothing that turns with its swing
+    /// (superstructure, counterweight, boom or jib, rope, hook block) comes
+    /// over it, as the load does not.
+    #[serde(default)]
+    pub crane_too: bool,
 }
 
 /// How far the planner keeps the load's footprint off a `not_over` area
@@ -416,14 +422,38 @@ impl LiftTask {
         Ok((crate::wind::PermissibleWind::of(chart_ms, cell, spec, self.load.size_m, self.hook_load_kg()), other))
     }
 
-    /// The first of the lift's `not_over` areas the load's footprint at `c`
-    /// (the plan outline of its box) comes within `within_m` of.
-    pub fn not_over_near(&self, c: &Config, within_m: f64) -> Option<&NotOver> {
+    /// The first of the lift's `not_over` areas something comes within
+    /// `within_m` of at `c`, and what: the load's footprint (the plan
+    /// outline of its box), against every area; then, against the areas
+    /// the crane may not be over either (`crane_too`), the plan outline of
+    /// each part that turns with the swing, in the order of
+    /// [`CraneSetup::part_kinds`]. The carrier, its outriggers and a tower's
+    /// mast stand where the lift file puts them; they are not looked at.
+    pub fn not_over_near(&self, c: &Config, within_m: f64) -> Option<(PartKind, &NotOver)> {
         if self.not_over.is_empty() {
             return None;
         }
-        let footprint = self.crane.load_obb(c, &self.load).footprint();
-        self.not_over.iter().find(|a| crate::obb::footprint_near_area(&footprint, &a.corners_m, within_m))
+        let near = |part: &crate::obb::Obb, crane_too_only: bool| {
+            let footprint = part.footprint();
+            self.not_over
+                .iter()
+                .filter(|a| a.crane_too || !crane_too_only)
+                .find(|a| crate::obb::footprint_near_area(&footprint, &a.corners_m, within_m))
+        };
+        if let Some(a) = near(&self.crane.load_obb(c, &self.load), false) {
+            return Some((PartKind::Load, a));
+        }
+        if !self.not_over.iter().any(|a| a.crane_too) {
+            return None;
+        }
+        self.crane
+            .part_kinds()
+            .iter()
+            .filter(|k| k.dependence() != Dependence::Fixed && **k != PartKind::Load)
+            .find_map(|&kind| {
+                let part = self.crane.part(kind, c, &self.load)?;
+                near(&part, true).map(|a| (kind, a))
+            })
     }
 
     /// Capacity after the configured reduction.
@@ -682,15 +712,7 @@ impl LiftSpec {
             not_over: self.not_over.clone(),
             chart_sheet_counterweight: None,
         };
-        // The load is lifted from and set down outside them.
-        for (which, c) in [("pick", &task.pick), ("set", &task.set)] {
-            if let Some(a) = task.not_over_near(c, NOT_OVER_MARGIN_M) {
-                return Err(format!(
-                    "lift '{id}': the load at the {which} is over not_over '{}' or within {NOT_OVER_MARGIN_M} m of it: a load is lifted and set down outside the areas it must not be over",
-                    a.name
-                ));
-            }
-        }
+        ends_off_not_over(&task)?;
         Ok(task)
     }
 }
@@ -757,8 +779,36 @@ impl LiftTask {
             let shown = format!("[{:.1}, {:.1}]", a.to_degrees(), b.to_degrees());
             into_swing_range(id, (a, b), &shown, &mut pick, &mut set)?;
         }
-        Ok(LiftTask { crane, pick, set, by_configuration: [false, false], ..self.clone() })
+        let moved = LiftTask { crane, pick, set, by_configuration: [false, false], ..self.clone() };
+        ends_off_not_over(&moved)?;
+        Ok(moved)
     }
+}
+
+/// The load is lifted from and set down outside the areas it must not be
+/// over, by the planner's margin, and the crane stands and reaches there
+/// outside those it may not be over either.
+fn ends_off_not_over(task: &LiftTask) -> Result<(), String> {
+    for (which, c) in [("pick", &task.pick), ("set", &task.set)] {
+        match task.not_over_near(c, NOT_OVER_MARGIN_M) {
+            None => {}
+            Some((PartKind::Load, a)) => {
+                return Err(format!(
+                    "lift '{}': the load at the {which} is over not_over '{}' or within {NOT_OVER_MARGIN_M} m of it: a load is lifted and set down outside the areas it must not be over",
+                    task.id, a.name
+                ));
+            }
+            Some((part, a)) => {
+                return Err(format!(
+                    "lift '{}': the crane's {} at the {which} is over not_over '{}' (crane_too) or within {NOT_OVER_MARGIN_M} m of it: the crane is set up where it reaches the pick and the set without being over it",
+                    task.id,
+                    part.name(),
+                    a.name
+                ));
+            }
+        }
+    }
+    Ok(())
 }
 
 #[cfg(test)]
@@ -806,6 +856,7 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         let area = |name: &str, x0: f64, y0: f64, x1: f64, y1: f64| NotOver {
             name: name.into(),
             corners_m: vec![[x0, y0], [x1, y0], [x1, y1], [x0, y1]],
+            crane_too: false,
         };
         let with = |areas: Vec<NotOver>| {
             let mut sp = spec();
@@ -823,7 +874,8 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         let mut two = area("line", 0.0, 0.0, 1.0, 1.0);
         two.corners_m.truncate(2);
         assert!(with(vec![two]).unwrap_err().contains("not_over 'line' needs 3 to 200 corners_m"));
-        let flat = NotOver { name: "flat".into(), corners_m: vec![[0.0, 0.0], [5.0, 0.0], [10.0, 0.0]] };
+        let flat =
+            NotOver { name: "flat".into(), corners_m: vec![[0.0, 0.0], [5.0, 0.0], [10.0, 0.0]], crane_too: false };
         assert!(with(vec![flat]).unwrap_err().contains("not_over 'flat' encloses no area"));
         let long = area(&"x".repeat(MAX_NOT_OVER_NAME + 1), 0.0, 0.0, 1.0, 1.0);
         assert!(with(vec![long]).unwrap_err().contains("not_over[0]'s name is longer than 100 characters"));
@@ -834,6 +886,24 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         assert!(
             with(vec![area("a", 0.0, 0.0, 1.0, 1.0); MAX_NOT_OVER + 1]).unwrap_err().contains("at most 50 not_over")
         );
+        // Areas the crane may not be over either: the crane standing in the
+        // road, its boom over a pipe bridge at the pick (the boom runs from
+        // the crane at the origin towards the pick's load at [20, 5]; at
+        // x = 10 m its axis is at y = 2.5 m).
+        let crane_too = |a: NotOver| NotOver { crane_too: true, ..a };
+        let e = with(vec![crane_too(area("road", 0.0, -30.0, 4.0, 30.0))]).unwrap_err();
+        assert!(e.contains("the crane's superstructure at the pick is over not_over 'road' (crane_too)"), "{e}");
+        let bridge = area("pipe bridge", 9.0, 1.5, 11.0, 3.5);
+        assert!(with(vec![bridge.clone()]).is_ok());
+        let e = with(vec![crane_too(bridge)]).unwrap_err();
+        assert!(e.contains("the crane's boom at the pick is over not_over 'pipe bridge' (crane_too)"), "{e}");
+        // A crane moved to where its boom would reach over one is refused too.
+        let t = with(vec![crane_too(area("cable tray", 9.0, -1.5, 11.0, -0.5))]).unwrap();
+        let c = t.pick;
+        assert_eq!(t.not_over_near(&c, 0.0), None);
+        let moved = t.moved_to(Placement { y_m: -5.0, ..t.crane.placement }).unwrap_err();
+        assert!(moved.contains("the crane's boom at the pick is over not_over 'cable tray' (crane_too)"), "{moved}");
+        assert!(t.moved_to(Placement { y_m: 1.0, ..t.crane.placement }).is_ok());
     }
 
     /// TOML has `nan` and `inf`: a position given so is named, not solved.

@@ -108,9 +108,10 @@ impl Settings {
 /// includes touching it; it is not a collision as such.
 pub const TOO_CLOSE: &str = "closer than the clearance allows";
 
-/// A [`Blocked::reason`]: the load over an area the lift says it must not be
-/// over (`not_over`).
-pub const OVER_NOT_OVER: &str = "over an area the load must not be over";
+/// A [`Blocked::reason`]: the load, or a part of the crane, over an area
+/// the lift says it must not be over (`not_over`, `crane_too`); the part is
+/// [`Blocked::part`].
+pub const OVER_NOT_OVER: &str = "over an area it must not be over";
 
 /// Why a configuration or a move is not allowed.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -1040,18 +1041,45 @@ impl<'a> Checker<'a> {
     }
 
     /// The load's footprint, grown by `grow_m` in plan, off every area the
-    /// lift says the load must not be over, by
-    /// [`liftplan_core::lift::NOT_OVER_MARGIN_M`]. Not in the tables: an area is
-    /// no obstacle to anything but the load, at any height.
+    /// lift says the load must not be over, and the swinging parts' off
+    /// those the crane may not be over either, by
+    /// [`liftplan_core::lift::NOT_OVER_MARGIN_M`]. Not in the tables: an area
+    /// has no height, and is no obstacle to anything else.
     fn not_over_ok(&self, c: &Config, grow_m: f64) -> Result<(), Blocked> {
         match self.task.not_over_near(c, grow_m + liftplan_core::lift::NOT_OVER_MARGIN_M) {
             None => Ok(()),
-            Some(a) => Err(Blocked {
+            Some((part, a)) => Err(Blocked {
                 reason: OVER_NOT_OVER.into(),
-                part: Some(PartKind::Load),
+                part: Some(part),
                 object: Some(format!("not_over '{}'", a.name)),
                 at: *c,
             }),
+        }
+    }
+
+    /// How far (m) a point of a part that turns with the swing can move per
+    /// unit of `joint` from `from`, for the areas the crane may not be over:
+    /// on a swing, the farthest corner of those parts from the slewing axis
+    /// (the radial joint stays put); on a luff, the boom's farthest corner
+    /// from its foot pin, which the rope and hook hang from; on a trolley
+    /// move, one; hoisting and turning the load move none of them sideways.
+    fn crane_lever(&self, joint: Joint, from: &Config) -> f64 {
+        let crane = &self.task.crane;
+        let swinging = crane.part_kinds().iter().filter(|k| k.dependence() != liftplan_core::crane::Dependence::Fixed);
+        match joint {
+            Joint::Swing => {
+                let o = crane.slew_center();
+                swinging
+                    .filter_map(|&k| crane.part(k, from, &self.task.load))
+                    .flat_map(|b| b.corners())
+                    .map(|p| (p.x - o.x).hypot(p.y - o.y))
+                    .fold(0.0, f64::max)
+            }
+            Joint::Radial if is_luffing(crane) => {
+                crane.part(PartKind::Boom, from, &self.task.load).map_or(0.0, |boom| 2.0 * boom.half.norm())
+            }
+            Joint::Radial => 1.0,
+            Joint::Hoist | Joint::Rotate => 0.0,
         }
     }
 
@@ -1116,6 +1144,8 @@ impl<'a> Checker<'a> {
             Joint::Rotate => self.task.load.bounding_radius() * 2.0,
         };
         if !self.task.not_over.is_empty() {
+            let crane_too = self.task.not_over.iter().any(|a| a.crane_too);
+            let lever = if crane_too { lever.max(self.crane_lever(joint, from)) } else { lever };
             self.not_over_piece(&from.to_array(), joint, v0, to, lever)?;
         }
         if self.cs.strategy == Strategy::Online {

@@ -535,7 +535,12 @@ pub fn document(
     let caption = format!(
         "Site overview (top view, north up): crane at the pick position, load path in red, load at set in light blue{}{}{}.",
         if others.is_empty() { "" } else { ", other lifts' loads in violet" },
-        if task.not_over.is_empty() { "" } else { ", areas the load must never be over outlined in green" },
+        match (task.not_over.is_empty(), task.not_over.iter().any(|a| a.crane_too)) {
+            (true, _) => "",
+            (false, false) => ", areas the load must never be over outlined in green",
+            (false, true) =>
+                ", areas the load (and the crane, where the inputs page says so) must never be over outlined in green",
+        },
         match plan
             .summary
             .coverage
@@ -617,22 +622,26 @@ pub fn document(
             .not_over
             .iter()
             .take(NAMED)
-            .map(|a| match liftplan_core::obb::plan_bounds(&a.corners_m) {
-                Some((lo, hi)) => {
-                    format!("{} (x {:.1} to {:.1} m, y {:.1} to {:.1} m)", a.name, lo[0], hi[0], lo[1], hi[1])
-                }
-                None => a.name.clone(),
+            .map(|a| {
+                let extent = match liftplan_core::obb::plan_bounds(&a.corners_m) {
+                    Some((lo, hi)) => format!(" (x {:.1} to {:.1} m, y {:.1} to {:.1} m)", lo[0], hi[0], lo[1], hi[1]),
+                    None => String::new(),
+                };
+                format!("{}{extent}{}", a.name, if a.crane_too { ", nor the crane" } else { "" })
             })
             .collect();
         if task.not_over.len() > NAMED {
             areas.push(format!("and {} more", task.not_over.len() - NAMED));
         }
+        let crane_too = task.not_over.iter().any(|a| a.crane_too);
         rows.push((
             "Never over",
             format!(
-                "{} (not_over): the planner keeps the load's footprint {:.2} m off each; the validator checks it never comes over one",
+                "{} (not_over): the planner keeps the load's footprint {:.2} m off each{}; the validator checks it never comes over one{}",
                 areas.join("; "),
-                liftplan_core::lift::NOT_OVER_MARGIN_M
+                liftplan_core::lift::NOT_OVER_MARGIN_M,
+                if crane_too { ", and every part of the crane that swings (boom or jib, counterweight, rope, hook) off those marked 'nor the crane' (crane_too)" } else { "" },
+                if crane_too { ", nor the crane over those marked so" } else { "" }
             ),
         ));
     }

@@ -1382,12 +1382,14 @@ pub(crate) fn samples_for(moved_m: f64, sample_m: f64) -> usize {
 }
 
 /// The first of the lift's `not_over` areas the load comes over during the
-/// move: its footprint at samples at most `sample_m` of travel apart
-/// (`moved_m` over the move, the farthest any point goes), each grown by
-/// half the travel between two, so that every moment of the move is
-/// covered. The planner keeps it farther off
+/// move, or a part of the crane that turns with the swing comes over where
+/// the crane may not be over it either (`crane_too`), and which part: their
+/// footprints at samples at most `sample_m` of travel apart (`moved_m` over
+/// the move, the farthest any point of any part goes), each grown by half
+/// the travel between two, so that every moment of the move is covered.
+/// The planner keeps them farther off
 /// ([`liftplan_core::lift::NOT_OVER_MARGIN_M`]).
-fn over_not_over<'a>(task: &'a LiftTask, m: &Move, moved_m: f64, sample_m: f64) -> Option<&'a NotOver> {
+fn over_not_over<'a>(task: &'a LiftTask, m: &Move, moved_m: f64, sample_m: f64) -> Option<(PartKind, &'a NotOver)> {
     if task.not_over.is_empty() {
         return None;
     }
@@ -1908,8 +1910,10 @@ pub fn validate(
             .fold(f64::INFINITY, f64::min);
         let least_margin_m = least_at_samples_m.min(least_between_m);
         let mut move_problems: Vec<String> = Vec::new();
-        if let Some(area) = over_not_over(task, m, moved_m, rules.sample_m) {
-            move_problems.push(format!("the load comes over not_over '{}'", area.name));
+        if let Some((part, area)) = over_not_over(task, m, moved_m, rules.sample_m) {
+            let what =
+                if part == PartKind::Load { "the load".to_string() } else { format!("the crane's {}", part.name()) };
+            move_problems.push(format!("{what} comes over not_over '{}'", area.name));
         }
         let mut tight: Option<SampleCheck> = None;
         let mut util: Option<SampleCheck> = None;

@@ -1273,7 +1273,11 @@ fn the_load_is_never_over_an_area_it_must_not_be_over() {
     let site = Site { map: &m, world: &world, charts: None };
     let free = task(-14.0);
     let (direct, _) = plan_lift(&free, &site, &quick(), 3).unwrap();
-    let road = NotOver { name: "ROAD".into(), corners_m: vec![[15.0, -3.0], [40.0, -3.0], [40.0, 3.0], [15.0, 3.0]] };
+    let road = NotOver {
+        name: "ROAD".into(),
+        corners_m: vec![[15.0, -3.0], [40.0, -3.0], [40.0, 3.0], [15.0, 3.0]],
+        crane_too: false,
+    };
     let mut spec = spec_of(-14.0);
     spec.not_over = vec![road.clone()];
     let kept = spec.resolve(builtin("ac-700").unwrap()).unwrap();
@@ -1296,6 +1300,69 @@ fn the_load_is_never_over_an_area_it_must_not_be_over() {
     let landing: Vec<bool> = (0..direct.moves.len()).map(|i| i == 0 || i == direct.moves.len() - 1).collect();
     let v = validate_lift(&kept, None, &world, &rules(), &direct.moves, &landing);
     assert!(!v.ok && v.problems.iter().any(|p| p.contains("the load comes over not_over 'ROAD'")), "{:?}", v.problems);
+    let (round, _) = plan_lift(&kept, &site, &quick(), 3).unwrap();
+    assert!(round.validator.ok, "{:?}", round.validator.problems);
+    assert!(!comes_over(&round.moves, NOT_OVER_MARGIN_M - 0.02), "{:?}", round.moves);
+}
+
+/// An area the crane may not be over either (`crane_too`: a railway in
+/// front of it, between it and the swing from the pick to the set): the
+/// plan made where only the load keeps off it swings the boom over it, and
+/// the validator given it refuses that plan naming the boom; the plan made
+/// with it swings the other way round, passes the validator, and no part
+/// that turns with the swing comes within the margin of it, at samples
+/// 2 cm apart.
+#[test]
+fn the_crane_is_never_over_an_area_it_may_not_be_over() {
+    use liftplan_core::crane::{Config, Dependence};
+    use liftplan_core::lift::{NOT_OVER_MARGIN_M, NotOver};
+    use liftplan_core::obb::footprint_near_area;
+    let mut slab = TriMesh::default();
+    box_part(&mut slab, "SLAB", [-60.0, -60.0, -0.3], [60.0, 60.0, 0.0]);
+    let m = map(&slab);
+    let world = World::new(&slab, &[], &[]).unwrap();
+    let site = Site { map: &m, world: &world, charts: None };
+    let railway = NotOver {
+        name: "RAILWAY".into(),
+        corners_m: vec![[9.0, -2.0], [12.0, -2.0], [12.0, 2.0], [9.0, 2.0]],
+        crane_too: true,
+    };
+    let with = |area: NotOver| {
+        let mut spec = spec_of(-14.0);
+        spec.not_over = vec![area];
+        spec.resolve(builtin("ac-700").unwrap()).unwrap()
+    };
+    let load_only = with(NotOver { crane_too: false, ..railway.clone() });
+    let (direct, _) = plan_lift(&load_only, &site, &quick(), 3).unwrap();
+    assert!(direct.validator.ok, "{:?}", direct.validator.problems);
+    let kept = with(railway.clone());
+    // Every swinging part's footprint along a plan's moves, every 2 cm of
+    // the farthest travel.
+    let comes_over = |moves: &[liftplan_plan::path::Move], within_m: f64| {
+        moves.iter().any(|mv| {
+            let (a, b) = (mv.from.to_array(), mv.to.to_array());
+            let j = mv.joint.index();
+            let travel = (b[j] - a[j]).abs() * 50.0;
+            let n = (travel / 0.02).ceil().max(1.0) as usize;
+            (0..=n).any(|i| {
+                let mut v = a;
+                v[j] = a[j] + (b[j] - a[j]) * i as f64 / n as f64;
+                let pose = kept.crane.pose(&Config::from_array(v), &kept.load);
+                pose.parts
+                    .iter()
+                    .filter(|(k, _)| k.dependence() != Dependence::Fixed)
+                    .any(|(_, part)| footprint_near_area(&part.footprint(), &railway.corners_m, within_m))
+            })
+        })
+    };
+    assert!(comes_over(&direct.moves, 0.0), "the direct plan does not swing over it: the test shows nothing");
+    let landing: Vec<bool> = (0..direct.moves.len()).map(|i| i == 0 || i == direct.moves.len() - 1).collect();
+    let v = validate_lift(&kept, None, &world, &rules(), &direct.moves, &landing);
+    assert!(
+        !v.ok && v.problems.iter().any(|p| p.contains("the crane's boom comes over not_over 'RAILWAY'")),
+        "{:?}",
+        v.problems
+    );
     let (round, _) = plan_lift(&kept, &site, &quick(), 3).unwrap();
     assert!(round.validator.ok, "{:?}", round.validator.problems);
     assert!(!comes_over(&round.moves, NOT_OVER_MARGIN_M - 0.02), "{:?}", round.moves);
