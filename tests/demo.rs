@@ -61,6 +61,20 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     let mean_ms: f64 = mean[..mean.find(" m/s at 10 m above the ground gusts to ").unwrap()].parse().unwrap();
     let want = 8.0 / liftplan_core::wind::gust_factor(head_m);
     assert!(head_m > 20.0 && head_m < 45.0 && (mean_ms - want).abs() < 0.06, "{head_m} m, {mean_ms} m/s: {cover}");
+    // How far the wind at that speed pushes the load off plumb where it
+    // hangs longest: ρ v² A_W / (2 m_H g) per metre, twice that for a
+    // sudden gust, within the demo's 1.0 m clearance.
+    let number_after = |text: &str, lead: &str, unit: &str| -> f64 {
+        let at = &text[text.find(lead).unwrap_or_else(|| panic!("{lead}: {text}")) + lead.len()..];
+        at[..at.find(unit).unwrap()].parse().unwrap()
+    };
+    let off_m = number_after(&cover, "at that speed the wind holds the load ", " m off plumb");
+    let hang_m = number_after(&cover, "m off plumb where it hangs longest in this lift, ", " m below the boom head");
+    let swing_m = number_after(&cover, "and a sudden gust can swing it ", " m (tan θ");
+    let v_ms = 9.8 * (1.2f64 * 16.0 / 28.8).sqrt();
+    let per_m = 0.5 * 1.25 * v_ms * v_ms * 28.8 / (16_000.0 * 9.80665);
+    assert!((off_m - hang_m * per_m).abs() < 0.006 && (swing_m - 2.0 * hang_m * per_m).abs() < 0.006, "{cover}");
+    assert!(hang_m > 20.0 && hang_m < head_m && swing_m < 1.0 && !cover.contains("A GUST CAN SWING"), "{cover}");
     let flat = text.replace('\n', " ");
     assert!(flat.contains("on site and the wind (AT MOST 8.0 m/s FOR THIS LOAD: cover)"), "{text}");
     // The outrigger pads at their most, estimated from the built-in crane
@@ -398,6 +412,22 @@ liftoff_m = 0.5
     let (cover, _) = planned_with(&dir, &other);
     assert!(cover.contains("BUT THE CHART'S SHEET STATES 9.8 m/s (Main boom 360!A51): CHECK wind chart_ms"), "{cover}");
     assert!(cover.contains("the chart's wind speed (the lift's chart_ms is not what its sheet states)"), "{cover}");
+    // A clearance less than a gust can swing the load: in capitals in the
+    // wind row, and to check first.
+    let tight = t13.replace("clearance_m = 1.0", "clearance_m = 0.4");
+    assert_ne!(tight, t13);
+    let (cover, _) = planned_with(&dir, &tight);
+    assert!(
+        cover.contains("; A GUST CAN SWING THE LOAD ")
+            && cover.contains(
+                " m, MORE THAN THE 0.40 m CLEARANCE THE PLAN KEEPS: tag lines, a lower wind limit or more clearance"
+            ),
+        "{cover}"
+    );
+    assert!(
+        cover.contains("the load's swing in the wind (a sudden gust at the permissible speed can swing it "),
+        "{cover}"
+    );
     // A lift's counterweight that is not the one the chart's sheet states.
     let cw100 = t13
         .replace("chart_config = \"Main boom 360\" }", "chart_config = \"Main boom 360\", counterweight_t = 100.0 }");
@@ -409,13 +439,20 @@ liftoff_m = 0.5
     // margin the planner keeps, and outlined in the site overview.
     let fenced = t13.replace(
         "wind = { cw = 1.2 }",
-        "wind = { cw = 1.2 }\nnot_over = [{ name = \"CONTROL ROOM\", corners_m = [[-30.0, -10.0], [-20.0, -10.0], [-20.0, 0.0], [-30.0, 0.0]] }]",
+        "wind = { cw = 1.2 }\nnot_over = [{ name = \"CONTROL ROOM\", corners_m = [[-30.0, -10.0], [-20.0, -10.0], [-20.0, 0.0], [-30.0, 0.0]] }, { name = \"NEIGHBOUR\", corners_m = [[60.0, -10.0], [70.0, -10.0], [70.0, 0.0]], crane_too = true }]",
     );
     assert_ne!(fenced, t13);
     let (cover, text) = planned_with(&dir, &fenced);
-    assert!(cover.contains("areas the load must never be over outlined in green"), "{cover}");
+    // The second, one the crane may not be over either (far off: the same
+    // plan), is said so.
     assert!(
-        text.replace('\n', " ").contains("CONTROL ROOM (x -30.0 to -20.0 m, y -10.0 to 0.0 m) (not_over): the planner keeps the load's footprint 0.25 m off each; the validator checks it never comes over one"),
+        cover.contains(
+            "areas the load (and the crane, where the inputs page says so) must never be over outlined in green"
+        ),
+        "{cover}"
+    );
+    assert!(
+        text.replace('\n', " ").contains("CONTROL ROOM (x -30.0 to -20.0 m, y -10.0 to 0.0 m); NEIGHBOUR (x 60.0 to 70.0 m, y -10.0 to 0.0 m), nor the crane (not_over): the planner keeps the load's footprint 0.25 m off each, and every part of the crane that swings (boom or jib, counterweight, rope, hook) off those marked 'nor the crane' (crane_too); the validator checks it never comes over one, nor the crane over those marked so"),
         "{text}"
     );
     // Mats too small for what the ground may bear: the cover asks to check

@@ -28,6 +28,17 @@
 //! so the highest the lift raises the boom head gives the mean wind at
 //! 10 m that gusts to the permissible speed there ([`gust_factor`]).
 //!
+//! The wind also pushes the hanging load off plumb. Held steadily by the
+//! wind's force on it, `F = q · A_W` with `q = ρ v² / 2` (EN 13000's air
+//! density, 1.25 kg/m³), against its weight `m_H g`, the load hangs at
+//! `tan θ = F / (m_H g)` from the vertical, so `ℓ · tan θ` off plumb at
+//! `ℓ` below the boom head ([`PermissibleWind::off_plumb_m`]); a gust that
+//! arrives suddenly can swing it up to twice as far (a pendulum given a
+//! sudden steady push), which is set against the clearance the plan keeps.
+//! At the permissible speed of a load that catches more wind than the
+//! chart holds for, `tan θ` is the same for every load: the reduction keeps
+//! `v² A_W / m_H` at the chart's.
+//!
 //! This module only works out those speeds. It must not decide whether a lift
 //! may go ahead: the wind on site on the day is the crane driver's to read,
 //! and the manufacturer's wind rules govern.
@@ -37,6 +48,12 @@ use serde::{Deserialize, Serialize};
 /// Wind area per tonne of hook load a mobile crane's chart speed holds
 /// for (m²/t).
 pub const CHART_AREA_PER_TONNE_M2: f64 = 1.2;
+
+/// EN 13000's air density for the wind's pressure (kg/m³).
+pub const AIR_DENSITY_KG_M3: f64 = 1.25;
+
+/// Standard gravity (m/s²).
+const G_M_S2: f64 = 9.80665;
 
 /// EN 13000's 3-second gust at `height_m` above the ground over the
 /// 10-minute mean wind speed at 10 m: (z / 10 m)^0.14 + 0.4, heights under
@@ -107,6 +124,10 @@ pub struct PermissibleWind {
     /// crane stands on (m), where the plan is known.
     #[serde(default)]
     pub boom_head_m: Option<f64>,
+    /// The longest the load hangs below the boom head in the lift, from the
+    /// sheave to the load's underside (m), where the plan is known.
+    #[serde(default)]
+    pub longest_hang_m: Option<f64>,
 }
 
 impl PermissibleWind {
@@ -137,7 +158,21 @@ impl PermissibleWind {
             wind_area_m2,
             permissible_ms: reduced.min(chart_ms),
             boom_head_m: None,
+            longest_hang_m: None,
         }
+    }
+
+    /// How far off plumb the permissible wind holds the load steadily, per
+    /// metre it hangs below the boom head: `tan θ = ρ v² A_W / (2 m_H g)`.
+    pub fn off_plumb_per_m(&self) -> f64 {
+        0.5 * AIR_DENSITY_KG_M3 * self.permissible_ms.powi(2) * self.wind_area_m2 / (self.hook_load_kg * G_M_S2)
+    }
+
+    /// How far off plumb (m) the permissible wind holds the load's underside
+    /// at the longest it hangs in the lift, where that is known; a sudden
+    /// gust can swing it up to twice as far.
+    pub fn off_plumb_m(&self) -> Option<f64> {
+        self.longest_hang_m.map(|l| l * self.off_plumb_per_m())
     }
 
     /// The 10-minute mean wind speed at 10 m above the ground that gusts to
@@ -167,8 +202,15 @@ impl PermissibleWind {
             ),
             _ => String::new(),
         };
+        let off_plumb = match (self.longest_hang_m, self.off_plumb_m()) {
+            (Some(l), Some(x)) => format!(
+                "; at that speed the wind holds the load {x:.2} m off plumb where it hangs longest in this lift, {l:.1} m below the boom head, and a sudden gust can swing it {:.2} m (tan θ = ρ v² A_W / (2 m_H g), ρ = {AIR_DENSITY_KG_M3} kg/m³)",
+                2.0 * x
+            ),
+            _ => String::new(),
+        };
         format!(
-            "{}: the chart's {:.1} m/s{from} holds for up to {CHART_AREA_PER_TONNE_M2:.1} m² of wind area per tonne of hook load; this load catches {:.1} m² ({area} at cW {:.2}) on {:.1} t, {per_tonne:.2} m² per tonne (v = v_chart · √(1.2 m²/t · m_H / A_W)){at_height}; the crane manufacturer's wind rules govern",
+            "{}: the chart's {:.1} m/s{from} holds for up to {CHART_AREA_PER_TONNE_M2:.1} m² of wind area per tonne of hook load; this load catches {:.1} m² ({area} at cW {:.2}) on {:.1} t, {per_tonne:.2} m² per tonne (v = v_chart · √(1.2 m²/t · m_H / A_W)){at_height}{off_plumb}; the crane manufacturer's wind rules govern",
             if self.reduced() {
                 format!("AT MOST {:.1} m/s FOR THIS LOAD, less than the chart's", self.permissible_ms)
             } else {
@@ -246,6 +288,33 @@ mod tests {
         assert!((mean * gust_factor(50.0) - vessel.permissible_ms).abs() < 1e-12);
         assert!(
             vessel.said().contains(&format!("; it is the 3 s gust at the boom head, which rises to 50.0 m above the crane's ground in this lift, where a 10-minute mean wind of {mean:.1} m/s at 10 m above the ground gusts to {:.1} m/s (EN 13000's profile, v(z) = [(z/10 m)^0.14 + 0.4] · v_10); the crane manufacturer's wind rules govern", vessel.permissible_ms)),
+            "{}",
+            vessel.said()
+        );
+    }
+
+    /// The wind's push on the hanging load: the force at the permissible
+    /// speed over the weight, times how far it hangs; the same angle for
+    /// every load whose speed is reduced (the chart's 1.2 m²/t at the
+    /// chart's speed), a smaller one where the chart's speed governs.
+    #[test]
+    fn the_load_hangs_off_plumb_as_the_wind_pushes_it() {
+        let spec = WindSpec { chart_ms: None, cw: 1.2, area_m2: None };
+        let mut vessel = PermissibleWind::of(9.8, None, &spec, [3.0, 8.0, 3.0], 16_000.0);
+        assert!(vessel.reduced());
+        let force_n = 0.5 * 1.25 * vessel.permissible_ms.powi(2) * 28.8;
+        assert!((vessel.off_plumb_per_m() - force_n / (16_000.0 * 9.80665)).abs() < 1e-15);
+        let at_chart = 0.5 * 1.25 * 9.8f64.powi(2) * 1.2 / (1000.0 * 9.80665);
+        assert!((vessel.off_plumb_per_m() - at_chart).abs() < 1e-12, "{}", vessel.off_plumb_per_m());
+        let small = PermissibleWind::of(9.8, None, &WindSpec { area_m2: Some(2.0), ..spec }, [1.0; 3], 16_000.0);
+        assert!(!small.reduced() && small.off_plumb_per_m() < at_chart / 5.0);
+        assert_eq!(vessel.off_plumb_m(), None);
+        assert!(!vessel.said().contains("off plumb"));
+        vessel.longest_hang_m = Some(30.0);
+        let x = vessel.off_plumb_m().unwrap();
+        assert!((x - 30.0 * at_chart).abs() < 1e-12 && (0.2..0.25).contains(&x), "{x}");
+        assert!(
+            vessel.said().contains(&format!("; at that speed the wind holds the load {x:.2} m off plumb where it hangs longest in this lift, 30.0 m below the boom head, and a sudden gust can swing it {:.2} m (tan θ = ρ v² A_W / (2 m_H g), ρ = 1.25 kg/m³); the crane manufacturer's", 2.0 * x)),
             "{}",
             vessel.said()
         );

@@ -190,7 +190,14 @@ fn checks_before_signing(
         v.push("the counterweight (the lift's is not its chart configuration's)".to_string());
     }
     if !task.crane.model.is_tower() {
-        match wind_of(inp, task) {
+        let wind = wind_of(inp, task, plan);
+        if let Some(swing) = wind.as_ref().ok().and_then(|(w, _)| gust_swing_past_clearance_m(task, w)) {
+            v.push(format!(
+                "the load's swing in the wind (a sudden gust at the permissible speed can swing it {swing:.2} m, more than the {:.2} m clearance the plan keeps)",
+                task.clearance_m
+            ));
+        }
+        match wind {
             Err(_) => v.push("the wind speed the load may be lifted in (not worked out)".to_string()),
             Ok((_, other)) if !other.is_empty() => {
                 v.push("the chart's wind speed (the lift's chart_ms is not what its sheet states)".to_string())
@@ -225,23 +232,49 @@ fn checks_before_signing(
 
 /// The wind speed the lift's load may be lifted in, with the speeds its
 /// chart's sheet states otherwise, or why it is not worked out
-/// ([`LiftTask::permissible_wind`], with what the chart's sheet states).
+/// ([`LiftTask::permissible_wind`], with what the chart's sheet states);
+/// with the highest the plan raises the boom head and the longest it hangs
+/// the load.
 fn wind_of(
     inp: &Inputs,
     task: &LiftTask,
+    plan: &LiftPlan,
 ) -> std::result::Result<(liftplan_core::wind::PermissibleWind, Vec<liftplan_core::capacity::StatedOnChart>), String> {
     let stated = inp.chart_wind.iter().find(|(name, _)| *name == task.chart_config).map_or(&[][..], |(_, s)| &s[..]);
-    task.permissible_wind(stated)
+    task.permissible_wind(stated).map(|(mut w, other)| {
+        (w.boom_head_m, w.longest_hang_m) = (Some(boom_head_highest_m(task, plan)), Some(longest_hang_m(task, plan)));
+        (w, other)
+    })
+}
+
+/// The plan's configurations at which its highs and lows are reached: its
+/// start and the end of each move, as each move changes one joint steadily.
+fn move_ends(plan: &LiftPlan) -> impl Iterator<Item = &liftplan_core::crane::Config> {
+    std::iter::once(&plan.start).chain(plan.moves.iter().map(|m| &m.to))
 }
 
 /// The highest the boom head rises in the plan, above the ground the crane
 /// stands on (m): at the end of a move, as a luff raises or lowers it
 /// steadily and a swing, hoist or turn of the load leaves it.
 fn boom_head_highest_m(task: &LiftTask, plan: &LiftPlan) -> f64 {
-    std::iter::once(&plan.start)
-        .chain(plan.moves.iter().map(|m| &m.to))
-        .map(|c| task.crane.sheave(c).z - task.crane.placement.z_m)
+    move_ends(plan).map(|c| task.crane.sheave(c).z - task.crane.placement.z_m).fold(f64::NEG_INFINITY, f64::max)
+}
+
+/// The longest the load hangs below the boom head in the plan, from the
+/// sheave to the load's underside (m): rope, hook block, rigging and load,
+/// longest at the end of a move, as a hoist pays the rope out steadily and
+/// the other joints leave it.
+fn longest_hang_m(task: &LiftTask, plan: &LiftPlan) -> f64 {
+    move_ends(plan)
+        .map(|c| task.crane.sheave(c).z - task.crane.load_bottom_z(c, &task.load))
         .fold(f64::NEG_INFINITY, f64::max)
+}
+
+/// Whether a sudden gust at the permissible wind can swing the load farther
+/// than the clearance the plan keeps (twice the steady push's
+/// [`liftplan_core::wind::PermissibleWind::off_plumb_m`]), and how far.
+fn gust_swing_past_clearance_m(task: &LiftTask, w: &liftplan_core::wind::PermissibleWind) -> Option<f64> {
+    w.off_plumb_m().map(|x| 2.0 * x).filter(|swing| *swing > task.clearance_m)
 }
 
 /// What reading the lift's chart configuration warned of, where it did.
@@ -485,20 +518,28 @@ pub fn document(
     }
     if !task.crane.model.is_tower() {
         // With the height the boom head rises to, for the mean wind at
-        // 10 m a forecast gives.
-        let at_head = wind_of(inp, task).map(|(mut w, other)| {
-            w.boom_head_m = Some(boom_head_highest_m(task, plan));
-            (w, other)
-        });
+        // 10 m a forecast gives, and how far the wind pushes the load.
         rows.push((
             "Wind",
-            match at_head {
-                Ok((w, other)) if other.is_empty() => w.said(),
-                Ok((w, other)) => format!(
-                    "{}; BUT THE CHART'S SHEET STATES {}: CHECK wind chart_ms against the chart",
-                    w.said(),
-                    other.iter().map(|o| format!("{:.1} m/s ({})", o.value, o.cell)).collect::<Vec<_>>().join(", ")
-                ),
+            match wind_of(inp, task, plan) {
+                Ok((w, other)) => {
+                    let swing = match gust_swing_past_clearance_m(task, &w) {
+                        Some(swing) => format!(
+                            "; A GUST CAN SWING THE LOAD {swing:.2} m, MORE THAN THE {:.2} m CLEARANCE THE PLAN KEEPS: tag lines, a lower wind limit or more clearance",
+                            task.clearance_m
+                        ),
+                        None => String::new(),
+                    };
+                    let sheet = if other.is_empty() {
+                        String::new()
+                    } else {
+                        format!(
+                            "; BUT THE CHART'S SHEET STATES {}: CHECK wind chart_ms against the chart",
+                            other.iter().map(|o| format!("{:.1} m/s ({})", o.value, o.cell)).collect::<Vec<_>>().join(", ")
+                        )
+                    };
+                    format!("{}{swing}{sheet}", w.said())
+                }
                 Err(why) => format!("not worked out: {why}"),
             },
         ));
@@ -858,7 +899,7 @@ pub fn document(
         &format!(
             "This plan was generated by liftplan from the inputs listed on page 2 and checked by its independent validator. It does not replace the lift engineer's review: check the crane set-up ({}) on site{}, confirm the load's mass and centre of gravity, and confirm that nothing on site has changed since the scans were taken (their dates, as the scan files give them, are on the inputs page).",
             words.set_up,
-            match wind_of(inp, task) {
+            match wind_of(inp, task, plan) {
                 _ if task.crane.model.is_tower() => String::new(),
                 Ok((w, other)) if !other.is_empty() => {
                     format!(
