@@ -452,7 +452,7 @@ liftoff_m = 0.5
         "{cover}"
     );
     assert!(
-        text.replace('\n', " ").contains("CONTROL ROOM (x -30.0 to -20.0 m, y -10.0 to 0.0 m); NEIGHBOUR (x 60.0 to 70.0 m, y -10.0 to 0.0 m), nor the crane (not_over): the planner keeps the load's footprint 0.25 m off each, and every part of the crane that swings (boom or jib, counterweight, rope, hook) off those marked 'nor the crane' (crane_too); the validator checks it never comes over one, nor the crane over those marked so"),
+        text.replace('\n', " ").contains("CONTROL ROOM (x -30.0 to -20.0 m, y -10.0 to 0.0 m); NEIGHBOUR (x 60.0 to 70.0 m, y -10.0 to 0.0 m), nor the crane (not_over): the planner keeps the load, its hook block and rope 0.25 m off each in plan, and every other part of the crane that swings (boom or jib, counterweight) off those marked 'nor the crane' (crane_too); the validator checks they never come over one, nor the crane over those marked so"),
         "{text}"
     );
     // Mats too small for what the ground may bear: the cover asks to check

@@ -210,7 +210,8 @@ pub struct NotOver {
     pub crane_too: bool,
 }
 
-/// How far the planner keeps the load's footprint off a `not_over` area
+/// How far the planner keeps the footprints of what hangs from the crane
+/// (and of the crane, where it may not be over it either) off a `not_over` area
 /// (m): at least the validator's half spacing of its samples at its
 /// coarsest setting, so that a path the planner finds clear the validator
 /// finds clear too.
@@ -423,12 +424,14 @@ impl LiftTask {
     }
 
     /// The first of the lift's `not_over` areas something comes within
-    /// `within_m` of at `c`, and what: the load's footprint (the plan
-    /// outline of its box), against every area; then, against the areas
-    /// the crane may not be over either (`crane_too`), the plan outline of
-    /// each part that turns with the swing, in the order of
-    /// [`CraneSetup::part_kinds`]. The carrier, its outriggers and a tower's
-    /// mast stand where the lift file puts them; they are not looked at.
+    /// `within_m` of at `c`, and what: what hangs from the crane (the load's
+    /// footprint, the plan outline of its box, which its rigging's is too;
+    /// the hook block's; the hoist rope's), against every area; then,
+    /// against the areas the crane may not be over either (`crane_too`),
+    /// the plan outline of each other part that turns with the swing, in
+    /// the order of [`CraneSetup::part_kinds`]. The carrier, its outriggers
+    /// and a tower's mast stand where the lift file puts them; they are not
+    /// looked at.
     pub fn not_over_near(&self, c: &Config, within_m: f64) -> Option<(PartKind, &NotOver)> {
         if self.not_over.is_empty() {
             return None;
@@ -440,16 +443,18 @@ impl LiftTask {
                 .filter(|a| a.crane_too || !crane_too_only)
                 .find(|a| crate::obb::footprint_near_area(&footprint, &a.corners_m, within_m))
         };
-        if let Some(a) = near(&self.crane.load_obb(c, &self.load), false) {
-            return Some((PartKind::Load, a));
-        }
-        if !self.not_over.iter().any(|a| a.crane_too) {
-            return None;
+        const HANGING: [PartKind; 3] = [PartKind::Load, PartKind::HookBlock, PartKind::Rope];
+        let hanging = HANGING.iter().find_map(|&kind| {
+            let part = self.crane.part(kind, c, &self.load)?;
+            near(&part, false).map(|a| (kind, a))
+        });
+        if hanging.is_some() || !self.not_over.iter().any(|a| a.crane_too) {
+            return hanging;
         }
         self.crane
             .part_kinds()
             .iter()
-            .filter(|k| k.dependence() != Dependence::Fixed && **k != PartKind::Load)
+            .filter(|k| k.dependence() != Dependence::Fixed && !HANGING.contains(k) && **k != PartKind::Rigging)
             .find_map(|&kind| {
                 let part = self.crane.part(kind, c, &self.load)?;
                 near(&part, true).map(|a| (kind, a))
@@ -792,23 +797,34 @@ fn ends_off_not_over(task: &LiftTask) -> Result<(), String> {
     for (which, c) in [("pick", &task.pick), ("set", &task.set)] {
         match task.not_over_near(c, NOT_OVER_MARGIN_M) {
             None => {}
-            Some((PartKind::Load, a)) => {
+            Some((part, a)) if part.dependence() == Dependence::Full => {
                 return Err(format!(
-                    "lift '{}': the load at the {which} is over not_over '{}' or within {NOT_OVER_MARGIN_M} m of it: a load is lifted and set down outside the areas it must not be over",
-                    task.id, a.name
+                    "lift '{}': {} at the {which} is over not_over '{}' or within {NOT_OVER_MARGIN_M} m of it: a load is lifted and set down outside the areas it must not be over",
+                    task.id,
+                    over_not_over_said(part),
+                    a.name
                 ));
             }
             Some((part, a)) => {
                 return Err(format!(
-                    "lift '{}': the crane's {} at the {which} is over not_over '{}' (crane_too) or within {NOT_OVER_MARGIN_M} m of it: the crane is set up where it reaches the pick and the set without being over it",
+                    "lift '{}': {} at the {which} is over not_over '{}' (crane_too) or within {NOT_OVER_MARGIN_M} m of it: the crane is set up where it reaches the pick and the set without being over it",
                     task.id,
-                    part.name(),
+                    over_not_over_said(part),
                     a.name
                 ));
             }
         }
     }
     Ok(())
+}
+
+/// What [`LiftTask::not_over_near`] found over an area, in words: "the
+/// load", "the hook block", "the crane's boom".
+pub fn over_not_over_said(part: PartKind) -> String {
+    match part {
+        PartKind::Load | PartKind::HookBlock | PartKind::Rope | PartKind::Rigging => format!("the {}", part.name()),
+        _ => format!("the crane's {}", part.name()),
+    }
 }
 
 #[cfg(test)]
@@ -871,6 +887,15 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         let e = with(vec![area("edge", 23.1, 0.0, 30.0, 4.0)]).unwrap_err();
         assert!(e.contains("the load at the pick is over not_over 'edge'"), "{e}");
         assert!(with(vec![area("off", 23.3, 0.0, 30.0, 4.0)]).is_ok());
+        // What hangs above the load is kept off too: with the centre of
+        // gravity 2.9 m along the load from its middle, the hook block
+        // (0.8 m wide) hangs over x = 22.9 m, past the load's end.
+        let mut sp = spec();
+        sp.load.cog_m = [2.9, 0.0, 0.0];
+        sp.not_over = vec![area("beside", 23.3, 0.0, 30.0, 10.0)];
+        assert!(with(sp.not_over.clone()).is_ok());
+        let e = sp.resolve(crane()).unwrap_err();
+        assert!(e.contains("the hook block at the pick is over not_over 'beside' or within 0.25 m of it"), "{e}");
         let mut two = area("line", 0.0, 0.0, 1.0, 1.0);
         two.corners_m.truncate(2);
         assert!(with(vec![two]).unwrap_err().contains("not_over 'line' needs 3 to 200 corners_m"));

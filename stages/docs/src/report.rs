@@ -678,10 +678,10 @@ pub fn document(
         rows.push((
             "Never over",
             format!(
-                "{} (not_over): the planner keeps the load's footprint {:.2} m off each{}; the validator checks it never comes over one{}",
+                "{} (not_over): the planner keeps the load, its hook block and rope {:.2} m off each in plan{}; the validator checks they never come over one{}",
                 areas.join("; "),
                 liftplan_core::lift::NOT_OVER_MARGIN_M,
-                if crane_too { ", and every part of the crane that swings (boom or jib, counterweight, rope, hook) off those marked 'nor the crane' (crane_too)" } else { "" },
+                if crane_too { ", and every other part of the crane that swings (boom or jib, counterweight) off those marked 'nor the crane' (crane_too)" } else { "" },
                 if crane_too { ", nor the crane over those marked so" } else { "" }
             ),
         ));

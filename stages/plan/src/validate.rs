@@ -1911,9 +1911,11 @@ pub fn validate(
         let least_margin_m = least_at_samples_m.min(least_between_m);
         let mut move_problems: Vec<String> = Vec::new();
         if let Some((part, area)) = over_not_over(task, m, moved_m, rules.sample_m) {
-            let what =
-                if part == PartKind::Load { "the load".to_string() } else { format!("the crane's {}", part.name()) };
-            move_problems.push(format!("{what} comes over not_over '{}'", area.name));
+            move_problems.push(format!(
+                "{} comes over not_over '{}'",
+                liftplan_core::lift::over_not_over_said(part),
+                area.name
+            ));
         }
         let mut tight: Option<SampleCheck> = None;
         let mut util: Option<SampleCheck> = None;
