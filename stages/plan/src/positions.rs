@@ -420,7 +420,13 @@ pub fn search(task: &LiftTask, site: &Site, chart: &ChartConfig, s: &Settings, s
         // position over, and where one passed over is kept.
         let mut checked = None;
         for turn in headings {
-            let Some(mut found) = set_up_at(task, site, chart, s, at, *turn, moved_m) else { continue };
+            // One whose pads' pressure is to be checked is of use only as
+            // the first such here, and while fewer are kept than are planned
+            // none near: otherwise it is passed by before its costly checks.
+            let flagged_wanted = checked.is_none() && to_check.len() < MOST_PLANNED && !near(&to_check, at);
+            let Some(mut found) = set_up_at(task, site, chart, s, at, *turn, moved_m, flagged_wanted) else {
+                continue;
+            };
             if !found.0.pads_to_check() {
                 found.0.under_pads = crate::validate::under_pads(&found.1, site.world);
                 if !found.0.pads_to_check() {
@@ -442,11 +448,15 @@ pub fn search(task: &LiftTask, site: &Site, chart: &ChartConfig, s: &Settings, s
         return Found::NoClearSetUp { looked_at };
     }
     // Planned in turn until one plans whose pads are not to be checked,
-    // through the whole lift; those left are not planned.
+    // through the whole lift; those left are not planned. One passed over
+    // for its pads stays so however it plans (the planned lift's most
+    // loaded pad is at least its ends'), so once one has planned, those
+    // after it could never be named and are not planned either.
     let mut tried = Vec::new();
-    let mut found_clean = false;
-    for (mut t, moved) in clear.into_iter().chain(to_check) {
-        if found_clean {
+    let (mut found_clean, mut planned_any) = (false, false);
+    let flagged_from = clear.len();
+    for (i, (mut t, moved)) in clear.into_iter().chain(to_check).enumerate() {
+        if found_clean || (planned_any && i >= flagged_from) {
             t.outcome = Outcome::NotPlanned;
         } else {
             t.outcome = match crate::plan_lift_hinting(&moved, site, s, seed, false) {
@@ -463,6 +473,7 @@ pub fn search(task: &LiftTask, site: &Site, chart: &ChartConfig, s: &Settings, s
                 }
                 Err(e) => Outcome::Refused(e.to_string()),
             };
+            planned_any |= t.planned_steps().is_some();
             found_clean = t.planned_steps().is_some() && !t.pads_to_check();
         }
         tried.push(t);
@@ -474,7 +485,11 @@ pub fn search(task: &LiftTask, site: &Site, chart: &ChartConfig, s: &Settings, s
 /// heading, at the height of the ground scanned there, where the crane holds
 /// the pick and the set, its chart carries the load at both, its set-up is
 /// clear and level, and the lift-off, the set-down and where the search
-/// starts and ends are clear.
+/// starts and ends are clear; not where its most loaded pad at the pick or
+/// the set is to be checked (more pressure than the ground may bear, or the
+/// crane file's masses tipping it) unless `flagged_wanted`, which is found
+/// before the costly checks.
+#[allow(clippy::too_many_arguments)]
 fn set_up_at(
     task: &LiftTask,
     site: &Site,
@@ -483,10 +498,21 @@ fn set_up_at(
     at: [f64; 2],
     turn_deg: f64,
     moved_m: f64,
+    flagged_wanted: bool,
 ) -> Option<(Tried, LiftTask)> {
     let heading_deg = (task.crane.placement.heading_rad.to_degrees() + turn_deg).rem_euclid(360.0).round();
     let placement = Placement { x_m: at[0], y_m: at[1], heading_rad: heading_deg.to_radians(), ..task.crane.placement };
     let moved = task.moved_to(placement).ok()?;
+    // The most loaded pad at the pick and the set (the planned lift's most
+    // replaces it; the ground's height below does not change it); what lies
+    // under the pads is the caller's to look for.
+    let pads = [moved.start(), moved.goal()]
+        .iter()
+        .filter_map(|c| pads_at(&moved, c))
+        .max_by(|a, b| a.load_kg.total_cmp(&b.load_kg));
+    if !flagged_wanted && pads.is_some_and(|p| p.needs_checking(moved.ground.as_ref())) {
+        return None;
+    }
     // The ground there: the lift's level where none is scanned; else its
     // median, to the centimetre the lift file is given in, and no dip under
     // the carrier and outriggers deeper than the set-up check's tolerance.
@@ -530,12 +556,6 @@ fn set_up_at(
     if ck.config(&moved.start()).is_err() || ck.config(&moved.goal()).is_err() {
         return None;
     }
-    // The most loaded pad at the pick and the set (the planned lift's most
-    // replaces it); what lies under the pads is the caller's to look for.
-    let pads = [moved.start(), moved.goal()]
-        .iter()
-        .filter_map(|c| pads_at(&moved, c))
-        .max_by(|a, b| a.load_kg.total_cmp(&b.load_kg));
     let tried = Tried {
         x_m: at[0],
         y_m: at[1],
