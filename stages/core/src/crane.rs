@@ -696,6 +696,27 @@ impl CraneSetup {
         Ok(CraneSetup { model, placement })
     }
 
+    /// How far the superstructure of a mobile crane reaches from its
+    /// slewing axis in plan (m), and which of its parts (superstructure,
+    /// cockpit, counterweight) reaches that far: the circle its tail sweeps
+    /// as it slews, which people are kept out of. `None` for a tower crane,
+    /// whose slewing parts turn high overhead.
+    pub fn tail_swing_m(&self) -> Option<(f64, PartKind)> {
+        if self.model.is_tower() {
+            return None;
+        }
+        let o = self.slew_center();
+        let at = Config { swing_rad: 0.0, radial: 0.0, hoist_m: 0.0, load_yaw_rad: 0.0 };
+        let load = LoadShape { size_m: [1.0; 3], cog_m: [0.0; 3], rigging_height_m: 0.0 };
+        [PartKind::Superstructure, PartKind::Cockpit, PartKind::Counterweight]
+            .into_iter()
+            .filter_map(|k| {
+                let b = self.part(k, &at, &load)?;
+                Some((b.corners().iter().map(|p| (p.x - o.x).hypot(p.y - o.y)).fold(0.0, f64::max), k))
+            })
+            .max_by(|a, b| a.0.total_cmp(&b.0))
+    }
+
     pub fn slew_center(&self) -> Point3 {
         Point3::new(self.placement.x_m, self.placement.y_m, self.placement.z_m)
     }
@@ -1000,6 +1021,26 @@ mod tests {
 
     fn load() -> LoadShape {
         LoadShape { size_m: [4.0, 2.0, 3.0], cog_m: [0.3, -0.2, 0.0], rigging_height_m: 4.0 }
+    }
+
+    /// The ltm-1100's counterweight, 1.6 m long and 3.0 m wide centred
+    /// 3.8 m behind the slewing axis, reaches farthest: its back corners,
+    /// √(4.6² + 1.5²) m out, at every swing and wherever the crane stands.
+    #[test]
+    fn the_tail_swing_is_the_counterweights_back_corners() {
+        let c = mobile();
+        let (r, part) = c.tail_swing_m().unwrap();
+        assert_eq!(part, PartKind::Counterweight);
+        assert!((r - (4.6f64 * 4.6 + 1.5 * 1.5).sqrt()).abs() < 1e-9, "{r}");
+        let o = c.slew_center();
+        for swing in [0.4, 2.0, -2.9] {
+            let at = Config { swing_rad: swing, radial: 0.5, hoist_m: 10.0, load_yaw_rad: 0.0 };
+            let cw = c.part(PartKind::Counterweight, &at, &load()).unwrap();
+            let far = cw.corners().iter().map(|p| (p.x - o.x).hypot(p.y - o.y)).fold(0.0, f64::max);
+            assert!((far - r).abs() < 1e-9, "{far} at {swing}");
+        }
+        let tower = CraneSetup::new(builtin("tower-hh-60").unwrap(), c.placement).unwrap();
+        assert_eq!(tower.tail_swing_m(), None);
     }
 
     #[test]

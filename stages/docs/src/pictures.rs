@@ -26,6 +26,8 @@ pub const UNSEEN: Rgb = [25, 25, 25];
 pub const UNSEEN_UNDER_CRANE: Rgb = [130, 130, 130];
 /// The outline of an area the load must never be over (`not_over`).
 pub const NOT_OVER: Rgb = [20, 150, 60];
+/// The circle a mobile crane's superstructure sweeps as it slews.
+pub const TAIL_SWING: Rgb = [200, 0, 150];
 
 /// The site as the pictures show it: plant mesh and a thinned cloud, in
 /// `f32` metres from [`SiteView::origin`].
@@ -182,6 +184,7 @@ pub fn overview(site: &SiteView, task: &LiftTask, plan: &LiftPlan, others: &[Obb
     s.triangles.extend(crane_batches(site, task, &plan.start));
     s.triangles.push(site.obb_batch(&task.crane.load_obb(&plan.set, &task.load), [90, 160, 230]));
     s.lines.extend(not_over_outlines(site, task));
+    s.lines.extend(tail_swing_circle(site, task));
     s.lines.push(Polyline {
         points: load_path(site, task, plan, plan.moves.len()),
         color: PATH,
@@ -205,6 +208,21 @@ fn not_over_outlines(site: &SiteView, task: &LiftTask) -> Vec<Polyline> {
             Polyline { points, color: NOT_OVER, width_px: 2.5, on_top: true }
         })
         .collect()
+}
+
+/// The circle a mobile crane's superstructure sweeps as it slews
+/// ([`liftplan_core::crane::CraneSetup::tail_swing_m`]), on the ground it
+/// stands on, drawn over everything.
+fn tail_swing_circle(site: &SiteView, task: &LiftTask) -> Option<Polyline> {
+    let (r, _) = task.crane.tail_swing_m()?;
+    let o = task.crane.slew_center();
+    let points = (0..=96)
+        .map(|k| {
+            let a = k as f64 / 96.0 * std::f64::consts::TAU;
+            site.local([o.x + r * a.cos(), o.y + r * a.sin(), o.z + 0.05])
+        })
+        .collect();
+    Some(Polyline { points, color: TAIL_SWING, width_px: 2.0, on_top: true })
 }
 
 /// Perspective view at the end of step `n` (1-based) with the path so far.

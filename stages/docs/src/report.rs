@@ -574,7 +574,14 @@ pub fn document(
     let others: Vec<Obb> = liftplan_plan::other_loads(&inp.tasks, k).into_iter().map(|(b, _)| b).collect();
     let overview = pictures::overview(site, task, plan, &others, 1400, 1000);
     let caption = format!(
-        "Site overview (top view, north up): crane at the pick position, load path in red, load at set in light blue{}{}{}.",
+        "Site overview (top view, north up): crane at the pick position{}, load path in red, load at set in light blue{}{}{}.",
+        match task.crane.tail_swing_m() {
+            Some((r, part)) => format!(
+                ", the circle its tail sweeps in magenta (its {} {r:.2} m from the slewing axis: keep people out)",
+                part.name()
+            ),
+            None => String::new(),
+        },
         if others.is_empty() { "" } else { ", other lifts' loads in violet" },
         match (task.not_over.is_empty(), task.not_over.iter().any(|a| a.crane_too)) {
             (true, _) => "",
