@@ -78,13 +78,18 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     let flat = text.replace('\n', " ");
     assert!(flat.contains("on site and the wind (AT MOST 8.0 m/s FOR THIS LOAD: cover)"), "{text}");
     // The circle the AC 700's superstructure sweeps, its counterweight's
-    // back corners out (the built-in model's), to keep people out of.
+    // back corners out (the built-in model's), and the ground under the
+    // load's path, to keep people out of.
     let ac700 = liftplan_core::crane::builtin("ac-700").unwrap();
     let placed =
         liftplan_core::crane::Placement { x_m: 0.0, y_m: 0.0, z_m: 0.0, heading_rad: 0.0, boom_length_m: 40.0 };
     let (tail_m, _) = liftplan_core::crane::CraneSetup::new(ac700, placed).unwrap().tail_swing_m().unwrap();
     assert!(
-        cover.contains(&format!("crane at the pick position, the circle its tail sweeps in magenta (its counterweight {tail_m:.2} m from the slewing axis: keep people out), load path in red")),
+        cover.contains(&format!("crane at the pick position, its tail's swing in magenta (counterweight {tail_m:.2} m from the slewing axis), load path in red, the ground under it in pink (")),
+        "{cover}"
+    );
+    assert!(
+        cover.contains("; keep people out of the tail's swing, and from under the load while it moves."),
         "{cover}"
     );
     // The outrigger pads at their most, estimated from the built-in crane

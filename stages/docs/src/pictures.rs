@@ -26,6 +26,8 @@ pub const UNSEEN: Rgb = [25, 25, 25];
 pub const UNSEEN_UNDER_CRANE: Rgb = [130, 130, 130];
 /// The outline of an area the load must never be over (`not_over`).
 pub const NOT_OVER: Rgb = [20, 150, 60];
+/// The ground the load passes over.
+pub const UNDER_LOAD: Rgb = [248, 205, 205];
 /// The circle a mobile crane's superstructure sweeps as it slews.
 pub const TAIL_SWING: Rgb = [200, 0, 150];
 
@@ -127,16 +129,16 @@ fn crane_batches(site: &SiteView, task: &LiftTask, c: &Config) -> Vec<TriangleBa
 
 /// Cells of `area` that no scan saw, as flat tiles of `color` just above
 /// the crane's set-up level `z_m`, one batch.
-fn unseen_batch(
+fn cells_batch(
     site: &SiteView,
     c: &liftplan_plan::coverage::Coverage,
-    area: &liftplan_plan::coverage::Area,
+    cells: &[[i32; 2]],
     z_m: f64,
     color: [u8; 3],
 ) -> TriangleBatch {
     let mut positions = Vec::new();
     let mut triangles = Vec::new();
-    for &[i, j] in &area.unscanned_cells {
+    for &[i, j] in cells {
         let (x0, y0) = (i as f64 * c.cell_m, j as f64 * c.cell_m);
         let n = positions.len() as u32;
         for (dx, dy) in [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)] {
@@ -172,13 +174,17 @@ pub fn overview(site: &SiteView, task: &LiftTask, plan: &LiftPlan, others: &[Obb
     s.triangles.extend(others.iter().map(|b| site.obb_batch(b, OTHER_LOAD)));
     // What only the crane's boom or superstructure passes over unseen, in
     // grey under what the load does, in black.
+    // The ground under the load's path, under both.
     if let Some(c) = &plan.summary.coverage {
         let z = task.crane.placement.z_m;
+        if !c.under_load.passed_cells.is_empty() {
+            s.triangles.push(cells_batch(site, c, &c.under_load.passed_cells, z - 0.01, UNDER_LOAD));
+        }
         if !c.under_crane.unscanned_cells.is_empty() {
-            s.triangles.push(unseen_batch(site, c, &c.under_crane, z, UNSEEN_UNDER_CRANE));
+            s.triangles.push(cells_batch(site, c, &c.under_crane.unscanned_cells, z, UNSEEN_UNDER_CRANE));
         }
         if !c.under_load.unscanned_cells.is_empty() {
-            s.triangles.push(unseen_batch(site, c, &c.under_load, z + 0.01, UNSEEN));
+            s.triangles.push(cells_batch(site, c, &c.under_load.unscanned_cells, z + 0.01, UNSEEN));
         }
     }
     s.triangles.extend(crane_batches(site, task, &plan.start));
@@ -381,10 +387,10 @@ mod tests {
             },
             ..Default::default()
         };
-        let b = unseen_batch(&site, &c, &c.under_load, 102.0, UNSEEN);
+        let b = cells_batch(&site, &c, &c.under_load.unscanned_cells, 102.0, UNSEEN);
         assert_eq!((b.positions.len(), b.triangles.len(), b.color), (8, 4, UNSEEN));
         // Under the crane only: none listed here, no tile.
-        assert!(unseen_batch(&site, &c, &c.under_crane, 102.0, UNSEEN_UNDER_CRANE).triangles.is_empty());
+        assert!(cells_batch(&site, &c, &c.under_crane.unscanned_cells, 102.0, UNSEEN_UNDER_CRANE).triangles.is_empty());
         let o = site.origin;
         assert_eq!(b.positions[0], [(118.0 - o[0]) as f32, (229.0 - o[1]) as f32, 102.05]);
         assert_eq!(b.positions[6], [(120.0 - o[0]) as f32, (230.0 - o[1]) as f32, 102.05]);

@@ -573,13 +573,23 @@ pub fn document(
     let k = inp.tasks.iter().position(|t| t.id == task.id).unwrap_or(0);
     let others: Vec<Obb> = liftplan_plan::other_loads(&inp.tasks, k).into_iter().map(|(b, _)| b).collect();
     let overview = pictures::overview(site, task, plan, &others, 1400, 1000);
+    let tail = task.crane.tail_swing_m();
+    let under_m2 = plan.summary.coverage.as_ref().map(|c| c.under_load.passed_m2).filter(|m2| *m2 > 0.0);
+    let keep_out = match (tail.is_some(), under_m2.is_some()) {
+        (true, true) => "; keep people out of the tail's swing, and from under the load while it moves",
+        (true, false) => "; keep people out of the tail's swing",
+        (false, true) => "; keep people from under the load while it moves",
+        (false, false) => "",
+    };
     let caption = format!(
-        "Site overview (top view, north up): crane at the pick position{}, load path in red, load at set in light blue{}{}{}.",
-        match task.crane.tail_swing_m() {
-            Some((r, part)) => format!(
-                ", the circle its tail sweeps in magenta (its {} {r:.2} m from the slewing axis: keep people out)",
-                part.name()
-            ),
+        "Site overview (top view, north up): crane at the pick position{}, load path in red{}, load at set in light blue{}{}{}{keep_out}.",
+        match tail {
+            Some((r, part)) =>
+                format!(", its tail's swing in magenta ({} {r:.2} m from the slewing axis)", part.name()),
+            None => String::new(),
+        },
+        match under_m2 {
+            Some(m2) => format!(", the ground under it in pink ({m2:.0} m²)"),
             None => String::new(),
         },
         if others.is_empty() { "" } else { ", other lifts' loads in violet" },

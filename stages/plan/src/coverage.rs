@@ -63,6 +63,11 @@ pub struct Area {
     /// [`MAX_CELLS_LISTED`], for the pictures.
     #[serde(default)]
     pub unscanned_cells: Vec<[i32; 2]>,
+    /// Every cell passed over, the same way, at most [`MAX_CELLS_LISTED`]:
+    /// listed under the load only, for the picture of the ground people are
+    /// kept off while it moves.
+    #[serde(default)]
+    pub passed_cells: Vec<[i32; 2]>,
 }
 
 /// The most unscanned cells an [`Area`] lists.
@@ -268,7 +273,7 @@ pub fn of_lift(task: &LiftTask, moves: &[Move], world: &World, also_seen: &[Obb]
         window = ((window.0.0.min(i), window.0.1.min(j)), (window.1.0.max(i), window.1.1.max(j)));
     }
     let modelled = modelled_cells(world, window);
-    let area = |cells: &HashMap<Cell, f64>| {
+    let area = |cells: &HashMap<Cell, f64>, list_passed: bool| {
         let cell2 = CELL_M * CELL_M;
         let unscanned: Vec<(&Cell, &f64)> = cells.iter().filter(|(c, _)| !scanned.contains(c)).collect();
         let unknown = unscanned.iter().filter(|(c, _)| !modelled.contains(c)).count();
@@ -285,23 +290,27 @@ pub fn of_lift(task: &LiftTask, moves: &[Move], world: &World, also_seen: &[Obb]
             }
             e
         });
-        let mut listed: Vec<[i32; 2]> = unscanned.iter().map(|(c, _)| [c.0, c.1]).collect();
-        listed.sort_unstable();
-        listed.truncate(MAX_CELLS_LISTED);
+        let listed = |cells: &mut dyn Iterator<Item = &Cell>| {
+            let mut v: Vec<[i32; 2]> = cells.map(|c| [c.0, c.1]).collect();
+            v.sort_unstable();
+            v.truncate(MAX_CELLS_LISTED);
+            v
+        };
         Area {
             passed_m2: cells.len() as f64 * cell2,
             unscanned_m2: unscanned.len() as f64 * cell2,
             unknown_m2: unknown as f64 * cell2,
             unscanned_within: within,
             unscanned_lowest_z_m: lowest,
-            unscanned_cells: listed,
+            unscanned_cells: listed(&mut unscanned.iter().map(|(c, _)| *c)),
+            passed_cells: if list_passed { listed(&mut cells.keys()) } else { Vec::new() },
         }
     };
     Coverage {
         cell_m: CELL_M,
         scans,
-        under_load: area(&load),
-        under_crane: area(&crane),
+        under_load: area(&load, true),
+        under_crane: area(&crane, false),
         crane_parts: task.crane.model.words().moving_structure.to_string(),
     }
 }
@@ -371,6 +380,12 @@ mod tests {
         assert_eq!(a.unscanned_cells.len() as f64, a.unscanned_m2);
         assert!(a.unscanned_cells.windows(2).all(|w| w[0] < w[1]));
         assert!(a.unscanned_cells.iter().all(|c| hole[0] <= c[0] as f64 && (c[0] + 1) as f64 <= hole[2]));
+        // Every cell passed over is listed under the load (in order, the
+        // unscanned among them), none under the crane.
+        assert_eq!(a.passed_cells.len() as f64, a.passed_m2);
+        assert!(a.passed_cells.windows(2).all(|w| w[0] < w[1]));
+        assert!(a.unscanned_cells.iter().all(|c| a.passed_cells.binary_search(c).is_ok()));
+        assert!(holed.under_crane.passed_m2 > 0.0 && holed.under_crane.passed_cells.is_empty());
         // The load hangs from a 40 m boom at its pick rope: well above ground.
         let z = a.unscanned_lowest_z_m.unwrap();
         assert!(z > 0.0 && z < 30.0, "{z}");
