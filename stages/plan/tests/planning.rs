@@ -43,6 +43,14 @@ fn site() -> TriMesh {
     m
 }
 
+/// A slab 120 m square and nothing else: the depth map and the
+/// validator's world of it.
+fn open_slab() -> (Mdm, World) {
+    let mut slab = TriMesh::default();
+    box_part(&mut slab, "SLAB", [-60.0, -60.0, -0.3], [60.0, 60.0, 0.0]);
+    (map(&slab), World::new(&slab, &[], &[]).unwrap())
+}
+
 fn map(mesh: &TriMesh) -> Mdm {
     let inp = liftplan_depthmap::Inputs { points: vec![], ground: vec![], mesh: mesh.clone() };
     liftplan_depthmap::build_cpu(&inp, &liftplan_depthmap::Settings::default()).unwrap().0
@@ -1266,10 +1274,7 @@ fn chart_reaching(reach_m: f64) -> liftplan_core::capacity::CapacityTable {
 fn the_load_is_never_over_an_area_it_must_not_be_over() {
     use liftplan_core::lift::{NOT_OVER_MARGIN_M, NotOver};
     use liftplan_core::obb::footprint_near_area;
-    let mut slab = TriMesh::default();
-    box_part(&mut slab, "SLAB", [-60.0, -60.0, -0.3], [60.0, 60.0, 0.0]);
-    let m = map(&slab);
-    let world = World::new(&slab, &[], &[]).unwrap();
+    let (m, world) = open_slab();
     let site = Site { map: &m, world: &world, charts: None };
     let free = task(-14.0);
     let (direct, _) = plan_lift(&free, &site, &quick(), 3).unwrap();
@@ -1317,10 +1322,7 @@ fn the_crane_is_never_over_an_area_it_may_not_be_over() {
     use liftplan_core::crane::{Config, Dependence};
     use liftplan_core::lift::{NOT_OVER_MARGIN_M, NotOver};
     use liftplan_core::obb::footprint_near_area;
-    let mut slab = TriMesh::default();
-    box_part(&mut slab, "SLAB", [-60.0, -60.0, -0.3], [60.0, 60.0, 0.0]);
-    let m = map(&slab);
-    let world = World::new(&slab, &[], &[]).unwrap();
+    let (m, world) = open_slab();
     let site = Site { map: &m, world: &world, charts: None };
     let railway = NotOver {
         name: "RAILWAY".into(),
