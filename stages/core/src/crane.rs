@@ -717,6 +717,35 @@ impl CraneSetup {
             .max_by(|a, b| a.0.total_cmp(&b.0))
     }
 
+    /// An upper bound on how far in plan any part that turns with the
+    /// swing reaches from the slewing axis (m), at any configuration: the
+    /// boom or jib out to its head with the trolley, rope and hook block,
+    /// and the superstructure's boxes; not the load or its rigging. Worked
+    /// out from the crane file's sizes alone, for a cheap first test before
+    /// the parts are placed ([`crate::lift::LiftTask::not_over_near`]).
+    pub fn swinging_reach_m(&self) -> f64 {
+        // A box's corners lie within |x| + |y| of its centre's offsets
+        // and half sizes.
+        let boxed = |b: &BoxPart| b.center_x_m.abs() + b.length_m / 2.0 + b.center_y_m.abs() + b.width_m / 2.0;
+        let hook = self.model.hook.width_m;
+        let parts = match &self.model.kind {
+            CraneKind::Luffing(l) => {
+                // Along the boom, from its foot pin out to its head, its
+                // axis lies pivot_x_m + s·cos(luff) from the slewing axis.
+                let head = l.boom.pivot_x_m + self.placement.boom_length_m + l.boom.head_length_m;
+                let boom = head.abs().max(l.boom.pivot_x_m.abs()) + (l.boom.width_m + l.boom.depth_m) / 2.0;
+                [boxed(&l.superstructure), boxed(&l.cockpit), boxed(&l.counterweight), boom + hook]
+            }
+            CraneKind::Tower(t) => {
+                let out = t.jib.length_m.max(t.jib.trolley_max_m + t.trolley.length_m / 2.0 + hook);
+                let jib = out + t.jib.width_m.max(t.trolley.width_m).max(hook) / 2.0;
+                let counter_jib = t.counter_jib.length_m + t.counter_jib.width_m / 2.0;
+                [jib, counter_jib, boxed(&t.counterweight), boxed(&t.cab)]
+            }
+        };
+        parts.into_iter().fold(0.0, f64::max)
+    }
+
     pub fn slew_center(&self) -> Point3 {
         Point3::new(self.placement.x_m, self.placement.y_m, self.placement.z_m)
     }
@@ -1041,6 +1070,35 @@ mod tests {
         }
         let tower = CraneSetup::new(builtin("tower-hh-60").unwrap(), c.placement).unwrap();
         assert_eq!(tower.tail_swing_m(), None);
+    }
+
+    /// No part that swings reaches farther than the bound at any swing,
+    /// luff or trolley radius and rope in the cranes' limits, nor is the
+    /// bound far beyond the farthest they reach.
+    #[test]
+    fn the_swinging_reach_bounds_every_swinging_part() {
+        let tower = CraneSetup::new(builtin("tower-hh-60").unwrap(), mobile().placement).unwrap();
+        for crane in [mobile(), tower] {
+            let (o, lim, bound) = (crane.slew_center(), crane.limits(), crane.swinging_reach_m());
+            let mut farthest: f64 = 0.0;
+            for k in 0..=40 {
+                let t = k as f64 / 40.0;
+                let at = Config {
+                    swing_rad: 7.0 * t - 3.0,
+                    radial: lim.radial.0 + (lim.radial.1 - lim.radial.0) * t,
+                    hoist_m: lim.hoist_m.0 + (lim.hoist_m.1 - lim.hoist_m.0) * (1.0 - t),
+                    load_yaw_rad: 0.0,
+                };
+                for kind in crane.part_kinds() {
+                    if kind.dependence() == Dependence::Fixed || matches!(kind, PartKind::Load | PartKind::Rigging) {
+                        continue;
+                    }
+                    let b = crane.part(*kind, &at, &load()).unwrap();
+                    farthest = b.corners().iter().map(|p| (p.x - o.x).hypot(p.y - o.y)).fold(farthest, f64::max);
+                }
+            }
+            assert!(farthest <= bound && bound < farthest + 3.0, "{}: {farthest} against {bound}", crane.model.name);
+        }
     }
 
     #[test]

@@ -448,7 +448,17 @@ impl LiftTask {
             let part = self.crane.part(kind, c, &self.load)?;
             near(&part, false).map(|a| (kind, a))
         });
-        if hanging.is_some() || !self.not_over.iter().any(|a| a.crane_too) {
+        // Areas out of the crane's reach are passed by before its parts are
+        // placed (the planner asks this at every configuration it checks).
+        let o = self.crane.slew_center();
+        let reach_m = self.crane.swinging_reach_m() + within_m;
+        let in_reach = |a: &NotOver| {
+            crate::obb::plan_bounds(&a.corners_m).is_some_and(|(lo, hi)| {
+                let d = |k: usize, p: f64| (lo[k] - p).max(p - hi[k]).max(0.0);
+                d(0, o.x).hypot(d(1, o.y)) <= reach_m
+            })
+        };
+        if hanging.is_some() || !self.not_over.iter().any(|a| a.crane_too && in_reach(a)) {
             return hanging;
         }
         self.crane
