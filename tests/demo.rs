@@ -435,7 +435,7 @@ liftoff_m = 0.5
     assert!(
         cover.contains("; A GUST CAN SWING THE LOAD ")
             && cover.contains(
-                " m, MORE THAN THE 0.40 m CLEARANCE THE PLAN KEEPS: tag lines, a lower wind limit or more clearance"
+                " m, MORE THAN THE 0.40 m CLEARANCE THE PLAN KEEPS: tag lines, a lower wind limit or more clearance; the crane manufacturer's wind rules govern"
             ),
         "{cover}"
     );

@@ -189,6 +189,12 @@ impl PermissibleWind {
 
     /// In words, for the PDF.
     pub fn said(&self) -> String {
+        self.said_with("")
+    }
+
+    /// [`Self::said`] with `also` (a clause opening with "; ") before the
+    /// closing words that the manufacturer's rules govern.
+    pub fn said_with(&self, also: &str) -> String {
         let area = match self.box_side_m {
             Some([l, h]) => format!("{:.1} m² of its box's largest side, {l:.2} x {h:.2} m,", self.area_m2),
             None => format!("{:.1} m² (wind area_m2)", self.area_m2),
@@ -210,7 +216,7 @@ impl PermissibleWind {
             _ => String::new(),
         };
         format!(
-            "{}: the chart's {:.1} m/s{from} holds for up to {CHART_AREA_PER_TONNE_M2:.1} m² of wind area per tonne of hook load; this load catches {:.1} m² ({area} at cW {:.2}) on {:.1} t, {per_tonne:.2} m² per tonne (v = v_chart · √(1.2 m²/t · m_H / A_W)){at_height}{off_plumb}; the crane manufacturer's wind rules govern",
+            "{}: the chart's {:.1} m/s{from} holds for up to {CHART_AREA_PER_TONNE_M2:.1} m² of wind area per tonne of hook load; this load catches {:.1} m² ({area} at cW {:.2}) on {:.1} t, {per_tonne:.2} m² per tonne (v = v_chart · √(1.2 m²/t · m_H / A_W)){at_height}{off_plumb}{also}; the crane manufacturer's wind rules govern",
             if self.reduced() {
                 format!("AT MOST {:.1} m/s FOR THIS LOAD, less than the chart's", self.permissible_ms)
             } else {

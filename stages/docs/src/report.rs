@@ -538,7 +538,7 @@ pub fn document(
                             other.iter().map(|o| format!("{:.1} m/s ({})", o.value, o.cell)).collect::<Vec<_>>().join(", ")
                         )
                     };
-                    format!("{}{swing}{sheet}", w.said())
+                    w.said_with(&format!("{swing}{sheet}"))
                 }
                 Err(why) => format!("not worked out: {why}"),
             },
