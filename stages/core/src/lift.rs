@@ -436,12 +436,25 @@ impl LiftTask {
         if self.not_over.is_empty() {
             return None;
         }
+        // A part's outline is drawn only for an area its plan extent comes
+        // near (the planner asks this at every configuration it checks);
+        // the exact test repeats the bounds' test, so the first, a
+        // nanometre wider, passes by nothing it would find.
         let near = |part: &crate::obb::Obb, crane_too_only: bool| {
-            let footprint = part.footprint();
-            self.not_over
-                .iter()
-                .filter(|a| a.crane_too || !crane_too_only)
-                .find(|a| crate::obb::footprint_near_area(&footprint, &a.corners_m, within_m))
+            let (lo, hi) = part.plan_extent();
+            let mut footprint = None;
+            self.not_over.iter().filter(|a| a.crane_too || !crane_too_only).find(|a| {
+                let Some((a_lo, a_hi)) = crate::obb::plan_bounds(&a.corners_m) else { return false };
+                let apart = within_m + 1e-9;
+                if (0..2).any(|k| lo[k] > a_hi[k] + apart || a_lo[k] > hi[k] + apart) {
+                    return false;
+                }
+                crate::obb::footprint_near_area(
+                    footprint.get_or_insert_with(|| part.footprint()),
+                    &a.corners_m,
+                    within_m,
+                )
+            })
         };
         const HANGING: [PartKind; 3] = [PartKind::Load, PartKind::HookBlock, PartKind::Rope];
         let hanging = HANGING.iter().find_map(|&kind| {

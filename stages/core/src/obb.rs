@@ -105,6 +105,15 @@ impl Obb {
         self.half.norm()
     }
 
+    /// The plan extent of the box, the lows and highs of its footprint's x
+    /// and y, without placing its corners: each axis's reach is the sum of
+    /// its three half edges' reach along it.
+    pub fn plan_extent(&self) -> ([f64; 2], [f64; 2]) {
+        let reach = |row: usize| (0..3).map(|k| self.axes[(row, k)].abs() * self.half[k]).sum::<f64>();
+        let (rx, ry) = (reach(0), reach(1));
+        ([self.center.x - rx, self.center.y - ry], [self.center.x + rx, self.center.y + ry])
+    }
+
     /// Convex hull of the box projected on the ground plane, counter-clockwise.
     pub fn footprint(&self) -> Vec<[f64; 2]> {
         let pts: Vec<[f64; 2]> = self.corners().iter().map(|c| [c.x, c.y]).collect();
@@ -583,6 +592,23 @@ mod tests {
                 }
                 (None, None) => {}
                 (e, l) => prop_assert!(false, "exact {e:?} vs lines {l:?}"),
+            }
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(crate::testing::proptest_cases(200)))]
+        #[test]
+        fn the_plan_extent_is_the_footprints_bounds(
+            yaw in -3.2f64..3.2, pitch in -1.5f64..1.5,
+            hx in 0.05f64..30.0, hy in 0.05f64..2.0, hz in 0.05f64..2.0,
+            cx in -50.0f64..50.0, cy in -50.0f64..50.0,
+        ) {
+            let b = Obb::new(Point3::new(cx, cy, 5.0), tilted(yaw, pitch), Vec3::new(hx, hy, hz));
+            let (lo, hi) = b.plan_extent();
+            let (flo, fhi) = plan_bounds(&b.footprint()).unwrap();
+            for k in 0..2 {
+                prop_assert!((lo[k] - flo[k]).abs() < 1e-9 && (hi[k] - fhi[k]).abs() < 1e-9, "{lo:?} {hi:?} vs {flo:?} {fhi:?}");
             }
         }
     }
