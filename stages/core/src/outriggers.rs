@@ -21,8 +21,7 @@ use crate::crane::{CraneKind, CraneSetup};
 use crate::frame::{Vec3, rot_z};
 use serde::{Deserialize, Serialize};
 
-/// Standard gravity (m/s²), for pad loads in kilonewtons.
-pub const G_M_S2: f64 = 9.806_65;
+pub use crate::units::G_M_S2;
 
 /// A pad, named in the carrier's frame: front is the carrier's heading,
 /// left is to the left looking along it.

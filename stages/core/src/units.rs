@@ -12,6 +12,9 @@ pub const KG_PER_SHORT_TON: f64 = 2000.0 * KG_PER_LB;
 /// A kip is 1000 lb of force; load charts use it for 1000 lb of mass.
 pub const KG_PER_KIP: f64 = 1000.0 * KG_PER_LB;
 pub const M_PER_FT: f64 = 0.3048;
+/// Standard gravity (m/s²): a mass's weight, for pad loads in kilonewtons
+/// and the wind's push against a hanging load.
+pub const G_M_S2: f64 = 9.806_65;
 
 #[inline]
 pub fn deg_to_rad(deg: f64) -> f64 {

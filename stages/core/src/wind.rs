@@ -43,6 +43,7 @@
 //! may go ahead: the wind on site on the day is the crane driver's to read,
 //! and the manufacturer's wind rules govern.
 
+use crate::units::G_M_S2;
 use serde::{Deserialize, Serialize};
 
 /// Wind area per tonne of hook load a mobile crane's chart speed holds
@@ -51,9 +52,6 @@ pub const CHART_AREA_PER_TONNE_M2: f64 = 1.2;
 
 /// EN 13000's air density for the wind's pressure (kg/m³).
 pub const AIR_DENSITY_KG_M3: f64 = 1.25;
-
-/// Standard gravity (m/s²).
-const G_M_S2: f64 = 9.80665;
 
 /// EN 13000's 3-second gust at `height_m` above the ground over the
 /// 10-minute mean wind speed at 10 m: (z / 10 m)^0.14 + 0.4, heights under
