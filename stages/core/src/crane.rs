@@ -705,16 +705,19 @@ impl CraneSetup {
         if self.model.is_tower() {
             return None;
         }
-        let o = self.slew_center();
         let at = Config { swing_rad: 0.0, radial: 0.0, hoist_m: 0.0, load_yaw_rad: 0.0 };
         let load = LoadShape { size_m: [1.0; 3], cog_m: [0.0; 3], rigging_height_m: 0.0 };
         [PartKind::Superstructure, PartKind::Cockpit, PartKind::Counterweight]
             .into_iter()
-            .filter_map(|k| {
-                let b = self.part(k, &at, &load)?;
-                Some((b.corners().iter().map(|p| (p.x - o.x).hypot(p.y - o.y)).fold(0.0, f64::max), k))
-            })
+            .filter_map(|k| Some((self.plan_reach_m(&self.part(k, &at, &load)?), k)))
             .max_by(|a, b| a.0.total_cmp(&b.0))
+    }
+
+    /// How far in plan the farthest corner of `b` lies from the slewing
+    /// axis (m): how far a swing of one radian moves it, at most.
+    pub fn plan_reach_m(&self, b: &crate::obb::Obb) -> f64 {
+        let o = self.slew_center();
+        b.corners().iter().map(|p| ((p.x - o.x).powi(2) + (p.y - o.y).powi(2)).sqrt()).fold(0.0, f64::max)
     }
 
     /// An upper bound on how far in plan any part that turns with the
@@ -1061,11 +1064,9 @@ mod tests {
         let (r, part) = c.tail_swing_m().unwrap();
         assert_eq!(part, PartKind::Counterweight);
         assert!((r - (4.6f64 * 4.6 + 1.5 * 1.5).sqrt()).abs() < 1e-9, "{r}");
-        let o = c.slew_center();
         for swing in [0.4, 2.0, -2.9] {
             let at = Config { swing_rad: swing, radial: 0.5, hoist_m: 10.0, load_yaw_rad: 0.0 };
-            let cw = c.part(PartKind::Counterweight, &at, &load()).unwrap();
-            let far = cw.corners().iter().map(|p| (p.x - o.x).hypot(p.y - o.y)).fold(0.0, f64::max);
+            let far = c.plan_reach_m(&c.part(PartKind::Counterweight, &at, &load()).unwrap());
             assert!((far - r).abs() < 1e-9, "{far} at {swing}");
         }
         let tower = CraneSetup::new(builtin("tower-hh-60").unwrap(), c.placement).unwrap();
@@ -1079,7 +1080,7 @@ mod tests {
     fn the_swinging_reach_bounds_every_swinging_part() {
         let tower = CraneSetup::new(builtin("tower-hh-60").unwrap(), mobile().placement).unwrap();
         for crane in [mobile(), tower] {
-            let (o, lim, bound) = (crane.slew_center(), crane.limits(), crane.swinging_reach_m());
+            let (lim, bound) = (crane.limits(), crane.swinging_reach_m());
             let mut farthest: f64 = 0.0;
             for k in 0..=40 {
                 let t = k as f64 / 40.0;
@@ -1093,8 +1094,7 @@ mod tests {
                     if kind.dependence() == Dependence::Fixed || matches!(kind, PartKind::Load | PartKind::Rigging) {
                         continue;
                     }
-                    let b = crane.part(*kind, &at, &load()).unwrap();
-                    farthest = b.corners().iter().map(|p| (p.x - o.x).hypot(p.y - o.y)).fold(farthest, f64::max);
+                    farthest = farthest.max(crane.plan_reach_m(&crane.part(*kind, &at, &load()).unwrap()));
                 }
             }
             assert!(farthest <= bound && bound < farthest + 3.0, "{}: {farthest} against {bound}", crane.model.name);

@@ -213,12 +213,6 @@ pub struct Problem<'a> {
     pub map: &'a Mdm,
 }
 
-/// Horizontal distance of the farthest corner of a box from the slewing axis.
-fn reach(crane: &CraneSetup, b: &Obb) -> f64 {
-    let o = crane.slew_center();
-    b.corners().iter().map(|p| ((p.x - o.x).powi(2) + (p.y - o.y).powi(2)).sqrt()).fold(0.0, f64::max)
-}
-
 /// Longest distance of a box corner from a point.
 fn far_from(b: &Obb, p: &liftplan_core::frame::Point3) -> f64 {
     b.corners().iter().map(|c| (c - p).norm()).fold(0.0, f64::max)
@@ -376,7 +370,7 @@ impl CSpace {
         let mid_r = 0.5 * (lim.radial.0 + lim.radial.1);
         let c = Config { swing_rad: self.swing_center(i), radial: mid_r, hoist_m: lim.hoist_m.0, load_yaw_rad: 0.0 };
         let b = crane.part(kind, &c, &p.task.load)?;
-        Some(b.expanded(p.task.clearance_m + reach(crane, &b) * self.swing_step / 2.0))
+        Some(b.expanded(p.task.clearance_m + crane.plan_reach_m(&b) * self.swing_step / 2.0))
     }
 
     /// The box a swing+radial part's cell (i, k) asks: the part at the cell
@@ -390,7 +384,7 @@ impl CSpace {
     /// Bound on how far any point of a swing+radial part moves within a cell
     /// from its position at the cell centre.
     fn cell_motion(&self, crane: &CraneSetup, b: &Obb) -> f64 {
-        let swing = reach(crane, b) * self.swing_step / 2.0;
+        let swing = crane.plan_reach_m(b) * self.swing_step / 2.0;
         let radial = match &crane.model.kind {
             // Luffing rotates the boom about its pivot; every point of it is
             // within (distance to the slewing base + pivot offset) of the pivot.
@@ -571,11 +565,7 @@ impl CSpace {
 /// [`CSpace::own_reach_m`]: the parts that swing turn about the slewing
 /// axis, so one swing gives their reach at every swing.
 fn own_reach_m(task: &LiftTask) -> f64 {
-    let o = task.crane.slew_center();
-    standing_parts(task, &task.pick)
-        .flat_map(|(_, b)| b.corners())
-        .map(|p| (p.x - o.x).hypot(p.y - o.y))
-        .fold(0.0, f64::max)
+    standing_parts(task, &task.pick).map(|(_, b)| task.crane.plan_reach_m(&b)).fold(0.0, f64::max)
 }
 
 /// The crane's parts that stand or swing at `c` (carrier, outriggers,
@@ -956,7 +946,7 @@ impl<'a> Checker<'a> {
                 // samples are.
                 let grow = self.task.clearance_m
                     + if kind.dependence() == Dependence::Swing {
-                        reach(crane, &b) * cs.swing_step / 2.0
+                        crane.plan_reach_m(&b) * cs.swing_step / 2.0
                     } else {
                         cs.cell_motion(crane, &b)
                     };
@@ -1067,14 +1057,10 @@ impl<'a> Checker<'a> {
         let crane = &self.task.crane;
         let swinging = crane.part_kinds().iter().filter(|k| k.dependence() != liftplan_core::crane::Dependence::Fixed);
         match joint {
-            Joint::Swing => {
-                let o = crane.slew_center();
-                swinging
-                    .filter_map(|&k| crane.part(k, from, &self.task.load))
-                    .flat_map(|b| b.corners())
-                    .map(|p| (p.x - o.x).hypot(p.y - o.y))
-                    .fold(0.0, f64::max)
-            }
+            Joint::Swing => swinging
+                .filter_map(|&k| crane.part(k, from, &self.task.load))
+                .map(|b| crane.plan_reach_m(&b))
+                .fold(0.0, f64::max),
             Joint::Radial if is_luffing(crane) => {
                 crane.part(PartKind::Boom, from, &self.task.load).map_or(0.0, |boom| 2.0 * boom.half.norm())
             }

@@ -1309,15 +1309,8 @@ pub(crate) fn lever_for(task: &LiftTask, m: &Move) -> f64 {
     match m.joint {
         liftplan_cspace::Joint::Swing => {
             // Farthest point of any part from the slewing axis.
-            let o = crane.slew_center();
             let far = |c: &Config| {
-                crane
-                    .pose(c, &task.load)
-                    .parts
-                    .iter()
-                    .flat_map(|(_, b)| b.corners())
-                    .map(|p| ((p.x - o.x).powi(2) + (p.y - o.y).powi(2)).sqrt())
-                    .fold(0.0, f64::max)
+                crane.pose(c, &task.load).parts.iter().map(|(_, b)| crane.plan_reach_m(b)).fold(0.0, f64::max)
             };
             far(&m.from).max(far(&m.to))
         }
