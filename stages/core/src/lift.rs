@@ -441,12 +441,11 @@ impl LiftTask {
         // the exact test repeats the bounds' test, so the first, a
         // nanometre wider, passes by nothing it would find.
         let near = |part: &crate::obb::Obb, crane_too_only: bool| {
-            let (lo, hi) = part.plan_extent();
+            let extent = part.plan_extent();
             let mut footprint = None;
             self.not_over.iter().filter(|a| a.crane_too || !crane_too_only).find(|a| {
-                let Some((a_lo, a_hi)) = crate::obb::plan_bounds(&a.corners_m) else { return false };
-                let apart = within_m + 1e-9;
-                if (0..2).any(|k| lo[k] > a_hi[k] + apart || a_lo[k] > hi[k] + apart) {
+                let Some(area) = crate::obb::plan_bounds(&a.corners_m) else { return false };
+                if crate::obb::bounds_apart(extent, area, within_m + 1e-9) {
                     return false;
                 }
                 crate::obb::footprint_near_area(

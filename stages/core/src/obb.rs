@@ -269,8 +269,8 @@ pub fn footprint_near_area(footprint: &[[f64; 2]], area: &[[f64; 2]], within_m: 
         return false;
     }
     // Far apart in plan: nothing to test edge by edge.
-    if let (Some((f_lo, f_hi)), Some((a_lo, a_hi))) = (plan_bounds(footprint), plan_bounds(area))
-        && (0..2).any(|k| f_lo[k] > a_hi[k] + within_m || a_lo[k] > f_hi[k] + within_m)
+    if let (Some(f), Some(a)) = (plan_bounds(footprint), plan_bounds(area))
+        && bounds_apart(f, a, within_m)
     {
         return false;
     }
@@ -278,6 +278,12 @@ pub fn footprint_near_area(footprint: &[[f64; 2]], area: &[[f64; 2]], within_m: 
         return true;
     }
     edges_2d(footprint).any(|(a, b)| edges_2d(area).any(|(c, d)| segment_distance_2d(a, b, c, d) <= within_m))
+}
+
+/// Whether two plan extents (lows, highs) lie more than `within_m` apart
+/// along x or y: then nothing of either comes within `within_m` of the other.
+pub fn bounds_apart(a: ([f64; 2], [f64; 2]), b: ([f64; 2], [f64; 2]), within_m: f64) -> bool {
+    (0..2).any(|k| a.0[k] > b.1[k] + within_m || b.0[k] > a.1[k] + within_m)
 }
 
 /// A closed polygon's edges, the last back to the first.
