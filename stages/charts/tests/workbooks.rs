@@ -223,6 +223,14 @@ fn small_grid(ws: &mut rust_xlsxwriter::Worksheet) {
     small_grid_at(ws, 1);
 }
 
+/// [`small_grid`] under labels naming its units: "Radius m" (A1) and
+/// "Boom m / capacity t" (B1).
+fn labelled_small_grid(ws: &mut rust_xlsxwriter::Worksheet) {
+    ws.write_string(0, 0, "Radius m").unwrap();
+    ws.write_string(0, 1, "Boom m / capacity t").unwrap();
+    small_grid(ws);
+}
+
 /// [`small_grid`] with its boom lengths on row `booms_row` (0-based).
 fn small_grid_at(ws: &mut rust_xlsxwriter::Worksheet, booms_row: u32) {
     small_grid_at_col(ws, booms_row, 0);
@@ -409,9 +417,7 @@ fn a_footnote_on_a_sheet_of_notes_is_quoted() {
     let d = tempfile::tempdir().unwrap();
     let p = d.path().join("notes.xlsx");
     let grid = |ws: &mut rust_xlsxwriter::Worksheet, marked: &str| {
-        ws.write_string(0, 0, "Radius m").unwrap();
-        ws.write_string(0, 1, "Boom m / capacity t").unwrap();
-        small_grid(ws);
+        labelled_small_grid(ws);
         ws.write_string(3, 3, marked).unwrap();
     };
     let mut wb = Workbook::new();
@@ -469,14 +475,9 @@ fn a_sheet_of_notes_states_the_wind_speed_for_grids_that_state_none() {
     let d = tempfile::tempdir().unwrap();
     let p = d.path().join("notes.xlsx");
     let mut wb = Workbook::new();
-    let ws = wb.add_worksheet().set_name("Main").unwrap();
-    ws.write_string(0, 0, "Radius m").unwrap();
-    ws.write_string(0, 1, "Boom m / capacity t").unwrap();
-    small_grid(ws);
+    labelled_small_grid(wb.add_worksheet().set_name("Main").unwrap());
     let ws = wb.add_worksheet().set_name("Jib").unwrap();
-    ws.write_string(0, 0, "Radius m").unwrap();
-    ws.write_string(0, 1, "Boom m / capacity t").unwrap();
-    small_grid(ws);
+    labelled_small_grid(ws);
     ws.write_string(6, 0, "Permissible wind speed 7.0 m/s").unwrap();
     let ws = wb.add_worksheet().set_name("Notes").unwrap();
     ws.write_string(0, 0, "General notes").unwrap();
