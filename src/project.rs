@@ -127,6 +127,10 @@ pub struct RawProject {
     pub cache: CacheSettings,
     #[serde(default)]
     pub lift: Vec<LiftSpec>,
+    /// What is on site now that neither the scans nor the model hold,
+    /// placed by hand ([`liftplan_core::obstacle`]).
+    #[serde(default)]
+    pub obstacle: Vec<liftplan_core::obstacle::Obstacle>,
 }
 
 /// A validated project.
@@ -204,6 +208,15 @@ impl Project {
                     self.raw.cache.keep
                 ),
             ));
+        }
+        if let Some((k, m)) = liftplan_core::obstacle::problem_of(&self.raw.obstacle) {
+            // The k-th [[obstacle]] table, else (given inline) its name.
+            let table = text.match_indices("[[obstacle]]").nth(k).map(|(off, _)| off);
+            let location = match table {
+                Some(off) => Location::in_text(&self.file, text, off),
+                None => self.locate(text, &format!("\"{}\"", self.raw.obstacle.get(k).map_or("", |o| o.name.as_str()))),
+            };
+            return Err(ProjectError { location, message: m });
         }
         let mut ids = std::collections::HashSet::new();
         for l in &self.raw.lift {
@@ -424,6 +437,17 @@ parse_wait_s = 10         # how long to wait for a dropped file to become readab
 [cache]
 keep = 3                  # runs' outputs each stage keeps in .liftplan/cache (the last included)
 
+# Something on site that neither the scans nor the model hold (a truck parked
+# since the survey, a scaffold, stacked materials): a box the planner and the
+# validator keep the crane and the load clearance_m off. Add one and run again
+# to re-plan: only the plan and its document are made again. Uncomment and edit.
+# [[obstacle]]
+# name = "delivery truck"
+# center_m = [12.0, -4.0]      # its centre in plan, m (the frame of the pick and set)
+# base_z_m = 0.0               # its underside: the ground's height where it stands, m
+# size_m = [10.0, 2.5, 4.0]    # length (along yaw_deg), width, height, m
+# yaw_deg = 30.0               # its length's direction, anticlockwise from x, degrees
+
 # A lift: uncomment and edit.
 # [[lift]]
 # id = "V-101"
@@ -513,5 +537,25 @@ mod tests {
         assert!(task.permissible_wind(&[]).is_ok());
         assert_eq!(task.not_over[0].name, "control room");
         assert!(!task.not_over[0].crane_too && task.not_over[1].crane_too);
+    }
+
+    /// The template's example obstacle, uncommented, is one liftplan takes.
+    #[test]
+    fn the_templates_example_obstacle_uncommented_is_taken() {
+        let example: String = super::TEMPLATE
+            .split("# [[obstacle]]\n")
+            .nth(1)
+            .and_then(|rest| rest.split("\n\n").next())
+            .expect("the template has an example obstacle")
+            .lines()
+            .map(|l| l.strip_prefix("# ").unwrap_or(l))
+            .collect::<Vec<_>>()
+            .join("\n");
+        let raw: super::RawProject = toml::from_str(&format!("[[obstacle]]\n{example}")).unwrap();
+        assert_eq!(liftplan_core::obstacle::problem_of(&raw.obstacle), None);
+        assert_eq!(
+            raw.obstacle[0].said(),
+            "delivery truck, 10.0 x 2.5 x 4.0 m at x 12.0, y -4.0 m, underside at z 0.0 m, turned 30°"
+        );
     }
 }

@@ -209,6 +209,15 @@ fn bad_project_files_name_line_and_column() {
     expect_project_error(&dir, "weights must be finite", 1);
     std::fs::write(&f, "[depthmap]\nmargin_m = inf\n").unwrap();
     expect_project_error(&dir, "margin_m must be zero or positive (and finite)", 1);
+    // An obstacle placed by hand that is not a box on site: its own table's line.
+    let truck = "[[obstacle]]\nname = \"truck\"\ncenter_m = [1.0, 2.0]\nbase_z_m = 0.0\nsize_m = [10.0, 2.5, 4.0]\n";
+    std::fs::write(&f, format!("{truck}\n{}", truck.replace("truck", "crane mat stack").replace("4.0]", "0.0]")))
+        .unwrap();
+    expect_project_error(&dir, "obstacle 'crane mat stack': size_m must be its length, width and height", 7);
+    std::fs::write(&f, format!("{truck}\n{truck}")).unwrap();
+    expect_project_error(&dir, "obstacle 'truck' is named twice", 7);
+    std::fs::write(&f, truck.replace("base_z_m", "base_z")).unwrap();
+    expect_project_error(&dir, "unknown field `base_z`", 4);
     std::fs::write(&f, "this is not toml").unwrap();
     let o = liftplan(&["run", dir.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(2));

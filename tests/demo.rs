@@ -192,12 +192,45 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
         serde_json::from_slice(&std::fs::read(dir.join("out").join("plan.json")).unwrap()).unwrap();
     assert!((plan["lifts"][0]["gross_kg"].as_f64().unwrap() - 17_000.0).abs() < 1e-6);
 
+    // A raised work platform parked since the survey, where the load swings
+    // from the trailer to the foundation: placed by hand, only the plan and
+    // its document are made again, and the new plan keeps the load clear
+    // of it where the last one took it through.
+    let t13 = t.replace("mass_t = 12.0", "mass_t = 13.0");
+    let steps_csv = dir.join("out").join("V-101.steps.csv");
+    let (platform_xy, platform_half, platform_top) = ([19.4, -13.6], 1.5, 20.0);
+    let through =
+        load_comes_near(&std::fs::read_to_string(&steps_csv).unwrap(), platform_xy, platform_half, platform_top);
+    assert!(through.is_some(), "the platform must stand on the plan made without it");
+    let with_platform = format!(
+        "{t13}\n[[obstacle]]\nname = \"raised work platform\"\ncenter_m = [{}, {}]\nbase_z_m = 0.0\nsize_m = [3.0, 3.0, {platform_top}]\n",
+        platform_xy[0], platform_xy[1]
+    );
+    std::fs::write(&toml_path, &with_platform).unwrap();
+    let r = run_json(&dir);
+    for (name, want) in [("depthmap", "fresh"), ("charts", "fresh"), ("plan", "ran"), ("docs", "ran")] {
+        assert_eq!(stage(&r, name)["status"], want, "{name}: {}", stage(&r, name));
+    }
+    let doc = lopdf::Document::load(&pdf_path).unwrap();
+    let pages: Vec<u32> = doc.get_pages().keys().copied().collect();
+    let text = doc.extract_text(&pages).unwrap().replace('\n', " ");
+    let near = load_comes_near(&std::fs::read_to_string(&steps_csv).unwrap(), platform_xy, platform_half, platform_top);
+    assert_eq!(near, None, "the plan made with the platform takes the load near it");
+    let plan: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join("out").join("plan.json")).unwrap()).unwrap();
+    assert_eq!(
+        plan["lifts"][0]["summary"]["obstacles"][0],
+        "raised work platform, 3.0 x 3.0 x 20.0 m at x 19.4, y -13.6 m, underside at z 0.0 m"
+    );
+    assert!(text.contains("Placed by hand raised work platform, 3.0 x 3.0 x 20.0 m"), "{text}");
+    assert!(text.contains("obstacles placed by hand in teal"), "{text}");
+    assert!(text.contains("CHECK ON SITE that each stands where given"), "{text}");
+
     // A lift that sets its load back where it picked it (a test lift) has
     // no step but the lift-off and the set-down, and no clearance of its
     // own to report (JSON has no infinity: its plan must still be read by
     // the docs stage); the load rests on the trailer whose top 0.1 m went
     // with the load's cut-out, not 0.10 m above it.
-    let t13 = t.replace("mass_t = 12.0", "mass_t = 13.0");
     let set_back = t13.replace(
         "set = { x_m = 30.0, y_m = 2.0, z_m = 1.2, yaw_deg = 0.0 }",
         "set = { x_m = 6.0, y_m = -16.0, z_m = 1.2, yaw_deg = 90.0 }",
@@ -556,6 +589,35 @@ liftoff_m = 0.5
     let stderr = refused_with(&dir, &t13, "planned without a load chart");
     assert!(stderr.contains("lift 'V-101': no load chart was read"), "{stderr}");
     assert!(stderr.contains("put the crane's load chart"), "{stderr}");
+}
+
+/// Where the demo's load, by the steps file's swings and step ends, comes
+/// within its clearance (1 m) of a box standing on the ground, `half_m`
+/// either way of `xy` and `top_m` high: the step, if anywhere. The load's
+/// centre is taken for the load, grown by its half diagonal (8 x 3 m): near
+/// in plan and lower than the top plus the clearance is near.
+fn load_comes_near(steps_csv: &str, xy: [f64; 2], half_m: f64, top_m: f64) -> Option<String> {
+    let (clearance_m, half_diagonal_m) = (1.0, (4.0f64 * 4.0 + 1.5 * 1.5).sqrt());
+    let near = |swing_deg: f64, radius_m: f64, underside_m: f64| {
+        let (x, y) = (radius_m * swing_deg.to_radians().cos(), radius_m * swing_deg.to_radians().sin());
+        let (dx, dy) = (((x - xy[0]).abs() - half_m).max(0.0), ((y - xy[1]).abs() - half_m).max(0.0));
+        dx.hypot(dy) < clearance_m + half_diagonal_m && underside_m < top_m + clearance_m
+    };
+    let rows: Vec<Vec<f64>> =
+        steps_csv.lines().skip(1).map(|l| l.split(',').map(|v| v.parse().unwrap_or(f64::NAN)).collect()).collect();
+    let (swing, radius, height) = (4, 8, 9);
+    let mut from_deg = rows.first()?[swing];
+    for (k, r) in rows.iter().enumerate() {
+        // A swing keeps the radius and the height: its whole arc, 0.5° apart.
+        let n = ((r[swing] - from_deg).abs() / 0.5).ceil().max(1.0) as usize;
+        if let Some(i) =
+            (0..=n).find(|i| near(from_deg + (r[swing] - from_deg) * *i as f64 / n as f64, r[radius], r[height]))
+        {
+            return Some(format!("step {} at {:.1}°", k + 1, from_deg + (r[swing] - from_deg) * i as f64 / n as f64));
+        }
+        from_deg = r[swing];
+    }
+    None
 }
 
 /// Writes `toml` as the demo project's file in `dir` and runs the project

@@ -17,6 +17,7 @@
 //! | [`outriggers`] | a mobile crane's pad loads and the pressure under its mats |
 //! | [`capacity`] | load-chart grids and the never-interpolate-upwards rule |
 //! | [`lift`] | the lift request and its validated form |
+//! | [`obstacle`] | boxes placed by hand: what is on site that the scans and model do not hold |
 //! | [`wind`] | the wind speed up to which a mobile crane may lift a load |
 //! | [`artifact`] | checked binary artifact files and atomic writes |
 //! | [`image`] | RGB rasters, PNG output, labels and colour ramps |
@@ -45,6 +46,7 @@ pub mod lift;
 pub mod location;
 pub mod mesh;
 pub mod obb;
+pub mod obstacle;
 pub mod outriggers;
 pub mod rng;
 pub mod testing;

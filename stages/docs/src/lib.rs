@@ -87,6 +87,9 @@ pub struct Inputs {
     pub chart_warnings: Vec<(String, Vec<String>)>,
     /// The wind speeds each chart configuration's sheet states, by name.
     pub chart_wind: Vec<(String, Vec<liftplan_core::capacity::StatedOnChart>)>,
+    /// The obstacles placed by hand in the project file, which the plan
+    /// was made against.
+    pub obstacles: Vec<liftplan_core::obstacle::Obstacle>,
 }
 
 #[derive(Debug, Clone, Serialize)]

@@ -19,6 +19,8 @@ const PATH: Rgb = [200, 30, 60];
 const HOT_SPOT: Rgb = [235, 20, 20];
 /// Other lifts' loads where they stand during this lift.
 pub const OTHER_LOAD: Rgb = [150, 90, 190];
+/// Obstacles placed by hand in the project file.
+pub const OBSTACLE: Rgb = [0, 128, 128];
 /// Ground the load passes over that no scan saw.
 pub const UNSEEN: Rgb = [25, 25, 25];
 /// Ground only the crane's boom or superstructure passes over that no scan
@@ -168,10 +170,12 @@ pub fn load_path(site: &SiteView, task: &LiftTask, plan: &LiftPlan, upto: usize)
 }
 
 /// Top view of the whole site with the crane at pick, the load at set (ghost)
-/// and the load path.
-pub fn overview(site: &SiteView, task: &LiftTask, plan: &LiftPlan, others: &[Obb], w: u32, h: u32) -> Image {
+/// and the load path; `others`: what else stands on site that neither the
+/// scans nor the model hold (the other lifts' loads, the obstacles placed by
+/// hand), each in its colour.
+pub fn overview(site: &SiteView, task: &LiftTask, plan: &LiftPlan, others: &[(Obb, Rgb)], w: u32, h: u32) -> Image {
     let mut s = site.base_scene(2.0);
-    s.triangles.extend(others.iter().map(|b| site.obb_batch(b, OTHER_LOAD)));
+    s.triangles.extend(others.iter().map(|(b, colour)| site.obb_batch(b, *colour)));
     // What only the crane's boom or superstructure passes over unseen, in
     // grey under what the load does, in black.
     // The ground under the load's path, under both.
@@ -232,9 +236,17 @@ fn tail_swing_circle(site: &SiteView, task: &LiftTask) -> Option<Polyline> {
 }
 
 /// Perspective view at the end of step `n` (1-based) with the path so far.
-pub fn step_view(site: &SiteView, task: &LiftTask, plan: &LiftPlan, others: &[Obb], n: usize, w: u32, h: u32) -> Image {
+pub fn step_view(
+    site: &SiteView,
+    task: &LiftTask,
+    plan: &LiftPlan,
+    others: &[(Obb, Rgb)],
+    n: usize,
+    w: u32,
+    h: u32,
+) -> Image {
     let mut s = site.base_scene(1.5);
-    s.triangles.extend(others.iter().map(|b| site.obb_batch(b, OTHER_LOAD)));
+    s.triangles.extend(others.iter().map(|(b, colour)| site.obb_batch(b, *colour)));
     let end = plan.moves[n - 1].to;
     s.triangles.extend(crane_batches(site, task, &end));
     let done = load_path(site, task, plan, n);

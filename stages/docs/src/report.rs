@@ -4,7 +4,7 @@ use crate::pdf::{A4, Doc, LETTER, line_height_mm, shortened, text_width_mm, wrap
 use crate::pictures::{self, SiteView};
 use crate::{DocsError, Inputs, Paper, Result, Settings};
 use liftplan_core::capacity::ChartConfig;
-use liftplan_core::image::Image;
+use liftplan_core::image::{Image, Rgb};
 use liftplan_core::lift::LiftTask;
 use liftplan_core::obb::Obb;
 use liftplan_plan::LiftPlan;
@@ -573,7 +573,12 @@ pub fn document(
     // The other lifts' loads where they stand during this one, as the plan
     // stage checked against them (lifts are made in the order listed).
     let k = inp.tasks.iter().position(|t| t.id == task.id).unwrap_or(0);
-    let others: Vec<Obb> = liftplan_plan::other_loads(&inp.tasks, k).into_iter().map(|(b, _)| b).collect();
+    let others: Vec<(Obb, Rgb)> = liftplan_plan::other_loads(&inp.tasks, k)
+        .into_iter()
+        .map(|(b, _)| (b, pictures::OTHER_LOAD))
+        .chain(inp.obstacles.iter().map(|o| (o.obb(), pictures::OBSTACLE)))
+        .collect();
+    let other_loads = others.len() - inp.obstacles.len();
     let overview = pictures::overview(site, task, plan, &others, 1400, 1000);
     let tail = task.crane.tail_swing_m();
     let under_m2 = plan.summary.coverage.as_ref().map(|c| c.under_load.passed_m2).filter(|m2| *m2 > 0.0);
@@ -584,7 +589,7 @@ pub fn document(
         (false, false) => "",
     };
     let caption = format!(
-        "Site overview (top view, north up): crane at the pick position{}, load path in red{}, load at set in light blue{}{}{}{keep_out}.",
+        "Site overview (top view, north up): crane at the pick position{}, load path in red{}, load at set in light blue{}{}{}{}{keep_out}.",
         match tail {
             Some((r, part)) =>
                 format!(", its tail's swing in magenta ({} {r:.2} m from the slewing axis)", part.name()),
@@ -594,7 +599,8 @@ pub fn document(
             Some(m2) => format!(", the ground under it in pink ({m2:.0} m²)"),
             None => String::new(),
         },
-        if others.is_empty() { "" } else { ", other lifts' loads in violet" },
+        if other_loads == 0 { "" } else { ", other lifts' loads in violet" },
+        if inp.obstacles.is_empty() { "" } else { ", obstacles placed by hand in teal" },
         match (task.not_over.is_empty(), task.not_over.iter().any(|a| a.crane_too)) {
             (true, _) => "",
             (false, false) => ", areas the load must never be over outlined in green",
@@ -702,6 +708,21 @@ pub fn document(
                 liftplan_core::lift::NOT_OVER_MARGIN_M,
                 if crane_too { ", and every other part of the crane that swings (boom or jib, counterweight) off those marked 'nor the crane' (crane_too)" } else { "" },
                 if crane_too { ", nor the crane over those marked so" } else { "" }
+            ),
+        ));
+    }
+    if !inp.obstacles.is_empty() {
+        const NAMED: usize = 10;
+        let mut said: Vec<String> = inp.obstacles.iter().take(NAMED).map(|o| o.said()).collect();
+        if inp.obstacles.len() > NAMED {
+            said.push(format!("and {} more", inp.obstacles.len() - NAMED));
+        }
+        rows.push((
+            "Placed by hand",
+            format!(
+                "{} ([[obstacle]]: on site, not in the scans or the model): the planner and the validator keep the crane and the load {:.2} m off each, as they do the scans; check on site that each stands where given",
+                said.join("; "),
+                task.clearance_m
             ),
         ));
     }
@@ -1112,6 +1133,15 @@ pub fn document(
     if let Some(said) = plan.summary.other_loads_said() {
         y += 4.0;
         y = sign_off_paragraph(&mut d, y, w, &sentence(&said));
+    }
+    if let Some(said) = plan.summary.obstacles_said() {
+        y += 4.0;
+        y = sign_off_paragraph(
+            &mut d,
+            y,
+            w,
+            &sentence(&format!("{said}: CHECK ON SITE that each stands where given, and that nothing else new does")),
+        );
     }
     if let Some(c) = &plan.summary.coverage {
         y += 4.0;

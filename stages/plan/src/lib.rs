@@ -33,6 +33,7 @@ use liftplan_core::crane::Config;
 use liftplan_core::lift::LiftTask;
 use liftplan_core::mesh::TriMesh;
 use liftplan_core::obb::Obb;
+use liftplan_core::obstacle::Obstacle;
 use liftplan_cspace::{CSpace, Checker, Joint, LandingZone, Problem};
 use liftplan_depthmap::mdm::Mdm;
 use liftplan_depthmap::query::LeaveOut;
@@ -887,12 +888,36 @@ impl RunSummary {
                     .chain(s.not_critical_line())
                     .chain(s.under_pads_line())
                     .chain(s.other_loads_line())
+                    .chain(s.obstacles_line())
                     .chain(s.coverage_line())
                     .chain(s.load_as_scanned_line())
                     .chain(s.against_model_lines())
             }))
             .collect()
     }
+}
+
+/// The most depth-map cells the obstacles placed by hand may cover together:
+/// each lift's map copy holds an interval for every one (16 bytes), so a
+/// project file cannot make that unbounded.
+pub const MAX_OBSTACLE_CELLS: f64 = 16_000_000.0;
+
+/// Whether the obstacles' plan extents, on a map of `cell_m` cells, are
+/// within [`MAX_OBSTACLE_CELLS`]; if not, what to change.
+fn obstacles_fit(obstacles: &[Obstacle], cell_m: f64) -> std::result::Result<(), String> {
+    let cells: f64 = obstacles
+        .iter()
+        .map(|o| {
+            let a = o.obb().aabb();
+            ((a.max[0] - a.min[0]) / cell_m + 2.0) * ((a.max[1] - a.min[1]) / cell_m + 2.0)
+        })
+        .sum();
+    if cells > MAX_OBSTACLE_CELLS {
+        return Err(format!(
+            "the obstacles placed by hand ([[obstacle]]) cover about {cells:.0} cells of the {cell_m} m depth map together, more than the {MAX_OBSTACLE_CELLS:.0} liftplan takes: give fewer or smaller boxes, or a coarser [depthmap] cell_m"
+        ));
+    }
+    Ok(())
 }
 
 /// Runs the stage over every lift; fails on the first lift that cannot be planned and validated.
@@ -903,6 +928,7 @@ pub fn run(
     plant_json: Option<&Path>,
     cloud_path: Option<&Path>,
     capacity_csv: Option<&Path>,
+    obstacles: &[Obstacle],
     s: &Settings,
     seed: u64,
     out_dir: &Path,
@@ -919,6 +945,7 @@ pub fn run(
     let charts =
         CapacityTable::read_csv(capacity_csv).map_err(|e| PlanError::Input(Location::file(capacity_csv), e))?;
     let map = Mdm::read(map_path).map_err(|e| PlanError::Input(Location::file(map_path), e.to_string()))?;
+    obstacles_fit(obstacles, map.spec.cell).map_err(PlanError::Settings)?;
     let mesh = match mesh_path {
         Some(p) => TriMesh::read_artifact(p).map_err(|e| PlanError::Input(Location::file(p), e.to_string()))?,
         None => TriMesh::default(),
@@ -956,6 +983,8 @@ pub fn run(
         // The other lifts' loads where they stand during this one, in the
         // validator's view and in the planner's map alike.
         world.others = other_loads(tasks, k);
+        let lifts_loads = world.others.len();
+        world.others.extend(liftplan_core::obstacle::boxes(obstacles));
         let with_others = (!world.others.is_empty()).then(|| map.with_boxes(&world.others));
         let site = Site { map: with_others.as_ref().unwrap_or(&map), world: &world, charts: Some(&charts) };
         let above_m = cutout_above_m(s.load_cutout_m);
@@ -992,7 +1021,8 @@ pub fn run(
             on.cog_inside_m =
                 Some(validate::cog_over_support_m(task, &world, &task.set, on.gap_m, s.support_m, s.support_m));
         }
-        plan.summary.other_loads = world.others.iter().map(|(_, name)| name.clone()).collect();
+        plan.summary.other_loads = world.others[..lifts_loads].iter().map(|(_, name)| name.clone()).collect();
+        plan.summary.obstacles = obstacles.iter().map(|o| o.said()).collect();
         plan.summary.load_as_scanned = as_scanned;
         plan.summary.against_model = against_model[k].clone();
         plan.summary.passes_left_out = model_copy::passes_left_out(task, &plan.moves, &left_out, &loads, &world);
@@ -1094,5 +1124,25 @@ mod tests {
         let set_by: Vec<Option<&str>> =
             (0..tasks.len()).map(|k| lift_that_set_the_pick(&tasks, k).map(|e| e.id.as_str())).collect();
         assert_eq!(set_by, [None, None, None, Some("B")]);
+    }
+
+    #[test]
+    fn obstacles_that_would_fill_memory_are_refused() {
+        let o = |side: f64| Obstacle {
+            name: format!("{side} m box"),
+            center_m: [0.0, 0.0],
+            base_z_m: 0.0,
+            size_m: [side, side, 3.0],
+            yaw_deg: 45.0,
+        };
+        assert_eq!(obstacles_fit(&[o(10.0), o(20.0)], 0.25), Ok(()));
+        // 200 boxes of 500 m at 0.25 m cells would be 16 G intervals.
+        let many: Vec<Obstacle> = (0..200).map(|_| o(500.0)).collect();
+        let why = obstacles_fit(&many, 0.25).unwrap_err();
+        assert!(why.contains("give fewer or smaller boxes"), "{why}");
+        // Turned 45°, one spans 707 m either way: 8 M cells.
+        assert_eq!(obstacles_fit(&many[..1], 0.25), Ok(()));
+        assert!(obstacles_fit(&many[..3], 0.25).is_err());
+        assert_eq!(obstacles_fit(&many[..3], 0.5), Ok(()));
     }
 }

@@ -287,6 +287,10 @@ pub struct Summary {
     /// ([`crate::other_loads`]).
     #[serde(default)]
     pub other_loads: Vec<String>,
+    /// The obstacles placed by hand this lift was planned and checked
+    /// against, each in words ([`liftplan_core::obstacle::Obstacle::said`]).
+    #[serde(default)]
+    pub obstacles: Vec<String>,
     /// What the scans show of the load at its pick position, against its box
     /// ([`crate::load_scan::of_pick`]; `None` without scans).
     #[serde(default)]
@@ -407,9 +411,24 @@ impl Summary {
         })
     }
 
+    /// [`Summary::obstacles`] said, if there are any.
+    pub fn obstacles_said(&self) -> Option<String> {
+        (!self.obstacles.is_empty()).then(|| {
+            format!(
+                "planned and checked with the obstacles placed by hand in the project file (on site, not in the scans or the model): {}",
+                self.obstacles.join("; ")
+            )
+        })
+    }
+
     /// [`Summary::other_loads_said`] for the run's output.
     pub fn other_loads_line(&self) -> Option<String> {
         self.other_loads_said().map(|said| format!("lift {}: {said}", self.lift))
+    }
+
+    /// [`Summary::obstacles_said`] for the run's output.
+    pub fn obstacles_line(&self) -> Option<String> {
+        self.obstacles_said().map(|said| format!("lift {}: {said}", self.lift))
     }
 
     /// [`Summary::load_as_scanned`]'s line, for the run's output.
@@ -570,6 +589,7 @@ pub fn summary(task: &LiftTask, steps: &[Step], verdict: &Verdict) -> Summary {
         coverage: None,
         load_as_scanned: None,
         other_loads: Vec::new(),
+        obstacles: Vec::new(),
         against_model: Vec::new(),
         passes_left_out: Vec::new(),
         clearance_m: task.clearance_m,
