@@ -460,6 +460,10 @@ keep = 3                  # runs' outputs each stage keeps in .liftplan/cache (t
 # # pick and set: the load's centre x, y and its underside's z (m), its yaw (degrees);
 # # or a crane configuration: swing_deg, luff_deg (or trolley_m), hoist_m, yaw_deg.
 # # crane may also give deductions_t: what the chart's notes deduct (a stowed jib), t.
+# # To re-plan a lift stopped part way (the site changed: add an [[obstacle]]), give
+# # where the load hangs now, as the crane shows it or the plan's steps give it:
+# # resume_from = { swing_deg = -60.0, luff_deg = 49.0, hoist_m = 13.0, yaw_deg = 22.5 }
+# # the plan then starts there, with no lift-off, and its cover says so.
 # clearance_m = 1.0            # kept by every part from everything, m
 # liftoff_m = 0.5              # vertical lift-off at the pick and set-down at the set, m
 # critical_pct = 75.0          # utilisation over which the lift is flagged critical, %

@@ -226,6 +226,28 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     assert!(text.contains("obstacles placed by hand in teal"), "{text}");
     assert!(text.contains("CHECK ON SITE that each stands where given"), "{text}");
 
+    // The lift stopped part way, the load hanging at swing -60°, as the
+    // crane shows it: re-planned from there, with no lift-off.
+    let resumed = with_platform.replace(
+        "set = { x_m = 30.0, y_m = 2.0, z_m = 1.2, yaw_deg = 0.0 }\n",
+        "set = { x_m = 30.0, y_m = 2.0, z_m = 1.2, yaw_deg = 0.0 }\nresume_from = { swing_deg = -60.0, luff_deg = 49.036, hoist_m = 13.033, yaw_deg = 22.456 }\n",
+    );
+    assert_ne!(resumed, with_platform);
+    let (cover, text) = planned_with(&dir, &resumed);
+    let steps = std::fs::read_to_string(&steps_csv).unwrap();
+    let first: Vec<&str> = steps.lines().nth(1).unwrap().split(',').collect();
+    assert_ne!(first[1], "Hoist up", "{steps}");
+    let plan: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join("out").join("plan.json")).unwrap()).unwrap();
+    let start = &plan["lifts"][0]["moves"][0]["from"];
+    assert!((start["swing_rad"].as_f64().unwrap().to_degrees() + 60.0).abs() < 1e-9, "{start}");
+    assert!((start["hoist_m"].as_f64().unwrap() - 13.033).abs() < 1e-9, "{start}");
+    assert!(cover.contains("RESUMED PART WAY THROUGH THE LIFT: this plan starts where the load hangs now (resume_from), not at its pick: swing -60.0°, luff 49.0°, hoist 13.03 m"), "{cover}");
+    assert!(cover.contains("CHECK THE CRANE SHOWS THAT before step 1"), "{cover}");
+    assert!(cover.contains("crane where the lift resumes (the load hanging)"), "{cover}");
+    assert!(text.contains("The first step starts where the load hangs when the lift resumes"), "{text}");
+    assert_eq!(load_comes_near(&steps, platform_xy, platform_half, platform_top), None, "{steps}");
+
     // A lift that sets its load back where it picked it (a test lift) has
     // no step but the lift-off and the set-down, and no clearance of its
     // own to report (JSON has no infinity: its plan must still be read by

@@ -160,6 +160,13 @@ pub struct LiftSpec {
     pub crane: CraneSpec,
     pub pick: PoseSpec,
     pub set: PoseSpec,
+    /// Where the load hangs now, part way through the lift, to plan from
+    /// there to the set instead of from the pick: re-planning when the site
+    /// has changed during the lift. A configuration read off the crane
+    /// (`swing_deg`, `luff_deg` or `trolley_m`, `hoist_m`, `yaw_deg`, as
+    /// the plan's steps give them) or the load's pose.
+    #[serde(default)]
+    pub resume_from: Option<PoseSpec>,
     /// Minimum clear distance from every crane part and the load to any obstacle.
     #[serde(default = "default_clearance")]
     pub clearance_m: f64,
@@ -284,6 +291,9 @@ pub struct LiftTask {
     pub set: Config,
     pub pick_pose: LoadPose,
     pub set_pose: LoadPose,
+    /// Where the load hangs when the lift resumes part way through
+    /// ([`LiftSpec::resume_from`]): the plan starts there, with no lift-off.
+    pub resume_from: Option<(Config, LoadPose)>,
     pub clearance_m: f64,
     pub liftoff_m: f64,
     pub capacity_reduction_pct: f64,
@@ -494,9 +504,19 @@ impl LiftTask {
         if cap <= 0.0 { f64::INFINITY } else { 100.0 * self.gross_kg() / cap }
     }
 
-    /// The configuration lifted `liftoff_m` clear of the pick support.
+    /// Where the planned path starts: lifted `liftoff_m` clear of the pick
+    /// support, or where the load hangs when the lift resumes part way.
     pub fn start(&self) -> Config {
-        Config { hoist_m: self.pick.hoist_m - self.liftoff_m, ..self.pick }
+        match self.resume_from {
+            Some((c, _)) => c,
+            None => Config { hoist_m: self.pick.hoist_m - self.liftoff_m, ..self.pick },
+        }
+    }
+
+    /// Whether the lift resumes part way through ([`LiftSpec::resume_from`]):
+    /// its path starts with the load hanging, not with the lift-off.
+    pub fn resumes(&self) -> bool {
+        self.resume_from.is_some()
     }
 
     /// The configuration `liftoff_m` above the set position.
@@ -650,10 +670,37 @@ impl LiftSpec {
         let (mut pick, pick_pose) = solve("pick", &self.pick)?;
         let (mut set, set_pose) = solve("set", &self.set)?;
         within_reach(id, &crane, self.liftoff_m, &pick, &set)?;
+        let mut resume_from = match &self.resume_from {
+            Some(p) => {
+                let (c, pose) = solve("resume_from", p)?;
+                let lim = crane.limits();
+                if !(lim.radial.0 - 1e-9..=lim.radial.1 + 1e-9).contains(&c.radial)
+                    || !(lim.hoist_m.0 - 1e-9..=lim.hoist_m.1 + 1e-9).contains(&c.hoist_m)
+                {
+                    return Err(format!(
+                        "lift '{id}': resume_from is outside the crane's {} range or its rope's ({:.2}..{:.2} m): give where the load hangs now as the crane shows it",
+                        crane.model.words().radial_axis,
+                        lim.hoist_m.0,
+                        lim.hoist_m.1
+                    ));
+                }
+                Some((c, pose))
+            }
+            None => None,
+        };
         let swing_range_rad = match self.swing_range_deg {
             Some([a_deg, b_deg]) if a_deg < b_deg && b_deg - a_deg <= 360.0 && a_deg >= -360.0 && b_deg <= 360.0 => {
                 let range = (a_deg.to_radians(), b_deg.to_radians());
-                into_swing_range(id, range, &format!("[{a_deg}, {b_deg}]"), &mut pick, &mut set)?;
+                let shown = format!("[{a_deg}, {b_deg}]");
+                into_swing_range(id, range, &shown, &mut pick, &mut set)?;
+                if let Some((c, _)) = resume_from.as_mut() {
+                    c.swing_rad = crate::units::swing_into_range(c.swing_rad, range.0, range.1).ok_or_else(|| {
+                        format!(
+                            "lift '{id}': resume_from, at swing {:.1}° from the crane's heading, is outside swing_range_deg {shown}",
+                            c.swing_rad.to_degrees()
+                        )
+                    })?;
+                }
                 Some(range)
             }
             Some(_) => {
@@ -726,6 +773,7 @@ impl LiftSpec {
             set,
             pick_pose,
             set_pose,
+            resume_from,
             clearance_m: self.clearance_m,
             liftoff_m: self.liftoff_m,
             capacity_reduction_pct: self.capacity_reduction_pct,
@@ -796,6 +844,9 @@ impl LiftTask {
     /// permitted swing range), or the placement is not one for it.
     pub fn moved_to(&self, placement: Placement) -> Result<LiftTask, String> {
         let id = &self.id;
+        if self.resumes() {
+            return Err(format!("lift '{id}' resumes part way through (resume_from): its crane stays where it stands"));
+        }
         let crane = CraneSetup::new(self.crane.model.clone(), placement).map_err(|e| format!("lift '{id}': {e}"))?;
         let solve = |which: &str, pose: &LoadPose| {
             crane.inverse(pose, &self.load).map_err(|e| format!("lift '{id}': {which} position cannot be reached: {e}"))
@@ -873,6 +924,47 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         assert!((t.start().hoist_m - (t.pick.hoist_m - 0.5)).abs() < 1e-12);
         assert!((t.set_pose.yaw_rad - std::f64::consts::FRAC_PI_2).abs() < 1e-12);
         assert!((t.utilisation_pct(14000.0) - 100.0 * 14000.0 / 14000.0).abs() < 1e-9);
+    }
+
+    /// A lift resumed part way starts where its load hangs, given as the
+    /// crane's configuration or as the load's pose; one the crane cannot
+    /// hold is refused naming the key, and such a lift's crane is not moved.
+    #[test]
+    fn a_lift_resumed_part_way_starts_where_the_load_hangs() {
+        let model = || crate::crane::builtin("ltm-1100").unwrap();
+        let resumed = |text: &str| {
+            let mut s = spec();
+            s.resume_from = Some(toml::from_str(text).unwrap());
+            s.resolve(model())
+        };
+        let t = resumed("swing_deg = 40.0\nluff_deg = 60.0\nhoist_m = 12.0\nyaw_deg = 30.0").unwrap();
+        assert!(t.resumes() && !spec().resolve(model()).unwrap().resumes());
+        let want = Config {
+            swing_rad: 40f64.to_radians(),
+            radial: 60f64.to_radians(),
+            hoist_m: 12.0,
+            load_yaw_rad: 30f64.to_radians(),
+        };
+        assert_eq!(t.start(), want);
+        let pose = t.resume_from.unwrap().1;
+        assert!((pose.z_m - t.crane.load_pose(&want, &t.load).z_m).abs() < 1e-12);
+        // The same place given as the load's pose.
+        let by_pose =
+            resumed(&format!("x_m = {}\ny_m = {}\nz_m = {}\nyaw_deg = 30.0", pose.x_m, pose.y_m, pose.z_m)).unwrap();
+        let c = by_pose.start();
+        assert!((c.swing_rad - want.swing_rad).abs() < 1e-6 && (c.radial - want.radial).abs() < 1e-6, "{c:?}");
+        assert!((c.hoist_m - want.hoist_m).abs() < 1e-6);
+        let far = resumed("swing_deg = 40.0\nluff_deg = 60.0\nhoist_m = 5000.0").unwrap_err();
+        assert!(far.contains("resume_from is outside the crane's"), "{far}");
+        let mixed = resumed("swing_deg = 40.0\nx_m = 3.0\nhoist_m = 12.0").unwrap_err();
+        assert!(mixed.contains("resume_from must give either a load pose"), "{mixed}");
+        let mut s = spec();
+        s.resume_from = Some(toml::from_str("swing_deg = 150.0\nluff_deg = 60.0\nhoist_m = 12.0").unwrap());
+        s.swing_range_deg = Some([-120.0, 120.0]);
+        let outside = s.resolve(model()).unwrap_err();
+        assert!(outside.contains("resume_from, at swing 150.0°") && outside.contains("swing_range_deg"), "{outside}");
+        let moved = t.moved_to(Placement { x_m: 2.0, ..t.crane.placement }).unwrap_err();
+        assert!(moved.contains("resumes part way through (resume_from): its crane stays where it stands"), "{moved}");
     }
 
     #[test]

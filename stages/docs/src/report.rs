@@ -378,6 +378,26 @@ fn cover_heading(d: &mut Doc, w: f32, id: &str, description: &str) -> f32 {
     (below_description + 4.6).max(40.0)
 }
 
+/// Where a lift resumed part way starts, in words, for the cover: the
+/// crane's configuration as its steps give one, and the load's place.
+fn resumes_said(task: &LiftTask) -> Option<String> {
+    let (c, pose) = task.resume_from.as_ref()?;
+    let radial = if task.crane.model.is_tower() {
+        format!("trolley {:.2} m", c.radial)
+    } else {
+        format!("luff {:.1}°", c.radial.to_degrees())
+    };
+    Some(format!(
+        "PART WAY THROUGH THE LIFT: this plan starts where the load hangs now (resume_from), not at its pick: swing {:.1}°, {radial}, hoist {:.2} m, load yaw {:.1}°, the load's underside at ({:.2}, {:.2}, {:.2}) m; CHECK THE CRANE SHOWS THAT before step 1, and that the load hangs still",
+        c.swing_rad.to_degrees(),
+        c.hoist_m,
+        pose.yaw_rad.to_degrees(),
+        pose.x_m,
+        pose.y_m,
+        pose.z_m
+    ))
+}
+
 /// Every page's footer on a sheet `sheet_w_mm` wide. The project's name is
 /// what gives way, not the lift or the date (the footer itself is shortened
 /// to leave the page number).
@@ -485,12 +505,15 @@ pub fn document(
                     plan.clearance_m,
                     plan.landing_clearance_m
                 )
-            } else if sm.steps <= 2 {
+            } else if task.resumes() && sm.steps <= 1 {
+                "no step before the set-down (the load hangs above its set position)".to_string()
+            } else if sm.steps <= 2 && !task.resumes() {
                 "no step between the lift-off and the set-down (the load is set back where it was lifted)".to_string()
             } else {
                 format!(
-                    "nothing within the validator's search ({:.2} m) in any step between the lift-off and the set-down",
-                    liftplan_plan::validate::search_cutoff_m(plan.clearance_m)
+                    "nothing within the validator's search ({:.2} m) in any step {}",
+                    liftplan_plan::validate::search_cutoff_m(plan.clearance_m),
+                    if task.resumes() { "before the set-down" } else { "between the lift-off and the set-down" }
                 )
             },
         ),
@@ -508,6 +531,9 @@ pub fn document(
             ),
         ),
     ];
+    if let Some(said) = resumes_said(task) {
+        rows.insert(0, ("RESUMED", said));
+    }
     if let Some((n, p)) = sm.highest_pad {
         let counterweight = sm.pads_counterweight_said().map(|c| format!(" with {c}")).unwrap_or_default();
         rows.push((
@@ -589,7 +615,8 @@ pub fn document(
         (false, false) => "",
     };
     let caption = format!(
-        "Site overview (top view, north up): crane at the pick position{}, load path in red{}, load at set in light blue{}{}{}{}{keep_out}.",
+        "Site overview (top view, north up): crane {}{}, load path in red{}, load at set in light blue{}{}{}{}{keep_out}.",
+        if task.resumes() { "where the lift resumes (the load hanging)" } else { "at the pick position" },
         match tail {
             Some((r, part)) =>
                 format!(", its tail's swing in magenta ({} {r:.2} m from the slewing axis)", part.name()),
@@ -643,10 +670,20 @@ pub fn document(
                 task.clearance_m, plan.landing_clearance_m
             ),
         ),
-        (
-            "Lift-off / set-down",
-            format!("{:.2} m, vertical; contact allowed only with the support under the load", task.liftoff_m),
-        ),
+        if task.resumes() {
+            (
+                "Set-down",
+                format!(
+                    "{:.2} m, vertical; contact allowed only with the support under the load (no lift-off: the load hangs where the lift resumes)",
+                    task.liftoff_m
+                ),
+            )
+        } else {
+            (
+                "Lift-off / set-down",
+                format!("{:.2} m, vertical; contact allowed only with the support under the load", task.liftoff_m),
+            )
+        },
         // One row for both ways the chart is read less than printed.
         (
             "Capacity reduction",
@@ -821,7 +858,7 @@ pub fn document(
         15.0,
         y,
         w,
-        &format!("The first and the last steps are the vertical lift-off and set-down. Capacity is the chart value (before the reduction) at the largest radius of the step{allowance}; utilisation is the gross load over the reduced capacity; clearance is a distance that no crane part, rope, hook or load comes closer than to the plant model or the scanned points at any moment of the step, between the validator's samples too: the smallest distance measured at samples no more than [plan] validator_sample_m of movement apart (0.05 m by default), less what the motion between two samples leaves room for (at most half that spacing), so the closest approach may be up to that much more than shown, never less. Wherever the motion between samples could take a part closer than its required clearance, the validator samples more finely, down to 2 mm of movement, so the required clearance holds along the whole motion, not only at the samples, to within 2 mm. Swing and load rotation angles are counter-clockwise positive seen from above. Swing is measured from {heading}, load yaw from the site's +X axis; each step's page also gives the {arm}'s grid bearing (clockwise from the site's north, +Y, as the overview is drawn).{pads}", heading = words.heading, arm = words.arm, pads = if plan.summary.highest_pad.is_some() { " Each step's page gives the most an outrigger pad carries during the step, an estimate from the crane file's masses: the weight of crane and load shared among the four pads as by a rigid frame (a quarter each, plus each pad's share of the moment about their centre; where that would pull a pad, it lifts and the other three carry it all), each mass at its part's centre and the gross load under the rope's sheave (where the chart deducts weights, with them there or without them, whichever weighs more on the pad), at both ends of the step and every half degree of swing and luff between; wind, the load swinging and dynamic factors are not in it, and the crane manufacturer's outrigger loads govern." } else { "" }, allowance = if task.radius_allowance_m > 0.0 { format!(" plus the radius allowance ({:.2} m)", task.radius_allowance_m) } else { String::new() }),
+        &format!("{ends}Capacity is the chart value (before the reduction) at the largest radius of the step{allowance}; utilisation is the gross load over the reduced capacity; clearance is a distance that no crane part, rope, hook or load comes closer than to the plant model or the scanned points at any moment of the step, between the validator's samples too: the smallest distance measured at samples no more than [plan] validator_sample_m of movement apart (0.05 m by default), less what the motion between two samples leaves room for (at most half that spacing), so the closest approach may be up to that much more than shown, never less. Wherever the motion between samples could take a part closer than its required clearance, the validator samples more finely, down to 2 mm of movement, so the required clearance holds along the whole motion, not only at the samples, to within 2 mm. Swing and load rotation angles are counter-clockwise positive seen from above. Swing is measured from {heading}, load yaw from the site's +X axis; each step's page also gives the {arm}'s grid bearing (clockwise from the site's north, +Y, as the overview is drawn).{pads}", heading = words.heading, arm = words.arm, pads = if plan.summary.highest_pad.is_some() { " Each step's page gives the most an outrigger pad carries during the step, an estimate from the crane file's masses: the weight of crane and load shared among the four pads as by a rigid frame (a quarter each, plus each pad's share of the moment about their centre; where that would pull a pad, it lifts and the other three carry it all), each mass at its part's centre and the gross load under the rope's sheave (where the chart deducts weights, with them there or without them, whichever weighs more on the pad), at both ends of the step and every half degree of swing and luff between; wind, the load swinging and dynamic factors are not in it, and the crane manufacturer's outrigger loads govern." } else { "" }, ends = if task.resumes() { "The first step starts where the load hangs when the lift resumes (resume_from); the last is the vertical set-down. " } else { "The first and the last steps are the vertical lift-off and set-down. " }, allowance = if task.radius_allowance_m > 0.0 { format!(" plus the radius allowance ({:.2} m)", task.radius_allowance_m) } else { String::new() }),
         8.5,
     );
     if let Some(cs) = cspace {

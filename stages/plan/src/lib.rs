@@ -612,8 +612,8 @@ pub(crate) fn plan_lift_hinting(
         None => None,
     };
     // Where else the crane could stand, for a refusal that moving it may
-    // answer.
-    let elsewhere = |chart: Option<&ChartConfig>| match chart.filter(|_| positions) {
+    // answer (not for a lift resumed part way: its crane holds the load).
+    let elsewhere = |chart: Option<&ChartConfig>| match chart.filter(|_| positions && !task.resumes()) {
         Some(ch) => positions::search(task, site, ch, s, seed, positions::Sought::Plans).said(&ch.name),
         None => String::new(),
     };
@@ -672,6 +672,15 @@ pub(crate) fn plan_lift_hinting(
         b.part.is_some_and(|k| !matches!(k, PartKind::Load | PartKind::Rigging | PartKind::HookBlock | PartKind::Rope))
     };
     if let Err(b) = ck.config(&start) {
+        if task.resumes() {
+            return Err(lift_err(
+                task,
+                format!(
+                    "where the load hangs now (resume_from) is not clear: {}; no path from there is planned: make it clear by hand (hoist, or lower the load where it is safe), then give where it hangs then",
+                    why(&b)
+                ),
+            ));
+        }
         let hint = hints::for_load(task, site, &b, &task.pick, &start, task.height_key(true), true);
         let elsewhere = if structure(&b) { elsewhere(chart) } else { String::new() };
         return Err(lift_err(
@@ -691,10 +700,11 @@ pub(crate) fn plan_lift_hinting(
     // The lift-off and the set-down are the same whatever path is found: the
     // validator's verdict on them now, before the search, says what blocks
     // them instead of rejecting every plan at the end.
-    for (what, mv, at, key) in [
-        ("lift-off", lift_off(task), &task.pick, task.height_key(true)),
-        ("set-down", set_down(task), &task.set, task.height_key(false)),
-    ] {
+    // (A lift resumed part way has no lift-off: its load hangs.)
+    let lift_off = (!task.resumes()).then(|| ("lift-off", lift_off(task), &task.pick, task.height_key(true)));
+    for (what, mv, at, key) in
+        lift_off.into_iter().chain([("set-down", set_down(task), &task.set, task.height_key(false))])
+    {
         let v = validate::validate(task, chart, site.world, &rules, &[mv], &[true]);
         if !v.ok {
             // The move's own problems under its name; any other (the crane's
@@ -776,14 +786,16 @@ pub(crate) fn plan_lift_hinting(
     let plan_ms = t0.elapsed().as_secs_f64() * 1e3;
     // Lift-off and set-down.
     let mut all = Vec::with_capacity(moves.len() + 2);
-    all.push(Move { joint: Joint::Hoist, from: task.pick, to: start });
+    if !task.resumes() {
+        all.push(Move { joint: Joint::Hoist, from: task.pick, to: start });
+    }
     all.extend(moves.iter().copied());
     all.push(Move {
         joint: Joint::Hoist,
         from: nodes.last().copied().unwrap_or(goal0),
         to: Config { swing_rad: nodes.last().map(|n| n.swing_rad).unwrap_or(goal0.swing_rad), ..task.set },
     });
-    let landing_flags: Vec<bool> = (0..all.len()).map(|i| i == 0 || i == all.len() - 1).collect();
+    let landing_flags: Vec<bool> = (0..all.len()).map(|i| (i == 0 && !task.resumes()) || i == all.len() - 1).collect();
     let verdict = validate::validate_lift(task, chart, site.world, &rules, &all, &landing_flags);
     if !verdict.ok {
         return Err(lift_err(
@@ -1003,6 +1015,7 @@ pub fn run(
         plan.summary.under_pads = validate::under_pads(task, &world);
         // A critical lift: where its crane could stand for it not to be.
         if plan.summary.critical
+            && !task.resumes()
             && let Ok(chart) = charts.config(&task.chart_config)
         {
             let found = positions::search(task, &site, chart, s, seed, positions::Sought::NotCritical);

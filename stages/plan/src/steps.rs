@@ -623,7 +623,7 @@ pub fn summary(task: &LiftTask, steps: &[Step], verdict: &Verdict) -> Summary {
             s.max_utilisation_cell = st.chart_cell.clone().unwrap_or_default();
         }
         // Lift-off and set-down touch the supports by design; report the travel.
-        let landing = st.n == 1 || st.n == steps.len();
+        let landing = (st.n == 1 && !task.resumes()) || st.n == steps.len();
         if !landing && st.min_clearance_m < s.min_clearance_m {
             s.min_clearance_m = st.min_clearance_m;
             s.min_clearance_step = st.n;

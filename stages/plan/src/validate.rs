@@ -1808,9 +1808,13 @@ pub fn validate_lift(
             )
         })
     };
+    let starts_at = match &task.resume_from {
+        Some((_, pose)) => (pose, "resume_from"),
+        None => (&task.pick_pose, "pick"),
+    };
     let ends = match (moves.first(), moves.last()) {
         (Some(first), Some(last)) => {
-            [at(&first.from, &task.pick_pose, ("starts", "pick")), at(&last.to, &task.set_pose, ("ends", "set"))]
+            [at(&first.from, starts_at.0, ("starts", starts_at.1)), at(&last.to, &task.set_pose, ("ends", "set"))]
                 .into_iter()
                 .flatten()
                 .collect()

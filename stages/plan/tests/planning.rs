@@ -1625,3 +1625,66 @@ fn a_lift_over_capacity_names_a_crane_position_where_it_plans() {
         "{e}"
     );
 }
+
+/// A lift resumed part way (the load hanging above the wall's far side,
+/// where the lift over the wall took it): the plan starts there, with no
+/// lift-off, and passes the validator, which refuses the plan from the pick
+/// for it (it does not start where the load hangs). Where the load hangs
+/// within its clearance of the wall, no path is planned and the refusal
+/// says so.
+#[test]
+fn a_lift_resumed_part_way_plans_from_where_the_load_hangs() {
+    let (t, world, plan) = over_the_wall();
+    let mesh = site();
+    let m = map(&mesh);
+    let site = Site { map: &m, world: &world, charts: None };
+    // Where the first plan has the load at its highest, part way over.
+    let over = plan
+        .moves
+        .iter()
+        .map(|mv| mv.to)
+        .max_by(|a, b| t.crane.load_obb(a, &t.load).center.z.total_cmp(&t.crane.load_obb(b, &t.load).center.z))
+        .unwrap();
+    let resumed_at = |c: &Config| {
+        let mut spec = spec_of(-14.0);
+        spec.resume_from = Some(
+            toml::from_str(&format!(
+                "swing_deg = {}\nluff_deg = {}\nhoist_m = {}\nyaw_deg = {}",
+                c.swing_rad.to_degrees(),
+                c.radial.to_degrees(),
+                c.hoist_m,
+                c.load_yaw_rad.to_degrees()
+            ))
+            .unwrap(),
+        );
+        spec.resolve(builtin("ac-700").unwrap()).unwrap()
+    };
+    let r = resumed_at(&over);
+    let (from_there, _) = plan_lift(&r, &site, &quick(), 3).unwrap();
+    assert!(from_there.validator.ok, "{:?}", from_there.validator.problems);
+    let first = from_there.moves[0];
+    let apart =
+        |a: &Config, b: &Config| a.to_array().iter().zip(b.to_array()).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max);
+    assert!(apart(&first.from, &over) < 1e-9, "{:?} is not {over:?}", first.from);
+    assert!(from_there.moves.iter().all(|mv| apart(&mv.from, &t.pick) > 1.0), "a resumed lift has no lift-off");
+    assert!((from_there.moves.last().unwrap().to.hoist_m - t.set.hoist_m).abs() < 1e-9);
+    // Fewer steps than from the pick: the part done is not done again.
+    assert!(
+        from_there.steps.len() < plan.steps.len(),
+        "{} steps, {} from the pick",
+        from_there.steps.len(),
+        plan.steps.len()
+    );
+    // The plan from the pick does not start where the load hangs.
+    let landing: Vec<bool> = (0..plan.moves.len()).map(|i| i == plan.moves.len() - 1).collect();
+    let v = validate_lift(&r, None, &world, &rules(), &plan.moves, &landing);
+    assert!(v.problems.iter().any(|p| p.contains("not at its resume_from pose")), "{:?}", v.problems);
+
+    // The load hanging 0.5 m off the wall's face, below its top.
+    let mut beside = resumed_at(&over);
+    let pose = liftplan_core::crane::LoadPose { x_m: 22.0, y_m: -2.5, z_m: 5.0, yaw_rad: 0.0 };
+    let c = beside.crane.inverse(&pose, &beside.load).unwrap();
+    beside.resume_from = Some((c, pose));
+    let why = plan_lift(&beside, &site, &quick(), 3).unwrap_err().to_string();
+    assert!(why.contains("where the load hangs now (resume_from) is not clear") && why.contains("WALL"), "{why}");
+}
