@@ -227,7 +227,8 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     assert!(text.contains("CHECK ON SITE that each stands where given"), "{text}");
 
     // The lift stopped part way, the load hanging at swing -60°, as the
-    // crane shows it: re-planned from there, with no lift-off.
+    // crane shows it: re-planned from there, with no lift-off. The steps
+    // file gives each step's end under resume_from's names.
     let resumed = with_platform.replace(
         "set = { x_m = 30.0, y_m = 2.0, z_m = 1.2, yaw_deg = 0.0 }\n",
         "set = { x_m = 30.0, y_m = 2.0, z_m = 1.2, yaw_deg = 0.0 }\nresume_from = { swing_deg = -60.0, luff_deg = 49.036, hoist_m = 13.033, yaw_deg = 22.456 }\n",
@@ -235,6 +236,7 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     assert_ne!(resumed, with_platform);
     let (cover, text) = planned_with(&dir, &resumed);
     let steps = std::fs::read_to_string(&steps_csv).unwrap();
+    assert!(steps.starts_with("step,operation,amount,unit,swing_deg,luff_deg,hoist_m,load_yaw_deg,"), "{steps}");
     let first: Vec<&str> = steps.lines().nth(1).unwrap().split(',').collect();
     assert_ne!(first[1], "Hoist up", "{steps}");
     let plan: serde_json::Value =

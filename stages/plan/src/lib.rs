@@ -1043,7 +1043,8 @@ pub fn run(
         plan.model_vs_scans = model_vs_scans.clone();
         let io = |p: &Path, e: std::io::Error| PlanError::Input(Location::file(p), e.to_string());
         let csv = out_dir.join(format!("{}.steps.csv", task.id));
-        liftplan_core::artifact::write_atomic(&csv, steps::to_csv(&plan.steps).as_bytes()).map_err(|e| io(&csv, e))?;
+        liftplan_core::artifact::write_atomic(&csv, steps::to_csv(&plan.steps, task.crane.model.is_tower()).as_bytes())
+            .map_err(|e| io(&csv, e))?;
         let png = out_dir.join(format!("{}.cspace.png", task.id));
         let pts: Vec<(f64, f64)> = std::iter::once(&plan.moves[0].from)
             .chain(plan.moves.iter().map(|m| &m.to))

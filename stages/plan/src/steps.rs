@@ -644,20 +644,26 @@ fn csv_field(s: &str) -> String {
     if s.contains([',', '"', '\n']) { format!("\"{}\"", s.replace('"', "\"\"")) } else { s.to_string() }
 }
 
-pub fn to_csv(steps: &[Step]) -> String {
-    let mut out = String::from(
-        "step,operation,amount,unit,swing_deg,radial,hoist_m,load_yaw_deg,radius_m,load_height_m,capacity_kg,chart_cell,utilisation_pct,min_clearance_m,clearance_part,clearance_to,max_pad_kg,max_pad\n",
+/// The steps as CSV, each with the crane's configuration at its end under
+/// the names a lift's `resume_from` takes (`swing_deg`, `luff_deg` or, for
+/// a tower crane, `trolley_m`, `hoist_m`), so a lift stopped after a step
+/// is resumed from that row.
+pub fn to_csv(steps: &[Step], tower: bool) -> String {
+    let mut out = format!(
+        "step,operation,amount,unit,swing_deg,{},hoist_m,load_yaw_deg,radius_m,load_height_m,capacity_kg,chart_cell,utilisation_pct,min_clearance_m,clearance_part,clearance_to,max_pad_kg,max_pad\n",
+        if tower { "trolley_m" } else { "luff_deg" }
     );
     for s in steps {
+        let radial = if tower { s.end.radial } else { s.end.radial.to_degrees() };
         let opt = |v: Option<f64>, p: usize| v.map(|x| format!("{x:.p$}")).unwrap_or_default();
         out.push_str(&format!(
-            "{},{},{:.3},{},{:.3},{:.5},{:.3},{:.3},{:.3},{:.3},{},{},{},{:.3},{},{},{},{}\n",
+            "{},{},{:.3},{},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{},{},{},{:.3},{},{},{},{}\n",
             s.n,
             csv_field(&s.operation),
             s.amount,
             s.unit,
             s.end.swing_rad.to_degrees(),
-            s.end.radial,
+            radial,
             s.end.hoist_m,
             s.end.load_yaw_rad.to_degrees(),
             s.radius_m,
