@@ -248,6 +248,7 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     assert!(cover.contains("CHECK THE CRANE SHOWS THAT before step 1"), "{cover}");
     assert!(cover.contains("crane where the lift resumes (the load hanging)"), "{cover}");
     assert!(text.contains("The first step starts where the load hangs when the lift resumes"), "{text}");
+    assert!(text.contains("The part of the lift already made, from the pick to there, is not in it"), "{text}");
     assert_eq!(load_comes_near(&steps, platform_xy, platform_half, platform_top), None, "{steps}");
 
     // A lift that sets its load back where it picked it (a test lift) has

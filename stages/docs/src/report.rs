@@ -1171,6 +1171,15 @@ pub fn document(
         y += 4.0;
         y = sign_off_paragraph(&mut d, y, w, &sentence(&said));
     }
+    if task.resumes() {
+        y += 4.0;
+        y = sign_off_paragraph(
+            &mut d,
+            y,
+            w,
+            "This plan resumes a lift stopped part way (resume_from): it starts where the load hangs, with no lift-off, and holds the full clearance from its first step. The part of the lift already made, from the pick to there, is not in it: the plan it was made by was signed for that. CHECK that the crane shows the configuration on the cover before step 1.",
+        );
+    }
     if let Some(said) = plan.summary.obstacles_said() {
         y += 4.0;
         y = sign_off_paragraph(
