@@ -155,7 +155,7 @@ enum Command {
     /// like the thesis', then MSPGA against Ali et al.'s GA, RRT-Connect and PRM
     /// and the three C-space strategies on the demo lift. Markdown on stdout.
     #[command(
-        after_help = "Examples:\n  liftplan bench > reports/planner.md    # about 40 minutes on 2 cores\n  liftplan bench --runs 2 --grid-runs 0 --t414-runs 1 --demo-seeds 1\n  liftplan bench --runs 0 --grid-runs 0 --t414-runs 0 --demo-seeds 0 --validator-runs 10 > reports/validator.md"
+        after_help = "Examples:\n  liftplan bench > reports/planner.md    # about 40 minutes on 2 cores\n  liftplan bench --runs 2 --grid-runs 0 --t414-runs 1 --demo-seeds 1\n  liftplan bench --runs 0 --grid-runs 0 --t414-runs 0 --demo-seeds 0 --validator-runs 10 > reports/validator.md\n  liftplan bench --runs 0 --grid-runs 0 --t414-runs 0 --demo-seeds 0 --replan-seeds 10 > reports/replan.md"
     )]
     Bench {
         /// Seeds per row of Tables 4.11/4.12 (the thesis: 50).
@@ -173,6 +173,10 @@ enum Command {
         /// Seeds per plant for the validator's table (reports/validator.md; 0 skips it).
         #[arg(long, default_value_t = 0)]
         validator_runs: u64,
+        /// Seeds for re-planning part way through the demo lift round a new
+        /// obstacle (reports/replan.md; 0 skips it).
+        #[arg(long, default_value_t = 0)]
+        replan_seeds: u64,
     },
     /// Run the scans stage on loose files.
     #[command(after_help = "Example:\n  liftplan scans a.laz b.e57 -o site.laz --voxel 0.05 --ground-cell 0.5 --json")]
@@ -338,7 +342,7 @@ fn real_main() -> Result<ExitCode> {
             }
             Ok(if rep.ok { ExitCode::SUCCESS } else { ExitCode::from(1) })
         }
-        Command::Bench { runs, grid_runs, t414_runs, demo_seeds, validator_runs } => {
+        Command::Bench { runs, grid_runs, t414_runs, demo_seeds, validator_runs, replan_seeds } => {
             use liftplan_plan::bench;
             if runs > 0 || grid_runs > 0 {
                 bench::thesis_tables(runs, grid_runs);
@@ -348,7 +352,7 @@ fn real_main() -> Result<ExitCode> {
                 bench::table_414(t414_runs);
                 println!();
             }
-            if demo_seeds > 0 {
+            if demo_seeds > 0 || replan_seeds > 0 {
                 let dir = std::env::temp_dir().join(format!("liftplan-bench-{}", std::process::id()));
                 let run_demo = || -> anyhow::Result<()> {
                     liftplan_fixtures::demo::write_project(&dir, &liftplan_fixtures::demo::DemoOptions::default())
@@ -356,7 +360,14 @@ fn real_main() -> Result<ExitCode> {
                     let p = project::Project::load(&dir)?;
                     let rep = pipeline::run(&p, &RunOptions { until: None, force: vec![] }, &progress)?;
                     anyhow::ensure!(rep.ok, "the demo project did not run; see `liftplan demo`");
-                    bench::demo_lift(&dir, demo_seeds).map_err(anyhow::Error::msg)
+                    if demo_seeds > 0 {
+                        bench::demo_lift(&dir, demo_seeds).map_err(anyhow::Error::msg)?;
+                    }
+                    if replan_seeds > 0 {
+                        println!();
+                        bench::replanning(&dir, replan_seeds).map_err(anyhow::Error::msg)?;
+                    }
+                    Ok(())
                 };
                 let done = run_demo();
                 // The temporary project is removed whatever happened.
