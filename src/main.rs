@@ -12,6 +12,7 @@ mod inspect;
 mod pipeline;
 mod progress;
 use liftplan::project;
+mod resume;
 mod stages;
 mod watch;
 
@@ -87,6 +88,24 @@ enum Command {
         /// the all-terrain crane.
         #[arg(long)]
         tower: bool,
+    },
+    /// Print the resume_from line for a lift stopped part way, read off its
+    /// last plan: paste it into the lift's [[lift]] (with any [[obstacle]]
+    /// that stopped it) and run again to re-plan from where the load hangs.
+    #[command(
+        after_help = "Examples:\n  liftplan resume site-a V-101 --after-step 4\n  liftplan resume site-a V-101 --after-step 4 --swing-deg -60"
+    )]
+    Resume {
+        /// Project folder.
+        dir: PathBuf,
+        /// The lift's id.
+        lift: String,
+        /// The last step done, as the plan numbers them.
+        #[arg(long)]
+        after_step: usize,
+        /// Where the next step, a swing, stopped (degrees, as the steps give swing).
+        #[arg(long, allow_hyphen_values = true)]
+        swing_deg: Option<f64>,
     },
     /// Summarise any input file liftplan reads (scans, plant models, charts).
     #[command(after_help = "Examples:\n  liftplan inspect scans/north.laz\n  liftplan inspect scans/site.e57 --json")]
@@ -408,6 +427,10 @@ fn real_main() -> Result<ExitCode> {
                 }
             }
             println!("removed the cache and outputs of {}", dir.display());
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Resume { dir, lift, after_step, swing_deg } => {
+            println!("{}", resume::line(&dir, &lift, after_step, swing_deg)?);
             Ok(ExitCode::SUCCESS)
         }
         Command::Options { stage } => {

@@ -201,7 +201,19 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     let (platform_xy, platform_half, platform_top) = ([19.4, -13.6], 1.5, 20.0);
     let through =
         load_comes_near(&std::fs::read_to_string(&steps_csv).unwrap(), platform_xy, platform_half, platform_top);
-    assert!(through.is_some(), "the platform must stand on the plan made without it");
+    let (through_step, _) = through.expect("the platform must stand on the plan made without it");
+    // The crew stopped before that step: where the load hangs, read off
+    // the plan they follow.
+    let o = liftplan(&["resume", d, "V-101", "--after-step", &(through_step - 1).to_string()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let printed = String::from_utf8_lossy(&o.stdout).into_owned();
+    let resume_line = printed.lines().last().unwrap().to_string();
+    assert!(printed.starts_with(&format!("# lift V-101 after step {}", through_step - 1)), "{printed}");
+    let hangs: toml::Value = toml::from_str(&resume_line).unwrap();
+    let hangs = &hangs["resume_from"];
+    let at = |key: &str| hangs[key].as_float().unwrap_or_else(|| panic!("{key} in {resume_line}"));
+    let o = liftplan(&["resume", d, "V-101", "--after-step", "99"]);
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--after-step must be 1 to"), "{o:?}");
     let with_platform = format!(
         "{t13}\n[[obstacle]]\nname = \"raised work platform\"\ncenter_m = [{}, {}]\nbase_z_m = 0.0\nsize_m = [3.0, 3.0, {platform_top}]\n",
         platform_xy[0], platform_xy[1]
@@ -226,13 +238,11 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     assert!(text.contains("obstacles placed by hand in teal"), "{text}");
     assert!(text.contains("CHECK ON SITE that each stands where given"), "{text}");
 
-    // The lift stopped part way, the load hanging at swing -60°, as the
-    // crane shows it: re-planned from there, with no lift-off. The steps
-    // file gives each step's end under resume_from's names.
-    let resumed = with_platform.replace(
-        "set = { x_m = 30.0, y_m = 2.0, z_m = 1.2, yaw_deg = 0.0 }\n",
-        "set = { x_m = 30.0, y_m = 2.0, z_m = 1.2, yaw_deg = 0.0 }\nresume_from = { swing_deg = -60.0, luff_deg = 49.036, hoist_m = 13.033, yaw_deg = 22.456 }\n",
-    );
+    // The lift stopped where `liftplan resume` said: re-planned from there,
+    // with no lift-off. The steps file gives each step's end under
+    // resume_from's names.
+    let set_line = "set = { x_m = 30.0, y_m = 2.0, z_m = 1.2, yaw_deg = 0.0 }\n";
+    let resumed = with_platform.replace(set_line, &format!("{set_line}{resume_line}\n"));
     assert_ne!(resumed, with_platform);
     let (cover, text) = planned_with(&dir, &resumed);
     let steps = std::fs::read_to_string(&steps_csv).unwrap();
@@ -242,9 +252,15 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     let plan: serde_json::Value =
         serde_json::from_slice(&std::fs::read(dir.join("out").join("plan.json")).unwrap()).unwrap();
     let start = &plan["lifts"][0]["moves"][0]["from"];
-    assert!((start["swing_rad"].as_f64().unwrap().to_degrees() + 60.0).abs() < 1e-9, "{start}");
-    assert!((start["hoist_m"].as_f64().unwrap() - 13.033).abs() < 1e-9, "{start}");
-    assert!(cover.contains("RESUMED PART WAY THROUGH THE LIFT: this plan starts where the load hangs now (resume_from), not at its pick: swing -60.0°, luff 49.0°, hoist 13.03 m"), "{cover}");
+    assert!((start["swing_rad"].as_f64().unwrap() - at("swing_deg").to_radians()).abs() < 1e-12, "{start}");
+    assert!((start["hoist_m"].as_f64().unwrap() - at("hoist_m")).abs() < 1e-12, "{start}");
+    let said = format!(
+        "RESUMED PART WAY THROUGH THE LIFT: this plan starts where the load hangs now (resume_from), not at its pick: swing {:.1}°, luff {:.1}°, hoist {:.2} m",
+        at("swing_deg"),
+        at("luff_deg"),
+        at("hoist_m")
+    );
+    assert!(cover.contains(&said), "{said}\n{cover}");
     assert!(cover.contains("CHECK THE CRANE SHOWS THAT before step 1"), "{cover}");
     assert!(cover.contains("crane where the lift resumes (the load hanging)"), "{cover}");
     assert!(text.contains("The first step starts where the load hangs when the lift resumes"), "{text}");
@@ -618,10 +634,11 @@ liftoff_m = 0.5
 
 /// Where the demo's load, by the steps file's swings and step ends, comes
 /// within its clearance (1 m) of a box standing on the ground, `half_m`
-/// either way of `xy` and `top_m` high: the step, if anywhere. The load's
-/// centre is taken for the load, grown by its half diagonal (8 x 3 m): near
-/// in plan and lower than the top plus the clearance is near.
-fn load_comes_near(steps_csv: &str, xy: [f64; 2], half_m: f64, top_m: f64) -> Option<String> {
+/// either way of `xy` and `top_m` high: the step and the swing there (°),
+/// if anywhere. The load's centre is taken for the load, grown by its half
+/// diagonal (8 x 3 m): near in plan and lower than the top plus the
+/// clearance is near.
+fn load_comes_near(steps_csv: &str, xy: [f64; 2], half_m: f64, top_m: f64) -> Option<(usize, f64)> {
     let (clearance_m, half_diagonal_m) = (1.0, (4.0f64 * 4.0 + 1.5 * 1.5).sqrt());
     let near = |swing_deg: f64, radius_m: f64, underside_m: f64| {
         let (x, y) = (radius_m * swing_deg.to_radians().cos(), radius_m * swing_deg.to_radians().sin());
@@ -638,7 +655,7 @@ fn load_comes_near(steps_csv: &str, xy: [f64; 2], half_m: f64, top_m: f64) -> Op
         if let Some(i) =
             (0..=n).find(|i| near(from_deg + (r[swing] - from_deg) * *i as f64 / n as f64, r[radius], r[height]))
         {
-            return Some(format!("step {} at {:.1}°", k + 1, from_deg + (r[swing] - from_deg) * i as f64 / n as f64));
+            return Some((k + 1, from_deg + (r[swing] - from_deg) * i as f64 / n as f64));
         }
         from_deg = r[swing];
     }
