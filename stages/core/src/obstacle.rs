@@ -26,9 +26,10 @@ pub const MAX_OBSTACLES: usize = 200;
 pub const MAX_OBSTACLE_SIDE_M: f64 = 500.0;
 /// The longest name (characters): the PDF says it.
 pub const MAX_OBSTACLE_NAME: usize = 100;
-/// How far from the site's origin an obstacle may stand (m): more is a
-/// survey coordinate given in a site-frame project.
-pub const MAX_OBSTACLE_OFFSET_M: f64 = 100_000.0;
+/// How far from the site's origin an obstacle may stand (m): more than any
+/// projected coordinate (a site in survey coordinates gives its northing,
+/// millions of metres), so more is no place on site.
+pub const MAX_OBSTACLE_OFFSET_M: f64 = 100_000_000.0;
 
 /// One obstacle: a box standing `base_z_m` up, `size_m` long, wide and
 /// high, its length along `yaw_deg` (anticlockwise from the site's x axis),
@@ -67,7 +68,7 @@ impl Obstacle {
         }
         if self.center_m.iter().chain([&self.base_z_m]).any(|v| v.abs() > MAX_OBSTACLE_OFFSET_M) {
             return Some(format!(
-                "obstacle '{name}' stands more than {MAX_OBSTACLE_OFFSET_M} m from the site's origin: give it in the site frame, as the lifts' pick and set"
+                "obstacle '{name}' stands more than {MAX_OBSTACLE_OFFSET_M} m from the site's origin: give it in the frame of the lifts' pick and set"
             ));
         }
         if !self.size_m.iter().all(|s| s.is_finite() && *s > 0.0 && *s <= MAX_OBSTACLE_SIDE_M) {
@@ -173,7 +174,9 @@ mod tests {
         assert!(why.contains("obstacle 'delivery truck': size_m") && why.contains("[10.0, 2.5, 0.0]"), "{why}");
         assert!(with(|o| o.size_m[0] = 4000.0).1.contains("at most 500"));
         assert!(with(|o| o.center_m[1] = f64::NAN).1.contains("finite"));
-        assert!(with(|o| o.center_m[0] = 512_345.0).1.contains("site frame"));
+        assert!(with(|o| o.center_m[0] = 2e8).1.contains("frame of the lifts' pick and set"));
+        // A site in survey coordinates: its northing is millions of metres.
+        assert_eq!(problem_of(&[Obstacle { center_m: [512_345.0, 5_412_345.0], base_z_m: 102.0, ..truck() }]), None);
         assert!(with(|o| o.name = " ".into()).1.contains("obstacle[1] needs a name"));
         assert!(with(|o| o.name = "first".into()).1.contains("'first' is named twice"));
         let many = vec![truck(); MAX_OBSTACLES + 1];

@@ -469,10 +469,12 @@ fn way_permitted(task: &LiftTask, from: f64, to: f64) -> bool {
     task.swing_range_rad.is_none_or(|(a, b)| from.min(to) >= a && from.max(to) <= b)
 }
 
-/// The landing zones of a lift.
+/// The landing zones of a lift: at the pick and the set, or only the set
+/// for a lift resumed part way (its load is not lifted off the pick, so
+/// nothing hanging over it may come closer than the full clearance).
 pub fn landing_zones(task: &LiftTask, s: &Settings) -> Vec<LandingZone> {
-    [task.pick, task.set]
-        .iter()
+    let ends: &[Config] = if task.resumes() { &[task.set] } else { &[task.pick, task.set] };
+    ends.iter()
         .map(|c| LandingZone::around(&task.crane.load_obb(c, &task.load), s.landing_margin_m, s.landing_clearance_m))
         .collect()
 }
@@ -701,9 +703,9 @@ pub(crate) fn plan_lift_hinting(
     // validator's verdict on them now, before the search, says what blocks
     // them instead of rejecting every plan at the end.
     // (A lift resumed part way has no lift-off: its load hangs.)
-    let lift_off = (!task.resumes()).then(|| ("lift-off", lift_off(task), &task.pick, task.height_key(true)));
+    let lift_off_check = (!task.resumes()).then(|| ("lift-off", lift_off(task), &task.pick, task.height_key(true)));
     for (what, mv, at, key) in
-        lift_off.into_iter().chain([("set-down", set_down(task), &task.set, task.height_key(false))])
+        lift_off_check.into_iter().chain([("set-down", set_down(task), &task.set, task.height_key(false))])
     {
         let v = validate::validate(task, chart, site.world, &rules, &[mv], &[true]);
         if !v.ok {

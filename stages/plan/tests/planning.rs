@@ -1685,6 +1685,14 @@ fn a_lift_resumed_part_way_plans_from_where_the_load_hangs() {
     let pose = liftplan_core::crane::LoadPose { x_m: 22.0, y_m: -2.5, z_m: 5.0, yaw_rad: 0.0 };
     let c = beside.crane.inverse(&pose, &beside.load).unwrap();
     beside.resume_from = Some((c, pose));
-    let why = plan_lift(&beside, &site, &quick(), 3).unwrap_err().to_string();
+    let why = plan_lift(&beside, &site, &quick(), 3).map(|_| "planned").unwrap_err().to_string();
     assert!(why.contains("where the load hangs now (resume_from) is not clear") && why.contains("WALL"), "{why}");
+    // Hanging 0.3 m above where it was picked, 0.8 m over the slab: a lift
+    // off the pick may be that close over its landing zone, a lift resumed
+    // part way is not lifted off there and keeps its full clearance.
+    let low = Config { hoist_m: t.pick.hoist_m - 0.3, ..t.pick };
+    let mut just_up = resumed_at(&over);
+    just_up.resume_from = Some((low, t.crane.load_pose(&low, &t.load)));
+    let why = plan_lift(&just_up, &site, &quick(), 3).map(|_| "planned").unwrap_err().to_string();
+    assert!(why.contains("where the load hangs now (resume_from) is not clear") && why.contains("SLAB"), "{why}");
 }
