@@ -209,7 +209,8 @@ impl Project {
                 ),
             ));
         }
-        if let Some((k, m)) = liftplan_core::obstacle::problem_of(&self.raw.obstacle) {
+        let lift_ids: Vec<&str> = self.raw.lift.iter().map(|l| l.id.as_str()).collect();
+        if let Some((k, m)) = liftplan_core::obstacle::problem_of(&self.raw.obstacle, &lift_ids) {
             // The k-th [[obstacle]] table, else (given inline) its name.
             let table = text.match_indices("[[obstacle]]").nth(k).map(|(off, _)| off);
             let location = match table {
@@ -447,6 +448,7 @@ keep = 3                  # runs' outputs each stage keeps in .liftplan/cache (t
 # base_z_m = 0.0               # its underside: the ground's height where it stands, m
 # size_m = [10.0, 2.5, 4.0]    # length (along yaw_deg), width, height, m
 # yaw_deg = 30.0               # its length's direction, anticlockwise from x, degrees
+# lifts = ["V-101"]            # only during these lifts (leave it out: every lift)
 
 # A lift: uncomment and edit.
 # [[lift]]
@@ -556,7 +558,9 @@ mod tests {
             .collect::<Vec<_>>()
             .join("\n");
         let raw: super::RawProject = toml::from_str(&format!("[[obstacle]]\n{example}")).unwrap();
-        assert_eq!(liftplan_core::obstacle::problem_of(&raw.obstacle), None);
+        // For the template's example lift.
+        assert_eq!(liftplan_core::obstacle::problem_of(&raw.obstacle, &["V-101"]), None);
+        assert_eq!(raw.obstacle[0].lifts, ["V-101"]);
         assert_eq!(
             raw.obstacle[0].said(),
             "delivery truck, 10.0 x 2.5 x 4.0 m at x 12.0, y -4.0 m, underside at z 0.0 m, turned 30°"

@@ -218,6 +218,8 @@ fn bad_project_files_name_line_and_column() {
     expect_project_error(&dir, "obstacle 'truck' is named twice", 7);
     std::fs::write(&f, truck.replace("base_z_m", "base_z")).unwrap();
     expect_project_error(&dir, "unknown field `base_z`", 4);
+    std::fs::write(&f, format!("{truck}lifts = [\"V-2\"]\n")).unwrap();
+    expect_project_error(&dir, "obstacle 'truck' is for lift 'V-2', which the project does not have", 1);
     std::fs::write(&f, "this is not toml").unwrap();
     let o = liftplan(&["run", dir.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(2));

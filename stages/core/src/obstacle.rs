@@ -47,6 +47,10 @@ pub struct Obstacle {
     pub size_m: [f64; 3],
     #[serde(default)]
     pub yaw_deg: f64,
+    /// The lifts it stands there for, by id (a truck that leaves after the
+    /// first); empty: every lift.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub lifts: Vec<String>,
 }
 
 impl Obstacle {
@@ -90,6 +94,11 @@ impl Obstacle {
         )
     }
 
+    /// Whether it stands there during lift `id`.
+    pub fn during(&self, id: &str) -> bool {
+        self.lifts.is_empty() || self.lifts.iter().any(|l| l == id)
+    }
+
     /// What the planner, the validator and their messages call it.
     pub fn called(&self) -> String {
         format!("obstacle '{}'", self.name)
@@ -108,9 +117,9 @@ impl Obstacle {
 }
 
 /// The first problem of a project's obstacles, if any: too many, one that
-/// is not an obstacle, or two of one name (a message naming it would not
-/// say which).
-pub fn problem_of(obstacles: &[Obstacle]) -> Option<(usize, String)> {
+/// is not an obstacle, two of one name (a message naming it would not say
+/// which), or one for a lift the project does not have (`lift_ids`).
+pub fn problem_of(obstacles: &[Obstacle], lift_ids: &[&str]) -> Option<(usize, String)> {
     if obstacles.len() > MAX_OBSTACLES {
         return Some((
             MAX_OBSTACLES,
@@ -124,13 +133,28 @@ pub fn problem_of(obstacles: &[Obstacle]) -> Option<(usize, String)> {
         if obstacles[..k].iter().any(|e| e.name == o.name) {
             return Some((k, format!("obstacle '{}' is named twice: give each its own name", o.name)));
         }
+        if let Some(l) = o.lifts.iter().find(|l| !lift_ids.contains(&l.as_str())) {
+            return Some((
+                k,
+                format!(
+                    "obstacle '{}' is for lift '{l}', which the project does not have ({})",
+                    o.name,
+                    if lift_ids.is_empty() {
+                        "it has none".to_string()
+                    } else {
+                        format!("its lifts: {}", lift_ids.join(", "))
+                    }
+                ),
+            ));
+        }
     }
     None
 }
 
-/// The obstacles as the named boxes the planner and the validator keep off.
-pub fn boxes(obstacles: &[Obstacle]) -> Vec<(Obb, String)> {
-    obstacles.iter().map(|o| (o.obb(), o.called())).collect()
+/// The obstacles that stand there during lift `id`, as the named boxes the
+/// planner and the validator keep off.
+pub fn boxes_during(obstacles: &[Obstacle], id: &str) -> Vec<(Obb, String)> {
+    obstacles.iter().filter(|o| o.during(id)).map(|o| (o.obb(), o.called())).collect()
 }
 
 #[cfg(test)]
@@ -144,6 +168,7 @@ mod tests {
             base_z_m: 0.5,
             size_m: [10.0, 2.5, 4.0],
             yaw_deg: 90.0,
+            lifts: vec![],
         }
     }
 
@@ -158,16 +183,20 @@ mod tests {
             truck().said(),
             "delivery truck, 10.0 x 2.5 x 4.0 m at x 12.0, y -4.0 m, underside at z 0.5 m, turned 90°"
         );
-        assert_eq!(boxes(&[truck()])[0].1, "obstacle 'delivery truck'");
+        assert_eq!(boxes_during(&[truck()], "L-1")[0].1, "obstacle 'delivery truck'");
+        // One that leaves after the first lift.
+        let first_only = Obstacle { lifts: vec!["L-1".into()], ..truck() };
+        assert_eq!(boxes_during(std::slice::from_ref(&first_only), "L-1").len(), 1);
+        assert!(boxes_during(&[first_only], "L-2").is_empty());
     }
 
     #[test]
     fn obstacles_that_are_not_boxes_on_site_are_refused_by_name() {
-        assert_eq!(problem_of(&[truck()]), None);
+        assert_eq!(problem_of(&[truck()], &[]), None);
         let with = |f: fn(&mut Obstacle)| {
             let mut o = truck();
             f(&mut o);
-            problem_of(&[truck_named("first"), o]).expect("refused")
+            problem_of(&[truck_named("first"), o], &["L-1", "L-2"]).expect("refused")
         };
         let (k, why) = with(|o| o.size_m[2] = 0.0);
         assert_eq!(k, 1);
@@ -176,11 +205,19 @@ mod tests {
         assert!(with(|o| o.center_m[1] = f64::NAN).1.contains("finite"));
         assert!(with(|o| o.center_m[0] = 2e8).1.contains("frame of the lifts' pick and set"));
         // A site in survey coordinates: its northing is millions of metres.
-        assert_eq!(problem_of(&[Obstacle { center_m: [512_345.0, 5_412_345.0], base_z_m: 102.0, ..truck() }]), None);
+        assert_eq!(
+            problem_of(&[Obstacle { center_m: [512_345.0, 5_412_345.0], base_z_m: 102.0, ..truck() }], &[]),
+            None
+        );
         assert!(with(|o| o.name = " ".into()).1.contains("obstacle[1] needs a name"));
         assert!(with(|o| o.name = "first".into()).1.contains("'first' is named twice"));
+        let lift_3 = with(|o| o.lifts = vec!["L-1".into(), "L-3".into()]).1;
+        assert!(
+            lift_3.contains("is for lift 'L-3', which the project does not have (its lifts: L-1, L-2)"),
+            "{lift_3}"
+        );
         let many = vec![truck(); MAX_OBSTACLES + 1];
-        assert!(problem_of(&many).unwrap().1.contains("at most 200"));
+        assert!(problem_of(&many, &[]).unwrap().1.contains("at most 200"));
     }
 
     fn truck_named(name: &str) -> Obstacle {

@@ -597,14 +597,13 @@ pub fn document(
     key_values(&mut d, key_x, y + 14.0, &rows, key_w);
     y += box_h + 6.0;
     // The other lifts' loads where they stand during this one, as the plan
-    // stage checked against them (lifts are made in the order listed).
+    // stage checked against them (lifts are made in the order listed), and
+    // the obstacles placed by hand that stand there during it.
     let k = inp.tasks.iter().position(|t| t.id == task.id).unwrap_or(0);
-    let others: Vec<(Obb, Rgb)> = liftplan_plan::other_loads(&inp.tasks, k)
-        .into_iter()
-        .map(|(b, _)| (b, pictures::OTHER_LOAD))
-        .chain(inp.obstacles.iter().map(|o| (o.obb(), pictures::OBSTACLE)))
-        .collect();
-    let other_loads = others.len() - inp.obstacles.len();
+    let mut others: Vec<(Obb, Rgb)> =
+        liftplan_plan::other_loads(&inp.tasks, k).into_iter().map(|(b, _)| (b, pictures::OTHER_LOAD)).collect();
+    let other_loads = others.len();
+    others.extend(inp.obstacles.iter().filter(|o| o.during(&task.id)).map(|o| (o.obb(), pictures::OBSTACLE)));
     let overview = pictures::overview(site, task, plan, &others, 1400, 1000);
     let tail = task.crane.tail_swing_m();
     let under_m2 = plan.summary.coverage.as_ref().map(|c| c.under_load.passed_m2).filter(|m2| *m2 > 0.0);
@@ -627,7 +626,7 @@ pub fn document(
             None => String::new(),
         },
         if other_loads == 0 { "" } else { ", other lifts' loads in violet" },
-        if inp.obstacles.is_empty() { "" } else { ", obstacles placed by hand in teal" },
+        if others.len() == other_loads { "" } else { ", obstacles placed by hand in teal" },
         match (task.not_over.is_empty(), task.not_over.iter().any(|a| a.crane_too)) {
             (true, _) => "",
             (false, false) => ", areas the load must never be over outlined in green",
@@ -748,11 +747,13 @@ pub fn document(
             ),
         ));
     }
-    if !inp.obstacles.is_empty() {
+    let obstacles: Vec<&liftplan_core::obstacle::Obstacle> =
+        inp.obstacles.iter().filter(|o| o.during(&task.id)).collect();
+    if !obstacles.is_empty() {
         const NAMED: usize = 10;
-        let mut said: Vec<String> = inp.obstacles.iter().take(NAMED).map(|o| o.said()).collect();
-        if inp.obstacles.len() > NAMED {
-            said.push(format!("and {} more", inp.obstacles.len() - NAMED));
+        let mut said: Vec<String> = obstacles.iter().take(NAMED).map(|o| o.said()).collect();
+        if obstacles.len() > NAMED {
+            said.push(format!("and {} more", obstacles.len() - NAMED));
         }
         rows.push((
             "Placed by hand",

@@ -689,8 +689,9 @@ pub fn replanning(dir: &Path, seeds: u64) -> Result<(), String> {
             base_z_m: ground,
             size_m: [3.0, 3.0, load.max[2] + 2.0 - ground],
             yaw_deg: 0.0,
+            lifts: vec![],
         };
-        let boxes = liftplan_core::obstacle::boxes(std::slice::from_ref(&tower));
+        let boxes = liftplan_core::obstacle::boxes_during(std::slice::from_ref(&tower), &task.id);
         let with_tower = map.with_boxes(&boxes);
         world.others = boxes;
         let site_with = Site { map: &with_tower, world: &world, charts: charts.as_ref() };

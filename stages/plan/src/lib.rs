@@ -998,7 +998,7 @@ pub fn run(
         // validator's view and in the planner's map alike.
         world.others = other_loads(tasks, k);
         let lifts_loads = world.others.len();
-        world.others.extend(liftplan_core::obstacle::boxes(obstacles));
+        world.others.extend(liftplan_core::obstacle::boxes_during(obstacles, &task.id));
         let with_others = (!world.others.is_empty()).then(|| map.with_boxes(&world.others));
         let site = Site { map: with_others.as_ref().unwrap_or(&map), world: &world, charts: Some(&charts) };
         let above_m = cutout_above_m(s.load_cutout_m);
@@ -1037,7 +1037,7 @@ pub fn run(
                 Some(validate::cog_over_support_m(task, &world, &task.set, on.gap_m, s.support_m, s.support_m));
         }
         plan.summary.other_loads = world.others[..lifts_loads].iter().map(|(_, name)| name.clone()).collect();
-        plan.summary.obstacles = obstacles.iter().map(|o| o.said()).collect();
+        plan.summary.obstacles = obstacles.iter().filter(|o| o.during(&task.id)).map(|o| o.said()).collect();
         plan.summary.load_as_scanned = as_scanned;
         plan.summary.against_model = against_model[k].clone();
         plan.summary.passes_left_out = model_copy::passes_left_out(task, &plan.moves, &left_out, &loads, &world);
@@ -1150,6 +1150,7 @@ mod tests {
             base_z_m: 0.0,
             size_m: [side, side, 3.0],
             yaw_deg: 45.0,
+            lifts: vec![],
         };
         assert_eq!(obstacles_fit(&[o(10.0), o(20.0)], 0.25), Ok(()));
         // 200 boxes of 500 m at 0.25 m cells would be 16 G intervals.
