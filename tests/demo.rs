@@ -237,6 +237,7 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     assert!(text.contains("Placed by hand raised work platform, 3.0 x 3.0 x 20.0 m"), "{text}");
     assert!(text.contains("obstacles placed by hand in teal"), "{text}");
     assert!(text.contains("CHECK ON SITE that each stands where given"), "{text}");
+    assert!(text.contains("CHECK FIRST the obstacle placed by hand, where it stands"), "{text}");
 
     // The lift stopped where `liftplan resume` said: re-planned from there,
     // with no lift-off. The steps file gives each step's end under
@@ -262,6 +263,7 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     );
     assert!(cover.contains(&said), "{said}\n{cover}");
     assert!(cover.contains("CHECK THE CRANE SHOWS THAT before step 1"), "{cover}");
+    assert!(cover.contains("CHECK FIRST that the crane shows where the lift resumes"), "{cover}");
     assert!(cover.contains("crane where the lift resumes (the load hanging)"), "{cover}");
     assert!(text.contains("The first step starts where the load hangs when the lift resumes"), "{text}");
     assert!(text.contains("The part of the lift already made, from the pick to there, is not in it"), "{text}");

@@ -141,6 +141,14 @@ fn checks_before_signing(
 ) -> Vec<String> {
     let sm = &plan.summary;
     let mut v = Vec::new();
+    if task.resumes() {
+        v.push("that the crane shows where the lift resumes".to_string());
+    }
+    match sm.obstacles.len() {
+        0 => {}
+        1 => v.push("the obstacle placed by hand, where it stands".to_string()),
+        n => v.push(format!("the {n} obstacles placed by hand, where they stand")),
+    }
     if let Some((_, boom)) = inp.one_column_charts.iter().find(|(id, _)| *id == task.id) {
         v.push(format!("that the chart of one column is the {boom:.1} m boom's"));
     }
