@@ -32,6 +32,8 @@ pub fn line(dir: &std::path::Path, lift: &str, after_step: usize, swing_deg: Opt
         bail!("{}: no plan of lift '{lift}' (run the project first)", file.display());
     };
     let steps = plan.moves.len();
+    // A plan.json edited by hand may have fewer steps than moves: say "?".
+    let text = |n: usize| plan.steps.get(n).map_or("?", |s| s.text.as_str());
     if !(1..steps).contains(&after_step) {
         bail!(
             "--after-step must be 1 to {}: the plan of lift '{lift}' has {steps} steps, and the last sets the load down",
@@ -39,7 +41,7 @@ pub fn line(dir: &std::path::Path, lift: &str, after_step: usize, swing_deg: Opt
         );
     }
     let mut at = plan.moves[after_step - 1].to;
-    let mut whence = format!("after step {after_step} ({})", plan.steps[after_step - 1].text);
+    let mut whence = format!("after step {after_step} ({})", text(after_step - 1));
     if let Some(deg) = swing_deg {
         let next = &plan.moves[after_step];
         let (a, b) = (next.from.swing_rad.to_degrees(), next.to.swing_rad.to_degrees());
@@ -47,15 +49,14 @@ pub fn line(dir: &std::path::Path, lift: &str, after_step: usize, swing_deg: Opt
             bail!(
                 "step {} of the plan of lift '{lift}' is not a swing ({}): --swing-deg says where a swing stopped",
                 after_step + 1,
-                plan.steps[after_step].text
+                text(after_step)
             );
         }
         if !(deg.is_finite() && deg >= a.min(b) - 1e-6 && deg <= a.max(b) + 1e-6) {
             bail!("step {} swings from {a:.3}° to {b:.3}°: --swing-deg {deg} is not on the way", after_step + 1);
         }
         at.swing_rad = deg.to_radians();
-        whence =
-            format!("during step {} ({}), stopped at swing {deg:.3}°", after_step + 1, plan.steps[after_step].text);
+        whence = format!("during step {} ({}), stopped at swing {deg:.3}°", after_step + 1, text(after_step));
     }
     let radial = if task.crane.model.is_tower() {
         format!("trolley_m = {:.3}", at.radial)
