@@ -169,8 +169,9 @@ pub fn load_path(site: &SiteView, task: &LiftTask, plan: &LiftPlan, upto: usize)
     pts
 }
 
-/// Top view of the whole site with the crane at pick, the load at set (ghost)
-/// and the load path; `others`: what else stands on site that neither the
+/// Top view of the whole site with the crane where the plan starts (at the
+/// pick, or where a resumed lift's load hangs), the load at set (ghost) and
+/// the load path; `others`: what else stands on site that neither the
 /// scans nor the model hold (the other lifts' loads, the obstacles placed by
 /// hand), each in its colour.
 pub fn overview(site: &SiteView, task: &LiftTask, plan: &LiftPlan, others: &[(Obb, Rgb)], w: u32, h: u32) -> Image {
