@@ -619,7 +619,10 @@ pub(crate) fn plan_lift_hinting(
         Some(ch) => positions::search(task, site, ch, s, seed, positions::Sought::Plans).said(&ch.name),
         None => String::new(),
     };
-    for (what, c) in [("pick", &task.pick), ("set", &task.set)] {
+    // (A lift resumed part way was lifted off its pick: where it hangs, the
+    // checker and the validator read the chart.)
+    let ends = if task.resumes() { &[("set", &task.set)][..] } else { &[("pick", &task.pick), ("set", &task.set)][..] };
+    for &(what, c) in ends {
         if let Some(ch) = chart {
             match task.check_capacity(ch, c.radial) {
                 Ok(k) if k.effective_kg >= task.gross_kg() => {}

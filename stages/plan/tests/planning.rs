@@ -1695,4 +1695,18 @@ fn a_lift_resumed_part_way_plans_from_where_the_load_hangs() {
     just_up.resume_from = Some((low, t.crane.load_pose(&low, &t.load)));
     let why = plan_lift(&just_up, &site, &quick(), 3).map(|_| "planned").unwrap_err().to_string();
     assert!(why.contains("where the load hangs now (resume_from) is not clear") && why.contains("SLAB"), "{why}");
+
+    // A pick the chart does not carry the load at (29.7 m out; 50 t to
+    // 28 m, 3 t beyond) refuses the lift from it, not the lift resumed 8 m
+    // over its set position (26.1 m out): that was lifted off already.
+    let table = chart(3.0);
+    let charted = Site { map: &m, world: &world, charts: Some(&table) };
+    let far = task(-20.0);
+    let e = plan_lift(&far, &charted, &quick(), 3).map(|_| "planned").unwrap_err().to_string();
+    assert!(e.contains("pick is over capacity"), "{e}");
+    let mut over_set = far.clone();
+    let hangs = Config { hoist_m: far.set.hoist_m - 8.0, ..far.set };
+    over_set.resume_from = Some((hangs, far.crane.load_pose(&hangs, &far.load)));
+    let (down, _) = plan_lift(&over_set, &charted, &quick(), 3).unwrap();
+    assert!(down.validator.ok && down.summary.max_utilisation_pct < 100.0, "{:?}", down.validator.problems);
 }
