@@ -563,7 +563,7 @@ mod tests {
         assert_eq!(raw.obstacle[0].lifts, ["V-101"]);
         assert_eq!(
             raw.obstacle[0].said(),
-            "delivery truck, 10.0 x 2.5 x 4.0 m at x 12.0, y -4.0 m, underside at z 0.0 m, turned 30°"
+            "delivery truck, 10.00 x 2.50 x 4.00 m at x 12.00, y -4.00 m, underside at z 0.00 m, turned 30.0°"
         );
     }
 }

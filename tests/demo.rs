@@ -232,9 +232,9 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
         serde_json::from_slice(&std::fs::read(dir.join("out").join("plan.json")).unwrap()).unwrap();
     assert_eq!(
         plan["lifts"][0]["summary"]["obstacles"][0],
-        "raised work platform, 3.0 x 3.0 x 20.0 m at x 19.4, y -13.6 m, underside at z 0.0 m"
+        "raised work platform, 3.00 x 3.00 x 20.00 m at x 19.40, y -13.60 m, underside at z 0.00 m"
     );
-    assert!(text.contains("Placed by hand raised work platform, 3.0 x 3.0 x 20.0 m"), "{text}");
+    assert!(text.contains("Placed by hand raised work platform, 3.00 x 3.00 x 20.00 m"), "{text}");
     assert!(text.contains("obstacles placed by hand in teal"), "{text}");
     assert!(text.contains("CHECK ON SITE that each stands where given"), "{text}");
     assert!(text.contains("CHECK FIRST the obstacle placed by hand, where it stands"), "{text}");

@@ -104,13 +104,14 @@ impl Obstacle {
         format!("obstacle '{}'", self.name)
     }
 
-    /// It in words, for the PDF and the run's output: "delivery truck, 10.0 x
-    /// 2.5 x 4.0 m at x 12.0, y -4.0 m, underside at z 0.0 m, turned 30°".
+    /// It in words, for the PDF and the run's output, to the centimetre as
+    /// the pick and set are: "delivery truck, 10.00 x 2.50 x 4.00 m at x
+    /// 12.00, y -4.00 m, underside at z 0.00 m, turned 30.0°".
     pub fn said(&self) -> String {
         let [l, w, h] = self.size_m;
-        let turned = if self.yaw_deg == 0.0 { String::new() } else { format!(", turned {:.0}°", self.yaw_deg) };
+        let turned = if self.yaw_deg == 0.0 { String::new() } else { format!(", turned {:.1}°", self.yaw_deg) };
         format!(
-            "{}, {l:.1} x {w:.1} x {h:.1} m at x {:.1}, y {:.1} m, underside at z {:.1} m{turned}",
+            "{}, {l:.2} x {w:.2} x {h:.2} m at x {:.2}, y {:.2} m, underside at z {:.2} m{turned}",
             self.name, self.center_m[0], self.center_m[1], self.base_z_m
         )
     }
@@ -181,7 +182,7 @@ mod tests {
         }
         assert_eq!(
             truck().said(),
-            "delivery truck, 10.0 x 2.5 x 4.0 m at x 12.0, y -4.0 m, underside at z 0.5 m, turned 90°"
+            "delivery truck, 10.00 x 2.50 x 4.00 m at x 12.00, y -4.00 m, underside at z 0.50 m, turned 90.0°"
         );
         assert_eq!(boxes_during(&[truck()], "L-1")[0].1, "obstacle 'delivery truck'");
         // One that leaves after the first lift.
