@@ -696,9 +696,8 @@ pub fn replanning(dir: &Path, seeds: u64) -> Result<(), String> {
         world.others = boxes;
         let site_with = Site { map: &with_tower, world: &world, charts: charts.as_ref() };
         // The first plan must meet the tower: else it stands nowhere on its path.
-        let landing: Vec<bool> = (0..first.moves.len()).map(|i| i == 0 || i == first.moves.len() - 1).collect();
-        let zones = crate::landing_zones(&task, &s).iter().map(|z| z.polygon.clone()).collect();
-        let rules = crate::validate_rules(&task, &s, zones);
+        let landing = crate::landing_moves(&task, first.moves.len());
+        let rules = crate::validate_rules(&task, &s, &crate::landing_zones(&task, &s));
         let meets = crate::validate::validate_lift(&task, None, &world, &rules, &first.moves, &landing)
             .problems
             .iter()

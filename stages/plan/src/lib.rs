@@ -557,15 +557,22 @@ fn set_up_blocked(task: &LiftTask, site: &Site, s: &Settings) -> Option<String> 
     None
 }
 
-/// The validator's rules for `task`, its landing zones' outlines given.
-fn validate_rules(task: &LiftTask, s: &Settings, landing: Vec<Vec<[f64; 2]>>) -> validate::Rules {
+/// The validator's rules for `task`, with its landing zones' outlines.
+fn validate_rules(task: &LiftTask, s: &Settings, zones: &[LandingZone]) -> validate::Rules {
     validate::Rules {
         clearance_m: task.clearance_m,
-        landing,
+        landing: zones.iter().map(|z| z.polygon.clone()).collect(),
         landing_clearance_m: s.landing_clearance_m,
         sample_m: s.validator_sample_m,
         support_m: s.support_m,
     }
+}
+
+/// Which of a lift's `n` moves, from the first to the set-down, are the
+/// landing moves the validator lets the load touch its support in: the
+/// lift-off (none for a lift resumed part way) and the set-down.
+fn landing_moves(task: &LiftTask, n: usize) -> Vec<bool> {
+    (0..n).map(|i| (i == 0 && !task.resumes()) || i + 1 == n).collect()
 }
 
 /// The lift-off: the hook raises the load `liftoff_m` off its pick support.
@@ -657,7 +664,7 @@ pub(crate) fn plan_lift_hinting(
     }
     let cs = CSpace::build(&Problem { task, chart, map: site.map }, &s.cspace);
     let zones = landing_zones(task, s);
-    let landing: Vec<Vec<[f64; 2]>> = zones.iter().map(|z| z.polygon.clone()).collect();
+    let rules = validate_rules(task, s, &zones);
     let ck = Checker::new(&cs, site.map, task, zones, s.cspace.sample_m);
     let start = task.start();
     let goal0 = task.goal();
@@ -701,7 +708,6 @@ pub(crate) fn plan_lift_hinting(
             format!("the configuration above the set position is not allowed: {}{hint}{elsewhere}", why(&b)),
         ));
     }
-    let rules = validate_rules(task, s, landing);
     // The lift-off and the set-down are the same whatever path is found: the
     // validator's verdict on them now, before the search, says what blocks
     // them instead of rejecting every plan at the end.
@@ -800,8 +806,7 @@ pub(crate) fn plan_lift_hinting(
         from: nodes.last().copied().unwrap_or(goal0),
         to: Config { swing_rad: nodes.last().map(|n| n.swing_rad).unwrap_or(goal0.swing_rad), ..task.set },
     });
-    let landing_flags: Vec<bool> = (0..all.len()).map(|i| (i == 0 && !task.resumes()) || i == all.len() - 1).collect();
-    let verdict = validate::validate_lift(task, chart, site.world, &rules, &all, &landing_flags);
+    let verdict = validate::validate_lift(task, chart, site.world, &rules, &all, &landing_moves(task, all.len()));
     if !verdict.ok {
         return Err(lift_err(
             task,

@@ -538,7 +538,7 @@ fn set_up_at(
     // boom that meets what stands between the crane and the pick or the set
     // refuses the lift there whatever path is searched.
     let zones = crate::landing_zones(&moved, s);
-    let rules = crate::validate_rules(&moved, s, zones.iter().map(|z| z.polygon.clone()).collect());
+    let rules = crate::validate_rules(&moved, s, &zones);
     for mv in [crate::lift_off(&moved), crate::set_down(&moved)] {
         if !crate::validate::validate(&moved, Some(chart), site.world, &rules, &[mv], &[true]).ok {
             return None;

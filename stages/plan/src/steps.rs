@@ -606,7 +606,9 @@ pub fn summary(task: &LiftTask, steps: &[Step], verdict: &Verdict) -> Summary {
         not_critical_at: None,
         ground: task.ground,
     };
-    for st in steps {
+    // Lift-off and set-down touch the supports by design; report the travel.
+    let landing = crate::landing_moves(task, steps.len());
+    for (st, landing) in steps.iter().zip(landing) {
         if let Some(p) = st.pads
             && s.highest_pad.is_none_or(|(_, h)| p.load_kg > h.load_kg)
         {
@@ -622,8 +624,6 @@ pub fn summary(task: &LiftTask, steps: &[Step], verdict: &Verdict) -> Summary {
             s.max_utilisation_step = st.n;
             s.max_utilisation_cell = st.chart_cell.clone().unwrap_or_default();
         }
-        // Lift-off and set-down touch the supports by design; report the travel.
-        let landing = (st.n == 1 && !task.resumes()) || st.n == steps.len();
         if !landing && st.min_clearance_m < s.min_clearance_m {
             s.min_clearance_m = st.min_clearance_m;
             s.min_clearance_step = st.n;
