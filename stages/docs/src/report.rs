@@ -390,20 +390,26 @@ fn cover_heading(d: &mut Doc, w: f32, id: &str, description: &str) -> f32 {
 /// crane's configuration as its steps give one, and the load's place.
 fn resumes_said(task: &LiftTask) -> Option<String> {
     let (c, pose) = task.resume_from.as_ref()?;
-    let radial = if task.crane.model.is_tower() {
-        format!("trolley {:.2} m", c.radial)
-    } else {
-        format!("luff {:.1}°", c.radial.to_degrees())
-    };
     Some(format!(
-        "PART WAY THROUGH THE LIFT: this plan starts where the load hangs now (resume_from), not at its pick: swing {:.1}°, {radial}, hoist {:.2} m, load yaw {:.1}°, the load's underside at ({:.2}, {:.2}, {:.2}) m; CHECK THE CRANE SHOWS THAT before step 1, and that the load hangs still",
+        "PART WAY THROUGH THE LIFT: this plan starts where the load hangs now (resume_from), not at its pick: swing {:.1}°, {}, hoist {:.2} m, load yaw {:.1}°, the load's underside at ({:.2}, {:.2}, {:.2}) m; CHECK THE CRANE SHOWS THAT before step 1, and that the load hangs still",
         c.swing_rad.to_degrees(),
+        radial_said(task, c.radial),
         c.hoist_m,
         pose.yaw_rad.to_degrees(),
         pose.x_m,
         pose.y_m,
         pose.z_m
     ))
+}
+
+/// A configuration's luff ("luff 62.3°") or, for a tower crane, trolley
+/// radius ("trolley 24.72 m").
+fn radial_said(task: &LiftTask, radial: f64) -> String {
+    if task.crane.model.is_tower() {
+        format!("trolley {radial:.2} m")
+    } else {
+        format!("luff {:.1}°", radial.to_degrees())
+    }
 }
 
 /// Every page's footer on a sheet `sheet_w_mm` wide. The project's name is
@@ -436,6 +442,10 @@ pub fn document(
     let words = task.crane.model.words();
     // Worked out once for the cover's row, its checks and the sign-off page.
     let wind = wind_of(inp, task, plan);
+    // The obstacles placed by hand that stand there during this lift, for
+    // the pictures, the inputs page and the steps' words.
+    let obstacles: Vec<&liftplan_core::obstacle::Obstacle> =
+        inp.obstacles.iter().filter(|o| o.during(&task.id)).collect();
 
     // Page 1: cover and summary.
     d.new_page();
@@ -611,7 +621,7 @@ pub fn document(
     let mut others: Vec<(Obb, Rgb)> =
         liftplan_plan::other_loads(&inp.tasks, k).into_iter().map(|(b, _)| (b, pictures::OTHER_LOAD)).collect();
     let other_loads = others.len();
-    others.extend(inp.obstacles.iter().filter(|o| o.during(&task.id)).map(|o| (o.obb(), pictures::OBSTACLE)));
+    others.extend(obstacles.iter().map(|o| (o.obb(), pictures::OBSTACLE)));
     let overview = pictures::overview(site, task, plan, &others, 1400, 1000);
     let tail = task.crane.tail_swing_m();
     let under_m2 = plan.summary.coverage.as_ref().map(|c| c.under_load.passed_m2).filter(|m2| *m2 > 0.0);
@@ -755,8 +765,6 @@ pub fn document(
             ),
         ));
     }
-    let obstacles: Vec<&liftplan_core::obstacle::Obstacle> =
-        inp.obstacles.iter().filter(|o| o.during(&task.id)).collect();
     if !obstacles.is_empty() {
         const NAMED: usize = 10;
         let mut said: Vec<String> = obstacles.iter().take(NAMED).map(|o| o.said()).collect();
@@ -867,7 +875,7 @@ pub fn document(
         15.0,
         y,
         w,
-        &format!("{ends}Capacity is the chart value (before the reduction) at the largest radius of the step{allowance}; utilisation is the gross load over the reduced capacity; clearance is a distance that no crane part, rope, hook or load comes closer than to {against} at any moment of the step, between the validator's samples too: the smallest distance measured at samples no more than [plan] validator_sample_m of movement apart (0.05 m by default), less what the motion between two samples leaves room for (at most half that spacing), so the closest approach may be up to that much more than shown, never less. Wherever the motion between samples could take a part closer than its required clearance, the validator samples more finely, down to 2 mm of movement, so the required clearance holds along the whole motion, not only at the samples, to within 2 mm. Swing and load rotation angles are counter-clockwise positive seen from above. Swing is measured from {heading}, load yaw from the site's +X axis; each step's page also gives the {arm}'s grid bearing (clockwise from the site's north, +Y, as the overview is drawn).{pads}", heading = words.heading, arm = words.arm, pads = if plan.summary.highest_pad.is_some() { " Each step's page gives the most an outrigger pad carries during the step, an estimate from the crane file's masses: the weight of crane and load shared among the four pads as by a rigid frame (a quarter each, plus each pad's share of the moment about their centre; where that would pull a pad, it lifts and the other three carry it all), each mass at its part's centre and the gross load under the rope's sheave (where the chart deducts weights, with them there or without them, whichever weighs more on the pad), at both ends of the step and every half degree of swing and luff between; wind, the load swinging and dynamic factors are not in it, and the crane manufacturer's outrigger loads govern." } else { "" }, against = if inp.obstacles.iter().any(|o| o.during(&task.id)) { "the plant model, the scanned points or the obstacles placed by hand" } else { "the plant model or the scanned points" }, ends = if task.resumes() { "The first step starts where the load hangs when the lift resumes (resume_from); the last is the vertical set-down. " } else { "The first and the last steps are the vertical lift-off and set-down. " }, allowance = if task.radius_allowance_m > 0.0 { format!(" plus the radius allowance ({:.2} m)", task.radius_allowance_m) } else { String::new() }),
+        &format!("{ends}Capacity is the chart value (before the reduction) at the largest radius of the step{allowance}; utilisation is the gross load over the reduced capacity; clearance is a distance that no crane part, rope, hook or load comes closer than to {against} at any moment of the step, between the validator's samples too: the smallest distance measured at samples no more than [plan] validator_sample_m of movement apart (0.05 m by default), less what the motion between two samples leaves room for (at most half that spacing), so the closest approach may be up to that much more than shown, never less. Wherever the motion between samples could take a part closer than its required clearance, the validator samples more finely, down to 2 mm of movement, so the required clearance holds along the whole motion, not only at the samples, to within 2 mm. Swing and load rotation angles are counter-clockwise positive seen from above. Swing is measured from {heading}, load yaw from the site's +X axis; each step's page also gives the {arm}'s grid bearing (clockwise from the site's north, +Y, as the overview is drawn).{pads}", heading = words.heading, arm = words.arm, pads = if plan.summary.highest_pad.is_some() { " Each step's page gives the most an outrigger pad carries during the step, an estimate from the crane file's masses: the weight of crane and load shared among the four pads as by a rigid frame (a quarter each, plus each pad's share of the moment about their centre; where that would pull a pad, it lifts and the other three carry it all), each mass at its part's centre and the gross load under the rope's sheave (where the chart deducts weights, with them there or without them, whichever weighs more on the pad), at both ends of the step and every half degree of swing and luff between; wind, the load swinging and dynamic factors are not in it, and the crane manufacturer's outrigger loads govern." } else { "" }, against = if !obstacles.is_empty() { "the plant model, the scanned points or the obstacles placed by hand" } else { "the plant model or the scanned points" }, ends = if task.resumes() { "The first step starts where the load hangs when the lift resumes (resume_from); the last is the vertical set-down. " } else { "The first and the last steps are the vertical lift-off and set-down. " }, allowance = if task.radius_allowance_m > 0.0 { format!(" plus the radius allowance ({:.2} m)", task.radius_allowance_m) } else { String::new() }),
         8.5,
     );
     if let Some(cs) = cspace {
@@ -925,11 +933,7 @@ pub fn document(
                             st.end.swing_rad.to_degrees(),
                             words.arm,
                             grid_bearing_deg(task.crane.placement.heading_rad + st.end.swing_rad),
-                            if task.crane.model.is_tower() {
-                                format!("trolley {:.2} m", st.end.radial)
-                            } else {
-                                format!("luff {:.1}°", st.end.radial.to_degrees())
-                            },
+                            radial_said(task, st.end.radial),
                             st.end.hoist_m,
                             st.end.load_yaw_rad.to_degrees()
                         ),
