@@ -223,6 +223,13 @@ fn run_plan(ctx: &Ctx) -> Result<Produced> {
                 }
             }
         }
+        // The wind speed it states, for the load's swing in the wind.
+        // (Without a chart no lift is planned, which the plan says first.)
+        let chart_wind = chart_stated(&r, "wind_ms");
+        for t in &mut tasks {
+            let stated = chart_wind.iter().find(|(name, _)| *name == t.chart_config).map_or(&[][..], |(_, s)| &s[..]);
+            t.plan_for_wind(stated).map_err(|e| anyhow::anyhow!(e))?;
+        }
     }
     let map = ctx.upstream_file("depthmap", "site.mdm").ok_or_else(|| anyhow::anyhow!("no depth map"))?;
     let summary = liftplan_plan::run(

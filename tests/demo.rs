@@ -75,8 +75,29 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     let per_m = 0.5 * 1.25 * v_ms * v_ms * 28.8 / (16_000.0 * 9.80665);
     assert!((off_m - hang_m * per_m).abs() < 0.006 && (swing_m - 2.0 * hang_m * per_m).abs() < 0.006, "{cover}");
     assert!(hang_m > 20.0 && hang_m < head_m && swing_m < 1.0 && !cover.contains("A GUST CAN SWING"), "{cover}");
+    // The plan keeps its clearance with the load so swung (the lift gives
+    // its wind, and plan_for_swing is on unless turned off): the validator
+    // measured what hangs swung that far, and the cover and the steps' page
+    // say so.
+    let plan: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("out").join("plan.json")).unwrap()).unwrap();
+    let planned_per_m = plan["lifts"][0]["gust_swing_per_m"].as_f64().unwrap_or_else(|| panic!("{plan}"));
+    assert!((planned_per_m - 2.0 * per_m).abs() < 1e-9, "{planned_per_m} against {}", 2.0 * per_m);
+    assert!(
+        cover.contains("; the plan keeps its 1.00 m clearance with the load swung so (wind plan_for_swing)"),
+        "{cover}"
+    );
+    let swung = format!(
+        "the rope, hook and load measured swung sideways as far as a sudden gust at the permissible wind can swing them, {:.1} cm per metre they hang below the boom head (wind plan_for_swing), but in the lift-off and set-down",
+        100.0 * planned_per_m
+    );
+    assert!(cover.contains(&format!("over landing zones; {swung}")), "{cover}");
     let flat = text.replace('\n', " ");
     assert!(flat.contains("on site and the wind (AT MOST 8.0 m/s FOR THIS LOAD: cover)"), "{text}");
+    assert!(
+        flat.contains(&format!("at any moment of the step ({swung}), between the validator's samples too")),
+        "{text}"
+    );
     // The circle the AC 700's superstructure sweeps, its counterweight's
     // back corners out (the built-in model's), and the ground under the
     // load's path, to keep people out of.
@@ -503,15 +524,24 @@ liftoff_m = 0.5
     let (cover, _) = planned_with(&dir, &other);
     assert!(cover.contains("BUT THE CHART'S SHEET STATES 9.8 m/s (Main boom 360!A51): CHECK wind chart_ms"), "{cover}");
     assert!(cover.contains("the chart's wind speed (the lift's chart_ms is not what its sheet states)"), "{cover}");
-    // A clearance less than a gust can swing the load: in capitals in the
-    // wind row, and to check first.
+    // A clearance less than a gust can swing the load: planned for, said
+    // so; where the lift turns that off, in capitals in the wind row, and to
+    // check first.
     let tight = t13.replace("clearance_m = 1.0", "clearance_m = 0.4");
     assert_ne!(tight, t13);
     let (cover, _) = planned_with(&dir, &tight);
     assert!(
+        cover.contains("; the plan keeps its 0.40 m clearance with the load swung so (wind plan_for_swing)"),
+        "{cover}"
+    );
+    assert!(!cover.contains("A GUST CAN SWING") && !cover.contains("the load's swing in the wind"), "{cover}");
+    let plumb = tight.replace("wind = { cw = 1.2 }", "wind = { cw = 1.2, plan_for_swing = false }");
+    assert_ne!(plumb, tight);
+    let (cover, text) = planned_with(&dir, &plumb);
+    assert!(
         cover.contains("; A GUST CAN SWING THE LOAD ")
             && cover.contains(
-                " m, MORE THAN THE 0.40 m CLEARANCE THE PLAN KEEPS: tag lines, a lower wind limit or more clearance; the crane manufacturer's wind rules govern"
+                " m, MORE THAN THE 0.40 m CLEARANCE THE PLAN KEEPS (wind plan_for_swing = false): tag lines, a lower wind limit or more clearance; the crane manufacturer's wind rules govern"
             ),
         "{cover}"
     );
@@ -519,6 +549,7 @@ liftoff_m = 0.5
         cover.contains("the load's swing in the wind (a sudden gust at the permissible speed can swing it "),
         "{cover}"
     );
+    assert!(!text.contains("measured swung sideways"), "{text}");
     // A lift's counterweight that is not the one the chart's sheet states.
     let cw100 = t13
         .replace("chart_config = \"Main boom 360\" }", "chart_config = \"Main boom 360\", counterweight_t = 100.0 }");
@@ -574,7 +605,7 @@ liftoff_m = 0.5
     );
     // Which steps read that cell (those at the radius of its row) is said.
     assert!(
-        text.contains("(a footnote may restrict the value it marks); THIS PLAN READS Main boom 360!H28 in steps "),
+        text.contains("(a footnote may restrict the value it marks); THIS PLAN READS Main boom 360!H28 in step"),
         "{text}"
     );
     assert!(cover.contains("the load chart cells read with a warning (1; the steps read 1 of them)"), "{cover}");

@@ -315,6 +315,13 @@ pub struct LiftTask {
     /// words beside its grid, where it states one ("Counterweight 140 t",
     /// its cell): set by the stage that has read the chart, none until then.
     pub chart_sheet_counterweight: Option<crate::capacity::StatedOnChart>,
+    /// How far a sudden gust at the permissible wind can swing what hangs
+    /// from the crane, per metre it hangs below the boom head's sheave
+    /// ([`crate::wind::PermissibleWind::gust_swing_per_m`]): the planner and
+    /// the validator keep the clearance with the hanging parts swung so
+    /// ([`Self::gust_swept`]). 0 where the lift is not planned for the wind;
+    /// set by [`Self::plan_for_wind`].
+    pub gust_swing_per_m: f64,
 }
 
 impl LiftTask {
@@ -433,16 +440,62 @@ impl LiftTask {
         Ok((crate::wind::PermissibleWind::of(chart_ms, cell, spec, self.load.size_m, self.hook_load_kg()), other))
     }
 
+    /// Sets [`Self::gust_swing_per_m`] from the lift's `wind`, with the
+    /// speeds its chart's sheet states (`stated`; see
+    /// [`Self::permissible_wind`]), where it is planned for the load's swing
+    /// (`wind plan_for_swing`, on unless turned off); 0 otherwise. Err: why
+    /// the swing cannot be worked out, naming what to give.
+    pub fn plan_for_wind(&mut self, stated: &[crate::capacity::StatedOnChart]) -> Result<(), String> {
+        self.gust_swing_per_m = match &self.wind {
+            Some(spec) if spec.plan_for_swing => match self.permissible_wind(stated) {
+                Ok((w, _)) => w.gust_swing_per_m(),
+                Err(why) => {
+                    return Err(format!(
+                        "lift '{}': the load's swing in the wind cannot be planned for: {why}; or set wind plan_for_swing = false (the plan then keeps its clearance with the load hanging plumb)",
+                        self.id
+                    ));
+                }
+            },
+            _ => 0.0,
+        };
+        Ok(())
+    }
+
+    /// Whether the lift is to be planned for the load's swing in the wind and
+    /// it is not worked out yet: its chart speed comes from the chart's sheet,
+    /// which [`Self::plan_for_wind`] has not been given.
+    pub fn wind_swing_unknown(&self) -> bool {
+        self.wind.is_some_and(|w| w.plan_for_swing) && self.gust_swing_per_m <= 0.0
+    }
+
+    /// A hanging part's box `b` at a configuration whose sheave is at height
+    /// `sheave_z`, grown in plan by how far a sudden gust at the permissible
+    /// wind can swing it: [`Self::gust_swing_per_m`] times how far its
+    /// underside hangs below the sheave, on every side (the wind's direction
+    /// is not known). A swinging load rises, never falls, so its underside
+    /// stays. `b` itself where the lift is not planned for the wind. For
+    /// upright boxes, as every hanging part's is.
+    pub fn gust_swept(&self, b: &crate::obb::Obb, sheave_z: f64) -> crate::obb::Obb {
+        if self.gust_swing_per_m <= 0.0 {
+            return *b;
+        }
+        let below_m = (sheave_z - b.aabb().min[2]).max(0.0);
+        b.expanded_by_motion(self.gust_swing_per_m * below_m, 0.0)
+    }
+
     /// The first of the lift's `not_over` areas something comes within
     /// `within_m` of at `c`, and what: what hangs from the crane (the load's
     /// footprint, the plan outline of its box, which its rigging's is too;
-    /// the hook block's; the hoist rope's), against every area; then,
+    /// the hook block's; the hoist rope's; each swung as far as a gust can
+    /// swing it where `gusts` and the lift is planned for the wind,
+    /// [`Self::gust_swept`]: not in a lift-off or set-down, nor resting at
+    /// the pick or set), against every area; then,
     /// against the areas the crane may not be over either (`crane_too`),
     /// the plan outline of each other part that turns with the swing, in
     /// the order of [`CraneSetup::part_kinds`]. The carrier, its outriggers
     /// and a tower's mast stand where the lift file puts them; they are not
     /// looked at.
-    pub fn not_over_near(&self, c: &Config, within_m: f64) -> Option<(PartKind, &NotOver)> {
+    pub fn not_over_near(&self, c: &Config, within_m: f64, gusts: bool) -> Option<(PartKind, &NotOver)> {
         if self.not_over.is_empty() {
             return None;
         }
@@ -466,8 +519,10 @@ impl LiftTask {
             })
         };
         const HANGING: [PartKind; 3] = [PartKind::Load, PartKind::HookBlock, PartKind::Rope];
+        let sheave_z = if gusts && self.gust_swing_per_m > 0.0 { Some(self.crane.sheave(c).z) } else { None };
         let hanging = HANGING.iter().find_map(|&kind| {
             let part = self.crane.part(kind, c, &self.load)?;
+            let part = sheave_z.map_or(part, |z| self.gust_swept(&part, z));
             near(&part, false).map(|a| (kind, a))
         });
         // Areas out of the crane's reach are passed by before its parts are
@@ -786,8 +841,15 @@ impl LiftSpec {
             wind: self.wind,
             not_over: self.not_over.clone(),
             chart_sheet_counterweight: None,
+            gust_swing_per_m: 0.0,
         };
         ends_off_not_over(&task)?;
+        // A chart speed the lift gives is known now; one its chart's sheet
+        // states, once the chart is read (the plan stage sets it then).
+        let mut task = task;
+        if self.wind.is_some_and(|w| w.chart_ms.is_some()) {
+            task.plan_for_wind(&[])?;
+        }
         Ok(task)
     }
 }
@@ -868,7 +930,7 @@ impl LiftTask {
 /// outside those it may not be over either.
 fn ends_off_not_over(task: &LiftTask) -> Result<(), String> {
     for (which, c) in [("pick", &task.pick), ("set", &task.set)] {
-        match task.not_over_near(c, NOT_OVER_MARGIN_M) {
+        match task.not_over_near(c, NOT_OVER_MARGIN_M, false) {
             None => {}
             Some((part, a)) if part.dependence() == Dependence::Full => {
                 return Err(format!(
@@ -1039,7 +1101,7 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         // A crane moved to where its boom would reach over one is refused too.
         let t = with(vec![crane_too(area("cable tray", 9.0, -1.5, 11.0, -0.5))]).unwrap();
         let c = t.pick;
-        assert_eq!(t.not_over_near(&c, 0.0), None);
+        assert_eq!(t.not_over_near(&c, 0.0, true), None);
         let moved = t.moved_to(Placement { y_m: -5.0, ..t.crane.placement }).unwrap_err();
         assert!(moved.contains("the crane's boom at the pick is over not_over 'cable tray' (crane_too)"), "{moved}");
         assert!(t.moved_to(Placement { y_m: 1.0, ..t.crane.placement }).is_ok());
@@ -1214,7 +1276,7 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
     fn the_wind_key_is_checked_and_worked_out_on_the_hook_load() {
         let mut sp = spec();
         sp.crane.deductions_t = 2.0;
-        sp.wind = Some(crate::wind::WindSpec { chart_ms: Some(9.8), cw: 1.2, area_m2: None });
+        sp.wind = Some(crate::wind::WindSpec { chart_ms: Some(9.8), cw: 1.2, area_m2: None, plan_for_swing: true });
         let t = sp.resolve(crate::crane::builtin("ltm-1100").unwrap()).unwrap();
         let stated =
             |v: f64, cell: &str| crate::capacity::StatedOnChart { value: v, cell: cell.into(), text: String::new() };
@@ -1229,7 +1291,7 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         assert_eq!(other, [stated(9.0, "M!A1"), stated(7.0, "M!A2")]);
         // Without chart_ms, the one speed the sheet states; of two, none.
         let mut from_chart = sp.clone();
-        from_chart.wind = Some(crate::wind::WindSpec { chart_ms: None, cw: 1.2, area_m2: None });
+        from_chart.wind = Some(crate::wind::WindSpec { chart_ms: None, cw: 1.2, area_m2: None, plan_for_swing: true });
         let t = from_chart.resolve(crate::crane::builtin("ltm-1100").unwrap()).unwrap();
         let (w, _) = t.permissible_wind(&[stated(9.0, "M!A1")]).unwrap();
         assert_eq!((w.chart_ms, w.chart_cell.as_deref()), (9.0, Some("M!A1")));
@@ -1239,13 +1301,77 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         let none = spec().resolve(crate::crane::builtin("ltm-1100").unwrap()).unwrap();
         assert!(none.permissible_wind(&[stated(9.0, "M!A1")]).unwrap_err().contains("the lift gives no wind = { cw }"));
         let mut bad = sp.clone();
-        bad.wind = Some(crate::wind::WindSpec { chart_ms: Some(98.0), cw: 1.2, area_m2: None });
+        bad.wind = Some(crate::wind::WindSpec { chart_ms: Some(98.0), cw: 1.2, area_m2: None, plan_for_swing: true });
         let e = bad.resolve(crate::crane::builtin("ltm-1100").unwrap()).unwrap_err();
         assert!(e.starts_with("lift 'V-101': wind chart_ms must be a wind speed in m/s"), "{e}");
         sp.crane.model = "tower-hh-60".into();
         sp.crane.boom_m = None;
         let e = sp.resolve(crate::crane::builtin("tower-hh-60").unwrap()).unwrap_err();
         assert!(e.contains("is a tower crane: its manufacturer's in-service wind rules apply"), "{e}");
+    }
+
+    /// A lift that gives its wind is planned for the load's swing in a gust:
+    /// what hangs is grown in plan by twice the steady push per metre it
+    /// hangs below the sheave, its underside kept; not where turned off, and
+    /// not before a chart speed the sheet states is known.
+    #[test]
+    fn a_lift_with_wind_is_planned_for_the_swing_a_gust_gives_the_load() {
+        let crane = || crate::crane::builtin("ltm-1100").unwrap();
+        let mut sp = spec();
+        sp.wind = Some(crate::wind::WindSpec { chart_ms: Some(9.8), cw: 1.2, area_m2: None, plan_for_swing: true });
+        let t = sp.resolve(crane()).unwrap();
+        let (w, _) = t.permissible_wind(&[]).unwrap();
+        // The load catches 21.6 m² on 14 t, more than the chart's 1.2 m²/t:
+        // at its reduced speed it hangs as far off plumb as the chart's load.
+        let chart_rate = 2.0 * 0.5 * 1.25 * 9.8f64.powi(2) * 1.2 / (1000.0 * 9.80665);
+        assert!(w.reduced() && (t.gust_swing_per_m - chart_rate).abs() < 1e-12, "{}", t.gust_swing_per_m);
+        assert!((t.gust_swing_per_m - 0.0147).abs() < 1e-4 && !t.wind_swing_unknown());
+        let c = t.start();
+        let (load, sheave_z) = (t.crane.load_obb(&c, &t.load), t.crane.sheave(&c).z);
+        let swung = t.gust_swept(&load, sheave_z);
+        let below_m = sheave_z - t.crane.load_bottom_z(&c, &t.load);
+        let swing_m = t.gust_swing_per_m * below_m;
+        assert!(swing_m > 0.3, "{swing_m}");
+        assert!(
+            (swung.half.x - load.half.x - swing_m).abs() < 1e-12
+                && (swung.half.y - load.half.y - swing_m).abs() < 1e-12
+        );
+        assert_eq!((swung.half.z, swung.center), (load.half.z, load.center));
+        // A road beside the load's footprint, 0.3 m off: clear of the load
+        // hanging plumb, not of the load a gust swings.
+        let side = load.aabb().max[1] + 0.3;
+        let mut near = spec();
+        near.wind = sp.wind;
+        near.not_over = vec![NotOver {
+            name: "road".into(),
+            corners_m: vec![[0.0, side], [40.0, side], [40.0, side + 5.0], [0.0, side + 5.0]],
+            crane_too: false,
+        }];
+        let e = near.resolve(crane()).map(|t| t.not_over_near(&t.start(), 0.0, true).map(|(k, a)| (k, a.name.clone())));
+        assert_eq!(e, Ok(Some((crate::crane::PartKind::Load, "road".to_string()))));
+        let plumb = near.resolve(crane()).unwrap();
+        assert_eq!(plumb.not_over_near(&plumb.start(), 0.0, false), None);
+        // Turned off: the box as it hangs.
+        let mut off = sp.clone();
+        off.wind = Some(crate::wind::WindSpec { plan_for_swing: false, ..sp.wind.unwrap() });
+        let t = off.resolve(crane()).unwrap();
+        assert_eq!((t.gust_swing_per_m, t.gust_swept(&load, sheave_z)), (0.0, load));
+        assert!(!t.wind_swing_unknown());
+        // The chart's speed from its sheet: not known until it is given.
+        let mut sheet = sp.clone();
+        sheet.wind = Some(crate::wind::WindSpec { chart_ms: None, ..sp.wind.unwrap() });
+        let mut t = sheet.resolve(crane()).unwrap();
+        assert!(t.wind_swing_unknown());
+        let e = t.plan_for_wind(&[]).unwrap_err();
+        assert!(e.starts_with("lift 'V-101': the load's swing in the wind cannot be planned for: the lift's wind gives no chart_ms, and its chart's sheet states no wind speed; or set wind plan_for_swing = false"), "{e}");
+        let stated = crate::capacity::StatedOnChart { value: 9.8, cell: "M!A41".into(), text: String::new() };
+        t.plan_for_wind(&[stated]).unwrap();
+        assert!((t.gust_swing_per_m - chart_rate).abs() < 1e-12 && !t.wind_swing_unknown());
+        // In the project file it is on unless turned off.
+        let spec: crate::wind::WindSpec = toml::from_str("cw = 1.2").unwrap();
+        assert!(spec.plan_for_swing);
+        let spec: crate::wind::WindSpec = toml::from_str("cw = 1.2\nplan_for_swing = false").unwrap();
+        assert!(!spec.plan_for_swing);
     }
 
     /// The outrigger keys need a crane file with masses, and sane values.

@@ -34,7 +34,9 @@
 //! `tan θ = F / (m_H g)` from the vertical, so `ℓ · tan θ` off plumb at
 //! `ℓ` below the boom head ([`PermissibleWind::off_plumb_m`]); a gust that
 //! arrives suddenly can swing it up to twice as far (a pendulum given a
-//! sudden steady push), which is set against the clearance the plan keeps.
+//! sudden steady push, [`PermissibleWind::gust_swing_per_m`]), which the
+//! plan keeps its clearance with unless the lift turns that off
+//! ([`crate::lift::LiftTask::gust_swept`]).
 //! At the permissible speed of a load that catches more wind than the
 //! chart holds for, `tan θ` is the same for every load: the reduction keeps
 //! `v² A_W / m_H` at the chart's.
@@ -74,6 +76,15 @@ pub struct WindSpec {
     /// box's largest side.
     #[serde(default)]
     pub area_m2: Option<f64>,
+    /// Whether the plan keeps its clearance with what hangs from the crane
+    /// swung as far as a sudden gust at the permissible speed can swing it
+    /// ([`PermissibleWind::gust_swing_per_m`]); on unless turned off.
+    #[serde(default = "plan_for_swing_by_default")]
+    pub plan_for_swing: bool,
+}
+
+fn plan_for_swing_by_default() -> bool {
+    true
 }
 
 impl WindSpec {
@@ -166,6 +177,14 @@ impl PermissibleWind {
         0.5 * AIR_DENSITY_KG_M3 * self.permissible_ms.powi(2) * self.wind_area_m2 / (self.hook_load_kg * G_M_S2)
     }
 
+    /// How far a sudden gust at the permissible wind can swing what hangs,
+    /// per metre it hangs below the boom head: twice the steady push's
+    /// [`Self::off_plumb_per_m`] (a pendulum given a sudden steady push
+    /// swings out to twice where the push holds it).
+    pub fn gust_swing_per_m(&self) -> f64 {
+        2.0 * self.off_plumb_per_m()
+    }
+
     /// How far off plumb (m) the permissible wind holds the load's underside
     /// at the longest it hangs in the lift, where that is known; a sudden
     /// gust can swing it up to twice as far.
@@ -240,7 +259,7 @@ mod tests {
         let standard = PermissibleWind::of(
             9.0,
             None,
-            &WindSpec { chart_ms: None, cw: 1.2, area_m2: Some(50.0) },
+            &WindSpec { chart_ms: None, cw: 1.2, area_m2: Some(50.0), plan_for_swing: true },
             [1.0; 3],
             85_000.0,
         );
@@ -251,7 +270,7 @@ mod tests {
         let large = PermissibleWind::of(
             11.1,
             None,
-            &WindSpec { chart_ms: None, cw: 1.4, area_m2: Some(200.0) },
+            &WindSpec { chart_ms: None, cw: 1.4, area_m2: Some(200.0), plan_for_swing: true },
             [1.0; 3],
             65_000.0,
         );
@@ -261,7 +280,7 @@ mod tests {
         let vessel = PermissibleWind::of(
             9.8,
             Some("Main!A41".into()),
-            &WindSpec { chart_ms: None, cw: 1.2, area_m2: None },
+            &WindSpec { chart_ms: None, cw: 1.2, area_m2: None, plan_for_swing: true },
             [3.0, 8.0, 3.0],
             12_900.0,
         );
@@ -283,7 +302,7 @@ mod tests {
         assert_eq!(gust_factor(3.0), 1.4);
         assert!((gust_factor(50.0) - (5f64.powf(0.14) + 0.4)).abs() < 1e-15);
         assert!((gust_factor(50.0) - 1.6527).abs() < 1e-4, "{}", gust_factor(50.0));
-        let spec = WindSpec { chart_ms: None, cw: 1.2, area_m2: None };
+        let spec = WindSpec { chart_ms: None, cw: 1.2, area_m2: None, plan_for_swing: true };
         let mut vessel = PermissibleWind::of(9.8, None, &spec, [3.0, 8.0, 3.0], 12_900.0);
         assert_eq!(vessel.mean_at_10m_ms(), None);
         assert!(!vessel.said().contains("boom head"), "{}", vessel.said());
@@ -303,7 +322,7 @@ mod tests {
     /// chart's speed), a smaller one where the chart's speed governs.
     #[test]
     fn the_load_hangs_off_plumb_as_the_wind_pushes_it() {
-        let spec = WindSpec { chart_ms: None, cw: 1.2, area_m2: None };
+        let spec = WindSpec { chart_ms: None, cw: 1.2, area_m2: None, plan_for_swing: true };
         let mut vessel = PermissibleWind::of(9.8, None, &spec, [3.0, 8.0, 3.0], 16_000.0);
         assert!(vessel.reduced());
         let force_n = 0.5 * 1.25 * vessel.permissible_ms.powi(2) * 28.8;
@@ -326,14 +345,14 @@ mod tests {
 
     #[test]
     fn the_charts_cell_is_said() {
-        let spec = WindSpec { chart_ms: None, cw: 1.2, area_m2: None };
+        let spec = WindSpec { chart_ms: None, cw: 1.2, area_m2: None, plan_for_swing: true };
         let vessel = PermissibleWind::of(9.8, Some("Main!A41".into()), &spec, [3.0, 8.0, 3.0], 12_900.0);
         assert!(vessel.said().contains(": the chart's 9.8 m/s (Main!A41) holds for"), "{}", vessel.said());
     }
 
     #[test]
     fn values_no_lift_has_are_named() {
-        let w = |chart_ms, cw, area_m2| WindSpec { chart_ms, cw, area_m2 }.problem();
+        let w = |chart_ms, cw, area_m2| WindSpec { chart_ms, cw, area_m2, plan_for_swing: true }.problem();
         assert_eq!(w(Some(9.8), 1.2, None), None);
         assert_eq!(w(None, 1.2, None), None);
         assert!(w(Some(0.0), 1.2, None).unwrap().contains("wind chart_ms"));

@@ -420,6 +420,16 @@ impl CSpace {
         task.crane.model.hook.height_m + task.load.rigging_height_m + task.load.size_m[2]
     }
 
+    /// How much wider the envelope's square must be for what hangs on up to
+    /// `rope_m` of rope, anywhere in a cell whose sheave moves up to
+    /// `motion` (m), swung by a gust ([`LiftTask::gust_swept`]): the
+    /// checker grows each hanging box by the swing on every side, whose
+    /// corners then reach √2 times as far at a yaw of 45°. 0 where the
+    /// lift is not planned for the wind.
+    fn gust_reach_m(task: &LiftTask, rope_m: f64, motion: f64) -> f64 {
+        std::f64::consts::SQRT_2 * task.gust_swing_per_m * (rope_m + Self::hang_below_rope(task) + 2.0 * motion)
+    }
+
     /// The longest clear rope of every cell (see [`CSpace::cell_max_hoist`]),
     /// from the map's cell tops dilated once by the widest envelope instead of
     /// a rectangle query per cell.
@@ -437,7 +447,10 @@ impl CSpace {
         let map = p.map;
         let spec = map.spec;
         let motion_max = (0..self.nr).map(|k| self.sheave_motion(crane, self.row_center(k))).fold(0.0, f64::max);
-        let r_max = Self::envelope_radius(task) + task.clearance_m + motion_max;
+        let r_max = Self::envelope_radius(task)
+            + task.clearance_m
+            + motion_max
+            + Self::gust_reach_m(task, crane.limits().hoist_m.1, motion_max);
         // Cells within r of any point of the sheave's cell are within w cells of it.
         let w = (r_max / spec.cell).ceil() as usize + 1;
         let tops = map.pyramid.first().map(|l| l.2.as_slice()).unwrap_or(&[]);
@@ -507,7 +520,10 @@ impl CSpace {
         let c = self.cell_center(i, k, 0.0);
         let sheave = crane.sheave(&c);
         let motion = self.sheave_motion(crane, c.radial);
-        let r = Self::envelope_radius(task) + task.clearance_m + motion;
+        let r = Self::envelope_radius(task)
+            + task.clearance_m
+            + motion
+            + Self::gust_reach_m(task, crane.limits().hoist_m.1, motion);
         let z_lo = sheave.z - motion;
         let z_hi = (sheave.z + motion) as f32;
         // A top that leaves less than the shortest rope clear leaves none
@@ -546,6 +562,7 @@ impl CSpace {
                 for b in 0..nh {
                     let h_lo = lim.hoist_m.0 + b as f64 * s.full_hoist_step_m;
                     let h_hi = h_lo + s.full_hoist_step_m;
+                    let r = r + Self::gust_reach_m(task, h_hi, motion);
                     // Cylinder from the sheave down to the load underside at the longest rope.
                     let bottom = sheave.z - motion - h_hi - Self::hang_below_rope(task) - task.clearance_m;
                     let column = Obb::axis_aligned(
@@ -967,8 +984,12 @@ impl<'a> Checker<'a> {
         let load_box = &parts[0].1;
         let zone = if landing { self.landing.iter().find(|z| z.holds(load_box)) } else { None };
         let clearance = zone.map(|z| z.clearance_m).unwrap_or(self.task.clearance_m);
+        // Over the piece the sheave may stand up to `vertical_m` higher and
+        // each part hang that much lower: as far below it as a gust swings.
+        let sheave_z = self.task.crane.sheave(c).z + sweep.vertical_m;
         for (queried, (kind, b)) in (1..).zip(parts) {
             let grown = b.expanded(clearance).expanded_by_motion(sweep.horizontal_m, sweep.vertical_m);
+            let grown = self.task.gust_swept(&grown, sheave_z);
             if let Some(h) = self.map.hit(&grown) {
                 self.count_n(true, queried);
                 return Err(self.blocked(TOO_CLOSE, Some(kind), Some(h.interval.obj), c));
@@ -1036,7 +1057,7 @@ impl<'a> Checker<'a> {
     /// [`liftplan_core::lift::NOT_OVER_MARGIN_M`]. Not in the tables: an area
     /// has no height, and is no obstacle to anything else.
     fn not_over_ok(&self, c: &Config, grow_m: f64) -> Result<(), Blocked> {
-        match self.task.not_over_near(c, grow_m + liftplan_core::lift::NOT_OVER_MARGIN_M) {
+        match self.task.not_over_near(c, grow_m + liftplan_core::lift::NOT_OVER_MARGIN_M, true) {
             None => Ok(()),
             Some((part, a)) => Err(Blocked {
                 reason: OVER_NOT_OVER.into(),
@@ -1077,8 +1098,12 @@ impl<'a> Checker<'a> {
         let travel = (x1 - x0).abs() * lever;
         let xm = 0.5 * (x0 + x1);
         let sweep = Sweep::of(joint, is_luffing(&self.task.crane), travel / 2.0);
-        match self.not_over_ok(&self.with(a, joint, xm), sweep.horizontal_m) {
-            Err(_) if travel > self.sample_m && sweep.horizontal_m > 0.0 => {
+        // Hanging lower over the range (a hoist, a luff), the load swings
+        // farther in a gust than at the middle: by what it hangs lower, with
+        // the sheave risen as far as the load sank.
+        let grow_m = sweep.horizontal_m + self.task.gust_swing_per_m * 2.0 * sweep.vertical_m;
+        match self.not_over_ok(&self.with(a, joint, xm), grow_m) {
+            Err(_) if travel > self.sample_m && grow_m > 0.0 => {
                 self.not_over_piece(a, joint, x0, xm, lever)?;
                 self.not_over_piece(a, joint, xm, x1, lever)
             }

@@ -199,7 +199,7 @@ fn checks_before_signing(
         v.push("the counterweight (the lift's is not its chart configuration's)".to_string());
     }
     if !task.crane.model.is_tower() {
-        if let Some(swing) = wind.as_ref().ok().and_then(|(w, _)| gust_swing_past_clearance_m(task, w)) {
+        if let Some(swing) = wind.as_ref().ok().and_then(|(w, _)| gust_swing_past_clearance_m(task, plan, w)) {
             v.push(format!(
                 "the load's swing in the wind (a sudden gust at the permissible speed can swing it {swing:.2} m, more than the {:.2} m clearance the plan keeps)",
                 task.clearance_m
@@ -280,9 +280,28 @@ fn longest_hang_m(task: &LiftTask, plan: &LiftPlan) -> f64 {
 
 /// Whether a sudden gust at the permissible wind can swing the load farther
 /// than the clearance the plan keeps (twice the steady push's
-/// [`liftplan_core::wind::PermissibleWind::off_plumb_m`]), and how far.
-fn gust_swing_past_clearance_m(task: &LiftTask, w: &liftplan_core::wind::PermissibleWind) -> Option<f64> {
+/// [`liftplan_core::wind::PermissibleWind::off_plumb_m`]), and how far;
+/// never where the plan keeps its clearance with the load so swung.
+fn gust_swing_past_clearance_m(
+    task: &LiftTask,
+    plan: &LiftPlan,
+    w: &liftplan_core::wind::PermissibleWind,
+) -> Option<f64> {
+    if plan.gust_swing_per_m > 0.0 {
+        return None;
+    }
     w.off_plumb_m().map(|x| 2.0 * x).filter(|swing| *swing > task.clearance_m)
+}
+
+/// How the plan keeps its clearance in the wind, for the PDF: with what
+/// hangs swung as far as a gust can swing it, where it was planned so.
+fn gust_swing_said(plan: &LiftPlan) -> Option<String> {
+    (plan.gust_swing_per_m > 0.0).then(|| {
+        format!(
+            "the rope, hook and load measured swung sideways as far as a sudden gust at the permissible wind can swing them, {:.1} cm per metre they hang below the boom head (wind plan_for_swing), but in the lift-off and set-down",
+            100.0 * plan.gust_swing_per_m
+        )
+    })
 }
 
 /// What reading the lift's chart configuration warned of, where it did.
@@ -516,12 +535,13 @@ pub fn document(
             "Min clearance",
             if sm.min_clearance_m.is_finite() {
                 format!(
-                    "{:.2} m in step {} ({}); required {:.2} m, {:.2} m over landing zones",
+                    "{:.2} m in step {} ({}); required {:.2} m, {:.2} m over landing zones{}",
                     sm.min_clearance_m,
                     sm.min_clearance_step,
                     sm.min_clearance_what,
                     plan.clearance_m,
-                    plan.landing_clearance_m
+                    plan.landing_clearance_m,
+                    gust_swing_said(plan).map(|s| format!("; {s}")).unwrap_or_default()
                 )
             } else if task.resumes() && sm.steps <= 1 {
                 "no step before the set-down (the load hangs above its set position)".to_string()
@@ -569,9 +589,13 @@ pub fn document(
             "Wind",
             match &wind {
                 Ok((w, other)) => {
-                    let swing = match gust_swing_past_clearance_m(task, w) {
+                    let swing = match gust_swing_past_clearance_m(task, plan, w) {
                         Some(swing) => format!(
-                            "; A GUST CAN SWING THE LOAD {swing:.2} m, MORE THAN THE {:.2} m CLEARANCE THE PLAN KEEPS: tag lines, a lower wind limit or more clearance",
+                            "; A GUST CAN SWING THE LOAD {swing:.2} m, MORE THAN THE {:.2} m CLEARANCE THE PLAN KEEPS (wind plan_for_swing = false): tag lines, a lower wind limit or more clearance",
+                            task.clearance_m
+                        ),
+                        None if plan.gust_swing_per_m > 0.0 => format!(
+                            "; the plan keeps its {:.2} m clearance with the load swung so (wind plan_for_swing)",
                             task.clearance_m
                         ),
                         None => String::new(),
@@ -875,7 +899,7 @@ pub fn document(
         15.0,
         y,
         w,
-        &format!("{ends}Capacity is the chart value (before the reduction) at the largest radius of the step{allowance}; utilisation is the gross load over the reduced capacity; clearance is a distance that no crane part, rope, hook or load comes closer than to {against} at any moment of the step, between the validator's samples too: the smallest distance measured at samples no more than [plan] validator_sample_m of movement apart (0.05 m by default), less what the motion between two samples leaves room for (at most half that spacing), so the closest approach may be up to that much more than shown, never less. Wherever the motion between samples could take a part closer than its required clearance, the validator samples more finely, down to 2 mm of movement, so the required clearance holds along the whole motion, not only at the samples, to within 2 mm. Swing and load rotation angles are counter-clockwise positive seen from above. Swing is measured from {heading}, load yaw from the site's +X axis; each step's page also gives the {arm}'s grid bearing (clockwise from the site's north, +Y, as the overview is drawn).{pads}", heading = words.heading, arm = words.arm, pads = if plan.summary.highest_pad.is_some() { " Each step's page gives the most an outrigger pad carries during the step, an estimate from the crane file's masses: the weight of crane and load shared among the four pads as by a rigid frame (a quarter each, plus each pad's share of the moment about their centre; where that would pull a pad, it lifts and the other three carry it all), each mass at its part's centre and the gross load under the rope's sheave (where the chart deducts weights, with them there or without them, whichever weighs more on the pad), at both ends of the step and every half degree of swing and luff between; wind, the load swinging and dynamic factors are not in it, and the crane manufacturer's outrigger loads govern." } else { "" }, against = if !obstacles.is_empty() { "the plant model, the scanned points or the obstacles placed by hand" } else { "the plant model or the scanned points" }, ends = if task.resumes() { "The first step starts where the load hangs when the lift resumes (resume_from); the last is the vertical set-down. " } else { "The first and the last steps are the vertical lift-off and set-down. " }, allowance = if task.radius_allowance_m > 0.0 { format!(" plus the radius allowance ({:.2} m)", task.radius_allowance_m) } else { String::new() }),
+        &format!("{ends}Capacity is the chart value (before the reduction) at the largest radius of the step{allowance}; utilisation is the gross load over the reduced capacity; clearance is a distance that no crane part, rope, hook or load comes closer than to {against} at any moment of the step{swung}, between the validator's samples too: the smallest distance measured at samples no more than [plan] validator_sample_m of movement apart (0.05 m by default), less what the motion between two samples leaves room for (at most half that spacing), so the closest approach may be up to that much more than shown, never less. Wherever the motion between samples could take a part closer than its required clearance, the validator samples more finely, down to 2 mm of movement, so the required clearance holds along the whole motion, not only at the samples, to within 2 mm. Swing and load rotation angles are counter-clockwise positive seen from above. Swing is measured from {heading}, load yaw from the site's +X axis; each step's page also gives the {arm}'s grid bearing (clockwise from the site's north, +Y, as the overview is drawn).{pads}", heading = words.heading, arm = words.arm, pads = if plan.summary.highest_pad.is_some() { " Each step's page gives the most an outrigger pad carries during the step, an estimate from the crane file's masses: the weight of crane and load shared among the four pads as by a rigid frame (a quarter each, plus each pad's share of the moment about their centre; where that would pull a pad, it lifts and the other three carry it all), each mass at its part's centre and the gross load under the rope's sheave (where the chart deducts weights, with them there or without them, whichever weighs more on the pad), at both ends of the step and every half degree of swing and luff between; wind, the load swinging and dynamic factors are not in it, and the crane manufacturer's outrigger loads govern." } else { "" }, swung = gust_swing_said(plan).map(|s| format!(" ({s})")).unwrap_or_default(), against = if !obstacles.is_empty() { "the plant model, the scanned points or the obstacles placed by hand" } else { "the plant model or the scanned points" }, ends = if task.resumes() { "The first step starts where the load hangs when the lift resumes (resume_from); the last is the vertical set-down. " } else { "The first and the last steps are the vertical lift-off and set-down. " }, allowance = if task.radius_allowance_m > 0.0 { format!(" plus the radius allowance ({:.2} m)", task.radius_allowance_m) } else { String::new() }),
         8.5,
     );
     if let Some(cs) = cspace {
@@ -1017,7 +1041,7 @@ pub fn document(
         y,
         w,
         &format!(
-            "What this plan does not model: the {arm} bending under load (the crane is taken as rigid, so the loaded radius is longer than planned{}), wind on the load and the {arm} ({}), the load swinging on its rope when slewing, {} or hoisting starts or stops (the clearance kept around every part, {:.2} m and less over the landing zones, is the only margin for it), and {}.",
+            "What this plan does not model: the {arm} bending under load (the crane is taken as rigid, so the loaded radius is longer than planned{}), {wind} ({}), the load swinging on its rope when slewing, {} or hoisting starts or stops (the clearance kept around every part, {:.2} m and less over the landing zones, is the only margin for it), and {}.",
             if task.radius_allowance_m > 0.0 {
                 format!("; the chart is read {:.2} m farther out for it, as this lift asks", task.radius_allowance_m)
             } else {
@@ -1031,7 +1055,12 @@ pub fn document(
             words.radial_motion,
             task.clearance_m,
             support_loads,
-            arm = words.arm
+            arm = words.arm,
+            wind = if plan.gust_swing_per_m > 0.0 {
+                format!("wind on the {} and the load, but for a gust's swing", words.arm)
+            } else {
+                format!("wind on the load and the {}", words.arm)
+            }
         ),
     );
     y += 4.0;

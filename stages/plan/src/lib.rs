@@ -252,6 +252,12 @@ pub struct LiftPlan {
     pub gross_kg: f64,
     pub clearance_m: f64,
     pub landing_clearance_m: f64,
+    /// How far a sudden gust at the permissible wind can swing what hangs,
+    /// per metre below the boom head, as the plan keeps its clearance with
+    /// it ([`LiftTask::gust_swing_per_m`]); 0: the lift was not planned for
+    /// the wind, and its clearances are those of the load hanging plumb.
+    #[serde(default)]
+    pub gust_swing_per_m: f64,
     pub critical_pct: f64,
     pub pick: Config,
     pub set: Config,
@@ -602,6 +608,12 @@ pub(crate) fn plan_lift_hinting(
     positions: bool,
 ) -> Result<(LiftPlan, CSpace)> {
     let t0 = std::time::Instant::now();
+    if task.wind_swing_unknown() {
+        return Err(lift_err(
+            task,
+            "the load's swing in the wind is not worked out (its chart's speed is read from the chart's sheet, LiftTask::plan_for_wind): give wind chart_ms, or set wind plan_for_swing = false".to_string(),
+        ));
+    }
     // The planned path starts lifted off and ends above the set position:
     // there the load must keep the landing zone's clearance from what it
     // stands on, or the search would start inside it (it was refused as
@@ -669,9 +681,27 @@ pub(crate) fn plan_lift_hinting(
     let start = task.start();
     let goal0 = task.goal();
     // A box query's refusal is a clearance, not a collision: say which.
+    // What hangs is swung by a gust where the lift is planned for the wind.
+    let swung = (task.gust_swing_per_m > 0.0).then(|| {
+        format!(
+            "what hangs swung {:.1} cm per metre it hangs below the boom head, as far as a sudden gust at the permissible wind can swing it (wind plan_for_swing)",
+            100.0 * task.gust_swing_per_m
+        )
+    });
     let why = |b: &liftplan_cspace::Blocked| {
+        let hanging = b.part.is_some_and(|k| k.dependence() == liftplan_core::crane::Dependence::Full);
+        let swung = swung.as_ref().filter(|_| hanging);
         if b.reason == liftplan_cspace::TOO_CLOSE {
-            format!("{b} (clearance_m {:.2} m, {:.2} m in a landing zone)", task.clearance_m, s.landing_clearance_m)
+            format!(
+                "{b} (clearance_m {:.2} m, {:.2} m in a landing zone{})",
+                task.clearance_m,
+                s.landing_clearance_m,
+                swung.map(|w| format!(", {w}")).unwrap_or_default()
+            )
+        } else if b.reason == liftplan_cspace::OVER_NOT_OVER
+            && let Some(w) = swung
+        {
+            format!("{b} ({w})")
         } else {
             b.to_string()
         }
@@ -826,6 +856,7 @@ pub(crate) fn plan_lift_hinting(
         gross_kg: task.gross_kg(),
         clearance_m: task.clearance_m,
         landing_clearance_m: s.landing_clearance_m,
+        gust_swing_per_m: task.gust_swing_per_m,
         critical_pct: task.critical_pct,
         pick: task.pick,
         set: task.set,

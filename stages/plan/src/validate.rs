@@ -1382,18 +1382,26 @@ pub(crate) fn samples_for(moved_m: f64, sample_m: f64) -> usize {
 /// the travel between two, so that every moment of the move is covered.
 /// The planner keeps them farther off
 /// ([`liftplan_core::lift::NOT_OVER_MARGIN_M`]).
-fn over_not_over<'a>(task: &'a LiftTask, m: &Move, moved_m: f64, sample_m: f64) -> Option<(PartKind, &'a NotOver)> {
+fn over_not_over<'a>(
+    task: &'a LiftTask,
+    m: &Move,
+    moved_m: f64,
+    sample_m: f64,
+    landing_move: bool,
+) -> Option<(PartKind, &'a NotOver)> {
     if task.not_over.is_empty() {
         return None;
     }
     let k = samples_for(moved_m, sample_m) - 1;
     let grow_m = moved_m / k as f64 / 2.0;
+    // A lift-off or set-down is held at its support; elsewhere what hangs
+    // is swung by a gust where the lift is planned for the wind.
     let (a, b) = (m.from.to_array(), m.to.to_array());
     let j = m.joint.index();
     (0..=k).find_map(|i| {
         let mut v = a;
         v[j] = a[j] + (b[j] - a[j]) * i as f64 / k as f64;
-        task.not_over_near(&Config::from_array(v), grow_m)
+        task.not_over_near(&Config::from_array(v), grow_m, !landing_move)
     })
 }
 
@@ -1447,6 +1455,10 @@ fn check_config(
         if landing_move { f64::INFINITY } else { zone_margin_m(&rules.landing, &footprint, in_landing) };
     // Every part's box once, for the site and for the crane's own structure.
     let pose = crane.pose(c, &task.load);
+    // Where the lift is planned for the wind, what hangs keeps its
+    // clearance swung as far as a gust can swing it, but in a lift-off or
+    // set-down, held at its support.
+    let sheave_z = crane.sheave(c).z;
     let mut out = Vec::new();
     for &(kind, mut b) in &pose.parts {
         let dep = kind.dependence();
@@ -1454,6 +1466,9 @@ fn check_config(
             continue; // checked once per plan
         }
         let hanging = dep == Dependence::Full;
+        if hanging && !landing_move {
+            b = task.gust_swept(&b, sheave_z);
+        }
         let mut required = if hanging && in_landing { rules.landing_clearance_m } else { rules.clearance_m };
         if landing_move && hanging {
             // Lift-off and set-down: touch nothing but the load's support.
@@ -1867,7 +1882,10 @@ pub fn validate(
     let cutoff_m = search_cutoff_m(rules.clearance_m);
     for (mi, m) in moves.iter().enumerate() {
         let lever_m = lever_for(task, m);
-        let moved_m = m.delta().abs() * lever_m;
+        // Swung by a gust, a hanging part's box also widens as it hangs
+        // lower: by the swing per metre for each metre the sheave rises or
+        // the part sinks, each at most what the move moves a point.
+        let moved_m = m.delta().abs() * lever_m * (1.0 + 2.0 * task.gust_swing_per_m);
         if !(moved_m <= MAX_MOVED_M) {
             problems.push(format!(
                 "move {} ({:?}) moves a point {moved_m} m, more than the validator checks ({MAX_MOVED_M} m)",
@@ -1907,7 +1925,7 @@ pub fn validate(
             .fold(f64::INFINITY, f64::min);
         let least_margin_m = least_at_samples_m.min(least_between_m);
         let mut move_problems: Vec<String> = Vec::new();
-        if let Some((part, area)) = over_not_over(task, m, moved_m, rules.sample_m) {
+        if let Some((part, area)) = over_not_over(task, m, moved_m, rules.sample_m, landing) {
             move_problems.push(format!(
                 "{} comes over not_over '{}'",
                 liftplan_core::lift::over_not_over_said(part),
