@@ -106,7 +106,7 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
         liftplan_core::crane::Placement { x_m: 0.0, y_m: 0.0, z_m: 0.0, heading_rad: 0.0, boom_length_m: 40.0 };
     let (tail_m, _) = liftplan_core::crane::CraneSetup::new(ac700, placed).unwrap().tail_swing_m().unwrap();
     assert!(
-        cover.contains(&format!("crane at the pick position, its tail's swing in magenta (counterweight {tail_m:.2} m from the slewing axis), load path in red, the ground under it in pink (")),
+        cover.contains(&format!("crane at the pick position, its tail's swing in magenta (counterweight {tail_m:.2} m from the slewing axis), load path in red, the ground under it, as far as a gust may swing it, in pink (")),
         "{cover}"
     );
     assert!(

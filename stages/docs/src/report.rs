@@ -664,6 +664,9 @@ pub fn document(
             None => String::new(),
         },
         match under_m2 {
+            Some(m2) if plan.gust_swing_per_m > 0.0 => {
+                format!(", the ground under it, as far as a gust may swing it, in pink ({m2:.0} m²)")
+            }
             Some(m2) => format!(", the ground under it in pink ({m2:.0} m²)"),
             None => String::new(),
         },

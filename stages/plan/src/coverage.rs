@@ -224,16 +224,21 @@ fn triangle_meets_square(t: &[[f64; 2]], sq: [f64; 4]) -> bool {
 /// The plan cells the lift's `moves` pass over, the hanging parts' and the
 /// rest of the moving crane's, each with the lowest those parts come over
 /// it (site z), from poses no more than [`SWEEP_SAMPLE_M`] of movement
-/// apart.
+/// apart. Where the lift is planned for the wind, what hangs is swung as
+/// the planner and the validator swing it ([`LiftTask::gust_swept`]; not
+/// in the lift-off and set-down): the ground it may swing over is under
+/// it too.
 fn swept_cells(task: &LiftTask, moves: &[Move]) -> (HashMap<Cell, f64>, HashMap<Cell, f64>) {
     let (mut load, mut crane) = (HashMap::new(), HashMap::new());
     let hanging = |k: PartKind| matches!(k, PartKind::Load | PartKind::Rigging | PartKind::HookBlock | PartKind::Rope);
-    for m in moves {
+    for (m, landing) in moves.iter().zip(crate::landing_moves(task, moves.len())) {
         for c in configs_along(task, m, SWEEP_SAMPLE_M) {
+            let sheave_z = task.crane.sheave(&c).z;
             for (kind, part) in task.crane.pose(&c, &task.load).parts.iter() {
                 if kind.dependence() == Dependence::Fixed {
                     continue;
                 }
+                let part = if hanging(*kind) && !landing { &task.gust_swept(part, sheave_z) } else { part };
                 let into = if hanging(*kind) { &mut load } else { &mut crane };
                 let bottom = part.corners().iter().map(|p| p.z).fold(f64::INFINITY, f64::min);
                 cells_under(&part.footprint(), SWEEP_SAMPLE_M / 2.0, |c| {
@@ -405,6 +410,40 @@ mod tests {
         let cut = Obb::axis_aligned(Point3::new(26.0, 0.0, 1.0), Vec3::new(6.0, 6.0, 1.0));
         let seen = coverage(&ground(0.5, Some(hole)), &none, &[cut]);
         assert_eq!(seen.under_load.unscanned_m2, 0.0, "{seen:?}");
+    }
+
+    /// Planned for the wind, the ground a gust may swing what hangs over is
+    /// under the load too: the swing's strip widens; not in a lift-off or
+    /// set-down (a lift's first and last moves), and not under the crane.
+    #[test]
+    fn the_ground_a_gust_may_swing_the_load_over_is_under_it() {
+        let (mut task, one) = swing();
+        let at = |f: f64| Config {
+            swing_rad: task.pick.swing_rad + f * (task.set.swing_rad - task.pick.swing_rad),
+            ..task.pick
+        };
+        let thirds: Vec<Move> = (0..3)
+            .map(|k| Move {
+                joint: liftplan_cspace::Joint::Swing,
+                from: at(k as f64 / 3.0),
+                to: at((k + 1) as f64 / 3.0),
+            })
+            .collect();
+        let world = World::new(&TriMesh::default(), &[], &[]).unwrap();
+        let plumb = (of_lift(&task, &one, &world, &[]), of_lift(&task, &thirds, &world, &[]));
+        task.gust_swing_per_m = 0.03;
+        let swung = (of_lift(&task, &one, &world, &[]), of_lift(&task, &thirds, &world, &[]));
+        // The one swing is the lift's first and last move: held, not swung.
+        assert_eq!(swung.0, plumb.0);
+        let (p, s) = (&plumb.1, &swung.1);
+        assert!(
+            s.under_load.passed_m2 > p.under_load.passed_m2 + 20.0,
+            "{} against {}",
+            s.under_load.passed_m2,
+            p.under_load.passed_m2
+        );
+        assert!(p.under_load.passed_cells.iter().all(|c| s.under_load.passed_cells.binary_search(c).is_ok()));
+        assert_eq!(s.under_crane, p.under_crane);
     }
 
     /// A triangle meets a cell wherever they share a point: a sliver across

@@ -611,7 +611,7 @@ pub(crate) fn plan_lift_hinting(
     if task.wind_swing_unknown() {
         return Err(lift_err(
             task,
-            "the load's swing in the wind is not worked out (its chart's speed is read from the chart's sheet, LiftTask::plan_for_wind): give wind chart_ms, or set wind plan_for_swing = false".to_string(),
+            "the load's swing in the wind is not worked out (its chart's speed is to be read from the chart's sheet, and none was given to the planner): give wind chart_ms, or set wind plan_for_swing = false".to_string(),
         ));
     }
     // The planned path starts lifted off and ends above the set position:

@@ -299,10 +299,21 @@ pub fn passes_left_out(
     if grown.is_empty() {
         return found;
     }
+    // What hangs swung by a gust where the lift is planned for the wind, as
+    // the planner and the validator swing it (not in a lift-off or set-down).
+    let landing = crate::landing_moves(task, moves.len());
     for (i, m) in moves.iter().enumerate() {
         for c in crate::validate::configs_along(task, m, PASS_SAMPLE_M) {
             let pose = task.crane.pose(&c, &task.load);
+            let sheave_z = task.crane.sheave(&c).z;
             for (kind, part) in &pose.parts {
+                let swung;
+                let part = if kind.dependence() == liftplan_core::crane::Dependence::Full && !landing[i] {
+                    swung = task.gust_swept(part, sheave_z);
+                    &swung
+                } else {
+                    part
+                };
                 let reach = part.aabb();
                 for (g, (group, (whole, whole_near), boxes, scanned)) in grown.iter().enumerate() {
                     if met[g] {
@@ -425,6 +436,46 @@ mod tests {
         let at_pick = ModelBox { center_m: [22.0, -14.0, 0.5 + 1.25], yaw_deg: 0.0, ..copy_at(0.0, 0.0, 0.0, SKID) };
         let found = of_lift(&crate::test_lift("ac-700"), &[at_pick]);
         assert!(found.len() == 1 && found[0].at == "pick" && found[0].agrees(), "{found:?}");
+    }
+
+    /// Planned for the wind, a group left out that what hangs passes within
+    /// a gust's swing of is named; not with it hanging plumb, nor in a
+    /// lift-off or set-down (a lift's first and last moves).
+    #[test]
+    fn what_a_gust_may_swing_the_load_into_that_was_left_out_is_named() {
+        use crate::path::Move;
+        let mut task = crate::test_lift("ac-700");
+        let (from, to) = (task.pick.swing_rad, task.set.swing_rad);
+        let at = |f: f64| Config { swing_rad: from + f * (to - from), ..task.pick };
+        let swing = |a: f64, b: f64| Move { joint: liftplan_cspace::Joint::Swing, from: at(a), to: at(b) };
+        let thirds = [swing(0.0, 1.0 / 3.0), swing(1.0 / 3.0, 2.0 / 3.0), swing(2.0 / 3.0, 1.0)];
+        let one = [swing(0.0, 1.0)];
+        // Beyond the load at the middle of its swing, out from the crane:
+        // 0.3 m more than the clearance (and half a sample) off its side.
+        let load = task.crane.load_obb(&at(0.5), &task.load);
+        let o = task.crane.slew_center();
+        let out = (load.center - o).xy().normalize();
+        let side = load.corners().iter().map(|p| (p - load.center).xy().dot(&out)).fold(f64::MIN, f64::max);
+        let off = side + task.clearance_m + PASS_SAMPLE_M / 2.0 + 0.3 + 1.0;
+        let beside = ModelBox {
+            name: "/SCAFFOLD-4".into(),
+            center_m: [load.center.x + off * out.x, load.center.y + off * out.y, load.center.z],
+            half_m: [1.0, 1.0, 1.0],
+            yaw_deg: out.y.atan2(out.x).to_degrees(),
+            parts: Vec::new(),
+        };
+        let bare = crate::validate::World::new(&liftplan_core::mesh::TriMesh::default(), &[], &[]).unwrap();
+        let met = |t: &LiftTask, moves: &[Move]| {
+            passes_left_out(t, moves, std::slice::from_ref(&beside), &[], &bare)
+                .into_iter()
+                .map(|p| p.step)
+                .collect::<Vec<_>>()
+        };
+        assert!(met(&task, &thirds).is_empty() && met(&task, &one).is_empty());
+        // Hanging some 30 m below the boom head, 3 cm a metre swings it 0.9 m.
+        task.gust_swing_per_m = 0.03;
+        assert_eq!(met(&task, &thirds), [2]);
+        assert!(met(&task, &one).is_empty());
     }
 
     /// What the lift passes through among the groups left out of the model
