@@ -328,10 +328,11 @@ fn validator_rejects_a_swing_through_the_wall() {
 fn the_load_keeps_its_clearance_from_the_wall_swung_by_a_gust() {
     let mesh = site();
     let (m, world) = (map(&mesh), World::new(&mesh, &[], &[]).unwrap());
-    let beside = |wind: bool| {
+    // Its underside at `z_m`; 4 m along x, 2 m across: its side at y = -2.2,
+    // the wall's face at -1.
+    let beside = |z_m: f64, wind: bool| {
         let mut sp = spec_of(-14.0);
-        // 4 m along x, 2 m across: its side at y = -2.2, the wall's face at -1.
-        sp.pick = toml::from_str("x_m = 24.0\ny_m = -3.2\nz_m = 3.0\nyaw_deg = 0.0").unwrap();
+        sp.pick = toml::from_str(&format!("x_m = 24.0\ny_m = -3.2\nz_m = {z_m}\nyaw_deg = 0.0")).unwrap();
         if wind {
             sp.wind = toml::from_str("chart_ms = 9.8\ncw = 1.2").unwrap();
         }
@@ -342,19 +343,17 @@ fn the_load_keeps_its_clearance_from_the_wall_swung_by_a_gust() {
         let up = Config { hoist_m: t.pick.hoist_m - 0.5, ..t.pick };
         validate(t, None, &world, &rules(), &[Move { joint: Joint::Hoist, from: t.pick, to: up }], &[false])
     };
-    let plumb = beside(false);
-    let cs =
-        liftplan_cspace::CSpace::build(&liftplan_cspace::Problem { task: &plumb, chart: None, map: &m }, &s.cspace);
-    let ck = liftplan_cspace::Checker::new(&cs, &m, &plumb, vec![], s.cspace.sample_m);
-    assert!(ck.config(&plumb.pick).is_ok());
+    let checked = |t: &LiftTask| {
+        let cs = liftplan_cspace::CSpace::build(&liftplan_cspace::Problem { task: t, chart: None, map: &m }, &s.cspace);
+        liftplan_cspace::Checker::new(&cs, &m, t, vec![], s.cspace.sample_m).config(&t.pick)
+    };
+    let plumb = beside(3.0, false);
+    assert!(checked(&plumb).is_ok());
     assert!(hoist(&plumb).ok, "{:?}", hoist(&plumb).problems);
-    let windy = beside(true);
+    let windy = beside(3.0, true);
     let swing_m = windy.gust_swing_per_m * (windy.crane.sheave(&windy.pick).z - 3.0);
     assert!((0.4..0.6).contains(&swing_m), "{swing_m}");
-    let cs =
-        liftplan_cspace::CSpace::build(&liftplan_cspace::Problem { task: &windy, chart: None, map: &m }, &s.cspace);
-    let ck = liftplan_cspace::Checker::new(&cs, &m, &windy, vec![], s.cspace.sample_m);
-    let b = ck.config(&windy.pick).unwrap_err();
+    let b = checked(&windy).unwrap_err();
     assert_eq!((b.reason.as_str(), b.object.as_deref()), (liftplan_cspace::TOO_CLOSE, Some("WALL")), "{b}");
     let v = hoist(&windy);
     assert!(
@@ -365,16 +364,8 @@ fn the_load_keeps_its_clearance_from_the_wall_swung_by_a_gust() {
     // Picked from the slab there and lifted over the wall: the plan made
     // with the load hanging plumb hoists it up beside the wall, which a gust
     // would swing too close; planned for the wind, the lift keeps off it.
-    let on_slab = |wind: bool| {
-        let mut sp = spec_of(-14.0);
-        sp.pick = toml::from_str("x_m = 24.0\ny_m = -3.2\nz_m = 0.0\nyaw_deg = 0.0").unwrap();
-        if wind {
-            sp.wind = toml::from_str("chart_ms = 9.8\ncw = 1.2").unwrap();
-        }
-        sp.resolve(builtin("ac-700").unwrap()).unwrap()
-    };
     let site = Site { map: &m, world: &world, charts: None };
-    let (plumb, windy) = (on_slab(false), on_slab(true));
+    let (plumb, windy) = (beside(0.0, false), beside(0.0, true));
     let (plan, _) = plan_lift(&plumb, &site, &s, 3).unwrap();
     assert_eq!(plan.gust_swing_per_m, 0.0);
     let landing: Vec<bool> = (0..plan.moves.len()).map(|i| i == 0 || i + 1 == plan.moves.len()).collect();
