@@ -668,31 +668,74 @@ liftoff_m = 0.5
 /// Where the demo's load, by the steps file's swings and step ends, comes
 /// within its clearance (1 m) of a box standing on the ground, `half_m`
 /// either way of `xy` and `top_m` high: the step and the swing there (°),
-/// if anywhere. The load's centre is taken for the load, grown by its half
-/// diagonal (8 x 3 m): near in plan and lower than the top plus the
-/// clearance is near.
+/// if anywhere. The load's footprint (8 x 3 m, at the step's load yaw,
+/// which a swing keeps) is centred under the hook; within the clearance of
+/// the box in plan and lower than its top plus the clearance is near.
 fn load_comes_near(steps_csv: &str, xy: [f64; 2], half_m: f64, top_m: f64) -> Option<(usize, f64)> {
-    let (clearance_m, half_diagonal_m) = (1.0, (4.0f64 * 4.0 + 1.5 * 1.5).sqrt());
-    let near = |swing_deg: f64, radius_m: f64, underside_m: f64| {
+    let clearance_m = 1.0;
+    let near = |swing_deg: f64, radius_m: f64, underside_m: f64, yaw_deg: f64| {
         let (x, y) = (radius_m * swing_deg.to_radians().cos(), radius_m * swing_deg.to_radians().sin());
-        let (dx, dy) = (((x - xy[0]).abs() - half_m).max(0.0), ((y - xy[1]).abs() - half_m).max(0.0));
-        dx.hypot(dy) < clearance_m + half_diagonal_m && underside_m < top_m + clearance_m
+        let (c, s) = (yaw_deg.to_radians().cos(), yaw_deg.to_radians().sin());
+        let load: Vec<[f64; 2]> = [(4.0, 1.5), (-4.0, 1.5), (-4.0, -1.5), (4.0, -1.5)]
+            .iter()
+            .map(|(u, v)| [x + u * c - v * s, y + u * s + v * c])
+            .collect();
+        let square: Vec<[f64; 2]> = [(1.0, 1.0), (-1.0, 1.0), (-1.0, -1.0), (1.0, -1.0)]
+            .iter()
+            .map(|(u, v)| [xy[0] + u * half_m, xy[1] + v * half_m])
+            .collect();
+        polygons_apart_m(&load, &square) < clearance_m && underside_m < top_m + clearance_m
     };
     let rows: Vec<Vec<f64>> =
         steps_csv.lines().skip(1).map(|l| l.split(',').map(|v| v.parse().unwrap_or(f64::NAN)).collect()).collect();
-    let (swing, radius, height) = (4, 8, 9);
+    let (swing, yaw, radius, height) = (4, 7, 8, 9);
     let mut from_deg = rows.first()?[swing];
     for (k, r) in rows.iter().enumerate() {
-        // A swing keeps the radius and the height: its whole arc, 0.5° apart.
+        // A swing keeps the radius, the height and the load's yaw: its
+        // whole arc, 0.5° apart.
         let n = ((r[swing] - from_deg).abs() / 0.5).ceil().max(1.0) as usize;
-        if let Some(i) =
-            (0..=n).find(|i| near(from_deg + (r[swing] - from_deg) * *i as f64 / n as f64, r[radius], r[height]))
-        {
-            return Some((k + 1, from_deg + (r[swing] - from_deg) * i as f64 / n as f64));
+        let at = |i: usize| from_deg + (r[swing] - from_deg) * i as f64 / n as f64;
+        if let Some(i) = (0..=n).find(|i| near(at(*i), r[radius], r[height], r[yaw])) {
+            return Some((k + 1, at(i)));
         }
         from_deg = r[swing];
     }
     None
+}
+
+/// How far apart two convex polygons are in plan (m): 0 where they
+/// overlap (one holds a corner of the other, or their edges cross), else
+/// the least distance from a corner of one to an edge of the other.
+fn polygons_apart_m(a: &[[f64; 2]], b: &[[f64; 2]]) -> f64 {
+    let inside = |p: [f64; 2], poly: &[[f64; 2]]| {
+        let side = |i: usize| {
+            let (q, r) = (poly[i], poly[(i + 1) % poly.len()]);
+            (r[0] - q[0]) * (p[1] - q[1]) - (r[1] - q[1]) * (p[0] - q[0])
+        };
+        (0..poly.len()).all(|i| side(i) >= 0.0) || (0..poly.len()).all(|i| side(i) <= 0.0)
+    };
+    let to_edge = |p: [f64; 2], q: [f64; 2], r: [f64; 2]| {
+        let (ex, ey) = (r[0] - q[0], r[1] - q[1]);
+        let t = (((p[0] - q[0]) * ex + (p[1] - q[1]) * ey) / (ex * ex + ey * ey)).clamp(0.0, 1.0);
+        (p[0] - q[0] - t * ex).hypot(p[1] - q[1] - t * ey)
+    };
+    let crosses = |p: [f64; 2], q: [f64; 2], r: [f64; 2], s: [f64; 2]| {
+        let turn =
+            |a: [f64; 2], b: [f64; 2], c: [f64; 2]| (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+        turn(p, q, r) * turn(p, q, s) < 0.0 && turn(r, s, p) * turn(r, s, q) < 0.0
+    };
+    let edges = |poly: &[[f64; 2]]| (0..poly.len()).map(|i| (poly[i], poly[(i + 1) % poly.len()])).collect::<Vec<_>>();
+    let (ea, eb) = (edges(a), edges(b));
+    if a.iter().any(|p| inside(*p, b))
+        || b.iter().any(|p| inside(*p, a))
+        || ea.iter().any(|(p, q)| eb.iter().any(|(r, s)| crosses(*p, *q, *r, *s)))
+    {
+        return 0.0;
+    }
+    let one_way = |a: &[[f64; 2]], eb: &[([f64; 2], [f64; 2])]| {
+        a.iter().flat_map(|p| eb.iter().map(move |(q, r)| to_edge(*p, *q, *r))).fold(f64::INFINITY, f64::min)
+    };
+    one_way(a, &eb).min(one_way(b, &ea))
 }
 
 /// Writes `toml` as the demo project's file in `dir` and runs the project

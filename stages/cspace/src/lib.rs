@@ -290,7 +290,9 @@ impl CSpace {
                 Some(_) => cap.map(|c| c.capacity.capacity_kg),
                 None => Some(f64::INFINITY),
             });
-            cs.row_min_hoist.push(min_hoist_for_internal_clearance(crane, &task.load, b.max(a)).max(lim.hoist_m.0));
+            cs.row_min_hoist.push(
+                min_hoist_for_internal_clearance(crane, &task.load, b.max(a), task.gust_swing_per_m).max(lim.hoist_m.0),
+            );
         }
         cs.timings.rows_ms = ms_since(t0);
         if s.strategy == Strategy::Online {
@@ -491,7 +493,10 @@ impl CSpace {
         let c = self.cell_center(i, k, 0.0);
         let sheave = crane.sheave(&c);
         let motion = self.sheave_motion(crane, c.radial);
-        let r = Self::envelope_radius(task) + INTERNAL_MARGIN_M + motion;
+        let r = Self::envelope_radius(task)
+            + INTERNAL_MARGIN_M
+            + motion
+            + Self::gust_reach_m(task, crane.limits().hoist_m.1, motion);
         let o = crane.slew_center();
         if (sheave.x - o.x).hypot(sheave.y - o.y) - r * std::f64::consts::SQRT_2 > self.own_reach_m {
             return f32::INFINITY;
@@ -708,22 +713,41 @@ pub fn highest_interval_below(map: &Mdm, xa: f64, xb: f64, ya: f64, yb: f64, z_m
 /// bounding sphere for its centre (off the hook line by its centre of
 /// gravity) and nothing for the top corners of the rigging (a prism on the
 /// load's footprint up to the hook block), each with [`INTERNAL_MARGIN_M`]
-/// to spare. A tower crane's jib is level above the hook: the rope limits
-/// suffice.
-pub fn min_hoist_for_internal_clearance(crane: &CraneSetup, load: &LoadShape, luff_max: f64) -> f64 {
+/// to spare. Swung by a gust (`gust_swing_per_m`,
+/// [`LiftTask::gust_swept`]), each box is wider by the swing at its
+/// underside on every side, so its corners reach √2 times that farther: the
+/// load's sphere grows by that, the rigging's corners come that much closer
+/// to the crane. A tower crane's jib is level above the hook: the rope
+/// limits suffice.
+pub fn min_hoist_for_internal_clearance(
+    crane: &CraneSetup,
+    load: &LoadShape,
+    luff_max: f64,
+    gust_swing_per_m: f64,
+) -> f64 {
     match &crane.model.kind {
         liftplan_core::crane::CraneKind::Luffing(l) => {
             let (sin, cos) = (luff_max.sin().max(0.0), luff_max.cos().max(0.05));
             let half_depth = l.boom.depth_m / 2.0 + INTERNAL_MARGIN_M;
             let hook = crane.model.hook.height_m;
-            // The load's centre, `hoist + hook + rigging + half its height` down.
+            let widen = std::f64::consts::SQRT_2 * gust_swing_per_m;
+            // The load's centre, `h = hoist + hook + rigging + half its
+            // height` down: h·cos - off·sin ≥ R + widen·(h + half its
+            // height) + half the boom.
+            let (centre_den, rigging_den) = (cos - widen, cos - widen * sin);
+            if centre_den <= 0.0 || rigging_den <= 0.0 {
+                return f64::INFINITY;
+            }
             let off_line = load.cog_m[0].hypot(load.cog_m[1]);
-            let centre = (load.bounding_radius() + half_depth + off_line * sin) / cos
+            let centre = (load.bounding_radius() + half_depth + off_line * sin + widen * load.size_m[2] / 2.0)
+                / centre_den
                 - hook
                 - load.rigging_height_m
                 - load.size_m[2] / 2.0;
-            // The rigging's top corners, `hoist + hook` down.
-            let rigging = (half_depth + load.yaw_invariant_radius() * sin) / cos - hook;
+            // The rigging's top corners, `h = hoist + hook` down:
+            // h·cos - (r + widen·(h + rigging))·sin ≥ half the boom.
+            let rigging =
+                (half_depth + (load.yaw_invariant_radius() + widen * load.rigging_height_m) * sin) / rigging_den - hook;
             centre.max(rigging)
         }
         liftplan_core::crane::CraneKind::Tower(_) => f64::NEG_INFINITY,
@@ -997,10 +1021,12 @@ impl<'a> Checker<'a> {
         }
         self.count_n(true, parts.len() as u64);
         // The load and its rigging off the crane's own parts that stand or
-        // swing, as the validator asks ([`Self::own_rope_cap`]).
+        // swing, as the validator asks ([`Self::own_rope_cap`]), swung as
+        // off the site.
         let o = self.task.crane.slew_center();
         for (kind, b) in parts.iter().filter(|(k, _)| matches!(k, PartKind::Load | PartKind::Rigging)) {
             let grown = b.expanded(INTERNAL_MARGIN_M).expanded_by_motion(sweep.horizontal_m, sweep.vertical_m);
+            let grown = self.task.gust_swept(&grown, sheave_z);
             // Most of the time the load is far out: nothing of the crane there.
             let plan_radius = grown.half.x.hypot(grown.half.y);
             if (grown.center.x - o.x).hypot(grown.center.y - o.y) - plan_radius > self.cs.own_reach_m {
