@@ -483,6 +483,22 @@ impl LiftTask {
         b.expanded_by_motion(self.gust_swing_per_m * below_m, 0.0)
     }
 
+    /// The crane's parts at `c` ([`CraneSetup::pose`]), what hangs swung by
+    /// a gust ([`Self::gust_swept`]) where `gusts` (not in a lift-off or
+    /// set-down, held at the support) and the lift is planned for the wind.
+    pub fn pose_in_gusts(&self, c: &Config, gusts: bool) -> crate::crane::CranePose {
+        let mut pose = self.crane.pose(c, &self.load);
+        if gusts && self.gust_swing_per_m > 0.0 {
+            let sheave_z = self.crane.sheave(c).z;
+            for (kind, b) in pose.parts.iter_mut() {
+                if kind.dependence() == Dependence::Full {
+                    *b = self.gust_swept(b, sheave_z);
+                }
+            }
+        }
+        pose
+    }
+
     /// The first of the lift's `not_over` areas something comes within
     /// `within_m` of at `c`, and what: what hangs from the crane (the load's
     /// footprint, the plan outline of its box, which its rigging's is too;

@@ -233,12 +233,10 @@ fn swept_cells(task: &LiftTask, moves: &[Move]) -> (HashMap<Cell, f64>, HashMap<
     let hanging = |k: PartKind| matches!(k, PartKind::Load | PartKind::Rigging | PartKind::HookBlock | PartKind::Rope);
     for (m, landing) in moves.iter().zip(crate::landing_moves(task, moves.len())) {
         for c in configs_along(task, m, SWEEP_SAMPLE_M) {
-            let sheave_z = task.crane.sheave(&c).z;
-            for (kind, part) in task.crane.pose(&c, &task.load).parts.iter() {
+            for (kind, part) in task.pose_in_gusts(&c, !landing).parts.iter() {
                 if kind.dependence() == Dependence::Fixed {
                     continue;
                 }
-                let part = if hanging(*kind) && !landing { &task.gust_swept(part, sheave_z) } else { part };
                 let into = if hanging(*kind) { &mut load } else { &mut crane };
                 let bottom = part.corners().iter().map(|p| p.z).fold(f64::INFINITY, f64::min);
                 cells_under(&part.footprint(), SWEEP_SAMPLE_M / 2.0, |c| {

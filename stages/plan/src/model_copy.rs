@@ -304,16 +304,8 @@ pub fn passes_left_out(
     let landing = crate::landing_moves(task, moves.len());
     for (i, m) in moves.iter().enumerate() {
         for c in crate::validate::configs_along(task, m, PASS_SAMPLE_M) {
-            let pose = task.crane.pose(&c, &task.load);
-            let sheave_z = task.crane.sheave(&c).z;
+            let pose = task.pose_in_gusts(&c, !landing[i]);
             for (kind, part) in &pose.parts {
-                let swung;
-                let part = if kind.dependence() == liftplan_core::crane::Dependence::Full && !landing[i] {
-                    swung = task.gust_swept(part, sheave_z);
-                    &swung
-                } else {
-                    part
-                };
                 let reach = part.aabb();
                 for (g, (group, (whole, whole_near), boxes, scanned)) in grown.iter().enumerate() {
                     if met[g] {

@@ -1453,12 +1453,10 @@ fn check_config(
     // A lift-off or set-down asks the same of the hanging parts in a zone or not.
     let zone_margin_m =
         if landing_move { f64::INFINITY } else { zone_margin_m(&rules.landing, &footprint, in_landing) };
-    // Every part's box once, for the site and for the crane's own structure.
-    let pose = crane.pose(c, &task.load);
-    // Where the lift is planned for the wind, what hangs keeps its
-    // clearance swung as far as a gust can swing it, but in a lift-off or
-    // set-down, held at its support.
-    let sheave_z = crane.sheave(c).z;
+    // Every part's box once, for the site and for the crane's own structure;
+    // where the lift is planned for the wind, what hangs swung as far as a
+    // gust can swing it, but in a lift-off or set-down, held at its support.
+    let pose = task.pose_in_gusts(c, !landing_move);
     let mut out = Vec::new();
     for &(kind, mut b) in &pose.parts {
         let dep = kind.dependence();
@@ -1466,9 +1464,6 @@ fn check_config(
             continue; // checked once per plan
         }
         let hanging = dep == Dependence::Full;
-        if hanging && !landing_move {
-            b = task.gust_swept(&b, sheave_z);
-        }
         let mut required = if hanging && in_landing { rules.landing_clearance_m } else { rules.clearance_m };
         if landing_move && hanging {
             // Lift-off and set-down: touch nothing but the load's support.
@@ -1514,18 +1509,7 @@ fn check_config(
             utilisation_pct: util,
         });
     }
-    // Off the crane's own parts too, what hangs swung as off the site.
-    let own = if task.gust_swing_per_m > 0.0 && !landing_move {
-        let mut swung = pose.clone();
-        for (kind, b) in swung.parts.iter_mut() {
-            if kind.dependence() == Dependence::Full {
-                *b = task.gust_swept(b, sheave_z);
-            }
-        }
-        own_distances(&swung)
-    } else {
-        own_distances(&pose)
-    };
+    let own = own_distances(&pose);
     for (kind, d, what) in &own {
         if !(*d >= OWN_CLEARANCE_M - DISTANCE_TOLERANCE_M) {
             problems
