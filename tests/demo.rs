@@ -684,7 +684,7 @@ fn load_comes_near(steps_csv: &str, xy: [f64; 2], half_m: f64, top_m: f64) -> Op
             .iter()
             .map(|(u, v)| [xy[0] + u * half_m, xy[1] + v * half_m])
             .collect();
-        polygons_apart_m(&load, &square) < clearance_m && underside_m < top_m + clearance_m
+        liftplan_core::obb::footprint_near_area(&load, &square, clearance_m) && underside_m < top_m + clearance_m
     };
     let rows: Vec<Vec<f64>> =
         steps_csv.lines().skip(1).map(|l| l.split(',').map(|v| v.parse().unwrap_or(f64::NAN)).collect()).collect();
@@ -701,41 +701,6 @@ fn load_comes_near(steps_csv: &str, xy: [f64; 2], half_m: f64, top_m: f64) -> Op
         from_deg = r[swing];
     }
     None
-}
-
-/// How far apart two convex polygons are in plan (m): 0 where they
-/// overlap (one holds a corner of the other, or their edges cross), else
-/// the least distance from a corner of one to an edge of the other.
-fn polygons_apart_m(a: &[[f64; 2]], b: &[[f64; 2]]) -> f64 {
-    let inside = |p: [f64; 2], poly: &[[f64; 2]]| {
-        let side = |i: usize| {
-            let (q, r) = (poly[i], poly[(i + 1) % poly.len()]);
-            (r[0] - q[0]) * (p[1] - q[1]) - (r[1] - q[1]) * (p[0] - q[0])
-        };
-        (0..poly.len()).all(|i| side(i) >= 0.0) || (0..poly.len()).all(|i| side(i) <= 0.0)
-    };
-    let to_edge = |p: [f64; 2], q: [f64; 2], r: [f64; 2]| {
-        let (ex, ey) = (r[0] - q[0], r[1] - q[1]);
-        let t = (((p[0] - q[0]) * ex + (p[1] - q[1]) * ey) / (ex * ex + ey * ey)).clamp(0.0, 1.0);
-        (p[0] - q[0] - t * ex).hypot(p[1] - q[1] - t * ey)
-    };
-    let crosses = |p: [f64; 2], q: [f64; 2], r: [f64; 2], s: [f64; 2]| {
-        let turn =
-            |a: [f64; 2], b: [f64; 2], c: [f64; 2]| (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
-        turn(p, q, r) * turn(p, q, s) < 0.0 && turn(r, s, p) * turn(r, s, q) < 0.0
-    };
-    let edges = |poly: &[[f64; 2]]| (0..poly.len()).map(|i| (poly[i], poly[(i + 1) % poly.len()])).collect::<Vec<_>>();
-    let (ea, eb) = (edges(a), edges(b));
-    if a.iter().any(|p| inside(*p, b))
-        || b.iter().any(|p| inside(*p, a))
-        || ea.iter().any(|(p, q)| eb.iter().any(|(r, s)| crosses(*p, *q, *r, *s)))
-    {
-        return 0.0;
-    }
-    let one_way = |a: &[[f64; 2]], eb: &[([f64; 2], [f64; 2])]| {
-        a.iter().flat_map(|p| eb.iter().map(move |(q, r)| to_edge(*p, *q, *r))).fold(f64::INFINITY, f64::min)
-    };
-    one_way(a, &eb).min(one_way(b, &ea))
 }
 
 /// Writes `toml` as the demo project's file in `dir` and runs the project
