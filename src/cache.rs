@@ -116,6 +116,24 @@ impl Cache {
         serde_json::from_str(&text).ok()
     }
 
+    /// The folders of the stage's complete entries, the most recently used
+    /// first (of equal times, the larger key first).
+    pub fn entries(&self, stage: &str) -> Vec<PathBuf> {
+        let Ok(dir) = std::fs::read_dir(self.root.join("cache").join(stage)) else {
+            return vec![];
+        };
+        let mut found: Vec<(std::time::SystemTime, String)> = dir
+            .flatten()
+            .filter_map(|e| {
+                let key = e.file_name().to_str()?.to_string();
+                let used = std::fs::metadata(e.path().join("manifest.json")).and_then(|m| m.modified()).ok()?;
+                (!key.starts_with('.') && !key.contains(".old-")).then_some((used, key))
+            })
+            .collect();
+        found.sort_by(|a, b| b.cmp(a));
+        found.into_iter().map(|(_, key)| self.entry_dir(stage, &key)).collect()
+    }
+
     /// Removes folders left by killed runs.
     pub fn sweep(&self) {
         let Ok(stages) = std::fs::read_dir(self.root.join("cache")) else {
@@ -404,6 +422,27 @@ mod tests {
             lines: vec![],
             seconds: 0.0,
         }
+    }
+
+    /// A stage's entries, the most recently used first, without the
+    /// folders of runs in progress or being dropped, or one with no
+    /// manifest (never complete).
+    #[test]
+    fn a_stages_entries_most_recently_used_first() {
+        let d = tempfile::tempdir().unwrap();
+        let cache = Cache::new(d.path());
+        assert!(cache.entries("plan").is_empty());
+        let at = |secs: u64| std::time::UNIX_EPOCH + std::time::Duration::from_secs(secs);
+        for (key, secs) in [("aaaa", 3000), ("bbbb", 1000), ("cccc", 2000), (".tmp-1", 4000), ("dddd.old-7", 5000)] {
+            let e = cache.entry_dir("plan", key);
+            std::fs::create_dir_all(&e).unwrap();
+            let f = std::fs::File::create(e.join("manifest.json")).unwrap();
+            f.set_modified(at(secs)).unwrap();
+        }
+        std::fs::create_dir_all(cache.entry_dir("plan", "eeee")).unwrap();
+        let keys: Vec<String> =
+            cache.entries("plan").iter().map(|e| e.file_name().unwrap().to_string_lossy().into_owned()).collect();
+        assert_eq!(keys, ["aaaa", "cccc", "bbbb"]);
     }
 
     /// What a stage no longer makes moves to out/superseded/, and only

@@ -89,17 +89,22 @@ enum Command {
         #[arg(long)]
         tower: bool,
     },
-    /// Print the resume_from line for a lift stopped part way, read off its
-    /// last plan: paste it into the lift's [[lift]] (with any [[obstacle]]
-    /// that stopped it) and run again to re-plan from where the load hangs.
+    /// Print the resume_from line for a lift stopped part way, read off the
+    /// plan its crew follows: paste it into the lift's [[lift]] (with any
+    /// [[obstacle]] that stopped it) and run again to re-plan from where the
+    /// load hangs.
     #[command(
-        after_help = "Examples:\n  liftplan resume site-a V-101 --after-step 4\n  liftplan resume site-a V-101 --after-step 4 --swing-deg -60"
+        after_help = "Examples:\n  liftplan resume site-a V-101 --plan 3f9a2c1b --after-step 4\n  liftplan resume site-a V-101 --plan 3f9a2c1b --after-step 4 --swing-deg -60"
     )]
     Resume {
         /// Project folder.
         dir: PathBuf,
         /// The lift's id.
         lift: String,
+        /// The plan the crew follows: the 8 hex digits after "plan" on the
+        /// foot of each page of its PDF.
+        #[arg(long)]
+        plan: String,
         /// The last step done, as the plan numbers them.
         #[arg(long)]
         after_step: usize,
@@ -429,8 +434,8 @@ fn real_main() -> Result<ExitCode> {
             println!("removed the cache and outputs of {}", dir.display());
             Ok(ExitCode::SUCCESS)
         }
-        Command::Resume { dir, lift, after_step, swing_deg } => {
-            println!("{}", resume::line(&dir, &lift, after_step, swing_deg)?);
+        Command::Resume { dir, lift, plan, after_step, swing_deg } => {
+            println!("{}", resume::line(&dir, &lift, &plan, after_step, swing_deg)?);
             Ok(ExitCode::SUCCESS)
         }
         Command::Options { stage } => {

@@ -1,36 +1,115 @@
-//! `liftplan resume`: where a lift stopped part way stands, read off its
-//! last plan, as the `resume_from` line its `[[lift]]` takes to be planned
-//! again from there.
+//! `liftplan resume`: where a lift stopped part way stands, read off the
+//! plan its crew follows, as the `resume_from` line its `[[lift]]` takes to
+//! be planned again from there.
 //!
-//! It only reads (`out/plan.json` and the project file) and prints; it does
-//! not edit the project file or run anything.
+//! The crew's plan is named by its revision, printed on every page of its
+//! PDF: the last plan in `out/` may be a newer one (made after the crew's
+//! copy was printed), and the pose after step 4 of another plan is not where
+//! the load hangs. A plan made before the last is read from the plan stage's
+//! cache (the `[cache] keep` most recent runs).
+//!
+//! It only reads (`out/plan.json`, the plan stage's cache and the project
+//! file) and prints; it does not edit the project file or run anything.
 
+use crate::cache::Cache;
 use crate::project::Project;
 use anyhow::{Context, Result, bail};
 use liftplan_cspace::Joint;
+use liftplan_plan::LiftPlan;
+use std::path::{Path, PathBuf};
+
+#[derive(serde::Deserialize)]
+struct PlanFile {
+    lifts: Vec<LiftPlan>,
+}
+
+/// Lift `lift`'s plan in a plan.json, if the file holds one.
+fn plan_in(file: &Path, lift: &str) -> Result<Option<LiftPlan>> {
+    let text = std::fs::read_to_string(file).with_context(|| format!("{}", file.display()))?;
+    let plans: PlanFile = serde_json::from_str(&text).with_context(|| format!("{}", file.display()))?;
+    Ok(plans.lifts.into_iter().find(|l| l.lift == lift))
+}
+
+/// The plan of lift `lift` whose revision is `revision`: the last one
+/// (`out/plan.json`) or one the plan stage's cache still keeps, with the
+/// file it was read from and the last plan's revision.
+fn find_plan(p: &Project, lift: &str, revision: &str) -> Result<(LiftPlan, PathBuf, String)> {
+    let last_file = p.out_dir().join("plan.json");
+    if !last_file.exists() {
+        bail!("{}: no plan to resume (run the project first)", last_file.display());
+    }
+    let Some(last) = plan_in(&last_file, lift)? else {
+        bail!("{}: no plan of lift '{lift}' (run the project first)", last_file.display());
+    };
+    let last_revision = last.summary.revision.clone();
+    if last_revision == revision {
+        return Ok((last, last_file, last_revision));
+    }
+    // A cache entry that cannot be read is one that does not hold the plan.
+    for entry in Cache::new(&p.state_dir()).entries(liftplan_plan::NAME) {
+        let file = entry.join("plan.json");
+        if let Ok(Some(plan)) = plan_in(&file, lift)
+            && plan.summary.revision == revision
+        {
+            return Ok((plan, file, last_revision));
+        }
+    }
+    bail!(
+        "lift '{lift}' has no plan {revision}: its last plan ({}) is plan {}, and the plan stage's cache ({}) keeps no other of that revision. Check the revision on the foot of the crew's pages; if theirs is an older plan no longer kept ([cache] keep), read the swing, luff (or trolley) and hoist off the crane's display and give them as resume_from by hand",
+        last_file.display(),
+        if last_revision.is_empty() { "of no revision (made by an older liftplan)" } else { &last_revision },
+        p.state_dir().join("cache").join(liftplan_plan::NAME).display(),
+    )
+}
+
+/// Whether `revision` reads as a plan's revision: the 8 hex digits after
+/// "plan" on the foot of each page of its PDF.
+fn revision_given(revision: &str) -> Result<String> {
+    let r = revision.trim().to_ascii_lowercase();
+    if r.len() != 8 || !r.bytes().all(|b| b.is_ascii_hexdigit()) {
+        bail!(
+            "--plan {revision:?}: give the plan's revision, the 8 hex digits after \"plan\" on the foot of each page of the crew's PDF (such as 3f9a2c1b)"
+        );
+    }
+    Ok(r)
+}
 
 /// The `resume_from` line for lift `lift` of the project in `dir`, stopped
-/// after step `after_step` of its last plan, or during the next step where
-/// that is a swing and `swing_deg` says where it stopped; a comment line
-/// above it says whence.
-pub fn line(dir: &std::path::Path, lift: &str, after_step: usize, swing_deg: Option<f64>) -> Result<String> {
+/// after step `after_step` of its plan `revision` (the one its crew
+/// follows), or during the next step where that is a swing and `swing_deg`
+/// says where it stopped; a comment line above it says whence.
+pub fn line(dir: &Path, lift: &str, revision: &str, after_step: usize, swing_deg: Option<f64>) -> Result<String> {
+    let revision = revision_given(revision)?;
     let p = Project::load(dir)?;
     let task = p
         .lifts()?
         .into_iter()
         .find(|t| t.id == lift)
         .with_context(|| format!("the project in {} has no lift '{lift}'", dir.display()))?;
-    let file = p.out_dir().join("plan.json");
-    let text = std::fs::read_to_string(&file)
-        .with_context(|| format!("{}: no plan to resume (run the project first)", file.display()))?;
-    #[derive(serde::Deserialize)]
-    struct PlanFile {
-        lifts: Vec<liftplan_plan::LiftPlan>,
+    let (plan, file, last_revision) = find_plan(&p, lift, &revision)?;
+    // A crane stopped part way through its lift stands where it stood: a
+    // project that now sets it up elsewhere (a position searched again, an
+    // edit) would plan from the right pose at the wrong place.
+    if let Some(was) = plan.crane_placement
+        && was != task.crane.placement
+    {
+        let at = |c: &liftplan_core::crane::Placement| {
+            format!(
+                "({:.2}, {:.2}) m, ground z {:.2} m, heading {:.1}°{}",
+                c.x_m,
+                c.y_m,
+                c.z_m,
+                c.heading_rad.to_degrees(),
+                if task.crane.model.is_tower() { String::new() } else { format!(", boom {:.1} m", c.boom_length_m) }
+            )
+        };
+        bail!(
+            "plan {revision} of lift '{lift}' had the crane at {}; the project now sets it up at {}: a crane stopped part way has not moved, so set the lift's crane in {} back to where it stands before resuming",
+            at(&was),
+            at(&task.crane.placement),
+            p.dir.join("liftplan.toml").display()
+        );
     }
-    let plans: PlanFile = serde_json::from_str(&text).with_context(|| format!("{}", file.display()))?;
-    let Some(plan) = plans.lifts.iter().find(|l| l.lift == lift) else {
-        bail!("{}: no plan of lift '{lift}' (run the project first)", file.display());
-    };
     let steps = plan.moves.len();
     // A plan.json edited by hand may have fewer steps than moves: say "?".
     let text = |n: usize| plan.steps.get(n).map_or("?", |s| s.text.as_str());
@@ -63,8 +142,13 @@ pub fn line(dir: &std::path::Path, lift: &str, after_step: usize, swing_deg: Opt
     } else {
         format!("luff_deg = {:.3}", at.radial.to_degrees())
     };
+    let which = if revision == last_revision {
+        format!("plan {revision}, the last")
+    } else {
+        format!("plan {revision}, not the last ({last_revision})")
+    };
     Ok(format!(
-        "# lift {lift} {whence}, from {}: check it against the plan the crew follows and the crane's display\nresume_from = {{ swing_deg = {:.3}, {radial}, hoist_m = {:.3}, yaw_deg = {:.3} }}",
+        "# lift {lift} {whence}, {which}, from {}: check it against the crane's display\nresume_from = {{ swing_deg = {:.3}, {radial}, hoist_m = {:.3}, yaw_deg = {:.3} }}",
         file.display(),
         at.swing_rad.to_degrees(),
         at.hoist_m,

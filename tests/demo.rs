@@ -212,6 +212,15 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     let plan: serde_json::Value =
         serde_json::from_slice(&std::fs::read(dir.join("out").join("plan.json")).unwrap()).unwrap();
     assert!((plan["lifts"][0]["gross_kg"].as_f64().unwrap() - 17_000.0).abs() < 1e-6);
+    // The crew's copy: every page names the plan's revision, as plan.json
+    // gives it.
+    let crews_plan = plan["lifts"][0]["summary"]["revision"].as_str().unwrap().to_string();
+    assert_eq!(crews_plan.len(), 8, "{crews_plan}");
+    let doc = lopdf::Document::load(&pdf_path).unwrap();
+    for (n, _) in doc.get_pages() {
+        let page = doc.extract_text(&[n]).unwrap().replace('\n', " ");
+        assert!(page.contains(&format!("lift V-101, plan {crews_plan} — issued")), "page {n}: {page}");
+    }
 
     // A raised work platform parked since the survey, where the load swings
     // from the trailer to the foundation: placed by hand, only the plan and
@@ -223,17 +232,15 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     let through =
         load_comes_near(&std::fs::read_to_string(&steps_csv).unwrap(), platform_xy, platform_half, platform_top);
     let (through_step, _) = through.expect("the platform must stand on the plan made without it");
+    let after_step = (through_step - 1).to_string();
+    let resume = |revision: &str| liftplan(&["resume", d, "V-101", "--plan", revision, "--after-step", &after_step]);
     // The crew stopped before that step: where the load hangs, read off
-    // the plan they follow.
-    let o = liftplan(&["resume", d, "V-101", "--after-step", &(through_step - 1).to_string()]);
+    // the plan they follow, which is the last plan yet.
+    let o = resume(&crews_plan);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let printed = String::from_utf8_lossy(&o.stdout).into_owned();
-    let resume_line = printed.lines().last().unwrap().to_string();
-    assert!(printed.starts_with(&format!("# lift V-101 after step {}", through_step - 1)), "{printed}");
-    let hangs: toml::Value = toml::from_str(&resume_line).unwrap();
-    let hangs = &hangs["resume_from"];
-    let at = |key: &str| hangs[key].as_float().unwrap_or_else(|| panic!("{key} in {resume_line}"));
-    let o = liftplan(&["resume", d, "V-101", "--after-step", "99"]);
+    let printed_from_last = String::from_utf8_lossy(&o.stdout).into_owned();
+    assert!(printed_from_last.contains(&format!("plan {crews_plan}, the last, from")), "{printed_from_last}");
+    let o = liftplan(&["resume", d, "V-101", "--plan", &crews_plan, "--after-step", "99"]);
     assert!(String::from_utf8_lossy(&o.stderr).contains("--after-step must be 1 to"), "{o:?}");
     let with_platform = format!(
         "{t13}\n[[obstacle]]\nname = \"raised work platform\"\ncenter_m = [{}, {}]\nbase_z_m = 0.0\nsize_m = [3.0, 3.0, {platform_top}]\n",
@@ -259,6 +266,40 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     assert!(text.contains("obstacles placed by hand in teal"), "{text}");
     assert!(text.contains("CHECK ON SITE that each stands where given"), "{text}");
     assert!(text.contains("CHECK FIRST the obstacle placed by hand, where it stands"), "{text}");
+
+    // The platform is placed and the plan made again, but the crew still
+    // holds the plan without it: resume reads theirs, which the plan
+    // stage's cache keeps, not the last plan, and says so. Another revision
+    // is refused naming the last; so is the crane set up elsewhere since.
+    let plan: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join("out").join("plan.json")).unwrap()).unwrap();
+    let last_plan = plan["lifts"][0]["summary"]["revision"].as_str().unwrap().to_string();
+    assert_ne!(last_plan, crews_plan);
+    let o = resume(&crews_plan);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let printed = String::from_utf8_lossy(&o.stdout).into_owned();
+    assert!(printed.starts_with(&format!("# lift V-101 after step {after_step}")), "{printed}");
+    assert!(printed.contains(&format!("plan {crews_plan}, not the last ({last_plan}), from")), "{printed}");
+    assert!(printed.contains(".liftplan"), "{printed}");
+    let resume_line = printed.lines().last().unwrap().to_string();
+    assert_eq!(Some(resume_line.as_str()), printed_from_last.lines().last(), "{printed}\n{printed_from_last}");
+    let hangs: toml::Value = toml::from_str(&resume_line).unwrap();
+    let hangs = &hangs["resume_from"];
+    let at = |key: &str| hangs[key].as_float().unwrap_or_else(|| panic!("{key} in {resume_line}"));
+    let o = resume("0000abcd");
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && e.contains("has no plan 0000abcd: its last plan"), "{e}");
+    assert!(e.contains(&format!("is plan {last_plan}")), "{e}");
+    let o = resume("V-101");
+    assert!(String::from_utf8_lossy(&o.stderr).contains("the 8 hex digits after \"plan\""), "{o:?}");
+    let moved = with_platform.replace("position_m = [0.0, 0.0]", "position_m = [0.5, 0.0]");
+    assert_ne!(moved, with_platform);
+    std::fs::write(&toml_path, &moved).unwrap();
+    let o = resume(&crews_plan);
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && e.contains("had the crane at (0.00, 0.00) m"), "{e}");
+    assert!(e.contains("now sets it up at (0.50, 0.00) m") && e.contains("has not moved"), "{e}");
+    std::fs::write(&toml_path, &with_platform).unwrap();
 
     // The lift stopped where `liftplan resume` said: re-planned from there,
     // with no lift-off. The steps file gives each step's end under

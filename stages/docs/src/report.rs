@@ -433,10 +433,11 @@ fn radial_said(task: &LiftTask, radial: f64) -> String {
 
 /// Every page's footer on a sheet `sheet_w_mm` wide. The project's name is
 /// what gives way, not the lift or the date (the footer itself is shortened
-/// to leave the page number).
-fn footer(sheet_w_mm: f32, project: &str, id: &str, date: &str) -> String {
+/// to leave the page number). The plan's revision is on every page, so that
+/// a page of the crew's copy names the plan it belongs to.
+fn footer(sheet_w_mm: f32, project: &str, id: &str, revision: &str, date: &str) -> String {
     let head = format!("liftplan {} — ", env!("CARGO_PKG_VERSION"));
-    let tail = format!(" — lift {id} — issued {date}");
+    let tail = format!(" — lift {id}, plan {revision} — issued {date}");
     let room = sheet_w_mm - 30.0 - text_width_mm("page 99 of 99", 8.0) - 6.0;
     let project = shortened(project, (room - text_width_mm(&head, 8.0) - text_width_mm(&tail, 8.0)).max(20.0), 8.0);
     format!("{head}{project}{tail}")
@@ -475,7 +476,7 @@ pub fn document(
         y,
         &[
             ("Project", inp.project.clone()),
-            ("Lift", task.id.clone()),
+            ("Lift", format!("{}, plan {} (on every page)", task.id, sm.revision)),
             (
                 "Load",
                 format!(
@@ -1265,7 +1266,7 @@ pub fn document(
         }
     }
     let pages = d.text.len();
-    let bytes = d.finish(&footer(size.w, &inp.project, &task.id, &inp.date), &inp.date);
+    let bytes = d.finish(&footer(size.w, &inp.project, &task.id, &sm.revision, &inp.date), &inp.date);
     Ok((bytes, pages, overview, chart_img))
 }
 
@@ -1301,8 +1302,8 @@ mod tests {
         let text = d.text[0].replace('\n', "");
         assert!(text.contains("cable tray") && text.contains("east-of-rack"), "{text}");
         let project = "Raffinerie Nord — Erweiterung der Destillationsanlage Block 7, Los 3: Montage der Behälter";
-        let f = footer(A4.w, project, "V-101", "2026-12-03");
-        assert!(f.starts_with("liftplan ") && f.ends_with(" — lift V-101 — issued 2026-12-03"), "{f}");
+        let f = footer(A4.w, project, "V-101", "3f9a2c1b", "2026-12-03");
+        assert!(f.starts_with("liftplan ") && f.ends_with(" — lift V-101, plan 3f9a2c1b — issued 2026-12-03"), "{f}");
         assert!(f.contains("Raffinerie Nord") && f.contains("..."), "{f}");
         assert!(text_width_mm(&f, 8.0) <= A4.w - 30.0 - text_width_mm("page 99 of 99", 8.0) - 6.0 + 1e-3, "{f}");
         // An input's file name is listed whole, wrapped.
@@ -1311,8 +1312,8 @@ mod tests {
         assert!((below - 100.0 - 2.0 * 4.2).abs() < 1e-3, "{below}");
         assert!(d.text[0].replace('\n', "").contains("(gültig ab 2019).xlsx"));
         assert_eq!(
-            footer(A4.w, "demo", "V-101", "2026-12-03"),
-            format!("liftplan {} — demo — lift V-101 — issued 2026-12-03", env!("CARGO_PKG_VERSION"))
+            footer(A4.w, "demo", "V-101", "3f9a2c1b", "2026-12-03"),
+            format!("liftplan {} — demo — lift V-101, plan 3f9a2c1b — issued 2026-12-03", env!("CARGO_PKG_VERSION"))
         );
     }
 

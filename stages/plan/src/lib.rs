@@ -29,7 +29,7 @@ pub mod validate;
 
 use liftplan_core::Location;
 use liftplan_core::capacity::{CapacityTable, ChartConfig};
-use liftplan_core::crane::Config;
+use liftplan_core::crane::{Config, Placement};
 use liftplan_core::lift::LiftTask;
 use liftplan_core::mesh::TriMesh;
 use liftplan_core::obb::Obb;
@@ -270,6 +270,11 @@ pub struct LiftPlan {
     pub summary: steps::Summary,
     pub validator: ValidatorReport,
     pub planning: PlanningStats,
+    /// Where the crane stood for the plan (`None` in a plan.json older than
+    /// the field): `liftplan resume` checks that the project still sets it
+    /// up there, as a crane stopped part way through its lift has not moved.
+    #[serde(default)]
+    pub crane_placement: Option<Placement>,
     /// Scan points taken for the load at pick (set by [`run`]).
     #[serde(default)]
     pub load_cutout: LoadCutout,
@@ -891,6 +896,7 @@ pub(crate) fn plan_lift_hinting(
             convergence_best: stats.best_fitness,
             convergence_mean: stats.mean_fitness,
         },
+        crane_placement: Some(task.crane.placement),
         // What was cut out of the cloud for the load, and how the model and
         // the scans agree, are known to `run`.
         load_cutout: LoadCutout::default(),
@@ -948,6 +954,36 @@ impl RunSummary {
             }))
             .collect()
     }
+}
+
+/// A plan's revision: the first 8 hex digits of a blake3 hash of the plan
+/// as plan.json carries it (less its timings and the revision itself) and of
+/// the crane, load and rigging it was made for. It is printed on every page
+/// of the plan's PDF, so that the copy a crew follows can be told from
+/// another plan of the same lift made the same day (a re-plan round a truck
+/// parked since), and `liftplan resume` reads the plan the crew follows, not
+/// whichever was made last. The same inputs and seed give the same revision
+/// (nothing in it depends on the thread count or the time taken); a change
+/// to anything the plan says gives another (but for a 1 in 4 billion
+/// collision of the hash's first 32 bits, between the plans of one lift).
+pub fn revision(plan: &LiftPlan, task: &LiftTask) -> String {
+    let mut p = plan.clone();
+    p.planning.cspace_ms = 0.0;
+    p.planning.plan_ms = 0.0;
+    p.validator.seconds = 0.0;
+    p.summary.revision.clear();
+    let mut h = blake3::Hasher::new();
+    h.update(b"liftplan plan revision 1\n");
+    // serde_json writes an f64 as its shortest round-trip digits: the
+    // same plan gives the same bytes.
+    h.update(&serde_json::to_vec(&p).unwrap_or_default());
+    // The crane's parts and the load's shape are not in plan.json.
+    let made_for = format!(
+        "\n{:?}\n{:?}\n{:?} {:?} {:?} {:?}",
+        task.crane, task.load, task.load_mass_kg, task.rigging_mass_kg, task.deductions_kg, task.counterweight_kg
+    );
+    h.update(made_for.as_bytes());
+    h.finalize().to_hex()[..8].to_string()
 }
 
 /// The most depth-map cells the obstacles placed by hand may cover together:
@@ -1082,6 +1118,7 @@ pub fn run(
         plan.summary.passes_left_out = model_copy::passes_left_out(task, &plan.moves, &left_out, &loads, &world);
         plan.load_cutout = LoadCutout { grow_m: s.load_cutout_m, above_m, points: taken.len(), set_by };
         plan.model_vs_scans = model_vs_scans.clone();
+        plan.summary.revision = revision(&plan, task);
         let io = |p: &Path, e: std::io::Error| PlanError::Input(Location::file(p), e.to_string());
         let csv = out_dir.join(format!("{}.steps.csv", task.id));
         liftplan_core::artifact::write_atomic(&csv, steps::to_csv(&plan.steps, task.crane.model.is_tower()).as_bytes())

@@ -249,6 +249,11 @@ pub fn steps(task: &LiftTask, moves: &[Move], verdict: &Verdict) -> Vec<Step> {
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Summary {
     pub lift: String,
+    /// The plan's revision ([`crate::revision`]): printed on every page of
+    /// its PDF, and what `liftplan resume` is told to know the plan the crew
+    /// follows. Empty until [`crate::run`] has the whole plan.
+    #[serde(default)]
+    pub revision: String,
     pub validated: bool,
     pub steps: usize,
     pub max_utilisation_pct: f64,
@@ -545,8 +550,9 @@ impl Summary {
 
     pub fn line(&self) -> String {
         format!(
-            "lift {}: {} steps, validated; max utilisation {:.0} % (step {}, {}){}; {}; {}",
+            "lift {}: plan {}, {} steps, validated; max utilisation {:.0} % (step {}, {}){}; {}; {}",
             self.lift,
+            self.revision,
             self.steps,
             self.max_utilisation_pct,
             self.max_utilisation_step,
@@ -570,6 +576,7 @@ impl Summary {
 pub fn summary(task: &LiftTask, steps: &[Step], verdict: &Verdict) -> Summary {
     let mut s = Summary {
         lift: task.id.clone(),
+        revision: String::new(),
         validated: verdict.ok,
         steps: steps.len(),
         max_utilisation_pct: 0.0,

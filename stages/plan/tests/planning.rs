@@ -107,10 +107,39 @@ fn same_plan_on_one_and_two_threads() {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
         pool.install(|| {
             let (p, _) = plan_lift(&t, &Site { map: &m, world: &world, charts: None }, &quick(), 11).unwrap();
-            p.moves.iter().flat_map(|mv| mv.to.to_array()).map(f64::to_bits).collect::<Vec<u64>>()
+            let bits = p.moves.iter().flat_map(|mv| mv.to.to_array()).map(f64::to_bits).collect::<Vec<u64>>();
+            (bits, liftplan_plan::revision(&p, &t))
         })
     };
     assert_eq!(run(1), run(2));
+}
+
+/// A plan's revision (on every page of its PDF, and what `liftplan
+/// resume` is told) names what the plan says and where its crane stands,
+/// not how long it took to make.
+#[test]
+fn a_plans_revision_names_its_moves_and_crane_not_its_timings() {
+    let (t, _, plan) = over_the_wall();
+    let r = liftplan_plan::revision(&plan, &t);
+    assert!(r.len() == 8 && r.bytes().all(|b| b.is_ascii_hexdigit() && !b.is_ascii_uppercase()), "{r}");
+    let mut slower = plan.clone();
+    slower.planning.plan_ms += 250.0;
+    slower.planning.cspace_ms += 40.0;
+    slower.validator.seconds += 1.5;
+    slower.summary.revision = r.clone();
+    assert_eq!(liftplan_plan::revision(&slower, &t), r);
+    let mut other = plan.clone();
+    other.moves[1].to.hoist_m += 0.001;
+    assert_ne!(liftplan_plan::revision(&other, &t), r, "a move 1 mm longer");
+    let mut other = plan.clone();
+    other.steps[2].text.push('.');
+    assert_ne!(liftplan_plan::revision(&other, &t), r, "a step's words");
+    let mut moved = t.clone();
+    moved.crane.placement.x_m += 0.1;
+    assert_ne!(liftplan_plan::revision(&plan, &moved), r, "the crane 0.1 m away");
+    let mut heavier = t.clone();
+    heavier.load_mass_kg += 100.0;
+    assert_ne!(liftplan_plan::revision(&plan, &heavier), r, "the load 100 kg heavier");
 }
 
 #[test]
