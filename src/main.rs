@@ -89,10 +89,10 @@ enum Command {
         #[arg(long)]
         tower: bool,
     },
-    /// Print the resume_from line for a lift stopped part way, read off the
-    /// plan its crew follows: paste it into the lift's [[lift]] (with any
-    /// [[obstacle]] that stopped it) and run again to re-plan from where the
-    /// load hangs.
+    /// Print the resume_from line (and resumes_plan, naming the plan) for a
+    /// lift stopped part way, read off the plan its crew follows: paste them
+    /// into the lift's [[lift]] (with any [[obstacle]] that stopped it) and
+    /// run again to re-plan from where the load hangs.
     #[command(
         after_help = "Examples:\n  liftplan resume site-a V-101 --plan 3f9a2c1b --after-step 4\n  liftplan resume site-a V-101 --plan 3f9a2c1b --after-step 4 --swing-deg -60"
     )]

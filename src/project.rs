@@ -465,7 +465,9 @@ keep = 3                  # runs' outputs each stage keeps in .liftplan/cache (t
 # # To re-plan a lift stopped part way (the site changed: add an [[obstacle]]), give
 # # where the load hangs now, as the crane shows it or the plan's steps give it:
 # # resume_from = { swing_deg = -60.0, luff_deg = 49.0, hoist_m = 13.0, yaw_deg = 22.5 }
-# # the plan then starts there, with no lift-off, and its cover says so.
+# # resumes_plan = { revision = "3f9a2c1b", after_step = 4 }   # the crew's plan (optional)
+# # the plan then starts there, with no lift-off, and its cover says so; `liftplan
+# # resume DIR LIFT --plan REVISION --after-step N` prints both lines.
 # clearance_m = 1.0            # kept by every part from everything, m
 # liftoff_m = 0.5              # vertical lift-off at the pick and set-down at the set, m
 # critical_pct = 75.0          # utilisation over which the lift is flagged critical, %

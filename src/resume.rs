@@ -74,10 +74,11 @@ fn revision_given(revision: &str) -> Result<String> {
     Ok(r)
 }
 
-/// The `resume_from` line for lift `lift` of the project in `dir`, stopped
-/// after step `after_step` of its plan `revision` (the one its crew
-/// follows), or during the next step where that is a swing and `swing_deg`
-/// says where it stopped; a comment line above it says whence.
+/// The `resumes_plan` and `resume_from` lines for lift `lift` of the
+/// project in `dir`, stopped after step `after_step` of its plan `revision`
+/// (the one its crew follows), or during the next step where that is a
+/// swing and `swing_deg` says where it stopped; a comment line above them
+/// says whence.
 pub fn line(dir: &Path, lift: &str, revision: &str, after_step: usize, swing_deg: Option<f64>) -> Result<String> {
     let revision = revision_given(revision)?;
     let p = Project::load(dir)?;
@@ -148,7 +149,7 @@ pub fn line(dir: &Path, lift: &str, revision: &str, after_step: usize, swing_deg
         format!("plan {revision}, not the last ({last_revision})")
     };
     Ok(format!(
-        "# lift {lift} {whence}, {which}, from {}: check it against the crane's display\nresume_from = {{ swing_deg = {:.3}, {radial}, hoist_m = {:.3}, yaw_deg = {:.3} }}",
+        "# lift {lift} {whence}, {which}, from {}: check it against the crane's display\nresumes_plan = {{ revision = \"{revision}\", after_step = {after_step} }}\nresume_from = {{ swing_deg = {:.3}, {radial}, hoist_m = {:.3}, yaw_deg = {:.3} }}",
         file.display(),
         at.swing_rad.to_degrees(),
         at.hoist_m,

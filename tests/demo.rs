@@ -281,8 +281,14 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     assert!(printed.starts_with(&format!("# lift V-101 after step {after_step}")), "{printed}");
     assert!(printed.contains(&format!("plan {crews_plan}, not the last ({last_plan}), from")), "{printed}");
     assert!(printed.contains(".liftplan"), "{printed}");
-    let resume_line = printed.lines().last().unwrap().to_string();
-    assert_eq!(Some(resume_line.as_str()), printed_from_last.lines().last(), "{printed}\n{printed_from_last}");
+    let pasted = |printed: &str| printed.lines().filter(|l| !l.starts_with('#')).collect::<Vec<_>>().join("\n");
+    let resume_line = pasted(&printed);
+    assert_eq!(resume_line, pasted(&printed_from_last), "{printed}\n{printed_from_last}");
+    assert!(
+        resume_line
+            .starts_with(&format!("resumes_plan = {{ revision = \"{crews_plan}\", after_step = {after_step} }}\n")),
+        "{resume_line}"
+    );
     let hangs: toml::Value = toml::from_str(&resume_line).unwrap();
     let hangs = &hangs["resume_from"];
     let at = |key: &str| hangs[key].as_float().unwrap_or_else(|| panic!("{key} in {resume_line}"));
@@ -318,7 +324,7 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     assert!((start["swing_rad"].as_f64().unwrap() - at("swing_deg").to_radians()).abs() < 1e-12, "{start}");
     assert!((start["hoist_m"].as_f64().unwrap() - at("hoist_m")).abs() < 1e-12, "{start}");
     let said = format!(
-        "RESUMED PART WAY THROUGH THE LIFT: this plan starts where the load hangs now (resume_from), not at its pick: swing {:.1}°, luff {:.1}°, hoist {:.2} m",
+        "RESUMED PART WAY THROUGH THE LIFT, after step {after_step} of plan {crews_plan} (resumes_plan): this plan starts where the load hangs now (resume_from), not at its pick: swing {:.1}°, luff {:.1}°, hoist {:.2} m",
         at("swing_deg"),
         at("luff_deg"),
         at("hoist_m")

@@ -148,6 +148,18 @@ pub struct PoseSpec {
     pub yaw_deg: f64,
 }
 
+/// The plan a lift resumed part way continues ([`LiftSpec::resumes_plan`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ResumesPlan {
+    /// Its revision: the 8 hex digits after "plan" on the foot of each page
+    /// of its PDF.
+    pub revision: String,
+    /// The last of its steps done (where the lift stopped during the next,
+    /// `resume_from` says where).
+    pub after_step: usize,
+}
+
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct LiftSpec {
@@ -167,6 +179,12 @@ pub struct LiftSpec {
     /// the plan's steps give them) or the load's pose.
     #[serde(default)]
     pub resume_from: Option<PoseSpec>,
+    /// The plan a resumed lift continues and the last step of it done, as
+    /// `liftplan resume` prints them beside `resume_from`: said on the new
+    /// plan's cover, so that its record names the plan it follows on from.
+    /// Only with `resume_from`.
+    #[serde(default)]
+    pub resumes_plan: Option<ResumesPlan>,
     /// Minimum clear distance from every crane part and the load to any obstacle.
     #[serde(default = "default_clearance")]
     pub clearance_m: f64,
@@ -294,6 +312,8 @@ pub struct LiftTask {
     /// Where the load hangs when the lift resumes part way through
     /// ([`LiftSpec::resume_from`]): the plan starts there, with no lift-off.
     pub resume_from: Option<(Config, LoadPose)>,
+    /// The plan it continues, where the lift says ([`LiftSpec::resumes_plan`]).
+    pub resumes_plan: Option<ResumesPlan>,
     pub clearance_m: f64,
     pub liftoff_m: f64,
     pub capacity_reduction_pct: f64,
@@ -759,6 +779,24 @@ impl LiftSpec {
             }
             None => None,
         };
+        let resumes_plan = match &self.resumes_plan {
+            None => None,
+            Some(_) if resume_from.is_none() => {
+                return Err(format!(
+                    "lift '{id}': resumes_plan names the plan a lift resumed part way continues; give resume_from too (where the load hangs now: `liftplan resume` prints both), or leave resumes_plan out"
+                ));
+            }
+            Some(r) => {
+                let revision = r.revision.trim().to_ascii_lowercase();
+                if revision.len() != 8 || !revision.bytes().all(|b| b.is_ascii_hexdigit()) || r.after_step == 0 {
+                    return Err(format!(
+                        "lift '{id}': resumes_plan = {{ revision = {:?}, after_step = {} }}: the revision is the 8 hex digits after \"plan\" on the foot of each page of that plan's PDF (such as 3f9a2c1b), and after_step the last of its steps done (1 or more)",
+                        r.revision, r.after_step
+                    ));
+                }
+                Some(ResumesPlan { revision, after_step: r.after_step })
+            }
+        };
         let swing_range_rad = match self.swing_range_deg {
             Some([a_deg, b_deg]) if a_deg < b_deg && b_deg - a_deg <= 360.0 && a_deg >= -360.0 && b_deg <= 360.0 => {
                 let range = (a_deg.to_radians(), b_deg.to_radians());
@@ -845,6 +883,7 @@ impl LiftSpec {
             pick_pose,
             set_pose,
             resume_from,
+            resumes_plan,
             clearance_m: self.clearance_m,
             liftoff_m: self.liftoff_m,
             capacity_reduction_pct: self.capacity_reduction_pct,
@@ -1043,6 +1082,27 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         assert!(outside.contains("resume_from, at swing 150.0°") && outside.contains("swing_range_deg"), "{outside}");
         let moved = t.moved_to(Placement { x_m: 2.0, ..t.crane.placement }).unwrap_err();
         assert!(moved.contains("resumes part way through (resume_from): its crane stays where it stands"), "{moved}");
+        // The plan it continues: kept (in lower case), refused without
+        // resume_from or where it is no revision or step.
+        let with_plan = |resume_from: Option<&str>, plan: &str| {
+            let mut s = spec();
+            s.resume_from = resume_from.map(|r| toml::from_str(r).unwrap());
+            s.resumes_plan = Some(toml::from_str(plan).unwrap());
+            s.resolve(model())
+        };
+        let hangs = Some("swing_deg = 40.0\nluff_deg = 60.0\nhoist_m = 12.0");
+        let t = with_plan(hangs, "revision = \"3F9A2C1B\"\nafter_step = 4").unwrap();
+        assert_eq!(t.resumes_plan, Some(ResumesPlan { revision: "3f9a2c1b".into(), after_step: 4 }));
+        let alone = with_plan(None, "revision = \"3f9a2c1b\"\nafter_step = 4").unwrap_err();
+        assert!(alone.contains("give resume_from too"), "{alone}");
+        for bad in [
+            "revision = \"3f9a2c1\"\nafter_step = 4",
+            "revision = \"3f9a2c1g\"\nafter_step = 4",
+            "revision = \"3f9a2c1b\"\nafter_step = 0",
+        ] {
+            let e = with_plan(hangs, bad).unwrap_err();
+            assert!(e.contains("the 8 hex digits after \"plan\"") && e.contains("1 or more"), "{bad}: {e}");
+        }
     }
 
     #[test]

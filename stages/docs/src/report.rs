@@ -406,11 +406,17 @@ fn cover_heading(d: &mut Doc, w: f32, id: &str, description: &str) -> f32 {
 }
 
 /// Where a lift resumed part way starts, in words, for the cover: the
-/// crane's configuration as its steps give one, and the load's place.
+/// plan it continues where the lift names it, the crane's configuration as
+/// its steps give one, and the load's place.
 fn resumes_said(task: &LiftTask) -> Option<String> {
     let (c, pose) = task.resume_from.as_ref()?;
+    let after = task
+        .resumes_plan
+        .as_ref()
+        .map(|r| format!(", after step {} of plan {} (resumes_plan)", r.after_step, r.revision))
+        .unwrap_or_default();
     Some(format!(
-        "PART WAY THROUGH THE LIFT: this plan starts where the load hangs now (resume_from), not at its pick: swing {:.1}°, {}, hoist {:.2} m, load yaw {:.1}°, the load's underside at ({:.2}, {:.2}, {:.2}) m; CHECK THE CRANE SHOWS THAT before step 1, and that the load hangs still",
+        "PART WAY THROUGH THE LIFT{after}: this plan starts where the load hangs now (resume_from), not at its pick: swing {:.1}°, {}, hoist {:.2} m, load yaw {:.1}°, the load's underside at ({:.2}, {:.2}, {:.2}) m; CHECK THE CRANE SHOWS THAT before step 1, and that the load hangs still",
         c.swing_rad.to_degrees(),
         radial_said(task, c.radial),
         c.hoist_m,

@@ -977,10 +977,17 @@ pub fn revision(plan: &LiftPlan, task: &LiftTask) -> String {
     // serde_json writes an f64 as its shortest round-trip digits: the
     // same plan gives the same bytes.
     h.update(&serde_json::to_vec(&p).unwrap_or_default());
-    // The crane's parts and the load's shape are not in plan.json.
+    // The crane's parts, the load's shape and the plan a resumed lift
+    // continues (said on its cover) are not in plan.json.
     let made_for = format!(
-        "\n{:?}\n{:?}\n{:?} {:?} {:?} {:?}",
-        task.crane, task.load, task.load_mass_kg, task.rigging_mass_kg, task.deductions_kg, task.counterweight_kg
+        "\n{:?}\n{:?}\n{:?} {:?} {:?} {:?}\n{:?}",
+        task.crane,
+        task.load,
+        task.load_mass_kg,
+        task.rigging_mass_kg,
+        task.deductions_kg,
+        task.counterweight_kg,
+        task.resumes_plan
     );
     h.update(made_for.as_bytes());
     h.finalize().to_hex()[..8].to_string()
