@@ -455,7 +455,11 @@ keep = 3                  # runs' outputs each stage keeps in .liftplan/cache (t
 # id = "V-101"
 # description = "Vessel from trailer onto its foundation"
 # load = { name = "vessel V-101", mass_t = 12.0, size_m = [8.0, 3.0, 3.0], cog_m = [0.0, 0.0, 0.0] }
-# rigging = { mass_t = 0.4, height_m = 4.0 }
+# rigging = { mass_t = 0.4, height_m = 4.0, legs = 2, leg_wll_t = 10.0 }
+# # rigging: height_m from the hook block's underside to the load's top; legs 1, 2 or
+# # 4 (the top's centre, the middles of its short edges, its corners) or lift_points_m
+# # = [[x, y, z], ...] from the box's centre, and each leg's working load limit: the
+# # legs' angles and the most one carries are checked (leave leg_wll_t out: not checked).
 # crane = { model = "ltm-1100", position_m = [0.0, 0.0], ground_z_m = 0.0, heading_deg = 0.0, boom_m = 40.0, chart_config = "main boom, 360 deg" }
 # pick = { x_m = 6.0, y_m = -16.0, z_m = 1.2, yaw_deg = 90.0 }
 # set = { x_m = 30.0, y_m = 2.0, z_m = 1.2, yaw_deg = 0.0 }

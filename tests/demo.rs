@@ -212,15 +212,25 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     let plan: serde_json::Value =
         serde_json::from_slice(&std::fs::read(dir.join("out").join("plan.json")).unwrap()).unwrap();
     assert!((plan["lifts"][0]["gross_kg"].as_f64().unwrap() - 17_000.0).abs() < 1e-6);
+    // The demo's vessel hangs on two legs of 10 t to the ends of its top.
+    let doc = lopdf::Document::load(&pdf_path).unwrap();
+    let text13 = doc.extract_text(&doc.get_pages().keys().copied().collect::<Vec<u32>>()).unwrap().replace('\n', " ");
+    assert!(
+        text13.contains("Slings 2 legs at the middles of the top's short edges, up to 46.4° from the vertical; the most on one leg (leg 2) 9.41 t"),
+        "{text13}"
+    );
     // The crew's copy: every page names the plan's revision, as plan.json
     // gives it.
     let crews_plan = plan["lifts"][0]["summary"]["revision"].as_str().unwrap().to_string();
     assert_eq!(crews_plan.len(), 8, "{crews_plan}");
-    let doc = lopdf::Document::load(&pdf_path).unwrap();
     for (n, _) in doc.get_pages() {
         let page = doc.extract_text(&[n]).unwrap().replace('\n', " ");
         assert!(page.contains(&format!("lift V-101, plan {crews_plan} — issued")), "page {n}: {page}");
     }
+    // So does every row of the steps' file.
+    let rows = std::fs::read_to_string(dir.join("out").join("V-101.steps.csv")).unwrap();
+    assert!(rows.lines().next().unwrap().ends_with(",max_pad_kg,max_pad,plan"), "{rows}");
+    assert!(rows.lines().skip(1).all(|r| r.ends_with(&format!(",{crews_plan}"))), "{rows}");
 
     // A raised work platform parked since the survey, where the load swings
     // from the trailer to the foundation: placed by hand, only the plan and
@@ -515,7 +525,8 @@ liftoff_m = 0.5
     // A load too heavy for the chart where the crane stands: the refusal
     // names the nearest crane position, at the height of the ground scanned
     // there, where the lift plans; given it, the lift plans there.
-    let heavy = t13.replace("mass_t = 13.0", "mass_t = 40.0");
+    // (On legs that carry it: the slings are checked first.)
+    let heavy = t13.replace("mass_t = 13.0", "mass_t = 40.0").replace("leg_wll_t = 10.0", "leg_wll_t = 40.0");
     let stderr = refused_with(&dir, &heavy, "a 40 t vessel on a 31.4 t chart cell planned");
     let flat = stderr.replace('\n', " ");
     let at = flat.find("; the crane set up at position_m = [").unwrap_or_else(|| panic!("{flat}"));
@@ -538,7 +549,7 @@ liftoff_m = 0.5
     );
     // A load the chart carries above critical_pct where the crane stands:
     // the cover names where it would not be; given that position, it is not.
-    let critical = t13.replace("mass_t = 13.0", "mass_t = 26.0");
+    let critical = t13.replace("mass_t = 13.0", "mass_t = 26.0").replace("leg_wll_t = 10.0", "leg_wll_t = 40.0");
     let (cover, _) = planned_with(&dir, &critical);
     let lead = "CRITICAL LIFT (over 75 %); not critical with the crane set up at ";
     let named = &cover[cover.find(lead).unwrap_or_else(|| panic!("{cover}")) + lead.len()..];

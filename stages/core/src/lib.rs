@@ -49,6 +49,7 @@ pub mod obb;
 pub mod obstacle;
 pub mod outriggers;
 pub mod rng;
+pub mod slings;
 pub mod testing;
 pub mod units;
 pub mod wind;

@@ -35,11 +35,30 @@ pub struct RiggingSpec {
     /// Hook block underside to the top of the load.
     #[serde(default = "default_rigging_height")]
     pub height_m: f64,
+    /// The sling legs' number (1, 2 or 4, at the default lift points:
+    /// [`crate::slings::default_points`]), where `lift_points_m` does not
+    /// give them.
+    #[serde(default)]
+    pub legs: Option<usize>,
+    /// Each sling leg's working load limit (t, straight pull): the legs are
+    /// checked against it ([`crate::slings`]); without it they are not.
+    #[serde(default)]
+    pub leg_wll_t: Option<f64>,
+    /// Where each leg takes the load, from the centre of its box in the
+    /// load's frame (m), one to four points.
+    #[serde(default)]
+    pub lift_points_m: Option<Vec<[f64; 3]>>,
 }
 
 impl Default for RiggingSpec {
     fn default() -> Self {
-        RiggingSpec { mass_t: 0.0, height_m: default_rigging_height() }
+        RiggingSpec {
+            mass_t: 0.0,
+            height_m: default_rigging_height(),
+            legs: None,
+            leg_wll_t: None,
+            lift_points_m: None,
+        }
     }
 }
 
@@ -303,6 +322,9 @@ pub struct LiftTask {
     pub load: LoadShape,
     pub load_mass_kg: f64,
     pub rigging_mass_kg: f64,
+    /// The sling legs to check, where the lift gives their working load
+    /// limit ([`RiggingSpec::leg_wll_t`]).
+    pub slings: Option<crate::slings::Slings>,
     pub deductions_kg: f64,
     /// Configurations with the load resting at its pick and set positions.
     pub pick: Config,
@@ -674,6 +696,63 @@ impl LiftSpec {
         nonneg("rigging.height_m", self.rigging.height_m)?;
         nonneg("crane.deductions_t", self.crane.deductions_t)?;
         metres("rigging.height_m", self.rigging.height_m, MAX_RIGGING_HEIGHT_M)?;
+        let r = &self.rigging;
+        let slings = match (r.leg_wll_t, r.legs, &r.lift_points_m) {
+            (None, None, None) => None,
+            (None, _, _) => {
+                return Err(format!(
+                    "lift '{id}': rigging gives its sling legs (legs or lift_points_m) but not their working load limit: give rigging leg_wll_t (t, each leg's, straight pull) to have them checked"
+                ));
+            }
+            (Some(wll_t), legs, points) => {
+                pos("rigging.leg_wll_t", wll_t)?;
+                let (lift_points_m, points_given) = match (legs, points) {
+                    (_, Some(p)) if p.is_empty() || p.len() > 4 => {
+                        return Err(format!(
+                            "lift '{id}': rigging lift_points_m gives {} points: give one to four, one per sling leg",
+                            p.len()
+                        ));
+                    }
+                    (Some(n), Some(p)) if n != p.len() => {
+                        return Err(format!(
+                            "lift '{id}': rigging legs = {n} but lift_points_m gives {} points: give one point per leg",
+                            p.len()
+                        ));
+                    }
+                    (_, Some(p)) => {
+                        for (k, q) in p.iter().enumerate() {
+                            for (i, v) in q.iter().enumerate() {
+                                if !v.is_finite() {
+                                    return Err(format!(
+                                        "lift '{id}': rigging lift_points_m[{k}][{i}] must be a number, found {v}"
+                                    ));
+                                }
+                                metres(
+                                    &format!("rigging lift_points_m[{k}][{i}] (its size)"),
+                                    v.abs(),
+                                    MAX_LOAD_SIDE_M,
+                                )?;
+                            }
+                        }
+                        (p.clone(), true)
+                    }
+                    (Some(n), None) => match crate::slings::default_points(n, self.load.size_m) {
+                        Some(p) => (p, false),
+                        None => {
+                            return Err(format!(
+                                "lift '{id}': rigging legs = {n}: liftplan places 1, 2 or 4 legs (the top's centre, the middles of its short edges, its corners); give another arrangement's points as lift_points_m"
+                            ));
+                        }
+                    },
+                    (None, None) => {
+                        return Err(format!(
+                            "lift '{id}': rigging leg_wll_t is given but not the legs: give rigging legs (1, 2 or 4) or lift_points_m"
+                        ));
+                    }
+                };
+                Some(crate::slings::Slings { lift_points_m, points_given, leg_wll_kg: wll_t * KG_PER_TONNE })
+            }
+        };
         pos("clearance_m", self.clearance_m)?;
         metres("clearance_m", self.clearance_m, MAX_CLEARANCE_M)?;
         nonneg("liftoff_m", self.liftoff_m)?;
@@ -877,6 +956,7 @@ impl LiftSpec {
             load,
             load_mass_kg: self.load.mass_t * KG_PER_TONNE,
             rigging_mass_kg: self.rigging.mass_t * KG_PER_TONNE,
+            slings,
             deductions_kg: self.crane.deductions_t * KG_PER_TONNE,
             pick,
             set,
@@ -1102,6 +1182,39 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         ] {
             let e = with_plan(hangs, bad).unwrap_err();
             assert!(e.contains("the 8 hex digits after \"plan\"") && e.contains("1 or more"), "{bad}: {e}");
+        }
+    }
+
+    /// The sling legs: checked where their working load limit is given,
+    /// at the default points for 1, 2 or 4 legs or at the points given;
+    /// what cannot be checked is refused naming the key.
+    #[test]
+    fn sling_legs_are_given_with_their_working_load_limit() {
+        let rigged = |text: &str| {
+            let mut s = spec();
+            s.rigging = toml::from_str(&format!("mass_t = 0.4\nheight_m = 3.0\n{text}")).unwrap();
+            s.resolve(crate::crane::builtin("ltm-1100").unwrap())
+        };
+        assert!(rigged("").unwrap().slings.is_none());
+        let four = rigged("legs = 4\nleg_wll_t = 8.0").unwrap().slings.unwrap();
+        assert_eq!(four.lift_points_m.len(), 4);
+        assert!(!four.points_given && four.leg_wll_kg == 8000.0);
+        let given = rigged("leg_wll_t = 8.0\nlift_points_m = [[-2.0, 0.0, 1.5], [2.0, 0.0, 1.5], [0.0, 1.0, 1.5]]");
+        assert!(given.unwrap().slings.unwrap().points_given);
+        for (text, said) in [
+            ("legs = 4", "but not their working load limit: give rigging leg_wll_t"),
+            ("leg_wll_t = 8.0", "give rigging legs (1, 2 or 4) or lift_points_m"),
+            ("legs = 3\nleg_wll_t = 8.0", "liftplan places 1, 2 or 4 legs"),
+            (
+                "legs = 2\nleg_wll_t = 8.0\nlift_points_m = [[0.0, 0.0, 1.5]]",
+                "legs = 2 but lift_points_m gives 1 points",
+            ),
+            ("leg_wll_t = 8.0\nlift_points_m = []", "gives 0 points: give one to four"),
+            ("legs = 2\nleg_wll_t = -1.0", "rigging.leg_wll_t must be positive"),
+            ("leg_wll_t = 8.0\nlift_points_m = [[0.0, 0.0, 1500.0]]", "lift_points_m[0][2] (its size) = 1500 m"),
+        ] {
+            let e = rigged(text).unwrap_err();
+            assert!(e.contains(said), "{text}: {e}");
         }
     }
 

@@ -579,6 +579,13 @@ pub fn document(
     if let Some(said) = resumes_said(task) {
         rows.insert(0, ("RESUMED", said));
     }
+    rows.push((
+        "Slings",
+        match &sm.slings {
+            Some(c) => format!("{} (hook over the centre of gravity)", c.said()),
+            None => "not checked: the lift gives no working load limit for its legs (rigging leg_wll_t, with legs or lift_points_m)".to_string(),
+        },
+    ));
     if let Some((n, p)) = sm.highest_pad {
         let counterweight = sm.pads_counterweight_said().map(|c| format!(" with {c}")).unwrap_or_default();
         rows.push((

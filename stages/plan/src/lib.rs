@@ -633,6 +633,25 @@ pub(crate) fn plan_lift_hinting(
             ),
         ));
     }
+    // The sling legs do not depend on the path: checked first.
+    let slings = match &task.slings {
+        Some(legs) => {
+            let l = &task.load;
+            let c = liftplan_core::slings::check(legs, task.load_mass_kg, l.size_m, l.cog_m, l.rigging_height_m)
+                .map_err(|e| lift_err(task, e))?;
+            if c.max_leg_kg > c.leg_wll_kg * (1.0 + 1e-12) {
+                return Err(lift_err(
+                    task,
+                    format!(
+                        "the sling legs cannot carry the load: {}; give legs of a higher working load limit (rigging leg_wll_t), more legs or a taller rigging (height_m)",
+                        c.said()
+                    ),
+                ));
+            }
+            Some(c)
+        }
+        None => None,
+    };
     let chart: Option<&ChartConfig> = match site.charts {
         Some(t) => Some(t.config(&task.chart_config).map_err(|e| lift_err(task, e.to_string()))?),
         None => None,
@@ -850,6 +869,7 @@ pub(crate) fn plan_lift_hinting(
     }
     let steps = steps::steps(task, &all, &verdict);
     let mut summary = steps::summary(task, &steps, &verdict);
+    summary.slings = slings;
     summary.set_on = validate::set_support(task, site.world, &task.set, s.support_m);
     summary.support_m = s.support_m;
     let plan = LiftPlan {
@@ -943,6 +963,7 @@ impl RunSummary {
             .map(|a| a.line())
             .chain(self.lifts.iter().flat_map(|s| {
                 std::iter::once(s.line())
+                    .chain(s.slings_line())
                     .chain(s.pads_line())
                     .chain(s.not_critical_line())
                     .chain(s.under_pads_line())
@@ -980,14 +1001,15 @@ pub fn revision(plan: &LiftPlan, task: &LiftTask) -> String {
     // The crane's parts, the load's shape and the plan a resumed lift
     // continues (said on its cover) are not in plan.json.
     let made_for = format!(
-        "\n{:?}\n{:?}\n{:?} {:?} {:?} {:?}\n{:?}",
+        "\n{:?}\n{:?}\n{:?} {:?} {:?} {:?}\n{:?}\n{:?}",
         task.crane,
         task.load,
         task.load_mass_kg,
         task.rigging_mass_kg,
         task.deductions_kg,
         task.counterweight_kg,
-        task.resumes_plan
+        task.resumes_plan,
+        task.slings
     );
     h.update(made_for.as_bytes());
     h.finalize().to_hex()[..8].to_string()
@@ -1128,8 +1150,11 @@ pub fn run(
         plan.summary.revision = revision(&plan, task);
         let io = |p: &Path, e: std::io::Error| PlanError::Input(Location::file(p), e.to_string());
         let csv = out_dir.join(format!("{}.steps.csv", task.id));
-        liftplan_core::artifact::write_atomic(&csv, steps::to_csv(&plan.steps, task.crane.model.is_tower()).as_bytes())
-            .map_err(|e| io(&csv, e))?;
+        liftplan_core::artifact::write_atomic(
+            &csv,
+            steps::to_csv(&plan.steps, task.crane.model.is_tower(), &plan.summary.revision).as_bytes(),
+        )
+        .map_err(|e| io(&csv, e))?;
         let png = out_dir.join(format!("{}.cspace.png", task.id));
         let pts: Vec<(f64, f64)> = std::iter::once(&plan.moves[0].from)
             .chain(plan.moves.iter().map(|m| &m.to))

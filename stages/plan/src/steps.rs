@@ -311,6 +311,10 @@ pub struct Summary {
     /// The lift's clearance (m), for saying them.
     #[serde(default)]
     pub clearance_m: f64,
+    /// The sling legs, where the lift gives their working load limit
+    /// ([`liftplan_core::slings::check`]).
+    #[serde(default)]
+    pub slings: Option<liftplan_core::slings::SlingCheck>,
     /// The step in which an outrigger pad carries the most, and that most
     /// ([`Step::pads`]).
     #[serde(default)]
@@ -429,6 +433,11 @@ impl Summary {
     /// [`Summary::other_loads_said`] for the run's output.
     pub fn other_loads_line(&self) -> Option<String> {
         self.other_loads_said().map(|said| format!("lift {}: {said}", self.lift))
+    }
+
+    /// [`Summary::slings`] for the run's output.
+    pub fn slings_line(&self) -> Option<String> {
+        self.slings.as_ref().map(|c| format!("lift {}: sling legs: {}", self.lift, c.said()))
     }
 
     /// [`Summary::obstacles_said`] for the run's output.
@@ -600,6 +609,7 @@ pub fn summary(task: &LiftTask, steps: &[Step], verdict: &Verdict) -> Summary {
         against_model: Vec::new(),
         passes_left_out: Vec::new(),
         clearance_m: task.clearance_m,
+        slings: None,
         highest_pad: None,
         pads_tip_in: Vec::new(),
         pads_counterweight: task.counterweight_used_kg(),
@@ -654,17 +664,19 @@ fn csv_field(s: &str) -> String {
 /// The steps as CSV, each with the crane's configuration at its end under
 /// the names a lift's `resume_from` takes (`swing_deg`, `luff_deg` or, for
 /// a tower crane, `trolley_m`, `hoist_m`), so a lift stopped after a step
-/// is resumed from that row.
-pub fn to_csv(steps: &[Step], tower: bool) -> String {
+/// is resumed from that row. Every row ends with the plan's revision
+/// ([`crate::revision`]), so that a row read on its own (into a crane's
+/// control, a spreadsheet) still names the plan it belongs to.
+pub fn to_csv(steps: &[Step], tower: bool, revision: &str) -> String {
     let mut out = format!(
-        "step,operation,amount,unit,swing_deg,{},hoist_m,load_yaw_deg,radius_m,load_height_m,capacity_kg,chart_cell,utilisation_pct,min_clearance_m,clearance_part,clearance_to,max_pad_kg,max_pad\n",
+        "step,operation,amount,unit,swing_deg,{},hoist_m,load_yaw_deg,radius_m,load_height_m,capacity_kg,chart_cell,utilisation_pct,min_clearance_m,clearance_part,clearance_to,max_pad_kg,max_pad,plan\n",
         if tower { "trolley_m" } else { "luff_deg" }
     );
     for s in steps {
         let radial = if tower { s.end.radial } else { s.end.radial.to_degrees() };
         let opt = |v: Option<f64>, p: usize| v.map(|x| format!("{x:.p$}")).unwrap_or_default();
         out.push_str(&format!(
-            "{},{},{:.3},{},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{},{},{},{:.3},{},{},{},{}\n",
+            "{},{},{:.3},{},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{},{},{},{:.3},{},{},{},{},{}\n",
             s.n,
             csv_field(&s.operation),
             s.amount,
@@ -683,6 +695,7 @@ pub fn to_csv(steps: &[Step], tower: bool) -> String {
             csv_field(&s.clearance_to),
             opt(s.pads.map(|p| p.load_kg), 0),
             s.pads.map(|p| p.pad.name()).unwrap_or_default(),
+            csv_field(revision),
         ));
     }
     out

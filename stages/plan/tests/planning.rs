@@ -114,6 +114,38 @@ fn same_plan_on_one_and_two_threads() {
     assert_eq!(run(1), run(2));
 }
 
+/// A lift that gives its sling legs' working load limit has them checked
+/// before any path is searched: the 5 t skid on four legs to the corners of
+/// its 4 x 2 m top, 3 m below the hook, hangs on two diagonal legs with
+/// one slack, each at atan(√5 / 3) from the vertical; legs rated below that
+/// refuse the lift saying what to change, legs rated above it plan, and the
+/// plan carries the check.
+#[test]
+fn the_sling_legs_are_checked_before_the_path() {
+    let mesh = site();
+    let m = map(&mesh);
+    let world = World::new(&mesh, &[], &[]).unwrap();
+    let site = Site { map: &m, world: &world, charts: None };
+    let on_legs = |wll_t: f64| {
+        let mut spec = spec_of(-14.0);
+        spec.rigging.legs = Some(4);
+        spec.rigging.leg_wll_t = Some(wll_t);
+        spec.resolve(builtin("ac-700").unwrap()).unwrap()
+    };
+    let cos = 3.0 / (5.0f64 + 9.0).sqrt();
+    let most_t = 2.5 / cos;
+    let e = plan_lift(&on_legs(most_t - 0.01), &site, &quick(), 3).unwrap_err().to_string();
+    assert!(e.contains("the sling legs cannot carry the load: 4 legs at the top's corners"), "{e}");
+    assert!(e.contains(&format!("{most_t:.2} t")) && e.contains("rigging leg_wll_t"), "{e}");
+    let (plan, _) = plan_lift(&on_legs(most_t + 0.01), &site, &quick(), 3).unwrap();
+    let c = plan.summary.slings.clone().expect("the plan carries the legs' check");
+    assert!((c.max_leg_kg - most_t * 1000.0).abs() < 1e-6, "{c:?}");
+    assert!(plan.summary.slings_line().unwrap().starts_with("lift T-1: sling legs: 4 legs"));
+    // Without a working load limit they are not checked.
+    let (plan, _) = plan_lift(&task(-14.0), &site, &quick(), 3).unwrap();
+    assert!(plan.summary.slings.is_none());
+}
+
 /// A plan's revision (on every page of its PDF, and what `liftplan
 /// resume` is told) names what the plan says and where its crane stands,
 /// not how long it took to make.
