@@ -131,6 +131,9 @@ pub struct RawProject {
     /// placed by hand ([`liftplan_core::obstacle`]).
     #[serde(default)]
     pub obstacle: Vec<liftplan_core::obstacle::Obstacle>,
+    /// Overhead power lines, given by hand ([`liftplan_core::power_line`]).
+    #[serde(default)]
+    pub power_line: Vec<liftplan_core::power_line::PowerLine>,
 }
 
 /// A validated project.
@@ -216,6 +219,16 @@ impl Project {
             let location = match table {
                 Some(off) => Location::in_text(&self.file, text, off),
                 None => self.locate(text, &format!("\"{}\"", self.raw.obstacle.get(k).map_or("", |o| o.name.as_str()))),
+            };
+            return Err(ProjectError { location, message: m });
+        }
+        if let Some((k, m)) = liftplan_core::power_line::problem_of(&self.raw.power_line, &lift_ids) {
+            let table = text.match_indices("[[power_line]]").nth(k).map(|(off, _)| off);
+            let location = match table {
+                Some(off) => Location::in_text(&self.file, text, off),
+                None => {
+                    self.locate(text, &format!("\"{}\"", self.raw.power_line.get(k).map_or("", |l| l.name.as_str())))
+                }
             };
             return Err(ProjectError { location, message: m });
         }
@@ -450,6 +463,17 @@ keep = 3                  # runs' outputs each stage keeps in .liftplan/cache (t
 # yaw_deg = 30.0               # its length's direction, anticlockwise from x, degrees
 # lifts = ["V-101"]            # only during these lifts (leave it out: every lift)
 
+# An overhead power line (scans show thin wires poorly, and never their voltage):
+# every part of the crane, its rope and its load is kept approach_m off its
+# conductor (leave it out: OSHA 1926.1408 Table A's for the voltage, 3.05 m up
+# to 50 kV). Give each conductor, or the outermost on each side. Uncomment and edit.
+# [[power_line]]
+# name = "11 kV feeder"
+# points_m = [[-30.0, 40.0, 9.0], [45.0, 38.0, 9.5]]   # where it is held (pole tops), in order, m
+# sag_m = 1.0                  # the most it hangs below the straight line at mid-span, m
+# voltage_kv = 11.0
+# approach_m = 6.0             # the distance kept, m (a rule stricter than Table A's)
+
 # A lift: uncomment and edit.
 # [[lift]]
 # id = "V-101"
@@ -573,5 +597,23 @@ mod tests {
             raw.obstacle[0].said(),
             "delivery truck, 10.00 x 2.50 x 4.00 m at x 12.00, y -4.00 m, underside at z 0.00 m, turned 30.0°"
         );
+    }
+
+    /// The template's example power line, uncommented, is one liftplan
+    /// takes.
+    #[test]
+    fn the_templates_example_power_line_uncommented_is_taken() {
+        let example: String = super::TEMPLATE
+            .split("# [[power_line]]\n")
+            .nth(1)
+            .and_then(|rest| rest.split("\n\n").next())
+            .expect("the template has an example power line")
+            .lines()
+            .map(|l| l.strip_prefix("# ").unwrap_or(l))
+            .collect::<Vec<_>>()
+            .join("\n");
+        let raw: super::RawProject = toml::from_str(&format!("[[power_line]]\n{example}")).unwrap();
+        assert_eq!(liftplan_core::power_line::problem_of(&raw.power_line, &["V-101"]), None);
+        assert!(raw.power_line[0].said().ends_with("kept 6.00 m off (approach_m)"), "{}", raw.power_line[0].said());
     }
 }

@@ -88,6 +88,14 @@ pub fn line(dir: &Path, lift: &str, revision: &str, after_step: usize, swing_deg
         .find(|t| t.id == lift)
         .with_context(|| format!("the project in {} has no lift '{lift}'", dir.display()))?;
     let (plan, file, last_revision) = find_plan(&p, lift, &revision)?;
+    if plan.crane_model != task.crane.model.name {
+        bail!(
+            "plan {revision} of lift '{lift}' was made for the {}; the project now gives the {}: the crane holding the load is the plan's, so give its model in {} before resuming",
+            plan.crane_model,
+            task.crane.model.name,
+            p.dir.join("liftplan.toml").display()
+        );
+    }
     // A crane stopped part way through its lift stands where it stood: a
     // project that now sets it up elsewhere (a position searched again, an
     // edit) would plan from the right pose at the wrong place.

@@ -174,7 +174,7 @@ pub fn plan() -> StageDef {
         code: env!("LIFTPLAN_CODE_PLAN"),
         about: "plan each lift (MSPGA on the hybrid C-space) and validate it independently",
         inputs: |p: &Project| Ok(p.crane_files()),
-        settings: |p: &Project| serde_json::json!({ "plan": p.raw.plan, "lifts": p.raw.lift, "seed": p.raw.project.seed, "obstacles": p.raw.obstacle }),
+        settings: |p: &Project| serde_json::json!({ "plan": p.raw.plan, "lifts": p.raw.lift, "seed": p.raw.project.seed, "obstacles": p.raw.obstacle, "power_lines": p.raw.power_line }),
         reads: &[
             ("depthmap", "site.mdm"),
             ("scans", "site.laz"),
@@ -240,6 +240,7 @@ fn run_plan(ctx: &Ctx) -> Result<Produced> {
         ctx.upstream_file("scans", "site.laz").as_deref(),
         ctx.upstream_file("charts", "capacity.csv").as_deref(),
         &p.raw.obstacle,
+        &p.raw.power_line,
         &p.raw.plan,
         p.raw.project.seed,
         ctx.out,
@@ -261,7 +262,7 @@ pub fn docs() -> StageDef {
         inputs: |p: &Project| Ok(p.crane_files()),
         // The GPU setting is part of the key: the GPU twin's pictures agree with the
         // CPU's within a tolerance, not bit for bit.
-        settings: |p: &Project| serde_json::json!({ "docs": p.raw.docs, "lifts": p.raw.lift, "project": p.raw.project.name, "gpu": p.raw.gpu.use_, "obstacles": p.raw.obstacle }),
+        settings: |p: &Project| serde_json::json!({ "docs": p.raw.docs, "lifts": p.raw.lift, "project": p.raw.project.name, "gpu": p.raw.gpu.use_, "obstacles": p.raw.obstacle, "power_lines": p.raw.power_line }),
         reads: &[
             ("plan", "*"),
             ("scans", "site.laz"),
@@ -373,6 +374,7 @@ fn run_docs(ctx: &Ctx) -> Result<Produced> {
         chart_warnings,
         chart_wind,
         obstacles: p.raw.obstacle.clone(),
+        power_lines: p.raw.power_line.clone(),
     };
     let summary = liftplan_docs::run(&inputs, &p.raw.docs, p.raw.gpu.use_, ctx.out)?;
     let mut outputs = Vec::new();

@@ -220,6 +220,16 @@ fn bad_project_files_name_line_and_column() {
     expect_project_error(&dir, "unknown field `base_z`", 4);
     std::fs::write(&f, format!("{truck}lifts = [\"V-2\"]\n")).unwrap();
     expect_project_error(&dir, "obstacle 'truck' is for lift 'V-2', which the project does not have", 1);
+    // A power line that cannot be one: its own table's line.
+    let line = "[[power_line]]\nname = \"feeder\"\npoints_m = [[0.0, 30.0, 9.0], [50.0, 30.0, 9.0]]\nsag_m = 1.0\nvoltage_kv = 11.0\n";
+    std::fs::write(
+        &f,
+        format!("{truck}\n{line}\n{}", line.replace("feeder", "trunk").replace("sag_m = 1.0", "sag_m = -1.0")),
+    )
+    .unwrap();
+    expect_project_error(&dir, "power line 'trunk': sag_m must be 0 to 100 m", 13);
+    std::fs::write(&f, line.replace("11.0", "1200.0")).unwrap();
+    expect_project_error(&dir, "power line 'feeder' is over 1,000 kV (1200 kV), beyond OSHA 1926.1408 Table A", 1);
     std::fs::write(&f, "this is not toml").unwrap();
     let o = liftplan(&["run", dir.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(2));

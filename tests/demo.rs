@@ -315,6 +315,13 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     let e = String::from_utf8_lossy(&o.stderr);
     assert!(!o.status.success() && e.contains("had the crane at (0.00, 0.00) m"), "{e}");
     assert!(e.contains("now sets it up at (0.50, 0.00) m") && e.contains("has not moved"), "{e}");
+    let other_crane = with_platform.replace("model = \"ac-700\"", "model = \"ltm-1100\"");
+    assert_ne!(other_crane, with_platform);
+    std::fs::write(&toml_path, &other_crane).unwrap();
+    let o = resume(&crews_plan);
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && e.contains("was made for the AC 700"), "{e}");
+    assert!(e.contains("the crane holding the load is the plan's"), "{e}");
     std::fs::write(&toml_path, &with_platform).unwrap();
 
     // The lift stopped where `liftplan resume` said: re-planned from there,
@@ -346,6 +353,20 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     assert!(text.contains("The first step starts where the load hangs when the lift resumes"), "{text}");
     assert!(text.contains("The part of the lift already made, from the pick to there, is not in it"), "{text}");
     assert_eq!(load_comes_near(&steps, platform_xy, platform_half, platform_top), None, "{steps}");
+
+    // An overhead line along the site's north edge: listed with its
+    // approach distance, drawn, asked to be checked, and in the run's line.
+    let with_line = format!(
+        "{t13}\n[[power_line]]\nname = \"north feeder\"\npoints_m = [[-40.0, 45.0, 12.0], [60.0, 45.0, 12.5]]\nsag_m = 1.5\nvoltage_kv = 33.0\n"
+    );
+    let (cover, text) = planned_with(&dir, &with_line);
+    let said = "power line 'north feeder', 33 kV, held at (-40.00, 45.00, 12.00), (60.00, 45.00, 12.50) m, sagging 1.50 m at mid-span: kept 3.05 m off (OSHA 1926.1408 Table A)";
+    assert!(text.contains(&format!("Power lines {said} ([[power_line]])")), "{text}");
+    assert!(cover.contains("power lines in orange"), "{cover}");
+    assert!(cover.contains("the power lines: where they run, how low they sag and their voltage"), "{cover}");
+    let plan: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join("out").join("plan.json")).unwrap()).unwrap();
+    assert_eq!(plan["lifts"][0]["summary"]["power_lines"][0], said);
 
     // A lift that sets its load back where it picked it (a test lift) has
     // no step but the lift-off and the set-down, and no clearance of its

@@ -48,6 +48,7 @@ pub mod mesh;
 pub mod obb;
 pub mod obstacle;
 pub mod outriggers;
+pub mod power_line;
 pub mod rng;
 pub mod slings;
 pub mod testing;

@@ -136,7 +136,9 @@ pub fn check(
                 hook[2]
             ));
         }
-        let angle = d[0].hypot(d[1]).atan2(d[2]).to_degrees();
+        // One leg hangs plumb: the load tilts until its centre of gravity
+        // is under the point.
+        let angle = if pts.len() == 1 { 0.0 } else { d[0].hypot(d[1]).atan2(d[2]).to_degrees() };
         max_angle_deg = max_angle_deg.max(angle);
         up.push(d.map(|v| v / len));
     }
@@ -323,7 +325,7 @@ mod tests {
         assert!(check(&high, 1.0, size, [0.0; 3], 3.0).unwrap_err().contains("not below the hook block"));
         // One leg: the whole load, whatever its angle.
         let one = check(&slings(1, size), 12_000.0, size, [0.3, 0.0, 0.0], 3.0).unwrap();
-        assert_eq!(one.max_leg_kg, 12_000.0);
+        assert_eq!((one.max_leg_kg, one.max_angle_deg), (12_000.0, 0.0));
         assert!(one.said().starts_with("1 leg at the top's centre"), "{}", one.said());
     }
 }

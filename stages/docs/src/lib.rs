@@ -90,6 +90,9 @@ pub struct Inputs {
     /// The obstacles placed by hand in the project file, which the plan
     /// was made against.
     pub obstacles: Vec<liftplan_core::obstacle::Obstacle>,
+    /// The overhead power lines the project gives, which the plan kept its
+    /// approach distance off.
+    pub power_lines: Vec<liftplan_core::power_line::PowerLine>,
 }
 
 #[derive(Debug, Clone, Serialize)]

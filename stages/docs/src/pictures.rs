@@ -21,6 +21,8 @@ const HOT_SPOT: Rgb = [235, 20, 20];
 pub const OTHER_LOAD: Rgb = [150, 90, 190];
 /// Obstacles placed by hand in the project file.
 pub const OBSTACLE: Rgb = [0, 128, 128];
+/// An overhead power line's conductor, on the overview.
+pub const POWER_LINE: Rgb = [235, 140, 0];
 /// Ground the load passes over that no scan saw.
 pub const UNSEEN: Rgb = [25, 25, 25];
 /// Ground only the crane's boom or superstructure passes over that no scan

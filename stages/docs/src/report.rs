@@ -144,6 +144,9 @@ fn checks_before_signing(
     if task.resumes() {
         v.push("that the crane shows where the lift resumes".to_string());
     }
+    if !sm.power_lines.is_empty() {
+        v.push("the power lines: where they run, how low they sag and their voltage".to_string());
+    }
     match sm.obstacles.len() {
         0 => {}
         1 => v.push("the obstacle placed by hand, where it stands".to_string()),
@@ -660,6 +663,11 @@ pub fn document(
         liftplan_plan::other_loads(&inp.tasks, k).into_iter().map(|(b, _)| (b, pictures::OTHER_LOAD)).collect();
     let other_loads = others.len();
     others.extend(obstacles.iter().map(|o| (o.obb(), pictures::OBSTACLE)));
+    let with_obstacles = others.len();
+    // The conductors, as a band 0.3 m wide.
+    for l in inp.power_lines.iter().filter(|l| l.during(&task.id)) {
+        others.extend(l.boxes(0.15).into_iter().map(|b| (b, pictures::POWER_LINE)));
+    }
     let overview = pictures::overview(site, task, plan, &others, 1400, 1000);
     let tail = task.crane.tail_swing_m();
     let under_m2 = plan.summary.coverage.as_ref().map(|c| c.under_load.passed_m2).filter(|m2| *m2 > 0.0);
@@ -670,7 +678,7 @@ pub fn document(
         (false, false) => "",
     };
     let caption = format!(
-        "Site overview (top view, north up): crane {}{}, load path in red{}, load at set in light blue{}{}{}{}{keep_out}.",
+        "Site overview (top view, north up): crane {}{}, load path in red{}, load at set in light blue{}{}{}{}{}{keep_out}.",
         if task.resumes() { "where the lift resumes (the load hanging)" } else { "at the pick position" },
         match tail {
             Some((r, part)) =>
@@ -685,7 +693,8 @@ pub fn document(
             None => String::new(),
         },
         if other_loads == 0 { "" } else { ", other lifts' loads in violet" },
-        if others.len() == other_loads { "" } else { ", obstacles placed by hand in teal" },
+        if with_obstacles == other_loads { "" } else { ", obstacles placed by hand in teal" },
+        if others.len() == with_obstacles { "" } else { ", power lines in orange" },
         match (task.not_over.is_empty(), task.not_over.iter().any(|a| a.crane_too)) {
             (true, _) => "",
             (false, false) => ", areas the load must never be over outlined in green",
@@ -803,6 +812,15 @@ pub fn document(
                 liftplan_core::lift::NOT_OVER_MARGIN_M,
                 if crane_too { ", and every other part of the crane that swings (boom or jib, counterweight) off those marked 'nor the crane' (crane_too)" } else { "" },
                 if crane_too { ", nor the crane over those marked so" } else { "" }
+            ),
+        ));
+    }
+    if !plan.summary.power_lines.is_empty() {
+        rows.push((
+            "Power lines",
+            format!(
+                "{} ([[power_line]]): every part of the crane, its rope and its load is kept that far off each conductor (planned and checked against boxes round it, grown by that distance less the clearance, so a clearance shown to one is beyond the distance); the conductor's swing in the wind is not modelled",
+                plan.summary.power_lines.join("; ")
             ),
         ));
     }

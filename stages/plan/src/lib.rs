@@ -34,6 +34,7 @@ use liftplan_core::lift::LiftTask;
 use liftplan_core::mesh::TriMesh;
 use liftplan_core::obb::Obb;
 use liftplan_core::obstacle::Obstacle;
+use liftplan_core::power_line::PowerLine;
 use liftplan_cspace::{CSpace, Checker, Joint, LandingZone, Problem};
 use liftplan_depthmap::mdm::Mdm;
 use liftplan_depthmap::query::LeaveOut;
@@ -969,6 +970,7 @@ impl RunSummary {
                     .chain(s.under_pads_line())
                     .chain(s.other_loads_line())
                     .chain(s.obstacles_line())
+                    .chain(s.power_lines_line())
                     .chain(s.coverage_line())
                     .chain(s.load_as_scanned_line())
                     .chain(s.against_model_lines())
@@ -1015,6 +1017,37 @@ pub fn revision(plan: &LiftPlan, task: &LiftTask) -> String {
     h.finalize().to_hex()[..8].to_string()
 }
 
+/// The power lines there during `task`, as boxes round their conductors
+/// grown by the approach distance less the least clearance the planner and
+/// the validator keep off a box (the lift's, or the landing zones' where
+/// less): a part that keeps it off the box keeps the approach distance off
+/// the conductor ([`liftplan_core::power_line`]). Each is named "power line
+/// 'NAME'" where the validator meets it. Refused where they would cover more
+/// of the map than [`MAX_OBSTACLE_CELLS`].
+pub fn power_line_boxes(lines: &[PowerLine], task: &LiftTask, s: &Settings, cell_m: f64) -> Result<Vec<(Obb, String)>> {
+    let kept = task.clearance_m.min(s.landing_clearance_m);
+    let mut out = Vec::new();
+    for l in lines.iter().filter(|l| l.during(&task.id)) {
+        // A line the project took has an approach distance.
+        let Some((approach, _)) = l.approach() else { continue };
+        let name = format!("power line '{}'", l.name);
+        out.extend(l.boxes((approach - kept).max(0.01)).into_iter().map(|b| (b, name.clone())));
+    }
+    let cells: f64 = out
+        .iter()
+        .map(|(b, _)| {
+            let a = b.aabb();
+            ((a.max[0] - a.min[0]) / cell_m + 2.0) * ((a.max[1] - a.min[1]) / cell_m + 2.0)
+        })
+        .sum();
+    if cells > MAX_OBSTACLE_CELLS {
+        return Err(PlanError::Settings(format!(
+            "the power lines ([[power_line]]) and their approach distances cover about {cells:.0} cells of the {cell_m} m depth map, more than the {MAX_OBSTACLE_CELLS:.0} liftplan takes: give the spans near the lifts only, or a coarser [depthmap] cell_m"
+        )));
+    }
+    Ok(out)
+}
+
 /// The most depth-map cells the obstacles placed by hand may cover together:
 /// each lift's map copy holds an interval for every one (16 bytes), so a
 /// project file cannot make that unbounded.
@@ -1047,6 +1080,7 @@ pub fn run(
     cloud_path: Option<&Path>,
     capacity_csv: Option<&Path>,
     obstacles: &[Obstacle],
+    power_lines: &[PowerLine],
     s: &Settings,
     seed: u64,
     out_dir: &Path,
@@ -1103,6 +1137,8 @@ pub fn run(
         world.others = other_loads(tasks, k);
         let lifts_loads = world.others.len();
         world.others.extend(liftplan_core::obstacle::boxes_during(obstacles, &task.id));
+        let lines = power_line_boxes(power_lines, task, s, map.spec.cell)?;
+        world.others.extend(lines);
         let with_others = (!world.others.is_empty()).then(|| map.with_boxes(&world.others));
         let site = Site { map: with_others.as_ref().unwrap_or(&map), world: &world, charts: Some(&charts) };
         let above_m = cutout_above_m(s.load_cutout_m);
@@ -1142,6 +1178,7 @@ pub fn run(
         }
         plan.summary.other_loads = world.others[..lifts_loads].iter().map(|(_, name)| name.clone()).collect();
         plan.summary.obstacles = obstacles.iter().filter(|o| o.during(&task.id)).map(|o| o.said()).collect();
+        plan.summary.power_lines = power_lines.iter().filter(|l| l.during(&task.id)).map(|l| l.said()).collect();
         plan.summary.load_as_scanned = as_scanned;
         plan.summary.against_model = against_model[k].clone();
         plan.summary.passes_left_out = model_copy::passes_left_out(task, &plan.moves, &left_out, &loads, &world);

@@ -311,6 +311,10 @@ pub struct Summary {
     /// The lift's clearance (m), for saying them.
     #[serde(default)]
     pub clearance_m: f64,
+    /// The overhead power lines this lift was planned and checked against,
+    /// each in words ([`liftplan_core::power_line::PowerLine::said`]).
+    #[serde(default)]
+    pub power_lines: Vec<String>,
     /// The sling legs, where the lift gives their working load limit
     /// ([`liftplan_core::slings::check`]).
     #[serde(default)]
@@ -438,6 +442,11 @@ impl Summary {
     /// [`Summary::slings`] for the run's output.
     pub fn slings_line(&self) -> Option<String> {
         self.slings.as_ref().map(|c| format!("lift {}: sling legs: {}", self.lift, c.said()))
+    }
+
+    /// [`Summary::power_lines`] for the run's output, in one line.
+    pub fn power_lines_line(&self) -> Option<String> {
+        (!self.power_lines.is_empty()).then(|| format!("lift {}: {}", self.lift, self.power_lines.join("; ")))
     }
 
     /// [`Summary::obstacles_said`] for the run's output.
@@ -609,6 +618,7 @@ pub fn summary(task: &LiftTask, steps: &[Step], verdict: &Verdict) -> Summary {
         against_model: Vec::new(),
         passes_left_out: Vec::new(),
         clearance_m: task.clearance_m,
+        power_lines: Vec::new(),
         slings: None,
         highest_pad: None,
         pads_tip_in: Vec::new(),

@@ -146,6 +146,56 @@ fn the_sling_legs_are_checked_before_the_path() {
     assert!(plan.summary.slings.is_none());
 }
 
+/// An overhead line across the way from the pick to the set, 14 m up
+/// beyond the wall: the plan keeps every part of the crane, its rope and its
+/// load Table A's 3.05 m off the sagging conductor (measured here at points
+/// 5 cm apart along it, at 200 samples of every move), where the plan made
+/// without it comes within that.
+#[test]
+fn the_plan_keeps_the_approach_distance_off_a_power_line() {
+    use liftplan_core::power_line::PowerLine;
+    let mesh = site();
+    let m = map(&mesh);
+    let t = task(-14.0);
+    let line = PowerLine {
+        name: "11 kV feeder".into(),
+        points_m: vec![[20.0, 6.0, 14.0], [60.0, 6.0, 14.0]],
+        sag_m: 0.5,
+        voltage_kv: 11.0,
+        approach_m: None,
+        lifts: vec![],
+    };
+    let conductor: Vec<[f64; 3]> = (0..=800).map(|k| line.at(0, k as f64 / 800.0)).collect();
+    let nearest = |plan: &liftplan_plan::LiftPlan| {
+        let mut least = f64::INFINITY;
+        for mv in &plan.moves {
+            let (a, b) = (mv.from.to_array(), mv.to.to_array());
+            for s in 0..=200 {
+                let f = s as f64 / 200.0;
+                let v: Vec<f64> = (0..4).map(|d| a[d] + (b[d] - a[d]) * f).collect();
+                let c = Config { swing_rad: v[0], radial: v[1], hoist_m: v[2], load_yaw_rad: v[3] };
+                for (_, part) in &t.pose_in_gusts(&c, false).parts {
+                    for p in &conductor {
+                        let d2 = part.distance_sq_to_point(&liftplan_core::frame::Point3::new(p[0], p[1], p[2]));
+                        least = least.min(d2.sqrt());
+                    }
+                }
+            }
+        }
+        least
+    };
+    let world = World::new(&mesh, &[], &[]).unwrap();
+    let (plain, _) = plan_lift(&t, &Site { map: &m, world: &world, charts: None }, &quick(), 3).unwrap();
+    let mut world = World::new(&mesh, &[], &[]).unwrap();
+    world.others = liftplan_plan::power_line_boxes(std::slice::from_ref(&line), &t, &quick(), m.spec.cell).unwrap();
+    let with_line = m.with_boxes(&world.others);
+    let (plan, _) = plan_lift(&t, &Site { map: &with_line, world: &world, charts: None }, &quick(), 3).unwrap();
+    assert!(plan.validator.ok);
+    let (kept, without) = (nearest(&plan), nearest(&plain));
+    assert!(kept >= 3.048 - 0.03, "the plan comes {kept:.3} m from the conductor");
+    assert!(without < 3.048, "the plan made without the line keeps {without:.3} m off it: the test shows nothing");
+}
+
 /// A plan's revision (on every page of its PDF, and what `liftplan
 /// resume` is told) names what the plan says and where its crane stands,
 /// not how long it took to make.

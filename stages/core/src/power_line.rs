@@ -1,0 +1,326 @@
+//! Overhead power lines: conductors no part of the crane, its rope or its
+//! load may come within the approach distance of.
+//!
+//! Thin wires are what laser scans show worst (a few points, or none, on a
+//! conductor 12 mm across), and a line's voltage is nowhere in the scans or
+//! the plant model, so a line is given by hand: where its conductor is held
+//! (the pole or tower tops, in order), how far it sags below the straight
+//! line between two supports at mid-span, and its voltage. The distance
+//! kept is the lift's own `approach_m` where given, else OSHA 29 CFR
+//! 1926.1408 Table A's for the voltage ([`table_a_m`]); over 1,000 kV the
+//! line's owner must give it.
+//!
+//! The planner and the validator keep every part the lift's clearance off
+//! what they are given, so a line goes to them as boxes round its
+//! conductor ([`PowerLine::boxes`]), each grown by the approach distance
+//! less that clearance: a part the clearance off a box is the approach
+//! distance or more off the conductor. Each span hangs as a parabola (its
+//! sag at mid-span), cut into pieces of at most [`PIECE_M`], each box
+//! holding its piece of the curve.
+//!
+//! What this module must not do: take a line's position from the scans
+//! (it is what the engineer gives), or model a conductor swinging in the
+//! wind or sagging more when hot: `sag_m` is to be the most it sags, and
+//! the approach distance is the only margin for its swing.
+
+use crate::frame::{Mat3, Point3, Vec3};
+use crate::obb::Obb;
+use serde::{Deserialize, Serialize};
+
+/// The most supports one line may give.
+pub const MAX_SUPPORTS: usize = 100;
+/// The longest span between two supports (m).
+pub const MAX_SPAN_M: f64 = 2_000.0;
+/// The most a span may sag (m).
+pub const MAX_SAG_M: f64 = 100.0;
+/// The longest piece of conductor one box holds (m).
+pub const PIECE_M: f64 = 2.0;
+/// The longest name (characters): the PDF says it.
+pub const MAX_NAME: usize = 100;
+/// How far from the site's origin a support may stand (m), as an
+/// obstacle ([`crate::obstacle::MAX_OBSTACLE_OFFSET_M`]).
+pub const MAX_OFFSET_M: f64 = crate::obstacle::MAX_OBSTACLE_OFFSET_M;
+
+/// One overhead line, in the site frame as the lifts' picks and sets are.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PowerLine {
+    pub name: String,
+    /// Where the conductor is held, in order along the line: [x, y, z] (m).
+    pub points_m: Vec<[f64; 3]>,
+    /// How far the conductor hangs below the straight line between two
+    /// supports at mid-span, the most it sags (hot, loaded) (m).
+    pub sag_m: f64,
+    /// Its voltage, phase to phase (kV).
+    pub voltage_kv: f64,
+    /// The distance every part keeps from it (m); none: OSHA 1926.1408
+    /// Table A's for the voltage.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub approach_m: Option<f64>,
+    /// The lifts it is there for, by id; empty: every lift.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub lifts: Vec<String>,
+}
+
+/// The most lines a project may give.
+pub const MAX_LINES: usize = 50;
+/// The most conductor the lines may give together (m): each piece of
+/// [`PIECE_M`] is a box the planner and the validator check.
+pub const MAX_CONDUCTOR_M: f64 = 10_000.0;
+
+/// The first line of `lines` a project cannot give, its place in the list
+/// and why; `lift_ids`: the project's lifts, which a line's `lifts` must
+/// name.
+pub fn problem_of(lines: &[PowerLine], lift_ids: &[&str]) -> Option<(usize, String)> {
+    if lines.len() > MAX_LINES {
+        return Some((MAX_LINES, format!("{} power lines: a project gives at most {MAX_LINES}", lines.len())));
+    }
+    for (k, l) in lines.iter().enumerate() {
+        if let Some(p) = l.problem(k) {
+            return Some((k, p));
+        }
+        if lines[..k].iter().any(|e| e.name == l.name) {
+            return Some((k, format!("power line '{}' is named twice: give each its own name", l.name)));
+        }
+        if let Some(id) = l.lifts.iter().find(|id| !lift_ids.contains(&id.as_str())) {
+            return Some((k, format!("power line '{}' is for lift '{id}', which the project does not have", l.name)));
+        }
+    }
+    let total: f64 = lines.iter().map(PowerLine::length_m).sum();
+    if total > MAX_CONDUCTOR_M {
+        return Some((
+            0,
+            format!(
+                "the power lines give {total:.0} m of conductor together, more than the {MAX_CONDUCTOR_M:.0} m liftplan checks: give the spans near the lifts"
+            ),
+        ));
+    }
+    None
+}
+
+/// OSHA 29 CFR 1926.1408 Table A: the minimum clearance from a line of
+/// `voltage_kv` (m; the table's feet converted), `None` over 1,000 kV,
+/// where the line's owner or a registered engineer sets it.
+pub fn table_a_m(voltage_kv: f64) -> Option<f64> {
+    const FOOT_M: f64 = 0.3048;
+    let feet = match voltage_kv {
+        v if v <= 50.0 => 10.0,
+        v if v <= 200.0 => 15.0,
+        v if v <= 350.0 => 20.0,
+        v if v <= 500.0 => 25.0,
+        v if v <= 750.0 => 35.0,
+        v if v <= 1_000.0 => 45.0,
+        _ => return None,
+    };
+    Some(feet * FOOT_M)
+}
+
+impl PowerLine {
+    /// Whether it is there during lift `id`.
+    pub fn during(&self, id: &str) -> bool {
+        self.lifts.is_empty() || self.lifts.iter().any(|l| l == id)
+    }
+
+    /// The distance every part keeps from it (m), and whence: the line's
+    /// own `approach_m` or Table A's. `None` only for a line [`Self::problem`]
+    /// refuses.
+    pub fn approach(&self) -> Option<(f64, &'static str)> {
+        match self.approach_m {
+            Some(a) => Some((a, "approach_m")),
+            None => table_a_m(self.voltage_kv).map(|a| (a, "OSHA 1926.1408 Table A")),
+        }
+    }
+
+    /// Why it is not a line a project can give (`k`: its place in the
+    /// file's list, from 0), naming the key.
+    pub fn problem(&self, k: usize) -> Option<String> {
+        let name = &self.name;
+        if name.trim().is_empty() {
+            return Some(format!("power_line[{k}] needs a name (which line: \"11 kV feeder to the pump house\")"));
+        }
+        if name.chars().count() > MAX_NAME {
+            return Some(format!("power_line[{k}]'s name is longer than {MAX_NAME} characters"));
+        }
+        if !(2..=MAX_SUPPORTS).contains(&self.points_m.len()) {
+            return Some(format!(
+                "power line '{name}': points_m gives {} points: give where its conductor is held, 2 to {MAX_SUPPORTS} pole or tower tops in order along it",
+                self.points_m.len()
+            ));
+        }
+        for (i, p) in self.points_m.iter().enumerate() {
+            if !p.iter().all(|v| v.is_finite() && v.abs() <= MAX_OFFSET_M) {
+                return Some(format!(
+                    "power line '{name}': points_m[{i}] must be [x, y, z] in metres in the frame of the lifts' pick and set, found {p:?}"
+                ));
+            }
+        }
+        for (i, w) in self.points_m.windows(2).enumerate() {
+            let plan = (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]);
+            if !(1.0..=MAX_SPAN_M).contains(&plan) {
+                return Some(format!(
+                    "power line '{name}': points_m[{i}] and points_m[{}] are {plan:.2} m apart in plan: a span is 1 to {MAX_SPAN_M} m",
+                    i + 1
+                ));
+            }
+        }
+        if !(self.sag_m.is_finite() && (0.0..=MAX_SAG_M).contains(&self.sag_m)) {
+            return Some(format!(
+                "power line '{name}': sag_m must be 0 to {MAX_SAG_M} m (the most its conductor hangs below the straight line between two supports), found {}",
+                self.sag_m
+            ));
+        }
+        if !(self.voltage_kv.is_finite() && self.voltage_kv > 0.0) {
+            return Some(format!("power line '{name}': voltage_kv must be positive, found {}", self.voltage_kv));
+        }
+        match self.approach_m {
+            Some(a) if !(a.is_finite() && a > 0.0 && a <= 100.0) => {
+                Some(format!("power line '{name}': approach_m must be more than 0 and at most 100 m, found {a}"))
+            }
+            None if table_a_m(self.voltage_kv).is_none() => Some(format!(
+                "power line '{name}' is over 1,000 kV ({} kV), beyond OSHA 1926.1408 Table A: give the approach distance its owner sets as approach_m",
+                self.voltage_kv
+            )),
+            _ => None,
+        }
+    }
+
+    /// The length of its spans' chords (m).
+    pub fn length_m(&self) -> f64 {
+        self.points_m
+            .windows(2)
+            .map(|w| ((w[1][0] - w[0][0]).powi(2) + (w[1][1] - w[0][1]).powi(2) + (w[1][2] - w[0][2]).powi(2)).sqrt())
+            .sum()
+    }
+
+    /// The conductor at `t` (0 to 1) along span `i`: the straight line
+    /// between its supports less the sag's parabola, `sag_m` at mid-span.
+    pub fn at(&self, i: usize, t: f64) -> [f64; 3] {
+        let (a, b) = (self.points_m[i], self.points_m[i + 1]);
+        let mut p = [0.0; 3];
+        for d in 0..3 {
+            p[d] = a[d] + (b[d] - a[d]) * t;
+        }
+        p[2] -= 4.0 * self.sag_m * t * (1.0 - t);
+        p
+    }
+
+    /// Boxes holding every point within `grow_m` of the conductor, one per
+    /// piece of at most [`PIECE_M`] along each span.
+    pub fn boxes(&self, grow_m: f64) -> Vec<Obb> {
+        let mut out = Vec::new();
+        for i in 0..self.points_m.len().saturating_sub(1) {
+            let (a, b) = (self.points_m[i], self.points_m[i + 1]);
+            let span = ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2) + (b[2] - a[2]).powi(2)).sqrt();
+            let n = (span / PIECE_M).ceil().max(1.0) as usize;
+            let dt = 1.0 / n as f64;
+            // Between its ends a piece of the parabola lies below their
+            // chord by at most sag · dt² (its second derivative is -8 sag).
+            let dev = self.sag_m * dt * dt;
+            for k in 0..n {
+                let (p, q) = (self.at(i, k as f64 * dt), self.at(i, (k + 1) as f64 * dt));
+                let along = Vec3::new(q[0] - p[0], q[1] - p[1], q[2] - p[2]);
+                let len = along.norm();
+                let x = along / len;
+                // Spans are at least 1 m apart in plan: x is never vertical.
+                let y = Vec3::new(-x.y, x.x, 0.0).normalize();
+                let z = x.cross(&y);
+                let center = Point3::new((p[0] + q[0]) / 2.0, (p[1] + q[1]) / 2.0, (p[2] + q[2]) / 2.0);
+                out.push(Obb::new(
+                    center,
+                    Mat3::from_columns(&[x, y, z]),
+                    Vec3::new(len / 2.0 + grow_m + dev, grow_m, grow_m + dev),
+                ));
+            }
+        }
+        out
+    }
+
+    /// In words, for the run's output and the PDF.
+    pub fn said(&self) -> String {
+        let (approach, whence) = self.approach().unwrap_or((f64::NAN, "?"));
+        let supports: Vec<String> =
+            self.points_m.iter().map(|p| format!("({:.2}, {:.2}, {:.2})", p[0], p[1], p[2])).collect();
+        format!(
+            "power line '{}', {} kV, held at {} m, sagging {:.2} m at mid-span: kept {approach:.2} m off ({whence})",
+            self.name,
+            self.voltage_kv,
+            supports.join(", "),
+            self.sag_m
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn line() -> PowerLine {
+        PowerLine {
+            name: "11 kV feeder".into(),
+            points_m: vec![[-20.0, 30.0, 9.0], [10.0, 25.0, 10.0], [40.0, 32.0, 9.5]],
+            sag_m: 1.2,
+            voltage_kv: 11.0,
+            approach_m: None,
+            lifts: vec![],
+        }
+    }
+
+    #[test]
+    fn table_a_in_metres() {
+        assert_eq!(table_a_m(11.0), Some(10.0 * 0.3048));
+        assert_eq!(table_a_m(50.0), Some(10.0 * 0.3048));
+        assert_eq!(table_a_m(132.0), Some(15.0 * 0.3048));
+        assert_eq!(table_a_m(400.0), Some(25.0 * 0.3048));
+        assert_eq!(table_a_m(1_000.0), Some(45.0 * 0.3048));
+        assert_eq!(table_a_m(1_100.0), None);
+        assert_eq!(line().approach(), Some((3.048, "OSHA 1926.1408 Table A")));
+        let own = PowerLine { approach_m: Some(6.0), ..line() };
+        assert_eq!(own.approach(), Some((6.0, "approach_m")));
+        assert!(line().said().ends_with("kept 3.05 m off (OSHA 1926.1408 Table A)"), "{}", line().said());
+    }
+
+    /// Every point within the growth of the conductor lies in a box, and
+    /// the conductor's lowest point is the sag below the chord.
+    #[test]
+    fn the_boxes_hold_the_conductor_and_its_surround() {
+        let l = line();
+        let grow = 1.5;
+        let boxes = l.boxes(grow);
+        let mid = l.at(0, 0.5);
+        assert!((mid[2] - (9.5 - 1.2)).abs() < 1e-12, "{mid:?}");
+        let mut rng = crate::rng::seeded(7, "power line boxes");
+        let mut u = || crate::rng::unit(&mut rng);
+        for _ in 0..20_000 {
+            let i = (u() * 2.0) as usize;
+            let c = l.at(i, u());
+            // A point within grow of the conductor, in any direction.
+            let dir = Vec3::new(u() - 0.5, u() - 0.5, u() - 0.5).normalize();
+            let r = grow * u().sqrt() * 0.999;
+            let p = Point3::new(c[0] + dir.x * r, c[1] + dir.y * r, c[2] + dir.z * r);
+            assert!(boxes.iter().any(|b| b.distance_sq_to_point(&p) == 0.0), "{p:?} near {c:?} is in no box");
+        }
+        // Not much more: a point 2 m beside the middle of a span is in none.
+        let beside = Point3::new(mid[0], mid[1] + grow + 2.0, mid[2]);
+        assert!(boxes.iter().all(|b| b.distance_sq_to_point(&beside) > 0.0));
+    }
+
+    #[test]
+    fn what_cannot_be_a_line_is_refused_naming_the_key() {
+        assert_eq!(line().problem(0), None);
+        let cases = [
+            (PowerLine { name: " ".into(), ..line() }, "power_line[0] needs a name"),
+            (PowerLine { points_m: vec![[0.0, 0.0, 9.0]], ..line() }, "points_m gives 1 points"),
+            (PowerLine { points_m: vec![[0.0, 0.0, 9.0], [0.5, 0.0, 9.0]], ..line() }, "0.50 m apart in plan"),
+            (PowerLine { points_m: vec![[0.0, 0.0, f64::NAN], [5.0, 0.0, 9.0]], ..line() }, "points_m[0] must be"),
+            (PowerLine { sag_m: -1.0, ..line() }, "sag_m must be 0 to 100 m"),
+            (PowerLine { voltage_kv: 0.0, ..line() }, "voltage_kv must be positive"),
+            (PowerLine { voltage_kv: 1_200.0, ..line() }, "give the approach distance its owner sets as approach_m"),
+            (PowerLine { approach_m: Some(0.0), ..line() }, "approach_m must be more than 0"),
+        ];
+        for (l, said) in cases {
+            let p = l.problem(0).unwrap_or_default();
+            assert!(p.contains(said), "{said}: {p}");
+        }
+        assert_eq!(PowerLine { voltage_kv: 1_200.0, approach_m: Some(20.0), ..line() }.problem(0), None);
+    }
+}
