@@ -119,6 +119,18 @@ impl Cache {
     /// The folders of the stage's complete entries, the most recently used
     /// first (of equal times, the larger key first).
     pub fn entries(&self, stage: &str) -> Vec<PathBuf> {
+        self.by_use(stage)
+            .into_iter()
+            .map(|(_, key)| self.entry_dir(stage, &key))
+            .filter(|e| e.join("manifest.json").is_file())
+            .collect()
+    }
+
+    /// The stage's entry folders (not runs in progress or being dropped)
+    /// with their manifest's time (the epoch where it has none), the most
+    /// recently used first; of equal times, the larger key first, so that
+    /// the order does not depend on the folder listing's.
+    fn by_use(&self, stage: &str) -> Vec<(std::time::SystemTime, String)> {
         let Ok(dir) = std::fs::read_dir(self.root.join("cache").join(stage)) else {
             return vec![];
         };
@@ -126,12 +138,15 @@ impl Cache {
             .flatten()
             .filter_map(|e| {
                 let key = e.file_name().to_str()?.to_string();
-                let used = std::fs::metadata(e.path().join("manifest.json")).and_then(|m| m.modified()).ok()?;
-                (!key.starts_with('.') && !key.contains(".old-")).then_some((used, key))
+                if key.starts_with('.') || key.contains(".old-") || !e.path().is_dir() {
+                    return None;
+                }
+                let used = std::fs::metadata(e.path().join("manifest.json")).and_then(|m| m.modified());
+                Some((used.unwrap_or(std::time::UNIX_EPOCH), key))
             })
             .collect();
         found.sort_by(|a, b| b.cmp(a));
-        found.into_iter().map(|(_, key)| self.entry_dir(stage, &key)).collect()
+        found
     }
 
     /// Removes folders left by killed runs.
@@ -167,25 +182,9 @@ impl Cache {
     /// midway leaves nothing [`Cache::lookup`] trusts and [`Cache::sweep`]
     /// finishes it. Returns the keys dropped.
     pub fn prune(&self, stage: &str, in_use: &str, keep: usize) -> Vec<String> {
-        let Ok(dir) = std::fs::read_dir(self.root.join("cache").join(stage)) else {
-            return vec![];
-        };
-        let mut others: Vec<(std::time::SystemTime, String)> = dir
-            .flatten()
-            .filter_map(|e| {
-                let key = e.file_name().to_str()?.to_string();
-                if key.starts_with('.') || key.contains(".old-") || key == in_use || !e.path().is_dir() {
-                    return None;
-                }
-                let used = std::fs::metadata(e.path().join("manifest.json")).and_then(|m| m.modified());
-                Some((used.unwrap_or(std::time::UNIX_EPOCH), key))
-            })
-            .collect();
-        // Newest first; of equal times, the larger key first, so that the
-        // order does not depend on the folder listing's.
-        others.sort_by(|a, b| b.cmp(a));
+        let others = self.by_use(stage).into_iter().filter(|(_, key)| key != in_use);
         let mut dropped = Vec::new();
-        for (_, key) in others.into_iter().skip(keep.saturating_sub(1)) {
+        for (_, key) in others.skip(keep.saturating_sub(1)) {
             let entry = self.entry_dir(stage, &key);
             let old = entry.with_extension(format!("old-{}", nanos()));
             if std::fs::rename(&entry, &old).is_ok() {

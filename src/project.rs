@@ -577,19 +577,25 @@ mod tests {
         assert!(!task.not_over[0].crane_too && task.not_over[1].crane_too);
     }
 
-    /// The template's example obstacle, uncommented, is one liftplan takes.
-    #[test]
-    fn the_templates_example_obstacle_uncommented_is_taken() {
+    /// The template's commented example table `[[table]]`, uncommented, as
+    /// a project file holding only it.
+    fn templates_example(table: &str) -> super::RawProject {
         let example: String = super::TEMPLATE
-            .split("# [[obstacle]]\n")
+            .split(&format!("# [[{table}]]\n"))
             .nth(1)
             .and_then(|rest| rest.split("\n\n").next())
-            .expect("the template has an example obstacle")
+            .unwrap_or_else(|| panic!("the template has no example [[{table}]]"))
             .lines()
             .map(|l| l.strip_prefix("# ").unwrap_or(l))
             .collect::<Vec<_>>()
             .join("\n");
-        let raw: super::RawProject = toml::from_str(&format!("[[obstacle]]\n{example}")).unwrap();
+        toml::from_str(&format!("[[{table}]]\n{example}")).unwrap()
+    }
+
+    /// The template's example obstacle, uncommented, is one liftplan takes.
+    #[test]
+    fn the_templates_example_obstacle_uncommented_is_taken() {
+        let raw = templates_example("obstacle");
         // For the template's example lift.
         assert_eq!(liftplan_core::obstacle::problem_of(&raw.obstacle, &["V-101"]), None);
         assert_eq!(raw.obstacle[0].lifts, ["V-101"]);
@@ -603,16 +609,7 @@ mod tests {
     /// takes.
     #[test]
     fn the_templates_example_power_line_uncommented_is_taken() {
-        let example: String = super::TEMPLATE
-            .split("# [[power_line]]\n")
-            .nth(1)
-            .and_then(|rest| rest.split("\n\n").next())
-            .expect("the template has an example power line")
-            .lines()
-            .map(|l| l.strip_prefix("# ").unwrap_or(l))
-            .collect::<Vec<_>>()
-            .join("\n");
-        let raw: super::RawProject = toml::from_str(&format!("[[power_line]]\n{example}")).unwrap();
+        let raw = templates_example("power_line");
         assert_eq!(liftplan_core::power_line::problem_of(&raw.power_line, &["V-101"]), None);
         assert!(raw.power_line[0].said().ends_with("kept 6.00 m off (approach_m)"), "{}", raw.power_line[0].said());
     }

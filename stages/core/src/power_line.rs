@@ -91,7 +91,7 @@ pub fn problem_of(lines: &[PowerLine], lift_ids: &[&str]) -> Option<(usize, Stri
         return Some((
             0,
             format!(
-                "the power lines give {total:.0} m of conductor together, more than the {MAX_CONDUCTOR_M:.0} m liftplan checks: give the spans near the lifts"
+                "the power lines give {total:.1} m of conductor together, more than the {MAX_CONDUCTOR_M:.0} m liftplan checks: give the spans near the lifts"
             ),
         ));
     }

@@ -968,7 +968,17 @@ fn nearest(world: &World, b: &Obb, ground_below_z: f64, cutoff_m: f64) -> Neares
             at: Some([on_tri.x, on_tri.y, on_tri.z]),
         };
     }
+    // The boxes' bounding boxes' gap is no more than their distance: a box
+    // whose gap is no less than the nearest yet cannot be nearer, and is
+    // not measured (a power line gives thousands of boxes, most far off).
+    // The nanometre keeps a gap rounded up from skipping a box rounded down.
+    let ba = b.aabb();
     for (other, name) in &world.others {
+        let oa = other.aabb();
+        let gap = (0..3).map(|d| (oa.min[d] - ba.max[d]).max(ba.min[d] - oa.max[d]).max(0.0)).fold(0.0, f64::hypot);
+        if gap - 1e-9 >= best.distance_m {
+            continue;
+        }
         let (p2, c2) = parry_box(other);
         // Two boxes: parry's answers cannot fail; a NaN box would, and is
         // taken as touching.
