@@ -238,14 +238,17 @@ impl PowerLine {
     /// In words, for the run's output and the PDF.
     pub fn said(&self) -> String {
         let (approach, whence) = self.approach().unwrap_or((f64::NAN, "?"));
-        let supports: Vec<String> =
-            self.points_m.iter().map(|p| format!("({:.2}, {:.2}, {:.2})", p[0], p[1], p[2])).collect();
+        let at = |p: &[f64; 3]| format!("({:.2}, {:.2}, {:.2})", p[0], p[1], p[2]);
+        // A long line's supports are in the project file: the PDF gives its ends.
+        let held = match &self.points_m[..] {
+            [first, .., last] if self.points_m.len() > 3 => {
+                format!("{} supports from {} to {}", self.points_m.len(), at(first), at(last))
+            }
+            all => all.iter().map(at).collect::<Vec<_>>().join(", "),
+        };
         format!(
-            "power line '{}', {} kV, held at {} m, sagging {:.2} m at mid-span: kept {approach:.2} m off ({whence})",
-            self.name,
-            self.voltage_kv,
-            supports.join(", "),
-            self.sag_m
+            "power line '{}', {} kV, held at {held} m, sagging {:.2} m at mid-span: kept {approach:.2} m off ({whence})",
+            self.name, self.voltage_kv, self.sag_m
         )
     }
 }
@@ -276,7 +279,13 @@ mod tests {
         assert_eq!(line().approach(), Some((3.048, "OSHA 1926.1408 Table A")));
         let own = PowerLine { approach_m: Some(6.0), ..line() };
         assert_eq!(own.approach(), Some((6.0, "approach_m")));
-        assert!(line().said().ends_with("kept 3.05 m off (OSHA 1926.1408 Table A)"), "{}", line().said());
+        assert_eq!(
+            line().said(),
+            "power line '11 kV feeder', 11 kV, held at (-20.00, 30.00, 9.00), (10.00, 25.00, 10.00), (40.00, 32.00, 9.50) m, sagging 1.20 m at mid-span: kept 3.05 m off (OSHA 1926.1408 Table A)"
+        );
+        let mut long = line();
+        long.points_m.push([70.0, 40.0, 9.0]);
+        assert!(long.said().contains("held at 4 supports from (-20.00, 30.00, 9.00) to (70.00, 40.00, 9.00) m"));
     }
 
     /// Every point within the growth of the conductor lies in a box, and
