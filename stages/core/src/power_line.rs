@@ -10,11 +10,14 @@
 //! 1926.1408 Table A's for the voltage ([`table_a_m`]); over 1,000 kV the
 //! line's owner must give it.
 //!
-//! The planner and the validator keep every part the lift's clearance off
-//! what they are given, so a line goes to them as boxes round its
-//! conductor ([`PowerLine::boxes`]), each grown by the approach distance
-//! less that clearance: a part the clearance off a box is the approach
-//! distance or more off the conductor. Each span hangs as a parabola (its
+//! The planner and the validator keep every part off what they are given
+//! (the lift's clearance, and in the lift-off and set-down what hangs need
+//! only not touch), so a line goes to them as boxes round its conductor
+//! ([`PowerLine::boxes`]) grown by the approach distance (and the few
+//! centimetres a lift-off may come nearer a box than its clearance; the
+//! plan stage's `power_line_boxes`): a part off a box is the approach
+//! distance off the conductor, and in the rest of the lift the clearance
+//! beyond it. Each span hangs as a parabola (its
 //! sag at mid-span), cut into pieces of at most [`PIECE_M`], each box
 //! holding its piece of the curve.
 //!

@@ -819,7 +819,7 @@ pub fn document(
         rows.push((
             "Power lines",
             format!(
-                "{} ([[power_line]]): every part of the crane, its rope and its load is kept that far off each conductor (planned and checked against boxes round it, grown by that distance less the clearance, so a clearance shown to one is beyond the distance); the conductor's swing in the wind is not modelled",
+                "{} ([[power_line]]): every part of the crane, its rope and its load is kept that far off each conductor (planned and checked against boxes round it, grown by that distance: away from the lift-off and set-down the clearance is kept beyond it, and a clearance shown to one is beyond the distance); the conductor's swing in the wind is not modelled",
                 plan.summary.power_lines.join("; ")
             ),
         ));

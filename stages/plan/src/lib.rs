@@ -1018,20 +1018,21 @@ pub fn revision(plan: &LiftPlan, task: &LiftTask) -> String {
 }
 
 /// The power lines there during `task`, as boxes round their conductors
-/// grown by the approach distance less the least clearance the planner and
-/// the validator keep off a box (the lift's, or the landing zones' where
-/// less): a part that keeps it off the box keeps the approach distance off
-/// the conductor ([`liftplan_core::power_line`]). Each is named "power line
-/// 'NAME'" where the validator meets it. Refused where they would cover more
-/// of the map than [`MAX_OBSTACLE_CELLS`].
+/// grown so far that a part the validator passes keeps the approach
+/// distance off the conductor even in the lift-off and set-down, where what
+/// hangs need only not touch a box ([`validate::box_reach_for_m`]); in the
+/// rest of the lift the parts keep the lift's clearance beyond it
+/// ([`liftplan_core::power_line`]). The task is not used beyond its id: the
+/// growth is the same for every lift. Each is named "power line 'NAME'"
+/// where the validator meets it. Refused where they would cover more of the
+/// map than [`MAX_OBSTACLE_CELLS`].
 pub fn power_line_boxes(lines: &[PowerLine], task: &LiftTask, s: &Settings, cell_m: f64) -> Result<Vec<(Obb, String)>> {
-    let kept = task.clearance_m.min(s.landing_clearance_m);
     let mut out = Vec::new();
     for l in lines.iter().filter(|l| l.during(&task.id)) {
         // A line the project took has an approach distance.
         let Some((approach, _)) = l.approach() else { continue };
         let name = format!("power line '{}'", l.name);
-        out.extend(l.boxes((approach - kept).max(0.01)).into_iter().map(|b| (b, name.clone())));
+        out.extend(l.boxes(validate::box_reach_for_m(approach, s.support_m)).into_iter().map(|b| (b, name.clone())));
     }
     let cells: f64 = out
         .iter()

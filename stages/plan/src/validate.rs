@@ -1617,6 +1617,16 @@ fn zone_margin_m(zones: &[Vec<[f64; 2]>], footprint: &[[f64; 2]], inside: bool) 
 /// samples' own tolerance.
 const DISTANCE_TOLERANCE_M: f64 = 1e-3;
 
+/// How far a box round something must reach beyond it (m) for every part to
+/// stay `distance_m` off that thing along the whole motion: the least any
+/// part keeps off a box is what hangs in the lift-off and the set-down
+/// ([`LANDING_GAP_M`], the load's underside raised by `support_m` there),
+/// less the validator's tolerance along the motion. Elsewhere the parts keep
+/// the clearance beyond that. For power lines ([`crate::power_line_boxes`]).
+pub fn box_reach_for_m(distance_m: f64, support_m: f64) -> f64 {
+    distance_m - LANDING_GAP_M + support_m + DISTANCE_TOLERANCE_M + REFINED_GAP_M / 2.0
+}
+
 /// What the hanging parts keep from everything during the lift-off and the
 /// set-down, the load's support aside (whatever lies within `support_m` under
 /// the load): not a clearance, only "not touching". A distance cannot say by
