@@ -362,8 +362,11 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
 
     // An overhead line along the site's north edge: listed with its
     // approach distance, drawn, asked to be checked, and in the run's line.
+    // And a fall zone of 3 m round the ground under the load.
+    let zoned = t13.replace("leg_wll_t = 10.0 }", "leg_wll_t = 10.0 }\nfall_zone_m = 3.0");
+    assert_ne!(zoned, t13);
     let with_line = format!(
-        "{t13}\n[[power_line]]\nname = \"north feeder\"\npoints_m = [[-40.0, 45.0, 12.0], [60.0, 45.0, 12.5]]\nsag_m = 1.5\nvoltage_kv = 33.0\n"
+        "{zoned}\n[[power_line]]\nname = \"north feeder\"\npoints_m = [[-40.0, 45.0, 12.0], [60.0, 45.0, 12.5]]\nsag_m = 1.5\nvoltage_kv = 33.0\n"
     );
     let (cover, text) = planned_with(&dir, &with_line);
     let said = "power line 'north feeder', 33 kV, held at (-40.00, 45.00, 12.00), (60.00, 45.00, 12.50) m, sagging 1.50 m at mid-span: kept 3.05 m off (OSHA 1926.1408 Table A)";
@@ -373,6 +376,15 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     let plan: serde_json::Value =
         serde_json::from_slice(&std::fs::read(dir.join("out").join("plan.json")).unwrap()).unwrap();
     assert_eq!(plan["lifts"][0]["summary"]["power_lines"][0], said);
+    let coverage = &plan["lifts"][0]["summary"]["coverage"];
+    let (under, kept) =
+        (coverage["under_load"]["passed_m2"].as_f64().unwrap(), coverage["kept_out"]["area_m2"].as_f64().unwrap());
+    assert!(kept > under + 100.0, "{kept} m² kept out round {under} m² under the load");
+    assert!(
+        cover.contains(&format!("and 3.0 m round it for what may fall (fall_zone_m), in pink ({kept:.0} m²)")),
+        "{cover}"
+    );
+    assert!(cover.contains("from under the load and its fall zone while it moves"), "{cover}");
 
     // A lift that sets its load back where it picked it (a test lift) has
     // no step but the lift-off and the set-down, and no clearance of its

@@ -219,6 +219,12 @@ pub struct LiftSpec {
     /// crane model plans with.
     #[serde(default)]
     pub radius_allowance_m: f64,
+    /// How far round the ground under the load (and what hangs with it, as
+    /// far as a gust may swing it) people are kept out while it moves, for
+    /// what may fall from it and where it would land if it fell (m); drawn
+    /// and measured, not planned round.
+    #[serde(default)]
+    pub fall_zone_m: f64,
     /// Utilisation above which the lift is flagged critical, percent.
     #[serde(default = "default_critical")]
     pub critical_pct: f64,
@@ -341,6 +347,8 @@ pub struct LiftTask {
     pub capacity_reduction_pct: f64,
     /// Added to every radius before the chart is read (m).
     pub radius_allowance_m: f64,
+    /// [`LiftSpec::fall_zone_m`].
+    pub fall_zone_m: f64,
     pub critical_pct: f64,
     pub swing_range_rad: Option<(f64, f64)>,
     /// Whether the pick and the set were given as crane configurations
@@ -649,6 +657,8 @@ pub const MAX_CLEARANCE_M: f64 = 20.0;
 /// than this under its load is beyond what a chart read farther out stands
 /// for.
 pub const MAX_RADIUS_ALLOWANCE_M: f64 = 10.0;
+/// The widest fall zone round the ground under the load (m).
+pub const MAX_FALL_ZONE_M: f64 = 30.0;
 
 impl LiftSpec {
     /// Checks the request against the crane model and solves pick and set.
@@ -759,6 +769,13 @@ impl LiftSpec {
         metres("liftoff_m", self.liftoff_m, MAX_CLEARANCE_M)?;
         nonneg("radius_allowance_m", self.radius_allowance_m)?;
         metres("radius_allowance_m", self.radius_allowance_m, MAX_RADIUS_ALLOWANCE_M)?;
+        nonneg("fall_zone_m", self.fall_zone_m)?;
+        if self.fall_zone_m > MAX_FALL_ZONE_M {
+            return Err(format!(
+                "lift '{id}': fall_zone_m = {} m: liftplan draws a fall zone of up to {MAX_FALL_ZONE_M} m round the ground under the load (keep a wider one by hand)",
+                self.fall_zone_m
+            ));
+        }
         if !(0.0..100.0).contains(&self.capacity_reduction_pct) {
             return Err(format!(
                 "lift '{id}': capacity_reduction_pct must be in 0..100, found {}",
@@ -968,6 +985,7 @@ impl LiftSpec {
             liftoff_m: self.liftoff_m,
             capacity_reduction_pct: self.capacity_reduction_pct,
             radius_allowance_m: self.radius_allowance_m,
+            fall_zone_m: self.fall_zone_m,
             critical_pct: self.critical_pct,
             swing_range_rad,
             by_configuration: [self.pick.swing_deg.is_some(), self.set.swing_deg.is_some()],
@@ -1216,6 +1234,22 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
             let e = rigged(text).unwrap_err();
             assert!(e.contains(said), "{text}: {e}");
         }
+    }
+
+    /// A fall zone is taken up to 30 m; a negative or wider one is refused
+    /// naming the key.
+    #[test]
+    fn a_fall_zone_is_taken_within_its_bounds() {
+        let model = || crate::crane::builtin("ltm-1100").unwrap();
+        let zoned = |m: f64| {
+            let mut s = spec();
+            s.fall_zone_m = m;
+            s.resolve(model())
+        };
+        assert_eq!(zoned(0.0).unwrap().fall_zone_m, 0.0);
+        assert_eq!(zoned(30.0).unwrap().fall_zone_m, 30.0);
+        assert!(zoned(-1.0).unwrap_err().contains("fall_zone_m must be zero or positive"));
+        assert!(zoned(31.0).unwrap_err().contains("fall_zone_m = 31 m: liftplan draws a fall zone of up to 30 m"));
     }
 
     #[test]

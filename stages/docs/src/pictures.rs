@@ -178,14 +178,26 @@ pub fn load_path(site: &SiteView, task: &LiftTask, plan: &LiftPlan, upto: usize)
 /// hand), each in its colour.
 pub fn overview(site: &SiteView, task: &LiftTask, plan: &LiftPlan, others: &[(Obb, Rgb)], w: u32, h: u32) -> Image {
     let mut s = site.base_scene(2.0);
-    s.triangles.extend(others.iter().map(|(b, colour)| site.obb_batch(b, *colour)));
+    // What stands beyond the scans and the model by more than FRAME_M (a
+    // power line's far spans) is left out: drawn, it would frame the picture
+    // round it.
+    const FRAME_M: f32 = 20.0;
+    let (lo, hi) = s.bounds();
+    let near = |b: &Obb| {
+        let a = site.local_obb(b).aabb();
+        !(lo[0].is_finite() && hi[0].is_finite())
+            || (0..2).all(|k| a.min[k] as f32 <= hi[k] + FRAME_M && a.max[k] as f32 >= lo[k] - FRAME_M)
+    };
+    s.triangles.extend(others.iter().filter(|(b, _)| near(b)).map(|(b, colour)| site.obb_batch(b, *colour)));
     // What only the crane's boom or superstructure passes over unseen, in
     // grey under what the load does, in black.
     // The ground under the load's path, under both.
     if let Some(c) = &plan.summary.coverage {
         let z = task.crane.placement.z_m;
-        if !c.under_load.passed_cells.is_empty() {
-            s.triangles.push(cells_batch(site, c, &c.under_load.passed_cells, z - 0.01, UNDER_LOAD));
+        // With the lift's fall zone round it, where it gives one.
+        let kept_out = c.kept_out.as_ref().map_or(&c.under_load.passed_cells, |k| &k.cells);
+        if !kept_out.is_empty() {
+            s.triangles.push(cells_batch(site, c, kept_out, z - 0.01, UNDER_LOAD));
         }
         if !c.under_crane.unscanned_cells.is_empty() {
             s.triangles.push(cells_batch(site, c, &c.under_crane.unscanned_cells, z, UNSEEN_UNDER_CRANE));

@@ -670,12 +670,18 @@ pub fn document(
     }
     let overview = pictures::overview(site, task, plan, &others, 1400, 1000);
     let tail = task.crane.tail_swing_m();
-    let under_m2 = plan.summary.coverage.as_ref().map(|c| c.under_load.passed_m2).filter(|m2| *m2 > 0.0);
+    let coverage = plan.summary.coverage.as_ref();
+    let under_m2 =
+        coverage.map(|c| c.kept_out.as_ref().map_or(c.under_load.passed_m2, |k| k.area_m2)).filter(|m2| *m2 > 0.0);
+    let fall_zone = coverage
+        .and_then(|c| c.kept_out.as_ref())
+        .map_or(String::new(), |k| format!(" and {:.1} m round it for what may fall (fall_zone_m),", k.fall_zone_m));
+    let under = if fall_zone.is_empty() { "from under the load" } else { "from under the load and its fall zone" };
     let keep_out = match (tail.is_some(), under_m2.is_some()) {
-        (true, true) => "; keep people out of the tail's swing, and from under the load while it moves",
-        (true, false) => "; keep people out of the tail's swing",
-        (false, true) => "; keep people from under the load while it moves",
-        (false, false) => "",
+        (true, true) => format!("; keep people out of the tail's swing, and {under} while it moves"),
+        (true, false) => "; keep people out of the tail's swing".to_string(),
+        (false, true) => format!("; keep people {under} while it moves"),
+        (false, false) => String::new(),
     };
     let caption = format!(
         "Site overview (top view, north up): crane {}{}, load path in red{}, load at set in light blue{}{}{}{}{}{keep_out}.",
@@ -687,9 +693,9 @@ pub fn document(
         },
         match under_m2 {
             Some(m2) if plan.gust_swing_per_m > 0.0 => {
-                format!(", the ground under it, as far as a gust may swing it, in pink ({m2:.0} m²)")
+                format!(", the ground under it, as far as a gust may swing it,{fall_zone} in pink ({m2:.0} m²)")
             }
-            Some(m2) => format!(", the ground under it in pink ({m2:.0} m²)"),
+            Some(m2) => format!(", the ground under it{fall_zone} in pink ({m2:.0} m²)"),
             None => String::new(),
         },
         if other_loads == 0 { "" } else { ", other lifts' loads in violet" },

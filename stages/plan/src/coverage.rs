@@ -73,6 +73,20 @@ pub struct Area {
 /// The most unscanned cells an [`Area`] lists.
 pub const MAX_CELLS_LISTED: usize = 20_000;
 
+/// The ground people are kept off while the load moves, where the lift
+/// gives a fall zone ([`LiftTask::fall_zone_m`]): the cells under the load
+/// and what hangs with it, grown by it.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct KeptOut {
+    /// The fall zone round the ground under the load (m).
+    pub fall_zone_m: f64,
+    /// The cells' area (m²).
+    pub area_m2: f64,
+    /// The cells, as [`Area::passed_cells`] lists them, at most
+    /// [`MAX_CELLS_LISTED`].
+    pub cells: Vec<[i32; 2]>,
+}
+
 /// What one lift passes over ([`of_lift`]).
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct Coverage {
@@ -88,6 +102,11 @@ pub struct Coverage {
     /// What [`Coverage::under_crane`] is under, in words ("boom and
     /// superstructure"; "jib, counter-jib and trolley").
     pub crane_parts: String,
+    /// The ground under the load with the lift's fall zone round it; `None`
+    /// where it gives none (the ground under the load is then the ground
+    /// people are kept off).
+    #[serde(default)]
+    pub kept_out: Option<KeptOut>,
 }
 
 impl Coverage {
@@ -228,8 +247,8 @@ fn triangle_meets_square(t: &[[f64; 2]], sq: [f64; 4]) -> bool {
 /// the planner and the validator swing it ([`LiftTask::gust_swept`]; not
 /// in the lift-off and set-down): the ground it may swing over is under
 /// it too.
-fn swept_cells(task: &LiftTask, moves: &[Move]) -> (HashMap<Cell, f64>, HashMap<Cell, f64>) {
-    let (mut load, mut crane) = (HashMap::new(), HashMap::new());
+fn swept_cells(task: &LiftTask, moves: &[Move]) -> (HashMap<Cell, f64>, HashMap<Cell, f64>, HashSet<Cell>) {
+    let (mut load, mut crane, mut fall_zone) = (HashMap::new(), HashMap::new(), HashSet::new());
     let hanging = |k: PartKind| matches!(k, PartKind::Load | PartKind::Rigging | PartKind::HookBlock | PartKind::Rope);
     for (m, landing) in moves.iter().zip(crate::landing_moves(task, moves.len())) {
         for c in configs_along(task, m, SWEEP_SAMPLE_M) {
@@ -243,10 +262,15 @@ fn swept_cells(task: &LiftTask, moves: &[Move]) -> (HashMap<Cell, f64>, HashMap<
                     let z = into.entry(c).or_insert(f64::INFINITY);
                     *z = z.min(bottom);
                 });
+                if hanging(*kind) && task.fall_zone_m > 0.0 {
+                    cells_under(&part.footprint(), SWEEP_SAMPLE_M / 2.0 + task.fall_zone_m, |c| {
+                        fall_zone.insert(c);
+                    });
+                }
             }
         }
     }
-    (load, crane)
+    (load, crane, fall_zone)
 }
 
 /// What `task`'s planned `moves` pass over in `world`. Cells under the
@@ -270,7 +294,7 @@ pub fn of_lift(task: &LiftTask, moves: &[Move], world: &World, also_seen: &[Obb]
             scanned.insert(c);
         });
     }
-    let (load, crane) = swept_cells(task, moves);
+    let (load, crane, fall_zone) = swept_cells(task, moves);
     let mut window = ((i32::MAX, i32::MAX), (i32::MIN, i32::MIN));
     for &(i, j) in load.keys().chain(crane.keys()) {
         window = ((window.0.0.min(i), window.0.1.min(j)), (window.1.0.max(i), window.1.1.max(j)));
@@ -315,6 +339,12 @@ pub fn of_lift(task: &LiftTask, moves: &[Move], world: &World, also_seen: &[Obb]
         under_load: area(&load, true),
         under_crane: area(&crane, false),
         crane_parts: task.crane.model.words().moving_structure.to_string(),
+        kept_out: (task.fall_zone_m > 0.0).then(|| {
+            let mut cells: Vec<[i32; 2]> = fall_zone.iter().map(|c| [c.0, c.1]).collect();
+            cells.sort_unstable();
+            cells.truncate(MAX_CELLS_LISTED);
+            KeptOut { fall_zone_m: task.fall_zone_m, area_m2: fall_zone.len() as f64 * CELL_M * CELL_M, cells }
+        }),
     }
 }
 
@@ -442,6 +472,32 @@ mod tests {
         );
         assert!(p.under_load.passed_cells.iter().all(|c| s.under_load.passed_cells.binary_search(c).is_ok()));
         assert_eq!(s.under_crane, p.under_crane);
+    }
+
+    /// A fall zone grows the ground people are kept off round the ground
+    /// under the load, by about its perimeter times the zone (a strip 3 m
+    /// wide along both sides of a swing's arc); without one there is none,
+    /// and nothing else changes.
+    #[test]
+    fn a_fall_zone_grows_the_ground_kept_off_round_the_load() {
+        let (mut task, one) = swing();
+        let world = World::new(&TriMesh::default(), &[], &[]).unwrap();
+        let plain = of_lift(&task, &one, &world, &[]);
+        assert_eq!(plain.kept_out, None);
+        task.fall_zone_m = 3.0;
+        let zoned = of_lift(&task, &one, &world, &[]);
+        let k = zoned.kept_out.clone().expect("a fall zone is kept out");
+        assert_eq!(k.fall_zone_m, 3.0);
+        assert_eq!(Coverage { kept_out: None, ..zoned }, plain);
+        let under = &plain.under_load;
+        assert!(under.passed_cells.iter().all(|c| k.cells.binary_search(c).is_ok()));
+        assert_eq!(k.cells.len() as f64, k.area_m2);
+        // The swing's arc is long and narrow: the zone adds 3 m on both
+        // sides of most of its length, and at most that round all of it.
+        let (length, width) = (under.passed_m2 / 8.0, 8.0);
+        assert!(k.area_m2 > under.passed_m2 + 2.0 * 3.0 * length * 0.8, "{} against {}", k.area_m2, under.passed_m2);
+        let most = under.passed_m2 + 2.0 * (length + width) * (3.0 + 1.5) + std::f64::consts::PI * 4.5 * 4.5;
+        assert!(k.area_m2 < most, "{} against {most}", k.area_m2);
     }
 
     /// A triangle meets a cell wherever they share a point: a sliver across
