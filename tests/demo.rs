@@ -219,6 +219,10 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
         text13.contains("Slings 2 legs at the middles of the top's short edges, up to 46.4° from the vertical; the most on one leg (leg 2) 9.41 t"),
         "{text13}"
     );
+    assert!(
+        text13.contains("legs 5.80 and 5.52 m long from lift point to hook, for the load to hang level"),
+        "{text13}"
+    );
     // The crew's copy: every page names the plan's revision, as plan.json
     // gives it.
     let crews_plan = plan["lifts"][0]["summary"]["revision"].as_str().unwrap().to_string();

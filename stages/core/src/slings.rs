@@ -63,6 +63,11 @@ pub struct SlingCheck {
     pub max_leg: usize,
     pub leg_wll_kg: f64,
     pub points_given: bool,
+    /// Each leg's length from its lift point to the hook block's underside
+    /// (m), in the order of the lift points: what the legs must be for the
+    /// load to hang level, as it is planned.
+    #[serde(default)]
+    pub leg_lengths_m: Vec<f64>,
 }
 
 impl SlingCheck {
@@ -80,8 +85,9 @@ impl SlingCheck {
             (false, _) => "at the top's corners",
         };
         let how = if self.legs == 4 { ", any one leg slack" } else { "" };
+        let lengths: Vec<String> = self.leg_lengths_m.iter().map(|l| format!("{l:.2}")).collect();
         format!(
-            "{} leg{} {where_}, up to {:.1}° from the vertical; the most on one leg (leg {}{how}) {:.2} t ({:.0} kN) of its {:.2} t working load limit: {:.0} %",
+            "{} leg{} {where_}, up to {:.1}° from the vertical; the most on one leg (leg {}{how}) {:.2} t ({:.0} kN) of its {:.2} t working load limit: {:.0} %; {} from lift point to hook, for the load to hang level",
             self.legs,
             if self.legs == 1 { "" } else { "s" },
             self.max_angle_deg,
@@ -89,7 +95,12 @@ impl SlingCheck {
             self.max_leg_kg / 1000.0,
             self.max_leg_kg * G / 1000.0,
             self.leg_wll_kg / 1000.0,
-            self.utilisation_pct()
+            self.utilisation_pct(),
+            match &lengths[..] {
+                [one] => format!("the leg {one} m long"),
+                [first @ .., last] => format!("legs {} and {last} m long", first.join(", ")),
+                [] => String::new(),
+            }
         )
     }
 }
@@ -124,6 +135,7 @@ pub fn check(
     let pts = &slings.lift_points_m;
     // Unit vectors from each lift point up its leg to the hook.
     let mut up = Vec::with_capacity(pts.len());
+    let mut leg_lengths_m = Vec::with_capacity(pts.len());
     let mut max_angle_deg: f64 = 0.0;
     for (k, p) in pts.iter().enumerate() {
         let d = [hook[0] - p[0], hook[1] - p[1], hook[2] - p[2]];
@@ -141,6 +153,7 @@ pub fn check(
         let angle = if pts.len() == 1 { 0.0 } else { d[0].hypot(d[1]).atan2(d[2]).to_degrees() };
         max_angle_deg = max_angle_deg.max(angle);
         up.push(d.map(|v| v / len));
+        leg_lengths_m.push(len);
     }
     if pts.len() > 1 && max_angle_deg > MAX_LEG_ANGLE_DEG + 1e-9 {
         return Err(format!(
@@ -177,6 +190,7 @@ pub fn check(
         max_angle_deg,
         max_leg_kg,
         max_leg: max_leg + 1,
+        leg_lengths_m,
         leg_wll_kg: slings.leg_wll_kg,
         points_given: slings.points_given,
     })
@@ -248,6 +262,13 @@ mod tests {
         assert!((c.max_angle_deg - angle.to_degrees()).abs() < 1e-9, "{c:?}");
         assert!((c.max_leg_kg - 6000.0 / angle.cos()).abs() < 1e-6, "{c:?}");
         assert!((c.utilisation_pct() - 100.0 * 10_000.0 / 8000.0).abs() < 1e-6, "{c:?}");
+        // 4 m across and 3 m down: 5 m each.
+        assert_eq!(c.leg_lengths_m, [5.0, 5.0]);
+        assert!(
+            c.said().ends_with("; legs 5.00 and 5.00 m long from lift point to hook, for the load to hang level"),
+            "{}",
+            c.said()
+        );
     }
 
     /// With the centre of gravity 1 m off the middle towards leg 2, leg 2
