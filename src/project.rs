@@ -165,6 +165,15 @@ impl Project {
     }
 
     /// Line of the first occurrence of `needle` in the file, for error places.
+    /// The `k`-th `header` table (`[[obstacle]]`), else (the list given
+    /// inline) where `name` is first quoted.
+    fn table_location(&self, text: &str, header: &str, k: usize, name: &str) -> Location {
+        match text.match_indices(header).nth(k) {
+            Some((off, _)) => Location::in_text(&self.file, text, off),
+            None => self.locate(text, &format!("\"{name}\"")),
+        }
+    }
+
     fn locate(&self, text: &str, needle: &str) -> Location {
         match text.find(needle) {
             Some(off) => Location::in_text(&self.file, text, off),
@@ -214,23 +223,12 @@ impl Project {
         }
         let lift_ids: Vec<&str> = self.raw.lift.iter().map(|l| l.id.as_str()).collect();
         if let Some((k, m)) = liftplan_core::obstacle::problem_of(&self.raw.obstacle, &lift_ids) {
-            // The k-th [[obstacle]] table, else (given inline) its name.
-            let table = text.match_indices("[[obstacle]]").nth(k).map(|(off, _)| off);
-            let location = match table {
-                Some(off) => Location::in_text(&self.file, text, off),
-                None => self.locate(text, &format!("\"{}\"", self.raw.obstacle.get(k).map_or("", |o| o.name.as_str()))),
-            };
-            return Err(ProjectError { location, message: m });
+            let name = self.raw.obstacle.get(k).map_or("", |o| o.name.as_str());
+            return Err(ProjectError { location: self.table_location(text, "[[obstacle]]", k, name), message: m });
         }
         if let Some((k, m)) = liftplan_core::power_line::problem_of(&self.raw.power_line, &lift_ids) {
-            let table = text.match_indices("[[power_line]]").nth(k).map(|(off, _)| off);
-            let location = match table {
-                Some(off) => Location::in_text(&self.file, text, off),
-                None => {
-                    self.locate(text, &format!("\"{}\"", self.raw.power_line.get(k).map_or("", |l| l.name.as_str())))
-                }
-            };
-            return Err(ProjectError { location, message: m });
+            let name = self.raw.power_line.get(k).map_or("", |l| l.name.as_str());
+            return Err(ProjectError { location: self.table_location(text, "[[power_line]]", k, name), message: m });
         }
         let mut ids = std::collections::HashSet::new();
         for l in &self.raw.lift {

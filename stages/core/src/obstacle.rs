@@ -131,25 +131,33 @@ pub fn problem_of(obstacles: &[Obstacle], lift_ids: &[&str]) -> Option<(usize, S
         if let Some(p) = o.problem(k) {
             return Some((k, p));
         }
-        if obstacles[..k].iter().any(|e| e.name == o.name) {
-            return Some((k, format!("obstacle '{}' is named twice: give each its own name", o.name)));
-        }
-        if let Some(l) = o.lifts.iter().find(|l| !lift_ids.contains(&l.as_str())) {
-            return Some((
-                k,
-                format!(
-                    "obstacle '{}' is for lift '{l}', which the project does not have ({})",
-                    o.name,
-                    if lift_ids.is_empty() {
-                        "it has none".to_string()
-                    } else {
-                        format!("its lifts: {}", lift_ids.join(", "))
-                    }
-                ),
-            ));
+        let before = obstacles[..k].iter().map(|e| e.name.as_str());
+        if let Some(p) = name_or_lifts_problem("obstacle", &o.name, before, &o.lifts, lift_ids) {
+            return Some((k, p));
         }
     }
     None
+}
+
+/// Of one thing in a project's list of things given by hand (`what`:
+/// "obstacle", "power line"): named as one `before` it (a message naming it
+/// would not say which), or given for a lift the project does not have
+/// (`lift_ids`).
+pub fn name_or_lifts_problem<'a>(
+    what: &str,
+    name: &str,
+    mut before: impl Iterator<Item = &'a str>,
+    lifts: &[String],
+    lift_ids: &[&str],
+) -> Option<String> {
+    if before.any(|n| n == name) {
+        return Some(format!("{what} '{name}' is named twice: give each its own name"));
+    }
+    let l = lifts.iter().find(|l| !lift_ids.contains(&l.as_str()))?;
+    Some(format!(
+        "{what} '{name}' is for lift '{l}', which the project does not have ({})",
+        if lift_ids.is_empty() { "it has none".to_string() } else { format!("its lifts: {}", lift_ids.join(", ")) }
+    ))
 }
 
 /// The obstacles that stand there during lift `id`, as the named boxes the

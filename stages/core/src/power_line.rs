@@ -82,11 +82,9 @@ pub fn problem_of(lines: &[PowerLine], lift_ids: &[&str]) -> Option<(usize, Stri
         if let Some(p) = l.problem(k) {
             return Some((k, p));
         }
-        if lines[..k].iter().any(|e| e.name == l.name) {
-            return Some((k, format!("power line '{}' is named twice: give each its own name", l.name)));
-        }
-        if let Some(id) = l.lifts.iter().find(|id| !lift_ids.contains(&id.as_str())) {
-            return Some((k, format!("power line '{}' is for lift '{id}', which the project does not have", l.name)));
+        let before = lines[..k].iter().map(|e| e.name.as_str());
+        if let Some(p) = crate::obstacle::name_or_lifts_problem("power line", &l.name, before, &l.lifts, lift_ids) {
+            return Some((k, p));
         }
     }
     let total: f64 = lines.iter().map(PowerLine::length_m).sum();

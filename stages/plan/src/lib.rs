@@ -1034,13 +1034,7 @@ pub fn power_line_boxes(lines: &[PowerLine], task: &LiftTask, s: &Settings, cell
         let name = format!("power line '{}'", l.name);
         out.extend(l.boxes(validate::box_reach_for_m(approach, s.support_m)).into_iter().map(|b| (b, name.clone())));
     }
-    let cells: f64 = out
-        .iter()
-        .map(|(b, _)| {
-            let a = b.aabb();
-            ((a.max[0] - a.min[0]) / cell_m + 2.0) * ((a.max[1] - a.min[1]) / cell_m + 2.0)
-        })
-        .sum();
+    let cells = cells_covered(out.iter().map(|(b, _)| *b), cell_m);
     if cells > MAX_OBSTACLE_CELLS {
         return Err(PlanError::Settings(format!(
             "the power lines ([[power_line]]) and their approach distances cover about {cells:.0} cells of the {cell_m} m depth map, more than the {MAX_OBSTACLE_CELLS:.0} liftplan takes: give the spans near the lifts only, or a coarser [depthmap] cell_m"
@@ -1057,19 +1051,24 @@ pub const MAX_OBSTACLE_CELLS: f64 = 16_000_000.0;
 /// Whether the obstacles' plan extents, on a map of `cell_m` cells, are
 /// within [`MAX_OBSTACLE_CELLS`]; if not, what to change.
 fn obstacles_fit(obstacles: &[Obstacle], cell_m: f64) -> std::result::Result<(), String> {
-    let cells: f64 = obstacles
-        .iter()
-        .map(|o| {
-            let a = o.obb().aabb();
-            ((a.max[0] - a.min[0]) / cell_m + 2.0) * ((a.max[1] - a.min[1]) / cell_m + 2.0)
-        })
-        .sum();
+    let cells = cells_covered(obstacles.iter().map(Obstacle::obb), cell_m);
     if cells > MAX_OBSTACLE_CELLS {
         return Err(format!(
             "the obstacles placed by hand ([[obstacle]]) cover about {cells:.0} cells of the {cell_m} m depth map together, more than the {MAX_OBSTACLE_CELLS:.0} liftplan takes: give fewer or smaller boxes, or a coarser [depthmap] cell_m"
         ));
     }
     Ok(())
+}
+
+/// How many cells of `cell_m` the boxes' plan extents cover at most,
+/// together (each a cell beyond its extent on every side).
+fn cells_covered(boxes: impl Iterator<Item = Obb>, cell_m: f64) -> f64 {
+    boxes
+        .map(|b| {
+            let a = b.aabb();
+            ((a.max[0] - a.min[0]) / cell_m + 2.0) * ((a.max[1] - a.min[1]) / cell_m + 2.0)
+        })
+        .sum()
 }
 
 /// Runs the stage over every lift; fails on the first lift that cannot be planned and validated.
