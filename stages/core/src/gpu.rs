@@ -110,6 +110,19 @@ pub fn catching_errors<T>(dev: &Device, work: impl FnOnce() -> Result<T, String>
 /// Waits for the device and copies `bytes` bytes of `src` from byte `offset`
 /// back to the host (both multiples of 4).
 pub fn read_back(dev: &Device, src: &wgpu::Buffer, offset: u64, bytes: u64) -> Result<Vec<u8>, String> {
+    read_back_with(dev, src, offset, bytes, <[u8]>::to_vec)
+}
+
+/// [`read_back`], handing the bytes to `read` where they are mapped instead
+/// of copying them out: a reader that decodes them (a depth map's hundreds of
+/// megabytes of intervals) copies them once.
+pub fn read_back_with<T>(
+    dev: &Device,
+    src: &wgpu::Buffer,
+    offset: u64,
+    bytes: u64,
+    read: impl FnOnce(&[u8]) -> T,
+) -> Result<T, String> {
     let staging = dev.device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("read back"),
         size: bytes.max(4),
@@ -121,11 +134,21 @@ pub fn read_back(dev: &Device, src: &wgpu::Buffer, offset: u64, bytes: u64) -> R
         enc.copy_buffer_to_buffer(src, offset, &staging, 0, bytes);
     }
     dev.queue.submit([enc.finish()]);
-    map_read(dev, &staging, bytes)
+    map_read_with(dev, &staging, bytes, read)
 }
 
 /// Maps a `MAP_READ` buffer and copies its first `bytes` bytes out.
 pub fn map_read(dev: &Device, staging: &wgpu::Buffer, bytes: u64) -> Result<Vec<u8>, String> {
+    map_read_with(dev, staging, bytes, <[u8]>::to_vec)
+}
+
+/// Maps a `MAP_READ` buffer and hands its first `bytes` bytes to `read`.
+fn map_read_with<T>(
+    dev: &Device,
+    staging: &wgpu::Buffer,
+    bytes: u64,
+    read: impl FnOnce(&[u8]) -> T,
+) -> Result<T, String> {
     let slice = staging.slice(..);
     let (tx, rx) = std::sync::mpsc::channel();
     slice.map_async(wgpu::MapMode::Read, move |r| {
@@ -134,7 +157,7 @@ pub fn map_read(dev: &Device, staging: &wgpu::Buffer, bytes: u64) -> Result<Vec<
     dev.device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| format!("GPU poll: {e}"))?;
     rx.recv().map_err(|e| e.to_string())?.map_err(|e| format!("GPU read back: {e}"))?;
     let data = slice.get_mapped_range().map_err(|e| format!("GPU read back: {e:?}"))?;
-    let out = data[..bytes as usize].to_vec();
+    let out = read(&data[..bytes as usize]);
     drop(data);
     staging.unmap();
     Ok(out)

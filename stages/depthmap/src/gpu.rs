@@ -13,10 +13,11 @@
 //! 4. *sort and merge*: a cell's keys sorted, merged as `mdm::merge_sorted`
 //!    merges them, sorted by (bottom, top, object), cut to one in
 //!    single-level mode, counted, and the cell's top written. A cell of up to
-//!    256 keys takes one invocation (insertion sort when short, heapsort
-//!    otherwise); a more crowded one (walls, poles, dense scans) takes a
-//!    workgroup, which sorts with a bitonic network and merges with one
-//!    invocation;
+//!    16 keys takes one invocation (insertion sort); of up to 512, a
+//!    workgroup of 64 that reads its keys into workgroup memory, sorts them
+//!    with a bitonic network, merges with one invocation and writes the
+//!    kept intervals back; a more crowded one (walls, poles, dense scans), a
+//!    workgroup of 256 that does the same in the device's memory;
 //! 5. a prefix sum of the merged counts, and each cell's intervals copied to
 //!    their place in the slab's part of the map.
 //!
@@ -55,14 +56,21 @@ mod screen;
 pub use screen::{GpuMap, MAX_COORD_M, ScreenCounts};
 
 /// The passes, in WGSL, after what they share with the dilation's shader
-/// (`common.wgsl`); `{LARGE}` is replaced by [`LARGE`] when compiled.
+/// (`common.wgsl`); `{SMALL}`, `{MEDIUM}` and `{MEDIUM_GROUP}` are replaced
+/// by [`SMALL`], [`MEDIUM`] and [`MEDIUM_GROUP`] when compiled.
 const SHADER: &str = concat!(include_str!("common.wgsl"), include_str!("assemble.wgsl"));
 
 const GROUP: u32 = 256;
 const MERGE_GROUP: u32 = 64;
-/// Cells with more raw keys than this are sorted by a workgroup each, the
-/// others by one invocation each (the shader's `LARGE`).
-const LARGE: u64 = 256;
+/// Cells of at most this many raw keys are sorted by one invocation each
+/// (the shader's `SMALL`).
+const SMALL: u64 = 16;
+/// Cells of more than [`SMALL`] and at most this many raw keys are sorted by
+/// a workgroup of [`MEDIUM_GROUP`] each in workgroup memory (16 bytes a key:
+/// 8 KiB, within every device's 16 KiB); larger ones by a workgroup of
+/// [`GROUP`] in the device's memory (the shader's `MEDIUM`).
+const MEDIUM: u64 = 512;
+const MEDIUM_GROUP: u32 = 64;
 /// Iterations of the loop probe: more than any pass needs on a device that
 /// does not cut loops short.
 const PROBE_LOOPS: u32 = 1 << 20;
@@ -80,6 +88,7 @@ pub struct Gpu {
     merge_cells: wgpu::ComputePipeline,
     compact: wgpu::ComputePipeline,
     find_large: wgpu::ComputePipeline,
+    medium_cells: wgpu::ComputePipeline,
     large_cells: wgpu::ComputePipeline,
     /// The box-query screen (`screen.rs`).
     screen_boxes: wgpu::ComputePipeline,
@@ -126,8 +135,18 @@ pub struct Cells {
 pub struct GpuTimings {
     /// Converting and uploading points and triangle raws.
     pub upload_ms: f64,
-    /// The passes on the device, each slab up to its last count read back.
+    /// The passes on the device, each slab up to its last count read back:
+    /// the sum of the four below (each waits for the device at its end).
     pub passes_ms: f64,
+    /// Pass 1 and 2: counting raw intervals per cell, the prefix sum and the
+    /// list of crowded cells.
+    pub count_ms: f64,
+    /// Pass 3: every raw interval's key to its cell's slot.
+    pub fill_ms: f64,
+    /// Pass 4 and the merged counts' prefix sum.
+    pub sort_ms: f64,
+    /// Pass 5: the merged intervals into the map's layout.
+    pub compact_ms: f64,
     /// Reading the map back (counts, tops, intervals).
     pub read_back_ms: f64,
 }
@@ -151,7 +170,13 @@ impl Gpu {
     pub fn new(dev: liftplan_core::gpu::Device) -> Result<Gpu, String> {
         let module = dev.device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("depthmap assembly"),
-            source: wgpu::ShaderSource::Wgsl(SHADER.replace("{LARGE}", &LARGE.to_string()).into()),
+            source: wgpu::ShaderSource::Wgsl(
+                SHADER
+                    .replace("{SMALL}", &SMALL.to_string())
+                    .replace("{MEDIUM}", &MEDIUM.to_string())
+                    .replace("{MEDIUM_GROUP}", &MEDIUM_GROUP.to_string())
+                    .into(),
+            ),
         });
         let screen = dev.device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("box query screen"),
@@ -161,17 +186,25 @@ impl Gpu {
             label: Some("dilation"),
             source: wgpu::ShaderSource::Wgsl(dilate::SHADER.into()),
         });
-        let pipeline_in = |module: &wgpu::ShaderModule, entry: &str| {
+        let pipeline_with = |module: &wgpu::ShaderModule, entry: &str, zero_workgroup_memory: bool| {
             dev.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
                 label: Some(entry),
                 layout: None,
                 module,
                 entry_point: Some(entry),
-                compilation_options: Default::default(),
+                compilation_options: wgpu::PipelineCompilationOptions {
+                    zero_initialize_workgroup_memory: zero_workgroup_memory,
+                    ..Default::default()
+                },
                 cache: None,
             })
         };
-        let pipeline = |entry: &str| pipeline_in(&module, entry);
+        let pipeline_in = |module: &wgpu::ShaderModule, entry: &str| pipeline_with(module, entry, true);
+        // The assembly's workgroups write each workgroup variable before they
+        // read it (a medium cell's keys up to its count, the scan's partial
+        // sums, the first lane's cell and counts): zeroing their 8 KiB first,
+        // in each of hundreds of thousands of workgroups, is time for nothing.
+        let pipeline = |entry: &str| pipeline_with(&module, entry, false);
         let probe = pipeline("probe_loops");
         let mut gpu = Gpu {
             count_points: pipeline("count_points"),
@@ -183,6 +216,7 @@ impl Gpu {
             merge_cells: pipeline("merge_cells"),
             compact: pipeline("compact"),
             find_large: pipeline("find_large"),
+            medium_cells: pipeline("medium_cells"),
             large_cells: pipeline("large_cells"),
             screen_boxes: pipeline_in(&screen, "screen_boxes"),
             clear_boxes: pipeline_in(&screen, "clear_boxes"),
@@ -295,10 +329,14 @@ impl Gpu {
         self.dev.queue.submit([enc.finish()]);
     }
 
+    /// Waits until the device has done what was submitted.
+    fn wait(&self) -> Result<(), String> {
+        self.dev.device.poll(wgpu::PollType::wait_indefinitely()).map(|_| ()).map_err(|e| format!("GPU poll: {e}"))
+    }
+
     /// `words` 32-bit words of `src` from word `at`.
     fn read_words(&self, src: &wgpu::Buffer, at: u64, words: u64) -> Result<Vec<u32>, String> {
-        let data = liftplan_core::gpu::read_back(&self.dev, src, 4 * at, 4 * words)?;
-        Ok(words_from_bytes(&data))
+        liftplan_core::gpu::read_back_with(&self.dev, src, 4 * at, 4 * words, words_from_bytes)
     }
 
     /// Passes 1 to 5 on the device for `points` and the triangles' raw
@@ -364,8 +402,9 @@ impl Gpu {
             rows = rows.min(spec.ny - row0);
             let slab = Params { row0, rows, ..base };
             let t_count = std::time::Instant::now();
-            let (starts, large, counted) = self.count_slab(sources, slab)?;
+            let (lists, counted) = self.count_slab(sources, slab)?;
             let total = counted.total;
+            cells.timings.count_ms += ms(t_count);
             cells.timings.passes_ms += ms(t_count);
             if let Some(cap) = self.loop_cap {
                 let need = self.loop_need(counted.most, base.radius as f64 * base.inv_cell as f64);
@@ -391,7 +430,7 @@ impl Gpu {
                 rows = (((rows as u64 * max_keys / total) as u32).clamp(1, rows - 1) * 7 / 8).max(1);
                 continue;
             }
-            self.merge_slab(sources, slab, &starts, &large, counted, &mut cells)?;
+            self.merge_slab(sources, slab, &lists, counted, &mut cells)?;
             row0 += rows;
         }
         Ok(cells)
@@ -436,38 +475,46 @@ impl Gpu {
         use rayon::prelude::*;
         const BLOCK: usize = 1 << 12;
         let stride = 4 * words;
-        let mut packed = vec![0u8; stride * n];
-        packed.par_chunks_mut(stride * BLOCK).enumerate().for_each(|(b, block)| {
-            for (k, out) in block.chunks_exact_mut(stride).enumerate() {
-                for (o, w) in out.chunks_exact_mut(4).zip(&item(b * BLOCK + k)[..words]) {
-                    o.copy_from_slice(&w.to_le_bytes());
-                }
-            }
-        });
+        let bytes = stride * n;
         let buf = self.dev.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some(label),
-            size: packed.len().max(16) as u64,
+            size: bytes.max(16) as u64,
             usage: wgpu::BufferUsages::STORAGE,
             mapped_at_creation: true,
         });
-        // Mapped memory is write-only (it may be write-combining): one copy in.
-        buf.slice(..)
-            .get_mapped_range_mut()
-            .map_err(|e| format!("GPU upload of {label}: {e:?}"))?
-            .slice(..packed.len())
-            .copy_from_slice(&packed);
+        // Packed by the threads a chunk of about 16 MB at a time into one
+        // buffer, reused, and copied into the mapped memory, which is written
+        // only (it may be write-combining): no buffer of hundreds of megabytes
+        // on the host, whose fresh pages cost more than the packing.
+        let mut mapped = buf.slice(..).get_mapped_range_mut().map_err(|e| format!("GPU upload of {label}: {e:?}"))?;
+        let per_chunk = 64 * BLOCK;
+        let mut packed = vec![0u8; stride * per_chunk.min(n)];
+        for first in (0..n).step_by(per_chunk) {
+            let items = per_chunk.min(n - first);
+            let chunk = &mut packed[..stride * items];
+            chunk.par_chunks_mut(stride * BLOCK).enumerate().for_each(|(b, block)| {
+                for (k, out) in block.chunks_exact_mut(stride).enumerate() {
+                    for (o, w) in out.chunks_exact_mut(4).zip(&item(first + b * BLOCK + k)[..words]) {
+                        o.copy_from_slice(&w.to_le_bytes());
+                    }
+                }
+            });
+            mapped.slice(stride * first..stride * (first + items)).copy_from_slice(chunk);
+        }
+        drop(mapped);
         buf.unmap();
         Ok(buf)
     }
 
     /// Passes 1 and 2 for one slab: each cell's start in the slab's keys
-    /// (one more word, the total, at the end), the list of large cells, and
-    /// [`SlabCounts`].
-    fn count_slab(&self, src: &Sources, slab: Params) -> Result<(wgpu::Buffer, wgpu::Buffer, SlabCounts), String> {
+    /// (one more word, the total, at the end), the lists of medium and large
+    /// cells, and [`SlabCounts`].
+    fn count_slab(&self, src: &Sources, slab: Params) -> Result<(SlabLists, SlabCounts), String> {
         let cells = slab.rows * slab.nx;
         let starts = self.storage("starts", 4 * (cells as u64 + 1));
         let large = self.storage("large cells", 4 * cells as u64);
-        let stats = self.storage("slab counts", 12);
+        let medium = self.storage("medium cells", 4 * cells as u64);
+        let stats = self.storage("slab counts", 16);
         let mut enc = self.dev.device.create_command_encoder(&Default::default());
         for (buf, k) in &src.points {
             let p = self.uniform(Params { n: *k, ..slab });
@@ -479,40 +526,46 @@ impl Gpu {
         }
         self.scan(&mut enc, &starts, cells + 1, slab);
         let p = self.uniform(Params { n: cells, ..slab });
-        self.pass(&mut enc, &self.find_large, &[(0, &p), (3, &stats), (7, &starts), (11, &large)], cells, GROUP);
+        let binds = [(0, &p), (3, &stats), (7, &starts), (11, &large), (12, &medium)];
+        self.pass(&mut enc, &self.find_large, &binds, cells, GROUP);
         enc.copy_buffer_to_buffer(&starts, 4 * cells as u64, &stats, 8, 4);
         self.submit(enc);
-        let w = self.read_words(&stats, 0, 3)?;
-        Ok((starts, large, SlabCounts { large: w[0], most: w[1] as u64, total: w[2] as u64 }))
+        let w = self.read_words(&stats, 0, 4)?;
+        let counts = SlabCounts { large: w[0], most: w[1] as u64, total: w[2] as u64, medium: w[3] };
+        Ok((SlabLists { starts, large, medium }, counts))
     }
 
     /// The most loop iterations one invocation of a pass runs for a slab
     /// whose most crowded cell has `most` raw keys (an upper bound).
     fn loop_need(&self, most: u64, radius_cells: f64) -> u64 {
         let lg = |n: u64| 64 - n.max(1).leading_zeros() as u64;
-        // One invocation's heapsort, merge, sort and finish of up to LARGE keys.
-        let small = 2 * (LARGE / 2 + LARGE) * lg(LARGE) + 3 * LARGE;
+        // One invocation's insertion sorts, merge and finish of up to SMALL
+        // keys; a medium cell's workgroup: each lane's share of the sorts'
+        // comparators and copies, and the first lane's merge and finish.
+        let small = 2 * SMALL * SMALL + 3 * SMALL;
+        let stages_medium = lg(MEDIUM) * (lg(MEDIUM) + 1) / 2;
+        let medium = 2 * stages_medium * ((MEDIUM / 2).div_ceil(MEDIUM_GROUP as u64) + 1) + 5 * MEDIUM + 2 * lg(MEDIUM);
         // A workgroup's bitonic sorts (each lane), and the first lane's merge
         // and finish; the compaction copies up to `most` intervals.
         let p = most.max(1).next_power_of_two();
         let stages = lg(p) * (lg(p) + 1) / 2;
         let large = 2 * stages * ((p / 2).div_ceil(GROUP as u64) + 1) + 3 * most + 2 * lg(p);
         let span = (2.0 * radius_cells).ceil() as u64 + 2;
-        small.max(large).max(span * span)
+        small.max(medium).max(large).max(span * span)
     }
 
-    /// Passes 3 to 5 for one slab whose cells start at `starts` in `total`
-    /// keys; its cells appended to `out`.
+    /// Passes 3 to 5 for one slab whose cells start at `lists.starts` in
+    /// `counted.total` keys; its cells appended to `out`.
     fn merge_slab(
         &self,
         src: &Sources,
         slab: Params,
-        starts: &wgpu::Buffer,
-        large: &wgpu::Buffer,
+        lists: &SlabLists,
         counted: SlabCounts,
         out: &mut Cells,
     ) -> Result<(), String> {
         let total = counted.total;
+        let starts = &lists.starts;
         let t0 = std::time::Instant::now();
         let ms = |t: std::time::Instant| t.elapsed().as_secs_f64() * 1e3;
         let cells = slab.rows * slab.nx;
@@ -530,22 +583,34 @@ impl Gpu {
             let p = self.uniform(Params { n: *k, ..slab });
             self.pass(&mut enc, &self.fill_mesh, &[(0, &p), (2, buf), (3, &cursor), (4, &keys)], *k, GROUP);
         }
+        // Waits between the passes, for their times (a few microseconds each).
+        self.submit(enc);
+        self.wait()?;
+        out.timings.fill_ms += ms(t0);
+        let t_sort = std::time::Instant::now();
+        let mut enc = self.dev.device.create_command_encoder(&Default::default());
         let p = self.uniform(Params { n: cells, ..slab });
         let binds = [(0, &p), (4, &keys), (7, starts), (8, &merged), (9, &tops)];
         self.pass(&mut enc, &self.merge_cells, &binds, cells, MERGE_GROUP);
+        // One workgroup per medium and per large cell: `pass` counts items.
+        let pm = self.uniform(Params { n: counted.medium, ..slab });
+        let binds = [(0, &pm), (4, &keys), (7, starts), (8, &merged), (9, &tops), (12, &lists.medium)];
+        self.pass(&mut enc, &self.medium_cells, &binds, counted.medium * MEDIUM_GROUP, MEDIUM_GROUP);
         let pl = self.uniform(Params { n: counted.large, ..slab });
-        let binds = [(0, &pl), (4, &keys), (7, starts), (8, &merged), (9, &tops), (11, large)];
-        // One workgroup per large cell: `pass` counts items.
+        let binds = [(0, &pl), (4, &keys), (7, starts), (8, &merged), (9, &tops), (11, &lists.large)];
         self.pass(&mut enc, &self.large_cells, &binds, counted.large * GROUP, GROUP);
         self.scan(&mut enc, &merged, cells + 1, slab);
         self.submit(enc);
         let kept = self.read_words(&merged, cells as u64, 1)?[0] as u64;
+        out.timings.sort_ms += ms(t_sort);
+        let t_compact = std::time::Instant::now();
         let intervals = self.storage("intervals", 12 * kept);
         let mut enc = self.dev.device.create_command_encoder(&Default::default());
         let binds = [(0, &p), (4, &keys), (7, starts), (8, &merged), (10, &intervals)];
         self.pass(&mut enc, &self.compact, &binds, cells, GROUP);
         self.submit(enc);
-        self.dev.device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| format!("GPU poll: {e}"))?;
+        self.wait()?;
+        out.timings.compact_ms += ms(t_compact);
         out.timings.passes_ms += ms(t0);
         let t_read = std::time::Instant::now();
         let ends = self.read_words(&merged, 0, cells as u64 + 1)?;
@@ -559,12 +624,16 @@ impl Gpu {
         }
         out.counts.extend(ends.windows(2).map(|w| w[1] - w[0]));
         out.tops.extend(self.read_words(&tops, 0, cells as u64)?.into_iter().map(f32::from_bits));
-        let words = self.read_words(&intervals, 0, 3 * kept)?;
-        out.intervals.extend(words.chunks_exact(3).map(|w| Interval {
-            zlo: f32::from_bits(w[0]),
-            zhi: f32::from_bits(w[1]),
-            obj: w[2],
-        }));
+        // Decoded where mapped: one copy of what may be hundreds of megabytes.
+        out.intervals.reserve(kept as usize);
+        liftplan_core::gpu::read_back_with(&self.dev, &intervals, 0, 12 * kept, |bytes| {
+            let word = |b: &[u8]| u32::from_le_bytes([b[0], b[1], b[2], b[3]]);
+            out.intervals.extend(bytes.chunks_exact(12).map(|b| Interval {
+                zlo: f32::from_bits(word(&b[0..4])),
+                zhi: f32::from_bits(word(&b[4..8])),
+                obj: word(&b[8..12]),
+            }));
+        })?;
         out.timings.read_back_ms += ms(t_read);
         out.raws += total as usize;
         out.slabs += 1;
@@ -575,12 +644,24 @@ impl Gpu {
 /// What the count of one slab found.
 #[derive(Clone, Copy)]
 struct SlabCounts {
-    /// Cells of more than `LARGE` raw keys, sorted by a workgroup each.
+    /// Cells of more than [`MEDIUM`] raw keys, sorted by a workgroup each in
+    /// the device's memory.
     large: u32,
+    /// Cells of more than [`SMALL`] and at most [`MEDIUM`] raw keys, sorted
+    /// by a workgroup each in workgroup memory.
+    medium: u32,
     /// Raw keys of the most crowded cell.
     most: u64,
     /// Raw keys in all (saturated at `u32::MAX`).
     total: u64,
+}
+
+/// One slab's cell starts and its lists of medium and large cells, from the
+/// count.
+struct SlabLists {
+    starts: wgpu::Buffer,
+    large: wgpu::Buffer,
+    medium: wgpu::Buffer,
 }
 
 /// The inputs on the device, each chunk with its item count.
