@@ -75,10 +75,8 @@ for line in sys.stdin:
     ls .gl
 }
 
-run() {
-    local soak=${1:-120} bin
-    local out=${OUT:-gpu-out}
-    mkdir -p "$out"
+# There: the binaries unpacked into $bin and the Vulkan loader installed.
+unpack() {
     [[ -f .devbin/bins.tar.xz ]] || { echo "no .devbin: run 'scripts/gpu_device.sh prepare' here and carry .devbin and .gl" >&2; exit 2; }
     # Unpacked outside .devbin, which stays small enough to carry again.
     bin=$(mktemp -d)
@@ -89,6 +87,32 @@ run() {
     fi
     local icd=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
     [[ -f $icd ]] && export VK_DRIVER_FILES=$icd
+    # Vulkan only: OpenGL through NVIDIA's EGL, where its vendor file is
+    # named, offers an adapter there whose device does not open ("Parent
+    # device is lost", 2026-12-04, an H200), which fails every twin test;
+    # liftplan itself takes the Vulkan adapter there either way.
+    export WGPU_BACKEND=vulkan
+}
+
+# There: `bench_depthmap repeat` at 21 M points (each cloud's GPU build eight
+# times back to back) with the GPU's clocks sampled every 50 ms beside it.
+repeat() {
+    local bin out=${OUT:-gpu-out}
+    mkdir -p "$out"
+    unpack
+    nvidia-smi --query-gpu=timestamp,clocks.sm,clocks.mem,utilization.gpu,power.draw --format=csv -lms 50 >"$out/clocks.csv" 2>&1 &
+    local smi=$!
+    timeout 200 "$bin"/bench_depthmap repeat 21000716 >"$out/repeat.md" 2>"$out/repeat.log" || echo "bench_depthmap repeat failed (exit $?)"
+    kill "$smi" || true
+    cat "$out/repeat.md"
+    awk -F', ' 'NR > 1 { n[$2]++ } END { for (c in n) print c, n[c] }' "$out/clocks.csv" | sort -n | tail -n 12
+}
+
+run() {
+    local soak=${1:-120} bin
+    local out=${OUT:-gpu-out}
+    mkdir -p "$out"
+    unpack
     # The GPU's name heads the test log (8 files are all that come back).
     if command -v nvidia-smi >/dev/null; then
         nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv >"$out/tests.log" 2>&1 || true
@@ -97,27 +121,50 @@ run() {
     fi
     cat "$out/tests.log"
 
-    local failed=0
-    for t in "$bin"/test-*; do
-        # Tests run where cargo runs them: their package's directory.
-        local pkg=${t#"$bin"/test-liftplan-}
-        pkg=${pkg%-gpu_*}
-        echo "== $t"
-        (cd "stages/$pkg" && "$t" --test-threads=1 --nocapture) >"$out/test.log" 2>&1 || failed=1
-        grep -E "^test |test result|GPU twin test on|SKIPPED" "$out/test.log" | sort -u || true
-        cat "$out/test.log" >>"$out/tests.log"
-        rm "$out/test.log"
-    done
-    echo "== demo, CPU and GPU"
-    demo_twice "$out" || failed=1
-    echo "== bench_depthmap"
-    "$bin"/bench_depthmap >"$out/depthmap.md" 2>"$out/bench_depthmap.log" || failed=1
-    echo "== bench_depthmap queries"
-    "$bin"/bench_depthmap queries >"$out/queries.md" 2>>"$out/bench_depthmap.log" || failed=1
-    echo "== bench_cspace hybrid"
-    "$bin"/bench_cspace hybrid >"$out/cspace.md" 2>>"$out/bench_depthmap.log" || failed=1
-    echo "== stress_gpu $soak"
-    "$bin"/stress_gpu "$soak" >"$out/stress_gpu.log" 2>&1 || failed=1
+    # Each step has its own limit, so that one hung on the device leaves the
+    # others their time; the benchmarks come first, being what only this
+    # machine can measure. Each step's wall time goes to bench_depthmap.log.
+    local failed=0 t0
+    step() {
+        local limit=$1 what=$2
+        shift 2
+        echo "== $what"
+        t0=$(date +%s.%N)
+        # A shell function cannot run under timeout(1): its own commands have limits.
+        if [[ $(type -t "$1") == function ]]; then
+            "$@" || { echo "$what: failed"; failed=1; }
+        else
+            timeout "$limit" "$@" || { echo "$what: failed or over ${limit} s (exit $?)"; failed=1; }
+        fi
+        awk -v w="$what" -v a="$t0" -v b="$(date +%s.%N)" 'BEGIN { printf "step %s: %.1f s\n", w, b - a }' | tee -a "$out/bench_depthmap.log"
+    }
+    run_twin_tests() {
+        local t pkg
+        for t in "$bin"/test-*; do
+            # Tests run where cargo runs them: their package's directory.
+            pkg=${t#"$bin"/test-liftplan-}
+            pkg=${pkg%-gpu_*}
+            echo "== $t"
+            (cd "stages/$pkg" && timeout 120 "$t" --test-threads=1 --nocapture) >"$out/test.log" 2>&1 || failed=1
+            grep -E "^test |test result|GPU twin test on|SKIPPED" "$out/test.log" | sort -u || true
+            cat "$out/test.log" >>"$out/tests.log"
+            rm "$out/test.log"
+        done
+    }
+    step - "twin tests" run_twin_tests
+    # The SM clock while the depth maps are built, as a count of samples per
+    # clock (the driver lowers it when the device idles between bursts).
+    local clocks
+    clocks=$(mktemp)
+    nvidia-smi --query-gpu=clocks.sm --format=csv,noheader -lms 50 >"$clocks" 2>/dev/null &
+    local smi=$!
+    step 150 "bench_depthmap" sh -c '"$0" >"$1/depthmap.md" 2>>"$1/bench_depthmap.log"' "$bin/bench_depthmap" "$out"
+    kill "$smi" 2>/dev/null || true
+    { echo "SM clock while bench_depthmap ran (samples every 50 ms):"; sort "$clocks" | uniq -c | sort -k2 -n; } >>"$out/bench_depthmap.log"
+    step 100 "bench_cspace hybrid" sh -c '"$0" hybrid >"$1/cspace.md" 2>>"$1/bench_depthmap.log"' "$bin/bench_cspace" "$out"
+    step 100 "bench_depthmap queries" sh -c '"$0" queries >"$1/queries.md" 2>>"$1/bench_depthmap.log"' "$bin/bench_depthmap" "$out"
+    step - "demo, CPU and GPU" demo_twice "$out"
+    step $((soak + 30)) "stress_gpu $soak" sh -c '"$0" "$1" >"$2/stress_gpu.log" 2>&1' "$bin/stress_gpu" "$soak" "$out"
     tail -n 1 "$out/stress_gpu.log" || true
     head -n 20 "$out/depthmap.md" "$out/queries.md" "$out/cspace.md" || true
     exit "$failed"
@@ -129,14 +176,14 @@ run() {
 demo_twice() {
     local out=$1 d mode f t0 differ=0
     d=$(mktemp -d)
-    "$bin"/liftplan -q demo "$d/base" >"$out/demo.log" 2>&1 || return 1
+    timeout 60 "$bin"/liftplan -q demo "$d/base" >"$out/demo.log" 2>&1 || return 1
     for mode in never require; do
         cp -r "$d/base" "$d/$mode"
         printf '\n[gpu]\nuse = "%s"\n' "$mode" >>"$d/$mode/liftplan.toml"
         "$bin"/liftplan -q clean "$d/$mode" >>"$out/demo.log" 2>&1
         echo "== [gpu] use = \"$mode\"" >>"$out/demo.log"
         t0=$(date +%s.%N)
-        "$bin"/liftplan run "$d/$mode" >>"$out/demo.log" 2>&1 || return 1
+        timeout 90 "$bin"/liftplan run "$d/$mode" >>"$out/demo.log" 2>&1 || return 1
         awk -v a="$t0" -v b="$(date +%s.%N)" 'BEGIN { printf "whole run: %.2f s\n", b - a }' >>"$out/demo.log"
     done
     cp "$d/require/out/V-101.pdf" "$out/V-101-gpu.pdf"
@@ -160,5 +207,6 @@ demo_twice() {
 case "${1:-}" in
     prepare) prepare ;;
     run) shift; run "$@" ;;
-    *) echo "usage: scripts/gpu_device.sh prepare | run [soak-seconds]" >&2; exit 2 ;;
+    repeat) repeat ;;
+    *) echo "usage: scripts/gpu_device.sh prepare | run [soak-seconds] | repeat" >&2; exit 2 ;;
 esac
