@@ -23,7 +23,6 @@ struct Params {
 @group(0) @binding(9) var<storage, read_write> tops: array<u32>;
 @group(0) @binding(10) var<storage, read_write> intervals: array<u32>;
 @group(0) @binding(11) var<storage, read_write> large: array<u32>;
-@group(0) @binding(12) var<storage, read_write> medium: array<u32>;
 
 // GROUP, MAX_DIM, item, key_of and bits_of (mdm::f32_key and its inverse)
 // come from common.wgsl.
@@ -145,16 +144,41 @@ fn precedes(a: vec4<u32>, b: vec4<u32>) -> bool {
     return a.w < b.w;
 }
 
-// Insertion sort, for the cells of at most SMALL keys.
+fn sift(base: u32, root: u32, n: u32) {
+    var r = root;
+    loop {
+        let c = 2u * r + 1u;
+        if (c >= n) { break; }
+        var m = c;
+        if (c + 1u < n && precedes(keys[base + c], keys[base + c + 1u])) { m = c + 1u; }
+        let top = keys[base + r];
+        let child = keys[base + m];
+        if (!precedes(top, child)) { break; }
+        keys[base + r] = child;
+        keys[base + m] = top;
+        r = m;
+    }
+}
+
 fn sort_keys(base: u32, n: u32) {
-    for (var i = 1u; i < n; i++) {
-        let v = keys[base + i];
-        var j = i;
-        while (j > 0u && precedes(v, keys[base + j - 1u])) {
-            keys[base + j] = keys[base + j - 1u];
-            j--;
+    if (n <= 16u) {
+        for (var i = 1u; i < n; i++) {
+            let v = keys[base + i];
+            var j = i;
+            while (j > 0u && precedes(v, keys[base + j - 1u])) {
+                keys[base + j] = keys[base + j - 1u];
+                j--;
+            }
+            keys[base + j] = v;
         }
-        keys[base + j] = v;
+        return;
+    }
+    for (var s = n / 2u; s > 0u; s--) { sift(base, s - 1u, n); }
+    for (var end = n - 1u; end > 0u; end--) {
+        let t = keys[base];
+        keys[base] = keys[base + end];
+        keys[base + end] = t;
+        sift(base, 0u, end);
     }
 }
 
@@ -168,13 +192,6 @@ fn within_gap(lo: u32, hi: u32) -> bool {
     return bitcast<f32>(bits_of(lo)) <= bitcast<f32>(bits_of(hi)) + P.gap;
 }
 
-// Whether the raw key e, next in sorted order, joins the interval begun by
-// cur whose top is hi so far (mdm::merge_sorted): the same object and part,
-// and a point's (part 0) bottom within the gap of hi.
-fn joins(cur: vec4<u32>, hi: u32, e: vec4<u32>) -> bool {
-    return e.x == cur.x && e.y == cur.y && (cur.y != 0u || within_gap(e.z, hi));
-}
-
 // A sorted cell's raw keys merged in place (mdm::merge_sorted) into
 // [key(bottom), key(top), object, 0]; returns how many.
 fn merge_run(base: u32, n: u32) -> u32 {
@@ -184,7 +201,7 @@ fn merge_run(base: u32, n: u32) -> u32 {
     var hi = cur.w;
     for (var k = 1u; k < n; k++) {
         let e = keys[base + k];
-        if (joins(cur, hi, e)) {
+        if (e.x == cur.x && e.y == cur.y && (cur.y != 0u || within_gap(e.z, hi))) {
             if (above(e.w, hi)) { hi = e.w; }
         } else {
             keys[base + m] = vec4<u32>(cur.z, hi, cur.x, 0u);
@@ -216,22 +233,18 @@ fn finish(c: u32, base: u32, merged_n: u32) {
     if (m == 0u) { tops[c] = 0xff800000u; } else { tops[c] = bits_of(highest); }
 }
 
-// A cell of at most SMALL raw keys is sorted and merged by one invocation
-// (merge_cells); of at most MEDIUM by a workgroup of MEDIUM_GROUP in
-// workgroup memory (medium_cells); a larger one by a workgroup of GROUP in
-// the device's memory (large_cells).
-const SMALL: u32 = {SMALL}u;
-const MEDIUM: u32 = {MEDIUM}u;
-const MEDIUM_GROUP: u32 = {MEDIUM_GROUP}u;
+// Cells with more raw keys than this are sorted by a whole workgroup
+// (large_cells); the others by one invocation each (merge_cells).
+const LARGE: u32 = {LARGE}u;
 
-// Pass 4 for every cell of at most SMALL keys, one invocation each.
+// Pass 4 for every cell of at most LARGE keys, one invocation each.
 @compute @workgroup_size(64)
 fn merge_cells(@builtin(global_invocation_id) g: vec3<u32>) {
     let c = g.x + g.y * MAX_DIM * 64u;
     if (c >= P.n) { return; }
     let base = starts[c];
     let n = starts[c + 1u] - base;
-    if (n > SMALL) { return; }
+    if (n > LARGE) { return; }
     sort_keys(base, n);
     let m = merge_run(base, n);
     sort_keys(base, m);
@@ -240,151 +253,33 @@ fn merge_cells(@builtin(global_invocation_id) g: vec3<u32>) {
 
 var<workgroup> group_most: atomic<u32>;
 var<workgroup> group_large: atomic<u32>;
-var<workgroup> group_medium: atomic<u32>;
 var<workgroup> large_at: u32;
-var<workgroup> medium_at: u32;
 
-// Lists the cells of more than MEDIUM keys (large[0..stats[0]]) and of more
-// than SMALL up to MEDIUM (medium[0..stats[3]]), and the largest count
-// (stats[1]). Each workgroup gathers its own first and takes its places in
-// the lists with one atomic each: every cell on the same three words would
-// queue hundreds of thousands of atomics on them.
+// Lists the cells of more than LARGE keys (large[0..stats[0]]) and the
+// largest count (stats[1]). Each workgroup gathers its own first and takes
+// its places in the list with one atomic: every cell on the same two words
+// would queue hundreds of thousands of atomics on them.
 @compute @workgroup_size(256)
 fn find_large(@builtin(global_invocation_id) g: vec3<u32>, @builtin(local_invocation_index) lane: u32) {
     if (lane == 0u) {
         atomicStore(&group_most, 0u);
         atomicStore(&group_large, 0u);
-        atomicStore(&group_medium, 0u);
     }
     workgroupBarrier();
     let c = item(g);
     var n = 0u;
     if (c < P.n) { n = starts[c + 1u] - starts[c]; }
     atomicMax(&group_most, n);
-    let is_large = n > MEDIUM;
-    let is_medium = n > SMALL && n <= MEDIUM;
+    let is_large = n > LARGE;
     var slot = 0u;
     if (is_large) { slot = atomicAdd(&group_large, 1u); }
-    if (is_medium) { slot = atomicAdd(&group_medium, 1u); }
     workgroupBarrier();
     if (lane == 0u) {
         atomicMax(&tally[1], atomicLoad(&group_most));
         large_at = atomicAdd(&tally[0], atomicLoad(&group_large));
-        medium_at = atomicAdd(&tally[3], atomicLoad(&group_medium));
     }
     workgroupBarrier();
     if (is_large) { large[large_at + slot] = c; }
-    if (is_medium) { medium[medium_at + slot] = c; }
-}
-
-// A medium cell's keys in workgroup memory.
-var<workgroup> cell_keys: array<vec4<u32>, MEDIUM>;
-
-// cell_keys[i] and cell_keys[j] (i < j) in order.
-fn order_near(i: u32, j: u32) {
-    let a = cell_keys[i];
-    let b = cell_keys[j];
-    if (precedes(b, a)) {
-        cell_keys[i] = b;
-        cell_keys[j] = a;
-    }
-}
-
-// sort_together's network on cell_keys[..n] (n uniform, at most MEDIUM).
-fn sort_near(n: u32, lane: u32) {
-    var p = 1u;
-    while (p < n) { p = p * 2u; }
-    let pairs = p / 2u;
-    for (var k = 2u; k <= p; k = k * 2u) {
-        let half = k / 2u;
-        for (var t = lane; t < pairs; t += MEDIUM_GROUP) {
-            let off = t % half;
-            let i = (t / half) * k + off;
-            let j = (t / half) * k + k - 1u - off;
-            if (j < n) { order_near(i, j); }
-        }
-        workgroupBarrier();
-        for (var d = k / 4u; d > 0u; d = d / 2u) {
-            for (var t = lane; t < pairs; t += MEDIUM_GROUP) {
-                let i = (t / d) * 2u * d + t % d;
-                if (i + d < n) { order_near(i, i + d); }
-            }
-            workgroupBarrier();
-        }
-    }
-}
-
-// merge_run on cell_keys[..n].
-fn merge_near(n: u32) -> u32 {
-    if (n == 0u) { return 0u; }
-    var m = 0u;
-    var cur = cell_keys[0];
-    var hi = cur.w;
-    for (var k = 1u; k < n; k++) {
-        let e = cell_keys[k];
-        if (joins(cur, hi, e)) {
-            if (above(e.w, hi)) { hi = e.w; }
-        } else {
-            cell_keys[m] = vec4<u32>(cur.z, hi, cur.x, 0u);
-            m++;
-            cur = e;
-            hi = e.w;
-        }
-    }
-    cell_keys[m] = vec4<u32>(cur.z, hi, cur.x, 0u);
-    return m + 1u;
-}
-
-// finish on cell_keys[..merged_n]; returns how many intervals the cell keeps.
-fn finish_near(c: u32, merged_n: u32) -> u32 {
-    var m = merged_n;
-    if (P.single != 0u && m > 0u) {
-        var top = cell_keys[0];
-        for (var k = 1u; k < m; k++) {
-            let e = cell_keys[k];
-            if (e.y > top.y) { top = e; }
-        }
-        cell_keys[0] = vec4<u32>(cell_keys[0].x, top.y, top.z, 0u);
-        m = 1u;
-    }
-    var highest = 0u;
-    for (var k = 0u; k < m; k++) { highest = max(highest, cell_keys[k].y); }
-    merged[c] = m;
-    if (m == 0u) { tops[c] = 0xff800000u; } else { tops[c] = bits_of(highest); }
-    return m;
-}
-
-// Pass 4 for one listed cell of more than SMALL and at most MEDIUM keys per
-// workgroup, in workgroup memory: its keys read once, sorted together,
-// merged by the first invocation, sorted together again, finished, and the
-// kept intervals written back once. Done by one invocation each in the
-// device's memory (a heapsort), cells of ~64 keys (21 M random points) took
-// most of the passes' time on an H200.
-@compute @workgroup_size({MEDIUM_GROUP})
-fn medium_cells(@builtin(workgroup_id) w: vec3<u32>, @builtin(local_invocation_id) l: vec3<u32>) {
-    let listed = w.x + w.y * MAX_DIM;
-    if (l.x == 0u) {
-        var c = 0xffffffffu;
-        if (listed < P.n) { c = medium[listed]; }
-        cell_id = c;
-        if (c != 0xffffffffu) {
-            cell_base = starts[c];
-            cell_n = starts[c + 1u] - starts[c];
-        }
-    }
-    let c = workgroupUniformLoad(&cell_id);
-    if (c == 0xffffffffu) { return; }
-    let base = workgroupUniformLoad(&cell_base);
-    let n = workgroupUniformLoad(&cell_n);
-    for (var k = l.x; k < n; k += MEDIUM_GROUP) { cell_keys[k] = keys[base + k]; }
-    workgroupBarrier();
-    sort_near(n, l.x);
-    if (l.x == 0u) { cell_m = merge_near(n); }
-    let m = workgroupUniformLoad(&cell_m);
-    sort_near(m, l.x);
-    if (l.x == 0u) { cell_m = finish_near(c, m); }
-    let kept = workgroupUniformLoad(&cell_m);
-    for (var k = l.x; k < kept; k += MEDIUM_GROUP) { keys[base + k] = cell_keys[k]; }
 }
 
 // keys[base + i] and keys[base + j] (i < j) in order.

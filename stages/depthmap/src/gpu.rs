@@ -13,11 +13,12 @@
 //! 4. *sort and merge*: a cell's keys sorted, merged as `mdm::merge_sorted`
 //!    merges them, sorted by (bottom, top, object), cut to one in
 //!    single-level mode, counted, and the cell's top written. A cell of up to
-//!    16 keys takes one invocation (insertion sort); of up to 512, a
-//!    workgroup of 64 that reads its keys into workgroup memory, sorts them
-//!    with a bitonic network, merges with one invocation and writes the
-//!    kept intervals back; a more crowded one (walls, poles, dense scans), a
-//!    workgroup of 256 that does the same in the device's memory;
+//!    256 keys takes one invocation (insertion sort when short, heapsort
+//!    otherwise); a more crowded one (walls, poles, dense scans) takes a
+//!    workgroup, which sorts with a bitonic network and merges with one
+//!    invocation (a workgroup of 64 per cell of 17 to 512 keys, sorting in
+//!    workgroup memory, was tried on an H200 and was slower: the merge is
+//!    serial, and one invocation per cell runs 32 cells' merges at once);
 //! 5. a prefix sum of the merged counts, and each cell's intervals copied to
 //!    their place in the slab's part of the map.
 //!
@@ -56,21 +57,14 @@ mod screen;
 pub use screen::{GpuMap, MAX_COORD_M, ScreenCounts};
 
 /// The passes, in WGSL, after what they share with the dilation's shader
-/// (`common.wgsl`); `{SMALL}`, `{MEDIUM}` and `{MEDIUM_GROUP}` are replaced
-/// by [`SMALL`], [`MEDIUM`] and [`MEDIUM_GROUP`] when compiled.
+/// (`common.wgsl`); `{LARGE}` is replaced by [`LARGE`] when compiled.
 const SHADER: &str = concat!(include_str!("common.wgsl"), include_str!("assemble.wgsl"));
 
 const GROUP: u32 = 256;
 const MERGE_GROUP: u32 = 64;
-/// Cells of at most this many raw keys are sorted by one invocation each
-/// (the shader's `SMALL`).
-const SMALL: u64 = 16;
-/// Cells of more than [`SMALL`] and at most this many raw keys are sorted by
-/// a workgroup of [`MEDIUM_GROUP`] each in workgroup memory (16 bytes a key:
-/// 8 KiB, within every device's 16 KiB); larger ones by a workgroup of
-/// [`GROUP`] in the device's memory (the shader's `MEDIUM`).
-const MEDIUM: u64 = 512;
-const MEDIUM_GROUP: u32 = 64;
+/// Cells with more raw keys than this are sorted by a workgroup each, the
+/// others by one invocation each (the shader's `LARGE`).
+const LARGE: u64 = 256;
 /// Iterations of the loop probe: more than any pass needs on a device that
 /// does not cut loops short.
 const PROBE_LOOPS: u32 = 1 << 20;
@@ -88,7 +82,6 @@ pub struct Gpu {
     merge_cells: wgpu::ComputePipeline,
     compact: wgpu::ComputePipeline,
     find_large: wgpu::ComputePipeline,
-    medium_cells: wgpu::ComputePipeline,
     large_cells: wgpu::ComputePipeline,
     /// The box-query screen (`screen.rs`).
     screen_boxes: wgpu::ComputePipeline,
@@ -170,13 +163,7 @@ impl Gpu {
     pub fn new(dev: liftplan_core::gpu::Device) -> Result<Gpu, String> {
         let module = dev.device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("depthmap assembly"),
-            source: wgpu::ShaderSource::Wgsl(
-                SHADER
-                    .replace("{SMALL}", &SMALL.to_string())
-                    .replace("{MEDIUM}", &MEDIUM.to_string())
-                    .replace("{MEDIUM_GROUP}", &MEDIUM_GROUP.to_string())
-                    .into(),
-            ),
+            source: wgpu::ShaderSource::Wgsl(SHADER.replace("{LARGE}", &LARGE.to_string()).into()),
         });
         let screen = dev.device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("box query screen"),
@@ -201,9 +188,9 @@ impl Gpu {
         };
         let pipeline_in = |module: &wgpu::ShaderModule, entry: &str| pipeline_with(module, entry, true);
         // The assembly's workgroups write each workgroup variable before they
-        // read it (a medium cell's keys up to its count, the scan's partial
-        // sums, the first lane's cell and counts): zeroing their 8 KiB first,
-        // in each of hundreds of thousands of workgroups, is time for nothing.
+        // read it (the scan's partial sums, the first lane's cell, counts and
+        // list places): zeroing them first, in each of hundreds of thousands
+        // of workgroups, is time for nothing.
         let pipeline = |entry: &str| pipeline_with(&module, entry, false);
         let probe = pipeline("probe_loops");
         let mut gpu = Gpu {
@@ -216,7 +203,6 @@ impl Gpu {
             merge_cells: pipeline("merge_cells"),
             compact: pipeline("compact"),
             find_large: pipeline("find_large"),
-            medium_cells: pipeline("medium_cells"),
             large_cells: pipeline("large_cells"),
             screen_boxes: pipeline_in(&screen, "screen_boxes"),
             clear_boxes: pipeline_in(&screen, "clear_boxes"),
@@ -507,14 +493,13 @@ impl Gpu {
     }
 
     /// Passes 1 and 2 for one slab: each cell's start in the slab's keys
-    /// (one more word, the total, at the end), the lists of medium and large
-    /// cells, and [`SlabCounts`].
+    /// (one more word, the total, at the end), the list of large cells, and
+    /// [`SlabCounts`].
     fn count_slab(&self, src: &Sources, slab: Params) -> Result<(SlabLists, SlabCounts), String> {
         let cells = slab.rows * slab.nx;
         let starts = self.storage("starts", 4 * (cells as u64 + 1));
         let large = self.storage("large cells", 4 * cells as u64);
-        let medium = self.storage("medium cells", 4 * cells as u64);
-        let stats = self.storage("slab counts", 16);
+        let stats = self.storage("slab counts", 12);
         let mut enc = self.dev.device.create_command_encoder(&Default::default());
         for (buf, k) in &src.points {
             let p = self.uniform(Params { n: *k, ..slab });
@@ -526,32 +511,26 @@ impl Gpu {
         }
         self.scan(&mut enc, &starts, cells + 1, slab);
         let p = self.uniform(Params { n: cells, ..slab });
-        let binds = [(0, &p), (3, &stats), (7, &starts), (11, &large), (12, &medium)];
-        self.pass(&mut enc, &self.find_large, &binds, cells, GROUP);
+        self.pass(&mut enc, &self.find_large, &[(0, &p), (3, &stats), (7, &starts), (11, &large)], cells, GROUP);
         enc.copy_buffer_to_buffer(&starts, 4 * cells as u64, &stats, 8, 4);
         self.submit(enc);
-        let w = self.read_words(&stats, 0, 4)?;
-        let counts = SlabCounts { large: w[0], most: w[1] as u64, total: w[2] as u64, medium: w[3] };
-        Ok((SlabLists { starts, large, medium }, counts))
+        let w = self.read_words(&stats, 0, 3)?;
+        Ok((SlabLists { starts, large }, SlabCounts { large: w[0], most: w[1] as u64, total: w[2] as u64 }))
     }
 
     /// The most loop iterations one invocation of a pass runs for a slab
     /// whose most crowded cell has `most` raw keys (an upper bound).
     fn loop_need(&self, most: u64, radius_cells: f64) -> u64 {
         let lg = |n: u64| 64 - n.max(1).leading_zeros() as u64;
-        // One invocation's insertion sorts, merge and finish of up to SMALL
-        // keys; a medium cell's workgroup: each lane's share of the sorts'
-        // comparators and copies, and the first lane's merge and finish.
-        let small = 2 * SMALL * SMALL + 3 * SMALL;
-        let stages_medium = lg(MEDIUM) * (lg(MEDIUM) + 1) / 2;
-        let medium = 2 * stages_medium * ((MEDIUM / 2).div_ceil(MEDIUM_GROUP as u64) + 1) + 5 * MEDIUM + 2 * lg(MEDIUM);
+        // One invocation's heapsort, merge, sort and finish of up to LARGE keys.
+        let small = 2 * (LARGE / 2 + LARGE) * lg(LARGE) + 3 * LARGE;
         // A workgroup's bitonic sorts (each lane), and the first lane's merge
         // and finish; the compaction copies up to `most` intervals.
         let p = most.max(1).next_power_of_two();
         let stages = lg(p) * (lg(p) + 1) / 2;
         let large = 2 * stages * ((p / 2).div_ceil(GROUP as u64) + 1) + 3 * most + 2 * lg(p);
         let span = (2.0 * radius_cells).ceil() as u64 + 2;
-        small.max(medium).max(large).max(span * span)
+        small.max(large).max(span * span)
     }
 
     /// Passes 3 to 5 for one slab whose cells start at `lists.starts` in
@@ -592,10 +571,7 @@ impl Gpu {
         let p = self.uniform(Params { n: cells, ..slab });
         let binds = [(0, &p), (4, &keys), (7, starts), (8, &merged), (9, &tops)];
         self.pass(&mut enc, &self.merge_cells, &binds, cells, MERGE_GROUP);
-        // One workgroup per medium and per large cell: `pass` counts items.
-        let pm = self.uniform(Params { n: counted.medium, ..slab });
-        let binds = [(0, &pm), (4, &keys), (7, starts), (8, &merged), (9, &tops), (12, &lists.medium)];
-        self.pass(&mut enc, &self.medium_cells, &binds, counted.medium * MEDIUM_GROUP, MEDIUM_GROUP);
+        // One workgroup per large cell: `pass` counts items.
         let pl = self.uniform(Params { n: counted.large, ..slab });
         let binds = [(0, &pl), (4, &keys), (7, starts), (8, &merged), (9, &tops), (11, &lists.large)];
         self.pass(&mut enc, &self.large_cells, &binds, counted.large * GROUP, GROUP);
@@ -644,24 +620,18 @@ impl Gpu {
 /// What the count of one slab found.
 #[derive(Clone, Copy)]
 struct SlabCounts {
-    /// Cells of more than [`MEDIUM`] raw keys, sorted by a workgroup each in
-    /// the device's memory.
+    /// Cells of more than `LARGE` raw keys, sorted by a workgroup each.
     large: u32,
-    /// Cells of more than [`SMALL`] and at most [`MEDIUM`] raw keys, sorted
-    /// by a workgroup each in workgroup memory.
-    medium: u32,
     /// Raw keys of the most crowded cell.
     most: u64,
     /// Raw keys in all (saturated at `u32::MAX`).
     total: u64,
 }
 
-/// One slab's cell starts and its lists of medium and large cells, from the
-/// count.
+/// One slab's cell starts and its list of large cells, from the count.
 struct SlabLists {
     starts: wgpu::Buffer,
     large: wgpu::Buffer,
-    medium: wgpu::Buffer,
 }
 
 /// The inputs on the device, each chunk with its item count.
