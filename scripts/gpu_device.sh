@@ -22,12 +22,16 @@
 #       The GPU run's PDF comes back too. Exits non-zero if a test fails,
 #       the two demo runs differ, or the soak finds a difference.
 #
-# The device tool's call (estimated at 6 to 8 minutes there, from this
-# machine's times; not yet run on one). .devbin holds the binaries stripped
-# and packed with xz, small enough for the 64 MiB the working tree and
-# carried paths may take; the 8 files written to $OUT are the most that
-# come back:
-#   run(command="scripts/gpu_device.sh run 120", carry=[".devbin", ".gl"], timeout_s=600)
+#   scripts/gpu_device.sh repeat
+#       There: `bench_depthmap repeat` at 21 M points with the GPU's clocks
+#       sampled beside it (clocks.csv), for the run-to-run spread.
+#
+# The device tool's call. Run on 2026-12-04 on an H200: 133-163 s there with
+# a soak of 30-60 s, and about 35 s to start the machine (reports/depthmap.md).
+# .devbin holds the binaries stripped and packed with xz, small enough for
+# the 64 MiB the working tree and carried paths may take; the 8 files written
+# to $OUT are the most that come back:
+#   run(command="scripts/gpu_device.sh run 45", carry=[".devbin", ".gl"], timeout_s=300)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
