@@ -260,6 +260,14 @@ fn print_report(rep: &pipeline::RunReport, json: bool, progress: &Progress) {
             progress.line(&format!("          {l}"));
         }
     }
+    // A resumed lift's pose that is not its plan's is said even when quiet.
+    for c in &rep.resume_checks {
+        if c.agrees {
+            progress.line(&c.said);
+        } else {
+            eprintln!("warning: {}", c.said);
+        }
+    }
 }
 
 fn real_main() -> Result<ExitCode> {
@@ -291,13 +299,16 @@ fn real_main() -> Result<ExitCode> {
                 Ok(p) => p,
                 Err(c) => return Ok(c),
             };
-            let rep = match pipeline::run(&p, &RunOptions { until, force }, &progress) {
+            // Before the run, which writes the plans the check reads.
+            let resume_checks = resume::check_resumed(&p);
+            let mut rep = match pipeline::run(&p, &RunOptions { until, force }, &progress) {
                 Ok(r) => r,
                 Err(e) => {
                     eprintln!("error: {e:#}");
                     return Ok(ExitCode::from(2));
                 }
             };
+            rep.resume_checks = resume_checks;
             print_report(&rep, json, &progress);
             Ok(if rep.ok { ExitCode::SUCCESS } else { ExitCode::from(1) })
         }

@@ -138,6 +138,9 @@ pub struct StageReport {
 pub struct RunReport {
     pub stages: Vec<StageReport>,
     pub ok: bool,
+    /// Lifts resumed part way: whether each `resume_from` is the pose of the
+    /// plan it names (`resume::check_resumed`, before the run).
+    pub resume_checks: Vec<crate::resume::ResumeCheck>,
 }
 
 pub struct RunOptions {
@@ -349,7 +352,7 @@ fn run_stages(project: &Project, defs: &[StageDef], opts: &RunOptions, progress:
             }
         }
     }
-    let report = RunReport { ok: !failed, stages: reports };
+    let report = RunReport { ok: !failed, stages: reports, resume_checks: Vec::new() };
     cache.record_run(&serde_json::json!({
         "liftplan": env!("CARGO_PKG_VERSION"),
         "finished_unix": std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map(|d| d.as_secs()).unwrap_or(0),

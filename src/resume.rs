@@ -10,6 +10,13 @@
 //!
 //! It only reads (`out/plan.json`, the plan stage's cache and the project
 //! file) and prints; it does not edit the project file or run anything.
+//!
+//! [`check_resumed`] is the other way round: before a run, whether a lift's
+//! `resume_from` is where the plan its `resumes_plan` names has the load
+//! after that step. It reports and never refuses: the engineer is told to
+//! check the printed pose against the crane's display, and a pose taken off
+//! the display is the one to plan from. It runs outside the stages, so a
+//! plan never depends on what the cache happens to hold.
 
 use crate::cache::Cache;
 use crate::project::Project;
@@ -30,6 +37,23 @@ fn plan_in(file: &Path, lift: &str) -> Result<Option<LiftPlan>> {
     Ok(plans.lifts.into_iter().find(|l| l.lift == lift))
 }
 
+/// The plan of lift `lift` whose revision is `revision` in the last plans
+/// (`out/plan.json`) or the plan stage's cache, with the file it was read
+/// from; or none. A cache entry that cannot be read is one that does not
+/// hold it.
+fn plan_named(p: &Project, lift: &str, revision: &str, last: Option<&LiftPlan>) -> Option<(LiftPlan, PathBuf)> {
+    if let Some(last) = last.filter(|l| l.summary.revision == revision) {
+        return Some((last.clone(), p.out_dir().join("plan.json")));
+    }
+    Cache::new(&p.state_dir()).entries(liftplan_plan::NAME).into_iter().find_map(|entry| {
+        let file = entry.join("plan.json");
+        match plan_in(&file, lift) {
+            Ok(Some(plan)) if plan.summary.revision == revision => Some((plan, file)),
+            _ => None,
+        }
+    })
+}
+
 /// The plan of lift `lift` whose revision is `revision`: the last one
 /// (`out/plan.json`) or one the plan stage's cache still keeps, with the
 /// file it was read from and the last plan's revision.
@@ -42,23 +66,26 @@ fn find_plan(p: &Project, lift: &str, revision: &str) -> Result<(LiftPlan, PathB
         bail!("{}: no plan of lift '{lift}' (run the project first)", last_file.display());
     };
     let last_revision = last.summary.revision.clone();
-    if last_revision == revision {
-        return Ok((last, last_file, last_revision));
-    }
-    // A cache entry that cannot be read is one that does not hold the plan.
-    for entry in Cache::new(&p.state_dir()).entries(liftplan_plan::NAME) {
-        let file = entry.join("plan.json");
-        if let Ok(Some(plan)) = plan_in(&file, lift)
-            && plan.summary.revision == revision
-        {
-            return Ok((plan, file, last_revision));
-        }
+    if let Some((plan, file)) = plan_named(p, lift, revision, Some(&last)) {
+        return Ok((plan, file, last_revision));
     }
     bail!(
         "lift '{lift}' has no plan {revision}: its last plan ({}) is plan {}, and the plan stage's cache ({}) keeps no other of that revision. Check the revision on the foot of the crew's pages; if theirs is an older plan no longer kept ([cache] keep), read the swing, luff (or trolley) and hoist off the crane's display and give them as resume_from by hand",
         last_file.display(),
         if last_revision.is_empty() { "of no revision (made by an older liftplan)" } else { &last_revision },
         p.state_dir().join("cache").join(liftplan_plan::NAME).display(),
+    )
+}
+
+/// Where a crane is set up, in words.
+fn placement_words(c: &liftplan_core::crane::Placement, tower: bool) -> String {
+    format!(
+        "({:.2}, {:.2}) m, ground z {:.2} m, heading {:.1}°{}",
+        c.x_m,
+        c.y_m,
+        c.z_m,
+        c.heading_rad.to_degrees(),
+        if tower { String::new() } else { format!(", boom {:.1} m", c.boom_length_m) }
     )
 }
 
@@ -102,20 +129,11 @@ pub fn line(dir: &Path, lift: &str, revision: &str, after_step: usize, swing_deg
     if let Some(was) = plan.crane_placement
         && was != task.crane.placement
     {
-        let at = |c: &liftplan_core::crane::Placement| {
-            format!(
-                "({:.2}, {:.2}) m, ground z {:.2} m, heading {:.1}°{}",
-                c.x_m,
-                c.y_m,
-                c.z_m,
-                c.heading_rad.to_degrees(),
-                if task.crane.model.is_tower() { String::new() } else { format!(", boom {:.1} m", c.boom_length_m) }
-            )
-        };
+        let tower = task.crane.model.is_tower();
         bail!(
             "plan {revision} of lift '{lift}' had the crane at {}; the project now sets it up at {}: a crane stopped part way has not moved, so set the lift's crane in {} back to where it stands before resuming",
-            at(&was),
-            at(&task.crane.placement),
+            placement_words(&was, tower),
+            placement_words(&task.crane.placement, tower),
             p.dir.join("liftplan.toml").display()
         );
     }
@@ -163,4 +181,163 @@ pub fn line(dir: &Path, lift: &str, revision: &str, after_step: usize, swing_deg
         at.hoist_m,
         at.load_yaw_rad.to_degrees()
     ))
+}
+
+/// What [`check_resumed`] found for one lift.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct ResumeCheck {
+    pub lift: String,
+    /// The plan named was found and `resume_from` is its pose after the step
+    /// named (or on the next step's swing).
+    pub agrees: bool,
+    /// Said in a line: what was compared, or why nothing was.
+    pub said: String,
+}
+
+/// How far apart a printed pose may be from the plan's and still be the
+/// same: `liftplan resume` prints 3 decimals (degrees and metres).
+const PRINTED_DEG: f64 = 0.002;
+const PRINTED_M: f64 = 0.002;
+
+/// For each lift of the project that resumes part way through the plan its
+/// `resumes_plan` names: whether its `resume_from` is where that plan has
+/// the load after the step named, or part way through the next step where
+/// that is a swing (`liftplan resume --swing-deg`). Read before a run, from
+/// the last plans (`out/plan.json`) and the plan stage's cache; a plan
+/// neither holds is said, not refused. A project whose lifts do not read is
+/// left to the run to refuse.
+pub fn check_resumed(p: &Project) -> Vec<ResumeCheck> {
+    let Ok(tasks) = p.lifts() else { return Vec::new() };
+    let last_file = p.out_dir().join("plan.json");
+    let mut out = Vec::new();
+    for task in tasks {
+        let (Some((resume, _)), Some(named)) = (&task.resume_from, &task.resumes_plan) else { continue };
+        let lift = task.id.as_str();
+        let (revision, after_step) = (named.revision.as_str(), named.after_step);
+        let last = plan_in(&last_file, lift).ok().flatten();
+        let check = |agrees: bool, said: String| ResumeCheck { lift: lift.to_string(), agrees, said };
+        let Some((plan, file)) = plan_named(p, lift, revision, last.as_ref()) else {
+            out.push(check(
+                false,
+                format!(
+                    "lift {lift}: resumes_plan names plan {revision}, which neither {} nor the plan stage's cache holds: resume_from is not checked against it (check it against the crane's display)",
+                    last_file.display()
+                ),
+            ));
+            continue;
+        };
+        let tower = task.crane.model.is_tower();
+        if let Some(was) = plan.crane_placement
+            && was != task.crane.placement
+        {
+            out.push(check(
+                false,
+                format!(
+                    "lift {lift}: plan {revision} had the crane at {}; the project sets it up at {}: a crane stopped part way has not moved",
+                    placement_words(&was, tower),
+                    placement_words(&task.crane.placement, tower)
+                ),
+            ));
+            continue;
+        }
+        if !(1..plan.moves.len()).contains(&after_step) {
+            out.push(check(
+                false,
+                format!(
+                    "lift {lift}: resumes_plan names step {after_step} of plan {revision}, which has {} steps (the last sets the load down)",
+                    plan.moves.len()
+                ),
+            ));
+            continue;
+        }
+        let there = plan.moves[after_step - 1].to;
+        let next = &plan.moves[after_step];
+        let apart = differences(&there, resume, tower);
+        let on_next_swing = next.joint == Joint::Swing && {
+            let (a, b) = (next.from.swing_rad.to_degrees(), next.to.swing_rad.to_degrees());
+            let s = resume.swing_rad.to_degrees();
+            s >= a.min(b) - PRINTED_DEG && s <= a.max(b) + PRINTED_DEG && apart.iter().all(|(name, _)| *name == "swing")
+        };
+        let whence = format!("plan {revision} (from {})", file.display());
+        out.push(if apart.is_empty() {
+            check(true, format!("lift {lift}: resume_from is where {whence} has the load after step {after_step}"))
+        } else if on_next_swing {
+            check(
+                true,
+                format!("lift {lift}: resume_from is on step {}'s swing of {whence}, after step {after_step}", after_step + 1),
+            )
+        } else {
+            let said: Vec<String> = apart.into_iter().map(|(_, s)| s).collect();
+            check(
+                false,
+                format!(
+                    "lift {lift}: resume_from is not where {whence} has the load after step {after_step}: {}. The new plan starts from resume_from: check that it is where the load hangs (the crane's display) and that resumes_plan names the crew's plan and step",
+                    said.join(", ")
+                ),
+            )
+        });
+    }
+    out
+}
+
+/// The joints in which `given` is not `plan` beyond what printing rounds
+/// (name, and both values in words).
+fn differences(
+    plan: &liftplan_core::crane::Config,
+    given: &liftplan_core::crane::Config,
+    tower: bool,
+) -> Vec<(&'static str, String)> {
+    let mut out = Vec::new();
+    let mut deg = |name: &'static str, words: &str, a: f64, b: f64| {
+        let (a, b) = (a.to_degrees(), b.to_degrees());
+        if (a - b).abs() > PRINTED_DEG {
+            out.push((name, format!("{words} {b:.3}° given, {a:.3}° in the plan")));
+        }
+    };
+    deg("swing", "swing", plan.swing_rad, given.swing_rad);
+    if !tower {
+        deg("luff", "luff", plan.radial, given.radial);
+    }
+    deg("yaw", "load yaw", plan.load_yaw_rad, given.load_yaw_rad);
+    let mut metres = |name: &'static str, words: &str, a: f64, b: f64| {
+        if (a - b).abs() > PRINTED_M {
+            out.push((name, format!("{words} {b:.3} m given, {a:.3} m in the plan")));
+        }
+    };
+    if tower {
+        metres("trolley", "trolley", plan.radial, given.radial);
+    }
+    metres("hoist", "hoist", plan.hoist_m, given.hoist_m);
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use liftplan_core::crane::Config;
+
+    fn config(swing_deg: f64, luff_deg: f64, hoist_m: f64) -> Config {
+        Config { swing_rad: swing_deg.to_radians(), radial: luff_deg.to_radians(), hoist_m, load_yaw_rad: 0.0 }
+    }
+
+    #[test]
+    fn a_pose_as_printed_is_the_plans_and_a_moved_one_is_not() {
+        let plan = config(31.234_567, 55.5, 12.345_678);
+        // As `liftplan resume` prints it: 3 decimals.
+        let printed = config(31.235, 55.5, 12.346);
+        assert!(differences(&plan, &printed, false).is_empty());
+        let moved = config(31.235, 55.5, 12.846);
+        let apart = differences(&plan, &moved, false);
+        assert_eq!(apart.len(), 1, "{apart:?}");
+        assert_eq!(apart[0].0, "hoist");
+        assert!(apart[0].1.contains("hoist 12.846 m given, 12.346 m in the plan"), "{apart:?}");
+        let turned = config(33.0, 54.0, 12.346);
+        let names: Vec<&str> = differences(&plan, &turned, false).into_iter().map(|(n, _)| n).collect();
+        assert_eq!(names, ["swing", "luff"]);
+        // A tower crane's radial joint is its trolley, in metres.
+        let trolley = Config { radial: 20.0, ..plan };
+        let apart = differences(&Config { radial: 20.5, ..plan }, &trolley, true);
+        assert_eq!(apart.len(), 1, "{apart:?}");
+        assert!(apart[0].1.contains("trolley 20.000 m given, 20.500 m in the plan"), "{apart:?}");
+    }
 }

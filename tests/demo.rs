@@ -363,6 +363,28 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     assert!(text.contains("The first step starts where the load hangs when the lift resumes"), "{text}");
     assert!(text.contains("The part of the lift already made, from the pick to there, is not in it"), "{text}");
     assert_eq!(load_comes_near(&steps, platform_xy, platform_half, platform_top), None, "{steps}");
+    // Each run checks resume_from against the plan resumes_plan names (the
+    // crew's, now in the cache): the pose `liftplan resume` printed agrees;
+    // one edited by hand (the load 0.3 m higher) is said, not refused.
+    let r = run_json(&dir);
+    let check = &r["resume_checks"][0];
+    assert_eq!(check["agrees"], true, "{r}");
+    let said = check["said"].as_str().unwrap();
+    assert!(
+        said.contains(&format!("resume_from is where plan {crews_plan} (from "))
+            && said.contains(&format!("has the load after step {after_step}")),
+        "{said}"
+    );
+    let hoist = at("hoist_m");
+    let edited = resumed.replace(&format!("hoist_m = {hoist:.3}"), &format!("hoist_m = {:.3}", hoist - 0.3));
+    assert_ne!(edited, resumed);
+    std::fs::write(&toml_path, &edited).unwrap();
+    let r = run_json(&dir);
+    let check = &r["resume_checks"][0];
+    assert_eq!(check["agrees"], false, "{r}");
+    let said = check["said"].as_str().unwrap();
+    assert!(said.contains(&format!("hoist {:.3} m given, {hoist:.3} m in the plan", hoist - 0.3)), "{said}");
+    assert!(said.contains("check that it is where the load hangs"), "{said}");
 
     // An overhead line along the site's north edge: listed with its
     // approach distance, drawn, asked to be checked, and in the run's line.
