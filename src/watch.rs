@@ -50,6 +50,10 @@ fn run_once(dir: &Path, progress: &Progress) {
             return;
         }
     };
+    // As `liftplan run` does, before the run writes the plans it reads.
+    for c in crate::resume::check_resumed(&project).iter().filter(|c| !c.agrees) {
+        log(dir, &format!("warning: {}", c.said));
+    }
     match pipeline::run(&project, &RunOptions { until: None, force: vec![] }, progress) {
         Ok(rep) => {
             let s: Vec<String> =
