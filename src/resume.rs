@@ -207,6 +207,10 @@ const PRINTED_M: f64 = 0.002;
 /// neither holds is said, not refused. A project whose lifts do not read is
 /// left to the run to refuse.
 pub fn check_resumed(p: &Project) -> Vec<ResumeCheck> {
+    // Most runs resume nothing: they read no crane file for this.
+    if p.raw.lift.iter().all(|l| l.resumes_plan.is_none()) {
+        return Vec::new();
+    }
     let Ok(tasks) = p.lifts() else { return Vec::new() };
     let last_file = p.out_dir().join("plan.json");
     let mut out = Vec::new();
