@@ -1023,15 +1023,18 @@ pub fn revision(plan: &LiftPlan, task: &LiftTask) -> String {
 /// hangs need only not touch a box ([`validate::box_reach_for_m`]); in the
 /// rest of the lift the parts keep the lift's clearance beyond it
 /// ([`liftplan_core::power_line`]). The task is not used beyond its id: the
-/// growth is the same for every lift. Each is named "power line 'NAME'"
-/// where the validator meets it. Refused where they would cover more of the
+/// growth is the same for every lift. Each is named "power line 'NAME'
+/// (beyond its 3.05 m approach distance)" where the validator meets it: a
+/// step's clearance to it is measured to its box, beyond that distance from
+/// the conductor, and a signer reading the steps must not take it for the
+/// distance to the wire. Refused where they would cover more of the
 /// map than [`MAX_OBSTACLE_CELLS`].
 pub fn power_line_boxes(lines: &[PowerLine], task: &LiftTask, s: &Settings, cell_m: f64) -> Result<Vec<(Obb, String)>> {
     let mut out = Vec::new();
     for l in lines.iter().filter(|l| l.during(&task.id)) {
         // A line the project took has an approach distance.
         let Some((approach, _)) = l.approach() else { continue };
-        let name = format!("power line '{}'", l.name);
+        let name = format!("power line '{}' (beyond its {approach:.2} m approach distance)", l.name);
         out.extend(l.boxes(validate::box_reach_for_m(approach, s.support_m)).into_iter().map(|b| (b, name.clone())));
     }
     let cells = cells_covered(out.iter().map(|(b, _)| *b), cell_m);

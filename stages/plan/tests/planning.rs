@@ -191,6 +191,13 @@ fn the_plan_keeps_the_approach_distance_off_a_power_line() {
     let with_line = m.with_boxes(&world.others);
     let (plan, _) = plan_lift(&t, &Site { map: &with_line, world: &world, charts: None }, &quick(), 3).unwrap();
     assert!(plan.validator.ok);
+    // A step's clearance to the line is to its box: its name says so.
+    let named = "power line '11 kV feeder' (beyond its 3.05 m approach distance)";
+    assert!(
+        plan.steps.iter().any(|s| s.clearance_to == named),
+        "{:?}",
+        plan.steps.iter().map(|s| &s.clearance_to).collect::<Vec<_>>()
+    );
     let (kept, without) = (nearest(&plan), nearest(&plain));
     assert!(kept >= 3.048 - 0.03, "the plan comes {kept:.3} m from the conductor");
     assert!(without < 3.048, "the plan made without the line keeps {without:.3} m off it: the test shows nothing");
