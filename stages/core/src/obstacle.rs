@@ -58,11 +58,8 @@ impl Obstacle {
     /// file's list, from 0), naming the key.
     pub fn problem(&self, k: usize) -> Option<String> {
         let name = &self.name;
-        if name.trim().is_empty() {
-            return Some(format!("obstacle[{k}] needs a name (what it is: \"delivery truck\")"));
-        }
-        if name.chars().count() > MAX_OBSTACLE_NAME {
-            return Some(format!("obstacle[{k}]'s name is longer than {MAX_OBSTACLE_NAME} characters"));
+        if let Some(p) = name_problem("obstacle", k, name, MAX_OBSTACLE_NAME, "what it is: \"delivery truck\"") {
+            return Some(p);
         }
         let finite = |v: &[f64]| v.iter().all(|x| x.is_finite());
         if !finite(&self.center_m) || !finite(&[self.base_z_m, self.yaw_deg]) {
@@ -96,7 +93,7 @@ impl Obstacle {
 
     /// Whether it stands there during lift `id`.
     pub fn during(&self, id: &str) -> bool {
-        self.lifts.is_empty() || self.lifts.iter().any(|l| l == id)
+        there_during(&self.lifts, id)
     }
 
     /// What the planner, the validator and their messages call it.
@@ -137,6 +134,22 @@ pub fn problem_of(obstacles: &[Obstacle], lift_ids: &[&str]) -> Option<(usize, S
         }
     }
     None
+}
+
+/// Of the `k`-th (from 0) of a project's `key` list of things given by hand
+/// (`[[obstacle]]`, `[[power_line]]`): a name that is blank or longer than
+/// `max` characters (`example`: what a name says, and one).
+pub fn name_problem(key: &str, k: usize, name: &str, max: usize, example: &str) -> Option<String> {
+    if name.trim().is_empty() {
+        return Some(format!("{key}[{k}] needs a name ({example})"));
+    }
+    (name.chars().count() > max).then(|| format!("{key}[{k}]'s name is longer than {max} characters"))
+}
+
+/// Whether a thing given by hand for the lifts `lifts` (by id; none: every
+/// lift) is there during lift `id`.
+pub fn there_during(lifts: &[String], id: &str) -> bool {
+    lifts.is_empty() || lifts.iter().any(|l| l == id)
 }
 
 /// Of one thing in a project's list of things given by hand (`what`:

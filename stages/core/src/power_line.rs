@@ -119,7 +119,7 @@ pub fn table_a_m(voltage_kv: f64) -> Option<f64> {
 impl PowerLine {
     /// Whether it is there during lift `id`.
     pub fn during(&self, id: &str) -> bool {
-        self.lifts.is_empty() || self.lifts.iter().any(|l| l == id)
+        crate::obstacle::there_during(&self.lifts, id)
     }
 
     /// The distance every part keeps from it (m), and whence: the line's
@@ -136,11 +136,9 @@ impl PowerLine {
     /// file's list, from 0), naming the key.
     pub fn problem(&self, k: usize) -> Option<String> {
         let name = &self.name;
-        if name.trim().is_empty() {
-            return Some(format!("power_line[{k}] needs a name (which line: \"11 kV feeder to the pump house\")"));
-        }
-        if name.chars().count() > MAX_NAME {
-            return Some(format!("power_line[{k}]'s name is longer than {MAX_NAME} characters"));
+        let example = "which line: \"11 kV feeder to the pump house\"";
+        if let Some(p) = crate::obstacle::name_problem("power_line", k, name, MAX_NAME, example) {
+            return Some(p);
         }
         if !(2..=MAX_SUPPORTS).contains(&self.points_m.len()) {
             return Some(format!(
@@ -187,10 +185,13 @@ impl PowerLine {
 
     /// The length of its spans' chords (m).
     pub fn length_m(&self) -> f64 {
-        self.points_m
-            .windows(2)
-            .map(|w| ((w[1][0] - w[0][0]).powi(2) + (w[1][1] - w[0][1]).powi(2) + (w[1][2] - w[0][2]).powi(2)).sqrt())
-            .sum()
+        (0..self.points_m.len().saturating_sub(1)).map(|i| self.chord_m(i)).sum()
+    }
+
+    /// The straight distance between span `i`'s supports (m).
+    fn chord_m(&self, i: usize) -> f64 {
+        let (a, b) = (self.points_m[i], self.points_m[i + 1]);
+        ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2) + (b[2] - a[2]).powi(2)).sqrt()
     }
 
     /// The conductor at `t` (0 to 1) along span `i`: the straight line
@@ -210,9 +211,7 @@ impl PowerLine {
     pub fn boxes(&self, grow_m: f64) -> Vec<Obb> {
         let mut out = Vec::new();
         for i in 0..self.points_m.len().saturating_sub(1) {
-            let (a, b) = (self.points_m[i], self.points_m[i + 1]);
-            let span = ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2) + (b[2] - a[2]).powi(2)).sqrt();
-            let n = (span / PIECE_M).ceil().max(1.0) as usize;
+            let n = (self.chord_m(i) / PIECE_M).ceil().max(1.0) as usize;
             let dt = 1.0 / n as f64;
             // Between its ends a piece of the parabola lies below their
             // chord by at most sag · dt² (its second derivative is -8 sag).
