@@ -155,7 +155,7 @@ pub fn check(
         up.push(d.map(|v| v / len));
         leg_lengths_m.push(len);
     }
-    if pts.len() > 1 && max_angle_deg > MAX_LEG_ANGLE_DEG + 1e-9 {
+    if max_angle_deg > MAX_LEG_ANGLE_DEG + 1e-9 {
         return Err(format!(
             "the sling legs hang up to {max_angle_deg:.1}° from the vertical, more than the {MAX_LEG_ANGLE_DEG:.0}° slings are rated for: give a taller rigging (rigging height_m {rigging_height_m:.2} m) or lift points nearer the centre of gravity"
         ));
