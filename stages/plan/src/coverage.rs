@@ -258,12 +258,13 @@ fn swept_cells(task: &LiftTask, moves: &[Move]) -> (HashMap<Cell, f64>, HashMap<
                 }
                 let into = if hanging(*kind) { &mut load } else { &mut crane };
                 let bottom = part.corners().iter().map(|p| p.z).fold(f64::INFINITY, f64::min);
-                cells_under(&part.footprint(), SWEEP_SAMPLE_M / 2.0, |c| {
+                let footprint = part.footprint();
+                cells_under(&footprint, SWEEP_SAMPLE_M / 2.0, |c| {
                     let z = into.entry(c).or_insert(f64::INFINITY);
                     *z = z.min(bottom);
                 });
                 if hanging(*kind) && task.fall_zone_m > 0.0 {
-                    cells_under(&part.footprint(), SWEEP_SAMPLE_M / 2.0 + task.fall_zone_m, |c| {
+                    cells_under(&footprint, SWEEP_SAMPLE_M / 2.0 + task.fall_zone_m, |c| {
                         fall_zone.insert(c);
                     });
                 }
