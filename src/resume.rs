@@ -213,14 +213,20 @@ pub fn check_resumed(p: &Project) -> Vec<ResumeCheck> {
     }
     let Ok(tasks) = p.lifts() else { return Vec::new() };
     let last_file = p.out_dir().join("plan.json");
+    // The last plans, read once for every lift; none where there is no
+    // readable file.
+    let last_plans: Vec<LiftPlan> = std::fs::read_to_string(&last_file)
+        .ok()
+        .and_then(|text| serde_json::from_str::<PlanFile>(&text).ok())
+        .map_or_else(Vec::new, |f| f.lifts);
     let mut out = Vec::new();
     for task in tasks {
         let (Some((resume, _)), Some(named)) = (&task.resume_from, &task.resumes_plan) else { continue };
         let lift = task.id.as_str();
         let (revision, after_step) = (named.revision.as_str(), named.after_step);
-        let last = plan_in(&last_file, lift).ok().flatten();
+        let last = last_plans.iter().find(|l| l.lift == lift);
         let check = |agrees: bool, said: String| ResumeCheck { lift: lift.to_string(), agrees, said };
-        let Some((plan, file)) = plan_named(p, lift, revision, last.as_ref()) else {
+        let Some((plan, file)) = plan_named(p, lift, revision, last) else {
             out.push(check(
                 false,
                 format!(
