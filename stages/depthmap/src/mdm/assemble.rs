@@ -204,38 +204,67 @@ fn point_job(
     let (nx, ny) = (spec.nx, spec.ny);
     let band_shift = bands.shift;
     let mask = (1u32 << band_shift) - 1;
-    made.clear();
+    let (xyz, ground) = (&p.xyz[range.clone()], &p.ground[range]);
+    // `made[..n]` are the records; the rest is room, written before it is
+    // counted, so that the common point costs no branch on its flags.
+    if made.len() < 2 * BATCH {
+        made.resize(2 * BATCH, (0, 0));
+    }
+    let mut n = 0usize;
     let mut cells = 0usize;
-    for k in range {
-        let q = local_point(&p.xyz[k], spec);
-        let (i0, i1, j0, j1) = point_span(&q, p.radius, inv, nx as i64, ny as i64);
-        if i1 < i0 || j1 < j0 {
-            continue;
+    let mut spans = [[0i32; 4]; BATCH];
+    let mut heights = [0f32; BATCH];
+    for (xyz, ground) in xyz.chunks(BATCH).zip(ground.chunks(BATCH)) {
+        // The spans first, in a loop of arithmetic alone.
+        for ((span, z), pt) in spans.iter_mut().zip(heights.iter_mut()).zip(xyz) {
+            let q = local_point(pt, spec);
+            let (i0, i1, j0, j1) = point_span(&q, p.radius, inv, nx as i64, ny as i64);
+            *span = [i0 as i32, i1 as i32, j0 as i32, j1 as i32];
+            *z = q[2];
         }
-        let (i0, i1, j0, j1) = (i0 as u32, i1 as u32, j0 as u32, j1 as u32);
-        cells += (i1 - i0 + 1) as usize * (j1 - j0 + 1) as usize;
-        let obj = p.obj(k);
-        let (b0, b1) = (j0 >> band_shift, j1 >> band_shift);
-        if i1 - i0 <= 1 && j1 - j0 <= 1 {
-            let wide = if i1 > i0 { WIDE } else { 0 };
-            if b0 == b1 {
-                let tall = if j1 > j0 { TALL } else { 0 };
-                made.push((b0, point_record((j0 & mask) * nx + i0, wide | tall, obj, q[2])));
-            } else {
-                made.push((b0, point_record((j0 & mask) * nx + i0, wide, obj, q[2])));
-                made.push((b1, point_record((j1 & mask) * nx + i0, wide, obj, q[2])));
-            }
-        } else {
-            for j in j0..=j1 {
-                for i in i0..=i1 {
-                    made.push((j >> band_shift, point_record((j & mask) * nx + i, 0, obj, q[2])));
+        if made.len() < n + 2 * BATCH {
+            made.resize((n + 2 * BATCH).max(2 * made.len()), (0, 0));
+        }
+        for ((&[i0, i1, j0, j1], &z), &g) in spans.iter().zip(&heights).zip(ground) {
+            let obj = if g { OBJ_GROUND } else { OBJ_SCAN };
+            if i1 < i0 || j1 < j0 || i1 - i0 > 1 || j1 - j0 > 1 {
+                if i1 < i0 || j1 < j0 {
+                    continue;
                 }
+                // Wider or taller than two cells: a record per cell.
+                let (i0, i1, j0, j1) = (i0 as u32, i1 as u32, j0 as u32, j1 as u32);
+                let need = (i1 - i0 + 1) as usize * (j1 - j0 + 1) as usize;
+                cells += need;
+                if made.len() < n + need + 2 * BATCH {
+                    made.resize((n + need + 2 * BATCH).max(2 * made.len()), (0, 0));
+                }
+                for j in j0..=j1 {
+                    for i in i0..=i1 {
+                        made[n] = (j >> band_shift, point_record((j & mask) * nx + i, 0, obj, z));
+                        n += 1;
+                    }
+                }
+                continue;
             }
+            let (i0, i1, j0, j1) = (i0 as u32, i1 as u32, j0 as u32, j1 as u32);
+            cells += (i1 - i0 + 1) as usize * (j1 - j0 + 1) as usize;
+            let (b0, b1) = (j0 >> band_shift, j1 >> band_shift);
+            let wide = if i1 > i0 { WIDE } else { 0 };
+            // Taller than a row: in one band a flag, across two a second
+            // record (written always, kept only then).
+            let across = (b0 != b1) as usize;
+            let tall = if j1 > j0 && across == 0 { TALL } else { 0 };
+            made[n] = (b0, point_record((j0 & mask) * nx + i0, wide | tall, obj, z));
+            made[n + 1] = (b1, point_record((j1 & mask) * nx + i0, wide, obj, z));
+            n += 1 + across;
         }
     }
-    let (recs, starts) = group_by_band(made, bands.count);
+    let (recs, starts) = group_by_band(&made[..n], bands.count);
     PointJob { recs, starts, cells }
 }
+
+/// Points a job takes at a time: their spans first, then their records.
+const BATCH: usize = 256;
 
 /// How the grid is cut into bands: `1 << shift` rows each (a power of two, so
 /// a row's band is a shift), `cells` cells each, `count` of them.
