@@ -165,8 +165,14 @@ impl PointSource<'_> {
     /// Object id of point `k`.
     #[inline]
     pub fn obj(&self, k: usize) -> u32 {
-        if self.ground[k] { OBJ_GROUND } else { OBJ_SCAN }
+        point_obj(self.ground[k])
     }
+}
+
+/// Object id of a point by its ground flag.
+#[inline]
+pub(crate) fn point_obj(ground: bool) -> u32 {
+    if ground { OBJ_GROUND } else { OBJ_SCAN }
 }
 
 /// A site point in grid-local `f32` metres (x, y relative to the grid origin,

@@ -10,7 +10,8 @@
 
 use super::raster::{point_span, triangle_raws};
 use super::{
-    GridSpec, Interval, Mdm, Mode, OBJ_GROUND, OBJ_SCAN, PointSource, Raw, cell_top, f32_from_key, f32_key, local_point,
+    GridSpec, Interval, Mdm, Mode, OBJ_GROUND, OBJ_SCAN, PointSource, Raw, cell_top, f32_from_key, f32_key,
+    local_point, point_obj,
 };
 use liftplan_core::mesh::TriMesh;
 use rayon::prelude::*;
@@ -207,9 +208,11 @@ fn point_job(
     let (xyz, ground) = (&p.xyz[range.clone()], &p.ground[range]);
     // `made[..n]` are the records; the rest is room, written before it is
     // counted, so that the common point costs no branch on its flags.
-    if made.len() < 2 * BATCH {
-        made.resize(2 * BATCH, (0, 0));
-    }
+    let make_room = |made: &mut Vec<(u32, u64)>, len: usize| {
+        if made.len() < len {
+            made.resize(len.max(2 * made.len()), (0, 0));
+        }
+    };
     let mut n = 0usize;
     let mut cells = 0usize;
     let mut spans = [[0i32; 4]; BATCH];
@@ -222,22 +225,19 @@ fn point_job(
             *span = [i0 as i32, i1 as i32, j0 as i32, j1 as i32];
             *z = q[2];
         }
-        if made.len() < n + 2 * BATCH {
-            made.resize((n + 2 * BATCH).max(2 * made.len()), (0, 0));
-        }
+        // Two records a point at most, but for the points handled below.
+        make_room(made, n + 2 * BATCH);
         for ((&[i0, i1, j0, j1], &z), &g) in spans.iter().zip(&heights).zip(ground) {
-            let obj = if g { OBJ_GROUND } else { OBJ_SCAN };
-            if i1 < i0 || j1 < j0 || i1 - i0 > 1 || j1 - j0 > 1 {
-                if i1 < i0 || j1 < j0 {
-                    continue;
-                }
+            if i1 < i0 || j1 < j0 {
+                continue;
+            }
+            let obj = point_obj(g);
+            if i1 - i0 > 1 || j1 - j0 > 1 {
                 // Wider or taller than two cells: a record per cell.
                 let (i0, i1, j0, j1) = (i0 as u32, i1 as u32, j0 as u32, j1 as u32);
                 let need = (i1 - i0 + 1) as usize * (j1 - j0 + 1) as usize;
                 cells += need;
-                if made.len() < n + need + 2 * BATCH {
-                    made.resize((n + need + 2 * BATCH).max(2 * made.len()), (0, 0));
-                }
+                make_room(made, n + need + 2 * BATCH);
                 for j in j0..=j1 {
                     for i in i0..=i1 {
                         made[n] = (j >> band_shift, point_record((j & mask) * nx + i, 0, obj, z));
