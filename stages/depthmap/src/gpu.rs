@@ -129,7 +129,8 @@ pub struct GpuTimings {
     /// Converting and uploading points and triangle raws.
     pub upload_ms: f64,
     /// The passes on the device, each slab up to its last count read back:
-    /// the sum of the four below (each waits for the device at its end).
+    /// the sum of the four below (each waits for the device at its end), so
+    /// the host's few microseconds between them are not counted.
     pub passes_ms: f64,
     /// Pass 1 and 2: counting raw intervals per cell, the prefix sum and the
     /// list of crowded cells.
@@ -391,7 +392,6 @@ impl Gpu {
             let (lists, counted) = self.count_slab(sources, slab)?;
             let total = counted.total;
             cells.timings.count_ms += ms(t_count);
-            cells.timings.passes_ms += ms(t_count);
             if let Some(cap) = self.loop_cap {
                 let need = self.loop_need(counted.most, base.radius as f64 * base.inv_cell as f64);
                 if need > cap as u64 / 2 {
@@ -419,6 +419,8 @@ impl Gpu {
             self.merge_slab(sources, slab, &lists, counted, &mut cells)?;
             row0 += rows;
         }
+        let t = &mut cells.timings;
+        t.passes_ms = t.count_ms + t.fill_ms + t.sort_ms + t.compact_ms;
         Ok(cells)
     }
 
@@ -588,7 +590,6 @@ impl Gpu {
         self.submit(enc);
         self.wait()?;
         out.timings.compact_ms += ms(t_compact);
-        out.timings.passes_ms += ms(t0);
         let t_read = std::time::Instant::now();
         let ends = self.read_words(&merged, 0, cells as u64 + 1)?;
         // What comes back must be a map: a device that answers otherwise is
