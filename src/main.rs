@@ -13,6 +13,7 @@ mod pipeline;
 mod progress;
 use liftplan::project;
 mod resume;
+mod revisions;
 mod stages;
 mod watch;
 
@@ -119,7 +120,8 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
-    /// Remove the cache (.liftplan/) and out/ of a project.
+    /// Remove the cache (.liftplan/) and out/ of a project, the plans kept by
+    /// revision in out/revisions/ with them.
     #[command(after_help = "Example:\n  liftplan clean site-a")]
     Clean { dir: Option<PathBuf> },
     /// List every stage and its settings with their defaults.

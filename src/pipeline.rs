@@ -344,6 +344,7 @@ fn run_stages(project: &Project, defs: &[StageDef], opts: &RunOptions, progress:
         reports.push(rep);
     }
     hashes.save(&project.state_dir())?;
+    keep_revisions(project, &upstream, &mut reports);
     // Only after every stage: a stage reads its upstream stages' entries.
     for rep in &reports {
         if let (Status::Fresh | Status::Ran, Some(key)) = (&rep.status, &rep.key) {
@@ -360,6 +361,30 @@ fn run_stages(project: &Project, defs: &[StageDef], opts: &RunOptions, progress:
         "report": report,
     }))?;
     Ok(report)
+}
+
+/// Keeps each plan the plan stage made or found fresh in out/revisions/
+/// ([`crate::revisions`]), and says so in its lines. A plan that could not
+/// be kept is said there too and does not fail the run: the plan in out/ is
+/// made and checked; only reading it by revision later depends on this.
+fn keep_revisions(
+    project: &Project,
+    upstream: &BTreeMap<&'static str, (PathBuf, Manifest)>,
+    reports: &mut [StageReport],
+) {
+    let (Some((plan_dir, _)), Some(rep)) =
+        (upstream.get(liftplan_plan::NAME), reports.iter_mut().find(|r| r.name == liftplan_plan::NAME))
+    else {
+        return;
+    };
+    let folder = format!("out/{}/", crate::revisions::DIR);
+    match crate::revisions::keep(&project.out_dir(), plan_dir) {
+        Ok(kept) if kept.is_empty() => {}
+        Ok(kept) => rep.lines.push(format!("kept by revision in {folder}: {}", kept.join(", "))),
+        Err(e) => rep.lines.push(format!(
+            "warning: not kept by revision in {folder} ({e:#}): liftplan resume reads this plan only while out/ or the cache holds it"
+        )),
+    }
 }
 
 #[derive(Debug, Clone, Serialize)]

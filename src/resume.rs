@@ -5,11 +5,14 @@
 //! The crew's plan is named by its revision, printed on every page of its
 //! PDF: the last plan in `out/` may be a newer one (made after the crew's
 //! copy was printed), and the pose after step 4 of another plan is not where
-//! the load hangs. A plan made before the last is read from the plan stage's
-//! cache (the `[cache] keep` most recent runs).
+//! the load hangs. A plan made before the last is read from the plans kept
+//! by revision (`out/revisions/`, [`crate::revisions`]) or, made by a
+//! liftplan that did not keep them, from the plan stage's cache (the
+//! `[cache] keep` most recent runs).
 //!
-//! It only reads (`out/plan.json`, the plan stage's cache and the project
-//! file) and prints; it does not edit the project file or run anything.
+//! It only reads (`out/plan.json`, `out/revisions/`, the plan stage's cache
+//! and the project file) and prints; it does not edit the project file or
+//! run anything.
 //!
 //! [`check_resumed`] is the other way round: before a run, whether a lift's
 //! `resume_from` is where the plan its `resumes_plan` names has the load
@@ -38,12 +41,17 @@ fn plan_in(file: &Path, lift: &str) -> Result<Option<LiftPlan>> {
 }
 
 /// The plan of lift `lift` whose revision is `revision` in the last plans
-/// (`out/plan.json`) or the plan stage's cache, with the file it was read
-/// from; or none. A cache entry that cannot be read is one that does not
-/// hold it.
+/// (`out/plan.json`), the plans kept by revision (out/revisions/) or, for
+/// one made before liftplan kept them, the plan stage's cache, with the file
+/// it was read from; or none. A file that cannot be read is one that does
+/// not hold it.
 fn plan_named(p: &Project, lift: &str, revision: &str, last: Option<&LiftPlan>) -> Option<(LiftPlan, PathBuf)> {
     if let Some(last) = last.filter(|l| l.summary.revision == revision) {
         return Some((last.clone(), p.out_dir().join("plan.json")));
+    }
+    let kept = crate::revisions::plan_file(&p.out_dir(), lift, revision);
+    if let Ok(Some(plan)) = plan_in(&kept, lift).map(|o| o.filter(|plan| plan.summary.revision == revision)) {
+        return Some((plan, kept));
     }
     Cache::new(&p.state_dir()).entries(liftplan_plan::NAME).into_iter().find_map(|entry| {
         let file = entry.join("plan.json");
@@ -55,8 +63,8 @@ fn plan_named(p: &Project, lift: &str, revision: &str, last: Option<&LiftPlan>) 
 }
 
 /// The plan of lift `lift` whose revision is `revision`: the last one
-/// (`out/plan.json`) or one the plan stage's cache still keeps, with the
-/// file it was read from and the last plan's revision.
+/// (`out/plan.json`), one kept by revision or one the plan stage's cache
+/// still keeps, with the file it was read from and the last plan's revision.
 fn find_plan(p: &Project, lift: &str, revision: &str) -> Result<(LiftPlan, PathBuf, String)> {
     let last_file = p.out_dir().join("plan.json");
     if !last_file.exists() {
@@ -70,9 +78,10 @@ fn find_plan(p: &Project, lift: &str, revision: &str) -> Result<(LiftPlan, PathB
         return Ok((plan, file, last_revision));
     }
     bail!(
-        "lift '{lift}' has no plan {revision}: its last plan ({}) is plan {}, and the plan stage's cache ({}) keeps no other of that revision. Check the revision on the foot of the crew's pages; if theirs is an older plan no longer kept ([cache] keep), read the swing, luff (or trolley) and hoist off the crane's display and give them as resume_from by hand",
+        "lift '{lift}' has no plan {revision}: its last plan ({}) is plan {}, and neither the plans kept by revision ({}) nor the plan stage's cache ({}) hold one of that revision. Check the revision on the foot of the crew's pages; if theirs was made by a liftplan that did not keep plans by revision, or out/ was cleaned since, read the swing, luff (or trolley) and hoist off the crane's display and give them as resume_from by hand",
         last_file.display(),
         if last_revision.is_empty() { "of no revision (made by an older liftplan)" } else { &last_revision },
+        p.out_dir().join(crate::revisions::DIR).join(lift).display(),
         p.state_dir().join("cache").join(liftplan_plan::NAME).display(),
     )
 }
@@ -203,8 +212,8 @@ const PRINTED_M: f64 = 0.002;
 /// `resumes_plan` names: whether its `resume_from` is where that plan has
 /// the load after the step named, or part way through the next step where
 /// that is a swing (`liftplan resume --swing-deg`). Read before a run, from
-/// the last plans (`out/plan.json`) and the plan stage's cache; a plan
-/// neither holds is said, not refused. A project whose lifts do not read is
+/// the last plans (`out/plan.json`), the plans kept by revision and the plan
+/// stage's cache; a plan none holds is said, not refused. A project whose lifts do not read is
 /// left to the run to refuse.
 pub fn check_resumed(p: &Project) -> Vec<ResumeCheck> {
     // Most runs resume nothing: they read no crane file for this.
@@ -230,8 +239,9 @@ pub fn check_resumed(p: &Project) -> Vec<ResumeCheck> {
             out.push(check(
                 false,
                 format!(
-                    "lift {lift}: resumes_plan names plan {revision}, which neither {} nor the plan stage's cache holds: resume_from is not checked against it (check it against the crane's display)",
-                    last_file.display()
+                    "lift {lift}: resumes_plan names plan {revision}, which neither {}, the plans kept by revision ({}) nor the plan stage's cache hold: resume_from is not checked against it (check it against the crane's display)",
+                    last_file.display(),
+                    p.out_dir().join(crate::revisions::DIR).join(lift).display()
                 ),
             ));
             continue;

@@ -282,8 +282,8 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     assert!(text.contains("CHECK FIRST the obstacle placed by hand, where it stands"), "{text}");
 
     // The platform is placed and the plan made again, but the crew still
-    // holds the plan without it: resume reads theirs, which the plan
-    // stage's cache keeps, not the last plan, and says so. Another revision
+    // holds the plan without it: resume reads theirs, kept by its revision
+    // in out/revisions/, not the last plan, and says so. Another revision
     // is refused naming the last; so is the crane set up elsewhere since.
     let plan: serde_json::Value =
         serde_json::from_slice(&std::fs::read(dir.join("out").join("plan.json")).unwrap()).unwrap();
@@ -294,7 +294,7 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     let printed = String::from_utf8_lossy(&o.stdout).into_owned();
     assert!(printed.starts_with(&format!("# lift V-101 after step {after_step}")), "{printed}");
     assert!(printed.contains(&format!("plan {crews_plan}, not the last ({last_plan}), from")), "{printed}");
-    assert!(printed.contains(".liftplan"), "{printed}");
+    assert!(printed.contains(&format!("revisions/V-101/{crews_plan}.plan.json")), "{printed}");
     let pasted = |printed: &str| printed.lines().filter(|l| !l.starts_with('#')).collect::<Vec<_>>().join("\n");
     let resume_line = pasted(&printed);
     assert_eq!(resume_line, pasted(&printed_from_last), "{printed}\n{printed_from_last}");
@@ -364,7 +364,7 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     assert!(text.contains("The part of the lift already made, from the pick to there, is not in it"), "{text}");
     assert_eq!(load_comes_near(&steps, platform_xy, platform_half, platform_top), None, "{steps}");
     // Each run checks resume_from against the plan resumes_plan names (the
-    // crew's, now in the cache): the pose `liftplan resume` printed agrees;
+    // crew's, kept by revision): the pose `liftplan resume` printed agrees;
     // one edited by hand (the load 0.3 m higher) is said, not refused.
     let r = run_json(&dir);
     let check = &r["resume_checks"][0];
