@@ -16,7 +16,8 @@
 //!
 //! [`check_resumed`] is the other way round: before a run, whether a lift's
 //! `resume_from` is where the plan its `resumes_plan` names has the load
-//! after that step. It reports and never refuses: the engineer is told to
+//! after that step, for the crane the plan was made for, set up where it
+//! stood. It reports and never refuses: the engineer is told to
 //! check the printed pose against the crane's display, and a pose taken off
 //! the display is the one to plan from. It runs outside the stages, so a
 //! plan never depends on what the cache happens to hold.
@@ -246,6 +247,18 @@ pub fn check_resumed(p: &Project) -> Vec<ResumeCheck> {
             ));
             continue;
         };
+        // As `liftplan resume` refuses: a pose is compared only with a plan
+        // made for the crane the project now gives.
+        if plan.crane_model != task.crane.model.name {
+            out.push(check(
+                false,
+                format!(
+                    "lift {lift}: plan {revision} was made for the {}; the project gives the {}: the crane holding the load is the plan's, and resume_from is not checked against a plan for another crane",
+                    plan.crane_model, task.crane.model.name
+                ),
+            ));
+            continue;
+        }
         let tower = task.crane.model.is_tower();
         if let Some(was) = plan.crane_placement
             && was != task.crane.placement
