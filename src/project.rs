@@ -500,7 +500,8 @@ keep = 3                  # runs' outputs each stage keeps in .liftplan/cache (t
 # capacity_reduction_pct = 0.0 # taken off every chart value (site rules, wind), %
 # radius_allowance_m = 0.0     # added to every radius before the chart is read
 #                              # (the boom bending under load), m
-# fall_zone_m = 0.0            # people kept this far round the ground under the load too, m
+# fall_zone_m = 0.0            # people kept this far round the ground under the load too,
+#                              # and the load planned this far off not_over areas, m
 # swing_range_deg = [-120.0, 120.0] # permitted slewing sector from the crane's heading;
 #                                   # leave it out for a crane free to slew
 # ground = { mat_m = [2.5, 2.5], allowable_kpa = 200.0 } # each outrigger pad's mat (m) and

@@ -708,12 +708,13 @@ liftoff_m = 0.5
     assert!(cover.contains("the counterweight (the lift's is not its chart configuration's)"), "{cover}");
     assert!(text.contains("with the lift's 100.0 t counterweight, NOT THE 140.0 t ITS CHART'S SHEET STATES (Main boom 360!A3): CHECK crane counterweight_t"), "{text}");
     // An area the load must never be over: on the inputs page, with the
-    // margin the planner keeps, and outlined in the site overview.
-    let fenced = t13.replace(
+    // margin the planner keeps (its fall zone and 0.25 m more), and
+    // outlined in the site overview.
+    let fenced = t13.replace("leg_wll_t = 10.0 }", "leg_wll_t = 10.0 }\nfall_zone_m = 3.0").replace(
         "wind = { cw = 1.2 }",
         "wind = { cw = 1.2 }\nnot_over = [{ name = \"CONTROL ROOM\", corners_m = [[-30.0, -10.0], [-20.0, -10.0], [-20.0, 0.0], [-30.0, 0.0]] }, { name = \"NEIGHBOUR\", corners_m = [[60.0, -10.0], [70.0, -10.0], [70.0, 0.0]], crane_too = true }]",
     );
-    assert_ne!(fenced, t13);
+    assert!(fenced.contains("fall_zone_m = 3.0") && fenced.contains("NEIGHBOUR"), "{fenced}");
     let (cover, text) = planned_with(&dir, &fenced);
     // The second, one the crane may not be over either (far off: the same
     // plan), is said so.
@@ -724,7 +725,7 @@ liftoff_m = 0.5
         "{cover}"
     );
     assert!(
-        text.replace('\n', " ").contains("CONTROL ROOM (x -30.0 to -20.0 m, y -10.0 to 0.0 m); NEIGHBOUR (x 60.0 to 70.0 m, y -10.0 to 0.0 m), nor the crane (not_over): the planner keeps the load, its hook block and rope 0.25 m off each in plan, and every other part of the crane that swings (boom or jib, counterweight) off those marked 'nor the crane' (crane_too); the validator checks they never come over one, nor the crane over those marked so"),
+        text.replace('\n', " ").contains("CONTROL ROOM (x -30.0 to -20.0 m, y -10.0 to 0.0 m); NEIGHBOUR (x 60.0 to 70.0 m, y -10.0 to 0.0 m), nor the crane (not_over): the planner keeps the load, its hook block and rope 3.25 m off each in plan (their fall zone, fall_zone_m 3.0 m, and 0.25 m more), and every other part of the crane that swings (boom or jib, counterweight) off those marked 'nor the crane' (crane_too); the validator checks they never come over one nor within 3.0 m of one, nor the crane over those marked so"),
         "{text}"
     );
     // Mats too small for what the ground may bear: the cover asks to check

@@ -222,7 +222,10 @@ pub struct LiftSpec {
     /// How far round the ground under the load (and what hangs with it, as
     /// far as a gust may swing it) people are kept out while it moves, for
     /// what may fall from it and where it would land if it fell (m); drawn
-    /// and measured, not planned round.
+    /// and measured, and kept off the areas the load must never be over
+    /// (`not_over`: people there cannot be kept out), which the path is
+    /// planned round by that much more. Elsewhere the ground is cleared by
+    /// the crew, not planned round.
     #[serde(default)]
     pub fall_zone_m: f64,
     /// Utilisation above which the lift is flagged critical, percent.
@@ -555,7 +558,9 @@ impl LiftTask {
     /// the hook block's; the hoist rope's; each swung as far as a gust can
     /// swing it where `gusts` and the lift is planned for the wind,
     /// [`Self::gust_swept`]: not in a lift-off or set-down, nor resting at
-    /// the pick or set), against every area; then,
+    /// the pick or set), within `within_m` and its fall zone
+    /// ([`Self::fall_zone_m`]: what falls from it lands there), against
+    /// every area; then,
     /// against the areas the crane may not be over either (`crane_too`),
     /// the plan outline of each other part that turns with the swing, in
     /// the order of [`CraneSetup::part_kinds`]. The carrier, its outriggers
@@ -569,7 +574,7 @@ impl LiftTask {
         // near (the planner asks this at every configuration it checks);
         // the exact test repeats the bounds' test, so the first, a
         // nanometre wider, passes by nothing it would find.
-        let near = |part: &crate::obb::Obb, crane_too_only: bool| {
+        let near = |part: &crate::obb::Obb, crane_too_only: bool, within_m: f64| {
             let extent = part.plan_extent();
             let mut footprint = None;
             self.not_over.iter().filter(|a| a.crane_too || !crane_too_only).find(|a| {
@@ -589,7 +594,7 @@ impl LiftTask {
         let hanging = HANGING.iter().find_map(|&kind| {
             let part = self.crane.part(kind, c, &self.load)?;
             let part = sheave_z.map_or(part, |z| self.gust_swept(&part, z));
-            near(&part, false).map(|a| (kind, a))
+            near(&part, false, within_m + self.fall_zone_m).map(|a| (kind, a))
         });
         // Areas out of the crane's reach are passed by before its parts are
         // placed (the planner asks this at every configuration it checks).
@@ -610,7 +615,7 @@ impl LiftTask {
             .filter(|k| k.dependence() != Dependence::Fixed && !HANGING.contains(k) && **k != PartKind::Rigging)
             .find_map(|&kind| {
                 let part = self.crane.part(kind, c, &self.load)?;
-                near(&part, true).map(|a| (kind, a))
+                near(&part, true, within_m).map(|a| (kind, a))
             })
     }
 
@@ -1079,18 +1084,28 @@ impl LiftTask {
 }
 
 /// The load is lifted from and set down outside the areas it must not be
-/// over, by the planner's margin, and the crane stands and reaches there
-/// outside those it may not be over either.
+/// over, by its fall zone and the planner's margin, and the crane stands
+/// and reaches there outside those it may not be over either.
 fn ends_off_not_over(task: &LiftTask) -> Result<(), String> {
     for (which, c) in [("pick", &task.pick), ("set", &task.set)] {
         match task.not_over_near(c, NOT_OVER_MARGIN_M, false) {
             None => {}
             Some((part, a)) if part.dependence() == Dependence::Full => {
+                let within = if task.fall_zone_m > 0.0 {
+                    format!(
+                        "within {:.2} m of it (its fall zone, fall_zone_m = {} m, and the planner's {NOT_OVER_MARGIN_M} m)",
+                        task.fall_zone_m + NOT_OVER_MARGIN_M,
+                        task.fall_zone_m
+                    )
+                } else {
+                    format!("within {NOT_OVER_MARGIN_M} m of it")
+                };
                 return Err(format!(
-                    "lift '{}': {} at the {which} is over not_over '{}' or within {NOT_OVER_MARGIN_M} m of it: a load is lifted and set down outside the areas it must not be over",
+                    "lift '{}': {} at the {which} is over not_over '{}' or {within}: a load is lifted and set down outside the areas it must not be over{}",
                     task.id,
                     over_not_over_said(part),
-                    a.name
+                    a.name,
+                    if task.fall_zone_m > 0.0 { ", and what may fall from it lands outside them" } else { "" }
                 ));
             }
             Some((part, a)) => {
@@ -1286,6 +1301,26 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         let e = with(vec![area("edge", 23.1, 0.0, 30.0, 4.0)]).unwrap_err();
         assert!(e.contains("the load at the pick is over not_over 'edge'"), "{e}");
         assert!(with(vec![area("off", 23.3, 0.0, 30.0, 4.0)]).is_ok());
+        // A fall zone is kept off an area too: 2 m round the load puts the
+        // same area within it (the load's end at 23 m, the area from 23.3),
+        // and the area 2.3 m farther off clear of it; the margin beyond.
+        let zoned = |areas: Vec<NotOver>| {
+            let mut sp = spec();
+            sp.fall_zone_m = 2.0;
+            sp.not_over = areas;
+            sp.resolve(crane())
+        };
+        let e = zoned(vec![area("off", 23.3, 0.0, 30.0, 4.0)]).unwrap_err();
+        assert!(
+            e.contains("the load at the pick is over not_over 'off' or within 2.25 m of it (its fall zone, fall_zone_m = 2 m, and the planner's 0.25 m)")
+                && e.contains("what may fall from it lands outside them"),
+            "{e}"
+        );
+        assert!(zoned(vec![area("off", 25.1, 0.0, 30.0, 4.0)]).is_err());
+        let t = zoned(vec![area("off", 25.3, 0.0, 30.0, 4.0)]).unwrap();
+        let c = t.pick;
+        assert_eq!(t.not_over_near(&c, 0.0, false).map(|(k, _)| k), None);
+        assert_eq!(t.not_over_near(&c, 0.35, false).map(|(k, _)| k), Some(PartKind::Load));
         // What hangs above the load is kept off too: with the centre of
         // gravity 2.9 m along the load from its middle, the hook block
         // (0.8 m wide) hangs over x = 22.9 m, past the load's end.

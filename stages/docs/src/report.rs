@@ -813,10 +813,20 @@ pub fn document(
         rows.push((
             "Never over",
             format!(
-                "{} (not_over): the planner keeps the load, its hook block and rope {:.2} m off each in plan{}; the validator checks they never come over one{}",
+                "{} (not_over): the planner keeps the load, its hook block and rope {:.2} m off each in plan{}{}; the validator checks they never come over one{}{}",
                 areas.join("; "),
-                liftplan_core::lift::NOT_OVER_MARGIN_M,
+                liftplan_core::lift::NOT_OVER_MARGIN_M + task.fall_zone_m,
+                if task.fall_zone_m > 0.0 {
+                    format!(
+                        " (their fall zone, fall_zone_m {:.1} m, and {:.2} m more)",
+                        task.fall_zone_m,
+                        liftplan_core::lift::NOT_OVER_MARGIN_M
+                    )
+                } else {
+                    String::new()
+                },
                 if crane_too { ", and every other part of the crane that swings (boom or jib, counterweight) off those marked 'nor the crane' (crane_too)" } else { "" },
+                if task.fall_zone_m > 0.0 { format!(" nor within {:.1} m of one", task.fall_zone_m) } else { String::new() },
                 if crane_too { ", nor the crane over those marked so" } else { "" }
             ),
         ));

@@ -723,10 +723,11 @@ pub(crate) fn plan_lift_hinting(
                 s.landing_clearance_m,
                 swung.map(|w| format!(", {w}")).unwrap_or_default()
             )
-        } else if b.reason == liftplan_cspace::OVER_NOT_OVER
-            && let Some(w) = swung
-        {
-            format!("{b} ({w})")
+        } else if b.reason == liftplan_cspace::OVER_NOT_OVER && hanging && (swung.is_some() || task.fall_zone_m > 0.0) {
+            let fall_zone = (task.fall_zone_m > 0.0)
+                .then(|| format!("its fall zone, fall_zone_m {} m, kept off it", task.fall_zone_m));
+            let said: Vec<String> = swung.map(|w| w.to_string()).into_iter().chain(fall_zone).collect();
+            format!("{b} ({})", said.join("; "))
         } else {
             b.to_string()
         }

@@ -1384,9 +1384,10 @@ pub(crate) fn samples_for(moved_m: f64, sample_m: f64) -> usize {
     ((moved_m / sample_m).ceil() as usize).max(1) + 1
 }
 
-/// The first of the lift's `not_over` areas the load comes over during the
-/// move, or a part of the crane that turns with the swing comes over where
-/// the crane may not be over it either (`crane_too`), and which part: their
+/// The first of the lift's `not_over` areas the load comes over (or within
+/// its fall zone of, [`LiftTask::fall_zone_m`]) during the move, or a part
+/// of the crane that turns with the swing comes over where the crane may
+/// not be over it either (`crane_too`), and which part: their
 /// footprints at samples at most `sample_m` of travel apart (`moved_m` over
 /// the move, the farthest any point of any part goes), each grown by half
 /// the travel between two, so that every moment of the move is covered.
@@ -1941,11 +1942,17 @@ pub fn validate(
         let least_margin_m = least_at_samples_m.min(least_between_m);
         let mut move_problems: Vec<String> = Vec::new();
         if let Some((part, area)) = over_not_over(task, m, moved_m, rules.sample_m, landing) {
-            move_problems.push(format!(
-                "{} comes over not_over '{}'",
-                liftplan_core::lift::over_not_over_said(part),
-                area.name
-            ));
+            let hanging = part.dependence() == liftplan_core::crane::Dependence::Full;
+            move_problems.push(if hanging && task.fall_zone_m > 0.0 {
+                format!(
+                    "{} comes over not_over '{}' or within its fall zone of it (fall_zone_m = {} m)",
+                    liftplan_core::lift::over_not_over_said(part),
+                    area.name,
+                    task.fall_zone_m
+                )
+            } else {
+                format!("{} comes over not_over '{}'", liftplan_core::lift::over_not_over_said(part), area.name)
+            });
         }
         let mut tight: Option<SampleCheck> = None;
         let mut util: Option<SampleCheck> = None;

@@ -1494,6 +1494,42 @@ fn the_load_is_never_over_an_area_it_must_not_be_over() {
     let (round, _) = plan_lift(&kept, &site, &quick(), 3).unwrap();
     assert!(round.validator.ok, "{:?}", round.validator.problems);
     assert!(!comes_over(&round.moves, NOT_OVER_MARGIN_M - 0.02), "{:?}", round.moves);
+
+    // With a fall zone of 3 m round the load, the road is kept out of it
+    // too: the plan made without the fall zone comes within it and the
+    // validator given it refuses that plan; the plan made with it keeps
+    // the footprint its fall zone and the margin off, and passes.
+    const FALL_ZONE_M: f64 = 3.0;
+    assert!(comes_over(&round.moves, FALL_ZONE_M), "the plan keeps 3 m off the road already: the test shows nothing");
+    spec.fall_zone_m = FALL_ZONE_M;
+    let zoned = spec.resolve(builtin("ac-700").unwrap()).unwrap();
+    let landing: Vec<bool> = (0..round.moves.len()).map(|i| i == 0 || i == round.moves.len() - 1).collect();
+    let v = validate_lift(&zoned, None, &world, &rules(), &round.moves, &landing);
+    assert!(
+        !v.ok
+            && v.problems
+                .iter()
+                .any(|p| p
+                    .contains("the load comes over not_over 'ROAD' or within its fall zone of it (fall_zone_m = 3 m)")),
+        "{:?}",
+        v.problems
+    );
+    let (wide, _) = plan_lift(&zoned, &site, &quick(), 3).unwrap();
+    assert!(wide.validator.ok, "{:?}", wide.validator.problems);
+    assert!(!comes_over(&wide.moves, FALL_ZONE_M + NOT_OVER_MARGIN_M - 0.02), "{:?}", wide.moves);
+    // A lift resumed with the load hanging 2 m off the road (its footprint
+    // from y -7 to -5 m): within its fall zone, so no path is planned from
+    // there, and the refusal says why.
+    let mut hanging = zoned.clone();
+    let pose = liftplan_core::crane::LoadPose { x_m: 22.0, y_m: -6.0, z_m: 5.0, yaw_rad: 0.0 };
+    hanging.resume_from = Some((hanging.crane.inverse(&pose, &hanging.load).unwrap(), pose));
+    let why = plan_lift(&hanging, &site, &quick(), 3).map(|_| "planned").unwrap_err().to_string();
+    assert!(
+        why.contains("where the load hangs now (resume_from) is not clear")
+            && why.contains("ROAD")
+            && why.contains("its fall zone, fall_zone_m 3 m, kept off it"),
+        "{why}"
+    );
 }
 
 /// An area the crane may not be over either (`crane_too`: a railway in
