@@ -209,6 +209,7 @@ fn run_stages(project: &Project, defs: &[StageDef], opts: &RunOptions, progress:
     }
     let cache = Cache::new(&project.state_dir());
     cache.sweep();
+    keep_earlier_plans(project, &cache);
     let mut hashes = FileHashes::load(&project.state_dir());
     let mut upstream: BTreeMap<&'static str, (PathBuf, Manifest)> = BTreeMap::new();
     let mut reports = Vec::new();
@@ -320,6 +321,10 @@ fn run_stages(project: &Project, defs: &[StageDef], opts: &RunOptions, progress:
             rep.published = published.written;
             rep.outputs = m.outputs.keys().map(|o| format!("out/{o}")).collect();
             rep.lines = m.lines.clone();
+            // Kept as soon as made: a stage after it may read it by revision.
+            if def.name == liftplan_plan::NAME {
+                keep_revisions(project, &dir, &mut rep.lines);
+            }
             if !published.superseded.is_empty() {
                 rep.lines.push(format!(
                     "no longer made (a lift taken out of the project or renamed), moved to out/{}/: {}",
@@ -344,7 +349,6 @@ fn run_stages(project: &Project, defs: &[StageDef], opts: &RunOptions, progress:
         reports.push(rep);
     }
     hashes.save(&project.state_dir())?;
-    keep_revisions(project, &upstream, &mut reports);
     // Only after every stage: a stage reads its upstream stages' entries.
     for rep in &reports {
         if let (Status::Fresh | Status::Ran, Some(key)) = (&rep.status, &rep.key) {
@@ -363,27 +367,37 @@ fn run_stages(project: &Project, defs: &[StageDef], opts: &RunOptions, progress:
     Ok(report)
 }
 
-/// Keeps each plan the plan stage made or found fresh in out/revisions/
-/// ([`crate::revisions`]), and says so in its lines. A plan that could not
-/// be kept is said there too and does not fail the run: the plan in out/ is
-/// made and checked; only reading it by revision later depends on this.
-fn keep_revisions(
-    project: &Project,
-    upstream: &BTreeMap<&'static str, (PathBuf, Manifest)>,
-    reports: &mut [StageReport],
-) {
-    let (Some((plan_dir, _)), Some(rep)) =
-        (upstream.get(liftplan_plan::NAME), reports.iter_mut().find(|r| r.name == liftplan_plan::NAME))
-    else {
-        return;
-    };
+/// Keeps the plan the plan stage made or found fresh (in `plan_dir`) in
+/// out/revisions/ ([`crate::revisions`]), and says so in the stage's
+/// lines. A plan that could not be kept is said there too and does not
+/// fail the run: the plan in out/ is made and checked; only reading it by
+/// revision later depends on this.
+fn keep_revisions(project: &Project, plan_dir: &Path, lines: &mut Vec<String>) {
     let folder = format!("out/{}/", crate::revisions::DIR);
     match crate::revisions::keep(&project.out_dir(), plan_dir) {
         Ok(kept) if kept.is_empty() => {}
-        Ok(kept) => rep.lines.push(format!("kept by revision in {folder}: {}", kept.join(", "))),
-        Err(e) => rep.lines.push(format!(
+        Ok(kept) => lines.push(format!("kept by revision in {folder}: {}", kept.join(", "))),
+        Err(e) => lines.push(format!(
             "warning: not kept by revision in {folder} ({e:#}): liftplan resume reads this plan only while out/ or the cache holds it"
         )),
+    }
+}
+
+/// Keeps, before a run, the plans an earlier one left (out/ and the plan
+/// stage's cache) that out/revisions/ does not hold: those made by a
+/// liftplan that kept none, so that a crew's plan among them is read by
+/// revision from the run that resumes it on. Nothing to keep, or a file
+/// that does not read, is passed by.
+fn keep_earlier_plans(project: &Project, cache: &Cache) {
+    let out = project.out_dir();
+    // The cache's first: out/plan.json may have been edited by hand, and
+    // a revision is kept once.
+    for dir in cache.entries(liftplan_plan::NAME).into_iter().chain([out.clone()]) {
+        if dir.join("plan.json").is_file()
+            && let Err(e) = crate::revisions::keep(&out, &dir)
+        {
+            tracing::debug!("not kept by revision: {e:#}");
+        }
     }
 }
 

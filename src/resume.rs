@@ -19,8 +19,9 @@
 //! after that step, for the crane the plan was made for, set up where it
 //! stood. It reports and never refuses: the engineer is told to
 //! check the printed pose against the crane's display, and a pose taken off
-//! the display is the one to plan from. It runs outside the stages, so a
-//! plan never depends on what the cache happens to hold.
+//! the display is the one to plan from. It runs outside the stages and
+//! reads the cache too (the docs stage makes the same comparison for the
+//! cover, from out/revisions/ alone).
 
 use crate::cache::Cache;
 use crate::project::Project;
@@ -35,7 +36,7 @@ struct PlanFile {
 }
 
 /// Lift `lift`'s plan in a plan.json, if the file holds one.
-fn plan_in(file: &Path, lift: &str) -> Result<Option<LiftPlan>> {
+pub(crate) fn plan_in(file: &Path, lift: &str) -> Result<Option<LiftPlan>> {
     let text = std::fs::read_to_string(file).with_context(|| format!("{}", file.display()))?;
     let plans: PlanFile = serde_json::from_str(&text).with_context(|| format!("{}", file.display()))?;
     Ok(plans.lifts.into_iter().find(|l| l.lift == lift))
@@ -87,18 +88,6 @@ fn find_plan(p: &Project, lift: &str, revision: &str) -> Result<(LiftPlan, PathB
     )
 }
 
-/// Where a crane is set up, in words.
-fn placement_words(c: &liftplan_core::crane::Placement, tower: bool) -> String {
-    format!(
-        "({:.2}, {:.2}) m, ground z {:.2} m, heading {:.1}°{}",
-        c.x_m,
-        c.y_m,
-        c.z_m,
-        c.heading_rad.to_degrees(),
-        if tower { String::new() } else { format!(", boom {:.1} m", c.boom_length_m) }
-    )
-}
-
 /// Whether `revision` reads as a plan's revision: the 8 hex digits after
 /// "plan" on the foot of each page of its PDF.
 fn revision_given(revision: &str) -> Result<String> {
@@ -142,8 +131,8 @@ pub fn line(dir: &Path, lift: &str, revision: &str, after_step: usize, swing_deg
         let tower = task.crane.model.is_tower();
         bail!(
             "plan {revision} of lift '{lift}' had the crane at {}; the project now sets it up at {}: a crane stopped part way has not moved, so set the lift's crane in {} back to where it stands before resuming",
-            placement_words(&was, tower),
-            placement_words(&task.crane.placement, tower),
+            liftplan_plan::resumed::placement_words(&was, tower),
+            liftplan_plan::resumed::placement_words(&task.crane.placement, tower),
             p.dir.join("liftplan.toml").display()
         );
     }
@@ -204,18 +193,14 @@ pub struct ResumeCheck {
     pub said: String,
 }
 
-/// How far apart a printed pose may be from the plan's and still be the
-/// same: `liftplan resume` prints 3 decimals (degrees and metres).
-const PRINTED_DEG: f64 = 0.002;
-const PRINTED_M: f64 = 0.002;
-
 /// For each lift of the project that resumes part way through the plan its
 /// `resumes_plan` names: whether its `resume_from` is where that plan has
 /// the load after the step named, or part way through the next step where
-/// that is a swing (`liftplan resume --swing-deg`). Read before a run, from
-/// the last plans (`out/plan.json`), the plans kept by revision and the plan
-/// stage's cache; a plan none holds is said, not refused. A project whose lifts do not read is
-/// left to the run to refuse.
+/// that is a swing (`liftplan resume --swing-deg`), as
+/// [`liftplan_plan::resumed::compare`] finds. Read before a run, from the
+/// last plans (`out/plan.json`), the plans kept by revision and the plan
+/// stage's cache; a plan none holds is said, not refused. A project whose
+/// lifts do not read is left to the run to refuse.
 pub fn check_resumed(p: &Project) -> Vec<ResumeCheck> {
     // Most runs resume nothing: they read no crane file for this.
     if p.raw.lift.iter().all(|l| l.resumes_plan.is_none()) {
@@ -231,9 +216,9 @@ pub fn check_resumed(p: &Project) -> Vec<ResumeCheck> {
         .map_or_else(Vec::new, |f| f.lifts);
     let mut out = Vec::new();
     for task in tasks {
-        let (Some((resume, _)), Some(named)) = (&task.resume_from, &task.resumes_plan) else { continue };
+        let (Some(_), Some(named)) = (&task.resume_from, &task.resumes_plan) else { continue };
         let lift = task.id.as_str();
-        let (revision, after_step) = (named.revision.as_str(), named.after_step);
+        let revision = named.revision.as_str();
         let last = last_plans.iter().find(|l| l.lift == lift);
         let check = |agrees: bool, said: String| ResumeCheck { lift: lift.to_string(), agrees, said };
         let Some((plan, file)) = plan_named(p, lift, revision, last) else {
@@ -247,130 +232,9 @@ pub fn check_resumed(p: &Project) -> Vec<ResumeCheck> {
             ));
             continue;
         };
-        // As `liftplan resume` refuses: a pose is compared only with a plan
-        // made for the crane the project now gives.
-        if plan.crane_model != task.crane.model.name {
-            out.push(check(
-                false,
-                format!(
-                    "lift {lift}: plan {revision} was made for the {}; the project gives the {}: the crane holding the load is the plan's, and resume_from is not checked against a plan for another crane",
-                    plan.crane_model, task.crane.model.name
-                ),
-            ));
-            continue;
+        if let Some(a) = liftplan_plan::resumed::compare(&task, &plan, &file.display().to_string()) {
+            out.push(check(a.agrees, format!("lift {lift}: {}", a.said)));
         }
-        let tower = task.crane.model.is_tower();
-        if let Some(was) = plan.crane_placement
-            && was != task.crane.placement
-        {
-            out.push(check(
-                false,
-                format!(
-                    "lift {lift}: plan {revision} had the crane at {}; the project sets it up at {}: a crane stopped part way has not moved",
-                    placement_words(&was, tower),
-                    placement_words(&task.crane.placement, tower)
-                ),
-            ));
-            continue;
-        }
-        if !(1..plan.moves.len()).contains(&after_step) {
-            out.push(check(
-                false,
-                format!(
-                    "lift {lift}: resumes_plan names step {after_step} of plan {revision}, which has {} steps (the last sets the load down)",
-                    plan.moves.len()
-                ),
-            ));
-            continue;
-        }
-        let there = plan.moves[after_step - 1].to;
-        let next = &plan.moves[after_step];
-        let apart = differences(&there, resume, tower);
-        let on_next_swing = next.joint == Joint::Swing && {
-            let (a, b) = (next.from.swing_rad.to_degrees(), next.to.swing_rad.to_degrees());
-            let s = resume.swing_rad.to_degrees();
-            s >= a.min(b) - PRINTED_DEG && s <= a.max(b) + PRINTED_DEG && apart.iter().all(|(name, _)| *name == "swing")
-        };
-        let whence = format!("plan {revision} (from {})", file.display());
-        out.push(if apart.is_empty() {
-            check(true, format!("lift {lift}: resume_from is where {whence} has the load after step {after_step}"))
-        } else if on_next_swing {
-            check(
-                true,
-                format!("lift {lift}: resume_from is on step {}'s swing of {whence}, after step {after_step}", after_step + 1),
-            )
-        } else {
-            let said: Vec<String> = apart.into_iter().map(|(_, s)| s).collect();
-            check(
-                false,
-                format!(
-                    "lift {lift}: resume_from is not where {whence} has the load after step {after_step}: {}. The new plan starts from resume_from: check that it is where the load hangs (the crane's display) and that resumes_plan names the crew's plan and step",
-                    said.join(", ")
-                ),
-            )
-        });
     }
     out
-}
-
-/// The joints in which `given` is not `plan` beyond what printing rounds
-/// (name, and both values in words).
-fn differences(
-    plan: &liftplan_core::crane::Config,
-    given: &liftplan_core::crane::Config,
-    tower: bool,
-) -> Vec<(&'static str, String)> {
-    let mut out = Vec::new();
-    let mut deg = |name: &'static str, words: &str, a: f64, b: f64| {
-        let (a, b) = (a.to_degrees(), b.to_degrees());
-        if (a - b).abs() > PRINTED_DEG {
-            out.push((name, format!("{words} {b:.3}° given, {a:.3}° in the plan")));
-        }
-    };
-    deg("swing", "swing", plan.swing_rad, given.swing_rad);
-    if !tower {
-        deg("luff", "luff", plan.radial, given.radial);
-    }
-    deg("yaw", "load yaw", plan.load_yaw_rad, given.load_yaw_rad);
-    let mut metres = |name: &'static str, words: &str, a: f64, b: f64| {
-        if (a - b).abs() > PRINTED_M {
-            out.push((name, format!("{words} {b:.3} m given, {a:.3} m in the plan")));
-        }
-    };
-    if tower {
-        metres("trolley", "trolley", plan.radial, given.radial);
-    }
-    metres("hoist", "hoist", plan.hoist_m, given.hoist_m);
-    out
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use liftplan_core::crane::Config;
-
-    fn config(swing_deg: f64, luff_deg: f64, hoist_m: f64) -> Config {
-        Config { swing_rad: swing_deg.to_radians(), radial: luff_deg.to_radians(), hoist_m, load_yaw_rad: 0.0 }
-    }
-
-    #[test]
-    fn a_pose_as_printed_is_the_plans_and_a_moved_one_is_not() {
-        let plan = config(31.234_567, 55.5, 12.345_678);
-        // As `liftplan resume` prints it: 3 decimals.
-        let printed = config(31.235, 55.5, 12.346);
-        assert!(differences(&plan, &printed, false).is_empty());
-        let moved = config(31.235, 55.5, 12.846);
-        let apart = differences(&plan, &moved, false);
-        assert_eq!(apart.len(), 1, "{apart:?}");
-        assert_eq!(apart[0].0, "hoist");
-        assert!(apart[0].1.contains("hoist 12.846 m given, 12.346 m in the plan"), "{apart:?}");
-        let turned = config(33.0, 54.0, 12.346);
-        let names: Vec<&str> = differences(&plan, &turned, false).into_iter().map(|(n, _)| n).collect();
-        assert_eq!(names, ["swing", "luff"]);
-        // A tower crane's radial joint is its trolley, in metres.
-        let trolley = Config { radial: 20.0, ..plan };
-        let apart = differences(&Config { radial: 20.5, ..plan }, &trolley, true);
-        assert_eq!(apart.len(), 1, "{apart:?}");
-        assert!(apart[0].1.contains("trolley 20.000 m given, 20.500 m in the plan"), "{apart:?}");
-    }
 }

@@ -24,6 +24,13 @@ pub fn plan_file(out_dir: &Path, lift: &str, revision: &str) -> PathBuf {
     out_dir.join(DIR).join(lift).join(format!("{revision}.plan.json"))
 }
 
+/// Lift `lift`'s plan of revision `revision`, where it is kept: none where
+/// it is not, or where the names could not be a kept plan's (a revision in
+/// a project file is the engineer's typing).
+pub fn kept_plan_file(out_dir: &Path, lift: &str, revision: &str) -> Option<PathBuf> {
+    Some(plan_file(out_dir, lift, revision)).filter(|f| names_a_file(lift, revision) && f.is_file())
+}
+
 /// Whether `revision` is one [`liftplan_plan::revision`] makes (8 lower-case
 /// hex digits) and `lift` an id a project allows (it names files): a
 /// plan.json edited by hand must not write outside the folder.
@@ -34,10 +41,11 @@ fn names_a_file(lift: &str, revision: &str) -> bool {
         && lift.bytes().all(|b| b.is_ascii_alphanumeric() || b == b'-' || b == b'_')
 }
 
-/// Keeps each lift's plan in the plan stage's output folder `plan_dir` (its
-/// plan.json and `<lift>.steps.csv`) that out/revisions/ does not hold yet;
-/// says which it kept ("V-101 plan 3f9a2c1b"). A plan of no revision (made
-/// by an older liftplan) is not kept.
+/// Keeps each lift's plan in `plan_dir` (its plan.json and
+/// `<lift>.steps.csv`: the plan stage's output folder, a cache entry of it
+/// or out/) that out/revisions/ does not hold yet; says which it kept
+/// ("V-101 plan 3f9a2c1b"). A plan of no revision (made by an older
+/// liftplan) is not kept.
 pub fn keep(out_dir: &Path, plan_dir: &Path) -> Result<Vec<String>> {
     let file = plan_dir.join("plan.json");
     let text = std::fs::read_to_string(&file).with_context(|| format!("{}", file.display()))?;

@@ -5,6 +5,7 @@
 use crate::pipeline::{Ctx, Produced, StageDef};
 use crate::project::Project;
 use anyhow::Result;
+use liftplan_plan::resumed::Agreement;
 use std::path::PathBuf;
 
 pub const SCAN_EXTS: &[&str] = &["las", "laz", "ply", "e57", "pts", "xyz", "txt", "asc", "csv"];
@@ -259,7 +260,10 @@ pub fn docs() -> StageDef {
         version: liftplan_docs::VERSION,
         code: env!("LIFTPLAN_CODE_DOCS"),
         about: "render the pictures and the step-by-step lift plan PDF",
-        inputs: |p: &Project| Ok(p.crane_files()),
+        // The plans resumed lifts continue, kept by revision (written once,
+        // never changed): the cover says whether resume_from is where each
+        // has the load.
+        inputs: |p: &Project| Ok(p.crane_files().into_iter().chain(resumed_plan_files(p)).collect()),
         // The GPU setting is part of the key: the GPU twin's pictures agree with the
         // CPU's within a tolerance, not bit for bit.
         settings: |p: &Project| serde_json::json!({ "docs": p.raw.docs, "lifts": p.raw.lift, "project": p.raw.project.name, "gpu": p.raw.gpu.use_, "obstacles": p.raw.obstacle, "power_lines": p.raw.power_line }),
@@ -279,10 +283,58 @@ pub fn docs() -> StageDef {
     }
 }
 
+/// The kept plans (out/revisions/) that the project's resumed lifts name,
+/// where kept.
+fn resumed_plan_files(p: &Project) -> Vec<std::path::PathBuf> {
+    p.raw
+        .lift
+        .iter()
+        .filter_map(|l| {
+            let named = l.resumes_plan.as_ref()?;
+            crate::revisions::kept_plan_file(&p.out_dir(), &l.id, &named.revision)
+        })
+        .collect()
+}
+
+/// For each lift that resumes a plan it names: whether resume_from is where
+/// that plan, as kept by revision, has the load (for the cover). Read only
+/// from the stage's own inputs ([`resumed_plan_files`]), so that the
+/// document depends on nothing its key does not.
+fn resume_agreements(ctx: &Ctx, tasks: &[liftplan_core::lift::LiftTask]) -> Vec<(String, Agreement)> {
+    let p = ctx.project;
+    tasks
+        .iter()
+        .filter_map(|t| {
+            let named = t.resume_from.as_ref().and(t.resumes_plan.as_ref())?;
+            let file = crate::revisions::plan_file(&p.out_dir(), &t.id, &named.revision);
+            let shown = liftplan_core::location::shown(&file, Some(&p.dir));
+            let read = ctx
+                .inputs
+                .contains(&file)
+                .then(|| crate::resume::plan_in(&file, &t.id).ok().flatten())
+                .flatten()
+                .filter(|plan| plan.summary.revision == named.revision);
+            let agreement = match read {
+                Some(plan) => liftplan_plan::resumed::compare(t, &plan, &shown)?,
+                None => Agreement {
+                    agrees: false,
+                    said: format!(
+                        "plan {} is not kept in {} (made by a liftplan that kept no plans by revision, or out/ cleaned since): resume_from is not checked against it",
+                        named.revision,
+                        liftplan_core::location::shown(file.parent().unwrap_or(&file), Some(&p.dir))
+                    ),
+                },
+            };
+            Some((t.id.clone(), agreement))
+        })
+        .collect()
+}
+
 fn run_docs(ctx: &Ctx) -> Result<Produced> {
     let p = ctx.project;
     let tasks = p.lifts()?;
     let (plan_dir, _) = ctx.upstream.get("plan").ok_or_else(|| anyhow::anyhow!("no plan"))?;
+    let resume_checks = resume_agreements(ctx, &tasks);
     let mut input_lines = Vec::new();
     let mut input_hashes = Vec::new();
     for stage in ["scans", "plant", "charts", "depthmap"] {
@@ -375,6 +427,7 @@ fn run_docs(ctx: &Ctx) -> Result<Produced> {
         chart_wind,
         obstacles: p.raw.obstacle.clone(),
         power_lines: p.raw.power_line.clone(),
+        resume_checks,
     };
     let summary = liftplan_docs::run(&inputs, &p.raw.docs, p.raw.gpu.use_, ctx.out)?;
     let mut outputs = Vec::new();

@@ -357,6 +357,12 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
         at("hoist_m")
     );
     assert!(cover.contains(&said), "{said}\n{cover}");
+    // The cover says the pose was checked against the crew's plan, as kept.
+    let checked = format!(
+        "Checked: resume_from is where plan {crews_plan} (from out/revisions/V-101/{crews_plan}.plan.json) has the load after step {after_step}"
+    );
+    assert!(cover.contains(&checked), "{checked}\n{cover}");
+    assert!(!cover.contains("against the plan it continues (cover)"), "{cover}");
     assert!(cover.contains("CHECK THE CRANE SHOWS THAT before step 1"), "{cover}");
     assert!(cover.contains("CHECK FIRST that the crane shows where the lift resumes"), "{cover}");
     assert!(cover.contains("crane where the lift resumes (the load hanging)"), "{cover}");
@@ -385,6 +391,15 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     let said = check["said"].as_str().unwrap();
     assert!(said.contains(&format!("hoist {:.3} m given, {hoist:.3} m in the plan", hoist - 0.3)), "{said}");
     assert!(said.contains("check that it is where the load hangs"), "{said}");
+    // So does the new plan's cover, and it asks for the check first.
+    let doc = lopdf::Document::load(&pdf_path).unwrap();
+    let cover = doc.extract_text(&[1]).unwrap().replace('\n', " ");
+    assert!(
+        cover.contains(&format!("NOT CONFIRMED BY THE PLAN IT CONTINUES: resume_from is not where plan {crews_plan}"))
+            && cover.contains(&format!("hoist {:.3} m given, {hoist:.3} m in the plan", hoist - 0.3)),
+        "{cover}"
+    );
+    assert!(cover.contains("where the lift resumes, against the plan it continues (cover)"), "{cover}");
     // The crane set up elsewhere, or another model, in the project since
     // the crew's plan: said too, before the run (which stops at the depth
     // map here: the check does not wait for a plan). By now more runs than

@@ -93,6 +93,10 @@ pub struct Inputs {
     /// The overhead power lines the project gives, which the plan kept its
     /// approach distance off.
     pub power_lines: Vec<liftplan_core::power_line::PowerLine>,
+    /// For each lift that resumes a plan it names (`resumes_plan`), by id:
+    /// whether `resume_from` is where that plan has the load, for the
+    /// cover.
+    pub resume_checks: Vec<(String, liftplan_plan::resumed::Agreement)>,
 }
 
 #[derive(Debug, Clone, Serialize)]

@@ -144,6 +144,9 @@ fn checks_before_signing(
     if task.resumes() {
         v.push("that the crane shows where the lift resumes".to_string());
     }
+    if resume_check(inp, task).is_some_and(|a| !a.agrees) {
+        v.push("where the lift resumes, against the plan it continues (cover)".to_string());
+    }
     if !sm.power_lines.is_empty() {
         v.push("the power lines: where they run, how low they sag and their voltage".to_string());
     }
@@ -408,10 +411,17 @@ fn cover_heading(d: &mut Doc, w: f32, id: &str, description: &str) -> f32 {
     (below_description + 4.6).max(40.0)
 }
 
+/// Whether the lift's `resume_from` is where the plan it continues has the
+/// load, where it names one ([`Inputs::resume_checks`]).
+fn resume_check<'a>(inp: &'a Inputs, task: &LiftTask) -> Option<&'a liftplan_plan::resumed::Agreement> {
+    inp.resume_checks.iter().find(|(id, _)| *id == task.id).map(|(_, a)| a)
+}
+
 /// Where a lift resumed part way starts, in words, for the cover: the
 /// plan it continues where the lift names it, the crane's configuration as
-/// its steps give one, and the load's place.
-fn resumes_said(task: &LiftTask) -> Option<String> {
+/// its steps give one, and the load's place; then whether that is where the
+/// plan it continues has the load (`check`).
+fn resumes_said(task: &LiftTask, check: Option<&liftplan_plan::resumed::Agreement>) -> Option<String> {
     let (c, pose) = task.resume_from.as_ref()?;
     let after = task
         .resumes_plan
@@ -419,14 +429,19 @@ fn resumes_said(task: &LiftTask) -> Option<String> {
         .map(|r| format!(", after step {} of plan {} (resumes_plan)", r.after_step, r.revision))
         .unwrap_or_default();
     Some(format!(
-        "PART WAY THROUGH THE LIFT{after}: this plan starts where the load hangs now (resume_from), not at its pick: swing {:.1}°, {}, hoist {:.2} m, load yaw {:.1}°, the load's underside at ({:.2}, {:.2}, {:.2}) m; CHECK THE CRANE SHOWS THAT before step 1, and that the load hangs still",
+        "PART WAY THROUGH THE LIFT{after}: this plan starts where the load hangs now (resume_from), not at its pick: swing {:.1}°, {}, hoist {:.2} m, load yaw {:.1}°, the load's underside at ({:.2}, {:.2}, {:.2}) m; CHECK THE CRANE SHOWS THAT before step 1, and that the load hangs still{}",
         c.swing_rad.to_degrees(),
         radial_said(task, c.radial),
         c.hoist_m,
         pose.yaw_rad.to_degrees(),
         pose.x_m,
         pose.y_m,
-        pose.z_m
+        pose.z_m,
+        match check {
+            None => String::new(),
+            Some(a) if a.agrees => format!(". Checked: {}", a.said),
+            Some(a) => format!(". NOT CONFIRMED BY THE PLAN IT CONTINUES: {}", a.said),
+        }
     ))
 }
 
@@ -579,7 +594,7 @@ pub fn document(
             ),
         ),
     ];
-    if let Some(said) = resumes_said(task) {
+    if let Some(said) = resumes_said(task, resume_check(inp, task)) {
         rows.insert(0, ("RESUMED", said));
     }
     rows.push((
@@ -1270,7 +1285,14 @@ pub fn document(
             &mut d,
             y,
             w,
-            "This plan resumes a lift stopped part way (resume_from): it starts where the load hangs, with no lift-off, and holds the full clearance from its first step. The part of the lift already made, from the pick to there, is not in it: the plan it was made by was signed for that. CHECK that the crane shows the configuration on the cover before step 1.",
+            &format!(
+                "This plan resumes a lift stopped part way (resume_from): it starts where the load hangs, with no lift-off, and holds the full clearance from its first step. The part of the lift already made, from the pick to there, is not in it: the plan it was made by was signed for that. CHECK that the crane shows the configuration on the cover before step 1.{}",
+                match resume_check(inp, task) {
+                    None => String::new(),
+                    Some(a) if a.agrees => format!(" Checked: {}.", a.said),
+                    Some(a) => format!(" NOT CONFIRMED BY THE PLAN IT CONTINUES: {}.", a.said),
+                }
+            ),
         );
     }
     if let Some(said) = plan.summary.obstacles_said() {

@@ -24,6 +24,7 @@ pub mod model_copy;
 pub mod mspga;
 pub mod path;
 pub mod positions;
+pub mod resumed;
 pub mod steps;
 pub mod validate;
 
