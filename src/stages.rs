@@ -307,23 +307,25 @@ fn resume_agreements(ctx: &Ctx, tasks: &[liftplan_core::lift::LiftTask]) -> Vec<
         .filter_map(|t| {
             let named = t.resume_from.as_ref().and(t.resumes_plan.as_ref())?;
             let file = crate::revisions::plan_file(&p.out_dir(), &t.id, &named.revision);
+            // Project-relative: the document must not depend on the folder's name.
             let shown = liftplan_core::location::shown(&file, Some(&p.dir));
-            let read = ctx
-                .inputs
-                .contains(&file)
-                .then(|| crate::resume::plan_in(&file, &t.id).ok().flatten())
-                .flatten()
-                .filter(|plan| plan.summary.revision == named.revision);
-            let agreement = match read {
-                Some(plan) => liftplan_plan::resumed::compare(t, &plan, &shown)?,
-                None => Agreement {
-                    agrees: false,
-                    said: format!(
-                        "plan {} is not kept in {} (made by a liftplan that kept no plans by revision, or out/ cleaned since): resume_from is not checked against it",
-                        named.revision,
-                        liftplan_core::location::shown(file.parent().unwrap_or(&file), Some(&p.dir))
-                    ),
-                },
+            let unchecked = |why: String| Agreement {
+                agrees: false,
+                said: format!("plan {} {why}: resume_from is not checked against it", named.revision),
+            };
+            let agreement = if !ctx.inputs.contains(&file) {
+                unchecked(format!(
+                    "is not kept in {} (made by a liftplan that kept no plans by revision, or out/ cleaned since)",
+                    liftplan_core::location::shown(file.parent().unwrap_or(&file), Some(&p.dir))
+                ))
+            } else {
+                match crate::resume::plan_in(&file, &t.id) {
+                    Ok(Some(plan)) if plan.summary.revision == named.revision => {
+                        liftplan_plan::resumed::compare(t, &plan, &shown)?
+                    }
+                    Ok(_) => unchecked(format!("is not what {shown} holds (edited by hand?)")),
+                    Err(_) => unchecked(format!("could not be read from {shown} (damaged?)")),
+                }
             };
             Some((t.id.clone(), agreement))
         })

@@ -38,7 +38,7 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     assert!(text.contains("is not an obstacle to its own lift"), "{text}");
     // The cover names what the sign-off page asks to check (the demo's
     // scans leave a shadow beside the foundation).
-    let cover = doc.extract_text(&pages[..1]).unwrap().replace('\n', " ");
+    let cover = cover_text(&doc);
     assert!(
         cover.contains("CHECK FIRST ground under the load that no scan saw; the wind speed the load may be lifted in (less than the chart's) (sign-off page)"),
         "{cover}"
@@ -145,8 +145,8 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     assert!(text.contains("What the lift passes over: the load passes over"), "{text}");
     assert_eq!(
         pages.len(),
-        steps.len() + 5,
-        "cover, inputs, steps table, {} step pages, sign-off, inputs",
+        steps.len() + 6,
+        "cover, the site overview (the demo's cover has no room for it), inputs, steps table, {} step pages, sign-off, inputs",
         steps.len()
     );
     let last = doc.extract_text(&[*pages.last().unwrap()]).unwrap();
@@ -392,14 +392,32 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     assert!(said.contains(&format!("hoist {:.3} m given, {hoist:.3} m in the plan", hoist - 0.3)), "{said}");
     assert!(said.contains("check that it is where the load hangs"), "{said}");
     // So does the new plan's cover, and it asks for the check first.
-    let doc = lopdf::Document::load(&pdf_path).unwrap();
-    let cover = doc.extract_text(&[1]).unwrap().replace('\n', " ");
+    let cover = cover_text(&lopdf::Document::load(&pdf_path).unwrap());
     assert!(
         cover.contains(&format!("NOT CONFIRMED BY THE PLAN IT CONTINUES: resume_from is not where plan {crews_plan}"))
             && cover.contains(&format!("hoist {:.3} m given, {hoist:.3} m in the plan", hoist - 0.3)),
         "{cover}"
     );
     assert!(cover.contains("where the lift resumes, against the plan it continues (cover)"), "{cover}");
+    // The crew's plan as kept damaged, then gone (out/ cleaned by hand):
+    // the cover says the pose is not checked, and why.
+    let kept = dir.join("out").join("revisions").join("V-101").join(format!("{crews_plan}.plan.json"));
+    let good = std::fs::read(&kept).unwrap();
+    for (damaged, says) in
+        [(true, "could not be read from out/revisions/V-101/"), (false, "is not kept in out/revisions/V-101 (")]
+    {
+        if damaged {
+            std::fs::write(&kept, b"{").unwrap();
+        } else {
+            std::fs::remove_file(&kept).unwrap();
+        }
+        let r = run_json(&dir);
+        assert_eq!(stage(&r, "docs")["status"], "ran", "{r}");
+        let cover = cover_text(&lopdf::Document::load(&pdf_path).unwrap());
+        let said = format!("NOT CONFIRMED BY THE PLAN IT CONTINUES: plan {crews_plan} {says}");
+        assert!(cover.contains(&said) && cover.contains("resume_from is not checked against it"), "{said}\n{cover}");
+    }
+    std::fs::write(&kept, good).unwrap();
     // The crane set up elsewhere, or another model, in the project since
     // the crew's plan: said too, before the run (which stops at the depth
     // map here: the check does not wait for a plan). By now more runs than
@@ -877,8 +895,19 @@ fn planned_with(dir: &std::path::Path, toml: &str) -> (String, String) {
     assert_eq!(stage(&r, "docs")["status"], "ran", "{r}");
     let doc = lopdf::Document::load(dir.join("out").join("V-101.pdf")).unwrap();
     let pages: Vec<u32> = doc.get_pages().keys().copied().collect();
+    (cover_text(&doc), doc.extract_text(&pages).unwrap().replace('\n', " "))
+}
+
+/// The text of a PDF's cover on one line, with the site overview's page
+/// where the cover had no room for it.
+fn cover_text(doc: &lopdf::Document) -> String {
+    let pages: Vec<u32> = doc.get_pages().keys().copied().collect();
     let one_line = |p: &[u32]| doc.extract_text(p).unwrap().replace('\n', " ");
-    (one_line(&pages[..1]), one_line(&pages))
+    let cover = one_line(&pages[..1]);
+    match pages.get(1).map(|&p| one_line(&[p])) {
+        Some(next) if next.contains("Site overview (continued from the cover)") => format!("{cover} {next}"),
+        _ => cover,
+    }
 }
 
 /// Writes `toml` as the demo project's file in `dir` and runs the project,
@@ -949,10 +978,22 @@ fn demo_outputs_depend_on_neither_the_thread_count_nor_the_folder_name() {
         dir.join("out")
     };
     let (one, three) = (run("1"), run("3"));
-    let mut names: Vec<String> =
-        std::fs::read_dir(&one).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
+    // Every file under out/, the plans kept by revision among them.
+    let mut names: Vec<String> = Vec::new();
+    let mut folders = vec![one.clone()];
+    while let Some(folder) = folders.pop() {
+        for e in std::fs::read_dir(&folder).unwrap() {
+            let path = e.unwrap().path();
+            if path.is_dir() {
+                folders.push(path);
+            } else {
+                names.push(path.strip_prefix(&one).unwrap().to_string_lossy().into_owned());
+            }
+        }
+    }
     names.sort();
     assert!(names.len() >= 15, "{names:?}");
+    assert!(names.iter().any(|n| n.starts_with("revisions/V-101/") && n.ends_with(".plan.json")), "{names:?}");
     for name in &names {
         let (a, b) = (std::fs::read(one.join(name)).unwrap(), std::fs::read(three.join(name)).unwrap());
         if name == ".manifest.json" {
@@ -1054,8 +1095,7 @@ fn the_tower_crane_demo_runs_and_its_pdf_names_a_tower_cranes_parts() {
     std::fs::write(&toml_path, format!("{}{mobile}{}", &t[..start], &t[end..])).unwrap();
     let o = liftplan(&["run", dir.to_str().unwrap(), "-q"]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let doc = lopdf::Document::load(dir.join("out").join("V-101.pdf")).unwrap();
-    let cover = doc.extract_text(&[1]).unwrap().replace('\n', " ");
+    let cover = cover_text(&lopdf::Document::load(dir.join("out").join("V-101.pdf")).unwrap());
     assert!(cover.contains("CHECK FIRST that the chart of one column is the 40.0 m boom's"), "{cover}");
 }
 
