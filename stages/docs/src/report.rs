@@ -99,14 +99,21 @@ fn input_lines(d: &mut Doc, mut y: f32, lines: &[String], w: f32) -> f32 {
 /// margin (15 mm).
 /// How tall [`key_values`] draws `rows` at `x` with keys `key_w` wide (mm).
 fn key_values_height(d: &Doc, x: f32, rows: &[(&str, String)], key_w: f32) -> f32 {
-    let width = d.size.w - 15.0 - (x + key_w);
+    let width = key_values_width(d, x, key_w);
     rows.iter()
         .map(|(_, v)| 5.0 + (crate::pdf::wrap(v, width, 9.0).len().max(1) - 1) as f32 * crate::pdf::line_height_mm(9.0))
         .sum()
 }
 
+/// How wide [`key_values`] wraps the values: to as far from the sheet's
+/// right edge as the keys are from its left, so that rows inside a frame
+/// (the cover's verdict box) keep off it on both sides.
+fn key_values_width(d: &Doc, x: f32, key_w: f32) -> f32 {
+    d.size.w - x - (x + key_w)
+}
+
 fn key_values(d: &mut Doc, x: f32, mut y: f32, rows: &[(&str, String)], key_w: f32) -> f32 {
-    let width = d.size.w - 15.0 - (x + key_w);
+    let width = key_values_width(d, x, key_w);
     for (k, v) in rows {
         d.text(x, y, k, 9.0, true, GREY);
         for (n, line) in crate::pdf::wrap(v, width, 9.0).iter().enumerate() {
@@ -407,7 +414,7 @@ fn grid_bearing_deg(a_rad: f64) -> f64 {
 /// a paragraph wrap, pushing the rest down.
 fn cover_heading(d: &mut Doc, w: f32, id: &str, description: &str) -> f32 {
     let mut title_y = 22.0;
-    for (k, line) in wrap(&format!("Lift plan {id}"), w, 22.0).iter().enumerate() {
+    for (k, line) in crate::pdf::wrap_bold(&format!("Lift plan {id}"), w, 22.0).iter().enumerate() {
         title_y = 22.0 + k as f32 * line_height_mm(22.0);
         d.text(15.0, title_y, line, 22.0, true, [25, 55, 110]);
     }
@@ -1406,7 +1413,7 @@ mod tests {
         let mut d = Doc::new("t", A4).unwrap();
         d.new_page();
         let mut y = 20.0;
-        for k in 0..30 {
+        for k in 0..50 {
             y = sign_off_paragraph(
                 &mut d,
                 y,
@@ -1416,7 +1423,7 @@ mod tests {
         }
         assert!(d.text.len() >= 3 && d.text[1].starts_with("Review and sign-off (continued)"), "{:?}", d.text);
         assert!(d.lowest_mm.iter().all(|&low| low <= A4.h - FOOT_MM), "{:?}", d.lowest_mm);
-        assert!(d.text.concat().contains("check 29:"));
+        assert!(d.text.concat().contains("check 49:"));
     }
 
     /// A value or a table cell too long for the sheet (a plant model's group
