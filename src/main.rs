@@ -120,8 +120,8 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
-    /// Remove the cache (.liftplan/) and out/ of a project, the plans kept by
-    /// revision in out/revisions/ with them.
+    /// Remove the cache (.liftplan/) and out/ of a project, but for the plans
+    /// kept by revision (out/revisions/).
     #[command(after_help = "Example:\n  liftplan clean site-a")]
     Clean { dir: Option<PathBuf> },
     /// List every stage and its settings with their defaults.
@@ -438,13 +438,39 @@ fn real_main() -> Result<ExitCode> {
                 eprintln!("error: {} is not a liftplan project (no {})", dir.display(), project::FILE);
                 return Ok(ExitCode::from(2));
             }
-            for sub in [".liftplan", "out"] {
-                let p = dir.join(sub);
-                if p.exists() {
-                    std::fs::remove_dir_all(&p).with_context(|| format!("removing {}", p.display()))?;
+            let state = dir.join(".liftplan");
+            if state.exists() {
+                std::fs::remove_dir_all(&state).with_context(|| format!("removing {}", state.display()))?;
+            }
+            // The plans kept by revision are the record of what crews were
+            // given (and what `resume` reads): a clean to rebuild must not
+            // take them.
+            let out = dir.join("out");
+            let mut kept_revisions = false;
+            if out.exists() {
+                for entry in std::fs::read_dir(&out).with_context(|| format!("reading {}", out.display()))? {
+                    let path = entry.with_context(|| format!("reading {}", out.display()))?.path();
+                    if path.file_name().is_some_and(|n| n == revisions::DIR) && path.is_dir() {
+                        kept_revisions = true;
+                        continue;
+                    }
+                    let removed =
+                        if path.is_dir() { std::fs::remove_dir_all(&path) } else { std::fs::remove_file(&path) };
+                    removed.with_context(|| format!("removing {}", path.display()))?;
+                }
+                if !kept_revisions {
+                    std::fs::remove_dir(&out).with_context(|| format!("removing {}", out.display()))?;
                 }
             }
-            println!("removed the cache and outputs of {}", dir.display());
+            println!(
+                "removed the cache and outputs of {}{}",
+                dir.display(),
+                if kept_revisions {
+                    "; the plans kept by revision stay in out/revisions/ (remove that folder by hand to drop them)"
+                } else {
+                    ""
+                }
+            );
             Ok(ExitCode::SUCCESS)
         }
         Command::Resume { dir, lift, plan, after_step, swing_deg } => {

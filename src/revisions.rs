@@ -9,9 +9,9 @@
 //! one re-plans at every scan.
 //!
 //! It only adds files: a revision already kept is not written again (the
-//! same revision is the same plan), and nothing is removed here; `liftplan
-//! clean` removes it with the rest of out/. The PDFs are not kept by
-//! revision (3-4 MB each, where a plan and its steps take about 70 kB).
+//! same revision is the same plan), and nothing is removed here, nor by
+//! `liftplan clean`, which removes the rest of out/. The PDFs are not kept
+//! by revision (3-4 MB each, where a plan and its steps take about 70 kB).
 
 use anyhow::{Context, Result};
 use std::path::{Path, PathBuf};

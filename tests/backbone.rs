@@ -343,6 +343,16 @@ fn clean_and_version() {
     run_json(&dir);
     ok(&["clean", dir.to_str().unwrap()]);
     assert!(!dir.join(".liftplan").exists() && !dir.join("out").exists());
+    // The plans kept by revision stay, and the clean says so.
+    run_json(&dir);
+    let kept = dir.join("out").join("revisions").join("V-1").join("0fb8698c.plan.json");
+    std::fs::create_dir_all(kept.parent().unwrap()).unwrap();
+    std::fs::write(&kept, "{}").unwrap();
+    let o = ok(&["clean", dir.to_str().unwrap()]);
+    assert!(String::from_utf8_lossy(&o.stdout).contains("the plans kept by revision stay in out/revisions/"), "{o:?}");
+    assert!(kept.exists() && !dir.join(".liftplan").exists());
+    let left: Vec<_> = std::fs::read_dir(dir.join("out")).unwrap().map(|e| e.unwrap().file_name()).collect();
+    assert_eq!(left, ["revisions"]);
     let v = ok(&["--version"]);
     assert!(String::from_utf8_lossy(&v.stdout).starts_with("liftplan "));
 }
