@@ -325,6 +325,11 @@ fn run_stages(project: &Project, defs: &[StageDef], opts: &RunOptions, progress:
             if def.name == liftplan_plan::NAME {
                 keep_revisions(project, &dir, &mut rep.lines);
             }
+            if def.name == liftplan_docs::NAME
+                && let Some((plan_dir, _)) = upstream.get(liftplan_plan::NAME)
+            {
+                keep_documents(project, plan_dir, &dir, &mut rep.lines);
+            }
             if !published.superseded.is_empty() {
                 rep.lines.push(format!(
                     "no longer made (a lift taken out of the project or renamed), moved to out/{}/: {}",
@@ -380,6 +385,19 @@ fn keep_revisions(project: &Project, plan_dir: &Path, lines: &mut Vec<String>) {
         Err(e) => lines.push(format!(
             "warning: not kept by revision in {folder} ({e:#}): liftplan resume reads this plan only while out/ or the cache holds it"
         )),
+    }
+}
+
+/// Keeps the PDFs the docs stage made or found fresh (in `docs_dir`), of
+/// the plans in `plan_dir`, by revision beside them
+/// ([`crate::revisions::keep_documents`]), and says so as
+/// [`keep_revisions`] does.
+fn keep_documents(project: &Project, plan_dir: &Path, docs_dir: &Path, lines: &mut Vec<String>) {
+    let folder = format!("out/{}/", crate::revisions::DIR);
+    match crate::revisions::keep_documents(&project.out_dir(), plan_dir, docs_dir) {
+        Ok(kept) if kept.is_empty() => {}
+        Ok(kept) => lines.push(format!("kept by revision in {folder}: {}", kept.join(", "))),
+        Err(e) => lines.push(format!("warning: not kept by revision in {folder} ({e:#})")),
     }
 }
 

@@ -1,17 +1,20 @@
 //! Every plan a run has made, kept by its revision in
 //! `out/revisions/<lift>/`: the plan (`<revision>.plan.json`, that lift's
-//! entry as plan.json holds it) and its steps (`<revision>.steps.csv`).
+//! entry as plan.json holds it), its steps (`<revision>.steps.csv`) and its
+//! PDF (`<revision>.pdf`, the first made of it).
 //!
 //! A crew follows a printed plan, named by the revision on the foot of its
 //! pages. `liftplan resume` and the resume check before each run must read
 //! that plan however many runs ago it was made: the plan stage's cache keeps
 //! only the last `[cache] keep` runs, and a site whose scans arrive one by
-//! one re-plans at every scan.
+//! one re-plans at every scan. The engineer who signed it must be able to
+//! find the document again as it was issued.
 //!
 //! It only adds files: a revision already kept is not written again (the
 //! same revision is the same plan), and nothing is removed here, nor by
-//! `liftplan clean`, which removes the rest of out/. The PDFs are not kept
-//! by revision (3-4 MB each, where a plan and its steps take about 70 kB).
+//! `liftplan clean`, which removes the rest of out/. A plan and its steps
+//! take about 70 kB, its PDF 3-4 MB (the demo's): a site re-planned at each
+//! of a hundred scans keeps some 400 MB.
 
 use anyhow::{Context, Result};
 use std::path::{Path, PathBuf};
@@ -47,18 +50,9 @@ fn names_a_file(lift: &str, revision: &str) -> bool {
 /// ("V-101 plan 3f9a2c1b"). A plan of no revision (made by an older
 /// liftplan) is not kept.
 pub fn keep(out_dir: &Path, plan_dir: &Path) -> Result<Vec<String>> {
-    let file = plan_dir.join("plan.json");
-    let text = std::fs::read_to_string(&file).with_context(|| format!("{}", file.display()))?;
-    let plans: serde_json::Value = serde_json::from_str(&text).with_context(|| format!("{}", file.display()))?;
     let mut kept = Vec::new();
-    for plan in plans["lifts"].as_array().into_iter().flatten() {
-        let (Some(lift), Some(revision)) = (plan["lift"].as_str(), plan["summary"]["revision"].as_str()) else {
-            continue;
-        };
-        if !names_a_file(lift, revision) {
-            continue;
-        }
-        let to = plan_file(out_dir, lift, revision);
+    for (plan, lift, revision) in plans_in(plan_dir)? {
+        let to = plan_file(out_dir, &lift, &revision);
         if to.exists() {
             continue;
         }
@@ -76,6 +70,46 @@ pub fn keep(out_dir: &Path, plan_dir: &Path) -> Result<Vec<String>> {
         kept.push(format!("{lift} plan {revision}"));
     }
     Ok(kept)
+}
+
+/// Keeps each lift's PDF in the docs stage's output folder `docs_dir`,
+/// made from the plans in `plan_dir` in the same run, as
+/// `<revision>.pdf` beside its plan, where out/revisions/ holds none for
+/// that revision yet: the first made of a plan is the one kept (one made
+/// later of the same plan, by other `[docs]` settings or a newer liftplan,
+/// is in out/ but not kept again). Says which it kept.
+pub fn keep_documents(out_dir: &Path, plan_dir: &Path, docs_dir: &Path) -> Result<Vec<String>> {
+    let mut kept = Vec::new();
+    for (_, lift, revision) in plans_in(plan_dir)? {
+        let pdf = docs_dir.join(format!("{lift}.pdf"));
+        let to = out_dir.join(DIR).join(&lift).join(format!("{revision}.pdf"));
+        if to.exists() || !pdf.is_file() {
+            continue;
+        }
+        let bytes = std::fs::read(&pdf).with_context(|| format!("{}", pdf.display()))?;
+        liftplan_core::artifact::write_atomic(&to, &bytes).with_context(|| format!("{}", to.display()))?;
+        kept.push(format!("{lift} plan {revision}'s PDF"));
+    }
+    Ok(kept)
+}
+
+/// The lifts' plans in `plan_dir`'s plan.json with their ids and
+/// revisions, those whose names could be a kept plan's
+/// ([`names_a_file`]; a plan of no revision, made by an older liftplan, is
+/// left out).
+fn plans_in(plan_dir: &Path) -> Result<Vec<(serde_json::Value, String, String)>> {
+    let file = plan_dir.join("plan.json");
+    let text = std::fs::read_to_string(&file).with_context(|| format!("{}", file.display()))?;
+    let mut plans: serde_json::Value = serde_json::from_str(&text).with_context(|| format!("{}", file.display()))?;
+    let lifts = plans.get_mut("lifts").and_then(|l| l.as_array_mut()).map(std::mem::take).unwrap_or_default();
+    Ok(lifts
+        .into_iter()
+        .filter_map(|plan| {
+            let lift = plan["lift"].as_str()?.to_string();
+            let revision = plan["summary"]["revision"].as_str()?.to_string();
+            names_a_file(&lift, &revision).then_some((plan, lift, revision))
+        })
+        .collect())
 }
 
 #[cfg(test)]
@@ -123,5 +157,24 @@ mod tests {
         std::fs::write(entry.join("plan.json"), "{").unwrap();
         let e = format!("{:#}", keep(&out, &entry).unwrap_err());
         assert!(e.contains("plan.json"), "{e}");
+    }
+
+    /// A lift's PDF is kept beside its plan, the first made of each
+    /// revision: a later one of the same plan does not replace it; a lift
+    /// without a PDF keeps none.
+    #[test]
+    fn the_first_pdf_of_each_revision_is_kept() {
+        let d = tempfile::tempdir().unwrap();
+        let (plans, docs, out) = (d.path().join("plans"), d.path().join("docs"), d.path().join("out"));
+        std::fs::create_dir_all(&plans).unwrap();
+        std::fs::create_dir_all(&docs).unwrap();
+        std::fs::write(plans.join("plan.json"), plan_json(&[("V-101", "0fb8698c"), ("V-102", "1234abcd")])).unwrap();
+        std::fs::write(docs.join("V-101.pdf"), "issued first").unwrap();
+        assert_eq!(keep_documents(&out, &plans, &docs).unwrap(), ["V-101 plan 0fb8698c's PDF"]);
+        let kept = out.join(DIR).join("V-101").join("0fb8698c.pdf");
+        std::fs::write(docs.join("V-101.pdf"), "made again").unwrap();
+        assert!(keep_documents(&out, &plans, &docs).unwrap().is_empty());
+        assert_eq!(std::fs::read_to_string(&kept).unwrap(), "issued first");
+        assert!(!out.join(DIR).join("V-102").exists());
     }
 }

@@ -281,6 +281,13 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     assert!(text.contains("CHECK ON SITE that each stands where given"), "{text}");
     assert!(text.contains("CHECK FIRST the obstacle placed by hand, where it stands"), "{text}");
 
+    // The crew's PDF is kept beside their plan, as issued (its pages name
+    // their plan), though out/ now holds the plan made with the platform.
+    let issued =
+        lopdf::Document::load(dir.join("out").join("revisions").join("V-101").join(format!("{crews_plan}.pdf")))
+            .unwrap();
+    let first = issued.extract_text(&[1]).unwrap().replace('\n', " ");
+    assert!(first.contains(&format!("lift V-101, plan {crews_plan} — issued")), "{first}");
     // The platform is placed and the plan made again, but the crew still
     // holds the plan without it: resume reads theirs, kept by its revision
     // in out/revisions/, not the last plan, and says so. Another revision
