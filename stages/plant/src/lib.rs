@@ -611,8 +611,7 @@ fn read_model(path: &Path, s: &Settings, summary: &mut Summary, room: u64) -> Re
             rvm_to_mesh(path, &f, attrs.as_ref(), s, summary, room)?
         }
         "obj" => {
-            let m = mesh_io::read_obj(path, imp()?)?;
-            let without = mesh_io::obj_elements_without_surface(path)?;
+            let (m, without) = mesh_io::read_obj(path, imp()?)?;
             if without > 0 {
                 summary.not_surfaces.push(format!("{file}: {without} line or point elements"));
             }

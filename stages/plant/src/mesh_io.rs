@@ -36,36 +36,53 @@ fn check_finite(path: &Path, m: &TriMesh) -> Result<()> {
     m.validate().map_err(|e| PlantError::at(Location::file(path), e))
 }
 
-/// How many `l` (line) and `p` (point) elements an OBJ file holds: tobj
-/// reads faces only, and what has no surface is left out of the obstacles,
-/// which must be said.
-pub fn obj_elements_without_surface(path: &Path) -> Result<usize> {
-    use std::io::{BufRead, Read};
-    let file = std::fs::File::open(path).map_err(|e| PlantError::Io(Location::file(path), e))?;
-    let mut r = std::io::BufReader::with_capacity(1 << 16, file);
-    let (mut n, mut line) = (0usize, Vec::new());
-    loop {
-        line.clear();
-        // Lines are read whole but for their first bytes (a face list may be long).
-        let got =
-            r.by_ref().take(4096).read_until(b'\n', &mut line).map_err(|e| PlantError::Io(Location::file(path), e))?;
-        if got == 0 {
-            break;
-        }
-        let t = line.trim_ascii_start();
-        n += (t.len() > 1 && (t[0] == b'l' || t[0] == b'p') && t[1].is_ascii_whitespace()) as usize;
-        if line.last() != Some(&b'\n') {
-            // The rest of a long line.
-            r.skip_until(b'\n').map_err(|e| PlantError::Io(Location::file(path), e))?;
-        }
-    }
-    Ok(n)
+/// Counts the OBJ line (`l`) and point (`p`) elements in the bytes read
+/// through it: tobj reads faces only, and what has no surface is left out
+/// of the obstacles, which must be said. Counted as tobj reads, so that a
+/// model of hundreds of megabytes is read once.
+struct ElementsWithoutSurface<R> {
+    inner: R,
+    line: LineStart,
+    count: usize,
 }
 
-pub fn read_obj(path: &Path, imp: Import) -> Result<TriMesh> {
+/// Where [`ElementsWithoutSurface`] is in the current line.
+#[derive(Clone, Copy)]
+enum LineStart {
+    /// Before its first non-blank byte.
+    Blank,
+    /// Just after a first `l` or `p`: an element if a blank follows.
+    Candidate,
+    /// Past its keyword.
+    Rest,
+}
+
+impl<R: std::io::Read> std::io::Read for ElementsWithoutSurface<R> {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        let n = self.inner.read(buf)?;
+        for &b in &buf[..n] {
+            self.line = match (self.line, b) {
+                (LineStart::Candidate, b) if b.is_ascii_whitespace() => {
+                    self.count += 1;
+                    if b == b'\n' { LineStart::Blank } else { LineStart::Rest }
+                }
+                (_, b'\n') => LineStart::Blank,
+                (LineStart::Blank, b) if b.is_ascii_whitespace() => LineStart::Blank,
+                (LineStart::Blank, b'l' | b'p') => LineStart::Candidate,
+                _ => LineStart::Rest,
+            };
+        }
+        Ok(n)
+    }
+}
+
+/// The OBJ file's faces as a mesh, and how many line and point elements
+/// it holds besides (not read: they have no surface).
+pub fn read_obj(path: &Path, imp: Import) -> Result<(TriMesh, usize)> {
     let opts = tobj::LoadOptions { triangulate: true, single_index: true, ignore_points: true, ignore_lines: true };
     let file = std::fs::File::open(path).map_err(|e| PlantError::Io(Location::file(path), e))?;
-    let mut r = std::io::BufReader::new(file);
+    let mut counted = ElementsWithoutSurface { inner: file, line: LineStart::Blank, count: 0 };
+    let mut r = std::io::BufReader::new(&mut counted);
     let (models, _) = third_party(path, "the OBJ reader", || {
         tobj::load_obj_buf(&mut r, &opts, |_| Err(tobj::LoadError::OpenFileFailed))
     })?
@@ -96,7 +113,8 @@ pub fn read_obj(path: &Path, imp: Import) -> Result<TriMesh> {
         m.add_part(g, false, &verts, &tris);
     }
     check_finite(path, &m)?;
-    Ok(m)
+    drop(r);
+    Ok((m, counted.count))
 }
 
 pub fn read_stl(path: &Path, imp: Import) -> Result<TriMesh> {
@@ -495,8 +513,18 @@ mod tests {
             format!("o mast\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n{long_face}  l 1 2\np 3\nlo 1\n# l 1 2\n"),
         )
         .unwrap();
-        assert!(!read_obj(&path, Import { scale: 1.0, y_up: false }).unwrap().triangles.is_empty());
-        assert_eq!(obj_elements_without_surface(&path).unwrap(), 2);
+        let (m, without_surface) = read_obj(&path, Import { scale: 1.0, y_up: false }).unwrap();
+        assert!(!m.triangles.is_empty());
+        assert_eq!(without_surface, 2);
+        // Counted the same whatever the reads' sizes (a keyword split
+        // between two), "l" alone on a line too.
+        let text = b"l 1 2\n\tp\t3\r\nl\nlp 1\n pl\nf 1 2 3\n";
+        for chunk in [1, 2, 3, 7, 64] {
+            let mut r = ElementsWithoutSurface { inner: &text[..], line: LineStart::Blank, count: 0 };
+            let mut buf = vec![0u8; chunk];
+            while std::io::Read::read(&mut r, &mut buf).unwrap() > 0 {}
+            assert_eq!(r.count, 3, "reads of {chunk} bytes");
+        }
     }
 
     /// glTF nodes must form trees. A chain of nodes each naming the next one
