@@ -378,14 +378,11 @@ fn run_stages(project: &Project, defs: &[StageDef], opts: &RunOptions, progress:
 /// fail the run: the plan in out/ is made and checked; only reading it by
 /// revision later depends on this.
 fn keep_revisions(project: &Project, plan_dir: &Path, lines: &mut Vec<String>) {
-    let folder = format!("out/{}/", crate::revisions::DIR);
-    match crate::revisions::keep(&project.out_dir(), plan_dir) {
-        Ok(kept) if kept.is_empty() => {}
-        Ok(kept) => lines.push(format!("kept by revision in {folder}: {}", kept.join(", "))),
-        Err(e) => lines.push(format!(
-            "warning: not kept by revision in {folder} ({e:#}): liftplan resume reads this plan only while out/ or the cache holds it"
-        )),
-    }
+    said_kept(
+        crate::revisions::keep(&project.out_dir(), plan_dir),
+        ": liftplan resume reads this plan only while out/ or the cache holds it",
+        lines,
+    );
 }
 
 /// Keeps the PDFs the docs stage made or found fresh (in `docs_dir`), of
@@ -393,11 +390,17 @@ fn keep_revisions(project: &Project, plan_dir: &Path, lines: &mut Vec<String>) {
 /// ([`crate::revisions::keep_documents`]), and says so as
 /// [`keep_revisions`] does.
 fn keep_documents(project: &Project, plan_dir: &Path, docs_dir: &Path, lines: &mut Vec<String>) {
+    said_kept(crate::revisions::keep_documents(&project.out_dir(), plan_dir, docs_dir), "", lines);
+}
+
+/// What a keeping by revision kept, or why it did not (then `if_not` after
+/// the error), as a line of the stage's; nothing where nothing was new.
+fn said_kept(kept: Result<Vec<String>>, if_not: &str, lines: &mut Vec<String>) {
     let folder = format!("out/{}/", crate::revisions::DIR);
-    match crate::revisions::keep_documents(&project.out_dir(), plan_dir, docs_dir) {
+    match kept {
         Ok(kept) if kept.is_empty() => {}
         Ok(kept) => lines.push(format!("kept by revision in {folder}: {}", kept.join(", "))),
-        Err(e) => lines.push(format!("warning: not kept by revision in {folder} ({e:#})")),
+        Err(e) => lines.push(format!("warning: not kept by revision in {folder} ({e:#}){if_not}")),
     }
 }
 

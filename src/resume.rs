@@ -51,8 +51,9 @@ fn plan_named(p: &Project, lift: &str, revision: &str, last: Option<&LiftPlan>) 
     if let Some(last) = last.filter(|l| l.summary.revision == revision) {
         return Some((last.clone(), p.out_dir().join("plan.json")));
     }
-    let kept = crate::revisions::plan_file(&p.out_dir(), lift, revision);
-    if let Ok(Some(plan)) = plan_in(&kept, lift).map(|o| o.filter(|plan| plan.summary.revision == revision)) {
+    if let Some(kept) = crate::revisions::kept_plan_file(&p.out_dir(), lift, revision)
+        && let Ok(Some(plan)) = plan_in(&kept, lift).map(|o| o.filter(|plan| plan.summary.revision == revision))
+    {
         return Some((plan, kept));
     }
     Cache::new(&p.state_dir()).entries(liftplan_plan::NAME).into_iter().find_map(|entry| {

@@ -428,6 +428,16 @@ fn resume_check<'a>(inp: &'a Inputs, task: &LiftTask) -> Option<&'a liftplan_pla
     inp.resume_checks.iter().find(|(id, _)| *id == task.id).map(|(_, a)| a)
 }
 
+/// A [`resume_check`] in words: "Checked: ..." or, where the pose is not
+/// the plan's (or could not be compared), "NOT CONFIRMED ...".
+fn resume_check_said(a: &liftplan_plan::resumed::Agreement) -> String {
+    if a.agrees {
+        format!("Checked: {}", a.said)
+    } else {
+        format!("NOT CONFIRMED BY THE PLAN IT CONTINUES: {}", a.said)
+    }
+}
+
 /// Where a lift resumed part way starts, in words, for the cover: the
 /// plan it continues where the lift names it, the crane's configuration as
 /// its steps give one, and the load's place; then whether that is where the
@@ -448,11 +458,7 @@ fn resumes_said(task: &LiftTask, check: Option<&liftplan_plan::resumed::Agreemen
         pose.x_m,
         pose.y_m,
         pose.z_m,
-        match check {
-            None => String::new(),
-            Some(a) if a.agrees => format!(". Checked: {}", a.said),
-            Some(a) => format!(". NOT CONFIRMED BY THE PLAN IT CONTINUES: {}", a.said),
-        }
+        check.map(|a| format!(". {}", resume_check_said(a))).unwrap_or_default()
     ))
 }
 
@@ -1307,11 +1313,7 @@ pub fn document(
             w,
             &format!(
                 "This plan resumes a lift stopped part way (resume_from): it starts where the load hangs, with no lift-off, and holds the full clearance from its first step. The part of the lift already made, from the pick to there, is not in it: the plan it was made by was signed for that. CHECK that the crane shows the configuration on the cover before step 1.{}",
-                match resume_check(inp, task) {
-                    None => String::new(),
-                    Some(a) if a.agrees => format!(" Checked: {}.", a.said),
-                    Some(a) => format!(" NOT CONFIRMED BY THE PLAN IT CONTINUES: {}.", a.said),
-                }
+                resume_check(inp, task).map(|a| format!(" {}.", resume_check_said(a))).unwrap_or_default()
             ),
         );
     }
