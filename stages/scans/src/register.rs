@@ -918,19 +918,60 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
         let mut closest: Vec<(f64, f64)> = vec![(0.0, 1.0); n];
         let mut held_back: Vec<Option<(f64, f64, StationOffset)>> = vec![None; n];
         let mut at_station: Vec<Option<(f64, f64)>> = vec![None; n];
-        for &j in &pending {
-            let mut key = state.clone();
-            key.update(b"trial");
-            key.update(&scan_keys[j]);
-            if by_place {
-                key.update(&(j as u64).to_le_bytes());
+        // Each pending scan's trial against the scans placed so far: looked
+        // up, or worked out, those not known all at once (they do not depend
+        // on each other, and one trial's ICP runs on a few blocks of points,
+        // too few to keep many cores busy). Each trial's answer does not
+        // depend on what runs beside it.
+        let keys: Vec<Key> = pending
+            .iter()
+            .map(|&j| {
+                let mut key = state.clone();
+                key.update(b"trial");
+                key.update(&scan_keys[j]);
+                if by_place {
+                    key.update(&(j as u64).to_le_bytes());
+                }
+                *key.finalize().as_bytes()
+            })
+            .collect();
+        let mut trials: Vec<Option<Trial>> = keys.iter().map(|key| memo.get(key).and_then(Trial::decode)).collect();
+        let unknown: Vec<usize> = (0..pending.len()).filter(|&k| trials[k].is_none()).collect();
+        if !unknown.is_empty() {
+            let Round { model, model_cloud } = round.get_or_insert_with(|| Round::new(inputs, &poses, None));
+            let (model, model_cloud) = (&*model, &*model_cloud);
+            if !s.leveled {
+                // Feature alignments of each pair, worked out once.
+                let pairs: Vec<(usize, usize)> = unknown
+                    .iter()
+                    .flat_map(|&k| {
+                        let j = pending[k];
+                        (0..n).filter(|&i| poses[i].is_some()).map(move |i| (j, i))
+                    })
+                    .filter(|pair| !coarse.contains_key(pair))
+                    .collect();
+                let found: Vec<Option<(Pose, usize)>> = pairs
+                    .par_iter()
+                    .map(|&(j, i)| {
+                        let corr = match_features(&inputs[j].coarse, &inputs[i].coarse, 4000);
+                        ransac(
+                            &inputs[j].coarse.pts,
+                            &inputs[i].coarse.pts,
+                            &corr,
+                            false,
+                            eps,
+                            s.ransac_iterations,
+                            seed ^ ((j as u64) << 32 | i as u64),
+                        )
+                    })
+                    .collect();
+                coarse.extend(pairs.into_iter().zip(found));
             }
-            let key: Key = *key.finalize().as_bytes();
-            let trial = match memo.get(&key).and_then(Trial::decode) {
-                Some(t) => t,
-                None => {
-                    let Round { model, model_cloud } = round.get_or_insert_with(|| Round::new(inputs, &poses, None));
-                    let model = &*model;
+            let coarse = &coarse;
+            let worked_out: Vec<Trial> = unknown
+                .par_iter()
+                .map(|&k| {
+                    let j = pending[k];
                     let mut candidates: Vec<(Pose, String)> = Vec::new();
                     if let Some(p) = inputs[j].initial {
                         candidates.push((p, "file pose + ICP".into()));
@@ -944,31 +985,19 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                     } else {
                         for i in 0..n {
                             let Some(pi) = poses[i] else { continue };
-                            let c = coarse.entry((j, i)).or_insert_with(|| {
-                                let corr = match_features(&inputs[j].coarse, &inputs[i].coarse, 4000);
-                                ransac(
-                                    &inputs[j].coarse.pts,
-                                    &inputs[i].coarse.pts,
-                                    &corr,
-                                    false,
-                                    eps,
-                                    s.ransac_iterations,
-                                    seed ^ ((j as u64) << 32 | i as u64),
-                                )
-                            });
-                            if let Some((t, _)) = c {
+                            if let Some(Some((t, _))) = coarse.get(&(j, i)) {
                                 candidates.push((pi * *t, format!("features (to {}) + ICP", inputs[i].name)));
                             }
                         }
                     }
                     let t = std::time::Instant::now();
                     let mut trial = Trial { passing: vec![], closest: (0.0, 1.0), at_station: None, held_back: None };
-                    for (k, (init, method)) in candidates.into_iter().enumerate() {
+                    for (c, (init, method)) in candidates.into_iter().enumerate() {
                         let p = icp(&quick[j], model, init, quick_levels);
                         let (fit, _) = evaluate(&checks[j], model, &p, fit_d, fit_r);
                         let viol = free_space_violations(&quick[j], &p, &seen);
                         // The station pose is the first candidate.
-                        if k == 0 && held(j).is_some() {
+                        if c == 0 && held(j).is_some() {
                             trial.at_station = Some((fit, viol));
                         }
                         if score(fit, viol) > score(trial.closest.0, trial.closest.1) {
@@ -989,10 +1018,16 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                         }
                     }
                     tracing::debug!("candidates {j}: {:?}", t.elapsed());
-                    memo.put(key, trial.encode());
                     trial
-                }
-            };
+                })
+                .collect();
+            for (k, trial) in unknown.into_iter().zip(worked_out) {
+                memo.put(keys[k], trial.encode());
+                trials[k] = Some(trial);
+            }
+        }
+        for (&j, trial) in pending.iter().zip(trials) {
+            let Some(trial) = trial else { continue };
             closest[j] = trial.closest;
             held_back[j] = trial.held_back;
             at_station[j] = trial.at_station;
