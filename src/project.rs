@@ -354,6 +354,10 @@ every_nth = 9             # keep every Nth point for subsample = "nth"
 #                              # set per station or, at the top of the file, for all; the first
 #                              # scan with a station is the reference (the station file's frame)
 on_unregistered = "fail"  # fail | exclude
+# [scans.registration]
+# leveled = true          # false for scanners that did not level themselves (no compensator):
+                          # each scan is levelled by its walls and tanks (else its ground, and
+                          # on a slope the site frame slopes with it); the run's lines say which
 
 [scans.ground]
 enabled = true
@@ -575,6 +579,26 @@ mod tests {
         assert!(task.permissible_wind(&[]).is_ok());
         assert_eq!(task.not_over[0].name, "control room");
         assert!(!task.not_over[0].crane_too && task.not_over[1].crane_too);
+    }
+
+    /// The template's commented `[scans.registration]`, uncommented with
+    /// `leveled = false`, is a setting liftplan takes.
+    #[test]
+    fn the_templates_registration_setting_uncommented_is_taken() {
+        let part: String = super::TEMPLATE
+            .split("# [scans.registration]\n")
+            .nth(1)
+            .and_then(|rest| rest.split("\n\n").next())
+            .expect("the template shows [scans.registration]")
+            .lines()
+            .map(|l| l.strip_prefix("# ").unwrap_or(l))
+            .collect::<Vec<_>>()
+            .join("\n");
+        assert!(part.contains("leveled = true"), "{part}");
+        let raw: super::RawProject =
+            toml::from_str(&format!("[scans.registration]\n{}", part.replace("leveled = true", "leveled = false")))
+                .unwrap();
+        assert!(!raw.scans.registration.leveled);
     }
 
     /// The template's commented example table `[[table]]`, uncommented, as

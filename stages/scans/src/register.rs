@@ -6,8 +6,13 @@
 //!    compensators), so by default (`leveled = true`) two scans differ by a yaw and
 //!    a translation, found by correlating plan views of their vertical structure
 //!    ([`crate::coarse2d`]). For scans that are not levelled (`leveled = false`):
-//!    FPFH descriptors on a thinned copy, mutual nearest neighbours in descriptor
-//!    space, and RANSAC over 3-point Kabsch hypotheses with an edge-length check.
+//!    each scan, and the model, is levelled by the direction its walls, columns
+//!    and tanks are square to (else by its ground), and the plan views compared
+//!    as above; FPFH descriptors on a thinned copy, mutual nearest neighbours in
+//!    descriptor space, and RANSAC over 3-point Kabsch hypotheses with an
+//!    edge-length check, add their candidates (alone, they placed none of the
+//!    demo's scans). The reference scan is levelled the same way: it fixes the
+//!    site frame.
 //! 3. **Fine**: robust (Huber) point-to-plane ICP, coarse-to-fine correspondence
 //!    distances, full 6 DOF.
 //! 4. **Many scans**: the first scan is the reference. The others join the
@@ -100,7 +105,12 @@ pub struct RegistrationSettings {
     /// Largest share of a scan's points allowed where another scanner looked
     /// straight through (0..1); wrong alignments of repetitive plant fail here.
     pub max_violation: f64,
-    /// Scanners were levelled: coarse hypotheses are yaw + translation.
+    /// Scanners levelled themselves (a dual-axis compensator): two scans
+    /// differ by a yaw and a shift. Where not (`false`), each scan is
+    /// levelled by its walls and tanks, or its ground, before the plan-view
+    /// guesses (FPFH feature matches are tried too), ICP is 6-DOF either
+    /// way, and the reference is levelled so, since it fixes the site frame
+    /// whose z the later stages take for up.
     pub leveled: bool,
     pub ransac_iterations: usize,
 }
@@ -881,13 +891,34 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
     let mut results: Vec<Option<RegResult>> = vec![None; n];
     let fit_d = s.fit_distance_m;
     let fit_r = s.fit_residual_m;
-    let reference_pose = inputs[0].initial.unwrap_or_else(Pose::identity);
+    // The reference fixes the site frame, whose z the later stages take for
+    // up: a scanner that did not level itself leaves that to be found.
+    // A station gives a position and a yaw, no tilt; a file's pose (E57)
+    // gives the whole rotation.
+    let (reference_pose, reference_method) = match (inputs[0].initial, s.leveled) {
+        (at, true) => (at.unwrap_or_else(Pose::identity), "reference".to_string()),
+        (Some(p), false) if inputs[0].held.is_none() => (p, "reference".to_string()),
+        (at, false) => {
+            let at = at.unwrap_or_else(Pose::identity);
+            match levelling(&inputs[0].fine) {
+                Some((level, by)) => (at * level, format!("reference, levelled by {by}")),
+                None if inputs[0].held.is_some() => (
+                    at,
+                    "reference, at its station but NOT LEVELLED: too few walls or level ground to find its vertical, so the site frame tilts as its scanner did".to_string(),
+                ),
+                None => (
+                    at,
+                    "reference, NOT LEVELLED: too few walls or level ground to find its vertical, so the site frame tilts as its scanner did".to_string(),
+                ),
+            }
+        }
+    };
     poses[0] = Some(reference_pose);
     results[0] = Some(RegResult {
         pose: reference_pose,
         fitness: 1.0,
         rmse_m: 0.0,
-        method: "reference".into(),
+        method: reference_method,
         registered: true,
         warning: None,
     });
@@ -977,12 +1008,38 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                         candidates.push((p, "file pose + ICP".into()));
                     }
                     if s.leveled {
-                        let guesses =
-                            plan_view_guesses(&inputs[j].fine, &checks[j], &quick[j], model, model_cloud, &seen, 4);
+                        let guesses = plan_view_guesses(
+                            &inputs[j].fine,
+                            &checks[j],
+                            &quick[j],
+                            model,
+                            model_cloud,
+                            &seen,
+                            4,
+                            |g| g,
+                        );
                         for p in guesses {
                             candidates.push((p, "plan-view correlation + ICP".into()));
                         }
                     } else {
+                        // Each levelled ([`levelling`]), the scan and the
+                        // model differ by a yaw and a shift again, up to the
+                        // error of that levelling (ICP is 6-DOF).
+                        let up_scan = levelling(&inputs[j].fine).map_or_else(Pose::identity, |l| l.0);
+                        let up_model = levelling(model_cloud).map_or_else(Pose::identity, |l| l.0);
+                        let guesses = plan_view_guesses(
+                            &rotated(&inputs[j].fine, &up_scan),
+                            &checks[j],
+                            &quick[j],
+                            model,
+                            &rotated(model_cloud, &up_model),
+                            &seen,
+                            4,
+                            |g| up_model.inverse() * g * up_scan,
+                        );
+                        for p in guesses {
+                            candidates.push((p, "levelled, plan-view correlation + ICP".into()));
+                        }
                         for i in 0..n {
                             let Some(pi) = poses[i] else { continue };
                             if let Some(Some((t, _))) = coarse.get(&(j, i)) {
@@ -1287,7 +1344,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                 subset(&inputs[0].fine, &idx, usize::MAX)
             });
             let plan_view = far.as_ref().unwrap_or(&inputs[0].fine);
-            let guesses = plan_view_guesses(plan_view, &checks[0], &quick[0], &model, &model_cloud, &seen, 4);
+            let guesses = plan_view_guesses(plan_view, &checks[0], &quick[0], &model, &model_cloud, &seen, 4, |g| g);
             let elsewhere = guesses
                 .into_iter()
                 .map(|g| icp(&quick[0], &model, g, quick_levels))
@@ -1529,19 +1586,24 @@ impl ReferenceAgain {
     }
 }
 
-/// Candidates for `scan` against `model`: plan-view guesses, ranked in 3D by
-/// overlap of structure less seen-through space (heights and visibility tell
-/// apart shifts that look alike from above), the best `keep`.
+/// Candidates for a scan against `model`: plan-view guesses (of
+/// `plan_scan` onto `plan_model`, levelled clouds, taken to poses of the
+/// scan in the model's frame by `to_pose`), ranked in 3D by overlap of
+/// structure less seen-through space (heights and visibility tell apart
+/// shifts that look alike from above), the best `keep`.
+#[allow(clippy::too_many_arguments)]
 fn plan_view_guesses(
-    scan: &RegCloud,
+    plan_scan: &RegCloud,
     check: &RegCloud,
     quick: &RegCloud,
     model: &Target,
-    model_cloud: &RegCloud,
+    plan_model: &RegCloud,
     seen: &[(&RangeImage, Pose)],
     keep: usize,
+    to_pose: impl Fn(Pose) -> Pose,
 ) -> Vec<Pose> {
-    let guesses = crate::coarse2d::align(scan, model_cloud, 30_000);
+    let guesses: Vec<(Pose, f32)> =
+        crate::coarse2d::align(plan_scan, plan_model, 30_000).into_iter().map(|(g, s)| (to_pose(g), s)).collect();
     let scores: Vec<f64> = guesses
         .par_iter()
         .map(|(p, _)| score(evaluate(check, model, p, 0.5, 0.25).0, free_space_violations(quick, p, seen)))
@@ -1549,6 +1611,75 @@ fn plan_view_guesses(
     let mut order: Vec<usize> = (0..guesses.len()).collect();
     order.sort_by(|&a, &b| scores[b].total_cmp(&scores[a]));
     order.iter().take(keep).map(|&k| guesses[k].0).collect()
+}
+
+/// The rotation that levels a cloud (turns its vertical onto z), for scans
+/// whose scanner did not level itself, tilted up to about 30 degrees.
+///
+/// The vertical is taken from the walls, columns and tanks the cloud holds
+/// where it can be (the direction their normals are all square to: plant
+/// and buildings stand plumb, where ground slopes), which needs such
+/// surfaces facing at least two ways; else from the ground and other level
+/// surfaces (their mean normal), which tilts the cloud by the ground's
+/// slope. With the rotation, what it was taken from. `None` where the
+/// cloud holds too few of either (a hundred normals) to tell.
+fn levelling(c: &RegCloud) -> Option<(Pose, &'static str)> {
+    let unit = |n: &[f64; 3]| {
+        let v = Vec3::new(n[0], n[1], n[2]);
+        (v.norm() > 0.5).then(|| v.normalize())
+    };
+    // The direction square to the normals within `band` (sine) of square
+    // to `up`, where they face two ways or more.
+    let square_to = |up: Vec3, band: f64| -> Option<Vec3> {
+        let mut scatter = na::Matrix3::zeros();
+        let mut count = 0usize;
+        for v in c.normals.iter().filter_map(unit).filter(|v| v.dot(&up).abs() < band) {
+            scatter += v * v.transpose();
+            count += 1;
+        }
+        let eig = na::SymmetricEigen::new(scatter);
+        let mut order = [0, 1, 2];
+        order.sort_by(|&a, &b| eig.eigenvalues[a].total_cmp(&eig.eigenvalues[b]));
+        let [least, middle, _] = order.map(|k| eig.eigenvalues[k]);
+        // Facing two ways: the second direction holds a fair share of them,
+        // and the vertical far less.
+        let two_ways = middle >= 0.1 * count as f64 && least <= 0.05 * middle;
+        (count >= 100 && two_ways).then(|| {
+            let v = eig.eigenvectors.column(order[0]).into_owned();
+            if v.dot(&up) < 0.0 { -v } else { v }
+        })
+    };
+    let mean_up = |within_deg: f64, about: Vec3| -> Option<Vec3> {
+        let mut sum = Vec3::zeros();
+        let mut count = 0usize;
+        for v in c.normals.iter().filter_map(unit) {
+            let v = if v.dot(&about) < 0.0 { -v } else { v };
+            if v.dot(&about) >= within_deg.to_radians().cos() {
+                sum += v;
+                count += 1;
+            }
+        }
+        (count >= 100).then(|| sum.normalize())
+    };
+    let (up, by) = match square_to(Vec3::z(), 0.5).and_then(|u| square_to(u, 0.1)) {
+        Some(u) => (u, "its plumb surfaces (walls, columns, tanks)"),
+        None => (
+            mean_up(30.0, Vec3::z()).and_then(|u| mean_up(5.0, u))?,
+            "its ground (where that slopes, the site frame slopes with it)",
+        ),
+    };
+    let turn = na::UnitQuaternion::rotation_between(&up, &Vec3::z())?;
+    Some((Pose::from_parts(na::Translation3::identity(), turn), by))
+}
+
+/// A cloud turned by a rotation (`turn`'s translation is ignored).
+fn rotated(c: &RegCloud, turn: &Pose) -> RegCloud {
+    let r = turn.rotation;
+    let apply = |p: &[f64; 3]| {
+        let v = r * Vec3::new(p[0], p[1], p[2]);
+        [v.x, v.y, v.z]
+    };
+    RegCloud { pts: c.pts.iter().map(apply).collect(), normals: c.normals.iter().map(apply).collect() }
 }
 
 /// What a scanner saw, as the nearest range per direction bin, in the scan's
@@ -1844,5 +1975,45 @@ mod tests {
             assert!((p.translation.vector - t.translation.vector).norm() < 1e-9);
             assert!(p.rotation.angle_to(&t.rotation) < 1e-9);
         }
+    }
+
+    /// A site on a 5 % slope with walls facing two ways, seen by a scanner
+    /// tilted 4 and -3 degrees: levelled by the walls, to within 0.05
+    /// degrees of true, where the ground would leave it on the slope; walls
+    /// facing one way only leave it to the ground.
+    #[test]
+    fn levelling_takes_the_vertical_from_plumb_surfaces_before_the_ground() {
+        let slope = 0.05f64;
+        let ground_n = Vec3::new(-slope, 0.0, 1.0).normalize();
+        let mut true_cloud = RegCloud::default();
+        for i in 0..400 {
+            let (x, y) = ((i % 20) as f64, (i / 20) as f64);
+            true_cloud.pts.push([x, y, slope * x]);
+            true_cloud.normals.push([ground_n.x, ground_n.y, ground_n.z]);
+        }
+        let walls = |cloud: &mut RegCloud, normals: &[[f64; 3]]| {
+            for (k, n) in normals.iter().enumerate() {
+                for i in 0..150 {
+                    cloud.pts.push([k as f64 * 10.0, i as f64 * 0.1, 1.0 + (i % 7) as f64]);
+                    cloud.normals.push(*n);
+                }
+            }
+        };
+        let mut one_way = true_cloud.clone();
+        walls(&mut true_cloud, &[[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [-0.6, 0.8, 0.0]]);
+        walls(&mut one_way, &[[1.0, 0.0, 0.0], [-1.0, 0.0, 0.0]]);
+        let tilt = na::UnitQuaternion::from_euler_angles(4f64.to_radians(), -3f64.to_radians(), 0.0);
+        let tilted = |c: &RegCloud| rotated(c, &Pose::from_parts(na::Translation3::identity(), tilt));
+        let error_deg = |c: &RegCloud| {
+            let (level, by) = levelling(&tilted(c)).expect("levelled");
+            ((level.rotation * tilt) * Vec3::z()).angle(&Vec3::z()).to_degrees()
+                + if by.starts_with("its plumb") { 0.0 } else { 1000.0 }
+        };
+        assert!(error_deg(&true_cloud) < 0.05, "{}", error_deg(&true_cloud));
+        let (level, by) = levelling(&tilted(&one_way)).expect("levelled by the ground");
+        assert!(by.starts_with("its ground"), "{by}");
+        let off = ((level.rotation * tilt) * Vec3::z()).angle(&Vec3::z()).to_degrees();
+        assert!((off - slope.atan().to_degrees()).abs() < 0.05, "on the slope: {off} degrees");
+        assert!(levelling(&RegCloud::default()).is_none());
     }
 }
