@@ -999,6 +999,11 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                 coarse.extend(pairs.into_iter().zip(found));
             }
             let coarse = &coarse;
+            // The model levelled once for the round's trials ([`levelling`]).
+            let levelled_model = (!s.leveled).then(|| {
+                let up = levelling(model_cloud).map_or_else(Pose::identity, |l| l.0);
+                (up, rotated(model_cloud, &up))
+            });
             let worked_out: Vec<Trial> = unknown
                 .par_iter()
                 .map(|&k| {
@@ -1021,18 +1026,17 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                         for p in guesses {
                             candidates.push((p, "plan-view correlation + ICP".into()));
                         }
-                    } else {
-                        // Each levelled ([`levelling`]), the scan and the
-                        // model differ by a yaw and a shift again, up to the
-                        // error of that levelling (ICP is 6-DOF).
+                    } else if let Some((up_model, plan_model)) = &levelled_model {
+                        // Each levelled, the scan and the model differ by a
+                        // yaw and a shift again, up to the error of that
+                        // levelling (ICP is 6-DOF).
                         let up_scan = levelling(&inputs[j].fine).map_or_else(Pose::identity, |l| l.0);
-                        let up_model = levelling(model_cloud).map_or_else(Pose::identity, |l| l.0);
                         let guesses = plan_view_guesses(
                             &rotated(&inputs[j].fine, &up_scan),
                             &checks[j],
                             &quick[j],
                             model,
-                            &rotated(model_cloud, &up_model),
+                            plan_model,
                             &seen,
                             4,
                             |g| up_model.inverse() * g * up_scan,
