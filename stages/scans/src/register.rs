@@ -1667,7 +1667,9 @@ fn levelling(c: &RegCloud) -> Option<(Pose, &'static str)> {
         }
         (count >= 100).then(|| sum.normalize())
     };
-    let (up, by) = match square_to(Vec3::z(), 0.5).and_then(|u| square_to(u, 0.1)).and_then(|u| square_to(u, 0.03)) {
+    // A narrower band that holds too few keeps the wider one's answer.
+    let narrowed = |u: Vec3, band: f64| square_to(u, band).unwrap_or(u);
+    let (up, by) = match square_to(Vec3::z(), 0.5).map(|u| narrowed(narrowed(u, 0.1), 0.03)) {
         Some(u) => (u, "its plumb surfaces (walls, columns, tanks)"),
         None => (
             mean_up(30.0, Vec3::z()).and_then(|u| mean_up(5.0, u))?,
