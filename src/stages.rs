@@ -390,6 +390,8 @@ fn run_docs(ctx: &Ctx) -> Result<Produced> {
             .map(|s| s["name"].as_str().unwrap_or("?").to_string())
             .collect();
     }
+    let site_level_unconfirmed =
+        ctx.upstream_json("scans", "registration.json")?.and_then(|r| site_level_unconfirmed(&r));
     // Lifts on a chart of one column: which boom it is for, the chart does not say.
     let mut one_column_charts = Vec::new();
     if let Some(r) = ctx.upstream_json("charts", "lifts.json")? {
@@ -424,6 +426,7 @@ fn run_docs(ctx: &Ctx) -> Result<Produced> {
         input_lines,
         input_hashes,
         scans_left_out,
+        site_level_unconfirmed,
         one_column_charts,
         chart_warnings,
         chart_wind,
@@ -441,4 +444,41 @@ fn run_docs(ctx: &Ctx) -> Result<Produced> {
         }
     }
     Ok(Produced { outputs, summary: serde_json::to_value(&summary)?, lines: summary.lines() })
+}
+
+/// The reference scan and how it was levelled, from the scans stage's
+/// registration.json, where its vertical rests on its ground or on nothing
+/// (a scanner that did not level itself): every height in the plan rests
+/// on that frame.
+fn site_level_unconfirmed(registration: &serde_json::Value) -> Option<(String, String)> {
+    use liftplan_scans::register::{LEVELLED_BY_GROUND, NOT_LEVELLED};
+    let scans = registration["scans"].as_array()?;
+    let reference = scans.iter().find(|s| s["method"].as_str().is_some_and(|m| m.starts_with("reference")))?;
+    let method = reference["method"].as_str()?;
+    (method.contains(LEVELLED_BY_GROUND) || method.contains(NOT_LEVELLED))
+        .then(|| (reference["name"].as_str().unwrap_or("?").to_string(), method.to_string()))
+}
+
+#[cfg(test)]
+mod site_level_tests {
+    use super::site_level_unconfirmed;
+
+    #[test]
+    fn a_reference_levelled_by_its_ground_or_not_at_all_is_named() {
+        let with = |method: &str| {
+            serde_json::json!({ "scans": [
+                { "name": "scan-2", "method": "levelled, plan-view correlation + ICP" },
+                { "name": "scan-1", "method": method },
+            ] })
+        };
+        for unconfirmed in [
+            format!("reference, levelled by {}", liftplan_scans::register::LEVELLED_BY_GROUND),
+            "reference, NOT LEVELLED: too few walls".to_string(),
+        ] {
+            assert_eq!(site_level_unconfirmed(&with(&unconfirmed)), Some(("scan-1".into(), unconfirmed.clone())));
+        }
+        for confirmed in ["reference", "reference, levelled by its plumb surfaces (walls, columns, tanks)"] {
+            assert_eq!(site_level_unconfirmed(&with(confirmed)), None, "{confirmed}");
+        }
+    }
 }

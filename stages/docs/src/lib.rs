@@ -77,6 +77,10 @@ pub struct Inputs {
     /// (`[scans] on_unregistered = "exclude"`), by name, and how many scans
     /// there were in all.
     pub scans_left_out: (Vec<String>, usize),
+    /// Where the scanner did not level itself (`[scans.registration]
+    /// leveled = false`) and the reference scan was levelled by its ground
+    /// or not at all: its name and how its line says it was levelled.
+    pub site_level_unconfirmed: Option<(String, String)>,
     /// Lifts of a luffing crane whose chart configuration has one capacity
     /// column, not one per boom length, with the boom length the chart must
     /// be for (the charts stage's `one_column_for_boom_m`).

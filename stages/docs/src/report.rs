@@ -172,6 +172,9 @@ fn checks_before_signing(
     if !inp.scans_left_out.0.is_empty() {
         v.push(format!("{} scans left out unregistered", inp.scans_left_out.0.len()));
     }
+    if inp.site_level_unconfirmed.is_some() {
+        v.push("the site's level (the scanner did not level itself)".to_string());
+    }
     if let Some(w) = chart_warnings(inp, task) {
         let read = warned_read.map(<[_]>::len);
         v.push(format!(
@@ -1298,6 +1301,18 @@ pub fn document(
                 "{} of the {scans} scans DID NOT REGISTER AND WERE LEFT OUT, as [scans] on_unregistered = \"exclude\" asks: {}. Whatever only they saw is not an obstacle in this plan: CHECK ON SITE what stands where they looked, or have them registered.",
                 left_out.len(),
                 left_out.join(", ")
+            ),
+        );
+    }
+    if let Some((reference, how)) = &inp.site_level_unconfirmed {
+        y += 4.0;
+        y = sign_off_paragraph(
+            &mut d,
+            y,
+            w,
+            &format!(
+                "THE SITE'S LEVEL IS NOT CONFIRMED: the scanner did not level itself ([scans.registration] leveled = false) and the reference scan '{reference}', which fixes the site frame, is {}. Every height in this plan, and so every clearance, rests on that frame: CHECK THE LEVEL, or give the reference's surveyed pose in a station file and scan with walls or columns in view.",
+                how.strip_prefix("reference, ").unwrap_or(how)
             ),
         );
     }

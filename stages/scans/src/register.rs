@@ -902,13 +902,12 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
             let at = at.unwrap_or_else(Pose::identity);
             match levelling(&inputs[0].fine) {
                 Some((level, by)) => (at * level, format!("reference, levelled by {by}")),
-                None if inputs[0].held.is_some() => (
-                    at,
-                    "reference, at its station but NOT LEVELLED: too few walls or level ground to find its vertical, so the site frame tilts as its scanner did".to_string(),
-                ),
                 None => (
                     at,
-                    "reference, NOT LEVELLED: too few walls or level ground to find its vertical, so the site frame tilts as its scanner did".to_string(),
+                    format!(
+                        "reference, {}{NOT_LEVELLED}: too few walls or level ground to find its vertical, so the site frame tilts as its scanner did",
+                        if inputs[0].held.is_some() { "at its station but " } else { "" }
+                    ),
                 ),
             }
         }
@@ -1617,6 +1616,11 @@ fn plan_view_guesses(
     order.iter().take(keep).map(|&k| guesses[k].0).collect()
 }
 
+/// What a reference scan's method says where its vertical rests on its
+/// ground, or on nothing (the docs stage names these among what to check).
+pub const LEVELLED_BY_GROUND: &str = "its ground (where that slopes, the site frame slopes with it)";
+pub const NOT_LEVELLED: &str = "NOT LEVELLED";
+
 /// The rotation that levels a cloud (turns its vertical onto z), for scans
 /// whose scanner did not level itself, tilted up to about 30 degrees.
 ///
@@ -1671,10 +1675,7 @@ fn levelling(c: &RegCloud) -> Option<(Pose, &'static str)> {
     let narrowed = |u: Vec3, band: f64| square_to(u, band).unwrap_or(u);
     let (up, by) = match square_to(Vec3::z(), 0.5).map(|u| narrowed(narrowed(u, 0.1), 0.03)) {
         Some(u) => (u, "its plumb surfaces (walls, columns, tanks)"),
-        None => (
-            mean_up(30.0, Vec3::z()).and_then(|u| mean_up(5.0, u))?,
-            "its ground (where that slopes, the site frame slopes with it)",
-        ),
+        None => (mean_up(30.0, Vec3::z()).and_then(|u| mean_up(5.0, u))?, LEVELLED_BY_GROUND),
     };
     let turn = na::UnitQuaternion::rotation_between(&up, &Vec3::z())?;
     Some((Pose::from_parts(na::Translation3::identity(), turn), by))
