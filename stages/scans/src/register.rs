@@ -894,13 +894,16 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
     // The reference fixes the site frame, whose z the later stages take for
     // up: a scanner that did not level itself leaves that to be found.
     // A station gives a position and a yaw, no tilt; a file's pose (E57)
-    // gives the whole rotation.
+    // gives the whole rotation. Each scan is levelled once ([`levelling`]):
+    // the reference by it, and every trial's plan view of the scan.
+    let levels: Vec<Option<(Pose, &'static str)>> =
+        if s.leveled { vec![None; n] } else { inputs.par_iter().map(|i| levelling(&i.fine)).collect() };
     let (reference_pose, reference_method) = match (inputs[0].initial, s.leveled) {
         (at, true) => (at.unwrap_or_else(Pose::identity), "reference".to_string()),
         (Some(p), false) if inputs[0].held.is_none() => (p, "reference".to_string()),
         (at, false) => {
             let at = at.unwrap_or_else(Pose::identity);
-            match levelling(&inputs[0].fine) {
+            match levels[0] {
                 Some((level, by)) => (at * level, format!("reference, levelled by {by}")),
                 None => (
                     at,
@@ -1029,7 +1032,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                         // Each levelled, the scan and the model differ by a
                         // yaw and a shift again, up to the error of that
                         // levelling (ICP is 6-DOF).
-                        let up_scan = levelling(&inputs[j].fine).map_or_else(Pose::identity, |l| l.0);
+                        let up_scan = levels[j].map_or_else(Pose::identity, |l| l.0);
                         let guesses = plan_view_guesses(
                             &rotated(&inputs[j].fine, &up_scan),
                             &checks[j],
