@@ -381,7 +381,8 @@ fn run_docs(ctx: &Ctx) -> Result<Produced> {
     input_hashes.dedup();
     // Scans left out unregistered: what only they saw is missing.
     let mut scans_left_out = (Vec::new(), 0);
-    if let Some(r) = ctx.upstream_json("scans", "registration.json")? {
+    let registration = ctx.upstream_json("scans", "registration.json")?;
+    if let Some(r) = &registration {
         let scans = r["scans"].as_array().cloned().unwrap_or_default();
         scans_left_out.1 = scans.len();
         scans_left_out.0 = scans
@@ -390,8 +391,7 @@ fn run_docs(ctx: &Ctx) -> Result<Produced> {
             .map(|s| s["name"].as_str().unwrap_or("?").to_string())
             .collect();
     }
-    let site_level_unconfirmed =
-        ctx.upstream_json("scans", "registration.json")?.and_then(|r| site_level_unconfirmed(&r));
+    let site_level_unconfirmed = registration.as_ref().and_then(site_level_unconfirmed);
     // Lifts on a chart of one column: which boom it is for, the chart does not say.
     let mut one_column_charts = Vec::new();
     if let Some(r) = ctx.upstream_json("charts", "lifts.json")? {
