@@ -473,6 +473,8 @@ keep = 3                  # runs' outputs each stage keeps in .liftplan/cache (t
 # name = "11 kV feeder"
 # points_m = [[-30.0, 40.0, 9.0], [45.0, 38.0, 9.5]]   # where it is held (pole tops), in order, m
 # sag_m = 1.0                  # the most it hangs below the straight line at mid-span, m
+# least_sag_m = 0.6            # the least (cold, carrying little), m (leave it out: sag_m)
+# swing_deg = 30.0             # how far the wind may swing it sideways, degrees (leave it out: plumb)
 # voltage_kv = 11.0
 # approach_m = 6.0             # the distance kept, m (a rule stricter than Table A's)
 
@@ -526,6 +528,11 @@ keep = 3                  # runs' outputs each stage keeps in .liftplan/cache (t
 #                              # load's footprint 0.25 m off them; crane_too: the crane's
 #                              # boom, counterweight, rope and hook may not be over it
 #                              # either (no oversailing)
+# crane_stands_in = [{ name = "hardstanding", corners_m = [[-12.0, -9.0], [16.0, -9.0], [16.0, 9.0], [-12.0, 9.0]] }]
+#                              # where the crane may be set up (its carrier and outriggers
+#                              # within one of these, in plan, m): the lift's set-up is
+#                              # checked against them and other positions are sought
+#                              # only there (leave it out: anywhere)
 "#;
 
 /// Creates a project folder with the template and the input folders.
@@ -571,6 +578,7 @@ mod tests {
             "ground",
             "wind",
             "not_over",
+            "crane_stands_in",
         ] {
             assert!(v["lift"][0].get(key).is_some(), "{key} is not shown");
         }
@@ -579,6 +587,8 @@ mod tests {
         assert!(task.permissible_wind(&[]).is_ok());
         assert_eq!(task.not_over[0].name, "control room");
         assert!(!task.not_over[0].crane_too && task.not_over[1].crane_too);
+        assert_eq!(task.crane_stands_in[0].name, "hardstanding");
+        assert_eq!(task.stands_outside_its_areas(), None);
     }
 
     /// The template's commented `[scans.registration]`, uncommented with
@@ -635,6 +645,8 @@ mod tests {
     fn the_templates_example_power_line_uncommented_is_taken() {
         let raw = templates_example("power_line");
         assert_eq!(liftplan_core::power_line::problem_of(&raw.power_line, &["V-101"]), None);
-        assert!(raw.power_line[0].said().ends_with("kept 6.00 m off (approach_m)"), "{}", raw.power_line[0].said());
+        let said = raw.power_line[0].said();
+        assert!(said.ends_with("kept 6.00 m off (approach_m)"), "{said}");
+        assert!(said.contains("sagging 0.60 to 1.00 m at mid-span, swinging up to 30 degrees either way"), "{said}");
     }
 }

@@ -435,6 +435,45 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
         let held = std::fs::read_to_string(entry.path().join("plan.json")).unwrap_or_default();
         assert!(!held.contains(&format!("\"revision\": \"{crews_plan}\"")), "{}", entry.path().display());
     }
+    // `liftplan revisions` lists it, and asked to remove every plan kept
+    // before now, keeps it (the lift resumes it) and every plan a crew may
+    // hold or be given, removing only the others, files and all.
+    let listed = |args: &[&str]| -> serde_json::Value {
+        let o = crate::util::ok(&[&["revisions", d, "--json"], args].concat());
+        serde_json::from_slice(&o.stdout).unwrap()
+    };
+    let before = listed(&[])["kept"].as_array().unwrap().clone();
+    let after = listed(&["--remove-older-than", "0"]);
+    let (left, removed) = (after["kept"].as_array().unwrap(), after["removed"].as_array().unwrap());
+    assert_eq!(left.len() + removed.len(), before.len(), "{after}");
+    // Five kept by now: the crew's, the cache's three (one the last) and
+    // one before them, which goes.
+    assert!(!removed.is_empty(), "{after}");
+    let crews = left.iter().find(|k| k["revision"] == crews_plan.as_str()).expect("the crew's plan is kept");
+    assert_eq!(crews["held"], "a lift of the project resumes it (resumes_plan)");
+    assert!(left.iter().all(|k| k["held"].is_string()), "{after}");
+    for gone in before.iter().filter(|k| !left.contains(k)) {
+        let revision = gone["revision"].as_str().unwrap();
+        assert!(removed.iter().any(|r| r.as_str().unwrap().starts_with(&format!("V-101 plan {revision} "))));
+        let files = std::fs::read_dir(dir.join("out").join("revisions").join("V-101")).unwrap();
+        assert!(files.flatten().all(|f| !f.file_name().to_string_lossy().starts_with(revision)), "{revision}");
+    }
+    // A project file that does not read: listed still, saying so; nothing
+    // removed (which plans its lifts resume is not known).
+    let good_toml = std::fs::read_to_string(dir.join("liftplan.toml")).unwrap();
+    std::fs::write(dir.join("liftplan.toml"), format!("{good_toml}\n[[lift]\n")).unwrap();
+    let o = crate::util::ok(&["revisions", d]);
+    let said = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        said.starts_with("note: ") && said.contains("the plans the project's lifts resume are not known here"),
+        "{said}"
+    );
+    assert!(said.contains(&format!("V-101 plan {crews_plan}  kept ")), "{said}");
+    let o = liftplan(&["revisions", d, "--remove-older-than", "0"]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && stderr.contains("removing plans needs the project file to read"), "{stderr}");
+    assert_eq!(listed(&[])["kept"].as_array().map(Vec::len), Some(left.len()));
+    std::fs::write(dir.join("liftplan.toml"), good_toml).unwrap();
     for (from, to, says) in [
         ("position_m = [0.0, 0.0]", "position_m = [0.5, 0.0]", ["had the crane at (0.00, 0.00) m", "has not moved"]),
         (
@@ -456,16 +495,31 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     // An overhead line along the site's north edge: listed with its
     // approach distance, drawn, asked to be checked, and in the run's line.
     // And a fall zone of 3 m round the ground under the load.
-    let zoned = t13.replace("leg_wll_t = 10.0 }", "leg_wll_t = 10.0 }\nfall_zone_m = 3.0");
+    // And the pad the crane is set up on, listed.
+    let zoned = t13.replace(
+        "leg_wll_t = 10.0 }",
+        "leg_wll_t = 10.0 }\nfall_zone_m = 3.0\ncrane_stands_in = [{ name = \"crane pad\", corners_m = [[-10.0, -8.0], [15.0, -8.0], [15.0, 8.0], [-10.0, 8.0]] }]",
+    );
     assert_ne!(zoned, t13);
     let with_line = format!(
-        "{zoned}\n[[power_line]]\nname = \"north feeder\"\npoints_m = [[-40.0, 45.0, 12.0], [60.0, 45.0, 12.5]]\nsag_m = 1.5\nvoltage_kv = 33.0\n"
+        "{zoned}\n[[power_line]]\nname = \"north feeder\"\npoints_m = [[-40.0, 45.0, 12.0], [10.0, 35.0, 12.25], [60.0, 45.0, 12.5]]\nsag_m = 1.5\nswing_deg = 30.0\nvoltage_kv = 33.0\n"
     );
     let (cover, text) = planned_with(&dir, &with_line);
-    let said = "power line 'north feeder', 33 kV, held at (-40.00, 45.00, 12.00), (60.00, 45.00, 12.50) m, sagging 1.50 m at mid-span: kept 3.05 m off (OSHA 1926.1408 Table A)";
+    // Its middle support stands where the scans show the site but no pole:
+    // said, and asked to be checked first; its ends are outside the scans.
+    let said = "power line 'north feeder', 33 kV, held at (-40.00, 45.00, 12.00), (10.00, 35.00, 12.25), (60.00, 45.00, 12.50) m, sagging 1.50 m at mid-span, swinging up to 30 degrees either way in the wind: kept 3.05 m off (OSHA 1926.1408 Table A); support 2 at (10.00, 35.00, 12.25) m NOT SEEN, where the scans show the site around (nothing within 1 m of it in plan): CHECK WHERE THE LINE RUNS; outside the scans: supports 1, 3";
     assert!(text.contains(&format!("Power lines {said} ([[power_line]])")), "{text}");
     assert!(cover.contains("power lines in orange"), "{cover}");
-    assert!(cover.contains("the power lines: where they run, how low they sag and their voltage"), "{cover}");
+    assert!(cover.contains("areas the crane may stand in outlined in blue"), "{cover}");
+    assert!(
+        cover.contains("where a power line runs: the scans do not show a support it gives (inputs page)"),
+        "{cover}"
+    );
+    assert!(
+        text.contains("Crane stands in crane pad (x -10.0 to 15.0 m, y -8.0 to 8.0 m) (crane_stands_in): its carrier and outriggers, with their pads' mats, stand within one of these"),
+        "{text}"
+    );
+    assert!(cover.contains("the power lines: where they run, how low and how high they hang, how far the wind swings them and their voltage"), "{cover}");
     let plan: serde_json::Value =
         serde_json::from_slice(&std::fs::read(dir.join("out").join("plan.json")).unwrap()).unwrap();
     assert_eq!(plan["lifts"][0]["summary"]["power_lines"][0], said);
@@ -1129,4 +1183,58 @@ fn scans_left_out_unregistered_are_named_on_the_sign_off_page() {
     assert!(text.contains("3 of the 4 scans DID NOT REGISTER AND WERE LEFT OUT"), "{text}");
     assert!(text.contains("scan-2, scan-3, scan-4"), "{text}");
     assert!(text.contains("3 scans left out unregistered; ground under the load that no scan saw"), "{text}");
+}
+
+/// A scanner that does not level itself (`leveled = false`) and a reference
+/// scan with no walls, columns or tanks in it (the ground alone, as an open
+/// yard would give): the reference is levelled by its ground, so the site
+/// frame every height rests on is not confirmed level, and the PDF's cover
+/// and sign-off page say so. The lift is still planned.
+#[test]
+fn a_site_frame_levelled_by_the_ground_is_to_be_checked_on_the_cover_and_sign_off_page() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("open-yard");
+    let d = dir.to_str().unwrap();
+    // The coarse demo's other scans do not register; only its files are wanted.
+    let o = liftplan(&["demo", d, "--scan-step", "0.5", "-q"]);
+    assert!(dir.join("liftplan.toml").is_file(), "{}", String::from_utf8_lossy(&o.stderr));
+    let scans = dir.join("scans");
+    for k in 2..=4 {
+        std::fs::remove_file(scans.join(format!("scan-{k}.laz"))).unwrap();
+    }
+    let reference = scans.join("scan-1.laz");
+    let info = liftplan_scans::read::list_scans(&reference).unwrap().remove(0);
+    let whole = liftplan_scans::read::read_all(&info).unwrap();
+    // The scanner stood 1.604 m above the ground (its station file).
+    let mut ground = liftplan_core::cloud::PointCloud::default();
+    for (p, i) in whole.xyz.iter().zip(&whole.intensity) {
+        if p[2] < -1.55 {
+            ground.xyz.push(*p);
+            ground.intensity.push(*i);
+        }
+    }
+    assert!(ground.len() > 10_000 && ground.len() < whole.len(), "{} of {}", ground.len(), whole.len());
+    crate::util::write_scan(&reference, &ground);
+    let toml_path = dir.join("liftplan.toml");
+    let t = std::fs::read_to_string(&toml_path).unwrap();
+    std::fs::write(&toml_path, format!("{t}\n[scans.registration]\nleveled = false\n")).unwrap();
+    let o = liftplan(&["run", d, "-q"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let registration = std::fs::read_to_string(dir.join("out").join("registration.json")).unwrap();
+    assert!(registration.contains("levelled by its ground"), "{registration}");
+    let doc = lopdf::Document::load(dir.join("out").join("V-101.pdf")).unwrap();
+    let cover = cover_text(&doc);
+    assert!(cover.contains("the site's level (the scanner did not level itself)"), "{cover}");
+    let pages: Vec<u32> = doc.get_pages().keys().copied().collect();
+    let text = doc.extract_text(&pages).unwrap().replace('\n', " ");
+    assert!(text.contains("THE SITE'S LEVEL IS NOT CONFIRMED"), "{text}");
+    assert!(text.contains("is levelled by its ground"), "{text}");
+    // The same scan from a scanner that levels itself: nothing to check.
+    std::fs::write(&toml_path, &t).unwrap();
+    let o = liftplan(&["run", d, "-q"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let doc = lopdf::Document::load(dir.join("out").join("V-101.pdf")).unwrap();
+    let pages: Vec<u32> = doc.get_pages().keys().copied().collect();
+    let text = doc.extract_text(&pages).unwrap().replace('\n', " ");
+    assert!(!text.contains("the site's level") && !text.contains("SITE'S LEVEL"), "{text}");
 }

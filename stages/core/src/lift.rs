@@ -245,6 +245,21 @@ pub struct LiftSpec {
     /// live plant), in plan, in the frame of the pick and the set.
     #[serde(default)]
     pub not_over: Vec<NotOver>,
+    /// Where the crane may be set up (a hardstanding, a road, a prepared
+    /// pad), in plan: its carrier and outriggers (or a tower's mast) stand
+    /// within one of these where any is given.
+    #[serde(default)]
+    pub crane_stands_in: Vec<CraneArea>,
+}
+
+/// An area the crane may be set up in: its carrier and outriggers (their
+/// plan outlines' hull) lie within the polygon `corners_m` ([x, y] in
+/// metres, in order around it), clear of its edges.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CraneArea {
+    pub name: String,
+    pub corners_m: Vec<[f64; 2]>,
 }
 
 /// An area the load must never be over: its footprint (the plan outline of
@@ -281,33 +296,46 @@ pub const MAX_NOT_OVER_NAME: usize = 100;
 impl NotOver {
     /// Why it is not an area a lift can give, naming the key.
     fn problem(&self, k: usize) -> Option<String> {
-        let n = self.corners_m.len();
-        if self.name.trim().is_empty() {
-            return Some(format!("not_over[{k}] needs a name (what the area is: \"control room\")"));
-        }
-        if self.name.chars().count() > MAX_NOT_OVER_NAME {
-            return Some(format!("not_over[{k}]'s name is longer than {MAX_NOT_OVER_NAME} characters"));
-        }
-        if !(3..=MAX_NOT_OVER_CORNERS).contains(&n) {
-            return Some(format!(
-                "not_over '{}' needs 3 to {MAX_NOT_OVER_CORNERS} corners_m ([x, y] in metres, in order around it), found {n}",
-                self.name
-            ));
-        }
-        if let Some(c) = self.corners_m.iter().find(|c| !(c[0].is_finite() && c[1].is_finite())) {
-            return Some(format!("not_over '{}' has a corner that is not a finite [x, y] in metres: {c:?}", self.name));
-        }
-        let twice_area: f64 = (0..n)
-            .map(|i| {
-                let (a, b) = (self.corners_m[i], self.corners_m[(i + 1) % n]);
-                a[0] * b[1] - b[0] * a[1]
-            })
-            .sum();
-        if !(twice_area.abs() > 2e-4) {
-            return Some(format!("not_over '{}' encloses no area: give its corners_m in order around it", self.name));
-        }
-        None
+        area_problem("not_over", "control room", k, &self.name, &self.corners_m)
     }
+}
+
+impl CraneArea {
+    /// Why it is not an area a lift can give, naming the key.
+    fn problem(&self, k: usize) -> Option<String> {
+        area_problem("crane_stands_in", "hardstanding north of the rack", k, &self.name, &self.corners_m)
+    }
+}
+
+/// Why a plan area of a lift's `key` list (its `k`th, from 0) is not one it
+/// can give: a name, 3 to [`MAX_NOT_OVER_CORNERS`] finite corners, and an
+/// area.
+fn area_problem(key: &str, example: &str, k: usize, name: &str, corners_m: &[[f64; 2]]) -> Option<String> {
+    let n = corners_m.len();
+    if name.trim().is_empty() {
+        return Some(format!("{key}[{k}] needs a name (what the area is: \"{example}\")"));
+    }
+    if name.chars().count() > MAX_NOT_OVER_NAME {
+        return Some(format!("{key}[{k}]'s name is longer than {MAX_NOT_OVER_NAME} characters"));
+    }
+    if !(3..=MAX_NOT_OVER_CORNERS).contains(&n) {
+        return Some(format!(
+            "{key} '{name}' needs 3 to {MAX_NOT_OVER_CORNERS} corners_m ([x, y] in metres, in order around it), found {n}"
+        ));
+    }
+    if let Some(c) = corners_m.iter().find(|c| !(c[0].is_finite() && c[1].is_finite())) {
+        return Some(format!("{key} '{name}' has a corner that is not a finite [x, y] in metres: {c:?}"));
+    }
+    let twice_area: f64 = (0..n)
+        .map(|i| {
+            let (a, b) = (corners_m[i], corners_m[(i + 1) % n]);
+            a[0] * b[1] - b[0] * a[1]
+        })
+        .sum();
+    if !(twice_area.abs() > 2e-4) {
+        return Some(format!("{key} '{name}' encloses no area: give its corners_m in order around it"));
+    }
+    None
 }
 
 fn default_clearance() -> f64 {
@@ -364,6 +392,8 @@ pub struct LiftTask {
     pub wind: Option<crate::wind::WindSpec>,
     /// Areas the load must never be over ([`NotOver`]).
     pub not_over: Vec<NotOver>,
+    /// Areas the crane may be set up in ([`CraneArea`]); none given: anywhere.
+    pub crane_stands_in: Vec<CraneArea>,
     /// The counterweight the lift's chart configuration's sheet states in
     /// words beside its grid, where it states one ("Counterweight 140 t",
     /// its cell): set by the stage that has read the chart, none until then.
@@ -969,6 +999,15 @@ impl LiftSpec {
         if let Some(why) = self.not_over.iter().enumerate().find_map(|(k, a)| a.problem(k)) {
             return Err(format!("lift '{id}': {why}"));
         }
+        if self.crane_stands_in.len() > MAX_NOT_OVER {
+            return Err(format!(
+                "lift '{id}': at most {MAX_NOT_OVER} crane_stands_in areas, found {}",
+                self.crane_stands_in.len()
+            ));
+        }
+        if let Some(why) = self.crane_stands_in.iter().enumerate().find_map(|(k, a)| a.problem(k)) {
+            return Err(format!("lift '{id}': {why}"));
+        }
         let task = LiftTask {
             id: id.clone(),
             description: self.description.clone(),
@@ -998,10 +1037,14 @@ impl LiftSpec {
             ground: self.ground,
             wind: self.wind,
             not_over: self.not_over.clone(),
+            crane_stands_in: self.crane_stands_in.clone(),
             chart_sheet_counterweight: None,
             gust_swing_per_m: 0.0,
         };
         ends_off_not_over(&task)?;
+        if let Some(why) = task.stands_outside_its_areas() {
+            return Err(format!("lift '{id}': {why}: set it up within one, or give the area it stands in"));
+        }
         // A chart speed the lift gives is known now; one its chart's sheet
         // states, once the chart is read (the plan stage sets it then).
         let mut task = task;
@@ -1079,7 +1122,72 @@ impl LiftTask {
         }
         let moved = LiftTask { crane, pick, set, by_configuration: [false, false], ..self.clone() };
         ends_off_not_over(&moved)?;
+        if let Some(why) = moved.stands_outside_its_areas() {
+            return Err(format!("lift '{id}': {why}"));
+        }
         Ok(moved)
+    }
+}
+
+impl LiftTask {
+    /// Where the lift gives areas the crane may be set up in and its
+    /// carrier and outriggers (or a tower's mast) do not lie within one of
+    /// them (the hull of their plan outlines, clear of the area's edges),
+    /// why, in words.
+    pub fn stands_outside_its_areas(&self) -> Option<String> {
+        if self.crane_stands_in.is_empty() {
+            return None;
+        }
+        let mut corners: Vec<[f64; 2]> = self
+            .crane
+            .part_kinds()
+            .iter()
+            .filter(|k| k.dependence() == Dependence::Fixed)
+            .filter_map(|&k| self.crane.part(k, &self.pick, &self.load))
+            .flat_map(|b| b.footprint())
+            .collect();
+        // The pads' mats, where the lift gives them, stand on the area too:
+        // each as a square of its longer side, square to the carrier (it
+        // holds the mat laid either way round).
+        let mats = self.ground.map(|g| g.mat_m[0].max(g.mat_m[1]) / 2.0).filter(|h| *h > 0.0);
+        if let Some(half) = mats {
+            let square_to_carrier = crate::frame::rot_z(self.crane.placement.heading_rad);
+            for pad in crate::outriggers::Pad::ALL {
+                let Some(at) = crate::outriggers::pad_at(&self.crane, pad) else { continue };
+                let centre = crate::frame::Point3::new(at[0], at[1], 0.0);
+                let mat = crate::obb::Obb::new(centre, square_to_carrier, crate::frame::Vec3::new(half, half, 0.0));
+                corners.extend(mat.footprint());
+            }
+        }
+        let footprint = crate::obb::convex_hull_2d(&corners);
+        // An area whose extent does not hold the footprint's is passed by
+        // before its edges are walked (the position search asks this at
+        // thousands of positions).
+        // (A crane of no fixed parts has no footprint, and is within none.)
+        let extent = crate::obb::plan_bounds(&footprint);
+        let holds = |a: &CraneArea| {
+            extent
+                .zip(crate::obb::plan_bounds(&a.corners_m))
+                .is_some_and(|((flo, fhi), (lo, hi))| (0..2).all(|k| lo[k] <= flo[k] && fhi[k] <= hi[k]))
+                && crate::obb::footprint_within_area(&footprint, &a.corners_m)
+        };
+        if self.crane_stands_in.iter().any(holds) {
+            return None;
+        }
+        let p = &self.crane.placement;
+        let names: Vec<String> = self.crane_stands_in.iter().map(|a| format!("'{}'", a.name)).collect();
+        Some(format!(
+            "the crane set up at position_m = [{:.2}, {:.2}], heading_deg = {:.0}: its {} not within an area it may stand in (crane_stands_in: {})",
+            p.x_m,
+            p.y_m,
+            p.heading_rad.to_degrees(),
+            match (self.crane.model.is_tower(), mats.is_some()) {
+                (true, _) => "mast is",
+                (false, true) => "carrier and outriggers, with their pads' mats, are",
+                (false, false) => "carrier and outriggers are",
+            },
+            names.join(", ")
+        ))
     }
 }
 
@@ -1275,6 +1383,61 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         let mut s = spec();
         s.id = "a b".into();
         assert!(s.resolve(crate::crane::builtin("ltm-1100").unwrap()).is_err());
+    }
+
+    /// The areas the crane may stand in: taken as given, refused naming the
+    /// key where one is no area, and where the crane's set-up is not within
+    /// one.
+    #[test]
+    fn areas_the_crane_may_stand_in_are_checked_as_given() {
+        let crane = || crate::crane::builtin("ltm-1100").unwrap();
+        let with = |name: &str, corners_m: Vec<[f64; 2]>| {
+            let mut sp = spec();
+            sp.crane_stands_in = vec![CraneArea { name: name.into(), corners_m }];
+            sp.resolve(crane())
+        };
+        let big = vec![[-30.0, -30.0], [30.0, -30.0], [30.0, 30.0], [-30.0, 30.0]];
+        let t = with("yard", big.clone()).unwrap();
+        assert_eq!(t.crane_stands_in[0].name, "yard");
+        // An area 0.3 m round the carrier and outriggers holds them, and
+        // not their pads' 2 m mats (1 m round each pad, 0.6 m beyond the
+        // outriggers' outline, which is 0.4 m round the pads).
+        let outline: Vec<[f64; 2]> = [PartKind::Carrier, PartKind::Outriggers]
+            .iter()
+            .flat_map(|&k| t.crane.part(k, &t.pick, &t.load).unwrap().footprint())
+            .collect();
+        let (lo, hi) = crate::obb::plan_bounds(&outline).unwrap();
+        let snug = vec![
+            [lo[0] - 0.3, lo[1] - 0.3],
+            [hi[0] + 0.3, lo[1] - 0.3],
+            [hi[0] + 0.3, hi[1] + 0.3],
+            [lo[0] - 0.3, hi[1] + 0.3],
+        ];
+        assert!(with("pad", snug.clone()).is_ok());
+        let mut sp = spec();
+        sp.crane_stands_in = vec![CraneArea { name: "pad".into(), corners_m: snug }];
+        sp.ground = Some(GroundSpec { mat_m: [2.0, 1.0], allowable_kpa: None });
+        let e = sp.clone().resolve(crane()).unwrap_err();
+        assert!(e.contains("its carrier and outriggers, with their pads' mats, are not within an area it may stand in (crane_stands_in: 'pad')"), "{e}");
+        sp.ground = Some(GroundSpec { mat_m: [0.5, 0.5], allowable_kpa: None });
+        assert!(sp.resolve(crane()).is_ok());
+        for (name, corners, said) in [
+            (
+                " ",
+                big.clone(),
+                "crane_stands_in[0] needs a name (what the area is: \"hardstanding north of the rack\")",
+            ),
+            ("strip", big[..2].to_vec(), "crane_stands_in 'strip' needs 3 to 200 corners_m"),
+            ("line", vec![[0.0, 0.0], [1.0, 1.0], [2.0, 2.0]], "crane_stands_in 'line' encloses no area"),
+            (
+                "far",
+                vec![[40.0, 0.0], [50.0, 0.0], [50.0, 10.0]],
+                "its carrier and outriggers are not within an area it may stand in (crane_stands_in: 'far')",
+            ),
+        ] {
+            let e = with(name, corners).unwrap_err();
+            assert!(e.starts_with("lift 'V-101': ") && e.contains(said), "{e}");
+        }
     }
 
     /// The areas a load must never be over: taken as given, refused naming

@@ -280,6 +280,17 @@ pub fn footprint_near_area(footprint: &[[f64; 2]], area: &[[f64; 2]], within_m: 
     edges_2d(footprint).any(|(a, b)| edges_2d(area).any(|(c, d)| segment_distance_2d(a, b, c, d) <= within_m))
 }
 
+/// Whether the convex `footprint` lies within `area`, a simple polygon with
+/// its corners in order either way round, clear of its edges: every corner
+/// inside it and no edge of either touching or crossing an edge of the
+/// other (an edge of a notch may cross the footprint between its corners).
+pub fn footprint_within_area(footprint: &[[f64; 2]], area: &[[f64; 2]]) -> bool {
+    !footprint.is_empty()
+        && area.len() >= 3
+        && footprint.iter().all(|&p| in_polygon_2d(area, p))
+        && edges_2d(footprint).all(|(a, b)| edges_2d(area).all(|(c, d)| segment_distance_2d(a, b, c, d) > 0.0))
+}
+
 /// Whether two plan extents (lows, highs) lie more than `within_m` apart
 /// along x or y: then nothing of either comes within `within_m` of the other.
 pub fn bounds_apart(a: ([f64; 2], [f64; 2]), b: ([f64; 2], [f64; 2]), within_m: f64) -> bool {
@@ -718,5 +729,27 @@ mod tests {
         let b = smallest_upright_box(&rim).unwrap();
         assert!((b.center - Point3::new(10.0, -3.0, 0.5)).norm() < 1e-6, "{b:?}");
         assert!((b.half.x - 2.0).abs() < 1e-3 && (b.half.y - 2.0).abs() < 1e-3 && b.half.z == 0.5, "{b:?}");
+    }
+
+    /// A footprint lies within an area with every corner inside it and no
+    /// edge of the area touching or crossing its own: a notch of the area
+    /// across it, between its corners, leaves it outside.
+    #[test]
+    fn a_footprint_within_an_area_is_clear_of_its_edges() {
+        let rect = [[0.0, 0.0], [4.0, 0.0], [4.0, 2.0], [0.0, 2.0]];
+        let area = [[-1.0, -1.0], [10.0, -1.0], [10.0, 5.0], [-1.0, 5.0]];
+        assert!(footprint_within_area(&rect, &area));
+        // A corner outside; an edge of the area on its edge.
+        assert!(!footprint_within_area(&rect, &[[0.5, -1.0], [10.0, -1.0], [10.0, 5.0], [0.5, 5.0]]));
+        assert!(!footprint_within_area(&rect, &[[0.0, -1.0], [10.0, -1.0], [10.0, 5.0], [0.0, 5.0]]));
+        // A U whose slot (x 1.5 to 2.5) runs across it: its corners are in the arms.
+        let u = [[-1.0, -1.0], [1.5, -1.0], [1.5, 4.0], [2.5, 4.0], [2.5, -1.0], [6.0, -1.0], [6.0, 5.0], [-1.0, 5.0]];
+        assert!(rect.iter().all(|&p| in_polygon_2d(&u, p)));
+        assert!(!footprint_within_area(&rect, &u));
+        // Either way round; too few corners or none.
+        let mut back = area;
+        back.reverse();
+        assert!(footprint_within_area(&rect, &back));
+        assert!(!footprint_within_area(&rect, &area[..2]) && !footprint_within_area(&[], &area));
     }
 }

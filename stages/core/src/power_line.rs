@@ -5,7 +5,9 @@
 //! conductor 12 mm across), and a line's voltage is nowhere in the scans or
 //! the plant model, so a line is given by hand: where its conductor is held
 //! (the pole or tower tops, in order), how far it sags below the straight
-//! line between two supports at mid-span, and its voltage. The distance
+//! line between two supports at mid-span, and its voltage; where known, the
+//! least it sags (a conductor cold and carrying little hangs higher) and
+//! how far the wind may swing it sideways (its blowout). The distance
 //! kept is the lift's own `approach_m` where given, else OSHA 29 CFR
 //! 1926.1408 Table A's for the voltage ([`table_a_m`]); over 1,000 kV the
 //! line's owner must give it.
@@ -19,15 +21,20 @@
 //! distance off the conductor, and in the rest of the lift the clearance
 //! beyond it. Each span hangs as a parabola (its
 //! sag at mid-span), cut into pieces of at most [`PIECE_M`], each box
-//! holding its piece of the curve.
+//! holding its piece of the curve at every sag from `least_sag_m` to
+//! `sag_m`, hanging plumb or swung about the line between its supports by
+//! up to `swing_deg` either way.
 //!
 //! What this module must not do: take a line's position from the scans
-//! (it is what the engineer gives), or model a conductor swinging in the
-//! wind or sagging more when hot: `sag_m` is to be the most it sags, and
-//! the approach distance is the only margin for its swing.
+//! (it is what the engineer gives), or work out a conductor's sag or swing
+//! from its temperature, current, tension or the wind: `sag_m` is to be
+//! the most it sags, and where `swing_deg` or `least_sag_m` is not given
+//! the conductor is taken as hanging plumb at `sag_m`, the approach
+//! distance the only margin for its swing and rise.
 
 use crate::frame::{Mat3, Point3, Vec3};
 use crate::obb::Obb;
+use nalgebra as na;
 use serde::{Deserialize, Serialize};
 
 /// The most supports one line may give.
@@ -36,6 +43,8 @@ pub const MAX_SUPPORTS: usize = 100;
 pub const MAX_SPAN_M: f64 = 2_000.0;
 /// The most a span may sag (m).
 pub const MAX_SAG_M: f64 = 100.0;
+/// The most a conductor may be given to swing from plumb (degrees).
+pub const MAX_SWING_DEG: f64 = 80.0;
 /// The longest piece of conductor one box holds (m).
 pub const PIECE_M: f64 = 2.0;
 /// The longest name (characters): the PDF says it.
@@ -54,6 +63,15 @@ pub struct PowerLine {
     /// How far the conductor hangs below the straight line between two
     /// supports at mid-span, the most it sags (hot, loaded) (m).
     pub sag_m: f64,
+    /// The least it sags at mid-span (cold, carrying little) (m); none:
+    /// `sag_m` (taken as hanging there).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub least_sag_m: Option<f64>,
+    /// How far the wind may swing the conductor sideways, about the line
+    /// between its supports, from hanging plumb (its blowout) (degrees);
+    /// none: not swinging (the approach distance the only margin for it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub swing_deg: Option<f64>,
     /// Its voltage, phase to phase (kV).
     pub voltage_kv: f64,
     /// The distance every part keeps from it (m); none: OSHA 1926.1408
@@ -168,6 +186,17 @@ impl PowerLine {
                 self.sag_m
             ));
         }
+        if let Some(least) = self.least_sag_m.filter(|l| !(l.is_finite() && (0.0..=self.sag_m).contains(l))) {
+            return Some(format!(
+                "power line '{name}': least_sag_m must be 0 to sag_m ({} m; the least and the most its conductor sags), found {least}",
+                self.sag_m
+            ));
+        }
+        if let Some(swing) = self.swing_deg.filter(|s| !(s.is_finite() && (0.0..=MAX_SWING_DEG).contains(s))) {
+            return Some(format!(
+                "power line '{name}': swing_deg must be 0 to {MAX_SWING_DEG} degrees (how far the wind swings its conductor sideways from hanging plumb), found {swing}"
+            ));
+        }
         if !(self.voltage_kv.is_finite() && self.voltage_kv > 0.0) {
             return Some(format!("power line '{name}': voltage_kv must be positive, found {}", self.voltage_kv));
         }
@@ -206,9 +235,28 @@ impl PowerLine {
         p
     }
 
-    /// Boxes holding every point within `grow_m` of the conductor, one per
-    /// piece of at most [`PIECE_M`] along each span.
+    /// The conductor at `t` along span `i` sagging `sag_m` at mid-span and
+    /// swung `swing_rad` about the straight line between its supports.
+    pub fn swung(&self, i: usize, t: f64, sag_m: f64, swing_rad: f64) -> Point3 {
+        let (a, b) = (Vec3::from(self.points_m[i]), Vec3::from(self.points_m[i + 1]));
+        let turn = na::Rotation3::from_axis_angle(&na::Unit::new_normalize(b - a), swing_rad);
+        let hangs = turn * Vec3::new(0.0, 0.0, -4.0 * sag_m * t * (1.0 - t));
+        Point3::from(a + (b - a) * t + hangs)
+    }
+
+    /// The least and the most it sags at mid-span (m) and how far it swings
+    /// either way (radians), as given.
+    fn hangs(&self) -> (f64, f64, f64) {
+        (self.least_sag_m.unwrap_or(self.sag_m), self.sag_m, self.swing_deg.unwrap_or(0.0).to_radians())
+    }
+
+    /// Boxes holding every point within `grow_m` of the conductor wherever
+    /// it hangs (at any sag from the least to the most, swung by up to
+    /// `swing_deg` either way), one per piece of at most [`PIECE_M`] along
+    /// each span.
     pub fn boxes(&self, grow_m: f64) -> Vec<Obb> {
+        let (least, most, swing) = self.hangs();
+        let plumb_at_most = least == most && swing == 0.0;
         let mut out = Vec::new();
         for i in 0..self.points_m.len().saturating_sub(1) {
             let n = (self.chord_m(i) / PIECE_M).ceil().max(1.0) as usize;
@@ -225,11 +273,31 @@ impl PowerLine {
                 let y = Vec3::new(-x.y, x.x, 0.0).normalize();
                 let z = x.cross(&y);
                 let center = Point3::new((p[0] + q[0]) / 2.0, (p[1] + q[1]) / 2.0, (p[2] + q[2]) / 2.0);
-                out.push(Obb::new(
-                    center,
-                    Mat3::from_columns(&[x, y, z]),
-                    Vec3::new(len / 2.0 + grow_m + dev, grow_m, grow_m + dev),
-                ));
+                let axes = Mat3::from_columns(&[x, y, z]);
+                if plumb_at_most {
+                    out.push(Obb::new(center, axes, Vec3::new(len / 2.0 + grow_m + dev, grow_m, grow_m + dev)));
+                    continue;
+                }
+                // At each point along the span, where the conductor may
+                // hang is a sector about the line between the supports: its
+                // extent along each axis is at the least or the most sag,
+                // plumb or swung fully one way (the axes are the span's
+                // horizontal square and two in its vertical plane, and the
+                // swing's part along each is monotonic in its angle). Its
+                // ends bound a piece's curves but for their bow, at most
+                // `dev` as above.
+                let (mut lo, mut hi) = (Vec3::repeat(f64::INFINITY), Vec3::repeat(f64::NEG_INFINITY));
+                for t in [k as f64 * dt, (k + 1) as f64 * dt] {
+                    for sag in [least, most] {
+                        for angle in [-swing, 0.0, swing] {
+                            let local = axes.transpose() * (self.swung(i, t, sag, angle) - center);
+                            lo = lo.inf(&local);
+                            hi = hi.sup(&local);
+                        }
+                    }
+                }
+                let middle = axes * ((lo + hi) / 2.0);
+                out.push(Obb::new(center + middle, axes, (hi - lo) / 2.0 + Vec3::repeat(grow_m + dev)));
             }
         }
         out
@@ -246,9 +314,18 @@ impl PowerLine {
             }
             all => all.iter().map(at).collect::<Vec<_>>().join(", "),
         };
+        let sags = match self.least_sag_m {
+            Some(least) if least < self.sag_m => format!("{least:.2} to {:.2}", self.sag_m),
+            _ => format!("{:.2}", self.sag_m),
+        };
+        let swings = match self.swing_deg {
+            Some(s) if s > 0.0 => format!(", swinging up to {s:.0} degrees either way in the wind"),
+            Some(_) => ", not swinging in the wind (swing_deg = 0)".to_string(),
+            None => ", its swing in the wind not given (taken as hanging plumb)".to_string(),
+        };
         format!(
-            "power line '{}', {} kV, held at {held} m, sagging {:.2} m at mid-span: kept {approach:.2} m off ({whence})",
-            self.name, self.voltage_kv, self.sag_m
+            "power line '{}', {} kV, held at {held} m, sagging {sags} m at mid-span{swings}: kept {approach:.2} m off ({whence})",
+            self.name, self.voltage_kv
         )
     }
 }
@@ -262,6 +339,8 @@ mod tests {
             name: "11 kV feeder".into(),
             points_m: vec![[-20.0, 30.0, 9.0], [10.0, 25.0, 10.0], [40.0, 32.0, 9.5]],
             sag_m: 1.2,
+            least_sag_m: None,
+            swing_deg: None,
             voltage_kv: 11.0,
             approach_m: None,
             lifts: vec![],
@@ -281,7 +360,15 @@ mod tests {
         assert_eq!(own.approach(), Some((6.0, "approach_m")));
         assert_eq!(
             line().said(),
-            "power line '11 kV feeder', 11 kV, held at (-20.00, 30.00, 9.00), (10.00, 25.00, 10.00), (40.00, 32.00, 9.50) m, sagging 1.20 m at mid-span: kept 3.05 m off (OSHA 1926.1408 Table A)"
+            "power line '11 kV feeder', 11 kV, held at (-20.00, 30.00, 9.00), (10.00, 25.00, 10.00), (40.00, 32.00, 9.50) m, sagging 1.20 m at mid-span, its swing in the wind not given (taken as hanging plumb): kept 3.05 m off (OSHA 1926.1408 Table A)"
+        );
+        let still = PowerLine { swing_deg: Some(0.0), ..line() };
+        assert!(still.said().contains("sagging 1.20 m at mid-span, not swinging in the wind (swing_deg = 0): kept"));
+        let moving = PowerLine { least_sag_m: Some(0.4), swing_deg: Some(35.0), ..line() };
+        assert!(
+            moving.said().contains("m, sagging 0.40 to 1.20 m at mid-span, swinging up to 35 degrees either way in the wind: kept 3.05 m off"),
+            "{}",
+            moving.said()
         );
         let mut long = line();
         long.points_m.push([70.0, 40.0, 9.0]);
@@ -311,6 +398,51 @@ mod tests {
         // Not much more: a point 2 m beside the middle of a span is in none.
         let beside = Point3::new(mid[0], mid[1] + grow + 2.0, mid[2]);
         assert!(boxes.iter().all(|b| b.distance_sq_to_point(&beside) > 0.0));
+        // Given neither, it hangs plumb at its sag: the same boxes.
+        let still = PowerLine { least_sag_m: Some(1.2), swing_deg: Some(0.0), ..line() };
+        assert_eq!(still.boxes(grow), boxes);
+    }
+
+    /// A conductor that sags less when cold and swings in the wind: every
+    /// point within the growth of it, at any sag between the least and the
+    /// most and any swing up to the most either way, lies in a box; and the
+    /// boxes reach beside and above where a plumb conductor's do, as far as
+    /// the swing and the rise take it, and not much further.
+    #[test]
+    fn the_boxes_hold_the_conductor_wherever_it_sags_and_swings() {
+        // Long spans, steep and level, a deep sag: the swing moves it metres.
+        let l = PowerLine {
+            points_m: vec![[-60.0, 30.0, 12.0], [40.0, 10.0, 30.0], [120.0, 40.0, 28.0]],
+            sag_m: 6.0,
+            least_sag_m: Some(2.5),
+            swing_deg: Some(40.0),
+            ..line()
+        };
+        let grow = 1.0;
+        let boxes = l.boxes(grow);
+        let mut rng = crate::rng::seeded(11, "power line swinging");
+        let mut u = || crate::rng::unit(&mut rng);
+        for _ in 0..40_000 {
+            let i = (u() * 2.0) as usize;
+            let (t, sag, angle) = (u(), 2.5 + 3.5 * u(), (u() * 2.0 - 1.0) * 40f64.to_radians());
+            let c = l.swung(i, t, sag, angle);
+            let dir = Vec3::new(u() - 0.5, u() - 0.5, u() - 0.5).normalize();
+            let p = c + dir * (grow * u().sqrt() * 0.999);
+            assert!(boxes.iter().any(|b| b.distance_sq_to_point(&p) == 0.0), "{p:?} near {c:?} is in no box");
+        }
+        // At mid-span of the level span: swung fully, the conductor is
+        // 6 sin 40 = 3.86 m beside where it hangs; cold and swung fully,
+        // 6 - 2.5 cos 40 = 4.08 m above. Beyond those by more than the
+        // growth and the boxes' rounding (a piece's bow and its ends'
+        // spread), no box.
+        let plumb = l.swung(1, 0.5, 6.0, 0.0);
+        let across = Vec3::new(-30.0, 80.0, 0.0).normalize();
+        let in_any = |p: Point3| boxes.iter().any(|b| b.distance_sq_to_point(&p) == 0.0);
+        assert!(in_any(plumb + across * (3.86 + grow - 0.05)));
+        assert!(!in_any(plumb + across * (3.86 + grow + 0.3)));
+        assert!(in_any(plumb + Vec3::z() * (4.08 + grow - 0.05)));
+        assert!(!in_any(plumb + Vec3::z() * (4.08 + grow + 0.3)));
+        assert!(!in_any(plumb - Vec3::z() * (grow + 0.3)), "not below where it hangs lowest");
     }
 
     #[test]
@@ -322,6 +454,10 @@ mod tests {
             (PowerLine { points_m: vec![[0.0, 0.0, 9.0], [0.5, 0.0, 9.0]], ..line() }, "0.50 m apart in plan"),
             (PowerLine { points_m: vec![[0.0, 0.0, f64::NAN], [5.0, 0.0, 9.0]], ..line() }, "points_m[0] must be"),
             (PowerLine { sag_m: -1.0, ..line() }, "sag_m must be 0 to 100 m"),
+            (PowerLine { least_sag_m: Some(1.5), ..line() }, "least_sag_m must be 0 to sag_m (1.2 m"),
+            (PowerLine { least_sag_m: Some(f64::NAN), ..line() }, "least_sag_m must be 0 to sag_m"),
+            (PowerLine { swing_deg: Some(-5.0), ..line() }, "swing_deg must be 0 to 80 degrees"),
+            (PowerLine { swing_deg: Some(85.0), ..line() }, "swing_deg must be 0 to 80 degrees"),
             (PowerLine { voltage_kv: 0.0, ..line() }, "voltage_kv must be positive"),
             (PowerLine { voltage_kv: 1_200.0, ..line() }, "give the approach distance its owner sets as approach_m"),
             (PowerLine { approach_m: Some(0.0), ..line() }, "approach_m must be more than 0"),

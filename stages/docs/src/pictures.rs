@@ -30,6 +30,8 @@ pub const UNSEEN: Rgb = [25, 25, 25];
 pub const UNSEEN_UNDER_CRANE: Rgb = [130, 130, 130];
 /// The outline of an area the load must never be over (`not_over`).
 pub const NOT_OVER: Rgb = [20, 150, 60];
+/// The outline of an area the crane may be set up in (`crane_stands_in`).
+pub const CRANE_AREA: Rgb = [40, 90, 210];
 /// The ground the load passes over.
 pub const UNDER_LOAD: Rgb = [248, 205, 205];
 /// The circle a mobile crane's superstructure sweeps as it slews.
@@ -208,7 +210,7 @@ pub fn overview(site: &SiteView, task: &LiftTask, plan: &LiftPlan, others: &[(Ob
     }
     s.triangles.extend(crane_batches(site, task, &plan.start));
     s.triangles.push(site.obb_batch(&task.crane.load_obb(&plan.set, &task.load), [90, 160, 230]));
-    s.lines.extend(not_over_outlines(site, task));
+    s.lines.extend(area_outlines(site, task));
     s.lines.extend(tail_swing_circle(site, task));
     s.lines.push(Polyline {
         points: load_path(site, task, plan, plan.moves.len()),
@@ -224,15 +226,24 @@ pub fn overview(site: &SiteView, task: &LiftTask, plan: &LiftPlan, others: &[(Ob
 /// The areas the load must never be over, outlined on the ground the crane
 /// stands on, drawn over everything.
 fn not_over_outlines(site: &SiteView, task: &LiftTask) -> Vec<Polyline> {
+    task.not_over.iter().map(|a| outline(site, task, &a.corners_m, NOT_OVER)).collect()
+}
+
+/// The areas the load must never be over and those the crane may stand in,
+/// outlined as [`not_over_outlines`] outlines the first.
+fn area_outlines(site: &SiteView, task: &LiftTask) -> Vec<Polyline> {
+    let mut lines = not_over_outlines(site, task);
+    lines.extend(task.crane_stands_in.iter().map(|a| outline(site, task, &a.corners_m, CRANE_AREA)));
+    lines
+}
+
+/// A plan polygon on the ground the crane stands on, closed, drawn over
+/// everything.
+fn outline(site: &SiteView, task: &LiftTask, corners_m: &[[f64; 2]], color: Rgb) -> Polyline {
     let z = task.crane.placement.z_m + 0.05;
-    task.not_over
-        .iter()
-        .map(|a| {
-            let mut points: Vec<[f32; 3]> = a.corners_m.iter().map(|c| site.local([c[0], c[1], z])).collect();
-            points.extend(points.first().copied());
-            Polyline { points, color: NOT_OVER, width_px: 2.5, on_top: true }
-        })
-        .collect()
+    let mut points: Vec<[f32; 3]> = corners_m.iter().map(|c| site.local([c[0], c[1], z])).collect();
+    points.extend(points.first().copied());
+    Polyline { points, color, width_px: 2.5, on_top: true }
 }
 
 /// The circle a mobile crane's superstructure sweeps as it slews

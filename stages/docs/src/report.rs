@@ -159,7 +159,10 @@ fn checks_before_signing(
         v.push("where the lift resumes, against the plan it continues (cover)".to_string());
     }
     if !sm.power_lines.is_empty() {
-        v.push("the power lines: where they run, how low they sag and their voltage".to_string());
+        v.push("the power lines: where they run, how low and how high they hang, how far the wind swings them and their voltage".to_string());
+    }
+    if sm.power_lines.iter().any(|l| l.contains(liftplan_plan::SUPPORT_NOT_SEEN)) {
+        v.push("where a power line runs: the scans do not show a support it gives (inputs page)".to_string());
     }
     match sm.obstacles.len() {
         0 => {}
@@ -699,7 +702,7 @@ pub fn document(
     let other_loads = others.len();
     others.extend(obstacles.iter().map(|o| (o.obb(), pictures::OBSTACLE)));
     let with_obstacles = others.len();
-    // The conductors, as a band 0.3 m wide.
+    // The conductors, as a band 0.3 m wide round wherever they may hang.
     for l in inp.power_lines.iter().filter(|l| l.during(&task.id)) {
         others.extend(l.boxes(0.15).into_iter().map(|b| (b, pictures::POWER_LINE)));
     }
@@ -719,7 +722,7 @@ pub fn document(
         (false, false) => String::new(),
     };
     let caption = format!(
-        "Site overview (top view, north up): crane {}{}, load path in red{}, load at set in light blue{}{}{}{}{}{keep_out}.",
+        "Site overview (top view, north up): crane {}{}, load path in red{}, load at set in light blue{}{}{}{}{}{}{keep_out}.",
         if task.resumes() { "where the lift resumes (the load hanging)" } else { "at the pick position" },
         match tail {
             Some((r, part)) =>
@@ -742,6 +745,7 @@ pub fn document(
             (false, true) =>
                 ", areas the load (and the crane, where the inputs page says so) must never be over outlined in green",
         },
+        if task.crane_stands_in.is_empty() { "" } else { ", areas the crane may stand in outlined in blue" },
         match plan
             .summary
             .coverage
@@ -835,24 +839,47 @@ pub fn document(
             ),
         ),
     ];
-    if !task.not_over.is_empty() {
-        // The first few by name and extent: the row must fit its page.
+    // The first few areas by name and extent: a row must fit its page.
+    let areas_said = |areas: Vec<(&str, &[[f64; 2]], &str)>| {
         const NAMED: usize = 10;
-        let mut areas: Vec<String> = task
-            .not_over
+        let mut said: Vec<String> = areas
             .iter()
             .take(NAMED)
-            .map(|a| {
-                let extent = match liftplan_core::obb::plan_bounds(&a.corners_m) {
+            .map(|(name, corners, more)| {
+                let extent = match liftplan_core::obb::plan_bounds(*corners) {
                     Some((lo, hi)) => format!(" (x {:.1} to {:.1} m, y {:.1} to {:.1} m)", lo[0], hi[0], lo[1], hi[1]),
                     None => String::new(),
                 };
-                format!("{}{extent}{}", a.name, if a.crane_too { ", nor the crane" } else { "" })
+                format!("{name}{extent}{more}")
             })
             .collect();
-        if task.not_over.len() > NAMED {
-            areas.push(format!("and {} more", task.not_over.len() - NAMED));
+        if areas.len() > NAMED {
+            said.push(format!("and {} more", areas.len() - NAMED));
         }
+        said
+    };
+    if !task.crane_stands_in.is_empty() {
+        let areas = areas_said(task.crane_stands_in.iter().map(|a| (a.name.as_str(), &a.corners_m[..], "")).collect());
+        rows.push((
+            "Crane stands in",
+            format!(
+                "{} (crane_stands_in): its {} within one of these, as the lift sets it up and wherever another position is suggested",
+                areas.join("; "),
+                match (task.crane.model.is_tower(), task.ground.is_some()) {
+                    (true, _) => "mast stands",
+                    (false, true) => "carrier and outriggers, with their pads' mats, stand",
+                    (false, false) => "carrier and outriggers stand",
+                }
+            ),
+        ));
+    }
+    if !task.not_over.is_empty() {
+        let areas = areas_said(
+            task.not_over
+                .iter()
+                .map(|a| (a.name.as_str(), &a.corners_m[..], if a.crane_too { ", nor the crane" } else { "" }))
+                .collect(),
+        );
         let crane_too = task.not_over.iter().any(|a| a.crane_too);
         rows.push((
             "Never over",
@@ -879,7 +906,7 @@ pub fn document(
         rows.push((
             "Power lines",
             format!(
-                "{} ([[power_line]]): every part of the crane, its rope and its load is kept that far off each conductor (planned and checked against boxes round it, grown by that distance: away from the lift-off and set-down the clearance is kept beyond it, and a clearance shown to one is beyond the distance); the conductor's swing in the wind is not modelled",
+                "{} ([[power_line]]): every part of the crane, its rope and its load is kept that far off each conductor (planned and checked against boxes round it, grown by that distance: away from the lift-off and set-down the clearance is kept beyond it, and a clearance shown to one is beyond the distance); each conductor is kept off wherever it may hang, from its least sag to its most and swung as far as its line says either way (a line whose swing is not given is taken as hanging plumb, its approach distance the only margin for the wind)",
                 plan.summary.power_lines.join("; ")
             ),
         ));

@@ -1048,6 +1048,64 @@ pub fn power_line_boxes(lines: &[PowerLine], task: &LiftTask, s: &Settings, cell
     Ok(out)
 }
 
+/// What a power line's words say of a support given where neither the
+/// scans nor the plant model show one, though the site around it is
+/// scanned: the docs stage asks for its position to be checked first.
+pub const SUPPORT_NOT_SEEN: &str = "NOT SEEN, where the scans show the site around";
+
+/// What the scans and the plant model show where `line` is held
+/// ([`validate::support_seen`]), to follow its words: "; its 2 supports
+/// seen in the scans or the plant model", or which are not and why,
+/// numbered as `points_m` gives them from 1.
+pub fn supports_said(line: &PowerLine, world: &validate::World) -> String {
+    use validate::SupportSeen;
+    let seen: Vec<SupportSeen> = line.points_m.iter().map(|&p| validate::support_seen(world, p)).collect();
+    let numbers = |which: SupportSeen| -> Vec<usize> {
+        seen.iter().enumerate().filter(|(_, s)| **s == which).map(|(k, _)| k + 1).collect()
+    };
+    let list = |n: &[usize]| n.iter().map(usize::to_string).collect::<Vec<_>>().join(", ");
+    let (seen_n, not_seen, unscanned) =
+        (numbers(SupportSeen::Seen), numbers(SupportSeen::NotSeen), numbers(SupportSeen::NotScanned));
+    let all = line.points_m.len();
+    let mut said = Vec::new();
+    if seen_n.len() == all {
+        said.push(format!("its {all} supports seen in the scans or the plant model"));
+    } else if !seen_n.is_empty() {
+        said.push(format!("supports seen in the scans or the plant model: {}", list(&seen_n)));
+    }
+    if !not_seen.is_empty() {
+        // The first few where: a line of a hundred supports must fit its row.
+        const NAMED: usize = 5;
+        let mut at: Vec<String> = not_seen
+            .iter()
+            .take(NAMED)
+            .map(|&k| {
+                let p = line.points_m[k - 1];
+                format!("{k} at ({:.2}, {:.2}, {:.2}) m", p[0], p[1], p[2])
+            })
+            .collect();
+        if not_seen.len() > NAMED {
+            at.push(format!("and {} more ({})", not_seen.len() - NAMED, list(&not_seen[NAMED..])));
+        }
+        said.push(format!(
+            "support{} {} {SUPPORT_NOT_SEEN} (nothing within {:.0} m of it in plan): CHECK WHERE THE LINE RUNS",
+            if not_seen.len() == 1 { "" } else { "s" },
+            at.join(", "),
+            validate::SUPPORT_SEEN_M
+        ));
+    }
+    if unscanned.len() == all {
+        said.push("its supports outside the scans (where it runs is as given)".to_string());
+    } else if !unscanned.is_empty() {
+        said.push(format!(
+            "outside the scans: support{} {}",
+            if unscanned.len() == 1 { "" } else { "s" },
+            list(&unscanned)
+        ));
+    }
+    format!("; {}", said.join("; "))
+}
+
 /// The most depth-map cells the obstacles placed by hand may cover together:
 /// each lift's map copy holds an interval for every one (16 bytes), so a
 /// project file cannot make that unbounded.
@@ -1183,7 +1241,11 @@ pub fn run(
         }
         plan.summary.other_loads = world.others[..lifts_loads].iter().map(|(_, name)| name.clone()).collect();
         plan.summary.obstacles = obstacles.iter().filter(|o| o.during(&task.id)).map(|o| o.said()).collect();
-        plan.summary.power_lines = power_lines.iter().filter(|l| l.during(&task.id)).map(|l| l.said()).collect();
+        plan.summary.power_lines = power_lines
+            .iter()
+            .filter(|l| l.during(&task.id))
+            .map(|l| format!("{}{}", l.said(), supports_said(l, &world)))
+            .collect();
         plan.summary.load_as_scanned = as_scanned;
         plan.summary.against_model = against_model[k].clone();
         plan.summary.passes_left_out = model_copy::passes_left_out(task, &plan.moves, &left_out, &loads, &world);

@@ -203,8 +203,9 @@ pub enum Found {
     /// that reaches both the pick and the set (the farthest, m).
     OutOfReach { farthest_m: Option<f64> },
     /// Positions carry it at both, but none of those looked at stands clear
-    /// (how many were looked at).
-    NoClearSetUp { looked_at: usize },
+    /// (how many were looked at; whether the lift gives areas the crane
+    /// may stand in, `crane_stands_in`).
+    NoClearSetUp { looked_at: usize, in_areas: bool },
     /// The positions planned in full, in the order tried; the last planned,
     /// if any did.
     Tried(Vec<Tried>),
@@ -229,9 +230,10 @@ impl Found {
             Found::OutOfReach { farthest_m: Some(r) } => format!(
                 "; no crane position carries it at both: the pick and the set lie more than twice {r:.2} m apart"
             ),
-            Found::NoClearSetUp { looked_at } => format!(
-                "; of the {looked_at} crane positions nearest the lift's within the reach of '{}' of both the pick and the set, none stands clear (its carrier and outriggers on ground level within {:.2} m, the boom and the load clear at the lift-off and the set-down)",
+            Found::NoClearSetUp { looked_at, in_areas } => format!(
+                "; of the {looked_at} crane positions nearest the lift's within the reach of '{}' of both the pick and the set, none stands clear (its carrier and outriggers {}on ground level within {:.2} m, the boom and the load clear at the lift-off and the set-down)",
                 chart_name,
+                if *in_areas { "within an area it may stand in (crane_stands_in), " } else { "" },
                 crate::validate::SET_UP_LEVEL_TOLERANCE_M
             ),
             Found::Tried(tried) => match self.chosen() {
@@ -259,10 +261,10 @@ impl Found {
     pub fn not_critical_said(&self, critical_pct: f64) -> Option<String> {
         match self {
             Found::NotSearched | Found::OutOfReach { .. } => None,
-            Found::NoClearSetUp { looked_at: 0 } => Some(format!(
+            Found::NoClearSetUp { looked_at: 0, .. } => Some(format!(
                 "its chart carries the load within {critical_pct:.0} % at both the pick and the set from no crane position"
             )),
-            Found::NoClearSetUp { looked_at } => Some(format!(
+            Found::NoClearSetUp { looked_at, .. } => Some(format!(
                 "of the {looked_at} crane positions nearest the lift's where its chart carries the load within {critical_pct:.0} % at the pick and the set, none stands clear"
             )),
             Found::Tried(tried) => Some(match self.chosen() {
@@ -445,7 +447,7 @@ pub fn search(task: &LiftTask, site: &Site, chart: &ChartConfig, s: &Settings, s
         }
     }
     if clear.is_empty() && to_check.is_empty() {
-        return Found::NoClearSetUp { looked_at };
+        return Found::NoClearSetUp { looked_at, in_areas: !task.crane_stands_in.is_empty() };
     }
     // Planned in turn until one plans whose pads are not to be checked,
     // through the whole lift; those left are not planned. One passed over

@@ -1019,6 +1019,49 @@ pub fn nearest_scanned_point(world: &World, b: &Obb, cutoff_m: f64) -> Option<([
     nearest_scan(world, b, cutoff_m, ALL_GROUND)
 }
 
+/// What the site shows where a power line's conductor is held
+/// ([`support_seen`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SupportSeen {
+    /// Scanned structure (not ground) or the plant model within
+    /// [`SUPPORT_SEEN_M`] of it in plan, from 2.5 m below it to 5 m above:
+    /// a pole's top, a crossarm, the insulator string a tower's conductor
+    /// hangs from.
+    Seen,
+    /// Nothing there, where the scans show the site around it.
+    NotSeen,
+    /// The scans show nothing within [`SUPPORT_AROUND_M`] of it in plan.
+    NotScanned,
+}
+
+/// How far from a support, in plan, what the scans or the model show there
+/// counts as holding it (m): a pole's top, a crossarm's end.
+pub const SUPPORT_SEEN_M: f64 = 1.0;
+/// How far round a support, in plan, scanned points say the site there was
+/// scanned (m).
+pub const SUPPORT_AROUND_M: f64 = 5.0;
+
+/// Whether the scans or the plant model show something that could hold a
+/// power line's conductor at `at` (where the line's `points_m` says it is
+/// held), nothing where the site around it is scanned, or no scan there:
+/// a support given a few metres off, or the wrong line's, is a line
+/// planned round where it is not.
+pub fn support_seen(world: &World, at: [f64; 3]) -> SupportSeen {
+    let b = Obb::axis_aligned(
+        liftplan_core::frame::Point3::new(at[0], at[1], at[2] + 1.25),
+        liftplan_core::frame::Vec3::new(SUPPORT_SEEN_M, SUPPORT_SEEN_M, 3.75),
+    );
+    let in_model = world.mesh.as_ref().and_then(|m| mesh_nearest(m, &b)).is_some_and(|(d, _)| d <= 0.0);
+    if in_model || scanned_structure_in(world, &b) {
+        return SupportSeen::Seen;
+    }
+    let r = SUPPORT_AROUND_M;
+    match world.points.highest_in([at[0] - r, at[1] - r], [at[0] + r, at[1] + r], at[2] + 5.0) {
+        Some(_) => SupportSeen::NotSeen,
+        None => SupportSeen::NotScanned,
+    }
+}
+
 /// Whether a scan point other than ground lies in `b`: whether the scans
 /// saw anything standing there (ground points lie in the foot of any box
 /// standing on the ground).
@@ -1888,6 +1931,7 @@ pub fn validate(
                 }
             }
         }
+        problems.extend(task.stands_outside_its_areas().map(|why| format!("crane set-up: {why}")));
         let (ground, problem) = set_up_ground(task, world);
         set_up = ground;
         problems.extend(problem);

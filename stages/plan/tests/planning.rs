@@ -2,6 +2,7 @@
 //! pick and set that the load must be lifted over.
 
 use liftplan_core::crane::{Config, builtin};
+use liftplan_core::frame::Point3;
 use liftplan_core::lift::{LiftSpec, LiftTask};
 use liftplan_core::mesh::TriMesh;
 use liftplan_cspace::Joint;
@@ -146,6 +147,21 @@ fn the_sling_legs_are_checked_before_the_path() {
     assert!(plan.summary.slings.is_none());
 }
 
+/// An 11 kV line held at `points_m`, sagging `sag_m`, neither its least
+/// sag nor its swing given, kept Table A's distance off.
+fn feeder(name: &str, points_m: Vec<[f64; 3]>, sag_m: f64) -> liftplan_core::power_line::PowerLine {
+    liftplan_core::power_line::PowerLine {
+        name: name.into(),
+        points_m,
+        sag_m,
+        least_sag_m: None,
+        swing_deg: None,
+        voltage_kv: 11.0,
+        approach_m: None,
+        lifts: vec![],
+    }
+}
+
 /// An overhead line across the way from the pick to the set, 14 m up
 /// beyond the wall: the plan keeps every part of the crane, its rope and its
 /// load Table A's 3.05 m off the sagging conductor (measured here at points
@@ -153,37 +169,12 @@ fn the_sling_legs_are_checked_before_the_path() {
 /// without it comes within that.
 #[test]
 fn the_plan_keeps_the_approach_distance_off_a_power_line() {
-    use liftplan_core::power_line::PowerLine;
     let mesh = site();
     let m = map(&mesh);
     let t = task(-14.0);
-    let line = PowerLine {
-        name: "11 kV feeder".into(),
-        points_m: vec![[20.0, 6.0, 14.0], [60.0, 6.0, 14.0]],
-        sag_m: 0.5,
-        voltage_kv: 11.0,
-        approach_m: None,
-        lifts: vec![],
-    };
-    let conductor: Vec<[f64; 3]> = (0..=800).map(|k| line.at(0, k as f64 / 800.0)).collect();
-    let nearest = |plan: &liftplan_plan::LiftPlan| {
-        let mut least = f64::INFINITY;
-        for mv in &plan.moves {
-            let (a, b) = (mv.from.to_array(), mv.to.to_array());
-            for s in 0..=200 {
-                let f = s as f64 / 200.0;
-                let v: Vec<f64> = (0..4).map(|d| a[d] + (b[d] - a[d]) * f).collect();
-                let c = Config { swing_rad: v[0], radial: v[1], hoist_m: v[2], load_yaw_rad: v[3] };
-                for (_, part) in &t.pose_in_gusts(&c, false).parts {
-                    for p in &conductor {
-                        let d2 = part.distance_sq_to_point(&liftplan_core::frame::Point3::new(p[0], p[1], p[2]));
-                        least = least.min(d2.sqrt());
-                    }
-                }
-            }
-        }
-        least
-    };
+    let line = feeder("11 kV feeder", vec![[20.0, 6.0, 14.0], [60.0, 6.0, 14.0]], 0.5);
+    let conductor: Vec<Point3> = (0..=800).map(|k| Point3::from(line.at(0, k as f64 / 800.0))).collect();
+    let nearest = |plan: &liftplan_plan::LiftPlan| nearest_to(plan, &t, &conductor);
     let world = World::new(&mesh, &[], &[]).unwrap();
     let (plain, _) = plan_lift(&t, &Site { map: &m, world: &world, charts: None }, &quick(), 3).unwrap();
     let mut world = World::new(&mesh, &[], &[]).unwrap();
@@ -201,6 +192,101 @@ fn the_plan_keeps_the_approach_distance_off_a_power_line() {
     let (kept, without) = (nearest(&plan), nearest(&plain));
     assert!(kept >= 3.048 - 0.03, "the plan comes {kept:.3} m from the conductor");
     assert!(without < 3.048, "the plan made without the line keeps {without:.3} m off it: the test shows nothing");
+}
+
+/// How near any part of the crane, its rope or its load comes to any of
+/// `points` along `plan` (at 200 samples of every move).
+fn nearest_to(plan: &liftplan_plan::LiftPlan, t: &LiftTask, points: &[Point3]) -> f64 {
+    let mut least = f64::INFINITY;
+    for mv in &plan.moves {
+        let (a, b) = (mv.from.to_array(), mv.to.to_array());
+        for s in 0..=200 {
+            let f = s as f64 / 200.0;
+            let v: Vec<f64> = (0..4).map(|d| a[d] + (b[d] - a[d]) * f).collect();
+            let c = Config { swing_rad: v[0], radial: v[1], hoist_m: v[2], load_yaw_rad: v[3] };
+            for (_, part) in &t.pose_in_gusts(&c, false).parts {
+                for p in points {
+                    least = least.min(part.distance_sq_to_point(p).sqrt());
+                }
+            }
+        }
+    }
+    least
+}
+
+/// Where a power line's conductor is held, against what the scans and the
+/// plant model show there: a pole scanned at the first support, a post in
+/// the model at the second, nothing at the third where the ground round it
+/// is scanned (said, to be checked), the fourth beyond the scans.
+#[test]
+fn a_power_lines_supports_are_looked_for_in_the_scans_and_the_model() {
+    use liftplan_core::power_line::PowerLine;
+    let mut mesh = TriMesh::default();
+    box_part(&mut mesh, "POLE-B", [29.8, -0.2, 0.0], [30.2, 0.2, 9.0]);
+    // Ground scanned from x -10 to 50 m, y -10 to 10 m; a pole at the origin, 9 m tall.
+    let mut points: Vec<[f64; 3]> =
+        (0..121 * 41).map(|n| [-10.0 + 0.5 * (n / 41) as f64, -10.0 + 0.5 * (n % 41) as f64, 0.0]).collect();
+    let mut ground = vec![true; points.len()];
+    points.extend((0..=90).map(|k| [0.05, 0.0, 0.1 * k as f64]));
+    ground.resize(points.len(), false);
+    let world = World::new(&mesh, &points, &ground).unwrap();
+    let line = feeder("feeder", vec![[0.0, 0.0, 9.0], [30.0, 0.0, 9.0], [45.0, 5.0, 9.0], [200.0, 0.0, 9.0]], 0.5);
+    assert_eq!(
+        liftplan_plan::supports_said(&line, &world),
+        "; supports seen in the scans or the plant model: 1, 2; support 3 at (45.00, 5.00, 9.00) m NOT SEEN, where the scans show the site around (nothing within 1 m of it in plan): CHECK WHERE THE LINE RUNS; outside the scans: support 4"
+    );
+    let held = PowerLine { points_m: line.points_m[..2].to_vec(), ..line.clone() };
+    assert_eq!(liftplan_plan::supports_said(&held, &world), "; its 2 supports seen in the scans or the plant model");
+    // A support given 1.5 m off the pole is not taken for it.
+    let off = PowerLine { points_m: vec![[1.5, 0.0, 9.0], [30.0, 0.0, 9.0]], ..line.clone() };
+    assert!(
+        liftplan_plan::supports_said(&off, &world).starts_with(
+            "; supports seen in the scans or the plant model: 2; support 1 at (1.50, 0.00, 9.00) m NOT SEEN"
+        )
+    );
+    let unscanned = World::new(&TriMesh::default(), &[], &[]).unwrap();
+    assert_eq!(
+        liftplan_plan::supports_said(&line, &unscanned),
+        "; its supports outside the scans (where it runs is as given)"
+    );
+}
+
+/// A load hanging 7 m beside a line that sags 4 m at mid-span, level with
+/// its lowest point: clear of it hanging plumb (the approach distance and
+/// the clearance, 4.05 m, are less than the gap), within it where the
+/// wind swings the conductor 45 degrees towards the load (2.8 m sideways
+/// at mid-span). The validator given the line's swing refuses the move,
+/// naming the line; given it plumb, it passes it.
+#[test]
+fn the_validator_keeps_the_approach_distance_off_a_swinging_power_line() {
+    use liftplan_core::power_line::PowerLine;
+    let t = task(-14.0);
+    let (_, mut world) = open_slab();
+    let at = Config { swing_rad: 0.0, radial: 0.8, hoist_m: 15.0, load_yaw_rad: 0.0 };
+    let hoist = Move { joint: Joint::Hoist, from: at, to: Config { hoist_m: 15.5, ..at } };
+    let load = t
+        .pose_in_gusts(&at, false)
+        .parts
+        .iter()
+        .find(|(k, _)| *k == liftplan_core::crane::PartKind::Load)
+        .unwrap()
+        .1
+        .center;
+    let out = liftplan_core::frame::Vec3::new(load.x, load.y, 0.0).normalize();
+    let beside = liftplan_core::frame::Vec3::new(-out.y, out.x, 0.0) * 7.0;
+    let support = |along: f64| {
+        let p = load + beside + out * along;
+        [p.x, p.y, load.z + 4.0]
+    };
+    let plumb = feeder("11 kV feeder", vec![support(-15.0), support(15.0)], 4.0);
+    let mut check = |line: &PowerLine| {
+        world.others = liftplan_plan::power_line_boxes(std::slice::from_ref(line), &t, &quick(), 0.25).unwrap();
+        validate(&t, None, &world, &rules(), &[hoist], &[false])
+    };
+    let v = check(&plumb);
+    assert!(v.ok, "{:?}", v.problems);
+    let v = check(&PowerLine { swing_deg: Some(45.0), ..plumb.clone() });
+    assert!(!v.ok && v.problems.iter().any(|p| p.contains("power line '11 kV feeder'")), "{:?}", v.problems);
 }
 
 /// A plan's revision (on every page of its PDF, and what `liftplan
@@ -1638,6 +1724,93 @@ fn a_critical_lift_names_a_crane_position_where_it_is_not() {
     );
 }
 
+/// A lift that gives the areas its crane may stand in: set up outside
+/// them it is refused, saying so; the validator refuses a set-up outside
+/// them too; and a crane position named for it (here, where it would not
+/// be critical) stands within one, where the one named without them stands
+/// outside them (turned, its carrier off the pad the crane stands on).
+#[test]
+fn the_crane_stands_only_in_the_areas_the_lift_gives() {
+    use liftplan_core::lift::CraneArea;
+    use liftplan_plan::positions::{self, Found, Sought};
+    let square = |name: &str, lo: [f64; 2], hi: [f64; 2]| CraneArea {
+        name: name.into(),
+        corners_m: vec![lo, [hi[0], lo[1]], hi, [lo[0], hi[1]]],
+    };
+    // The AC 700's carrier runs from x -7.75 to 12.75 m, its outriggers 12.3 m square.
+    let own = square("pad", [-8.5, -7.0], [13.5, 7.0]);
+    // Set up outside every area given: refused, naming them.
+    let mut spec = spec_of(-14.0);
+    spec.crane_stands_in = vec![square("road", [30.0, -40.0], [40.0, 40.0])];
+    let e = spec.resolve(builtin("ac-700").unwrap()).unwrap_err();
+    assert!(
+        e.contains("the crane set up at position_m = [0.00, 0.00], heading_deg = 0: its carrier and outriggers are not within an area it may stand in (crane_stands_in: 'road')"),
+        "{e}"
+    );
+    // A tower crane's mast, likewise: within its foundation's area, or refused.
+    let tower = |areas: Vec<CraneArea>| {
+        let mut spec = spec_of(-14.0);
+        spec.crane.model = "tower-hh-60".into();
+        spec.crane.chart_config = "none".into();
+        spec.crane.boom_m = None;
+        spec.crane_stands_in = areas;
+        spec.resolve(builtin("tower-hh-60").unwrap())
+    };
+    assert!(tower(vec![square("foundation", [-4.0, -4.0], [4.0, 4.0])]).is_ok());
+    let e = tower(vec![square("road", [30.0, -40.0], [40.0, 40.0])]).unwrap_err();
+    assert!(e.contains("its mast is not within an area it may stand in (crane_stands_in: 'road')"), "{e}");
+    // Half in the pad: refused too.
+    spec.crane_stands_in = vec![square("half", [-2.0, -7.0], [13.5, 7.0])];
+    assert!(spec.resolve(builtin("ac-700").unwrap()).is_err());
+    spec.crane_stands_in = vec![own.clone()];
+    let t = spec.resolve(builtin("ac-700").unwrap()).unwrap();
+    let mesh = site();
+    let (m, world) = (map(&mesh), World::new(&mesh, &[], &[]).unwrap());
+    let table = chart_of(&[(10.0, 50.0), (24.0, 50.0), (26.0, 10.5), (40.0, 10.5)], "none");
+    let chart = table.config("none").unwrap();
+    let site = Site { map: &m, world: &world, charts: Some(&table) };
+    // The validator, given the set-up outside the areas, refuses it.
+    let (plan, _) = plan_lift(&t, &site, &quick(), 3).unwrap();
+    let mut elsewhere = t.clone();
+    elsewhere.crane_stands_in = vec![square("road", [30.0, -40.0], [40.0, 40.0])];
+    let v = validate(&elsewhere, None, &world, &rules(), &plan.moves, &[false; 64][..plan.moves.len()]);
+    assert!(
+        v.problems.iter().any(|p| p.starts_with("crane set-up: the crane set up at position_m")),
+        "{:?}",
+        v.problems
+    );
+    // Where it would not be critical: without the areas, and with the pad
+    // and the half of the site away from that position.
+    let found = positions::search(&task(-14.0), &site, chart, &quick(), 3, Sought::NotCritical);
+    let (Found::Tried(tried), Some(k)) = (&found, found.chosen()) else { panic!("{found:?}") };
+    let free = tried[k].clone();
+    let away = if free.y_m >= 0.0 {
+        square("south", [-40.0, -40.0], [60.0, -1.0])
+    } else {
+        square("north", [-40.0, 1.0], [60.0, 40.0])
+    };
+    let mut t = t.clone();
+    t.crane_stands_in = vec![own, away];
+    let found = positions::search(&t, &site, chart, &quick(), 3, Sought::NotCritical);
+    match (&found, found.chosen()) {
+        (Found::Tried(tried), Some(k)) => {
+            let at = &tried[k];
+            // The lift file given either position, with the areas: the one
+            // found without them stands outside, the one found with them
+            // within.
+            let mut spec = spec_of(-14.0);
+            spec.crane_stands_in = t.crane_stands_in.clone();
+            let at_place = |spec: &mut LiftSpec, at: &positions::Tried| {
+                (spec.crane.position_m, spec.crane.heading_deg) = ([at.x_m, at.y_m], at.heading_deg);
+                spec.resolve(builtin("ac-700").unwrap())
+            };
+            assert!(at_place(&mut spec, &free).is_err(), "{free:?}");
+            assert!(at_place(&mut spec, at).is_ok(), "{at:?}");
+        }
+        _ => panic!("{found:?}"),
+    }
+}
+
 /// What the outrigger pads bear on is looked at, at a crane position named
 /// for a lift, as at the lift's own: a duct buried under a pad of the
 /// position named passes it over for another, where nothing lies under the
@@ -1835,7 +2008,7 @@ fn a_lift_over_capacity_names_a_crane_position_where_it_plans() {
     let table = chart_reaching(16.0);
     let site = Site { map: &m, world: &world, charts: Some(&table) };
     let found = positions::search(&t, &site, table.config("none").unwrap(), &quick(), 3, positions::Sought::Plans);
-    assert!(matches!(found, Found::NoClearSetUp { looked_at } if looked_at > 10), "{found:?}");
+    assert!(matches!(found, Found::NoClearSetUp { looked_at, in_areas: false } if looked_at > 10), "{found:?}");
     let e = plan_lift(&t, &site, &quick(), 3).unwrap_err().to_string();
     assert!(e.contains("crane positions nearest the lift's within the reach of 'none' of both the pick and the set, none stands clear (its carrier and outriggers on ground level within 0.50 m, the boom and the load clear at the lift-off and the set-down)"), "{e}");
     // A reach of 12 m does not span them.
