@@ -124,6 +124,22 @@ enum Command {
     /// kept by revision (out/revisions/).
     #[command(after_help = "Example:\n  liftplan clean site-a")]
     Clean { dir: Option<PathBuf> },
+    /// List the plans kept by revision (out/revisions/), each with its PDF;
+    /// optionally remove those kept more than some days ago, but each
+    /// lift's newest, the last plans, those the cache holds and those the
+    /// project's lifts resume.
+    #[command(after_help = "Example:\n  liftplan revisions site-a\n  liftplan revisions site-a --remove-older-than 90")]
+    Revisions {
+        /// Project folder.
+        dir: Option<PathBuf>,
+        /// Remove the plans (their PDF, steps and plan files) kept more than
+        /// this many days ago, but those a crew may hold or be given.
+        #[arg(long, value_name = "DAYS")]
+        remove_older_than: Option<u32>,
+        /// Print the plans kept (and those removed) as JSON.
+        #[arg(long)]
+        json: bool,
+    },
     /// List every stage and its settings with their defaults.
     #[command(after_help = "Example:\n  liftplan options scans")]
     Options {
@@ -232,6 +248,14 @@ enum Command {
 
 fn project_dir(dir: Option<PathBuf>) -> PathBuf {
     dir.unwrap_or_else(|| PathBuf::from("."))
+}
+
+/// Says so, and the exit code, where `dir` holds no project file.
+fn not_a_project(dir: &Path) -> Option<ExitCode> {
+    (!dir.join(project::FILE).exists()).then(|| {
+        eprintln!("error: {} is not a liftplan project (no {})", dir.display(), project::FILE);
+        ExitCode::from(2)
+    })
 }
 
 fn load(dir: &Path) -> Result<project::Project, ExitCode> {
@@ -434,18 +458,17 @@ fn real_main() -> Result<ExitCode> {
         }
         Command::Clean { dir } => {
             let dir = project_dir(dir);
-            if !dir.join(project::FILE).exists() {
-                eprintln!("error: {} is not a liftplan project (no {})", dir.display(), project::FILE);
-                return Ok(ExitCode::from(2));
+            if let Some(code) = not_a_project(&dir) {
+                return Ok(code);
             }
-            let state = dir.join(".liftplan");
+            let state = project::state_dir_of(&dir);
             if state.exists() {
                 std::fs::remove_dir_all(&state).with_context(|| format!("removing {}", state.display()))?;
             }
             // The plans kept by revision are the record of what crews were
             // given (and what `resume` reads): a clean to rebuild must not
             // take them.
-            let out = dir.join("out");
+            let out = project::out_dir_of(&dir);
             let mut kept_revisions = false;
             if out.exists() {
                 for entry in std::fs::read_dir(&out).with_context(|| format!("reading {}", out.display()))? {
@@ -466,11 +489,88 @@ fn real_main() -> Result<ExitCode> {
                 "removed the cache and outputs of {}{}",
                 dir.display(),
                 if kept_revisions {
-                    "; the plans kept by revision stay in out/revisions/ (remove that folder by hand to drop them)"
+                    "; the plans kept by revision stay in out/revisions/ (`liftplan revisions --remove-older-than DAYS` removes old ones)"
                 } else {
                     ""
                 }
             );
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Revisions { dir, remove_older_than, json } => {
+            let dir = project_dir(dir);
+            if let Some(code) = not_a_project(&dir) {
+                return Ok(code);
+            }
+            // Its lifts say which plans they resume: removing needs the
+            // project file to read; a listing says where it does not.
+            let (resumed, unread): (Vec<(String, String)>, Option<String>) = match project::Project::load(&dir) {
+                Ok(p) => (
+                    p.raw
+                        .lift
+                        .iter()
+                        .filter_map(|l| Some((l.id.clone(), l.resumes_plan.as_ref()?.revision.clone())))
+                        .collect(),
+                    None,
+                ),
+                Err(e) if remove_older_than.is_some() => {
+                    eprintln!(
+                        "error: {e} (removing plans needs the project file to read: its lifts say which plans they resume)"
+                    );
+                    return Ok(ExitCode::from(2));
+                }
+                Err(e) => (Vec::new(), Some(e.to_string())),
+            };
+            let out = project::out_dir_of(&dir);
+            let kept = revisions::list(&out)?;
+            let mut plan_dirs = cache::Cache::new(&project::state_dir_of(&dir)).entries(liftplan_plan::NAME);
+            plan_dirs.push(out.clone());
+            let held = revisions::held(&kept, &plan_dirs, &resumed);
+            let removed = match remove_older_than {
+                Some(days) => {
+                    let now =
+                        std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_secs());
+                    revisions::remove_older_than(&out, &kept, &held, now.saturating_sub(u64::from(days) * 86_400))?
+                }
+                None => Vec::new(),
+            };
+            let left = revisions::list(&out)?;
+            if json {
+                let listed: Vec<serde_json::Value> = left
+                    .iter()
+                    .map(|k| {
+                        let mut v = serde_json::to_value(k).unwrap_or_default();
+                        v["held"] = held
+                            .get(&(k.lift.clone(), k.revision.clone()))
+                            .map_or(serde_json::Value::Null, |h| (*h).into());
+                        v
+                    })
+                    .collect();
+                let all = serde_json::json!({ "kept": listed, "removed": removed, "project_unread": unread });
+                println!("{}", serde_json::to_string_pretty(&all)?);
+                return Ok(ExitCode::SUCCESS);
+            }
+            if let Some(e) = &unread {
+                println!("note: {e}: the plans the project's lifts resume are not known here");
+            }
+            for r in &removed {
+                println!("removed {r}");
+            }
+            if let (Some(days), true) = (remove_older_than, removed.is_empty()) {
+                println!("removed nothing: no plan kept more than {days} days ago but those held (below)");
+            }
+            let total: u64 = left.iter().map(|k| k.bytes).sum();
+            println!(
+                "{}: {} plan{} kept by revision, {:.1} MB",
+                out.join(revisions::DIR).display(),
+                left.len(),
+                if left.len() == 1 { "" } else { "s" },
+                total as f64 / 1e6
+            );
+            for k in &left {
+                let why =
+                    held.get(&(k.lift.clone(), k.revision.clone())).map_or(String::new(), |h| format!(" (held: {h})"));
+                println!("  {}{why}", k.said());
+            }
             Ok(ExitCode::SUCCESS)
         }
         Command::Resume { dir, lift, plan, after_step, swing_deg } => {

@@ -315,12 +315,23 @@ impl Project {
     }
 
     pub fn state_dir(&self) -> PathBuf {
-        self.dir.join(".liftplan")
+        state_dir_of(&self.dir)
     }
 
     pub fn out_dir(&self) -> PathBuf {
-        self.dir.join("out")
+        out_dir_of(&self.dir)
     }
+}
+
+/// The cache, memos and logs of the project in `dir`, whether or not its
+/// file reads.
+pub fn state_dir_of(dir: &Path) -> PathBuf {
+    dir.join(".liftplan")
+}
+
+/// The outputs of the project in `dir`, whether or not its file reads.
+pub fn out_dir_of(dir: &Path) -> PathBuf {
+    dir.join("out")
 }
 
 /// The commented `liftplan.toml` that `init` writes.

@@ -10,11 +10,16 @@
 //! one re-plans at every scan. The engineer who signed it must be able to
 //! find the document again as it was issued.
 //!
-//! It only adds files: a revision already kept is not written again (the
-//! same revision is the same plan), and nothing is removed here, nor by
-//! `liftplan clean`, which removes the rest of out/. A plan and its steps
-//! take about 70 kB, its PDF 3-4 MB (the demo's): a site re-planned at each
-//! of a hundred scans keeps some 400 MB.
+//! Keeping only adds files: a revision already kept is not written again
+//! (the same revision is the same plan), and `liftplan clean`, which
+//! removes the rest of out/, leaves them. A plan and its steps take about
+//! 70 kB, its PDF 3-4 MB (the demo's): a site re-planned at each of a
+//! hundred scans keeps some 400 MB. `liftplan revisions` lists them
+//! ([`list`]) and, asked to, removes those kept longer ago than a number
+//! of days ([`remove_older_than`]), but never one a crew may hold or be
+//! given: each lift's newest, the last plans (out/plan.json), those the
+//! plan stage's cache holds (a run would keep them again) and those the
+//! project's lifts resume ([`held`]).
 
 use anyhow::{Context, Result};
 use std::path::{Path, PathBuf};
@@ -82,7 +87,7 @@ pub fn keep_documents(out_dir: &Path, plan_dir: &Path, docs_dir: &Path) -> Resul
     let mut kept = Vec::new();
     for (_, lift, revision) in plans_in(plan_dir)? {
         let pdf = docs_dir.join(format!("{lift}.pdf"));
-        let to = out_dir.join(DIR).join(&lift).join(format!("{revision}.pdf"));
+        let to = plan_file(out_dir, &lift, &revision).with_file_name(format!("{revision}.pdf"));
         if to.exists() || !pdf.is_file() {
             continue;
         }
@@ -91,6 +96,167 @@ pub fn keep_documents(out_dir: &Path, plan_dir: &Path, docs_dir: &Path) -> Resul
         kept.push(format!("{lift} plan {revision}'s PDF"));
     }
     Ok(kept)
+}
+
+/// One plan kept by revision, as `liftplan revisions` lists it.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct Kept {
+    pub lift: String,
+    pub revision: String,
+    /// When it was kept: its plan file's modification time (seconds since
+    /// 1970, UTC), where the file system gives it (none: never removed).
+    pub kept_unix_s: Option<u64>,
+    /// What its plan says, where its file reads as a plan: whether the
+    /// validator passed it, its steps, the most of the chart it uses (%),
+    /// its least clearance (m).
+    pub validated: Option<bool>,
+    pub steps: Option<u64>,
+    pub max_utilisation_pct: Option<f64>,
+    pub min_clearance_m: Option<f64>,
+    /// Its PDF's size (bytes), where one is kept.
+    pub pdf_bytes: Option<u64>,
+    /// Its files' sizes together (bytes).
+    pub bytes: u64,
+}
+
+impl Kept {
+    /// Its files: the PDF and the steps (where kept), then the plan, the
+    /// order they are removed in (a plan file kept is one whose steps are).
+    fn files(&self, out_dir: &Path) -> [PathBuf; 3] {
+        let plan = plan_file(out_dir, &self.lift, &self.revision);
+        [
+            plan.with_file_name(format!("{}.pdf", self.revision)),
+            plan.with_file_name(format!("{}.steps.csv", self.revision)),
+            plan,
+        ]
+    }
+
+    /// In one line, for the listing.
+    pub fn said(&self) -> String {
+        let mb = |b: u64| b as f64 / 1e6;
+        let plan = match (self.validated, self.steps) {
+            (Some(ok), Some(steps)) => format!(
+                "{}, {steps} steps, {:.0} % of the chart, least clearance {:.2} m",
+                if ok { "validated" } else { "NOT VALIDATED" },
+                self.max_utilisation_pct.unwrap_or(f64::NAN),
+                self.min_clearance_m.unwrap_or(f64::NAN)
+            ),
+            _ => "its plan file does not read as a plan".to_string(),
+        };
+        let pdf = self.pdf_bytes.map_or("no PDF kept".to_string(), |b| format!("PDF {:.1} MB", mb(b)));
+        format!(
+            "{} plan {}  kept {}  {plan}; {pdf}; {:.1} MB in all",
+            self.lift,
+            self.revision,
+            self.kept_unix_s.map_or("at a time the file system does not give".to_string(), liftplan_docs::date_utc),
+            mb(self.bytes)
+        )
+    }
+}
+
+/// The plans kept in `out_dir`'s revisions/, by lift, each lift's oldest
+/// first (by when it was kept, then revision). Files there whose names
+/// could not be a kept plan's are left out.
+pub fn list(out_dir: &Path) -> Result<Vec<Kept>> {
+    let root = out_dir.join(DIR);
+    let mut kept = Vec::new();
+    if !root.is_dir() {
+        return Ok(kept);
+    }
+    let read_dir = |d: &Path| std::fs::read_dir(d).with_context(|| format!("reading {}", d.display()));
+    for lift_dir in read_dir(&root)? {
+        let lift_dir = lift_dir.with_context(|| format!("reading {}", root.display()))?.path();
+        let Some(lift) = lift_dir.file_name().and_then(|n| n.to_str()).map(str::to_string) else { continue };
+        if !lift_dir.is_dir() {
+            continue;
+        }
+        for file in read_dir(&lift_dir)? {
+            let file = file.with_context(|| format!("reading {}", lift_dir.display()))?.path();
+            let name = file.file_name().and_then(|n| n.to_str()).unwrap_or("");
+            let Some(revision) = name.strip_suffix(".plan.json") else { continue };
+            if !names_a_file(&lift, revision) {
+                continue;
+            }
+            let size = |p: &Path| std::fs::metadata(p).ok().filter(|m| m.is_file()).map(|m| m.len());
+            let meta = std::fs::metadata(&file).with_context(|| format!("{}", file.display()))?;
+            let kept_unix_s =
+                meta.modified().ok().and_then(|t| t.duration_since(std::time::UNIX_EPOCH).ok()).map(|d| d.as_secs());
+            let summary = std::fs::read_to_string(&file)
+                .ok()
+                .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
+                .map(|v| v["lifts"][0]["summary"].clone())
+                .filter(|s| s.is_object());
+            let field = |k: &str| summary.as_ref().map(|s| s[k].clone());
+            let mut one = Kept {
+                lift: lift.clone(),
+                revision: revision.to_string(),
+                kept_unix_s,
+                validated: field("validated").and_then(|v| v.as_bool()),
+                steps: field("steps").and_then(|v| v.as_u64()),
+                max_utilisation_pct: field("max_utilisation_pct").and_then(|v| v.as_f64()),
+                min_clearance_m: field("min_clearance_m").and_then(|v| v.as_f64()),
+                pdf_bytes: None,
+                bytes: 0,
+            };
+            let [pdf, steps, plan] = one.files(out_dir);
+            one.pdf_bytes = size(&pdf);
+            one.bytes = [pdf, steps, plan].iter().filter_map(|p| size(p)).sum();
+            kept.push(one);
+        }
+    }
+    kept.sort_by(|a, b| (&a.lift, a.kept_unix_s, &a.revision).cmp(&(&b.lift, b.kept_unix_s, &b.revision)));
+    Ok(kept)
+}
+
+/// Which of the `kept` plans may not be removed, and why: each lift's
+/// newest kept; those in the plan.json files of `plan_dirs` (out/, where
+/// the last plans are, and the plan stage's cache entries, from which a
+/// run would keep them again); those `resumed` names (a lift's id and the
+/// revision its `resumes_plan` gives).
+pub fn held(
+    kept: &[Kept],
+    plan_dirs: &[PathBuf],
+    resumed: &[(String, String)],
+) -> std::collections::BTreeMap<(String, String), &'static str> {
+    let mut held = std::collections::BTreeMap::new();
+    for (lift, revision) in resumed {
+        held.insert((lift.clone(), revision.clone()), "a lift of the project resumes it (resumes_plan)");
+    }
+    for dir in plan_dirs.iter().filter(|d| d.join("plan.json").is_file()) {
+        // A plan.json that does not read holds nothing the listing can name.
+        for (_, lift, revision) in plans_in(dir).unwrap_or_default() {
+            held.entry((lift, revision)).or_insert("among the last plans or the plan stage's cache");
+        }
+    }
+    // The list is each lift's oldest first.
+    for (k, one) in kept.iter().enumerate() {
+        if kept.get(k + 1).is_none_or(|next| next.lift != one.lift) {
+            held.entry((one.lift.clone(), one.revision.clone())).or_insert("the lift's newest kept plan");
+        }
+    }
+    held
+}
+
+/// Removes the `kept` plans kept before `before_unix_s` (their PDF, steps
+/// and plan files) but those `held` names and those kept at a time not
+/// known; says which it removed.
+pub fn remove_older_than(
+    out_dir: &Path,
+    kept: &[Kept],
+    held: &std::collections::BTreeMap<(String, String), &'static str>,
+    before_unix_s: u64,
+) -> Result<Vec<String>> {
+    let mut removed = Vec::new();
+    for one in kept.iter().filter(|k| k.kept_unix_s.is_some_and(|t| t < before_unix_s)) {
+        if held.contains_key(&(one.lift.clone(), one.revision.clone())) {
+            continue;
+        }
+        for file in one.files(out_dir).iter().filter(|f| f.is_file()) {
+            std::fs::remove_file(file).with_context(|| format!("removing {}", file.display()))?;
+        }
+        removed.push(format!("{} plan {} ({:.1} MB)", one.lift, one.revision, one.bytes as f64 / 1e6));
+    }
+    Ok(removed)
 }
 
 /// The lifts' plans in `plan_dir`'s plan.json with their ids and
@@ -176,5 +342,85 @@ mod tests {
         assert!(keep_documents(&out, &plans, &docs).unwrap().is_empty());
         assert_eq!(std::fs::read_to_string(&kept).unwrap(), "issued first");
         assert!(!out.join(DIR).join("V-102").exists());
+    }
+
+    /// Listed by lift, oldest first, with what each plan says; removing
+    /// those kept before a time leaves each lift's newest, those in the
+    /// plan folders given and those resumed, and removes the others' files.
+    #[test]
+    fn old_plans_are_removed_but_those_a_crew_may_hold() {
+        let d = tempfile::tempdir().unwrap();
+        let (entry, out) = (d.path().join("entry"), d.path().join("out"));
+        std::fs::create_dir_all(&entry).unwrap();
+        let day = 86_400u64;
+        let t0 = 1_796_000_000u64;
+        let plans = [
+            ("V-101", "0000000a", t0),
+            ("V-101", "0000000b", t0 + day),
+            ("V-101", "0000000c", t0 + 2 * day),
+            ("V-101", "0000000d", t0 + 3 * day),
+            ("V-101", "0000000e", t0 + 9 * day),
+            ("V-102", "0000000f", t0),
+        ];
+        for (lift, revision, at) in plans {
+            std::fs::write(entry.join("plan.json"), plan_json(&[(lift, revision)])).unwrap();
+            std::fs::write(entry.join(format!("{lift}.steps.csv")), "step\n").unwrap();
+            keep(&out, &entry).unwrap();
+            let plan = plan_file(&out, lift, revision);
+            std::fs::write(plan.with_file_name(format!("{revision}.pdf")), "pdf").unwrap();
+            let when = std::time::UNIX_EPOCH + std::time::Duration::from_secs(at);
+            std::fs::File::options().write(true).open(&plan).unwrap().set_modified(when).unwrap();
+        }
+        // A file there that is no kept plan's, and a plan file that does not read.
+        std::fs::write(out.join(DIR).join("V-101").join("notes.txt"), "mine").unwrap();
+        std::fs::write(plan_file(&out, "V-101", "0000000b"), "{").unwrap();
+        std::fs::File::options()
+            .write(true)
+            .open(plan_file(&out, "V-101", "0000000b"))
+            .unwrap()
+            .set_modified(std::time::UNIX_EPOCH + std::time::Duration::from_secs(t0 + day))
+            .unwrap();
+        let kept = list(&out).unwrap();
+        let names: Vec<String> = kept.iter().map(|k| format!("{} {}", k.lift, k.revision)).collect();
+        assert_eq!(
+            names,
+            [
+                "V-101 0000000a",
+                "V-101 0000000b",
+                "V-101 0000000c",
+                "V-101 0000000d",
+                "V-101 0000000e",
+                "V-102 0000000f"
+            ]
+        );
+        assert_eq!(kept[0].pdf_bytes, Some(3));
+        assert!(kept[1].validated.is_none() && kept[1].said().contains("its plan file does not read as a plan"));
+        assert!(
+            kept[0].said().starts_with("V-101 plan 0000000a  kept 2026-11-30 00:53 UTC  its plan file"),
+            "{}",
+            kept[0].said()
+        );
+        // The last plans hold c; a lift resumes a; e and f are their lifts' newest.
+        std::fs::write(entry.join("plan.json"), plan_json(&[("V-101", "0000000c")])).unwrap();
+        let held = held(&kept, &[entry.clone(), d.path().join("no-such")], &[("V-101".into(), "0000000a".into())]);
+        assert_eq!(held.len(), 4, "{held:?}");
+        assert_eq!(
+            held[&("V-101".to_string(), "0000000a".to_string())],
+            "a lift of the project resumes it (resumes_plan)"
+        );
+        let removed = remove_older_than(&out, &kept, &held, t0 + 5 * day).unwrap();
+        assert_eq!(removed.len(), 2, "{removed:?}");
+        assert!(removed[0].starts_with("V-101 plan 0000000b (") && removed[1].starts_with("V-101 plan 0000000d ("));
+        let names: Vec<String> = list(&out).unwrap().iter().map(|k| k.revision.clone()).collect();
+        assert_eq!(names, ["0000000a", "0000000c", "0000000e", "0000000f"]);
+        let left: Vec<String> = std::fs::read_dir(out.join(DIR).join("V-101"))
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .filter(|n| n.starts_with("0000000b") || n.starts_with("0000000d"))
+            .collect();
+        assert!(left.is_empty(), "{left:?}");
+        assert!(out.join(DIR).join("V-101").join("notes.txt").is_file());
+        assert_eq!(liftplan_docs::date_utc(0), "1970-01-01 00:00 UTC");
+        assert_eq!(liftplan_docs::date_utc(951_782_400 + 23 * 3600 + 59 * 60 + 30), "2000-02-29 23:59 UTC");
     }
 }

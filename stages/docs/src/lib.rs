@@ -126,6 +126,17 @@ pub fn today() -> String {
     let days =
         std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map(|d| d.as_secs() / 86_400).unwrap_or(0)
             as i64;
+    day(days)
+}
+
+/// A time given in seconds since 1970 (UTC) as YYYY-MM-DD HH:MM UTC.
+pub fn date_utc(unix_s: u64) -> String {
+    let minutes = unix_s % 86_400 / 60;
+    format!("{} {:02}:{:02} UTC", day((unix_s / 86_400) as i64), minutes / 60, minutes % 60)
+}
+
+/// Day `days` since 1970-01-01 as YYYY-MM-DD.
+fn day(days: i64) -> String {
     // Civil from days (Howard Hinnant's algorithm).
     let z = days + 719_468;
     let era = z.div_euclid(146_097);
