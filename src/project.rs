@@ -499,6 +499,10 @@ keep = 3                  # runs' outputs each stage keeps in .liftplan/cache (t
 # # 4 (the top's centre, the middles of its short edges, its corners) or lift_points_m
 # # = [[x, y, z], ...] from the box's centre, and each leg's working load limit: the
 # # legs' angles and the most one carries are checked (leave leg_wll_t out: not checked).
+# # Two legs hanging plumb from a beam: add spreader = { length_m = 8.0, below_hook_m =
+# # 2.0, wll_t = 20.0, mass_t = 0.3, top_leg_wll_t = 12.0 } to rigging (its pins over the
+# # lift points, below_hook_m under the hook block; leave top_leg_wll_t out for a lifting
+# # beam hung by its lug; mass_t is part of rigging's); it must lie within the footprint.
 # crane = { model = "ltm-1100", position_m = [0.0, 0.0], ground_z_m = 0.0, heading_deg = 0.0, boom_m = 40.0, chart_config = "main boom, 360 deg" }
 # pick = { x_m = 6.0, y_m = -16.0, z_m = 1.2, yaw_deg = 90.0 }
 # set = { x_m = 30.0, y_m = 2.0, z_m = 1.2, yaw_deg = 0.0 }

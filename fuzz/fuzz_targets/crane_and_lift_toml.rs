@@ -1,5 +1,5 @@
 //! Crane model files, lift requests and scanner station files (TOML) through
-//! parsing and resolution.
+//! parsing and resolution, and a resolved lift's sling check.
 #![no_main]
 use libfuzzer_sys::fuzz_target;
 
@@ -8,8 +8,12 @@ fuzz_target!(|data: &[u8]| {
     let _ = liftplan_core::crane::CraneModel::from_toml(std::path::Path::new("fuzz.toml"), text);
     if let Ok(spec) = toml::from_str::<liftplan_core::lift::LiftSpec>(text)
         && let Ok(model) = liftplan_core::crane::builtin("ac-700")
+        && let Ok(task) = spec.resolve(model)
+        && let Some(slings) = &task.slings
     {
-        let _ = spec.resolve(model);
+        let l = &task.load;
+        let _ = liftplan_core::slings::check(slings, task.load_mass_kg, l.size_m, l.cog_m, l.rigging_height_m)
+            .map(|c| (c.said(), c.over_limit()));
     }
     let _ = liftplan_scans::parse_stations(std::path::Path::new("stations.toml"), text);
 });

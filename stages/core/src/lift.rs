@@ -48,6 +48,28 @@ pub struct RiggingSpec {
     /// load's frame (m), one to four points.
     #[serde(default)]
     pub lift_points_m: Option<Vec<[f64; 3]>>,
+    /// A beam the two legs hang plumb from ([`crate::slings::Spreader`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub spreader: Option<SpreaderSpec>,
+}
+
+/// `rigging.spreader`: a spreader beam hung from the hook by two top legs
+/// (`top_leg_wll_t` given) or a lifting beam hung by its lug (not given).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpreaderSpec {
+    /// End to end (m).
+    pub length_m: f64,
+    /// From the hook block's underside down to its pins (m).
+    pub below_hook_m: f64,
+    /// What it may carry below it (t).
+    pub wll_t: f64,
+    /// Its own mass (t), part of `rigging.mass_t`.
+    #[serde(default)]
+    pub mass_t: f64,
+    /// Each top leg's working load limit (t, straight pull).
+    #[serde(default)]
+    pub top_leg_wll_t: Option<f64>,
 }
 
 impl Default for RiggingSpec {
@@ -58,6 +80,7 @@ impl Default for RiggingSpec {
             legs: None,
             leg_wll_t: None,
             lift_points_m: None,
+            spreader: None,
         }
     }
 }
@@ -743,6 +766,11 @@ impl LiftSpec {
         metres("rigging.height_m", self.rigging.height_m, MAX_RIGGING_HEIGHT_M)?;
         let r = &self.rigging;
         let slings = match (r.leg_wll_t, r.legs, &r.lift_points_m) {
+            (None, _, _) if r.spreader.is_some() => {
+                return Err(format!(
+                    "lift '{id}': rigging gives a spreader but not the working load limit of the legs hanging from it: give rigging leg_wll_t (t, each leg's) with legs = 2 or two lift_points_m"
+                ));
+            }
             (None, None, None) => None,
             (None, _, _) => {
                 return Err(format!(
@@ -795,7 +823,34 @@ impl LiftSpec {
                         ));
                     }
                 };
-                Some(crate::slings::Slings { lift_points_m, points_given, leg_wll_kg: wll_t * KG_PER_TONNE })
+                let spreader = match &r.spreader {
+                    None => None,
+                    Some(b) => {
+                        pos("rigging.spreader.length_m", b.length_m)?;
+                        metres("rigging.spreader.length_m", b.length_m, MAX_LOAD_SIDE_M)?;
+                        nonneg("rigging.spreader.below_hook_m", b.below_hook_m)?;
+                        metres("rigging.spreader.below_hook_m", b.below_hook_m, MAX_RIGGING_HEIGHT_M)?;
+                        pos("rigging.spreader.wll_t", b.wll_t)?;
+                        nonneg("rigging.spreader.mass_t", b.mass_t)?;
+                        if b.mass_t > r.mass_t + 1e-9 {
+                            return Err(format!(
+                                "lift '{id}': rigging.spreader.mass_t ({} t) is more than rigging.mass_t ({} t), which must include it (the chart carries the load and all its rigging)",
+                                b.mass_t, r.mass_t
+                            ));
+                        }
+                        if let Some(t) = b.top_leg_wll_t {
+                            pos("rigging.spreader.top_leg_wll_t", t)?;
+                        }
+                        Some(crate::slings::Spreader {
+                            length_m: b.length_m,
+                            below_hook_m: b.below_hook_m,
+                            wll_kg: b.wll_t * KG_PER_TONNE,
+                            mass_kg: b.mass_t * KG_PER_TONNE,
+                            top_leg_wll_kg: b.top_leg_wll_t.map(|t| t * KG_PER_TONNE),
+                        })
+                    }
+                };
+                Some(crate::slings::Slings { lift_points_m, points_given, leg_wll_kg: wll_t * KG_PER_TONNE, spreader })
             }
         };
         pos("clearance_m", self.clearance_m)?;
@@ -1342,6 +1397,30 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         assert!(!four.points_given && four.leg_wll_kg == 8000.0);
         let given = rigged("leg_wll_t = 8.0\nlift_points_m = [[-2.0, 0.0, 1.5], [2.0, 0.0, 1.5], [0.0, 1.0, 1.5]]");
         assert!(given.unwrap().slings.unwrap().points_given);
+        let beam = rigged(
+            "legs = 2\nleg_wll_t = 8.0\nspreader = { length_m = 6.0, below_hook_m = 2.0, wll_t = 20.0, mass_t = 0.3, top_leg_wll_t = 12.0 }",
+        )
+        .unwrap()
+        .slings
+        .unwrap()
+        .spreader
+        .unwrap();
+        assert_eq!(
+            beam,
+            crate::slings::Spreader {
+                length_m: 6.0,
+                below_hook_m: 2.0,
+                wll_kg: 20_000.0,
+                mass_kg: 300.0,
+                top_leg_wll_kg: Some(12_000.0)
+            }
+        );
+        assert!(
+            toml::from_str::<RiggingSpec>(
+                "spreader = { length_m = 6.0, below_hook_m = 2.0, wll_t = 20.0, span_m = 5.0 }"
+            )
+            .is_err()
+        );
         for (text, said) in [
             ("legs = 4", "but not their working load limit: give rigging leg_wll_t"),
             ("leg_wll_t = 8.0", "give rigging legs (1, 2 or 4) or lift_points_m"),
@@ -1353,6 +1432,22 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
             ("leg_wll_t = 8.0\nlift_points_m = []", "gives 0 points: give one to four"),
             ("legs = 2\nleg_wll_t = -1.0", "rigging.leg_wll_t must be positive"),
             ("leg_wll_t = 8.0\nlift_points_m = [[0.0, 0.0, 1500.0]]", "lift_points_m[0][2] (its size) = 1500 m"),
+            (
+                "legs = 2\nspreader = { length_m = 6.0, below_hook_m = 2.0, wll_t = 20.0 }",
+                "gives a spreader but not the working load limit of the legs hanging from it",
+            ),
+            (
+                "legs = 2\nleg_wll_t = 8.0\nspreader = { length_m = 6.0, below_hook_m = 2.0, wll_t = 20.0, mass_t = 0.5 }",
+                "rigging.spreader.mass_t (0.5 t) is more than rigging.mass_t (0.4 t), which must include it",
+            ),
+            (
+                "legs = 2\nleg_wll_t = 8.0\nspreader = { length_m = 6.0, below_hook_m = 2.0, wll_t = 0.0 }",
+                "rigging.spreader.wll_t must be positive",
+            ),
+            (
+                "legs = 2\nleg_wll_t = 8.0\nspreader = { length_m = 6000.0, below_hook_m = 2.0, wll_t = 20.0 }",
+                "rigging.spreader.length_m = 6000 m",
+            ),
         ] {
             let e = rigged(text).unwrap_err();
             assert!(e.contains(said), "{text}: {e}");

@@ -23,10 +23,23 @@
 //! Legs more than [`MAX_LEG_ANGLE_DEG`] from the vertical are refused: no
 //! sling is rated for them.
 //!
+//! Two legs may hang plumb from a beam instead (`rigging.spreader`, [`Spreader`]):
+//! its pins stand over the two lift points, `below_hook_m` under the hook
+//! block, and it hangs level with the hook over the centre of gravity of
+//! the load and the beam together. The legs share the load by the lever
+//! rule along the beam; the beam carries the load against its working load
+//! limit; a spreader beam hangs from the hook by two top legs, checked as
+//! two legs are above (their shares, angles and what they press the beam
+//! with), a lifting beam by its lug, which must then be over that centre of
+//! gravity (where it is, is said). The beam is centred on its pins and must
+//! lie within the load's footprint, where the planner keeps the rigging
+//! (`crane::rigging_above`); one reaching beyond it is refused, not planned.
+//!
 //! What this module must not do: plan (the check does not depend on the
-//! path), or say more than the statics of the legs: the lift points' own
-//! strength, the shackles, a spreader beam and the load's strength under
-//! the legs' pull are the engineer's.
+//! path), or say more than the statics of the legs and the beam: the lift
+//! points' own strength, the shackles, the beam's rating at its span and
+//! top-leg angle, and the load's strength under the legs' pull are the
+//! engineer's.
 
 use serde::{Deserialize, Serialize};
 
@@ -48,6 +61,61 @@ pub struct Slings {
     pub points_given: bool,
     /// Each leg's working load limit (kg), straight pull.
     pub leg_wll_kg: f64,
+    /// The beam the legs hang plumb from, where the lift gives one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub spreader: Option<Spreader>,
+}
+
+/// A spreader or lifting beam between the hook and two sling legs hanging
+/// plumb from its pins (`rigging.spreader`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Spreader {
+    /// The beam's length, end to end (m); it is taken centred on its pins.
+    pub length_m: f64,
+    /// From the hook block's underside down to the beam's pins (m).
+    pub below_hook_m: f64,
+    /// What the beam may carry below it (kg).
+    pub wll_kg: f64,
+    /// The beam's own mass (kg), which the top legs carry with the load.
+    pub mass_kg: f64,
+    /// Each top leg's working load limit (kg, straight pull) of a spreader
+    /// beam hung from the hook by two legs; `None`: a lifting beam hung from
+    /// the hook by its lug.
+    pub top_leg_wll_kg: Option<f64>,
+}
+
+/// What a beam carries ([`check`] with a [`Spreader`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SpreaderCheck {
+    pub length_m: f64,
+    /// Between its pins, over the two lift points (m).
+    pub span_m: f64,
+    pub below_hook_m: f64,
+    /// What hangs below it (kg): the load.
+    pub carries_kg: f64,
+    pub wll_kg: f64,
+    /// Where the hook hangs over the beam (where its top legs meet, or its
+    /// lug must be), from the middle of its pins towards the second (m):
+    /// over the centre of gravity of the load and the beam.
+    pub hook_from_middle_m: f64,
+    /// The top legs of a spreader beam; `None` for a lifting beam.
+    pub top: Option<TopLegs>,
+}
+
+/// The two legs from a spreader beam's pins up to the hook.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TopLegs {
+    /// The steeper's angle from the vertical (degrees).
+    pub max_angle_deg: f64,
+    /// The most one carries (kg): the load and the beam share them.
+    pub max_leg_kg: f64,
+    /// Which (1: over the first pin, 2: over the second).
+    pub max_leg: usize,
+    pub leg_wll_kg: f64,
+    /// Each one's length, pin to hook (m), for the beam to hang level.
+    pub leg_lengths_m: Vec<f64>,
+    /// What they press the beam with along its length (kg-force).
+    pub compression_kg: f64,
 }
 
 /// What the legs carry ([`check`]).
@@ -68,6 +136,9 @@ pub struct SlingCheck {
     /// load to hang level, as it is planned.
     #[serde(default)]
     pub leg_lengths_m: Vec<f64>,
+    /// The beam the legs hang from, where the lift gives one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub spreader: Option<SpreaderCheck>,
 }
 
 impl SlingCheck {
@@ -76,8 +147,40 @@ impl SlingCheck {
         100.0 * self.max_leg_kg / self.leg_wll_kg
     }
 
+    /// The refusal where something carries more than its working load
+    /// limit: what, the check, and what to give instead; `None` where
+    /// nothing does.
+    pub fn over_limit(&self) -> Option<String> {
+        let over = |kg: f64, wll_kg: f64| kg > wll_kg * (1.0 + 1e-12);
+        let mut what = Vec::new();
+        let mut give = Vec::new();
+        if over(self.max_leg_kg, self.leg_wll_kg) {
+            what.push("the sling legs");
+            give.push(if self.spreader.is_some() {
+                "give legs of a higher working load limit (rigging leg_wll_t)"
+            } else {
+                "give legs of a higher working load limit (rigging leg_wll_t), more legs or a taller rigging (height_m)"
+            });
+        }
+        if let Some(s) = &self.spreader {
+            if over(s.carries_kg, s.wll_kg) {
+                what.push("the spreader beam");
+                give.push("give a beam of a higher working load limit (spreader wll_t)");
+            }
+            if s.top.as_ref().is_some_and(|t| over(t.max_leg_kg, t.leg_wll_kg)) {
+                what.push("the spreader's top legs");
+                give.push("give top legs of a higher working load limit (spreader top_leg_wll_t) or hang the beam lower (below_hook_m)");
+            }
+        }
+        (!what.is_empty())
+            .then(|| format!("{} cannot carry the load: {}; {}", what.join(" and "), self.said(), give.join("; ")))
+    }
+
     /// In words, for the run's line and the PDF.
     pub fn said(&self) -> String {
+        if let Some(s) = &self.spreader {
+            return self.said_with(s);
+        }
         let where_ = match (self.points_given, self.legs) {
             (true, _) => "at the lift points given (rigging lift_points_m)",
             (false, 1) => "at the top's centre",
@@ -101,6 +204,57 @@ impl SlingCheck {
                 [first @ .., last] => format!("legs {} and {last} m long", first.join(", ")),
                 [] => String::new(),
             }
+        )
+    }
+
+    fn said_with(&self, s: &SpreaderCheck) -> String {
+        let where_ = if self.points_given {
+            "at the lift points given (rigging lift_points_m)"
+        } else {
+            "at the middles of the top's short edges"
+        };
+        let lengths: Vec<String> = self.leg_lengths_m.iter().map(|l| format!("{l:.2}")).collect();
+        let hung = match &s.top {
+            Some(t) => format!(
+                "hung from the hook by 2 top legs up to {:.1}° from the vertical: the most on one (top leg {}) {:.2} t ({:.0} kN) of its {:.2} t working load limit: {:.0} %; top legs {} and {} m long from pin to hook, for the beam to hang level, meeting over the centre of gravity {:.2} m from the pins' middle, pressing the beam with {:.2} t ({:.0} kN)",
+                t.max_angle_deg,
+                t.max_leg,
+                t.max_leg_kg / 1000.0,
+                t.max_leg_kg * G / 1000.0,
+                t.leg_wll_kg / 1000.0,
+                100.0 * t.max_leg_kg / t.leg_wll_kg,
+                t.leg_lengths_m.first().map(|l| format!("{l:.2}")).unwrap_or_default(),
+                t.leg_lengths_m.get(1).map(|l| format!("{l:.2}")).unwrap_or_default(),
+                s.hook_from_middle_m.abs(),
+                t.compression_kg / 1000.0,
+                t.compression_kg * G / 1000.0,
+            ),
+            None => format!(
+                "hung from the hook by its lug, which must be over the centre of gravity, {:.2} m from the pins' middle{} (a lug elsewhere tilts the beam)",
+                s.hook_from_middle_m.abs(),
+                if s.hook_from_middle_m.abs() < 0.005 {
+                    ""
+                } else if s.hook_from_middle_m > 0.0 {
+                    " towards leg 2"
+                } else {
+                    " towards leg 1"
+                }
+            ),
+        };
+        format!(
+            "2 legs {where_}, hanging plumb from a spreader beam: the most on one leg (leg {}) {:.2} t ({:.0} kN) of its {:.2} t working load limit: {:.0} %; legs {} m long from lift point to pin; the beam {:.2} m long, its pins {:.2} m apart and {:.2} m below the hook block, carries {:.2} t of its {:.2} t working load limit: {:.0} %, {hung}",
+            self.max_leg,
+            self.max_leg_kg / 1000.0,
+            self.max_leg_kg * G / 1000.0,
+            self.leg_wll_kg / 1000.0,
+            self.utilisation_pct(),
+            lengths.join(" and "),
+            s.length_m,
+            s.span_m,
+            s.below_hook_m,
+            s.carries_kg / 1000.0,
+            s.wll_kg / 1000.0,
+            100.0 * s.carries_kg / s.wll_kg,
         )
     }
 }
@@ -131,6 +285,9 @@ pub fn check(
     cog_m: [f64; 3],
     rigging_height_m: f64,
 ) -> Result<SlingCheck, String> {
+    if let Some(beam) = &slings.spreader {
+        return check_spreader(slings, beam, load_kg, size_m, cog_m, rigging_height_m);
+    }
     let hook = [cog_m[0], cog_m[1], size_m[2] / 2.0 + rigging_height_m];
     let pts = &slings.lift_points_m;
     // Unit vectors from each lift point up its leg to the hook.
@@ -193,6 +350,129 @@ pub fn check(
         leg_lengths_m,
         leg_wll_kg: slings.leg_wll_kg,
         points_given: slings.points_given,
+        spreader: None,
+    })
+}
+
+/// [`check`] for two legs hanging plumb from a beam's pins over the lift
+/// points (the module's doc).
+fn check_spreader(
+    slings: &Slings,
+    beam: &Spreader,
+    load_kg: f64,
+    size_m: [f64; 3],
+    cog_m: [f64; 3],
+    rigging_height_m: f64,
+) -> Result<SlingCheck, String> {
+    let pts = &slings.lift_points_m;
+    if pts.len() != 2 {
+        return Err(format!(
+            "a spreader beam (rigging spreader) is checked with two sling legs hanging plumb from its pins: give legs = 2 or two lift_points_m, not {}",
+            pts.len()
+        ));
+    }
+    let (a, b) = (pts[0], pts[1]);
+    let along = [b[0] - a[0], b[1] - a[1]];
+    let span_m = along[0].hypot(along[1]);
+    if !(span_m >= 0.1) {
+        return Err(format!(
+            "the two lift points lie {span_m:.2} m apart in plan: a spreader beam's pins stand over them and must be apart"
+        ));
+    }
+    if beam.length_m + 1e-9 < span_m {
+        return Err(format!(
+            "the spreader beam, {:.2} m long, is shorter than the {span_m:.2} m between the lift points its legs hang plumb over: give a longer beam (spreader length_m) or lift points nearer together (lift_points_m)",
+            beam.length_m
+        ));
+    }
+    let dir = [along[0] / span_m, along[1] / span_m];
+    let middle = [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0];
+    let [hx, hy] = [size_m[0] / 2.0, size_m[1] / 2.0];
+    for sign in [-1.0, 1.0] {
+        let end = [middle[0] + sign * dir[0] * beam.length_m / 2.0, middle[1] + sign * dir[1] * beam.length_m / 2.0];
+        if end[0].abs() > hx + 1e-9 || end[1].abs() > hy + 1e-9 {
+            return Err(format!(
+                "the spreader beam, {:.2} m long and centred over the lift points, reaches ({:.2}, {:.2}) m from the load's centre, beyond its {:.2} x {:.2} m footprint: liftplan keeps the rigging within the load's footprint and does not plan a beam beyond it; give lift points further in (lift_points_m) or a shorter beam",
+                beam.length_m, end[0], end[1], size_m[0], size_m[1]
+            ));
+        }
+    }
+    let pins_z = size_m[2] / 2.0 + rigging_height_m - beam.below_hook_m;
+    let mut leg_lengths_m = Vec::with_capacity(2);
+    for (k, p) in pts.iter().enumerate() {
+        let drop = pins_z - p[2];
+        if !(drop > 1e-6) {
+            return Err(format!(
+                "sling leg {} takes the load at z {:.2} m from its box's centre, not below the spreader's pins ({pins_z:.2} m: the load's top plus rigging height_m less spreader below_hook_m)",
+                k + 1,
+                p[2]
+            ));
+        }
+        leg_lengths_m.push(drop);
+    }
+    // The legs hang plumb: the lever rule along the beam. Off the beam's
+    // line the load tilts about it, as it does on two legs to one hook.
+    let along_cog = (cog_m[0] - a[0]) * dir[0] + (cog_m[1] - a[1]) * dir[1];
+    let t = along_cog / span_m;
+    if !(-1e-9..=1.0 + 1e-9).contains(&t) {
+        return Err(outside());
+    }
+    let t = t.clamp(0.0, 1.0);
+    let shares = [load_kg * (1.0 - t), load_kg * t];
+    let max_leg = if shares[1] > shares[0] { 1 } else { 0 };
+    // The load and the beam hang level with the hook over their joint
+    // centre of gravity, the beam's at the middle of its pins.
+    let total_kg = load_kg + beam.mass_kg;
+    let hook_m = (load_kg * t * span_m + beam.mass_kg * span_m / 2.0) / total_kg;
+    let top = match beam.top_leg_wll_kg {
+        None => None,
+        Some(leg_wll_kg) => {
+            let h = beam.below_hook_m;
+            if !(h > 1e-6) {
+                return Err(
+                    "a spreader beam hung by top legs (spreader top_leg_wll_t) hangs below the hook block: give spreader below_hook_m above zero".to_string()
+                );
+            }
+            // Each top leg's run along the beam from its pin to under the hook.
+            let runs = [hook_m, span_m - hook_m];
+            let lengths = runs.map(|r| r.hypot(h));
+            // Across the beam the legs' pulls balance, up they carry it all:
+            // T1 r1 / l1 = T2 r2 / l2 and h (T1 / l1 + T2 / l2) = total.
+            let per_length = [total_kg * runs[1] / (h * span_m), total_kg * runs[0] / (h * span_m)];
+            let pulls = [per_length[0] * lengths[0], per_length[1] * lengths[1]];
+            let max_angle_deg = runs.map(|r| r.atan2(h).to_degrees()).into_iter().fold(0.0, f64::max);
+            if max_angle_deg > MAX_LEG_ANGLE_DEG + 1e-9 {
+                return Err(format!(
+                    "the spreader's top legs hang up to {max_angle_deg:.1}° from the vertical, more than the {MAX_LEG_ANGLE_DEG:.0}° slings are rated for: hang the beam lower (spreader below_hook_m {h:.2} m, within rigging height_m)"
+                ));
+            }
+            Some(TopLegs {
+                max_angle_deg,
+                max_leg_kg: pulls[0].max(pulls[1]),
+                max_leg: if pulls[1] > pulls[0] { 2 } else { 1 },
+                leg_wll_kg,
+                leg_lengths_m: lengths.to_vec(),
+                compression_kg: per_length[0] * runs[0],
+            })
+        }
+    };
+    Ok(SlingCheck {
+        legs: 2,
+        max_angle_deg: 0.0,
+        max_leg_kg: shares[max_leg],
+        max_leg: max_leg + 1,
+        leg_wll_kg: slings.leg_wll_kg,
+        points_given: slings.points_given,
+        leg_lengths_m,
+        spreader: Some(SpreaderCheck {
+            length_m: beam.length_m,
+            span_m,
+            below_hook_m: beam.below_hook_m,
+            carries_kg: load_kg,
+            wll_kg: beam.wll_kg,
+            hook_from_middle_m: hook_m - span_m / 2.0,
+            top,
+        }),
     })
 }
 
@@ -250,7 +530,12 @@ mod tests {
     use super::*;
 
     fn slings(legs: usize, size_m: [f64; 3]) -> Slings {
-        Slings { lift_points_m: default_points(legs, size_m).unwrap(), points_given: false, leg_wll_kg: 8000.0 }
+        Slings {
+            lift_points_m: default_points(legs, size_m).unwrap(),
+            points_given: false,
+            leg_wll_kg: 8000.0,
+            spreader: None,
+        }
     }
 
     /// Two legs to the ends of an 8 m box, 3 m below the hook: each at
@@ -311,6 +596,7 @@ mod tests {
             lift_points_m: vec![[-2.0, -1.0, 1.0], [2.0, -1.0, 1.0], [0.0, 2.0, 1.0]],
             points_given: true,
             leg_wll_kg: 9000.0,
+            spreader: None,
         };
         let up: Vec<[f64; 3]> = s
             .lift_points_m
@@ -342,11 +628,147 @@ mod tests {
         assert!(outside.contains("outside the sling legs' lift points"), "{outside}");
         let four = check(&slings(4, size), 12_000.0, size, [4.5, 0.0, 0.0], 20.0).unwrap_err();
         assert!(four.contains("outside the sling legs' lift points"), "{four}");
-        let high = Slings { lift_points_m: vec![[0.0, 0.0, 9.0]], points_given: true, leg_wll_kg: 1.0 };
+        let high = Slings { lift_points_m: vec![[0.0, 0.0, 9.0]], points_given: true, leg_wll_kg: 1.0, spreader: None };
         assert!(check(&high, 1.0, size, [0.0; 3], 3.0).unwrap_err().contains("not below the hook block"));
         // One leg: the whole load, whatever its angle.
         let one = check(&slings(1, size), 12_000.0, size, [0.3, 0.0, 0.0], 3.0).unwrap();
         assert_eq!((one.max_leg_kg, one.max_angle_deg), (12_000.0, 0.0));
         assert!(one.said().starts_with("1 leg at the top's centre"), "{}", one.said());
+    }
+
+    fn beam(top_leg_wll_kg: Option<f64>) -> Spreader {
+        Spreader { length_m: 6.4, below_hook_m: 2.0, wll_kg: 20_000.0, mass_kg: 600.0, top_leg_wll_kg }
+    }
+
+    /// Lift points 6 m apart on a 7 m load, 4 m of rigging: legs plumb
+    /// from pins 2 m under the hook, 2 m long to the top; each carries half.
+    /// The top legs carry load and beam by their angle (atan(3 / 2)), and
+    /// press the beam with their pull across.
+    #[test]
+    fn a_spreader_beam_hangs_its_legs_plumb_and_its_top_legs_carry_it() {
+        let size = [7.0, 2.0, 2.0];
+        let mut s = Slings {
+            lift_points_m: vec![[-3.0, 0.0, 1.0], [3.0, 0.0, 1.0]],
+            points_given: true,
+            leg_wll_kg: 8000.0,
+            spreader: Some(beam(Some(12_000.0))),
+        };
+        let c = check(&s, 12_000.0, size, [0.0; 3], 4.0).unwrap();
+        assert_eq!((c.max_angle_deg, c.max_leg_kg, c.leg_lengths_m.clone()), (0.0, 6000.0, vec![2.0, 2.0]));
+        let b = c.spreader.clone().unwrap();
+        assert_eq!((b.span_m, b.carries_kg, b.hook_from_middle_m), (6.0, 12_000.0, 0.0));
+        let t = b.top.clone().unwrap();
+        let (len, cos) = (13.0f64.sqrt(), 2.0 / 13.0f64.sqrt());
+        assert!((t.max_leg_kg - 6300.0 / cos).abs() < 1e-6, "{t:?}");
+        assert!((t.compression_kg - 6300.0 * 1.5).abs() < 1e-6 && t.leg_lengths_m == [len, len], "{t:?}");
+        assert!((t.max_angle_deg - 1.5f64.atan().to_degrees()).abs() < 1e-9);
+        assert_eq!(c.over_limit(), None);
+        let said = c.said();
+        for part in [
+            "2 legs at the lift points given (rigging lift_points_m), hanging plumb from a spreader beam: the most on one leg (leg 1) 6.00 t",
+            "legs 2.00 and 2.00 m long from lift point to pin; the beam 6.40 m long, its pins 6.00 m apart and 2.00 m below the hook block, carries 12.00 t of its 20.00 t working load limit: 60 %",
+            "hung from the hook by 2 top legs up to 56.3° from the vertical",
+            "top legs 3.61 and 3.61 m long from pin to hook",
+            "pressing the beam with 9.45 t (93 kN)",
+        ] {
+            assert!(said.contains(part), "{part}\n{said}");
+        }
+        // Over the limits: each named, with what to give.
+        s.leg_wll_kg = 5000.0;
+        s.spreader.as_mut().unwrap().wll_kg = 10_000.0;
+        s.spreader.as_mut().unwrap().top_leg_wll_kg = Some(7000.0);
+        let over = check(&s, 12_000.0, size, [0.0; 3], 4.0).unwrap().over_limit().unwrap();
+        for part in [
+            "the sling legs and the spreader beam and the spreader's top legs cannot carry the load: 2 legs",
+            "; give legs of a higher working load limit (rigging leg_wll_t); give a beam",
+            "(spreader wll_t); give top legs of a higher working load limit (spreader top_leg_wll_t) or hang",
+        ] {
+            assert!(over.contains(part), "{part}: {over}");
+        }
+    }
+
+    /// The centre of gravity 1 m towards the second point: the legs share
+    /// the load by the lever rule; the hook hangs over the load's and the
+    /// beam's joint centre of gravity, where the top legs' pulls balance
+    /// across and carry both up.
+    #[test]
+    fn an_off_centre_load_hangs_from_the_beam_by_the_lever_rule() {
+        let s = Slings {
+            lift_points_m: default_points(2, [6.0, 2.0, 2.0]).unwrap(),
+            points_given: false,
+            leg_wll_kg: 8000.0,
+            spreader: Some(Spreader { length_m: 6.0, below_hook_m: 3.0, ..beam(Some(12_000.0)) }),
+        };
+        let c = check(&s, 12_000.0, [6.0, 2.0, 2.0], [1.0, 0.0, 0.0], 5.0).unwrap();
+        assert_eq!(c.max_leg, 2);
+        assert!((c.max_leg_kg - 12_000.0 * 4.0 / 6.0).abs() < 1e-9, "{c:?}");
+        let b = c.spreader.clone().unwrap();
+        // (12 t at 1 m, 0.6 t at 0 m) from the pins' middle.
+        let hook = 12_000.0 / 12_600.0;
+        assert!((b.hook_from_middle_m - hook).abs() < 1e-12, "{b:?}");
+        let t = b.top.unwrap();
+        let runs = [3.0 + hook, 3.0 - hook];
+        let (sin, cos) = (runs.map(|r| r / r.hypot(3.0)), runs.map(|r| 3.0 / r.hypot(3.0)));
+        // The leg with the shorter run, over the second pin, carries more.
+        let pull2 = t.max_leg_kg;
+        let pull1 = pull2 * sin[1] / sin[0];
+        assert_eq!(t.max_leg, 2);
+        assert!((pull1 * cos[0] + pull2 * cos[1] - 12_600.0).abs() < 1e-6, "{t:?}");
+        assert!((t.compression_kg - pull1 * sin[0]).abs() < 1e-6);
+        assert!(
+            c.said().starts_with("2 legs at the middles of the top's short edges, hanging plumb from a spreader beam")
+        );
+    }
+
+    /// A lifting beam (no top legs) hangs by its lug, which must be over
+    /// the centre of gravity: where that is, is said.
+    #[test]
+    fn a_lifting_beam_says_where_its_lug_must_be() {
+        let s = Slings {
+            lift_points_m: vec![[-3.0, 0.0, 1.0], [3.0, 0.0, 1.0]],
+            points_given: true,
+            leg_wll_kg: 8000.0,
+            spreader: Some(Spreader { mass_kg: 0.0, ..beam(None) }),
+        };
+        let c = check(&s, 12_000.0, [7.0, 2.0, 2.0], [-0.5, 0.3, 0.0], 4.0).unwrap();
+        let b = c.spreader.clone().unwrap();
+        assert!(b.top.is_none() && (b.hook_from_middle_m + 0.5).abs() < 1e-12, "{b:?}");
+        assert!(
+            c.said().ends_with("hung from the hook by its lug, which must be over the centre of gravity, 0.50 m from the pins' middle towards leg 1 (a lug elsewhere tilts the beam)"),
+            "{}",
+            c.said()
+        );
+    }
+
+    /// What a beam cannot be is refused, saying what to change.
+    #[test]
+    fn what_a_spreader_cannot_be_is_refused() {
+        let size = [7.0, 2.0, 2.0];
+        let two = vec![[-3.0, 0.0, 1.0], [3.0, 0.0, 1.0]];
+        let refused = |points: Vec<[f64; 3]>, b: Spreader, height_m: f64| {
+            let s = Slings { lift_points_m: points, points_given: true, leg_wll_kg: 8000.0, spreader: Some(b) };
+            check(&s, 12_000.0, size, [0.0; 3], height_m).unwrap_err()
+        };
+        let four = default_points(4, size).unwrap();
+        assert!(refused(four, beam(None), 4.0).contains("give legs = 2 or two lift_points_m, not 4"));
+        let short = Spreader { length_m: 5.0, ..beam(None) };
+        assert!(refused(two.clone(), short, 4.0).contains("5.00 m long, is shorter than the 6.00 m"));
+        let long = Spreader { length_m: 7.2, ..beam(None) };
+        assert!(
+            refused(two.clone(), long, 4.0)
+                .contains("reaches (-3.60, 0.00) m from the load's centre, beyond its 7.00 x 2.00 m footprint")
+        );
+        let low = Spreader { below_hook_m: 4.5, ..beam(None) };
+        assert!(refused(two.clone(), low, 4.0).contains("not below the spreader's pins"));
+        let flat = Spreader { below_hook_m: 1.5, ..beam(Some(9000.0)) };
+        assert!(refused(two.clone(), flat, 4.0).contains("top legs hang up to 63.4° from the vertical"));
+        let on_hook = Spreader { below_hook_m: 0.0, ..beam(Some(9000.0)) };
+        assert!(refused(two.clone(), on_hook, 4.0).contains("give spreader below_hook_m above zero"));
+        let s = Slings { lift_points_m: two, points_given: true, leg_wll_kg: 8000.0, spreader: Some(beam(None)) };
+        assert!(
+            check(&s, 12_000.0, size, [3.5, 0.0, 0.0], 4.0)
+                .unwrap_err()
+                .contains("outside the sling legs' lift points")
+        );
     }
 }

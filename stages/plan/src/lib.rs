@@ -641,14 +641,8 @@ pub(crate) fn plan_lift_hinting(
             let l = &task.load;
             let c = liftplan_core::slings::check(legs, task.load_mass_kg, l.size_m, l.cog_m, l.rigging_height_m)
                 .map_err(|e| lift_err(task, e))?;
-            if c.max_leg_kg > c.leg_wll_kg * (1.0 + 1e-12) {
-                return Err(lift_err(
-                    task,
-                    format!(
-                        "the sling legs cannot carry the load: {}; give legs of a higher working load limit (rigging leg_wll_t), more legs or a taller rigging (height_m)",
-                        c.said()
-                    ),
-                ));
+            if let Some(over) = c.over_limit() {
+                return Err(lift_err(task, over));
             }
             Some(c)
         }

@@ -145,6 +145,34 @@ fn the_sling_legs_are_checked_before_the_path() {
     // Without a working load limit they are not checked.
     let (plan, _) = plan_lift(&task(-14.0), &site, &quick(), 3).unwrap();
     assert!(plan.summary.slings.is_none());
+    // Two legs plumb from a 4 m spreader beam 1.5 m under the hook: the
+    // beam carries the 5 t skid, its top legs the skid and its own 0.15 t
+    // (2.575 t each at atan(2 / 1.5) from the vertical: 4.29 t).
+    let on_beam = |beam_wll_t: f64| {
+        let mut spec = spec_of(-14.0);
+        spec.rigging.legs = Some(2);
+        spec.rigging.leg_wll_t = Some(3.0);
+        spec.rigging.spreader = Some(liftplan_core::lift::SpreaderSpec {
+            length_m: 4.0,
+            below_hook_m: 1.5,
+            wll_t: beam_wll_t,
+            mass_t: 0.15,
+            top_leg_wll_t: Some(4.5),
+        });
+        spec.resolve(builtin("ac-700").unwrap()).unwrap()
+    };
+    let e = plan_lift(&on_beam(4.9), &site, &quick(), 3).unwrap_err().to_string();
+    assert!(e.contains("the spreader beam cannot carry the load: 2 legs at the middles of the top's short edges, hanging plumb from a spreader beam"), "{e}");
+    assert!(
+        e.contains("carries 5.00 t of its 4.90 t working load limit: 102 %") && e.contains("(spreader wll_t)"),
+        "{e}"
+    );
+    let (plan, _) = plan_lift(&on_beam(6.0), &site, &quick(), 3).unwrap();
+    let c = plan.summary.slings.clone().expect("the plan carries the beam's check");
+    assert_eq!((c.max_leg_kg, c.max_angle_deg), (2500.0, 0.0));
+    let top = c.spreader.as_ref().and_then(|s| s.top.clone()).unwrap();
+    assert!((top.max_leg_kg - 2575.0 / 0.6).abs() < 1e-6, "{top:?}");
+    assert!(plan.summary.slings_line().unwrap().contains("top legs 2.50 and 2.50 m long from pin to hook"));
 }
 
 /// An 11 kV line held at `points_m`, sagging `sag_m`, neither its least
