@@ -40,7 +40,7 @@ demo = read(os.path.join(root, "fixtures/src/demo.rs")).decode()
 lift = demo[demo.index("[[lift]]\n") + len("[[lift]]\n"):]
 seed("crane_and_lift_toml", "lift.toml", lift[:lift.index('"#')].encode())
 # The same lift on a spreader beam (rigging.spreader), to reach its check.
-rigging = "rigging = { mass_t = 0.5, height_m = 4.0, legs = 2, leg_wll_t = 10.0 }"
+rigging = "rigging = { mass_t = 0.5, height_m = 4.0, legs = 2, leg_wll_t = 10.0, shackle_wll_t = 12.0 }"
 assert rigging in lift, "the demo's rigging line changed: update the spreader seed"
 spreader = rigging[:-2] + ", spreader = { length_m = 8.0, below_hook_m = 2.0, wll_t = 20.0, mass_t = 0.3, top_leg_wll_t = 12.0 } }"
 seed("crane_and_lift_toml", "lift-spreader.toml", lift[:lift.index('"#')].replace(rigging, spreader).encode())

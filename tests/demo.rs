@@ -212,7 +212,8 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     let plan: serde_json::Value =
         serde_json::from_slice(&std::fs::read(dir.join("out").join("plan.json")).unwrap()).unwrap();
     assert!((plan["lifts"][0]["gross_kg"].as_f64().unwrap() - 17_000.0).abs() < 1e-6);
-    // The demo's vessel hangs on two legs of 10 t to the ends of its top.
+    // The demo's vessel hangs on two legs of 10 t to the ends of its top,
+    // each by a 12 t shackle.
     let doc = lopdf::Document::load(&pdf_path).unwrap();
     let text13 = doc.extract_text(&doc.get_pages().keys().copied().collect::<Vec<u32>>()).unwrap().replace('\n', " ");
     assert!(
@@ -220,7 +221,7 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
         "{text13}"
     );
     assert!(
-        text13.contains("legs 5.80 and 5.52 m long from lift point to hook, for the load to hang level"),
+        text13.contains("of its 10.00 t working load limit: 94 %, and of its lift point's shackle's 12.00 t (in line): 78 %; legs 5.80 and 5.52 m long from lift point to hook, for the load to hang level"),
         "{text13}"
     );
     // The crew's copy: every page names the plan's revision, as plan.json
@@ -497,8 +498,8 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     // And a fall zone of 3 m round the ground under the load.
     // And the pad the crane is set up on, listed.
     let zoned = t13.replace(
-        "leg_wll_t = 10.0 }",
-        "leg_wll_t = 10.0 }\nfall_zone_m = 3.0\ncrane_stands_in = [{ name = \"crane pad\", corners_m = [[-10.0, -8.0], [15.0, -8.0], [15.0, 8.0], [-10.0, 8.0]] }]",
+        "shackle_wll_t = 12.0 }",
+        "shackle_wll_t = 12.0 }\nfall_zone_m = 3.0\ncrane_stands_in = [{ name = \"crane pad\", corners_m = [[-10.0, -8.0], [15.0, -8.0], [15.0, 8.0], [-10.0, 8.0]] }]",
     );
     assert_ne!(zoned, t13);
     let with_line = format!(
@@ -712,7 +713,7 @@ liftoff_m = 0.5
     // names the nearest crane position, at the height of the ground scanned
     // there, where the lift plans; given it, the lift plans there.
     // (On legs that carry it: the slings are checked first.)
-    let heavy = t13.replace("mass_t = 13.0", "mass_t = 40.0").replace("leg_wll_t = 10.0", "leg_wll_t = 40.0");
+    let heavy = t13.replace("mass_t = 13.0", "mass_t = 40.0").replace("leg_wll_t = 10.0, shackle_wll_t = 12.0", "leg_wll_t = 40.0, shackle_wll_t = 40.0");
     let stderr = refused_with(&dir, &heavy, "a 40 t vessel on a 31.4 t chart cell planned");
     let flat = stderr.replace('\n', " ");
     let at = flat.find("; the crane set up at position_m = [").unwrap_or_else(|| panic!("{flat}"));
@@ -735,7 +736,7 @@ liftoff_m = 0.5
     );
     // A load the chart carries above critical_pct where the crane stands:
     // the cover names where it would not be; given that position, it is not.
-    let critical = t13.replace("mass_t = 13.0", "mass_t = 26.0").replace("leg_wll_t = 10.0", "leg_wll_t = 40.0");
+    let critical = t13.replace("mass_t = 13.0", "mass_t = 26.0").replace("leg_wll_t = 10.0, shackle_wll_t = 12.0", "leg_wll_t = 40.0, shackle_wll_t = 40.0");
     let (cover, _) = planned_with(&dir, &critical);
     let lead = "CRITICAL LIFT (over 75 %); not critical with the crane set up at ";
     let named = &cover[cover.find(lead).unwrap_or_else(|| panic!("{cover}")) + lead.len()..];
@@ -804,7 +805,7 @@ liftoff_m = 0.5
     // An area the load must never be over: on the inputs page, with the
     // margin the planner keeps (its fall zone and 0.25 m more), and
     // outlined in the site overview.
-    let fenced = t13.replace("leg_wll_t = 10.0 }", "leg_wll_t = 10.0 }\nfall_zone_m = 3.0").replace(
+    let fenced = t13.replace("shackle_wll_t = 12.0 }", "shackle_wll_t = 12.0 }\nfall_zone_m = 3.0").replace(
         "wind = { cw = 1.2 }",
         "wind = { cw = 1.2 }\nnot_over = [{ name = \"CONTROL ROOM\", corners_m = [[-30.0, -10.0], [-20.0, -10.0], [-20.0, 0.0], [-30.0, 0.0]] }, { name = \"NEIGHBOUR\", corners_m = [[60.0, -10.0], [70.0, -10.0], [70.0, 0.0]], crane_too = true }]",
     );

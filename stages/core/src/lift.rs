@@ -51,6 +51,28 @@ pub struct RiggingSpec {
     /// A beam the two legs hang plumb from ([`crate::slings::Spreader`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub spreader: Option<SpreaderSpec>,
+    /// How the legs hold the load: "straight" (to lift points) or
+    /// "choked" (round it: [`crate::slings::CHOKE_FACTOR`]).
+    #[serde(default, skip_serializing_if = "Hitch::is_straight")]
+    pub hitch: Hitch,
+    /// The working load limit of the shackle at each lift point (t, in line).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shackle_wll_t: Option<f64>,
+}
+
+/// `rigging.hitch`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Hitch {
+    #[default]
+    Straight,
+    Choked,
+}
+
+impl Hitch {
+    fn is_straight(&self) -> bool {
+        *self == Hitch::Straight
+    }
 }
 
 /// `rigging.spreader`: a spreader beam hung from the hook by two top legs
@@ -81,6 +103,8 @@ impl Default for RiggingSpec {
             leg_wll_t: None,
             lift_points_m: None,
             spreader: None,
+            hitch: Hitch::Straight,
+            shackle_wll_t: None,
         }
     }
 }
@@ -771,6 +795,11 @@ impl LiftSpec {
                     "lift '{id}': rigging gives a spreader but not the working load limit of the legs hanging from it: give rigging leg_wll_t (t, each leg's) with legs = 2 or two lift_points_m"
                 ));
             }
+            (None, _, _) if r.hitch != Hitch::Straight || r.shackle_wll_t.is_some() => {
+                return Err(format!(
+                    "lift '{id}': rigging gives the legs' hitch or their shackles but not the legs' working load limit: give rigging leg_wll_t (t, each leg's, straight pull) with legs or lift_points_m to have them checked"
+                ));
+            }
             (None, None, None) => None,
             (None, _, _) => {
                 return Err(format!(
@@ -850,7 +879,17 @@ impl LiftSpec {
                         })
                     }
                 };
-                Some(crate::slings::Slings { lift_points_m, points_given, leg_wll_kg: wll_t * KG_PER_TONNE, spreader })
+                if let Some(t) = r.shackle_wll_t {
+                    pos("rigging.shackle_wll_t", t)?;
+                }
+                Some(crate::slings::Slings {
+                    lift_points_m,
+                    points_given,
+                    leg_wll_kg: wll_t * KG_PER_TONNE,
+                    spreader,
+                    choked: r.hitch == Hitch::Choked,
+                    shackle_wll_kg: r.shackle_wll_t.map(|t| t * KG_PER_TONNE),
+                })
             }
         };
         pos("clearance_m", self.clearance_m)?;
@@ -1421,6 +1460,14 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
             )
             .is_err()
         );
+        let choked =
+            rigged("legs = 2\nleg_wll_t = 8.0\nhitch = \"choked\"\nshackle_wll_t = 8.5").unwrap().slings.unwrap();
+        assert!(choked.choked && choked.shackle_wll_kg == Some(8500.0), "{choked:?}");
+        assert!(!rigged("legs = 2\nleg_wll_t = 8.0\nhitch = \"straight\"").unwrap().slings.unwrap().choked);
+        assert!(
+            toml::from_str::<RiggingSpec>("hitch = \"basket\"").is_err(),
+            "a basket hitch is not checked, so not taken"
+        );
         for (text, said) in [
             ("legs = 4", "but not their working load limit: give rigging leg_wll_t"),
             ("leg_wll_t = 8.0", "give rigging legs (1, 2 or 4) or lift_points_m"),
@@ -1448,6 +1495,15 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
                 "legs = 2\nleg_wll_t = 8.0\nspreader = { length_m = 6000.0, below_hook_m = 2.0, wll_t = 20.0 }",
                 "rigging.spreader.length_m = 6000 m",
             ),
+            (
+                "legs = 2\nhitch = \"choked\"",
+                "gives the legs' hitch or their shackles but not the legs' working load limit",
+            ),
+            (
+                "legs = 2\nshackle_wll_t = 8.5",
+                "gives the legs' hitch or their shackles but not the legs' working load limit",
+            ),
+            ("legs = 2\nleg_wll_t = 8.0\nshackle_wll_t = 0.0", "rigging.shackle_wll_t must be positive"),
         ] {
             let e = rigged(text).unwrap_err();
             assert!(e.contains(said), "{text}: {e}");

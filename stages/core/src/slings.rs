@@ -21,7 +21,10 @@
 //!   a four-leg sling for (three legs' worth), which assumes the legs share.
 //!
 //! Legs more than [`MAX_LEG_ANGLE_DEG`] from the vertical are refused: no
-//! sling is rated for them.
+//! sling is rated for them. Legs choked round the load (`rigging.hitch =
+//! "choked"`) are rated at [`CHOKE_FACTOR`] of their straight pull; where the
+//! lift gives its shackles' working load limit (`rigging.shackle_wll_t`), the
+//! shackle at each lift point is checked against its leg's pull, in line.
 //!
 //! Two legs may hang plumb from a beam instead (`rigging.spreader`, [`Spreader`]):
 //! its pins stand over the two lift points, `below_hook_m` under the hook
@@ -47,6 +50,11 @@ use serde::{Deserialize, Serialize};
 /// 13414-1 and the codes of practice rate multi-leg slings up to 60°.
 pub const MAX_LEG_ANGLE_DEG: f64 = 60.0;
 
+/// What a leg choked round the load may carry, as a share of its working
+/// load limit in a straight pull: EN 13414-1's (wire rope), EN 818-4's
+/// (chain) and EN 1492-1's (textile) mode factor for a choke hitch.
+pub const CHOKE_FACTOR: f64 = 0.8;
+
 /// Standard gravity (m/s²), for the legs' forces in kN.
 const G: f64 = 9.806_65;
 
@@ -64,6 +72,13 @@ pub struct Slings {
     /// The beam the legs hang plumb from, where the lift gives one.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub spreader: Option<Spreader>,
+    /// Whether the legs are choked round the load ([`CHOKE_FACTOR`]).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub choked: bool,
+    /// The working load limit of the shackle at each lift point (kg, in
+    /// line), where the lift gives it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shackle_wll_kg: Option<f64>,
 }
 
 /// A spreader or lifting beam between the hook and two sling legs hanging
@@ -139,12 +154,57 @@ pub struct SlingCheck {
     /// The beam the legs hang from, where the lift gives one.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub spreader: Option<SpreaderCheck>,
+    /// Whether the legs are choked round the load: each may carry
+    /// [`CHOKE_FACTOR`] of `leg_wll_kg`.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub choked: bool,
+    /// The working load limit of the shackle at each lift point (kg, in
+    /// line), which carries its leg's pull.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shackle_wll_kg: Option<f64>,
 }
 
 impl SlingCheck {
-    /// The most one leg carries over its working load limit (%).
+    /// What one leg may carry (kg): its working load limit, less for a
+    /// choke hitch.
+    pub fn leg_limit_kg(&self) -> f64 {
+        if self.choked { self.leg_wll_kg * CHOKE_FACTOR } else { self.leg_wll_kg }
+    }
+
+    /// The most one leg carries over what it may carry (%).
     pub fn utilisation_pct(&self) -> f64 {
-        100.0 * self.max_leg_kg / self.leg_wll_kg
+        100.0 * self.max_leg_kg / self.leg_limit_kg()
+    }
+
+    /// The most one leg carries, against its limit and its lift point's
+    /// shackle's, in words.
+    fn most_on_a_leg_said(&self, how: &str) -> String {
+        let limit = if self.choked {
+            format!(
+                "{:.2} t working load limit choked ({:.2} t in a straight pull, x {CHOKE_FACTOR})",
+                self.leg_limit_kg() / 1000.0,
+                self.leg_wll_kg / 1000.0
+            )
+        } else {
+            format!("{:.2} t working load limit", self.leg_wll_kg / 1000.0)
+        };
+        let shackle = self
+            .shackle_wll_kg
+            .map(|s| {
+                format!(
+                    ", and of its lift point's shackle's {:.2} t (in line): {:.0} %",
+                    s / 1000.0,
+                    100.0 * self.max_leg_kg / s
+                )
+            })
+            .unwrap_or_default();
+        format!(
+            "the most on one leg (leg {}{how}) {:.2} t ({:.0} kN) of its {limit}: {:.0} %{shackle}",
+            self.max_leg,
+            self.max_leg_kg / 1000.0,
+            self.max_leg_kg * G / 1000.0,
+            self.utilisation_pct()
+        )
     }
 
     /// The refusal where something carries more than its working load
@@ -154,13 +214,17 @@ impl SlingCheck {
         let over = |kg: f64, wll_kg: f64| kg > wll_kg * (1.0 + 1e-12);
         let mut what = Vec::new();
         let mut give = Vec::new();
-        if over(self.max_leg_kg, self.leg_wll_kg) {
+        if over(self.max_leg_kg, self.leg_limit_kg()) {
             what.push("the sling legs");
             give.push(if self.spreader.is_some() {
                 "give legs of a higher working load limit (rigging leg_wll_t)"
             } else {
                 "give legs of a higher working load limit (rigging leg_wll_t), more legs or a taller rigging (height_m)"
             });
+        }
+        if self.shackle_wll_kg.is_some_and(|s| over(self.max_leg_kg, s)) {
+            what.push("the lift points' shackles");
+            give.push("give shackles of a higher working load limit (rigging shackle_wll_t)");
         }
         if let Some(s) = &self.spreader {
             if over(s.carries_kg, s.wll_kg) {
@@ -190,15 +254,12 @@ impl SlingCheck {
         let how = if self.legs == 4 { ", any one leg slack" } else { "" };
         let lengths: Vec<String> = self.leg_lengths_m.iter().map(|l| format!("{l:.2}")).collect();
         format!(
-            "{} leg{} {where_}, up to {:.1}° from the vertical; the most on one leg (leg {}{how}) {:.2} t ({:.0} kN) of its {:.2} t working load limit: {:.0} %; {} from lift point to hook, for the load to hang level",
+            "{} leg{} {where_}{}, up to {:.1}° from the vertical; {}; {} from lift point to hook, for the load to hang level",
             self.legs,
             if self.legs == 1 { "" } else { "s" },
+            if self.choked { " choked round the load" } else { "" },
             self.max_angle_deg,
-            self.max_leg,
-            self.max_leg_kg / 1000.0,
-            self.max_leg_kg * G / 1000.0,
-            self.leg_wll_kg / 1000.0,
-            self.utilisation_pct(),
+            self.most_on_a_leg_said(how),
             match &lengths[..] {
                 [one] => format!("the leg {one} m long"),
                 [first @ .., last] => format!("legs {} and {last} m long", first.join(", ")),
@@ -242,12 +303,9 @@ impl SlingCheck {
             ),
         };
         format!(
-            "2 legs {where_}, hanging plumb from a spreader beam: the most on one leg (leg {}) {:.2} t ({:.0} kN) of its {:.2} t working load limit: {:.0} %; legs {} m long from lift point to pin; the beam {:.2} m long, its pins {:.2} m apart and {:.2} m below the hook block, carries {:.2} t of its {:.2} t working load limit: {:.0} %, {hung}",
-            self.max_leg,
-            self.max_leg_kg / 1000.0,
-            self.max_leg_kg * G / 1000.0,
-            self.leg_wll_kg / 1000.0,
-            self.utilisation_pct(),
+            "2 legs {where_}{}, hanging plumb from a spreader beam: {}; legs {} m long from lift point to pin; the beam {:.2} m long, its pins {:.2} m apart and {:.2} m below the hook block, carries {:.2} t of its {:.2} t working load limit: {:.0} %, {hung}",
+            if self.choked { " choked round the load" } else { "" },
+            self.most_on_a_leg_said(""),
             lengths.join(" and "),
             s.length_m,
             s.span_m,
@@ -351,6 +409,8 @@ pub fn check(
         leg_wll_kg: slings.leg_wll_kg,
         points_given: slings.points_given,
         spreader: None,
+        choked: slings.choked,
+        shackle_wll_kg: slings.shackle_wll_kg,
     })
 }
 
@@ -464,6 +524,8 @@ fn check_spreader(
         leg_wll_kg: slings.leg_wll_kg,
         points_given: slings.points_given,
         leg_lengths_m,
+        choked: slings.choked,
+        shackle_wll_kg: slings.shackle_wll_kg,
         spreader: Some(SpreaderCheck {
             length_m: beam.length_m,
             span_m,
@@ -535,6 +597,8 @@ mod tests {
             points_given: false,
             leg_wll_kg: 8000.0,
             spreader: None,
+            choked: false,
+            shackle_wll_kg: None,
         }
     }
 
@@ -597,6 +661,8 @@ mod tests {
             points_given: true,
             leg_wll_kg: 9000.0,
             spreader: None,
+            choked: false,
+            shackle_wll_kg: None,
         };
         let up: Vec<[f64; 3]> = s
             .lift_points_m
@@ -628,7 +694,14 @@ mod tests {
         assert!(outside.contains("outside the sling legs' lift points"), "{outside}");
         let four = check(&slings(4, size), 12_000.0, size, [4.5, 0.0, 0.0], 20.0).unwrap_err();
         assert!(four.contains("outside the sling legs' lift points"), "{four}");
-        let high = Slings { lift_points_m: vec![[0.0, 0.0, 9.0]], points_given: true, leg_wll_kg: 1.0, spreader: None };
+        let high = Slings {
+            lift_points_m: vec![[0.0, 0.0, 9.0]],
+            points_given: true,
+            leg_wll_kg: 1.0,
+            spreader: None,
+            choked: false,
+            shackle_wll_kg: None,
+        };
         assert!(check(&high, 1.0, size, [0.0; 3], 3.0).unwrap_err().contains("not below the hook block"));
         // One leg: the whole load, whatever its angle.
         let one = check(&slings(1, size), 12_000.0, size, [0.3, 0.0, 0.0], 3.0).unwrap();
@@ -652,6 +725,8 @@ mod tests {
             points_given: true,
             leg_wll_kg: 8000.0,
             spreader: Some(beam(Some(12_000.0))),
+            choked: false,
+            shackle_wll_kg: None,
         };
         let c = check(&s, 12_000.0, size, [0.0; 3], 4.0).unwrap();
         assert_eq!((c.max_angle_deg, c.max_leg_kg, c.leg_lengths_m.clone()), (0.0, 6000.0, vec![2.0, 2.0]));
@@ -698,6 +773,8 @@ mod tests {
             points_given: false,
             leg_wll_kg: 8000.0,
             spreader: Some(Spreader { length_m: 6.0, below_hook_m: 3.0, ..beam(Some(12_000.0)) }),
+            choked: false,
+            shackle_wll_kg: None,
         };
         let c = check(&s, 12_000.0, [6.0, 2.0, 2.0], [1.0, 0.0, 0.0], 5.0).unwrap();
         assert_eq!(c.max_leg, 2);
@@ -729,6 +806,8 @@ mod tests {
             points_given: true,
             leg_wll_kg: 8000.0,
             spreader: Some(Spreader { mass_kg: 0.0, ..beam(None) }),
+            choked: false,
+            shackle_wll_kg: None,
         };
         let c = check(&s, 12_000.0, [7.0, 2.0, 2.0], [-0.5, 0.3, 0.0], 4.0).unwrap();
         let b = c.spreader.clone().unwrap();
@@ -746,7 +825,14 @@ mod tests {
         let size = [7.0, 2.0, 2.0];
         let two = vec![[-3.0, 0.0, 1.0], [3.0, 0.0, 1.0]];
         let refused = |points: Vec<[f64; 3]>, b: Spreader, height_m: f64| {
-            let s = Slings { lift_points_m: points, points_given: true, leg_wll_kg: 8000.0, spreader: Some(b) };
+            let s = Slings {
+                lift_points_m: points,
+                points_given: true,
+                leg_wll_kg: 8000.0,
+                spreader: Some(b),
+                choked: false,
+                shackle_wll_kg: None,
+            };
             check(&s, 12_000.0, size, [0.0; 3], height_m).unwrap_err()
         };
         let four = default_points(4, size).unwrap();
@@ -764,11 +850,68 @@ mod tests {
         assert!(refused(two.clone(), flat, 4.0).contains("top legs hang up to 63.4° from the vertical"));
         let on_hook = Spreader { below_hook_m: 0.0, ..beam(Some(9000.0)) };
         assert!(refused(two.clone(), on_hook, 4.0).contains("give spreader below_hook_m above zero"));
-        let s = Slings { lift_points_m: two, points_given: true, leg_wll_kg: 8000.0, spreader: Some(beam(None)) };
+        let s = Slings {
+            lift_points_m: two,
+            points_given: true,
+            leg_wll_kg: 8000.0,
+            spreader: Some(beam(None)),
+            choked: false,
+            shackle_wll_kg: None,
+        };
         assert!(
             check(&s, 12_000.0, size, [3.5, 0.0, 0.0], 4.0)
                 .unwrap_err()
                 .contains("outside the sling legs' lift points")
+        );
+    }
+
+    /// Legs choked round the load may carry 0.8 of their straight pull;
+    /// the shackle at each lift point carries its leg's pull. Each over its
+    /// limit is named with what to give.
+    #[test]
+    fn choked_legs_and_shackles_are_checked_against_their_limits() {
+        let size = [8.0, 3.0, 2.0];
+        let straight = check(&slings(2, size), 12_000.0, size, [0.0; 3], 3.0).unwrap();
+        let most = straight.max_leg_kg; // 10 t: 6 t at atan(4 / 3)
+        assert!((most - 10_000.0).abs() < 1e-9 && straight.over_limit().is_some());
+        let mut s = slings(2, size);
+        s.leg_wll_kg = 12_000.0;
+        assert_eq!(check(&s, 12_000.0, size, [0.0; 3], 3.0).unwrap().over_limit(), None);
+        s.choked = true;
+        let choked = check(&s, 12_000.0, size, [0.0; 3], 3.0).unwrap();
+        assert_eq!(choked.max_leg_kg, most, "choking changes the limit, not the pull");
+        assert!((choked.leg_limit_kg() - 9600.0).abs() < 1e-9);
+        let said = choked.said();
+        assert!(
+            said.starts_with("2 legs at the middles of the top's short edges choked round the load, up to 53.1° from the vertical; the most on one leg (leg 1) 10.00 t (98 kN) of its 9.60 t working load limit choked (12.00 t in a straight pull, x 0.8): 104 %;"),
+            "{said}"
+        );
+        let over = choked.over_limit().unwrap();
+        assert!(
+            over.starts_with("the sling legs cannot carry the load: 2 legs") && over.contains("(rigging leg_wll_t)"),
+            "{over}"
+        );
+        s.choked = false;
+        s.shackle_wll_kg = Some(9500.0);
+        let shackled = check(&s, 12_000.0, size, [0.0; 3], 3.0).unwrap();
+        assert!(
+            shackled.said().contains(
+                "of its 12.00 t working load limit: 83 %, and of its lift point's shackle's 9.50 t (in line): 105 %;"
+            ),
+            "{}",
+            shackled.said()
+        );
+        let over = shackled.over_limit().unwrap();
+        assert!(
+            over.starts_with("the lift points' shackles cannot carry the load:")
+                && over.ends_with("; give shackles of a higher working load limit (rigging shackle_wll_t)"),
+            "{over}"
+        );
+        s.shackle_wll_kg = Some(10_000.0);
+        assert_eq!(
+            check(&s, 12_000.0, size, [0.0; 3], 3.0).unwrap().over_limit(),
+            None,
+            "a shackle at its limit holds"
         );
     }
 }
