@@ -128,7 +128,9 @@ enum Command {
     /// optionally remove those kept more than some days ago, but each
     /// lift's newest, the last plans, those the cache holds and those the
     /// project's lifts resume.
-    #[command(after_help = "Example:\n  liftplan revisions site-a\n  liftplan revisions site-a --remove-older-than 90")]
+    #[command(
+        after_help = "Example:\n  liftplan revisions site-a\n  liftplan revisions site-a --remove-older-than 90\n  liftplan revisions site-a --keep-last 10"
+    )]
     Revisions {
         /// Project folder.
         dir: Option<PathBuf>,
@@ -136,6 +138,11 @@ enum Command {
         /// this many days ago, but those a crew may hold or be given.
         #[arg(long, value_name = "DAYS")]
         remove_older_than: Option<u32>,
+        /// Remove all but each lift's N newest plans (with
+        /// --remove-older-than: only those older than that too), but those
+        /// a crew may hold or be given.
+        #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
+        keep_last: Option<u32>,
         /// Print the plans kept (and those removed) as JSON.
         #[arg(long)]
         json: bool,
@@ -496,7 +503,8 @@ fn real_main() -> Result<ExitCode> {
             );
             Ok(ExitCode::SUCCESS)
         }
-        Command::Revisions { dir, remove_older_than, json } => {
+        Command::Revisions { dir, remove_older_than, keep_last, json } => {
+            let removing = remove_older_than.is_some() || keep_last.is_some();
             let dir = project_dir(dir);
             if let Some(code) = not_a_project(&dir) {
                 return Ok(code);
@@ -512,7 +520,7 @@ fn real_main() -> Result<ExitCode> {
                         .collect(),
                     None,
                 ),
-                Err(e) if remove_older_than.is_some() => {
+                Err(e) if removing => {
                     eprintln!(
                         "error: {e} (removing plans needs the project file to read: its lifts say which plans they resume)"
                     );
@@ -524,14 +532,13 @@ fn real_main() -> Result<ExitCode> {
             let kept = revisions::list(&out)?;
             let mut plan_dirs = cache::Cache::new(&project::state_dir_of(&dir)).entries(liftplan_plan::NAME);
             plan_dirs.push(out.clone());
-            let held = revisions::held(&kept, &plan_dirs, &resumed);
-            let removed = match remove_older_than {
-                Some(days) => {
-                    let now =
-                        std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_secs());
-                    revisions::remove_older_than(&out, &kept, &held, now.saturating_sub(u64::from(days) * 86_400))?
-                }
-                None => Vec::new(),
+            let held = revisions::held(&kept, &plan_dirs, &resumed, keep_last.map_or(1, |n| n as usize));
+            let removed = if removing {
+                let now = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_secs());
+                let before = remove_older_than.map_or(u64::MAX, |days| now.saturating_sub(u64::from(days) * 86_400));
+                revisions::remove_older_than(&out, &kept, &held, before)?
+            } else {
+                Vec::new()
             };
             let left = revisions::list(&out)?;
             if json {
@@ -555,8 +562,13 @@ fn real_main() -> Result<ExitCode> {
             for r in &removed {
                 println!("removed {r}");
             }
-            if let (Some(days), true) = (remove_older_than, removed.is_empty()) {
-                println!("removed nothing: no plan kept more than {days} days ago but those held (below)");
+            if removing && removed.is_empty() {
+                let which = [
+                    remove_older_than.map(|days| format!("kept more than {days} days ago")),
+                    keep_last.map(|n| format!("beyond each lift's {n} newest")),
+                ];
+                let which: Vec<String> = which.into_iter().flatten().collect();
+                println!("removed nothing: no plan {} but those held (below)", which.join(" and "));
             }
             let total: u64 = left.iter().map(|k| k.bytes).sum();
             println!(

@@ -16,10 +16,10 @@
 //! 70 kB, its PDF 3-4 MB (the demo's): a site re-planned at each of a
 //! hundred scans keeps some 400 MB. `liftplan revisions` lists them
 //! ([`list`]) and, asked to, removes those kept longer ago than a number
-//! of days ([`remove_older_than`]), but never one a crew may hold or be
-//! given: each lift's newest, the last plans (out/plan.json), those the
-//! plan stage's cache holds (a run would keep them again) and those the
-//! project's lifts resume ([`held`]).
+//! of days, or all but each lift's newest few ([`remove_older_than`]), but
+//! never one a crew may hold or be given: each lift's newest, the last
+//! plans (out/plan.json), those the plan stage's cache holds (a run would
+//! keep them again) and those the project's lifts resume ([`held`]).
 
 use anyhow::{Context, Result};
 use std::path::{Path, PathBuf};
@@ -209,14 +209,16 @@ pub fn list(out_dir: &Path) -> Result<Vec<Kept>> {
 }
 
 /// Which of the `kept` plans may not be removed, and why: each lift's
-/// newest kept; those in the plan.json files of `plan_dirs` (out/, where
-/// the last plans are, and the plan stage's cache entries, from which a
-/// run would keep them again); those `resumed` names (a lift's id and the
-/// revision its `resumes_plan` gives).
+/// newest kept, and its `newest` newest (`--keep-last`); those in the
+/// plan.json files of `plan_dirs` (out/, where the last plans are, and the
+/// plan stage's cache entries, from which a run would keep them again);
+/// those `resumed` names (a lift's id and the revision its `resumes_plan`
+/// gives).
 pub fn held(
     kept: &[Kept],
     plan_dirs: &[PathBuf],
     resumed: &[(String, String)],
+    newest: usize,
 ) -> std::collections::BTreeMap<(String, String), &'static str> {
     let mut held = std::collections::BTreeMap::new();
     for (lift, revision) in resumed {
@@ -230,16 +232,20 @@ pub fn held(
     }
     // The list is each lift's oldest first.
     for (k, one) in kept.iter().enumerate() {
-        if kept.get(k + 1).is_none_or(|next| next.lift != one.lift) {
-            held.entry((one.lift.clone(), one.revision.clone())).or_insert("the lift's newest kept plan");
-        }
+        let newer = kept[k + 1..].iter().take_while(|next| next.lift == one.lift).count();
+        let why = match newer {
+            0 => "the lift's newest kept plan",
+            n if n < newest => "among the lift's newest kept plans (--keep-last)",
+            _ => continue,
+        };
+        held.entry((one.lift.clone(), one.revision.clone())).or_insert(why);
     }
     held
 }
 
 /// Removes the `kept` plans kept before `before_unix_s` (their PDF, steps
-/// and plan files) but those `held` names and those kept at a time not
-/// known; says which it removed.
+/// and plan files; `u64::MAX`: whenever) but those `held` names and those
+/// kept at a time not known; says which it removed.
 pub fn remove_older_than(
     out_dir: &Path,
     kept: &[Kept],
@@ -402,7 +408,22 @@ mod tests {
         );
         // The last plans hold c; a lift resumes a; e and f are their lifts' newest.
         std::fs::write(entry.join("plan.json"), plan_json(&[("V-101", "0000000c")])).unwrap();
-        let held = held(&kept, &[entry.clone(), d.path().join("no-such")], &[("V-101".into(), "0000000a".into())]);
+        let resumed = [("V-101".to_string(), "0000000a".to_string())];
+        let plan_dirs = [entry.clone(), d.path().join("no-such")];
+        // Each lift's three newest held too (--keep-last 3): c is held
+        // already, so d is the one more.
+        let three = held(&kept, &plan_dirs, &resumed, 3);
+        assert_eq!(three.len(), 5, "{three:?}");
+        assert_eq!(
+            three[&("V-101".to_string(), "0000000d".to_string())],
+            "among the lift's newest kept plans (--keep-last)"
+        );
+        assert_eq!(
+            three[&("V-101".to_string(), "0000000c".to_string())],
+            "among the last plans or the plan stage's cache"
+        );
+        assert!(!three.contains_key(&("V-101".to_string(), "0000000b".to_string())));
+        let held = held(&kept, &plan_dirs, &resumed, 1);
         assert_eq!(held.len(), 4, "{held:?}");
         assert_eq!(
             held[&("V-101".to_string(), "0000000a".to_string())],

@@ -444,6 +444,20 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
         serde_json::from_slice(&o.stdout).unwrap()
     };
     let before = listed(&[])["kept"].as_array().unwrap().clone();
+    // Each lift's newest as many as are kept: nothing to remove, and each
+    // listed as held; none newest is not a number of plans to keep.
+    let n = before.len().to_string();
+    let o = crate::util::ok(&["revisions", d, "--keep-last", &n]);
+    let said = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        said.starts_with(&format!("removed nothing: no plan beyond each lift's {n} newest but those held (below)")),
+        "{said}"
+    );
+    assert_eq!(
+        listed(&["--keep-last", &n])["kept"].as_array().unwrap().iter().filter(|k| k["held"].is_string()).count(),
+        before.len()
+    );
+    assert!(!liftplan(&["revisions", d, "--keep-last", "0"]).status.success());
     let after = listed(&["--remove-older-than", "0"]);
     let (left, removed) = (after["kept"].as_array().unwrap(), after["removed"].as_array().unwrap());
     assert_eq!(left.len() + removed.len(), before.len(), "{after}");
@@ -713,7 +727,9 @@ liftoff_m = 0.5
     // names the nearest crane position, at the height of the ground scanned
     // there, where the lift plans; given it, the lift plans there.
     // (On legs that carry it: the slings are checked first.)
-    let heavy = t13.replace("mass_t = 13.0", "mass_t = 40.0").replace("leg_wll_t = 10.0, shackle_wll_t = 12.0", "leg_wll_t = 40.0, shackle_wll_t = 40.0");
+    let heavy = t13
+        .replace("mass_t = 13.0", "mass_t = 40.0")
+        .replace("leg_wll_t = 10.0, shackle_wll_t = 12.0", "leg_wll_t = 40.0, shackle_wll_t = 40.0");
     let stderr = refused_with(&dir, &heavy, "a 40 t vessel on a 31.4 t chart cell planned");
     let flat = stderr.replace('\n', " ");
     let at = flat.find("; the crane set up at position_m = [").unwrap_or_else(|| panic!("{flat}"));
@@ -736,7 +752,9 @@ liftoff_m = 0.5
     );
     // A load the chart carries above critical_pct where the crane stands:
     // the cover names where it would not be; given that position, it is not.
-    let critical = t13.replace("mass_t = 13.0", "mass_t = 26.0").replace("leg_wll_t = 10.0, shackle_wll_t = 12.0", "leg_wll_t = 40.0, shackle_wll_t = 40.0");
+    let critical = t13
+        .replace("mass_t = 13.0", "mass_t = 26.0")
+        .replace("leg_wll_t = 10.0, shackle_wll_t = 12.0", "leg_wll_t = 40.0, shackle_wll_t = 40.0");
     let (cover, _) = planned_with(&dir, &critical);
     let lead = "CRITICAL LIFT (over 75 %); not critical with the crane set up at ";
     let named = &cover[cover.find(lead).unwrap_or_else(|| panic!("{cover}")) + lead.len()..];
