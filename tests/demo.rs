@@ -224,6 +224,12 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
         text13.contains("of its 10.00 t working load limit: 94 %, and of its lift point's shackle's 12.00 t (in line): 78 %; legs 5.80 and 5.52 m long from lift point to hook, for the load to hang level"),
         "{text13}"
     );
+    // Reeved with 6 falls of the crane file's 10 t: the hook load of 17 t
+    // (13 t, 0.5 t of rigging, the 3.5 t block) needs 2.
+    assert!(
+        text13.contains("Reeving hook load 17.00 t (load, rigging and hook block); on 6 falls of 10.00 t each: 60.00 t, 28 % (at least 2 needed); the hook block rated 100.00 t: 17 %"),
+        "{text13}"
+    );
     // The crew's copy: every page names the plan's revision, as plan.json
     // gives it.
     let crews_plan = plan["lifts"][0]["summary"]["revision"].as_str().unwrap().to_string();
@@ -1171,7 +1177,7 @@ fn the_tower_crane_demo_runs_and_its_pdf_names_a_tower_cranes_parts() {
     let t = std::fs::read_to_string(&toml_path).unwrap();
     let start = t.find("crane = {").unwrap();
     let end = start + t[start..].find('\n').unwrap();
-    let mobile = r#"crane = { model = "ac-700", position_m = [0.0, 0.0], ground_z_m = 0.0, heading_deg = 0.0, boom_m = 40.0, chart_config = "Jib 60 m" }"#;
+    let mobile = r#"crane = { model = "ac-700", position_m = [0.0, 0.0], ground_z_m = 0.0, heading_deg = 0.0, boom_m = 40.0, falls = 6, chart_config = "Jib 60 m" }"#;
     std::fs::write(&toml_path, format!("{}{mobile}{}", &t[..start], &t[end..])).unwrap();
     let o = liftplan(&["run", dir.to_str().unwrap(), "-q"]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));

@@ -88,6 +88,17 @@ pub struct HookBlock {
     /// Shortest rope between sheave and hook block top (two-blocking limit).
     pub min_rope_m: f64,
     pub max_rope_m: f64,
+    /// What the hook block is rated to carry (t); none: not checked.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rated_t: Option<f64>,
+    /// What one fall (part of line) of the hoist rope may carry (t), as the
+    /// crane's reeving table gives it; none: the falls are not checked
+    /// ([`crate::reeving`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub line_pull_t: Option<f64>,
+    /// The most falls the hook block's sheaves take.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_falls: Option<u32>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -351,6 +362,14 @@ impl CraneModel {
         }
         if !(self.hook.min_rope_m >= 0.0 && self.hook.max_rope_m > self.hook.min_rope_m) {
             return Err("hook rope range must satisfy 0 <= min_rope_m < max_rope_m".into());
+        }
+        for (name, t) in [("hook.rated_t", self.hook.rated_t), ("hook.line_pull_t", self.hook.line_pull_t)] {
+            if let Some(t) = t.filter(|t| !(t.is_finite() && *t > 0.0 && *t <= 10_000.0)) {
+                return Err(format!("{name} must be more than 0 and at most 10000 t, found {t}"));
+            }
+        }
+        if let Some(n) = self.hook.max_falls.filter(|n| !(1..=crate::reeving::MAX_FALLS).contains(n)) {
+            return Err(format!("hook.max_falls must be 1 to {}, found {n}", crate::reeving::MAX_FALLS));
         }
         pos("speeds.swing_deg_s", self.speeds.swing_deg_s)?;
         pos("speeds.hoist_m_s", self.speeds.hoist_m_s)?;
@@ -1123,6 +1142,25 @@ mod tests {
         let tower = builtin_text("tower-hh-60").unwrap().replace("[speeds]", &format!("{masses}[speeds]"));
         let e = CraneModel::from_toml(Path::new("t.toml"), &tower).unwrap_err().to_string();
         assert!(e.contains("section [masses] belongs to a luffing crane"), "{e}");
+    }
+
+    /// The hook block's rating, line pull and falls, where a crane file
+    /// gives them, are read and checked.
+    #[test]
+    fn the_hook_blocks_reeving_is_read_and_checked() {
+        let ac = builtin("ac-700").unwrap();
+        assert_eq!((ac.hook.rated_t, ac.hook.line_pull_t, ac.hook.max_falls), (Some(100.0), Some(10.0), Some(10)));
+        assert_eq!(builtin("ltm-1100").unwrap().hook.line_pull_t, None);
+        let text = builtin_text("ac-700").unwrap();
+        for (from, to, said) in [
+            ("line_pull_t = 10.0", "line_pull_t = 0.0", "hook.line_pull_t must be more than 0"),
+            ("rated_t = 100.0", "rated_t = inf", "hook.rated_t must be more than 0"),
+            ("max_falls = 10", "max_falls = 0", "hook.max_falls must be 1 to 64"),
+            ("max_falls = 10", "max_falls = 65", "hook.max_falls must be 1 to 64"),
+        ] {
+            let e = CraneModel::from_toml(Path::new("c.toml"), &text.replace(from, to)).unwrap_err().to_string();
+            assert!(e.contains(said), "{to}: {e}");
+        }
     }
 
     #[test]

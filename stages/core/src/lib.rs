@@ -49,6 +49,7 @@ pub mod obb;
 pub mod obstacle;
 pub mod outriggers;
 pub mod power_line;
+pub mod reeving;
 pub mod rng;
 pub mod slings;
 pub mod testing;

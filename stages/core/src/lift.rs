@@ -136,6 +136,10 @@ pub struct CraneSpec {
     /// file's `[masses] counterweight_t` where left out.
     #[serde(default)]
     pub counterweight_t: Option<f64>,
+    /// The falls (parts of line) the hoist rope is reeved with, checked
+    /// against the crane file's line pull per fall ([`crate::reeving`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub falls: Option<u32>,
 }
 
 /// The mats under the outrigger pads and what the ground may bear, for the
@@ -409,6 +413,8 @@ pub struct LiftTask {
     /// The sling legs to check, where the lift gives their working load
     /// limit ([`RiggingSpec::leg_wll_t`]).
     pub slings: Option<crate::slings::Slings>,
+    /// The falls the hoist rope is reeved with (`crane.falls`).
+    pub falls: Option<u32>,
     pub deductions_kg: f64,
     /// Configurations with the load resting at its pick and set positions.
     pub pick: Config,
@@ -787,6 +793,16 @@ impl LiftSpec {
         nonneg("rigging.mass_t", self.rigging.mass_t)?;
         nonneg("rigging.height_m", self.rigging.height_m)?;
         nonneg("crane.deductions_t", self.crane.deductions_t)?;
+        if let Some(n) = self.crane.falls {
+            if !(1..=crate::reeving::MAX_FALLS).contains(&n) {
+                return Err(format!("lift '{id}': crane.falls must be 1 to {}, found {n}", crate::reeving::MAX_FALLS));
+            }
+            if let Some(most) = model.hook.max_falls.filter(|most| n > *most) {
+                return Err(format!(
+                    "lift '{id}': crane.falls = {n} is more than the hook block's sheaves take (hook.max_falls = {most} in the crane file)"
+                ));
+            }
+        }
         metres("rigging.height_m", self.rigging.height_m, MAX_RIGGING_HEIGHT_M)?;
         let r = &self.rigging;
         let slings = match (r.leg_wll_t, r.legs, &r.lift_points_m) {
@@ -1112,6 +1128,7 @@ impl LiftSpec {
             load_mass_kg: self.load.mass_t * KG_PER_TONNE,
             rigging_mass_kg: self.rigging.mass_t * KG_PER_TONNE,
             slings,
+            falls: self.crane.falls,
             deductions_kg: self.crane.deductions_t * KG_PER_TONNE,
             pick,
             set,
@@ -1347,6 +1364,39 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
 
     fn spec() -> LiftSpec {
         toml::from_str(SPEC).unwrap()
+    }
+
+    /// The falls a lift gives are within 1 to 64 and what the crane's hook
+    /// block takes; its reeving is then checked against the hook load.
+    #[test]
+    fn the_falls_are_checked_against_the_hook_block() {
+        let with_falls = |falls: u32| {
+            let mut s = spec();
+            s.crane.falls = Some(falls);
+            s.resolve(crate::crane::builtin("ac-700").unwrap())
+        };
+        assert!(with_falls(0).unwrap_err().contains("crane.falls must be 1 to 64, found 0"));
+        assert!(
+            with_falls(12)
+                .unwrap_err()
+                .contains("crane.falls = 12 is more than the hook block's sheaves take (hook.max_falls = 10")
+        );
+        let task = with_falls(1).unwrap();
+        assert_eq!(task.falls, Some(1));
+        let r = crate::reeving::Reeving::of(&task).unwrap();
+        assert_eq!((r.line_pull_kg, r.max_falls), (Some(10_000.0), Some(10)));
+        assert!((r.hook_load_kg - task.hook_load_kg()).abs() < 1e-9);
+        // On one fall the hook load (12.5 t, 0.4 t, the 3.5 t block) is
+        // refused, naming the falls it needs.
+        assert_eq!(
+            r.refused().unwrap(),
+            "the hook load (16.40 t: load, rigging and hook block) is more than 1 fall of 10.00 t each carries (10.00 t): reeve at least 2 falls (crane falls)"
+        );
+        assert_eq!(crate::reeving::Reeving::of(&with_falls(2).unwrap()).unwrap().refused(), None);
+        // A crane file of no line pull or rating and a lift of no falls: nothing.
+        assert!(
+            crate::reeving::Reeving::of(&spec().resolve(crate::crane::builtin("ltm-1100").unwrap()).unwrap()).is_none()
+        );
     }
 
     #[test]

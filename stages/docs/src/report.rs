@@ -161,6 +161,9 @@ fn checks_before_signing(
     if !sm.power_lines.is_empty() {
         v.push("the power lines: where they run, how low and how high they hang, how far the wind swings them and their voltage".to_string());
     }
+    if sm.reeving.as_ref().is_some_and(|r| r.falls_not_given()) {
+        v.push("the falls to reeve the hoist rope with (the lift gives none: Reeving)".to_string());
+    }
     if sm.power_lines.iter().any(|l| l.contains(liftplan_plan::SUPPORT_NOT_SEEN)) {
         v.push("where a power line runs: the scans do not show a support it gives (inputs page)".to_string());
     }
@@ -625,6 +628,13 @@ pub fn document(
         match &sm.slings {
             Some(c) => format!("{} (hook over the centre of gravity)", c.said()),
             None => "not checked: the lift gives no working load limit for its legs (rigging leg_wll_t, with legs or lift_points_m)".to_string(),
+        },
+    ));
+    rows.push((
+        "Reeving",
+        match &sm.reeving {
+            Some(r) => r.said(),
+            None => "not checked: the crane file gives no line pull per fall nor hook block rating ([hook] line_pull_t, rated_t), and the lift no falls (crane falls)".to_string(),
         },
     ));
     if let Some((n, p)) = sm.highest_pad {

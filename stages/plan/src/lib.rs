@@ -648,6 +648,11 @@ pub(crate) fn plan_lift_hinting(
         }
         None => None,
     };
+    // So is the reeving: the hook load is the same all along the path.
+    let reeving = liftplan_core::reeving::Reeving::of(task);
+    if let Some(why) = reeving.as_ref().and_then(|r| r.refused()) {
+        return Err(lift_err(task, why));
+    }
     let chart: Option<&ChartConfig> = match site.charts {
         Some(t) => Some(t.config(&task.chart_config).map_err(|e| lift_err(task, e.to_string()))?),
         None => None,
@@ -867,6 +872,7 @@ pub(crate) fn plan_lift_hinting(
     let steps = steps::steps(task, &all, &verdict);
     let mut summary = steps::summary(task, &steps, &verdict);
     summary.slings = slings;
+    summary.reeving = reeving;
     summary.set_on = validate::set_support(task, site.world, &task.set, s.support_m);
     summary.support_m = s.support_m;
     let plan = LiftPlan {
@@ -961,6 +967,7 @@ impl RunSummary {
             .chain(self.lifts.iter().flat_map(|s| {
                 std::iter::once(s.line())
                     .chain(s.slings_line())
+                    .chain(s.reeving_line())
                     .chain(s.pads_line())
                     .chain(s.not_critical_line())
                     .chain(s.under_pads_line())

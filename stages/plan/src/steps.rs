@@ -319,6 +319,11 @@ pub struct Summary {
     /// ([`liftplan_core::slings::check`]).
     #[serde(default)]
     pub slings: Option<liftplan_core::slings::SlingCheck>,
+    /// The hoist rope's falls and the hook block against the hook load,
+    /// where the crane file or the lift gives them
+    /// ([`liftplan_core::reeving`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub reeving: Option<liftplan_core::reeving::Reeving>,
     /// The step in which an outrigger pad carries the most, and that most
     /// ([`Step::pads`]).
     #[serde(default)]
@@ -442,6 +447,11 @@ impl Summary {
     /// [`Summary::slings`] for the run's output.
     pub fn slings_line(&self) -> Option<String> {
         self.slings.as_ref().map(|c| format!("lift {}: sling legs: {}", self.lift, c.said()))
+    }
+
+    /// [`Summary::reeving`] for the run's output.
+    pub fn reeving_line(&self) -> Option<String> {
+        self.reeving.as_ref().map(|r| format!("lift {}: reeving: {}", self.lift, r.said()))
     }
 
     /// [`Summary::power_lines`] for the run's output, in one line.
@@ -620,6 +630,7 @@ pub fn summary(task: &LiftTask, steps: &[Step], verdict: &Verdict) -> Summary {
         clearance_m: task.clearance_m,
         power_lines: Vec::new(),
         slings: None,
+        reeving: None,
         highest_pad: None,
         pads_tip_in: Vec::new(),
         pads_counterweight: task.counterweight_used_kg(),

@@ -175,6 +175,38 @@ fn the_sling_legs_are_checked_before_the_path() {
     assert!(plan.summary.slings_line().unwrap().contains("top legs 2.50 and 2.50 m long from pin to hook"));
 }
 
+/// The hoist rope's falls are checked before the path, like the slings: an
+/// 8 t skid with its rigging and the 3.5 t block is 11.7 t, more than one
+/// fall of the crane file's 10 t carries; on two it plans, and the plan
+/// carries the check.
+#[test]
+fn the_falls_are_checked_before_the_path() {
+    let mesh = site();
+    let m = map(&mesh);
+    let world = World::new(&mesh, &[], &[]).unwrap();
+    let site = Site { map: &m, world: &world, charts: None };
+    let reeved = |falls: u32| {
+        let mut spec = spec_of(-14.0);
+        spec.load.mass_t = 8.0;
+        spec.crane.falls = Some(falls);
+        spec.resolve(builtin("ac-700").unwrap()).unwrap()
+    };
+    let e = plan_lift(&reeved(1), &site, &quick(), 3).unwrap_err().to_string();
+    assert!(
+        e.contains("is more than 1 fall of 10.00 t each carries (10.00 t): reeve at least 2 falls (crane falls)"),
+        "{e}"
+    );
+    let (plan, _) = plan_lift(&reeved(2), &site, &quick(), 3).unwrap();
+    let r = plan.summary.reeving.clone().expect("the plan carries the reeving");
+    assert_eq!((r.falls, r.least_falls()), (Some(2), Some(2)));
+    assert!(
+        plan.summary
+            .reeving_line()
+            .unwrap()
+            .contains("hook load 11.70 t (load, rigging and hook block); on 2 falls of 10.00 t each: 20.00 t, 58 %")
+    );
+}
+
 /// An 11 kV line held at `points_m`, sagging `sag_m`, neither its least
 /// sag nor its swing given, kept Table A's distance off.
 fn feeder(name: &str, points_m: Vec<[f64; 3]>, sag_m: f64) -> liftplan_core::power_line::PowerLine {

@@ -1,0 +1,186 @@
+//! The hoist rope's falls (parts of line) and the hook block against the
+//! hook load: what hangs from the rope (load, rigging, hook block) must be
+//! within the falls reeved times what one fall may carry (the crane's
+//! reeving table: `[hook] line_pull_t` in its file) and within what the
+//! hook block is rated for (`[hook] rated_t`), and the falls within what
+//! its sheaves take (`max_falls`). The chart's capacities assume the crane
+//! is reeved for the load; this says how many falls that takes, and checks
+//! the falls the lift gives (`crane.falls`).
+//!
+//! What this module must not do: depend on the path (the hook load is the
+//! same all along it), or say more than the crane file gives: a crane file
+//! without a line pull has its falls unchecked, and says so.
+
+use crate::lift::LiftTask;
+use crate::units::KG_PER_TONNE;
+use serde::{Deserialize, Serialize};
+
+/// The most falls a lift or a crane file may give.
+pub const MAX_FALLS: u32 = 64;
+
+/// The reeving a lift is planned with, against its hook load.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Reeving {
+    /// Load, rigging and hook block (kg).
+    pub hook_load_kg: f64,
+    /// The falls the lift gives (`crane.falls`).
+    pub falls: Option<u32>,
+    /// What one fall may carry (kg), where the crane file gives it.
+    pub line_pull_kg: Option<f64>,
+    /// What the hook block is rated for (kg), where the crane file gives it.
+    pub block_rated_kg: Option<f64>,
+    /// The most falls its sheaves take, where the crane file gives it.
+    pub max_falls: Option<u32>,
+}
+
+impl Reeving {
+    /// The task's reeving; `None` where neither the crane file (line pull,
+    /// block rating) nor the lift (falls) gives anything to check.
+    pub fn of(task: &LiftTask) -> Option<Reeving> {
+        let hook = &task.crane.model.hook;
+        let r = Reeving {
+            hook_load_kg: task.hook_load_kg(),
+            falls: task.falls,
+            line_pull_kg: hook.line_pull_t.map(|t| t * KG_PER_TONNE),
+            block_rated_kg: hook.rated_t.map(|t| t * KG_PER_TONNE),
+            max_falls: hook.max_falls,
+        };
+        (r.falls.is_some() || r.line_pull_kg.is_some() || r.block_rated_kg.is_some()).then_some(r)
+    }
+
+    /// The fewest falls that carry the hook load, where the line pull is
+    /// known.
+    pub fn least_falls(&self) -> Option<u32> {
+        self.line_pull_kg.map(|p| ((self.hook_load_kg / p) * (1.0 - 1e-12)).ceil().max(1.0) as u32)
+    }
+
+    /// Why the lift cannot be reeved as given, with what to change; `None`
+    /// where it can.
+    pub fn refused(&self) -> Option<String> {
+        let t = |kg: f64| kg / KG_PER_TONNE;
+        if let Some(rated) = self.block_rated_kg.filter(|r| self.hook_load_kg > r * (1.0 + 1e-12)) {
+            return Some(format!(
+                "the hook load ({:.2} t: load, rigging and hook block) is more than the hook block is rated for ({:.2} t, [hook] rated_t in the crane file): rig another hook block",
+                t(self.hook_load_kg),
+                t(rated)
+            ));
+        }
+        let (least, pull) = (self.least_falls()?, self.line_pull_kg?);
+        if let Some(most) = self.max_falls.filter(|m| least > *m) {
+            return Some(format!(
+                "the hook load ({:.2} t) needs {least} falls of {:.2} t each, more than the hook block's sheaves take ({most}, [hook] max_falls): rig another hook block",
+                t(self.hook_load_kg),
+                t(pull)
+            ));
+        }
+        match self.falls {
+            Some(n) if n < least => Some(format!(
+                "the hook load ({:.2} t: load, rigging and hook block) is more than {n} fall{} of {:.2} t each carr{} ({:.2} t): reeve at least {least} falls (crane falls)",
+                t(self.hook_load_kg),
+                if n == 1 { "" } else { "s" },
+                t(pull),
+                if n == 1 { "ies" } else { "y" },
+                t(f64::from(n) * pull)
+            )),
+            _ => None,
+        }
+    }
+
+    /// In words, for the run's line and the PDF.
+    pub fn said(&self) -> String {
+        let t = |kg: f64| kg / KG_PER_TONNE;
+        let pct = |kg: f64| 100.0 * self.hook_load_kg / kg;
+        let mut parts = vec![format!("hook load {:.2} t (load, rigging and hook block)", t(self.hook_load_kg))];
+        parts.push(match (self.falls, self.line_pull_kg, self.least_falls()) {
+            (Some(n), Some(pull), Some(least)) => format!(
+                "on {n} fall{} of {:.2} t each: {:.2} t, {:.0} % (at least {least} needed)",
+                if n == 1 { "" } else { "s" },
+                t(pull),
+                t(f64::from(n) * pull),
+                pct(f64::from(n) * pull)
+            ),
+            (None, Some(pull), Some(least)) => format!(
+                "needs at least {least} fall{} of {:.2} t each: THE LIFT GIVES NO FALLS (crane falls): REEVE AT LEAST {least}",
+                if least == 1 { "" } else { "s" },
+                t(pull)
+            ),
+            (Some(n), _, _) => format!(
+                "on {n} fall{}, NOT CHECKED: the crane file gives no line pull per fall ([hook] line_pull_t)",
+                if n == 1 { "" } else { "s" }
+            ),
+            _ => "its falls not checked: the crane file gives no line pull per fall ([hook] line_pull_t)".to_string(),
+        });
+        if let Some(rated) = self.block_rated_kg {
+            parts.push(format!("the hook block rated {:.2} t: {:.0} %", t(rated), pct(rated)));
+        }
+        parts.join("; ")
+    }
+
+    /// Whether the cover is to ask that the falls be checked first: the
+    /// lift gives none where the crane file could check them.
+    pub fn falls_not_given(&self) -> bool {
+        self.falls.is_none() && self.line_pull_kg.is_some()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn reeving(falls: Option<u32>) -> Reeving {
+        Reeving {
+            hook_load_kg: 16_500.0,
+            falls,
+            line_pull_kg: Some(8000.0),
+            block_rated_kg: Some(63_000.0),
+            max_falls: Some(8),
+        }
+    }
+
+    /// 16.5 t on falls of 8 t: three carry it (24 t), two do not (16 t).
+    #[test]
+    fn the_falls_carry_the_hook_load_or_are_refused() {
+        assert_eq!(reeving(None).least_falls(), Some(3));
+        assert_eq!(reeving(Some(4)).refused(), None);
+        assert_eq!(
+            reeving(Some(4)).said(),
+            "hook load 16.50 t (load, rigging and hook block); on 4 falls of 8.00 t each: 32.00 t, 52 % (at least 3 needed); the hook block rated 63.00 t: 26 %"
+        );
+        assert_eq!(reeving(Some(3)).refused(), None);
+        let two = reeving(Some(2)).refused().unwrap();
+        assert_eq!(
+            two,
+            "the hook load (16.50 t: load, rigging and hook block) is more than 2 falls of 8.00 t each carry (16.00 t): reeve at least 3 falls (crane falls)"
+        );
+        // Exactly on a fall's worth: that many carry it.
+        let even = Reeving { hook_load_kg: 16_000.0, ..reeving(Some(2)) };
+        assert_eq!((even.least_falls(), even.refused()), (Some(2), None));
+        // No falls given: said in capitals, not refused.
+        let none = reeving(None);
+        assert!(none.refused().is_none() && none.falls_not_given());
+        assert!(none.said().contains(
+            "needs at least 3 falls of 8.00 t each: THE LIFT GIVES NO FALLS (crane falls): REEVE AT LEAST 3"
+        ));
+    }
+
+    /// A block rated below the hook load, and one whose sheaves take too
+    /// few falls, are refused; a crane file without a line pull checks
+    /// nothing of the falls, and says so.
+    #[test]
+    fn the_hook_block_limits_the_load_and_the_falls() {
+        let light = Reeving { block_rated_kg: Some(15_000.0), ..reeving(Some(4)) };
+        assert!(light.refused().unwrap().contains("more than the hook block is rated for (15.00 t, [hook] rated_t"));
+        let few = Reeving { max_falls: Some(2), ..reeving(None) };
+        assert!(
+            few.refused().unwrap().contains("needs 3 falls of 8.00 t each, more than the hook block's sheaves take (2")
+        );
+        let unknown = Reeving { line_pull_kg: None, block_rated_kg: None, ..reeving(Some(4)) };
+        assert_eq!(unknown.refused(), None);
+        assert!(
+            unknown
+                .said()
+                .ends_with("on 4 falls, NOT CHECKED: the crane file gives no line pull per fall ([hook] line_pull_t)")
+        );
+        assert!(!unknown.falls_not_given());
+    }
+}
