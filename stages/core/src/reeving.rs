@@ -1,9 +1,10 @@
 //! The hoist rope's falls (parts of line) and the hook block against the
 //! hook load: what hangs from the rope (load, rigging, hook block) must be
 //! within the falls reeved times what one fall may carry (the crane's
-//! reeving table: `[hook] line_pull_t` in its file) and within what the
-//! hook block is rated for (`[hook] rated_t`), and the falls within what
-//! its sheaves take (`max_falls`). The chart's capacities assume the crane
+//! reeving table: `[hook] line_pull_t` in its file), what hangs from the
+//! hook (load and rigging) within what the hook block is rated for
+//! (`[hook] rated_t`), and the falls within what its sheaves take
+//! (`max_falls`). The chart's capacities assume the crane
 //! is reeved for the load; this says how many falls that takes, and checks
 //! the falls the lift gives (`crane.falls`).
 //!
@@ -21,8 +22,11 @@ pub const MAX_FALLS: u32 = 64;
 /// The reeving a lift is planned with, against its hook load.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Reeving {
-    /// Load, rigging and hook block (kg).
+    /// Load, rigging and hook block (kg): what the falls carry.
     pub hook_load_kg: f64,
+    /// Load and rigging (kg): what the hook block carries on its hook.
+    #[serde(default)]
+    pub on_hook_kg: f64,
     /// The falls the lift gives (`crane.falls`).
     pub falls: Option<u32>,
     /// What one fall may carry (kg), where the crane file gives it.
@@ -40,6 +44,7 @@ impl Reeving {
         let hook = &task.crane.model.hook;
         let r = Reeving {
             hook_load_kg: task.hook_load_kg(),
+            on_hook_kg: task.load_mass_kg + task.rigging_mass_kg,
             falls: task.falls,
             line_pull_kg: hook.line_pull_t.map(|t| t * KG_PER_TONNE),
             block_rated_kg: hook.rated_t.map(|t| t * KG_PER_TONNE),
@@ -58,10 +63,10 @@ impl Reeving {
     /// where it can.
     pub fn refused(&self) -> Option<String> {
         let t = |kg: f64| kg / KG_PER_TONNE;
-        if let Some(rated) = self.block_rated_kg.filter(|r| self.hook_load_kg > r * (1.0 + 1e-12)) {
+        if let Some(rated) = self.block_rated_kg.filter(|r| self.on_hook_kg > r * (1.0 + 1e-12)) {
             return Some(format!(
-                "the hook load ({:.2} t: load, rigging and hook block) is more than the hook block is rated for ({:.2} t, [hook] rated_t in the crane file): rig another hook block",
-                t(self.hook_load_kg),
+                "the load and its rigging ({:.2} t) are more than the hook block is rated for ({:.2} t, [hook] rated_t in the crane file): rig another hook block",
+                t(self.on_hook_kg),
                 t(rated)
             ));
         }
@@ -111,7 +116,12 @@ impl Reeving {
             _ => "its falls not checked: the crane file gives no line pull per fall ([hook] line_pull_t)".to_string(),
         });
         if let Some(rated) = self.block_rated_kg {
-            parts.push(format!("the hook block rated {:.2} t: {:.0} %", t(rated), pct(rated)));
+            parts.push(format!(
+                "the hook block rated {:.2} t, carrying {:.2} t of load and rigging: {:.0} %",
+                t(rated),
+                t(self.on_hook_kg),
+                100.0 * self.on_hook_kg / rated
+            ));
         }
         parts.join("; ")
     }
@@ -130,6 +140,7 @@ mod tests {
     fn reeving(falls: Option<u32>) -> Reeving {
         Reeving {
             hook_load_kg: 16_500.0,
+            on_hook_kg: 13_000.0,
             falls,
             line_pull_kg: Some(8000.0),
             block_rated_kg: Some(63_000.0),
@@ -144,7 +155,7 @@ mod tests {
         assert_eq!(reeving(Some(4)).refused(), None);
         assert_eq!(
             reeving(Some(4)).said(),
-            "hook load 16.50 t (load, rigging and hook block); on 4 falls of 8.00 t each: 32.00 t, 52 % (at least 3 needed); the hook block rated 63.00 t: 26 %"
+            "hook load 16.50 t (load, rigging and hook block); on 4 falls of 8.00 t each: 32.00 t, 52 % (at least 3 needed); the hook block rated 63.00 t, carrying 13.00 t of load and rigging: 21 %"
         );
         assert_eq!(reeving(Some(3)).refused(), None);
         let two = reeving(Some(2)).refused().unwrap();
@@ -168,8 +179,16 @@ mod tests {
     /// nothing of the falls, and says so.
     #[test]
     fn the_hook_block_limits_the_load_and_the_falls() {
-        let light = Reeving { block_rated_kg: Some(15_000.0), ..reeving(Some(4)) };
-        assert!(light.refused().unwrap().contains("more than the hook block is rated for (15.00 t, [hook] rated_t"));
+        // The block carries the load and rigging, not itself.
+        assert_eq!(Reeving { block_rated_kg: Some(13_000.0), ..reeving(Some(4)) }.refused(), None);
+        let light = Reeving { block_rated_kg: Some(12_000.0), ..reeving(Some(4)) };
+        assert!(
+            light.refused().unwrap().starts_with(
+                "the load and its rigging (13.00 t) are more than the hook block is rated for (12.00 t, [hook] rated_t"
+            ),
+            "{:?}",
+            light.refused()
+        );
         let few = Reeving { max_falls: Some(2), ..reeving(None) };
         assert!(
             few.refused().unwrap().contains("needs 3 falls of 8.00 t each, more than the hook block's sheaves take (2")
