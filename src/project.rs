@@ -500,7 +500,7 @@ keep = 3                  # runs' outputs each stage keeps in .liftplan/cache (t
 # # = [[x, y, z], ...] from the box's centre, and each leg's working load limit: the
 # # legs' angles and the most one carries are checked (leave leg_wll_t out: not checked);
 # # hitch = "choked" rates legs choked round the load at 0.8 of leg_wll_t; shackle_wll_t
-# # checks the shackle at each lift point against its leg's pull.
+# # and lift_point_wll_t check the shackle and the lug at each lift point against its pull.
 # # Two legs hanging plumb from a beam: add spreader = { length_m = 8.0, below_hook_m =
 # # 2.0, wll_t = 20.0, mass_t = 0.3, top_leg_wll_t = 12.0 } to rigging (its pins over the
 # # lift points, below_hook_m under the hook block; leave top_leg_wll_t out for a lifting

@@ -58,6 +58,10 @@ pub struct RiggingSpec {
     /// The working load limit of the shackle at each lift point (t, in line).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub shackle_wll_t: Option<f64>,
+    /// What each lift point (a lug, a trunnion) may carry in its leg's
+    /// direction (t), as its rating for that angle gives it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lift_point_wll_t: Option<f64>,
 }
 
 /// `rigging.hitch`.
@@ -105,6 +109,7 @@ impl Default for RiggingSpec {
             spreader: None,
             hitch: Hitch::Straight,
             shackle_wll_t: None,
+            lift_point_wll_t: None,
         }
     }
 }
@@ -811,9 +816,9 @@ impl LiftSpec {
                     "lift '{id}': rigging gives a spreader but not the working load limit of the legs hanging from it: give rigging leg_wll_t (t, each leg's) with legs = 2 or two lift_points_m"
                 ));
             }
-            (None, _, _) if r.hitch != Hitch::Straight || r.shackle_wll_t.is_some() => {
+            (None, _, _) if r.hitch != Hitch::Straight || r.shackle_wll_t.is_some() || r.lift_point_wll_t.is_some() => {
                 return Err(format!(
-                    "lift '{id}': rigging gives the legs' hitch or their shackles but not the legs' working load limit: give rigging leg_wll_t (t, each leg's, straight pull) with legs or lift_points_m to have them checked"
+                    "lift '{id}': rigging gives the legs' hitch, their shackles or their lift points but not the legs' working load limit: give rigging leg_wll_t (t, each leg's, straight pull) with legs or lift_points_m to have them checked"
                 ));
             }
             (None, None, None) => None,
@@ -898,6 +903,9 @@ impl LiftSpec {
                 if let Some(t) = r.shackle_wll_t {
                     pos("rigging.shackle_wll_t", t)?;
                 }
+                if let Some(t) = r.lift_point_wll_t {
+                    pos("rigging.lift_point_wll_t", t)?;
+                }
                 Some(crate::slings::Slings {
                     lift_points_m,
                     points_given,
@@ -905,6 +913,7 @@ impl LiftSpec {
                     spreader,
                     choked: r.hitch == Hitch::Choked,
                     shackle_wll_kg: r.shackle_wll_t.map(|t| t * KG_PER_TONNE),
+                    lift_point_wll_kg: r.lift_point_wll_t.map(|t| t * KG_PER_TONNE),
                 })
             }
         };
@@ -1511,8 +1520,14 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
             .is_err()
         );
         let choked =
-            rigged("legs = 2\nleg_wll_t = 8.0\nhitch = \"choked\"\nshackle_wll_t = 8.5").unwrap().slings.unwrap();
-        assert!(choked.choked && choked.shackle_wll_kg == Some(8500.0), "{choked:?}");
+            rigged("legs = 2\nleg_wll_t = 8.0\nhitch = \"choked\"\nshackle_wll_t = 8.5\nlift_point_wll_t = 9.0")
+                .unwrap()
+                .slings
+                .unwrap();
+        assert!(
+            choked.choked && choked.shackle_wll_kg == Some(8500.0) && choked.lift_point_wll_kg == Some(9000.0),
+            "{choked:?}"
+        );
         assert!(!rigged("legs = 2\nleg_wll_t = 8.0\nhitch = \"straight\"").unwrap().slings.unwrap().choked);
         assert!(
             toml::from_str::<RiggingSpec>("hitch = \"basket\"").is_err(),
@@ -1547,13 +1562,18 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
             ),
             (
                 "legs = 2\nhitch = \"choked\"",
-                "gives the legs' hitch or their shackles but not the legs' working load limit",
+                "gives the legs' hitch, their shackles or their lift points but not the legs' working load limit",
             ),
             (
                 "legs = 2\nshackle_wll_t = 8.5",
-                "gives the legs' hitch or their shackles but not the legs' working load limit",
+                "gives the legs' hitch, their shackles or their lift points but not the legs' working load limit",
             ),
             ("legs = 2\nleg_wll_t = 8.0\nshackle_wll_t = 0.0", "rigging.shackle_wll_t must be positive"),
+            (
+                "legs = 2\nlift_point_wll_t = 9.0",
+                "their shackles or their lift points but not the legs' working load limit",
+            ),
+            ("legs = 2\nleg_wll_t = 8.0\nlift_point_wll_t = -1.0", "rigging.lift_point_wll_t must be positive"),
         ] {
             let e = rigged(text).unwrap_err();
             assert!(e.contains(said), "{text}: {e}");

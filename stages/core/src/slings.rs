@@ -24,7 +24,9 @@
 //! sling is rated for them. Legs choked round the load (`rigging.hitch =
 //! "choked"`) are rated at [`CHOKE_FACTOR`] of their straight pull; where the
 //! lift gives its shackles' working load limit (`rigging.shackle_wll_t`), the
-//! shackle at each lift point is checked against its leg's pull, in line.
+//! shackle at each lift point is checked against its leg's pull, in line, and
+//! so is each lift point itself (a lug, a trunnion: `lift_point_wll_t`), at
+//! its rating for the leg's direction, which the engineer gives.
 //!
 //! Two legs may hang plumb from a beam instead (`rigging.spreader`, [`Spreader`]):
 //! its pins stand over the two lift points, `below_hook_m` under the hook
@@ -79,6 +81,10 @@ pub struct Slings {
     /// line), where the lift gives it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub shackle_wll_kg: Option<f64>,
+    /// What each lift point (a lug, a trunnion) may carry in its leg's
+    /// direction (kg), where the lift gives it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lift_point_wll_kg: Option<f64>,
 }
 
 /// A spreader or lifting beam between the hook and two sling legs hanging
@@ -162,6 +168,10 @@ pub struct SlingCheck {
     /// line), which carries its leg's pull.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub shackle_wll_kg: Option<f64>,
+    /// What each lift point may carry in its leg's direction (kg), where
+    /// the lift gives it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lift_point_wll_kg: Option<f64>,
 }
 
 impl SlingCheck {
@@ -198,8 +208,12 @@ impl SlingCheck {
                 )
             })
             .unwrap_or_default();
+        let lug = self
+            .lift_point_wll_kg
+            .map(|p| format!(", and of the lift point's own {:.2} t: {:.0} %", p / 1000.0, 100.0 * self.max_leg_kg / p))
+            .unwrap_or_default();
         format!(
-            "the most on one leg (leg {}{how}) {:.2} t ({:.0} kN) of its {limit}: {:.0} %{shackle}",
+            "the most on one leg (leg {}{how}) {:.2} t ({:.0} kN) of its {limit}: {:.0} %{shackle}{lug}",
             self.max_leg,
             self.max_leg_kg / 1000.0,
             self.max_leg_kg * G / 1000.0,
@@ -225,6 +239,10 @@ impl SlingCheck {
         if self.shackle_wll_kg.is_some_and(|s| over(self.max_leg_kg, s)) {
             what.push("the lift points' shackles");
             give.push("give shackles of a higher working load limit (rigging shackle_wll_t)");
+        }
+        if self.lift_point_wll_kg.is_some_and(|p| over(self.max_leg_kg, p)) {
+            what.push("the lift points");
+            give.push("give lift points of a higher working load limit (rigging lift_point_wll_t) or more legs");
         }
         if let Some(s) = &self.spreader {
             if over(s.carries_kg, s.wll_kg) {
@@ -411,6 +429,7 @@ pub fn check(
         spreader: None,
         choked: slings.choked,
         shackle_wll_kg: slings.shackle_wll_kg,
+        lift_point_wll_kg: slings.lift_point_wll_kg,
     })
 }
 
@@ -526,6 +545,7 @@ fn check_spreader(
         leg_lengths_m,
         choked: slings.choked,
         shackle_wll_kg: slings.shackle_wll_kg,
+        lift_point_wll_kg: slings.lift_point_wll_kg,
         spreader: Some(SpreaderCheck {
             length_m: beam.length_m,
             span_m,
@@ -599,6 +619,7 @@ mod tests {
             spreader: None,
             choked: false,
             shackle_wll_kg: None,
+            lift_point_wll_kg: None,
         }
     }
 
@@ -663,6 +684,7 @@ mod tests {
             spreader: None,
             choked: false,
             shackle_wll_kg: None,
+            lift_point_wll_kg: None,
         };
         let up: Vec<[f64; 3]> = s
             .lift_points_m
@@ -701,6 +723,7 @@ mod tests {
             spreader: None,
             choked: false,
             shackle_wll_kg: None,
+            lift_point_wll_kg: None,
         };
         assert!(check(&high, 1.0, size, [0.0; 3], 3.0).unwrap_err().contains("not below the hook block"));
         // One leg: the whole load, whatever its angle.
@@ -727,6 +750,7 @@ mod tests {
             spreader: Some(beam(Some(12_000.0))),
             choked: false,
             shackle_wll_kg: None,
+            lift_point_wll_kg: None,
         };
         let c = check(&s, 12_000.0, size, [0.0; 3], 4.0).unwrap();
         assert_eq!((c.max_angle_deg, c.max_leg_kg, c.leg_lengths_m.clone()), (0.0, 6000.0, vec![2.0, 2.0]));
@@ -775,6 +799,7 @@ mod tests {
             spreader: Some(Spreader { length_m: 6.0, below_hook_m: 3.0, ..beam(Some(12_000.0)) }),
             choked: false,
             shackle_wll_kg: None,
+            lift_point_wll_kg: None,
         };
         let c = check(&s, 12_000.0, [6.0, 2.0, 2.0], [1.0, 0.0, 0.0], 5.0).unwrap();
         assert_eq!(c.max_leg, 2);
@@ -808,6 +833,7 @@ mod tests {
             spreader: Some(Spreader { mass_kg: 0.0, ..beam(None) }),
             choked: false,
             shackle_wll_kg: None,
+            lift_point_wll_kg: None,
         };
         let c = check(&s, 12_000.0, [7.0, 2.0, 2.0], [-0.5, 0.3, 0.0], 4.0).unwrap();
         let b = c.spreader.clone().unwrap();
@@ -832,6 +858,7 @@ mod tests {
                 spreader: Some(b),
                 choked: false,
                 shackle_wll_kg: None,
+                lift_point_wll_kg: None,
             };
             check(&s, 12_000.0, size, [0.0; 3], height_m).unwrap_err()
         };
@@ -857,6 +884,7 @@ mod tests {
             spreader: Some(beam(None)),
             choked: false,
             shackle_wll_kg: None,
+            lift_point_wll_kg: None,
         };
         assert!(
             check(&s, 12_000.0, size, [3.5, 0.0, 0.0], 4.0)
@@ -912,6 +940,24 @@ mod tests {
             check(&s, 12_000.0, size, [0.0; 3], 3.0).unwrap().over_limit(),
             None,
             "a shackle at its limit holds"
+        );
+        // A lift point (lug) rated for less than its leg's pull.
+        s.lift_point_wll_kg = Some(9000.0);
+        let lugged = check(&s, 12_000.0, size, [0.0; 3], 3.0).unwrap();
+        assert!(
+            lugged.said().contains(
+                "of its lift point's shackle's 10.00 t (in line): 100 %, and of the lift point's own 9.00 t: 111 %;"
+            ),
+            "{}",
+            lugged.said()
+        );
+        let over = lugged.over_limit().unwrap();
+        assert!(
+            over.starts_with("the lift points cannot carry the load:")
+                && over.ends_with(
+                    "; give lift points of a higher working load limit (rigging lift_point_wll_t) or more legs"
+                ),
+            "{over}"
         );
     }
 }
