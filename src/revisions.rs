@@ -11,7 +11,9 @@
 //! find the document again as it was issued.
 //!
 //! Keeping only adds files: a revision already kept is not written again
-//! (the same revision is the same plan), and `liftplan clean`, which
+//! (the same revision is the same plan; one that is not, a kept file
+//! changed by hand or a collision of the revision's hash, is said and
+//! never written over), and `liftplan clean`, which
 //! removes the rest of out/, leaves them. A plan and its steps take about
 //! 70 kB, its PDF 3-4 MB (the demo's): a site re-planned at each of a
 //! hundred scans keeps some 400 MB. `liftplan revisions` lists them
@@ -56,9 +58,17 @@ fn names_a_file(lift: &str, revision: &str) -> bool {
 /// liftplan) is not kept.
 pub fn keep(out_dir: &Path, plan_dir: &Path) -> Result<Vec<String>> {
     let mut kept = Vec::new();
+    let mut another = Vec::new();
     for (plan, lift, revision) in plans_in(plan_dir)? {
         let to = plan_file(out_dir, &lift, &revision);
         if to.exists() {
+            let kept_plan = std::fs::read_to_string(&to)
+                .ok()
+                .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
+                .map(|v| v["lifts"][0].clone());
+            if kept_plan.is_some_and(|k| but_for_timings(&k) != but_for_timings(&plan)) {
+                another.push(format!("{lift} plan {revision}"));
+            }
             continue;
         }
         // The steps first: a plan file kept is one whose steps are too.
@@ -74,7 +84,27 @@ pub fn keep(out_dir: &Path, plan_dir: &Path) -> Result<Vec<String>> {
             .with_context(|| format!("{}", to.display()))?;
         kept.push(format!("{lift} plan {revision}"));
     }
+    if !another.is_empty() {
+        anyhow::bail!(
+            "{} not kept: out/{DIR}/ holds another plan of that revision (a file there changed by hand, or two plans whose revisions collide), so the revision on its pages does not tell it from that one: CHECK which plan the crew holds{}",
+            another.join(", "),
+            if kept.is_empty() { String::new() } else { format!("; kept {}", kept.join(", ")) }
+        );
+    }
     Ok(kept)
+}
+
+/// A plan as plan.json carries it, less what its revision leaves out (the
+/// times its planning and validation took,
+/// [`liftplan_plan::revision`]): two plans of one revision are equal so.
+fn but_for_timings(plan: &serde_json::Value) -> serde_json::Value {
+    let mut p = plan.clone();
+    for (section, key) in [("planning", "cspace_ms"), ("planning", "plan_ms"), ("validator", "seconds")] {
+        if let Some(v) = p.get_mut(section).and_then(|s| s.get_mut(key)) {
+            *v = serde_json::Value::from(0.0);
+        }
+    }
+    p
 }
 
 /// Keeps each lift's PDF in the docs stage's output folder `docs_dir`,
@@ -313,8 +343,32 @@ mod tests {
         assert_eq!(read["lifts"].as_array().unwrap().len(), 1);
         let steps = out.join(DIR).join("V-101").join("0fb8698c.steps.csv");
         assert_eq!(std::fs::read_to_string(&steps).unwrap(), "step,operation\n1,Hoist up\n");
-        // Kept already: not written again.
+        // Kept already: not written again, nor for a plan of that revision
+        // that took another time to make.
         assert!(keep(&out, &entry).unwrap().is_empty());
+        let timed = |ms: f64, steps: u64| {
+            serde_json::json!({ "lifts": [{
+                "lift": "V-101", "summary": { "revision": "0fb8698c", "steps": steps }, "moves": [],
+                "planning": { "plan_ms": ms, "cspace_ms": ms }, "validator": { "seconds": ms }
+            }] })
+            .to_string()
+        };
+        let other = d.path().join("other");
+        std::fs::create_dir_all(&other).unwrap();
+        std::fs::write(other.join("plan.json"), timed(1.0, 7)).unwrap();
+        let elsewhere = d.path().join("elsewhere");
+        assert_eq!(keep(&elsewhere, &other).unwrap(), ["V-101 plan 0fb8698c"]);
+        std::fs::write(other.join("plan.json"), timed(2.5, 7)).unwrap();
+        assert!(keep(&elsewhere, &other).unwrap().is_empty());
+        // Another plan under a revision kept: said, and the kept one left.
+        let before = std::fs::read_to_string(plan_file(&elsewhere, "V-101", "0fb8698c")).unwrap();
+        std::fs::write(other.join("plan.json"), timed(1.0, 8)).unwrap();
+        let e = format!("{:#}", keep(&elsewhere, &other).unwrap_err());
+        assert!(
+            e.starts_with("V-101 plan 0fb8698c not kept: out/revisions/ holds another plan of that revision"),
+            "{e}"
+        );
+        assert_eq!(std::fs::read_to_string(plan_file(&elsewhere, "V-101", "0fb8698c")).unwrap(), before);
         // The next plan of the lift beside it.
         std::fs::write(entry.join("plan.json"), plan_json(&[("V-101", "1234abcd")])).unwrap();
         assert_eq!(keep(&out, &entry).unwrap(), ["V-101 plan 1234abcd"]);
