@@ -909,11 +909,13 @@ impl LiftSpec {
                 Some(crate::slings::Slings {
                     lift_points_m,
                     points_given,
-                    leg_wll_kg: wll_t * KG_PER_TONNE,
+                    ratings: crate::slings::Ratings {
+                        leg_wll_kg: wll_t * KG_PER_TONNE,
+                        choked: r.hitch == Hitch::Choked,
+                        shackle_wll_kg: r.shackle_wll_t.map(|t| t * KG_PER_TONNE),
+                        lift_point_wll_kg: r.lift_point_wll_t.map(|t| t * KG_PER_TONNE),
+                    },
                     spreader,
-                    choked: r.hitch == Hitch::Choked,
-                    shackle_wll_kg: r.shackle_wll_t.map(|t| t * KG_PER_TONNE),
-                    lift_point_wll_kg: r.lift_point_wll_t.map(|t| t * KG_PER_TONNE),
                 })
             }
         };
@@ -1492,7 +1494,7 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         assert!(rigged("").unwrap().slings.is_none());
         let four = rigged("legs = 4\nleg_wll_t = 8.0").unwrap().slings.unwrap();
         assert_eq!(four.lift_points_m.len(), 4);
-        assert!(!four.points_given && four.leg_wll_kg == 8000.0);
+        assert!(!four.points_given && four.ratings.leg_wll_kg == 8000.0);
         let given = rigged("leg_wll_t = 8.0\nlift_points_m = [[-2.0, 0.0, 1.5], [2.0, 0.0, 1.5], [0.0, 1.0, 1.5]]");
         assert!(given.unwrap().slings.unwrap().points_given);
         let beam = rigged(
@@ -1525,10 +1527,12 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
                 .slings
                 .unwrap();
         assert!(
-            choked.choked && choked.shackle_wll_kg == Some(8500.0) && choked.lift_point_wll_kg == Some(9000.0),
+            choked.ratings.choked
+                && choked.ratings.shackle_wll_kg == Some(8500.0)
+                && choked.ratings.lift_point_wll_kg == Some(9000.0),
             "{choked:?}"
         );
-        assert!(!rigged("legs = 2\nleg_wll_t = 8.0\nhitch = \"straight\"").unwrap().slings.unwrap().choked);
+        assert!(!rigged("legs = 2\nleg_wll_t = 8.0\nhitch = \"straight\"").unwrap().slings.unwrap().ratings.choked);
         assert!(
             toml::from_str::<RiggingSpec>("hitch = \"basket\"").is_err(),
             "a basket hitch is not checked, so not taken"

@@ -69,22 +69,40 @@ pub struct Slings {
     /// Whether the lift gave the points (`rigging.lift_points_m`) or they
     /// are the default for the number of legs.
     pub points_given: bool,
-    /// Each leg's working load limit (kg), straight pull.
-    pub leg_wll_kg: f64,
+    /// What the legs, their shackles and the lift points are rated for.
+    #[serde(flatten)]
+    pub ratings: Ratings,
     /// The beam the legs hang plumb from, where the lift gives one.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub spreader: Option<Spreader>,
-    /// Whether the legs are choked round the load ([`CHOKE_FACTOR`]).
+}
+
+/// What the rigging between the legs and the load is rated for, as the
+/// lift gives it: carried from the lift ([`Slings`]) into its check
+/// ([`SlingCheck`]).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Ratings {
+    /// Each leg's working load limit (kg), straight pull.
+    pub leg_wll_kg: f64,
+    /// Whether the legs are choked round the load: each may carry
+    /// [`CHOKE_FACTOR`] of `leg_wll_kg`.
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub choked: bool,
     /// The working load limit of the shackle at each lift point (kg, in
-    /// line), where the lift gives it.
+    /// line), which carries its leg's pull, where the lift gives it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub shackle_wll_kg: Option<f64>,
     /// What each lift point (a lug, a trunnion) may carry in its leg's
     /// direction (kg), where the lift gives it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub lift_point_wll_kg: Option<f64>,
+}
+
+impl Ratings {
+    /// Legs of `leg_wll_kg` in a straight pull, nothing else rated.
+    pub fn legs(leg_wll_kg: f64) -> Ratings {
+        Ratings { leg_wll_kg, choked: false, shackle_wll_kg: None, lift_point_wll_kg: None }
+    }
 }
 
 /// A spreader or lifting beam between the hook and two sling legs hanging
@@ -150,7 +168,9 @@ pub struct SlingCheck {
     pub max_leg_kg: f64,
     /// Which leg (1-based, in the order of the lift points) carries it.
     pub max_leg: usize,
-    pub leg_wll_kg: f64,
+    /// What the legs, their shackles and the lift points are rated for.
+    #[serde(flatten)]
+    pub ratings: Ratings,
     pub points_given: bool,
     /// Each leg's length from its lift point to the hook block's underside
     /// (m), in the order of the lift points: what the legs must be for the
@@ -160,25 +180,13 @@ pub struct SlingCheck {
     /// The beam the legs hang from, where the lift gives one.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub spreader: Option<SpreaderCheck>,
-    /// Whether the legs are choked round the load: each may carry
-    /// [`CHOKE_FACTOR`] of `leg_wll_kg`.
-    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
-    pub choked: bool,
-    /// The working load limit of the shackle at each lift point (kg, in
-    /// line), which carries its leg's pull.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub shackle_wll_kg: Option<f64>,
-    /// What each lift point may carry in its leg's direction (kg), where
-    /// the lift gives it.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub lift_point_wll_kg: Option<f64>,
 }
 
 impl SlingCheck {
     /// What one leg may carry (kg): its working load limit, less for a
     /// choke hitch.
     pub fn leg_limit_kg(&self) -> f64 {
-        if self.choked { self.leg_wll_kg * CHOKE_FACTOR } else { self.leg_wll_kg }
+        if self.ratings.choked { self.ratings.leg_wll_kg * CHOKE_FACTOR } else { self.ratings.leg_wll_kg }
     }
 
     /// The most one leg carries over what it may carry (%).
@@ -189,16 +197,17 @@ impl SlingCheck {
     /// The most one leg carries, against its limit and its lift point's
     /// shackle's, in words.
     fn most_on_a_leg_said(&self, how: &str) -> String {
-        let limit = if self.choked {
+        let limit = if self.ratings.choked {
             format!(
                 "{:.2} t working load limit choked ({:.2} t in a straight pull, x {CHOKE_FACTOR})",
                 self.leg_limit_kg() / 1000.0,
-                self.leg_wll_kg / 1000.0
+                self.ratings.leg_wll_kg / 1000.0
             )
         } else {
-            format!("{:.2} t working load limit", self.leg_wll_kg / 1000.0)
+            format!("{:.2} t working load limit", self.ratings.leg_wll_kg / 1000.0)
         };
         let shackle = self
+            .ratings
             .shackle_wll_kg
             .map(|s| {
                 format!(
@@ -209,6 +218,7 @@ impl SlingCheck {
             })
             .unwrap_or_default();
         let lug = self
+            .ratings
             .lift_point_wll_kg
             .map(|p| format!(", and of the lift point's own {:.2} t: {:.0} %", p / 1000.0, 100.0 * self.max_leg_kg / p))
             .unwrap_or_default();
@@ -236,11 +246,11 @@ impl SlingCheck {
                 "give legs of a higher working load limit (rigging leg_wll_t), more legs or a taller rigging (height_m)"
             });
         }
-        if self.shackle_wll_kg.is_some_and(|s| over(self.max_leg_kg, s)) {
+        if self.ratings.shackle_wll_kg.is_some_and(|s| over(self.max_leg_kg, s)) {
             what.push("the lift points' shackles");
             give.push("give shackles of a higher working load limit (rigging shackle_wll_t)");
         }
-        if self.lift_point_wll_kg.is_some_and(|p| over(self.max_leg_kg, p)) {
+        if self.ratings.lift_point_wll_kg.is_some_and(|p| over(self.max_leg_kg, p)) {
             what.push("the lift points");
             give.push("give lift points of a higher working load limit (rigging lift_point_wll_t) or more legs");
         }
@@ -275,7 +285,7 @@ impl SlingCheck {
             "{} leg{} {where_}{}, up to {:.1}° from the vertical; {}; {} from lift point to hook, for the load to hang level",
             self.legs,
             if self.legs == 1 { "" } else { "s" },
-            if self.choked { " choked round the load" } else { "" },
+            if self.ratings.choked { " choked round the load" } else { "" },
             self.max_angle_deg,
             self.most_on_a_leg_said(how),
             match &lengths[..] {
@@ -322,7 +332,7 @@ impl SlingCheck {
         };
         format!(
             "2 legs {where_}{}, hanging plumb from a spreader beam: {}; legs {} m long from lift point to pin; the beam {:.2} m long, its pins {:.2} m apart and {:.2} m below the hook block, carries {:.2} t of its {:.2} t working load limit: {:.0} %, {hung}",
-            if self.choked { " choked round the load" } else { "" },
+            if self.ratings.choked { " choked round the load" } else { "" },
             self.most_on_a_leg_said(""),
             lengths.join(" and "),
             s.length_m,
@@ -424,12 +434,9 @@ pub fn check(
         max_leg_kg,
         max_leg: max_leg + 1,
         leg_lengths_m,
-        leg_wll_kg: slings.leg_wll_kg,
+        ratings: slings.ratings,
         points_given: slings.points_given,
         spreader: None,
-        choked: slings.choked,
-        shackle_wll_kg: slings.shackle_wll_kg,
-        lift_point_wll_kg: slings.lift_point_wll_kg,
     })
 }
 
@@ -540,12 +547,9 @@ fn check_spreader(
         max_angle_deg: 0.0,
         max_leg_kg: shares[max_leg],
         max_leg: max_leg + 1,
-        leg_wll_kg: slings.leg_wll_kg,
+        ratings: slings.ratings,
         points_given: slings.points_given,
         leg_lengths_m,
-        choked: slings.choked,
-        shackle_wll_kg: slings.shackle_wll_kg,
-        lift_point_wll_kg: slings.lift_point_wll_kg,
         spreader: Some(SpreaderCheck {
             length_m: beam.length_m,
             span_m,
@@ -615,11 +619,8 @@ mod tests {
         Slings {
             lift_points_m: default_points(legs, size_m).unwrap(),
             points_given: false,
-            leg_wll_kg: 8000.0,
+            ratings: Ratings::legs(8000.0),
             spreader: None,
-            choked: false,
-            shackle_wll_kg: None,
-            lift_point_wll_kg: None,
         }
     }
 
@@ -680,11 +681,8 @@ mod tests {
         let s = Slings {
             lift_points_m: vec![[-2.0, -1.0, 1.0], [2.0, -1.0, 1.0], [0.0, 2.0, 1.0]],
             points_given: true,
-            leg_wll_kg: 9000.0,
+            ratings: Ratings::legs(9000.0),
             spreader: None,
-            choked: false,
-            shackle_wll_kg: None,
-            lift_point_wll_kg: None,
         };
         let up: Vec<[f64; 3]> = s
             .lift_points_m
@@ -719,11 +717,8 @@ mod tests {
         let high = Slings {
             lift_points_m: vec![[0.0, 0.0, 9.0]],
             points_given: true,
-            leg_wll_kg: 1.0,
+            ratings: Ratings::legs(1.0),
             spreader: None,
-            choked: false,
-            shackle_wll_kg: None,
-            lift_point_wll_kg: None,
         };
         assert!(check(&high, 1.0, size, [0.0; 3], 3.0).unwrap_err().contains("not below the hook block"));
         // One leg: the whole load, whatever its angle.
@@ -746,11 +741,8 @@ mod tests {
         let mut s = Slings {
             lift_points_m: vec![[-3.0, 0.0, 1.0], [3.0, 0.0, 1.0]],
             points_given: true,
-            leg_wll_kg: 8000.0,
+            ratings: Ratings::legs(8000.0),
             spreader: Some(beam(Some(12_000.0))),
-            choked: false,
-            shackle_wll_kg: None,
-            lift_point_wll_kg: None,
         };
         let c = check(&s, 12_000.0, size, [0.0; 3], 4.0).unwrap();
         assert_eq!((c.max_angle_deg, c.max_leg_kg, c.leg_lengths_m.clone()), (0.0, 6000.0, vec![2.0, 2.0]));
@@ -773,7 +765,7 @@ mod tests {
             assert!(said.contains(part), "{part}\n{said}");
         }
         // Over the limits: each named, with what to give.
-        s.leg_wll_kg = 5000.0;
+        s.ratings.leg_wll_kg = 5000.0;
         s.spreader.as_mut().unwrap().wll_kg = 10_000.0;
         s.spreader.as_mut().unwrap().top_leg_wll_kg = Some(7000.0);
         let over = check(&s, 12_000.0, size, [0.0; 3], 4.0).unwrap().over_limit().unwrap();
@@ -795,11 +787,8 @@ mod tests {
         let s = Slings {
             lift_points_m: default_points(2, [6.0, 2.0, 2.0]).unwrap(),
             points_given: false,
-            leg_wll_kg: 8000.0,
+            ratings: Ratings::legs(8000.0),
             spreader: Some(Spreader { length_m: 6.0, below_hook_m: 3.0, ..beam(Some(12_000.0)) }),
-            choked: false,
-            shackle_wll_kg: None,
-            lift_point_wll_kg: None,
         };
         let c = check(&s, 12_000.0, [6.0, 2.0, 2.0], [1.0, 0.0, 0.0], 5.0).unwrap();
         assert_eq!(c.max_leg, 2);
@@ -829,11 +818,8 @@ mod tests {
         let s = Slings {
             lift_points_m: vec![[-3.0, 0.0, 1.0], [3.0, 0.0, 1.0]],
             points_given: true,
-            leg_wll_kg: 8000.0,
+            ratings: Ratings::legs(8000.0),
             spreader: Some(Spreader { mass_kg: 0.0, ..beam(None) }),
-            choked: false,
-            shackle_wll_kg: None,
-            lift_point_wll_kg: None,
         };
         let c = check(&s, 12_000.0, [7.0, 2.0, 2.0], [-0.5, 0.3, 0.0], 4.0).unwrap();
         let b = c.spreader.clone().unwrap();
@@ -851,15 +837,8 @@ mod tests {
         let size = [7.0, 2.0, 2.0];
         let two = vec![[-3.0, 0.0, 1.0], [3.0, 0.0, 1.0]];
         let refused = |points: Vec<[f64; 3]>, b: Spreader, height_m: f64| {
-            let s = Slings {
-                lift_points_m: points,
-                points_given: true,
-                leg_wll_kg: 8000.0,
-                spreader: Some(b),
-                choked: false,
-                shackle_wll_kg: None,
-                lift_point_wll_kg: None,
-            };
+            let s =
+                Slings { lift_points_m: points, points_given: true, ratings: Ratings::legs(8000.0), spreader: Some(b) };
             check(&s, 12_000.0, size, [0.0; 3], height_m).unwrap_err()
         };
         let four = default_points(4, size).unwrap();
@@ -880,11 +859,8 @@ mod tests {
         let s = Slings {
             lift_points_m: two,
             points_given: true,
-            leg_wll_kg: 8000.0,
+            ratings: Ratings::legs(8000.0),
             spreader: Some(beam(None)),
-            choked: false,
-            shackle_wll_kg: None,
-            lift_point_wll_kg: None,
         };
         assert!(
             check(&s, 12_000.0, size, [3.5, 0.0, 0.0], 4.0)
@@ -903,9 +879,9 @@ mod tests {
         let most = straight.max_leg_kg; // 10 t: 6 t at atan(4 / 3)
         assert!((most - 10_000.0).abs() < 1e-9 && straight.over_limit().is_some());
         let mut s = slings(2, size);
-        s.leg_wll_kg = 12_000.0;
+        s.ratings.leg_wll_kg = 12_000.0;
         assert_eq!(check(&s, 12_000.0, size, [0.0; 3], 3.0).unwrap().over_limit(), None);
-        s.choked = true;
+        s.ratings.choked = true;
         let choked = check(&s, 12_000.0, size, [0.0; 3], 3.0).unwrap();
         assert_eq!(choked.max_leg_kg, most, "choking changes the limit, not the pull");
         assert!((choked.leg_limit_kg() - 9600.0).abs() < 1e-9);
@@ -919,8 +895,8 @@ mod tests {
             over.starts_with("the sling legs cannot carry the load: 2 legs") && over.contains("(rigging leg_wll_t)"),
             "{over}"
         );
-        s.choked = false;
-        s.shackle_wll_kg = Some(9500.0);
+        s.ratings.choked = false;
+        s.ratings.shackle_wll_kg = Some(9500.0);
         let shackled = check(&s, 12_000.0, size, [0.0; 3], 3.0).unwrap();
         assert!(
             shackled.said().contains(
@@ -935,14 +911,14 @@ mod tests {
                 && over.ends_with("; give shackles of a higher working load limit (rigging shackle_wll_t)"),
             "{over}"
         );
-        s.shackle_wll_kg = Some(10_000.0);
+        s.ratings.shackle_wll_kg = Some(10_000.0);
         assert_eq!(
             check(&s, 12_000.0, size, [0.0; 3], 3.0).unwrap().over_limit(),
             None,
             "a shackle at its limit holds"
         );
         // A lift point (lug) rated for less than its leg's pull.
-        s.lift_point_wll_kg = Some(9000.0);
+        s.ratings.lift_point_wll_kg = Some(9000.0);
         let lugged = check(&s, 12_000.0, size, [0.0; 3], 3.0).unwrap();
         assert!(
             lugged.said().contains(
