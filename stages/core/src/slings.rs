@@ -268,17 +268,22 @@ impl SlingCheck {
             .then(|| format!("{} cannot carry the load: {}; {}", what.join(" and "), self.said(), give.join("; ")))
     }
 
+    /// Where the legs take the load, in words.
+    fn where_said(&self) -> &'static str {
+        match (self.points_given, self.legs) {
+            (true, _) => "at the lift points given (rigging lift_points_m)",
+            (false, 1) => "at the top's centre",
+            (false, 2) => "at the middles of the top's short edges",
+            (false, _) => "at the top's corners",
+        }
+    }
+
     /// In words, for the run's line and the PDF.
     pub fn said(&self) -> String {
         if let Some(s) = &self.spreader {
             return self.said_with(s);
         }
-        let where_ = match (self.points_given, self.legs) {
-            (true, _) => "at the lift points given (rigging lift_points_m)",
-            (false, 1) => "at the top's centre",
-            (false, 2) => "at the middles of the top's short edges",
-            (false, _) => "at the top's corners",
-        };
+        let where_ = self.where_said();
         let how = if self.legs == 4 { ", any one leg slack" } else { "" };
         let lengths: Vec<String> = self.leg_lengths_m.iter().map(|l| format!("{l:.2}")).collect();
         format!(
@@ -297,11 +302,7 @@ impl SlingCheck {
     }
 
     fn said_with(&self, s: &SpreaderCheck) -> String {
-        let where_ = if self.points_given {
-            "at the lift points given (rigging lift_points_m)"
-        } else {
-            "at the middles of the top's short edges"
-        };
+        let where_ = self.where_said();
         let lengths: Vec<String> = self.leg_lengths_m.iter().map(|l| format!("{l:.2}")).collect();
         let hung = match &s.top {
             Some(t) => format!(
@@ -376,28 +377,17 @@ pub fn check(
     }
     let hook = [cog_m[0], cog_m[1], size_m[2] / 2.0 + rigging_height_m];
     let pts = &slings.lift_points_m;
-    // Unit vectors from each lift point up its leg to the hook.
-    let mut up = Vec::with_capacity(pts.len());
-    let mut leg_lengths_m = Vec::with_capacity(pts.len());
-    let mut max_angle_deg: f64 = 0.0;
-    for (k, p) in pts.iter().enumerate() {
-        let d = [hook[0] - p[0], hook[1] - p[1], hook[2] - p[2]];
-        let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-        if !(d[2] > 1e-6) {
-            return Err(format!(
-                "sling leg {} takes the load at z {:.2} m from its box's centre, not below the hook block ({:.2} m: the load's top plus rigging height_m)",
-                k + 1,
-                p[2],
-                hook[2]
-            ));
-        }
-        // One leg hangs plumb: the load tilts until its centre of gravity
-        // is under the point.
-        let angle = if pts.len() == 1 { 0.0 } else { d[0].hypot(d[1]).atan2(d[2]).to_degrees() };
-        max_angle_deg = max_angle_deg.max(angle);
-        up.push(d.map(|v| v / len));
-        leg_lengths_m.push(len);
-    }
+    let Legs { up, lengths_m: leg_lengths_m, max_angle_deg } = legs_to(hook, pts).map_err(|k| {
+        format!(
+            "sling leg {} takes the load at z {:.2} m from its box's centre, not below the hook block ({:.2} m: the load's top plus rigging height_m)",
+            k + 1,
+            pts[k][2],
+            hook[2]
+        )
+    })?;
+    // One leg hangs plumb: the load tilts until its centre of gravity is
+    // under the point.
+    let max_angle_deg = if pts.len() == 1 { 0.0 } else { max_angle_deg };
     if max_angle_deg > MAX_LEG_ANGLE_DEG + 1e-9 {
         return Err(format!(
             "the sling legs hang up to {max_angle_deg:.1}° from the vertical, more than the {MAX_LEG_ANGLE_DEG:.0}° slings are rated for: give a taller rigging (rigging height_m {rigging_height_m:.2} m) or lift points nearer the centre of gravity"
@@ -519,14 +509,12 @@ fn check_spreader(
                     "a spreader beam hung by top legs (spreader top_leg_wll_t) hangs below the hook block: give spreader below_hook_m above zero".to_string()
                 );
             }
-            // Each top leg's run along the beam from its pin to under the hook.
-            let runs = [hook_m, span_m - hook_m];
-            let lengths = runs.map(|r| r.hypot(h));
-            // Across the beam the legs' pulls balance, up they carry it all:
-            // T1 r1 / l1 = T2 r2 / l2 and h (T1 / l1 + T2 / l2) = total.
-            let per_length = [total_kg * runs[1] / (h * span_m), total_kg * runs[0] / (h * span_m)];
-            let pulls = [per_length[0] * lengths[0], per_length[1] * lengths[1]];
-            let max_angle_deg = runs.map(|r| r.atan2(h).to_degrees()).into_iter().fold(0.0, f64::max);
+            // The two top legs meet at the hook over the beam, as two legs
+            // meet over a load: the same statics.
+            let pins = [[a[0], a[1], pins_z], [b[0], b[1], pins_z]];
+            let hook = [a[0] + dir[0] * hook_m, a[1] + dir[1] * hook_m, pins_z + h];
+            let Legs { up, lengths_m, max_angle_deg } = legs_to(hook, &pins).map_err(|_| outside())?;
+            let pulls = two_legs(&pins, &up, total_kg)?;
             if max_angle_deg > MAX_LEG_ANGLE_DEG + 1e-9 {
                 return Err(format!(
                     "the spreader's top legs hang up to {max_angle_deg:.1}° from the vertical, more than the {MAX_LEG_ANGLE_DEG:.0}° slings are rated for: hang the beam lower (spreader below_hook_m {h:.2} m, within rigging height_m)"
@@ -537,8 +525,9 @@ fn check_spreader(
                 max_leg_kg: pulls[0].max(pulls[1]),
                 max_leg: if pulls[1] > pulls[0] { 2 } else { 1 },
                 leg_wll_kg,
-                leg_lengths_m: lengths.to_vec(),
-                compression_kg: per_length[0] * runs[0],
+                leg_lengths_m: lengths_m,
+                // Their pulls across the beam, equal and opposite.
+                compression_kg: pulls[0] * up[0][0].hypot(up[0][1]),
             })
         }
     };
@@ -560,6 +549,32 @@ fn check_spreader(
             top,
         }),
     })
+}
+
+/// Legs from their points up to a hook ([`legs_to`]).
+struct Legs {
+    /// Each one's unit vector from its point to the hook.
+    up: Vec<[f64; 3]>,
+    lengths_m: Vec<f64>,
+    /// The steepest one's angle from the vertical (degrees).
+    max_angle_deg: f64,
+}
+
+/// The legs from `points` up to `hook`; or which point (from 0) is not
+/// below the hook.
+fn legs_to(hook: [f64; 3], points: &[[f64; 3]]) -> Result<Legs, usize> {
+    let mut legs = Legs { up: Vec::with_capacity(points.len()), lengths_m: Vec::new(), max_angle_deg: 0.0 };
+    for (k, p) in points.iter().enumerate() {
+        let d = [hook[0] - p[0], hook[1] - p[1], hook[2] - p[2]];
+        if !(d[2] > 1e-6) {
+            return Err(k);
+        }
+        let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+        legs.max_angle_deg = legs.max_angle_deg.max(d[0].hypot(d[1]).atan2(d[2]).to_degrees());
+        legs.up.push(d.map(|v| v / len));
+        legs.lengths_m.push(len);
+    }
+    Ok(legs)
 }
 
 fn outside() -> String {
