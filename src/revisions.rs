@@ -66,7 +66,9 @@ pub fn keep(out_dir: &Path, plan_dir: &Path) -> Result<Vec<String>> {
                 .ok()
                 .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
                 .map(|v| v["lifts"][0].clone());
-            if kept_plan.is_some_and(|k| but_for_timings(&k) != but_for_timings(&plan)) {
+            let differs =
+                |k: serde_json::Value| liftplan_plan::but_for_timings(&k) != liftplan_plan::but_for_timings(&plan);
+            if kept_plan.is_some_and(differs) {
                 another.push(format!("{lift} plan {revision}"));
             }
             continue;
@@ -92,19 +94,6 @@ pub fn keep(out_dir: &Path, plan_dir: &Path) -> Result<Vec<String>> {
         );
     }
     Ok(kept)
-}
-
-/// A plan as plan.json carries it, less what its revision leaves out (the
-/// times its planning and validation took,
-/// [`liftplan_plan::revision`]): two plans of one revision are equal so.
-fn but_for_timings(plan: &serde_json::Value) -> serde_json::Value {
-    let mut p = plan.clone();
-    for (section, key) in [("planning", "cspace_ms"), ("planning", "plan_ms"), ("validator", "seconds")] {
-        if let Some(v) = p.get_mut(section).and_then(|s| s.get_mut(key)) {
-            *v = serde_json::Value::from(0.0);
-        }
-    }
-    p
 }
 
 /// Keeps each lift's PDF in the docs stage's output folder `docs_dir`,

@@ -1020,6 +1020,20 @@ pub fn revision(plan: &LiftPlan, task: &LiftTask) -> String {
     h.finalize().to_hex()[..8].to_string()
 }
 
+/// A plan as plan.json carries it, less what its [`revision`] leaves out
+/// (the times its C-space, search and validation took): two plans of one
+/// revision are equal so, but for a collision of the hash. The JSON twin
+/// of what [`revision`] clears, beside it so that the two stay alike.
+pub fn but_for_timings(plan: &serde_json::Value) -> serde_json::Value {
+    let mut p = plan.clone();
+    for (section, key) in [("planning", "cspace_ms"), ("planning", "plan_ms"), ("validator", "seconds")] {
+        if let Some(v) = p.get_mut(section).and_then(|s| s.get_mut(key)) {
+            *v = serde_json::Value::from(0.0);
+        }
+    }
+    p
+}
+
 /// The power lines there during `task`, as boxes round their conductors
 /// grown so far that a part the validator passes keeps the approach
 /// distance off the conductor even in the lift-off and set-down, where what

@@ -363,9 +363,18 @@ fn a_plans_revision_names_its_moves_and_crane_not_its_timings() {
     slower.validator.seconds += 1.5;
     slower.summary.revision = r.clone();
     assert_eq!(liftplan_plan::revision(&slower, &t), r);
+    // Its JSON twin, which keeping by revision compares plans by, leaves
+    // out the same times and nothing more.
+    let json = |p: &liftplan_plan::LiftPlan| {
+        let mut p = p.clone();
+        p.summary.revision = r.clone();
+        liftplan_plan::but_for_timings(&serde_json::to_value(&p).unwrap())
+    };
+    assert_eq!(json(&slower), json(&plan));
     let mut other = plan.clone();
     other.moves[1].to.hoist_m += 0.001;
     assert_ne!(liftplan_plan::revision(&other, &t), r, "a move 1 mm longer");
+    assert_ne!(json(&other), json(&plan), "a move 1 mm longer");
     let mut other = plan.clone();
     other.steps[2].text.push('.');
     assert_ne!(liftplan_plan::revision(&other, &t), r, "a step's words");
