@@ -1208,6 +1208,10 @@ pub fn run(
     let scanned_loads: Vec<Obb> =
         exclusions.iter().zip(&taken_for_loads).filter(|(_, t)| !t.is_empty()).map(|(b, _)| *b).collect();
     std::fs::create_dir_all(out_dir).map_err(|e| PlanError::Input(Location::file(out_dir), e.to_string()))?;
+    // Each line in words with what the scans and the model show of its
+    // supports: the same for every lift it is there during.
+    let power_lines_said: Vec<String> =
+        power_lines.iter().map(|l| format!("{}{}", l.said(), supports_said(l, &world))).collect();
     let mut plans = Vec::new();
     for (k, (task, taken)) in tasks.iter().zip(&taken_for_loads).enumerate() {
         // The other lifts' loads where they stand during this one, in the
@@ -1258,8 +1262,9 @@ pub fn run(
         plan.summary.obstacles = obstacles.iter().filter(|o| o.during(&task.id)).map(|o| o.said()).collect();
         plan.summary.power_lines = power_lines
             .iter()
-            .filter(|l| l.during(&task.id))
-            .map(|l| format!("{}{}", l.said(), supports_said(l, &world)))
+            .zip(&power_lines_said)
+            .filter(|(l, _)| l.during(&task.id))
+            .map(|(_, said)| said.clone())
             .collect();
         plan.summary.load_as_scanned = as_scanned;
         plan.summary.against_model = against_model[k].clone();
