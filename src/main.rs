@@ -540,7 +540,8 @@ fn real_main() -> Result<ExitCode> {
             } else {
                 Vec::new()
             };
-            let left = revisions::list(&out)?;
+            // What is left, read again only where files went.
+            let left = if removed.is_empty() { kept } else { revisions::list(&out)? };
             if json {
                 let listed: Vec<serde_json::Value> = left
                     .iter()
