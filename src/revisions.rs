@@ -217,9 +217,11 @@ pub fn list(out_dir: &Path) -> Result<Vec<Kept>> {
                 pdf_bytes: None,
                 bytes: 0,
             };
-            let [pdf, steps, plan] = one.files(out_dir);
+            // The plan file's size is in the metadata read above.
+            let [pdf, steps, _] = one.files(out_dir);
             one.pdf_bytes = size(&pdf);
-            one.bytes = [pdf, steps, plan].iter().filter_map(|p| size(p)).sum();
+            let plan_bytes = if meta.is_file() { meta.len() } else { 0 };
+            one.bytes = plan_bytes + one.pdf_bytes.unwrap_or(0) + size(&steps).unwrap_or(0);
             kept.push(one);
         }
     }
