@@ -984,16 +984,23 @@ fn planned_with(dir: &std::path::Path, toml: &str) -> (String, String) {
     (cover_text(&doc), doc.extract_text(&pages).unwrap().replace('\n', " "))
 }
 
-/// The text of a PDF's cover on one line, with the site overview's page
-/// where the cover had no room for it.
+/// The text of a PDF's cover on one line, with the pages its summary and
+/// its site overview ran on to where the cover had no room for them.
 fn cover_text(doc: &lopdf::Document) -> String {
     let pages: Vec<u32> = doc.get_pages().keys().copied().collect();
     let one_line = |p: &[u32]| doc.extract_text(p).unwrap().replace('\n', " ");
-    let cover = one_line(&pages[..1]);
-    match pages.get(1).map(|&p| one_line(&[p])) {
-        Some(next) if next.contains("Site overview (continued from the cover)") => format!("{cover} {next}"),
-        _ => cover,
+    let mut cover = one_line(&pages[..1]);
+    // The summary's rows and the overview may run on to the next pages.
+    for &p in &pages[1..] {
+        let next = one_line(&[p]);
+        if !(next.contains("Summary (continued from the cover)")
+            || next.contains("Site overview (continued from the cover)"))
+        {
+            break;
+        }
+        cover = format!("{cover} {next}");
     }
+    cover
 }
 
 /// Writes `toml` as the demo project's file in `dir` and runs the project,

@@ -127,6 +127,49 @@ fn key_values(d: &mut Doc, x: f32, mut y: f32, rows: &[(&str, String)], key_w: f
     y
 }
 
+/// The cover's verdict box at `y`: the verdict, then `rows`; as many rows as
+/// fit above the footer, the rest in a box of its own at the top of the
+/// next page, under "Summary (continued from the cover)" (a lift with many
+/// things to check first ran off the foot of the cover). Where the next
+/// goes.
+fn summary_box(d: &mut Doc, mut y: f32, rows: &[(&str, String)], (verdict, ok): (&str, bool)) -> f32 {
+    let (key_x, key_w) = (19.0, 34.0);
+    let w = d.size.w - 30.0;
+    let (fill, edge) = if ok { ([232, 245, 233], [46, 125, 50]) } else { ([251, 233, 231], [198, 40, 40]) };
+    let foot = d.size.h - crate::pdf::FOOTER_FROM_FOOT_MM - 6.0;
+    let mut rest = rows;
+    let mut first = true;
+    loop {
+        // The rows start under the verdict on the cover, at the box's top after.
+        let top = if first { 14.0 } else { 7.0 };
+        let mut fit = 0;
+        let mut rows_h = 0.0;
+        while fit < rest.len() {
+            let h = key_values_height(d, key_x, &rest[fit..fit + 1], key_w);
+            if fit > 0 && y + top + rows_h + h + 2.0 > foot {
+                break;
+            }
+            rows_h += h;
+            fit += 1;
+        }
+        let box_h = top + rows_h + 2.0;
+        d.fill_rect(15.0, y, w, box_h, fill);
+        d.frame(15.0, y, w, box_h, 1.0, edge);
+        if first {
+            d.text(19.0, y + 7.0, verdict, 11.0, true, if ok { [27, 94, 32] } else { [183, 28, 28] });
+        }
+        key_values(d, key_x, y + top, &rest[..fit], key_w);
+        y += box_h + 6.0;
+        rest = &rest[fit..];
+        if rest.is_empty() {
+            return y;
+        }
+        d.new_page();
+        y = heading(d, 20.0, "Summary (continued from the cover)");
+        first = false;
+    }
+}
+
 /// A step's clearance for the steps table: "none near" where nothing lay
 /// within the validator's search.
 fn clearance_cell(m: f64) -> String {
@@ -689,20 +732,17 @@ pub fn document(
     };
     let checks = checks_before_signing(inp, task, plan, &wind, warned_read.as_deref());
     if !checks.is_empty() {
-        rows.push(("CHECK FIRST", format!("{} (sign-off page)", checks.join("; "))));
+        // Under the lift's name, before the figures: on the cover however
+        // many rows run on to the next page.
+        let under_the_lift = rows.iter().position(|(k, _)| *k == "Lift").map_or(0, |k| k + 1);
+        rows.insert(under_the_lift, ("CHECK FIRST", format!("{} (sign-off page)", checks.join("; "))));
     }
-    let (key_x, key_w) = (19.0, 34.0);
-    let box_h = 16.0 + key_values_height(&d, key_x, &rows, key_w);
-    d.fill_rect(15.0, y, w, box_h, if ok { [232, 245, 233] } else { [251, 233, 231] });
-    d.frame(15.0, y, w, box_h, 1.0, if ok { [46, 125, 50] } else { [198, 40, 40] });
     let verdict = if ok {
         format!("VALIDATED — independent check of {} samples found no problem", plan.validator.samples)
     } else {
         "REJECTED — do not lift".to_string()
     };
-    d.text(19.0, y + 7.0, &verdict, 11.0, true, if ok { [27, 94, 32] } else { [183, 28, 28] });
-    key_values(&mut d, key_x, y + 14.0, &rows, key_w);
-    y += box_h + 6.0;
+    y = summary_box(&mut d, y, &rows, (&verdict, ok));
     // The other lifts' loads where they stand during this one, as the plan
     // stage checked against them (lifts are made in the order listed), and
     // the obstacles placed by hand that stand there during it.
@@ -1458,6 +1498,30 @@ mod tests {
             footer(A4.w, "demo", "V-101", "3f9a2c1b", "2026-12-03"),
             format!("liftplan {} — demo — lift V-101, plan 3f9a2c1b — issued 2026-12-03", env!("CARGO_PKG_VERSION"))
         );
+    }
+
+    /// More summary rows than the cover holds under its heading: the rest
+    /// in a box of their own on the next page, every row drawn once, none
+    /// below the footer (which the drawing asserts in a debug build).
+    #[test]
+    fn summary_rows_past_the_cover_go_on_the_next_page() {
+        let mut d = Doc::new("t", A4).unwrap();
+        d.new_page();
+        let long = "a row that wraps onto a second and a third line of the summary box, as a lift's wind, its slings or the things to check first before signing do ".repeat(2);
+        let rows: Vec<(&str, String)> = (0..30).map(|k| ("Row", format!("row {k:02}: {long}"))).collect();
+        let y = summary_box(&mut d, 40.0, &rows, ("VALIDATED", true));
+        assert!(d.text.len() >= 2 && d.text[1].starts_with("Summary (continued from the cover)"), "{:?}", d.text);
+        assert!(d.text[0].contains("VALIDATED") && !d.text[1].contains("VALIDATED"));
+        let all: String = d.text.concat();
+        for k in 0..30 {
+            assert_eq!(all.matches(&format!("row {k:02}:")).count(), 1, "row {k}");
+        }
+        assert!(y < A4.h - crate::pdf::FOOTER_FROM_FOOT_MM, "{y}");
+        // Rows that fit stay on the cover.
+        let mut d = Doc::new("t", A4).unwrap();
+        d.new_page();
+        summary_box(&mut d, 40.0, &rows[..3], ("VALIDATED", true));
+        assert_eq!(d.text.len(), 1);
     }
 
     /// Sign-off paragraphs that do not fit go on to a further page, none
