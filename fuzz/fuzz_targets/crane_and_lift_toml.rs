@@ -12,8 +12,10 @@ fuzz_target!(|data: &[u8]| {
         && let Some(slings) = &task.slings
     {
         let l = &task.load;
-        let _ = liftplan_core::slings::check(slings, task.load_mass_kg, l.size_m, l.cog_m, l.rigging_height_m)
-            .map(|c| (c.said(), c.over_limit()));
+        let tol = task.cog_tolerance_m;
+        let _ =
+            liftplan_core::slings::check_within(slings, task.load_mass_kg, l.size_m, l.cog_m, tol, l.rigging_height_m)
+                .map(|c| (c.said(), c.over_limit()));
     }
     let _ = liftplan_scans::parse_stations(std::path::Path::new("stations.toml"), text);
 });

@@ -21,6 +21,17 @@ pub struct LoadSpec {
     /// Centre of gravity relative to the box centre.
     #[serde(default)]
     pub cog_m: [f64; 3],
+    /// How far the centre of gravity may lie from `cog_m` along the load's
+    /// x and y (m): where it is known only so well (a vendor's drawing, a
+    /// load of unknown contents), the legs are checked for the worst within
+    /// it ([`crate::slings::check_within`]) and so is the load's balance on
+    /// what it is set on.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub cog_tolerance_m: f64,
+}
+
+fn is_zero(v: &f64) -> bool {
+    *v == 0.0
 }
 
 fn default_load_name() -> String {
@@ -413,6 +424,8 @@ pub struct LiftTask {
     pub chart_config: String,
     pub load_name: String,
     pub load: LoadShape,
+    /// [`LoadSpec::cog_tolerance_m`] (m, along the load's x and y).
+    pub cog_tolerance_m: f64,
     pub load_mass_kg: f64,
     pub rigging_mass_kg: f64,
     /// The sling legs to check, where the lift gives their working load
@@ -460,7 +473,7 @@ pub struct LiftTask {
     /// from the crane, per metre it hangs below the boom head's sheave
     /// ([`crate::wind::PermissibleWind::gust_swing_per_m`]): the planner and
     /// the validator keep the clearance with the hanging parts swung so
-    /// ([`Self::gust_swept`]). 0 where the lift is not planned for the wind;
+    /// ([`Self::hanging_swept`]). 0 where the lift is not planned for the wind;
     /// set by [`Self::plan_for_wind`].
     pub gust_swing_per_m: f64,
 }
@@ -609,31 +622,45 @@ impl LiftTask {
         self.wind.is_some_and(|w| w.plan_for_swing) && self.gust_swing_per_m <= 0.0
     }
 
-    /// A hanging part's box `b` at a configuration whose sheave is at height
-    /// `sheave_z`, grown in plan by how far a sudden gust at the permissible
-    /// wind can swing it: [`Self::gust_swing_per_m`] times how far its
-    /// underside hangs below the sheave, on every side (the wind's direction
-    /// is not known). A swinging load rises, never falls, so its underside
-    /// stays. `b` itself where the lift is not planned for the wind. For
-    /// upright boxes, as every hanging part's is.
-    pub fn gust_swept(&self, b: &crate::obb::Obb, sheave_z: f64) -> crate::obb::Obb {
-        if self.gust_swing_per_m <= 0.0 {
+    /// A hanging part's box `b` (a `kind` that hangs) at a configuration
+    /// whose sheave is at height `sheave_z`, grown in plan by how far it may
+    /// hang off where the crane holds it: by how far a sudden gust at the
+    /// permissible wind can swing it, [`Self::gust_swing_per_m`] times how
+    /// far its underside hangs below the sheave, on every side (the wind's
+    /// direction is not known; a swinging load rises, never falls, so its
+    /// underside stays); and, for the load and its rigging, by the centre
+    /// of gravity's tolerance ([`Self::cog_tolerance_m`]) along the load's
+    /// x and y: the hook hangs over the centre of gravity wherever it is,
+    /// so the load hangs off by as much as it lies off where the lift gives
+    /// it (the rigging's box, over the load's footprint, with it). `b`
+    /// itself where neither applies. For upright boxes, as every hanging
+    /// part's is, turned as the load is: then the growth is exact.
+    pub fn hanging_swept(&self, kind: PartKind, b: &crate::obb::Obb, sheave_z: f64) -> crate::obb::Obb {
+        let cog_m = if matches!(kind, PartKind::Load | PartKind::Rigging) { self.cog_tolerance_m } else { 0.0 };
+        if self.gust_swing_per_m <= 0.0 && cog_m <= 0.0 {
             return *b;
         }
         let below_m = (sheave_z - b.aabb().min[2]).max(0.0);
-        b.expanded_by_motion(self.gust_swing_per_m * below_m, 0.0)
+        b.expanded_by_motion(self.gust_swing_per_m * below_m + cog_m, 0.0)
     }
 
-    /// The crane's parts at `c` ([`CraneSetup::pose`]), what hangs swung by
-    /// a gust ([`Self::gust_swept`]) where `gusts` (not in a lift-off or
-    /// set-down, held at the support) and the lift is planned for the wind.
-    pub fn pose_in_gusts(&self, c: &Config, gusts: bool) -> crate::crane::CranePose {
+    /// Whether what hangs may hang off where the crane holds it
+    /// ([`Self::hanging_swept`]): planned for the wind, or a centre of
+    /// gravity known only to a tolerance.
+    pub fn hangs_swept(&self) -> bool {
+        self.gust_swing_per_m > 0.0 || self.cog_tolerance_m > 0.0
+    }
+
+    /// The crane's parts at `c` ([`CraneSetup::pose`]), what hangs grown by
+    /// how far it may hang off ([`Self::hanging_swept`]) where `free` (not
+    /// in a lift-off or set-down, where the crew holds it at its support).
+    pub fn pose_hanging_swept(&self, c: &Config, free: bool) -> crate::crane::CranePose {
         let mut pose = self.crane.pose(c, &self.load);
-        if gusts && self.gust_swing_per_m > 0.0 {
+        if free && self.hangs_swept() {
             let sheave_z = self.crane.sheave(c).z;
             for (kind, b) in pose.parts.iter_mut() {
                 if kind.dependence() == Dependence::Full {
-                    *b = self.gust_swept(b, sheave_z);
+                    *b = self.hanging_swept(*kind, b, sheave_z);
                 }
             }
         }
@@ -643,10 +670,9 @@ impl LiftTask {
     /// The first of the lift's `not_over` areas something comes within
     /// `within_m` of at `c`, and what: what hangs from the crane (the load's
     /// footprint, the plan outline of its box, which its rigging's is too;
-    /// the hook block's; the hoist rope's; each swung as far as a gust can
-    /// swing it where `gusts` and the lift is planned for the wind,
-    /// [`Self::gust_swept`]: not in a lift-off or set-down, nor resting at
-    /// the pick or set), within `within_m` and its fall zone
+    /// the hook block's; the hoist rope's; each grown by how far it may hang
+    /// off where `free`, [`Self::hanging_swept`]: not in a lift-off or
+    /// set-down, nor resting at the pick or set), within `within_m` and its fall zone
     /// ([`Self::fall_zone_m`]: what falls from it lands there), against
     /// every area; then,
     /// against the areas the crane may not be over either (`crane_too`),
@@ -654,7 +680,7 @@ impl LiftTask {
     /// the order of [`CraneSetup::part_kinds`]. The carrier, its outriggers
     /// and a tower's mast stand where the lift file puts them; they are not
     /// looked at.
-    pub fn not_over_near(&self, c: &Config, within_m: f64, gusts: bool) -> Option<(PartKind, &NotOver)> {
+    pub fn not_over_near(&self, c: &Config, within_m: f64, free: bool) -> Option<(PartKind, &NotOver)> {
         if self.not_over.is_empty() {
             return None;
         }
@@ -678,10 +704,10 @@ impl LiftTask {
             })
         };
         const HANGING: [PartKind; 3] = [PartKind::Load, PartKind::HookBlock, PartKind::Rope];
-        let sheave_z = if gusts && self.gust_swing_per_m > 0.0 { Some(self.crane.sheave(c).z) } else { None };
+        let sheave_z = if free && self.hangs_swept() { Some(self.crane.sheave(c).z) } else { None };
         let hanging = HANGING.iter().find_map(|&kind| {
             let part = self.crane.part(kind, c, &self.load)?;
-            let part = sheave_z.map_or(part, |z| self.gust_swept(&part, z));
+            let part = sheave_z.map_or(part, |z| self.hanging_swept(kind, &part, z));
             near(&part, false, within_m + self.fall_zone_m).map(|a| (kind, a))
         });
         // Areas out of the crane's reach are passed by before its parts are
@@ -793,6 +819,17 @@ impl LiftSpec {
         for (i, c) in self.load.cog_m.iter().enumerate() {
             if !(c.abs() <= self.load.size_m[i] / 2.0) {
                 return Err(format!("lift '{id}': load.cog_m[{i}] = {c} lies outside the load box"));
+            }
+        }
+        nonneg("load.cog_tolerance_m", self.load.cog_tolerance_m)?;
+        for (i, c) in self.load.cog_m[..2].iter().enumerate() {
+            let tol = self.load.cog_tolerance_m;
+            if !(c.abs() + tol <= self.load.size_m[i] / 2.0) {
+                return Err(format!(
+                    "lift '{id}': load.cog_m[{i}] = {c} give or take load.cog_tolerance_m = {tol} m reaches outside the load box ({} m along its {}): a centre of gravity lies within the load",
+                    self.load.size_m[i],
+                    ["x", "y"][i]
+                ));
             }
         }
         nonneg("rigging.mass_t", self.rigging.mass_t)?;
@@ -1136,6 +1173,7 @@ impl LiftSpec {
             chart_config: self.crane.chart_config.clone(),
             load_name: self.load.name.clone(),
             load,
+            cog_tolerance_m: self.load.cog_tolerance_m,
             load_mass_kg: self.load.mass_t * KG_PER_TONNE,
             rigging_mass_kg: self.rigging.mass_t * KG_PER_TONNE,
             slings,
@@ -1790,6 +1828,71 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         assert!(s.resolve(crane()).is_ok());
     }
 
+    /// A centre of gravity known to 0.4 m: the load and its rigging hang
+    /// grown by that along the load's x and y wherever they hang free (the
+    /// hook over the centre of gravity wherever it lies), the hook block and
+    /// the rope not; on top of a gust's swing where there is one.
+    #[test]
+    fn what_hangs_is_grown_by_the_centre_of_gravitys_tolerance() {
+        let mut sp = spec();
+        sp.load.cog_tolerance_m = 0.4;
+        let t = sp.resolve(crate::crane::builtin("ltm-1100").unwrap()).unwrap();
+        assert!(t.hangs_swept());
+        let c = t.start();
+        let held = t.crane.pose(&c, &t.load);
+        let free = t.pose_hanging_swept(&c, true);
+        for (kind, b) in &held.parts {
+            let grown = free.get(*kind).unwrap();
+            let by = if matches!(kind, PartKind::Load | PartKind::Rigging) { 0.4 } else { 0.0 };
+            assert!(
+                (grown.half.x - b.half.x - by).abs() < 1e-12
+                    && (grown.half.y - b.half.y - by).abs() < 1e-12
+                    && (grown.half.z, grown.center, grown.axes) == (b.half.z, b.center, b.axes),
+                "{kind:?}"
+            );
+        }
+        // Held at its support in a lift-off or set-down: as it is.
+        assert_eq!(t.pose_hanging_swept(&c, false).parts, held.parts);
+        // With a gust's swing too: both.
+        let mut windy = t.clone();
+        windy.gust_swing_per_m = 0.02;
+        let (load, sheave_z) = (windy.crane.load_obb(&c, &windy.load), windy.crane.sheave(&c).z);
+        let swing_m = 0.02 * (sheave_z - windy.crane.load_bottom_z(&c, &windy.load));
+        let grown = windy.hanging_swept(PartKind::Load, &load, sheave_z);
+        assert!((grown.half.x - load.half.x - swing_m - 0.4).abs() < 1e-12);
+    }
+
+    /// A centre of gravity's tolerance is a length, and with it the centre
+    /// of gravity stays within the load's box in plan.
+    #[test]
+    fn a_centre_of_gravitys_tolerance_stays_within_the_load() {
+        let crane = || crate::crane::builtin("ltm-1100").unwrap();
+        let with = |cog_m: [f64; 3], tol: f64| {
+            let mut s = spec();
+            (s.load.cog_m, s.load.cog_tolerance_m) = (cog_m, tol);
+            s.resolve(crane())
+        };
+        assert_eq!(with([0.0; 3], 0.0).unwrap().cog_tolerance_m, 0.0);
+        assert_eq!(with([2.5, 0.0, 0.0], 0.5).unwrap().cog_tolerance_m, 0.5);
+        let e = with([2.5, 0.0, 0.0], 0.6).unwrap_err();
+        assert!(
+            e.contains("load.cog_m[0] = 2.5 give or take load.cog_tolerance_m = 0.6 m reaches outside the load box (6 m along its x)"),
+            "{e}"
+        );
+        let e = with([0.0, 1.0, 0.0], 0.6).unwrap_err();
+        assert!(e.contains("load.cog_m[1] = 1 give or take"), "{e}");
+        assert!(
+            with([0.0; 3], -0.1).unwrap_err().contains("load.cog_tolerance_m must be zero or positive, found -0.1")
+        );
+        assert!(with([0.0; 3], f64::NAN).unwrap_err().contains("load.cog_tolerance_m must be zero or positive"));
+        // Read from the lift's file.
+        let s: LiftSpec = toml::from_str(
+            &SPEC.replace("size_m = [6.0, 3.0, 3.0] }", "size_m = [6.0, 3.0, 3.0], cog_tolerance_m = 0.2 }"),
+        )
+        .unwrap();
+        assert_eq!(s.resolve(crane()).unwrap().cog_tolerance_m, 0.2);
+    }
+
     /// One boom (40 m), rows every 2 m from 4 to 60 m: (100 - r) t, each
     /// cell named `r<radius>`.
     fn chart_every_2_m() -> crate::capacity::ChartConfig {
@@ -1974,7 +2077,7 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         assert!((t.gust_swing_per_m - 0.0147).abs() < 1e-4 && !t.wind_swing_unknown());
         let c = t.start();
         let (load, sheave_z) = (t.crane.load_obb(&c, &t.load), t.crane.sheave(&c).z);
-        let swung = t.gust_swept(&load, sheave_z);
+        let swung = t.hanging_swept(PartKind::Load, &load, sheave_z);
         let below_m = sheave_z - t.crane.load_bottom_z(&c, &t.load);
         let swing_m = t.gust_swing_per_m * below_m;
         assert!(swing_m > 0.3, "{swing_m}");
@@ -2001,7 +2104,7 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         let mut off = sp.clone();
         off.wind = Some(crate::wind::WindSpec { plan_for_swing: false, ..sp.wind.unwrap() });
         let t = off.resolve(crane()).unwrap();
-        assert_eq!((t.gust_swing_per_m, t.gust_swept(&load, sheave_z)), (0.0, load));
+        assert_eq!((t.gust_swing_per_m, t.hanging_swept(PartKind::Load, &load, sheave_z)), (0.0, load));
         assert!(!t.wind_swing_unknown());
         // The chart's speed from its sheet: not known until it is given.
         let mut sheet = sp.clone();

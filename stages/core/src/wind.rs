@@ -36,7 +36,7 @@
 //! arrives suddenly can swing it up to twice as far (a pendulum given a
 //! sudden steady push, [`PermissibleWind::gust_swing_per_m`]), which the
 //! plan keeps its clearance with unless the lift turns that off
-//! ([`crate::lift::LiftTask::gust_swept`]).
+//! ([`crate::lift::LiftTask::hanging_swept`]).
 //! At the permissible speed of a load that catches more wind than the
 //! chart holds for, `tan θ` is the same for every load: the reduction keeps
 //! `v² A_W / m_H` at the chart's.

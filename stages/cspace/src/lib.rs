@@ -291,7 +291,14 @@ impl CSpace {
                 None => Some(f64::INFINITY),
             });
             cs.row_min_hoist.push(
-                min_hoist_for_internal_clearance(crane, &task.load, b.max(a), task.gust_swing_per_m).max(lim.hoist_m.0),
+                min_hoist_for_internal_clearance(
+                    crane,
+                    &task.load,
+                    b.max(a),
+                    task.gust_swing_per_m,
+                    task.cog_tolerance_m,
+                )
+                .max(lim.hoist_m.0),
             );
         }
         cs.timings.rows_ms = ms_since(t0);
@@ -424,12 +431,13 @@ impl CSpace {
 
     /// How much wider the envelope's square must be for what hangs on up to
     /// `rope_m` of rope, anywhere in a cell whose sheave moves up to
-    /// `motion` (m), swung by a gust ([`LiftTask::gust_swept`]): the
-    /// checker grows each hanging box by the swing on every side, whose
-    /// corners then reach √2 times as far at a yaw of 45°. 0 where the
-    /// lift is not planned for the wind.
+    /// `motion` (m), hanging off as far as it may ([`LiftTask::hanging_swept`]:
+    /// swung by a gust, off by the centre of gravity's tolerance): the
+    /// checker grows each hanging box by that on every side, whose corners
+    /// then reach √2 times as far at a yaw of 45°. 0 where neither applies.
     fn gust_reach_m(task: &LiftTask, rope_m: f64, motion: f64) -> f64 {
-        std::f64::consts::SQRT_2 * task.gust_swing_per_m * (rope_m + Self::hang_below_rope(task) + 2.0 * motion)
+        std::f64::consts::SQRT_2
+            * (task.gust_swing_per_m * (rope_m + Self::hang_below_rope(task) + 2.0 * motion) + task.cog_tolerance_m)
     }
 
     /// The longest clear rope of every cell (see [`CSpace::cell_max_hoist`]),
@@ -714,16 +722,19 @@ pub fn highest_interval_below(map: &Mdm, xa: f64, xb: f64, ya: f64, yb: f64, z_m
 /// gravity) and nothing for the top corners of the rigging (a prism on the
 /// load's footprint up to the hook block), each with [`INTERNAL_MARGIN_M`]
 /// to spare. Swung by a gust (`gust_swing_per_m`,
-/// [`LiftTask::gust_swept`]), each box is wider by the swing at its
+/// [`LiftTask::hanging_swept`]), each box is wider by the swing at its
 /// underside on every side, so its corners reach √2 times that farther: the
 /// load's sphere grows by that, the rigging's corners come that much closer
-/// to the crane. A tower crane's jib is level above the hook: the rope
-/// limits suffice.
+/// to the crane; so they do by √2 times the centre of gravity's tolerance
+/// (`cog_tolerance_m`), by which the checker grows the load and its rigging
+/// as well. A tower crane's jib is level above the hook: the rope limits
+/// suffice.
 pub fn min_hoist_for_internal_clearance(
     crane: &CraneSetup,
     load: &LoadShape,
     luff_max: f64,
     gust_swing_per_m: f64,
+    cog_tolerance_m: f64,
 ) -> f64 {
     match &crane.model.kind {
         liftplan_core::crane::CraneKind::Luffing(l) => {
@@ -739,15 +750,18 @@ pub fn min_hoist_for_internal_clearance(
                 return f64::INFINITY;
             }
             let off_line = load.cog_m[0].hypot(load.cog_m[1]);
-            let centre = (load.bounding_radius() + half_depth + off_line * sin + widen * load.size_m[2] / 2.0)
-                / centre_den
-                - hook
-                - load.rigging_height_m
-                - load.size_m[2] / 2.0;
+            let off_cog = std::f64::consts::SQRT_2 * cog_tolerance_m;
+            let centre =
+                (load.bounding_radius() + off_cog + half_depth + off_line * sin + widen * load.size_m[2] / 2.0)
+                    / centre_den
+                    - hook
+                    - load.rigging_height_m
+                    - load.size_m[2] / 2.0;
             // The rigging's top corners, `h = hoist + hook` down:
             // h·cos - (r + widen·(h + rigging))·sin ≥ half the boom.
-            let rigging =
-                (half_depth + (load.yaw_invariant_radius() + widen * load.rigging_height_m) * sin) / rigging_den - hook;
+            let rigging = (half_depth + (load.yaw_invariant_radius() + off_cog + widen * load.rigging_height_m) * sin)
+                / rigging_den
+                - hook;
             centre.max(rigging)
         }
         liftplan_core::crane::CraneKind::Tower(_) => f64::NEG_INFINITY,
@@ -1013,7 +1027,7 @@ impl<'a> Checker<'a> {
         let sheave_z = self.task.crane.sheave(c).z + sweep.vertical_m;
         for (queried, (kind, b)) in (1..).zip(parts) {
             let grown = b.expanded(clearance).expanded_by_motion(sweep.horizontal_m, sweep.vertical_m);
-            let grown = self.task.gust_swept(&grown, sheave_z);
+            let grown = self.task.hanging_swept(kind, &grown, sheave_z);
             if let Some(h) = self.map.hit(&grown) {
                 self.count_n(true, queried);
                 return Err(self.blocked(TOO_CLOSE, Some(kind), Some(h.interval.obj), c));
@@ -1026,7 +1040,7 @@ impl<'a> Checker<'a> {
         let o = self.task.crane.slew_center();
         for (kind, b) in parts.iter().filter(|(k, _)| matches!(k, PartKind::Load | PartKind::Rigging)) {
             let grown = b.expanded(INTERNAL_MARGIN_M).expanded_by_motion(sweep.horizontal_m, sweep.vertical_m);
-            let grown = self.task.gust_swept(&grown, sheave_z);
+            let grown = self.task.hanging_swept(*kind, &grown, sheave_z);
             // Most of the time the load is far out: nothing of the crane there.
             let plan_radius = grown.half.x.hypot(grown.half.y);
             if (grown.center.x - o.x).hypot(grown.center.y - o.y) - plan_radius > self.cs.own_reach_m {

@@ -362,15 +362,25 @@ fn gust_swing_past_clearance_m(
     w.off_plumb_m().map(|x| 2.0 * x).filter(|swing| *swing > task.clearance_m)
 }
 
-/// How the plan keeps its clearance in the wind, for the PDF: with what
-/// hangs swung as far as a gust can swing it, where it was planned so.
-fn gust_swing_said(plan: &LiftPlan) -> Option<String> {
-    (plan.gust_swing_per_m > 0.0).then(|| {
+/// How the plan keeps its clearance with what hangs off where the crane
+/// holds it, for the PDF: swung as far as a gust can swing it, where it was
+/// planned so; off by its centre of gravity's tolerance, where the lift
+/// gives one (`LiftTask::hanging_swept`).
+fn hanging_swept_said(task: &LiftTask, plan: &LiftPlan) -> Option<String> {
+    let gust = (plan.gust_swing_per_m > 0.0).then(|| {
         format!(
-            "the rope, hook and load measured swung sideways as far as a sudden gust at the permissible wind can swing them, {:.1} cm per metre they hang below the boom head (wind plan_for_swing), but in the lift-off and set-down",
+            "the rope, hook and load measured swung sideways as far as a sudden gust at the permissible wind can swing them, {:.1} cm per metre they hang below the boom head (wind plan_for_swing)",
             100.0 * plan.gust_swing_per_m
         )
-    })
+    });
+    let cog = (task.cog_tolerance_m > 0.0).then(|| {
+        format!(
+            "the load and rigging {:.2} m off along its x and y, where its centre of gravity may lie (load cog_tolerance_m)",
+            task.cog_tolerance_m
+        )
+    });
+    let said: Vec<String> = gust.into_iter().chain(cog).collect();
+    (!said.is_empty()).then(|| format!("{}, but in the lift-off and set-down", said.join(", and ")))
 }
 
 /// What reading the lift's chart configuration warned of, where it did.
@@ -573,12 +583,20 @@ pub fn document(
             (
                 "Load",
                 format!(
-                    "{} — {:.2} t, {:.1} × {:.1} × {:.1} m",
+                    "{} — {:.2} t, {:.1} × {:.1} × {:.1} m, centre of gravity ({:.2}, {:.2}, {:.2}) m from the box's centre{}",
                     task.load_name,
                     task.load_mass_kg / 1000.0,
                     task.load.size_m[0],
                     task.load.size_m[1],
-                    task.load.size_m[2]
+                    task.load.size_m[2],
+                    task.load.cog_m[0],
+                    task.load.cog_m[1],
+                    task.load.cog_m[2],
+                    if task.cog_tolerance_m > 0.0 {
+                        format!(" ± {:.2} m along x and y (cog_tolerance_m)", task.cog_tolerance_m)
+                    } else {
+                        String::new()
+                    }
                 ),
             ),
             ("Gross load", format!("{:.2} t (load + rigging + hook block + deductions)", task.gross_kg() / 1000.0)),
@@ -635,7 +653,7 @@ pub fn document(
                     sm.min_clearance_what,
                     plan.clearance_m,
                     plan.landing_clearance_m,
-                    gust_swing_said(plan).map(|s| format!("; {s}")).unwrap_or_default()
+                    hanging_swept_said(task, plan).map(|s| format!("; {s}")).unwrap_or_default()
                 )
             } else if task.resumes() && sm.steps <= 1 {
                 "no step before the set-down (the load hangs above its set position)".to_string()
@@ -783,6 +801,9 @@ pub fn document(
             Some(m2) if plan.gust_swing_per_m > 0.0 => {
                 format!(", the ground under it, as far as a gust may swing it,{fall_zone} in pink ({m2:.0} m²)")
             }
+            Some(m2) if task.cog_tolerance_m > 0.0 => format!(
+                ", the ground under it, as far off as its centre of gravity's tolerance lets it hang,{fall_zone} in pink ({m2:.0} m²)"
+            ),
             Some(m2) => format!(", the ground under it{fall_zone} in pink ({m2:.0} m²)"),
             None => String::new(),
         },
@@ -1071,7 +1092,7 @@ pub fn document(
         15.0,
         y,
         w,
-        &format!("{ends}Capacity is the chart value (before the reduction) at the largest radius of the step{allowance}; utilisation is the gross load over the reduced capacity; clearance is a distance that no crane part, rope, hook or load comes closer than to {against} at any moment of the step{swung}, between the validator's samples too: the smallest distance measured at samples no more than [plan] validator_sample_m of movement apart (0.05 m by default), less what the motion between two samples leaves room for (at most half that spacing), so the closest approach may be up to that much more than shown, never less. Wherever the motion between samples could take a part closer than its required clearance, the validator samples more finely, down to 2 mm of movement, so the required clearance holds along the whole motion, not only at the samples, to within 2 mm. Swing and load rotation angles are counter-clockwise positive seen from above. Swing is measured from {heading}, load yaw from the site's +X axis; each step's page also gives the {arm}'s grid bearing (clockwise from the site's north, +Y, as the overview is drawn).{pads}", heading = words.heading, arm = words.arm, pads = if plan.summary.highest_pad.is_some() { " Each step's page gives the most an outrigger pad carries during the step, an estimate from the crane file's masses: the weight of crane and load shared among the four pads as by a rigid frame (a quarter each, plus each pad's share of the moment about their centre; where that would pull a pad, it lifts and the other three carry it all), each mass at its part's centre and the gross load under the rope's sheave (where the chart deducts weights, with them there or without them, whichever weighs more on the pad), at both ends of the step and every half degree of swing and luff between; wind, the load swinging and dynamic factors are not in it, and the crane manufacturer's outrigger loads govern." } else { "" }, swung = gust_swing_said(plan).map(|s| format!(" ({s})")).unwrap_or_default(), against = if !obstacles.is_empty() { "the plant model, the scanned points or the obstacles placed by hand" } else { "the plant model or the scanned points" }, ends = if task.resumes() { "The first step starts where the load hangs when the lift resumes (resume_from); the last is the vertical set-down. " } else { "The first and the last steps are the vertical lift-off and set-down. " }, allowance = if task.radius_allowance_m > 0.0 { format!(" plus the radius allowance ({:.2} m)", task.radius_allowance_m) } else { String::new() }),
+        &format!("{ends}Capacity is the chart value (before the reduction) at the largest radius of the step{allowance}; utilisation is the gross load over the reduced capacity; clearance is a distance that no crane part, rope, hook or load comes closer than to {against} at any moment of the step{swung}, between the validator's samples too: the smallest distance measured at samples no more than [plan] validator_sample_m of movement apart (0.05 m by default), less what the motion between two samples leaves room for (at most half that spacing), so the closest approach may be up to that much more than shown, never less. Wherever the motion between samples could take a part closer than its required clearance, the validator samples more finely, down to 2 mm of movement, so the required clearance holds along the whole motion, not only at the samples, to within 2 mm. Swing and load rotation angles are counter-clockwise positive seen from above. Swing is measured from {heading}, load yaw from the site's +X axis; each step's page also gives the {arm}'s grid bearing (clockwise from the site's north, +Y, as the overview is drawn).{pads}", heading = words.heading, arm = words.arm, pads = if plan.summary.highest_pad.is_some() { " Each step's page gives the most an outrigger pad carries during the step, an estimate from the crane file's masses: the weight of crane and load shared among the four pads as by a rigid frame (a quarter each, plus each pad's share of the moment about their centre; where that would pull a pad, it lifts and the other three carry it all), each mass at its part's centre and the gross load under the rope's sheave (where the chart deducts weights, with them there or without them, whichever weighs more on the pad), at both ends of the step and every half degree of swing and luff between; wind, the load swinging and dynamic factors are not in it, and the crane manufacturer's outrigger loads govern." } else { "" }, swung = hanging_swept_said(task, plan).map(|s| format!(" ({s})")).unwrap_or_default(), against = if !obstacles.is_empty() { "the plant model, the scanned points or the obstacles placed by hand" } else { "the plant model or the scanned points" }, ends = if task.resumes() { "The first step starts where the load hangs when the lift resumes (resume_from); the last is the vertical set-down. " } else { "The first and the last steps are the vertical lift-off and set-down. " }, allowance = if task.radius_allowance_m > 0.0 { format!(" plus the radius allowance ({:.2} m)", task.radius_allowance_m) } else { String::new() }),
         8.5,
     );
     if let Some(cs) = cspace {

@@ -244,7 +244,7 @@ fn triangle_meets_square(t: &[[f64; 2]], sq: [f64; 4]) -> bool {
 /// rest of the moving crane's, each with the lowest those parts come over
 /// it (site z), from poses no more than [`SWEEP_SAMPLE_M`] of movement
 /// apart. Where the lift is planned for the wind, what hangs is swung as
-/// the planner and the validator swing it ([`LiftTask::gust_swept`]; not
+/// the planner and the validator swing it ([`LiftTask::hanging_swept`]; not
 /// in the lift-off and set-down): the ground it may swing over is under
 /// it too.
 fn swept_cells(task: &LiftTask, moves: &[Move]) -> (HashMap<Cell, f64>, HashMap<Cell, f64>, HashSet<Cell>) {
@@ -252,7 +252,7 @@ fn swept_cells(task: &LiftTask, moves: &[Move]) -> (HashMap<Cell, f64>, HashMap<
     let hanging = |k: PartKind| matches!(k, PartKind::Load | PartKind::Rigging | PartKind::HookBlock | PartKind::Rope);
     for (m, landing) in moves.iter().zip(crate::landing_moves(task, moves.len())) {
         for c in configs_along(task, m, SWEEP_SAMPLE_M) {
-            for (kind, part) in task.pose_in_gusts(&c, !landing).parts.iter() {
+            for (kind, part) in task.pose_hanging_swept(&c, !landing).parts.iter() {
                 if kind.dependence() == Dependence::Fixed {
                     continue;
                 }

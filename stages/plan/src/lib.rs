@@ -639,8 +639,15 @@ pub(crate) fn plan_lift_hinting(
     let slings = match &task.slings {
         Some(legs) => {
             let l = &task.load;
-            let c = liftplan_core::slings::check(legs, task.load_mass_kg, l.size_m, l.cog_m, l.rigging_height_m)
-                .map_err(|e| lift_err(task, e))?;
+            let c = liftplan_core::slings::check_within(
+                legs,
+                task.load_mass_kg,
+                l.size_m,
+                l.cog_m,
+                task.cog_tolerance_m,
+                l.rigging_height_m,
+            )
+            .map_err(|e| lift_err(task, e))?;
             if let Some(over) = c.over_limit() {
                 return Err(lift_err(task, over));
             }
@@ -706,13 +713,22 @@ pub(crate) fn plan_lift_hinting(
     let start = task.start();
     let goal0 = task.goal();
     // A box query's refusal is a clearance, not a collision: say which.
-    // What hangs is swung by a gust where the lift is planned for the wind.
-    let swung = (task.gust_swing_per_m > 0.0).then(|| {
+    // What hangs is swung by a gust where the lift is planned for the wind,
+    // and off by its centre of gravity's tolerance where the lift gives one.
+    let gust = (task.gust_swing_per_m > 0.0).then(|| {
         format!(
             "what hangs swung {:.1} cm per metre it hangs below the boom head, as far as a sudden gust at the permissible wind can swing it (wind plan_for_swing)",
             100.0 * task.gust_swing_per_m
         )
     });
+    let cog = (task.cog_tolerance_m > 0.0).then(|| {
+        format!(
+            "the load and its rigging {:.2} m off along the load's x and y, as far as its centre of gravity may lie off (load cog_tolerance_m)",
+            task.cog_tolerance_m
+        )
+    });
+    let swung =
+        (gust.is_some() || cog.is_some()).then(|| gust.into_iter().chain(cog).collect::<Vec<_>>().join(", and "));
     let why = |b: &liftplan_cspace::Blocked| {
         let hanging = b.part.is_some_and(|k| k.dependence() == liftplan_core::crane::Dependence::Full);
         let swung = swung.as_ref().filter(|_| hanging);
@@ -1017,6 +1033,11 @@ pub fn revision(plan: &LiftPlan, task: &LiftTask) -> String {
         task.slings
     );
     h.update(made_for.as_bytes());
+    // Only where given, so that a plan of a lift without one keeps the
+    // revision it had before the tolerance was known.
+    if task.cog_tolerance_m != 0.0 {
+        h.update(format!("\ncog tolerance {:?}", task.cog_tolerance_m).as_bytes());
+    }
     h.finalize().to_hex()[..8].to_string()
 }
 
@@ -1257,6 +1278,7 @@ pub fn run(
         if let Some(on) = plan.summary.set_on.as_mut().filter(|_| plan.summary.set_in_cutout_m == 0.0) {
             on.cog_inside_m =
                 Some(validate::cog_over_support_m(task, &world, &task.set, on.gap_m, s.support_m, s.support_m));
+            on.cog_tolerance_m = task.cog_tolerance_m;
         }
         plan.summary.other_loads = world.others[..lifts_loads].iter().map(|(_, name)| name.clone()).collect();
         plan.summary.obstacles = obstacles.iter().filter(|o| o.during(&task.id)).map(|o| o.said()).collect();

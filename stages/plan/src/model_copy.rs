@@ -304,7 +304,7 @@ pub fn passes_left_out(
     let landing = crate::landing_moves(task, moves.len());
     for (i, m) in moves.iter().enumerate() {
         for c in crate::validate::configs_along(task, m, PASS_SAMPLE_M) {
-            let pose = task.pose_in_gusts(&c, !landing[i]);
+            let pose = task.pose_hanging_swept(&c, !landing[i]);
             for (kind, part) in &pose.parts {
                 let reach = part.aabb();
                 for (g, (group, (whole, whole_near), boxes, scanned)) in grown.iter().enumerate() {

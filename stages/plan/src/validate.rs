@@ -524,6 +524,14 @@ pub struct SetSupport {
     /// (the support's top went with a load's cut-out).
     #[serde(default)]
     pub cog_inside_m: Option<f64>,
+    /// The centre of gravity's tolerance (`load.cog_tolerance_m`) that
+    /// `cog_inside_m` is the least over (m; 0: none given).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub cog_tolerance_m: f64,
+}
+
+fn is_zero(v: &f64) -> bool {
+    *v == 0.0
 }
 
 impl SetSupport {
@@ -536,22 +544,34 @@ impl SetSupport {
     /// Where the load does not tip, how far inside its centre of gravity lies, in few words.
     pub fn cog_inside_said(&self) -> Option<String> {
         let m = self.cog_inside_m.filter(|_| !self.tips())?;
-        Some(format!("its centre of gravity lies {m:.2} m inside the edge of what holds it"))
+        Some(if self.cog_tolerance_m > 0.0 {
+            format!(
+                "its centre of gravity, anywhere within {:.2} m of where the lift gives it (load cog_tolerance_m), lies at least {m:.2} m inside the edge of what holds it",
+                self.cog_tolerance_m
+            )
+        } else {
+            format!("its centre of gravity lies {m:.2} m inside the edge of what holds it")
+        })
     }
 
     /// [`SetSupport::cog_inside_m`] said, where it was measured.
     pub fn cog_said(&self) -> Option<String> {
         let m = self.cog_inside_m?;
         let shown = "(as the scans and the plant model show what is under it, in cells of 0.2 m)";
+        let (lies, within) = if self.cog_tolerance_m > 0.0 {
+            ("MAY LIE", format!(" WITHIN ITS {:.2} m TOLERANCE (load cog_tolerance_m)", self.cog_tolerance_m))
+        } else {
+            ("LIES", String::new())
+        };
         Some(if let Some(inside) = self.cog_inside_said() {
             format!("{inside} {shown}")
         } else if m >= 0.0 {
             format!(
-                "ITS CENTRE OF GRAVITY LIES ONLY {m:.2} m INSIDE THE EDGE OF WHAT HOLDS IT {shown}: it may tip when the slings slacken; CHECK the set position and cog_m"
+                "ITS CENTRE OF GRAVITY{within} {lies} ONLY {m:.2} m INSIDE THE EDGE OF WHAT HOLDS IT {shown}: it may tip when the slings slacken; CHECK the set position and cog_m"
             )
         } else if m.is_finite() {
             format!(
-                "ITS CENTRE OF GRAVITY LIES {:.2} m BEYOND THE EDGE OF WHAT HOLDS IT {shown}: it tips when the slings slacken, unless more holds it than they show; CHECK the set position and cog_m",
+                "ITS CENTRE OF GRAVITY{within} {lies} {:.2} m BEYOND THE EDGE OF WHAT HOLDS IT {shown}: it tips when the slings slacken, unless more holds it than they show; CHECK the set position and cog_m",
                 -m
             )
         } else {
@@ -598,7 +618,7 @@ pub fn set_support(task: &LiftTask, world: &World, c: &Config, reach_up_m: f64) 
     meets(SUPPORT_SEARCH_M)?;
     let (_, hi) = bisect_mm(0.0, SUPPORT_SEARCH_M, |h| meets(h).is_none());
     let object = meets(hi)?;
-    Some(SetSupport { gap_m: hi, object, cog_inside_m: None })
+    Some(SetSupport { gap_m: hi, object, cog_inside_m: None, cog_tolerance_m: 0.0 })
 }
 
 /// How far inside the edge of what the load at `c` rests on its centre of
@@ -610,7 +630,8 @@ pub fn set_support(task: &LiftTask, world: &World, c: &Config, reach_up_m: f64) 
 /// less a cell's half diagonal (each touching cell holds a point of the
 /// support within that of its centre). A load set with its centre of
 /// gravity beyond the edge of its foundation tips off it when the slings
-/// slacken; nothing else checked that.
+/// slacken; nothing else checked that. Where the lift gives the centre of
+/// gravity a tolerance (`load.cog_tolerance_m`), the least over it.
 pub fn cog_over_support_m(task: &LiftTask, world: &World, c: &Config, gap_m: f64, band_m: f64, reach_up_m: f64) -> f64 {
     let load = task.crane.load_obb(c, &task.load);
     let rest = load.center.z - load.half.z - gap_m;
@@ -636,18 +657,30 @@ pub fn cog_over_support_m(task: &LiftTask, world: &World, c: &Config, gap_m: f64
         })
         .map(|p| [p.x, p.y])
         .collect();
-    let cog = load.center + load.axis(0) * task.load.cog_m[0] + load.axis(1) * task.load.cog_m[1];
-    let cog = [cog.x, cog.y];
     let slack = 0.5 * du.hypot(dv);
     let hull = liftplan_core::obb::convex_hull_2d(&touching);
     // A hull of one or two points (a post, a rail) holds nothing inside it.
-    let inside = match hull.len() {
-        0 => return f64::NEG_INFINITY,
+    let inside = |cog: [f64; 2]| match hull.len() {
+        0 => f64::NEG_INFINITY,
         1 | 2 => -to_edge_m(&hull, cog),
         _ if in_polygon(&hull, cog) => to_edge_m(&hull, cog),
         _ => -to_edge_m(&hull, cog),
     };
-    inside - slack
+    // Within the centre of gravity's tolerance, the least: how far inside a
+    // convex hull a point lies (negative beyond it) is concave in the point,
+    // so over the tolerance's square it is least at a corner.
+    let tol = task.cog_tolerance_m;
+    let corners: &[[f64; 2]] =
+        if tol > 0.0 { &[[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]] } else { &[[0.0, 0.0]] };
+    corners
+        .iter()
+        .map(|[sx, sy]| {
+            let (x, y) = (task.load.cog_m[0] + sx * tol, task.load.cog_m[1] + sy * tol);
+            let cog = load.center + load.axis(0) * x + load.axis(1) * y;
+            inside([cog.x, cog.y])
+        })
+        .fold(f64::INFINITY, f64::min)
+        - slack
 }
 
 /// The scanned ground under a mobile crane's carrier and outriggers, or
@@ -1510,7 +1543,7 @@ fn check_config(
     // Every part's box once, for the site and for the crane's own structure;
     // where the lift is planned for the wind, what hangs swung as far as a
     // gust can swing it, but in a lift-off or set-down, held at its support.
-    let pose = task.pose_in_gusts(c, !landing_move);
+    let pose = task.pose_hanging_swept(c, !landing_move);
     let mut out = Vec::new();
     for &(kind, mut b) in &pose.parts {
         let dep = kind.dependence();
@@ -2282,7 +2315,8 @@ mod tests {
         /// load yaw and longer rope: the planner does not plan what the
         /// validator would refuse. (The load here hangs off its centre of
         /// gravity.) Also swung by a gust, up to 20 cm per metre it hangs
-        /// (the permissible wind gives 1.5).
+        /// (the permissible wind gives 1.5), and off by a centre of gravity
+        /// known to up to 0.5 m.
         #[test]
         fn the_planners_shortest_rope_keeps_the_load_off_the_boom(
             luff_deg in 0.0f64..80.0,
@@ -2291,12 +2325,14 @@ mod tests {
             swing in 0.0f64..6.3,
             yaw in 0.0f64..6.3,
             gusty in prop_oneof![Just(0.0), 0.0f64..0.2],
+            cog_tolerance_m in prop_oneof![Just(0.0), 0.0f64..0.5],
         ) {
             let luff = luff_deg.to_radians();
             let mut task = crate::test_lift("ac-700");
             task.gust_swing_per_m = gusty;
+            task.cog_tolerance_m = cog_tolerance_m;
             let shortest = liftplan_cspace::min_hoist_for_internal_clearance(
-                &task.crane, &task.load, (luff_deg + row_deg).to_radians(), gusty);
+                &task.crane, &task.load, (luff_deg + row_deg).to_radians(), gusty, cog_tolerance_m);
             // Swung far enough at a steep enough boom, no rope keeps it off.
             prop_assume!(shortest.is_finite());
             let lim = task.crane.limits();
@@ -2306,7 +2342,7 @@ mod tests {
             let (pb, cb) = parry_box(boom);
             let sheave_z = task.crane.sheave(&c).z;
             for kind in [PartKind::Load, PartKind::Rigging] {
-                let (ph, ch) = parry_box(&task.gust_swept(pose.get(kind).unwrap(), sheave_z));
+                let (ph, ch) = parry_box(&task.hanging_swept(kind, pose.get(kind).unwrap(), sheave_z));
                 let d = query::distance(&ph, &ch, &pb, &cb).unwrap().distance;
                 prop_assert!(d >= OWN_CLEARANCE_M, "{kind:?} {d} m from the boom at {c:?}");
             }

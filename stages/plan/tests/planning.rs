@@ -142,6 +142,15 @@ fn the_sling_legs_are_checked_before_the_path() {
     let c = plan.summary.slings.clone().expect("the plan carries the legs' check");
     assert!((c.max_leg_kg - most_t * 1000.0).abs() < 1e-6, "{c:?}");
     assert!(plan.summary.slings_line().unwrap().starts_with("lift T-1: sling legs: 4 legs"));
+    // The centre of gravity known to 0.2 m either way: the legs that carry
+    // the skid with it in the middle are refused, at the worst within it.
+    let mut known_so_well = on_legs(most_t + 0.01);
+    known_so_well.cog_tolerance_m = 0.2;
+    let e = plan_lift(&known_so_well, &site, &quick(), 3).unwrap_err().to_string();
+    assert!(
+        e.contains("the sling legs cannot carry the load") && e.contains("within 0.20 m of where the lift gives it"),
+        "{e}"
+    );
     // Without a working load limit they are not checked.
     let (plan, _) = plan_lift(&task(-14.0), &site, &quick(), 3).unwrap();
     assert!(plan.summary.slings.is_none());
@@ -264,7 +273,7 @@ fn nearest_to(plan: &liftplan_plan::LiftPlan, t: &LiftTask, points: &[Point3]) -
             let f = s as f64 / 200.0;
             let v: Vec<f64> = (0..4).map(|d| a[d] + (b[d] - a[d]) * f).collect();
             let c = Config { swing_rad: v[0], radial: v[1], hoist_m: v[2], load_yaw_rad: v[3] };
-            for (_, part) in &t.pose_in_gusts(&c, false).parts {
+            for (_, part) in &t.pose_hanging_swept(&c, false).parts {
                 for p in points {
                     least = least.min(part.distance_sq_to_point(p).sqrt());
                 }
@@ -325,7 +334,7 @@ fn the_validator_keeps_the_approach_distance_off_a_swinging_power_line() {
     let at = Config { swing_rad: 0.0, radial: 0.8, hoist_m: 15.0, load_yaw_rad: 0.0 };
     let hoist = Move { joint: Joint::Hoist, from: at, to: Config { hoist_m: 15.5, ..at } };
     let load = t
-        .pose_in_gusts(&at, false)
+        .pose_hanging_swept(&at, false)
         .parts
         .iter()
         .find(|(k, _)| *k == liftplan_core::crane::PartKind::Load)
@@ -658,6 +667,57 @@ fn the_load_keeps_its_clearance_from_the_wall_swung_by_a_gust() {
     let e = plan_lift(&tight, &site, &s, 3).unwrap_err().to_string();
     assert!(e.contains("closer than the clearance allows: load and WALL"), "{e}");
     assert!(e.contains("what hangs swung 10.0 cm per metre it hangs below the boom head, as far as a sudden gust at the permissible wind can swing it (wind plan_for_swing)"), "{e}");
+}
+
+/// Beside the wall as above, its centre of gravity known to 0.5 m either
+/// way: the hook hangs over it wherever it lies, so the load may hang 0.5 m
+/// nearer the wall, 0.7 m off it. The checker and the validator refuse that
+/// (but in a lift-off, held at its support), the planner keeps it off the
+/// wall, and where it cannot, says why.
+#[test]
+fn the_load_keeps_its_clearance_wherever_its_centre_of_gravity_lies() {
+    let mesh = site();
+    let (m, world) = (map(&mesh), World::new(&mesh, &[], &[]).unwrap());
+    let beside = |z_m: f64, cog_tolerance_m: f64| {
+        let mut sp = spec_of(-14.0);
+        sp.pick = toml::from_str(&format!("x_m = 24.0\ny_m = -3.2\nz_m = {z_m}\nyaw_deg = 0.0")).unwrap();
+        sp.load.cog_tolerance_m = cog_tolerance_m;
+        sp.resolve(builtin("ac-700").unwrap()).unwrap()
+    };
+    let s = quick();
+    let known = beside(3.0, 0.5);
+    let cs =
+        liftplan_cspace::CSpace::build(&liftplan_cspace::Problem { task: &known, chart: None, map: &m }, &s.cspace);
+    let b = liftplan_cspace::Checker::new(&cs, &m, &known, vec![], s.cspace.sample_m).config(&known.pick).unwrap_err();
+    assert_eq!((b.reason.as_str(), b.object.as_deref()), (liftplan_cspace::TOO_CLOSE, Some("WALL")), "{b}");
+    let up = [Move {
+        joint: Joint::Hoist,
+        from: known.pick,
+        to: Config { hoist_m: known.pick.hoist_m - 0.5, ..known.pick },
+    }];
+    let v = validate(&known, None, &world, &rules(), &up, &[false]);
+    assert!(
+        !v.ok && v.problems.iter().any(|p| p.contains("load is 0.70") && p.contains("WALL (needs 1.00 m)")),
+        "{:?}",
+        v.problems
+    );
+    assert!(validate(&known, None, &world, &rules(), &up, &[true]).ok);
+    assert!(validate(&beside(3.0, 0.0), None, &world, &rules(), &up, &[false]).ok);
+    // Picked from the slab there and lifted over the wall: the plan made
+    // for the centre of gravity as given hoists the load up beside the
+    // wall, too close to it if the centre of gravity lies 0.5 m off; made
+    // with the tolerance, it keeps off.
+    let site = Site { map: &m, world: &world, charts: None };
+    let (plan, _) = plan_lift(&beside(0.0, 0.0), &site, &s, 3).unwrap();
+    let landing: Vec<bool> = (0..plan.moves.len()).map(|i| i == 0 || i + 1 == plan.moves.len()).collect();
+    let v = validate(&beside(0.0, 0.5), None, &world, &rules(), &plan.moves, &landing);
+    assert!(v.problems.iter().any(|p| p.contains("WALL")), "{:?}", v.problems);
+    let (plan, _) = plan_lift(&beside(0.0, 0.5), &site, &s, 3).unwrap();
+    assert!(plan.validator.ok);
+    // Known to a metre, it cannot keep off: the refusal says why.
+    let e = plan_lift(&beside(0.0, 1.0), &site, &s, 3).unwrap_err().to_string();
+    assert!(e.contains("closer than the clearance allows: load and WALL"), "{e}");
+    assert!(e.contains("the load and its rigging 1.00 m off along the load's x and y, as far as its centre of gravity may lie off (load cog_tolerance_m)"), "{e}");
 }
 
 /// A chart configuration "none" for the test crane's 40 m boom: its rows
@@ -1400,6 +1460,15 @@ fn the_load_tips_where_its_centre_of_gravity_is_beyond_what_holds_it() {
     // Its centre of gravity 1.5 m along it: 0.5 m from its end.
     let m = on(&[([20.0, 11.0, 0.0], [24.0, 17.0, 0.5])], 1.5);
     assert!(within(m, 0.5), "{m}");
+    // Known to 0.3 m either way: it may lie 1.8 m along, 0.2 m from its end.
+    let mut known_so_well = t.clone();
+    known_so_well.cog_tolerance_m = 0.3;
+    known_so_well.load.cog_m[0] = 1.5;
+    let mut mesh = TriMesh::default();
+    box_part(&mut mesh, "PLINTH", [20.0, 11.0, 0.0], [24.0, 17.0, 0.5]);
+    let world = World::new(&mesh, &[], &[]).unwrap();
+    let m = cog_over_support_m(&known_so_well, &world, &known_so_well.set, 0.0, 0.05, 0.05);
+    assert!(within(m, 0.2), "{m}");
     // A plinth under its south end only, to 0.5 m short of its centre of
     // gravity; one 0.3 m lower under the rest holds nothing at that level.
     let m = on(&[([20.0, 11.0, 0.0], [24.0, 13.5, 0.5]), ([20.0, 13.5, 0.0], [24.0, 17.0, 0.2])], 0.0);
@@ -1419,8 +1488,12 @@ fn the_load_tips_where_its_centre_of_gravity_is_beyond_what_holds_it() {
     assert!(within(m, 1.0), "{m}");
     // Said on the run's line where it tips, and on the PDF's page as it is.
     let (_, _, mut plan) = over_the_wall();
-    let support =
-        |m: f64| liftplan_plan::validate::SetSupport { gap_m: 0.0, object: "PLINTH".into(), cog_inside_m: Some(m) };
+    let support = |m: f64| liftplan_plan::validate::SetSupport {
+        gap_m: 0.0,
+        object: "PLINTH".into(),
+        cog_inside_m: Some(m),
+        cog_tolerance_m: 0.0,
+    };
     plan.summary.set_on = Some(support(-0.64));
     let line = plan.summary.line();
     assert!(
@@ -1432,6 +1505,16 @@ fn the_load_tips_where_its_centre_of_gravity_is_beyond_what_holds_it() {
     plan.summary.set_on = Some(support(0.76));
     assert!(plan.summary.line().ends_with("set down on PLINTH"), "{}", plan.summary.line());
     assert!(support(0.76).cog_said().unwrap().starts_with("its centre of gravity lies 0.76 m inside"));
+    let within_tolerance = |m: f64| liftplan_plan::validate::SetSupport { cog_tolerance_m: 0.15, ..support(m) };
+    let said = within_tolerance(-0.64).cog_said().unwrap();
+    assert!(
+        said.starts_with(
+            "ITS CENTRE OF GRAVITY WITHIN ITS 0.15 m TOLERANCE (load cog_tolerance_m) MAY LIE 0.64 m BEYOND THE EDGE"
+        ),
+        "{said}"
+    );
+    let said = within_tolerance(0.76).cog_said().unwrap();
+    assert!(said.starts_with("its centre of gravity, anywhere within 0.15 m of where the lift gives it (load cog_tolerance_m), lies at least 0.76 m inside"), "{said}");
 }
 
 /// The carrier and outriggers stand on the ground, but not in a bank: a
