@@ -23,7 +23,7 @@ use liftplan_core::mesh::TriMesh;
 use liftplan_core::obb::Obb;
 use parry3d_f64::math::{Pose, Vector};
 use parry3d_f64::query::{self, PointQuery, PointQueryWithLocation};
-use parry3d_f64::shape::{Cuboid, TriMesh as ParryMesh, TrianglePointLocation};
+use parry3d_f64::shape::{ConvexPolyhedron, Cuboid, Segment, TriMesh as ParryMesh, TrianglePointLocation};
 use rayon::prelude::*;
 use serde::Serialize;
 use std::collections::HashMap;
@@ -507,6 +507,87 @@ fn solve<const N: usize>(mut a: [[f64; N]; N], mut b: [f64; N]) -> Option<[f64; 
 /// site in survey heights with `ground_z_m = 0`, say), and every clearance
 /// of the plan would be measured from a crane that is not where it stands.
 pub const SET_UP_LEVEL_TOLERANCE_M: f64 = 0.5;
+
+/// Why the crane at `at` does not stand within one of the areas the lift
+/// gives it (`crane_stands_in`), in words; `None` where it does, or where
+/// the lift gives none. The rule is the lift's: the hull of its fixed
+/// parts' outlines and its pads' mats (each a square of its longer side,
+/// square to the carrier), inside an area and clear of its edges. Core's
+/// `LiftTask::stands_outside_its_areas` is how the planner applies it; the
+/// test is written again here, by other means, so that a mistake in one is
+/// not in both: the hull is parry3d's (as a slab 1 m deep), kept off each
+/// of the area's edges by parry3d's distance, its corners inside the area
+/// by their winding number.
+pub fn crane_outside_its_areas(task: &LiftTask, at: &Config) -> Option<String> {
+    if task.crane_stands_in.is_empty() {
+        return None;
+    }
+    let mut corners: Vec<[f64; 2]> = task
+        .crane
+        .part_kinds()
+        .iter()
+        .filter(|k| k.dependence() == Dependence::Fixed)
+        .filter_map(|&k| task.crane.part(k, at, &task.load))
+        .flat_map(|b| b.footprint())
+        .collect();
+    let mat_half_m = task.ground.map(|g| g.mat_m[0].max(g.mat_m[1]) / 2.0).filter(|h| *h > 0.0);
+    if let Some(h) = mat_half_m {
+        let (sin, cos) = task.crane.placement.heading_rad.sin_cos();
+        for pad in liftplan_core::outriggers::Pad::ALL {
+            let Some([x, y]) = liftplan_core::outriggers::pad_at(&task.crane, pad) else { continue };
+            for [u, v] in [[-h, -h], [h, -h], [h, h], [-h, h]] {
+                corners.push([x + u * cos - v * sin, y + u * sin + v * cos]);
+            }
+        }
+    }
+    let slab_corners: Vec<Vector> =
+        corners.iter().flat_map(|c| [Vector::new(c[0], c[1], 0.0), Vector::new(c[0], c[1], 1.0)]).collect();
+    let slab = ConvexPolyhedron::from_convex_hull(&slab_corners);
+    let within = |area: &liftplan_core::lift::CraneArea| {
+        let Some(slab) = &slab else { return false };
+        let poly = &area.corners_m;
+        let n = poly.len();
+        n >= 3
+            && slab.points().iter().all(|p| winding_number(poly, [p.x, p.y]) != 0)
+            && (0..n).all(|i| {
+                let (a, b) = (poly[i], poly[(i + 1) % n]);
+                let edge = Segment::new(Vector::new(a[0], a[1], 0.5), Vector::new(b[0], b[1], 0.5));
+                query::distance(&Pose::identity(), slab, &Pose::identity(), &edge).is_ok_and(|d| d.distance > 0.0)
+            })
+    };
+    if task.crane_stands_in.iter().any(within) {
+        return None;
+    }
+    let names: Vec<String> = task.crane_stands_in.iter().map(|a| format!("'{}'", a.name)).collect();
+    let p = &task.crane.placement;
+    Some(format!(
+        "the crane set up at position_m = [{:.2}, {:.2}], heading_deg = {:.0}: its carrier and outriggers{} do not stand within an area it may stand in, clear of its edges (crane_stands_in: {})",
+        p.x_m,
+        p.y_m,
+        p.heading_rad.to_degrees(),
+        if mat_half_m.is_some() { " with their mats" } else { "" },
+        names.join(", ")
+    ))
+}
+
+/// How many times the polygon `poly` winds round `p` (0: outside).
+fn winding_number(poly: &[[f64; 2]], p: [f64; 2]) -> i32 {
+    let n = poly.len();
+    let mut wn = 0;
+    for i in 0..n {
+        let (a, b) = (poly[i], poly[(i + 1) % n]);
+        // Which side of the edge a->b the point lies on (> 0: left).
+        let side = (b[0] - a[0]) * (p[1] - a[1]) - (p[0] - a[0]) * (b[1] - a[1]);
+        if a[1] <= p[1] {
+            if b[1] > p[1] && side > 0.0 {
+                wn += 1;
+            }
+        } else if b[1] <= p[1] && side < 0.0 {
+            wn -= 1;
+        }
+    }
+    wn
+}
 
 /// How far around a tower crane's mast the scanned ground is read (m).
 pub const TOWER_GROUND_AROUND_M: f64 = 3.0;
@@ -1964,7 +2045,7 @@ pub fn validate(
                 }
             }
         }
-        problems.extend(task.stands_outside_its_areas().map(|why| format!("crane set-up: {why}")));
+        problems.extend(crane_outside_its_areas(task, &first.from).map(|why| format!("crane set-up: {why}")));
         let (ground, problem) = set_up_ground(task, world);
         set_up = ground;
         problems.extend(problem);
@@ -2347,6 +2428,45 @@ mod tests {
                 prop_assert!(d >= OWN_CLEARANCE_M, "{kind:?} {d} m from the boom at {c:?}");
             }
         }
+    }
+
+    /// The validator's test of where the crane stands (parry3d's hull and
+    /// distances, winding numbers) says what core's, which the planner
+    /// applies, says, wherever the crane stands in and about an L-shaped
+    /// yard, turned any way, with mats or without; both ways come up.
+    #[test]
+    fn the_validator_and_the_planner_agree_where_the_crane_may_stand() {
+        use liftplan_core::crane::{CraneSetup, Placement};
+        use liftplan_core::lift::{CraneArea, GroundSpec};
+        let task = crate::test_lift("ac-700");
+        let yard = vec![[-15.0, -15.0], [35.0, -15.0], [35.0, 10.0], [10.0, 10.0], [10.0, 35.0], [-15.0, 35.0]];
+        let (mut within, mut outside) = (0, 0);
+        for k in 0..24 * 24 * 6 {
+            let (x, y) = (-20.0 + 2.37 * (k % 24) as f64, -20.0 + 2.41 * (k / 24 % 24) as f64);
+            let heading = 0.37 + 1.1 * (k / (24 * 24)) as f64;
+            let mut t = task.clone();
+            let placement = Placement { x_m: x, y_m: y, heading_rad: heading, ..t.crane.placement };
+            t.crane = CraneSetup::new(t.crane.model.clone(), placement).unwrap();
+            t.ground = (k % 2 == 0).then_some(GroundSpec { mat_m: [2.5, 1.2], allowable_kpa: None });
+            t.crane_stands_in = vec![CraneArea { name: "yard".into(), corners_m: yard.clone() }];
+            let planner = t.stands_outside_its_areas();
+            let ours = crane_outside_its_areas(&t, &t.pick);
+            assert_eq!(planner.is_some(), ours.is_some(), "at ({x}, {y}), heading {heading}: {planner:?} {ours:?}");
+            if ours.is_some() { outside += 1 } else { within += 1 }
+        }
+        assert!(within > 100 && outside > 100, "{within} within, {outside} outside");
+        // Said naming the area, with the mats where there are some.
+        let mut t = task.clone();
+        t.crane_stands_in =
+            vec![CraneArea { name: "far".into(), corners_m: vec![[90.0, 0.0], [99.0, 0.0], [99.0, 9.0]] }];
+        assert_eq!(
+            crane_outside_its_areas(&t, &t.pick).as_deref(),
+            Some(
+                "the crane set up at position_m = [0.00, 0.00], heading_deg = 20: its carrier and outriggers do not stand within an area it may stand in, clear of its edges (crane_stands_in: 'far')"
+            )
+        );
+        t.crane_stands_in.clear();
+        assert_eq!(crane_outside_its_areas(&t, &t.pick), None);
     }
 
     /// What lies in the ground under the outrigger pads: a pipe buried
