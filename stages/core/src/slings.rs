@@ -315,7 +315,7 @@ impl SlingCheck {
             None => "the most on a leg with it as given".to_string(),
         };
         format!(
-            "; the worst with the centre of gravity within {:.2} m along x and y (load cog_tolerance_m; {COG_SAMPLES} x {COG_SAMPLES} places, {worst}), the lengths for it as given",
+            "; the worst with the centre of gravity within {:.2} m along x and y (load cog_tolerance_m, searched over that square; {worst}), the lengths for it as given",
             self.cog_tolerance_m
         )
     }
@@ -470,20 +470,29 @@ pub fn check(
     })
 }
 
-/// The places a centre of gravity within its tolerance is checked at, along
-/// each of the load's axes: [`COG_SAMPLES`] across, the square's corners and
-/// edges among them.
+/// The places a centre of gravity within its tolerance is first checked at,
+/// along each of the load's axes: [`COG_SAMPLES`] across, the square's
+/// corners and edges among them.
 pub const COG_SAMPLES: usize = 9;
+
+/// How many times [`check_within`] halves its step about each of the worst
+/// places it found, looking for a worse one nearby.
+const COG_REFINE_STEPS: usize = 24;
 
 /// [`check`] with the centre of gravity anywhere within `cog_tolerance_m`
 /// of `cog_m` along the load's x and y (a square in plan): the check at
 /// `cog_m` (the legs' lengths, where the hook or the lug hangs: what the
 /// rigging is made for), with the most on a leg, the steepest leg and the
-/// spreader's top legs the worst over [`COG_SAMPLES`] x [`COG_SAMPLES`]
-/// places across the square, each worked out as [`check`] does, with the
-/// hook over it (the legs' pulls follow the centre of gravity; the small
-/// tilt of a load rigged for another is not modelled). Refused where the
-/// legs cannot carry the load at one of them, saying where.
+/// spreader's top legs the worst found over the square, each place worked
+/// out as [`check`] does, with the hook over it (the legs' pulls follow the
+/// centre of gravity; the small tilt of a load rigged for another is not
+/// modelled). The places: [`COG_SAMPLES`] x [`COG_SAMPLES`] across the
+/// square, and where its edges cross the line through two lift points (four
+/// legs, one slack, pull hardest where the centre of gravity lies on such a
+/// line: the two legs there carry it all); then about the worst of them a
+/// search that halves its step [`COG_REFINE_STEPS`] times, for the worst
+/// between the places (the most on a leg is not always at a corner). Refused
+/// where the legs cannot carry the load at one of them, saying where.
 pub fn check_within(
     slings: &Slings,
     load_kg: f64,
@@ -497,31 +506,94 @@ pub fn check_within(
         return Ok(worst);
     }
     worst.cog_tolerance_m = cog_tolerance_m;
-    let across = |k: usize| -cog_tolerance_m + 2.0 * cog_tolerance_m * k as f64 / (COG_SAMPLES - 1) as f64;
-    for i in 0..COG_SAMPLES {
-        for j in 0..COG_SAMPLES {
-            let at = [cog_m[0] + across(i), cog_m[1] + across(j), cog_m[2]];
-            let c = check(slings, load_kg, size_m, at, rigging_height_m).map_err(|e| {
-                format!(
-                    "with the load's centre of gravity at ({:.2}, {:.2}) m from its box's centre, within load cog_tolerance_m ({cog_tolerance_m:.2} m) of the given one: {e}",
-                    at[0], at[1]
-                )
-            })?;
-            worst.max_angle_deg = worst.max_angle_deg.max(c.max_angle_deg);
-            if c.max_leg_kg > worst.max_leg_kg {
-                (worst.max_leg_kg, worst.max_leg, worst.worst_cog_m) = (c.max_leg_kg, c.max_leg, Some([at[0], at[1]]));
-            }
-            let top_of = |s: &Option<SpreaderCheck>| s.as_ref().and_then(|s| s.top.clone());
-            if let (Some(w), Some(t)) = (worst.spreader.as_mut().and_then(|s| s.top.as_mut()), top_of(&c.spreader)) {
-                w.max_angle_deg = w.max_angle_deg.max(t.max_angle_deg);
-                w.compression_kg = w.compression_kg.max(t.compression_kg);
-                if t.max_leg_kg > w.max_leg_kg {
-                    (w.max_leg_kg, w.max_leg) = (t.max_leg_kg, t.max_leg);
+    let tol = cog_tolerance_m;
+    let at = |[x, y]: [f64; 2]| -> Result<SlingCheck, String> {
+        check(slings, load_kg, size_m, [x, y, cog_m[2]], rigging_height_m).map_err(|e| {
+            format!(
+                "with the load's centre of gravity at ({x:.2}, {y:.2}) m from its box's centre, within load cog_tolerance_m ({tol:.2} m) of the given one: {e}"
+            )
+        })
+    };
+    let within = |[x, y]: [f64; 2]| [x.clamp(cog_m[0] - tol, cog_m[0] + tol), y.clamp(cog_m[1] - tol, cog_m[1] + tol)];
+    // The grid, and where the square's edges cross a line through two lift points.
+    let across = |k: usize| -tol + 2.0 * tol * k as f64 / (COG_SAMPLES - 1) as f64;
+    let mut places: Vec<[f64; 2]> = (0..COG_SAMPLES * COG_SAMPLES)
+        .map(|k| [cog_m[0] + across(k % COG_SAMPLES), cog_m[1] + across(k / COG_SAMPLES)])
+        .collect();
+    let pts = &slings.lift_points_m;
+    for (i, a) in pts.iter().enumerate() {
+        for b in &pts[i + 1..] {
+            places.extend(edge_crossings([a[0], a[1]], [b[0], b[1]], [cog_m[0], cog_m[1]], tol));
+        }
+    }
+    let mut found: Vec<([f64; 2], f64)> = Vec::with_capacity(places.len());
+    for p in places {
+        let c = at(p)?;
+        found.push((p, c.max_leg_kg));
+        worst_of(&mut worst, &c, p);
+    }
+    // About the worst few, a search for worse between the places.
+    found.sort_by(|a, b| b.1.total_cmp(&a.1));
+    let first_step = 2.0 * tol / (COG_SAMPLES - 1) as f64;
+    for &(start, kg) in found.iter().take(4) {
+        let (mut best, mut best_kg, mut step) = (start, kg, first_step);
+        for _ in 0..COG_REFINE_STEPS {
+            let mut moved = false;
+            for [dx, dy] in
+                [[1.0, 0.0], [-1.0, 0.0], [0.0, 1.0], [0.0, -1.0], [1.0, 1.0], [1.0, -1.0], [-1.0, 1.0], [-1.0, -1.0]]
+            {
+                let p = within([best[0] + dx * step, best[1] + dy * step]);
+                let c = at(p)?;
+                worst_of(&mut worst, &c, p);
+                if c.max_leg_kg > best_kg {
+                    (best, best_kg, moved) = (p, c.max_leg_kg, true);
                 }
+            }
+            if !moved {
+                step /= 2.0;
             }
         }
     }
     Ok(worst)
+}
+
+/// Where the square of half side `tol` about `centre` has its edges crossed
+/// by the line through `a` and `b` (plan, m).
+fn edge_crossings(a: [f64; 2], b: [f64; 2], centre: [f64; 2], tol: f64) -> Vec<[f64; 2]> {
+    let d = [b[0] - a[0], b[1] - a[1]];
+    let mut out = Vec::new();
+    for axis in 0..2 {
+        if d[axis].abs() < 1e-12 {
+            continue;
+        }
+        let other = 1 - axis;
+        for side in [-tol, tol] {
+            let t = (centre[axis] + side - a[axis]) / d[axis];
+            let v = a[other] + t * d[other];
+            if (v - centre[other]).abs() <= tol {
+                let mut p = [0.0; 2];
+                (p[axis], p[other]) = (centre[axis] + side, v);
+                out.push(p);
+            }
+        }
+    }
+    out
+}
+
+/// Takes in `c`, the check at the centre of gravity `at`, where it is worse.
+fn worst_of(worst: &mut SlingCheck, c: &SlingCheck, at: [f64; 2]) {
+    worst.max_angle_deg = worst.max_angle_deg.max(c.max_angle_deg);
+    if c.max_leg_kg > worst.max_leg_kg {
+        (worst.max_leg_kg, worst.max_leg, worst.worst_cog_m) = (c.max_leg_kg, c.max_leg, Some(at));
+    }
+    let top = c.spreader.as_ref().and_then(|s| s.top.as_ref());
+    if let (Some(w), Some(t)) = (worst.spreader.as_mut().and_then(|s| s.top.as_mut()), top) {
+        w.max_angle_deg = w.max_angle_deg.max(t.max_angle_deg);
+        w.compression_kg = w.compression_kg.max(t.compression_kg);
+        if t.max_leg_kg > w.max_leg_kg {
+            (w.max_leg_kg, w.max_leg) = (t.max_leg_kg, t.max_leg);
+        }
+    }
 }
 
 /// [`check`] for two legs hanging plumb from a beam's pins over the lift
@@ -1074,7 +1146,7 @@ mod tests {
             .map(|cog| check(&legs, 12_000.0, size, cog, 3.0).unwrap())
             .fold(0.0f64, |m, c| m.max(c.max_leg_kg));
         assert!(finest <= c.max_leg_kg + 1e-9, "{finest} {}", c.max_leg_kg);
-        assert!(c.said().contains("the worst with the centre of gravity within 1.00 m along x and y (load cog_tolerance_m; 9 x 9 places, the most on a leg with it at ("), "{}", c.said());
+        assert!(c.said().contains("the worst with the centre of gravity within 1.00 m along x and y (load cog_tolerance_m, searched over that square; the most on a leg with it at ("), "{}", c.said());
         // Lift points 2 m apart with the centre of gravity 0.9 m along: known
         // to 0.2 m, it may lie beyond them.
         let close =
@@ -1099,5 +1171,43 @@ mod tests {
         let (level_top, off_top) = (level.spreader.unwrap().top.unwrap(), off.spreader.unwrap().top.unwrap());
         assert!(off_top.max_leg_kg > level_top.max_leg_kg, "{off_top:?} {level_top:?}");
         assert!((off.max_leg_kg - 12_000.0 * 3.2 / 6.0).abs() < 1e-6, "{}", off.max_leg_kg);
+    }
+
+    /// On four legs with one slack, the most on a leg is not at a corner of
+    /// the tolerance's square but where an edge crosses a diagonal between
+    /// lift points; on three legs, between places too. Over loads, heights
+    /// and tolerances (and a centre of gravity off the middle), no place of
+    /// a 101 x 101 grid over the square finds more than the check does.
+    #[test]
+    fn no_finer_sampling_finds_more_on_a_leg() {
+        let three = Slings {
+            lift_points_m: vec![[-2.0, -1.0, 1.0], [2.5, -0.5, 1.0], [0.0, 1.0, 1.0]],
+            points_given: true,
+            ratings: Ratings::legs(8000.0),
+            spreader: None,
+        };
+        let cases = [
+            (slings(4, [4.0, 2.0, 2.0]), [4.0, 2.0, 2.0], [0.0; 3], 0.2, 3.0),
+            (slings(4, [6.0, 4.0, 2.0]), [6.0, 4.0, 2.0], [0.0; 3], 0.5, 3.0),
+            (slings(4, [8.0, 3.0, 3.0]), [8.0, 3.0, 3.0], [0.6, -0.3, 0.0], 0.3, 4.0),
+            (slings(4, [5.0, 2.0, 3.0]), [5.0, 2.0, 3.0], [0.0; 3], 0.5, 2.0),
+            (slings(2, [8.0, 3.0, 3.0]), [8.0, 3.0, 3.0], [0.2, 0.0, 0.0], 0.5, 4.0),
+            (three, [6.0, 3.0, 2.0], [0.1, -0.1, 0.0], 0.3, 3.0),
+        ];
+        for (legs, size, cog, tol, h) in cases {
+            let c = check_within(&legs, 5000.0, size, cog, tol, h).unwrap();
+            let n = 101;
+            let across = |k: usize| -tol + 2.0 * tol * k as f64 / (n - 1) as f64;
+            let finest = (0..n * n)
+                .map(|k| [cog[0] + across(k % n), cog[1] + across(k / n), cog[2]])
+                .map(|at| check(&legs, 5000.0, size, at, h).unwrap().max_leg_kg)
+                .fold(0.0f64, f64::max);
+            assert!(
+                finest <= c.max_leg_kg + 1e-9,
+                "{size:?}: {finest} more than {} at {:?}",
+                c.max_leg_kg,
+                c.worst_cog_m
+            );
+        }
     }
 }

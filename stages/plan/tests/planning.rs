@@ -148,7 +148,8 @@ fn the_sling_legs_are_checked_before_the_path() {
     known_so_well.cog_tolerance_m = 0.2;
     let e = plan_lift(&known_so_well, &site, &quick(), 3).unwrap_err().to_string();
     assert!(
-        e.contains("the sling legs cannot carry the load") && e.contains("within 0.20 m of where the lift gives it"),
+        e.contains("the sling legs cannot carry the load")
+            && e.contains("within 0.20 m along x and y (load cog_tolerance_m"),
         "{e}"
     );
     // Without a working load limit they are not checked.
