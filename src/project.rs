@@ -510,7 +510,8 @@ keep = 3                  # runs' outputs each stage keeps in .liftplan/cache (t
 # # beam hung by its lug; mass_t is part of rigging's); it must lie within the footprint.
 # crane = { model = "ltm-1100", position_m = [0.0, 0.0], ground_z_m = 0.0, heading_deg = 0.0, boom_m = 40.0, chart_config = "main boom, 360 deg" }
 # # crane: add falls = 4 (the parts of line the hoist rope is reeved with) to have them
-# # checked against the crane file's [hook] line_pull_t (per fall) and rated_t.
+# # checked against the crane file's [hook] line_pull_t (per fall) and rated_t, and, where
+# # it gives rope_m and rope_lead_m, how far the hoist rope lets the hook down on them.
 # pick = { x_m = 6.0, y_m = -16.0, z_m = 1.2, yaw_deg = 90.0 }
 # set = { x_m = 30.0, y_m = 2.0, z_m = 1.2, yaw_deg = 0.0 }
 # # pick and set: the load's centre x, y and its underside's z (m), its yaw (degrees);

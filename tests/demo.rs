@@ -233,7 +233,7 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     // Reeved with 6 falls of the crane file's 10 t: the hook load of 17 t
     // (13 t, 0.5 t of rigging, the 3.5 t block) needs 2.
     assert!(
-        text13.contains("Reeving hook load 17.00 t (load, rigging and hook block); on 6 falls of 10.00 t each: 60.00 t, 28 % (at least 2 needed); the hook block rated 100.00 t, carrying 13.50 t of load and rigging: 14 %"),
+        text13.contains("Reeving hook load 17.00 t (load, rigging and hook block); on 6 falls of 10.00 t each: 60.00 t, 28 % (at least 2 needed); the hook block rated 100.00 t, carrying 13.50 t of load and rigging: 14 %; the hoist rope's 600 m (less 20.0 m to the boom's foot and the 40.0 m boom) on 6 falls lets the hook hang 90.00 m below the boom head: the longest rope planned with (hook travel 110.00 m)"),
         "{text13}"
     );
     // The crew's copy: every page names the plan's revision, as plan.json

@@ -99,6 +99,17 @@ pub struct HookBlock {
     /// The most falls the hook block's sheaves take.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub max_falls: Option<u32>,
+    /// The main hoist rope's length that may be paid out (m): its length
+    /// less the dead wraps that stay on the drum. With the lift's falls it
+    /// sets how far the hook may hang below the boom head
+    /// ([`crate::reeving::rope_reach_m`]); none: not checked. Mobile
+    /// (luffing) cranes only, with [`Self::rope_lead_m`].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rope_m: Option<f64>,
+    /// The hoist rope from the drum to the boom's foot (m): from there it
+    /// runs the boom's length to the head.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rope_lead_m: Option<f64>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -370,6 +381,21 @@ impl CraneModel {
         }
         if let Some(n) = self.hook.max_falls.filter(|n| !(1..=crate::reeving::MAX_FALLS).contains(n)) {
             return Err(format!("hook.max_falls must be 1 to {}, found {n}", crate::reeving::MAX_FALLS));
+        }
+        for (name, m) in [("hook.rope_m", self.hook.rope_m), ("hook.rope_lead_m", self.hook.rope_lead_m)] {
+            if let Some(m) = m.filter(|m| !(m.is_finite() && *m >= 0.0 && *m <= 10_000.0)) {
+                return Err(format!("{name} must be 0 to 10000 m, found {m}"));
+            }
+        }
+        match (self.hook.rope_m, self.hook.rope_lead_m, &self.kind) {
+            (Some(_), None, _) => {
+                return Err("hook.rope_m needs hook.rope_lead_m, the rope from the drum to the boom's foot (m)".into());
+            }
+            (None, Some(_), _) => return Err("hook.rope_lead_m is read only with hook.rope_m".into()),
+            (Some(_), Some(_), CraneKind::Tower(_)) => {
+                return Err("hook.rope_m: liftplan checks the hoist rope's length for mobile (luffing) cranes only; leave it out of a tower crane's file".into());
+            }
+            _ => {}
         }
         pos("speeds.swing_deg_s", self.speeds.swing_deg_s)?;
         pos("speeds.hoist_m_s", self.speeds.hoist_m_s)?;
@@ -1144,12 +1170,13 @@ mod tests {
         assert!(e.contains("section [masses] belongs to a luffing crane"), "{e}");
     }
 
-    /// The hook block's rating, line pull and falls, where a crane file
-    /// gives them, are read and checked.
+    /// The hook block's rating, line pull and falls, and the hoist rope's
+    /// length, where a crane file gives them, are read and checked.
     #[test]
     fn the_hook_blocks_reeving_is_read_and_checked() {
         let ac = builtin("ac-700").unwrap();
         assert_eq!((ac.hook.rated_t, ac.hook.line_pull_t, ac.hook.max_falls), (Some(100.0), Some(10.0), Some(10)));
+        assert_eq!((ac.hook.rope_m, ac.hook.rope_lead_m), (Some(600.0), Some(20.0)));
         assert_eq!(builtin("ltm-1100").unwrap().hook.line_pull_t, None);
         let text = builtin_text("ac-700").unwrap();
         for (from, to, said) in [
@@ -1157,10 +1184,19 @@ mod tests {
             ("rated_t = 100.0", "rated_t = inf", "hook.rated_t must be more than 0"),
             ("max_falls = 10", "max_falls = 0", "hook.max_falls must be 1 to 64"),
             ("max_falls = 10", "max_falls = 65", "hook.max_falls must be 1 to 64"),
+            ("rope_m = 600.0", "rope_m = -1.0", "hook.rope_m must be 0 to 10000 m, found -1"),
+            ("rope_lead_m = 20.0", "rope_lead_m = nan", "hook.rope_lead_m must be 0 to 10000 m"),
+            ("rope_lead_m = 20.0\n", "", "hook.rope_m needs hook.rope_lead_m"),
+            ("rope_m = 600.0\n", "", "hook.rope_lead_m is read only with hook.rope_m"),
         ] {
             let e = CraneModel::from_toml(Path::new("c.toml"), &text.replace(from, to)).unwrap_err().to_string();
             assert!(e.contains(said), "{to}: {e}");
         }
+        let tower = builtin_text("tower-hh-60").unwrap();
+        let hook_end = tower.find("[hook]").map(|k| k + "[hook]\n".len()).unwrap();
+        let tower = format!("{}rope_m = 300.0\nrope_lead_m = 10.0\n{}", &tower[..hook_end], &tower[hook_end..]);
+        let e = CraneModel::from_toml(Path::new("t.toml"), &tower).unwrap_err().to_string();
+        assert!(e.contains("for mobile (luffing) cranes only"), "{e}");
     }
 
     #[test]

@@ -433,6 +433,11 @@ pub struct LiftTask {
     pub slings: Option<crate::slings::Slings>,
     /// The falls the hoist rope is reeved with (`crane.falls`).
     pub falls: Option<u32>,
+    /// How far the falls let the hook hang below the boom head, where the
+    /// crane file gives the hoist rope's length: where less than the hook's
+    /// travel, the crane is set up with it as its longest rope
+    /// ([`crate::reeving`]).
+    pub rope_reach: Option<crate::reeving::RopeReach>,
     pub deductions_kg: f64,
     /// Configurations with the load resting at its pick and set positions.
     pub pick: Config,
@@ -992,7 +997,39 @@ impl LiftSpec {
             heading_rad: self.crane.heading_deg.to_radians(),
             boom_length_m: boom,
         };
+        // The falls take rope: where the rope lets the hook down less than
+        // its travel, that is the longest rope of this lift's crane.
+        let rope_reach = match (model.hook.rope_m, model.hook.rope_lead_m, self.crane.falls) {
+            (Some(rope_m), Some(lead_m), Some(falls)) => Some(crate::reeving::RopeReach {
+                rope_m,
+                lead_m,
+                boom_m: boom,
+                falls,
+                reach_m: crate::reeving::rope_reach_m(rope_m, lead_m, boom, falls),
+                travel_m: model.hook.max_rope_m,
+            }),
+            _ => None,
+        };
+        let mut model = model;
+        if let Some(r) = rope_reach.as_ref().filter(|r| r.reach_m < r.travel_m) {
+            if !(r.reach_m > model.hook.min_rope_m) {
+                return Err(format!(
+                    "lift '{id}': {}, not more than the {:.2} m the hook block keeps below it (hook.min_rope_m): reeve fewer falls (crane falls) or rig a longer rope",
+                    r.said().split(": the longest").next().unwrap_or_default(),
+                    model.hook.min_rope_m
+                ));
+            }
+            model.hook.max_rope_m = r.reach_m;
+        }
         let crane = CraneSetup::new(model, placement).map_err(|e| format!("lift '{id}': {e}"))?;
+        // A pick or set beyond the rope's reach: say why the rope is short.
+        let rope_said = |e: String| match rope_reach.as_ref().filter(|r| r.reach_m < r.travel_m) {
+            Some(r) => format!(
+                "{e} (on {} falls the hoist rope lets the hook hang at most {:.2} m below the boom head, hook.rope_m: reeve fewer falls if the load allows)",
+                r.falls, r.reach_m
+            ),
+            None => e,
+        };
         let load =
             LoadShape { size_m: self.load.size_m, cog_m: self.load.cog_m, rigging_height_m: self.rigging.height_m };
         let solve = |which: &str, p: &PoseSpec| -> Result<(Config, LoadPose), String> {
@@ -1047,12 +1084,12 @@ impl LiftSpec {
                 )),
             }
         };
-        let (mut pick, pick_pose) = solve("pick", &self.pick)?;
-        let (mut set, set_pose) = solve("set", &self.set)?;
-        within_reach(id, &crane, self.liftoff_m, &pick, &set)?;
+        let (mut pick, pick_pose) = solve("pick", &self.pick).map_err(rope_said)?;
+        let (mut set, set_pose) = solve("set", &self.set).map_err(rope_said)?;
+        within_reach(id, &crane, self.liftoff_m, &pick, &set).map_err(rope_said)?;
         let mut resume_from = match &self.resume_from {
             Some(p) => {
-                let (c, pose) = solve("resume_from", p)?;
+                let (c, pose) = solve("resume_from", p).map_err(rope_said)?;
                 let lim = crane.limits();
                 if !(lim.radial.0 - 1e-9..=lim.radial.1 + 1e-9).contains(&c.radial)
                     || !(lim.hoist_m.0 - 1e-9..=lim.hoist_m.1 + 1e-9).contains(&c.hoist_m)
@@ -1178,6 +1215,7 @@ impl LiftSpec {
             rigging_mass_kg: self.rigging.mass_t * KG_PER_TONNE,
             slings,
             falls: self.crane.falls,
+            rope_reach,
             deductions_kg: self.crane.deductions_t * KG_PER_TONNE,
             pick,
             set,
@@ -1446,6 +1484,53 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         assert!(
             crate::reeving::Reeving::of(&spec().resolve(crate::crane::builtin("ltm-1100").unwrap()).unwrap()).is_none()
         );
+    }
+
+    /// The falls take rope: 300 m of it, 20 m to the boom's foot and the
+    /// 40 m boom leave 240 m past the head, so the hook hangs at most 60 m
+    /// below it on 4 falls (the crane's longest rope for the lift), 24 m on
+    /// 10 (short of the pick, refused saying why); on 1 fall the hook's
+    /// 110 m of travel holds; on 10 falls of 80 m of rope, the hook cannot
+    /// leave the head.
+    #[test]
+    fn the_falls_take_rope() {
+        let on = |rope_m: f64, falls: u32| {
+            let mut model = crate::crane::builtin("ac-700").unwrap();
+            (model.hook.rope_m, model.hook.rope_lead_m) = (Some(rope_m), Some(20.0));
+            let mut s = spec();
+            s.crane.falls = Some(falls);
+            s.resolve(model)
+        };
+        let t = on(300.0, 4).unwrap();
+        assert_eq!(t.crane.limits().hoist_m.1, 60.0);
+        let r = t.rope_reach.clone().unwrap();
+        assert_eq!((r.reach_m, r.travel_m), (60.0, 110.0));
+        assert_eq!(
+            r.said(),
+            "the hoist rope's 300 m (less 20.0 m to the boom's foot and the 40.0 m boom) on 4 falls lets the hook hang 60.00 m below the boom head: the longest rope planned with (hook travel 110.00 m)"
+        );
+        assert!(crate::reeving::Reeving::of(&t).unwrap().said().ends_with(&r.said()));
+        assert!(t.pick.hoist_m > 24.0, "{}", t.pick.hoist_m);
+        let e = on(300.0, 10).unwrap_err();
+        assert!(e.contains("lift 'V-101': pick"), "{e}");
+        assert!(
+            e.ends_with("(on 10 falls the hoist rope lets the hook hang at most 24.00 m below the boom head, hook.rope_m: reeve fewer falls if the load allows)"),
+            "{e}"
+        );
+        let one = on(300.0, 1).unwrap();
+        assert_eq!(one.crane.limits().hoist_m.1, 110.0);
+        assert!(one.rope_reach.unwrap().said().ends_with(
+            "lets the hook hang 240.00 m below the boom head, more than the hook's travel (110.00 m), which holds"
+        ));
+        let e = on(80.0, 10).unwrap_err();
+        assert!(
+            e.contains("on 10 falls lets the hook hang 2.00 m below the boom head, not more than the 2.00 m the hook block keeps below it (hook.min_rope_m): reeve fewer falls (crane falls) or rig a longer rope"),
+            "{e}"
+        );
+        // Without falls, or without the rope in the crane file: not known.
+        let mut s = spec();
+        s.crane.model = "ac-700".into();
+        assert_eq!(s.resolve(crate::crane::builtin("ac-700").unwrap()).unwrap().rope_reach, None);
     }
 
     #[test]

@@ -8,6 +8,14 @@
 //! is reeved for the load; this says how many falls that takes, and checks
 //! the falls the lift gives (`crane.falls`).
 //!
+//! The falls also take rope: where the crane file gives the hoist rope's
+//! length (`[hook] rope_m`, less its dead wraps) and its run from the drum
+//! to the boom's foot (`rope_lead_m`), the rope left past the boom's head,
+//! shared by the falls, is how far the hook may hang below it
+//! ([`rope_reach_m`]). Where that is less than the hook's travel, the lift's
+//! crane is set up with it as its longest rope (`LiftSpec::resolve`), so
+//! the planner, the validator and the pick and set all keep within it.
+//!
 //! What this module must not do: depend on the path (the hook load is the
 //! same all along it), or say more than the crane file gives: a crane file
 //! without a line pull has its falls unchecked, and says so.
@@ -35,6 +43,55 @@ pub struct Reeving {
     pub block_rated_kg: Option<f64>,
     /// The most falls its sheaves take, where the crane file gives it.
     pub max_falls: Option<u32>,
+    /// How far the falls let the hook hang below the boom head, where the
+    /// crane file gives the hoist rope's length and the lift its falls.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rope: Option<RopeReach>,
+}
+
+/// The hoist rope against the falls ([`rope_reach_m`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RopeReach {
+    /// The rope that may be paid out (m, `[hook] rope_m`).
+    pub rope_m: f64,
+    /// Drum to the boom's foot (m, `[hook] rope_lead_m`).
+    pub lead_m: f64,
+    pub boom_m: f64,
+    pub falls: u32,
+    /// How far the hook may hang below the boom head on them (m).
+    pub reach_m: f64,
+    /// The hook's travel the crane file gives (`[hook] max_rope_m`): the
+    /// rope limits the lift only where its reach is less.
+    pub travel_m: f64,
+}
+
+/// How far below the boom head the hook may hang on `falls` falls (m, rope
+/// from the head's sheave down to the hook block): the rope `rope_m` less
+/// its run from the drum to the boom's foot (`lead_m`) and along the `boom_m`
+/// boom, shared by the falls. Negative where the rope does not reach the
+/// head.
+pub fn rope_reach_m(rope_m: f64, lead_m: f64, boom_m: f64, falls: u32) -> f64 {
+    (rope_m - lead_m - boom_m) / f64::from(falls.max(1))
+}
+
+impl RopeReach {
+    /// In words, for the Reeving row.
+    pub fn said(&self) -> String {
+        let limits = if self.reach_m < self.travel_m {
+            format!(": the longest rope planned with (hook travel {:.2} m)", self.travel_m)
+        } else {
+            format!(", more than the hook's travel ({:.2} m), which holds", self.travel_m)
+        };
+        format!(
+            "the hoist rope's {:.0} m (less {:.1} m to the boom's foot and the {:.1} m boom) on {} fall{} lets the hook hang {:.2} m below the boom head{limits}",
+            self.rope_m,
+            self.lead_m,
+            self.boom_m,
+            self.falls,
+            if self.falls == 1 { "" } else { "s" },
+            self.reach_m
+        )
+    }
 }
 
 impl Reeving {
@@ -49,6 +106,7 @@ impl Reeving {
             line_pull_kg: hook.line_pull_t.map(|t| t * KG_PER_TONNE),
             block_rated_kg: hook.rated_t.map(|t| t * KG_PER_TONNE),
             max_falls: hook.max_falls,
+            rope: task.rope_reach.clone(),
         };
         (r.falls.is_some() || r.line_pull_kg.is_some() || r.block_rated_kg.is_some()).then_some(r)
     }
@@ -123,6 +181,7 @@ impl Reeving {
                 100.0 * self.on_hook_kg / rated
             ));
         }
+        parts.extend(self.rope.as_ref().map(RopeReach::said));
         parts.join("; ")
     }
 
@@ -145,6 +204,7 @@ mod tests {
             line_pull_kg: Some(8000.0),
             block_rated_kg: Some(63_000.0),
             max_falls: Some(8),
+            rope: None,
         }
     }
 

@@ -721,6 +721,55 @@ fn the_load_keeps_its_clearance_wherever_its_centre_of_gravity_lies() {
     assert!(e.contains("the load and its rigging 1.00 m off along the load's x and y, as far as its centre of gravity may lie off (load cog_tolerance_m)"), "{e}");
 }
 
+/// The falls take rope: with the hoist rope just long enough on 4 falls for
+/// the hook to reach the pick and the set (and half a metre more), the lift
+/// plans within it, and the checker and the validator refuse the hook
+/// lowered a metre past it, as they refuse it past the hook's travel.
+#[test]
+fn the_hook_hangs_no_lower_than_the_falls_let_it() {
+    let mesh = site();
+    let (m, world) = (map(&mesh), World::new(&mesh, &[], &[]).unwrap());
+    let plain = task(-14.0);
+    let reach_m = plain.pick.hoist_m.max(plain.set.hoist_m) + 0.5;
+    let mut model = builtin("ac-700").unwrap();
+    (model.hook.rope_m, model.hook.rope_lead_m) = (Some(20.0 + 40.0 + 4.0 * reach_m), Some(20.0));
+    let mut spec = spec_of(-14.0);
+    spec.crane.falls = Some(4);
+    let t = spec.resolve(model).unwrap();
+    assert!((t.crane.limits().hoist_m.1 - reach_m).abs() < 1e-9 && reach_m < plain.crane.limits().hoist_m.1);
+    let s = quick();
+    let site = Site { map: &m, world: &world, charts: None };
+    let (plan, _) = plan_lift(&t, &site, &s, 3).unwrap();
+    assert!(plan.validator.ok);
+    assert!(plan.moves.iter().all(|mv| mv.from.hoist_m.max(mv.to.hoist_m) <= reach_m + 1e-9));
+    let low = Config { hoist_m: reach_m + 1.0, ..t.pick };
+    let v = validate(
+        &t,
+        None,
+        &world,
+        &rules(),
+        &[Move { joint: Joint::Hoist, from: Config { hoist_m: reach_m, ..t.pick }, to: low }],
+        &[false],
+    );
+    assert!(v.problems.iter().any(|p| p.contains("outside the crane's joint limits")), "{:?}", v.problems);
+    let cs = liftplan_cspace::CSpace::build(&liftplan_cspace::Problem { task: &t, chart: None, map: &m }, &s.cspace);
+    assert!(liftplan_cspace::Checker::new(&cs, &m, &t, vec![], s.cspace.sample_m).config(&low).is_err());
+    // The same move on the rope's full travel: within the limits.
+    let v = validate(
+        &plain,
+        None,
+        &world,
+        &rules(),
+        &[Move {
+            joint: Joint::Hoist,
+            from: Config { hoist_m: reach_m, ..plain.pick },
+            to: Config { hoist_m: reach_m + 1.0, ..plain.pick },
+        }],
+        &[false],
+    );
+    assert!(!v.problems.iter().any(|p| p.contains("outside the crane's joint limits")), "{:?}", v.problems);
+}
+
 /// A chart configuration "none" for the test crane's 40 m boom: its rows
 /// (radius m, capacity t), their cells on the chart's `sheet`.
 fn chart_of(rows: &[(f64, f64)], sheet: &str) -> liftplan_core::capacity::CapacityTable {
