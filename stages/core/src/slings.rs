@@ -193,6 +193,11 @@ pub struct SlingCheck {
     /// centre of gravity as given.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub worst_cog_m: Option<[f64; 2]>,
+    /// How far off level the load may hang on legs made for the centre of
+    /// gravity as given, where it lies elsewhere within the tolerance
+    /// (degrees, an upper bound: [`tilt_bound_deg`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tilt_deg: Option<f64>,
 }
 
 fn is_zero(v: &f64) -> bool {
@@ -314,8 +319,14 @@ impl SlingCheck {
             Some([x, y]) => format!("the most on a leg with it at ({x:.2}, {y:.2}) m"),
             None => "the most on a leg with it as given".to_string(),
         };
+        let tilt = match self.tilt_deg {
+            Some(deg) => format!(
+                ": on legs of those lengths a load whose centre of gravity lies off hangs up to {deg:.1}° off level, and the plan takes it hanging level: at the trial lift, set the legs for it to"
+            ),
+            None => String::new(),
+        };
         format!(
-            "; the worst with the centre of gravity within {:.2} m along x and y (load cog_tolerance_m, searched over that square; {worst}), the lengths for it as given",
+            "; the worst with the centre of gravity within {:.2} m along x and y (load cog_tolerance_m, searched over that square; {worst}), the lengths for it as given{tilt}",
             self.cog_tolerance_m
         )
     }
@@ -410,6 +421,17 @@ pub fn check(
     cog_m: [f64; 3],
     rigging_height_m: f64,
 ) -> Result<SlingCheck, String> {
+    // On one or two legs (a spreader's too) the load turns about its lift
+    // points' line: below its centre of gravity, it turns over.
+    let lowest = slings.lift_points_m.iter().map(|p| p[2]).fold(f64::INFINITY, f64::min);
+    if slings.lift_points_m.len() <= 2 && !(lowest > cog_m[2] + 1e-9) {
+        return Err(format!(
+            "the load hangs on {} leg{} from lift points as low as z {lowest:.2} m from its box's centre, not above its centre of gravity (z {:.2} m): it would turn over in the slings; give lift points above it (rigging lift_points_m) or more legs",
+            slings.lift_points_m.len(),
+            if slings.lift_points_m.len() == 1 { "" } else { "s" },
+            cog_m[2]
+        ));
+    }
     if let Some(beam) = &slings.spreader {
         return check_spreader(slings, beam, load_kg, size_m, cog_m, rigging_height_m);
     }
@@ -467,6 +489,7 @@ pub fn check(
         spreader: None,
         cog_tolerance_m: 0.0,
         worst_cog_m: None,
+        tilt_deg: None,
     })
 }
 
@@ -506,6 +529,7 @@ pub fn check_within(
         return Ok(worst);
     }
     worst.cog_tolerance_m = cog_tolerance_m;
+    worst.tilt_deg = Some(tilt_bound_deg(slings, size_m, cog_m, cog_tolerance_m, rigging_height_m));
     let tol = cog_tolerance_m;
     let at = |[x, y]: [f64; 2]| -> Result<SlingCheck, String> {
         check(slings, load_kg, size_m, [x, y, cog_m[2]], rigging_height_m).map_err(|e| {
@@ -555,6 +579,25 @@ pub fn check_within(
         }
     }
     Ok(worst)
+}
+
+/// The most a load hangs off level on legs made for its centre of gravity
+/// at `cog_m` when it lies up to `tol` off along x and y (degrees): it turns
+/// until its centre of gravity is under what it hangs from, at least as far
+/// above it as `arm`: the hook over three or four legs (the legs and the
+/// load turn as one about it), the line through the lift points on two (the
+/// load turns about it across the line; along it, about the hook, higher),
+/// the lift point on one. So atan(√2 tol / arm), the offset's most in plan
+/// over that height. (A spreader's two legs hang the load from the line
+/// through its lift points as two legs do.)
+pub fn tilt_bound_deg(slings: &Slings, size_m: [f64; 3], cog_m: [f64; 3], tol: f64, rigging_height_m: f64) -> f64 {
+    let pts = &slings.lift_points_m;
+    let lowest = pts.iter().map(|p| p[2]).fold(f64::INFINITY, f64::min);
+    let arm = match pts.len() {
+        1 | 2 => lowest - cog_m[2],
+        _ => size_m[2] / 2.0 + rigging_height_m - cog_m[2],
+    };
+    (std::f64::consts::SQRT_2 * tol).atan2(arm).to_degrees()
 }
 
 /// Where the square of half side `tol` about `centre` has its edges crossed
@@ -700,6 +743,7 @@ fn check_spreader(
     Ok(SlingCheck {
         cog_tolerance_m: 0.0,
         worst_cog_m: None,
+        tilt_deg: None,
         legs: 2,
         max_angle_deg: 0.0,
         max_leg_kg: shares[max_leg],
@@ -1141,6 +1185,12 @@ mod tests {
         let [x, y] = c.worst_cog_m.unwrap();
         assert!((x.abs() - 1.0).abs() < 1e-12 && (y.abs() - 1.0).abs() < 1e-12, "{x} {y}");
         assert_eq!(c.leg_lengths_m, given.leg_lengths_m);
+        // On legs made for the middle, the load turns about the line through
+        // its lift points (1 m above its centre of gravity) until its centre
+        // of gravity is under it: √2 m off in plan, at most 54.7°.
+        assert!((c.tilt_deg.unwrap() - 2.0f64.sqrt().atan().to_degrees()).abs() < 1e-9, "{:?}", c.tilt_deg);
+        assert_eq!(given.tilt_deg, None);
+        assert!(c.said().contains("hangs up to 54.7° off level, and the plan takes it hanging level: at the trial lift, set the legs for it to"), "{}", c.said());
         let finest = (0..41 * 41)
             .map(|n| [-1.0 + (n % 41) as f64 * 0.05, -1.0 + (n / 41) as f64 * 0.05, 0.0])
             .map(|cog| check(&legs, 12_000.0, size, cog, 3.0).unwrap())
@@ -1171,6 +1221,29 @@ mod tests {
         let (level_top, off_top) = (level.spreader.unwrap().top.unwrap(), off.spreader.unwrap().top.unwrap());
         assert!(off_top.max_leg_kg > level_top.max_leg_kg, "{off_top:?} {level_top:?}");
         assert!((off.max_leg_kg - 12_000.0 * 3.2 / 6.0).abs() < 1e-6, "{}", off.max_leg_kg);
+    }
+
+    /// One or two legs hang the load from its lift points' line: one at or
+    /// below the centre of gravity is refused (the load would turn over);
+    /// three or four hang it from the hook, above it, whatever their points.
+    #[test]
+    fn a_load_below_its_lift_points_line_turns_over() {
+        let size = [8.0, 3.0, 2.0];
+        let at = |z: f64, legs: usize| Slings {
+            lift_points_m: default_points(legs, size).unwrap().into_iter().map(|p| [p[0], p[1], z]).collect(),
+            points_given: true,
+            ratings: Ratings::legs(20_000.0),
+            spreader: None,
+        };
+        // Trunnions at mid-height, the centre of gravity 0.1 m below: fine.
+        assert!(check(&at(0.0, 2), 12_000.0, size, [0.0, 0.0, -0.1], 4.0).is_ok());
+        let e = check(&at(0.0, 2), 12_000.0, size, [0.0, 0.0, 0.0], 4.0).unwrap_err();
+        assert!(e.starts_with("the load hangs on 2 legs from lift points as low as z 0.00 m from its box's centre, not above its centre of gravity (z 0.00 m): it would turn over"), "{e}");
+        assert!(check(&at(-0.5, 1), 12_000.0, size, [0.0; 3], 4.0).unwrap_err().contains("on 1 leg from"));
+        assert!(check(&at(-0.5, 4), 12_000.0, size, [0.0; 3], 4.0).is_ok());
+        // The tilt's bound over the hook's height on four legs.
+        let four = check_within(&at(-0.5, 4), 12_000.0, size, [0.0; 3], 0.2, 4.0).unwrap();
+        assert!((four.tilt_deg.unwrap() - (0.2 * 2.0f64.sqrt()).atan2(5.0).to_degrees()).abs() < 1e-9);
     }
 
     /// On four legs with one slack, the most on a leg is not at a corner of
