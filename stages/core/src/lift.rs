@@ -635,11 +635,14 @@ impl LiftTask {
     /// direction is not known; a swinging load rises, never falls, so its
     /// underside stays); and, for the load and its rigging, by the centre
     /// of gravity's tolerance ([`Self::cog_tolerance_m`]) along the load's
-    /// x and y: the hook hangs over the centre of gravity wherever it is,
-    /// so the load hangs off by as much as it lies off where the lift gives
-    /// it (the rigging's box, over the load's footprint, with it). `b`
-    /// itself where neither applies. For upright boxes, as every hanging
-    /// part's is, turned as the load is: then the growth is exact.
+    /// x and y: hanging level, as the plan takes it, the load has the hook
+    /// over its centre of gravity wherever that lies, so it hangs off by as
+    /// much as that lies off where the lift gives it (the rigging's box,
+    /// over the load's footprint, with it). On legs left as made for the
+    /// centre of gravity as given it hangs tilted instead: not planned, but
+    /// bounded and said ([`crate::slings::tilt_bound_deg`]). `b` itself
+    /// where neither applies. For upright boxes, as every hanging part's
+    /// is, turned as the load is: then the growth is exact.
     pub fn hanging_swept(&self, kind: PartKind, b: &crate::obb::Obb, sheave_z: f64) -> crate::obb::Obb {
         let cog_m = if matches!(kind, PartKind::Load | PartKind::Rigging) { self.cog_tolerance_m } else { 0.0 };
         if self.gust_swing_per_m <= 0.0 && cog_m <= 0.0 {
@@ -1015,7 +1018,7 @@ impl LiftSpec {
             if !(r.reach_m > model.hook.min_rope_m) {
                 return Err(format!(
                     "lift '{id}': {}, not more than the {:.2} m the hook block keeps below it (hook.min_rope_m): reeve fewer falls (crane falls) or rig a longer rope",
-                    r.said().split(": the longest").next().unwrap_or_default(),
+                    r.reach_said(),
                     model.hook.min_rope_m
                 ));
             }

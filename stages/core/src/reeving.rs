@@ -82,8 +82,13 @@ impl RopeReach {
         } else {
             format!(", more than the hook's travel ({:.2} m), which holds", self.travel_m)
         };
+        format!("{}{limits}", self.reach_said())
+    }
+
+    /// How far the rope lets the hook down, in words.
+    pub fn reach_said(&self) -> String {
         format!(
-            "the hoist rope's {:.0} m (less {:.1} m to the boom's foot and the {:.1} m boom) on {} fall{} lets the hook hang {:.2} m below the boom head{limits}",
+            "the hoist rope's {:.0} m (less {:.1} m to the boom's foot and the {:.1} m boom) on {} fall{} lets the hook hang {:.2} m below the boom head",
             self.rope_m,
             self.lead_m,
             self.boom_m,
