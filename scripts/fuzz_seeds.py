@@ -44,6 +44,9 @@ rigging = "rigging = { mass_t = 0.5, height_m = 4.0, legs = 2, leg_wll_t = 10.0,
 assert rigging in lift, "the demo's rigging line changed: update the spreader seed"
 spreader = rigging[:-2] + ", spreader = { length_m = 8.0, below_hook_m = 2.0, wll_t = 20.0, mass_t = 0.3, top_leg_wll_t = 12.0 } }"
 seed("crane_and_lift_toml", "lift-spreader.toml", lift[:lift.index('"#')].replace(rigging, spreader).encode())
+# ... and on a spreader frame over four corners (rigging.spreader.width_m).
+frame = rigging.replace("legs = 2", "legs = 4")[:-2] + ", spreader = { length_m = 8.0, width_m = 3.0, below_hook_m = 2.0, wll_t = 20.0, mass_t = 0.3, top_leg_wll_t = 12.0 } }"
+seed("crane_and_lift_toml", "lift-frame.toml", lift[:lift.index('"#')].replace(rigging, frame).encode())
 # project_toml: the template `liftplan init` writes and the demo's project
 # file, taken from their sources.
 for name, path, const in [("init.toml", "src/project.rs", "TEMPLATE"), ("demo.toml", "fixtures/src/demo.rs", "PROJECT_TOML")]:

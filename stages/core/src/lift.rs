@@ -91,7 +91,8 @@ impl Hitch {
 }
 
 /// `rigging.spreader`: a spreader beam hung from the hook by two top legs
-/// (`top_leg_wll_t` given) or a lifting beam hung by its lug (not given).
+/// (`top_leg_wll_t` given) or a lifting beam hung by its lug (not given);
+/// with `width_m`, a spreader or lifting frame over four lift points.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SpreaderSpec {
@@ -107,6 +108,10 @@ pub struct SpreaderSpec {
     /// Each top leg's working load limit (t, straight pull).
     #[serde(default)]
     pub top_leg_wll_t: Option<f64>,
+    /// A spreader frame's width (m, along the load's y; `length_m` along
+    /// its x), over four lift points ([`crate::slings::check_frame`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub width_m: Option<f64>,
 }
 
 impl Default for RiggingSpec {
@@ -858,7 +863,7 @@ impl LiftSpec {
         let slings = match (r.leg_wll_t, r.legs, &r.lift_points_m) {
             (None, _, _) if r.spreader.is_some() => {
                 return Err(format!(
-                    "lift '{id}': rigging gives a spreader but not the working load limit of the legs hanging from it: give rigging leg_wll_t (t, each leg's) with legs = 2 or two lift_points_m"
+                    "lift '{id}': rigging gives a spreader but not the working load limit of the legs hanging from it: give rigging leg_wll_t (t, each leg's) with legs = 2 (a beam) or 4 (a frame), or their lift_points_m"
                 ));
             }
             (None, _, _) if r.hitch != Hitch::Straight || r.shackle_wll_t.is_some() || r.lift_point_wll_t.is_some() => {
@@ -936,12 +941,17 @@ impl LiftSpec {
                         if let Some(t) = b.top_leg_wll_t {
                             pos("rigging.spreader.top_leg_wll_t", t)?;
                         }
+                        if let Some(w) = b.width_m {
+                            pos("rigging.spreader.width_m", w)?;
+                            metres("rigging.spreader.width_m", w, MAX_LOAD_SIDE_M)?;
+                        }
                         Some(crate::slings::Spreader {
                             length_m: b.length_m,
                             below_hook_m: b.below_hook_m,
                             wll_kg: b.wll_t * KG_PER_TONNE,
                             mass_kg: b.mass_t * KG_PER_TONNE,
                             top_leg_wll_kg: b.top_leg_wll_t.map(|t| t * KG_PER_TONNE),
+                            width_m: b.width_m,
                         })
                     }
                 };
@@ -1638,7 +1648,8 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
                 below_hook_m: 2.0,
                 wll_kg: 20_000.0,
                 mass_kg: 300.0,
-                top_leg_wll_kg: Some(12_000.0)
+                top_leg_wll_kg: Some(12_000.0),
+                width_m: None,
             }
         );
         assert!(
@@ -1689,6 +1700,10 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
             (
                 "legs = 2\nleg_wll_t = 8.0\nspreader = { length_m = 6000.0, below_hook_m = 2.0, wll_t = 20.0 }",
                 "rigging.spreader.length_m = 6000 m",
+            ),
+            (
+                "legs = 4\nleg_wll_t = 8.0\nspreader = { length_m = 6.0, width_m = 0.0, below_hook_m = 2.0, wll_t = 20.0 }",
+                "rigging.spreader.width_m must be positive",
             ),
             (
                 "legs = 2\nhitch = \"choked\"",

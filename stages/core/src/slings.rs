@@ -121,6 +121,12 @@ pub struct Spreader {
     /// beam hung from the hook by two legs; `None`: a lifting beam hung from
     /// the hook by its lug.
     pub top_leg_wll_kg: Option<f64>,
+    /// A frame's width (m, along the load's y; `length_m` along its x): a
+    /// spreader frame over four lift points, four legs hanging plumb from
+    /// its pins and, where `top_leg_wll_kg` gives them, four top legs up to
+    /// the hook ([`check_frame`]). `None`: a beam.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub width_m: Option<f64>,
 }
 
 /// What a beam carries ([`check`] with a [`Spreader`]).
@@ -139,6 +145,13 @@ pub struct SpreaderCheck {
     pub hook_from_middle_m: f64,
     /// The top legs of a spreader beam; `None` for a lifting beam.
     pub top: Option<TopLegs>,
+    /// A frame's width (m); `None`: a beam.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub width_m: Option<f64>,
+    /// Where the hook hangs over a frame (where its top legs meet, or its
+    /// lug must be), from the frame's centre along the load's x and y (m).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub hook_from_centre_m: Option<[f64; 2]>,
 }
 
 /// The two legs from a spreader beam's pins up to the hook.
@@ -277,13 +290,22 @@ impl SlingCheck {
             give.push("give lift points of a higher working load limit (rigging lift_point_wll_t) or more legs");
         }
         if let Some(s) = &self.spreader {
+            let frame = s.width_m.is_some();
             if over(s.carries_kg, s.wll_kg) {
-                what.push("the spreader beam");
-                give.push("give a beam of a higher working load limit (spreader wll_t)");
+                what.push(if frame { "the spreader frame" } else { "the spreader beam" });
+                give.push(if frame {
+                    "give a frame of a higher working load limit (spreader wll_t)"
+                } else {
+                    "give a beam of a higher working load limit (spreader wll_t)"
+                });
             }
             if s.top.as_ref().is_some_and(|t| over(t.max_leg_kg, t.leg_wll_kg)) {
                 what.push("the spreader's top legs");
-                give.push("give top legs of a higher working load limit (spreader top_leg_wll_t) or hang the beam lower (below_hook_m)");
+                give.push(if frame {
+                    "give top legs of a higher working load limit (spreader top_leg_wll_t) or hang the frame lower (below_hook_m)"
+                } else {
+                    "give top legs of a higher working load limit (spreader top_leg_wll_t) or hang the beam lower (below_hook_m)"
+                });
             }
         }
         (!what.is_empty())
@@ -351,6 +373,9 @@ impl SlingCheck {
     }
 
     fn said_with(&self, s: &SpreaderCheck) -> String {
+        if let Some(width_m) = s.width_m {
+            return self.said_with_frame(s, width_m);
+        }
         let where_ = self.where_said();
         let lengths: Vec<String> = self.leg_lengths_m.iter().map(|l| format!("{l:.2}")).collect();
         let hung = match &s.top {
@@ -387,6 +412,46 @@ impl SlingCheck {
             lengths.join(" and "),
             s.length_m,
             s.span_m,
+            s.below_hook_m,
+            s.carries_kg / 1000.0,
+            s.wll_kg / 1000.0,
+            100.0 * s.carries_kg / s.wll_kg,
+        )
+    }
+}
+
+impl SlingCheck {
+    /// [`Self::said`] for four legs hanging plumb from a spreader frame.
+    fn said_with_frame(&self, s: &SpreaderCheck, width_m: f64) -> String {
+        let lengths: Vec<String> = self.leg_lengths_m.iter().map(|l| format!("{l:.2}")).collect();
+        let [dx, dy] = s.hook_from_centre_m.unwrap_or([0.0; 2]);
+        let hung = match &s.top {
+            Some(t) => {
+                let top: Vec<String> = t.leg_lengths_m.iter().map(|l| format!("{l:.2}")).collect();
+                format!(
+                    "hung from the hook by 4 top legs up to {:.1}° from the vertical: the most on one (top leg {}, any one slack) {:.2} t ({:.0} kN) of its {:.2} t working load limit: {:.0} %; top legs {} m long from pin to hook, for the frame to hang level, meeting over the centre of gravity ({dx:.2}, {dy:.2}) m from the frame's centre, each pulling its corner in with up to {:.2} t ({:.0} kN)",
+                    t.max_angle_deg,
+                    t.max_leg,
+                    t.max_leg_kg / 1000.0,
+                    t.max_leg_kg * G / 1000.0,
+                    t.leg_wll_kg / 1000.0,
+                    100.0 * t.max_leg_kg / t.leg_wll_kg,
+                    top.join(", "),
+                    t.compression_kg / 1000.0,
+                    t.compression_kg * G / 1000.0,
+                )
+            }
+            None => format!(
+                "hung from the hook by its lug, which must be over the centre of gravity, ({dx:.2}, {dy:.2}) m from the frame's centre along the load's x and y (a lug elsewhere tilts the frame)"
+            ),
+        };
+        format!(
+            "4 legs {}{}, hanging plumb from a spreader frame: {}; legs {} m long from lift point to pin; the frame {:.2} x {width_m:.2} m, its pins {:.2} m below the hook block, carries {:.2} t of its {:.2} t working load limit: {:.0} %, {hung}",
+            self.where_said(),
+            if self.ratings.choked { " choked round the load" } else { "" },
+            self.most_on_a_leg_said(", any one leg slack"),
+            lengths.join(", "),
+            s.length_m,
             s.below_hook_m,
             s.carries_kg / 1000.0,
             s.wll_kg / 1000.0,
@@ -432,8 +497,12 @@ pub fn check(
             cog_m[2]
         ));
     }
-    if let Some(beam) = &slings.spreader {
-        return check_spreader(slings, beam, load_kg, size_m, cog_m, rigging_height_m);
+    match &slings.spreader {
+        Some(frame) if frame.width_m.is_some() => {
+            return check_frame(slings, frame, load_kg, size_m, cog_m, rigging_height_m);
+        }
+        Some(beam) => return check_spreader(slings, beam, load_kg, size_m, cog_m, rigging_height_m),
+        None => {}
     }
     let hook = [cog_m[0], cog_m[1], size_m[2] / 2.0 + rigging_height_m];
     let pts = &slings.lift_points_m;
@@ -759,8 +828,169 @@ fn check_spreader(
             wll_kg: beam.wll_kg,
             hook_from_middle_m: hook_m - span_m / 2.0,
             top,
+            width_m: None,
+            hook_from_centre_m: None,
         }),
     })
+}
+
+/// [`check`] for four legs hanging plumb from a spreader frame's pins over
+/// the four lift points. The frame, `length_m` along the load's x and
+/// `width_m` along its y, is centred on the lift points, which it must reach
+/// over, and lies within the load's footprint as a beam does. Four plumb
+/// legs on a rigid load are not determinate: as four legs to a hook, one a
+/// little long goes slack and three carry it, each by where the centre of
+/// gravity lies in plan in their triangle, so the most over the ways of one
+/// slack. The frame carries the load; four top legs, where the lift gives
+/// them, carry the load and the frame from its pins to the hook over their
+/// joint centre of gravity, checked as four legs to a hook are (any one
+/// slack, 60° at most); without them it is a lifting frame hung by a lug,
+/// which must be over that centre of gravity (where, is said).
+pub fn check_frame(
+    slings: &Slings,
+    frame: &Spreader,
+    load_kg: f64,
+    size_m: [f64; 3],
+    cog_m: [f64; 3],
+    rigging_height_m: f64,
+) -> Result<SlingCheck, String> {
+    let pts = &slings.lift_points_m;
+    if pts.len() != 4 {
+        return Err(format!(
+            "a spreader frame (rigging spreader with width_m) is checked with four sling legs hanging plumb from its corners: give legs = 4 or four lift_points_m, not {}",
+            pts.len()
+        ));
+    }
+    let (length_m, width_m) = (frame.length_m, frame.width_m.unwrap_or(0.0));
+    let centre = [pts.iter().map(|p| p[0]).sum::<f64>() / 4.0, pts.iter().map(|p| p[1]).sum::<f64>() / 4.0];
+    for (k, p) in pts.iter().enumerate() {
+        if (p[0] - centre[0]).abs() > length_m / 2.0 + 1e-9 || (p[1] - centre[1]).abs() > width_m / 2.0 + 1e-9 {
+            return Err(format!(
+                "the spreader frame, {length_m:.2} x {width_m:.2} m and centred over the lift points, does not reach over lift point {} ({:.2}, {:.2}) m: give a larger frame (spreader length_m along the load's x, width_m along its y) or lift points nearer together",
+                k + 1,
+                p[0],
+                p[1]
+            ));
+        }
+    }
+    let [hx, hy] = [size_m[0] / 2.0, size_m[1] / 2.0];
+    if centre[0].abs() + length_m / 2.0 > hx + 1e-9 || centre[1].abs() + width_m / 2.0 > hy + 1e-9 {
+        return Err(format!(
+            "the spreader frame, {length_m:.2} x {width_m:.2} m and centred over the lift points, reaches beyond the load's {:.2} x {:.2} m footprint: liftplan keeps the rigging within the load's footprint and does not plan a frame beyond it; give lift points further in (lift_points_m) or a smaller frame",
+            size_m[0], size_m[1]
+        ));
+    }
+    let pins_z = size_m[2] / 2.0 + rigging_height_m - frame.below_hook_m;
+    let mut leg_lengths_m = Vec::with_capacity(4);
+    for (k, p) in pts.iter().enumerate() {
+        let drop = pins_z - p[2];
+        if !(drop > 1e-6) {
+            return Err(format!(
+                "sling leg {} takes the load at z {:.2} m from its box's centre, not below the spreader frame's pins ({pins_z:.2} m: the load's top plus rigging height_m less spreader below_hook_m)",
+                k + 1,
+                p[2]
+            ));
+        }
+        leg_lengths_m.push(drop);
+    }
+    // Plumb legs, one slack: the other three share the load as the centre
+    // of gravity's place in their triangle in plan has it.
+    let (mut max_leg_kg, mut max_leg, mut ways) = (0.0f64, 0, 0);
+    for legs in [[1, 2, 3], [0, 2, 3], [0, 1, 3], [0, 1, 2]] {
+        let Some(shares) = plan_shares(legs.map(|k| [pts[k][0], pts[k][1]]), [cog_m[0], cog_m[1]]) else { continue };
+        ways += 1;
+        for (&k, share) in legs.iter().zip(shares) {
+            if load_kg * share > max_leg_kg {
+                (max_leg_kg, max_leg) = (load_kg * share, k);
+            }
+        }
+    }
+    if ways == 0 {
+        return Err(outside());
+    }
+    // The hook over the joint centre of gravity of the load and the frame,
+    // the frame's at its centre.
+    let total_kg = load_kg + frame.mass_kg;
+    let joint = [0, 1].map(|a| (load_kg * cog_m[a] + frame.mass_kg * centre[a]) / total_kg);
+    let top = match frame.top_leg_wll_kg {
+        None => None,
+        Some(leg_wll_kg) => {
+            let h = frame.below_hook_m;
+            if !(h > 1e-6) {
+                return Err(
+                    "a spreader frame hung by top legs (spreader top_leg_wll_t) hangs below the hook block: give spreader below_hook_m above zero".to_string()
+                );
+            }
+            let pins: Vec<[f64; 3]> = pts.iter().map(|p| [p[0], p[1], pins_z]).collect();
+            let hook = [joint[0], joint[1], pins_z + h];
+            let Legs { up, lengths_m, max_angle_deg } = legs_to(hook, &pins).map_err(|_| outside())?;
+            if max_angle_deg > MAX_LEG_ANGLE_DEG + 1e-9 {
+                return Err(format!(
+                    "the spreader frame's top legs hang up to {max_angle_deg:.1}° from the vertical, more than the {MAX_LEG_ANGLE_DEG:.0}° slings are rated for: hang the frame lower (spreader below_hook_m {h:.2} m, within rigging height_m)"
+                ));
+            }
+            let (mut most_kg, mut most, mut across_kg) = (0.0f64, 0, 0.0f64);
+            for legs in [[1, 2, 3], [0, 2, 3], [0, 1, 3], [0, 1, 2]] {
+                let Some(pulls) = three_legs(&up, legs, total_kg) else { continue };
+                for (&k, pull) in legs.iter().zip(pulls) {
+                    across_kg = across_kg.max(pull * up[k][0].hypot(up[k][1]));
+                    if pull > most_kg {
+                        (most_kg, most) = (pull, k);
+                    }
+                }
+            }
+            if most_kg == 0.0 {
+                return Err(outside());
+            }
+            Some(TopLegs {
+                max_angle_deg,
+                max_leg_kg: most_kg,
+                max_leg: most + 1,
+                leg_wll_kg,
+                leg_lengths_m: lengths_m,
+                compression_kg: across_kg,
+            })
+        }
+    };
+    Ok(SlingCheck {
+        legs: 4,
+        max_angle_deg: 0.0,
+        max_leg_kg,
+        max_leg: max_leg + 1,
+        ratings: slings.ratings,
+        points_given: slings.points_given,
+        leg_lengths_m,
+        spreader: Some(SpreaderCheck {
+            length_m,
+            span_m: length_m,
+            below_hook_m: frame.below_hook_m,
+            carries_kg: load_kg,
+            wll_kg: frame.wll_kg,
+            hook_from_middle_m: 0.0,
+            top,
+            width_m: Some(width_m),
+            hook_from_centre_m: Some([joint[0] - centre[0], joint[1] - centre[1]]),
+        }),
+        cog_tolerance_m: 0.0,
+        worst_cog_m: None,
+        tilt_deg: None,
+    })
+}
+
+/// The shares of a load on three plumb legs at `pts` (plan) with its
+/// centre of gravity at `cog`: its barycentric coordinates in their
+/// triangle; `None` where it lies outside it (one share below zero) or the
+/// three lie in a line.
+fn plan_shares(pts: [[f64; 2]; 3], cog: [f64; 2]) -> Option<[f64; 3]> {
+    let [a, b, c] = pts;
+    let det = (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]);
+    if det.abs() < 1e-9 {
+        return None;
+    }
+    let wb = ((cog[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (cog[1] - a[1])) / det;
+    let wc = ((b[0] - a[0]) * (cog[1] - a[1]) - (cog[0] - a[0]) * (b[1] - a[1])) / det;
+    let shares = [1.0 - wb - wc, wb, wc];
+    shares.iter().all(|&w| w >= -1e-9).then(|| shares.map(|w| w.max(0.0)))
 }
 
 /// Legs from their points up to a hook ([`legs_to`]).
@@ -955,7 +1185,7 @@ mod tests {
     }
 
     fn beam(top_leg_wll_kg: Option<f64>) -> Spreader {
-        Spreader { length_m: 6.4, below_hook_m: 2.0, wll_kg: 20_000.0, mass_kg: 600.0, top_leg_wll_kg }
+        Spreader { length_m: 6.4, below_hook_m: 2.0, wll_kg: 20_000.0, mass_kg: 600.0, top_leg_wll_kg, width_m: None }
     }
 
     /// Lift points 6 m apart on a 7 m load, 4 m of rigging: legs plumb
@@ -1282,5 +1512,76 @@ mod tests {
                 c.worst_cog_m
             );
         }
+    }
+
+    fn frame(top_leg_wll_kg: Option<f64>) -> Spreader {
+        Spreader {
+            length_m: 6.0,
+            below_hook_m: 2.0,
+            wll_kg: 20_000.0,
+            mass_kg: 600.0,
+            top_leg_wll_kg,
+            width_m: Some(2.0),
+        }
+    }
+
+    /// A 6 x 2 m frame over the corners of a 6 x 2 m rectangle on a 7 m
+    /// load, 4 m of rigging: legs plumb from pins 2 m under the hook, 2 m
+    /// long. Centred, one leg slack leaves the two diagonal legs each half;
+    /// the top legs (√10 m across, 2 m up) carry load and frame the same
+    /// way. Off centre (1, 0.5), the worst way of one slack gives the third
+    /// corner two thirds, by the triangle's coordinates by hand.
+    #[test]
+    fn a_spreader_frame_hangs_four_legs_plumb() {
+        let size = [7.0, 3.0, 2.0];
+        let mut s = Slings {
+            lift_points_m: vec![[-3.0, -1.0, 1.0], [3.0, -1.0, 1.0], [3.0, 1.0, 1.0], [-3.0, 1.0, 1.0]],
+            points_given: true,
+            ratings: Ratings::legs(9000.0),
+            spreader: Some(frame(Some(12_000.0))),
+        };
+        let c = check(&s, 12_000.0, size, [0.0; 3], 4.0).unwrap();
+        assert_eq!((c.max_leg_kg, c.max_angle_deg, c.leg_lengths_m.clone()), (6000.0, 0.0, vec![2.0; 4]));
+        let f = c.spreader.clone().unwrap();
+        assert_eq!((f.width_m, f.hook_from_centre_m, f.carries_kg), (Some(2.0), Some([0.0, 0.0]), 12_000.0));
+        let t = f.top.clone().unwrap();
+        let (across, cos) = (10.0f64.sqrt(), 2.0 / 14.0f64.sqrt());
+        assert!((t.max_leg_kg - 6300.0 / cos).abs() < 1e-6, "{t:?}");
+        assert!((t.compression_kg - 6300.0 * across / 2.0).abs() < 1e-6, "{t:?}");
+        assert!((t.max_angle_deg - across.atan2(2.0).to_degrees()).abs() < 1e-9);
+        assert_eq!(c.over_limit(), None);
+        let said = c.said();
+        assert!(said.starts_with("4 legs at the lift points given (rigging lift_points_m), hanging plumb from a spreader frame: the most on one leg (leg 2, any one leg slack) 6.00 t"), "{said}");
+        assert!(said.contains("the frame 6.00 x 2.00 m, its pins 2.00 m below the hook block, carries 12.00 t of its 20.00 t working load limit: 60 %, hung from the hook by 4 top legs up to 57.7° from the vertical"), "{said}");
+        // Off centre, on a lifting frame (top legs from its corners would
+        // hang more than 60° from the vertical to a hook over (0.95, 0.48)),
+        // its lug over the joint centre of gravity.
+        s.spreader = Some(frame(None));
+        let lug = check(&s, 12_000.0, size, [1.0, 0.5, 0.0], 4.0).unwrap();
+        assert!((lug.max_leg_kg - 8000.0).abs() < 1e-6 && lug.max_leg == 3, "{lug:?}");
+        let [dx, dy] = lug.spreader.unwrap().hook_from_centre_m.unwrap();
+        assert!((dx - 12.0 / 12.6).abs() < 1e-9 && (dy - 6.0 / 12.6).abs() < 1e-9);
+        // Over its limit, named.
+        s.spreader = Some(Spreader { wll_kg: 11_000.0, ..frame(Some(12_000.0)) });
+        let over = check(&s, 12_000.0, size, [0.0; 3], 4.0).unwrap().over_limit().unwrap();
+        assert!(
+            over.starts_with("the spreader frame cannot carry the load")
+                && over.contains("give a frame of a higher working load limit (spreader wll_t)"),
+            "{over}"
+        );
+        // What a frame cannot be.
+        s.spreader = Some(Spreader { length_m: 5.0, ..frame(Some(12_000.0)) });
+        let e = check(&s, 12_000.0, size, [0.0; 3], 4.0).unwrap_err();
+        assert!(e.contains("does not reach over lift point 1 (-3.00, -1.00) m"), "{e}");
+        s.spreader = Some(Spreader { length_m: 8.0, ..frame(Some(12_000.0)) });
+        let e = check(&s, 12_000.0, size, [0.0; 3], 4.0).unwrap_err();
+        assert!(e.contains("reaches beyond the load's 7.00 x 3.00 m footprint"), "{e}");
+        let two =
+            Slings { lift_points_m: vec![[-3.0, 0.0, 1.0], [3.0, 0.0, 1.0]], spreader: Some(frame(None)), ..s.clone() };
+        assert!(check(&two, 12_000.0, size, [0.0; 3], 4.0).unwrap_err().contains("checked with four sling legs"));
+        // Known to 0.1 m, the worst over the square is more.
+        s.spreader = Some(frame(Some(12_000.0)));
+        let within = check_within(&s, 12_000.0, size, [0.0; 3], 0.1, 4.0).unwrap();
+        assert!(within.max_leg_kg > 6000.0 && within.spreader.unwrap().top.unwrap().max_leg_kg > t.max_leg_kg);
     }
 }

@@ -168,6 +168,7 @@ fn the_sling_legs_are_checked_before_the_path() {
             wll_t: beam_wll_t,
             mass_t: 0.15,
             top_leg_wll_t: Some(4.5),
+            width_m: None,
         });
         spec.resolve(builtin("ac-700").unwrap()).unwrap()
     };
@@ -183,6 +184,35 @@ fn the_sling_legs_are_checked_before_the_path() {
     let top = c.spreader.as_ref().and_then(|s| s.top.clone()).unwrap();
     assert!((top.max_leg_kg - 2575.0 / 0.6).abs() < 1e-6, "{top:?}");
     assert!(plan.summary.slings_line().unwrap().contains("top legs 2.50 and 2.50 m long from pin to hook"));
+    // Four legs plumb from a 4 x 2 m frame over the skid's corners, 1.5 m
+    // under the hook: the diagonal legs carry the 5 t skid, half each; the
+    // top legs, √5 m across and 1.5 m up, the skid and the frame's 0.15 t.
+    let on_frame = |frame_wll_t: f64| {
+        let mut spec = spec_of(-14.0);
+        spec.rigging.legs = Some(4);
+        spec.rigging.leg_wll_t = Some(3.0);
+        spec.rigging.spreader = Some(liftplan_core::lift::SpreaderSpec {
+            length_m: 4.0,
+            below_hook_m: 1.5,
+            wll_t: frame_wll_t,
+            mass_t: 0.15,
+            top_leg_wll_t: Some(5.0),
+            width_m: Some(2.0),
+        });
+        spec.resolve(builtin("ac-700").unwrap()).unwrap()
+    };
+    let e = plan_lift(&on_frame(4.9), &site, &quick(), 3).unwrap_err().to_string();
+    assert!(
+        e.contains(
+            "the spreader frame cannot carry the load: 4 legs at the top's corners, hanging plumb from a spreader frame"
+        ),
+        "{e}"
+    );
+    let (plan, _) = plan_lift(&on_frame(6.0), &site, &quick(), 3).unwrap();
+    let c = plan.summary.slings.clone().expect("the plan carries the frame's check");
+    assert_eq!((c.max_leg_kg, c.max_angle_deg), (2500.0, 0.0));
+    let top = c.spreader.as_ref().and_then(|s| s.top.clone()).unwrap();
+    assert!((top.max_leg_kg - 2575.0 * 7.25f64.sqrt() / 1.5).abs() < 1e-6, "{top:?}");
 }
 
 /// The hoist rope's falls are checked before the path, like the slings: an
