@@ -251,9 +251,11 @@ pub fn held(
             held.entry((lift, revision)).or_insert("among the last plans or the plan stage's cache");
         }
     }
-    // The list is each lift's oldest first.
-    for (k, one) in kept.iter().enumerate() {
-        let newer = kept[k + 1..].iter().take_while(|next| next.lift == one.lift).count();
+    // The list is each lift's oldest first: walked newest first, how many
+    // of the lift's are newer is counted as it goes.
+    let mut newer = 0;
+    for (k, one) in kept.iter().enumerate().rev() {
+        newer = if kept.get(k + 1).is_some_and(|next| next.lift == one.lift) { newer + 1 } else { 0 };
         let why = match newer {
             0 => "the lift's newest kept plan",
             n if n < newest => "among the lift's newest kept plans (--keep-last)",
