@@ -223,16 +223,12 @@ impl PowerLine {
         ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2) + (b[2] - a[2]).powi(2)).sqrt()
     }
 
-    /// The conductor at `t` (0 to 1) along span `i`: the straight line
-    /// between its supports less the sag's parabola, `sag_m` at mid-span.
+    /// The conductor at `t` (0 to 1) along span `i` hanging plumb at its
+    /// most sag: the straight line between its supports less the sag's
+    /// parabola, `sag_m` at mid-span ([`Self::swung`] unswung).
     pub fn at(&self, i: usize, t: f64) -> [f64; 3] {
-        let (a, b) = (self.points_m[i], self.points_m[i + 1]);
-        let mut p = [0.0; 3];
-        for d in 0..3 {
-            p[d] = a[d] + (b[d] - a[d]) * t;
-        }
-        p[2] -= 4.0 * self.sag_m * t * (1.0 - t);
-        p
+        let p = self.swung(i, t, self.sag_m, 0.0);
+        [p.x, p.y, p.z]
     }
 
     /// The conductor at `t` along span `i` sagging `sag_m` at mid-span and
