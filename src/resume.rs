@@ -115,25 +115,13 @@ pub fn line(dir: &Path, lift: &str, revision: &str, after_step: usize, swing_deg
         .find(|t| t.id == lift)
         .with_context(|| format!("the project in {} has no lift '{lift}'", dir.display()))?;
     let (plan, file, last_revision) = find_plan(&p, lift, &revision)?;
-    if plan.crane_model != task.crane.model.name {
+    // A crane stopped part way through its lift is the plan's, where it
+    // stood: a project that now gives another, or sets it up elsewhere (a
+    // position searched again, an edit), would plan from the right pose at
+    // the wrong crane.
+    if let Some(differs) = liftplan_plan::resumed::crane_differs(&task, &plan, &revision) {
         bail!(
-            "plan {revision} of lift '{lift}' was made for the {}; the project now gives the {}: the crane holding the load is the plan's, so give its model in {} before resuming",
-            plan.crane_model,
-            task.crane.model.name,
-            p.dir.join("liftplan.toml").display()
-        );
-    }
-    // A crane stopped part way through its lift stands where it stood: a
-    // project that now sets it up elsewhere (a position searched again, an
-    // edit) would plan from the right pose at the wrong place.
-    if let Some(was) = plan.crane_placement
-        && was != task.crane.placement
-    {
-        let tower = task.crane.model.is_tower();
-        bail!(
-            "plan {revision} of lift '{lift}' had the crane at {}; the project now sets it up at {}: a crane stopped part way has not moved, so set the lift's crane in {} back to where it stands before resuming",
-            liftplan_plan::resumed::placement_words(&was, tower),
-            liftplan_plan::resumed::placement_words(&task.crane.placement, tower),
+            "lift '{lift}': {differs}: the crane holding the load is the plan's, where it stood, so give its model and where it stands in {} before resuming",
             p.dir.join("liftplan.toml").display()
         );
     }

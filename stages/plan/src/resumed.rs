@@ -42,6 +42,29 @@ pub fn placement_words(c: &Placement, tower: bool) -> String {
     )
 }
 
+/// Where the crane `plan` was made for is not the one `task` sets up: its
+/// model, or where it stands; what differs, in words ("plan R was made for
+/// the A; the project gives the B", "plan R had the crane at ...; the
+/// project sets it up at ..."), for its callers to say what to do. A crane
+/// stopped part way through its lift is the plan's, where it stood: a pose
+/// compared or printed for another would be planned from at the wrong crane.
+pub fn crane_differs(task: &LiftTask, plan: &LiftPlan, revision: &str) -> Option<String> {
+    if plan.crane_model != task.crane.model.name {
+        return Some(format!(
+            "plan {revision} was made for the {}; the project gives the {}",
+            plan.crane_model, task.crane.model.name
+        ));
+    }
+    let tower = task.crane.model.is_tower();
+    plan.crane_placement.filter(|was| *was != task.crane.placement).map(|was| {
+        format!(
+            "plan {revision} had the crane at {}; the project sets it up at {}",
+            placement_words(&was, tower),
+            placement_words(&task.crane.placement, tower)
+        )
+    })
+}
+
 /// `task`'s `resume_from` against `plan`, the plan its `resumes_plan`
 /// names, read from `whence` (a file, in words); none where the lift does
 /// not resume a named plan.
@@ -49,22 +72,12 @@ pub fn compare(task: &LiftTask, plan: &LiftPlan, whence: &str) -> Option<Agreeme
     let (Some((resume, _)), Some(named)) = (&task.resume_from, &task.resumes_plan) else { return None };
     let (revision, after_step) = (named.revision.as_str(), named.after_step);
     let no = |said: String| Some(Agreement { agrees: false, said });
-    if plan.crane_model != task.crane.model.name {
+    if let Some(differs) = crane_differs(task, plan, revision) {
         return no(format!(
-            "plan {revision} was made for the {}; the project gives the {}: the crane holding the load is the plan's, and resume_from is not checked against a plan for another crane",
-            plan.crane_model, task.crane.model.name
+            "{differs}: the crane holding the load is the plan's, where it stood, and resume_from is not checked against another"
         ));
     }
     let tower = task.crane.model.is_tower();
-    if let Some(was) = plan.crane_placement
-        && was != task.crane.placement
-    {
-        return no(format!(
-            "plan {revision} had the crane at {}; the project sets it up at {}: a crane stopped part way has not moved",
-            placement_words(&was, tower),
-            placement_words(&task.crane.placement, tower)
-        ));
-    }
     if !(1..plan.moves.len()).contains(&after_step) {
         return no(format!(
             "resumes_plan names step {after_step} of plan {revision}, which has {} steps (the last sets the load down)",
