@@ -752,18 +752,7 @@ fn check_spreader(
         }
     }
     let pins_z = size_m[2] / 2.0 + rigging_height_m - beam.below_hook_m;
-    let mut leg_lengths_m = Vec::with_capacity(2);
-    for (k, p) in pts.iter().enumerate() {
-        let drop = pins_z - p[2];
-        if !(drop > 1e-6) {
-            return Err(format!(
-                "sling leg {} takes the load at z {:.2} m from its box's centre, not below the spreader's pins ({pins_z:.2} m: the load's top plus rigging height_m less spreader below_hook_m)",
-                k + 1,
-                p[2]
-            ));
-        }
-        leg_lengths_m.push(drop);
-    }
+    let leg_lengths_m = plumb_legs(pts, pins_z, "spreader beam")?;
     // The legs hang plumb: the lever rule along the beam. Off the beam's
     // line the load tilts about it, as it does on two legs to one hook.
     let along_cog = (cog_m[0] - a[0]) * dir[0] + (cog_m[1] - a[1]) * dir[1];
@@ -781,23 +770,12 @@ fn check_spreader(
     let top = match beam.top_leg_wll_kg {
         None => None,
         Some(leg_wll_kg) => {
-            let h = beam.below_hook_m;
-            if !(h > 1e-6) {
-                return Err(
-                    "a spreader beam hung by top legs (spreader top_leg_wll_t) hangs below the hook block: give spreader below_hook_m above zero".to_string()
-                );
-            }
             // The two top legs meet at the hook over the beam, as two legs
             // meet over a load: the same statics.
             let pins = [[a[0], a[1], pins_z], [b[0], b[1], pins_z]];
-            let hook = [a[0] + dir[0] * hook_m, a[1] + dir[1] * hook_m, pins_z + h];
-            let Legs { up, lengths_m, max_angle_deg } = legs_to(hook, &pins).map_err(|_| outside())?;
+            let hook = [a[0] + dir[0] * hook_m, a[1] + dir[1] * hook_m];
+            let Legs { up, lengths_m, max_angle_deg } = top_legs(hook, &pins, beam.below_hook_m, "beam")?;
             let pulls = two_legs(&pins, &up, total_kg)?;
-            if max_angle_deg > MAX_LEG_ANGLE_DEG + 1e-9 {
-                return Err(format!(
-                    "the spreader's top legs hang up to {max_angle_deg:.1}° from the vertical, more than the {MAX_LEG_ANGLE_DEG:.0}° slings are rated for: hang the beam lower (spreader below_hook_m {h:.2} m, within rigging height_m)"
-                ));
-            }
             Some(TopLegs {
                 max_angle_deg,
                 max_leg_kg: pulls[0].max(pulls[1]),
@@ -881,18 +859,7 @@ pub fn check_frame(
         ));
     }
     let pins_z = size_m[2] / 2.0 + rigging_height_m - frame.below_hook_m;
-    let mut leg_lengths_m = Vec::with_capacity(4);
-    for (k, p) in pts.iter().enumerate() {
-        let drop = pins_z - p[2];
-        if !(drop > 1e-6) {
-            return Err(format!(
-                "sling leg {} takes the load at z {:.2} m from its box's centre, not below the spreader frame's pins ({pins_z:.2} m: the load's top plus rigging height_m less spreader below_hook_m)",
-                k + 1,
-                p[2]
-            ));
-        }
-        leg_lengths_m.push(drop);
-    }
+    let leg_lengths_m = plumb_legs(pts, pins_z, "spreader frame")?;
     // Plumb legs, one slack: the other three share the load as the centre
     // of gravity's place in their triangle in plan has it.
     let (mut max_leg_kg, mut max_leg, mut ways) = (0.0f64, 0, 0);
@@ -915,20 +882,8 @@ pub fn check_frame(
     let top = match frame.top_leg_wll_kg {
         None => None,
         Some(leg_wll_kg) => {
-            let h = frame.below_hook_m;
-            if !(h > 1e-6) {
-                return Err(
-                    "a spreader frame hung by top legs (spreader top_leg_wll_t) hangs below the hook block: give spreader below_hook_m above zero".to_string()
-                );
-            }
             let pins: Vec<[f64; 3]> = pts.iter().map(|p| [p[0], p[1], pins_z]).collect();
-            let hook = [joint[0], joint[1], pins_z + h];
-            let Legs { up, lengths_m, max_angle_deg } = legs_to(hook, &pins).map_err(|_| outside())?;
-            if max_angle_deg > MAX_LEG_ANGLE_DEG + 1e-9 {
-                return Err(format!(
-                    "the spreader frame's top legs hang up to {max_angle_deg:.1}° from the vertical, more than the {MAX_LEG_ANGLE_DEG:.0}° slings are rated for: hang the frame lower (spreader below_hook_m {h:.2} m, within rigging height_m)"
-                ));
-            }
+            let Legs { up, lengths_m, max_angle_deg } = top_legs(joint, &pins, frame.below_hook_m, "frame")?;
             let (mut most_kg, mut most, mut across_kg) = (0.0f64, 0, 0.0f64);
             for legs in [[1, 2, 3], [0, 2, 3], [0, 1, 3], [0, 1, 2]] {
                 let Some(pulls) = three_legs(&up, legs, total_kg) else { continue };
@@ -975,6 +930,46 @@ pub fn check_frame(
         worst_cog_m: None,
         tilt_deg: None,
     })
+}
+
+/// The legs hanging plumb from a spreader's pins, `pins_z` high, down to
+/// the lift points `pts`: their lengths (m); or which point is not below
+/// the pins. `what`: "spreader beam" or "spreader frame".
+fn plumb_legs(pts: &[[f64; 3]], pins_z: f64, what: &str) -> Result<Vec<f64>, String> {
+    let mut lengths_m = Vec::with_capacity(pts.len());
+    for (k, p) in pts.iter().enumerate() {
+        let drop = pins_z - p[2];
+        if !(drop > 1e-6) {
+            return Err(format!(
+                "sling leg {} takes the load at z {:.2} m from its box's centre, not below the {what}'s pins ({pins_z:.2} m: the load's top plus rigging height_m less spreader below_hook_m)",
+                k + 1,
+                p[2]
+            ));
+        }
+        lengths_m.push(drop);
+    }
+    Ok(lengths_m)
+}
+
+/// A spreader's top legs from its `pins` up to the hook, `below_hook_m`
+/// above them over `hook` (plan); refused where the spreader hangs on the
+/// hook block itself, or the legs more than [`MAX_LEG_ANGLE_DEG`] from the
+/// vertical. `what`: "beam" or "frame".
+fn top_legs(hook: [f64; 2], pins: &[[f64; 3]], below_hook_m: f64, what: &str) -> Result<Legs, String> {
+    let h = below_hook_m;
+    if !(h > 1e-6) {
+        return Err(format!(
+            "a spreader {what} hung by top legs (spreader top_leg_wll_t) hangs below the hook block: give spreader below_hook_m above zero"
+        ));
+    }
+    let legs = legs_to([hook[0], hook[1], pins[0][2] + h], pins).map_err(|_| outside())?;
+    if legs.max_angle_deg > MAX_LEG_ANGLE_DEG + 1e-9 {
+        return Err(format!(
+            "the spreader {what}'s top legs hang up to {:.1}° from the vertical, more than the {MAX_LEG_ANGLE_DEG:.0}° slings are rated for: hang the {what} lower (spreader below_hook_m {h:.2} m, within rigging height_m)",
+            legs.max_angle_deg
+        ));
+    }
+    Ok(legs)
 }
 
 /// The shares of a load on three plumb legs at `pts` (plan) with its
@@ -1308,7 +1303,7 @@ mod tests {
                 .contains("reaches (-3.60, 0.00) m from the load's centre, beyond its 7.00 x 2.00 m footprint")
         );
         let low = Spreader { below_hook_m: 4.5, ..beam(None) };
-        assert!(refused(two.clone(), low, 4.0).contains("not below the spreader's pins"));
+        assert!(refused(two.clone(), low, 4.0).contains("not below the spreader beam's pins"));
         let flat = Spreader { below_hook_m: 1.5, ..beam(Some(9000.0)) };
         assert!(refused(two.clone(), flat, 4.0).contains("top legs hang up to 63.4° from the vertical"));
         let on_hook = Spreader { below_hook_m: 0.0, ..beam(Some(9000.0)) };
