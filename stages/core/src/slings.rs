@@ -619,31 +619,47 @@ pub fn check_within(
             places.extend(edge_crossings([a[0], a[1]], [b[0], b[1]], [cog_m[0], cog_m[1]], tol));
         }
     }
-    let mut found: Vec<([f64; 2], f64)> = Vec::with_capacity(places.len());
+    // What is searched for: the most on a leg, and on a spreader's top leg.
+    let on_a_leg = |c: &SlingCheck| c.max_leg_kg;
+    let on_a_top_leg = |c: &SlingCheck| c.spreader.as_ref().and_then(|s| s.top.as_ref()).map_or(0.0, |t| t.max_leg_kg);
+    let objectives: [&dyn Fn(&SlingCheck) -> f64; 2] = [&on_a_leg, &on_a_top_leg];
+    let mut found: Vec<([f64; 2], [f64; 2])> = Vec::with_capacity(places.len());
     for p in places {
         let c = at(p)?;
-        found.push((p, c.max_leg_kg));
+        found.push((p, objectives.map(|f| f(&c))));
         worst_of(&mut worst, &c, p);
     }
-    // About the worst few, a search for worse between the places.
-    found.sort_by(|a, b| b.1.total_cmp(&a.1));
+    // About the worst few of each, a search for worse between the places.
     let first_step = 2.0 * tol / (COG_SAMPLES - 1) as f64;
-    for &(start, kg) in found.iter().take(4) {
-        let (mut best, mut best_kg, mut step) = (start, kg, first_step);
-        for _ in 0..COG_REFINE_STEPS {
-            let mut moved = false;
-            for [dx, dy] in
-                [[1.0, 0.0], [-1.0, 0.0], [0.0, 1.0], [0.0, -1.0], [1.0, 1.0], [1.0, -1.0], [-1.0, 1.0], [-1.0, -1.0]]
-            {
-                let p = within([best[0] + dx * step, best[1] + dy * step]);
-                let c = at(p)?;
-                worst_of(&mut worst, &c, p);
-                if c.max_leg_kg > best_kg {
-                    (best, best_kg, moved) = (p, c.max_leg_kg, true);
-                }
+    for (o, objective) in objectives.iter().enumerate() {
+        found.sort_by(|a, b| b.1[o].total_cmp(&a.1[o]));
+        for &(start, kg) in found.iter().take(4) {
+            let (mut best, mut best_kg, mut step) = (start, kg[o], first_step);
+            if best_kg == 0.0 {
+                break;
             }
-            if !moved {
-                step /= 2.0;
+            for _ in 0..COG_REFINE_STEPS {
+                let mut moved = false;
+                for [dx, dy] in [
+                    [1.0, 0.0],
+                    [-1.0, 0.0],
+                    [0.0, 1.0],
+                    [0.0, -1.0],
+                    [1.0, 1.0],
+                    [1.0, -1.0],
+                    [-1.0, 1.0],
+                    [-1.0, -1.0],
+                ] {
+                    let p = within([best[0] + dx * step, best[1] + dy * step]);
+                    let c = at(p)?;
+                    worst_of(&mut worst, &c, p);
+                    if objective(&c) > best_kg {
+                        (best, best_kg, moved) = (p, objective(&c), true);
+                    }
+                }
+                if !moved {
+                    step /= 2.0;
+                }
             }
         }
     }
@@ -1475,9 +1491,21 @@ mod tests {
     /// the tolerance's square but where an edge crosses a diagonal between
     /// lift points; on three legs, between places too. Over loads, heights
     /// and tolerances (and a centre of gravity off the middle), no place of
-    /// a 101 x 101 grid over the square finds more than the check does.
+    /// a 101 x 101 grid over the square finds more than the check does, on
+    /// a leg or on a spreader's top leg.
     #[test]
     fn no_finer_sampling_finds_more_on_a_leg() {
+        let on_frame = Slings {
+            lift_points_m: vec![[-3.0, -1.0, 1.0], [3.0, -1.0, 1.0], [3.0, 1.0, 1.0], [-3.0, 1.0, 1.0]],
+            points_given: true,
+            ratings: Ratings::legs(9000.0),
+            spreader: Some(Spreader { below_hook_m: 3.0, ..frame(Some(12_000.0)) }),
+        };
+        let on_beam = Slings {
+            lift_points_m: vec![[-3.0, 0.0, 1.0], [3.0, 0.0, 1.0]],
+            spreader: Some(Spreader { below_hook_m: 3.0, ..beam(Some(12_000.0)) }),
+            ..on_frame.clone()
+        };
         let three = Slings {
             lift_points_m: vec![[-2.0, -1.0, 1.0], [2.5, -0.5, 1.0], [0.0, 1.0, 1.0]],
             points_given: true,
@@ -1491,21 +1519,25 @@ mod tests {
             (slings(4, [5.0, 2.0, 3.0]), [5.0, 2.0, 3.0], [0.0; 3], 0.5, 2.0),
             (slings(2, [8.0, 3.0, 3.0]), [8.0, 3.0, 3.0], [0.2, 0.0, 0.0], 0.5, 4.0),
             (three, [6.0, 3.0, 2.0], [0.1, -0.1, 0.0], 0.3, 3.0),
+            (on_frame, [7.0, 3.0, 2.0], [0.3, 0.1, 0.0], 0.3, 4.5),
+            (on_beam, [7.0, 3.0, 2.0], [0.3, 0.1, 0.0], 0.3, 4.5),
         ];
+        let top = |c: &SlingCheck| c.spreader.as_ref().and_then(|s| s.top.as_ref()).map_or(0.0, |t| t.max_leg_kg);
         for (legs, size, cog, tol, h) in cases {
             let c = check_within(&legs, 5000.0, size, cog, tol, h).unwrap();
             let n = 101;
             let across = |k: usize| -tol + 2.0 * tol * k as f64 / (n - 1) as f64;
-            let finest = (0..n * n)
+            let (finest, finest_top) = (0..n * n)
                 .map(|k| [cog[0] + across(k % n), cog[1] + across(k / n), cog[2]])
-                .map(|at| check(&legs, 5000.0, size, at, h).unwrap().max_leg_kg)
-                .fold(0.0f64, f64::max);
+                .map(|at| check(&legs, 5000.0, size, at, h).unwrap())
+                .fold((0.0f64, 0.0f64), |(m, t), c| (m.max(c.max_leg_kg), t.max(top(&c))));
             assert!(
                 finest <= c.max_leg_kg + 1e-9,
                 "{size:?}: {finest} more than {} at {:?}",
                 c.max_leg_kg,
                 c.worst_cog_m
             );
+            assert!(finest_top <= top(&c) + 1e-9, "{size:?}: a top leg {finest_top} more than {}", top(&c));
         }
     }
 
