@@ -343,7 +343,7 @@ impl SlingCheck {
         };
         let tilt = match self.tilt_deg {
             Some(deg) => format!(
-                ": on legs of those lengths a load whose centre of gravity lies off hangs up to {deg:.1}° off level, and the plan takes it hanging level: at the trial lift, set the legs for it to"
+                ": on legs of those lengths a load whose centre of gravity lies off hangs up to {deg:.1}° off level: at the trial lift, set the legs for it to hang level, as the plan takes it"
             ),
             None => String::new(),
         };
@@ -1431,7 +1431,7 @@ mod tests {
         // of gravity is under it: √2 m off in plan, at most 54.7°.
         assert!((c.tilt_deg.unwrap() - 2.0f64.sqrt().atan().to_degrees()).abs() < 1e-9, "{:?}", c.tilt_deg);
         assert_eq!(given.tilt_deg, None);
-        assert!(c.said().contains("hangs up to 54.7° off level, and the plan takes it hanging level: at the trial lift, set the legs for it to"), "{}", c.said());
+        assert!(c.said().contains("hangs up to 54.7° off level: at the trial lift, set the legs for it to hang level, as the plan takes it"), "{}", c.said());
         let finest = (0..41 * 41)
             .map(|n| [-1.0 + (n % 41) as f64 * 0.05, -1.0 + (n / 41) as f64 * 0.05, 0.0])
             .map(|cog| check(&legs, 12_000.0, size, cog, 3.0).unwrap())
