@@ -750,10 +750,9 @@ pub fn document(
     };
     let checks = checks_before_signing(inp, task, plan, &wind, warned_read.as_deref());
     if !checks.is_empty() {
-        // Under the lift's name, before the figures: on the cover however
-        // many rows run on to the next page.
-        let under_the_lift = rows.iter().position(|(k, _)| *k == "Lift").map_or(0, |k| k + 1);
-        rows.insert(under_the_lift, ("CHECK FIRST", format!("{} (sign-off page)", checks.join("; "))));
+        // First in the verdict's box, under the verdict, before the figures:
+        // on the cover however many rows run on to the next page.
+        rows.insert(0, ("CHECK FIRST", format!("{} (sign-off page)", checks.join("; "))));
     }
     let verdict = if ok {
         format!("VALIDATED — independent check of {} samples found no problem", plan.validator.samples)
