@@ -522,31 +522,15 @@ pub fn check(
             "the sling legs hang up to {max_angle_deg:.1}° from the vertical, more than the {MAX_LEG_ANGLE_DEG:.0}° slings are rated for: give a taller rigging (rigging height_m {rigging_height_m:.2} m) or lift points nearer the centre of gravity"
         ));
     }
-    // Each way the load may hang: the legs that carry, and their shares.
-    let shares: Vec<(Vec<usize>, Vec<f64>)> = match pts.len() {
-        1 => vec![(vec![0], vec![load_kg])],
-        2 => vec![(vec![0, 1], two_legs(pts, &up, load_kg)?)],
-        3 => vec![(vec![0, 1, 2], three_legs(&up, [0, 1, 2], load_kg).ok_or_else(outside)?)],
-        4 => {
-            let ways: Vec<(Vec<usize>, Vec<f64>)> = [[1, 2, 3], [0, 2, 3], [0, 1, 3], [0, 1, 2]]
-                .into_iter()
-                .filter_map(|legs| three_legs(&up, legs, load_kg).map(|t| (legs.to_vec(), t)))
-                .collect();
-            if ways.is_empty() {
-                return Err(outside());
-            }
-            ways
-        }
+    // Each way the load may hang: each carrying leg and its pull.
+    let pulls: Vec<(usize, f64)> = match pts.len() {
+        1 => vec![(0, load_kg)],
+        2 => two_legs(pts, &up, load_kg)?.into_iter().enumerate().collect(),
+        3 => three_legs(&up, [0, 1, 2], load_kg).ok_or_else(outside)?.into_iter().enumerate().collect(),
+        4 => one_slack(|legs| three_legs(&up, legs, load_kg)).ok_or_else(outside)?,
         n => return Err(format!("{n} sling legs: liftplan checks one to four")),
     };
-    let (mut max_leg_kg, mut max_leg) = (0.0, 0);
-    for (legs, t) in &shares {
-        for (&leg, &kg) in legs.iter().zip(t) {
-            if kg > max_leg_kg {
-                (max_leg_kg, max_leg) = (kg, leg);
-            }
-        }
-    }
+    let (max_leg, max_leg_kg) = most_on_one(&pulls);
     Ok(SlingCheck {
         legs: pts.len(),
         max_angle_deg,
@@ -878,19 +862,12 @@ pub fn check_frame(
     let leg_lengths_m = plumb_legs(pts, pins_z, "spreader frame")?;
     // Plumb legs, one slack: the other three share the load as the centre
     // of gravity's place in their triangle in plan has it.
-    let (mut max_leg_kg, mut max_leg, mut ways) = (0.0f64, 0, 0);
-    for legs in [[1, 2, 3], [0, 2, 3], [0, 1, 3], [0, 1, 2]] {
-        let Some(shares) = plan_shares(legs.map(|k| [pts[k][0], pts[k][1]]), [cog_m[0], cog_m[1]]) else { continue };
-        ways += 1;
-        for (&k, share) in legs.iter().zip(shares) {
-            if load_kg * share > max_leg_kg {
-                (max_leg_kg, max_leg) = (load_kg * share, k);
-            }
-        }
-    }
-    if ways == 0 {
-        return Err(outside());
-    }
+    let plumb = one_slack(|legs| {
+        plan_shares(legs.map(|k| [pts[k][0], pts[k][1]]), [cog_m[0], cog_m[1]])
+            .map(|shares| shares.map(|share| load_kg * share).to_vec())
+    })
+    .ok_or_else(outside)?;
+    let (max_leg, max_leg_kg) = most_on_one(&plumb);
     // The hook over the joint centre of gravity of the load and the frame,
     // the frame's at its centre.
     let total_kg = load_kg + frame.mass_kg;
@@ -900,19 +877,10 @@ pub fn check_frame(
         Some(leg_wll_kg) => {
             let pins: Vec<[f64; 3]> = pts.iter().map(|p| [p[0], p[1], pins_z]).collect();
             let Legs { up, lengths_m, max_angle_deg } = top_legs(joint, &pins, frame.below_hook_m, "frame")?;
-            let (mut most_kg, mut most, mut across_kg) = (0.0f64, 0, 0.0f64);
-            for legs in [[1, 2, 3], [0, 2, 3], [0, 1, 3], [0, 1, 2]] {
-                let Some(pulls) = three_legs(&up, legs, total_kg) else { continue };
-                for (&k, pull) in legs.iter().zip(pulls) {
-                    across_kg = across_kg.max(pull * up[k][0].hypot(up[k][1]));
-                    if pull > most_kg {
-                        (most_kg, most) = (pull, k);
-                    }
-                }
-            }
-            if most_kg == 0.0 {
-                return Err(outside());
-            }
+            // Four legs to the hook, as four legs to a load's hook are.
+            let pulls = one_slack(|legs| three_legs(&up, legs, total_kg)).ok_or_else(outside)?;
+            let (most, most_kg) = most_on_one(&pulls);
+            let across_kg = pulls.iter().map(|&(k, pull)| pull * up[k][0].hypot(up[k][1])).fold(0.0, f64::max);
             Some(TopLegs {
                 max_angle_deg,
                 max_leg_kg: most_kg,
@@ -986,6 +954,25 @@ fn top_legs(hook: [f64; 2], pins: &[[f64; 3]], below_hook_m: f64, what: &str) ->
         ));
     }
     Ok(legs)
+}
+
+/// Four legs, any one of them slack (a leg a little long): each way the
+/// other three may carry, with their shares as `shares_of` gives them
+/// (`None`: they cannot), as each carrying leg (from 0) and its pull, way
+/// after way; `None` where no way can carry it.
+fn one_slack(shares_of: impl Fn([usize; 3]) -> Option<Vec<f64>>) -> Option<Vec<(usize, f64)>> {
+    let pulls: Vec<(usize, f64)> = [[1, 2, 3], [0, 2, 3], [0, 1, 3], [0, 1, 2]]
+        .into_iter()
+        .filter_map(|legs| shares_of(legs).map(|shares| legs.into_iter().zip(shares).collect::<Vec<_>>()))
+        .flatten()
+        .collect();
+    (!pulls.is_empty()).then_some(pulls)
+}
+
+/// The leg (from 0) that carries the most of `pulls`, and what: the first
+/// of the most where several carry it.
+fn most_on_one(pulls: &[(usize, f64)]) -> (usize, f64) {
+    pulls.iter().fold((0, 0.0), |(leg, most), &(k, kg)| if kg > most { (k, kg) } else { (leg, most) })
 }
 
 /// The shares of a load on three plumb legs at `pts` (plan) with its
