@@ -1341,14 +1341,14 @@ impl LiftTask {
 }
 
 impl LiftTask {
-    /// Where the lift gives areas the crane may be set up in and its
-    /// carrier and outriggers (or a tower's mast) do not lie within one of
-    /// them (the hull of their plan outlines, clear of the area's edges),
-    /// why, in words.
-    pub fn stands_outside_its_areas(&self) -> Option<String> {
-        if self.crane_stands_in.is_empty() {
-            return None;
-        }
+    /// The plan corners of what stands on the ground the crane is set up
+    /// in (`crane_stands_in`): its carrier and outriggers (a tower's mast),
+    /// and the pads' mats where the lift gives them (`ground.mat_m`), each
+    /// as a square of its longer side, square to the carrier (it holds the
+    /// mat laid either way round). The planner's test of the areas
+    /// ([`Self::stands_outside_its_areas`]) and the validator's own both
+    /// take them.
+    pub fn standing_corners(&self) -> Vec<[f64; 2]> {
         let mut corners: Vec<[f64; 2]> = self
             .crane
             .part_kinds()
@@ -1357,11 +1357,7 @@ impl LiftTask {
             .filter_map(|&k| self.crane.part(k, &self.pick, &self.load))
             .flat_map(|b| b.footprint())
             .collect();
-        // The pads' mats, where the lift gives them, stand on the area too:
-        // each as a square of its longer side, square to the carrier (it
-        // holds the mat laid either way round).
-        let mats = self.ground.map(|g| g.mat_m[0].max(g.mat_m[1]) / 2.0).filter(|h| *h > 0.0);
-        if let Some(half) = mats {
+        if let Some(half) = self.mat_half_m() {
             let square_to_carrier = crate::frame::rot_z(self.crane.placement.heading_rad);
             for pad in crate::outriggers::Pad::ALL {
                 let Some(at) = crate::outriggers::pad_at(&self.crane, pad) else { continue };
@@ -1370,7 +1366,23 @@ impl LiftTask {
                 corners.extend(mat.footprint());
             }
         }
-        let footprint = crate::obb::convex_hull_2d(&corners);
+        corners
+    }
+
+    /// Half the longer side of the pads' mats (m), where the lift gives them.
+    pub fn mat_half_m(&self) -> Option<f64> {
+        self.ground.map(|g| g.mat_m[0].max(g.mat_m[1]) / 2.0).filter(|h| *h > 0.0)
+    }
+
+    /// Where the lift gives areas the crane may be set up in and its
+    /// carrier and outriggers (or a tower's mast) do not lie within one of
+    /// them (the hull of their plan outlines, clear of the area's edges),
+    /// why, in words.
+    pub fn stands_outside_its_areas(&self) -> Option<String> {
+        if self.crane_stands_in.is_empty() {
+            return None;
+        }
+        let footprint = crate::obb::convex_hull_2d(&self.standing_corners());
         // An area whose extent does not hold the footprint's is passed by
         // before its edges are walked (the position search asks this at
         // thousands of positions).
@@ -1392,7 +1404,7 @@ impl LiftTask {
             p.x_m,
             p.y_m,
             p.heading_rad.to_degrees(),
-            match (self.crane.model.is_tower(), mats.is_some()) {
+            match (self.crane.model.is_tower(), self.mat_half_m().is_some()) {
                 (true, _) => "mast is",
                 (false, true) => "carrier and outriggers, with their pads' mats, are",
                 (false, false) => "carrier and outriggers are",

@@ -508,38 +508,21 @@ fn solve<const N: usize>(mut a: [[f64; N]; N], mut b: [f64; N]) -> Option<[f64; 
 /// of the plan would be measured from a crane that is not where it stands.
 pub const SET_UP_LEVEL_TOLERANCE_M: f64 = 0.5;
 
-/// Why the crane at `at` does not stand within one of the areas the lift
-/// gives it (`crane_stands_in`), in words; `None` where it does, or where
-/// the lift gives none. The rule is the lift's: the hull of its fixed
-/// parts' outlines and its pads' mats (each a square of its longer side,
-/// square to the carrier), inside an area and clear of its edges. Core's
+/// Why the crane does not stand within one of the areas the lift gives it
+/// (`crane_stands_in`), in words; `None` where it does, or where the lift
+/// gives none. The rule is the lift's: the hull of what stands on the
+/// ground (`LiftTask::standing_corners`: its fixed parts' outlines and its
+/// pads' mats), inside an area and clear of its edges. Core's
 /// `LiftTask::stands_outside_its_areas` is how the planner applies it; the
 /// test is written again here, by other means, so that a mistake in one is
 /// not in both: the hull is parry3d's (as a slab 1 m deep), kept off each
 /// of the area's edges by parry3d's distance, its corners inside the area
 /// by their winding number.
-pub fn crane_outside_its_areas(task: &LiftTask, at: &Config) -> Option<String> {
+pub fn crane_outside_its_areas(task: &LiftTask) -> Option<String> {
     if task.crane_stands_in.is_empty() {
         return None;
     }
-    let mut corners: Vec<[f64; 2]> = task
-        .crane
-        .part_kinds()
-        .iter()
-        .filter(|k| k.dependence() == Dependence::Fixed)
-        .filter_map(|&k| task.crane.part(k, at, &task.load))
-        .flat_map(|b| b.footprint())
-        .collect();
-    let mat_half_m = task.ground.map(|g| g.mat_m[0].max(g.mat_m[1]) / 2.0).filter(|h| *h > 0.0);
-    if let Some(h) = mat_half_m {
-        let (sin, cos) = task.crane.placement.heading_rad.sin_cos();
-        for pad in liftplan_core::outriggers::Pad::ALL {
-            let Some([x, y]) = liftplan_core::outriggers::pad_at(&task.crane, pad) else { continue };
-            for [u, v] in [[-h, -h], [h, -h], [h, h], [-h, h]] {
-                corners.push([x + u * cos - v * sin, y + u * sin + v * cos]);
-            }
-        }
-    }
+    let corners = task.standing_corners();
     let slab_corners: Vec<Vector> =
         corners.iter().flat_map(|c| [Vector::new(c[0], c[1], 0.0), Vector::new(c[0], c[1], 1.0)]).collect();
     let slab = ConvexPolyhedron::from_convex_hull(&slab_corners);
@@ -565,7 +548,7 @@ pub fn crane_outside_its_areas(task: &LiftTask, at: &Config) -> Option<String> {
         p.x_m,
         p.y_m,
         p.heading_rad.to_degrees(),
-        if mat_half_m.is_some() { " with their mats" } else { "" },
+        if task.mat_half_m().is_some() { " with their mats" } else { "" },
         names.join(", ")
     ))
 }
@@ -2045,7 +2028,7 @@ pub fn validate(
                 }
             }
         }
-        problems.extend(crane_outside_its_areas(task, &first.from).map(|why| format!("crane set-up: {why}")));
+        problems.extend(crane_outside_its_areas(task).map(|why| format!("crane set-up: {why}")));
         let (ground, problem) = set_up_ground(task, world);
         set_up = ground;
         problems.extend(problem);
@@ -2450,7 +2433,7 @@ mod tests {
             t.ground = (k % 2 == 0).then_some(GroundSpec { mat_m: [2.5, 1.2], allowable_kpa: None });
             t.crane_stands_in = vec![CraneArea { name: "yard".into(), corners_m: yard.clone() }];
             let planner = t.stands_outside_its_areas();
-            let ours = crane_outside_its_areas(&t, &t.pick);
+            let ours = crane_outside_its_areas(&t);
             assert_eq!(planner.is_some(), ours.is_some(), "at ({x}, {y}), heading {heading}: {planner:?} {ours:?}");
             if ours.is_some() { outside += 1 } else { within += 1 }
         }
@@ -2460,13 +2443,13 @@ mod tests {
         t.crane_stands_in =
             vec![CraneArea { name: "far".into(), corners_m: vec![[90.0, 0.0], [99.0, 0.0], [99.0, 9.0]] }];
         assert_eq!(
-            crane_outside_its_areas(&t, &t.pick).as_deref(),
+            crane_outside_its_areas(&t).as_deref(),
             Some(
                 "the crane set up at position_m = [0.00, 0.00], heading_deg = 20: its carrier and outriggers do not stand within an area it may stand in, clear of its edges (crane_stands_in: 'far')"
             )
         );
         t.crane_stands_in.clear();
-        assert_eq!(crane_outside_its_areas(&t, &t.pick), None);
+        assert_eq!(crane_outside_its_areas(&t), None);
     }
 
     /// What lies in the ground under the outrigger pads: a pipe buried
