@@ -136,7 +136,7 @@ fn summary_box(d: &mut Doc, mut y: f32, rows: &[(&str, String)], (verdict, ok): 
     let (key_x, key_w) = (19.0, 34.0);
     let w = d.size.w - 30.0;
     let (fill, edge) = if ok { ([232, 245, 233], [46, 125, 50]) } else { ([251, 233, 231], [198, 40, 40]) };
-    let foot = d.size.h - crate::pdf::FOOTER_FROM_FOOT_MM - 6.0;
+    let foot = d.size.h - FOOT_MM;
     let mut rest = rows;
     let mut first = true;
     loop {

@@ -1033,8 +1033,9 @@ pub fn revision(plan: &LiftPlan, task: &LiftTask) -> String {
         task.slings
     );
     h.update(made_for.as_bytes());
-    // Only where given, so that a plan of a lift without one keeps the
-    // revision it had before the tolerance was known.
+    // Only where given: a lift without one hashes as it did before the key
+    // was known (its crane's text may still differ, with a crane file's
+    // new keys).
     if task.cog_tolerance_m != 0.0 {
         h.update(format!("\ncog tolerance {:?}", task.cog_tolerance_m).as_bytes());
     }
