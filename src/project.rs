@@ -513,6 +513,10 @@ keep = 3                  # runs' outputs each stage keeps in .liftplan/cache (t
 # # crane: add falls = 4 (the parts of line the hoist rope is reeved with) to have them
 # # checked against the crane file's [hook] line_pull_t (per fall) and rated_t, and, where
 # # it gives rope_m and rope_lead_m, how far the hoist rope lets the hook down on them.
+# # Where the crane file weighs the rope ([hook] rope_kg_per_m), the rope below the boom
+# # head is part of the gross load, on every fall, at the longest rope the lift is planned
+# # with: add longest_rope_m = 30.0 to crane to keep the hook within that much rope below
+# # the head and count no more (left out: the hook's whole travel).
 # pick = { x_m = 6.0, y_m = -16.0, z_m = 1.2, yaw_deg = 90.0 }
 # set = { x_m = 30.0, y_m = 2.0, z_m = 1.2, yaw_deg = 0.0 }
 # # pick and set: the load's centre x, y and its underside's z (m), its yaw (degrees);

@@ -110,6 +110,12 @@ pub struct HookBlock {
     /// runs the boom's length to the head.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rope_lead_m: Option<f64>,
+    /// The hoist rope's mass per metre (kg/m), as its data sheet gives it:
+    /// the rope hanging below the boom head (or the trolley), on every
+    /// fall, is part of the load ([`crate::reeving::RopeWeight`]); none:
+    /// not counted, and said so.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rope_kg_per_m: Option<f64>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -386,6 +392,9 @@ impl CraneModel {
             if let Some(m) = m.filter(|m| !(m.is_finite() && *m >= 0.0 && *m <= 10_000.0)) {
                 return Err(format!("{name} must be 0 to 10000 m, found {m}"));
             }
+        }
+        if let Some(w) = self.hook.rope_kg_per_m.filter(|w| !(w.is_finite() && *w > 0.0 && *w <= 100.0)) {
+            return Err(format!("hook.rope_kg_per_m must be more than 0 and at most 100 kg/m, found {w}"));
         }
         match (self.hook.rope_m, self.hook.rope_lead_m, &self.kind) {
             (Some(_), None, _) => {
@@ -1192,8 +1201,16 @@ mod tests {
             let e = CraneModel::from_toml(Path::new("c.toml"), &text.replace(from, to)).unwrap_err().to_string();
             assert!(e.contains(said), "{to}: {e}");
         }
+        let weighed = text.replace("rope_lead_m = 20.0\n", "rope_lead_m = 20.0\nrope_kg_per_m = 3.9\n");
+        assert_eq!(CraneModel::from_toml(Path::new("c.toml"), &weighed).unwrap().hook.rope_kg_per_m, Some(3.9));
+        for bad in ["0.0", "-3.9", "nan", "101.0"] {
+            let e = CraneModel::from_toml(Path::new("c.toml"), &weighed.replace("3.9", bad)).unwrap_err().to_string();
+            assert!(e.contains("hook.rope_kg_per_m must be more than 0 and at most 100 kg/m"), "{bad}: {e}");
+        }
         let tower = builtin_text("tower-hh-60").unwrap();
         let hook_end = tower.find("[hook]").map(|k| k + "[hook]\n".len()).unwrap();
+        let weighed = format!("{}rope_kg_per_m = 1.6\n{}", &tower[..hook_end], &tower[hook_end..]);
+        assert_eq!(CraneModel::from_toml(Path::new("t.toml"), &weighed).unwrap().hook.rope_kg_per_m, Some(1.6));
         let tower = format!("{}rope_m = 300.0\nrope_lead_m = 10.0\n{}", &tower[..hook_end], &tower[hook_end..]);
         let e = CraneModel::from_toml(Path::new("t.toml"), &tower).unwrap_err().to_string();
         assert!(e.contains("for mobile (luffing) cranes only"), "{e}");

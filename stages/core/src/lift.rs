@@ -161,6 +161,13 @@ pub struct CraneSpec {
     /// against the crane file's line pull per fall ([`crate::reeving`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub falls: Option<u32>,
+    /// The longest rope below the boom head (the trolley) this lift is
+    /// planned with (m): the hook's travel for this lift, within the crane
+    /// file's. Where the crane file weighs its hoist rope, the rope is
+    /// counted in the hook load at this length ([`crate::reeving::RopeWeight`]);
+    /// left out, at the crane's longest.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub longest_rope_m: Option<f64>,
 }
 
 /// The mats under the outrigger pads and what the ground may bear, for the
@@ -443,6 +450,9 @@ pub struct LiftTask {
     /// travel, the crane is set up with it as its longest rope
     /// ([`crate::reeving`]).
     pub rope_reach: Option<crate::reeving::RopeReach>,
+    /// The hoist rope below the boom head, part of the hook load, where the
+    /// crane file weighs it ([`crate::reeving::RopeWeight`]).
+    pub rope_weight: Option<crate::reeving::RopeWeight>,
     pub deductions_kg: f64,
     /// Configurations with the load resting at its pick and set positions.
     pub pick: Config,
@@ -506,9 +516,19 @@ impl LiftTask {
         self.hook_load_kg() + self.deductions_kg
     }
 
-    /// What hangs from the rope: load, rigging and hook block, in kg (the
-    /// chart's deductions, a stowed jib, do not).
+    /// What hangs from the boom head: load, rigging, hook block and the
+    /// hoist rope below the head where the crane file weighs it (counted at
+    /// the longest rope the lift is planned with), in kg (the chart's
+    /// deductions, a stowed jib, do not).
     pub fn hook_load_kg(&self) -> f64 {
+        self.least_hanging_kg() + self.rope_weight.as_ref().map_or(0.0, |w| w.kg)
+    }
+
+    /// The least that may hang from the boom head: load, rigging and hook
+    /// block, without the rope (kg). Where less weight is the worse case
+    /// (the wind the load may be lifted in, the pads behind the crane), it
+    /// is worked out with this.
+    pub fn least_hanging_kg(&self) -> f64 {
         self.load_mass_kg + self.rigging_mass_kg + self.crane.model.hook.mass_kg
     }
 
@@ -521,9 +541,11 @@ impl LiftTask {
 
     /// [`LiftTask::pad_loads`] with `hanging_kg` on the hook. Where the chart's
     /// deductions weigh (a stowed jib on the boom, a heavier hook block) the
-    /// lift does not say: at the hook they load the pads in front of the
-    /// crane more, and elsewhere those behind it, so a pad's most is the
-    /// higher of the gross load and the gross load less the deductions.
+    /// lift does not say, and how much of the hoist rope hangs (it is
+    /// counted at its longest): at the hook they load the pads in front of
+    /// the crane more, and elsewhere those behind it, so a pad's most is the
+    /// higher of the gross load and the least that hangs
+    /// ([`Self::least_hanging_kg`]).
     pub fn pad_loads_hanging(&self, c: &Config, hanging_kg: f64) -> Option<crate::outriggers::PadLoads> {
         let (counterweight_kg, _) = self.counterweight_used_kg()?;
         crate::outriggers::pad_loads(&self.crane, c.swing_rad, c.radial, hanging_kg, counterweight_kg)
@@ -601,7 +623,7 @@ impl LiftTask {
         // is to be checked only where it is none of them.
         let stated_too = stated.iter().any(|s| (s.value - chart_ms).abs() <= 0.05);
         let other = if stated_too { Vec::new() } else { stated.to_vec() };
-        Ok((crate::wind::PermissibleWind::of(chart_ms, cell, spec, self.load.size_m, self.hook_load_kg()), other))
+        Ok((crate::wind::PermissibleWind::of(chart_ms, cell, spec, self.load.size_m, self.least_hanging_kg()), other))
     }
 
     /// Sets [`Self::gust_swing_per_m`] from the lift's `wind`, with the
@@ -1034,14 +1056,56 @@ impl LiftSpec {
             }
             model.hook.max_rope_m = r.reach_m;
         }
+        let mut longest_from = match rope_reach.as_ref().filter(|r| r.reach_m < r.travel_m) {
+            Some(_) => crate::reeving::LongestRope::Reach,
+            None => crate::reeving::LongestRope::Travel,
+        };
+        if let Some(m) = self.crane.longest_rope_m {
+            if !(m.is_finite() && m > model.hook.min_rope_m) {
+                return Err(format!(
+                    "lift '{id}': crane.longest_rope_m must be more than the {:.2} m of rope the hook block keeps below the boom head (hook.min_rope_m), found {m}",
+                    model.hook.min_rope_m
+                ));
+            }
+            if m > model.hook.max_rope_m {
+                let why = match (longest_from, &rope_reach) {
+                    (crate::reeving::LongestRope::Reach, Some(r)) => r.reach_said(),
+                    _ => format!("the hook's travel is {:.2} m (hook.max_rope_m)", model.hook.max_rope_m),
+                };
+                return Err(format!(
+                    "lift '{id}': crane.longest_rope_m {m:.2} m is more rope than the hook may hang on: {why}"
+                ));
+            }
+            model.hook.max_rope_m = m;
+            longest_from = crate::reeving::LongestRope::Lift;
+        }
+        let rope_weight = match (model.hook.rope_kg_per_m, self.crane.falls, model.hook.max_falls) {
+            (None, _, _) => None,
+            (Some(w), Some(falls), _) => {
+                Some(crate::reeving::RopeWeight::new(w, falls, true, model.hook.max_rope_m, longest_from))
+            }
+            (Some(w), None, Some(most)) => {
+                Some(crate::reeving::RopeWeight::new(w, most, false, model.hook.max_rope_m, longest_from))
+            }
+            (Some(_), None, None) => {
+                return Err(format!(
+                    "lift '{id}': the crane file weighs its hoist rope (hook.rope_kg_per_m), but the lift gives no falls (crane falls) and the file no most falls (hook.max_falls) to count it on: give crane falls"
+                ));
+            }
+        };
         let crane = CraneSetup::new(model, placement).map_err(|e| format!("lift '{id}': {e}"))?;
-        // A pick or set beyond the rope's reach: say why the rope is short.
-        let rope_said = |e: String| match rope_reach.as_ref().filter(|r| r.reach_m < r.travel_m) {
-            Some(r) => format!(
+        // A pick or set beyond the rope's reach or the lift's longest rope:
+        // say why the rope is short.
+        let rope_said = |e: String| match (longest_from, rope_reach.as_ref()) {
+            (crate::reeving::LongestRope::Reach, Some(r)) => format!(
                 "{e} (on {} falls the hoist rope lets the hook hang at most {:.2} m below the boom head, hook.rope_m: reeve fewer falls if the load allows)",
                 r.falls, r.reach_m
             ),
-            None => e,
+            (crate::reeving::LongestRope::Lift, _) => format!(
+                "{e} (the lift is planned with at most {:.2} m of rope below the boom head, crane.longest_rope_m)",
+                crane.model.hook.max_rope_m
+            ),
+            _ => e,
         };
         let load =
             LoadShape { size_m: self.load.size_m, cog_m: self.load.cog_m, rigging_height_m: self.rigging.height_m };
@@ -1229,6 +1293,7 @@ impl LiftSpec {
             slings,
             falls: self.crane.falls,
             rope_reach,
+            rope_weight,
             deductions_kg: self.crane.deductions_t * KG_PER_TONNE,
             pick,
             set,
@@ -1534,7 +1599,7 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
             r.said(),
             "the hoist rope's 300 m (less 20.0 m to the boom's foot and the 40.0 m boom) on 4 falls lets the hook hang 60.00 m below the boom head: the longest rope planned with (hook travel 110.00 m)"
         );
-        assert!(crate::reeving::Reeving::of(&t).unwrap().said().ends_with(&r.said()));
+        assert!(crate::reeving::Reeving::of(&t).unwrap().said().contains(&format!("; {};", r.said())));
         assert!(t.pick.hoist_m > 24.0, "{}", t.pick.hoist_m);
         let e = on(300.0, 10).unwrap_err();
         assert!(e.contains("lift 'V-101': pick"), "{e}");
@@ -1556,6 +1621,83 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         let mut s = spec();
         s.crane.model = "ac-700".into();
         assert_eq!(s.resolve(crate::crane::builtin("ac-700").unwrap()).unwrap().rope_reach, None);
+    }
+
+    /// Where the crane file weighs its hoist rope, every fall is counted in
+    /// the hook load at the longest rope the lift is planned with: the
+    /// rope's reach, the hook's travel or the lift's `longest_rope_m`,
+    /// which is then the crane's joint limit for the lift.
+    #[test]
+    fn the_hoist_rope_below_the_head_is_counted_at_the_longest_rope() {
+        use crate::reeving::LongestRope;
+        let on = |rope_m: Option<f64>, falls: Option<u32>, longest: Option<f64>| {
+            let mut model = crate::crane::builtin("ac-700").unwrap();
+            model.hook.rope_kg_per_m = Some(3.9);
+            (model.hook.rope_m, model.hook.rope_lead_m) = (rope_m, rope_m.map(|_| 20.0));
+            let mut s = spec();
+            (s.crane.falls, s.crane.longest_rope_m) = (falls, longest);
+            s.resolve(model)
+        };
+        let bare = spec().resolve(crate::crane::builtin("ac-700").unwrap()).unwrap();
+        assert_eq!(bare.rope_weight, None);
+        assert_eq!(bare.hook_load_kg(), bare.least_hanging_kg());
+        // 300 m of rope on 4 falls reaches 60 m below the head: 4 x 60 m.
+        let t = on(Some(300.0), Some(4), None).unwrap();
+        let w = t.rope_weight.clone().unwrap();
+        assert_eq!((w.falls, w.falls_given, w.longest_m, w.longest_from), (4, true, 60.0, LongestRope::Reach));
+        assert!((w.kg - 4.0 * 60.0 * 3.9).abs() < 1e-9);
+        assert!((t.hook_load_kg() - (bare.least_hanging_kg() + 936.0)).abs() < 1e-9);
+        assert!((t.gross_kg() - (bare.gross_kg() + 936.0)).abs() < 1e-9);
+        assert_eq!(t.least_hanging_kg(), bare.least_hanging_kg());
+        let r = crate::reeving::Reeving::of(&t).unwrap();
+        assert_eq!(r.hook_load_kg, t.hook_load_kg());
+        assert!(
+            r.said().starts_with("hook load 17.34 t (load, rigging, hook block and 0.94 t of hoist rope)"),
+            "{}",
+            r.said()
+        );
+        // The lift's longest rope: the hook's travel for it, and the count.
+        let pick = t.pick.hoist_m;
+        let short = on(Some(300.0), Some(4), Some(pick + 1.0)).unwrap();
+        assert_eq!(short.crane.limits().hoist_m.1, pick + 1.0);
+        let w = short.rope_weight.unwrap();
+        assert_eq!((w.longest_m, w.longest_from), (pick + 1.0, LongestRope::Lift));
+        assert!((w.kg - 4.0 * (pick + 1.0) * 3.9).abs() < 1e-9);
+        let e = on(Some(300.0), Some(4), Some(pick - 1.0)).unwrap_err();
+        assert!(e.contains("lift 'V-101': pick"), "{e}");
+        assert!(
+            e.ends_with(&format!(
+                "(the lift is planned with at most {:.2} m of rope below the boom head, crane.longest_rope_m)",
+                pick - 1.0
+            )),
+            "{e}"
+        );
+        let e = on(Some(300.0), Some(4), Some(61.0)).unwrap_err();
+        assert!(e.ends_with("crane.longest_rope_m 61.00 m is more rope than the hook may hang on: the hoist rope's 300 m (less 20.0 m to the boom's foot and the 40.0 m boom) on 4 falls lets the hook hang 60.00 m below the boom head"), "{e}");
+        let e = on(None, Some(4), Some(111.0)).unwrap_err();
+        assert!(e.ends_with("crane.longest_rope_m 111.00 m is more rope than the hook may hang on: the hook's travel is 110.00 m (hook.max_rope_m)"), "{e}");
+        for bad in [2.0, f64::NAN, -5.0] {
+            let e = on(None, Some(4), Some(bad)).unwrap_err();
+            assert!(e.contains("crane.longest_rope_m must be more than the 2.00 m of rope the hook block keeps below the boom head (hook.min_rope_m)"), "{e}");
+        }
+        // No falls given: counted on the most the block takes, over the
+        // hook's travel; without those either, refused.
+        let w = on(None, None, None).unwrap().rope_weight.unwrap();
+        assert_eq!((w.falls, w.falls_given, w.longest_m, w.longest_from), (10, false, 110.0, LongestRope::Travel));
+        let mut model = crate::crane::builtin("ac-700").unwrap();
+        (model.hook.rope_kg_per_m, model.hook.max_falls) = (Some(3.9), None);
+        let e = spec().resolve(model).unwrap_err();
+        assert!(e.ends_with("the lift gives no falls (crane falls) and the file no most falls (hook.max_falls) to count it on: give crane falls"), "{e}");
+        // The wind the load may be lifted in is worked out without the rope:
+        // the lighter what hangs, the less wind it takes.
+        let mut windy = spec();
+        windy.crane.falls = Some(4);
+        windy.wind = Some(crate::wind::WindSpec { chart_ms: Some(9.8), cw: 1.2, area_m2: None, plan_for_swing: true });
+        let mut model = crate::crane::builtin("ac-700").unwrap();
+        model.hook.rope_kg_per_m = Some(3.9);
+        let t = windy.resolve(model).unwrap();
+        assert!(t.rope_weight.is_some());
+        assert_eq!(t.permissible_wind(&[]).unwrap().0.hook_load_kg, t.least_hanging_kg());
     }
 
     #[test]

@@ -16,6 +16,16 @@
 //! crane is set up with it as its longest rope (`LiftSpec::resolve`), so
 //! the planner, the validator and the pick and set all keep within it.
 //!
+//! The rope hanging below the boom head is part of the load, on every fall
+//! (a crawler's capacity worksheet adds "the total weight of wire rope
+//! below the boom point"). Where the crane file gives the rope's mass per
+//! metre (`[hook] rope_kg_per_m`), it is counted at the longest rope the
+//! lift is planned with ([`RopeWeight`]): the hook load is then the same all
+//! along the path, and the planner keeps the hook within that rope as a
+//! joint limit, so the count holds wherever the path goes. A lift that
+//! hangs its load higher may give a shorter longest rope
+//! (`crane.longest_rope_m`) and count less.
+//!
 //! What this module must not do: depend on the path (the hook load is the
 //! same all along it), or say more than the crane file gives: a crane file
 //! without a line pull has its falls unchecked, and says so.
@@ -47,6 +57,78 @@ pub struct Reeving {
     /// crane file gives the hoist rope's length and the lift its falls.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rope: Option<RopeReach>,
+    /// The hoist rope below the boom head, counted in `hook_load_kg`, where
+    /// the crane file weighs it; none: not counted.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rope_weight: Option<RopeWeight>,
+}
+
+/// The hoist rope hanging below the boom head (a tower crane's trolley), as
+/// part of the hook load: every fall at the longest rope the lift is planned
+/// with, whatever the path.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RopeWeight {
+    /// The rope's mass per metre (kg/m, `[hook] rope_kg_per_m`).
+    pub kg_per_m: f64,
+    /// The falls it is counted on.
+    pub falls: u32,
+    /// Whether those are the lift's (`crane falls`), or, where it gives
+    /// none, the most the hook block's sheaves take (`[hook] max_falls`).
+    pub falls_given: bool,
+    /// The longest rope below the head the lift is planned with (m): the
+    /// crane's joint limit for the lift.
+    pub longest_m: f64,
+    /// What sets [`Self::longest_m`].
+    pub longest_from: LongestRope,
+    /// Falls x longest rope x mass per metre (kg).
+    pub kg: f64,
+}
+
+/// What sets the longest rope a lift is planned with.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum LongestRope {
+    /// The hook's travel in the crane file (`[hook] max_rope_m`).
+    Travel,
+    /// How far the hoist rope lets the hook down on the falls ([`RopeReach`]).
+    Reach,
+    /// The lift's `crane.longest_rope_m`.
+    Lift,
+}
+
+impl RopeWeight {
+    /// The rope on `falls` falls of `longest_m` each, at `kg_per_m`.
+    pub fn new(kg_per_m: f64, falls: u32, falls_given: bool, longest_m: f64, longest_from: LongestRope) -> RopeWeight {
+        RopeWeight {
+            kg_per_m,
+            falls,
+            falls_given,
+            longest_m,
+            longest_from,
+            kg: kg_per_m * f64::from(falls) * longest_m,
+        }
+    }
+
+    /// In words, for the Reeving row: "the hoist rope below the boom head,
+    /// counted in the hook load: 6 falls of up to 40.00 m (crane
+    /// longest_rope_m) at 3.90 kg/m, 0.94 t".
+    pub fn said(&self) -> String {
+        let falls = if self.falls_given {
+            format!("{} fall{}", self.falls, if self.falls == 1 { "" } else { "s" })
+        } else {
+            format!("{} falls (the most the hook block takes: the lift gives no crane falls)", self.falls)
+        };
+        let longest = match self.longest_from {
+            LongestRope::Lift => "crane longest_rope_m",
+            LongestRope::Travel => "the hook's travel: give crane longest_rope_m to count less",
+            LongestRope::Reach => "as far as the rope lets the hook down: give crane longest_rope_m to count less",
+        };
+        format!(
+            "the hoist rope below the boom head, counted in the hook load: {falls} of up to {:.2} m ({longest}) at {:.2} kg/m, {:.2} t",
+            self.longest_m,
+            self.kg_per_m,
+            self.kg / KG_PER_TONNE
+        )
+    }
 }
 
 /// The hoist rope against the falls ([`rope_reach_m`]).
@@ -112,6 +194,7 @@ impl Reeving {
             block_rated_kg: hook.rated_t.map(|t| t * KG_PER_TONNE),
             max_falls: hook.max_falls,
             rope: task.rope_reach.clone(),
+            rope_weight: task.rope_weight.clone(),
         };
         (r.falls.is_some() || r.line_pull_kg.is_some() || r.block_rated_kg.is_some()).then_some(r)
     }
@@ -143,8 +226,9 @@ impl Reeving {
         }
         match self.falls {
             Some(n) if n < least => Some(format!(
-                "the hook load ({:.2} t: load, rigging and hook block) is more than {n} fall{} of {:.2} t each carr{} ({:.2} t): reeve at least {least} falls (crane falls)",
+                "the hook load ({:.2} t: {}) is more than {n} fall{} of {:.2} t each carr{} ({:.2} t): reeve at least {least} falls (crane falls)",
                 t(self.hook_load_kg),
+                self.made_of(),
                 if n == 1 { "" } else { "s" },
                 t(pull),
                 if n == 1 { "ies" } else { "y" },
@@ -154,11 +238,19 @@ impl Reeving {
         }
     }
 
+    /// What the hook load is made of, in words.
+    fn made_of(&self) -> String {
+        match &self.rope_weight {
+            Some(w) => format!("load, rigging, hook block and {:.2} t of hoist rope", w.kg / KG_PER_TONNE),
+            None => "load, rigging and hook block".to_string(),
+        }
+    }
+
     /// In words, for the run's line and the PDF.
     pub fn said(&self) -> String {
         let t = |kg: f64| kg / KG_PER_TONNE;
         let pct = |kg: f64| 100.0 * self.hook_load_kg / kg;
-        let mut parts = vec![format!("hook load {:.2} t (load, rigging and hook block)", t(self.hook_load_kg))];
+        let mut parts = vec![format!("hook load {:.2} t ({})", t(self.hook_load_kg), self.made_of())];
         parts.push(match (self.falls, self.line_pull_kg, self.least_falls()) {
             (Some(n), Some(pull), Some(least)) => format!(
                 "on {n} fall{} of {:.2} t each: {:.2} t, {:.0} % (at least {least} needed)",
@@ -187,6 +279,10 @@ impl Reeving {
             ));
         }
         parts.extend(self.rope.as_ref().map(RopeReach::said));
+        parts.push(match &self.rope_weight {
+            Some(w) => w.said(),
+            None => "the hoist rope's own weight not counted: the crane file gives no [hook] rope_kg_per_m".to_string(),
+        });
         parts.join("; ")
     }
 
@@ -210,8 +306,11 @@ mod tests {
             block_rated_kg: Some(63_000.0),
             max_falls: Some(8),
             rope: None,
+            rope_weight: None,
         }
     }
+
+    const NOT_WEIGHED: &str = "; the hoist rope's own weight not counted: the crane file gives no [hook] rope_kg_per_m";
 
     /// 16.5 t on falls of 8 t: three carry it (24 t), two do not (16 t).
     #[test]
@@ -220,7 +319,9 @@ mod tests {
         assert_eq!(reeving(Some(4)).refused(), None);
         assert_eq!(
             reeving(Some(4)).said(),
-            "hook load 16.50 t (load, rigging and hook block); on 4 falls of 8.00 t each: 32.00 t, 52 % (at least 3 needed); the hook block rated 63.00 t, carrying 13.00 t of load and rigging: 21 %"
+            format!(
+                "hook load 16.50 t (load, rigging and hook block); on 4 falls of 8.00 t each: 32.00 t, 52 % (at least 3 needed); the hook block rated 63.00 t, carrying 13.00 t of load and rigging: 21 %{NOT_WEIGHED}"
+            )
         );
         assert_eq!(reeving(Some(3)).refused(), None);
         let two = reeving(Some(2)).refused().unwrap();
@@ -260,11 +361,34 @@ mod tests {
         );
         let unknown = Reeving { line_pull_kg: None, block_rated_kg: None, ..reeving(Some(4)) };
         assert_eq!(unknown.refused(), None);
-        assert!(
-            unknown
-                .said()
-                .ends_with("on 4 falls, NOT CHECKED: the crane file gives no line pull per fall ([hook] line_pull_t)")
-        );
+        assert!(unknown.said().ends_with(&format!(
+            "on 4 falls, NOT CHECKED: the crane file gives no line pull per fall ([hook] line_pull_t){NOT_WEIGHED}"
+        )));
         assert!(!unknown.falls_not_given());
+    }
+
+    /// The rope below the head is every fall at the longest rope, and the
+    /// falls carry it with the rest: 16.5 t and 4 x 40 m x 3.9 kg/m.
+    #[test]
+    fn the_hoist_rope_below_the_head_is_part_of_the_load() {
+        let w = RopeWeight::new(3.9, 4, true, 40.0, LongestRope::Lift);
+        assert!((w.kg - 624.0).abs() < 1e-9);
+        let r = Reeving { hook_load_kg: 16_500.0 + w.kg, rope_weight: Some(w), ..reeving(Some(4)) };
+        assert_eq!(
+            r.said(),
+            "hook load 17.12 t (load, rigging, hook block and 0.62 t of hoist rope); on 4 falls of 8.00 t each: 32.00 t, 54 % (at least 3 needed); the hook block rated 63.00 t, carrying 13.00 t of load and rigging: 21 %; the hoist rope below the boom head, counted in the hook load: 4 falls of up to 40.00 m (crane longest_rope_m) at 3.90 kg/m, 0.62 t"
+        );
+        // 16.5 t goes on 3 falls of 5.8 t (17.4 t); with 1.29 t of rope, not.
+        let bare = Reeving { line_pull_kg: Some(5_800.0), ..reeving(Some(3)) };
+        assert_eq!(bare.refused(), None);
+        let heavy = RopeWeight::new(3.9, 3, true, 110.0, LongestRope::Travel);
+        let r = Reeving { hook_load_kg: 16_500.0 + heavy.kg, rope_weight: Some(heavy), ..bare };
+        assert_eq!(
+            r.refused().unwrap(),
+            "the hook load (17.79 t: load, rigging, hook block and 1.29 t of hoist rope) is more than 3 falls of 5.80 t each carry (17.40 t): reeve at least 4 falls (crane falls)"
+        );
+        assert!(r.said().ends_with("3 falls of up to 110.00 m (the hook's travel: give crane longest_rope_m to count less) at 3.90 kg/m, 1.29 t"), "{}", r.said());
+        let unsaid = RopeWeight::new(3.9, 8, false, 90.0, LongestRope::Reach);
+        assert!(unsaid.said().contains("8 falls (the most the hook block takes: the lift gives no crane falls) of up to 90.00 m (as far as the rope lets the hook down: give crane longest_rope_m to count less)"), "{}", unsaid.said());
     }
 }

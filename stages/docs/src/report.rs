@@ -599,7 +599,17 @@ pub fn document(
                     }
                 ),
             ),
-            ("Gross load", format!("{:.2} t (load + rigging + hook block + deductions)", task.gross_kg() / 1000.0)),
+            (
+                "Gross load",
+                match &task.rope_weight {
+                    Some(w) => format!(
+                        "{:.2} t (load + rigging + hook block + {:.2} t of hoist rope + deductions)",
+                        task.gross_kg() / 1000.0,
+                        w.kg / 1000.0
+                    ),
+                    None => format!("{:.2} t (load + rigging + hook block + deductions)", task.gross_kg() / 1000.0),
+                },
+            ),
             (
                 "Crane",
                 format!(

@@ -11,6 +11,7 @@ use liftplan_core::capacity::{CapacityTable, ChartConfig};
 use liftplan_core::crane::{Config, CraneSetup, IkError, LoadPose, PartKind, Placement};
 use liftplan_core::frame::Point3;
 use liftplan_core::lift::LiftTask;
+use liftplan_core::reeving::LongestRope;
 use liftplan_depthmap::mdm::{OBJ_GROUND, OBJ_SCAN};
 
 /// How much higher the plant model may have the top of what a load stands
@@ -215,5 +216,11 @@ pub(crate) fn over_capacity(
         format!("; at {radius_m:.2} m it is carried by {}", booms.join(", "))
     };
     said += &booms_cannot.concat();
+    if let Some(w) = task.rope_weight.as_ref().filter(|w| w.longest_from != LongestRope::Lift) {
+        said += &format!(
+            "; {:.0} kg of the gross is the hoist rope, counted at {:.2} m on each of {} falls: a shorter crane.longest_rope_m, if the lift's hook need not hang so low, counts less",
+            w.kg, w.longest_m, w.falls
+        );
+    }
     said
 }

@@ -94,11 +94,12 @@ pub fn pads_during(task: &LiftTask, m: &Move) -> Option<StepPads> {
 }
 
 /// The pads at one configuration: the most loaded, the higher of the
-/// gross load on the hook and the gross load less the chart's deductions.
+/// gross load on the hook and the least that hangs (no deductions, no
+/// hoist rope: [`LiftTask::least_hanging_kg`]).
 pub fn pads_at(task: &LiftTask, c: &Config) -> Option<StepPads> {
     let mut loads = task.pad_loads(c)?;
-    if task.deductions_kg > 0.0 {
-        let without = task.pad_loads_hanging(c, task.hook_load_kg())?;
+    if task.gross_kg() > task.least_hanging_kg() {
+        let without = task.pad_loads_hanging(c, task.least_hanging_kg())?;
         if without.highest().1 > loads.highest().1 {
             loads = without;
         }
@@ -756,7 +757,11 @@ mod tests {
     /// ground bears and mats it does not.
     #[test]
     fn the_pads_most_is_found_between_a_moves_ends_and_said() {
-        let task = crate::test_lift("ac-700");
+        let mut task = crate::test_lift("ac-700");
+        // Its hoist rope weighed (3.9 kg/m: 10 falls over its 110 m travel,
+        // as resolve counts it where the lift gives no falls).
+        use liftplan_core::reeving::{LongestRope, RopeWeight};
+        task.rope_weight = Some(RopeWeight::new(3.9, 10, false, 110.0, LongestRope::Travel));
         let at = |deg: f64| Config { swing_rad: deg.to_radians(), ..task.start() };
         // The rear-heavy crane's counterweight over the rear left pad of its
         // square spread: swing -45°.
@@ -764,23 +769,33 @@ mod tests {
         let most = pads_during(&task, &m).unwrap();
         assert_eq!(most.pad, Pad::RearLeft);
         let fine =
-            (0..=70_000).map(|i| task.pad_loads(&at(-80.0 + i as f64 * 1e-3)).unwrap().highest().1).fold(0.0, f64::max);
-        let ends = task.pad_loads(&m.from).unwrap().highest().1.max(task.pad_loads(&m.to).unwrap().highest().1);
+            (0..=70_000).map(|i| pads_at(&task, &at(-80.0 + i as f64 * 1e-3)).unwrap().load_kg).fold(0.0, f64::max);
+        let ends = pads_at(&task, &m.from).unwrap().load_kg.max(pads_at(&task, &m.to).unwrap().load_kg);
         assert!(fine > ends + 1000.0, "{fine} {ends}");
         assert!(most.load_kg <= fine + 1e-6 && most.load_kg > fine * (1.0 - 1e-6), "{most:?} {fine}");
+        // The rope is counted at its longest in the gross load: the rear pad
+        // carries most with the least that may hang (no rope), not with the
+        // gross.
+        let gross = task.pad_loads(&at(-45.0)).unwrap().highest().1;
+        let least = task.pad_loads_hanging(&at(-45.0), task.least_hanging_kg()).unwrap().highest().1;
+        assert!(least > gross + 100.0 && pads_at(&task, &at(-45.0)).unwrap().load_kg == least, "{least} {gross}");
         // The chart's deductions (somewhere on the crane, the lift does not
         // say where) weigh least on a rear pad at the hook: its most is the
         // one without them.
-        let mut deducting = task.clone();
+        // (Without the rope, whose least is the same case.)
+        let mut bare = task.clone();
+        bare.rope_weight = None;
+        let bare_most = pads_during(&bare, &m).unwrap();
+        let mut deducting = bare.clone();
         deducting.deductions_kg = 8000.0;
         let rear = pads_during(&deducting, &m).unwrap();
-        assert_eq!((rear.pad, rear.load_kg), (most.pad, most.load_kg));
+        assert_eq!((rear.pad, rear.load_kg), (bare_most.pad, bare_most.load_kg));
         let at_hook = deducting.pad_loads(&at(-45.0)).unwrap().highest().1;
-        assert!(at_hook < most.load_kg - 1000.0, "{at_hook} {most:?}");
+        assert!(at_hook < bare_most.load_kg - 1000.0, "{at_hook} {bare_most:?}");
         let mut up = m.from.to_array();
         up[Joint::Hoist.index()] -= 3.0;
         let hoist = Move { joint: Joint::Hoist, from: m.from, to: Config::from_array(up) };
-        assert_eq!(pads_during(&task, &hoist).unwrap().load_kg, task.pad_loads(&m.from).unwrap().highest().1);
+        assert_eq!(pads_during(&task, &hoist).unwrap().load_kg, pads_at(&task, &m.from).unwrap().load_kg);
         // Said, with the pressure under mats the ground bears, or not.
         let kpa = pressure_kpa(most.load_kg, [3.0, 3.0]);
         let bears = GroundSpec { mat_m: [3.0, 3.0], allowable_kpa: Some(kpa + 1.0) };

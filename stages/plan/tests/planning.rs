@@ -800,6 +800,65 @@ fn the_hook_hangs_no_lower_than_the_falls_let_it() {
     assert!(!v.problems.iter().any(|p| p.contains("outside the crane's joint limits")), "{:?}", v.problems);
 }
 
+/// The hoist rope below the boom head is part of the gross load: on 2 falls
+/// over the hook's 110 m travel, 3.9 kg/m is 0.86 t, and a chart that
+/// carries the 8.7 t without it (9 t) refuses the pick with it, saying how
+/// much is rope and what counts less. Given a longest rope half a metre past
+/// what the pick and the set need, the lift plans within it with the rope
+/// counted on it, and the validator and the checker refuse the hook a metre
+/// below it.
+#[test]
+fn the_hoist_rope_below_the_head_is_part_of_the_gross_load() {
+    let mesh = site();
+    let (m, world) = (map(&mesh), World::new(&mesh, &[], &[]).unwrap());
+    let table = chart_of(&[(10.0, 9.0), (40.0, 9.0)], "none");
+    let site = Site { map: &m, world: &world, charts: Some(&table) };
+    let mut model = builtin("ac-700").unwrap();
+    model.hook.rope_kg_per_m = Some(3.9);
+    let weighed = |longest: Option<f64>| {
+        let mut spec = spec_of(-14.0);
+        (spec.crane.falls, spec.crane.longest_rope_m) = (Some(2), longest);
+        spec.resolve(model.clone()).unwrap()
+    };
+    let plain = task(-14.0);
+    assert!(plan_lift(&plain, &site, &quick(), 3).unwrap().0.validator.ok);
+    let t = weighed(None);
+    assert!((t.gross_kg() - (8700.0 + 2.0 * 110.0 * 3.9)).abs() < 1e-9, "{}", t.gross_kg());
+    let e = plan_lift(&t, &site, &quick(), 3).unwrap_err().to_string();
+    assert!(e.contains("pick is over capacity: gross 9558 kg"), "{e}");
+    assert!(
+        e.contains("858 kg of the gross is the hoist rope, counted at 110.00 m on each of 2 falls: a shorter crane.longest_rope_m, if the lift's hook need not hang so low, counts less"),
+        "{e}"
+    );
+    let longest = plain.pick.hoist_m.max(plain.set.hoist_m) + 0.5;
+    let t = weighed(Some(longest));
+    assert!(t.gross_kg() <= 9000.0 && t.crane.limits().hoist_m.1 == longest, "{} {longest}", t.gross_kg());
+    let s = quick();
+    let (plan, _) = plan_lift(&t, &site, &s, 3).unwrap();
+    assert!(plan.validator.ok, "{:?}", plan.validator.problems);
+    assert!(plan.moves.iter().all(|mv| mv.from.hoist_m.max(mv.to.hoist_m) <= longest + 1e-9));
+    let line = plan.summary.reeving_line().unwrap();
+    assert!(
+        line.contains(&format!(
+            "the hoist rope below the boom head, counted in the hook load: 2 falls of up to {longest:.2} m (crane longest_rope_m) at 3.90 kg/m, {:.2} t",
+            2.0 * longest * 3.9 / 1000.0
+        )),
+        "{line}"
+    );
+    let low = Config { hoist_m: longest + 1.0, ..t.pick };
+    let v = validate(
+        &t,
+        Some(table.config("none").unwrap()),
+        &world,
+        &rules(),
+        &[Move { joint: Joint::Hoist, from: Config { hoist_m: longest, ..t.pick }, to: low }],
+        &[false],
+    );
+    assert!(v.problems.iter().any(|p| p.contains("outside the crane's joint limits")), "{:?}", v.problems);
+    let cs = liftplan_cspace::CSpace::build(&liftplan_cspace::Problem { task: &t, chart: None, map: &m }, &s.cspace);
+    assert!(liftplan_cspace::Checker::new(&cs, &m, &t, vec![], s.cspace.sample_m).config(&low).is_err());
+}
+
 /// A chart configuration "none" for the test crane's 40 m boom: its rows
 /// (radius m, capacity t), their cells on the chart's `sheet`.
 fn chart_of(rows: &[(f64, f64)], sheet: &str) -> liftplan_core::capacity::CapacityTable {
