@@ -200,9 +200,21 @@ impl Reeving {
     }
 
     /// The fewest falls that carry the hook load, where the line pull is
-    /// known.
+    /// known. Where the rope below the head is counted, each fall added
+    /// hangs its own length of rope too: n falls carry the rest and n
+    /// lengths of rope (none, `u32::MAX`, where a fall cannot carry even
+    /// its own rope).
     pub fn least_falls(&self) -> Option<u32> {
-        self.line_pull_kg.map(|p| ((self.hook_load_kg / p) * (1.0 - 1e-12)).ceil().max(1.0) as u32)
+        let pull = self.line_pull_kg?;
+        let (rest, per_fall) = match &self.rope_weight {
+            Some(w) => (self.hook_load_kg - w.kg, w.kg / f64::from(w.falls.max(1))),
+            None => (self.hook_load_kg, 0.0),
+        };
+        if per_fall >= pull {
+            return Some(u32::MAX);
+        }
+        let n = ((rest / (pull - per_fall)) * (1.0 - 1e-12)).ceil().max(1.0);
+        Some(if n >= f64::from(u32::MAX) { u32::MAX } else { n as u32 })
     }
 
     /// Why the lift cannot be reeved as given, with what to change; `None`
@@ -217,6 +229,15 @@ impl Reeving {
             ));
         }
         let (least, pull) = (self.least_falls()?, self.line_pull_kg?);
+        if let Some(w) = self.rope_weight.as_ref().filter(|_| least == u32::MAX) {
+            return Some(format!(
+                "a fall of the hoist rope carries {:.2} t (line pull, [hook] line_pull_t), no more than its own {:.2} m below the boom head weighs at {:.2} kg/m ({:.2} t): no reeving carries the load; give crane longest_rope_m",
+                t(pull),
+                w.longest_m,
+                w.kg_per_m,
+                t(w.kg_per_m * w.longest_m)
+            ));
+        }
         if let Some(most) = self.max_falls.filter(|m| least > *m) {
             return Some(format!(
                 "the hook load ({:.2} t) needs {least} falls of {:.2} t each, more than the hook block's sheaves take ({most}, [hook] max_falls): rig another hook block",
@@ -382,10 +403,28 @@ mod tests {
         let bare = Reeving { line_pull_kg: Some(5_800.0), ..reeving(Some(3)) };
         assert_eq!(bare.refused(), None);
         let heavy = RopeWeight::new(3.9, 3, true, 110.0, LongestRope::Travel);
-        let r = Reeving { hook_load_kg: 16_500.0 + heavy.kg, rope_weight: Some(heavy), ..bare };
+        let r = Reeving { hook_load_kg: 16_500.0 + heavy.kg, rope_weight: Some(heavy), ..bare.clone() };
         assert_eq!(
             r.refused().unwrap(),
             "the hook load (17.79 t: load, rigging, hook block and 1.29 t of hoist rope) is more than 3 falls of 5.80 t each carry (17.40 t): reeve at least 4 falls (crane falls)"
+        );
+        // On 4 falls the rope is 1.72 t and the hook load 18.22 t, which 4 x
+        // 5.8 t carry: 4 is the least, counting each fall's rope.
+        let four = RopeWeight::new(3.9, 4, true, 110.0, LongestRope::Travel);
+        let on_four =
+            Reeving { hook_load_kg: 16_500.0 + four.kg, rope_weight: Some(four), falls: Some(4), ..bare.clone() };
+        assert_eq!((on_four.least_falls(), on_four.refused()), (Some(4), None));
+        // Rope so heavy that each fall added carries little more than its
+        // own: 16.5 t on falls of 5.8 t with 5 t of rope each takes 21.
+        let w = RopeWeight::new(50.0, 3, true, 100.0, LongestRope::Travel);
+        let steep = Reeving { hook_load_kg: 16_500.0 + w.kg, rope_weight: Some(w), ..bare.clone() };
+        assert_eq!(steep.least_falls(), Some(21));
+        let w = RopeWeight::new(60.0, 3, true, 100.0, LongestRope::Travel);
+        let none = Reeving { hook_load_kg: 16_500.0 + w.kg, rope_weight: Some(w), ..bare.clone() };
+        assert_eq!(none.least_falls(), Some(u32::MAX));
+        assert_eq!(
+            none.refused().unwrap(),
+            "a fall of the hoist rope carries 5.80 t (line pull, [hook] line_pull_t), no more than its own 100.00 m below the boom head weighs at 60.00 kg/m (6.00 t): no reeving carries the load; give crane longest_rope_m"
         );
         assert!(r.said().ends_with("3 falls of up to 110.00 m (the hook's travel: give crane longest_rope_m to count less) at 3.90 kg/m, 1.29 t"), "{}", r.said());
         let unsaid = RopeWeight::new(3.9, 8, false, 90.0, LongestRope::Reach);
