@@ -1201,10 +1201,10 @@ mod tests {
             let e = CraneModel::from_toml(Path::new("c.toml"), &text.replace(from, to)).unwrap_err().to_string();
             assert!(e.contains(said), "{to}: {e}");
         }
-        let weighed = text.replace("rope_lead_m = 20.0\n", "rope_lead_m = 20.0\nrope_kg_per_m = 3.9\n");
-        assert_eq!(CraneModel::from_toml(Path::new("c.toml"), &weighed).unwrap().hook.rope_kg_per_m, Some(3.9));
+        assert_eq!(ac.hook.rope_kg_per_m, Some(3.9));
         for bad in ["0.0", "-3.9", "nan", "101.0"] {
-            let e = CraneModel::from_toml(Path::new("c.toml"), &weighed.replace("3.9", bad)).unwrap_err().to_string();
+            let weighed = text.replace("rope_kg_per_m = 3.9", &format!("rope_kg_per_m = {bad}"));
+            let e = CraneModel::from_toml(Path::new("c.toml"), &weighed).unwrap_err().to_string();
             assert!(e.contains("hook.rope_kg_per_m must be more than 0 and at most 100 kg/m"), "{bad}: {e}");
         }
         let tower = builtin_text("tower-hh-60").unwrap();

@@ -1042,6 +1042,7 @@ impl LiftSpec {
                 falls,
                 reach_m: crate::reeving::rope_reach_m(rope_m, lead_m, boom, falls),
                 travel_m: model.hook.max_rope_m,
+                lift_longest_m: self.crane.longest_rope_m,
             }),
             _ => None,
         };
@@ -1563,11 +1564,11 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         let r = crate::reeving::Reeving::of(&task).unwrap();
         assert_eq!((r.line_pull_kg, r.max_falls), (Some(10_000.0), Some(10)));
         assert!((r.hook_load_kg - task.hook_load_kg()).abs() < 1e-9);
-        // On one fall the hook load (12.5 t, 0.4 t, the 3.5 t block) is
-        // refused, naming the falls it needs.
+        // On one fall the hook load (12.5 t, 0.4 t, the 3.5 t block and
+        // 110 m of rope at 3.9 kg/m) is refused, naming the falls it needs.
         assert_eq!(
             r.refused().unwrap(),
-            "the hook load (16.40 t: load, rigging and hook block) is more than 1 fall of 10.00 t each carries (10.00 t): reeve at least 2 falls (crane falls)"
+            "the hook load (16.83 t: load, rigging, hook block and 0.43 t of hoist rope) is more than 1 fall of 10.00 t each carries (10.00 t): reeve at least 2 falls (crane falls)"
         );
         assert_eq!(crate::reeving::Reeving::of(&with_falls(2).unwrap()).unwrap().refused(), None);
         // A crane file of no line pull or rating and a lift of no falls: nothing.
@@ -1638,7 +1639,9 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
             (s.crane.falls, s.crane.longest_rope_m) = (falls, longest);
             s.resolve(model)
         };
-        let bare = spec().resolve(crate::crane::builtin("ac-700").unwrap()).unwrap();
+        let mut unweighed = crate::crane::builtin("ac-700").unwrap();
+        unweighed.hook.rope_kg_per_m = None;
+        let bare = spec().resolve(unweighed).unwrap();
         assert_eq!(bare.rope_weight, None);
         assert_eq!(bare.hook_load_kg(), bare.least_hanging_kg());
         // 300 m of rope on 4 falls reaches 60 m below the head: 4 x 60 m.

@@ -108,9 +108,9 @@ impl RopeWeight {
         }
     }
 
-    /// In words, for the Reeving row: "the hoist rope below the boom head,
-    /// counted in the hook load: 6 falls of up to 40.00 m (crane
-    /// longest_rope_m) at 3.90 kg/m, 0.94 t".
+    /// In words, for the Reeving row: "the 0.94 t of hoist rope: 6 falls of
+    /// up to 40.00 m below the boom head (crane longest_rope_m) at 3.90
+    /// kg/m".
     pub fn said(&self) -> String {
         let falls = if self.falls_given {
             format!("{} fall{}", self.falls, if self.falls == 1 { "" } else { "s" })
@@ -123,10 +123,10 @@ impl RopeWeight {
             LongestRope::Reach => "as far as the rope lets the hook down: give crane longest_rope_m to count less",
         };
         format!(
-            "the hoist rope below the boom head, counted in the hook load: {falls} of up to {:.2} m ({longest}) at {:.2} kg/m, {:.2} t",
+            "the {:.2} t of hoist rope: {falls} of up to {:.2} m below the boom head ({longest}) at {:.2} kg/m",
+            self.kg / KG_PER_TONNE,
             self.longest_m,
-            self.kg_per_m,
-            self.kg / KG_PER_TONNE
+            self.kg_per_m
         )
     }
 }
@@ -145,6 +145,10 @@ pub struct RopeReach {
     /// The hook's travel the crane file gives (`[hook] max_rope_m`): the
     /// rope limits the lift only where its reach is less.
     pub travel_m: f64,
+    /// The lift's own longest rope (m, `crane.longest_rope_m`), where it
+    /// gives one: within the reach, it is what limits the lift.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lift_longest_m: Option<f64>,
 }
 
 /// How far below the boom head the hook may hang on `falls` falls (m, rope
@@ -159,7 +163,9 @@ pub fn rope_reach_m(rope_m: f64, lead_m: f64, boom_m: f64, falls: u32) -> f64 {
 impl RopeReach {
     /// In words, for the Reeving row.
     pub fn said(&self) -> String {
-        let limits = if self.reach_m < self.travel_m {
+        let limits = if let Some(m) = self.lift_longest_m {
+            format!(", more than the lift's own longest rope ({m:.2} m, crane longest_rope_m)")
+        } else if self.reach_m < self.travel_m {
             format!(": the longest rope planned with (hook travel {:.2} m)", self.travel_m)
         } else {
             format!(", more than the hook's travel ({:.2} m), which holds", self.travel_m)
@@ -397,7 +403,7 @@ mod tests {
         let r = Reeving { hook_load_kg: 16_500.0 + w.kg, rope_weight: Some(w), ..reeving(Some(4)) };
         assert_eq!(
             r.said(),
-            "hook load 17.12 t (load, rigging, hook block and 0.62 t of hoist rope); on 4 falls of 8.00 t each: 32.00 t, 54 % (at least 3 needed); the hook block rated 63.00 t, carrying 13.00 t of load and rigging: 21 %; the hoist rope below the boom head, counted in the hook load: 4 falls of up to 40.00 m (crane longest_rope_m) at 3.90 kg/m, 0.62 t"
+            "hook load 17.12 t (load, rigging, hook block and 0.62 t of hoist rope); on 4 falls of 8.00 t each: 32.00 t, 54 % (at least 3 needed); the hook block rated 63.00 t, carrying 13.00 t of load and rigging: 21 %; the 0.62 t of hoist rope: 4 falls of up to 40.00 m below the boom head (crane longest_rope_m) at 3.90 kg/m"
         );
         // 16.5 t goes on 3 falls of 5.8 t (17.4 t); with 1.29 t of rope, not.
         let bare = Reeving { line_pull_kg: Some(5_800.0), ..reeving(Some(3)) };
@@ -426,8 +432,8 @@ mod tests {
             none.refused().unwrap(),
             "a fall of the hoist rope carries 5.80 t (line pull, [hook] line_pull_t), no more than its own 100.00 m below the boom head weighs at 60.00 kg/m (6.00 t): no reeving carries the load; give crane longest_rope_m"
         );
-        assert!(r.said().ends_with("3 falls of up to 110.00 m (the hook's travel: give crane longest_rope_m to count less) at 3.90 kg/m, 1.29 t"), "{}", r.said());
+        assert!(r.said().ends_with("the 1.29 t of hoist rope: 3 falls of up to 110.00 m below the boom head (the hook's travel: give crane longest_rope_m to count less) at 3.90 kg/m"), "{}", r.said());
         let unsaid = RopeWeight::new(3.9, 8, false, 90.0, LongestRope::Reach);
-        assert!(unsaid.said().contains("8 falls (the most the hook block takes: the lift gives no crane falls) of up to 90.00 m (as far as the rope lets the hook down: give crane longest_rope_m to count less)"), "{}", unsaid.said());
+        assert!(unsaid.said().contains("8 falls (the most the hook block takes: the lift gives no crane falls) of up to 90.00 m below the boom head (as far as the rope lets the hook down: give crane longest_rope_m to count less)"), "{}", unsaid.said());
     }
 }

@@ -757,11 +757,11 @@ mod tests {
     /// ground bears and mats it does not.
     #[test]
     fn the_pads_most_is_found_between_a_moves_ends_and_said() {
-        let mut task = crate::test_lift("ac-700");
-        // Its hoist rope weighed (3.9 kg/m: 10 falls over its 110 m travel,
-        // as resolve counts it where the lift gives no falls).
+        let task = crate::test_lift("ac-700");
+        // The crane weighs its hoist rope (3.9 kg/m), counted on the block's
+        // 10 falls over its 110 m travel: the lift gives no falls.
         use liftplan_core::reeving::{LongestRope, RopeWeight};
-        task.rope_weight = Some(RopeWeight::new(3.9, 10, false, 110.0, LongestRope::Travel));
+        assert_eq!(task.rope_weight, Some(RopeWeight::new(3.9, 10, false, 110.0, LongestRope::Travel)));
         let at = |deg: f64| Config { swing_rad: deg.to_radians(), ..task.start() };
         // The rear-heavy crane's counterweight over the rear left pad of its
         // square spread: swing -45°.
