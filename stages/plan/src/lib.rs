@@ -1015,27 +1015,29 @@ pub fn revision(plan: &LiftPlan, task: &LiftTask) -> String {
     p.validator.seconds = 0.0;
     p.summary.revision.clear();
     let mut h = blake3::Hasher::new();
-    h.update(b"liftplan plan revision 1\n");
+    h.update(b"liftplan plan revision 2\n");
     // serde_json writes an f64 as its shortest round-trip digits: the
     // same plan gives the same bytes.
     h.update(&serde_json::to_vec(&p).unwrap_or_default());
     // The crane's parts, the load's shape and the plan a resumed lift
-    // continues (said on its cover) are not in plan.json.
-    let made_for = format!(
-        "\n{:?}\n{:?}\n{:?} {:?} {:?} {:?}\n{:?}\n{:?}",
-        task.crane,
-        task.load,
-        task.load_mass_kg,
-        task.rigging_mass_kg,
-        task.deductions_kg,
-        task.counterweight_kg,
-        task.resumes_plan,
-        task.slings
-    );
-    h.update(made_for.as_bytes());
-    // Only where given: a lift without one hashes as it did before the key
-    // was known (its crane's text may still differ, with a crane file's
-    // new keys).
+    // continues (said on its cover) are not in plan.json. Hashed as JSON,
+    // whose optional keys are left out where not given: a crane file key,
+    // or a rigging one, that a later version learns to read leaves the
+    // revisions of plans that do not give it as they were.
+    let made_for = serde_json::json!({
+        "crane": task.crane.model,
+        "placement": task.crane.placement,
+        "load": task.load,
+        "load_mass_kg": task.load_mass_kg,
+        "rigging_mass_kg": task.rigging_mass_kg,
+        "deductions_kg": task.deductions_kg,
+        "counterweight_kg": task.counterweight_kg,
+        "resumes_plan": task.resumes_plan,
+        "slings": task.slings,
+    });
+    h.update(b"\n");
+    h.update(&serde_json::to_vec(&made_for).unwrap_or_default());
+    // Only where given, likewise.
     if task.cog_tolerance_m != 0.0 {
         h.update(format!("\ncog tolerance {:?}", task.cog_tolerance_m).as_bytes());
     }

@@ -433,6 +433,21 @@ fn a_plans_revision_names_its_moves_and_crane_not_its_timings() {
     let mut heavier = t.clone();
     heavier.load_mass_kg += 100.0;
     assert_ne!(liftplan_plan::revision(&plan, &heavier), r, "the load 100 kg heavier");
+    let mut weighed = t.clone();
+    weighed.crane.model.hook.rope_kg_per_m = Some(3.9);
+    assert_ne!(liftplan_plan::revision(&plan, &weighed), r, "the crane file weighing its rope");
+    let mut heavier_block = t.clone();
+    heavier_block.crane.model.hook.mass_kg += 50.0;
+    assert_ne!(liftplan_plan::revision(&plan, &heavier_block), r, "a heavier hook block");
+    // A crane file key not given is not in what is hashed, so a key that a
+    // later version learns to read leaves the revision of a plan that does
+    // not give it as it was.
+    let mut bare = t.crane.model.hook;
+    (bare.rated_t, bare.line_pull_t, bare.max_falls, bare.rope_m, bare.rope_lead_m) = (None, None, None, None, None);
+    let hook = serde_json::to_value(bare).unwrap();
+    for key in ["rope_kg_per_m", "rope_m", "rope_lead_m", "rated_t", "line_pull_t", "max_falls"] {
+        assert!(hook.get(key).is_none(), "{key}: {hook}");
+    }
 }
 
 #[test]
