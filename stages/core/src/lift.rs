@@ -1061,10 +1061,11 @@ impl LiftSpec {
             Some(_) => crate::reeving::LongestRope::Reach,
             None => crate::reeving::LongestRope::Travel,
         };
+        let below = crate::reeving::hangs_below(model.is_tower());
         if let Some(m) = self.crane.longest_rope_m {
             if !(m.is_finite() && m > model.hook.min_rope_m) {
                 return Err(format!(
-                    "lift '{id}': crane.longest_rope_m must be more than the {:.2} m of rope the hook block keeps below the boom head (hook.min_rope_m), found {m}",
+                    "lift '{id}': crane.longest_rope_m must be more than the {:.2} m of rope the hook block keeps {below} (hook.min_rope_m), found {m}",
                     model.hook.min_rope_m
                 ));
             }
@@ -1082,12 +1083,14 @@ impl LiftSpec {
         }
         let rope_weight = match (model.hook.rope_kg_per_m, self.crane.falls, model.hook.max_falls) {
             (None, _, _) => None,
-            (Some(w), Some(falls), _) => {
-                Some(crate::reeving::RopeWeight::new(w, falls, true, model.hook.max_rope_m, longest_from))
-            }
-            (Some(w), None, Some(most)) => {
-                Some(crate::reeving::RopeWeight::new(w, most, false, model.hook.max_rope_m, longest_from))
-            }
+            (Some(w), Some(falls), _) => Some(crate::reeving::RopeWeight {
+                trolley: model.is_tower(),
+                ..crate::reeving::RopeWeight::new(w, falls, true, model.hook.max_rope_m, longest_from)
+            }),
+            (Some(w), None, Some(most)) => Some(crate::reeving::RopeWeight {
+                trolley: model.is_tower(),
+                ..crate::reeving::RopeWeight::new(w, most, false, model.hook.max_rope_m, longest_from)
+            }),
             (Some(_), None, None) => {
                 return Err(format!(
                     "lift '{id}': the crane file weighs its hoist rope (hook.rope_kg_per_m), but the lift gives no falls (crane falls) and the file no most falls (hook.max_falls) to count it on: give crane falls"
@@ -1103,7 +1106,7 @@ impl LiftSpec {
                 r.falls, r.reach_m
             ),
             (crate::reeving::LongestRope::Lift, _) => format!(
-                "{e} (the lift is planned with at most {:.2} m of rope below the boom head, crane.longest_rope_m)",
+                "{e} (the lift is planned with at most {:.2} m of rope {below}, crane.longest_rope_m)",
                 crane.model.hook.max_rope_m
             ),
             _ => e,
@@ -1701,6 +1704,17 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         let t = windy.resolve(model).unwrap();
         assert!(t.rope_weight.is_some());
         assert_eq!(t.permissible_wind(&[]).unwrap().0.hook_load_kg, t.least_hanging_kg());
+        // A tower crane's rope hangs from its trolley, and is said so.
+        let mut tower = crate::crane::builtin("tower-hh-60").unwrap();
+        tower.hook.rope_kg_per_m = Some(1.6);
+        let mut s = spec();
+        (s.crane.model, s.crane.boom_m, s.crane.falls, s.crane.longest_rope_m) =
+            ("tower-hh-60".into(), None, Some(2), Some(0.5));
+        let e = s.clone().resolve(tower.clone()).unwrap_err();
+        assert!(e.contains("of rope the hook block keeps below the trolley (hook.min_rope_m)"), "{e}");
+        s.crane.longest_rope_m = None;
+        let w = s.resolve(tower).unwrap().rope_weight.unwrap();
+        assert!(w.trolley && w.said().contains("m below the trolley (the hook's travel"), "{}", w.said());
     }
 
     #[test]

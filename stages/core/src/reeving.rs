@@ -82,6 +82,10 @@ pub struct RopeWeight {
     pub longest_from: LongestRope,
     /// Falls x longest rope x mass per metre (kg).
     pub kg: f64,
+    /// Whether the rope hangs from a tower crane's trolley rather than a
+    /// boom head (for the words).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub trolley: bool,
 }
 
 /// What sets the longest rope a lift is planned with.
@@ -105,7 +109,13 @@ impl RopeWeight {
             longest_m,
             longest_from,
             kg: kg_per_m * f64::from(falls) * longest_m,
+            trolley: false,
         }
+    }
+
+    /// Where the rope hangs from, in words.
+    pub fn below(&self) -> &'static str {
+        hangs_below(self.trolley)
     }
 
     /// In words, for the Reeving row: "the 0.94 t of hoist rope: 6 falls of
@@ -123,9 +133,10 @@ impl RopeWeight {
             LongestRope::Reach => "as far as the rope lets the hook down: give crane longest_rope_m to count less",
         };
         format!(
-            "the {:.2} t of hoist rope: {falls} of up to {:.2} m below the boom head ({longest}) at {:.2} kg/m",
+            "the {:.2} t of hoist rope: {falls} of up to {:.2} m {} ({longest}) at {:.2} kg/m",
             self.kg / KG_PER_TONNE,
             self.longest_m,
+            self.below(),
             self.kg_per_m
         )
     }
@@ -149,6 +160,11 @@ pub struct RopeReach {
     /// gives one: within the reach, it is what limits the lift.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub lift_longest_m: Option<f64>,
+}
+
+/// "below the trolley" on a tower crane, "below the boom head" otherwise.
+pub fn hangs_below(trolley: bool) -> &'static str {
+    if trolley { "below the trolley" } else { "below the boom head" }
 }
 
 /// How far below the boom head the hook may hang on `falls` falls (m, rope
@@ -237,9 +253,10 @@ impl Reeving {
         let (least, pull) = (self.least_falls()?, self.line_pull_kg?);
         if let Some(w) = self.rope_weight.as_ref().filter(|_| least == u32::MAX) {
             return Some(format!(
-                "a fall of the hoist rope carries {:.2} t (line pull, [hook] line_pull_t), no more than its own {:.2} m below the boom head weighs at {:.2} kg/m ({:.2} t): no reeving carries the load; give crane longest_rope_m",
+                "a fall of the hoist rope carries {:.2} t (line pull, [hook] line_pull_t), no more than its own {:.2} m {} weighs at {:.2} kg/m ({:.2} t): no reeving carries the load; give crane longest_rope_m",
                 t(pull),
                 w.longest_m,
+                w.below(),
                 w.kg_per_m,
                 t(w.kg_per_m * w.longest_m)
             ));
