@@ -511,7 +511,8 @@ impl LiftTask {
         }
     }
 
-    /// Load + rigging + hook block + deductions, in kg.
+    /// Load + rigging + hook block + the hoist rope where weighed
+    /// ([`Self::hook_load_kg`]) + deductions, in kg.
     pub fn gross_kg(&self) -> f64 {
         self.hook_load_kg() + self.deductions_kg
     }
@@ -1690,6 +1691,16 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         // hook's travel; without those either, refused.
         let w = on(None, None, None).unwrap().rope_weight.unwrap();
         assert_eq!((w.falls, w.falls_given, w.longest_m, w.longest_from), (10, false, 110.0, LongestRope::Travel));
+        // With nothing else of the reeving to check, the row still says
+        // what was counted.
+        let mut quiet = crate::crane::builtin("ac-700").unwrap();
+        (quiet.hook.line_pull_t, quiet.hook.rated_t) = (None, None);
+        let r = crate::reeving::Reeving::of(&spec().resolve(quiet).unwrap()).expect("the rope's weight is said");
+        assert!(
+            r.said().contains("; the 4.29 t of hoist rope: 10 falls (the most the hook block takes"),
+            "{}",
+            r.said()
+        );
         let mut model = crate::crane::builtin("ac-700").unwrap();
         (model.hook.rope_kg_per_m, model.hook.max_falls) = (Some(3.9), None);
         let e = spec().resolve(model).unwrap_err();

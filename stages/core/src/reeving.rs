@@ -40,7 +40,8 @@ pub const MAX_FALLS: u32 = 64;
 /// The reeving a lift is planned with, against its hook load.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Reeving {
-    /// Load, rigging and hook block (kg): what the falls carry.
+    /// Load, rigging, hook block and the rope below the head where the
+    /// crane file weighs it (kg): what the falls carry.
     pub hook_load_kg: f64,
     /// Load and rigging (kg): what the hook block carries on its hook.
     #[serde(default)]
@@ -205,7 +206,8 @@ impl RopeReach {
 
 impl Reeving {
     /// The task's reeving; `None` where neither the crane file (line pull,
-    /// block rating) nor the lift (falls) gives anything to check.
+    /// block rating, the rope's weight) nor the lift (falls) gives anything
+    /// to check or count.
     pub fn of(task: &LiftTask) -> Option<Reeving> {
         let hook = &task.crane.model.hook;
         let r = Reeving {
@@ -218,7 +220,8 @@ impl Reeving {
             rope: task.rope_reach.clone(),
             rope_weight: task.rope_weight.clone(),
         };
-        (r.falls.is_some() || r.line_pull_kg.is_some() || r.block_rated_kg.is_some()).then_some(r)
+        (r.falls.is_some() || r.line_pull_kg.is_some() || r.block_rated_kg.is_some() || r.rope_weight.is_some())
+            .then_some(r)
     }
 
     /// The fewest falls that carry the hook load, where the line pull is
