@@ -453,6 +453,9 @@ pub struct LiftTask {
     /// The hoist rope below the boom head, part of the hook load, where the
     /// crane file weighs it ([`crate::reeving::RopeWeight`]).
     pub rope_weight: Option<crate::reeving::RopeWeight>,
+    /// The lift's own longest rope (m, [`CraneSpec::longest_rope_m`]): the
+    /// crane is set up with it as its longest rope.
+    pub longest_rope_m: Option<f64>,
     pub deductions_kg: f64,
     /// Configurations with the load resting at its pick and set positions.
     pub pick: Config,
@@ -1299,6 +1302,7 @@ impl LiftSpec {
             falls: self.crane.falls,
             rope_reach,
             rope_weight,
+            longest_rope_m: self.crane.longest_rope_m,
             deductions_kg: self.crane.deductions_t * KG_PER_TONNE,
             pick,
             set,
@@ -1715,6 +1719,22 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         let t = windy.resolve(model).unwrap();
         assert!(t.rope_weight.is_some());
         assert_eq!(t.permissible_wind(&[]).unwrap().0.hook_load_kg, t.least_hanging_kg());
+        // A crane file with none of the rope's figures: the lift's longest
+        // rope limits the hook all the same, and is said.
+        let ltm = spec().resolve(crate::crane::builtin("ltm-1100").unwrap()).unwrap();
+        assert!(crate::reeving::Reeving::of(&ltm).is_none());
+        let mut s = spec();
+        s.crane.longest_rope_m = Some(ltm.pick.hoist_m.max(ltm.set.hoist_m) + 1.0);
+        let kept = s.resolve(crate::crane::builtin("ltm-1100").unwrap()).unwrap();
+        assert_eq!(Some(kept.crane.limits().hoist_m.1), s.crane.longest_rope_m);
+        let said = crate::reeving::Reeving::of(&kept).expect("the longest rope is said").said();
+        assert!(
+            said.ends_with(&format!(
+                "; the hook kept within {:.2} m of rope below the boom head (crane longest_rope_m)",
+                s.crane.longest_rope_m.unwrap()
+            )),
+            "{said}"
+        );
         // A tower crane's rope hangs from its trolley, and is said so.
         let mut tower = crate::crane::builtin("tower-hh-60").unwrap();
         tower.hook.rope_kg_per_m = Some(1.6);

@@ -62,6 +62,13 @@ pub struct Reeving {
     /// the crane file weighs it; none: not counted.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rope_weight: Option<RopeWeight>,
+    /// The lift's own longest rope (m, `crane.longest_rope_m`), said here
+    /// where neither the rope's reach nor its weight says it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lift_longest_m: Option<f64>,
+    /// Whether the rope hangs from a tower crane's trolley (for the words).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub trolley: bool,
 }
 
 /// The hoist rope hanging below the boom head (a tower crane's trolley), as
@@ -219,9 +226,15 @@ impl Reeving {
             max_falls: hook.max_falls,
             rope: task.rope_reach.clone(),
             rope_weight: task.rope_weight.clone(),
+            lift_longest_m: task.longest_rope_m,
+            trolley: task.crane.model.is_tower(),
         };
-        (r.falls.is_some() || r.line_pull_kg.is_some() || r.block_rated_kg.is_some() || r.rope_weight.is_some())
-            .then_some(r)
+        (r.falls.is_some()
+            || r.line_pull_kg.is_some()
+            || r.block_rated_kg.is_some()
+            || r.rope_weight.is_some()
+            || r.lift_longest_m.is_some())
+        .then_some(r)
     }
 
     /// The fewest falls that carry the hook load, where the line pull is
@@ -330,6 +343,12 @@ impl Reeving {
             Some(w) => w.said(),
             None => "the hoist rope's own weight not counted: the crane file gives no [hook] rope_kg_per_m".to_string(),
         });
+        if let (None, None, Some(m)) = (&self.rope, &self.rope_weight, self.lift_longest_m) {
+            parts.push(format!(
+                "the hook kept within {m:.2} m of rope {} (crane longest_rope_m)",
+                hangs_below(self.trolley)
+            ));
+        }
         parts.join("; ")
     }
 
@@ -354,6 +373,8 @@ mod tests {
             max_falls: Some(8),
             rope: None,
             rope_weight: None,
+            lift_longest_m: None,
+            trolley: false,
         }
     }
 
