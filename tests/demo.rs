@@ -1167,6 +1167,9 @@ fn the_tower_crane_demo_runs_and_its_pdf_names_a_tower_cranes_parts() {
     let dir = tmp.path().join("tower");
     let out = liftplan(&["demo", dir.to_str().unwrap(), "--tower", "-q"]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    // The project file's words on the mobile crane's rope went with it.
+    let toml = std::fs::read_to_string(dir.join("liftplan.toml")).unwrap();
+    assert!(!toml.contains("longest_rope_m") && !toml.contains("boom head"), "{toml}");
     let plan: serde_json::Value =
         serde_json::from_slice(&std::fs::read(dir.join("out").join("plan.json")).unwrap()).unwrap();
     let lift = &plan["lifts"][0];
