@@ -221,6 +221,20 @@ pub(crate) fn over_capacity(
             "; {:.0} kg of the gross is the hoist rope, counted at {:.2} m on each of {} falls: a shorter crane.longest_rope_m, if the lift's hook need not hang so low, counts less",
             w.kg, w.longest_m, w.falls
         );
+        // What the ends need (to the centimetre above), and the gross on it.
+        let (ends, named) = match &task.resume_from {
+            Some((now, _)) => ([now, &task.set], "where the load hangs now and the set"),
+            None => ([&task.pick, &task.set], "the pick and the set"),
+        };
+        let need_m = (ends.iter().map(|c| c.hoist_m).fold(0.0, f64::max) * 100.0).ceil() / 100.0;
+        let on_need = gross - w.kg + w.kg_per_m * f64::from(w.falls) * need_m;
+        let here = chart.lookup(boom, radius_m + allowance).ok().map(|k| task.effective_capacity_kg(k.capacity_kg));
+        if let Some(cap) = here.filter(|_| need_m < w.longest_m) {
+            said += &format!(
+                "; {named} need {need_m:.2} m of it: with longest_rope_m = {need_m:.2} (the path may need more) the gross would be {on_need:.0} kg, {} the {cap:.0} kg the chart gives at {radius_m:.2} m",
+                if on_need <= cap { "within" } else { "still more than" }
+            );
+        }
     }
     said
 }

@@ -854,6 +854,23 @@ fn the_hoist_rope_below_the_head_is_part_of_the_gross_load() {
         e.contains("858 kg of the gross is the hoist rope, counted at 110.00 m on each of 2 falls: a shorter crane.longest_rope_m, if the lift's hook need not hang so low, counts less"),
         "{e}"
     );
+    // It names the rope the ends need, and the gross on it.
+    let need = (plain.pick.hoist_m.max(plain.set.hoist_m) * 100.0).ceil() / 100.0;
+    let on_need = 8700.0 + 2.0 * 3.9 * need;
+    assert!(on_need <= 9000.0, "{on_need}");
+    assert!(
+        e.contains(&format!(
+            "; the pick and the set need {need:.2} m of it: with longest_rope_m = {need:.2} (the path may need more) the gross would be {on_need:.0} kg, within the 9000 kg the chart gives at "
+        )),
+        "{e}"
+    );
+    // On a chart of 8.8 t even that is too much, and said so.
+    let tight = chart_of(&[(10.0, 8.8), (40.0, 8.8)], "none");
+    let e = plan_lift(&weighed(None), &Site { charts: Some(&tight), ..site }, &quick(), 3).unwrap_err().to_string();
+    assert!(
+        on_need > 8800.0 && e.contains(&format!("the gross would be {on_need:.0} kg, still more than the 8800 kg")),
+        "{e}"
+    );
     let longest = plain.pick.hoist_m.max(plain.set.hoist_m) + 0.5;
     let t = weighed(Some(longest));
     assert!(t.gross_kg() <= 9000.0 && t.crane.limits().hoist_m.1 == longest, "{} {longest}", t.gross_kg());
