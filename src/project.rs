@@ -496,7 +496,8 @@ keep = 3                  # runs' outputs each stage keeps in .liftplan/cache (t
 # load = { name = "vessel V-101", mass_t = 12.0, size_m = [8.0, 3.0, 3.0], cog_m = [0.0, 0.0, 0.0] }
 # # load: cog_m from the box's centre, m; add cog_tolerance_m = 0.1 where it is known only to so
 # # many metres either way along x and y: the legs and the load's balance where it is set are
-# # then checked at the worst within it.
+# # then checked at the worst within it; cog_tolerance_z_m = 0.2 likewise in height, for
+# # the load not to turn over on one or two legs with its centre of gravity at its highest.
 # rigging = { mass_t = 0.4, height_m = 4.0, legs = 2, leg_wll_t = 10.0 }
 # # rigging: height_m from the hook block's underside to the load's top; legs 1, 2 or
 # # 4 (the top's centre, the middles of its short edges, its corners) or lift_points_m

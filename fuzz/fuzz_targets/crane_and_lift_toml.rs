@@ -15,19 +15,7 @@ fuzz_target!(|data: &[u8]| {
         }
     {
         let _ = liftplan_core::reeving::Reeving::of(&task).map(|r| (r.said(), r.refused()));
-        if let Some(slings) = &task.slings {
-            let l = &task.load;
-            let tol = task.cog_tolerance_m;
-            let _ = liftplan_core::slings::check_within(
-                slings,
-                task.load_mass_kg,
-                l.size_m,
-                l.cog_m,
-                tol,
-                l.rigging_height_m,
-            )
-            .map(|c| (c.said(), c.over_limit()));
-        }
+        let _ = task.check_slings().map(|c| c.map(|c| (c.said(), c.over_limit())));
     }
     let _ = liftplan_scans::parse_stations(std::path::Path::new("stations.toml"), text);
 });

@@ -28,6 +28,12 @@ pub struct LoadSpec {
     /// what it is set on.
     #[serde(default, skip_serializing_if = "is_zero")]
     pub cog_tolerance_m: f64,
+    /// How far the centre of gravity may lie above or below `cog_m`'s
+    /// height (m): on one or two legs the load turns about its lift points,
+    /// and is checked not to turn over with the centre of gravity at the
+    /// highest it may lie ([`LiftTask::check_slings`]).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub cog_tolerance_z_m: f64,
 }
 
 fn is_zero(v: &f64) -> bool {
@@ -438,6 +444,8 @@ pub struct LiftTask {
     pub load: LoadShape,
     /// [`LoadSpec::cog_tolerance_m`] (m, along the load's x and y).
     pub cog_tolerance_m: f64,
+    /// [`LoadSpec::cog_tolerance_z_m`] (m, along the load's z).
+    pub cog_tolerance_z_m: f64,
     pub load_mass_kg: f64,
     pub rigging_mass_kg: f64,
     /// The sling legs to check, where the lift gives their working load
@@ -512,6 +520,35 @@ impl LiftTask {
             (false, false) => "set z_m",
             (false, true) => "set hoist_m",
         }
+    }
+
+    /// The sling legs' check ([`crate::slings::check_within`]), where the
+    /// lift gives them: the centre of gravity anywhere within its tolerance
+    /// in plan, and at the highest its height's tolerance lets it lie,
+    /// which is the worst for turning over on one or two legs and for the
+    /// tilt's bound (nothing else of the check depends on its height: the
+    /// legs' pulls on a load hanging level depend on where it lies in
+    /// plan).
+    pub fn check_slings(&self) -> Option<Result<crate::slings::SlingCheck, String>> {
+        let legs = self.slings.as_ref()?;
+        let (l, tz) = (&self.load, self.cog_tolerance_z_m);
+        let highest = [l.cog_m[0], l.cog_m[1], l.cog_m[2] + tz];
+        let c = crate::slings::check_within(
+            legs,
+            self.load_mass_kg,
+            l.size_m,
+            highest,
+            self.cog_tolerance_m,
+            l.rigging_height_m,
+        );
+        Some(match c {
+            Ok(c) => Ok(crate::slings::SlingCheck { cog_tolerance_z_m: tz, ..c }),
+            Err(e) if tz > 0.0 => Err(format!(
+                "with the load's centre of gravity up to load cog_tolerance_z_m ({tz:.2} m) higher than given, at z {:.2} m from its box's centre: {e}",
+                highest[2]
+            )),
+            Err(e) => Err(e),
+        })
     }
 
     /// Load + rigging + hook block + the hoist rope where weighed
@@ -870,6 +907,14 @@ impl LiftSpec {
                     ["x", "y"][i]
                 ));
             }
+        }
+        nonneg("load.cog_tolerance_z_m", self.load.cog_tolerance_z_m)?;
+        let (cz, tz) = (self.load.cog_m[2], self.load.cog_tolerance_z_m);
+        if !(cz.abs() + tz <= self.load.size_m[2] / 2.0) {
+            return Err(format!(
+                "lift '{id}': load.cog_m[2] = {cz} give or take load.cog_tolerance_z_m = {tz} m reaches outside the load box ({} m high): a centre of gravity lies within the load",
+                self.load.size_m[2]
+            ));
         }
         nonneg("rigging.mass_t", self.rigging.mass_t)?;
         nonneg("rigging.height_m", self.rigging.height_m)?;
@@ -1296,6 +1341,7 @@ impl LiftSpec {
             load_name: self.load.name.clone(),
             load,
             cog_tolerance_m: self.load.cog_tolerance_m,
+            cog_tolerance_z_m: self.load.cog_tolerance_z_m,
             load_mass_kg: self.load.mass_t * KG_PER_TONNE,
             rigging_mass_kg: self.rigging.mass_t * KG_PER_TONNE,
             slings,
@@ -1746,6 +1792,49 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         s.crane.longest_rope_m = None;
         let w = s.resolve(tower).unwrap().rope_weight.unwrap();
         assert!(w.trolley && w.said().contains("m below the trolley (the hook's travel"), "{}", w.said());
+    }
+
+    /// A centre of gravity known only so well in height: kept within the
+    /// load; on trunnions 0.1 m above it, the load hangs on two legs with
+    /// 0.05 m of tolerance and is refused with 0.1 m (it would turn over at
+    /// the highest its centre of gravity may lie); the tilt's bound is taken
+    /// there; on four legs to the hook nothing changes, and it is said.
+    #[test]
+    fn a_centre_of_gravity_known_only_so_well_in_height_is_checked_at_its_highest() {
+        let with = |points: &str, tol: f64, tol_z: f64| {
+            let mut s = spec();
+            s.rigging = toml::from_str(&format!("mass_t = 0.4\nheight_m = 3.0\nleg_wll_t = 20.0\n{points}")).unwrap();
+            (s.load.cog_m, s.load.cog_tolerance_m, s.load.cog_tolerance_z_m) = ([0.0, 0.0, -0.1], tol, tol_z);
+            s.resolve(crate::crane::builtin("ltm-1100").unwrap())
+        };
+        let trunnions = "lift_points_m = [[-3.0, 0.0, 0.0], [3.0, 0.0, 0.0]]";
+        let e = with(trunnions, 0.0, -0.1).unwrap_err();
+        assert!(e.contains("load.cog_tolerance_z_m must be zero or positive, found -0.1"), "{e}");
+        let e = with(trunnions, 0.0, 1.5).unwrap_err();
+        assert!(e.contains("load.cog_m[2] = -0.1 give or take load.cog_tolerance_z_m = 1.5 m reaches outside the load box (3 m high)"), "{e}");
+        let c = with(trunnions, 0.0, 0.0).unwrap().check_slings().unwrap().unwrap();
+        assert_eq!(c.cog_tolerance_z_m, 0.0);
+        let c = with(trunnions, 0.0, 0.05).unwrap().check_slings().unwrap().unwrap();
+        assert!(c.said().ends_with("; its lift points above the centre of gravity even up to 0.05 m higher than given (load cog_tolerance_z_m)"), "{}", c.said());
+        let e = with(trunnions, 0.0, 0.1).unwrap().check_slings().unwrap().unwrap_err();
+        assert!(
+            e.starts_with("with the load's centre of gravity up to load cog_tolerance_z_m (0.10 m) higher than given, at z 0.00 m from its box's centre: the load hangs on 2 legs from lift points as low as z 0.00 m"),
+            "{e}"
+        );
+        // With a tolerance in plan too, the tilt's bound over the 0.05 m left:
+        // atan(√2 x 0.02 / 0.05).
+        let c = with(trunnions, 0.02, 0.05).unwrap().check_slings().unwrap().unwrap();
+        let want = (std::f64::consts::SQRT_2 * 0.02f64).atan2(0.05).to_degrees();
+        assert!((c.tilt_deg.unwrap() - want).abs() < 1e-9, "{:?} {want}", c.tilt_deg);
+        assert!(
+            c.said().ends_with("higher than given (load cog_tolerance_z_m), the tilt's bound taken there"),
+            "{}",
+            c.said()
+        );
+        let four = with("legs = 4", 0.0, 0.5).unwrap().check_slings().unwrap().unwrap();
+        let plain = with("legs = 4", 0.0, 0.0).unwrap().check_slings().unwrap().unwrap();
+        assert_eq!((four.max_leg_kg, four.max_angle_deg), (plain.max_leg_kg, plain.max_angle_deg));
+        assert!(four.said().ends_with("; the centre of gravity's height, known to 0.50 m (load cog_tolerance_z_m), changes nothing of this on 4 legs"), "{}", four.said());
     }
 
     #[test]

@@ -211,6 +211,12 @@ pub struct SlingCheck {
     /// (degrees, an upper bound: [`tilt_bound_deg`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tilt_deg: Option<f64>,
+    /// How far above where the lift gives it the centre of gravity may lie
+    /// (m, `load.cog_tolerance_z_m`): the turn-over check and the tilt's
+    /// bound are then made with it that much higher, the worst for both
+    /// (`LiftTask::check_slings`).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub cog_tolerance_z_m: f64,
 }
 
 fn is_zero(v: &f64) -> bool {
@@ -328,7 +334,22 @@ impl SlingCheck {
             Some(s) => self.said_with(s),
             None => self.said_on_legs(),
         };
-        format!("{check}{}", self.cog_tolerance_said())
+        let tz = self.cog_tolerance_z_m;
+        let tilt = if self.tilt_deg.is_some() { ", the tilt's bound taken there" } else { "" };
+        let higher = match (tz > 0.0, self.legs <= 2) {
+            (false, _) => String::new(),
+            (true, true) => format!(
+                "; its lift points above the centre of gravity even up to {tz:.2} m higher than given (load cog_tolerance_z_m){tilt}"
+            ),
+            (true, false) if self.tilt_deg.is_some() => format!(
+                "; the tilt's bound taken with the centre of gravity up to {tz:.2} m higher than given (load cog_tolerance_z_m)"
+            ),
+            (true, false) => format!(
+                "; the centre of gravity's height, known to {tz:.2} m (load cog_tolerance_z_m), changes nothing of this on {} legs",
+                self.legs
+            ),
+        };
+        format!("{check}{}{higher}", self.cog_tolerance_said())
     }
 
     /// What a centre of gravity's tolerance ([`check_within`]) made of
@@ -541,6 +562,7 @@ pub fn check(
         points_given: slings.points_given,
         spreader: None,
         cog_tolerance_m: 0.0,
+        cog_tolerance_z_m: 0.0,
         worst_cog_m: None,
         tilt_deg: None,
     })
@@ -789,6 +811,7 @@ fn check_spreader(
     };
     Ok(SlingCheck {
         cog_tolerance_m: 0.0,
+        cog_tolerance_z_m: 0.0,
         worst_cog_m: None,
         tilt_deg: None,
         legs: 2,
@@ -911,6 +934,7 @@ pub fn check_frame(
             hook_from_centre_m: Some([joint[0] - centre[0], joint[1] - centre[1]]),
         }),
         cog_tolerance_m: 0.0,
+        cog_tolerance_z_m: 0.0,
         worst_cog_m: None,
         tilt_deg: None,
     })

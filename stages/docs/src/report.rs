@@ -592,10 +592,14 @@ pub fn document(
                     task.load.cog_m[0],
                     task.load.cog_m[1],
                     task.load.cog_m[2],
-                    if task.cog_tolerance_m > 0.0 {
-                        format!(" ± {:.2} m along x and y (cog_tolerance_m)", task.cog_tolerance_m)
-                    } else {
-                        String::new()
+                    match (task.cog_tolerance_m > 0.0, task.cog_tolerance_z_m > 0.0) {
+                        (true, false) => format!(" ± {:.2} m along x and y (cog_tolerance_m)", task.cog_tolerance_m),
+                        (true, true) => format!(
+                            " ± {:.2} m along x and y (cog_tolerance_m), ± {:.2} m in height (cog_tolerance_z_m)",
+                            task.cog_tolerance_m, task.cog_tolerance_z_m
+                        ),
+                        (false, true) => format!(" ± {:.2} m in height (cog_tolerance_z_m)", task.cog_tolerance_z_m),
+                        (false, false) => String::new(),
                     }
                 ),
             ),

@@ -636,18 +636,9 @@ pub(crate) fn plan_lift_hinting(
         ));
     }
     // The sling legs do not depend on the path: checked first.
-    let slings = match &task.slings {
-        Some(legs) => {
-            let l = &task.load;
-            let c = liftplan_core::slings::check_within(
-                legs,
-                task.load_mass_kg,
-                l.size_m,
-                l.cog_m,
-                task.cog_tolerance_m,
-                l.rigging_height_m,
-            )
-            .map_err(|e| lift_err(task, e))?;
+    let slings = match task.check_slings() {
+        Some(c) => {
+            let c = c.map_err(|e| lift_err(task, e))?;
             if let Some(over) = c.over_limit() {
                 return Err(lift_err(task, over));
             }
@@ -1040,6 +1031,9 @@ pub fn revision(plan: &LiftPlan, task: &LiftTask) -> String {
     // Only where given, likewise.
     if task.cog_tolerance_m != 0.0 {
         h.update(format!("\ncog tolerance {:?}", task.cog_tolerance_m).as_bytes());
+    }
+    if task.cog_tolerance_z_m != 0.0 {
+        h.update(format!("\ncog tolerance z {:?}", task.cog_tolerance_z_m).as_bytes());
     }
     h.finalize().to_hex()[..8].to_string()
 }
