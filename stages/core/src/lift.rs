@@ -1091,11 +1091,11 @@ impl LiftSpec {
                 falls,
                 reach_m: crate::reeving::rope_reach_m(rope_m, lead_m, boom, falls),
                 travel_m: model.hook.max_rope_m,
-                lift_longest_m: self.crane.longest_rope_m,
             }),
             _ => None,
         };
         let mut model = model;
+        let mut longest_from = crate::reeving::LongestRope::Travel;
         if let Some(r) = rope_reach.as_ref().filter(|r| r.reach_m < r.travel_m) {
             if !(r.reach_m > model.hook.min_rope_m) {
                 return Err(format!(
@@ -1105,11 +1105,8 @@ impl LiftSpec {
                 ));
             }
             model.hook.max_rope_m = r.reach_m;
+            longest_from = crate::reeving::LongestRope::Reach;
         }
-        let mut longest_from = match rope_reach.as_ref().filter(|r| r.reach_m < r.travel_m) {
-            Some(_) => crate::reeving::LongestRope::Reach,
-            None => crate::reeving::LongestRope::Travel,
-        };
         let below = crate::reeving::hangs_below(model.is_tower());
         if let Some(m) = self.crane.longest_rope_m {
             if !(m.is_finite() && m > model.hook.min_rope_m) {
@@ -1651,10 +1648,10 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         let r = t.rope_reach.clone().unwrap();
         assert_eq!((r.reach_m, r.travel_m), (60.0, 110.0));
         assert_eq!(
-            r.said(),
+            r.said(None),
             "the hoist rope's 300 m (less 20.0 m to the boom's foot and the 40.0 m boom) on 4 falls lets the hook hang 60.00 m below the boom head: the longest rope planned with (hook travel 110.00 m)"
         );
-        assert!(crate::reeving::Reeving::of(&t).unwrap().said().contains(&format!("; {};", r.said())));
+        assert!(crate::reeving::Reeving::of(&t).unwrap().said().contains(&format!("; {};", r.said(None))));
         assert!(t.pick.hoist_m > 24.0, "{}", t.pick.hoist_m);
         let e = on(300.0, 10).unwrap_err();
         assert!(e.contains("lift 'V-101': pick"), "{e}");
@@ -1664,7 +1661,7 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         );
         let one = on(300.0, 1).unwrap();
         assert_eq!(one.crane.limits().hoist_m.1, 110.0);
-        assert!(one.rope_reach.unwrap().said().ends_with(
+        assert!(one.rope_reach.unwrap().said(None).ends_with(
             "lets the hook hang 240.00 m below the boom head, more than the hook's travel (110.00 m), which holds"
         ));
         let e = on(80.0, 10).unwrap_err();

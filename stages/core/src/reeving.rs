@@ -164,10 +164,6 @@ pub struct RopeReach {
     /// The hook's travel the crane file gives (`[hook] max_rope_m`): the
     /// rope limits the lift only where its reach is less.
     pub travel_m: f64,
-    /// The lift's own longest rope (m, `crane.longest_rope_m`), where it
-    /// gives one: within the reach, it is what limits the lift.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub lift_longest_m: Option<f64>,
 }
 
 /// "below the trolley" on a tower crane, "below the boom head" otherwise.
@@ -185,9 +181,11 @@ pub fn rope_reach_m(rope_m: f64, lead_m: f64, boom_m: f64, falls: u32) -> f64 {
 }
 
 impl RopeReach {
-    /// In words, for the Reeving row.
-    pub fn said(&self) -> String {
-        let limits = if let Some(m) = self.lift_longest_m {
+    /// In words, for the Reeving row; `lift_longest_m`, the lift's own
+    /// longest rope where it gives one (within the reach, it is what limits
+    /// the lift).
+    pub fn said(&self, lift_longest_m: Option<f64>) -> String {
+        let limits = if let Some(m) = lift_longest_m {
             format!(", more than the lift's own longest rope ({m:.2} m, crane longest_rope_m)")
         } else if self.reach_m < self.travel_m {
             format!(": the longest rope planned with (hook travel {:.2} m)", self.travel_m)
@@ -338,7 +336,7 @@ impl Reeving {
                 100.0 * self.on_hook_kg / rated
             ));
         }
-        parts.extend(self.rope.as_ref().map(RopeReach::said));
+        parts.extend(self.rope.as_ref().map(|r| r.said(self.lift_longest_m)));
         parts.push(match &self.rope_weight {
             Some(w) => w.said(),
             None => "the hoist rope's own weight not counted: the crane file gives no [hook] rope_kg_per_m".to_string(),
