@@ -57,3 +57,10 @@ pub mod units;
 pub mod wind;
 
 pub use location::{Location, Place};
+
+/// For serde's `skip_serializing_if`: a quantity left out of the JSON where
+/// it is zero, as a key a file does not give is (a plan's revision hashes
+/// that JSON, so a key a later version learns to read leaves it as it was).
+pub fn is_zero(v: &f64) -> bool {
+    *v == 0.0
+}

@@ -26,18 +26,14 @@ pub struct LoadSpec {
     /// load of unknown contents), the legs are checked for the worst within
     /// it ([`crate::slings::check_within`]) and so is the load's balance on
     /// what it is set on.
-    #[serde(default, skip_serializing_if = "is_zero")]
+    #[serde(default, skip_serializing_if = "crate::is_zero")]
     pub cog_tolerance_m: f64,
     /// How far the centre of gravity may lie above or below `cog_m`'s
     /// height (m): on one or two legs the load turns about its lift points,
     /// and is checked not to turn over with the centre of gravity at the
     /// highest it may lie ([`LiftTask::check_slings`]).
-    #[serde(default, skip_serializing_if = "is_zero")]
+    #[serde(default, skip_serializing_if = "crate::is_zero")]
     pub cog_tolerance_z_m: f64,
-}
-
-fn is_zero(v: &f64) -> bool {
-    *v == 0.0
 }
 
 fn default_load_name() -> String {

@@ -199,7 +199,7 @@ pub struct SlingCheck {
     /// then the worst over that square ([`check_within`]); the legs'
     /// lengths and where the hook or the lug hangs are for the centre of
     /// gravity as given, which the rigging is made for.
-    #[serde(default, skip_serializing_if = "is_zero")]
+    #[serde(default, skip_serializing_if = "crate::is_zero")]
     pub cog_tolerance_m: f64,
     /// Where the centre of gravity puts the most on one leg, within that
     /// tolerance (m from the box's centre, load frame), where it is not the
@@ -215,12 +215,8 @@ pub struct SlingCheck {
     /// (m, `load.cog_tolerance_z_m`): the turn-over check and the tilt's
     /// bound are then made with it that much higher, the worst for both
     /// (`LiftTask::check_slings`).
-    #[serde(default, skip_serializing_if = "is_zero")]
+    #[serde(default, skip_serializing_if = "crate::is_zero")]
     pub cog_tolerance_z_m: f64,
-}
-
-fn is_zero(v: &f64) -> bool {
-    *v == 0.0
 }
 
 impl SlingCheck {

@@ -590,12 +590,8 @@ pub struct SetSupport {
     pub cog_inside_m: Option<f64>,
     /// The centre of gravity's tolerance (`load.cog_tolerance_m`) that
     /// `cog_inside_m` is the least over (m; 0: none given).
-    #[serde(default, skip_serializing_if = "is_zero")]
+    #[serde(default, skip_serializing_if = "liftplan_core::is_zero")]
     pub cog_tolerance_m: f64,
-}
-
-fn is_zero(v: &f64) -> bool {
-    *v == 0.0
 }
 
 impl SetSupport {
