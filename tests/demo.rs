@@ -52,6 +52,25 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
         cover.contains("Wind AT MOST 8.0 m/s FOR THIS LOAD, less than the chart's: the chart's 9.8 m/s (Main boom 360!A51) holds for up to 1.2 m² of wind area per tonne of hook load; this load catches 28.8 m²"),
         "{cover}"
     );
+    // The demo's whole summary is on the cover itself (in type a little
+    // smaller than the other rows'), the wind next to the utilisation, not
+    // run on to the next page.
+    let first_page = doc.extract_text(&pages[..1]).unwrap().replace('\n', " ");
+    assert!(!text.contains("Summary (continued from the cover)"), "{first_page}");
+    for row in [
+        "CHECK FIRST",
+        "Max utilisation",
+        "Critical lift",
+        "Wind AT MOST",
+        "Min clearance",
+        "Slings",
+        "Reeving",
+        "Outrigger pads",
+    ] {
+        assert!(first_page.contains(row), "{row}: {first_page}");
+    }
+    assert!(first_page.find("Critical lift") < first_page.find("Wind AT MOST"), "{first_page}");
+    assert!(first_page.find("Wind AT MOST") < first_page.find("Min clearance"), "{first_page}");
     // It is the gust at the boom head: the highest the lift raises it, and
     // the mean wind at 10 m above the ground that gusts to 8.0 m/s there.
     let lead = "it is the 3 s gust at the boom head, which rises to ";

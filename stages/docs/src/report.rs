@@ -95,14 +95,30 @@ fn input_lines(d: &mut Doc, mut y: f32, lines: &[String], w: f32) -> f32 {
     y
 }
 
-/// Rows of a key and its value, the value wrapped to the page's right
-/// margin (15 mm).
+/// The type size (pt) of [`key_values`]' rows.
+const ROW_PT: f32 = 9.0;
+
+/// The least type size (pt) the cover's summary box is set in to keep all
+/// its rows on the cover, before they run on to the next page.
+const COVER_SUMMARY_MIN_PT: f32 = 8.0;
+
 /// How tall [`key_values`] draws `rows` at `x` with keys `key_w` wide (mm).
 fn key_values_height(d: &Doc, x: f32, rows: &[(&str, String)], key_w: f32) -> f32 {
+    key_values_height_at(d, x, rows, key_w, ROW_PT)
+}
+
+/// [`key_values_height`] in type of `size` pt.
+fn key_values_height_at(d: &Doc, x: f32, rows: &[(&str, String)], key_w: f32, size: f32) -> f32 {
     let width = key_values_width(d, x, key_w);
+    let line = crate::pdf::line_height_mm(size);
     rows.iter()
-        .map(|(_, v)| 5.0 + (crate::pdf::wrap(v, width, 9.0).len().max(1) - 1) as f32 * crate::pdf::line_height_mm(9.0))
+        .map(|(_, v)| row_step_mm(size) + (crate::pdf::wrap(v, width, size).len().max(1) - 1) as f32 * line)
         .sum()
+}
+
+/// From one row's first line to the next row's (mm): 5 mm at [`ROW_PT`].
+fn row_step_mm(size: f32) -> f32 {
+    5.0 * size / ROW_PT
 }
 
 /// How wide [`key_values`] wraps the values: to as far from the sheet's
@@ -112,17 +128,24 @@ fn key_values_width(d: &Doc, x: f32, key_w: f32) -> f32 {
     d.size.w - x - (x + key_w)
 }
 
-fn key_values(d: &mut Doc, x: f32, mut y: f32, rows: &[(&str, String)], key_w: f32) -> f32 {
+/// Rows of a key and its value, the value wrapped to as far from the
+/// page's right edge as the keys are from its left ([`key_values_width`]).
+fn key_values(d: &mut Doc, x: f32, y: f32, rows: &[(&str, String)], key_w: f32) -> f32 {
+    key_values_at(d, x, y, rows, key_w, ROW_PT)
+}
+
+/// [`key_values`] in type of `size` pt.
+fn key_values_at(d: &mut Doc, x: f32, mut y: f32, rows: &[(&str, String)], key_w: f32, size: f32) -> f32 {
     let width = key_values_width(d, x, key_w);
     for (k, v) in rows {
-        d.text(x, y, k, 9.0, true, GREY);
-        for (n, line) in crate::pdf::wrap(v, width, 9.0).iter().enumerate() {
+        d.text(x, y, k, size, true, GREY);
+        for (n, line) in crate::pdf::wrap(v, width, size).iter().enumerate() {
             if n > 0 {
-                y += crate::pdf::line_height_mm(9.0);
+                y += crate::pdf::line_height_mm(size);
             }
-            d.text(x + key_w, y, line, 9.0, false, INK);
+            d.text(x + key_w, y, line, size, false, INK);
         }
-        y += 5.0;
+        y += row_step_mm(size);
     }
     y
 }
@@ -132,33 +155,44 @@ fn key_values(d: &mut Doc, x: f32, mut y: f32, rows: &[(&str, String)], key_w: f
 /// next page, under "Summary (continued from the cover)" (a lift with many
 /// things to check first ran off the foot of the cover). Where the next
 /// goes.
+///
+/// Rows that fit on the cover only in smaller type are set in it, down to
+/// [`COVER_SUMMARY_MIN_PT`]: the cover is what the crew reads on site, and
+/// every row of it is better there in type a little smaller than on the
+/// next page.
 fn summary_box(d: &mut Doc, mut y: f32, rows: &[(&str, String)], (verdict, ok): (&str, bool)) -> f32 {
     let (key_x, key_w) = (19.0, 34.0);
     let w = d.size.w - 30.0;
     let (fill, edge) = if ok { ([232, 245, 233], [46, 125, 50]) } else { ([251, 233, 231], [198, 40, 40]) };
     let foot = d.size.h - FOOT_MM;
+    // The box's top on the cover (the verdict's line) and its foot's margin.
+    let (cover_top, margin) = (14.0, 2.0);
+    let size = [ROW_PT, 8.5, COVER_SUMMARY_MIN_PT]
+        .into_iter()
+        .find(|&pt| y + cover_top + key_values_height_at(d, key_x, rows, key_w, pt) + margin <= foot)
+        .unwrap_or(ROW_PT);
     let mut rest = rows;
     let mut first = true;
     loop {
         // The rows start under the verdict on the cover, at the box's top after.
-        let top = if first { 14.0 } else { 7.0 };
+        let top = if first { cover_top } else { 7.0 };
         let mut fit = 0;
         let mut rows_h = 0.0;
         while fit < rest.len() {
-            let h = key_values_height(d, key_x, &rest[fit..fit + 1], key_w);
-            if fit > 0 && y + top + rows_h + h + 2.0 > foot {
+            let h = key_values_height_at(d, key_x, &rest[fit..fit + 1], key_w, size);
+            if fit > 0 && y + top + rows_h + h + margin > foot {
                 break;
             }
             rows_h += h;
             fit += 1;
         }
-        let box_h = top + rows_h + 2.0;
+        let box_h = top + rows_h + margin;
         d.fill_rect(15.0, y, w, box_h, fill);
         d.frame(15.0, y, w, box_h, 1.0, edge);
         if first {
             d.text(19.0, y + 7.0, verdict, 11.0, true, if ok { [27, 94, 32] } else { [183, 28, 28] });
         }
-        key_values(d, key_x, y + top, &rest[..fit], key_w);
+        key_values_at(d, key_x, y + top, &rest[..fit], key_w, size);
         y += box_h + 6.0;
         rest = &rest[fit..];
         if rest.is_empty() {
@@ -724,8 +758,14 @@ pub fn document(
     }
     if !task.crane.model.is_tower() {
         // With the height the boom head rises to, for the mean wind at
-        // 10 m a forecast gives, and how far the wind pushes the load.
-        rows.push((
+        // 10 m a forecast gives, and how far the wind pushes the load. A
+        // limit the crew works to, as the chart's capacity is: next to the
+        // utilisation, ahead of the clearances and the rigging's figures,
+        // where rows that do not fit on the cover run on to the next page.
+        let after_critical = rows.iter().position(|(k, _)| *k == "Critical lift").map_or(rows.len(), |i| i + 1);
+        rows.insert(
+            after_critical,
+            (
             "Wind",
             match &wind {
                 Ok((w, other)) => {
@@ -752,7 +792,8 @@ pub fn document(
                 }
                 Err(why) => format!("not worked out: {why}"),
             },
-        ));
+            ),
+        );
     }
     // What the sign-off page asks the signer to check, named on the cover
     // where it is read first.
@@ -1556,6 +1597,20 @@ mod tests {
         d.new_page();
         summary_box(&mut d, 40.0, &rows[..3], ("VALIDATED", true));
         assert_eq!(d.text.len(), 1);
+        // Rows that fit on the cover only in smaller type stay on it, set
+        // in that type, above the footer.
+        let room = A4.h - FOOT_MM - 40.0 - 14.0 - 2.0;
+        let height = |n: usize, pt: f32| key_values_height_at(&d, 19.0, &rows[..n], 34.0, pt);
+        let n = (1..rows.len()).find(|&n| height(n, ROW_PT) > room).expect("rows past the cover at 9 pt");
+        assert!(height(n, COVER_SUMMARY_MIN_PT) <= room, "{n} rows");
+        let mut d = Doc::new("t", A4).unwrap();
+        d.new_page();
+        let y = summary_box(&mut d, 40.0, &rows[..n], ("VALIDATED", true));
+        assert_eq!(d.text.len(), 1, "{n} rows: {:?}", d.text);
+        for k in 0..n {
+            assert_eq!(d.text[0].matches(&format!("row {k:02}:")).count(), 1, "row {k}");
+        }
+        assert!(d.lowest_mm[0] < A4.h - FOOT_MM && y < A4.h, "{:?} {y}", d.lowest_mm);
     }
 
     /// Sign-off paragraphs that do not fit go on to a further page, none
