@@ -101,13 +101,16 @@ pub struct HookBlock {
     pub max_falls: Option<u32>,
     /// The main hoist rope's length that may be paid out (m): its length
     /// less the dead wraps that stay on the drum. With the lift's falls it
-    /// sets how far the hook may hang below the boom head
-    /// ([`crate::reeving::rope_reach_m`]); none: not checked. Mobile
-    /// (luffing) cranes only, with [`Self::rope_lead_m`].
+    /// sets how far the hook may hang below the boom head or a tower
+    /// crane's trolley ([`crate::reeving::rope_reach_m`]); none: not
+    /// checked. With [`Self::rope_lead_m`].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rope_m: Option<f64>,
     /// The hoist rope from the drum to the boom's foot (m): from there it
-    /// runs the boom's length to the head.
+    /// runs the boom's length to the head. On a tower crane, from the drum
+    /// to the jib's root: from there it runs out to the trolley and, past
+    /// its falls, on to the jib's head, the jib's length in all wherever
+    /// the trolley stands.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rope_lead_m: Option<f64>,
     /// The hoist rope's mass per metre (kg/m), as its data sheet gives it:
@@ -397,13 +400,13 @@ impl CraneModel {
             return Err(format!("hook.rope_kg_per_m must be more than 0 and at most 100 kg/m, found {w}"));
         }
         match (self.hook.rope_m, self.hook.rope_lead_m, &self.kind) {
+            (Some(_), None, CraneKind::Tower(_)) => {
+                return Err("hook.rope_m needs hook.rope_lead_m, the rope from the drum to the jib's root (m)".into());
+            }
             (Some(_), None, _) => {
                 return Err("hook.rope_m needs hook.rope_lead_m, the rope from the drum to the boom's foot (m)".into());
             }
             (None, Some(_), _) => return Err("hook.rope_lead_m is read only with hook.rope_m".into()),
-            (Some(_), Some(_), CraneKind::Tower(_)) => {
-                return Err("hook.rope_m: liftplan checks the hoist rope's length for mobile (luffing) cranes only; leave it out of a tower crane's file".into());
-            }
             _ => {}
         }
         pos("speeds.swing_deg_s", self.speeds.swing_deg_s)?;
@@ -1211,9 +1214,13 @@ mod tests {
         let hook_end = tower.find("[hook]").map(|k| k + "[hook]\n".len()).unwrap();
         let weighed = format!("{}rope_kg_per_m = 1.6\n{}", &tower[..hook_end], &tower[hook_end..]);
         assert_eq!(CraneModel::from_toml(Path::new("t.toml"), &weighed).unwrap().hook.rope_kg_per_m, Some(1.6));
-        let tower = format!("{}rope_m = 300.0\nrope_lead_m = 10.0\n{}", &tower[..hook_end], &tower[hook_end..]);
-        let e = CraneModel::from_toml(Path::new("t.toml"), &tower).unwrap_err().to_string();
-        assert!(e.contains("for mobile (luffing) cranes only"), "{e}");
+        // A tower crane's rope runs from the drum to the jib's root.
+        let roped = format!("{}rope_m = 300.0\nrope_lead_m = 10.0\n{}", &tower[..hook_end], &tower[hook_end..]);
+        let t = CraneModel::from_toml(Path::new("t.toml"), &roped).unwrap();
+        assert_eq!((t.hook.rope_m, t.hook.rope_lead_m), (Some(300.0), Some(10.0)));
+        let unled = format!("{}rope_m = 300.0\n{}", &tower[..hook_end], &tower[hook_end..]);
+        let e = CraneModel::from_toml(Path::new("t.toml"), &unled).unwrap_err().to_string();
+        assert!(e.contains("hook.rope_m needs hook.rope_lead_m, the rope from the drum to the jib's root (m)"), "{e}");
     }
 
     #[test]

@@ -1078,15 +1078,21 @@ impl LiftSpec {
             boom_length_m: boom,
         };
         // The falls take rope: where the rope lets the hook down less than
-        // its travel, that is the longest rope of this lift's crane.
+        // its travel, that is the longest rope of this lift's crane. It
+        // runs along the boom, or a tower crane's jib.
+        let run_m = match &model.kind {
+            crate::crane::CraneKind::Tower(t) => t.jib.length_m,
+            crate::crane::CraneKind::Luffing(_) => boom,
+        };
         let rope_reach = match (model.hook.rope_m, model.hook.rope_lead_m, self.crane.falls) {
             (Some(rope_m), Some(lead_m), Some(falls)) => Some(crate::reeving::RopeReach {
                 rope_m,
                 lead_m,
-                boom_m: boom,
+                boom_m: run_m,
                 falls,
-                reach_m: crate::reeving::rope_reach_m(rope_m, lead_m, boom, falls),
+                reach_m: crate::reeving::rope_reach_m(rope_m, lead_m, run_m, falls),
                 travel_m: model.hook.max_rope_m,
+                trolley: model.is_tower(),
             }),
             _ => None,
         };
@@ -1144,7 +1150,7 @@ impl LiftSpec {
         // say why the rope is short.
         let rope_said = |e: String| match (longest_from, rope_reach.as_ref()) {
             (crate::reeving::LongestRope::Reach, Some(r)) => format!(
-                "{e} (on {} falls the hoist rope lets the hook hang at most {:.2} m below the boom head, hook.rope_m: reeve fewer falls if the load allows)",
+                "{e} (on {} falls the hoist rope lets the hook hang at most {:.2} m {below}, hook.rope_m: reeve fewer falls if the load allows)",
                 r.falls, r.reach_m
             ),
             (crate::reeving::LongestRope::Lift, _) => format!(
@@ -1785,6 +1791,41 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         s.crane.longest_rope_m = None;
         let w = s.resolve(tower).unwrap().rope_weight.unwrap();
         assert!(w.trolley && w.said().contains("m below the trolley (the hook's travel"), "{}", w.said());
+    }
+
+    /// A tower crane's falls take rope too: 150 m of it, 10 m from the drum
+    /// to the jib's root and the 60 m jib (out to the trolley and on to the
+    /// jib's head past the falls, wherever the trolley stands) leave 80 m,
+    /// so the hook hangs at most 40 m below the trolley on 2 falls, less
+    /// than its 48 m of travel: the crane's longest rope for the lift; on 8
+    /// falls, 10 m, short of the pick, refused saying why, below the
+    /// trolley.
+    #[test]
+    fn a_tower_cranes_falls_take_rope_along_its_jib() {
+        let on = |falls: u32| {
+            let mut tower = crate::crane::builtin("tower-hh-60").unwrap();
+            (tower.hook.rope_m, tower.hook.rope_lead_m) = (Some(150.0), Some(10.0));
+            let mut s = spec();
+            (s.crane.model, s.crane.boom_m, s.crane.falls) = ("tower-hh-60".into(), None, Some(falls));
+            s.resolve(tower)
+        };
+        let t = on(2).unwrap();
+        assert_eq!(t.crane.limits().hoist_m.1, 40.0);
+        let r = t.rope_reach.clone().unwrap();
+        assert_eq!((r.boom_m, r.reach_m, r.travel_m, r.trolley), (60.0, 40.0, 48.0, true));
+        assert_eq!(
+            r.said(None),
+            "the hoist rope's 150 m (less 10.0 m to the jib's root and the 60.0 m jib) on 2 falls lets the hook hang 40.00 m below the trolley: the longest rope planned with (hook travel 48.00 m)"
+        );
+        assert!(crate::reeving::Reeving::of(&t).unwrap().said().contains(&r.said(None)));
+        assert!(t.pick.hoist_m > 10.0 && t.set.hoist_m > 10.0, "{} {}", t.pick.hoist_m, t.set.hoist_m);
+        let e = on(8).unwrap_err();
+        assert!(
+            e.ends_with("(on 8 falls the hoist rope lets the hook hang at most 10.00 m below the trolley, hook.rope_m: reeve fewer falls if the load allows)"),
+            "{e}"
+        );
+        // The mobile crane's words are not a tower crane's.
+        assert!(!e.contains("boom"), "{e}");
     }
 
     /// A centre of gravity known only so well in height: kept within the

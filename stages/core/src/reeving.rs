@@ -155,8 +155,11 @@ impl RopeWeight {
 pub struct RopeReach {
     /// The rope that may be paid out (m, `[hook] rope_m`).
     pub rope_m: f64,
-    /// Drum to the boom's foot (m, `[hook] rope_lead_m`).
+    /// Drum to the boom's foot, or a tower crane's jib's root (m, `[hook]
+    /// rope_lead_m`).
     pub lead_m: f64,
+    /// The boom's length, or a tower crane's jib's (m): the rope's run from
+    /// the foot (root) to the head and out to the falls.
     pub boom_m: f64,
     pub falls: u32,
     /// How far the hook may hang below the boom head on them (m).
@@ -164,6 +167,10 @@ pub struct RopeReach {
     /// The hook's travel the crane file gives (`[hook] max_rope_m`): the
     /// rope limits the lift only where its reach is less.
     pub travel_m: f64,
+    /// Whether the rope runs along a tower crane's jib to its trolley
+    /// (for the words).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub trolley: bool,
 }
 
 /// "below the trolley" on a tower crane, "below the boom head" otherwise.
@@ -175,7 +182,10 @@ pub fn hangs_below(trolley: bool) -> &'static str {
 /// from the head's sheave down to the hook block): the rope `rope_m` less
 /// its run from the drum to the boom's foot (`lead_m`) and along the `boom_m`
 /// boom, shared by the falls. Negative where the rope does not reach the
-/// head.
+/// head. On a tower crane, below the trolley: the rope runs from the jib's
+/// root out to the trolley, down and up its falls, and on to the jib's
+/// head, so that `boom_m`, the jib's length, is its run along the jib
+/// wherever the trolley stands.
 pub fn rope_reach_m(rope_m: f64, lead_m: f64, boom_m: f64, falls: u32) -> f64 {
     (rope_m - lead_m - boom_m) / f64::from(falls.max(1))
 }
@@ -197,14 +207,18 @@ impl RopeReach {
 
     /// How far the rope lets the hook down, in words.
     pub fn reach_said(&self) -> String {
+        let run = if self.trolley {
+            format!("{:.1} m to the jib's root and the {:.1} m jib", self.lead_m, self.boom_m)
+        } else {
+            format!("{:.1} m to the boom's foot and the {:.1} m boom", self.lead_m, self.boom_m)
+        };
         format!(
-            "the hoist rope's {:.0} m (less {:.1} m to the boom's foot and the {:.1} m boom) on {} fall{} lets the hook hang {:.2} m below the boom head",
+            "the hoist rope's {:.0} m (less {run}) on {} fall{} lets the hook hang {:.2} m {}",
             self.rope_m,
-            self.lead_m,
-            self.boom_m,
             self.falls,
             if self.falls == 1 { "" } else { "s" },
-            self.reach_m
+            self.reach_m,
+            hangs_below(self.trolley)
         )
     }
 }

@@ -1009,8 +1009,8 @@ fn validator_rejects_a_step_over_capacity() {
     assert!(v.ok, "{:?}", v.problems);
 }
 
-fn tower_task() -> LiftTask {
-    let text = r#"
+/// The tower crane's lift over the wall ([`tower_task`]).
+const TOWER_LIFT: &str = r#"
 id = "T-2"
 description = "tower crane lift over a wall"
 load = { name = "skid", mass_t = 5.0, size_m = [4.0, 2.0, 2.0], cog_m = [0.0, 0.0, 0.0] }
@@ -1021,7 +1021,9 @@ set = { x_m = 30.0, y_m = 20.0, z_m = 0.5, yaw_deg = 90.0 }
 clearance_m = 1.0
 liftoff_m = 0.5
 "#;
-    let spec: LiftSpec = toml::from_str(text).unwrap();
+
+fn tower_task() -> LiftTask {
+    let spec: LiftSpec = toml::from_str(TOWER_LIFT).unwrap();
     spec.resolve(builtin("tower-hh-60").unwrap()).unwrap()
 }
 
@@ -1046,6 +1048,31 @@ fn tower_crane_plans_over_the_wall_with_the_trolley() {
     assert!(plan.steps.iter().any(|st| st.operation.to_lowercase().contains("trolley")), "{:?}", plan.steps);
     let last = plan.moves.last().unwrap().to;
     assert!((t.crane.radius_m(last.radial) - 30f64.hypot(20.0)).abs() < 1e-6);
+}
+
+/// A tower crane's falls take rope along its jib: with the hoist rope just
+/// long enough on 2 falls for the hook to reach the pick and the set below
+/// the trolley (and half a metre more), the lift plans within it, every
+/// hoist kept to that rope, and validates.
+#[test]
+fn a_tower_cranes_hook_hangs_no_lower_than_its_falls_let_it() {
+    let mesh = site();
+    let (m, world) = (map(&mesh), World::new(&mesh, &[], &[]).unwrap());
+    let plain = tower_task();
+    let reach_m = plain.pick.hoist_m.max(plain.set.hoist_m) + 0.5;
+    assert!(reach_m < plain.crane.limits().hoist_m.1, "{reach_m}");
+    let mut model = builtin("tower-hh-60").unwrap();
+    (model.hook.rope_m, model.hook.rope_lead_m) = (Some(10.0 + 60.0 + 2.0 * reach_m), Some(10.0));
+    let mut spec: LiftSpec = toml::from_str(TOWER_LIFT).unwrap();
+    spec.crane.falls = Some(2);
+    let t = spec.resolve(model).unwrap();
+    assert!((t.crane.limits().hoist_m.1 - reach_m).abs() < 1e-9);
+    assert!(t.rope_reach.as_ref().unwrap().said(None).contains("m jib) on 2 falls lets the hook hang"));
+    let mut s = quick();
+    s.cspace.trolley_step_m = 0.5;
+    let (plan, _) = plan_lift(&t, &Site { map: &m, world: &world, charts: None }, &s, 5).unwrap();
+    assert!(plan.validator.ok, "{:?}", plan.validator.problems);
+    assert!(plan.moves.iter().all(|mv| mv.from.hoist_m.max(mv.to.hoist_m) <= reach_m + 1e-9));
 }
 
 /// A tower crane's base is not checked against the ground as a mobile
