@@ -241,6 +241,13 @@ fn checks_before_signing(
     if sm.reeving.as_ref().is_some_and(|r| r.falls_not_given()) {
         v.push("the falls to reeve the hoist rope with (the lift gives none: Reeving)".to_string());
     }
+    match sm.line_like.len() {
+        0 => {}
+        1 => v.push("what the line-like scan points near the crane are: an overhead line no one gave?".to_string()),
+        n => v.push(format!(
+            "what the {n} runs of line-like scan points near the crane are: overhead lines no one gave?"
+        )),
+    }
     if sm.power_lines.iter().any(|l| l.contains(liftplan_plan::SUPPORT_NOT_SEEN)) {
         v.push("where a power line runs: the scans do not show a support it gives (inputs page)".to_string());
     }
@@ -1496,6 +1503,10 @@ pub fn document(
     if let Some(c) = &plan.summary.coverage {
         y += 4.0;
         y = sign_off_paragraph(&mut d, y, w, &sentence(&c.line()));
+    }
+    if let Some(said) = plan.summary.line_like_said() {
+        y += 4.0;
+        y = sign_off_paragraph(&mut d, y, w, &sentence(&said));
     }
     y += 8.0;
     for role in [

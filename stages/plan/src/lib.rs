@@ -27,6 +27,7 @@ pub mod positions;
 pub mod resumed;
 pub mod steps;
 pub mod validate;
+pub mod wires;
 
 use liftplan_core::Location;
 use liftplan_core::capacity::{CapacityTable, ChartConfig};
@@ -981,6 +982,7 @@ impl RunSummary {
                     .chain(s.other_loads_line())
                     .chain(s.obstacles_line())
                     .chain(s.power_lines_line())
+                    .chain(s.line_like_line())
                     .chain(s.coverage_line())
                     .chain(s.load_as_scanned_line())
                     .chain(s.against_model_lines())
@@ -1080,6 +1082,19 @@ pub fn power_line_boxes(lines: &[PowerLine], task: &LiftTask, s: &Settings, cell
     }
     Ok(out)
 }
+
+/// How far round its crane (m, in plan) a lift looks for a line no one gave
+/// ([`wires`]): the farthest its hook reaches, and the clearance and
+/// [`WORKING_MARGIN_M`] beyond.
+fn working_area(task: &LiftTask) -> ([f64; 2], f64) {
+    let (lo, hi) = task.crane.limits().radial;
+    let reach = task.crane.radius_m(lo).max(task.crane.radius_m(hi));
+    ([task.crane.placement.x_m, task.crane.placement.y_m], reach + task.clearance_m + WORKING_MARGIN_M)
+}
+
+/// Past the hook's reach, how far a line no one gave is still named (m):
+/// the load's size, its swing, the boom's head beyond the hook.
+pub const WORKING_MARGIN_M: f64 = 15.0;
 
 /// What a power line's words say of a support given where neither the
 /// scans nor the plant model show one, though the site around it is
@@ -1230,6 +1245,10 @@ pub fn run(
     // supports: the same for every lift it is there during.
     let power_lines_said: Vec<String> =
         power_lines.iter().map(|l| format!("{}{}", l.said(), supports_said(l, &world))).collect();
+    // Lines in the scans that no one gave, looked for once round every
+    // lift's crane.
+    let working_areas: Vec<([f64; 2], f64)> = tasks.iter().map(working_area).collect();
+    let line_like = wires::find(&points, &ground, &working_areas, power_lines);
     let mut plans = Vec::new();
     for (k, (task, taken)) in tasks.iter().zip(&taken_for_loads).enumerate() {
         // The other lifts' loads where they stand during this one, in the
@@ -1285,6 +1304,9 @@ pub fn run(
             .filter(|(l, _)| l.during(&task.id))
             .map(|(_, said)| said.clone())
             .collect();
+        let (crane_at, reach_m) = working_areas[k];
+        plan.summary.line_like =
+            line_like.iter().filter(|l| l.plan_distance_m(crane_at) <= reach_m).map(|l| l.said()).collect();
         plan.summary.load_as_scanned = as_scanned;
         plan.summary.against_model = against_model[k].clone();
         plan.summary.passes_left_out = model_copy::passes_left_out(task, &plan.moves, &left_out, &loads, &world);

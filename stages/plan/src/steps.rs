@@ -316,6 +316,11 @@ pub struct Summary {
     /// each in words ([`liftplan_core::power_line::PowerLine::said`]).
     #[serde(default)]
     pub power_lines: Vec<String>,
+    /// Runs of line-like scan points near the crane that no power line
+    /// given lies along, each in words ([`crate::wires::LineLike::said`]):
+    /// a line no one told the planner of, to be checked first.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub line_like: Vec<String>,
     /// The sling legs, where the lift gives their working load limit
     /// ([`liftplan_core::slings::check`]).
     #[serde(default)]
@@ -458,6 +463,23 @@ impl Summary {
     /// [`Summary::power_lines`] for the run's output, in one line.
     pub fn power_lines_line(&self) -> Option<String> {
         (!self.power_lines.is_empty()).then(|| format!("lift {}: {}", self.lift, self.power_lines.join("; ")))
+    }
+
+    /// [`Summary::line_like`] in words, for the run's output and the
+    /// sign-off page.
+    pub fn line_like_said(&self) -> Option<String> {
+        (!self.line_like.is_empty()).then(|| {
+            format!(
+                "NOT A GIVEN POWER LINE: {}, near the crane, where no power line given runs: CHECK WHAT {} (an overhead conductor, a guy wire, a cable); the plan keeps the lift's clearance from those points, as from every scan point, not a power line's approach distance: give a line as a [[power_line]] for it to be kept off",
+                self.line_like.join("; "),
+                if self.line_like.len() == 1 { "IT IS" } else { "EACH IS" }
+            )
+        })
+    }
+
+    /// [`Summary::line_like_said`] for the run's output.
+    pub fn line_like_line(&self) -> Option<String> {
+        self.line_like_said().map(|said| format!("lift {}: {said}", self.lift))
     }
 
     /// [`Summary::obstacles_said`] for the run's output.
@@ -630,6 +652,7 @@ pub fn summary(task: &LiftTask, steps: &[Step], verdict: &Verdict) -> Summary {
         passes_left_out: Vec::new(),
         clearance_m: task.clearance_m,
         power_lines: Vec::new(),
+        line_like: Vec::new(),
         slings: None,
         reeving: None,
         highest_pad: None,

@@ -1,0 +1,440 @@
+//! Scan points that look like an overhead line no `[[power_line]]` gives:
+//! thin, free-hanging runs of points some metres above the ground.
+//!
+//! Power lines are given by hand ([`liftplan_core::power_line`]): their
+//! voltage is nowhere in the scans, and a conductor 12 mm across gives a
+//! scanner a few points or none. But where a scanner did catch one (or a
+//! guy wire, a telephone or lighting cable strung between poles), the
+//! points show it, and a line the engineer did not know of is the hazard
+//! that kills most people round cranes. This looks for it, and the plan
+//! asks for it to be checked first: it is a warning, not an obstacle (the
+//! planner does not keep off it, as it cannot know its voltage or sag).
+//!
+//! A point counts as part of such a line where it is at least
+//! [`ABOVE_GROUND_M`] above the ground under it and everything the scans
+//! show within [`ISOLATED_M`] of it (ground left out) lies within
+//! [`THIN_M`] of one straight line through it, no steeper than
+//! [`STEEPEST_DEG`]: a pipe or a beam is too thick, a handrail has its
+//! walkway under it, a post stands upright. Such points within [`LINK_M`]
+//! of each other are one run (a scan misses stretches of a wire); a run of
+//! [`LEAST_LENGTH_M`] or more in plan is reported, unless it lies along a
+//! line the project gives.
+//!
+//! What this module must not do: plan round what it finds, or say what it
+//! is: a run of points is "line-like", for the engineer to identify on
+//! site. Its bounds are heuristics: a line the scans saw nothing of, or
+//! saw among other things, is not found, and a thin bar standing free may
+//! be reported.
+
+use liftplan_core::frame::{Mat3, Vec3};
+use liftplan_core::power_line::PowerLine;
+use serde::{Deserialize, Serialize};
+use std::collections::HashMap;
+
+/// The least height above the ground under it (m) at which a run is looked
+/// for: below it, fences, kerbs and parked vehicles' edges.
+pub const ABOVE_GROUND_M: f64 = 3.0;
+/// How far round a point (m) nothing but the line may lie.
+pub const ISOLATED_M: f64 = 1.0;
+/// How far off the line (m) its points may scatter: a conductor's
+/// thickness and the scans' noise.
+pub const THIN_M: f64 = 0.05;
+/// The steepest a line may run from the horizontal (degrees): steeper is a
+/// post or a mast's edge (a guy wire runs at 45 to 60 degrees).
+pub const STEEPEST_DEG: f64 = 65.0;
+/// The widest gap (m) between a run's points: a scan misses stretches.
+pub const LINK_M: f64 = 1.5;
+/// The shortest run (m, in plan) reported.
+pub const LEAST_LENGTH_M: f64 = 10.0;
+/// The fewest points round a point (within [`ISOLATED_M`]) to tell a line
+/// by; fewer is noise.
+const LEAST_AROUND: usize = 5;
+/// The fewest points of a run reported.
+const LEAST_POINTS: usize = 15;
+/// How far from a given power line (m, beyond its sag) a run lies along it.
+const ALONG_GIVEN_M: f64 = 3.0;
+
+/// A run of line-like scan points.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct LineLike {
+    /// Its two ends, the points farthest apart along it (m).
+    pub from_m: [f64; 3],
+    pub to_m: [f64; 3],
+    /// Its length in plan (m).
+    pub length_m: f64,
+    /// The lowest and highest of its points (m).
+    pub lowest_z_m: f64,
+    pub highest_z_m: f64,
+    /// The least height of its points above the ground under them (m).
+    pub above_ground_m: f64,
+    /// How many scan points it holds.
+    pub points: usize,
+}
+
+impl LineLike {
+    /// In words, for the plan's row and the sign-off page.
+    pub fn said(&self) -> String {
+        format!(
+            "{:.0} m of line-like scan points ({} points) from ({:.1}, {:.1}) to ({:.1}, {:.1}) m in plan, at z {:.1} to {:.1} m ({:.1} m or more above the ground under it)",
+            self.length_m,
+            self.points,
+            self.from_m[0],
+            self.from_m[1],
+            self.to_m[0],
+            self.to_m[1],
+            self.lowest_z_m,
+            self.highest_z_m,
+            self.above_ground_m
+        )
+    }
+
+    /// The least plan distance (m) from `at` to the run's straight line
+    /// between its ends.
+    pub fn plan_distance_m(&self, at: [f64; 2]) -> f64 {
+        segment_distance(at, [self.from_m[0], self.from_m[1]], [self.to_m[0], self.to_m[1]])
+    }
+}
+
+/// The runs of line-like points among `points` (`ground` flags the ground
+/// points) within `within` (plan discs: centre and radius, m), but those
+/// along a line of `given`.
+pub fn find(points: &[[f64; 3]], ground: &[bool], within: &[([f64; 2], f64)], given: &[PowerLine]) -> Vec<LineLike> {
+    let inside = |p: &[f64; 3]| within.iter().any(|(c, r)| (p[0] - c[0]).hypot(p[1] - c[1]) <= *r + ISOLATED_M);
+    let ground_under = GroundGrid::new(points, ground);
+    let Some(ground_under) = ground_under else { return Vec::new() };
+    // Everything but the ground near the lifts, by cells of ISOLATED_M.
+    let standing: Vec<[f64; 3]> =
+        points.iter().zip(ground).filter(|(p, g)| !**g && inside(p)).map(|(p, _)| *p).collect();
+    let grid = Grid::new(&standing, ISOLATED_M);
+    // A cell of half that whose points lie farther from their own best line
+    // than THIN_M, as a root mean square, lie farther from any line: none of
+    // its points is line-like (each has the whole cell within ISOLATED_M).
+    // Most of a site's points (surfaces) are passed by so, a cell at a time.
+    let halves = Grid::new(&standing, ISOLATED_M / 2.0);
+    let thick: std::collections::HashSet<[i64; 3]> = halves
+        .cells
+        .iter()
+        .filter(|(_, members)| {
+            let v: Vec<Vec3> = members.iter().map(|&k| Vec3::from(standing[k])).collect();
+            members.len() > 2 && spread_off_line_m(&v) > THIN_M
+        })
+        .map(|(key, _)| *key)
+        .collect();
+    let thin: Vec<usize> = (0..standing.len())
+        .filter(|&k| {
+            let p = standing[k];
+            !thick.contains(&Grid::key(&p, halves.cell))
+                && p[2] - ground_under.at([p[0], p[1]]) >= ABOVE_GROUND_M
+                && line_like_around(&standing, &grid, p)
+        })
+        .collect();
+    let mut runs = link(&standing, &thin);
+    runs.sort_by_key(|run| std::cmp::Reverse(run.len()));
+    runs.into_iter()
+        .filter(|run| run.len() >= LEAST_POINTS)
+        .filter_map(|run| {
+            let pts: Vec<[f64; 3]> = run.iter().map(|&k| standing[k]).collect();
+            let line = run_of(&pts, &ground_under)?;
+            (line.length_m >= LEAST_LENGTH_M && !given.iter().any(|l| along(&line, l))).then_some(line)
+        })
+        .collect()
+}
+
+/// Whether what lies within [`ISOLATED_M`] of `p` lies within [`THIN_M`] of
+/// one line through it, not too steep, and reaches along it.
+fn line_like_around(pts: &[[f64; 3]], grid: &Grid, p: [f64; 3]) -> bool {
+    let around: Vec<Vec3> = grid
+        .near(p, ISOLATED_M)
+        .map(|k| pts[k])
+        .filter(|q| dist2(q, &p) <= ISOLATED_M * ISOLATED_M)
+        .map(|q| Vec3::new(q[0], q[1], q[2]))
+        .collect();
+    if around.len() < LEAST_AROUND {
+        return false;
+    }
+    let Some(axis) = principal_axis(&around) else { return false };
+    let at = Vec3::new(p[0], p[1], p[2]);
+    let off_line = |q: &Vec3| {
+        let d = q - at;
+        (d - axis * d.dot(&axis)).norm()
+    };
+    let (lo, hi) = around.iter().map(|q| (q - at).dot(&axis)).fold((0.0f64, 0.0f64), |(l, h), t| (l.min(t), h.max(t)));
+    let steep = axis.z.abs().asin().to_degrees();
+    // At a run's end, or a gap in it, the points lie to one side.
+    steep <= STEEPEST_DEG && hi - lo >= ISOLATED_M / 2.0 && around.iter().all(|q| off_line(q) <= THIN_M)
+}
+
+/// The points' covariance (m²).
+fn covariance(pts: &[Vec3]) -> Mat3 {
+    let n = pts.len().max(1) as f64;
+    let mean = pts.iter().fold(Vec3::zeros(), |a, p| a + p) / n;
+    pts.iter().fold(Mat3::zeros(), |a, p| {
+        let d = p - mean;
+        a + d * d.transpose()
+    }) / n
+}
+
+/// The root mean square distance (m) of the points from their best line
+/// (through their mean, along their principal axis): no line has them
+/// nearer.
+fn spread_off_line_m(pts: &[Vec3]) -> f64 {
+    let e = covariance(pts).symmetric_eigenvalues();
+    let largest = e.max();
+    (e.sum() - largest).max(0.0).sqrt()
+}
+
+/// The direction the points spread most along (unit), where they spread.
+fn principal_axis(pts: &[Vec3]) -> Option<Vec3> {
+    let eig = covariance(pts).symmetric_eigen();
+    let k = (0..3).max_by(|&a, &b| eig.eigenvalues[a].total_cmp(&eig.eigenvalues[b]))?;
+    let axis: Vec3 = eig.eigenvectors.column(k).into();
+    (eig.eigenvalues[k] > 0.0 && axis.norm() > 0.0).then(|| axis.normalize())
+}
+
+/// The runs: line-like points (`members`, indices into `pts`) within
+/// [`LINK_M`] of each other, joined.
+fn link(pts: &[[f64; 3]], members: &[usize]) -> Vec<Vec<usize>> {
+    let own: Vec<[f64; 3]> = members.iter().map(|&k| pts[k]).collect();
+    let grid = Grid::new(&own, LINK_M);
+    let mut parent: Vec<usize> = (0..own.len()).collect();
+    fn root(parent: &mut [usize], mut k: usize) -> usize {
+        while parent[k] != k {
+            parent[k] = parent[parent[k]];
+            k = parent[k];
+        }
+        k
+    }
+    for a in 0..own.len() {
+        for b in grid.near(own[a], LINK_M).filter(|&b| b > a && dist2(&own[a], &own[b]) <= LINK_M * LINK_M) {
+            let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
+            if ra != rb {
+                parent[ra.max(rb)] = ra.min(rb);
+            }
+        }
+    }
+    let mut runs: HashMap<usize, Vec<usize>> = HashMap::new();
+    for a in 0..own.len() {
+        let r = root(&mut parent, a);
+        runs.entry(r).or_default().push(members[a]);
+    }
+    let mut runs: Vec<Vec<usize>> = runs.into_values().collect();
+    // In the order of their first point, whatever the map's order.
+    runs.sort_by_key(|run| run[0]);
+    runs
+}
+
+/// A run's ends, length and heights.
+fn run_of(pts: &[[f64; 3]], ground_under: &GroundGrid) -> Option<LineLike> {
+    let v: Vec<Vec3> = pts.iter().map(|p| Vec3::new(p[0], p[1], p[2])).collect();
+    let axis = principal_axis(&v)?;
+    let t = |p: &[f64; 3]| Vec3::new(p[0], p[1], p[2]).dot(&axis);
+    let from = *pts.iter().min_by(|a, b| t(a).total_cmp(&t(b)))?;
+    let to = *pts.iter().max_by(|a, b| t(a).total_cmp(&t(b)))?;
+    let (lowest, highest) = pts.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| (l.min(p[2]), h.max(p[2])));
+    let above = pts.iter().map(|p| p[2] - ground_under.at([p[0], p[1]])).fold(f64::INFINITY, f64::min);
+    Some(LineLike {
+        from_m: from,
+        to_m: to,
+        length_m: (to[0] - from[0]).hypot(to[1] - from[1]),
+        lowest_z_m: lowest,
+        highest_z_m: highest,
+        above_ground_m: above,
+        points: pts.len(),
+    })
+}
+
+/// Whether a run lies along a given line: its ends and middle each within
+/// [`ALONG_GIVEN_M`] of a span's straight line, or below it by no more
+/// than the line's sag.
+fn along(run: &LineLike, line: &PowerLine) -> bool {
+    let mid = [0, 1, 2].map(|k| (run.from_m[k] + run.to_m[k]) / 2.0);
+    [run.from_m, mid, run.to_m].iter().all(|p| {
+        line.points_m.windows(2).any(|span| {
+            let (a, b) = (Vec3::from(span[0]), Vec3::from(span[1]));
+            let p = Vec3::from(*p);
+            let ab = b - a;
+            let t = if ab.norm_squared() > 0.0 { ((p - a).dot(&ab) / ab.norm_squared()).clamp(0.0, 1.0) } else { 0.0 };
+            let on = a + ab * t;
+            let below = (on.z - p.z).clamp(0.0, line.sag_m);
+            (p + Vec3::new(0.0, 0.0, below) - on).norm() <= ALONG_GIVEN_M
+        })
+    })
+}
+
+fn dist2(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    (a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)
+}
+
+/// The plan distance from `p` to the segment `a`-`b`.
+fn segment_distance(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let len2 = dx * dx + dy * dy;
+    let t = if len2 > 0.0 { (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / len2).clamp(0.0, 1.0) } else { 0.0 };
+    (p[0] - a[0] - t * dx).hypot(p[1] - a[1] - t * dy)
+}
+
+/// Points by cubic cells, for their neighbours.
+struct Grid {
+    cell: f64,
+    cells: HashMap<[i64; 3], Vec<usize>>,
+}
+
+impl Grid {
+    fn new(pts: &[[f64; 3]], cell: f64) -> Grid {
+        let mut cells: HashMap<[i64; 3], Vec<usize>> = HashMap::new();
+        for (k, p) in pts.iter().enumerate() {
+            cells.entry(Self::key(p, cell)).or_default().push(k);
+        }
+        Grid { cell, cells }
+    }
+
+    fn key(p: &[f64; 3], cell: f64) -> [i64; 3] {
+        p.map(|v| (v / cell).floor() as i64)
+    }
+
+    /// The points of the cells within `r` of `p` (more than those within `r`).
+    fn near(&self, p: [f64; 3], r: f64) -> impl Iterator<Item = usize> + '_ {
+        let (lo, hi) = (Self::key(&p.map(|v| v - r), self.cell), Self::key(&p.map(|v| v + r), self.cell));
+        (lo[0]..=hi[0]).flat_map(move |x| {
+            (lo[1]..=hi[1]).flat_map(move |y| {
+                (lo[2]..=hi[2]).flat_map(move |z| self.cells.get(&[x, y, z]).into_iter().flatten().copied())
+            })
+        })
+    }
+}
+
+/// The ground's height under a point: the lowest ground point of its plan
+/// cell ([`GroundGrid::CELL_M`]), else of the nearest cells round it that
+/// hold one, else the lowest ground point of all.
+struct GroundGrid {
+    lowest: HashMap<[i64; 2], f64>,
+    everywhere: f64,
+}
+
+impl GroundGrid {
+    const CELL_M: f64 = 5.0;
+    /// How many cells round a cell without ground are looked in.
+    const REACH: i64 = 2;
+
+    fn new(points: &[[f64; 3]], ground: &[bool]) -> Option<GroundGrid> {
+        let mut lowest: HashMap<[i64; 2], f64> = HashMap::new();
+        let mut everywhere = f64::INFINITY;
+        for (p, _) in points.iter().zip(ground).filter(|(_, g)| **g) {
+            let z = lowest.entry(Self::key([p[0], p[1]])).or_insert(f64::INFINITY);
+            *z = z.min(p[2]);
+            everywhere = everywhere.min(p[2]);
+        }
+        everywhere.is_finite().then_some(GroundGrid { lowest, everywhere })
+    }
+
+    fn key(p: [f64; 2]) -> [i64; 2] {
+        p.map(|v| (v / Self::CELL_M).floor() as i64)
+    }
+
+    fn at(&self, p: [f64; 2]) -> f64 {
+        let [x, y] = Self::key(p);
+        (0..=Self::REACH)
+            .find_map(|ring| {
+                (-ring..=ring)
+                    .flat_map(|dx| (-ring..=ring).map(move |dy| [x + dx, y + dy]))
+                    .filter(|c| (c[0] - x).abs() == ring || (c[1] - y).abs() == ring)
+                    .filter_map(|c| self.lowest.get(&c).copied())
+                    .reduce(f64::min)
+            })
+            .unwrap_or(self.everywhere)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A site of flat ground, a pipe on a rack, a handrail over a walkway,
+    /// a thin post and a wire hanging 12 m up between poles 50 m apart
+    /// (sagging 1 m), scanned with a few millimetres of noise and a metre
+    /// of it missed: only the wire is found, along its whole length.
+    fn site(with_wire: bool) -> (Vec<[f64; 3]>, Vec<bool>) {
+        let mut rng = liftplan_core::rng::seeded(7, "wires test");
+        let mut noise = || liftplan_core::rng::uniform(&mut rng, -0.004, 0.004);
+        let (mut pts, mut ground) = (Vec::new(), Vec::new());
+        let mut put = |p: [f64; 3], g: bool| {
+            pts.push(p);
+            ground.push(g);
+        };
+        for i in -60..=60 {
+            for j in -60..=60 {
+                put([i as f64 * 0.5, j as f64 * 0.5, 0.0], true);
+            }
+        }
+        let steps = |from: f64, to: f64, by: f64| {
+            let n = ((to - from) / by).round() as usize;
+            (0..=n).map(move |k| from + k as f64 * by).collect::<Vec<f64>>()
+        };
+        // A pipe 0.3 m across on a rack, 6 m up, along x.
+        for x in steps(-20.0, 20.0, 0.05) {
+            for a in 0..12 {
+                let t = a as f64 * std::f64::consts::TAU / 12.0;
+                put([x, -10.0 + 0.15 * t.cos(), 6.0 + 0.15 * t.sin()], false);
+            }
+        }
+        // A handrail 1.1 m over a walkway 4 m up, along y, with its knee
+        // rail half way.
+        for y in steps(-15.0, 15.0, 0.05) {
+            put([15.0 + noise(), y, 5.1 + noise()], false);
+            put([15.0 + noise(), y, 4.55 + noise()], false);
+            for w in steps(14.0, 16.0, 0.1) {
+                put([w, y, 4.0], false);
+            }
+        }
+        // A post 8 m tall, 0.03 m across.
+        for z in steps(0.1, 8.0, 0.05) {
+            put([-15.0 + noise(), 15.0 + noise(), z], false);
+        }
+        if with_wire {
+            for x in steps(-25.0, 25.0, 0.05) {
+                if (4.0..5.0).contains(&x) {
+                    continue;
+                }
+                let sag = 1.0 * (1.0 - (x / 25.0).powi(2));
+                put([x + noise(), 10.0 + noise(), 12.0 - sag + noise()], false);
+            }
+        }
+        (pts, ground)
+    }
+
+    #[test]
+    fn a_wire_strung_between_poles_is_found_and_nothing_else_is() {
+        let everywhere = [([0.0, 0.0], 100.0)];
+        let (pts, ground) = site(true);
+        let found = find(&pts, &ground, &everywhere, &[]);
+        assert_eq!(found.len(), 1, "{found:?}");
+        let w = &found[0];
+        assert!(w.length_m > 45.0 && w.length_m <= 50.1, "{w:?}");
+        assert!((w.from_m[1] - 10.0).abs() < 0.1 && (w.to_m[1] - 10.0).abs() < 0.1, "{w:?}");
+        assert!(w.lowest_z_m > 10.9 && w.highest_z_m < 12.1 && w.above_ground_m > 10.9, "{w:?}");
+        assert!(w.said().starts_with("50 m of line-like scan points ("), "{}", w.said());
+        assert!(w.plan_distance_m([0.0, 0.0]) > 9.9 && w.plan_distance_m([0.0, 10.0]) < 0.1);
+        // Without the wire: nothing (the pipe is thick, the handrail has its
+        // walkway under it, the post stands upright).
+        let (pts, ground) = site(false);
+        assert_eq!(find(&pts, &ground, &everywhere, &[]), vec![]);
+        // Only near the lifts.
+        let (pts, ground) = site(true);
+        assert_eq!(find(&pts, &ground, &[([0.0, -40.0], 20.0)], &[]), vec![]);
+        // Along a line the project gives, it is that line.
+        let given = PowerLine {
+            name: "11 kV".into(),
+            points_m: vec![[-25.0, 10.0, 12.0], [25.0, 10.0, 12.0]],
+            sag_m: 1.0,
+            least_sag_m: None,
+            swing_deg: None,
+            voltage_kv: 11.0,
+            approach_m: None,
+            lifts: vec![],
+        };
+        assert_eq!(find(&pts, &ground, &everywhere, std::slice::from_ref(&given)), vec![]);
+        // A line given 10 m away is another.
+        let elsewhere = PowerLine { points_m: vec![[-25.0, 20.0, 12.0], [25.0, 20.0, 12.0]], ..given };
+        assert_eq!(find(&pts, &ground, &everywhere, &[elsewhere]).len(), 1);
+    }
+}
