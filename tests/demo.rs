@@ -1366,6 +1366,8 @@ fn a_wire_in_the_scans_that_no_power_line_gives_is_asked_about() {
         cover.contains("what the line-like scan points near the crane are: an overhead line no one gave?"),
         "{cover}"
     );
+    // The overview draws it.
+    assert!(cover.contains(", line-like scan points no power line given runs along in cyan"), "{cover}");
     let pages: Vec<u32> = doc.get_pages().keys().copied().collect();
     let text = doc.extract_text(&pages).unwrap().replace('\n', " ");
     assert!(text.contains("NOT A GIVEN POWER LINE: 40 m of line-like scan points"), "{text}");

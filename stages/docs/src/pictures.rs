@@ -23,6 +23,9 @@ pub const OTHER_LOAD: Rgb = [150, 90, 190];
 pub const OBSTACLE: Rgb = [0, 128, 128];
 /// An overhead power line's conductor, on the overview.
 pub const POWER_LINE: Rgb = [235, 140, 0];
+/// A run of line-like scan points no power line given runs along (a line
+/// no one gave?), on the overview.
+pub const LINE_LIKE: Rgb = [0, 200, 225];
 /// Ground the load passes over that no scan saw.
 pub const UNSEEN: Rgb = [25, 25, 25];
 /// Ground only the crane's boom or superstructure passes over that no scan

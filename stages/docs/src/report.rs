@@ -835,6 +835,8 @@ pub fn document(
     for l in inp.power_lines.iter().filter(|l| l.during(&task.id)) {
         others.extend(l.boxes(0.15).into_iter().map(|b| (b, pictures::POWER_LINE)));
     }
+    let with_power_lines = others.len();
+    others.extend(plan.summary.line_like.iter().map(|l| (l.obb(0.25), pictures::LINE_LIKE)));
     let overview = pictures::overview(site, task, plan, &others, 1400, 1000);
     let tail = task.crane.tail_swing_m();
     let coverage = plan.summary.coverage.as_ref();
@@ -851,7 +853,7 @@ pub fn document(
         (false, false) => String::new(),
     };
     let caption = format!(
-        "Site overview (top view, north up): crane {}{}, load path in red{}, load at set in light blue{}{}{}{}{}{}{keep_out}.",
+        "Site overview (top view, north up): crane {}{}, load path in red{}, load at set in light blue{}{}{}{}{}{}{}{keep_out}.",
         if task.resumes() { "where the lift resumes (the load hanging)" } else { "at the pick position" },
         match tail {
             Some((r, part)) =>
@@ -870,7 +872,12 @@ pub fn document(
         },
         if other_loads == 0 { "" } else { ", other lifts' loads in violet" },
         if with_obstacles == other_loads { "" } else { ", obstacles placed by hand in teal" },
-        if others.len() == with_obstacles { "" } else { ", power lines in orange" },
+        if with_power_lines == with_obstacles { "" } else { ", power lines in orange" },
+        if others.len() == with_power_lines {
+            ""
+        } else {
+            ", line-like scan points no power line given runs along in cyan"
+        },
         match (task.not_over.is_empty(), task.not_over.iter().any(|a| a.crane_too)) {
             (true, _) => "",
             (false, false) => ", areas the load must never be over outlined in green",

@@ -1305,8 +1305,7 @@ pub fn run(
             .map(|(_, said)| said.clone())
             .collect();
         let (crane_at, reach_m) = working_areas[k];
-        plan.summary.line_like =
-            line_like.iter().filter(|l| l.plan_distance_m(crane_at) <= reach_m).map(|l| l.said()).collect();
+        plan.summary.line_like = line_like.iter().filter(|l| l.plan_distance_m(crane_at) <= reach_m).cloned().collect();
         plan.summary.load_as_scanned = as_scanned;
         plan.summary.against_model = against_model[k].clone();
         plan.summary.passes_left_out = model_copy::passes_left_out(task, &plan.moves, &left_out, &loads, &world);

@@ -317,10 +317,10 @@ pub struct Summary {
     #[serde(default)]
     pub power_lines: Vec<String>,
     /// Runs of line-like scan points near the crane that no power line
-    /// given lies along, each in words ([`crate::wires::LineLike::said`]):
-    /// a line no one told the planner of, to be checked first.
+    /// given lies along ([`crate::wires`]): a line no one told the planner
+    /// of, to be checked first.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub line_like: Vec<String>,
+    pub line_like: Vec<crate::wires::LineLike>,
     /// The sling legs, where the lift gives their working load limit
     /// ([`liftplan_core::slings::check`]).
     #[serde(default)]
@@ -471,7 +471,7 @@ impl Summary {
         (!self.line_like.is_empty()).then(|| {
             format!(
                 "NOT A GIVEN POWER LINE: {}, near the crane, where no power line given runs: CHECK WHAT {} (an overhead conductor, a guy wire, a cable); the plan keeps the lift's clearance from those points, as from every scan point, not a power line's approach distance: give a line as a [[power_line]] for it to be kept off",
-                self.line_like.join("; "),
+                self.line_like.iter().map(crate::wires::LineLike::said).collect::<Vec<_>>().join("; "),
                 if self.line_like.len() == 1 { "IT IS" } else { "EACH IS" }
             )
         })

@@ -88,6 +88,25 @@ impl LineLike {
         )
     }
 
+    /// A box round the run's straight line between its ends, `half_m`
+    /// either side of it, for the pictures.
+    pub fn obb(&self, half_m: f64) -> liftplan_core::obb::Obb {
+        use liftplan_core::frame::Point3;
+        let (a, b) = (Vec3::from(self.from_m), Vec3::from(self.to_m));
+        let along = b - a;
+        let len = along.norm();
+        let x = if len > 0.0 { along / len } else { Vec3::x() };
+        let across = Vec3::new(-x.y, x.x, 0.0);
+        let y = if across.norm() > 1e-9 { across.normalize() } else { Vec3::y() };
+        let z = x.cross(&y);
+        let c = (a + b) / 2.0;
+        liftplan_core::obb::Obb::new(
+            Point3::new(c.x, c.y, c.z),
+            Mat3::from_columns(&[x, y, z]),
+            Vec3::new(len / 2.0 + half_m, half_m, half_m),
+        )
+    }
+
     /// The least plan distance (m) from `at` to the run's straight line
     /// between its ends.
     pub fn plan_distance_m(&self, at: [f64; 2]) -> f64 {
