@@ -53,6 +53,9 @@ const LEAST_AROUND: usize = 5;
 const LEAST_POINTS: usize = 15;
 /// How far from a given power line (m, beyond its sag) a run lies along it.
 const ALONG_GIVEN_M: f64 = 3.0;
+/// How far from its middle (m, in plan) a given line not along a run is
+/// named with it.
+pub const NEAR_GIVEN_M: f64 = 30.0;
 
 /// A run of line-like scan points.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -69,13 +72,24 @@ pub struct LineLike {
     pub above_ground_m: f64,
     /// How many scan points it holds.
     pub points: usize,
+    /// The given power line nearest its middle in plan, within
+    /// [`NEAR_GIVEN_M`], and how far (m): a line given with its supports
+    /// off may be this one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub near_given: Option<(String, f64)>,
 }
 
 impl LineLike {
     /// In words, for the plan's row and the sign-off page.
     pub fn said(&self) -> String {
+        let near = match &self.near_given {
+            Some((name, m)) => format!(
+                " ({m:.1} m in plan from power line '{name}', which does not run along it: if it is that line, where the line is given is wrong)"
+            ),
+            None => String::new(),
+        };
         format!(
-            "{:.0} m of line-like scan points ({} points) from ({:.1}, {:.1}) to ({:.1}, {:.1}) m in plan, at z {:.1} to {:.1} m ({:.1} m or more above the ground under it)",
+            "{:.0} m of line-like scan points ({} points) from ({:.1}, {:.1}) to ({:.1}, {:.1}) m in plan, at z {:.1} to {:.1} m ({:.1} m or more above the ground under it){near}",
             self.length_m,
             self.points,
             self.from_m[0],
@@ -153,8 +167,23 @@ pub fn find(points: &[[f64; 3]], ground: &[bool], within: &[([f64; 2], f64)], gi
         .filter(|run| run.len() >= LEAST_POINTS)
         .filter_map(|run| {
             let pts: Vec<[f64; 3]> = run.iter().map(|&k| standing[k]).collect();
-            let line = run_of(&pts, &ground_under)?;
-            (line.length_m >= LEAST_LENGTH_M && !given.iter().any(|l| along(&line, l))).then_some(line)
+            let mut line = run_of(&pts, &ground_under)?;
+            if line.length_m < LEAST_LENGTH_M || given.iter().any(|l| along(&line, l)) {
+                return None;
+            }
+            let mid = [(line.from_m[0] + line.to_m[0]) / 2.0, (line.from_m[1] + line.to_m[1]) / 2.0];
+            line.near_given = given
+                .iter()
+                .filter_map(|l| {
+                    let m = l
+                        .points_m
+                        .windows(2)
+                        .map(|s| segment_distance(mid, [s[0][0], s[0][1]], [s[1][0], s[1][1]]))
+                        .fold(f64::INFINITY, f64::min);
+                    (m <= NEAR_GIVEN_M).then(|| (l.name.clone(), m))
+                })
+                .min_by(|a, b| a.1.total_cmp(&b.1));
+            Some(line)
         })
         .collect()
 }
@@ -259,6 +288,7 @@ fn run_of(pts: &[[f64; 3]], ground_under: &GroundGrid) -> Option<LineLike> {
         highest_z_m: highest,
         above_ground_m: above,
         points: pts.len(),
+        near_given: None,
     })
 }
 
@@ -452,8 +482,19 @@ mod tests {
             lifts: vec![],
         };
         assert_eq!(find(&pts, &ground, &everywhere, std::slice::from_ref(&given)), vec![]);
-        // A line given 10 m away is another.
+        // A line given 10 m away is another, and is named with it.
         let elsewhere = PowerLine { points_m: vec![[-25.0, 20.0, 12.0], [25.0, 20.0, 12.0]], ..given };
-        assert_eq!(find(&pts, &ground, &everywhere, &[elsewhere]).len(), 1);
+        let found = find(&pts, &ground, &everywhere, &[elsewhere]);
+        assert_eq!(found.len(), 1);
+        let (name, m) = found[0].near_given.clone().unwrap();
+        assert!(name == "11 kV" && (m - 10.0).abs() < 0.1, "{name} {m}");
+        assert!(
+            found[0].said().ends_with(&format!(
+                " ({m:.1} m in plan from power line '11 kV', which does not run along it: if it is that line, where the line is given is wrong)"
+            )),
+            "{}",
+            found[0].said()
+        );
+        assert_eq!(find(&pts, &ground, &everywhere, &[]).first().and_then(|l| l.near_given.clone()), None);
     }
 }
