@@ -132,7 +132,11 @@ impl LineLike {
 /// points) within `within` (plan discs: centre and radius, m), but those
 /// along a line of `given`.
 pub fn find(points: &[[f64; 3]], ground: &[bool], within: &[([f64; 2], f64)], given: &[PowerLine]) -> Vec<LineLike> {
-    let inside = |p: &[f64; 3]| within.iter().any(|(c, r)| (p[0] - c[0]).hypot(p[1] - c[1]) <= *r + ISOLATED_M);
+    // (A point not finite is in no disc: the eigen solver below is not fed one.)
+    let inside = |p: &[f64; 3]| {
+        p.iter().all(|v| v.is_finite())
+            && within.iter().any(|(c, r)| (p[0] - c[0]).hypot(p[1] - c[1]) <= *r + ISOLATED_M)
+    };
     let ground_under = GroundGrid::new(points, ground);
     let Some(ground_under) = ground_under else { return Vec::new() };
     // Everything but the ground near the lifts, by cells of ISOLATED_M.
@@ -368,7 +372,7 @@ impl GroundGrid {
     fn new(points: &[[f64; 3]], ground: &[bool]) -> Option<GroundGrid> {
         let mut lowest: HashMap<[i64; 2], f64> = HashMap::new();
         let mut everywhere = f64::INFINITY;
-        for (p, _) in points.iter().zip(ground).filter(|(_, g)| **g) {
+        for (p, _) in points.iter().zip(ground).filter(|(p, g)| **g && p.iter().all(|v| v.is_finite())) {
             let z = lowest.entry(Self::key([p[0], p[1]])).or_insert(f64::INFINITY);
             *z = z.min(p[2]);
             everywhere = everywhere.min(p[2]);
@@ -385,9 +389,9 @@ impl GroundGrid {
         (0..=Self::REACH)
             .find_map(|ring| {
                 (-ring..=ring)
-                    .flat_map(|dx| (-ring..=ring).map(move |dy| [x + dx, y + dy]))
-                    .filter(|c| (c[0] - x).abs() == ring || (c[1] - y).abs() == ring)
-                    .filter_map(|c| self.lowest.get(&c).copied())
+                    .flat_map(|dx| (-ring..=ring).map(move |dy| (dx, dy)))
+                    .filter(|(dx, dy)| dx.abs() == ring || dy.abs() == ring)
+                    .filter_map(|(dx, dy)| self.lowest.get(&[x.saturating_add(dx), y.saturating_add(dy)]).copied())
                     .reduce(f64::min)
             })
             .unwrap_or(self.everywhere)
@@ -496,5 +500,14 @@ mod tests {
             found[0].said()
         );
         assert_eq!(find(&pts, &ground, &everywhere, &[]).first().and_then(|l| l.near_given.clone()), None);
+        // Points not finite, or far off, change nothing and break nothing.
+        let (mut pts, mut ground) = site(true);
+        for p in [[f64::NAN, 0.0, 12.0], [0.0, f64::INFINITY, 12.0], [1e300, -1e300, 12.0], [0.0, 10.0, f64::NAN]] {
+            pts.push(p);
+            ground.push(false);
+            pts.push(p);
+            ground.push(true);
+        }
+        assert_eq!(find(&pts, &ground, &everywhere, &[]).len(), 1);
     }
 }
