@@ -1352,14 +1352,16 @@ fn a_wire_in_the_scans_that_no_power_line_gives_is_asked_about() {
     let o = crate::util::ok(&["run", dir.to_str().unwrap()]);
     let said = format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
     assert!(said.contains("lift V-101: NOT A GIVEN POWER LINE: 40 m of line-like scan points ("), "{added}: {said}");
-    assert!(
-        said.contains("from (-25.0, -20.0) to (-25.0, 20.0) m in plan")
-            || said.contains("from (-25.0, 20.0) to (-25.0, -20.0) m in plan"),
-        "{said}"
-    );
     let plan: serde_json::Value =
         serde_json::from_slice(&std::fs::read(dir.join("out").join("plan.json")).unwrap()).unwrap();
-    assert_eq!(plan["lifts"][0]["summary"]["line_like"].as_array().map(Vec::len), Some(1), "{plan}");
+    let runs = plan["lifts"][0]["summary"]["line_like"].as_array().unwrap_or_else(|| panic!("{plan}"));
+    assert_eq!(runs.len(), 1, "{plan}");
+    // Its ends where the wire's are (the last few centimetres of a run may
+    // thin out of it).
+    let end = |key: &str| -> [f64; 3] { serde_json::from_value(runs[0][key].clone()).unwrap() };
+    let (from, to) = (end("from_m"), end("to_m"));
+    assert!((from[0] + 25.0).abs() < 0.05 && (to[0] + 25.0).abs() < 0.05, "{from:?} {to:?}");
+    assert!((from[1].min(to[1]) + 20.0).abs() < 0.3 && (from[1].max(to[1]) - 20.0).abs() < 0.3, "{from:?} {to:?}");
     let doc = lopdf::Document::load(dir.join("out").join("V-101.pdf")).unwrap();
     let cover = cover_text(&doc);
     assert!(

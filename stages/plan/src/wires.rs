@@ -7,15 +7,20 @@
 //! guy wire, a telephone or lighting cable strung between poles), the
 //! points show it, and a line the engineer did not know of is the hazard
 //! that kills most people round cranes. This looks for it, and the plan
-//! asks for it to be checked first: it is a warning, not an obstacle (the
-//! planner does not keep off it, as it cannot know its voltage or sag).
+//! asks for it to be checked first: it is a warning, not an obstacle
+//! beyond what its points already are (the planner keeps the lift's
+//! clearance off them, as off every scan point, not a power line's
+//! approach distance: it cannot know the line's voltage or sag).
 //!
 //! A point counts as part of such a line where it is at least
 //! [`ABOVE_GROUND_M`] above the ground under it and everything the scans
 //! show within [`ISOLATED_M`] of it (ground left out) lies within
 //! [`THIN_M`] of one straight line through it, no steeper than
 //! [`STEEPEST_DEG`]: a pipe or a beam is too thick, a handrail has its
-//! walkway under it, a post stands upright. Such points within [`LINK_M`]
+//! knee rail and walkway near, a post stands upright. Only points in a
+//! cell of half [`ISOLATED_M`] holding [`LEAST_IN_CELL`] points or more
+//! that lie along a line are looked at so (a wire scanned with up to
+//! about 0.2 m between its points). Such points within [`LINK_M`]
 //! of each other are one run (a scan misses stretches of a wire); a run of
 //! [`LEAST_LENGTH_M`] or more in plan is reported, unless it lies along a
 //! line the project gives.
@@ -28,8 +33,9 @@
 
 use liftplan_core::frame::{Mat3, Vec3};
 use liftplan_core::power_line::PowerLine;
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 /// The least height above the ground under it (m) at which a run is looked
 /// for: below it, fences, kerbs and parked vehicles' edges.
@@ -49,8 +55,17 @@ pub const LEAST_LENGTH_M: f64 = 10.0;
 /// The fewest points round a point (within [`ISOLATED_M`]) to tell a line
 /// by; fewer is noise.
 const LEAST_AROUND: usize = 5;
+/// The fewest points a cell of half [`ISOLATED_M`] must hold for its
+/// points to be looked at: a wire scanned at up to about 0.2 m between
+/// points.
+pub const LEAST_IN_CELL: usize = 3;
 /// The fewest points of a run reported.
 const LEAST_POINTS: usize = 15;
+/// The most points within [`ISOLATED_M`] of a point of a line: a wire
+/// through that sphere, 2 m of it, thinned to 1 cm, holds 200; more is a
+/// surface (and a point beside a dense surface is passed by without
+/// gathering all of it).
+const MOST_AROUND: usize = 400;
 /// How far from a given power line (m, beyond its sag) a run lies along it.
 const ALONG_GIVEN_M: f64 = 3.0;
 /// How far from its middle (m, in plan) a given line not along a run is
@@ -137,34 +152,54 @@ pub fn find(points: &[[f64; 3]], ground: &[bool], within: &[([f64; 2], f64)], gi
         p.iter().all(|v| v.is_finite())
             && within.iter().any(|(c, r)| (p[0] - c[0]).hypot(p[1] - c[1]) <= *r + ISOLATED_M)
     };
-    let ground_under = GroundGrid::new(points, ground);
-    let Some(ground_under) = ground_under else { return Vec::new() };
-    // Everything but the ground near the lifts, by cells of ISOLATED_M.
+    let Some(ground_under) = GroundGrid::new(points, ground) else { return Vec::new() };
+    // Everything but the ground near the lifts.
     let standing: Vec<[f64; 3]> =
         points.iter().zip(ground).filter(|(p, g)| !**g && inside(p)).map(|(p, _)| *p).collect();
-    let grid = Grid::new(&standing, ISOLATED_M);
-    // A cell of half that whose points lie farther from their own best line
-    // than THIN_M, as a root mean square, lie farther from any line: none of
-    // its points is line-like (each has the whole cell within ISOLATED_M).
-    // Most of a site's points (surfaces) are passed by so, a cell at a time.
-    let halves = Grid::new(&standing, ISOLATED_M / 2.0);
-    let thick: std::collections::HashSet<[i64; 3]> = halves
-        .cells
+    // The points by cells of half ISOLATED_M. A cell whose points lie
+    // farther from their own best line than THIN_M, as a root mean square,
+    // lie farther from any line: none of its points is line-like (each has
+    // the whole cell within ISOLATED_M). Most of a site's points (surfaces)
+    // are passed by so, a cell at a time, and so are cells of fewer than
+    // LEAST_IN_CELL (stray points, leaves), which would each cost a search.
+    let half = ISOLATED_M / 2.0;
+    let keys: Vec<[i64; 3]> = standing.iter().map(|p| Grid::key(p, half)).collect();
+    let mut order: Vec<usize> = (0..standing.len()).collect();
+    order.par_sort_unstable_by_key(|&k| (keys[k], k));
+    let groups: Vec<&[usize]> =
+        order.chunk_by(|a, b| keys[*a] == keys[*b]).filter(|g| g.len() >= LEAST_IN_CELL).collect();
+    let mut candidates: Vec<usize> = groups
+        .par_iter()
+        .filter(|group| {
+            let cell: Vec<Vec3> = group.iter().map(|&k| Vec3::from(standing[k])).collect();
+            spread_off_line_m(&cell) <= THIN_M
+        })
+        .flat_map_iter(|group| {
+            group.iter().copied().filter(|&k| {
+                let p = standing[k];
+                p[2] - ground_under.at([p[0], p[1]]) >= ABOVE_GROUND_M
+            })
+        })
+        .collect();
+    if candidates.is_empty() {
+        return Vec::new();
+    }
+    candidates.sort_unstable();
+    // What lies round them, by cells of ISOLATED_M.
+    let round: HashSet<[i64; 3]> = candidates
         .iter()
-        .filter(|(_, members)| {
-            let v: Vec<Vec3> = members.iter().map(|&k| Vec3::from(standing[k])).collect();
-            members.len() > 2 && spread_off_line_m(&v) > THIN_M
-        })
-        .map(|(key, _)| *key)
-        .collect();
-    let thin: Vec<usize> = (0..standing.len())
-        .filter(|&k| {
-            let p = standing[k];
-            !thick.contains(&Grid::key(&p, halves.cell))
-                && p[2] - ground_under.at([p[0], p[1]]) >= ABOVE_GROUND_M
-                && line_like_around(&standing, &grid, p)
+        .flat_map(|&k| {
+            let [x, y, z] = Grid::key(&standing[k], ISOLATED_M);
+            (-1..=1).flat_map(move |dx| {
+                (-1..=1).flat_map(move |dy| {
+                    (-1..=1).map(move |dz| [x.saturating_add(dx), y.saturating_add(dy), z.saturating_add(dz)])
+                })
+            })
         })
         .collect();
+    let near: Vec<[f64; 3]> = standing.iter().filter(|p| round.contains(&Grid::key(p, ISOLATED_M))).copied().collect();
+    let grid = Grid::new(&near, ISOLATED_M);
+    let thin: Vec<usize> = candidates.into_iter().filter(|&k| line_like_around(&near, &grid, standing[k])).collect();
     let mut runs = link(&standing, &thin);
     runs.sort_by_key(|run| std::cmp::Reverse(run.len()));
     runs.into_iter()
@@ -200,8 +235,9 @@ fn line_like_around(pts: &[[f64; 3]], grid: &Grid, p: [f64; 3]) -> bool {
         .map(|k| pts[k])
         .filter(|q| dist2(q, &p) <= ISOLATED_M * ISOLATED_M)
         .map(|q| Vec3::new(q[0], q[1], q[2]))
+        .take(MOST_AROUND + 1)
         .collect();
-    if around.len() < LEAST_AROUND {
+    if around.len() < LEAST_AROUND || around.len() > MOST_AROUND {
         return false;
     }
     let Some(axis) = principal_axis(&around) else { return false };
