@@ -13,14 +13,16 @@
 //! approach distance: it cannot know the line's voltage or sag).
 //!
 //! A point counts as part of such a line where it is at least
-//! [`ABOVE_GROUND_M`] above the ground under it and everything the scans
-//! show within [`ISOLATED_M`] of it (ground left out) lies within
-//! [`THIN_M`] of one straight line through it, no steeper than
-//! [`STEEPEST_DEG`]: a pipe or a beam is too thick, a handrail has its
-//! knee rail and walkway near, a post stands upright. Only points in a
-//! cell of half [`ISOLATED_M`] holding [`LEAST_IN_CELL`] points or more
-//! that lie along a line are looked at so (a wire scanned with up to
-//! about 0.2 m between its points). Such points within [`LINK_M`]
+//! [`ABOVE_GROUND_M`] above the ground under it and what the scans show
+//! within [`ISOLATED_M`] of it (ground left out) lies within [`THIN_M`] of
+//! one straight line through it, no steeper than [`STEEPEST_DEG`], but
+//! for a stray point or two ([`MOST_OFF_SHARE`]): a pipe or a beam is too
+//! thick, a handrail has its knee rail and walkway near, a post stands
+//! upright. Only points in a cell of half [`ISOLATED_M`] holding
+//! [`LEAST_IN_CELL`] points or more that lie along a line, with no more
+//! than [`MOST_CELLS_OFF_LINE`] of the cells round it holding points off
+//! that line, are looked at so (a wire scanned with up to about 0.2 m
+//! between its points). Such points within [`LINK_M`]
 //! of each other are one run (a scan misses stretches of a wire); a run of
 //! [`LEAST_LENGTH_M`] or more in plan is reported, unless it lies along a
 //! line the project gives.
@@ -59,6 +61,15 @@ const LEAST_AROUND: usize = 5;
 /// points to be looked at: a wire scanned at up to about 0.2 m between
 /// points.
 pub const LEAST_IN_CELL: usize = 3;
+/// The most of a cell's 26 neighbours (cells of half [`ISOLATED_M`]) that
+/// may hold points though the line along the cell's own points does not
+/// cross them, for its points to be looked at: stray points.
+pub const MOST_CELLS_OFF_LINE: usize = 2;
+/// The share of the points within [`ISOLATED_M`] of a point of a line that
+/// may lie off it: stray points, not a pipe's surface (most of which lies
+/// off any one line along it) nor a handrail's knee rail (half of what is
+/// near).
+pub const MOST_OFF_SHARE: f64 = 0.1;
 /// The fewest points of a run reported.
 const LEAST_POINTS: usize = 15;
 /// The most points within [`ISOLATED_M`] of a point of a line: a wire
@@ -161,21 +172,44 @@ pub fn find(points: &[[f64; 3]], ground: &[bool], within: &[([f64; 2], f64)], gi
     // lie farther from any line: none of its points is line-like (each has
     // the whole cell within ISOLATED_M). Most of a site's points (surfaces)
     // are passed by so, a cell at a time, and so are cells of fewer than
-    // LEAST_IN_CELL (stray points, leaves), which would each cost a search.
+    // LEAST_IN_CELL (stray points, leaves), which would each cost a search,
+    // and cells more than MOST_CELLS_OFF_LINE of whose 26 neighbours hold
+    // points though the cell's own line does not cross them (a sparse
+    // wall's cells, whose few points may happen to lie along a line).
     let half = ISOLATED_M / 2.0;
     let keys: Vec<[i64; 3]> = standing.iter().map(|p| Grid::key(p, half)).collect();
     let mut order: Vec<usize> = (0..standing.len()).collect();
     order.par_sort_unstable_by_key(|&k| (keys[k], k));
-    let groups: Vec<&[usize]> =
-        order.chunk_by(|a, b| keys[*a] == keys[*b]).filter(|g| g.len() >= LEAST_IN_CELL).collect();
-    let mut candidates: Vec<usize> = groups
+    let cells: Vec<&[usize]> = order.chunk_by(|a, b| keys[*a] == keys[*b]).collect();
+    let occupied: HashSet<[i64; 3]> = cells.iter().map(|c| keys[c[0]]).collect();
+    // A cell a line crosses has its centre within half its diagonal of it.
+    let crossed_within_m = half * 3f64.sqrt() / 2.0 + THIN_M;
+    let held_off_line = |[x, y, z]: [i64; 3], mean: Vec3, axis: Vec3| {
+        (-1..=1)
+            .flat_map(|dx| (-1..=1).flat_map(move |dy| (-1..=1).map(move |dz| [dx, dy, dz])))
+            .filter(|d| *d != [0, 0, 0])
+            .map(|[dx, dy, dz]| [x.saturating_add(dx), y.saturating_add(dy), z.saturating_add(dz)])
+            .filter(|c| occupied.contains(c))
+            .filter(|c| {
+                let centre = Vec3::new(c[0] as f64 + 0.5, c[1] as f64 + 0.5, c[2] as f64 + 0.5) * half;
+                let d = centre - mean;
+                (d - axis * d.dot(&axis)).norm() > crossed_within_m
+            })
+            .count()
+    };
+    let mut candidates: Vec<usize> = cells
         .par_iter()
-        .filter(|group| {
-            let cell: Vec<Vec3> = group.iter().map(|&k| Vec3::from(standing[k])).collect();
-            spread_off_line_m(&cell) <= THIN_M
+        .filter(|cell| cell.len() >= LEAST_IN_CELL)
+        .filter(|cell| {
+            let pts: Vec<Vec3> = cell.iter().map(|&k| Vec3::from(standing[k])).collect();
+            if spread_off_line_m(&pts) > THIN_M {
+                return false;
+            }
+            let mean = pts.iter().fold(Vec3::zeros(), |a, p| a + p) / pts.len() as f64;
+            principal_axis(&pts).is_some_and(|axis| held_off_line(keys[cell[0]], mean, axis) <= MOST_CELLS_OFF_LINE)
         })
-        .flat_map_iter(|group| {
-            group.iter().copied().filter(|&k| {
+        .flat_map_iter(|cell| {
+            cell.iter().copied().filter(|&k| {
                 let p = standing[k];
                 p[2] - ground_under.at([p[0], p[1]]) >= ABOVE_GROUND_M
             })
@@ -240,16 +274,29 @@ fn line_like_around(pts: &[[f64; 3]], grid: &Grid, p: [f64; 3]) -> bool {
     if around.len() < LEAST_AROUND || around.len() > MOST_AROUND {
         return false;
     }
-    let Some(axis) = principal_axis(&around) else { return false };
     let at = Vec3::new(p[0], p[1], p[2]);
-    let off_line = |q: &Vec3| {
+    let off_line = |axis: &Vec3, q: &Vec3| {
         let d = q - at;
-        (d - axis * d.dot(&axis)).norm()
+        (d - axis * d.dot(axis)).norm()
     };
-    let (lo, hi) = around.iter().map(|q| (q - at).dot(&axis)).fold((0.0f64, 0.0f64), |(l, h), t| (l.min(t), h.max(t)));
+    // The line through p: first along what lies within half the distance
+    // (a stray point farther off does not tilt it), then along what lies
+    // within THIN_M of that.
+    let close: Vec<Vec3> = around.iter().filter(|q| (*q - at).norm() <= ISOLATED_M / 2.0).copied().collect();
+    let Some(first) = principal_axis(&close) else { return false };
+    let on_first: Vec<Vec3> = around.iter().filter(|q| off_line(&first, q) <= THIN_M).copied().collect();
+    let Some(axis) = principal_axis(&on_first) else { return false };
+    let on_line: Vec<&Vec3> = around.iter().filter(|q| off_line(&axis, q) <= THIN_M).collect();
+    let (lo, hi) =
+        on_line.iter().map(|q| (*q - at).dot(&axis)).fold((0.0f64, 0.0f64), |(l, h), t| (l.min(t), h.max(t)));
     let steep = axis.z.abs().asin().to_degrees();
-    // At a run's end, or a gap in it, the points lie to one side.
-    steep <= STEEPEST_DEG && hi - lo >= ISOLATED_M / 2.0 && around.iter().all(|q| off_line(q) <= THIN_M)
+    // At a run's end, or a gap in it, the points lie to one side; a stray
+    // point or two (dust, a bird, a mixed pixel) may lie off it.
+    let off = around.len() - on_line.len();
+    steep <= STEEPEST_DEG
+        && hi - lo >= ISOLATED_M / 2.0
+        && on_line.len() >= LEAST_AROUND
+        && off as f64 <= MOST_OFF_SHARE * around.len() as f64
 }
 
 /// The points' covariance (m²).
@@ -486,6 +533,11 @@ mod tests {
                 }
                 let sag = 1.0 * (1.0 - (x / 25.0).powi(2));
                 put([x + noise(), 10.0 + noise(), 12.0 - sag + noise()], false);
+            }
+            // Stray points beside it (dust, a bird, a mixed pixel).
+            for x in [-12.0f64, 3.0, 18.0] {
+                let sag = 1.0 * (1.0 - (x / 25.0).powi(2));
+                put([x, 10.6, 12.0 - sag + 0.3], false);
             }
         }
         (pts, ground)
