@@ -479,7 +479,9 @@ keep = 3                  # runs' outputs each stage keeps in .liftplan/cache (t
 # An overhead power line (scans show thin wires poorly, and never their voltage):
 # every part of the crane, its rope and its load is kept approach_m off its
 # conductor (leave it out: OSHA 1926.1408 Table A's for the voltage, 3.05 m up
-# to 50 kV). Give each conductor, or the outermost on each side. Uncomment and edit.
+# to 50 kV). Give each conductor, or the outermost on each side. Where the scans
+# caught a line that none of these runs along, the plan names it (NOT A GIVEN
+# POWER LINE) and its cover asks what it is first. Uncomment and edit.
 # [[power_line]]
 # name = "11 kV feeder"
 # points_m = [[-30.0, 40.0, 9.0], [45.0, 38.0, 9.5]]   # where it is held (pole tops), in order, m
