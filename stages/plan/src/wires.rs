@@ -169,9 +169,10 @@ pub fn find(points: &[[f64; 3]], ground: &[bool], within: &[([f64; 2], f64)], gi
         points.iter().zip(ground).filter(|(p, g)| !**g && inside(p)).map(|(p, _)| *p).collect();
     // The points by cells of half ISOLATED_M. A cell whose points lie
     // farther from their own best line than THIN_M, as a root mean square,
-    // lie farther from any line: none of its points is line-like (each has
-    // the whole cell within ISOLATED_M). Most of a site's points (surfaces)
-    // are passed by so, a cell at a time, and so are cells of fewer than
+    // lie farther from any line, and each of its points has the whole cell
+    // within ISOLATED_M: none is looked at (a wire's cell holding a stray
+    // point is lost, a gap of half a metre its run bridges). Most of a
+    // site's points (surfaces) are passed by so, a cell at a time, and so are cells of fewer than
     // LEAST_IN_CELL (stray points, leaves), which would each cost a search,
     // and cells more than MOST_CELLS_OFF_LINE of whose 26 neighbours hold
     // points though the cell's own line does not cross them (a sparse
@@ -233,7 +234,8 @@ pub fn find(points: &[[f64; 3]], ground: &[bool], within: &[([f64; 2], f64)], gi
         .collect();
     let near: Vec<[f64; 3]> = standing.iter().filter(|p| round.contains(&Grid::key(p, ISOLATED_M))).copied().collect();
     let grid = Grid::new(&near, ISOLATED_M);
-    let thin: Vec<usize> = candidates.into_iter().filter(|&k| line_like_around(&near, &grid, standing[k])).collect();
+    let thin: Vec<usize> =
+        candidates.into_par_iter().filter(|&k| line_like_around(&near, &grid, standing[k])).collect();
     let mut runs = link(&standing, &thin);
     runs.sort_by_key(|run| std::cmp::Reverse(run.len()));
     runs.into_iter()
