@@ -1004,6 +1004,11 @@ fn load_comes_near(steps_csv: &str, xy: [f64; 2], half_m: f64, top_m: f64) -> Op
     None
 }
 
+/// The hook block's mass (t) of a built-in crane.
+fn builtin_hook_block_t(name: &str) -> f64 {
+    liftplan_core::crane::builtin(name).unwrap().hook.mass_kg / 1000.0
+}
+
 /// Writes `toml` as the demo project's file in `dir` and runs the project
 /// to its PDF: the text of the cover and of the whole PDF, each on one line.
 fn planned_with(dir: &std::path::Path, toml: &str) -> (String, String) {
@@ -1211,6 +1216,16 @@ fn the_tower_crane_demo_runs_and_its_pdf_names_a_tower_cranes_parts() {
     for unsaid in ["outrigger", "carrier", "superstructure", "boom", "luff"] {
         assert!(!text.to_lowercase().contains(unsaid), "{unsaid:?} in a tower crane's PDF:\n{text}");
     }
+    // The wind is not worked out for a tower crane, and the cover says so,
+    // with what its manual's rule needs: the vessel's 8 x 3 m side on its
+    // 12 t, 0.5 t of slings and the hook block.
+    let cover = cover_text(&doc);
+    let hook_t = 12.5 + builtin_hook_block_t("tower-hh-60");
+    assert!(
+        cover.contains(&format!("Wind NOT WORKED OUT for a tower crane: its manual's in-service wind rules govern, for the crane and for a load that catches much wind for its mass; this load's largest side, 8.00 x 3.00 m (24.0 m²), on {hook_t:.2} t of hook load: CHECK the wind speed it may be lifted in; the plan keeps its clearance with the load hanging plumb")),
+        "{cover}"
+    );
+    assert!(cover.contains("the wind speed the load may be lifted in (the tower crane's manual: Wind)"), "{cover}");
 
     // The all-terrain crane on the tower crane's chart of one column: the
     // chart does not say which boom it is for, so the cover asks.

@@ -308,7 +308,9 @@ fn checks_before_signing(
     if sm.counterweight_disagrees_kg.is_some() {
         v.push("the counterweight (the lift's is not its chart configuration's)".to_string());
     }
-    if !task.crane.model.is_tower() {
+    if task.crane.model.is_tower() {
+        v.push("the wind speed the load may be lifted in (the tower crane's manual: Wind)".to_string());
+    } else {
         if let Some(swing) = wind.as_ref().ok().and_then(|(w, _)| gust_swing_past_clearance_m(task, plan, w)) {
             v.push(format!(
                 "the load's swing in the wind (a sudden gust at the permissible speed can swing it {swing:.2} m, more than the {:.2} m clearance the plan keeps)",
@@ -763,13 +765,31 @@ pub fn document(
             ),
         ));
     }
-    if !task.crane.model.is_tower() {
+    // The wind: a limit the crew works to, as the chart's capacity is: next
+    // to the utilisation, ahead of the clearances and the rigging's figures,
+    // where rows that do not fit on the cover run on to the next page.
+    let after_critical = rows.iter().position(|(k, _)| *k == "Critical lift").map_or(rows.len(), |i| i + 1);
+    if task.crane.model.is_tower() {
+        // Not worked out (a mobile crane's chart rule), but what the
+        // manual's rule needs is said.
+        let s = task.load.size_m;
+        let side = [s[0].max(s[1]), s[2]];
+        rows.insert(
+            after_critical,
+            (
+                "Wind",
+                format!(
+                    "NOT WORKED OUT for a tower crane: its manual's in-service wind rules govern, for the crane and for a load that catches much wind for its mass; this load's largest side, {:.2} x {:.2} m ({:.1} m²), on {:.2} t of hook load: CHECK the wind speed it may be lifted in; the plan keeps its clearance with the load hanging plumb",
+                    side[0],
+                    side[1],
+                    side[0] * side[1],
+                    task.least_hanging_kg() / 1000.0
+                ),
+            ),
+        );
+    } else {
         // With the height the boom head rises to, for the mean wind at
-        // 10 m a forecast gives, and how far the wind pushes the load. A
-        // limit the crew works to, as the chart's capacity is: next to the
-        // utilisation, ahead of the clearances and the rigging's figures,
-        // where rows that do not fit on the cover run on to the next page.
-        let after_critical = rows.iter().position(|(k, _)| *k == "Critical lift").map_or(rows.len(), |i| i + 1);
+        // 10 m a forecast gives, and how far the wind pushes the load.
         rows.insert(
             after_critical,
             (
