@@ -421,6 +421,8 @@ support_m = 0.05          # obstacles this close under the load at pick/set are 
 validator_sample_m = 0.05 # validator: largest crane-point movement between evenly spaced samples, m (finer where needed)
 load_cutout_m = 0.1       # scan points this close to the load at pick (0.3 m above it: slings) are taken for the load and not checked, m
 model_off_scans = "refuse" # refuse | warn: a plant model that lies on the scans only when moved
+found_lines_approach_m = 0.0 # keep this far off each run of line-like scan points near a lift (a line no
+                          # [[power_line]] gives), as off a power line of unknown voltage, m; 0: name them only
 
 [plan.ga]                 # Cai 2016, Table 4.10
 population = 100

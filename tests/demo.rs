@@ -1389,4 +1389,21 @@ fn a_wire_in_the_scans_that_no_power_line_gives_is_asked_about() {
     let text = doc.extract_text(&pages).unwrap().replace('\n', " ");
     assert!(text.contains("NOT A GIVEN POWER LINE: 40 m of line-like scan points"), "{text}");
     assert!(text.contains("CHECK WHAT IT IS (an overhead conductor, a guy wire, a cable)"), "{text}");
+    assert!(text.contains("or set [plan] found_lines_approach_m to keep off every such run"), "{text}");
+    // Kept off as a line of unknown voltage where the project asks: planned
+    // and validated round it, and said so.
+    let toml_path = dir.join("liftplan.toml");
+    let project = std::fs::read_to_string(&toml_path).unwrap();
+    assert!(!project.contains("[plan]"), "{project}");
+    std::fs::write(&toml_path, format!("{project}\n[plan]\nfound_lines_approach_m = 6.1\n")).unwrap();
+    let o = crate::util::ok(&["run", dir.to_str().unwrap()]);
+    let said = format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
+    assert!(
+        said.contains("the plan keeps every part of the crane, its rope and its load 6.10 m off it, as off a power line of unknown voltage ([plan] found_lines_approach_m)"),
+        "{said}"
+    );
+    let plan: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join("out").join("plan.json")).unwrap()).unwrap();
+    assert_eq!(plan["lifts"][0]["summary"]["line_like_kept_off_m"], 6.1, "{plan}");
+    assert_eq!(plan["lifts"][0]["validator"]["ok"], true, "{plan}");
 }

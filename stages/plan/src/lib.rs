@@ -94,6 +94,12 @@ pub struct Settings {
     /// What a plant model that lies on the scans only when moved does to
     /// the plan ([`validate::model_offset_to_scans`]).
     pub model_off_scans: ModelOffScans,
+    /// How far every part of the crane, its rope and its load is kept off
+    /// each run of line-like scan points found near a lift ([`wires`]), as
+    /// off a power line of unknown voltage (m); 0: the runs are named and
+    /// asked about, and kept off by the lift's clearance only, as every scan
+    /// point is.
+    pub found_lines_approach_m: f64,
 }
 
 /// `[plan] model_off_scans`: a plant model placed off the scans puts its
@@ -122,6 +128,7 @@ impl Default for Settings {
             validator_sample_m: 0.05,
             load_cutout_m: LOAD_CUTOUT_GROW_M,
             model_off_scans: ModelOffScans::Refuse,
+            found_lines_approach_m: 0.0,
         }
     }
 }
@@ -143,6 +150,13 @@ impl Settings {
         }
         if !ok(self.load_cutout_m, 0.0, 1.0) {
             return Err("[plan] load_cutout_m must be between 0 and 1 m".into());
+        }
+        if !ok(self.found_lines_approach_m, 0.0, wires::MOST_APPROACH_M) {
+            return Err(format!(
+                "[plan] found_lines_approach_m must be between 0 (off) and {} m, found {}",
+                wires::MOST_APPROACH_M,
+                self.found_lines_approach_m
+            ));
         }
         Ok(())
     }
@@ -1258,6 +1272,16 @@ pub fn run(
         world.others.extend(liftplan_core::obstacle::boxes_during(obstacles, &task.id));
         let lines = power_line_boxes(power_lines, task, s, map.spec.cell)?;
         world.others.extend(lines);
+        // The runs of line-like points near it, kept off as lines of unknown
+        // voltage where the project asks.
+        let (crane_at, reach_m) = working_areas[k];
+        let near_runs: Vec<wires::LineLike> =
+            line_like.iter().filter(|l| l.plan_distance_m(crane_at) <= reach_m).cloned().collect();
+        if s.found_lines_approach_m > 0.0 {
+            let found: Vec<PowerLine> =
+                near_runs.iter().enumerate().map(|(n, l)| l.as_power_line(n + 1, s.found_lines_approach_m)).collect();
+            world.others.extend(power_line_boxes(&found, task, s, map.spec.cell)?);
+        }
         let with_others = (!world.others.is_empty()).then(|| map.with_boxes(&world.others));
         let site = Site { map: with_others.as_ref().unwrap_or(&map), world: &world, charts: Some(&charts) };
         let above_m = cutout_above_m(s.load_cutout_m);
@@ -1304,8 +1328,8 @@ pub fn run(
             .filter(|(l, _)| l.during(&task.id))
             .map(|(_, said)| said.clone())
             .collect();
-        let (crane_at, reach_m) = working_areas[k];
-        plan.summary.line_like = line_like.iter().filter(|l| l.plan_distance_m(crane_at) <= reach_m).cloned().collect();
+        plan.summary.line_like = near_runs;
+        plan.summary.line_like_kept_off_m = s.found_lines_approach_m;
         plan.summary.load_as_scanned = as_scanned;
         plan.summary.against_model = against_model[k].clone();
         plan.summary.passes_left_out = model_copy::passes_left_out(task, &plan.moves, &left_out, &loads, &world);

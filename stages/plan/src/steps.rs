@@ -321,6 +321,10 @@ pub struct Summary {
     /// of, to be checked first.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub line_like: Vec<crate::wires::LineLike>,
+    /// How far the plan keeps off them (m, `[plan] found_lines_approach_m`);
+    /// 0: the lift's clearance only.
+    #[serde(default, skip_serializing_if = "liftplan_core::is_zero")]
+    pub line_like_kept_off_m: f64,
     /// The sling legs, where the lift gives their working load limit
     /// ([`liftplan_core::slings::check`]).
     #[serde(default)]
@@ -470,9 +474,19 @@ impl Summary {
     pub fn line_like_said(&self) -> Option<String> {
         (!self.line_like.is_empty()).then(|| {
             format!(
-                "NOT A GIVEN POWER LINE: {}, near the crane, where no power line given runs: CHECK WHAT {} (an overhead conductor, a guy wire, a cable); the plan keeps the lift's clearance from those points, as from every scan point, not a power line's approach distance: give a line as a [[power_line]] for it to be kept off",
+                "NOT A GIVEN POWER LINE: {}, near the crane, where no power line given runs: CHECK WHAT {} (an overhead conductor, a guy wire, a cable); {}",
                 self.line_like.iter().map(crate::wires::LineLike::said).collect::<Vec<_>>().join("; "),
-                if self.line_like.len() == 1 { "IT IS" } else { "EACH IS" }
+                if self.line_like.len() == 1 { "IT IS" } else { "EACH IS" },
+                if self.line_like_kept_off_m > 0.0 {
+                    format!(
+                        "the plan keeps every part of the crane, its rope and its load {:.2} m off {}, as off a power line of unknown voltage ([plan] found_lines_approach_m), where the scans saw {} (from its ends' chord down to its lowest point, not beyond its ends): give a line as a [[power_line]] for its own approach distance, sag and swing",
+                        self.line_like_kept_off_m,
+                        if self.line_like.len() == 1 { "it" } else { "each" },
+                        if self.line_like.len() == 1 { "it" } else { "them" }
+                    )
+                } else {
+                    "the plan keeps the lift's clearance from those points, as from every scan point, not a power line's approach distance: give a line as a [[power_line]] for it to be kept off, or set [plan] found_lines_approach_m to keep off every such run".to_string()
+                }
             )
         })
     }
@@ -653,6 +667,7 @@ pub fn summary(task: &LiftTask, steps: &[Step], verdict: &Verdict) -> Summary {
         clearance_m: task.clearance_m,
         power_lines: Vec::new(),
         line_like: Vec::new(),
+        line_like_kept_off_m: 0.0,
         slings: None,
         reeving: None,
         highest_pad: None,

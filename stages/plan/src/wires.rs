@@ -77,6 +77,9 @@ const LEAST_POINTS: usize = 15;
 /// surface (and a point beside a dense surface is passed by without
 /// gathering all of it).
 const MOST_AROUND: usize = 400;
+/// The most `[plan] found_lines_approach_m` may be (m): OSHA 1926.1409's
+/// 50 feet for lines over 350 kV, with room.
+pub const MOST_APPROACH_M: f64 = 30.0;
 /// How far from a given power line (m, beyond its sag) a run lies along it.
 const ALONG_GIVEN_M: f64 = 3.0;
 /// How far from its middle (m, in plan) a given line not along a run is
@@ -126,6 +129,26 @@ impl LineLike {
             self.highest_z_m,
             self.above_ground_m
         )
+    }
+
+    /// The run as a power line of unknown voltage kept `approach_m` off
+    /// (`[plan] found_lines_approach_m`), named by its number `n` near the
+    /// lift: held at its ends, sagging from their chord (least) down to its
+    /// lowest point (most), hanging plumb. Where the scans did not see it,
+    /// beyond its ends, it is not.
+    pub fn as_power_line(&self, n: usize, approach_m: f64) -> PowerLine {
+        let chord_mid_z = (self.from_m[2] + self.to_m[2]) / 2.0;
+        PowerLine {
+            name: format!("line-like run {n} found in the scans"),
+            points_m: vec![self.from_m, self.to_m],
+            sag_m: (chord_mid_z - self.lowest_z_m).max(0.0),
+            least_sag_m: Some(0.0),
+            swing_deg: None,
+            // Unknown: the approach distance is the project's.
+            voltage_kv: f64::NAN,
+            approach_m: Some(approach_m),
+            lifts: Vec::new(),
+        }
     }
 
     /// A box round the run's straight line between its ends, `half_m`
@@ -590,6 +613,18 @@ mod tests {
             found[0].said()
         );
         assert_eq!(find(&pts, &ground, &everywhere, &[]).first().and_then(|l| l.near_given.clone()), None);
+        // Kept off as a line of unknown voltage: held at the run's ends,
+        // sagging from their chord to its lowest point; its boxes grown by
+        // the approach distance hold what is that far from where the scans
+        // saw it, and not what is farther.
+        let line = w.as_power_line(1, 6.1);
+        assert_eq!((line.approach(), line.points_m.clone()), (Some((6.1, "approach_m")), vec![w.from_m, w.to_m]));
+        assert!((line.sag_m - ((w.from_m[2] + w.to_m[2]) / 2.0 - w.lowest_z_m)).abs() < 1e-12 && line.sag_m > 0.9);
+        let boxes = line.boxes(6.1);
+        let inside = |p: [f64; 3]| boxes.iter().any(|b| b.contains(&liftplan_core::frame::Point3::from(p)));
+        let lowest = w.lowest_z_m;
+        assert!(inside([0.0, 10.0 + 6.0, lowest]) && inside([0.0, 10.0, lowest - 6.0]) && inside([-20.0, 10.0, 12.0]));
+        assert!(!inside([0.0, 10.0 + 6.5, lowest]) && !inside([0.0, 10.0, 12.0 + 6.5]));
         // Points not finite, or far off, change nothing and break nothing.
         let (mut pts, mut ground) = site(true);
         for p in [[f64::NAN, 0.0, 12.0], [0.0, f64::INFINITY, 12.0], [1e300, -1e300, 12.0], [0.0, 10.0, f64::NAN]] {
