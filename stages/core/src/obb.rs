@@ -335,13 +335,16 @@ fn segment_distance_2d(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> f6
     if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0)) && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0)) {
         return 0.0;
     }
-    let to_segment = |p: [f64; 2], s: [f64; 2], e: [f64; 2]| {
-        let (vx, vy) = (e[0] - s[0], e[1] - s[1]);
-        let len2 = vx * vx + vy * vy;
-        let t = if len2 > 0.0 { (((p[0] - s[0]) * vx + (p[1] - s[1]) * vy) / len2).clamp(0.0, 1.0) } else { 0.0 };
-        (p[0] - s[0] - t * vx).hypot(p[1] - s[1] - t * vy)
-    };
+    let to_segment = point_segment_distance_2d;
     to_segment(a, c, d).min(to_segment(b, c, d)).min(to_segment(c, a, b)).min(to_segment(d, a, b))
+}
+
+/// The least distance in the plane from `p` to the segment `s`-`e`.
+pub fn point_segment_distance_2d(p: [f64; 2], s: [f64; 2], e: [f64; 2]) -> f64 {
+    let (vx, vy) = (e[0] - s[0], e[1] - s[1]);
+    let len2 = vx * vx + vy * vy;
+    let t = if len2 > 0.0 { (((p[0] - s[0]) * vx + (p[1] - s[1]) * vy) / len2).clamp(0.0, 1.0) } else { 0.0 };
+    (p[0] - s[0] - t * vx).hypot(p[1] - s[1] - t * vy)
 }
 
 /// Convex hull (Andrew's monotone chain), counter-clockwise, without repeats.

@@ -34,6 +34,7 @@
 //! be reported.
 
 use liftplan_core::frame::{Mat3, Vec3};
+use liftplan_core::obb::point_segment_distance_2d;
 use liftplan_core::power_line::PowerLine;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -173,7 +174,7 @@ impl LineLike {
     /// The least plan distance (m) from `at` to the run's straight line
     /// between its ends.
     pub fn plan_distance_m(&self, at: [f64; 2]) -> f64 {
-        segment_distance(at, [self.from_m[0], self.from_m[1]], [self.to_m[0], self.to_m[1]])
+        point_segment_distance_2d(at, [self.from_m[0], self.from_m[1]], [self.to_m[0], self.to_m[1]])
     }
 }
 
@@ -208,12 +209,9 @@ pub fn find(points: &[[f64; 3]], ground: &[bool], within: &[([f64; 2], f64)], gi
     let occupied: HashSet<[i64; 3]> = cells.iter().map(|c| keys[c[0]]).collect();
     // A cell a line crosses has its centre within half its diagonal of it.
     let crossed_within_m = half * 3f64.sqrt() / 2.0 + THIN_M;
-    let held_off_line = |[x, y, z]: [i64; 3], mean: Vec3, axis: Vec3| {
-        (-1..=1)
-            .flat_map(|dx| (-1..=1).flat_map(move |dy| (-1..=1).map(move |dz| [dx, dy, dz])))
-            .filter(|d| *d != [0, 0, 0])
-            .map(|[dx, dy, dz]| [x.saturating_add(dx), y.saturating_add(dy), z.saturating_add(dz)])
-            .filter(|c| occupied.contains(c))
+    let held_off_line = |key: [i64; 3], mean: Vec3, axis: Vec3| {
+        block_round(key)
+            .filter(|c| *c != key && occupied.contains(c))
             .filter(|c| {
                 let centre = Vec3::new(c[0] as f64 + 0.5, c[1] as f64 + 0.5, c[2] as f64 + 0.5) * half;
                 let d = centre - mean;
@@ -226,11 +224,9 @@ pub fn find(points: &[[f64; 3]], ground: &[bool], within: &[([f64; 2], f64)], gi
         .filter(|cell| cell.len() >= LEAST_IN_CELL)
         .filter(|cell| {
             let pts: Vec<Vec3> = cell.iter().map(|&k| Vec3::from(standing[k])).collect();
-            if spread_off_line_m(&pts) > THIN_M {
-                return false;
-            }
-            let mean = pts.iter().fold(Vec3::zeros(), |a, p| a + p) / pts.len() as f64;
-            principal_axis(&pts).is_some_and(|axis| held_off_line(keys[cell[0]], mean, axis) <= MOST_CELLS_OFF_LINE)
+            best_line(&pts).is_some_and(|l| {
+                l.rms_off_m <= THIN_M && held_off_line(keys[cell[0]], l.mean, l.axis) <= MOST_CELLS_OFF_LINE
+            })
         })
         .flat_map_iter(|cell| {
             cell.iter().copied().filter(|&k| {
@@ -244,17 +240,8 @@ pub fn find(points: &[[f64; 3]], ground: &[bool], within: &[([f64; 2], f64)], gi
     }
     candidates.sort_unstable();
     // What lies round them, by cells of ISOLATED_M.
-    let round: HashSet<[i64; 3]> = candidates
-        .iter()
-        .flat_map(|&k| {
-            let [x, y, z] = Grid::key(&standing[k], ISOLATED_M);
-            (-1..=1).flat_map(move |dx| {
-                (-1..=1).flat_map(move |dy| {
-                    (-1..=1).map(move |dz| [x.saturating_add(dx), y.saturating_add(dy), z.saturating_add(dz)])
-                })
-            })
-        })
-        .collect();
+    let round: HashSet<[i64; 3]> =
+        candidates.iter().flat_map(|&k| block_round(Grid::key(&standing[k], ISOLATED_M))).collect();
     let near: Vec<[f64; 3]> = standing.iter().filter(|p| round.contains(&Grid::key(p, ISOLATED_M))).copied().collect();
     let grid = Grid::new(&near, ISOLATED_M);
     let thin: Vec<usize> =
@@ -276,7 +263,7 @@ pub fn find(points: &[[f64; 3]], ground: &[bool], within: &[([f64; 2], f64)], gi
                     let m = l
                         .points_m
                         .windows(2)
-                        .map(|s| segment_distance(mid, [s[0][0], s[0][1]], [s[1][0], s[1][1]]))
+                        .map(|s| point_segment_distance_2d(mid, [s[0][0], s[0][1]], [s[1][0], s[1][1]]))
                         .fold(f64::INFINITY, f64::min);
                     (m <= NEAR_GIVEN_M).then(|| (l.name.clone(), m))
                 })
@@ -324,31 +311,50 @@ fn line_like_around(pts: &[[f64; 3]], grid: &Grid, p: [f64; 3]) -> bool {
         && off as f64 <= MOST_OFF_SHARE * around.len() as f64
 }
 
-/// The points' covariance (m²).
-fn covariance(pts: &[Vec3]) -> Mat3 {
+/// The points' mean (m) and covariance (m²).
+fn mean_and_covariance(pts: &[Vec3]) -> (Vec3, Mat3) {
     let n = pts.len().max(1) as f64;
     let mean = pts.iter().fold(Vec3::zeros(), |a, p| a + p) / n;
-    pts.iter().fold(Mat3::zeros(), |a, p| {
+    let cov = pts.iter().fold(Mat3::zeros(), |a, p| {
         let d = p - mean;
         a + d * d.transpose()
-    }) / n
+    }) / n;
+    (mean, cov)
 }
 
-/// The root mean square distance (m) of the points from their best line
-/// (through their mean, along their principal axis): no line has them
-/// nearer.
-fn spread_off_line_m(pts: &[Vec3]) -> f64 {
-    let e = covariance(pts).symmetric_eigenvalues();
-    let largest = e.max();
-    (e.sum() - largest).max(0.0).sqrt()
+/// The straight line points lie nearest to, as a least-squares fit: through
+/// their mean, along the direction they spread most along.
+struct BestLine {
+    mean: Vec3,
+    /// Unit.
+    axis: Vec3,
+    /// The points' root mean square distance from it (m): no line has them
+    /// nearer.
+    rms_off_m: f64,
+}
+
+/// The points' [`BestLine`], where they spread.
+fn best_line(pts: &[Vec3]) -> Option<BestLine> {
+    let (mean, cov) = mean_and_covariance(pts);
+    let eig = cov.symmetric_eigen();
+    let k = (0..3).max_by(|&a, &b| eig.eigenvalues[a].total_cmp(&eig.eigenvalues[b]))?;
+    let axis: Vec3 = eig.eigenvectors.column(k).into();
+    let rms_off_m = (eig.eigenvalues.sum() - eig.eigenvalues[k]).max(0.0).sqrt();
+    (eig.eigenvalues[k] > 0.0 && axis.norm() > 0.0).then(|| BestLine { mean, axis: axis.normalize(), rms_off_m })
 }
 
 /// The direction the points spread most along (unit), where they spread.
 fn principal_axis(pts: &[Vec3]) -> Option<Vec3> {
-    let eig = covariance(pts).symmetric_eigen();
-    let k = (0..3).max_by(|&a, &b| eig.eigenvalues[a].total_cmp(&eig.eigenvalues[b]))?;
-    let axis: Vec3 = eig.eigenvectors.column(k).into();
-    (eig.eigenvalues[k] > 0.0 && axis.norm() > 0.0).then(|| axis.normalize())
+    best_line(pts).map(|l| l.axis)
+}
+
+/// The cells of the block of 3 x 3 x 3 round `key`, its own among them.
+fn block_round([x, y, z]: [i64; 3]) -> impl Iterator<Item = [i64; 3]> {
+    (-1..=1i64).flat_map(move |dx| {
+        (-1..=1i64).flat_map(move |dy| {
+            (-1..=1i64).map(move |dz| [x.saturating_add(dx), y.saturating_add(dy), z.saturating_add(dz)])
+        })
+    })
 }
 
 /// The runs: line-like points (`members`, indices into `pts`) within
@@ -424,14 +430,6 @@ fn along(run: &LineLike, line: &PowerLine) -> bool {
 
 fn dist2(a: &[f64; 3], b: &[f64; 3]) -> f64 {
     (a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)
-}
-
-/// The plan distance from `p` to the segment `a`-`b`.
-fn segment_distance(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
-    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
-    let len2 = dx * dx + dy * dy;
-    let t = if len2 > 0.0 { (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / len2).clamp(0.0, 1.0) } else { 0.0 };
-    (p[0] - a[0] - t * dx).hypot(p[1] - a[1] - t * dy)
 }
 
 /// Points by cubic cells, for their neighbours.
