@@ -796,18 +796,7 @@ fn the_hook_hangs_no_lower_than_the_falls_let_it() {
     let (plan, _) = plan_lift(&t, &site, &s, 3).unwrap();
     assert!(plan.validator.ok);
     assert!(plan.moves.iter().all(|mv| mv.from.hoist_m.max(mv.to.hoist_m) <= reach_m + 1e-9));
-    let low = Config { hoist_m: reach_m + 1.0, ..t.pick };
-    let v = validate(
-        &t,
-        None,
-        &world,
-        &rules(),
-        &[Move { joint: Joint::Hoist, from: Config { hoist_m: reach_m, ..t.pick }, to: low }],
-        &[false],
-    );
-    assert!(v.problems.iter().any(|p| p.contains("outside the crane's joint limits")), "{:?}", v.problems);
-    let cs = liftplan_cspace::CSpace::build(&liftplan_cspace::Problem { task: &t, chart: None, map: &m }, &s.cspace);
-    assert!(liftplan_cspace::Checker::new(&cs, &m, &t, vec![], s.cspace.sample_m).config(&low).is_err());
+    hook_refused_past(&t, None, &world, &m, &s, reach_m);
     // The same move on the rope's full travel: within the limits.
     let v = validate(
         &plain,
@@ -886,18 +875,32 @@ fn the_hoist_rope_below_the_head_is_part_of_the_gross_load() {
         )),
         "{line}"
     );
-    let low = Config { hoist_m: longest + 1.0, ..t.pick };
+    hook_refused_past(&t, Some(table.config("none").unwrap()), &world, &m, &s, longest);
+}
+
+/// The validator (reading `chart` where given) and the C-space's checker
+/// refuse the hook lowered from `longest_m` of rope to a metre past it, at
+/// the pick: outside the crane's joint limits.
+fn hook_refused_past(
+    t: &LiftTask,
+    chart: Option<&liftplan_core::capacity::ChartConfig>,
+    world: &World,
+    m: &Mdm,
+    s: &Settings,
+    longest_m: f64,
+) {
+    let low = Config { hoist_m: longest_m + 1.0, ..t.pick };
     let v = validate(
-        &t,
-        Some(table.config("none").unwrap()),
-        &world,
+        t,
+        chart,
+        world,
         &rules(),
-        &[Move { joint: Joint::Hoist, from: Config { hoist_m: longest, ..t.pick }, to: low }],
+        &[Move { joint: Joint::Hoist, from: Config { hoist_m: longest_m, ..t.pick }, to: low }],
         &[false],
     );
     assert!(v.problems.iter().any(|p| p.contains("outside the crane's joint limits")), "{:?}", v.problems);
-    let cs = liftplan_cspace::CSpace::build(&liftplan_cspace::Problem { task: &t, chart: None, map: &m }, &s.cspace);
-    assert!(liftplan_cspace::Checker::new(&cs, &m, &t, vec![], s.cspace.sample_m).config(&low).is_err());
+    let cs = liftplan_cspace::CSpace::build(&liftplan_cspace::Problem { task: t, chart: None, map: m }, &s.cspace);
+    assert!(liftplan_cspace::Checker::new(&cs, m, t, vec![], s.cspace.sample_m).config(&low).is_err());
 }
 
 /// A chart configuration "none" for the test crane's 40 m boom: its rows
