@@ -62,6 +62,13 @@ pub fn gust_factor(height_m: f64) -> f64 {
     (height_m.max(10.0) / 10.0).powf(0.14) + 0.4
 }
 
+/// A load box's largest side facing the wind, its length and height (m),
+/// from its size (length, width, height): its area where the lift gives
+/// none.
+pub fn largest_side_m(size_m: [f64; 3]) -> [f64; 2] {
+    [size_m[0].max(size_m[1]), size_m[2]]
+}
+
 /// A lift's `wind`: what the chart allows and what the load catches.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -150,7 +157,7 @@ impl PermissibleWind {
         size_m: [f64; 3],
         hook_load_kg: f64,
     ) -> PermissibleWind {
-        let side = [size_m[0].max(size_m[1]), size_m[2]];
+        let side = largest_side_m(size_m);
         let (area_m2, box_side_m) = match spec.area_m2 {
             Some(a) => (a, None),
             None => (side[0] * side[1], Some(side)),

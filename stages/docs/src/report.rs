@@ -772,8 +772,7 @@ pub fn document(
     if task.crane.model.is_tower() {
         // Not worked out (a mobile crane's chart rule), but what the
         // manual's rule needs is said.
-        let s = task.load.size_m;
-        let side = [s[0].max(s[1]), s[2]];
+        let side = liftplan_core::wind::largest_side_m(task.load.size_m);
         rows.insert(
             after_critical,
             (
