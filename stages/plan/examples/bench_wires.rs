@@ -1,6 +1,9 @@
 //! Times the search for line-like scan points (`wires::find`, once a run of
 //! the plan stage) on a site of walls, ground and stray points, with and
-//! without a wire strung through it, and says what it found.
+//! without a wire strung through it, and says what it found; beside it, in
+//! the same run on the same points, the validator's index of the site
+//! points (`validate::PointIndex`), which the plan stage builds anyway, as
+//! the yardstick of the ratio.
 //!
 //! `cargo run --release -p liftplan-plan --example bench_wires [N...]`
 //! (millions of points; default 1 4). Each cloud: a fifth of its points on
@@ -11,6 +14,7 @@
 //! points, is added to the second run of each size.
 
 use liftplan_core::rng::{index, seeded, uniform};
+use liftplan_plan::validate::PointIndex;
 use liftplan_plan::wires::find;
 
 fn site(millions: f64) -> (Vec<[f64; 3]>, Vec<bool>) {
@@ -36,8 +40,8 @@ fn site(millions: f64) -> (Vec<[f64; 3]>, Vec<bool>) {
 fn main() {
     let sizes: Vec<f64> = std::env::args().skip(1).filter_map(|a| a.parse().ok()).collect();
     let sizes = if sizes.is_empty() { vec![1.0, 4.0] } else { sizes };
-    println!("| points | wire | find ms | runs found |");
-    println!("|---|---|---|---|");
+    println!("| points | wire | find ms | runs found | PointIndex::new ms | find / index |");
+    println!("|---|---|---|---|---|---|");
     for m in sizes {
         let (mut pts, mut ground) = site(m);
         for wire in [false, true] {
@@ -51,7 +55,17 @@ fn main() {
             let t = std::time::Instant::now();
             let found = find(&pts, &ground, &[([0.0, 0.0], 80.0)], &[]);
             let ms = t.elapsed().as_secs_f64() * 1e3;
-            println!("| {} | {} | {ms:.0} | {} |", pts.len(), if wire { "yes" } else { "no" }, found.len());
+            let t = std::time::Instant::now();
+            let index = PointIndex::new(&pts, &ground).expect("index");
+            let index_ms = t.elapsed().as_secs_f64() * 1e3;
+            println!(
+                "| {} | {} | {ms:.0} | {} | {index_ms:.0} | {:.2} |",
+                pts.len(),
+                if wire { "yes" } else { "no" },
+                found.len(),
+                ms / index_ms
+            );
+            drop(index);
         }
     }
 }
