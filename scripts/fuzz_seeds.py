@@ -47,6 +47,9 @@ seed("crane_and_lift_toml", "lift-spreader.toml", lift[:lift.index('"#')].replac
 # ... and on a spreader frame over four corners (rigging.spreader.width_m).
 frame = rigging.replace("legs = 2", "legs = 4")[:-2] + ", spreader = { length_m = 8.0, width_m = 3.0, below_hook_m = 2.0, wll_t = 20.0, mass_t = 0.3, top_leg_wll_t = 12.0 } }"
 seed("crane_and_lift_toml", "lift-frame.toml", lift[:lift.index('"#')].replace(rigging, frame).encode())
+# ... and with its shackles' pins given (rigging.pin_axes), to reach the side loading.
+pins = rigging[:-2] + ", lift_point_wll_t = 11.0, pin_axes = [[0.0, 1.0, 0.0], [0.2, 1.0, 0.1]] }"
+seed("crane_and_lift_toml", "lift-pins.toml", lift[:lift.index('"#')].replace(rigging, pins).encode())
 # ... and with its centre of gravity known only so well in height.
 tol = "cog_tolerance_m = 0.1 }"
 assert tol in lift, "the demo's load line changed: update the height-tolerance seed"

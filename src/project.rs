@@ -509,6 +509,9 @@ keep = 3                  # runs' outputs each stage keeps in .liftplan/cache (t
 # # legs' angles and the most one carries are checked (leave leg_wll_t out: not checked);
 # # hitch = "choked" rates legs choked round the load at 0.8 of leg_wll_t; shackle_wll_t
 # # and lift_point_wll_t check the shackle and the lug at each lift point against its pull.
+# # pin_axes = [[0.0, 1.0, 0.0], [0.0, 1.0, 0.0]] gives each shackle's pin direction (its
+# # lug's hole, load frame, one per lift point): the shackles are then taken at the makers'
+# # side-loading share for how far the legs pull out of line (else taken in line).
 # # Two legs hanging plumb from a beam: add spreader = { length_m = 8.0, below_hook_m =
 # # 2.0, wll_t = 20.0, mass_t = 0.3, top_leg_wll_t = 12.0 } to rigging (its pins over the
 # # lift points, below_hook_m under the hook block; leave top_leg_wll_t out for a lifting

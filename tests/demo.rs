@@ -804,14 +804,38 @@ liftoff_m = 0.5
     // A load of little area: the chart's speed, nothing to check first; a
     // lift without wind: not worked out, to check first; a lift's chart_ms
     // that is not what the chart's sheet states: said, to check first.
-    let compact = t13.replace("wind = { cw = 1.2 }", "wind = { cw = 1.2, area_m2 = 5.0 }");
-    assert_ne!(compact, t13);
+    // (With the shackles' pins given square to the legs' plane: in line as
+    // rigged, out of line only as far as the load may turn on its legs with
+    // its centre of gravity anywhere within its tolerance.)
+    let compact = t13
+        .replace("wind = { cw = 1.2 }", "wind = { cw = 1.2, area_m2 = 5.0 }")
+        .replace("shackle_wll_t = 12.0 }", "shackle_wll_t = 12.0, pin_axes = [[0.0, 1.0, 0.0], [0.0, 1.0, 0.0]] }");
+    assert_eq!(compact.matches("pin_axes").count(), 1);
     let (cover, text) = planned_with(&dir, &compact);
     assert!(
         cover.contains("Wind at most 9.8 m/s, the chart's: ") && !cover.contains("the wind speed the load"),
         "{cover}"
     );
     assert!(text.contains("the wind (at most the chart's 9.8 m/s: cover)"), "{text}");
+    let side = &cover[cover.find("shackle's 12.00 t taken at ").unwrap_or_else(|| panic!("{cover}"))..];
+    let deg: f64 = side[side.find("pulls up to ").unwrap() + "pulls up to ".len()..side.find("° out of line").unwrap()]
+        .parse()
+        .unwrap();
+    assert!(deg > 0.0 && deg < 10.0, "{side}");
+    assert!(
+        side.contains(&format!("out of line with its shackle's pin, rigging pin_axes, {deg:.1}° of it the most the load may turn on its rigging")),
+        "{side}"
+    );
+    // Pins along the load: its legs, 47° from the vertical, pull them 47°
+    // out of line, and the shackles cannot carry their pull.
+    let along =
+        t13.replace("shackle_wll_t = 12.0 }", "shackle_wll_t = 12.0, pin_axes = [[1.0, 0.0, 0.0], [1.0, 0.0, 0.0]] }");
+    let stderr = refused_with(&dir, &along, "shackles pulled 47° out of line").replace('\n', " ");
+    assert!(
+        stderr.contains("the lift points' shackles cannot carry the load")
+            && stderr.contains("or lugs turned for their legs to pull square to the pins (rigging pin_axes)"),
+        "{stderr}"
+    );
     let calm = t13.replace("wind = { cw = 1.2 }", "");
     let (cover, text) = planned_with(&dir, &calm);
     assert!(

@@ -75,6 +75,12 @@ pub struct RiggingSpec {
     /// direction (t), as its rating for that angle gives it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub lift_point_wll_t: Option<f64>,
+    /// The direction of the shackle's pin at each lift point, in the
+    /// points' order (the axis of its lug's hole, in the load's frame; any
+    /// length): the shackles are then checked for side loading
+    /// ([`crate::slings::side_loading`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pin_axes: Option<Vec<[f64; 3]>>,
 }
 
 /// `rigging.hitch`.
@@ -128,6 +134,7 @@ impl Default for RiggingSpec {
             hitch: Hitch::Straight,
             shackle_wll_t: None,
             lift_point_wll_t: None,
+            pin_axes: None,
         }
     }
 }
@@ -538,7 +545,18 @@ impl LiftTask {
             l.rigging_height_m,
         );
         Some(match c {
-            Ok(c) => Ok(crate::slings::SlingCheck { cog_tolerance_z_m: tz, ..c }),
+            Ok(c) => Ok(crate::slings::SlingCheck {
+                cog_tolerance_z_m: tz,
+                side_loading: crate::slings::side_loading(
+                    legs,
+                    l.size_m,
+                    l.cog_m,
+                    self.cog_tolerance_m,
+                    tz,
+                    l.rigging_height_m,
+                ),
+                ..c
+            }),
             Err(e) if tz > 0.0 => Err(format!(
                 "with the load's centre of gravity up to load cog_tolerance_z_m ({tz:.2} m) higher than given, at z {:.2} m from its box's centre: {e}",
                 highest[2]
@@ -933,7 +951,12 @@ impl LiftSpec {
                     "lift '{id}': rigging gives a spreader but not the working load limit of the legs hanging from it: give rigging leg_wll_t (t, each leg's) with legs = 2 (a beam) or 4 (a frame), or their lift_points_m"
                 ));
             }
-            (None, _, _) if r.hitch != Hitch::Straight || r.shackle_wll_t.is_some() || r.lift_point_wll_t.is_some() => {
+            (None, _, _)
+                if r.hitch != Hitch::Straight
+                    || r.shackle_wll_t.is_some()
+                    || r.lift_point_wll_t.is_some()
+                    || r.pin_axes.is_some() =>
+            {
                 return Err(format!(
                     "lift '{id}': rigging gives the legs' hitch, their shackles or their lift points but not the legs' working load limit: give rigging leg_wll_t (t, each leg's, straight pull) with legs or lift_points_m to have them checked"
                 ));
@@ -1028,6 +1051,43 @@ impl LiftSpec {
                 if let Some(t) = r.lift_point_wll_t {
                     pos("rigging.lift_point_wll_t", t)?;
                 }
+                let pin_axes = match &r.pin_axes {
+                    None => None,
+                    Some(_) if r.shackle_wll_t.is_none() => {
+                        return Err(format!(
+                            "lift '{id}': rigging pin_axes gives the directions of the shackles' pins but not the shackles' working load limit: give rigging shackle_wll_t (t, in line) for the shackles to be checked for side loading"
+                        ));
+                    }
+                    Some(_) if r.hitch == Hitch::Choked => {
+                        return Err(format!(
+                            "lift '{id}': rigging pin_axes gives the directions of the shackles' pins at the lift points, but the legs are choked round the load (hitch = \"choked\"), not shackled to lugs: leave pin_axes out"
+                        ));
+                    }
+                    Some(axes) if axes.len() != lift_points_m.len() => {
+                        return Err(format!(
+                            "lift '{id}': rigging pin_axes gives {} directions for {} lift points: give one per lift point, in their order",
+                            axes.len(),
+                            lift_points_m.len()
+                        ));
+                    }
+                    Some(axes) => {
+                        let mut unit = Vec::with_capacity(axes.len());
+                        for (k, a) in axes.iter().enumerate() {
+                            // Scaled first, so that no square overflows.
+                            let scale = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+                            if !a.iter().all(|v| v.is_finite()) || scale == 0.0 {
+                                return Err(format!(
+                                    "lift '{id}': rigging pin_axes[{k}] must be a direction (three numbers, not all zero: the axis of lift point {}'s lug's hole, in the load's frame), found {a:?}",
+                                    k + 1
+                                ));
+                            }
+                            let s = a.map(|v| v / scale);
+                            let n = (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]).sqrt();
+                            unit.push(s.map(|v| v / n));
+                        }
+                        Some(unit)
+                    }
+                };
                 Some(crate::slings::Slings {
                     lift_points_m,
                     points_given,
@@ -1038,6 +1098,7 @@ impl LiftSpec {
                         lift_point_wll_kg: r.lift_point_wll_t.map(|t| t * KG_PER_TONNE),
                     },
                     spreader,
+                    pin_axes,
                 })
             }
         };
@@ -1995,6 +2056,29 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
             "{choked:?}"
         );
         assert!(!rigged("legs = 2\nleg_wll_t = 8.0\nhitch = \"straight\"").unwrap().slings.unwrap().ratings.choked);
+        // The pins' directions, of any length (a huge one too), taken as
+        // unit vectors; the check then says how far each leg pulls out of
+        // line with its shackle.
+        let pinned =
+            rigged("legs = 2\nleg_wll_t = 8.0\nshackle_wll_t = 8.5\npin_axes = [[0.0, 2.0, 0.0], [1e300, 1e300, 0.0]]")
+                .unwrap();
+        let axes = pinned.slings.as_ref().unwrap().pin_axes.clone().unwrap();
+        assert_eq!(axes[0], [0.0, 1.0, 0.0]);
+        assert!(
+            axes[1].iter().zip([1.0, 1.0, 0.0]).all(|(a, b)| (a - b * std::f64::consts::FRAC_1_SQRT_2).abs() < 1e-15)
+        );
+        let side = pinned.check_slings().unwrap().unwrap().side_loading.unwrap();
+        assert_eq!(side.out_of_line_deg[0], 0.0);
+        assert!(side.out_of_line_deg[1] > 0.0 && side.turn_deg == 0.0, "{side:?}");
+        assert!(
+            rigged("legs = 2\nleg_wll_t = 8.0\nshackle_wll_t = 8.5")
+                .unwrap()
+                .check_slings()
+                .unwrap()
+                .unwrap()
+                .side_loading
+                .is_none()
+        );
         assert!(
             toml::from_str::<RiggingSpec>("hitch = \"basket\"").is_err(),
             "a basket hitch is not checked, so not taken"
@@ -2044,6 +2128,34 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
                 "their shackles or their lift points but not the legs' working load limit",
             ),
             ("legs = 2\nleg_wll_t = 8.0\nlift_point_wll_t = -1.0", "rigging.lift_point_wll_t must be positive"),
+            (
+                "legs = 2\npin_axes = [[0.0, 1.0, 0.0], [0.0, 1.0, 0.0]]",
+                "their shackles or their lift points but not the legs' working load limit",
+            ),
+            (
+                "legs = 2\nleg_wll_t = 8.0\npin_axes = [[0.0, 1.0, 0.0], [0.0, 1.0, 0.0]]",
+                "rigging pin_axes gives the directions of the shackles' pins but not the shackles' working load limit",
+            ),
+            (
+                "legs = 2\nleg_wll_t = 8.0\nshackle_wll_t = 8.5\nhitch = \"choked\"\npin_axes = [[0.0, 1.0, 0.0], [0.0, 1.0, 0.0]]",
+                "the legs are choked round the load (hitch = \"choked\"), not shackled to lugs: leave pin_axes out",
+            ),
+            (
+                "legs = 4\nleg_wll_t = 8.0\nshackle_wll_t = 8.5\npin_axes = [[0.0, 1.0, 0.0], [0.0, 1.0, 0.0]]",
+                "rigging pin_axes gives 2 directions for 4 lift points: give one per lift point, in their order",
+            ),
+            (
+                "legs = 2\nleg_wll_t = 8.0\nshackle_wll_t = 8.5\npin_axes = [[0.0, 1.0, 0.0], [0.0, 0.0, 0.0]]",
+                "rigging pin_axes[1] must be a direction (three numbers, not all zero: the axis of lift point 2's lug's hole",
+            ),
+            (
+                "legs = 2\nleg_wll_t = 8.0\nshackle_wll_t = 8.5\npin_axes = [[0.0, 1.0, 0.0], [nan, 1.0, 0.0]]",
+                "rigging pin_axes[1] must be a direction",
+            ),
+            (
+                "legs = 2\nleg_wll_t = 8.0\nshackle_wll_t = 8.5\npin_axes = [[inf, 1.0, 0.0], [0.0, 1.0, 0.0]]",
+                "rigging pin_axes[0] must be a direction",
+            ),
         ] {
             let e = rigged(text).unwrap_err();
             assert!(e.contains(said), "{text}: {e}");

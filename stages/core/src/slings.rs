@@ -28,6 +28,16 @@
 //! so is each lift point itself (a lug, a trunnion: `lift_point_wll_t`), at
 //! its rating for the leg's direction, which the engineer gives.
 //!
+//! **Side loading.** A shackle's pin runs through its lug's hole, and the
+//! shackle turns on it: a leg pulling square to the pin pulls it in line,
+//! one pulling at an angle to that plane side-loads it, and the makers rate
+//! it for less ([`SIDE_LOADING_CHART`]). Where the lift gives each pin's
+//! direction (`rigging.pin_axes`), [`side_loading`] works out how far each
+//! leg pulls out of line, as rigged and as the load may turn on its legs
+//! with its centre of gravity anywhere within its tolerance, and the
+//! shackles are checked at the rating left; the lugs' own rating must then
+//! be for that angle out of their plane, which the words say.
+//!
 //! Two legs may hang plumb from a beam instead (`rigging.spreader`, [`Spreader`]):
 //! its pins stand over the two lift points, `below_hook_m` under the hook
 //! block, and it hangs level with the hook over the centre of gravity of
@@ -46,6 +56,7 @@
 //! top-leg angle, and the load's strength under the legs' pull are the
 //! engineer's.
 
+use crate::frame::Vec3;
 use serde::{Deserialize, Serialize};
 
 /// The steepest a sling leg may hang from the vertical (degrees): EN
@@ -59,6 +70,31 @@ pub const CHOKE_FACTOR: f64 = 0.8;
 
 /// Standard gravity (m/s²), for the legs' forces in kN.
 const G: f64 = 9.806_65;
+
+/// The shackle makers' side-loading chart for screw pin and bolt type
+/// shackles (Crosby's and Green Pin's alike): the share of a shackle's
+/// working load limit left where its leg pulls at an angle (degrees) out of
+/// line, that is out of the plane square to its pin; between the chart's
+/// angles, straight between them ([`side_loading_factor`]).
+pub const SIDE_LOADING_CHART: [(f64, f64); 3] = [(0.0, 1.0), (45.0, 0.7), (90.0, 0.5)];
+
+/// The share of a shackle's working load limit left at `out_of_line_deg`
+/// ([`SIDE_LOADING_CHART`]); the chart's last share beyond it, and for an
+/// angle that is not a number.
+pub fn side_loading_factor(out_of_line_deg: f64) -> f64 {
+    let (last_deg, last_share) = SIDE_LOADING_CHART[SIDE_LOADING_CHART.len() - 1];
+    if !(out_of_line_deg < last_deg) {
+        return last_share;
+    }
+    let deg = out_of_line_deg.max(0.0);
+    for pair in SIDE_LOADING_CHART.windows(2) {
+        let ((a, share_a), (b, share_b)) = (pair[0], pair[1]);
+        if deg <= b {
+            return share_a + (share_b - share_a) * (deg - a) / (b - a);
+        }
+    }
+    last_share
+}
 
 /// The sling legs of a lift, as its `rigging` gives them.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -75,6 +111,12 @@ pub struct Slings {
     /// The beam the legs hang plumb from, where the lift gives one.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub spreader: Option<Spreader>,
+    /// The direction of the shackle's pin at each lift point, in the
+    /// order of the points (the axis of its lug's hole; unit vectors in the
+    /// load's frame), where the lift gives them (`rigging.pin_axes`): the
+    /// shackles are then checked for side loading ([`side_loading`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pin_axes: Option<Vec<[f64; 3]>>,
 }
 
 /// What the rigging between the legs and the load is rated for, as the
@@ -217,6 +259,43 @@ pub struct SlingCheck {
     /// (`LiftTask::check_slings`).
     #[serde(default, skip_serializing_if = "crate::is_zero")]
     pub cog_tolerance_z_m: f64,
+    /// How far each leg pulls out of line with its shackle, where the lift
+    /// gives the pins' directions ([`side_loading`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub side_loading: Option<SideLoading>,
+}
+
+/// How far each leg pulls out of line with the shackle at its lift point
+/// ([`side_loading`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SideLoading {
+    /// Each leg's angle out of the plane square to its shackle's pin
+    /// (degrees, at most 90), in the order of the lift points: as the legs
+    /// are rigged, plus `turn_deg`.
+    pub out_of_line_deg: Vec<f64>,
+    /// How far the legs may turn in the load's frame where its centre of
+    /// gravity lies anywhere within its tolerance, or off the line it hangs
+    /// from (degrees, an upper bound; 0 on three or four legs meeting at
+    /// the hook, which hold the load as rigged).
+    pub turn_deg: f64,
+}
+
+impl SideLoading {
+    /// The leg (from 0) pulled farthest out of line, and by how much
+    /// (degrees): the first where several are.
+    pub fn worst(&self) -> (usize, f64) {
+        self.out_of_line_deg
+            .iter()
+            .enumerate()
+            .fold((0, 0.0), |(k, most), (i, &deg)| if deg > most { (i, deg) } else { (k, most) })
+    }
+
+    /// The share of the shackles' working load limit the check takes
+    /// ([`side_loading_factor`] at the worst leg's angle: every shackle is
+    /// taken at it, against the most on any leg).
+    pub fn factor(&self) -> f64 {
+        side_loading_factor(self.worst().1)
+    }
 }
 
 impl SlingCheck {
@@ -231,6 +310,14 @@ impl SlingCheck {
         100.0 * self.max_leg_kg / self.leg_limit_kg()
     }
 
+    /// What a lift point's shackle may carry (kg): its working load limit,
+    /// less for side loading where the pins' directions are given
+    /// ([`SideLoading::factor`]); `None` where the lift gives no shackles.
+    pub fn shackle_limit_kg(&self) -> Option<f64> {
+        let factor = self.side_loading.as_ref().map_or(1.0, SideLoading::factor);
+        self.ratings.shackle_wll_kg.map(|wll_kg| wll_kg * factor)
+    }
+
     /// The most one leg carries, against its limit and its lift point's
     /// shackle's, in words.
     fn most_on_a_leg_said(&self, how: &str) -> String {
@@ -243,22 +330,45 @@ impl SlingCheck {
         } else {
             format!("{:.2} t working load limit", self.ratings.leg_wll_kg / 1000.0)
         };
-        let shackle = self
-            .ratings
-            .shackle_wll_kg
-            .map(|s| {
+        let shackle = match (self.ratings.shackle_wll_kg, self.shackle_limit_kg(), &self.side_loading) {
+            (Some(wll_kg), Some(limit_kg), Some(side)) => {
+                let (leg, deg) = side.worst();
+                let turn = if side.turn_deg > 0.0 {
+                    format!(
+                        ", {:.1}° of it the most the load may turn on its rigging as its centre of gravity has it, load cog_m and its tolerance",
+                        side.turn_deg.min(deg)
+                    )
+                } else {
+                    String::new()
+                };
                 format!(
-                    ", and of its lift point's shackle's {:.2} t (in line): {:.0} %",
-                    s / 1000.0,
-                    100.0 * self.max_leg_kg / s
+                    ", and of its lift point's shackle's {:.2} t taken at {:.0} % for side loading, {:.2} t (leg {} pulls up to {deg:.1}° out of line with its shackle's pin, rigging pin_axes{turn}; the makers' chart for screw pin and bolt type shackles: 100 % in line, 70 % at 45°, 50 % at 90°, straight between; a round pin shackle must not be side loaded): {:.0} %",
+                    wll_kg / 1000.0,
+                    100.0 * side.factor(),
+                    limit_kg / 1000.0,
+                    leg + 1,
+                    100.0 * self.max_leg_kg / limit_kg
                 )
-            })
-            .unwrap_or_default();
-        let lug = self
-            .ratings
-            .lift_point_wll_kg
-            .map(|p| format!(", and of the lift point's own {:.2} t: {:.0} %", p / 1000.0, 100.0 * self.max_leg_kg / p))
-            .unwrap_or_default();
+            }
+            (Some(wll_kg), _, _) => format!(
+                ", and of its lift point's shackle's {:.2} t (in line): {:.0} %",
+                wll_kg / 1000.0,
+                100.0 * self.max_leg_kg / wll_kg
+            ),
+            (None, _, _) => String::new(),
+        };
+        let lug = match (self.ratings.lift_point_wll_kg, &self.side_loading) {
+            (Some(p), Some(side)) => format!(
+                ", and of the lift point's own {:.2} t, which must be its rating for a pull up to {:.1}° out of its lug's plane: {:.0} %",
+                p / 1000.0,
+                side.worst().1,
+                100.0 * self.max_leg_kg / p
+            ),
+            (Some(p), None) => {
+                format!(", and of the lift point's own {:.2} t: {:.0} %", p / 1000.0, 100.0 * self.max_leg_kg / p)
+            }
+            (None, _) => String::new(),
+        };
         format!(
             "the most on one leg (leg {}{how}) {:.2} t ({:.0} kN) of its {limit}: {:.0} %{shackle}{lug}",
             self.max_leg,
@@ -283,9 +393,13 @@ impl SlingCheck {
                 "give legs of a higher working load limit (rigging leg_wll_t), more legs or a taller rigging (height_m)"
             });
         }
-        if self.ratings.shackle_wll_kg.is_some_and(|s| over(self.max_leg_kg, s)) {
+        if self.shackle_limit_kg().is_some_and(|s| over(self.max_leg_kg, s)) {
             what.push("the lift points' shackles");
-            give.push("give shackles of a higher working load limit (rigging shackle_wll_t)");
+            give.push(if self.side_loading.is_some() {
+                "give shackles of a higher working load limit (rigging shackle_wll_t) or lugs turned for their legs to pull square to the pins (rigging pin_axes)"
+            } else {
+                "give shackles of a higher working load limit (rigging shackle_wll_t)"
+            });
         }
         if self.ratings.lift_point_wll_kg.is_some_and(|p| over(self.max_leg_kg, p)) {
             what.push("the lift points");
@@ -561,6 +675,7 @@ pub fn check(
         cog_tolerance_z_m: 0.0,
         worst_cog_m: None,
         tilt_deg: None,
+        side_loading: None,
     })
 }
 
@@ -675,16 +790,132 @@ pub fn check_within(
 /// load turn as one about it), the line through the lift points on two (the
 /// load turns about it across the line; along it, about the hook, higher),
 /// the lift point on one. So atan(√2 tol / arm), the offset's most in plan
-/// over that height. (A spreader's two legs hang the load from the line
-/// through its lift points as two legs do.)
+/// over that height.
+///
+/// A spreader hangs from the hook (by its top legs or its lug) and the load
+/// from its pins on plumb legs, which keep the load turned as the spreader
+/// is: the spreader and the load turn about the hook as one whose centre of
+/// gravity stood the legs' length higher ([`spreader_arm_m`]), and a beam's
+/// two legs also let the load turn about the line through its lift points
+/// as two legs to a hook do; a beam's bound is the sum of the two.
 pub fn tilt_bound_deg(slings: &Slings, size_m: [f64; 3], cog_m: [f64; 3], tol: f64, rigging_height_m: f64) -> f64 {
     let pts = &slings.lift_points_m;
     let lowest = pts.iter().map(|p| p[2]).fold(f64::INFINITY, f64::min);
-    let arm = match pts.len() {
-        1 | 2 => lowest - cog_m[2],
-        _ => size_m[2] / 2.0 + rigging_height_m - cog_m[2],
+    let over = |arm: f64| (std::f64::consts::SQRT_2 * tol).atan2(arm).to_degrees();
+    match (&slings.spreader, pts.len()) {
+        (Some(s), _) if s.width_m.is_none() => over(lowest - cog_m[2]) + over(spreader_arm_m(s, pts, cog_m)),
+        (Some(s), _) => over(spreader_arm_m(s, pts, cog_m)),
+        (None, 1 | 2) => over(lowest - cog_m[2]),
+        (None, _) => over(size_m[2] / 2.0 + rigging_height_m - cog_m[2]),
+    }
+}
+
+/// How far above the load's centre of gravity `cog_m` a spreader and the
+/// load hanging from it on plumb legs turn as one about the hook (m): the
+/// spreader's pins `below_hook_m` under the hook, and the lowest lift point's
+/// height above the centre of gravity (plumb legs keep the load turned as the
+/// spreader, so its weight acts on the pins as if its centre of gravity were
+/// the legs' length higher). Where this is not above zero, the two turn
+/// over together ([`check_frame`] refuses it; two legs from a beam need lift
+/// points above the centre of gravity anyway). The spreader's own weight,
+/// which steadies it, is left out: the bound is the worse for it.
+pub fn spreader_arm_m(spreader: &Spreader, lift_points_m: &[[f64; 3]], cog_m: [f64; 3]) -> f64 {
+    let lowest = lift_points_m.iter().map(|p| p[2]).fold(f64::INFINITY, f64::min);
+    spreader.below_hook_m + lowest - cog_m[2]
+}
+
+/// How far each leg pulls out of line with the shackle at its lift point
+/// (the module's doc), for the pins `slings.pin_axes` gives (`None` where it
+/// gives none), on a load of box `size_m` with its centre of gravity `cog_m`
+/// from the box's centre as given (the legs' lengths are for it), anywhere
+/// within `tol_m` of it along x and y and up to `tol_z_m` higher, hanging
+/// `rigging_height_m` below the hook block's underside.
+///
+/// As rigged, a leg runs from its lift point to the hook over the centre of
+/// gravity, or hangs plumb from a spreader's pin (the load level), and one
+/// leg alone hangs plumb over the centre of gravity. The load may then
+/// turn on its rigging, and its legs with it in its frame, by at most:
+/// - three or four legs to the hook: nothing (their lengths hold the hook
+///   where it is in the load's frame, whichever of them carry);
+/// - two legs to the hook: the turn about the line through their lift
+///   points that brings the centre of gravity under it, the hook over it,
+///   worked out at the tolerance box's corners;
+/// - one leg: the angle between its direction as rigged and the one from
+///   the centre of gravity up to its lift point, at the box's corners;
+/// - a spreader beam: that turn about the lift points' line, and the beam's
+///   and the load's turn about the hook ([`spreader_arm_m`]) added to it;
+///   a frame: that turn about the hook.
+///
+/// (An angle from a fixed direction, or about a fixed line, is largest over
+/// a box at one of its corners while under 90°, since the directions within
+/// that angle form a convex cone; a turn of a direction by one rotation and
+/// then another is at most the two angles added.) A leg's angle out of line
+/// is its angle as rigged plus that turn, at most 90°.
+pub fn side_loading(
+    slings: &Slings,
+    size_m: [f64; 3],
+    cog_m: [f64; 3],
+    tol_m: f64,
+    tol_z_m: f64,
+    rigging_height_m: f64,
+) -> Option<SideLoading> {
+    let axes = slings.pin_axes.as_ref()?;
+    let pts = &slings.lift_points_m;
+    let corners: Vec<Vec3> = (0..8)
+        .map(|k| {
+            let side = |bit: usize| if k & bit == 0 { -1.0 } else { 1.0 };
+            Vec3::new(
+                cog_m[0] + side(1) * tol_m,
+                cog_m[1] + side(2) * tol_m,
+                cog_m[2] + if k & 4 == 0 { 0.0 } else { tol_z_m },
+            )
+        })
+        .collect();
+    let v = |p: &[f64; 3]| Vec3::new(p[0], p[1], p[2]);
+    let cog = v(&cog_m);
+    let hook = Vec3::new(cog_m[0], cog_m[1], size_m[2] / 2.0 + rigging_height_m);
+    let most_over = |f: &dyn Fn(&Vec3) -> f64| corners.iter().map(f).fold(0.0f64, f64::max);
+    // The turn about the line through two lift points that brings each
+    // corner under it, from `rigged` (the hook's or the legs' side of it).
+    let about_line = |rigged: Vec3| -> f64 {
+        let (a, b) = (v(&pts[0]), v(&pts[1]));
+        let along = (b - a).try_normalize(1e-9).unwrap_or(Vec3::z());
+        let across = |w: Vec3| w - along * w.dot(&along);
+        let up = across(rigged);
+        most_over(&|c| angle_deg(&up, &-across(c - a)))
     };
-    (std::f64::consts::SQRT_2 * tol).atan2(arm).to_degrees()
+    let (rigged, turn_deg): (Vec<Vec3>, f64) = match (&slings.spreader, pts.len()) {
+        (Some(s), _) => {
+            let tilt = (std::f64::consts::SQRT_2 * tol_m)
+                .atan2(spreader_arm_m(s, pts, [cog_m[0], cog_m[1], cog_m[2] + tol_z_m]))
+                .to_degrees();
+            let roll = if s.width_m.is_none() { about_line(Vec3::z()) } else { 0.0 };
+            (vec![Vec3::z(); pts.len()], roll + tilt)
+        }
+        (None, 1) => {
+            let rigged = (v(&pts[0]) - cog).normalize();
+            (vec![rigged], most_over(&|c| angle_deg(&rigged, &(v(&pts[0]) - c))))
+        }
+        (None, 2) => {
+            let legs = pts.iter().map(|p| (hook - v(p)).normalize()).collect();
+            (legs, about_line(hook - v(&pts[0])))
+        }
+        (None, _) => (pts.iter().map(|p| (hook - v(p)).normalize()).collect(), 0.0),
+    };
+    let out_of_line_deg = rigged
+        .iter()
+        .zip(axes)
+        .map(|(leg, pin)| {
+            let as_rigged = leg.dot(&v(pin)).abs().min(1.0).asin().to_degrees();
+            (as_rigged + turn_deg).min(90.0)
+        })
+        .collect();
+    Some(SideLoading { out_of_line_deg, turn_deg })
+}
+
+/// The angle between two directions (degrees, 0 to 180).
+fn angle_deg(a: &Vec3, b: &Vec3) -> f64 {
+    a.cross(b).norm().atan2(a.dot(b)).to_degrees()
 }
 
 /// Where the square of half side `tol` about `centre` has its edges crossed
@@ -810,6 +1041,7 @@ fn check_spreader(
         cog_tolerance_z_m: 0.0,
         worst_cog_m: None,
         tilt_deg: None,
+        side_loading: None,
         legs: 2,
         max_angle_deg: 0.0,
         max_leg_kg: shares[max_leg],
@@ -879,6 +1111,16 @@ pub fn check_frame(
     }
     let pins_z = size_m[2] / 2.0 + rigging_height_m - frame.below_hook_m;
     let leg_lengths_m = plumb_legs(pts, pins_z, "spreader frame")?;
+    let arm_m = spreader_arm_m(frame, pts, cog_m);
+    if !(arm_m > 1e-9) {
+        let lowest = pts.iter().map(|p| p[2]).fold(f64::INFINITY, f64::min);
+        return Err(format!(
+            "the load hangs on plumb legs from a spreader frame {:.2} m below the hook, from lift points as low as z {lowest:.2} m from its box's centre, {:.2} m below its centre of gravity (z {:.2} m): the frame and the load, turning as one about the hook, would turn over (plumb legs keep the load turned as the frame is); give lift points higher on the load (rigging lift_points_m), or hang the frame farther below the hook (spreader below_hook_m, within rigging height_m)",
+            frame.below_hook_m,
+            cog_m[2] - lowest,
+            cog_m[2]
+        ));
+    }
     // Plumb legs, one slack: the other three share the load as the centre
     // of gravity's place in their triangle in plan has it.
     let plumb = one_slack(|legs| {
@@ -933,6 +1175,7 @@ pub fn check_frame(
         cog_tolerance_z_m: 0.0,
         worst_cog_m: None,
         tilt_deg: None,
+        side_loading: None,
     })
 }
 
@@ -1089,6 +1332,7 @@ fn three_legs(up: &[[f64; 3]], legs: [usize; 3], load_kg: f64) -> Option<Vec<f64
 #[cfg(test)]
 mod tests {
     use super::*;
+    use nalgebra as na;
 
     fn slings(legs: usize, size_m: [f64; 3]) -> Slings {
         Slings {
@@ -1096,6 +1340,7 @@ mod tests {
             points_given: false,
             ratings: Ratings::legs(8000.0),
             spreader: None,
+            pin_axes: None,
         }
     }
 
@@ -1158,6 +1403,7 @@ mod tests {
             points_given: true,
             ratings: Ratings::legs(9000.0),
             spreader: None,
+            pin_axes: None,
         };
         let up: Vec<[f64; 3]> = s
             .lift_points_m
@@ -1194,6 +1440,7 @@ mod tests {
             points_given: true,
             ratings: Ratings::legs(1.0),
             spreader: None,
+            pin_axes: None,
         };
         assert!(check(&high, 1.0, size, [0.0; 3], 3.0).unwrap_err().contains("not below the hook block"));
         // One leg: the whole load, whatever its angle.
@@ -1218,6 +1465,7 @@ mod tests {
             points_given: true,
             ratings: Ratings::legs(8000.0),
             spreader: Some(beam(Some(12_000.0))),
+            pin_axes: None,
         };
         let c = check(&s, 12_000.0, size, [0.0; 3], 4.0).unwrap();
         assert_eq!((c.max_angle_deg, c.max_leg_kg, c.leg_lengths_m.clone()), (0.0, 6000.0, vec![2.0, 2.0]));
@@ -1264,6 +1512,7 @@ mod tests {
             points_given: false,
             ratings: Ratings::legs(8000.0),
             spreader: Some(Spreader { length_m: 6.0, below_hook_m: 3.0, ..beam(Some(12_000.0)) }),
+            pin_axes: None,
         };
         let c = check(&s, 12_000.0, [6.0, 2.0, 2.0], [1.0, 0.0, 0.0], 5.0).unwrap();
         assert_eq!(c.max_leg, 2);
@@ -1295,6 +1544,7 @@ mod tests {
             points_given: true,
             ratings: Ratings::legs(8000.0),
             spreader: Some(Spreader { mass_kg: 0.0, ..beam(None) }),
+            pin_axes: None,
         };
         let c = check(&s, 12_000.0, [7.0, 2.0, 2.0], [-0.5, 0.3, 0.0], 4.0).unwrap();
         let b = c.spreader.clone().unwrap();
@@ -1312,8 +1562,13 @@ mod tests {
         let size = [7.0, 2.0, 2.0];
         let two = vec![[-3.0, 0.0, 1.0], [3.0, 0.0, 1.0]];
         let refused = |points: Vec<[f64; 3]>, b: Spreader, height_m: f64| {
-            let s =
-                Slings { lift_points_m: points, points_given: true, ratings: Ratings::legs(8000.0), spreader: Some(b) };
+            let s = Slings {
+                lift_points_m: points,
+                points_given: true,
+                ratings: Ratings::legs(8000.0),
+                spreader: Some(b),
+                pin_axes: None,
+            };
             check(&s, 12_000.0, size, [0.0; 3], height_m).unwrap_err()
         };
         let four = default_points(4, size).unwrap();
@@ -1336,6 +1591,7 @@ mod tests {
             points_given: true,
             ratings: Ratings::legs(8000.0),
             spreader: Some(beam(None)),
+            pin_axes: None,
         };
         assert!(
             check(&s, 12_000.0, size, [3.5, 0.0, 0.0], 4.0)
@@ -1482,6 +1738,7 @@ mod tests {
             points_given: true,
             ratings: Ratings::legs(20_000.0),
             spreader: None,
+            pin_axes: None,
         };
         // Trunnions at mid-height, the centre of gravity 0.1 m below: fine.
         assert!(check(&at(0.0, 2), 12_000.0, size, [0.0, 0.0, -0.1], 4.0).is_ok());
@@ -1507,6 +1764,7 @@ mod tests {
             points_given: true,
             ratings: Ratings::legs(9000.0),
             spreader: Some(Spreader { below_hook_m: 3.0, ..frame(Some(12_000.0)) }),
+            pin_axes: None,
         };
         let on_beam = Slings {
             lift_points_m: vec![[-3.0, 0.0, 1.0], [3.0, 0.0, 1.0]],
@@ -1518,6 +1776,7 @@ mod tests {
             points_given: true,
             ratings: Ratings::legs(8000.0),
             spreader: None,
+            pin_axes: None,
         };
         let cases = [
             (slings(4, [4.0, 2.0, 2.0]), [4.0, 2.0, 2.0], [0.0; 3], 0.2, 3.0),
@@ -1573,6 +1832,7 @@ mod tests {
             points_given: true,
             ratings: Ratings::legs(9000.0),
             spreader: Some(frame(Some(12_000.0))),
+            pin_axes: None,
         };
         let c = check(&s, 12_000.0, size, [0.0; 3], 4.0).unwrap();
         assert_eq!((c.max_leg_kg, c.max_angle_deg, c.leg_lengths_m.clone()), (6000.0, 0.0, vec![2.0; 4]));
@@ -1617,5 +1877,196 @@ mod tests {
         s.spreader = Some(frame(Some(12_000.0)));
         let within = check_within(&s, 12_000.0, size, [0.0; 3], 0.1, 4.0).unwrap();
         assert!(within.max_leg_kg > 6000.0 && within.spreader.unwrap().top.unwrap().max_leg_kg > t.max_leg_kg);
+    }
+
+    #[test]
+    fn the_side_loading_chart_is_read_straight_between_its_angles() {
+        for (deg, share) in [(0.0, 1.0), (22.5, 0.85), (45.0, 0.7), (67.5, 0.6), (90.0, 0.5), (120.0, 0.5), (-3.0, 1.0)]
+        {
+            assert!((side_loading_factor(deg) - share).abs() < 1e-12, "{deg}: {}", side_loading_factor(deg));
+        }
+        assert_eq!(side_loading_factor(f64::NAN), 0.5);
+    }
+
+    /// The demo's vessel (8 x 3 x 3 m, 12 t) on two legs at the middles of
+    /// its short edges, 4 m of rigging: each leg 45° from the vertical,
+    /// 8.49 t. Pins across the legs' plane pull in line; along the load,
+    /// 45° out of line (70 %: 8.40 t, less than the leg's pull); at 45° in
+    /// plan, 30° out of line (80 %).
+    #[test]
+    fn a_leg_pulling_across_its_shackles_pin_side_loads_it() {
+        let size = [8.0, 3.0, 3.0];
+        let ratings =
+            Ratings { shackle_wll_kg: Some(12_000.0), lift_point_wll_kg: Some(10_000.0), ..Ratings::legs(10_000.0) };
+        let pinned = |axis: [f64; 3]| Slings { ratings, pin_axes: Some(vec![axis; 2]), ..slings(2, size) };
+        let checked = |s: &Slings| {
+            let mut c = check(s, 12_000.0, size, [0.0; 3], 4.0).unwrap();
+            c.side_loading = side_loading(s, size, [0.0; 3], 0.0, 0.0, 4.0);
+            c
+        };
+        let across = checked(&pinned([0.0, 1.0, 0.0]));
+        let side = across.side_loading.clone().unwrap();
+        assert_eq!((side.out_of_line_deg.clone(), side.turn_deg), (vec![0.0, 0.0], 0.0));
+        assert_eq!(across.shackle_limit_kg(), Some(12_000.0));
+        assert_eq!(across.over_limit(), None);
+        let said = across.said();
+        assert!(said.contains("of its lift point's shackle's 12.00 t taken at 100 % for side loading, 12.00 t (leg 1 pulls up to 0.0° out of line with its shackle's pin, rigging pin_axes; the makers' chart"), "{said}");
+        assert!(said.contains("the lift point's own 10.00 t, which must be its rating for a pull up to 0.0° out of its lug's plane: 85 %"), "{said}");
+        let along = checked(&pinned([1.0, 0.0, 0.0]));
+        let side = along.side_loading.clone().unwrap();
+        assert!(side.out_of_line_deg.iter().all(|d| (d - 45.0).abs() < 1e-9), "{side:?}");
+        assert!((along.shackle_limit_kg().unwrap() - 8400.0).abs() < 1e-6);
+        let over = along.over_limit().unwrap();
+        assert!(
+            over.starts_with("the lift points' shackles cannot carry the load")
+                && over.contains("taken at 70 % for side loading, 8.40 t (leg 1 pulls up to 45.0° out of line")
+                && over.ends_with("or lugs turned for their legs to pull square to the pins (rigging pin_axes)"),
+            "{over}"
+        );
+        // Without the pins' directions the shackles are taken in line.
+        assert_eq!(check(&pinned([1.0, 0.0, 0.0]), 12_000.0, size, [0.0; 3], 4.0).unwrap().over_limit(), None);
+        let half = std::f64::consts::FRAC_1_SQRT_2;
+        let turned = checked(&pinned([half, half, 0.0]));
+        let side = turned.side_loading.unwrap();
+        assert!(side.out_of_line_deg.iter().all(|d| (d - 30.0).abs() < 1e-9), "{side:?}");
+        assert!((side.factor() - 0.8).abs() < 1e-12);
+        // Three or four legs to the hook hold it where it is in the load's
+        // frame: no turn, whatever the tolerance.
+        let four = Slings { ratings, pin_axes: Some(vec![[0.0, 1.0, 0.0]; 4]), ..slings(4, size) };
+        let side = side_loading(&four, size, [0.2, 0.1, 0.0], 0.3, 0.2, 4.0).unwrap();
+        assert_eq!(side.turn_deg, 0.0);
+        let hook = Vec3::new(0.2, 0.1, 5.5);
+        for (k, p) in four.lift_points_m.iter().enumerate() {
+            let leg = (hook - Vec3::new(p[0], p[1], p[2])).normalize();
+            assert!((side.out_of_line_deg[k] - leg.y.abs().asin().to_degrees()).abs() < 1e-9);
+        }
+    }
+
+    /// One leg, or two to the hook: the load hangs with its centre of
+    /// gravity under its lift point, or under the line through its two, and
+    /// its legs turn with it in its frame. Over random loads, lift points,
+    /// pins, centres of gravity and tolerances, the true angle out of line
+    /// at random places within the tolerance, worked out from how the load
+    /// hangs there, is never more than [`side_loading`]'s; and with no
+    /// tolerance and the centre of gravity on the line, it is the same.
+    #[test]
+    fn no_place_within_the_tolerance_pulls_a_shackle_farther_out_of_line() {
+        let mut rng = crate::rng::seeded(7, "side loading");
+        let mut u = |lo: f64, hi: f64| crate::rng::uniform(&mut rng, lo, hi);
+        for case in 0..400 {
+            let legs = 1 + case % 2;
+            let size = [u(2.0, 10.0), u(1.0, 4.0), u(1.0, 4.0)];
+            let top = size[2] / 2.0;
+            let pts: Vec<[f64; 3]> = if legs == 1 {
+                vec![[u(-0.3, 0.3), u(-0.3, 0.3), top]]
+            } else {
+                let half = u(0.5, size[0] / 2.0);
+                vec![[-half, u(-0.3, 0.3), top - u(0.0, 0.5)], [half, u(-0.3, 0.3), top - u(0.0, 0.5)]]
+            };
+            let axes: Vec<[f64; 3]> = (0..legs)
+                .map(|_| {
+                    let a = Vec3::new(u(-1.0, 1.0), u(-1.0, 1.0), u(-1.0, 1.0)).normalize();
+                    [a.x, a.y, a.z]
+                })
+                .collect();
+            let exact = case % 10 == 0;
+            let (tol, tol_z) = if exact { (0.0, 0.0) } else { (u(0.0, 0.4), u(0.0, 0.3)) };
+            let cog = if exact { [0.0, 0.0, u(-0.5, 0.0)] } else { [u(-0.2, 0.2), u(-0.2, 0.2), u(-0.5, 0.0)] };
+            let height = u(1.0, 6.0);
+            let s = Slings {
+                lift_points_m: pts.clone(),
+                points_given: true,
+                ratings: Ratings::legs(1e6),
+                spreader: None,
+                pin_axes: Some(axes.clone()),
+            };
+            let side = side_loading(&s, size, cog, tol, tol_z, height).unwrap();
+            let v = |p: [f64; 3]| Vec3::new(p[0], p[1], p[2]);
+            let hook = Vec3::new(cog[0], cog[1], top + height);
+            for sample in 0..50 {
+                let c = if sample == 0 {
+                    v(cog)
+                } else {
+                    Vec3::new(cog[0] + u(-tol, tol), cog[1] + u(-tol, tol), cog[2] + u(0.0, tol_z))
+                };
+                let legs_now: Vec<Vec3> = if legs == 1 {
+                    vec![(v(pts[0]) - c).normalize()]
+                } else {
+                    let (a, b) = (v(pts[0]), v(pts[1]));
+                    let along = (b - a).normalize();
+                    let across = |w: Vec3| w - along * w.dot(&along);
+                    let (from, to) = (across(hook - a), -across(c - a));
+                    let turn = from.cross(&to).dot(&along).atan2(from.dot(&to));
+                    let r = na::Rotation3::from_axis_angle(&na::Unit::new_normalize(along), turn);
+                    let hook_now = a + r * (hook - a);
+                    pts.iter().map(|p| (hook_now - v(*p)).normalize()).collect()
+                };
+                for (k, leg) in legs_now.iter().enumerate() {
+                    let deg = leg.dot(&v(axes[k])).abs().min(1.0).asin().to_degrees();
+                    assert!(
+                        deg <= side.out_of_line_deg[k] + 1e-7,
+                        "case {case}, leg {k}: {deg} out of line at {c:?}, more than {side:?}"
+                    );
+                    if exact {
+                        assert!((deg - side.out_of_line_deg[k]).abs() < 1e-7, "case {case}: {deg} {side:?}");
+                    }
+                }
+            }
+        }
+    }
+
+    /// Plumb legs from a spreader keep the load turned as the spreader is:
+    /// a frame and its load turn about the hook as one whose centre of
+    /// gravity stands the legs' length higher, and turn over where that is
+    /// not below the hook. A beam adds the turn about its lift points' line.
+    #[test]
+    fn a_spreader_and_its_load_turn_about_the_hook_as_one() {
+        let size = [7.0, 3.0, 2.0];
+        let corners = vec![[-3.0, -1.0, 1.0], [3.0, -1.0, 1.0], [3.0, 1.0, 1.0], [-3.0, 1.0, 1.0]];
+        let on_frame = Slings {
+            lift_points_m: corners.clone(),
+            points_given: true,
+            ratings: Ratings { shackle_wll_kg: Some(9000.0), ..Ratings::legs(9000.0) },
+            spreader: Some(frame(Some(12_000.0))),
+            pin_axes: Some(vec![[0.0, 1.0, 0.0]; 4]),
+        };
+        // Pins 2 m under the hook, lift points 1 m over the centre of
+        // gravity: 3 m, not the hook's 5 m over it.
+        let c = check_within(&on_frame, 12_000.0, size, [0.0; 3], 0.2, 4.0).unwrap();
+        let want = (0.2 * 2.0f64.sqrt()).atan2(3.0).to_degrees();
+        assert!((c.tilt_deg.unwrap() - want).abs() < 1e-9, "{:?} {want}", c.tilt_deg);
+        let side = side_loading(&on_frame, size, [0.0; 3], 0.2, 0.0, 4.0).unwrap();
+        assert!((side.turn_deg - want).abs() < 1e-9 && side.out_of_line_deg.iter().all(|d| (d - want).abs() < 1e-9));
+        // Up to 0.5 m higher: 2.5 m.
+        let side = side_loading(&on_frame, size, [0.0; 3], 0.2, 0.5, 4.0).unwrap();
+        assert!((side.turn_deg - (0.2 * 2.0f64.sqrt()).atan2(2.5).to_degrees()).abs() < 1e-9);
+        // Lift points at the load's underside, 1 m under its centre of
+        // gravity, 0.8 m under the hook: the frame and the load turn over.
+        let low = Slings {
+            lift_points_m: corners.iter().map(|p| [p[0], p[1], -1.0]).collect(),
+            spreader: Some(Spreader { below_hook_m: 0.8, ..frame(None) }),
+            ..on_frame.clone()
+        };
+        let e = check(&low, 12_000.0, size, [0.0; 3], 4.0).unwrap_err();
+        assert!(e.starts_with("the load hangs on plumb legs from a spreader frame 0.80 m below the hook, from lift points as low as z -1.00 m from its box's centre, 1.00 m below its centre of gravity (z 0.00 m): the frame and the load, turning as one about the hook, would turn over"), "{e}");
+        let lower = Slings { spreader: Some(Spreader { below_hook_m: 1.5, ..frame(None) }), ..low };
+        assert!(check(&lower, 12_000.0, size, [0.0; 3], 4.0).is_ok());
+        // A beam over two lift points 1 m over the centre of gravity, its
+        // pins 2 m under the hook: the turn about the points' line (√2 tol
+        // over 1 m at most) and about the hook (over 3 m), added.
+        let on_beam = Slings {
+            lift_points_m: vec![[-3.0, 0.0, 1.0], [3.0, 0.0, 1.0]],
+            spreader: Some(beam(Some(10_000.0))),
+            pin_axes: Some(vec![[0.0, 1.0, 0.0]; 2]),
+            ..on_frame.clone()
+        };
+        let c = check_within(&on_beam, 12_000.0, size, [0.0; 3], 0.2, 4.0).unwrap();
+        let pitch = (0.2 * 2.0f64.sqrt()).atan2(3.0).to_degrees();
+        let roll_bound = (0.2 * 2.0f64.sqrt()).atan2(1.0).to_degrees();
+        assert!((c.tilt_deg.unwrap() - (roll_bound + pitch)).abs() < 1e-9, "{:?}", c.tilt_deg);
+        let side = side_loading(&on_beam, size, [0.0; 3], 0.2, 0.0, 4.0).unwrap();
+        // Across the line the centre of gravity lies at most 0.2 m off it.
+        let roll = 0.2f64.atan2(1.0).to_degrees();
+        assert!((side.turn_deg - (roll + pitch)).abs() < 1e-9, "{side:?} {roll} {pitch}");
     }
 }
