@@ -168,9 +168,17 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     assert!(text.contains("What the lift passes over: the load passes over"), "{text}");
     assert_eq!(
         pages.len(),
-        steps.len() + 6,
-        "cover, the site overview (the demo's cover has no room for it), inputs, steps table, {} step pages, sign-off, inputs",
+        steps.len() + 7,
+        "cover, the site overview (the demo's cover has no room for it), inputs, steps table, rigging, {} step pages, sign-off, inputs",
         steps.len()
+    );
+    // The rigging page: each leg from its lift point, its length as the
+    // cover's Slings row gives it, its angle as rigged.
+    assert!(flat.contains("Drawn to scale in the load's frame as the plan takes it"), "{flat}");
+    assert!(
+        flat.contains("1 (-4.00, 0.00, 1.50) hook block 5.80 46.4° — —")
+            && flat.contains("2 (4.00, 0.00, 1.50) hook block 5.52 43.5° — —"),
+        "{flat}"
     );
     let last = doc.extract_text(&[*pages.last().unwrap()]).unwrap();
     for input in ["file:scans/scan-4.laz", "settings of the scans stage", "code of the docs stage"] {

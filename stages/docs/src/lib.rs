@@ -16,6 +16,7 @@ pub mod pdf;
 pub mod pictures;
 pub mod render;
 mod report;
+pub mod rigging;
 
 use liftplan_core::Location;
 use serde::{Deserialize, Serialize};

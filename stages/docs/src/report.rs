@@ -1203,6 +1203,13 @@ pub fn document(
         }
     }
 
+    // The rigging, where the lift gives its legs.
+    if let (Some(slings), Some(check)) = (&task.slings, &plan.summary.slings) {
+        d.new_page();
+        let y = heading(&mut d, 20.0, "Rigging");
+        crate::rigging::page(&mut d, y, w, slings, &task.load, check);
+    }
+
     // One page per step.
     if s.step_pictures {
         let warned = chart_warnings(inp, task).unwrap_or_default();

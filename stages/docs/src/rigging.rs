@@ -1,0 +1,332 @@
+//! The rigging page: the load, its lift points, the sling legs, a spreader
+//! and the hook block drawn to scale in two elevations, with a row per leg,
+//! for the rigging crew to make the slings up to and the signer to see what
+//! the Slings row on the cover says.
+//!
+//! [`sketch`] works the rigging out as plain data in the load's frame, as
+//! the plan takes it (the load level, the hook block over the centre of
+//! gravity, or over a spreader's joint one); [`page`] draws it.
+//!
+//! What this module must not do: check anything (core's `slings` checks the
+//! legs, and the cover says it), or draw the rigging otherwise than as the
+//! plan takes it.
+
+use crate::pdf::Doc;
+use liftplan_core::crane::LoadShape;
+use liftplan_core::slings::{SlingCheck, Slings};
+
+/// What a straight piece of the rigging is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PieceKind {
+    /// A sling leg from a lift point, to the hook block or a spreader's pin.
+    Leg,
+    /// A spreader's top leg, from its pin to the hook block.
+    TopLeg,
+    /// A lifting beam's or frame's lug, from the spreader up to the hook.
+    Lug,
+    /// A spreader beam, or one side of a frame.
+    Spreader,
+}
+
+/// A straight piece of the rigging, its ends in the load's frame (m from the
+/// centre of its box).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Piece {
+    pub from: [f64; 3],
+    pub to: [f64; 3],
+    pub kind: PieceKind,
+}
+
+impl Piece {
+    /// Its length (m).
+    pub fn length_m(&self) -> f64 {
+        let d = [0, 1, 2].map(|a| self.to[a] - self.from[a]);
+        (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt()
+    }
+
+    /// Its angle from the vertical (degrees).
+    pub fn from_vertical_deg(&self) -> f64 {
+        let d = [0, 1, 2].map(|a| self.to[a] - self.from[a]);
+        d[0].hypot(d[1]).atan2(d[2].abs()).to_degrees()
+    }
+}
+
+/// The rigging as the plan takes it, in the load's frame.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Sketch {
+    /// The hook block's underside, where the legs (or a spreader's top legs
+    /// or lug) meet.
+    pub hook: [f64; 3],
+    /// The legs first, one per lift point in their order, then a
+    /// spreader's pieces.
+    pub pieces: Vec<Piece>,
+}
+
+impl Sketch {
+    /// The sling legs, in the order of the lift points.
+    pub fn legs(&self) -> impl Iterator<Item = &Piece> {
+        self.pieces.iter().filter(|p| p.kind == PieceKind::Leg)
+    }
+}
+
+/// The rigging of `slings` on `load`, as `check` found it: legs from the
+/// lift points up to the hook block's underside, `load.rigging_height_m`
+/// over the load's top, over the centre of gravity (one leg hangs plumb
+/// over its lift point: the load tilts until its centre of gravity is under
+/// it); or plumb up to a spreader's pins, `below_hook_m` under the hook
+/// block, whose top legs (or lug) meet over the joint centre of gravity of
+/// the load and the spreader.
+pub fn sketch(slings: &Slings, load: &LoadShape, check: &SlingCheck) -> Sketch {
+    let pts = &slings.lift_points_m;
+    let hook_z = load.size_m[2] / 2.0 + load.rigging_height_m;
+    let leg = |from: [f64; 3], to: [f64; 3]| Piece { from, to, kind: PieceKind::Leg };
+    let (Some(spreader), Some(spread)) = (&slings.spreader, &check.spreader) else {
+        let hook = match pts[..] {
+            [one] => [one[0], one[1], hook_z],
+            _ => [load.cog_m[0], load.cog_m[1], hook_z],
+        };
+        return Sketch { hook, pieces: pts.iter().map(|p| leg(*p, hook)).collect() };
+    };
+    let pins_z = hook_z - spreader.below_hook_m;
+    let pins: Vec<[f64; 3]> = pts.iter().map(|p| [p[0], p[1], pins_z]).collect();
+    let mut pieces: Vec<Piece> = pts.iter().zip(&pins).map(|(p, pin)| leg(*p, *pin)).collect();
+    let hook = match (spread.width_m, spread.hook_from_centre_m) {
+        (Some(width_m), Some([dx, dy])) => {
+            let n = pts.len() as f64;
+            let centre = [0, 1].map(|a| pts.iter().map(|p| p[a]).sum::<f64>() / n);
+            let (hx, hy) = (spreader.length_m / 2.0, width_m / 2.0);
+            let corner = |sx: f64, sy: f64| [centre[0] + sx * hx, centre[1] + sy * hy, pins_z];
+            let corners = [corner(-1.0, -1.0), corner(1.0, -1.0), corner(1.0, 1.0), corner(-1.0, 1.0)];
+            for k in 0..4 {
+                pieces.push(Piece { from: corners[k], to: corners[(k + 1) % 4], kind: PieceKind::Spreader });
+            }
+            [centre[0] + dx, centre[1] + dy, hook_z]
+        }
+        _ => {
+            let (a, b) = (pts[0], pts[1]);
+            let span = (b[0] - a[0]).hypot(b[1] - a[1]).max(1e-9);
+            let dir = [(b[0] - a[0]) / span, (b[1] - a[1]) / span];
+            let middle = [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0];
+            let along = |t: f64| [middle[0] + dir[0] * t, middle[1] + dir[1] * t, pins_z];
+            let half = spreader.length_m / 2.0;
+            pieces.push(Piece { from: along(-half), to: along(half), kind: PieceKind::Spreader });
+            let over = along(spread.hook_from_middle_m);
+            [over[0], over[1], hook_z]
+        }
+    };
+    if spreader.top_leg_wll_kg.is_some() {
+        pieces.extend(pins.iter().map(|pin| Piece { from: *pin, to: hook, kind: PieceKind::TopLeg }));
+    } else {
+        pieces.push(Piece { from: [hook[0], hook[1], pins_z], to: hook, kind: PieceKind::Lug });
+    }
+    Sketch { hook, pieces }
+}
+
+const INK: [u8; 3] = [20, 20, 20];
+const GREY: [u8; 3] = [110, 110, 110];
+const LEG: [u8; 3] = [25, 80, 170];
+const SPREADER: [u8; 3] = [90, 90, 90];
+const COG: [u8; 3] = [200, 30, 30];
+
+/// Draws the rigging page's body from `y` (mm from the top) in `w` mm:
+/// the side and end elevations of [`sketch`], a row per leg and per top
+/// leg, and what the lengths are for; returns the y below it.
+pub fn page(d: &mut Doc, mut y: f32, w: f32, slings: &Slings, load: &LoadShape, check: &SlingCheck) -> f32 {
+    let s = sketch(slings, load, check);
+    let [hx, hy, hz] = load.size_m.map(|v| v / 2.0);
+    // One scale for both views: each view's extent across, and the heights
+    // from the load's underside to a little over the hook block.
+    let across = |axis: usize, half: f64| {
+        s.pieces.iter().flat_map(|p| [p.from[axis].abs(), p.to[axis].abs()]).fold(half, f64::max) + 0.5
+    };
+    let (side_half, end_half) = (across(0, hx), across(1, hy));
+    let (z_lo, z_hi) = (-hz - 0.3, s.hook[2] + 1.2);
+    let gap = 10.0f32;
+    let panel_h = 95.0f32;
+    let panel_w = (w - gap) / 2.0;
+    let scale = (panel_w as f64 / (2.0 * side_half))
+        .min(panel_w as f64 / (2.0 * end_half))
+        .min(panel_h as f64 / (z_hi - z_lo)) as f32;
+    d.paragraph(
+        15.0,
+        y,
+        w,
+        "Drawn to scale in the load's frame as the plan takes it: the load level, the hook block over its centre of gravity (red cross). Legs in blue, numbered as the lift points; a spreader in grey.",
+        8.5,
+    );
+    y += 2.0 * crate::pdf::line_height_mm(8.5) + 2.0;
+    for (k, (axis, title)) in
+        [(0usize, "Side: the load's x across, up"), (1usize, "End: the load's y across, up")].into_iter().enumerate()
+    {
+        let x0 = 15.0 + k as f32 * (panel_w + gap);
+        d.text(x0, y, title, 8.5, true, INK);
+        let top = y + 3.0;
+        let mid = x0 + panel_w / 2.0;
+        let at = |p: [f64; 3]| (mid + (p[axis] as f32) * scale, top + ((z_hi - p[2]) as f32) * scale);
+        let half = [hx, hy][axis];
+        let (bx, by) = at([-half, -half, hz]);
+        let (ex, ey) = at([half, half, -hz]);
+        d.frame(bx, by, ex - bx, ey - by, 0.8, INK);
+        let (cx, cy) = at(load.cog_m);
+        d.line(cx - 1.5, cy, cx + 1.5, cy, 0.8, COG);
+        d.line(cx, cy - 1.5, cx, cy + 1.5, 0.8, COG);
+        for p in &s.pieces {
+            let ((x1, y1), (x2, y2)) = (at(p.from), at(p.to));
+            let (width, color) = match p.kind {
+                PieceKind::Leg | PieceKind::TopLeg => (0.9, LEG),
+                PieceKind::Lug => (1.5, SPREADER),
+                PieceKind::Spreader => (2.5, SPREADER),
+            };
+            d.line(x1, y1, x2, y2, width, color);
+        }
+        for (n, p) in s.legs().enumerate() {
+            let (px, py) = at(p.from);
+            d.fill_rect(px - 0.7, py - 0.7, 1.4, 1.4, INK);
+            // Side by side in this view where two points are.
+            let shift = s.legs().take(n).filter(|q| (q.from[axis] - p.from[axis]).abs() < 0.05).count() as f32;
+            d.text(px + 1.0 + 2.5 * shift, py + 3.2, &(n + 1).to_string(), 7.0, false, LEG);
+        }
+        let (kx, ky) = at(s.hook);
+        d.fill_rect(kx - 1.5, ky - 3.0, 3.0, 3.0, INK);
+        d.line(kx, ky - 3.0, kx, top, 0.6, GREY);
+        d.text(kx + 2.0, ky - 1.0, "hook block", 7.0, false, GREY);
+    }
+    y += 3.0 + ((z_hi - z_lo) as f32) * scale + 6.0;
+    let side = check.side_loading.as_ref();
+    let header = ["Leg", "From (x, y, z) m", "To", "Length m", "From vertical", "Shackle pin", "Out of line"];
+    let widths = [14.0, 38.0, 22.0, 18.0, 25.0, 30.0, w - 147.0];
+    let right = [false, false, false, true, true, false, true];
+    let at = |p: [f64; 3]| format!("({:.2}, {:.2}, {:.2})", p[0], p[1], p[2]);
+    let mut rows: Vec<Vec<String>> = s
+        .legs()
+        .enumerate()
+        .map(|(k, p)| {
+            vec![
+                (k + 1).to_string(),
+                at(p.from),
+                if slings.spreader.is_some() { "spreader pin".into() } else { "hook block".into() },
+                check.leg_lengths_m.get(k).map_or_else(|| format!("{:.2}", p.length_m()), |l| format!("{l:.2}")),
+                format!("{:.1}°", p.from_vertical_deg()),
+                slings
+                    .pin_axes
+                    .as_ref()
+                    .and_then(|a| a.get(k))
+                    .map_or_else(|| "—".into(), |a| format!("({:.2}, {:.2}, {:.2})", a[0], a[1], a[2])),
+                side.and_then(|sl| sl.out_of_line_deg.get(k)).map_or_else(|| "—".into(), |deg| format!("{deg:.1}°")),
+            ]
+        })
+        .collect();
+    let top_lengths = check.spreader.as_ref().and_then(|sp| sp.top.as_ref()).map(|t| t.leg_lengths_m.clone());
+    for (k, p) in s.pieces.iter().filter(|p| p.kind == PieceKind::TopLeg).enumerate() {
+        rows.push(vec![
+            format!("top {}", k + 1),
+            at(p.from),
+            "hook block".into(),
+            top_lengths
+                .as_ref()
+                .and_then(|l| l.get(k))
+                .map_or_else(|| format!("{:.2}", p.length_m()), |l| format!("{l:.2}")),
+            format!("{:.1}°", p.from_vertical_deg()),
+            "—".into(),
+            "—".into(),
+        ]);
+    }
+    y = d.table(15.0, y, &widths, &right, &header, &rows, 8.0);
+    y += 4.0;
+    let one = if s.legs().count() == 1 && slings.spreader.is_none() {
+        " On one leg the load tilts until its centre of gravity hangs under its lift point."
+    } else {
+        ""
+    };
+    d.paragraph(
+        15.0,
+        y,
+        w,
+        &format!(
+            "Lengths are from each lift point to the hook block's underside ({:.2} m over the load's top, rigging height_m), or to a spreader's pin, for the load to hang level as planned with its centre of gravity at ({:.2}, {:.2}, {:.2}) m from its box's centre (load cog_m): make the slings up to them, shackles and fittings included, and check at the trial lift that the load hangs level. A shackle's pin is given in the load's frame (rigging pin_axes); out of line is how far its leg may pull from the plane square to the pin. What each leg carries and the ratings are in the cover's Slings row.{one}",
+            load.rigging_height_m, load.cog_m[0], load.cog_m[1], load.cog_m[2]
+        ),
+        8.5,
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use liftplan_core::slings::{Ratings, Spreader, check};
+
+    fn load(size_m: [f64; 3], cog_m: [f64; 3]) -> LoadShape {
+        LoadShape { size_m, cog_m, rigging_height_m: 4.0 }
+    }
+
+    /// Two legs to the hook over the centre of gravity; a beam's legs
+    /// plumb to its pins, its top legs to the hook over the joint centre of
+    /// gravity; a lifting frame's four legs plumb, its lug over that of the
+    /// frame and the load. The legs' lengths are the check's.
+    #[test]
+    fn the_sketch_hangs_the_legs_where_the_check_does() {
+        let l = load([8.0, 3.0, 3.0], [0.2, 0.0, -0.1]);
+        let two = Slings {
+            lift_points_m: vec![[-4.0, 0.0, 1.5], [4.0, 0.0, 1.5]],
+            points_given: false,
+            ratings: Ratings::legs(10_000.0),
+            spreader: None,
+            pin_axes: None,
+        };
+        let c = check(&two, 12_000.0, l.size_m, l.cog_m, l.rigging_height_m).unwrap();
+        let s = sketch(&two, &l, &c);
+        assert_eq!(s.hook, [0.2, 0.0, 5.5]);
+        let lengths: Vec<f64> = s.legs().map(Piece::length_m).collect();
+        assert!(lengths.iter().zip(&c.leg_lengths_m).all(|(a, b)| (a - b).abs() < 1e-12), "{lengths:?}");
+        assert!((s.pieces[1].from_vertical_deg() - 3.8f64.atan2(4.0).to_degrees()).abs() < 1e-9);
+
+        let beam = Slings {
+            lift_points_m: vec![[-3.0, 0.0, 1.5], [3.0, 0.0, 1.5]],
+            spreader: Some(Spreader {
+                length_m: 7.0,
+                below_hook_m: 3.0,
+                wll_kg: 20_000.0,
+                mass_kg: 300.0,
+                top_leg_wll_kg: Some(12_000.0),
+                width_m: None,
+            }),
+            ..two.clone()
+        };
+        let c = check(&beam, 12_000.0, l.size_m, l.cog_m, l.rigging_height_m).unwrap();
+        let s = sketch(&beam, &l, &c);
+        let legs: Vec<&Piece> = s.legs().collect();
+        assert!(legs.iter().all(|p| p.from_vertical_deg() == 0.0 && p.to[2] == 2.5), "{legs:?}");
+        assert!(legs.iter().zip(&c.leg_lengths_m).all(|(p, l)| (p.length_m() - l).abs() < 1e-12));
+        // Over the joint centre of gravity: 12 t at 0.2 m, 0.3 t at 0.
+        assert!((s.hook[0] - 0.2 * 12.0 / 12.3).abs() < 1e-9 && s.hook[2] == 5.5, "{:?}", s.hook);
+        let beams: Vec<&Piece> = s.pieces.iter().filter(|p| p.kind == PieceKind::Spreader).collect();
+        assert_eq!((beams.len(), beams[0].length_m()), (1, 7.0));
+        assert_eq!(s.pieces.iter().filter(|p| p.kind == PieceKind::TopLeg && p.to == s.hook).count(), 2);
+
+        let frame = Slings {
+            lift_points_m: vec![[-3.0, -1.0, 1.5], [3.0, -1.0, 1.5], [3.0, 1.0, 1.5], [-3.0, 1.0, 1.5]],
+            spreader: Some(Spreader {
+                length_m: 6.0,
+                width_m: Some(2.0),
+                top_leg_wll_kg: None,
+                ..beam.spreader.clone().unwrap()
+            }),
+            ..two.clone()
+        };
+        let c = check(&frame, 12_000.0, l.size_m, l.cog_m, l.rigging_height_m).unwrap();
+        let s = sketch(&frame, &l, &c);
+        assert_eq!(s.pieces.iter().filter(|p| p.kind == PieceKind::Spreader).count(), 4);
+        let lug: Vec<&Piece> = s.pieces.iter().filter(|p| p.kind == PieceKind::Lug).collect();
+        assert_eq!(lug.len(), 1);
+        assert!((lug[0].length_m() - 3.0).abs() < 1e-12 && lug[0].from_vertical_deg() == 0.0);
+        let [dx, dy] = c.spreader.as_ref().unwrap().hook_from_centre_m.unwrap();
+        assert_eq!([s.hook[0], s.hook[1]], [dx, dy]);
+
+        // One leg: plumb over its lift point.
+        let one = Slings { lift_points_m: vec![[0.5, 0.0, 1.5]], ..two.clone() };
+        let c = check(&one, 12_000.0, l.size_m, l.cog_m, l.rigging_height_m).unwrap();
+        let s = sketch(&one, &l, &c);
+        assert_eq!(s.hook, [0.5, 0.0, 5.5]);
+        assert_eq!(s.pieces[0].from_vertical_deg(), 0.0);
+    }
+}
