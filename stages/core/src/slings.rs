@@ -34,9 +34,11 @@
 //! it for less ([`SIDE_LOADING_CHART`]). Where the lift gives each pin's
 //! direction (`rigging.pin_axes`), [`side_loading`] works out how far each
 //! leg pulls out of line, as rigged and as the load may turn on its legs
-//! with its centre of gravity anywhere within its tolerance, and the
-//! shackles are checked at the rating left; the lugs' own rating must then
-//! be for that angle out of their plane, which the words say.
+//! with its centre of gravity anywhere within its tolerance, and each
+//! shackle is checked at the rating left at its leg's angle against the
+//! most its leg carries ([`SlingCheck::shackle_most_used`]); the lugs' own
+//! rating must then be for that angle out of their plane, which the words
+//! say.
 //!
 //! Two legs may hang plumb from a beam instead (`rigging.spreader`, [`Spreader`]):
 //! its pins stand over the two lift points, `below_hook_m` under the hook
@@ -223,6 +225,12 @@ pub struct SlingCheck {
     pub max_leg_kg: f64,
     /// Which leg (1-based, in the order of the lift points) carries it.
     pub max_leg: usize,
+    /// The most each leg carries (kg), in the order of the lift points, in
+    /// the worst way the load may hang on them (and, with a centre of
+    /// gravity's tolerance, the worst place for that leg); empty in a plan
+    /// written before liftplan kept it.
+    #[serde(default)]
+    pub leg_most_kg: Vec<f64>,
     /// What the legs, their shackles and the lift points are rated for.
     #[serde(flatten)]
     pub ratings: Ratings,
@@ -289,13 +297,6 @@ impl SideLoading {
             .enumerate()
             .fold((0, 0.0), |(k, most), (i, &deg)| if deg > most { (i, deg) } else { (k, most) })
     }
-
-    /// The share of the shackles' working load limit the check takes
-    /// ([`side_loading_factor`] at the worst leg's angle: every shackle is
-    /// taken at it, against the most on any leg).
-    pub fn factor(&self) -> f64 {
-        side_loading_factor(self.worst().1)
-    }
 }
 
 impl SlingCheck {
@@ -310,12 +311,26 @@ impl SlingCheck {
         100.0 * self.max_leg_kg / self.leg_limit_kg()
     }
 
-    /// What a lift point's shackle may carry (kg): its working load limit,
-    /// less for side loading where the pins' directions are given
-    /// ([`SideLoading::factor`]); `None` where the lift gives no shackles.
-    pub fn shackle_limit_kg(&self) -> Option<f64> {
-        let factor = self.side_loading.as_ref().map_or(1.0, SideLoading::factor);
-        self.ratings.shackle_wll_kg.map(|wll_kg| wll_kg * factor)
+    /// The shackle most used for what it may carry: its leg (from 0), what
+    /// that leg carries at most (kg) and what the shackle may carry (kg):
+    /// its working load limit, less for side loading at its leg's angle out
+    /// of line where the pins' directions are given
+    /// ([`side_loading_factor`]); the first of the most used where several
+    /// are. `None` where the lift gives no shackles.
+    pub fn shackle_most_used(&self) -> Option<(usize, f64, f64)> {
+        let wll_kg = self.ratings.shackle_wll_kg?;
+        let share = |k: usize| {
+            self.side_loading
+                .as_ref()
+                .and_then(|s| s.out_of_line_deg.get(k))
+                .map_or(1.0, |deg| side_loading_factor(*deg))
+        };
+        (0..self.legs)
+            .map(|k| (k, self.leg_most_kg.get(k).copied().unwrap_or(self.max_leg_kg), wll_kg * share(k)))
+            .fold(None, |most: Option<(usize, f64, f64)>, leg| match most {
+                Some(m) if !(leg.1 / leg.2 > m.1 / m.2) => Some(m),
+                _ => Some(leg),
+            })
     }
 
     /// The most one leg carries, against its limit and its lift point's
@@ -330,9 +345,9 @@ impl SlingCheck {
         } else {
             format!("{:.2} t working load limit", self.ratings.leg_wll_kg / 1000.0)
         };
-        let shackle = match (self.ratings.shackle_wll_kg, self.shackle_limit_kg(), &self.side_loading) {
-            (Some(wll_kg), Some(limit_kg), Some(side)) => {
-                let (leg, deg) = side.worst();
+        let shackle = match (self.ratings.shackle_wll_kg, self.shackle_most_used(), &self.side_loading) {
+            (Some(wll_kg), Some((leg, carries_kg, limit_kg)), Some(side)) => {
+                let deg = side.out_of_line_deg.get(leg).copied().unwrap_or(0.0);
                 let turn = if side.turn_deg > 0.0 {
                     format!(
                         ", {:.1}° of it the most the load may turn on its rigging as its centre of gravity has it, load cog_m and its tolerance",
@@ -342,12 +357,13 @@ impl SlingCheck {
                     String::new()
                 };
                 format!(
-                    ", and of its lift point's shackle's {:.2} t taken at {:.0} % for side loading, {:.2} t (leg {} pulls up to {deg:.1}° out of line with its shackle's pin, rigging pin_axes{turn}; the makers' chart for screw pin and bolt type shackles: 100 % in line, 70 % at 45°, 50 % at 90°, straight between; a round pin shackle must not be side loaded): {:.0} %",
+                    ", and of the lift points' shackles' {:.2} t, less for side loading: the most used, leg {}'s, pulled up to {deg:.1}° out of line with its pin (rigging pin_axes{turn}), may carry {:.0} % of it, {:.2} t (the makers' chart for screw pin and bolt type shackles: 100 % in line, 70 % at 45°, 50 % at 90°, straight between; a round pin shackle must not be side loaded), and carries up to {:.2} t: {:.0} %",
                     wll_kg / 1000.0,
-                    100.0 * side.factor(),
-                    limit_kg / 1000.0,
                     leg + 1,
-                    100.0 * self.max_leg_kg / limit_kg
+                    100.0 * limit_kg / wll_kg,
+                    limit_kg / 1000.0,
+                    carries_kg / 1000.0,
+                    100.0 * carries_kg / limit_kg
                 )
             }
             (Some(wll_kg), _, _) => format!(
@@ -393,7 +409,7 @@ impl SlingCheck {
                 "give legs of a higher working load limit (rigging leg_wll_t), more legs or a taller rigging (height_m)"
             });
         }
-        if self.shackle_limit_kg().is_some_and(|s| over(self.max_leg_kg, s)) {
+        if self.shackle_most_used().is_some_and(|(_, carries_kg, limit_kg)| over(carries_kg, limit_kg)) {
             what.push("the lift points' shackles");
             give.push(if self.side_loading.is_some() {
                 "give shackles of a higher working load limit (rigging shackle_wll_t) or lugs turned for their legs to pull square to the pins (rigging pin_axes)"
@@ -667,6 +683,7 @@ pub fn check(
         max_angle_deg,
         max_leg_kg,
         max_leg: max_leg + 1,
+        leg_most_kg: most_on_each(&pulls, pts.len()),
         leg_lengths_m,
         ratings: slings.ratings,
         points_given: slings.points_given,
@@ -736,22 +753,31 @@ pub fn check_within(
             places.extend(edge_crossings([a[0], a[1]], [b[0], b[1]], [cog_m[0], cog_m[1]], tol));
         }
     }
-    // What is searched for: the most on a leg, and on a spreader's top leg.
+    // What is searched for: the most on a leg, on a spreader's top leg,
+    // and on each leg (for its shackle, whose rating may differ by how far
+    // its leg pulls out of line).
     let on_a_leg = |c: &SlingCheck| c.max_leg_kg;
     let on_a_top_leg = |c: &SlingCheck| c.spreader.as_ref().and_then(|s| s.top.as_ref()).map_or(0.0, |t| t.max_leg_kg);
-    let objectives: [&dyn Fn(&SlingCheck) -> f64; 2] = [&on_a_leg, &on_a_top_leg];
-    let mut found: Vec<([f64; 2], [f64; 2])> = Vec::with_capacity(places.len());
+    let on_each: Vec<Box<dyn Fn(&SlingCheck) -> f64>> = (0..pts.len())
+        .map(|k| {
+            Box::new(move |c: &SlingCheck| c.leg_most_kg.get(k).copied().unwrap_or(0.0))
+                as Box<dyn Fn(&SlingCheck) -> f64>
+        })
+        .collect();
+    let mut objectives: Vec<&dyn Fn(&SlingCheck) -> f64> = vec![&on_a_leg, &on_a_top_leg];
+    objectives.extend(on_each.iter().map(|f| f.as_ref()));
+    let mut found: Vec<([f64; 2], Vec<f64>)> = Vec::with_capacity(places.len());
     for p in places {
         let c = at(p)?;
-        found.push((p, objectives.map(|f| f(&c))));
+        found.push((p, objectives.iter().map(|f| f(&c)).collect()));
         worst_of(&mut worst, &c, p);
     }
     // About the worst few of each, a search for worse between the places.
     let first_step = 2.0 * tol / (COG_SAMPLES - 1) as f64;
     for (o, objective) in objectives.iter().enumerate() {
         found.sort_by(|a, b| b.1[o].total_cmp(&a.1[o]));
-        for &(start, kg) in found.iter().take(4) {
-            let (mut best, mut best_kg, mut step) = (start, kg[o], first_step);
+        for (start, kg) in found.iter().take(4) {
+            let (mut best, mut best_kg, mut step) = (*start, kg[o], first_step);
             if best_kg == 0.0 {
                 break;
             }
@@ -947,6 +973,9 @@ fn worst_of(worst: &mut SlingCheck, c: &SlingCheck, at: [f64; 2]) {
     if c.max_leg_kg > worst.max_leg_kg {
         (worst.max_leg_kg, worst.max_leg, worst.worst_cog_m) = (c.max_leg_kg, c.max_leg, Some(at));
     }
+    for (w, &kg) in worst.leg_most_kg.iter_mut().zip(&c.leg_most_kg) {
+        *w = w.max(kg);
+    }
     let top = c.spreader.as_ref().and_then(|s| s.top.as_ref());
     if let (Some(w), Some(t)) = (worst.spreader.as_mut().and_then(|s| s.top.as_mut()), top) {
         w.max_angle_deg = w.max_angle_deg.max(t.max_angle_deg);
@@ -1046,6 +1075,7 @@ fn check_spreader(
         max_angle_deg: 0.0,
         max_leg_kg: shares[max_leg],
         max_leg: max_leg + 1,
+        leg_most_kg: shares.to_vec(),
         ratings: slings.ratings,
         points_given: slings.points_given,
         leg_lengths_m,
@@ -1129,6 +1159,7 @@ pub fn check_frame(
     })
     .ok_or_else(outside)?;
     let (max_leg, max_leg_kg) = most_on_one(&plumb);
+    let leg_most_kg = most_on_each(&plumb, 4);
     // The hook over the joint centre of gravity of the load and the frame,
     // the frame's at its centre.
     let total_kg = load_kg + frame.mass_kg;
@@ -1157,6 +1188,7 @@ pub fn check_frame(
         max_angle_deg: 0.0,
         max_leg_kg,
         max_leg: max_leg + 1,
+        leg_most_kg,
         ratings: slings.ratings,
         points_given: slings.points_given,
         leg_lengths_m,
@@ -1230,6 +1262,18 @@ fn one_slack(shares_of: impl Fn([usize; 3]) -> Option<Vec<f64>>) -> Option<Vec<(
         .flatten()
         .collect();
     (!pulls.is_empty()).then_some(pulls)
+}
+
+/// The most each of `legs` legs carries over `pulls` (kg, 0 for a leg that
+/// carries in none of them).
+fn most_on_each(pulls: &[(usize, f64)], legs: usize) -> Vec<f64> {
+    let mut most = vec![0.0; legs];
+    for &(k, kg) in pulls {
+        if let Some(m) = most.get_mut(k) {
+            *m = f64::max(*m, kg);
+        }
+    }
+    most
 }
 
 /// The leg (from 0) that carries the most of `pulls`, and what: the first
@@ -1793,10 +1837,21 @@ mod tests {
             let c = check_within(&legs, 5000.0, size, cog, tol, h).unwrap();
             let n = 101;
             let across = |k: usize| -tol + 2.0 * tol * k as f64 / (n - 1) as f64;
+            let mut finest_each = vec![0.0f64; legs.lift_points_m.len()];
             let (finest, finest_top) = (0..n * n)
                 .map(|k| [cog[0] + across(k % n), cog[1] + across(k / n), cog[2]])
                 .map(|at| check(&legs, 5000.0, size, at, h).unwrap())
+                .inspect(|c| finest_each.iter_mut().zip(&c.leg_most_kg).for_each(|(m, kg)| *m = m.max(*kg)))
                 .fold((0.0f64, 0.0f64), |(m, t), c| (m.max(c.max_leg_kg), t.max(top(&c))));
+            for (k, (fine, found)) in finest_each.iter().zip(&c.leg_most_kg).enumerate() {
+                assert!(*fine <= found + 1e-9, "{size:?}: leg {k}: {fine} more than {found}");
+            }
+            assert!(
+                (c.leg_most_kg.iter().fold(0.0f64, |m, kg| m.max(*kg)) - c.max_leg_kg).abs() < 1e-9,
+                "{:?} {}",
+                c.leg_most_kg,
+                c.max_leg_kg
+            );
             assert!(
                 finest <= c.max_leg_kg + 1e-9,
                 "{size:?}: {finest} more than {} at {:?}",
@@ -1907,19 +1962,21 @@ mod tests {
         let across = checked(&pinned([0.0, 1.0, 0.0]));
         let side = across.side_loading.clone().unwrap();
         assert_eq!((side.out_of_line_deg.clone(), side.turn_deg), (vec![0.0, 0.0], 0.0));
-        assert_eq!(across.shackle_limit_kg(), Some(12_000.0));
+        let (leg, carries_kg, limit_kg) = across.shackle_most_used().unwrap();
+        assert!(leg == 0 && (carries_kg - 6000.0 * 2.0f64.sqrt()).abs() < 1e-6 && limit_kg == 12_000.0);
         assert_eq!(across.over_limit(), None);
         let said = across.said();
-        assert!(said.contains("of its lift point's shackle's 12.00 t taken at 100 % for side loading, 12.00 t (leg 1 pulls up to 0.0° out of line with its shackle's pin, rigging pin_axes; the makers' chart"), "{said}");
+        assert!(said.contains("and of the lift points' shackles' 12.00 t, less for side loading: the most used, leg 1's, pulled up to 0.0° out of line with its pin (rigging pin_axes), may carry 100 % of it, 12.00 t (the makers' chart"), "{said}");
         assert!(said.contains("the lift point's own 10.00 t, which must be its rating for a pull up to 0.0° out of its lug's plane: 85 %"), "{said}");
         let along = checked(&pinned([1.0, 0.0, 0.0]));
         let side = along.side_loading.clone().unwrap();
         assert!(side.out_of_line_deg.iter().all(|d| (d - 45.0).abs() < 1e-9), "{side:?}");
-        assert!((along.shackle_limit_kg().unwrap() - 8400.0).abs() < 1e-6);
+        assert!((along.shackle_most_used().unwrap().2 - 8400.0).abs() < 1e-6);
         let over = along.over_limit().unwrap();
         assert!(
             over.starts_with("the lift points' shackles cannot carry the load")
-                && over.contains("taken at 70 % for side loading, 8.40 t (leg 1 pulls up to 45.0° out of line")
+                && over.contains("the most used, leg 1's, pulled up to 45.0° out of line with its pin (rigging pin_axes), may carry 70 % of it, 8.40 t")
+                && over.contains("and carries up to 8.49 t: 101 %")
                 && over.ends_with("or lugs turned for their legs to pull square to the pins (rigging pin_axes)"),
             "{over}"
         );
@@ -1929,7 +1986,28 @@ mod tests {
         let turned = checked(&pinned([half, half, 0.0]));
         let side = turned.side_loading.unwrap();
         assert!(side.out_of_line_deg.iter().all(|d| (d - 30.0).abs() < 1e-9), "{side:?}");
-        assert!((side.factor() - 0.8).abs() < 1e-12);
+        assert!((side_loading_factor(side.out_of_line_deg[0]) - 0.8).abs() < 1e-12);
+        // Each shackle at its own leg's angle, against its own leg's pull:
+        // the centre of gravity 1 m towards leg 1 (36.9° from the vertical,
+        // 9.37 t) and leg 2 (51.3°, 7.20 t) pulled along its pin, 51.3° out
+        // of line (67.2 %: 8.06 t). Leg 2's shackle is the most used (89 %),
+        // though leg 1 carries more; both under their ratings.
+        let mixed = Slings { ratings, pin_axes: Some(vec![[0.0, 1.0, 0.0], [1.0, 0.0, 0.0]]), ..slings(2, size) };
+        let mut c = check(&mixed, 12_000.0, size, [-1.0, 0.0, 0.0], 4.0).unwrap();
+        c.side_loading = side_loading(&mixed, size, [-1.0, 0.0, 0.0], 0.0, 0.0, 4.0);
+        let (a1, a2) = (3.0f64.atan2(4.0), 5.0f64.atan2(4.0));
+        let t2 = 12_000.0 / (a2.sin() / a1.sin() * a1.cos() + a2.cos());
+        assert!(
+            (c.leg_most_kg[1] - t2).abs() < 1e-6 && (c.leg_most_kg[0] - t2 * a2.sin() / a1.sin()).abs() < 1e-6,
+            "{c:?}"
+        );
+        let (leg, carries_kg, limit_kg) = c.shackle_most_used().unwrap();
+        assert_eq!(leg, 1);
+        assert!(
+            (carries_kg - t2).abs() < 1e-6 && (limit_kg - 12_000.0 * side_loading_factor(a2.to_degrees())).abs() < 1e-6
+        );
+        assert!(c.leg_most_kg[0] > limit_kg, "leg 1 carries more than leg 2's shackle may");
+        assert_eq!(c.over_limit(), None);
         // Three or four legs to the hook hold it where it is in the load's
         // frame: no turn, whatever the tolerance.
         let four = Slings { ratings, pin_axes: Some(vec![[0.0, 1.0, 0.0]; 4]), ..slings(4, size) };

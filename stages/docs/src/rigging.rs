@@ -193,9 +193,9 @@ pub fn page(d: &mut Doc, mut y: f32, w: f32, slings: &Slings, load: &LoadShape, 
     }
     y += 3.0 + ((z_hi - z_lo) as f32) * scale + 6.0;
     let side = check.side_loading.as_ref();
-    let header = ["Leg", "From (x, y, z) m", "To", "Length m", "From vertical", "Shackle pin", "Out of line"];
-    let widths = [14.0, 38.0, 22.0, 18.0, 25.0, 30.0, w - 147.0];
-    let right = [false, false, false, true, true, false, true];
+    let header = ["Leg", "From (x, y, z) m", "To", "Length m", "From vertical", "Most t", "Shackle pin", "Out of line"];
+    let widths = [14.0, 36.0, 22.0, 17.0, 24.0, 14.0, 30.0, w - 157.0];
+    let right = [false, false, false, true, true, true, false, true];
     let at = |p: [f64; 3]| format!("({:.2}, {:.2}, {:.2})", p[0], p[1], p[2]);
     let mut rows: Vec<Vec<String>> = s
         .legs()
@@ -207,6 +207,7 @@ pub fn page(d: &mut Doc, mut y: f32, w: f32, slings: &Slings, load: &LoadShape, 
                 if slings.spreader.is_some() { "spreader pin".into() } else { "hook block".into() },
                 check.leg_lengths_m.get(k).map_or_else(|| format!("{:.2}", p.length_m()), |l| format!("{l:.2}")),
                 format!("{:.1}°", p.from_vertical_deg()),
+                check.leg_most_kg.get(k).map_or_else(|| "—".into(), |kg| format!("{:.2}", kg / 1000.0)),
                 slings
                     .pin_axes
                     .as_ref()
@@ -229,6 +230,7 @@ pub fn page(d: &mut Doc, mut y: f32, w: f32, slings: &Slings, load: &LoadShape, 
             format!("{:.1}°", p.from_vertical_deg()),
             "—".into(),
             "—".into(),
+            "—".into(),
         ]);
     }
     y = d.table(15.0, y, &widths, &right, &header, &rows, 8.0);
@@ -243,7 +245,7 @@ pub fn page(d: &mut Doc, mut y: f32, w: f32, slings: &Slings, load: &LoadShape, 
         y,
         w,
         &format!(
-            "Lengths are from each lift point to the hook block's underside ({:.2} m over the load's top, rigging height_m), or to a spreader's pin, for the load to hang level as planned with its centre of gravity at ({:.2}, {:.2}, {:.2}) m from its box's centre (load cog_m): make the slings up to them, shackles and fittings included, and check at the trial lift that the load hangs level. A shackle's pin is given in the load's frame (rigging pin_axes); out of line is how far its leg may pull from the plane square to the pin. What each leg carries and the ratings are in the cover's Slings row.{one}",
+            "Lengths are from each lift point to the hook block's underside ({:.2} m over the load's top, rigging height_m), or to a spreader's pin, for the load to hang level as planned with its centre of gravity at ({:.2}, {:.2}, {:.2}) m from its box's centre (load cog_m): make the slings up to them, shackles and fittings included, and check at the trial lift that the load hangs level. A shackle's pin is given in the load's frame (rigging pin_axes); out of line is how far its leg may pull from the plane square to the pin. Most: the most the leg carries, in the worst way the load may hang on the legs and, where its centre of gravity is known only to a tolerance, at the worst place within it for that leg; the ratings, and what a spreader's top legs carry, are in the cover's Slings row.{one}",
             load.rigging_height_m, load.cog_m[0], load.cog_m[1], load.cog_m[2]
         ),
         8.5,
