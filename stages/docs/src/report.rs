@@ -22,7 +22,7 @@ fn opt(v: Option<f64>, digits: usize) -> String {
 const INPUT_ROWS_HERE: usize = 16;
 const MIN_INPUT_ROWS_HERE: usize = 4;
 
-fn heading(d: &mut Doc, y: f32, s: &str) -> f32 {
+pub(crate) fn heading(d: &mut Doc, y: f32, s: &str) -> f32 {
     d.text(15.0, y, s, 13.0, true, [25, 55, 110]);
     d.line(15.0, y + 2.0, d.size.w - 15.0, y + 2.0, 0.6, [25, 55, 110]);
     y + 9.0

@@ -122,6 +122,66 @@ pub fn sketch(slings: &Slings, load: &LoadShape, check: &SlingCheck) -> Sketch {
     Sketch { hook, pieces }
 }
 
+/// The top view under the elevations, at their scale: the load's outline,
+/// its centre of gravity, the lift points, the legs and a spreader as seen
+/// from above, the hook block, and each shackle's pin (orange, along its
+/// direction; a pin standing more than 70° from level, as a small square);
+/// returns the y below it.
+#[allow(clippy::too_many_arguments)]
+fn plan_view(
+    d: &mut Doc,
+    y: f32,
+    w: f32,
+    s: &Sketch,
+    slings: &Slings,
+    load: &LoadShape,
+    y_half: f64,
+    scale: f32,
+) -> f32 {
+    d.text(15.0, y, "Top: the load's x across, its y up", 8.5, true, INK);
+    let top = y + 3.0;
+    let mid = 15.0 + w / 2.0;
+    let height = (2.0 * y_half) as f32 * scale;
+    let at = |p: [f64; 3]| (mid + p[0] as f32 * scale, top + (y_half - p[1]) as f32 * scale);
+    let [hx, hy] = [load.size_m[0] / 2.0, load.size_m[1] / 2.0];
+    let (bx, by) = at([-hx, hy, 0.0]);
+    let (ex, ey) = at([hx, -hy, 0.0]);
+    d.frame(bx, by, ex - bx, ey - by, 0.8, INK);
+    let (cx, cy) = at(load.cog_m);
+    d.line(cx - 1.5, cy, cx + 1.5, cy, 0.8, COG);
+    d.line(cx, cy - 1.5, cx, cy + 1.5, 0.8, COG);
+    for p in &s.pieces {
+        let ((x1, y1), (x2, y2)) = (at(p.from), at(p.to));
+        let (width, color) = match p.kind {
+            PieceKind::Leg | PieceKind::TopLeg => (0.9, LEG),
+            PieceKind::Lug => (1.5, SPREADER),
+            PieceKind::Spreader => (2.5, SPREADER),
+        };
+        if (x1 - x2).hypot(y1 - y2) > 0.05 {
+            d.line(x1, y1, x2, y2, width, color);
+        }
+    }
+    for (n, p) in s.legs().enumerate() {
+        let (px, py) = at(p.from);
+        d.fill_rect(px - 0.7, py - 0.7, 1.4, 1.4, INK);
+        d.text(px + 1.2, py + 3.2, &(n + 1).to_string(), 7.0, false, LEG);
+        if let Some(a) = slings.pin_axes.as_ref().and_then(|axes| axes.get(n)) {
+            let level = a[0].hypot(a[1]);
+            if level > 20f64.to_radians().sin() {
+                let half = 4.0 / level as f32;
+                let (dx, dy) = (a[0] as f32 * half, -a[1] as f32 * half);
+                d.line(px - dx, py - dy, px + dx, py + dy, 1.6, PIN);
+            } else {
+                d.frame(px - 1.5, py - 1.5, 3.0, 3.0, 0.8, PIN);
+            }
+        }
+    }
+    let (kx, ky) = at(s.hook);
+    d.fill_rect(kx - 1.5, ky - 1.5, 3.0, 3.0, INK);
+    top + height + 6.0
+}
+
+const PIN: [u8; 3] = [230, 120, 0];
 const INK: [u8; 3] = [20, 20, 20];
 const GREY: [u8; 3] = [110, 110, 110];
 const LEG: [u8; 3] = [25, 80, 170];
@@ -147,14 +207,14 @@ pub fn page(d: &mut Doc, mut y: f32, w: f32, slings: &Slings, load: &LoadShape, 
     let scale = (panel_w as f64 / (2.0 * side_half))
         .min(panel_w as f64 / (2.0 * end_half))
         .min(panel_h as f64 / (z_hi - z_lo)) as f32;
-    d.paragraph(
+    y = d.paragraph(
         15.0,
         y,
         w,
-        "Drawn to scale in the load's frame as the plan takes it: the load level, the hook block over its centre of gravity (red cross). Legs in blue, numbered as the lift points; a spreader in grey.",
+        "Drawn to scale in the load's frame as the plan takes it: the load level, the hook block over its centre of gravity (red cross). Legs in blue, numbered as the lift points; a spreader in grey; in the top view, each shackle's pin in orange (rigging pin_axes).",
         8.5,
     );
-    y += 2.0 * crate::pdf::line_height_mm(8.5) + 2.0;
+    y += 2.0;
     for (k, (axis, title)) in
         [(0usize, "Side: the load's x across, up"), (1usize, "End: the load's y across, up")].into_iter().enumerate()
     {
@@ -192,10 +252,42 @@ pub fn page(d: &mut Doc, mut y: f32, w: f32, slings: &Slings, load: &LoadShape, 
         d.text(kx + 2.0, ky - 1.0, "hook block", 7.0, false, GREY);
     }
     y += 3.0 + ((z_hi - z_lo) as f32) * scale + 6.0;
-    let side = check.side_loading.as_ref();
     let header = ["Leg", "From (x, y, z) m", "To", "Length m", "From vertical", "Most t", "Shackle pin", "Out of line"];
     let widths = [14.0, 36.0, 22.0, 17.0, 24.0, 14.0, 30.0, w - 157.0];
     let right = [false, false, false, true, true, true, false, true];
+    let rows = leg_rows(&s, slings, check);
+    let one = if s.legs().count() == 1 && slings.spreader.is_none() {
+        " On one leg the load tilts until its centre of gravity hangs under its lift point."
+    } else {
+        ""
+    };
+    let words = format!(
+        "Lengths are from each lift point to the hook block's underside ({:.2} m over the load's top, rigging height_m), or to a spreader's pin, for the load to hang level as planned with its centre of gravity at ({:.2}, {:.2}, {:.2}) m from its box's centre (load cog_m): make the slings up to them, shackles and fittings included, and check at the trial lift that the load hangs level. A shackle's pin is given in the load's frame (rigging pin_axes); out of line is how far its leg may pull from the plane square to the pin. Most: the most the leg carries, in the worst way the load may hang on the legs and, where its centre of gravity is known only to a tolerance, at the worst place within it for that leg; the ratings, and what a spreader's top legs carry, are in the cover's Slings row.{one}",
+        load.rigging_height_m, load.cog_m[0], load.cog_m[1], load.cog_m[2]
+    );
+    // The top view, the rows and the words together, on the next page
+    // where this one has no room left for them.
+    let rows_mm = Doc::table_row_heights(&widths, &rows, 8.0).iter().sum::<f32>() + 8.0 * 0.3528 * 1.9;
+    let words_mm = crate::pdf::wrap(&words, w, 8.5).len() as f32 * crate::pdf::line_height_mm(8.5);
+    let top_view_mm = 3.0 + (2.0 * end_half) as f32 * scale + 6.0;
+    if y + top_view_mm + rows_mm + 4.0 + words_mm > d.size.h - BOTTOM_MM {
+        d.new_page();
+        y = crate::report::heading(d, 20.0, "Rigging (continued)");
+    }
+    y = plan_view(d, y, w, &s, slings, load, end_half, scale);
+    y = d.table(15.0, y, &widths, &right, &header, &rows, 8.0);
+    d.paragraph(15.0, y + 4.0, w, &words, 8.5)
+}
+
+/// Where the rigging pages' drawing stops, from the sheet's foot (mm): above
+/// the footer.
+const BOTTOM_MM: f32 = 15.0;
+
+/// A row per leg of `s` (its lift point, where it ends, its length, its
+/// angle from the vertical, the most it carries, its shackle's pin and how
+/// far it pulls out of line), then per top leg.
+fn leg_rows(s: &Sketch, slings: &Slings, check: &SlingCheck) -> Vec<Vec<String>> {
+    let side = check.side_loading.as_ref();
     let at = |p: [f64; 3]| format!("({:.2}, {:.2}, {:.2})", p[0], p[1], p[2]);
     let mut rows: Vec<Vec<String>> = s
         .legs()
@@ -233,23 +325,7 @@ pub fn page(d: &mut Doc, mut y: f32, w: f32, slings: &Slings, load: &LoadShape, 
             "—".into(),
         ]);
     }
-    y = d.table(15.0, y, &widths, &right, &header, &rows, 8.0);
-    y += 4.0;
-    let one = if s.legs().count() == 1 && slings.spreader.is_none() {
-        " On one leg the load tilts until its centre of gravity hangs under its lift point."
-    } else {
-        ""
-    };
-    d.paragraph(
-        15.0,
-        y,
-        w,
-        &format!(
-            "Lengths are from each lift point to the hook block's underside ({:.2} m over the load's top, rigging height_m), or to a spreader's pin, for the load to hang level as planned with its centre of gravity at ({:.2}, {:.2}, {:.2}) m from its box's centre (load cog_m): make the slings up to them, shackles and fittings included, and check at the trial lift that the load hangs level. A shackle's pin is given in the load's frame (rigging pin_axes); out of line is how far its leg may pull from the plane square to the pin. Most: the most the leg carries, in the worst way the load may hang on the legs and, where its centre of gravity is known only to a tolerance, at the worst place within it for that leg; the ratings, and what a spreader's top legs carry, are in the cover's Slings row.{one}",
-            load.rigging_height_m, load.cog_m[0], load.cog_m[1], load.cog_m[2]
-        ),
-        8.5,
-    )
+    rows
 }
 
 #[cfg(test)]
@@ -330,5 +406,59 @@ mod tests {
         let s = sketch(&one, &l, &c);
         assert_eq!(s.hook, [0.5, 0.0, 5.5]);
         assert_eq!(s.pieces[0].from_vertical_deg(), 0.0);
+    }
+
+    /// The page's drawing stays above the footer (drawing below it is the
+    /// document's own debug assertion) on A4 and Letter, for loads long,
+    /// square and tall, the top view, the rows and the words going on to a
+    /// second page where the first has no room left for them.
+    #[test]
+    fn the_rigging_fits_its_pages() {
+        let corners = |[x, y, z]: [f64; 3]| {
+            let [hx, hy, hz] = [x / 2.0, y / 2.0, z / 2.0];
+            vec![[-hx, -hy, hz], [hx, -hy, hz], [hx, hy, hz], [-hx, hy, hz]]
+        };
+        let legs = |points: Vec<[f64; 3]>| Slings {
+            pin_axes: Some(vec![[0.0, 1.0, 0.0]; points.len()]),
+            lift_points_m: points,
+            points_given: true,
+            ratings: Ratings { shackle_wll_kg: Some(50_000.0), ..Ratings::legs(50_000.0) },
+            spreader: None,
+        };
+        let cases = [
+            (legs(vec![[-4.0, 0.0, 1.5], [4.0, 0.0, 1.5]]), load([8.0, 3.0, 3.0], [0.2, 0.0, -0.1])),
+            (legs(corners([8.0, 7.0, 3.0])), load([8.0, 7.0, 3.0], [0.0; 3])),
+            (
+                legs(corners([10.0, 10.0, 3.0])),
+                LoadShape { rigging_height_m: 6.0, ..load([10.0, 10.0, 3.0], [0.0; 3]) },
+            ),
+            (legs(corners([3.0, 3.0, 10.0])), load([3.0, 3.0, 10.0], [0.0, 0.0, -1.0])),
+            (legs(vec![[0.0, 0.0, 1.0]]), load([2.0, 2.0, 2.0], [0.1, 0.0, 0.0])),
+        ];
+        let mut went_on = 0;
+        for size in [crate::pdf::A4, crate::pdf::LETTER] {
+            for (slings, l) in &cases {
+                let c = check(slings, 12_000.0, l.size_m, l.cog_m, l.rigging_height_m).unwrap();
+                let mut d = Doc::new("rigging", size).unwrap();
+                d.new_page();
+                let y = crate::report::heading(&mut d, 20.0, "Rigging");
+                page(&mut d, y, size.w - 30.0, slings, l, &c);
+                let pdf = lopdf::Document::load_mem(&d.finish("footer", "2026-12-05")).unwrap();
+                let pages: Vec<u32> = pdf.get_pages().keys().copied().collect();
+                assert!(pages.len() <= 2, "{:?}: {} pages", l.size_m, pages.len());
+                went_on += pages.len() - 1;
+                let text = pdf.extract_text(&pages).unwrap().replace('\n', " ");
+                assert!(
+                    text.contains("Top: the load's x across, its y up")
+                        && text.contains("Lengths are from each lift point"),
+                    "{text}"
+                );
+                for (k, p) in slings.lift_points_m.iter().enumerate() {
+                    let row = format!("{} ({:.2}, {:.2}, {:.2}) hook block ", k + 1, p[0], p[1], p[2]);
+                    assert!(text.contains(&row), "{row}: {text}");
+                }
+            }
+        }
+        assert!(went_on > 0, "no case went on to a second page: that branch is not tested");
     }
 }
