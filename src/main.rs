@@ -129,7 +129,7 @@ enum Command {
     /// lift's newest, the last plans, those the cache holds and those the
     /// project's lifts resume.
     #[command(
-        after_help = "Example:\n  liftplan revisions site-a\n  liftplan revisions site-a --remove-older-than 90\n  liftplan revisions site-a --keep-last 10"
+        after_help = "Example:\n  liftplan revisions site-a\n  liftplan revisions site-a --remove-older-than 90\n  liftplan revisions site-a --keep-last 10\n  liftplan revisions site-a --compare 3f9a2c1b 8e2d1a0f"
     )]
     Revisions {
         /// Project folder.
@@ -146,6 +146,14 @@ enum Command {
         /// Print the plans kept (and those removed) as JSON.
         #[arg(long)]
         json: bool,
+        /// Set two kept plans of a lift side by side: what differs in the
+        /// second (NOW) from the first (WAS), what a signer reads first,
+        /// then the first step that differs and every other value.
+        #[arg(long, num_args = 2, value_names = ["WAS", "NOW"], conflicts_with_all = ["remove_older_than", "keep_last"])]
+        compare: Option<Vec<String>>,
+        /// The lift whose plans --compare names, where two lifts keep both.
+        #[arg(long, requires = "compare")]
+        lift: Option<String>,
     },
     /// List every stage and its settings with their defaults.
     #[command(after_help = "Example:\n  liftplan options scans")]
@@ -503,11 +511,26 @@ fn real_main() -> Result<ExitCode> {
             );
             Ok(ExitCode::SUCCESS)
         }
-        Command::Revisions { dir, remove_older_than, keep_last, json } => {
+        Command::Revisions { dir, remove_older_than, keep_last, json, compare, lift } => {
             let removing = remove_older_than.is_some() || keep_last.is_some();
             let dir = project_dir(dir);
             if let Some(code) = not_a_project(&dir) {
                 return Ok(code);
+            }
+            if let Some([was, now]) = compare.as_deref() {
+                let c = match revisions::compare(&project::out_dir_of(&dir), lift.as_deref(), was, now) {
+                    Ok(c) => c,
+                    Err(e) => {
+                        eprintln!("error: {e:#}");
+                        return Ok(ExitCode::from(2));
+                    }
+                };
+                if json {
+                    println!("{}", serde_json::to_string_pretty(&c)?);
+                } else {
+                    println!("{}", c.said());
+                }
+                return Ok(ExitCode::SUCCESS);
             }
             // Its lifts say which plans they resume: removing needs the
             // project file to read; a listing says where it does not.

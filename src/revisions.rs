@@ -307,6 +307,316 @@ fn plans_in(plan_dir: &Path) -> Result<Vec<(serde_json::Value, String, String)>>
         .collect())
 }
 
+/// One thing two kept plans of a lift differ in, in words: what, as it
+/// was and as it is now.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct Difference {
+    pub what: String,
+    pub was: String,
+    pub now: String,
+}
+
+/// What differs between two kept plans of one lift (`liftplan revisions
+/// --compare WAS NOW`): for the engineer asked to sign a plan that replaces
+/// one signed before, or a crew handed a new revision.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct Comparison {
+    pub lift: String,
+    pub was: String,
+    pub now: String,
+    /// What a signer reads first ([`SAID`]), in that order, where it differs.
+    pub differences: Vec<Difference>,
+    /// The first step that differs (1-based), and what it was and is now
+    /// ("Luff down 11.26 °"; "none" past a plan's last step); `None` where
+    /// the steps are the same.
+    pub first_step_differing: Option<(usize, String, String)>,
+    /// Every other value of the plans that differs, by where it is in the
+    /// plan file (a JSON pointer; the planner's own search figures and
+    /// timings left out).
+    pub other_values: Vec<String>,
+}
+
+impl Comparison {
+    /// In lines, for the terminal.
+    pub fn said(&self) -> String {
+        let mut lines = vec![format!("{}: plan {} against plan {}:", self.lift, self.now, self.was)];
+        for d in &self.differences {
+            lines.push(format!("  {}: {}; now {}", d.what, d.was, d.now));
+        }
+        if let Some((n, was, now)) = &self.first_step_differing {
+            lines.push(format!("  The path differs from step {n}: {was}; now {now}"));
+        }
+        if !self.other_values.is_empty() {
+            const NAMED: usize = 8;
+            let named: Vec<&str> = self.other_values.iter().take(NAMED).map(String::as_str).collect();
+            let more = self.other_values.len().saturating_sub(NAMED);
+            let more = if more > 0 { format!(" and {more} more") } else { String::new() };
+            lines.push(format!(
+                "  {} other value{} of the plan file differ{}: {}{more}",
+                self.other_values.len(),
+                if self.other_values.len() == 1 { "" } else { "s" },
+                if self.other_values.len() == 1 { "s" } else { "" },
+                named.join(", ")
+            ));
+        }
+        if self.differences.is_empty() && self.first_step_differing.is_none() && self.other_values.is_empty() {
+            lines.push("  no difference but for the time planning took".to_string());
+        }
+        lines.join("\n")
+    }
+}
+
+/// What a signer reads first, in words: each with the parts of the plan
+/// file it says (JSON pointers into a lift's plan), which the rest of the
+/// comparison leaves to it.
+type Say = fn(&serde_json::Value) -> String;
+const SAID: &[(&str, &[&str], Say)] = &[
+    ("Validated", &["/summary/validated"], |p| match p.pointer("/summary/validated").and_then(|v| v.as_bool()) {
+        Some(true) => "yes".into(),
+        Some(false) => "NO".into(),
+        None => "not said".into(),
+    }),
+    ("Crane", &["/crane_model", "/chart_config"], |p| {
+        format!("{}, chart configuration '{}'", text(p, "/crane_model"), text(p, "/chart_config"))
+    }),
+    ("Crane set up at", &["/crane_placement"], |p| {
+        format!(
+            "({}, {}, {}) m, heading {}°, boom {} m",
+            number(p, "/crane_placement/x_m", 1.0, 2),
+            number(p, "/crane_placement/y_m", 1.0, 2),
+            number(p, "/crane_placement/z_m", 1.0, 2),
+            number(p, "/crane_placement/heading_rad", 180.0 / std::f64::consts::PI, 1),
+            number(p, "/crane_placement/boom_length_m", 1.0, 1),
+        )
+    }),
+    ("Gross load", &["/gross_kg"], |p| format!("{} t", number(p, "/gross_kg", 1e-3, 2))),
+    ("Clearance kept", &["/clearance_m", "/landing_clearance_m"], |p| {
+        format!(
+            "{} m, {} m over the landing zones",
+            number(p, "/clearance_m", 1.0, 2),
+            number(p, "/landing_clearance_m", 1.0, 2)
+        )
+    }),
+    (
+        "Most of the chart used",
+        &["/summary/max_utilisation_pct", "/summary/max_utilisation_step", "/summary/max_utilisation_cell"],
+        |p| {
+            format!(
+                "{} % at step {} ({})",
+                number(p, "/summary/max_utilisation_pct", 1.0, 1),
+                number(p, "/summary/max_utilisation_step", 1.0, 0),
+                text(p, "/summary/max_utilisation_cell")
+            )
+        },
+    ),
+    ("Critical lift", &["/summary/critical"], |p| match p.pointer("/summary/critical").and_then(|v| v.as_bool()) {
+        Some(true) => "yes".into(),
+        Some(false) => "no".into(),
+        None => "not said".into(),
+    }),
+    (
+        "Least clearance",
+        &["/summary/min_clearance_m", "/summary/min_clearance_step", "/summary/min_clearance_what"],
+        |p| {
+            format!(
+                "{} m at step {} ({})",
+                number(p, "/summary/min_clearance_m", 1.0, 2),
+                number(p, "/summary/min_clearance_step", 1.0, 0),
+                text(p, "/summary/min_clearance_what")
+            )
+        },
+    ),
+    ("Steps", &["/summary/steps"], |p| number(p, "/summary/steps", 1.0, 0)),
+    ("Slings", &["/summary/slings"], |p| match p.pointer("/summary/slings").filter(|s| s.is_object()) {
+        None => "not checked".into(),
+        Some(_) => {
+            let lengths: Vec<String> = p
+                .pointer("/summary/slings/leg_lengths_m")
+                .and_then(|v| v.as_array())
+                .map(|a| a.iter().filter_map(|l| l.as_f64()).map(|l| format!("{l:.2}")).collect())
+                .unwrap_or_default();
+            format!(
+                "{} legs {} m long, the most on one {} t",
+                number(p, "/summary/slings/legs", 1.0, 0),
+                lengths.join(", "),
+                number(p, "/summary/slings/max_leg_kg", 1e-3, 2)
+            )
+        }
+    }),
+    ("Reeving", &["/summary/reeving"], |p| match p.pointer("/summary/reeving").filter(|s| s.is_object()) {
+        None => "not checked".into(),
+        Some(_) => format!(
+            "{} falls, hook load {} t",
+            number(p, "/summary/reeving/falls", 1.0, 0),
+            number(p, "/summary/reeving/hook_load_kg", 1e-3, 2)
+        ),
+    }),
+    ("Outrigger pad at its most", &["/summary/highest_pad"], |p| match p.pointer("/summary/highest_pad/1") {
+        None => "not worked out".into(),
+        Some(_) => format!(
+            "{} t on the {} pad at step {}",
+            number(p, "/summary/highest_pad/1/load_kg", 1e-3, 1),
+            words_of(&text(p, "/summary/highest_pad/1/pad")),
+            number(p, "/summary/highest_pad/0", 1.0, 0)
+        ),
+    }),
+    ("Power lines", &["/summary/power_lines"], |p| listed(p, "/summary/power_lines")),
+    ("Obstacles placed by hand", &["/summary/obstacles"], |p| listed(p, "/summary/obstacles")),
+];
+
+/// A name as plan.json writes it ("RearLeft") in words ("rear left").
+fn words_of(name: &str) -> String {
+    let mut out = String::new();
+    for (k, c) in name.chars().enumerate() {
+        if c.is_uppercase() && k > 0 {
+            out.push(' ');
+        }
+        out.extend(c.to_lowercase());
+    }
+    out
+}
+
+/// The string at `pointer` in `plan`, or "not said".
+fn text(plan: &serde_json::Value, pointer: &str) -> String {
+    plan.pointer(pointer).and_then(|v| v.as_str()).unwrap_or("not said").to_string()
+}
+
+/// The number at `pointer` in `plan` times `scale`, to `digits` decimals,
+/// or "not said".
+fn number(plan: &serde_json::Value, pointer: &str, scale: f64, digits: usize) -> String {
+    plan.pointer(pointer).and_then(|v| v.as_f64()).map_or("not said".into(), |v| format!("{:.digits$}", v * scale))
+}
+
+/// The strings of the list at `pointer` in `plan` joined, or "none".
+fn listed(plan: &serde_json::Value, pointer: &str) -> String {
+    let items: Vec<&str> = plan
+        .pointer(pointer)
+        .and_then(|v| v.as_array())
+        .map(|a| a.iter().filter_map(|v| v.as_str()).collect())
+        .unwrap_or_default();
+    if items.is_empty() { "none".into() } else { items.join("; ") }
+}
+
+/// What a plan file's parts hold that the comparison does not set side by
+/// side: the planner's search (its figures and timings), the path's own
+/// nodes and moves (its steps say it), the plan's name, and the hook's
+/// configurations (the steps and the summary say where the load goes).
+const NOT_COMPARED: &[&str] =
+    &["/planning", "/nodes", "/moves", "/summary/revision", "/validator/seconds", "/start", "/goal"];
+
+/// Lift `lift`'s kept plans `was` and `now` set side by side ([`Comparison`]);
+/// where `lift` is `None`, the lift that keeps both. Refused, naming what is
+/// missing, where a plan is not kept, two lifts keep both, or a file does
+/// not read as a plan.
+pub fn compare(out_dir: &Path, lift: Option<&str>, was: &str, now: &str) -> Result<Comparison> {
+    let lift = match lift {
+        Some(l) => l.to_string(),
+        None => {
+            let kept = list(out_dir)?;
+            let keeps = |l: &str, r: &str| kept.iter().any(|k| k.lift == l && k.revision == r);
+            let mut lifts: Vec<&str> = kept.iter().map(|k| k.lift.as_str()).collect();
+            lifts.dedup();
+            let both: Vec<&str> = lifts.into_iter().filter(|l| keeps(l, was) && keeps(l, now)).collect();
+            match both[..] {
+                [one] => one.to_string(),
+                [] => {
+                    let missing = if kept.iter().any(|k| k.revision == was) { now } else { was };
+                    anyhow::bail!(
+                        "no lift keeps both plan {was} and plan {now} in {}: plan {missing} is not kept there (`liftplan revisions` lists those that are)",
+                        out_dir.join(DIR).display()
+                    );
+                }
+                _ => anyhow::bail!("lifts {} each keep plans {was} and {now}: name one with --lift", both.join(", ")),
+            }
+        }
+    };
+    let read = |revision: &str| -> Result<serde_json::Value> {
+        let file = kept_plan_file(out_dir, &lift, revision).with_context(|| {
+            format!("lift '{lift}' keeps no plan {revision} in {}", out_dir.join(DIR).join(&lift).display())
+        })?;
+        let text = std::fs::read_to_string(&file).with_context(|| format!("reading {}", file.display()))?;
+        let plan: serde_json::Value =
+            serde_json::from_str(&text).with_context(|| format!("{} does not read as JSON", file.display()))?;
+        let one = plan["lifts"][0].clone();
+        anyhow::ensure!(
+            one["summary"].is_object(),
+            "{} does not hold a lift's plan (lifts[0].summary)",
+            file.display()
+        );
+        Ok(liftplan_plan::but_for_timings(&one))
+    };
+    let (a, b) = (read(was)?, read(now)?);
+    let mut differences = Vec::new();
+    for (what, _, say) in SAID {
+        let (x, y) = (say(&a), say(&b));
+        if x != y {
+            differences.push(Difference { what: what.to_string(), was: x, now: y });
+        }
+    }
+    let step = |plan: &serde_json::Value, k: usize| -> Option<String> {
+        let s = plan.pointer(&format!("/steps/{k}"))?;
+        Some(format!(
+            "{} {:.2} {}",
+            s["operation"].as_str().unwrap_or("?"),
+            s["amount"].as_f64().unwrap_or(f64::NAN),
+            s["unit"].as_str().unwrap_or("")
+        ))
+    };
+    let steps = |plan: &serde_json::Value| plan["steps"].as_array().map_or(0, Vec::len);
+    let first_step_differing = (0..steps(&a).max(steps(&b))).find_map(|k| {
+        let (x, y) = (step(&a, k), step(&b, k));
+        (x != y).then(|| (k + 1, x.unwrap_or_else(|| "none".into()), y.unwrap_or_else(|| "none".into())))
+    });
+    let mut covered: Vec<&str> = NOT_COMPARED.to_vec();
+    covered.push("/steps");
+    for (_, parts, _) in SAID {
+        covered.extend_from_slice(parts);
+    }
+    let mut other_values = Vec::new();
+    differing_leaves(&a, &b, &mut String::new(), &covered, &mut other_values);
+    Ok(Comparison { lift, was: was.to_string(), now: now.to_string(), differences, first_step_differing, other_values })
+}
+
+/// Pushes onto `out` the JSON pointer of every value where `a` and `b`
+/// differ below `at`, but those under `covered`; an object or a list that
+/// one has and the other lacks, or of another length, counts as one.
+fn differing_leaves(
+    a: &serde_json::Value,
+    b: &serde_json::Value,
+    at: &mut String,
+    covered: &[&str],
+    out: &mut Vec<String>,
+) {
+    use serde_json::Value;
+    if covered.iter().any(|c| at == c || at.starts_with(&format!("{c}/"))) {
+        return;
+    }
+    match (a, b) {
+        (Value::Object(x), Value::Object(y)) => {
+            let mut keys: Vec<&String> = x.keys().chain(y.keys()).collect();
+            keys.sort_unstable();
+            keys.dedup();
+            for k in keys {
+                let len = at.len();
+                at.push('/');
+                at.push_str(&k.replace('~', "~0").replace('/', "~1"));
+                differing_leaves(x.get(k).unwrap_or(&Value::Null), y.get(k).unwrap_or(&Value::Null), at, covered, out);
+                at.truncate(len);
+            }
+        }
+        (Value::Array(x), Value::Array(y)) if x.len() == y.len() => {
+            for (k, (u, v)) in x.iter().zip(y).enumerate() {
+                let len = at.len();
+                at.push_str(&format!("/{k}"));
+                differing_leaves(u, v, at, covered, out);
+                at.truncate(len);
+            }
+        }
+        _ if a != b => out.push(at.clone()),
+        _ => {}
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -490,5 +800,98 @@ mod tests {
         assert!(out.join(DIR).join("V-101").join("notes.txt").is_file());
         assert_eq!(liftplan_docs::date_utc(0), "1970-01-01 00:00 UTC");
         assert_eq!(liftplan_docs::date_utc(951_782_400 + 23 * 3600 + 59 * 60 + 30), "2000-02-29 23:59 UTC");
+    }
+
+    /// A kept plan as a test writes it: what the comparison reads.
+    fn kept(out: &Path, lift: &str, revision: &str, gross_kg: f64, steps: &[(&str, f64)], extra: serde_json::Value) {
+        let steps: Vec<serde_json::Value> = steps
+            .iter()
+            .map(|(op, amount)| serde_json::json!({ "operation": op, "amount": amount, "unit": "m" }))
+            .collect();
+        let mut plan = serde_json::json!({
+            "lift": lift,
+            "gross_kg": gross_kg,
+            "crane_model": "AC 700",
+            "steps": steps,
+            "planning": { "plan_ms": gross_kg, "box_queries": gross_kg },
+            "summary": {
+                "revision": revision,
+                "validated": true,
+                "steps": steps.len(),
+                "highest_pad": [1, { "load_kg": 104_200.0, "pad": "RearLeft" }],
+                "obstacles": [],
+            },
+        });
+        if let (Some(p), Some(e)) = (plan.as_object_mut(), extra.as_object()) {
+            p.extend(e.clone());
+        }
+        let file = plan_file(out, lift, revision);
+        std::fs::create_dir_all(file.parent().unwrap()).unwrap();
+        std::fs::write(file, serde_json::json!({ "lifts": [plan] }).to_string()).unwrap();
+    }
+
+    /// Two plans of a lift: what a signer reads first where it differs,
+    /// rounded as the documents give it (a gross load 0.4 kg heavier is the
+    /// same 16.82 t); the first step that differs; every other value that
+    /// differs by where it is, the planner's own figures left out. The lift
+    /// is found where one keeps both, and named where two do.
+    #[test]
+    fn two_kept_plans_are_set_side_by_side() {
+        let d = tempfile::tempdir().unwrap();
+        let out = d.path();
+        let steps = [("Hoist up", 0.5), ("Swing", 30.0), ("Hoist down", 0.5)];
+        kept(out, "V-101", "0000000a", 16_819.0, &steps, serde_json::json!({ "gust_swing_per_m": 0.01 }));
+        let other_steps = [("Hoist up", 0.5), ("Swing", 31.0), ("Hoist down", 0.5), ("Rotate load", 5.0)];
+        let obstacle = serde_json::json!({ "gust_swing_per_m": 0.02, "summary": {
+            "revision": "0000000b",
+            "validated": true,
+            "steps": 4,
+            "highest_pad": [2, { "load_kg": 104_200.0, "pad": "FrontRight" }],
+            "obstacles": ["raised work platform"],
+        }});
+        kept(out, "V-101", "0000000b", 17_819.0, &other_steps, obstacle);
+        let c = compare(out, None, "0000000a", "0000000b").unwrap();
+        let said = c.said();
+        assert!(
+            said.starts_with("V-101: plan 0000000b against plan 0000000a:\n  Gross load: 16.82 t; now 17.82 t\n"),
+            "{said}"
+        );
+        assert!(said.contains("\n  Steps: 3; now 4\n"), "{said}");
+        assert!(said.contains("\n  Outrigger pad at its most: 104.2 t on the rear left pad at step 1; now 104.2 t on the front right pad at step 2\n"), "{said}");
+        assert!(said.contains("\n  Obstacles placed by hand: none; now raised work platform\n"), "{said}");
+        assert!(said.contains("\n  The path differs from step 2: Swing 30.00 m; now Swing 31.00 m\n"), "{said}");
+        assert_eq!(c.other_values, ["/gust_swing_per_m"]);
+        assert!(said.ends_with("\n  1 other value of the plan file differs: /gust_swing_per_m"), "{said}");
+        assert!(!said.contains("Validated") && !said.contains("planning"), "{said}");
+        // Rounded as the documents give it, and the planner's figures left out.
+        kept(out, "V-101", "0000000c", 16_819.4, &steps, serde_json::json!({ "gust_swing_per_m": 0.01 }));
+        let same = compare(out, None, "0000000a", "0000000c").unwrap();
+        assert_eq!((same.differences.len(), same.first_step_differing.clone()), (0, None), "{same:?}");
+        assert!(same.other_values.is_empty(), "{same:?}");
+        assert!(same.said().ends_with("no difference but for the time planning took"), "{}", same.said());
+        // A plan past the other's last step.
+        let shorter = compare(out, Some("V-101"), "0000000b", "0000000a").unwrap();
+        assert!(
+            shorter.said().contains("The path differs from step 2: Swing 31.00 m; now Swing 30.00 m"),
+            "{}",
+            shorter.said()
+        );
+        // What is not kept, a lift to name, a file that is no plan.
+        let e = compare(out, None, "0000000a", "0000000f").unwrap_err().to_string();
+        assert!(
+            e.contains("no lift keeps both plan 0000000a and plan 0000000f")
+                && e.contains("plan 0000000f is not kept there"),
+            "{e}"
+        );
+        kept(out, "V-102", "0000000a", 1.0, &steps, serde_json::json!({}));
+        kept(out, "V-102", "0000000b", 1.0, &steps, serde_json::json!({}));
+        let e = compare(out, None, "0000000a", "0000000b").unwrap_err().to_string();
+        assert!(e.contains("lifts V-101, V-102 each keep plans 0000000a and 0000000b: name one with --lift"), "{e}");
+        assert!(compare(out, Some("V-102"), "0000000a", "0000000b").unwrap().differences.is_empty());
+        let e = format!("{:#}", compare(out, Some("V-103"), "0000000a", "0000000b").unwrap_err());
+        assert!(e.contains("lift 'V-103' keeps no plan 0000000a in "), "{e}");
+        std::fs::write(plan_file(out, "V-102", "0000000b"), "{\"lifts\": [1]}").unwrap();
+        let e = format!("{:#}", compare(out, Some("V-102"), "0000000a", "0000000b").unwrap_err());
+        assert!(e.contains("0000000b.plan.json does not hold a lift's plan (lifts[0].summary)"), "{e}");
     }
 }

@@ -326,6 +326,23 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     assert!(text.contains("obstacles placed by hand in teal"), "{text}");
     assert!(text.contains("CHECK ON SITE that each stands where given"), "{text}");
     assert!(text.contains("CHECK FIRST the obstacle placed by hand, where it stands"), "{text}");
+    // What differs in the new plan from the crew's, for the engineer asked
+    // to sign it: the platform, and the path from the step it changes.
+    let new_plan = plan["lifts"][0]["summary"]["revision"].as_str().unwrap().to_string();
+    let o = crate::util::ok(&["revisions", d, "--compare", &crews_plan, &new_plan]);
+    let said = String::from_utf8_lossy(&o.stdout);
+    assert!(said.starts_with(&format!("V-101: plan {new_plan} against plan {crews_plan}:\n")), "{said}");
+    assert!(
+        said.contains("\n  Obstacles placed by hand: none; now raised work platform, 3.00 x 3.00 x 20.00 m at x 19.40, y -13.60 m, underside at z 0.00 m\n"),
+        "{said}"
+    );
+    assert!(said.contains("\n  The path differs from step "), "{said}");
+    assert!(!said.contains("Gross load"), "the same load: {said}");
+    let o = liftplan(&["revisions", d, "--compare", &crews_plan, "0000abcd"]);
+    assert!(
+        !o.status.success() && String::from_utf8_lossy(&o.stderr).contains("plan 0000abcd is not kept there"),
+        "{o:?}"
+    );
 
     // The crew's PDF is kept beside their plan, as issued (its pages name
     // their plan), though out/ now holds the plan made with the platform.
