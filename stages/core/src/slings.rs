@@ -212,6 +212,11 @@ pub struct TopLegs {
     pub leg_lengths_m: Vec<f64>,
     /// What they press the beam with along its length (kg-force).
     pub compression_kg: f64,
+    /// The most each carries (kg), in the order of the pins, as
+    /// [`SlingCheck::leg_most_kg`] is for the legs below; empty in a plan
+    /// written before liftplan kept it.
+    #[serde(default)]
+    pub leg_most_kg: Vec<f64>,
 }
 
 /// What the legs carry ([`check`]).
@@ -755,7 +760,8 @@ pub fn check_within(
     }
     // What is searched for: the most on a leg, on a spreader's top leg,
     // and on each leg (for its shackle, whose rating may differ by how far
-    // its leg pulls out of line).
+    // its leg pulls out of line) and each top leg (the rigging page gives
+    // each one's most).
     let on_a_leg = |c: &SlingCheck| c.max_leg_kg;
     let on_a_top_leg = |c: &SlingCheck| c.spreader.as_ref().and_then(|s| s.top.as_ref()).map_or(0.0, |t| t.max_leg_kg);
     let on_each: Vec<Box<dyn Fn(&SlingCheck) -> f64>> = (0..pts.len())
@@ -764,8 +770,23 @@ pub fn check_within(
                 as Box<dyn Fn(&SlingCheck) -> f64>
         })
         .collect();
+    let on_each_top: Vec<Box<dyn Fn(&SlingCheck) -> f64>> = (0..pts.len())
+        .map(|k| {
+            Box::new(move |c: &SlingCheck| {
+                c.spreader
+                    .as_ref()
+                    .and_then(|s| s.top.as_ref())
+                    .and_then(|t| t.leg_most_kg.get(k))
+                    .copied()
+                    .unwrap_or(0.0)
+            }) as Box<dyn Fn(&SlingCheck) -> f64>
+        })
+        .collect();
     let mut objectives: Vec<&dyn Fn(&SlingCheck) -> f64> = vec![&on_a_leg, &on_a_top_leg];
     objectives.extend(on_each.iter().map(|f| f.as_ref()));
+    if slings.spreader.as_ref().is_some_and(|s| s.top_leg_wll_kg.is_some()) {
+        objectives.extend(on_each_top.iter().map(|f| f.as_ref()));
+    }
     let mut found: Vec<([f64; 2], Vec<f64>)> = Vec::with_capacity(places.len());
     for p in places {
         let c = at(p)?;
@@ -983,6 +1004,9 @@ fn worst_of(worst: &mut SlingCheck, c: &SlingCheck, at: [f64; 2]) {
         if t.max_leg_kg > w.max_leg_kg {
             (w.max_leg_kg, w.max_leg) = (t.max_leg_kg, t.max_leg);
         }
+        for (most, &kg) in w.leg_most_kg.iter_mut().zip(&t.leg_most_kg) {
+            *most = most.max(kg);
+        }
     }
 }
 
@@ -1062,6 +1086,7 @@ fn check_spreader(
                 leg_lengths_m: lengths_m,
                 // Their pulls across the beam, equal and opposite.
                 compression_kg: pulls[0] * up[0][0].hypot(up[0][1]),
+                leg_most_kg: pulls.clone(),
             })
         }
     };
@@ -1180,6 +1205,7 @@ pub fn check_frame(
                 leg_wll_kg,
                 leg_lengths_m: lengths_m,
                 compression_kg: across_kg,
+                leg_most_kg: most_on_each(&pulls, 4),
             })
         }
     };
@@ -1838,14 +1864,25 @@ mod tests {
             let n = 101;
             let across = |k: usize| -tol + 2.0 * tol * k as f64 / (n - 1) as f64;
             let mut finest_each = vec![0.0f64; legs.lift_points_m.len()];
+            let mut finest_each_top = vec![0.0f64; legs.lift_points_m.len()];
+            let top_each = |c: &SlingCheck| {
+                c.spreader.as_ref().and_then(|s| s.top.as_ref()).map(|t| t.leg_most_kg.clone()).unwrap_or_default()
+            };
             let (finest, finest_top) = (0..n * n)
                 .map(|k| [cog[0] + across(k % n), cog[1] + across(k / n), cog[2]])
                 .map(|at| check(&legs, 5000.0, size, at, h).unwrap())
-                .inspect(|c| finest_each.iter_mut().zip(&c.leg_most_kg).for_each(|(m, kg)| *m = m.max(*kg)))
+                .inspect(|c| {
+                    finest_each.iter_mut().zip(&c.leg_most_kg).for_each(|(m, kg)| *m = m.max(*kg));
+                    finest_each_top.iter_mut().zip(&top_each(c)).for_each(|(m, kg)| *m = m.max(*kg));
+                })
                 .fold((0.0f64, 0.0f64), |(m, t), c| (m.max(c.max_leg_kg), t.max(top(&c))));
             for (k, (fine, found)) in finest_each.iter().zip(&c.leg_most_kg).enumerate() {
                 assert!(*fine <= found + 1e-9, "{size:?}: leg {k}: {fine} more than {found}");
             }
+            for (k, (fine, found)) in finest_each_top.iter().zip(&top_each(&c)).enumerate() {
+                assert!(*fine <= found + 1e-9, "{size:?}: top leg {k}: {fine} more than {found}");
+            }
+            assert_eq!(top_each(&c).len(), if top(&c) > 0.0 { legs.lift_points_m.len() } else { 0 });
             assert!(
                 (c.leg_most_kg.iter().fold(0.0f64, |m, kg| m.max(*kg)) - c.max_leg_kg).abs() < 1e-9,
                 "{:?} {}",

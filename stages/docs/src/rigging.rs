@@ -135,6 +135,7 @@ fn plan_view(
     s: &Sketch,
     slings: &Slings,
     load: &LoadShape,
+    cog_tolerance_m: f64,
     y_half: f64,
     scale: f32,
 ) -> f32 {
@@ -150,6 +151,11 @@ fn plan_view(
     let (cx, cy) = at(load.cog_m);
     d.line(cx - 1.5, cy, cx + 1.5, cy, 0.8, COG);
     d.line(cx, cy - 1.5, cx, cy + 1.5, 0.8, COG);
+    // Where the centre of gravity may lie (load cog_tolerance_m).
+    let tol = cog_tolerance_m as f32 * scale;
+    if tol > 0.0 {
+        d.frame(cx - tol, cy - tol, 2.0 * tol, 2.0 * tol, 0.5, COG);
+    }
     for p in &s.pieces {
         let ((x1, y1), (x2, y2)) = (at(p.from), at(p.to));
         let (width, color) = match p.kind {
@@ -176,8 +182,9 @@ fn plan_view(
             }
         }
     }
+    // The hook block in outline, over the centre of gravity's cross.
     let (kx, ky) = at(s.hook);
-    d.fill_rect(kx - 1.5, ky - 1.5, 3.0, 3.0, INK);
+    d.frame(kx - 2.0, ky - 2.0, 4.0, 4.0, 0.8, INK);
     top + height + 6.0
 }
 
@@ -211,7 +218,7 @@ pub fn page(d: &mut Doc, mut y: f32, w: f32, slings: &Slings, load: &LoadShape, 
         15.0,
         y,
         w,
-        "Drawn to scale in the load's frame as the plan takes it: the load level, the hook block over its centre of gravity (red cross). Legs in blue, numbered as the lift points; a spreader in grey; in the top view, each shackle's pin in orange (rigging pin_axes).",
+        "Drawn to scale in the load's frame as the plan takes it: the load level, the hook block over its centre of gravity (red cross). Legs in blue, numbered as the lift points; a spreader in grey; in the top view, each shackle's pin in orange (rigging pin_axes) and the square its centre of gravity may lie in (load cog_tolerance_m) in red.",
         8.5,
     );
     y += 2.0;
@@ -262,7 +269,7 @@ pub fn page(d: &mut Doc, mut y: f32, w: f32, slings: &Slings, load: &LoadShape, 
         ""
     };
     let words = format!(
-        "Lengths are from each lift point to the hook block's underside ({:.2} m over the load's top, rigging height_m), or to a spreader's pin, for the load to hang level as planned with its centre of gravity at ({:.2}, {:.2}, {:.2}) m from its box's centre (load cog_m): make the slings up to them, shackles and fittings included, and check at the trial lift that the load hangs level. A shackle's pin is given in the load's frame (rigging pin_axes); out of line is how far its leg may pull from the plane square to the pin. Most: the most the leg carries, in the worst way the load may hang on the legs and, where its centre of gravity is known only to a tolerance, at the worst place within it for that leg; the ratings, and what a spreader's top legs carry, are in the cover's Slings row.{one}",
+        "Lengths are from each lift point to the hook block's underside ({:.2} m over the load's top, rigging height_m), or to a spreader's pin, for the load to hang level as planned with its centre of gravity at ({:.2}, {:.2}, {:.2}) m from its box's centre (load cog_m): make the slings up to them, shackles and fittings included, and check at the trial lift that the load hangs level. A shackle's pin is given in the load's frame (rigging pin_axes); out of line is how far its leg may pull from the plane square to the pin. Most: the most the leg carries, in the worst way the load may hang on the legs and, where its centre of gravity is known only to a tolerance, at the worst place within it for that leg; a top leg's, the most it carries with the spreader; the ratings are in the cover's Slings row.{one}",
         load.rigging_height_m, load.cog_m[0], load.cog_m[1], load.cog_m[2]
     );
     // The top view, the rows and the words together, on the next page
@@ -274,7 +281,7 @@ pub fn page(d: &mut Doc, mut y: f32, w: f32, slings: &Slings, load: &LoadShape, 
         d.new_page();
         y = crate::report::heading(d, 20.0, "Rigging (continued)");
     }
-    y = plan_view(d, y, w, &s, slings, load, end_half, scale);
+    y = plan_view(d, y, w, &s, slings, load, check.cog_tolerance_m, end_half, scale);
     y = d.table(15.0, y, &widths, &right, &header, &rows, 8.0);
     d.paragraph(15.0, y + 4.0, w, &words, 8.5)
 }
@@ -309,18 +316,16 @@ fn leg_rows(s: &Sketch, slings: &Slings, check: &SlingCheck) -> Vec<Vec<String>>
             ]
         })
         .collect();
-    let top_lengths = check.spreader.as_ref().and_then(|sp| sp.top.as_ref()).map(|t| t.leg_lengths_m.clone());
+    let top = check.spreader.as_ref().and_then(|sp| sp.top.as_ref());
     for (k, p) in s.pieces.iter().filter(|p| p.kind == PieceKind::TopLeg).enumerate() {
         rows.push(vec![
             format!("top {}", k + 1),
             at(p.from),
             "hook block".into(),
-            top_lengths
-                .as_ref()
-                .and_then(|l| l.get(k))
+            top.and_then(|t| t.leg_lengths_m.get(k))
                 .map_or_else(|| format!("{:.2}", p.length_m()), |l| format!("{l:.2}")),
             format!("{:.1}°", p.from_vertical_deg()),
-            "—".into(),
+            top.and_then(|t| t.leg_most_kg.get(k)).map_or_else(|| "—".into(), |kg| format!("{:.2}", kg / 1000.0)),
             "—".into(),
             "—".into(),
         ]);
