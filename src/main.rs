@@ -129,7 +129,7 @@ enum Command {
     /// lift's newest, the last plans, those the cache holds and those the
     /// project's lifts resume.
     #[command(
-        after_help = "Example:\n  liftplan revisions site-a\n  liftplan revisions site-a --remove-older-than 90\n  liftplan revisions site-a --keep-last 10\n  liftplan revisions site-a --compare 3f9a2c1b 8e2d1a0f"
+        after_help = "Example:\n  liftplan revisions site-a\n  liftplan revisions site-a --remove-older-than 90\n  liftplan revisions site-a --keep-last 10\n  liftplan revisions site-a --compare 3f9a2c1b 8e2d1a0f\n  liftplan revisions site-a --compare 3f9a2c1b last"
     )]
     Revisions {
         /// Project folder.
@@ -147,8 +147,9 @@ enum Command {
         #[arg(long)]
         json: bool,
         /// Set two kept plans of a lift side by side: what differs in the
-        /// second (NOW) from the first (WAS), what a signer reads first,
-        /// then the first step that differs and every other value.
+        /// second (NOW; `last`: the lift's last plan) from the first
+        /// (WAS), what a signer reads first, then the first step that
+        /// differs and every other value.
         #[arg(long, num_args = 2, value_names = ["WAS", "NOW"], conflicts_with_all = ["remove_older_than", "keep_last"])]
         compare: Option<Vec<String>>,
         /// The lift whose plans --compare names, where two lifts keep both.

@@ -366,6 +366,9 @@ impl Comparison {
     }
 }
 
+/// What `--compare`'s second plan may be: the lift's last plan.
+pub const LAST: &str = "last";
+
 /// What a signer reads first, in words: each with the parts of the plan
 /// file it says (JSON pointers into a lift's plan), which the rest of the
 /// comparison leaves to it.
@@ -505,10 +508,45 @@ const NOT_COMPARED: &[&str] =
     &["/planning", "/nodes", "/moves", "/summary/revision", "/validator/seconds", "/start", "/goal"];
 
 /// Lift `lift`'s kept plans `was` and `now` set side by side ([`Comparison`]);
-/// where `lift` is `None`, the lift that keeps both. Refused, naming what is
-/// missing, where a plan is not kept, two lifts keep both, or a file does
-/// not read as a plan.
+/// where `lift` is `None`, the lift that keeps both. `now` may be `last`:
+/// the lift's last plan (out/plan.json's), else the one kept last. Refused, naming what is missing, where a plan
+/// is not kept, two lifts keep both, or a file does not read as a plan.
 pub fn compare(out_dir: &Path, lift: Option<&str>, was: &str, now: &str) -> Result<Comparison> {
+    let newest;
+    let now = if now == LAST {
+        let kept = list(out_dir)?;
+        let lifts: Vec<&str> = match lift {
+            Some(l) => vec![l],
+            None => kept.iter().filter(|k| k.revision == was).map(|k| k.lift.as_str()).collect(),
+        };
+        let [one] = lifts[..] else {
+            anyhow::bail!(match lifts.len() {
+                0 => format!("no lift keeps plan {was} in {}", out_dir.join(DIR).display()),
+                _ => format!("lifts {} each keep plan {was}: name one with --lift", lifts.join(", ")),
+            });
+        };
+        // The lift's plan in out/plan.json (a run keeps each plan it
+        // makes), else the one kept last (each lift's plans are listed
+        // oldest first).
+        let in_last_plans = std::fs::read_to_string(out_dir.join("plan.json"))
+            .ok()
+            .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
+            .and_then(|v| {
+                let entry = v["lifts"].as_array()?.iter().find(|l| l["lift"] == one)?;
+                entry["summary"]["revision"].as_str().map(String::from)
+            })
+            .filter(|r| kept.iter().any(|k| k.lift == one && &k.revision == r));
+        newest =
+            match in_last_plans {
+                Some(r) => r,
+                None => kept.iter().rev().find(|k| k.lift == one).map(|k| k.revision.clone()).with_context(|| {
+                    format!("lift '{one}' keeps no plan in {}", out_dir.join(DIR).join(one).display())
+                })?,
+            };
+        newest.as_str()
+    } else {
+        now
+    };
     let lift = match lift {
         Some(l) => l.to_string(),
         None => {
@@ -869,6 +907,13 @@ mod tests {
         assert_eq!((same.differences.len(), same.first_step_differing.clone()), (0, None), "{same:?}");
         assert!(same.other_values.is_empty(), "{same:?}");
         assert!(same.said().ends_with("no difference but for the time planning took"), "{}", same.said());
+        // The lift's plan kept last (its files' times may tie: then by
+        // revision), or the one in out/plan.json, the last plans.
+        let last = compare(out, None, "0000000a", LAST).unwrap();
+        assert_eq!((last.lift.as_str(), last.now.as_str()), ("V-101", "0000000c"));
+        std::fs::write(out.join("plan.json"), plan_json(&[("V-101", "0000000b")])).unwrap();
+        assert_eq!(compare(out, None, "0000000a", LAST).unwrap().now, "0000000b");
+        std::fs::remove_file(out.join("plan.json")).unwrap();
         // A plan past the other's last step.
         let shorter = compare(out, Some("V-101"), "0000000b", "0000000a").unwrap();
         assert!(
@@ -888,6 +933,9 @@ mod tests {
         let e = compare(out, None, "0000000a", "0000000b").unwrap_err().to_string();
         assert!(e.contains("lifts V-101, V-102 each keep plans 0000000a and 0000000b: name one with --lift"), "{e}");
         assert!(compare(out, Some("V-102"), "0000000a", "0000000b").unwrap().differences.is_empty());
+        let e = compare(out, None, "0000000a", LAST).unwrap_err().to_string();
+        assert!(e.contains("lifts V-101, V-102 each keep plan 0000000a: name one with --lift"), "{e}");
+        assert_eq!(compare(out, Some("V-102"), "0000000a", LAST).unwrap().now, "0000000b");
         let e = format!("{:#}", compare(out, Some("V-103"), "0000000a", "0000000b").unwrap_err());
         assert!(e.contains("lift 'V-103' keeps no plan 0000000a in "), "{e}");
         std::fs::write(plan_file(out, "V-102", "0000000b"), "{\"lifts\": [1]}").unwrap();
