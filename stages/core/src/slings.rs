@@ -758,44 +758,31 @@ pub fn check_within(
             places.extend(edge_crossings([a[0], a[1]], [b[0], b[1]], [cog_m[0], cog_m[1]], tol));
         }
     }
-    // What is searched for: the most on a leg, on a spreader's top leg,
-    // and on each leg (for its shackle, whose rating may differ by how far
-    // its leg pulls out of line) and each top leg (the rigging page gives
-    // each one's most).
-    let on_a_leg = |c: &SlingCheck| c.max_leg_kg;
-    let on_a_top_leg = |c: &SlingCheck| c.spreader.as_ref().and_then(|s| s.top.as_ref()).map_or(0.0, |t| t.max_leg_kg);
-    let on_each: Vec<Box<dyn Fn(&SlingCheck) -> f64>> = (0..pts.len())
-        .map(|k| {
-            Box::new(move |c: &SlingCheck| c.leg_most_kg.get(k).copied().unwrap_or(0.0))
-                as Box<dyn Fn(&SlingCheck) -> f64>
-        })
-        .collect();
-    let on_each_top: Vec<Box<dyn Fn(&SlingCheck) -> f64>> = (0..pts.len())
-        .map(|k| {
-            Box::new(move |c: &SlingCheck| {
-                c.spreader
-                    .as_ref()
-                    .and_then(|s| s.top.as_ref())
-                    .and_then(|t| t.leg_most_kg.get(k))
-                    .copied()
-                    .unwrap_or(0.0)
-            }) as Box<dyn Fn(&SlingCheck) -> f64>
-        })
-        .collect();
-    let mut objectives: Vec<&dyn Fn(&SlingCheck) -> f64> = vec![&on_a_leg, &on_a_top_leg];
-    objectives.extend(on_each.iter().map(|f| f.as_ref()));
-    if slings.spreader.as_ref().is_some_and(|s| s.top_leg_wll_kg.is_some()) {
-        objectives.extend(on_each_top.iter().map(|f| f.as_ref()));
-    }
+    // What is searched for, by number: the most on a leg, on a spreader's
+    // top leg, then on each leg (for its shackle, whose rating may differ
+    // by how far its leg pulls out of line) and each top leg (the rigging
+    // page gives each one's most).
+    let legs = pts.len();
+    let top_legs = if slings.spreader.as_ref().is_some_and(|s| s.top_leg_wll_kg.is_some()) { legs } else { 0 };
+    let objectives = 2 + legs + top_legs;
+    let objective = |c: &SlingCheck, o: usize| -> f64 {
+        let top = c.spreader.as_ref().and_then(|s| s.top.as_ref());
+        match o {
+            0 => c.max_leg_kg,
+            1 => top.map_or(0.0, |t| t.max_leg_kg),
+            k if k < 2 + legs => c.leg_most_kg.get(k - 2).copied().unwrap_or(0.0),
+            k => top.and_then(|t| t.leg_most_kg.get(k - 2 - legs)).copied().unwrap_or(0.0),
+        }
+    };
     let mut found: Vec<([f64; 2], Vec<f64>)> = Vec::with_capacity(places.len());
     for p in places {
         let c = at(p)?;
-        found.push((p, objectives.iter().map(|f| f(&c)).collect()));
+        found.push((p, (0..objectives).map(|o| objective(&c, o)).collect()));
         worst_of(&mut worst, &c, p);
     }
     // About the worst few of each, a search for worse between the places.
     let first_step = 2.0 * tol / (COG_SAMPLES - 1) as f64;
-    for (o, objective) in objectives.iter().enumerate() {
+    for o in 0..objectives {
         found.sort_by(|a, b| b.1[o].total_cmp(&a.1[o]));
         for (start, kg) in found.iter().take(4) {
             let (mut best, mut best_kg, mut step) = (*start, kg[o], first_step);
@@ -817,8 +804,8 @@ pub fn check_within(
                     let p = within([best[0] + dx * step, best[1] + dy * step]);
                     let c = at(p)?;
                     worst_of(&mut worst, &c, p);
-                    if objective(&c) > best_kg {
-                        (best, best_kg, moved) = (p, objective(&c), true);
+                    if objective(&c, o) > best_kg {
+                        (best, best_kg, moved) = (p, objective(&c, o), true);
                     }
                 }
                 if !moved {
