@@ -123,10 +123,11 @@ pub fn sketch(slings: &Slings, load: &LoadShape, check: &SlingCheck) -> Sketch {
 }
 
 /// The top view under the elevations, at their scale: the load's outline,
-/// its centre of gravity, the lift points, the legs and a spreader as seen
-/// from above, the hook block, and each shackle's pin (orange, along its
-/// direction; a pin standing more than 70° from level, as a small square);
-/// returns the y below it.
+/// its centre of gravity and the square it may lie in (`cog_tolerance_m`),
+/// the lift points, the legs and a spreader as seen from above, the hook
+/// block, and each shackle's pin (orange, along its direction; a pin
+/// standing more than 70° from level, as a small square); returns the y
+/// below it.
 #[allow(clippy::too_many_arguments)]
 fn plan_view(
     d: &mut Doc,
@@ -196,8 +197,10 @@ const SPREADER: [u8; 3] = [90, 90, 90];
 const COG: [u8; 3] = [200, 30, 30];
 
 /// Draws the rigging page's body from `y` (mm from the top) in `w` mm:
-/// the side and end elevations of [`sketch`], a row per leg and per top
-/// leg, and what the lengths are for; returns the y below it.
+/// the side and end elevations and the top view of [`sketch`], a row per
+/// leg and per top leg, and what the lengths are for (the top view, the
+/// rows and the words on a second page where the first has no room left
+/// for them); returns the y below it.
 pub fn page(d: &mut Doc, mut y: f32, w: f32, slings: &Slings, load: &LoadShape, check: &SlingCheck) -> f32 {
     let s = sketch(slings, load, check);
     let [hx, hy, hz] = load.size_m.map(|v| v / 2.0);
