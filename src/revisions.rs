@@ -34,6 +34,13 @@ pub fn plan_file(out_dir: &Path, lift: &str, revision: &str) -> PathBuf {
     out_dir.join(DIR).join(lift).join(format!("{revision}.plan.json"))
 }
 
+/// What lift `lift`'s plan of revision `revision` was made from, where it
+/// is kept: the plan stage's inputs (its code, its settings, which hold
+/// every lift's, and each upstream output it read) by their hashes.
+pub fn inputs_file(out_dir: &Path, lift: &str, revision: &str) -> PathBuf {
+    out_dir.join(DIR).join(lift).join(format!("{revision}.inputs.json"))
+}
+
 /// Lift `lift`'s plan of revision `revision`, where it is kept: none where
 /// it is not, or where the names could not be a kept plan's (a revision in
 /// a project file is the engineer's typing).
@@ -59,6 +66,13 @@ fn names_a_file(lift: &str, revision: &str) -> bool {
 pub fn keep(out_dir: &Path, plan_dir: &Path) -> Result<Vec<String>> {
     let mut kept = Vec::new();
     let mut another = Vec::new();
+    // What the plans were made from: the plan stage's inputs, as its
+    // manifest names them, kept beside each plan ([`inputs_file`]).
+    let made_from = std::fs::read_to_string(plan_dir.join("manifest.json"))
+        .ok()
+        .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
+        .map(|m| m["inputs"].clone())
+        .filter(|i| i.is_object());
     for (plan, lift, revision) in plans_in(plan_dir)? {
         let to = plan_file(out_dir, &lift, &revision);
         if to.exists() {
@@ -80,6 +94,12 @@ pub fn keep(out_dir: &Path, plan_dir: &Path) -> Result<Vec<String>> {
             let steps_to = to.with_file_name(format!("{revision}.steps.csv"));
             liftplan_core::artifact::write_atomic(&steps_to, &bytes)
                 .with_context(|| format!("{}", steps_to.display()))?;
+        }
+        if let Some(inputs) = &made_from {
+            let inputs_to = inputs_file(out_dir, &lift, &revision);
+            let one = serde_json::json!({ "inputs": inputs });
+            liftplan_core::artifact::write_atomic(&inputs_to, serde_json::to_string_pretty(&one)?.as_bytes())
+                .with_context(|| format!("{}", inputs_to.display()))?;
         }
         let one = serde_json::json!({ "lifts": [plan] });
         liftplan_core::artifact::write_atomic(&to, serde_json::to_string_pretty(&one)?.as_bytes())
@@ -139,13 +159,15 @@ pub struct Kept {
 }
 
 impl Kept {
-    /// Its files: the PDF and the steps (where kept), then the plan, the
-    /// order they are removed in (a plan file kept is one whose steps are).
-    fn files(&self, out_dir: &Path) -> [PathBuf; 3] {
+    /// Its files: the PDF, the steps and what it was made from (where
+    /// kept), then the plan, the order they are removed in (a plan file
+    /// kept is one whose steps are).
+    fn files(&self, out_dir: &Path) -> [PathBuf; 4] {
         let plan = plan_file(out_dir, &self.lift, &self.revision);
         [
             plan.with_file_name(format!("{}.pdf", self.revision)),
             plan.with_file_name(format!("{}.steps.csv", self.revision)),
+            inputs_file(out_dir, &self.lift, &self.revision),
             plan,
         ]
     }
@@ -218,10 +240,11 @@ pub fn list(out_dir: &Path) -> Result<Vec<Kept>> {
                 bytes: 0,
             };
             // The plan file's size is in the metadata read above.
-            let [pdf, steps, _] = one.files(out_dir);
+            let [pdf, steps, inputs, _] = one.files(out_dir);
             one.pdf_bytes = size(&pdf);
             let plan_bytes = if meta.is_file() { meta.len() } else { 0 };
-            one.bytes = plan_bytes + one.pdf_bytes.unwrap_or(0) + size(&steps).unwrap_or(0);
+            one.bytes =
+                plan_bytes + one.pdf_bytes.unwrap_or(0) + size(&steps).unwrap_or(0) + size(&inputs).unwrap_or(0);
             kept.push(one);
         }
     }
@@ -334,6 +357,10 @@ pub struct Comparison {
     /// plan file (a JSON pointer; the planner's own search figures and
     /// timings left out).
     pub other_values: Vec<String>,
+    /// What the plans were made from that differs, in words ([`made_from`]);
+    /// `None` where a plan's inputs are not kept (kept by an earlier
+    /// liftplan).
+    pub inputs_differing: Option<Vec<String>>,
 }
 
 impl Comparison {
@@ -362,6 +389,12 @@ impl Comparison {
         if self.differences.is_empty() && self.first_step_differing.is_none() && self.other_values.is_empty() {
             lines.push("  no difference but for the time planning took".to_string());
         }
+        lines.push(match &self.inputs_differing {
+            None => "  Made from: not known (a plan kept by an earlier liftplan has no record of its inputs beside it)"
+                .to_string(),
+            Some(d) if d.is_empty() => "  Made from: the same inputs".to_string(),
+            Some(d) => format!("  Made from: {} differ{}", d.join("; "), if d.len() == 1 { "s" } else { "" }),
+        });
         lines.join("\n")
     }
 }
@@ -612,7 +645,43 @@ pub fn compare(out_dir: &Path, lift: Option<&str>, was: &str, now: &str) -> Resu
     }
     let mut other_values = Vec::new();
     differing_leaves(&a, &b, &mut String::new(), &covered, &mut other_values);
-    Ok(Comparison { lift, was: was.to_string(), now: now.to_string(), differences, first_step_differing, other_values })
+    let inputs_of = |revision: &str| -> Option<serde_json::Map<String, serde_json::Value>> {
+        let text = std::fs::read_to_string(inputs_file(out_dir, &lift, revision)).ok()?;
+        serde_json::from_str::<serde_json::Value>(&text).ok()?["inputs"].as_object().cloned()
+    };
+    let inputs_differing = inputs_of(was).zip(inputs_of(now)).map(|(x, y)| {
+        let mut names: Vec<&String> = x.keys().chain(y.keys()).filter(|k| x.get(*k) != y.get(*k)).collect();
+        names.sort_unstable();
+        names.dedup();
+        names.into_iter().map(|n| made_from(n)).collect()
+    });
+    Ok(Comparison {
+        lift,
+        was: was.to_string(),
+        now: now.to_string(),
+        differences,
+        first_step_differing,
+        other_values,
+        inputs_differing,
+    })
+}
+
+/// One of the plan stage's inputs, as its manifest names it, in words.
+pub fn made_from(name: &str) -> String {
+    let known = match name {
+        "code" => "liftplan's plan stage (its code)",
+        "settings" => {
+            "the plan stage's settings (the project's lifts, any of them, power lines, obstacles and [plan], [cspace])"
+        }
+        "upstream:scans/site.laz" => "the site cloud (the scans, as registered and thinned)",
+        "upstream:plant/plant.mesh" => "the plant model's mesh",
+        "upstream:plant/plant.json" => "the plant model's groups (those left out, their boxes)",
+        "upstream:charts/capacity.csv" => "the load charts' capacities",
+        "upstream:charts/chart.json" => "what the load charts state (their cells, wind, counterweight, warnings)",
+        "upstream:depthmap/site.mdm" => "the depth map (the site cloud and the plant model rasterised)",
+        other => return format!("the plan stage's input '{other}'"),
+    };
+    format!("{known} ({name})")
 }
 
 /// Pushes onto `out` the JSON pointer of every value where `a` and `b`
@@ -677,7 +746,13 @@ mod tests {
         std::fs::create_dir_all(&entry).unwrap();
         std::fs::write(entry.join("plan.json"), plan_json(&[("V-101", "0fb8698c"), ("V-102", "")])).unwrap();
         std::fs::write(entry.join("V-101.steps.csv"), "step,operation\n1,Hoist up\n").unwrap();
+        let manifest = serde_json::json!({ "stage": "plan", "inputs": { "code": "31ee", "settings": "ecaa" } });
+        std::fs::write(entry.join("manifest.json"), manifest.to_string()).unwrap();
         assert_eq!(keep(&out, &entry).unwrap(), ["V-101 plan 0fb8698c"]);
+        // What it was made from, beside it.
+        let inputs: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(inputs_file(&out, "V-101", "0fb8698c")).unwrap()).unwrap();
+        assert_eq!(inputs["inputs"], manifest["inputs"]);
         let kept = plan_file(&out, "V-101", "0fb8698c");
         let read: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&kept).unwrap()).unwrap();
         assert_eq!(read["lifts"][0]["lift"], "V-101");
@@ -888,8 +963,23 @@ mod tests {
             "obstacles": ["raised work platform"],
         }});
         kept(out, "V-101", "0000000b", 17_819.0, &other_steps, obstacle);
+        let made_from = |revision: &str, settings: &str| {
+            let inputs = serde_json::json!({ "inputs": { "code": "31ee", "settings": settings, "upstream:scans/site.laz": "1f90" } });
+            std::fs::write(inputs_file(out, "V-101", revision), inputs.to_string()).unwrap();
+        };
+        let c = compare(out, None, "0000000a", "0000000b").unwrap();
+        assert!(
+            c.said().ends_with(
+                "\n  Made from: not known (a plan kept by an earlier liftplan has no record of its inputs beside it)"
+            ),
+            "{}",
+            c.said()
+        );
+        made_from("0000000a", "ecaa");
+        made_from("0000000b", "ecab");
         let c = compare(out, None, "0000000a", "0000000b").unwrap();
         let said = c.said();
+        assert!(said.ends_with("\n  Made from: the plan stage's settings (the project's lifts, any of them, power lines, obstacles and [plan], [cspace]) (settings) differs"), "{said}");
         assert!(
             said.starts_with("V-101: plan 0000000b against plan 0000000a:\n  Gross load: 16.82 t; now 17.82 t\n"),
             "{said}"
@@ -899,14 +989,19 @@ mod tests {
         assert!(said.contains("\n  Obstacles placed by hand: none; now raised work platform\n"), "{said}");
         assert!(said.contains("\n  The path differs from step 2: Swing 30.00 m; now Swing 31.00 m\n"), "{said}");
         assert_eq!(c.other_values, ["/gust_swing_per_m"]);
-        assert!(said.ends_with("\n  1 other value of the plan file differs: /gust_swing_per_m"), "{said}");
+        assert!(said.contains("\n  1 other value of the plan file differs: /gust_swing_per_m\n"), "{said}");
         assert!(!said.contains("Validated") && !said.contains("planning"), "{said}");
         // Rounded as the documents give it, and the planner's figures left out.
         kept(out, "V-101", "0000000c", 16_819.4, &steps, serde_json::json!({ "gust_swing_per_m": 0.01 }));
+        made_from("0000000c", "ecaa");
         let same = compare(out, None, "0000000a", "0000000c").unwrap();
         assert_eq!((same.differences.len(), same.first_step_differing.clone()), (0, None), "{same:?}");
         assert!(same.other_values.is_empty(), "{same:?}");
-        assert!(same.said().ends_with("no difference but for the time planning took"), "{}", same.said());
+        assert!(
+            same.said().ends_with("no difference but for the time planning took\n  Made from: the same inputs"),
+            "{}",
+            same.said()
+        );
         // The lift's plan kept last (its files' times may tie: then by
         // revision), or the one in out/plan.json, the last plans.
         let last = compare(out, None, "0000000a", LAST).unwrap();

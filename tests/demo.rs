@@ -338,6 +338,12 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     );
     assert!(said.contains("\n  The path differs from step "), "{said}");
     assert!(!said.contains("Gross load"), "the same load: {said}");
+    // Made from the same scans, plant and charts: only the project's
+    // settings (the platform is placed there) differ.
+    assert!(
+        said.trim_end().ends_with("\n  Made from: the plan stage's settings (the project's lifts, any of them, power lines, obstacles and [plan], [cspace]) (settings) differs"),
+        "{said}"
+    );
     let o = liftplan(&["revisions", d, "--compare", &crews_plan, "0000abcd"]);
     assert!(
         !o.status.success() && String::from_utf8_lossy(&o.stderr).contains("plan 0000abcd is not kept there"),
