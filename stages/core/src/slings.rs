@@ -70,6 +70,13 @@ pub const MAX_LEG_ANGLE_DEG: f64 = 60.0;
 /// (chain) and EN 1492-1's (textile) mode factor for a choke hitch.
 pub const CHOKE_FACTOR: f64 = 0.8;
 
+/// The most a load may hang off level on one or two legs with its centre
+/// of gravity where the lift gives it (degrees): there it hangs with its
+/// centre of gravity under its lift point, or under the line through its
+/// two, whatever the legs' lengths, and liftplan plans a load level
+/// ([`hanging_tilt`]).
+pub const MAX_HANGING_TILT_DEG: f64 = 1.0;
+
 /// Standard gravity (m/s²), for the legs' forces in kN.
 const G: f64 = 9.806_65;
 
@@ -733,6 +740,9 @@ pub fn check_within(
     rigging_height_m: f64,
 ) -> Result<SlingCheck, String> {
     let mut worst = check(slings, load_kg, size_m, cog_m, rigging_height_m)?;
+    if let Some(why) = hanging_tilt(slings, cog_m).filter(|t| t.0 > MAX_HANGING_TILT_DEG).map(|t| t.1) {
+        return Err(why);
+    }
     if !(cog_tolerance_m > 0.0) {
         return Ok(worst);
     }
@@ -815,6 +825,51 @@ pub fn check_within(
         }
     }
     Ok(worst)
+}
+
+/// How far off level a load hangs on one or two legs (a spreader beam's
+/// two plumb legs too) with its centre of gravity at `cog_m` (degrees), and
+/// why, in words: on one leg it hangs with its centre of gravity plumb under
+/// the lift point, on two with it under the line through them, which no
+/// leg's length changes. `None` on three or four legs (their lengths hang
+/// it level) or a spreader frame (its plumb legs keep the load turned as
+/// the frame, which hangs level over the joint centre of gravity).
+pub fn hanging_tilt(slings: &Slings, cog_m: [f64; 3]) -> Option<(f64, String)> {
+    let pts = &slings.lift_points_m;
+    if slings.spreader.as_ref().is_some_and(|s| s.width_m.is_some()) {
+        return None;
+    }
+    let v = |p: &[f64; 3]| Vec3::new(p[0], p[1], p[2]);
+    let cog = v(&cog_m);
+    match &pts[..] {
+        [one] => {
+            let up = v(one) - cog;
+            let off_m = up.x.hypot(up.y);
+            let deg = off_m.atan2(up.z).to_degrees();
+            Some((
+                deg,
+                format!(
+                    "on one leg the load hangs with its centre of gravity plumb under its lift point, which lies {off_m:.2} m off it in plan: it would hang {deg:.1}° off level, and liftplan plans a load level (at most {MAX_HANGING_TILT_DEG:.0}° off); give the lift point over the centre of gravity (rigging lift_points_m) or three or four legs, whose lengths set it level"
+                ),
+            ))
+        }
+        [a, b] => {
+            let along = (v(b) - v(a)).try_normalize(1e-9)?;
+            let square = along.cross(&Vec3::z()).try_normalize(1e-9)?;
+            let w = cog - v(a);
+            let off_m = w.dot(&square).abs();
+            let across = w - along * w.dot(&along);
+            let down = (-Vec3::z() - along * (-Vec3::z()).dot(&along)).try_normalize(1e-9)?;
+            let deg = angle_deg(&across, &down);
+            Some((
+                deg,
+                format!(
+                    "the load's centre of gravity lies {off_m:.2} m off the line through its two lift points in plan: on two legs it would hang turned {deg:.1}° about that line, which no leg's length sets level, and liftplan plans a load level (at most {MAX_HANGING_TILT_DEG:.0}° off); give lift points either side of the centre of gravity (rigging lift_points_m), or three or four legs, whose lengths set it level"
+                ),
+            ))
+        }
+        _ => None,
+    }
 }
 
 /// The most a load hangs off level on legs made for its centre of gravity
@@ -1843,7 +1898,8 @@ mod tests {
             (slings(2, [8.0, 3.0, 3.0]), [8.0, 3.0, 3.0], [0.2, 0.0, 0.0], 0.5, 4.0),
             (three, [6.0, 3.0, 2.0], [0.1, -0.1, 0.0], 0.3, 3.0),
             (on_frame, [7.0, 3.0, 2.0], [0.3, 0.1, 0.0], 0.3, 4.5),
-            (on_beam, [7.0, 3.0, 2.0], [0.3, 0.1, 0.0], 0.3, 4.5),
+            // (On the beam's line: off it, two legs hang the load turned.)
+            (on_beam, [7.0, 3.0, 2.0], [0.3, 0.0, 0.0], 0.3, 4.5),
         ];
         let top = |c: &SlingCheck| c.spreader.as_ref().and_then(|s| s.top.as_ref()).map_or(0.0, |t| t.max_leg_kg);
         for (legs, size, cog, tol, h) in cases {
@@ -2170,5 +2226,58 @@ mod tests {
         // Across the line the centre of gravity lies at most 0.2 m off it.
         let roll = 0.2f64.atan2(1.0).to_degrees();
         assert!((side.turn_deg - (roll + pitch)).abs() < 1e-9, "{side:?} {roll} {pitch}");
+    }
+
+    /// On one leg the load hangs with its centre of gravity plumb under
+    /// the lift point, on two under the line through them, whatever the
+    /// legs' lengths: given off it by more than a degree's worth, refused
+    /// (liftplan plans a load level), by hand; three or four legs, and a
+    /// frame's plumb legs, hang it level wherever it lies.
+    #[test]
+    fn a_load_on_one_or_two_legs_hangs_with_its_centre_of_gravity_under_them() {
+        let size = [8.0, 3.0, 3.0];
+        let one = Slings { lift_points_m: vec![[0.5, 0.0, 1.5]], points_given: true, ..slings(1, size) };
+        let (deg, why) = hanging_tilt(&one, [0.0, 0.0, -0.1]).unwrap();
+        assert!((deg - 0.5f64.atan2(1.6).to_degrees()).abs() < 1e-9, "{deg}");
+        let e = check_within(&one, 12_000.0, size, [0.0, 0.0, -0.1], 0.0, 4.0).unwrap_err();
+        assert_eq!(e, why);
+        assert!(e.starts_with("on one leg the load hangs with its centre of gravity plumb under its lift point, which lies 0.50 m off it in plan: it would hang 17.4° off level"), "{e}");
+        let near = check_within(&one, 12_000.0, size, [0.49, 0.0, -0.1], 0.1, 4.0);
+        assert!(near.is_ok(), "{near:?}");
+        // Two legs at the middles of the short edges, the centre of gravity
+        // 0.3 m to one side, 1.6 m below them.
+        let two = slings(2, size);
+        let e = check_within(&two, 12_000.0, size, [0.2, 0.3, -0.1], 0.0, 4.0).unwrap_err();
+        assert!(e.starts_with(&format!("the load's centre of gravity lies 0.30 m off the line through its two lift points in plan: on two legs it would hang turned {:.1}° about that line", 0.3f64.atan2(1.6).to_degrees())), "{e}");
+        assert!(check_within(&two, 12_000.0, size, [0.2, 0.02, -0.1], 0.1, 4.0).is_ok());
+        // Lift points at two heights: the line slopes, the turn is about it.
+        let sloped =
+            Slings { lift_points_m: vec![[-4.0, 0.0, 1.5], [4.0, 0.0, 0.5]], points_given: true, ..two.clone() };
+        let (deg, _) = hanging_tilt(&sloped, [0.0, 0.3, -0.1]).unwrap();
+        let (along, w) = (Vec3::new(8.0, 0.0, -1.0).normalize(), Vec3::new(4.0, 0.3, -1.6));
+        let across = w - along * w.dot(&along);
+        let down = -Vec3::z() - along * (-Vec3::z()).dot(&along);
+        assert!((deg - across.angle(&down).to_degrees()).abs() < 1e-9, "{deg}");
+        // Four legs, a spreader beam's two and a frame's four.
+        assert_eq!(hanging_tilt(&slings(4, size), [0.2, 0.3, -0.1]), None);
+        assert!(check_within(&slings(4, size), 12_000.0, size, [0.2, 0.3, -0.1], 0.0, 4.0).is_ok());
+        let on_beam = Slings {
+            lift_points_m: vec![[-3.0, 0.0, 1.5], [3.0, 0.0, 1.5]],
+            points_given: true,
+            spreader: Some(beam(None)),
+            ..two.clone()
+        };
+        assert!(
+            check_within(&on_beam, 12_000.0, size, [0.0, 0.3, -0.1], 0.0, 4.0)
+                .unwrap_err()
+                .contains("off the line through its two lift points")
+        );
+        let on_frame = Slings {
+            lift_points_m: vec![[-3.0, -1.0, 1.5], [3.0, -1.0, 1.5], [3.0, 1.0, 1.5], [-3.0, 1.0, 1.5]],
+            points_given: true,
+            spreader: Some(frame(None)),
+            ..two
+        };
+        assert_eq!(hanging_tilt(&on_frame, [0.0, 0.3, -0.1]), None);
     }
 }
