@@ -256,7 +256,7 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
         "{text13}"
     );
     assert!(
-        text13.contains("of its 10.00 t working load limit: 95 %, and of its lift point's shackle's 12.00 t (in line): 79 %; legs 5.80 and 5.52 m long from lift point to hook, for the load to hang level; the worst with the centre of gravity within 0.10 m along x and y (load cog_tolerance_m, searched over that square; the most on a leg with it at (0.30, -0.10) m), the lengths for it as given: on legs of those lengths a load whose centre of gravity lies off hangs up to 5.1° off level: at the trial lift, set the legs for it to hang level, as the plan takes it"),
+        text13.contains("of its 10.00 t working load limit: 95 %, and of its lift point's shackle's 12.00 t (in line): 79 %; legs 5.80 and 5.52 m long from lift point to hook, for the load to hang level; the worst with the centre of gravity within 0.10 m along x and y (load cog_tolerance_m, searched over that square; the most on a leg with it at (0.30, -0.10) m), the lengths for it as given: on two legs a load whose centre of gravity lies off hangs up to 5.1° off level; along the line through its lift points the legs' lengths set it level, across it no length does (it hangs with its centre of gravity under that line): at the trial lift, set the legs for it to hang level along the line and CHECK that it hangs level across it, as the plan takes it, and where it does not, find its centre of gravity"),
         "{text13}"
     );
     // Reeved with 6 falls of the crane file's 10 t: the hook load of 17.82 t

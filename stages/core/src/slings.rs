@@ -500,11 +500,21 @@ impl SlingCheck {
             Some([x, y]) => format!("the most on a leg with it at ({x:.2}, {y:.2}) m"),
             None => "the most on a leg with it as given".to_string(),
         };
-        let tilt = match self.tilt_deg {
-            Some(deg) => format!(
+        // On one or two legs (a spreader beam's too) the load hangs turned
+        // under its lift point or their line, which no leg's length sets
+        // level ([`hanging_tilt`]); three or four legs' lengths can.
+        let frame = self.spreader.as_ref().is_some_and(|s| s.width_m.is_some());
+        let tilt = match (self.tilt_deg, self.legs) {
+            (Some(deg), 1) => format!(
+                ": on one leg a load whose centre of gravity lies off hangs up to {deg:.1}° off level, with its centre of gravity under its lift point, which no leg's length changes: at the trial lift, CHECK that it hangs level, as the plan takes it, and where it does not, find its centre of gravity"
+            ),
+            (Some(deg), 2) if !frame => format!(
+                ": on two legs a load whose centre of gravity lies off hangs up to {deg:.1}° off level; along the line through its lift points the legs' lengths set it level, across it no length does (it hangs with its centre of gravity under that line): at the trial lift, set the legs for it to hang level along the line and CHECK that it hangs level across it, as the plan takes it, and where it does not, find its centre of gravity"
+            ),
+            (Some(deg), _) => format!(
                 ": on legs of those lengths a load whose centre of gravity lies off hangs up to {deg:.1}° off level: at the trial lift, set the legs for it to hang level, as the plan takes it"
             ),
-            None => String::new(),
+            (None, _) => String::new(),
         };
         format!(
             "; the worst with the centre of gravity within {:.2} m along x and y (load cog_tolerance_m, searched over that square; {worst}), the lengths for it as given{tilt}",
@@ -843,9 +853,8 @@ pub fn hanging_tilt(slings: &Slings, cog_m: [f64; 3]) -> Option<(f64, String)> {
     let cog = v(&cog_m);
     match &pts[..] {
         [one] => {
-            let up = v(one) - cog;
-            let off_m = up.x.hypot(up.y);
-            let deg = off_m.atan2(up.z).to_degrees();
+            let off_m = off_its_line_m(pts, cog_m);
+            let deg = off_m.atan2(one[2] - cog_m[2]).to_degrees();
             Some((
                 deg,
                 format!(
@@ -855,9 +864,8 @@ pub fn hanging_tilt(slings: &Slings, cog_m: [f64; 3]) -> Option<(f64, String)> {
         }
         [a, b] => {
             let along = (v(b) - v(a)).try_normalize(1e-9)?;
-            let square = along.cross(&Vec3::z()).try_normalize(1e-9)?;
             let w = cog - v(a);
-            let off_m = w.dot(&square).abs();
+            let off_m = off_its_line_m(pts, cog_m);
             let across = w - along * w.dot(&along);
             let down = (-Vec3::z() - along * (-Vec3::z()).dot(&along)).try_normalize(1e-9)?;
             let deg = angle_deg(&across, &down);
@@ -879,7 +887,8 @@ pub fn hanging_tilt(slings: &Slings, cog_m: [f64; 3]) -> Option<(f64, String)> {
 /// load turn as one about it), the line through the lift points on two (the
 /// load turns about it across the line; along it, about the hook, higher),
 /// the lift point on one. So atan(√2 tol / arm), the offset's most in plan
-/// over that height.
+/// over that height; on one or two legs, with how far the centre of gravity
+/// as given already lies off the lift point or their line added to it.
 ///
 /// A spreader hangs from the hook (by its top legs or its lug) and the load
 /// from its pins on plumb legs, which keep the load turned as the spreader
@@ -890,12 +899,30 @@ pub fn hanging_tilt(slings: &Slings, cog_m: [f64; 3]) -> Option<(f64, String)> {
 pub fn tilt_bound_deg(slings: &Slings, size_m: [f64; 3], cog_m: [f64; 3], tol: f64, rigging_height_m: f64) -> f64 {
     let pts = &slings.lift_points_m;
     let lowest = pts.iter().map(|p| p[2]).fold(f64::INFINITY, f64::min);
-    let over = |arm: f64| (std::f64::consts::SQRT_2 * tol).atan2(arm).to_degrees();
+    let off = std::f64::consts::SQRT_2 * tol;
+    let over = |arm: f64| off.atan2(arm).to_degrees();
+    // Under one or two lift points, from where the centre of gravity as
+    // given already lies off them ([`hanging_tilt`]) too.
+    let over_line = |arm: f64| (off + off_its_line_m(pts, cog_m)).atan2(arm).to_degrees();
     match (&slings.spreader, pts.len()) {
-        (Some(s), _) if s.width_m.is_none() => over(lowest - cog_m[2]) + over(spreader_arm_m(s, pts, cog_m)),
+        (Some(s), _) if s.width_m.is_none() => over_line(lowest - cog_m[2]) + over(spreader_arm_m(s, pts, cog_m)),
         (Some(s), _) => over(spreader_arm_m(s, pts, cog_m)),
-        (None, 1 | 2) => over(lowest - cog_m[2]),
+        (None, 1 | 2) => over_line(lowest - cog_m[2]),
         (None, _) => over(size_m[2] / 2.0 + rigging_height_m - cog_m[2]),
+    }
+}
+
+/// How far the centre of gravity `cog_m` lies in plan off one lift point
+/// (`pts` of one), or off the vertical plane through two (m); 0 for more.
+fn off_its_line_m(pts: &[[f64; 3]], cog_m: [f64; 3]) -> f64 {
+    match pts {
+        [one] => (one[0] - cog_m[0]).hypot(one[1] - cog_m[1]),
+        [a, b] => {
+            let along = [b[0] - a[0], b[1] - a[1]];
+            let n = along[0].hypot(along[1]);
+            if n > 0.0 { ((cog_m[0] - a[0]) * along[1] - (cog_m[1] - a[1]) * along[0]).abs() / n } else { 0.0 }
+        }
+        _ => 0.0,
     }
 }
 
@@ -1806,7 +1833,7 @@ mod tests {
         // of gravity is under it: √2 m off in plan, at most 54.7°.
         assert!((c.tilt_deg.unwrap() - 2.0f64.sqrt().atan().to_degrees()).abs() < 1e-9, "{:?}", c.tilt_deg);
         assert_eq!(given.tilt_deg, None);
-        assert!(c.said().contains("hangs up to 54.7° off level: at the trial lift, set the legs for it to hang level, as the plan takes it"), "{}", c.said());
+        assert!(c.said().contains(": on two legs a load whose centre of gravity lies off hangs up to 54.7° off level; along the line through its lift points the legs' lengths set it level, across it no length does (it hangs with its centre of gravity under that line): at the trial lift, set the legs for it to hang level along the line and CHECK that it hangs level across it"), "{}", c.said());
         let finest = (0..41 * 41)
             .map(|n| [-1.0 + (n % 41) as f64 * 0.05, -1.0 + (n / 41) as f64 * 0.05, 0.0])
             .map(|cog| check(&legs, 12_000.0, size, cog, 3.0).unwrap())
@@ -2242,8 +2269,14 @@ mod tests {
         let e = check_within(&one, 12_000.0, size, [0.0, 0.0, -0.1], 0.0, 4.0).unwrap_err();
         assert_eq!(e, why);
         assert!(e.starts_with("on one leg the load hangs with its centre of gravity plumb under its lift point, which lies 0.50 m off it in plan: it would hang 17.4° off level"), "{e}");
-        let near = check_within(&one, 12_000.0, size, [0.49, 0.0, -0.1], 0.1, 4.0);
-        assert!(near.is_ok(), "{near:?}");
+        let near = check_within(&one, 12_000.0, size, [0.49, 0.0, -0.1], 0.1, 4.0).unwrap();
+        assert!(near.said().contains(": on one leg a load whose centre of gravity lies off hangs up to 5.4° off level, with its centre of gravity under its lift point, which no leg's length changes: at the trial lift, CHECK that it hangs level"), "{}", near.said());
+        let four = check_within(&slings(4, size), 12_000.0, size, [0.2, 0.3, -0.1], 0.1, 4.0).unwrap();
+        assert!(
+            four.said().contains(": on legs of those lengths a load whose centre of gravity lies off hangs up to "),
+            "{}",
+            four.said()
+        );
         // Two legs at the middles of the short edges, the centre of gravity
         // 0.3 m to one side, 1.6 m below them.
         let two = slings(2, size);
