@@ -1,7 +1,8 @@
 //! Every plan a run has made, kept by its revision in
 //! `out/revisions/<lift>/`: the plan (`<revision>.plan.json`, that lift's
-//! entry as plan.json holds it), its steps (`<revision>.steps.csv`) and its
-//! PDF (`<revision>.pdf`, the first made of it).
+//! entry as plan.json holds it), its steps (`<revision>.steps.csv`), what it
+//! was made from (`<revision>.inputs.json`, the plan stage's inputs by their
+//! hashes) and its PDF (`<revision>.pdf`, the first made of it).
 //!
 //! A crew follows a printed plan, named by the revision on the foot of its
 //! pages. `liftplan resume` and the resume check before each run must read
@@ -21,7 +22,9 @@
 //! of days, or all but each lift's newest few ([`remove_older_than`]), but
 //! never one a crew may hold or be given: each lift's newest, the last
 //! plans (out/plan.json), those the plan stage's cache holds (a run would
-//! keep them again) and those the project's lifts resume ([`held`]).
+//! keep them again) and those the project's lifts resume ([`held`]). Asked
+//! to, it sets two of a lift's plans side by side for the engineer asked to
+//! sign one that replaces the other ([`compare`]).
 
 use anyhow::{Context, Result};
 use std::path::{Path, PathBuf};
