@@ -150,8 +150,7 @@ fn plan_view(
     let (ex, ey) = at([hx, -hy, 0.0]);
     d.frame(bx, by, ex - bx, ey - by, 0.8, INK);
     let (cx, cy) = at(load.cog_m);
-    d.line(cx - 1.5, cy, cx + 1.5, cy, 0.8, COG);
-    d.line(cx, cy - 1.5, cx, cy + 1.5, 0.8, COG);
+    cog_cross(d, cx, cy);
     // Where the centre of gravity may lie (load cog_tolerance_m).
     let tol = cog_tolerance_m as f32 * scale;
     if tol > 0.0 {
@@ -159,11 +158,7 @@ fn plan_view(
     }
     for p in &s.pieces {
         let ((x1, y1), (x2, y2)) = (at(p.from), at(p.to));
-        let (width, color) = match p.kind {
-            PieceKind::Leg | PieceKind::TopLeg => (0.9, LEG),
-            PieceKind::Lug => (1.5, SPREADER),
-            PieceKind::Spreader => (2.5, SPREADER),
-        };
+        let (width, color) = stroke(p.kind);
         if (x1 - x2).hypot(y1 - y2) > 0.05 {
             d.line(x1, y1, x2, y2, width, color);
         }
@@ -187,6 +182,21 @@ fn plan_view(
     let (kx, ky) = at(s.hook);
     d.frame(kx - 2.0, ky - 2.0, 4.0, 4.0, 0.8, INK);
     top + height + 6.0
+}
+
+/// How a piece of the rigging is drawn: its line's width (pt) and colour.
+fn stroke(kind: PieceKind) -> (f32, [u8; 3]) {
+    match kind {
+        PieceKind::Leg | PieceKind::TopLeg => (0.9, LEG),
+        PieceKind::Lug => (1.5, SPREADER),
+        PieceKind::Spreader => (2.5, SPREADER),
+    }
+}
+
+/// The centre of gravity's mark, a red cross at (`x`, `y`) mm.
+fn cog_cross(d: &mut Doc, x: f32, y: f32) {
+    d.line(x - 1.5, y, x + 1.5, y, 0.8, COG);
+    d.line(x, y - 1.5, x, y + 1.5, 0.8, COG);
 }
 
 const PIN: [u8; 3] = [230, 120, 0];
@@ -238,15 +248,10 @@ pub fn page(d: &mut Doc, mut y: f32, w: f32, slings: &Slings, load: &LoadShape, 
         let (ex, ey) = at([half, half, -hz]);
         d.frame(bx, by, ex - bx, ey - by, 0.8, INK);
         let (cx, cy) = at(load.cog_m);
-        d.line(cx - 1.5, cy, cx + 1.5, cy, 0.8, COG);
-        d.line(cx, cy - 1.5, cx, cy + 1.5, 0.8, COG);
+        cog_cross(d, cx, cy);
         for p in &s.pieces {
             let ((x1, y1), (x2, y2)) = (at(p.from), at(p.to));
-            let (width, color) = match p.kind {
-                PieceKind::Leg | PieceKind::TopLeg => (0.9, LEG),
-                PieceKind::Lug => (1.5, SPREADER),
-                PieceKind::Spreader => (2.5, SPREADER),
-            };
+            let (width, color) = stroke(p.kind);
             d.line(x1, y1, x2, y2, width, color);
         }
         for (n, p) in s.legs().enumerate() {
