@@ -130,6 +130,10 @@ pub struct StageReport {
     pub error: Option<String>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub reason: Option<String>,
+    /// For each lift whose plan this run's replaces another (the plan
+    /// stage's), what differs, in a line ([`crate::revisions::replaced`]).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub replaced: Vec<String>,
     #[serde(skip)]
     pub lines: Vec<String>,
 }
@@ -228,6 +232,7 @@ fn run_stages(project: &Project, defs: &[StageDef], opts: &RunOptions, progress:
             superseded: vec![],
             error: None,
             reason: None,
+            replaced: vec![],
             lines: vec![],
         };
         // A failed stage stops only the stages that read it (and theirs):
@@ -317,6 +322,12 @@ fn run_stages(project: &Project, defs: &[StageDef], opts: &RunOptions, progress:
                 }
             };
             let dir = cache.entry_dir(def.name, &key);
+            // The last plans, before this run's take their place.
+            let last_plans = if def.name == liftplan_plan::NAME {
+                crate::revisions::last_plans(&project.out_dir())
+            } else {
+                Vec::new()
+            };
             let published = cache::publish(&project.out_dir(), &dir, &m)?;
             rep.published = published.written;
             rep.outputs = m.outputs.keys().map(|o| format!("out/{o}")).collect();
@@ -324,6 +335,8 @@ fn run_stages(project: &Project, defs: &[StageDef], opts: &RunOptions, progress:
             // Kept as soon as made: a stage after it may read it by revision.
             if def.name == liftplan_plan::NAME {
                 keep_revisions(project, &dir, &mut rep.lines);
+                rep.replaced = crate::revisions::replaced(&project.out_dir(), &last_plans, &dir);
+                rep.lines.extend(rep.replaced.iter().cloned());
             }
             if def.name == liftplan_docs::NAME
                 && let Some((plan_dir, _)) = upstream.get(liftplan_plan::NAME)

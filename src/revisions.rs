@@ -367,6 +367,38 @@ pub struct Comparison {
 }
 
 impl Comparison {
+    /// In one line, for a run's output: what differs, by name, and the
+    /// command that says how.
+    pub fn briefly(&self) -> String {
+        let mut what: Vec<String> = self.differences.iter().map(|d| d.what.to_lowercase()).collect();
+        if let Some((n, _, _)) = &self.first_step_differing {
+            what.push(format!("the path from step {n}"));
+        }
+        if what.is_empty() && !self.other_values.is_empty() {
+            what.push(format!(
+                "{} other value{} of the plan file",
+                self.other_values.len(),
+                if self.other_values.len() == 1 { "" } else { "s" }
+            ));
+        }
+        let made_from = match &self.inputs_differing {
+            Some(d) if !d.is_empty() => format!(
+                "; what it was made from differs: {}",
+                d.iter().map(|i| i.split(" (").next().unwrap_or(i)).collect::<Vec<_>>().join(", ")
+            ),
+            _ => String::new(),
+        };
+        format!(
+            "{}: plan {} replaces plan {}: {} differ{made_from} (liftplan revisions --compare {} {})",
+            self.lift,
+            self.now,
+            self.was,
+            if what.is_empty() { "nothing but the time planning took".to_string() } else { what.join(", ") },
+            self.was,
+            self.now
+        )
+    }
+
     /// In lines, for the terminal.
     pub fn said(&self) -> String {
         let mut lines = vec![format!("{}: plan {} against plan {}:", self.lift, self.now, self.was)];
@@ -667,6 +699,26 @@ pub fn compare(out_dir: &Path, lift: Option<&str>, was: &str, now: &str) -> Resu
         other_values,
         inputs_differing,
     })
+}
+
+/// The plans out/plan.json holds by lift ((lift, revision)), before a run
+/// writes over it; none where it holds none.
+pub fn last_plans(out_dir: &Path) -> Vec<(String, String)> {
+    plans_in(out_dir).map(|p| p.into_iter().map(|(_, lift, revision)| (lift, revision)).collect()).unwrap_or_default()
+}
+
+/// For each lift whose plan in `plan_dir` replaces another of `before`
+/// (the last plans before the run), both kept: a line saying what differs
+/// ([`Comparison::briefly`]). A comparison that cannot be made (a plan not
+/// kept) says nothing: the run's own lines say why a plan was not kept.
+pub fn replaced(out_dir: &Path, before: &[(String, String)], plan_dir: &Path) -> Vec<String> {
+    let Ok(now) = plans_in(plan_dir) else { return Vec::new() };
+    now.iter()
+        .filter_map(|(_, lift, revision)| {
+            let (_, was) = before.iter().find(|(l, r)| l == lift && r != revision)?;
+            compare(out_dir, Some(lift), was, revision).ok().map(|c| c.briefly())
+        })
+        .collect()
 }
 
 /// One of the plan stage's inputs, as its manifest names it, in words.
@@ -1012,6 +1064,20 @@ mod tests {
         std::fs::write(out.join("plan.json"), plan_json(&[("V-101", "0000000b")])).unwrap();
         assert_eq!(compare(out, None, "0000000a", LAST).unwrap().now, "0000000b");
         std::fs::remove_file(out.join("plan.json")).unwrap();
+        // A run's line for a plan that replaces the last (out/plan.json's
+        // before the run): the names of what differs and the command.
+        let entry = out.join("entry");
+        std::fs::create_dir_all(&entry).unwrap();
+        std::fs::write(entry.join("plan.json"), plan_json(&[("V-101", "0000000b")])).unwrap();
+        let before = vec![("V-101".to_string(), "0000000a".to_string())];
+        assert_eq!(
+            replaced(out, &before, &entry),
+            [
+                "V-101: plan 0000000b replaces plan 0000000a: gross load, steps, outrigger pad at its most, obstacles placed by hand, the path from step 2 differ; what it was made from differs: the plan stage's settings (liftplan revisions --compare 0000000a 0000000b)"
+            ]
+        );
+        assert!(replaced(out, &[("V-101".to_string(), "0000000b".to_string())], &entry).is_empty());
+        assert!(replaced(out, &[("V-101".to_string(), "0000000f".to_string())], &entry).is_empty());
         // A plan past the other's last step.
         let shorter = compare(out, Some("V-101"), "0000000b", "0000000a").unwrap();
         assert!(
