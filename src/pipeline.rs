@@ -334,7 +334,7 @@ fn run_stages(project: &Project, defs: &[StageDef], opts: &RunOptions, progress:
             rep.lines = m.lines.clone();
             // Kept as soon as made: a stage after it may read it by revision.
             if def.name == liftplan_plan::NAME {
-                keep_revisions(project, &dir, &mut rep.lines);
+                keep_revisions(project, &dir, &upstream, &mut rep.lines);
                 rep.replaced = crate::revisions::replaced(&project.out_dir(), &last_plans, &dir);
                 rep.lines.extend(rep.replaced.iter().cloned());
             }
@@ -390,9 +390,17 @@ fn run_stages(project: &Project, defs: &[StageDef], opts: &RunOptions, progress:
 /// lines. A plan that could not be kept is said there too and does not
 /// fail the run: the plan in out/ is made and checked; only reading it by
 /// revision later depends on this.
-fn keep_revisions(project: &Project, plan_dir: &Path, lines: &mut Vec<String>) {
+fn keep_revisions(
+    project: &Project,
+    plan_dir: &Path,
+    upstream: &BTreeMap<&'static str, (PathBuf, Manifest)>,
+    lines: &mut Vec<String>,
+) {
+    // What the stages before it were made from, kept with each plan.
+    let stages: BTreeMap<String, BTreeMap<String, String>> =
+        upstream.iter().map(|(stage, (_, m))| (stage.to_string(), m.inputs.clone())).collect();
     said_kept(
-        crate::revisions::keep(&project.out_dir(), plan_dir),
+        crate::revisions::keep_made_from(&project.out_dir(), plan_dir, Some(&stages)),
         ": liftplan resume reads this plan only while out/ or the cache holds it",
         lines,
     );

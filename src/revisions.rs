@@ -67,17 +67,43 @@ fn names_a_file(lift: &str, revision: &str) -> bool {
 /// ("V-101 plan 3f9a2c1b"). A plan of no revision (made by an older
 /// liftplan) is not kept.
 pub fn keep(out_dir: &Path, plan_dir: &Path) -> Result<Vec<String>> {
+    keep_made_from(out_dir, plan_dir, None)
+}
+
+/// [`keep`], and, where the run knows the inputs of the stages before the
+/// plan stage (`stages`: by stage, each input's name and hash as its
+/// manifest has them: the scan, plant and chart files, their settings and
+/// code), what each plan was made from ([`inputs_file`]: those and the plan
+/// stage's own inputs), where none is kept beside it yet. A plan the run
+/// found fresh was made from inputs that give the same stages' outputs, so
+/// it may be written for a plan kept before; [`keep`] alone, before a run
+/// (a plan an earlier one left), writes none.
+pub fn keep_made_from(
+    out_dir: &Path,
+    plan_dir: &Path,
+    stages: Option<&std::collections::BTreeMap<String, std::collections::BTreeMap<String, String>>>,
+) -> Result<Vec<String>> {
     let mut kept = Vec::new();
     let mut another = Vec::new();
     // What the plans were made from: the plan stage's inputs, as its
-    // manifest names them, kept beside each plan ([`inputs_file`]).
+    // manifest names them, and the stages' before it.
     let made_from = std::fs::read_to_string(plan_dir.join("manifest.json"))
         .ok()
         .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
         .map(|m| m["inputs"].clone())
-        .filter(|i| i.is_object());
+        .filter(|i| i.is_object())
+        .zip(stages)
+        .map(|(inputs, s)| serde_json::json!({ "inputs": inputs, "stages": s }));
     for (plan, lift, revision) in plans_in(plan_dir)? {
         let to = plan_file(out_dir, &lift, &revision);
+        let inputs_to = inputs_file(out_dir, &lift, &revision);
+        let write_inputs = |made_from: &Option<serde_json::Value>| -> Result<()> {
+            if let Some(one) = made_from.as_ref().filter(|_| !inputs_to.exists()) {
+                liftplan_core::artifact::write_atomic(&inputs_to, serde_json::to_string_pretty(one)?.as_bytes())
+                    .with_context(|| format!("{}", inputs_to.display()))?;
+            }
+            Ok(())
+        };
         if to.exists() {
             let kept_plan = std::fs::read_to_string(&to)
                 .ok()
@@ -87,9 +113,14 @@ pub fn keep(out_dir: &Path, plan_dir: &Path) -> Result<Vec<String>> {
                 |k: serde_json::Value| liftplan_plan::but_for_timings(&k) != liftplan_plan::but_for_timings(&plan);
             if kept_plan.is_some_and(differs) {
                 another.push(format!("{lift} plan {revision}"));
+            } else {
+                // The same plan, kept before: what it was made from, where
+                // that was not kept then.
+                write_inputs(&made_from)?;
             }
             continue;
         }
+        write_inputs(&made_from)?;
         // The steps first: a plan file kept is one whose steps are too.
         let steps = plan_dir.join(format!("{lift}.steps.csv"));
         if steps.exists() {
@@ -97,12 +128,6 @@ pub fn keep(out_dir: &Path, plan_dir: &Path) -> Result<Vec<String>> {
             let steps_to = to.with_file_name(format!("{revision}.steps.csv"));
             liftplan_core::artifact::write_atomic(&steps_to, &bytes)
                 .with_context(|| format!("{}", steps_to.display()))?;
-        }
-        if let Some(inputs) = &made_from {
-            let inputs_to = inputs_file(out_dir, &lift, &revision);
-            let one = serde_json::json!({ "inputs": inputs });
-            liftplan_core::artifact::write_atomic(&inputs_to, serde_json::to_string_pretty(&one)?.as_bytes())
-                .with_context(|| format!("{}", inputs_to.display()))?;
         }
         let one = serde_json::json!({ "lifts": [plan] });
         liftplan_core::artifact::write_atomic(&to, serde_json::to_string_pretty(&one)?.as_bytes())
@@ -680,16 +705,11 @@ pub fn compare(out_dir: &Path, lift: Option<&str>, was: &str, now: &str) -> Resu
     }
     let mut other_values = Vec::new();
     differing_leaves(&a, &b, &mut String::new(), &covered, &mut other_values);
-    let inputs_of = |revision: &str| -> Option<serde_json::Map<String, serde_json::Value>> {
+    let inputs_of = |revision: &str| -> Option<serde_json::Value> {
         let text = std::fs::read_to_string(inputs_file(out_dir, &lift, revision)).ok()?;
-        serde_json::from_str::<serde_json::Value>(&text).ok()?["inputs"].as_object().cloned()
+        serde_json::from_str::<serde_json::Value>(&text).ok().filter(|v| v["inputs"].is_object())
     };
-    let inputs_differing = inputs_of(was).zip(inputs_of(now)).map(|(x, y)| {
-        let mut names: Vec<&String> = x.keys().chain(y.keys()).filter(|k| x.get(*k) != y.get(*k)).collect();
-        names.sort_unstable();
-        names.dedup();
-        names.into_iter().map(|n| made_from(n)).collect()
-    });
+    let inputs_differing = inputs_of(was).zip(inputs_of(now)).map(|(x, y)| inputs_that_differ(&x, &y));
     Ok(Comparison {
         lift,
         was: was.to_string(),
@@ -719,6 +739,56 @@ pub fn replaced(out_dir: &Path, before: &[(String, String)], plan_dir: &Path) ->
             compare(out_dir, Some(lift), was, revision).ok().map(|c| c.briefly())
         })
         .collect()
+}
+
+/// What differs between what two plans were made from (each as its
+/// [`inputs_file`] holds it), in words: where both name the stages before
+/// the plan stage, their files (changed, added, removed), settings and
+/// code, then the plan stage's own settings and code; else the plan
+/// stage's inputs ([`made_from`]).
+fn inputs_that_differ(was: &serde_json::Value, now: &serde_json::Value) -> Vec<String> {
+    let differing = |x: &serde_json::Value, y: &serde_json::Value| -> Vec<(String, &'static str)> {
+        let (Some(x), Some(y)) = (x.as_object(), y.as_object()) else { return Vec::new() };
+        let mut names: Vec<&String> = x.keys().chain(y.keys()).collect();
+        names.sort_unstable();
+        names.dedup();
+        names
+            .into_iter()
+            .filter_map(|k| match (x.get(k), y.get(k)) {
+                (Some(a), Some(b)) if a != b => Some((k.clone(), "changed")),
+                (None, Some(_)) => Some((k.clone(), "added")),
+                (Some(_), None) => Some((k.clone(), "removed")),
+                _ => None,
+            })
+            .collect()
+    };
+    let plan_stage = differing(&was["inputs"], &now["inputs"]);
+    let (Some(a), Some(b)) = (was["stages"].as_object(), now["stages"].as_object()) else {
+        return plan_stage.into_iter().map(|(n, _)| made_from(&n)).collect();
+    };
+    let mut out = Vec::new();
+    let mut stages: Vec<&String> = a.keys().chain(b.keys()).collect();
+    stages.sort_unstable();
+    stages.dedup();
+    for stage in stages {
+        let none = serde_json::Value::Null;
+        for (name, how) in differing(a.get(stage).unwrap_or(&none), b.get(stage).unwrap_or(&none)) {
+            out.push(match name.as_str() {
+                "code" => format!("liftplan's {stage} stage (its code)"),
+                "settings" => format!("the {stage} stage's settings"),
+                n => match n.strip_prefix("file:") {
+                    Some(file) => format!("{file} {how}"),
+                    // Another stage's output it read: said where that stage's inputs differ.
+                    None if n.starts_with("upstream:") => continue,
+                    None => format!("the {stage} stage's input '{n}' ({how})"),
+                },
+            });
+        }
+    }
+    // The plan stage's own; what it read of the stages before it is said
+    // above, by what they were made from.
+    out.extend(plan_stage.into_iter().filter(|(n, _)| !n.starts_with("upstream:")).map(|(n, _)| made_from(&n)));
+    out
 }
 
 /// One of the plan stage's inputs, as its manifest names it, in words.
@@ -803,11 +873,22 @@ mod tests {
         std::fs::write(entry.join("V-101.steps.csv"), "step,operation\n1,Hoist up\n").unwrap();
         let manifest = serde_json::json!({ "stage": "plan", "inputs": { "code": "31ee", "settings": "ecaa" } });
         std::fs::write(entry.join("manifest.json"), manifest.to_string()).unwrap();
+        // Kept before a run: what it was made from is not known.
         assert_eq!(keep(&out, &entry).unwrap(), ["V-101 plan 0fb8698c"]);
-        // What it was made from, beside it.
-        let inputs: serde_json::Value =
-            serde_json::from_str(&std::fs::read_to_string(inputs_file(&out, "V-101", "0fb8698c")).unwrap()).unwrap();
-        assert_eq!(inputs["inputs"], manifest["inputs"]);
+        assert!(!inputs_file(&out, "V-101", "0fb8698c").exists());
+        // Found fresh by a run, which knows the stages' inputs: written
+        // beside it, once.
+        let stages: std::collections::BTreeMap<String, std::collections::BTreeMap<String, String>> =
+            [("scans".to_string(), [("file:scans/a.laz".to_string(), "aa".to_string())].into())].into();
+        assert!(keep_made_from(&out, &entry, Some(&stages)).unwrap().is_empty());
+        let read_inputs = || -> serde_json::Value {
+            serde_json::from_str(&std::fs::read_to_string(inputs_file(&out, "V-101", "0fb8698c")).unwrap()).unwrap()
+        };
+        assert_eq!(read_inputs()["inputs"], manifest["inputs"]);
+        assert_eq!(read_inputs()["stages"]["scans"]["file:scans/a.laz"], "aa");
+        let other: std::collections::BTreeMap<String, std::collections::BTreeMap<String, String>> = Default::default();
+        keep_made_from(&out, &entry, Some(&other)).unwrap();
+        assert_eq!(read_inputs()["stages"]["scans"]["file:scans/a.laz"], "aa", "never written over");
         let kept = plan_file(&out, "V-101", "0fb8698c");
         let read: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&kept).unwrap()).unwrap();
         assert_eq!(read["lifts"][0]["lift"], "V-101");
@@ -1064,6 +1145,31 @@ mod tests {
         std::fs::write(out.join("plan.json"), plan_json(&[("V-101", "0000000b")])).unwrap();
         assert_eq!(compare(out, None, "0000000a", LAST).unwrap().now, "0000000b");
         std::fs::remove_file(out.join("plan.json")).unwrap();
+        // Where both name the stages before the plan stage: their files,
+        // settings and code, and the plan stage's own, not what it read.
+        let with_stages = |revision: &str, scans: serde_json::Value, site: &str| {
+            let inputs = serde_json::json!({
+                "inputs": { "code": "31ee", "settings": "ecaa", "upstream:scans/site.laz": site },
+                "stages": { "scans": scans, "charts": { "file:charts/c.xlsx": "cc" } },
+            });
+            std::fs::write(inputs_file(out, "V-101", revision), inputs.to_string()).unwrap();
+        };
+        with_stages(
+            "0000000a",
+            serde_json::json!({ "file:scans/a.laz": "aa", "file:scans/b.laz": "bb", "settings": "s1" }),
+            "1f90",
+        );
+        with_stages(
+            "0000000b",
+            serde_json::json!({ "file:scans/a.laz": "a2", "file:scans/c.laz": "cc", "settings": "s2" }),
+            "2f90",
+        );
+        assert_eq!(
+            compare(out, None, "0000000a", "0000000b").unwrap().inputs_differing.unwrap(),
+            ["scans/a.laz changed", "scans/b.laz removed", "scans/c.laz added", "the scans stage's settings"]
+        );
+        made_from("0000000a", "ecaa");
+        made_from("0000000b", "ecab");
         // A run's line for a plan that replaces the last (out/plan.json's
         // before the run): the names of what differs and the command.
         let entry = out.join("entry");

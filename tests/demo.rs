@@ -231,13 +231,16 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     let plan_12t = plan["lifts"][0]["summary"]["revision"].as_str().unwrap().to_string();
     std::fs::write(&toml_path, t.replace("mass_t = 12.0", "mass_t = 13.0")).unwrap();
     let r = run_json(&dir);
-    // The run says what differs in the plan that replaces the last.
+    // The run says what differs in the plan that replaces the last, and
+    // what it was made from: the lifts' settings, which the charts stage
+    // reads too; not the scans or the plant.
     let replaced: Vec<&str> =
         stage(&r, "plan")["replaced"].as_array().into_iter().flatten().filter_map(|l| l.as_str()).collect();
     assert_eq!(replaced.len(), 1, "{r}");
     assert!(
         replaced[0].contains(&format!(" replaces plan {plan_12t}: gross load, "))
-            && replaced[0].contains("; what it was made from differs: the plan stage's settings")
+            && replaced[0]
+                .contains("; what it was made from differs: the charts stage's settings, the plan stage's settings (")
             && replaced[0].contains(&format!("(liftplan revisions --compare {plan_12t} ")),
         "{}",
         replaced[0]
