@@ -134,7 +134,7 @@ enum Command {
     Revisions {
         /// Project folder.
         dir: Option<PathBuf>,
-        /// Remove the plans (their PDF, steps and plan files) kept more than
+        /// Remove the plans (their PDF, steps, inputs and plan files) kept more than
         /// this many days ago, but those a crew may hold or be given.
         #[arg(long, value_name = "DAYS")]
         remove_older_than: Option<u32>,
