@@ -849,8 +849,6 @@ pub fn hanging_tilt(slings: &Slings, cog_m: [f64; 3]) -> Option<(f64, String)> {
     if slings.spreader.as_ref().is_some_and(|s| s.width_m.is_some()) {
         return None;
     }
-    let v = |p: &[f64; 3]| Vec3::new(p[0], p[1], p[2]);
-    let cog = v(&cog_m);
     match &pts[..] {
         [one] => {
             let off_m = off_its_line_m(pts, cog_m);
@@ -863,12 +861,9 @@ pub fn hanging_tilt(slings: &Slings, cog_m: [f64; 3]) -> Option<(f64, String)> {
             ))
         }
         [a, b] => {
-            let along = (v(b) - v(a)).try_normalize(1e-9)?;
-            let w = cog - v(a);
             let off_m = off_its_line_m(pts, cog_m);
-            let across = w - along * w.dot(&along);
-            let down = (-Vec3::z() - along * (-Vec3::z()).dot(&along)).try_normalize(1e-9)?;
-            let deg = angle_deg(&across, &down);
+            // Level, the load's up is the up it turns from.
+            let deg = turn_about_line_deg(Vec3::from(*a), Vec3::from(*b), Vec3::z(), Vec3::from(cog_m));
             Some((
                 deg,
                 format!(
@@ -987,19 +982,13 @@ pub fn side_loading(
             )
         })
         .collect();
-    let v = |p: &[f64; 3]| Vec3::new(p[0], p[1], p[2]);
-    let cog = v(&cog_m);
+    let v = Vec3::from;
+    let cog = v(cog_m);
     let hook = Vec3::new(cog_m[0], cog_m[1], size_m[2] / 2.0 + rigging_height_m);
     let most_over = |f: &dyn Fn(&Vec3) -> f64| corners.iter().map(f).fold(0.0f64, f64::max);
     // The turn about the line through two lift points that brings each
     // corner under it, from `rigged` (the hook's or the legs' side of it).
-    let about_line = |rigged: Vec3| -> f64 {
-        let (a, b) = (v(&pts[0]), v(&pts[1]));
-        let along = (b - a).try_normalize(1e-9).unwrap_or(Vec3::z());
-        let across = |w: Vec3| w - along * w.dot(&along);
-        let up = across(rigged);
-        most_over(&|c| angle_deg(&up, &-across(c - a)))
-    };
+    let about_line = |rigged: Vec3| -> f64 { most_over(&|c| turn_about_line_deg(v(pts[0]), v(pts[1]), rigged, *c)) };
     let (rigged, turn_deg): (Vec<Vec3>, f64) = match (&slings.spreader, pts.len()) {
         (Some(s), _) => {
             let tilt = (std::f64::consts::SQRT_2 * tol_m)
@@ -1009,24 +998,35 @@ pub fn side_loading(
             (vec![Vec3::z(); pts.len()], roll + tilt)
         }
         (None, 1) => {
-            let rigged = (v(&pts[0]) - cog).normalize();
-            (vec![rigged], most_over(&|c| angle_deg(&rigged, &(v(&pts[0]) - c))))
+            let rigged = (v(pts[0]) - cog).normalize();
+            (vec![rigged], most_over(&|c| angle_deg(&rigged, &(v(pts[0]) - c))))
         }
         (None, 2) => {
-            let legs = pts.iter().map(|p| (hook - v(p)).normalize()).collect();
-            (legs, about_line(hook - v(&pts[0])))
+            let legs = pts.iter().map(|p| (hook - v(*p)).normalize()).collect();
+            (legs, about_line(hook - v(pts[0])))
         }
-        (None, _) => (pts.iter().map(|p| (hook - v(p)).normalize()).collect(), 0.0),
+        (None, _) => (pts.iter().map(|p| (hook - v(*p)).normalize()).collect(), 0.0),
     };
     let out_of_line_deg = rigged
         .iter()
         .zip(axes)
         .map(|(leg, pin)| {
-            let as_rigged = leg.dot(&v(pin)).abs().min(1.0).asin().to_degrees();
+            let as_rigged = leg.dot(&v(*pin)).abs().min(1.0).asin().to_degrees();
             (as_rigged + turn_deg).min(90.0)
         })
         .collect();
     Some(SideLoading { out_of_line_deg, turn_deg })
+}
+
+/// How far a load hanging from the line through its lift points `a` and
+/// `b` turns about that line (degrees) to bring the point `c` of its frame
+/// under it, from where `from` (a direction in its frame: its up, or the
+/// hook's side of the line) points up from the line. 0 where the line is
+/// plumb, or a point.
+fn turn_about_line_deg(a: Vec3, b: Vec3, from: Vec3, c: Vec3) -> f64 {
+    let along = (b - a).try_normalize(1e-9).unwrap_or(Vec3::z());
+    let across = |w: Vec3| w - along * w.dot(&along);
+    angle_deg(&across(from), &-across(c - a))
 }
 
 /// The angle between two directions (degrees, 0 to 180).
