@@ -385,10 +385,29 @@ pub struct Comparison {
     /// plan file (a JSON pointer; the planner's own search figures and
     /// timings left out).
     pub other_values: Vec<String>,
-    /// What the plans were made from that differs, in words ([`made_from`]);
-    /// `None` where a plan's inputs are not kept (kept by an earlier
-    /// liftplan).
-    pub inputs_differing: Option<Vec<String>>,
+    /// What the plans were made from that differs ([`made_from`]); `None`
+    /// where a plan's inputs are not kept (kept by an earlier liftplan).
+    pub inputs_differing: Option<Vec<InputDiffering>>,
+}
+
+/// One input two plans were made from that differs: what it is, in words
+/// ("scans/a.laz changed", "the plan stage's settings"), and what more says
+/// it (what it holds, its name in the stage's manifest).
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct InputDiffering {
+    pub what: String,
+    pub more: Vec<String>,
+}
+
+impl InputDiffering {
+    fn new(what: String, more: &[&str]) -> InputDiffering {
+        InputDiffering { what, more: more.iter().map(|m| m.to_string()).collect() }
+    }
+
+    /// In words, what more says it in brackets.
+    pub fn said(&self) -> String {
+        self.more.iter().fold(self.what.clone(), |s, m| format!("{s} ({m})"))
+    }
 }
 
 impl Comparison {
@@ -409,7 +428,7 @@ impl Comparison {
         let made_from = match &self.inputs_differing {
             Some(d) if !d.is_empty() => format!(
                 "; what it was made from differs: {}",
-                d.iter().map(|i| i.split(" (").next().unwrap_or(i)).collect::<Vec<_>>().join(", ")
+                d.iter().map(|i| i.what.as_str()).collect::<Vec<_>>().join(", ")
             ),
             _ => String::new(),
         };
@@ -453,7 +472,11 @@ impl Comparison {
             None => "  Made from: not known (a plan kept by an earlier liftplan has no record of its inputs beside it)"
                 .to_string(),
             Some(d) if d.is_empty() => "  Made from: the same inputs".to_string(),
-            Some(d) => format!("  Made from: {} differ{}", d.join("; "), if d.len() == 1 { "s" } else { "" }),
+            Some(d) => format!(
+                "  Made from: {} differ{}",
+                d.iter().map(InputDiffering::said).collect::<Vec<_>>().join("; "),
+                if d.len() == 1 { "s" } else { "" }
+            ),
         });
         lines.join("\n")
     }
@@ -467,11 +490,7 @@ pub const LAST: &str = "last";
 /// comparison leaves to it.
 type Say = fn(&serde_json::Value) -> String;
 const SAID: &[(&str, &[&str], Say)] = &[
-    ("Validated", &["/summary/validated"], |p| match p.pointer("/summary/validated").and_then(|v| v.as_bool()) {
-        Some(true) => "yes".into(),
-        Some(false) => "NO".into(),
-        None => "not said".into(),
-    }),
+    ("Validated", &["/summary/validated"], |p| flag(p, "/summary/validated", "yes", "NO")),
     ("Crane", &["/crane_model", "/chart_config"], |p| {
         format!("{}, chart configuration '{}'", text(p, "/crane_model"), text(p, "/chart_config"))
     }),
@@ -505,11 +524,7 @@ const SAID: &[(&str, &[&str], Say)] = &[
             )
         },
     ),
-    ("Critical lift", &["/summary/critical"], |p| match p.pointer("/summary/critical").and_then(|v| v.as_bool()) {
-        Some(true) => "yes".into(),
-        Some(false) => "no".into(),
-        None => "not said".into(),
-    }),
+    ("Critical lift", &["/summary/critical"], |p| flag(p, "/summary/critical", "yes", "no")),
     (
         "Least clearance",
         &["/summary/min_clearance_m", "/summary/min_clearance_step", "/summary/min_clearance_what"],
@@ -572,6 +587,15 @@ fn words_of(name: &str) -> String {
     out
 }
 
+/// `yes` or `no` as the flag at `pointer` in `plan` is set, or "not said".
+fn flag(plan: &serde_json::Value, pointer: &str, yes: &str, no: &str) -> String {
+    match plan.pointer(pointer).and_then(|v| v.as_bool()) {
+        Some(true) => yes.into(),
+        Some(false) => no.into(),
+        None => "not said".into(),
+    }
+}
+
 /// The string at `pointer` in `plan`, or "not said".
 fn text(plan: &serde_json::Value, pointer: &str) -> String {
     plan.pointer(pointer).and_then(|v| v.as_str()).unwrap_or("not said").to_string()
@@ -605,9 +629,10 @@ const NOT_COMPARED: &[&str] =
 /// the lift's last plan (out/plan.json's), else the one kept last. Refused, naming what is missing, where a plan
 /// is not kept, two lifts keep both, or a file does not read as a plan.
 pub fn compare(out_dir: &Path, lift: Option<&str>, was: &str, now: &str) -> Result<Comparison> {
+    // What is kept, read once, where a lift or the last plan is to be found.
+    let kept = if lift.is_none() || now == LAST { list(out_dir)? } else { Vec::new() };
     let newest;
     let now = if now == LAST {
-        let kept = list(out_dir)?;
         let lifts: Vec<&str> = match lift {
             Some(l) => vec![l],
             None => kept.iter().filter(|k| k.revision == was).map(|k| k.lift.as_str()).collect(),
@@ -621,13 +646,10 @@ pub fn compare(out_dir: &Path, lift: Option<&str>, was: &str, now: &str) -> Resu
         // The lift's plan in out/plan.json (a run keeps each plan it
         // makes), else the one kept last (each lift's plans are listed
         // oldest first).
-        let in_last_plans = std::fs::read_to_string(out_dir.join("plan.json"))
-            .ok()
-            .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
-            .and_then(|v| {
-                let entry = v["lifts"].as_array()?.iter().find(|l| l["lift"] == one)?;
-                entry["summary"]["revision"].as_str().map(String::from)
-            })
+        let in_last_plans = last_plans(out_dir)
+            .into_iter()
+            .find(|(l, _)| l == one)
+            .map(|(_, r)| r)
             .filter(|r| kept.iter().any(|k| k.lift == one && &k.revision == r));
         newest =
             match in_last_plans {
@@ -643,7 +665,6 @@ pub fn compare(out_dir: &Path, lift: Option<&str>, was: &str, now: &str) -> Resu
     let lift = match lift {
         Some(l) => l.to_string(),
         None => {
-            let kept = list(out_dir)?;
             let keeps = |l: &str, r: &str| kept.iter().any(|k| k.lift == l && k.revision == r);
             let mut lifts: Vec<&str> = kept.iter().map(|k| k.lift.as_str()).collect();
             lifts.dedup();
@@ -746,7 +767,7 @@ pub fn replaced(out_dir: &Path, before: &[(String, String)], plan_dir: &Path) ->
 /// the plan stage, their files (changed, added, removed), settings and
 /// code, then the plan stage's own settings and code; else the plan
 /// stage's inputs ([`made_from`]).
-fn inputs_that_differ(was: &serde_json::Value, now: &serde_json::Value) -> Vec<String> {
+fn inputs_that_differ(was: &serde_json::Value, now: &serde_json::Value) -> Vec<InputDiffering> {
     let differing = |x: &serde_json::Value, y: &serde_json::Value| -> Vec<(String, &'static str)> {
         let (Some(x), Some(y)) = (x.as_object(), y.as_object()) else { return Vec::new() };
         let mut names: Vec<&String> = x.keys().chain(y.keys()).collect();
@@ -774,13 +795,13 @@ fn inputs_that_differ(was: &serde_json::Value, now: &serde_json::Value) -> Vec<S
         let none = serde_json::Value::Null;
         for (name, how) in differing(a.get(stage).unwrap_or(&none), b.get(stage).unwrap_or(&none)) {
             out.push(match name.as_str() {
-                "code" => format!("liftplan's {stage} stage (its code)"),
-                "settings" => format!("the {stage} stage's settings"),
+                "code" => InputDiffering::new(format!("liftplan's {stage} stage"), &["its code"]),
+                "settings" => InputDiffering::new(format!("the {stage} stage's settings"), &[]),
                 n => match n.strip_prefix("file:") {
-                    Some(file) => format!("{file} {how}"),
+                    Some(file) => InputDiffering::new(format!("{file} {how}"), &[]),
                     // Another stage's output it read: said where that stage's inputs differ.
                     None if n.starts_with("upstream:") => continue,
-                    None => format!("the {stage} stage's input '{n}' ({how})"),
+                    None => InputDiffering::new(format!("the {stage} stage's input '{n}'"), &[how]),
                 },
             });
         }
@@ -792,21 +813,24 @@ fn inputs_that_differ(was: &serde_json::Value, now: &serde_json::Value) -> Vec<S
 }
 
 /// One of the plan stage's inputs, as its manifest names it, in words.
-pub fn made_from(name: &str) -> String {
-    let known = match name {
-        "code" => "liftplan's plan stage (its code)",
-        "settings" => {
-            "the plan stage's settings (the project's lifts, any of them, power lines, obstacles and [plan], [cspace])"
+pub fn made_from(name: &str) -> InputDiffering {
+    let (what, holds) = match name {
+        "code" => ("liftplan's plan stage", Some("its code")),
+        "settings" => (
+            "the plan stage's settings",
+            Some("the project's lifts, any of them, power lines, obstacles and [plan], [cspace]"),
+        ),
+        "upstream:scans/site.laz" => ("the site cloud", Some("the scans, as registered and thinned")),
+        "upstream:plant/plant.mesh" => ("the plant model's mesh", None),
+        "upstream:plant/plant.json" => ("the plant model's groups", Some("those left out, their boxes")),
+        "upstream:charts/capacity.csv" => ("the load charts' capacities", None),
+        "upstream:charts/chart.json" => {
+            ("what the load charts state", Some("their cells, wind, counterweight, warnings"))
         }
-        "upstream:scans/site.laz" => "the site cloud (the scans, as registered and thinned)",
-        "upstream:plant/plant.mesh" => "the plant model's mesh",
-        "upstream:plant/plant.json" => "the plant model's groups (those left out, their boxes)",
-        "upstream:charts/capacity.csv" => "the load charts' capacities",
-        "upstream:charts/chart.json" => "what the load charts state (their cells, wind, counterweight, warnings)",
-        "upstream:depthmap/site.mdm" => "the depth map (the site cloud and the plant model rasterised)",
-        other => return format!("the plan stage's input '{other}'"),
+        "upstream:depthmap/site.mdm" => ("the depth map", Some("the site cloud and the plant model rasterised")),
+        other => return InputDiffering::new(format!("the plan stage's input '{other}'"), &[]),
     };
-    format!("{known} ({name})")
+    InputDiffering::new(what.to_string(), &[holds, Some(name)].into_iter().flatten().collect::<Vec<_>>())
 }
 
 /// Pushes onto `out` the JSON pointer of every value where `a` and `b`
@@ -1165,7 +1189,13 @@ mod tests {
             "2f90",
         );
         assert_eq!(
-            compare(out, None, "0000000a", "0000000b").unwrap().inputs_differing.unwrap(),
+            compare(out, None, "0000000a", "0000000b")
+                .unwrap()
+                .inputs_differing
+                .unwrap()
+                .iter()
+                .map(InputDiffering::said)
+                .collect::<Vec<_>>(),
             ["scans/a.laz changed", "scans/b.laz removed", "scans/c.laz added", "the scans stage's settings"]
         );
         made_from("0000000a", "ecaa");
