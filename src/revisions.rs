@@ -1198,6 +1198,17 @@ mod tests {
                 .collect::<Vec<_>>(),
             ["scans/a.laz changed", "scans/b.laz removed", "scans/c.laz added", "the scans stage's settings"]
         );
+        // The run's line names each whole, brackets in a file's name too.
+        with_stages(
+            "0000000b",
+            serde_json::json!({ "file:scans/a.laz": "aa", "file:scans/scan (1).laz": "dd" }),
+            "1f90",
+        );
+        let brief = compare(out, None, "0000000a", "0000000b").unwrap().briefly();
+        assert!(
+            brief.contains("; what it was made from differs: scans/b.laz removed, scans/scan (1).laz added, the scans stage's settings ("),
+            "{brief}"
+        );
         made_from("0000000a", "ecaa");
         made_from("0000000b", "ecab");
         // A run's line for a plan that replaces the last (out/plan.json's
