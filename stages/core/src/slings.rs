@@ -301,13 +301,9 @@ pub struct SideLoading {
 }
 
 impl SideLoading {
-    /// The leg (from 0) pulled farthest out of line, and by how much
-    /// (degrees): the first where several are.
-    pub fn worst(&self) -> (usize, f64) {
-        self.out_of_line_deg
-            .iter()
-            .enumerate()
-            .fold((0, 0.0), |(k, most), (i, &deg)| if deg > most { (i, deg) } else { (k, most) })
+    /// How far the leg pulled farthest out of line pulls (degrees).
+    pub fn most_deg(&self) -> f64 {
+        self.out_of_line_deg.iter().copied().fold(0.0, f64::max)
     }
 }
 
@@ -389,7 +385,7 @@ impl SlingCheck {
             (Some(p), Some(side)) => format!(
                 ", and of the lift point's own {:.2} t, which must be its rating for a pull up to {:.1}° out of its lug's plane: {:.0} %",
                 p / 1000.0,
-                side.worst().1,
+                side.most_deg(),
                 100.0 * self.max_leg_kg / p
             ),
             (Some(p), None) => {
