@@ -122,6 +122,65 @@ pub fn sketch(slings: &Slings, load: &LoadShape, check: &SlingCheck) -> Sketch {
     Sketch { hook, pieces }
 }
 
+/// A label on an elevation: the view (0: the side, along the load's x; 1:
+/// the end, along its y), the pieces of the sketch it names (their
+/// `pieces` indices) and what it says.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Label {
+    pub view: usize,
+    pub pieces: Vec<usize>,
+    pub text: String,
+}
+
+/// Each leg's and top leg's length and angle from the vertical, as the rows
+/// give them, to write beside it: once, in the elevation that shows it
+/// longer (the side where it runs as far along x as along y), and legs seen
+/// there as one line with the same figures in one label ("1, 4: 6.12 m,
+/// 48.2°"), so that no label is written over another.
+pub fn labels(s: &Sketch, check: &SlingCheck) -> Vec<Label> {
+    let top = check.spreader.as_ref().and_then(|sp| sp.top.as_ref());
+    let (mut leg_n, mut top_n) = (0, 0);
+    let mut named: Vec<(usize, String, String)> = Vec::new();
+    for (i, p) in s.pieces.iter().enumerate() {
+        let (name, length) = match p.kind {
+            PieceKind::Leg => {
+                leg_n += 1;
+                (leg_n.to_string(), check.leg_lengths_m.get(leg_n - 1))
+            }
+            PieceKind::TopLeg => {
+                top_n += 1;
+                (format!("top {top_n}"), top.and_then(|t| t.leg_lengths_m.get(top_n - 1)))
+            }
+            PieceKind::Lug | PieceKind::Spreader => continue,
+        };
+        let figures =
+            format!("{:.2} m, {:.1}°", length.copied().unwrap_or_else(|| p.length_m()), p.from_vertical_deg());
+        named.push((i, name, figures));
+    }
+    let view_of = |p: &Piece| usize::from((p.to[1] - p.from[1]).abs() > (p.to[0] - p.from[0]).abs());
+    let seen_as_one = |a: &Piece, b: &Piece, v: usize| {
+        let near = |x: [f64; 3], y: [f64; 3]| (x[v] - y[v]).abs() < 0.01 && (x[2] - y[2]).abs() < 0.01;
+        near(a.from, b.from) && near(a.to, b.to)
+    };
+    let mut out: Vec<(Label, Vec<String>)> = Vec::new();
+    for (i, name, figures) in named {
+        let p = &s.pieces[i];
+        let v = view_of(p);
+        let same = out
+            .iter_mut()
+            .find(|(l, _)| l.view == v && l.text.ends_with(&figures) && seen_as_one(&s.pieces[l.pieces[0]], p, v));
+        match same {
+            Some((l, names)) => {
+                l.pieces.push(i);
+                names.push(name);
+                l.text = format!("{}: {figures}", names.join(", "));
+            }
+            None => out.push((Label { view: v, pieces: vec![i], text: format!("{name}: {figures}") }, vec![name])),
+        }
+    }
+    out.into_iter().map(|(l, _)| l).collect()
+}
+
 /// The top view under the elevations, at their scale: the load's outline,
 /// its centre of gravity and the square it may lie in (`cog_tolerance_m`),
 /// the lift points, the legs and a spreader as seen from above, the hook
@@ -231,7 +290,7 @@ pub fn page(d: &mut Doc, mut y: f32, w: f32, slings: &Slings, load: &LoadShape, 
         15.0,
         y,
         w,
-        "Drawn to scale in the load's frame as the plan takes it: the load level, the hook block over its centre of gravity (red cross). Legs in blue, numbered as the lift points; a spreader in grey; in the top view, each shackle's pin in orange (rigging pin_axes) and the square its centre of gravity may lie in (load cog_tolerance_m) in red.",
+        "Drawn to scale in the load's frame as the plan takes it: the load level, the hook block over its centre of gravity (red cross). Legs in blue, numbered as the lift points, each with its length and its angle from the vertical beside it in the elevation that shows it longer; a spreader in grey; in the top view, each shackle's pin in orange (rigging pin_axes) and the square its centre of gravity may lie in (load cog_tolerance_m) in red.",
         8.5,
     );
     y += 2.0;
@@ -260,6 +319,18 @@ pub fn page(d: &mut Doc, mut y: f32, w: f32, slings: &Slings, load: &LoadShape, 
             // Side by side in this view where two points are.
             let shift = s.legs().take(n).filter(|q| (q.from[axis] - p.from[axis]).abs() < 0.05).count() as f32;
             d.text(px + 1.0 + 2.5 * shift, py + 3.2, &(n + 1).to_string(), 7.0, false, LEG);
+        }
+        let (hook_x, _) = at(s.hook);
+        for label in labels(&s, check).iter().filter(|l| l.view == axis) {
+            let p = &s.pieces[label.pieces[0]];
+            let ((x1, y1), (x2, y2)) = (at(p.from), at(p.to));
+            let (mx, my) = ((x1 + x2) / 2.0, (y1 + y2) / 2.0);
+            let width = crate::pdf::text_width_mm(&label.text, 7.0);
+            // Outside the legs, on the side of the hook block it lies, and
+            // within the panel.
+            let x = if mx < hook_x - 0.05 { mx - 1.5 - width } else { mx + 1.5 };
+            let x = x.min(x0 + panel_w - width).max(x0);
+            d.text(x, my, &label.text, 7.0, false, LEG);
         }
         let (kx, ky) = at(s.hook);
         d.fill_rect(kx - 1.5, ky - 3.0, 3.0, 3.0, INK);
@@ -421,6 +492,65 @@ mod tests {
         assert_eq!(s.pieces[0].from_vertical_deg(), 0.0);
     }
 
+    /// Each leg and top leg is labelled once with the check's length and its
+    /// angle from the vertical, in the elevation that shows it longer; legs
+    /// seen there as one line with the same figures share a label, legs
+    /// with other figures do not.
+    #[test]
+    fn each_leg_is_labelled_once_with_its_length_and_angle() {
+        let texts = |slings: &Slings, l: &LoadShape| -> Vec<(usize, Vec<usize>, String)> {
+            let c = check(slings, 12_000.0, l.size_m, l.cog_m, l.rigging_height_m).unwrap();
+            labels(&sketch(slings, l, &c), &c).into_iter().map(|x| (x.view, x.pieces, x.text)).collect()
+        };
+        let two = Slings {
+            lift_points_m: vec![[-4.0, 0.0, 1.5], [4.0, 0.0, 1.5]],
+            points_given: true,
+            ratings: Ratings::legs(10_000.0),
+            spreader: None,
+            pin_axes: None,
+        };
+        // The demo's legs, by hand: 4.2 and 3.8 m across, 4 m up.
+        let l = load([8.0, 3.0, 3.0], [0.2, 0.0, -0.1]);
+        let want = |dx: f64| format!("{:.2} m, {:.1}°", dx.hypot(4.0), dx.atan2(4.0).to_degrees());
+        assert_eq!(
+            texts(&two, &l),
+            vec![(0, vec![0], format!("1: {}", want(4.2))), (0, vec![1], format!("2: {}", want(3.8)))]
+        );
+        assert_eq!(want(4.2), "5.80 m, 46.4°");
+        // Along the load's y: the end view.
+        let across = Slings { lift_points_m: vec![[0.0, -1.5, 1.5], [0.0, 1.5, 1.5]], ..two.clone() };
+        assert!(texts(&across, &load([3.0, 8.0, 3.0], [0.0; 3])).iter().all(|t| t.0 == 1));
+        // Four legs at a square's corners: 1 and 4 seen as one line in the
+        // side view, 2 and 3 too.
+        let corners = vec![[-4.0, -3.5, 1.5], [4.0, -3.5, 1.5], [4.0, 3.5, 1.5], [-4.0, 3.5, 1.5]];
+        let four = Slings { lift_points_m: corners.clone(), ..two.clone() };
+        let l = load([8.0, 7.0, 3.0], [0.0; 3]);
+        let t = texts(&four, &l);
+        assert_eq!(t.iter().map(|t| t.1.clone()).collect::<Vec<_>>(), vec![vec![0, 3], vec![1, 2]], "{t:?}");
+        assert!(t[0].2.starts_with("1, 4: ") && t[1].2.starts_with("2, 3: "), "{t:?}");
+        // With the centre of gravity off along y, legs 1 and 4 differ:
+        // labelled apart.
+        let t = texts(&four, &load([8.0, 7.0, 3.0], [0.0, 0.5, 0.0]));
+        assert_eq!(t.len(), 4, "{t:?}");
+        // A beam: its plumb legs and its top legs, each once.
+        let beam = Slings {
+            lift_points_m: vec![[-3.0, 0.0, 1.5], [3.0, 0.0, 1.5]],
+            spreader: Some(Spreader {
+                length_m: 7.0,
+                below_hook_m: 3.0,
+                wll_kg: 20_000.0,
+                mass_kg: 300.0,
+                top_leg_wll_kg: Some(12_000.0),
+                width_m: None,
+            }),
+            ..two.clone()
+        };
+        let t = texts(&beam, &load([8.0, 3.0, 3.0], [0.0; 3]));
+        let names: Vec<&str> = t.iter().map(|t| t.2.split(':').next().unwrap()).collect();
+        assert_eq!(names, ["1", "2", "top 1", "top 2"], "{t:?}");
+        assert_eq!(t[0].2, "1: 1.00 m, 0.0°");
+    }
+
     /// The page's drawing stays above the footer (drawing below it is the
     /// document's own debug assertion) on A4 and Letter, for loads long,
     /// square and tall, the top view, the rows and the words going on to a
@@ -469,6 +599,10 @@ mod tests {
                 for (k, p) in slings.lift_points_m.iter().enumerate() {
                     let row = format!("{} ({:.2}, {:.2}, {:.2}) hook block ", k + 1, p[0], p[1], p[2]);
                     assert!(text.contains(&row), "{row}: {text}");
+                }
+                let s = sketch(slings, l, &c);
+                for label in labels(&s, &c) {
+                    assert!(text.contains(&label.text), "{}: {text}", label.text);
                 }
             }
         }
