@@ -386,8 +386,15 @@ pub struct Comparison {
     /// timings left out).
     pub other_values: Vec<String>,
     /// What the plans were made from that differs ([`made_from`]); `None`
-    /// where a plan's inputs are not kept (kept by an earlier liftplan).
+    /// where a plan's inputs are not kept (kept by an earlier liftplan), or
+    /// their record does not read ([`Comparison::inputs_unread`]).
     pub inputs_differing: Option<Vec<InputDiffering>>,
+    /// Each record of a plan's inputs that is there but does not read (a
+    /// file cut short, edited, or not one liftplan wrote), with why: what
+    /// the plans were made from is then not known, and the record is not
+    /// to be taken for one that is missing.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub inputs_unread: Vec<String>,
 }
 
 /// One input two plans were made from that differs: what it is, in words
@@ -469,6 +476,9 @@ impl Comparison {
             lines.push("  no difference but for the time planning took".to_string());
         }
         lines.push(match &self.inputs_differing {
+            None if !self.inputs_unread.is_empty() => {
+                format!("  Made from: not known: {}", self.inputs_unread.join("; "))
+            }
             None => "  Made from: not known (a plan kept by an earlier liftplan has no record of its inputs beside it)"
                 .to_string(),
             Some(d) if d.is_empty() => "  Made from: the same inputs".to_string(),
@@ -726,11 +736,33 @@ pub fn compare(out_dir: &Path, lift: Option<&str>, was: &str, now: &str) -> Resu
     }
     let mut other_values = Vec::new();
     differing_leaves(&a, &b, &mut String::new(), &covered, &mut other_values);
-    let inputs_of = |revision: &str| -> Option<serde_json::Value> {
-        let text = std::fs::read_to_string(inputs_file(out_dir, &lift, revision)).ok()?;
-        serde_json::from_str::<serde_json::Value>(&text).ok().filter(|v| v["inputs"].is_object())
+    // A record that is missing is a plan kept without one; one that is there
+    // and does not read is said as such.
+    let mut inputs_unread = Vec::new();
+    let mut inputs_of = |revision: &str| -> Option<serde_json::Value> {
+        let file = inputs_file(out_dir, &lift, revision);
+        let text = match std::fs::read_to_string(&file) {
+            Ok(text) => text,
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => return None,
+            Err(e) => {
+                inputs_unread.push(format!("{} does not read ({e})", file.display()));
+                return None;
+            }
+        };
+        match serde_json::from_str::<serde_json::Value>(&text) {
+            Ok(v) if v["inputs"].is_object() => Some(v),
+            Ok(_) => {
+                inputs_unread.push(format!("{} holds no record of inputs (an object \"inputs\")", file.display()));
+                None
+            }
+            Err(e) => {
+                inputs_unread.push(format!("{} does not read as JSON ({e})", file.display()));
+                None
+            }
+        }
     };
-    let inputs_differing = inputs_of(was).zip(inputs_of(now)).map(|(x, y)| inputs_that_differ(&x, &y));
+    let (inputs_was, inputs_now) = (inputs_of(was), inputs_of(now));
+    let inputs_differing = inputs_was.zip(inputs_now).map(|(x, y)| inputs_that_differ(&x, &y));
     Ok(Comparison {
         lift,
         was: was.to_string(),
@@ -739,6 +771,7 @@ pub fn compare(out_dir: &Path, lift: Option<&str>, was: &str, now: &str) -> Resu
         first_step_differing,
         other_values,
         inputs_differing,
+        inputs_unread,
     })
 }
 
@@ -1135,7 +1168,18 @@ mod tests {
             "{}",
             c.said()
         );
+        // A record there that does not read is said so, not taken for none.
         made_from("0000000a", "ecaa");
+        let file = inputs_file(out, "V-101", "0000000b");
+        std::fs::write(&file, "{\"inputs\": {\"code\": \"31").unwrap();
+        let c = compare(out, None, "0000000a", "0000000b").unwrap();
+        assert!(c.inputs_differing.is_none() && c.inputs_unread.len() == 1, "{c:?}");
+        let said = c.said();
+        let want = format!("\n  Made from: not known: {} does not read as JSON (EOF while parsing", file.display());
+        assert!(said.contains(&want), "{said}");
+        std::fs::write(&file, "[1, 2]").unwrap();
+        let said = compare(out, None, "0000000a", "0000000b").unwrap().said();
+        assert!(said.ends_with("0000000b.inputs.json holds no record of inputs (an object \"inputs\")"), "{said}");
         made_from("0000000b", "ecab");
         let c = compare(out, None, "0000000a", "0000000b").unwrap();
         let said = c.said();
