@@ -234,5 +234,22 @@ glb = (struct.pack("<I", len(js)) + b"JSON" + js
        + struct.pack("<I", len(body)) + b"BIN\0" + body)
 seed("plant_mesh", "tet.glb", b"glTF" + struct.pack("<II", 2, 12 + len(glb)) + glb, 4)
 
+# kept_plans: two kept plans of lift V-101 (as the revisions tests write
+# them), their records of inputs, and out/plan.json naming the second; the
+# five files split at 0xFF.
+def kept_plan(revision, gross_kg, swing):
+    steps = [{"operation": op, "amount": amount, "unit": unit}
+             for op, amount, unit in [("Hoist up", 0.5, "m"), ("Swing", swing, "deg"), ("Lower", 0.5, "m")]]
+    return {"lift": "V-101", "gross_kg": gross_kg, "crane_model": "AC 700", "steps": steps,
+            "planning": {"plan_ms": 1200.0, "box_queries": 5.0e5},
+            "summary": {"revision": revision, "validated": True, "steps": len(steps),
+                        "highest_pad": [1, {"load_kg": 104200.0, "pad": "RearLeft"}], "obstacles": []}}
+def made_from(settings, scan):
+    return {"inputs": {"code": "31ee", "settings": settings, "upstream:scans/site.laz": "1f90"},
+            "stages": {"scans": {"file:scans/a.laz": scan, "settings": "s1"}}}
+files = [{"lifts": [kept_plan("0000000a", 16819.0, 30.0)]}, {"lifts": [kept_plan("0000000b", 17319.0, 31.0)]},
+         made_from("ecaa", "aa"), made_from("ecab", "a2"), {"lifts": [kept_plan("0000000b", 17319.0, 31.0)]}]
+seed("kept_plans", "two-plans", b"\xff".join(json.dumps(f).encode() for f in files))
+
 shutil.rmtree(tmp)
 print(f"seeds written under {corpus}")

@@ -11,9 +11,8 @@ mod cache;
 mod inspect;
 mod pipeline;
 mod progress;
-use liftplan::project;
+use liftplan::{project, revisions};
 mod resume;
-mod revisions;
 mod stages;
 mod watch;
 

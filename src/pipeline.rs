@@ -131,7 +131,7 @@ pub struct StageReport {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub reason: Option<String>,
     /// For each lift whose plan this run's replaces another (the plan
-    /// stage's), what differs, in a line ([`crate::revisions::replaced`]).
+    /// stage's), what differs, in a line ([`liftplan::revisions::replaced`]).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub replaced: Vec<String>,
     #[serde(skip)]
@@ -324,7 +324,7 @@ fn run_stages(project: &Project, defs: &[StageDef], opts: &RunOptions, progress:
             let dir = cache.entry_dir(def.name, &key);
             // The last plans, before this run's take their place.
             let last_plans = if def.name == liftplan_plan::NAME {
-                crate::revisions::last_plans(&project.out_dir())
+                liftplan::revisions::last_plans(&project.out_dir())
             } else {
                 Vec::new()
             };
@@ -335,7 +335,7 @@ fn run_stages(project: &Project, defs: &[StageDef], opts: &RunOptions, progress:
             // Kept as soon as made: a stage after it may read it by revision.
             if def.name == liftplan_plan::NAME {
                 keep_revisions(project, &dir, &upstream, &mut rep.lines);
-                rep.replaced = crate::revisions::replaced(&project.out_dir(), &last_plans, &dir);
+                rep.replaced = liftplan::revisions::replaced(&project.out_dir(), &last_plans, &dir);
                 rep.lines.extend(rep.replaced.iter().cloned());
             }
             if def.name == liftplan_docs::NAME
@@ -386,7 +386,7 @@ fn run_stages(project: &Project, defs: &[StageDef], opts: &RunOptions, progress:
 }
 
 /// Keeps the plan the plan stage made or found fresh (in `plan_dir`) in
-/// out/revisions/ ([`crate::revisions`]), and says so in the stage's
+/// out/revisions/ ([`liftplan::revisions`]), and says so in the stage's
 /// lines. A plan that could not be kept is said there too and does not
 /// fail the run: the plan in out/ is made and checked; only reading it by
 /// revision later depends on this.
@@ -400,7 +400,7 @@ fn keep_revisions(
     let stages: BTreeMap<String, BTreeMap<String, String>> =
         upstream.iter().map(|(stage, (_, m))| (stage.to_string(), m.inputs.clone())).collect();
     said_kept(
-        crate::revisions::keep_made_from(&project.out_dir(), plan_dir, Some(&stages)),
+        liftplan::revisions::keep_made_from(&project.out_dir(), plan_dir, Some(&stages)),
         ": liftplan resume reads this plan only while out/ or the cache holds it",
         lines,
     );
@@ -408,16 +408,16 @@ fn keep_revisions(
 
 /// Keeps the PDFs the docs stage made or found fresh (in `docs_dir`), of
 /// the plans in `plan_dir`, by revision beside them
-/// ([`crate::revisions::keep_documents`]), and says so as
+/// ([`liftplan::revisions::keep_documents`]), and says so as
 /// [`keep_revisions`] does.
 fn keep_documents(project: &Project, plan_dir: &Path, docs_dir: &Path, lines: &mut Vec<String>) {
-    said_kept(crate::revisions::keep_documents(&project.out_dir(), plan_dir, docs_dir), "", lines);
+    said_kept(liftplan::revisions::keep_documents(&project.out_dir(), plan_dir, docs_dir), "", lines);
 }
 
 /// What a keeping by revision kept, or why it did not (then `if_not` after
 /// the error), as a line of the stage's; nothing where nothing was new.
 fn said_kept(kept: Result<Vec<String>>, if_not: &str, lines: &mut Vec<String>) {
-    let folder = format!("out/{}/", crate::revisions::DIR);
+    let folder = format!("out/{}/", liftplan::revisions::DIR);
     match kept {
         Ok(kept) if kept.is_empty() => {}
         Ok(kept) => lines.push(format!("kept by revision in {folder}: {}", kept.join(", "))),
@@ -436,7 +436,7 @@ fn keep_earlier_plans(project: &Project, cache: &Cache) {
     // a revision is kept once.
     for dir in cache.entries(liftplan_plan::NAME).into_iter().chain([out.clone()]) {
         if dir.join("plan.json").is_file()
-            && let Err(e) = crate::revisions::keep(&out, &dir)
+            && let Err(e) = liftplan::revisions::keep(&out, &dir)
         {
             tracing::debug!("not kept by revision: {e:#}");
         }

@@ -6,7 +6,7 @@
 //! PDF: the last plan in `out/` may be a newer one (made after the crew's
 //! copy was printed), and the pose after step 4 of another plan is not where
 //! the load hangs. A plan made before the last is read from the plans kept
-//! by revision (`out/revisions/`, [`crate::revisions`]) or, made by a
+//! by revision (`out/revisions/`, [`liftplan::revisions`]) or, made by a
 //! liftplan that did not keep them, from the plan stage's cache (the
 //! `[cache] keep` most recent runs).
 //!
@@ -51,7 +51,7 @@ fn plan_named(p: &Project, lift: &str, revision: &str, last: Option<&LiftPlan>) 
     if let Some(last) = last.filter(|l| l.summary.revision == revision) {
         return Some((last.clone(), p.out_dir().join("plan.json")));
     }
-    if let Some(kept) = crate::revisions::kept_plan_file(&p.out_dir(), lift, revision)
+    if let Some(kept) = liftplan::revisions::kept_plan_file(&p.out_dir(), lift, revision)
         && let Ok(Some(plan)) = plan_in(&kept, lift).map(|o| o.filter(|plan| plan.summary.revision == revision))
     {
         return Some((plan, kept));
@@ -84,7 +84,7 @@ fn find_plan(p: &Project, lift: &str, revision: &str) -> Result<(LiftPlan, PathB
         "lift '{lift}' has no plan {revision}: its last plan ({}) is plan {}, and neither the plans kept by revision ({}) nor the plan stage's cache ({}) hold one of that revision. Check the revision on the foot of the crew's pages; if theirs was made by a liftplan that did not keep plans by revision, or out/ was cleaned since, read the swing, luff (or trolley) and hoist off the crane's display and give them as resume_from by hand",
         last_file.display(),
         if last_revision.is_empty() { "of no revision (made by an older liftplan)" } else { &last_revision },
-        p.out_dir().join(crate::revisions::DIR).join(lift).display(),
+        p.out_dir().join(liftplan::revisions::DIR).join(lift).display(),
         p.state_dir().join("cache").join(liftplan_plan::NAME).display(),
     )
 }
@@ -216,7 +216,7 @@ pub fn check_resumed(p: &Project) -> Vec<ResumeCheck> {
                 format!(
                     "lift {lift}: resumes_plan names plan {revision}, which neither {}, the plans kept by revision ({}) nor the plan stage's cache hold: resume_from is not checked against it (check it against the crane's display)",
                     last_file.display(),
-                    p.out_dir().join(crate::revisions::DIR).join(lift).display()
+                    p.out_dir().join(liftplan::revisions::DIR).join(lift).display()
                 ),
             ));
             continue;

@@ -291,7 +291,7 @@ fn resumed_plan_files(p: &Project) -> Vec<std::path::PathBuf> {
         .iter()
         .filter_map(|l| {
             let named = l.resumes_plan.as_ref()?;
-            crate::revisions::kept_plan_file(&p.out_dir(), &l.id, &named.revision)
+            liftplan::revisions::kept_plan_file(&p.out_dir(), &l.id, &named.revision)
         })
         .collect()
 }
@@ -306,7 +306,7 @@ fn resume_agreements(ctx: &Ctx, tasks: &[liftplan_core::lift::LiftTask]) -> Vec<
         .iter()
         .filter_map(|t| {
             let named = t.resume_from.as_ref().and(t.resumes_plan.as_ref())?;
-            let file = crate::revisions::plan_file(&p.out_dir(), &t.id, &named.revision);
+            let file = liftplan::revisions::plan_file(&p.out_dir(), &t.id, &named.revision);
             // Project-relative: the document must not depend on the folder's name.
             let shown = liftplan_core::location::shown(&file, Some(&p.dir));
             let unchecked = |why: String| Agreement {
