@@ -472,7 +472,9 @@ impl Comparison {
                 named.join(", ")
             ));
         }
-        if self.differences.is_empty() && self.first_step_differing.is_none() && self.other_values.is_empty() {
+        if self.was == self.now {
+            lines.push("  the same plan (one revision given twice)".to_string());
+        } else if self.differences.is_empty() && self.first_step_differing.is_none() && self.other_values.is_empty() {
             lines.push("  no difference but for the time planning took".to_string());
         }
         lines.push(match &self.inputs_differing {
@@ -1205,6 +1207,11 @@ mod tests {
             same.said().ends_with("no difference but for the time planning took\n  Made from: the same inputs"),
             "{}",
             same.said()
+        );
+        let itself = compare(out, None, "0000000a", "0000000a").unwrap().said();
+        assert!(
+            itself.ends_with(":\n  the same plan (one revision given twice)\n  Made from: the same inputs"),
+            "{itself}"
         );
         // The lift's plan kept last (its files' times may tie: then by
         // revision), or the one in out/plan.json, the last plans.
