@@ -42,10 +42,10 @@ seed("crane_and_lift_toml", "lift.toml", lift[:lift.index('"#')].encode())
 # The same lift on a spreader beam (rigging.spreader), to reach its check.
 rigging = "rigging = { mass_t = 0.5, height_m = 4.0, legs = 2, leg_wll_t = 10.0, shackle_wll_t = 12.0 }"
 assert rigging in lift, "the demo's rigging line changed: update the spreader seed"
-spreader = rigging[:-2] + ", spreader = { length_m = 8.0, below_hook_m = 2.0, wll_t = 20.0, mass_t = 0.3, top_leg_wll_t = 12.0 } }"
+spreader = rigging[:-2] + ", spreader = { length_m = 8.0, below_hook_m = 2.0, wll_t = 20.0, mass_t = 0.3, top_leg_wll_t = 12.0, top_shackle_wll_t = 12.0, top_pin_axes = [[0.0, 1.0, 0.0], [0.3, 1.0, 0.0]] } }"
 seed("crane_and_lift_toml", "lift-spreader.toml", lift[:lift.index('"#')].replace(rigging, spreader).encode())
 # ... and on a spreader frame over four corners (rigging.spreader.width_m).
-frame = rigging.replace("legs = 2", "legs = 4")[:-2] + ", spreader = { length_m = 8.0, width_m = 3.0, below_hook_m = 2.0, wll_t = 20.0, mass_t = 0.3, top_leg_wll_t = 12.0 } }"
+frame = rigging.replace("legs = 2", "legs = 4")[:-2] + ", spreader = { length_m = 8.0, width_m = 3.0, below_hook_m = 2.0, wll_t = 20.0, mass_t = 0.3, top_leg_wll_t = 12.0, top_shackle_wll_t = 12.0 } }"
 seed("crane_and_lift_toml", "lift-frame.toml", lift[:lift.index('"#')].replace(rigging, frame).encode())
 # ... and with its shackles' pins given (rigging.pin_axes), to reach the side loading.
 pins = rigging[:-2] + ", lift_point_wll_t = 11.0, pin_axes = [[0.0, 1.0, 0.0], [0.2, 1.0, 0.1]] }"

@@ -517,6 +517,8 @@ keep = 3                  # runs' outputs each stage keeps in .liftplan/cache (t
 # # lift points, below_hook_m under the hook block; leave top_leg_wll_t out for a lifting
 # # beam hung by its lug; mass_t is part of rigging's); it must lie within the footprint.
 # # With width_m = 2.5 in spreader it is a frame over four lift points (legs = 4).
+# # top_shackle_wll_t = 12.0 in spreader checks the shackles at its top lugs, and
+# # top_pin_axes = [[0.0, 1.0, 0.0], ...] (one per top leg) their side loading.
 # crane = { model = "ltm-1100", position_m = [0.0, 0.0], ground_z_m = 0.0, heading_deg = 0.0, boom_m = 40.0, chart_config = "main boom, 360 deg" }
 # # crane: add falls = 4 (the parts of line the hoist rope is reeved with) to have them
 # # checked against the crane file's [hook] line_pull_t (per fall) and rated_t, and, where

@@ -120,6 +120,16 @@ pub struct SpreaderSpec {
     /// its x), over four lift points ([`crate::slings::check_frame`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub width_m: Option<f64>,
+    /// Each top leg's shackle's working load limit (t, in line), at the
+    /// spreader's lugs: checked against its top leg's pull.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub top_shackle_wll_t: Option<f64>,
+    /// The direction of each top shackle's pin (the axis of the
+    /// spreader's lug's hole, in the load's frame), one per top leg in the
+    /// order of the lift points: the top shackles are then checked for
+    /// side loading ([`crate::slings::TopShackles`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub top_pin_axes: Option<Vec<[f64; 3]>>,
 }
 
 impl Default for RiggingSpec {
@@ -1035,6 +1045,36 @@ impl LiftSpec {
                             pos("rigging.spreader.width_m", w)?;
                             metres("rigging.spreader.width_m", w, MAX_LOAD_SIDE_M)?;
                         }
+                        let top_shackles = match (b.top_shackle_wll_t, &b.top_pin_axes) {
+                            (None, None) => None,
+                            (None, Some(_)) => {
+                                return Err(format!(
+                                    "lift '{id}': rigging.spreader.top_pin_axes gives the directions of the top shackles' pins but not the shackles' working load limit: give rigging.spreader.top_shackle_wll_t (t, in line) for them to be checked for side loading"
+                                ));
+                            }
+                            (Some(_), _) if b.top_leg_wll_t.is_none() => {
+                                return Err(format!(
+                                    "lift '{id}': rigging.spreader.top_shackle_wll_t gives the shackles of the spreader's top legs, but it has none (no top_leg_wll_t: a lifting beam or frame hung from the hook by its lug): give top_leg_wll_t for a spreader hung by top legs, or leave top_shackle_wll_t out"
+                                ));
+                            }
+                            (Some(t), axes) => {
+                                pos("rigging.spreader.top_shackle_wll_t", t)?;
+                                let pin_axes = match axes {
+                                    None => None,
+                                    Some(axes) if axes.len() != lift_points_m.len() => {
+                                        return Err(format!(
+                                            "lift '{id}': rigging.spreader.top_pin_axes gives {} directions for {} top legs: give one per top leg, in the order of the lift points they stand over",
+                                            axes.len(),
+                                            lift_points_m.len()
+                                        ));
+                                    }
+                                    Some(axes) => {
+                                        Some(unit_directions(id, "rigging.spreader.top_pin_axes", axes, "top leg")?)
+                                    }
+                                };
+                                Some(crate::slings::TopShackles { wll_kg: t * KG_PER_TONNE, pin_axes })
+                            }
+                        };
                         Some(crate::slings::Spreader {
                             length_m: b.length_m,
                             below_hook_m: b.below_hook_m,
@@ -1042,6 +1082,7 @@ impl LiftSpec {
                             mass_kg: b.mass_t * KG_PER_TONNE,
                             top_leg_wll_kg: b.top_leg_wll_t.map(|t| t * KG_PER_TONNE),
                             width_m: b.width_m,
+                            top_shackles,
                         })
                     }
                 };
@@ -1070,23 +1111,7 @@ impl LiftSpec {
                             lift_points_m.len()
                         ));
                     }
-                    Some(axes) => {
-                        let mut unit = Vec::with_capacity(axes.len());
-                        for (k, a) in axes.iter().enumerate() {
-                            // Scaled first, so that no square overflows.
-                            let scale = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-                            if !a.iter().all(|v| v.is_finite()) || scale == 0.0 {
-                                return Err(format!(
-                                    "lift '{id}': rigging pin_axes[{k}] must be a direction (three numbers, not all zero: the axis of lift point {}'s lug's hole, in the load's frame), found {a:?}",
-                                    k + 1
-                                ));
-                            }
-                            let s = a.map(|v| v / scale);
-                            let n = (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]).sqrt();
-                            unit.push(s.map(|v| v / n));
-                        }
-                        Some(unit)
-                    }
+                    Some(axes) => Some(unit_directions(id, "rigging pin_axes", axes, "lift point")?),
                 };
                 Some(crate::slings::Slings {
                     lift_points_m,
@@ -1448,6 +1473,26 @@ impl LiftSpec {
 
 /// The pick and the set within the crane's radial range and its rope's,
 /// the lift-off's rope included.
+/// `axes` (directions of shackles' pins, `key` in lift `id`'s file, one per
+/// `what`: "lift point", "top leg") made unit vectors, each scaled first so
+/// that no square overflows; refused where one is not a direction.
+fn unit_directions(id: &str, key: &str, axes: &[[f64; 3]], what: &str) -> Result<Vec<[f64; 3]>, String> {
+    let mut unit = Vec::with_capacity(axes.len());
+    for (k, a) in axes.iter().enumerate() {
+        let scale = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        if !a.iter().all(|v| v.is_finite()) || scale == 0.0 {
+            return Err(format!(
+                "lift '{id}': {key}[{k}] must be a direction (three numbers, not all zero: the axis of {what} {}'s lug's hole, in the load's frame), found {a:?}",
+                k + 1
+            ));
+        }
+        let s = a.map(|v| v / scale);
+        let n = (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]).sqrt();
+        unit.push(s.map(|v| v / n));
+    }
+    Ok(unit)
+}
+
 fn within_reach(id: &str, crane: &CraneSetup, liftoff_m: f64, pick: &Config, set: &Config) -> Result<(), String> {
     let lim = crane.limits();
     for (which, c) in [("pick", pick), ("set", set)] {
@@ -2036,6 +2081,7 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
                 mass_kg: 300.0,
                 top_leg_wll_kg: Some(12_000.0),
                 width_m: None,
+                top_shackles: None,
             }
         );
         assert!(
@@ -2067,6 +2113,16 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         assert!(
             axes[1].iter().zip([1.0, 1.0, 0.0]).all(|(a, b)| (a - b * std::f64::consts::FRAC_1_SQRT_2).abs() < 1e-15)
         );
+        // A spreader beam's top shackles, their pins across the beam: the
+        // top legs pull in the beam's plane, in line.
+        let beam = rigged(
+            "legs = 2\nleg_wll_t = 8.0\nspreader = { length_m = 6.0, below_hook_m = 2.0, wll_t = 20.0, top_leg_wll_t = 12.0, top_shackle_wll_t = 9.5, top_pin_axes = [[0.0, 2.0, 0.0], [0.0, -1.0, 0.0]] }",
+        )
+        .unwrap();
+        let shackles = beam.slings.as_ref().unwrap().spreader.as_ref().unwrap().top_shackles.clone().unwrap();
+        assert_eq!((shackles.wll_kg, shackles.pin_axes), (9500.0, Some(vec![[0.0, 1.0, 0.0], [0.0, -1.0, 0.0]])));
+        let top = beam.check_slings().unwrap().unwrap().spreader.unwrap().top.unwrap();
+        assert_eq!((top.shackle_wll_kg, top.out_of_line_deg.clone()), (Some(9500.0), vec![0.0, 0.0]), "{top:?}");
         let side = pinned.check_slings().unwrap().unwrap().side_loading.unwrap();
         assert_eq!(side.out_of_line_deg[0], 0.0);
         assert!(side.out_of_line_deg[1] > 0.0 && side.turn_deg == 0.0, "{side:?}");
@@ -2155,6 +2211,26 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
             (
                 "legs = 2\nleg_wll_t = 8.0\nshackle_wll_t = 8.5\npin_axes = [[inf, 1.0, 0.0], [0.0, 1.0, 0.0]]",
                 "rigging pin_axes[0] must be a direction",
+            ),
+            (
+                "legs = 2\nleg_wll_t = 8.0\nspreader = { length_m = 6.0, below_hook_m = 2.0, wll_t = 20.0, top_leg_wll_t = 12.0, top_pin_axes = [[0.0, 1.0, 0.0], [0.0, 1.0, 0.0]] }",
+                "rigging.spreader.top_pin_axes gives the directions of the top shackles' pins but not the shackles' working load limit: give rigging.spreader.top_shackle_wll_t",
+            ),
+            (
+                "legs = 2\nleg_wll_t = 8.0\nspreader = { length_m = 6.0, below_hook_m = 2.0, wll_t = 20.0, top_shackle_wll_t = 12.0 }",
+                "rigging.spreader.top_shackle_wll_t gives the shackles of the spreader's top legs, but it has none (no top_leg_wll_t",
+            ),
+            (
+                "legs = 2\nleg_wll_t = 8.0\nspreader = { length_m = 6.0, below_hook_m = 2.0, wll_t = 20.0, top_leg_wll_t = 12.0, top_shackle_wll_t = -1.0 }",
+                "rigging.spreader.top_shackle_wll_t must be positive",
+            ),
+            (
+                "legs = 2\nleg_wll_t = 8.0\nspreader = { length_m = 6.0, below_hook_m = 2.0, wll_t = 20.0, top_leg_wll_t = 12.0, top_shackle_wll_t = 12.0, top_pin_axes = [[0.0, 1.0, 0.0]] }",
+                "rigging.spreader.top_pin_axes gives 1 directions for 2 top legs: give one per top leg",
+            ),
+            (
+                "legs = 2\nleg_wll_t = 8.0\nspreader = { length_m = 6.0, below_hook_m = 2.0, wll_t = 20.0, top_leg_wll_t = 12.0, top_shackle_wll_t = 12.0, top_pin_axes = [[0.0, 1.0, 0.0], [0.0, 0.0, 0.0]] }",
+                "rigging.spreader.top_pin_axes[1] must be a direction (three numbers, not all zero: the axis of top leg 2's lug's hole",
             ),
         ] {
             let e = rigged(text).unwrap_err();

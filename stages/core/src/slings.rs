@@ -38,7 +38,9 @@
 //! shackle is checked at the rating left at its leg's angle against the
 //! most its leg carries ([`SlingCheck::shackle_most_used`]); the lugs' own
 //! rating must then be for that angle out of their plane, which the words
-//! say.
+//! say. The shackles at a spreader's top lugs are checked alike where the
+//! lift gives them ([`TopShackles`], [`TopLegs::shackle_most_used`]), each
+//! top leg at its angle out of line as rigged.
 //!
 //! Two legs may hang plumb from a beam instead (`rigging.spreader`, [`Spreader`]):
 //! its pins stand over the two lift points, `below_hook_m` under the hook
@@ -178,6 +180,29 @@ pub struct Spreader {
     /// the hook ([`check_frame`]). `None`: a beam.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub width_m: Option<f64>,
+    /// The shackles joining the top legs to the spreader's lugs, where the
+    /// lift gives them (`spreader.top_shackle_wll_t`, `top_pin_axes`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub top_shackles: Option<TopShackles>,
+}
+
+/// The shackles at a spreader's top lugs, one per top leg: what each may
+/// carry in line and, where the lift gives them, the directions of their
+/// pins (the axes of the lugs' holes, unit vectors in the load's frame, one
+/// per top leg in the order of the lift points), for the side loading.
+///
+/// A top leg's direction from its lug does not change where the load's
+/// centre of gravity lies within its tolerance: the top legs, made for the
+/// centre of gravity as given, and the spreader hang as one rigid piece
+/// (four top legs, or three with one slack, hold the hook where it is over
+/// the frame; two hold it in the beam's plane, and the load and the beam
+/// turn in that plane, the load hanging under its lift points' line
+/// whatever its centre of gravity across it). So each is taken as rigged.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TopShackles {
+    pub wll_kg: f64,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pin_axes: Option<Vec<[f64; 3]>>,
 }
 
 /// What a beam carries ([`check`] with a [`Spreader`]).
@@ -224,6 +249,69 @@ pub struct TopLegs {
     /// written before liftplan kept it.
     #[serde(default)]
     pub leg_most_kg: Vec<f64>,
+    /// What the shackle at each one's lug may carry in line (kg), where the
+    /// lift gives them.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shackle_wll_kg: Option<f64>,
+    /// Each one's angle out of the plane square to its shackle's pin as
+    /// rigged (degrees, at most 90), in the order of the lift points, where
+    /// the lift gives the pins' directions ([`TopShackles`]); empty where not.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub out_of_line_deg: Vec<f64>,
+}
+
+impl TopLegs {
+    /// The top leg whose shackle is most used for what it may carry: which
+    /// (from 0), what the leg carries at most (kg) and what its shackle may
+    /// carry (kg): its working load limit, less for side loading at its
+    /// leg's angle out of line ([`side_loading_factor`]). `None` where the
+    /// lift gives no top shackles.
+    pub fn shackle_most_used(&self) -> Option<(usize, f64, f64)> {
+        let wll_kg = self.shackle_wll_kg?;
+        let share = |k: usize| self.out_of_line_deg.get(k).map_or(1.0, |deg| side_loading_factor(*deg));
+        (0..self.leg_most_kg.len().max(1))
+            .map(|k| (k, self.leg_most_kg.get(k).copied().unwrap_or(self.max_leg_kg), wll_kg * share(k)))
+            .fold(None, |most: Option<(usize, f64, f64)>, leg| match most {
+                Some(m) if !(leg.1 / leg.2 > m.1 / m.2) => Some(m),
+                _ => Some(leg),
+            })
+    }
+
+    /// Their shackles at the spreader's lugs, in words (starting "; "):
+    /// the most used against what it may carry; nothing where the lift
+    /// gives none.
+    fn shackles_said(&self) -> String {
+        let (Some(wll_kg), Some((leg, carries_kg, limit_kg))) = (self.shackle_wll_kg, self.shackle_most_used()) else {
+            return String::new();
+        };
+        match self.out_of_line_deg.get(leg) {
+            Some(deg) => format!(
+                "; of the top legs' shackles' {:.2} t at the spreader's lugs, less for side loading: the most used, top leg {}'s, pulls {deg:.1}° out of line with its pin as rigged (spreader top_pin_axes), may carry {:.0} % of it, {:.2} t (the makers' chart, as for the lift points' shackles), and carries up to {:.2} t: {:.0} %",
+                wll_kg / 1000.0,
+                leg + 1,
+                100.0 * limit_kg / wll_kg,
+                limit_kg / 1000.0,
+                carries_kg / 1000.0,
+                100.0 * carries_kg / limit_kg
+            ),
+            None => format!(
+                "; of the top legs' shackles' {:.2} t at the spreader's lugs (in line): {:.0} %",
+                wll_kg / 1000.0,
+                100.0 * carries_kg / limit_kg
+            ),
+        }
+    }
+}
+
+/// Each of `up` (unit vectors from the spreader's lugs to the hook) out of
+/// the plane square to its shackle's pin (degrees), where `shackles` gives
+/// the pins' directions; empty where not.
+fn top_out_of_line_deg(shackles: Option<&TopShackles>, up: &[[f64; 3]]) -> Vec<f64> {
+    let Some(axes) = shackles.and_then(|s| s.pin_axes.as_ref()) else { return Vec::new() };
+    up.iter()
+        .zip(axes)
+        .map(|(u, a)| (u[0] * a[0] + u[1] * a[1] + u[2] * a[2]).abs().min(1.0).asin().to_degrees())
+        .collect()
 }
 
 /// What the legs carry ([`check`]).
@@ -439,6 +527,16 @@ impl SlingCheck {
                     "give a beam of a higher working load limit (spreader wll_t)"
                 });
             }
+            if let Some(t) = &s.top
+                && t.shackle_most_used().is_some_and(|(_, carries_kg, limit_kg)| over(carries_kg, limit_kg))
+            {
+                what.push("the spreader's top shackles");
+                give.push(if t.out_of_line_deg.is_empty() {
+                    "give top shackles of a higher working load limit (spreader top_shackle_wll_t)"
+                } else {
+                    "give top shackles of a higher working load limit (spreader top_shackle_wll_t) or lugs turned for the top legs to pull square to their pins (spreader top_pin_axes)"
+                });
+            }
             if s.top.as_ref().is_some_and(|t| over(t.max_leg_kg, t.leg_wll_kg)) {
                 what.push("the spreader's top legs");
                 give.push(if frame {
@@ -545,13 +643,14 @@ impl SlingCheck {
         let lengths: Vec<String> = self.leg_lengths_m.iter().map(|l| format!("{l:.2}")).collect();
         let hung = match &s.top {
             Some(t) => format!(
-                "hung from the hook by 2 top legs up to {:.1}° from the vertical: the most on one (top leg {}) {:.2} t ({:.0} kN) of its {:.2} t working load limit: {:.0} %; top legs {} and {} m long from pin to hook, for the beam to hang level, meeting over the centre of gravity {:.2} m from the pins' middle, pressing the beam with {:.2} t ({:.0} kN)",
+                "hung from the hook by 2 top legs up to {:.1}° from the vertical: the most on one (top leg {}) {:.2} t ({:.0} kN) of its {:.2} t working load limit: {:.0} %{}; top legs {} and {} m long from pin to hook, for the beam to hang level, meeting over the centre of gravity {:.2} m from the pins' middle, pressing the beam with {:.2} t ({:.0} kN)",
                 t.max_angle_deg,
                 t.max_leg,
                 t.max_leg_kg / 1000.0,
                 t.max_leg_kg * G / 1000.0,
                 t.leg_wll_kg / 1000.0,
                 100.0 * t.max_leg_kg / t.leg_wll_kg,
+                t.shackles_said(),
                 t.leg_lengths_m.first().map(|l| format!("{l:.2}")).unwrap_or_default(),
                 t.leg_lengths_m.get(1).map(|l| format!("{l:.2}")).unwrap_or_default(),
                 s.hook_from_middle_m.abs(),
@@ -594,13 +693,14 @@ impl SlingCheck {
             Some(t) => {
                 let top: Vec<String> = t.leg_lengths_m.iter().map(|l| format!("{l:.2}")).collect();
                 format!(
-                    "hung from the hook by 4 top legs up to {:.1}° from the vertical: the most on one (top leg {}, any one slack) {:.2} t ({:.0} kN) of its {:.2} t working load limit: {:.0} %; top legs {} m long from pin to hook, for the frame to hang level, meeting over the centre of gravity ({dx:.2}, {dy:.2}) m from the frame's centre, each pulling its corner in with up to {:.2} t ({:.0} kN)",
+                    "hung from the hook by 4 top legs up to {:.1}° from the vertical: the most on one (top leg {}, any one slack) {:.2} t ({:.0} kN) of its {:.2} t working load limit: {:.0} %{}; top legs {} m long from pin to hook, for the frame to hang level, meeting over the centre of gravity ({dx:.2}, {dy:.2}) m from the frame's centre, each pulling its corner in with up to {:.2} t ({:.0} kN)",
                     t.max_angle_deg,
                     t.max_leg,
                     t.max_leg_kg / 1000.0,
                     t.max_leg_kg * G / 1000.0,
                     t.leg_wll_kg / 1000.0,
                     100.0 * t.max_leg_kg / t.leg_wll_kg,
+                    t.shackles_said(),
                     top.join(", "),
                     t.compression_kg / 1000.0,
                     t.compression_kg * G / 1000.0,
@@ -1152,6 +1252,8 @@ fn check_spreader(
                 // Their pulls across the beam, equal and opposite.
                 compression_kg: pulls[0] * up[0][0].hypot(up[0][1]),
                 leg_most_kg: pulls.clone(),
+                shackle_wll_kg: beam.top_shackles.as_ref().map(|s| s.wll_kg),
+                out_of_line_deg: top_out_of_line_deg(beam.top_shackles.as_ref(), &up),
             })
         }
     };
@@ -1271,6 +1373,8 @@ pub fn check_frame(
                 leg_lengths_m: lengths_m,
                 compression_kg: across_kg,
                 leg_most_kg: most_on_each(&pulls, 4),
+                shackle_wll_kg: frame.top_shackles.as_ref().map(|s| s.wll_kg),
+                out_of_line_deg: top_out_of_line_deg(frame.top_shackles.as_ref(), &up),
             })
         }
     };
@@ -1585,7 +1689,15 @@ mod tests {
     }
 
     fn beam(top_leg_wll_kg: Option<f64>) -> Spreader {
-        Spreader { length_m: 6.4, below_hook_m: 2.0, wll_kg: 20_000.0, mass_kg: 600.0, top_leg_wll_kg, width_m: None }
+        Spreader {
+            length_m: 6.4,
+            below_hook_m: 2.0,
+            wll_kg: 20_000.0,
+            mass_kg: 600.0,
+            top_leg_wll_kg,
+            width_m: None,
+            top_shackles: None,
+        }
     }
 
     /// Lift points 6 m apart on a 7 m load, 4 m of rigging: legs plumb
@@ -1973,6 +2085,7 @@ mod tests {
             mass_kg: 600.0,
             top_leg_wll_kg,
             width_m: Some(2.0),
+            top_shackles: None,
         }
     }
 
@@ -1982,6 +2095,89 @@ mod tests {
     /// the top legs (√10 m across, 2 m up) carry load and frame the same
     /// way. Off centre (1, 0.5), the worst way of one slack gives the third
     /// corner two thirds, by the triangle's coordinates by hand.
+    /// The shackles at a spreader's top lugs: in line, against each top
+    /// leg's most; with their pins given, each at the makers' share for its
+    /// top leg's angle out of line as rigged, by hand: a frame's top leg
+    /// from (3, -1) to the hook 2 m over the centre runs along (-3, 1, 2)/√14,
+    /// square to a pin along (1, 3, 0), 53.3° out of line with one along x
+    /// and 32.3° with one standing upright. A centre of gravity's tolerance
+    /// changes the most on each, not the angles (the top legs and the frame
+    /// hang as one piece).
+    #[test]
+    fn a_spreader_s_top_shackles_are_checked_in_line_and_for_side_loading() {
+        let size = [7.0, 3.0, 2.0];
+        let shackled = |wll_kg: f64, pin_axes: Option<Vec<[f64; 3]>>| Slings {
+            lift_points_m: vec![[-3.0, -1.0, 1.0], [3.0, -1.0, 1.0], [3.0, 1.0, 1.0], [-3.0, 1.0, 1.0]],
+            points_given: true,
+            ratings: Ratings::legs(9000.0),
+            spreader: Some(Spreader { top_shackles: Some(TopShackles { wll_kg, pin_axes }), ..frame(Some(12_000.0)) }),
+            pin_axes: None,
+        };
+        // Each top leg carries up to 6.3 t up, along legs at cos 2/√14.
+        let most_kg = 6300.0 * 14.0f64.sqrt() / 2.0;
+        let c = check(&shackled(15_000.0, None), 12_000.0, size, [0.0; 3], 4.0).unwrap();
+        let t = c.spreader.as_ref().unwrap().top.clone().unwrap();
+        let (leg, carries_kg, limit_kg) = t.shackle_most_used().unwrap();
+        assert!((carries_kg - most_kg).abs() < 1e-6 && limit_kg == 15_000.0 && leg == 0, "{t:?}");
+        assert!(t.out_of_line_deg.is_empty());
+        let said = c.said();
+        assert!(said.contains(" working load limit: 98 %; of the top legs' shackles' 15.00 t at the spreader's lugs (in line): 79 %; top legs "), "{said}");
+        assert_eq!(c.over_limit(), None);
+        // Pins given: top leg 2's along x, 53.3° out of line, 66 % of 15 t.
+        let unit = |v: [f64; 3]| {
+            let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+            v.map(|x| x / n)
+        };
+        let pins = vec![unit([1.0, -3.0, 0.0]), [1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, 0.0, 1.0]];
+        let c = check(&shackled(15_000.0, Some(pins.clone())), 12_000.0, size, [0.0; 3], 4.0).unwrap();
+        let t = c.spreader.as_ref().unwrap().top.clone().unwrap();
+        let along_x = (3.0 / 14.0f64.sqrt()).asin().to_degrees();
+        let upright = (2.0 / 14.0f64.sqrt()).asin().to_degrees();
+        let want = [0.0, along_x, upright, upright];
+        assert!(t.out_of_line_deg.iter().zip(want).all(|(a, b)| (a - b).abs() < 1e-9), "{:?}", t.out_of_line_deg);
+        assert!((along_x - 53.30).abs() < 0.01 && (upright - 32.31).abs() < 0.01);
+        let share = 0.7 - 0.2 * (along_x - 45.0) / 45.0;
+        let (leg, carries_kg, limit_kg) = t.shackle_most_used().unwrap();
+        assert!(leg == 1 && (carries_kg - most_kg).abs() < 1e-6 && (limit_kg - 15_000.0 * share).abs() < 1e-6);
+        let over = c.over_limit().unwrap();
+        assert!(over.starts_with("the spreader's top shackles cannot carry the load: "), "{over}");
+        assert!(over.contains("the most used, top leg 2's, pulls 53.3° out of line with its pin as rigged (spreader top_pin_axes), may carry 66 % of it, 9.95 t"), "{over}");
+        assert!(over.ends_with("give top shackles of a higher working load limit (spreader top_shackle_wll_t) or lugs turned for the top legs to pull square to their pins (spreader top_pin_axes)"), "{over}");
+        // Every pin square to its leg: in line, as without pins.
+        let square: Vec<[f64; 3]> =
+            [[1.0, -3.0, 0.0], [1.0, 3.0, 0.0], [1.0, -3.0, 0.0], [1.0, 3.0, 0.0]].into_iter().map(unit).collect();
+        let c = check(&shackled(15_000.0, Some(square.clone())), 12_000.0, size, [0.0; 3], 4.0).unwrap();
+        let t = c.spreader.unwrap().top.unwrap();
+        assert!(t.out_of_line_deg.iter().all(|deg| deg.abs() < 1e-9), "{:?}", t.out_of_line_deg);
+        // A centre of gravity's tolerance: more on each, the angles as rigged.
+        let tol = check_within(&shackled(15_000.0, Some(pins)), 12_000.0, size, [0.0; 3], 0.1, 4.0).unwrap();
+        let t_tol = tol.spreader.unwrap().top.unwrap();
+        assert!(
+            t_tol.out_of_line_deg.iter().zip(want).all(|(a, b)| (a - b).abs() < 1e-9),
+            "{:?}",
+            t_tol.out_of_line_deg
+        );
+        assert!(t_tol.leg_most_kg.iter().all(|kg| *kg > most_kg), "{:?}", t_tol.leg_most_kg);
+        // A beam's two top shackles, in line.
+        let beam = Slings {
+            lift_points_m: vec![[-3.0, 0.0, 1.0], [3.0, 0.0, 1.0]],
+            points_given: true,
+            ratings: Ratings::legs(9000.0),
+            spreader: Some(Spreader {
+                top_shackles: Some(TopShackles { wll_kg: 9000.0, pin_axes: Some(vec![[0.0, 1.0, 0.0]; 2]) }),
+                below_hook_m: 3.0,
+                ..beam(Some(12_000.0))
+            }),
+            pin_axes: None,
+        };
+        let c = check(&beam, 12_000.0, size, [0.5, 0.0, 0.0], 4.0).unwrap();
+        let t = c.spreader.as_ref().unwrap().top.clone().unwrap();
+        assert_eq!(t.out_of_line_deg, [0.0, 0.0]);
+        let (leg, carries_kg, limit_kg) = t.shackle_most_used().unwrap();
+        assert_eq!((leg, carries_kg, limit_kg), (1, t.leg_most_kg[1], 9000.0), "{t:?}");
+        assert!(t.leg_most_kg[1] > t.leg_most_kg[0]);
+    }
+
     #[test]
     fn a_spreader_frame_hangs_four_legs_plumb() {
         let size = [7.0, 3.0, 2.0];

@@ -348,7 +348,7 @@ pub fn page(d: &mut Doc, mut y: f32, w: f32, slings: &Slings, load: &LoadShape, 
         ""
     };
     let words = format!(
-        "Lengths are from each lift point to the hook block's underside ({:.2} m over the load's top, rigging height_m), or to a spreader's pin, for the load to hang level as planned with its centre of gravity at ({:.2}, {:.2}, {:.2}) m from its box's centre (load cog_m): make the slings up to them, shackles and fittings included, and check at the trial lift that the load hangs level. A shackle's pin is given in the load's frame (rigging pin_axes); out of line is how far its leg may pull from the plane square to the pin. Most: the most the leg carries, in the worst way the load may hang on the legs and, where its centre of gravity is known only to a tolerance, at the worst place within it for that leg; a top leg's, the most it carries with the spreader; the ratings are in the cover's Slings row.{one}",
+        "Lengths are from each lift point to the hook block's underside ({:.2} m over the load's top, rigging height_m), or to a spreader's pin, for the load to hang level as planned with its centre of gravity at ({:.2}, {:.2}, {:.2}) m from its box's centre (load cog_m): make the slings up to them, shackles and fittings included, and check at the trial lift that the load hangs level. A shackle's pin is given in the load's frame (rigging pin_axes; a top leg's, at the spreader's lug, spreader top_pin_axes); out of line is how far its leg may pull from the plane square to the pin. Most: the most the leg carries, in the worst way the load may hang on the legs and, where its centre of gravity is known only to a tolerance, at the worst place within it for that leg; a top leg's, the most it carries with the spreader; the ratings are in the cover's Slings row.{one}",
         load.rigging_height_m, load.cog_m[0], load.cog_m[1], load.cog_m[2]
     );
     // The top view, the rows and the words together, on the next page
@@ -396,6 +396,7 @@ fn leg_rows(s: &Sketch, slings: &Slings, check: &SlingCheck) -> Vec<Vec<String>>
         })
         .collect();
     let top = check.spreader.as_ref().and_then(|sp| sp.top.as_ref());
+    let top_pins = slings.spreader.as_ref().and_then(|sp| sp.top_shackles.as_ref()).and_then(|t| t.pin_axes.as_ref());
     for (k, p) in s.pieces.iter().filter(|p| p.kind == PieceKind::TopLeg).enumerate() {
         rows.push(vec![
             format!("top {}", k + 1),
@@ -405,8 +406,10 @@ fn leg_rows(s: &Sketch, slings: &Slings, check: &SlingCheck) -> Vec<Vec<String>>
                 .map_or_else(|| format!("{:.2}", p.length_m()), |l| format!("{l:.2}")),
             format!("{:.1}°", p.from_vertical_deg()),
             top.and_then(|t| t.leg_most_kg.get(k)).map_or_else(|| "—".into(), |kg| format!("{:.2}", kg / 1000.0)),
-            "—".into(),
-            "—".into(),
+            top_pins
+                .and_then(|a| a.get(k))
+                .map_or_else(|| "—".into(), |a| format!("({:.2}, {:.2}, {:.2})", a[0], a[1], a[2])),
+            top.and_then(|t| t.out_of_line_deg.get(k)).map_or_else(|| "—".into(), |deg| format!("{deg:.1}°")),
         ]);
     }
     rows
@@ -451,6 +454,7 @@ mod tests {
                 mass_kg: 300.0,
                 top_leg_wll_kg: Some(12_000.0),
                 width_m: None,
+                top_shackles: None,
             }),
             ..two.clone()
         };
@@ -542,6 +546,7 @@ mod tests {
                 mass_kg: 300.0,
                 top_leg_wll_kg: Some(12_000.0),
                 width_m: None,
+                top_shackles: None,
             }),
             ..two.clone()
         };
@@ -549,6 +554,39 @@ mod tests {
         let names: Vec<&str> = t.iter().map(|t| t.2.split(':').next().unwrap()).collect();
         assert_eq!(names, ["1", "2", "top 1", "top 2"], "{t:?}");
         assert_eq!(t[0].2, "1: 1.00 m, 0.0°");
+    }
+
+    /// A top leg's row gives its shackle's pin and how far it pulls out of
+    /// line, where the spreader's top pins are given.
+    #[test]
+    fn a_top_leg_s_row_gives_its_shackle_s_pin() {
+        use liftplan_core::slings::TopShackles;
+        let l = load([8.0, 3.0, 3.0], [0.0; 3]);
+        let beam = Slings {
+            lift_points_m: vec![[-3.0, 0.0, 1.5], [3.0, 0.0, 1.5]],
+            points_given: true,
+            ratings: Ratings::legs(10_000.0),
+            spreader: Some(Spreader {
+                length_m: 7.0,
+                below_hook_m: 3.0,
+                wll_kg: 20_000.0,
+                mass_kg: 300.0,
+                top_leg_wll_kg: Some(12_000.0),
+                width_m: None,
+                top_shackles: Some(TopShackles {
+                    wll_kg: 12_000.0,
+                    pin_axes: Some(vec![[0.0, 1.0, 0.0], [1.0, 0.0, 0.0]]),
+                }),
+            }),
+            pin_axes: None,
+        };
+        let c = check(&beam, 12_000.0, l.size_m, l.cog_m, l.rigging_height_m).unwrap();
+        let rows = leg_rows(&sketch(&beam, &l, &c), &beam, &c);
+        let top: Vec<&Vec<String>> = rows.iter().filter(|r| r[0].starts_with("top ")).collect();
+        assert_eq!((top[0][6].as_str(), top[0][7].as_str()), ("(0.00, 1.00, 0.00)", "0.0°"));
+        // The second's pin along the beam: its leg, 3 m across and 3 m up,
+        // pulls 45° out of line.
+        assert_eq!((top[1][6].as_str(), top[1][7].as_str()), ("(1.00, 0.00, 0.00)", "45.0°"));
     }
 
     /// The page's drawing stays above the footer (drawing below it is the

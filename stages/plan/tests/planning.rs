@@ -178,6 +178,8 @@ fn the_sling_legs_are_checked_before_the_path() {
             mass_t: 0.15,
             top_leg_wll_t: Some(4.5),
             width_m: None,
+            top_shackle_wll_t: None,
+            top_pin_axes: None,
         });
         spec.resolve(ac700()).unwrap()
     };
@@ -196,7 +198,7 @@ fn the_sling_legs_are_checked_before_the_path() {
     // Four legs plumb from a 4 x 2 m frame over the skid's corners, 1.5 m
     // under the hook: the diagonal legs carry the 5 t skid, half each; the
     // top legs, √5 m across and 1.5 m up, the skid and the frame's 0.15 t.
-    let on_frame = |frame_wll_t: f64| {
+    let on_frame_shackled = |frame_wll_t: f64, top_shackle_wll_t: Option<f64>| {
         let mut spec = spec_of(-14.0);
         spec.rigging.legs = Some(4);
         spec.rigging.leg_wll_t = Some(3.0);
@@ -207,9 +209,20 @@ fn the_sling_legs_are_checked_before_the_path() {
             mass_t: 0.15,
             top_leg_wll_t: Some(5.0),
             width_m: Some(2.0),
+            top_shackle_wll_t,
+            top_pin_axes: None,
         });
         spec.resolve(ac700()).unwrap()
     };
+    let on_frame = |frame_wll_t: f64| on_frame_shackled(frame_wll_t, None);
+    // Top shackles of 2 t at the frame's lugs: refused, named.
+    let e = plan_lift(&on_frame_shackled(6.0, Some(2.0)), &site, &quick(), 3).unwrap_err().to_string();
+    assert!(
+        e.contains("the spreader's top shackles cannot carry the load")
+            && e.contains("of the top legs' shackles' 2.00 t at the spreader's lugs (in line)")
+            && e.contains("(spreader top_shackle_wll_t)"),
+        "{e}"
+    );
     let e = plan_lift(&on_frame(4.9), &site, &quick(), 3).unwrap_err().to_string();
     assert!(
         e.contains(
