@@ -267,14 +267,14 @@ impl TopLegs {
     /// leg's angle out of line ([`side_loading_factor`]). `None` where the
     /// lift gives no top shackles.
     pub fn shackle_most_used(&self) -> Option<(usize, f64, f64)> {
-        let wll_kg = self.shackle_wll_kg?;
-        let share = |k: usize| self.out_of_line_deg.get(k).map_or(1.0, |deg| side_loading_factor(*deg));
-        (0..self.leg_most_kg.len().max(1))
-            .map(|k| (k, self.leg_most_kg.get(k).copied().unwrap_or(self.max_leg_kg), wll_kg * share(k)))
-            .fold(None, |most: Option<(usize, f64, f64)>, leg| match most {
-                Some(m) if !(leg.1 / leg.2 > m.1 / m.2) => Some(m),
-                _ => Some(leg),
-            })
+        let out_of_line = |k: usize| self.out_of_line_deg.get(k).copied();
+        most_used_shackle(
+            self.shackle_wll_kg?,
+            self.leg_most_kg.len().max(1),
+            &self.leg_most_kg,
+            self.max_leg_kg,
+            out_of_line,
+        )
     }
 
     /// Their shackles at the spreader's lugs, in words (starting "; "):
@@ -286,13 +286,10 @@ impl TopLegs {
         };
         match self.out_of_line_deg.get(leg) {
             Some(deg) => format!(
-                "; of the top legs' shackles' {:.2} t at the spreader's lugs, less for side loading: the most used, top leg {}'s, pulls {deg:.1}° out of line with its pin as rigged (spreader top_pin_axes), may carry {:.0} % of it, {:.2} t (the makers' chart, as for the lift points' shackles), and carries up to {:.2} t: {:.0} %",
+                "; of the top legs' shackles' {:.2} t at the spreader's lugs, less for side loading: the most used, top leg {}'s, pulls {deg:.1}° out of line with its pin as rigged (spreader top_pin_axes), {}",
                 wll_kg / 1000.0,
                 leg + 1,
-                100.0 * limit_kg / wll_kg,
-                limit_kg / 1000.0,
-                carries_kg / 1000.0,
-                100.0 * carries_kg / limit_kg
+                shackle_use_said(wll_kg, limit_kg, carries_kg, "the makers' chart, as for the lift points' shackles")
             ),
             None => format!(
                 "; of the top legs' shackles' {:.2} t at the spreader's lugs (in line): {:.0} %",
@@ -301,6 +298,41 @@ impl TopLegs {
             ),
         }
     }
+}
+
+/// The shackle most used for what it may carry among `legs`: which (from
+/// 0), what its leg carries at most (kg: `leg_most_kg`'s, else
+/// `max_leg_kg`) and what it may carry (kg): `wll_kg`, less for side
+/// loading where `out_of_line` gives its leg's angle out of line
+/// ([`side_loading_factor`]); the first of the most used where several are.
+fn most_used_shackle(
+    wll_kg: f64,
+    legs: usize,
+    leg_most_kg: &[f64],
+    max_leg_kg: f64,
+    out_of_line: impl Fn(usize) -> Option<f64>,
+) -> Option<(usize, f64, f64)> {
+    (0..legs)
+        .map(|k| {
+            let share = out_of_line(k).map_or(1.0, side_loading_factor);
+            (k, leg_most_kg.get(k).copied().unwrap_or(max_leg_kg), wll_kg * share)
+        })
+        .fold(None, |most: Option<(usize, f64, f64)>, leg| match most {
+            Some(m) if !(leg.1 / leg.2 > m.1 / m.2) => Some(m),
+            _ => Some(leg),
+        })
+}
+
+/// What a side-loaded shackle of `wll_kg` may carry (`limit_kg`, by
+/// `chart`) and what it carries (`carries_kg`), in words.
+fn shackle_use_said(wll_kg: f64, limit_kg: f64, carries_kg: f64, chart: &str) -> String {
+    format!(
+        "may carry {:.0} % of it, {:.2} t ({chart}), and carries up to {:.2} t: {:.0} %",
+        100.0 * limit_kg / wll_kg,
+        limit_kg / 1000.0,
+        carries_kg / 1000.0,
+        100.0 * carries_kg / limit_kg
+    )
 }
 
 /// Each of `up` (unit vectors from the spreader's lugs to the hook) out of
@@ -414,19 +446,8 @@ impl SlingCheck {
     /// ([`side_loading_factor`]); the first of the most used where several
     /// are. `None` where the lift gives no shackles.
     pub fn shackle_most_used(&self) -> Option<(usize, f64, f64)> {
-        let wll_kg = self.ratings.shackle_wll_kg?;
-        let share = |k: usize| {
-            self.side_loading
-                .as_ref()
-                .and_then(|s| s.out_of_line_deg.get(k))
-                .map_or(1.0, |deg| side_loading_factor(*deg))
-        };
-        (0..self.legs)
-            .map(|k| (k, self.leg_most_kg.get(k).copied().unwrap_or(self.max_leg_kg), wll_kg * share(k)))
-            .fold(None, |most: Option<(usize, f64, f64)>, leg| match most {
-                Some(m) if !(leg.1 / leg.2 > m.1 / m.2) => Some(m),
-                _ => Some(leg),
-            })
+        let out_of_line = |k: usize| self.side_loading.as_ref().and_then(|s| s.out_of_line_deg.get(k)).copied();
+        most_used_shackle(self.ratings.shackle_wll_kg?, self.legs, &self.leg_most_kg, self.max_leg_kg, out_of_line)
     }
 
     /// The most one leg carries, against its limit and its lift point's
@@ -453,13 +474,15 @@ impl SlingCheck {
                     String::new()
                 };
                 format!(
-                    ", and of the lift points' shackles' {:.2} t, less for side loading: the most used, leg {}'s, pulled up to {deg:.1}° out of line with its pin (rigging pin_axes{turn}), may carry {:.0} % of it, {:.2} t (the makers' chart for screw pin and bolt type shackles: 100 % in line, 70 % at 45°, 50 % at 90°, straight between; a round pin shackle must not be side loaded), and carries up to {:.2} t: {:.0} %",
+                    ", and of the lift points' shackles' {:.2} t, less for side loading: the most used, leg {}'s, pulled up to {deg:.1}° out of line with its pin (rigging pin_axes{turn}), {}",
                     wll_kg / 1000.0,
                     leg + 1,
-                    100.0 * limit_kg / wll_kg,
-                    limit_kg / 1000.0,
-                    carries_kg / 1000.0,
-                    100.0 * carries_kg / limit_kg
+                    shackle_use_said(
+                        wll_kg,
+                        limit_kg,
+                        carries_kg,
+                        "the makers' chart for screw pin and bolt type shackles: 100 % in line, 70 % at 45°, 50 % at 90°, straight between; a round pin shackle must not be side loaded"
+                    )
                 )
             }
             (Some(wll_kg), _, _) => format!(

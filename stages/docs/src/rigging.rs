@@ -424,6 +424,26 @@ mod tests {
         LoadShape { size_m, cog_m, rigging_height_m: 4.0 }
     }
 
+    /// Two legs 6 m apart hanging plumb from a 7 m spreader beam 3 m under
+    /// the hook block, hung by two top legs, with `top_shackles`.
+    fn spreader_beam(top_shackles: Option<liftplan_core::slings::TopShackles>) -> Slings {
+        Slings {
+            lift_points_m: vec![[-3.0, 0.0, 1.5], [3.0, 0.0, 1.5]],
+            points_given: true,
+            ratings: Ratings::legs(10_000.0),
+            spreader: Some(Spreader {
+                length_m: 7.0,
+                below_hook_m: 3.0,
+                wll_kg: 20_000.0,
+                mass_kg: 300.0,
+                top_leg_wll_kg: Some(12_000.0),
+                width_m: None,
+                top_shackles,
+            }),
+            pin_axes: None,
+        }
+    }
+
     /// Two legs to the hook over the centre of gravity; a beam's legs
     /// plumb to its pins, its top legs to the hook over the joint centre of
     /// gravity; a lifting frame's four legs plumb, its lug over that of the
@@ -445,19 +465,7 @@ mod tests {
         assert!(lengths.iter().zip(&c.leg_lengths_m).all(|(a, b)| (a - b).abs() < 1e-12), "{lengths:?}");
         assert!((s.pieces[1].from_vertical_deg() - 3.8f64.atan2(4.0).to_degrees()).abs() < 1e-9);
 
-        let beam = Slings {
-            lift_points_m: vec![[-3.0, 0.0, 1.5], [3.0, 0.0, 1.5]],
-            spreader: Some(Spreader {
-                length_m: 7.0,
-                below_hook_m: 3.0,
-                wll_kg: 20_000.0,
-                mass_kg: 300.0,
-                top_leg_wll_kg: Some(12_000.0),
-                width_m: None,
-                top_shackles: None,
-            }),
-            ..two.clone()
-        };
+        let beam = spreader_beam(None);
         let c = check(&beam, 12_000.0, l.size_m, l.cog_m, l.rigging_height_m).unwrap();
         let s = sketch(&beam, &l, &c);
         let legs: Vec<&Piece> = s.legs().collect();
@@ -537,19 +545,7 @@ mod tests {
         let t = texts(&four, &load([8.0, 7.0, 3.0], [0.0, 0.5, 0.0]));
         assert_eq!(t.len(), 4, "{t:?}");
         // A beam: its plumb legs and its top legs, each once.
-        let beam = Slings {
-            lift_points_m: vec![[-3.0, 0.0, 1.5], [3.0, 0.0, 1.5]],
-            spreader: Some(Spreader {
-                length_m: 7.0,
-                below_hook_m: 3.0,
-                wll_kg: 20_000.0,
-                mass_kg: 300.0,
-                top_leg_wll_kg: Some(12_000.0),
-                width_m: None,
-                top_shackles: None,
-            }),
-            ..two.clone()
-        };
+        let beam = spreader_beam(None);
         let t = texts(&beam, &load([8.0, 3.0, 3.0], [0.0; 3]));
         let names: Vec<&str> = t.iter().map(|t| t.2.split(':').next().unwrap()).collect();
         assert_eq!(names, ["1", "2", "top 1", "top 2"], "{t:?}");
@@ -562,24 +558,10 @@ mod tests {
     fn a_top_leg_s_row_gives_its_shackle_s_pin() {
         use liftplan_core::slings::TopShackles;
         let l = load([8.0, 3.0, 3.0], [0.0; 3]);
-        let beam = Slings {
-            lift_points_m: vec![[-3.0, 0.0, 1.5], [3.0, 0.0, 1.5]],
-            points_given: true,
-            ratings: Ratings::legs(10_000.0),
-            spreader: Some(Spreader {
-                length_m: 7.0,
-                below_hook_m: 3.0,
-                wll_kg: 20_000.0,
-                mass_kg: 300.0,
-                top_leg_wll_kg: Some(12_000.0),
-                width_m: None,
-                top_shackles: Some(TopShackles {
-                    wll_kg: 12_000.0,
-                    pin_axes: Some(vec![[0.0, 1.0, 0.0], [1.0, 0.0, 0.0]]),
-                }),
-            }),
-            pin_axes: None,
-        };
+        let beam = spreader_beam(Some(TopShackles {
+            wll_kg: 12_000.0,
+            pin_axes: Some(vec![[0.0, 1.0, 0.0], [1.0, 0.0, 0.0]]),
+        }));
         let c = check(&beam, 12_000.0, l.size_m, l.cog_m, l.rigging_height_m).unwrap();
         let rows = leg_rows(&sketch(&beam, &l, &c), &beam, &c);
         let top: Vec<&Vec<String>> = rows.iter().filter(|r| r[0].starts_with("top ")).collect();
