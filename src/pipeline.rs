@@ -397,8 +397,14 @@ fn keep_revisions(
     lines: &mut Vec<String>,
 ) {
     // What the stages before it were made from, kept with each plan.
-    let stages: BTreeMap<String, BTreeMap<String, String>> =
-        upstream.iter().map(|(stage, (_, m))| (stage.to_string(), m.inputs.clone())).collect();
+    let stages: BTreeMap<String, BTreeMap<String, String>> = upstream
+        .iter()
+        .map(|(stage, (_, m))| {
+            let mut inputs = m.inputs.clone();
+            liftplan::revisions::add_lift_settings(&mut inputs, &m.settings);
+            (stage.to_string(), inputs)
+        })
+        .collect();
     said_kept(
         liftplan::revisions::keep_made_from(&project.out_dir(), plan_dir, Some(&stages)),
         ": liftplan resume reads this plan only while out/ or the cache holds it",

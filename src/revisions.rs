@@ -27,6 +27,7 @@
 //! sign one that replaces the other ([`compare`]).
 
 use anyhow::{Context, Result};
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 /// The folder under out/.
@@ -90,8 +91,11 @@ pub fn keep_made_from(
     let made_from = std::fs::read_to_string(plan_dir.join("manifest.json"))
         .ok()
         .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
-        .map(|m| m["inputs"].clone())
-        .filter(|i| i.is_object())
+        .and_then(|m| {
+            let mut inputs: BTreeMap<String, String> = serde_json::from_value(m["inputs"].clone()).ok()?;
+            add_lift_settings(&mut inputs, &m["settings"]);
+            Some(inputs)
+        })
         .zip(stages)
         .map(|(inputs, s)| serde_json::json!({ "inputs": inputs, "stages": s }));
     for (plan, lift, revision) in plans_in(plan_dir)? {
@@ -142,6 +146,30 @@ pub fn keep_made_from(
         );
     }
     Ok(kept)
+}
+
+/// The name under which [`add_lift_settings`] keeps a lift's own settings.
+const LIFT_SETTINGS: &str = "settings of lift ";
+/// ... and a stage's settings besides the lifts.
+const SETTINGS_BESIDES_LIFTS: &str = "settings besides the lifts";
+
+/// Adds to a stage's `inputs` (as its manifest has them), where its
+/// `settings` hold the project's lifts, a hash of each lift's own settings
+/// (by its id) and one of the settings besides the lifts: kept in what a
+/// plan was made from (not in the stage's key, which the whole settings'
+/// hash makes), so that a comparison tells a change to the lift's own
+/// settings from one to another lift's ([`compare`]).
+pub fn add_lift_settings(inputs: &mut BTreeMap<String, String>, settings: &serde_json::Value) {
+    let (Some(all), Some(lifts)) = (settings.as_object(), settings["lifts"].as_array()) else { return };
+    let hash = |v: &serde_json::Value| blake3::hash(v.to_string().as_bytes()).to_hex().to_string();
+    for lift in lifts {
+        if let Some(id) = lift["id"].as_str() {
+            inputs.insert(format!("{LIFT_SETTINGS}{id}"), hash(lift));
+        }
+    }
+    let mut besides = all.clone();
+    besides.remove("lifts");
+    inputs.insert(SETTINGS_BESIDES_LIFTS.to_string(), hash(&serde_json::Value::Object(besides)));
 }
 
 /// Keeps each lift's PDF in the docs stage's output folder `docs_dir`,
@@ -764,7 +792,7 @@ pub fn compare(out_dir: &Path, lift: Option<&str>, was: &str, now: &str) -> Resu
         }
     };
     let (inputs_was, inputs_now) = (inputs_of(was), inputs_of(now));
-    let inputs_differing = inputs_was.zip(inputs_now).map(|(x, y)| inputs_that_differ(&x, &y));
+    let inputs_differing = inputs_was.zip(inputs_now).map(|(x, y)| inputs_that_differ(&x, &y, &lift));
     Ok(Comparison {
         lift,
         was: was.to_string(),
@@ -801,8 +829,11 @@ pub fn replaced(out_dir: &Path, before: &[(String, String)], plan_dir: &Path) ->
 /// [`inputs_file`] holds it), in words: where both name the stages before
 /// the plan stage, their files (changed, added, removed), settings and
 /// code, then the plan stage's own settings and code; else the plan
-/// stage's inputs ([`made_from`]).
-fn inputs_that_differ(was: &serde_json::Value, now: &serde_json::Value) -> Vec<InputDiffering> {
+/// stage's inputs ([`made_from`]). A stage's settings that hold the lifts
+/// are said as what of them differs for `lift`, where both records have
+/// the parts ([`add_lift_settings`]): its own, those besides the lifts, or
+/// other lifts' only.
+fn inputs_that_differ(was: &serde_json::Value, now: &serde_json::Value, lift: &str) -> Vec<InputDiffering> {
     let differing = |x: &serde_json::Value, y: &serde_json::Value| -> Vec<(String, &'static str)> {
         let (Some(x), Some(y)) = (x.as_object(), y.as_object()) else { return Vec::new() };
         let mut names: Vec<&String> = x.keys().chain(y.keys()).collect();
@@ -818,9 +849,16 @@ fn inputs_that_differ(was: &serde_json::Value, now: &serde_json::Value) -> Vec<I
             })
             .collect()
     };
-    let plan_stage = differing(&was["inputs"], &now["inputs"]);
+    // The parts are said through "settings", not by themselves.
+    let part = |n: &str| n.starts_with(LIFT_SETTINGS) || n == SETTINGS_BESIDES_LIFTS;
+    let plan_stage: Vec<(String, &str)> =
+        differing(&was["inputs"], &now["inputs"]).into_iter().filter(|(n, _)| !part(n)).collect();
+    let plan_settings = |d: InputDiffering, n: &str| match settings_differing(&was["inputs"], &now["inputs"], lift) {
+        Some(how) if n == "settings" => how.said_of(d),
+        _ => d,
+    };
     let (Some(a), Some(b)) = (was["stages"].as_object(), now["stages"].as_object()) else {
-        return plan_stage.into_iter().map(|(n, _)| made_from(&n)).collect();
+        return plan_stage.into_iter().map(|(n, _)| plan_settings(made_from(&n), &n)).collect();
     };
     let mut out = Vec::new();
     let mut stages: Vec<&String> = a.keys().chain(b.keys()).collect();
@@ -828,10 +866,15 @@ fn inputs_that_differ(was: &serde_json::Value, now: &serde_json::Value) -> Vec<I
     stages.dedup();
     for stage in stages {
         let none = serde_json::Value::Null;
-        for (name, how) in differing(a.get(stage).unwrap_or(&none), b.get(stage).unwrap_or(&none)) {
+        let (x, y) = (a.get(stage).unwrap_or(&none), b.get(stage).unwrap_or(&none));
+        for (name, how) in differing(x, y) {
             out.push(match name.as_str() {
                 "code" => InputDiffering::new(format!("liftplan's {stage} stage"), &["its code"]),
-                "settings" => InputDiffering::new(format!("the {stage} stage's settings"), &[]),
+                "settings" => {
+                    let d = InputDiffering::new(format!("the {stage} stage's settings"), &[]);
+                    settings_differing(x, y, lift).map_or(d.clone(), |how| how.said_of(d))
+                }
+                n if part(n) => continue,
                 n => match n.strip_prefix("file:") {
                     Some(file) => InputDiffering::new(format!("{file} {how}"), &[]),
                     // Another stage's output it read: said where that stage's inputs differ.
@@ -843,8 +886,53 @@ fn inputs_that_differ(was: &serde_json::Value, now: &serde_json::Value) -> Vec<I
     }
     // The plan stage's own; what it read of the stages before it is said
     // above, by what they were made from.
-    out.extend(plan_stage.into_iter().filter(|(n, _)| !n.starts_with("upstream:")).map(|(n, _)| made_from(&n)));
+    out.extend(
+        plan_stage
+            .into_iter()
+            .filter(|(n, _)| !n.starts_with("upstream:"))
+            .map(|(n, _)| plan_settings(made_from(&n), &n)),
+    );
     out
+}
+
+/// What of a stage's settings differs for one lift.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct SettingsDiffering<'a> {
+    lift: &'a str,
+    own: bool,
+    besides: bool,
+}
+
+impl SettingsDiffering<'_> {
+    /// `d` (a stage's settings differing) said so: "for other lifts" in
+    /// what differs where neither the lift's own nor those besides the
+    /// lifts do, else which of them does in what more says it.
+    fn said_of(self, mut d: InputDiffering) -> InputDiffering {
+        let lift = self.lift;
+        match (self.own, self.besides) {
+            (false, false) => {
+                d.what.push_str(" for other lifts");
+                d.more.insert(0, format!("not {lift}'s own, nor those besides the lifts"));
+            }
+            (true, false) => d.more.insert(0, format!("{lift}'s own")),
+            (false, true) => d.more.insert(0, format!("those besides the lifts, not {lift}'s own")),
+            (true, true) => d.more.insert(0, format!("{lift}'s own and those besides the lifts")),
+        }
+        d
+    }
+}
+
+/// What of a stage's settings differs between two records of its inputs
+/// for `lift`, where both hold the parts ([`add_lift_settings`]); `None`
+/// where either does not.
+fn settings_differing<'a>(
+    x: &serde_json::Value,
+    y: &serde_json::Value,
+    lift: &'a str,
+) -> Option<SettingsDiffering<'a>> {
+    let besides = (x.get(SETTINGS_BESIDES_LIFTS)?, y.get(SETTINGS_BESIDES_LIFTS)?);
+    let own = format!("{LIFT_SETTINGS}{lift}");
+    Some(SettingsDiffering { lift, own: x.get(&own) != y.get(&own), besides: besides.0 != besides.1 })
 }
 
 /// One of the plan stage's inputs, as its manifest names it, in words.
@@ -1136,6 +1224,68 @@ mod tests {
         let file = plan_file(out, lift, revision);
         std::fs::create_dir_all(file.parent().unwrap()).unwrap();
         std::fs::write(file, serde_json::json!({ "lifts": [plan] }).to_string()).unwrap();
+    }
+
+    /// A stage's settings that hold the lifts are said by what of them
+    /// differs for the lift compared, where both records hold the parts
+    /// (`add_lift_settings`): another lift's change alone is not taken for
+    /// this lift's.
+    #[test]
+    fn a_change_to_another_lift_s_settings_is_said_as_such() {
+        let mut inputs = BTreeMap::new();
+        let settings = |a_mass: f64, b_mass: f64, seed: u64| {
+            serde_json::json!({ "plan": {}, "seed": seed, "lifts": [
+                { "id": "V-101", "load": { "mass_t": a_mass } },
+                { "id": "P-7", "load": { "mass_t": b_mass } },
+            ]})
+        };
+        add_lift_settings(&mut inputs, &settings(12.0, 3.0, 7));
+        assert_eq!(
+            inputs.keys().collect::<Vec<_>>(),
+            ["settings besides the lifts", "settings of lift P-7", "settings of lift V-101"]
+        );
+        let record = |s: serde_json::Value| {
+            let mut i = BTreeMap::new();
+            i.insert("code".to_string(), "31ee".to_string());
+            i.insert("settings".to_string(), blake3::hash(s.to_string().as_bytes()).to_hex().to_string());
+            add_lift_settings(&mut i, &s);
+            let mut charts = i.clone();
+            charts.insert("file:charts/c.xlsx".to_string(), "cc".to_string());
+            serde_json::json!({ "inputs": i, "stages": { "charts": charts } })
+        };
+        let said = |was: serde_json::Value, now: serde_json::Value| -> Vec<String> {
+            inputs_that_differ(&record(was), &record(now), "V-101").iter().map(InputDiffering::said).collect()
+        };
+        let holds = "(the project's lifts, any of them, power lines, obstacles and [plan], [cspace]) (settings)";
+        assert_eq!(
+            said(settings(12.0, 3.0, 7), settings(12.0, 3.5, 7)),
+            [
+                "the charts stage's settings for other lifts (not V-101's own, nor those besides the lifts)"
+                    .to_string(),
+                format!(
+                    "the plan stage's settings for other lifts (not V-101's own, nor those besides the lifts) {holds}"
+                ),
+            ]
+        );
+        assert_eq!(
+            said(settings(12.0, 3.0, 7), settings(12.5, 3.0, 7))[1],
+            format!("the plan stage's settings (V-101's own) {holds}")
+        );
+        assert_eq!(
+            said(settings(12.0, 3.0, 7), settings(12.0, 3.0, 8))[1],
+            format!("the plan stage's settings (those besides the lifts, not V-101's own) {holds}")
+        );
+        assert_eq!(
+            said(settings(12.0, 3.0, 7), settings(12.5, 3.0, 8))[1],
+            format!("the plan stage's settings (V-101's own and those besides the lifts) {holds}")
+        );
+        // A record without the parts (kept before this was) says the settings alone.
+        let mut bare = record(settings(12.0, 3.0, 7));
+        for part in ["settings besides the lifts", "settings of lift V-101", "settings of lift P-7"] {
+            bare["inputs"].as_object_mut().unwrap().remove(part);
+        }
+        let d = inputs_that_differ(&bare, &record(settings(12.0, 3.5, 7)), "V-101");
+        assert_eq!(d.last().unwrap().said(), format!("the plan stage's settings {holds}"));
     }
 
     /// Two plans of a lift: what a signer reads first where it differs,

@@ -356,7 +356,7 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     // Made from the same scans, plant and charts: only the project's
     // settings (the platform is placed there) differ.
     assert!(
-        said.trim_end().ends_with("\n  Made from: the plan stage's settings (the project's lifts, any of them, power lines, obstacles and [plan], [cspace]) (settings) differs"),
+        said.trim_end().ends_with("\n  Made from: the plan stage's settings (those besides the lifts, not V-101's own) (the project's lifts, any of them, power lines, obstacles and [plan], [cspace]) (settings) differs"),
         "{said}"
     );
     let o = liftplan(&["revisions", d, "--compare", &crews_plan, "0000abcd"]);
