@@ -245,8 +245,11 @@ def kept_plan(revision, gross_kg, swing):
             "summary": {"revision": revision, "validated": True, "steps": len(steps),
                         "highest_pad": [1, {"load_kg": 104200.0, "pad": "RearLeft"}], "obstacles": []}}
 def made_from(settings, scan):
-    return {"inputs": {"code": "31ee", "settings": settings, "upstream:scans/site.laz": "1f90"},
-            "stages": {"scans": {"file:scans/a.laz": scan, "settings": "s1"}}}
+    # With the parts of the settings the lifts are in (revisions::add_lift_settings).
+    parts = {"settings of lift V-101": "aa" + settings, "settings of lift P-7": "bb", "settings besides the lifts": "cc"}
+    return {"inputs": {"code": "31ee", "settings": settings, "upstream:scans/site.laz": "1f90", **parts},
+            "stages": {"scans": {"file:scans/a.laz": scan, "settings": "s1"},
+                       "charts": {"file:charts/c.xlsx": "c1", "settings": settings, **parts}}}
 files = [{"lifts": [kept_plan("0000000a", 16819.0, 30.0)]}, {"lifts": [kept_plan("0000000b", 17319.0, 31.0)]},
          made_from("ecaa", "aa"), made_from("ecab", "a2"), {"lifts": [kept_plan("0000000b", 17319.0, 31.0)]}]
 seed("kept_plans", "two-plans", b"\xff".join(json.dumps(f).encode() for f in files))
