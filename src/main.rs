@@ -124,11 +124,12 @@ enum Command {
     #[command(after_help = "Example:\n  liftplan clean site-a")]
     Clean { dir: Option<PathBuf> },
     /// List the plans kept by revision (out/revisions/), each with its PDF;
-    /// optionally remove those kept more than some days ago, but each
-    /// lift's newest, the last plans, those the cache holds and those the
+    /// optionally remove those kept more than some days ago, beyond each
+    /// lift's newest few, or the oldest beyond a size, but each lift's
+    /// newest, the last plans, those the cache holds and those the
     /// project's lifts resume.
     #[command(
-        after_help = "Example:\n  liftplan revisions site-a\n  liftplan revisions site-a --remove-older-than 90\n  liftplan revisions site-a --keep-last 10\n  liftplan revisions site-a --compare 3f9a2c1b 8e2d1a0f\n  liftplan revisions site-a --compare 3f9a2c1b last"
+        after_help = "Example:\n  liftplan revisions site-a\n  liftplan revisions site-a --remove-older-than 90\n  liftplan revisions site-a --keep-last 10\n  liftplan revisions site-a --keep-under 2000\n  liftplan revisions site-a --compare 3f9a2c1b 8e2d1a0f\n  liftplan revisions site-a --compare 3f9a2c1b last"
     )]
     Revisions {
         /// Project folder.
@@ -142,6 +143,12 @@ enum Command {
         /// a crew may hold or be given.
         #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
         keep_last: Option<u32>,
+        /// Remove the oldest plans, whatever their lift, until what is kept
+        /// comes to this many megabytes or under (with --remove-older-than:
+        /// only those older than that too), but those a crew may hold or be
+        /// given.
+        #[arg(long, value_name = "MB", value_parser = clap::value_parser!(u64).range(1..), conflicts_with = "keep_last")]
+        keep_under: Option<u64>,
         /// Print the plans kept (and those removed) as JSON.
         #[arg(long)]
         json: bool,
@@ -149,7 +156,7 @@ enum Command {
         /// second (NOW; `last`: the lift's last plan) from the first
         /// (WAS), what a signer reads first, then the first step that
         /// differs and every other value.
-        #[arg(long, num_args = 2, value_names = ["WAS", "NOW"], conflicts_with_all = ["remove_older_than", "keep_last"])]
+        #[arg(long, num_args = 2, value_names = ["WAS", "NOW"], conflicts_with_all = ["remove_older_than", "keep_last", "keep_under"])]
         compare: Option<Vec<String>>,
         /// The lift whose plans --compare names, where two lifts keep both.
         #[arg(long, requires = "compare")]
@@ -511,8 +518,8 @@ fn real_main() -> Result<ExitCode> {
             );
             Ok(ExitCode::SUCCESS)
         }
-        Command::Revisions { dir, remove_older_than, keep_last, json, compare, lift } => {
-            let removing = remove_older_than.is_some() || keep_last.is_some();
+        Command::Revisions { dir, remove_older_than, keep_last, keep_under, json, compare, lift } => {
+            let removing = remove_older_than.is_some() || keep_last.is_some() || keep_under.is_some();
             let dir = project_dir(dir);
             if let Some(code) = not_a_project(&dir) {
                 return Ok(code);
@@ -559,7 +566,12 @@ fn real_main() -> Result<ExitCode> {
             let removed = if removing {
                 let now = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_secs());
                 let before = remove_older_than.map_or(u64::MAX, |days| now.saturating_sub(u64::from(days) * 86_400));
-                revisions::remove_older_than(&out, &kept, &held, before)?
+                match keep_under {
+                    Some(mb) => {
+                        revisions::remove(&out, &revisions::to_fit(&kept, &held, before, mb.saturating_mul(1_000_000)))?
+                    }
+                    None => revisions::remove_older_than(&out, &kept, &held, before)?,
+                }
             } else {
                 Vec::new()
             };
@@ -586,15 +598,31 @@ fn real_main() -> Result<ExitCode> {
             for r in &removed {
                 println!("removed {r}");
             }
-            if removing && removed.is_empty() {
-                let which = [
-                    remove_older_than.map(|days| format!("kept more than {days} days ago")),
-                    keep_last.map(|n| format!("beyond each lift's {n} newest")),
-                ];
-                let which: Vec<String> = which.into_iter().flatten().collect();
-                println!("removed nothing: no plan {} but those held (below)", which.join(" and "));
-            }
             let total: u64 = left.iter().map(|k| k.bytes).sum();
+            let under = keep_under.map(|mb| (mb, total <= mb.saturating_mul(1_000_000)));
+            if removing && removed.is_empty() {
+                if let Some((mb, true)) = under {
+                    println!(
+                        "removed nothing: what is kept, {:.1} MB, is {mb} MB or under already",
+                        total as f64 / 1e6
+                    );
+                } else {
+                    let which = [
+                        remove_older_than.map(|days| format!("kept more than {days} days ago")),
+                        keep_last.map(|n| format!("beyond each lift's {n} newest")),
+                    ];
+                    let which: Vec<String> = which.into_iter().flatten().collect();
+                    let which = if which.is_empty() { String::new() } else { format!(" {}", which.join(" and ")) };
+                    println!("removed nothing: no plan{which} but those held (below)");
+                }
+            }
+            if let Some((mb, false)) = under {
+                println!(
+                    "still {:.1} MB kept, over {mb} MB: the rest is held (below){}",
+                    total as f64 / 1e6,
+                    if remove_older_than.is_some() { " or not kept long enough ago" } else { "" }
+                );
+            }
             println!(
                 "{}: {} plan{} kept by revision, {:.1} MB",
                 out.join(revisions::DIR).display(),

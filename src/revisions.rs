@@ -351,14 +351,52 @@ pub fn held(
 pub fn remove_older_than(
     out_dir: &Path,
     kept: &[Kept],
-    held: &std::collections::BTreeMap<(String, String), &'static str>,
+    held: &BTreeMap<(String, String), &'static str>,
     before_unix_s: u64,
 ) -> Result<Vec<String>> {
+    remove(out_dir, &removable(kept, held, before_unix_s).collect::<Vec<_>>())
+}
+
+/// The plans to remove for what is kept to come to `most_bytes` or under
+/// (`--keep-under`): of the `kept` plans [`removable`] before
+/// `before_unix_s`, the oldest first, whatever their lift, as many as it
+/// takes, or all of them where that is not enough (the rest is held).
+pub fn to_fit<'a>(
+    kept: &'a [Kept],
+    held: &'a BTreeMap<(String, String), &'static str>,
+    before_unix_s: u64,
+    most_bytes: u64,
+) -> Vec<&'a Kept> {
+    let mut total: u64 = kept.iter().map(|k| k.bytes).sum();
+    let mut oldest_first: Vec<&Kept> = removable(kept, held, before_unix_s).collect();
+    oldest_first.sort_by(|a, b| (a.kept_unix_s, &a.lift, &a.revision).cmp(&(b.kept_unix_s, &b.lift, &b.revision)));
+    oldest_first
+        .into_iter()
+        .take_while(|k| {
+            let over = total > most_bytes;
+            total = total.saturating_sub(k.bytes);
+            over
+        })
+        .collect()
+}
+
+/// The `kept` plans that may be removed: kept before `before_unix_s`, at a
+/// time known, and not `held`.
+fn removable<'a>(
+    kept: &'a [Kept],
+    held: &'a BTreeMap<(String, String), &'static str>,
+    before_unix_s: u64,
+) -> impl Iterator<Item = &'a Kept> {
+    kept.iter().filter(move |k| {
+        k.kept_unix_s.is_some_and(|t| t < before_unix_s) && !held.contains_key(&(k.lift.clone(), k.revision.clone()))
+    })
+}
+
+/// Removes `plans` (their PDF, steps, inputs and plan files, the plan
+/// file last); says which it removed, with their sizes.
+pub fn remove(out_dir: &Path, plans: &[&Kept]) -> Result<Vec<String>> {
     let mut removed = Vec::new();
-    for one in kept.iter().filter(|k| k.kept_unix_s.is_some_and(|t| t < before_unix_s)) {
-        if held.contains_key(&(one.lift.clone(), one.revision.clone())) {
-            continue;
-        }
+    for one in plans {
         for file in one.files(out_dir).iter().filter(|f| f.is_file()) {
             std::fs::remove_file(file).with_context(|| format!("removing {}", file.display()))?;
         }
@@ -1182,6 +1220,17 @@ mod tests {
             held[&("V-101".to_string(), "0000000a".to_string())],
             "a lift of the project resumes it (resumes_plan)"
         );
+        // To come under a size: the oldest not held first, whatever the
+        // lift, only as many as it takes (b is 1 byte over: b alone goes,
+        // then d), and all that may go where that is not enough.
+        let total: u64 = kept.iter().map(|k| k.bytes).sum();
+        let names = |plans: Vec<&Kept>| plans.iter().map(|k| k.revision.clone()).collect::<Vec<_>>();
+        assert!(names(to_fit(&kept, &held, u64::MAX, total)).is_empty());
+        assert_eq!(names(to_fit(&kept, &held, u64::MAX, total - 1)), ["0000000b"]);
+        assert_eq!(names(to_fit(&kept, &held, u64::MAX, total - kept[1].bytes - 1)), ["0000000b", "0000000d"]);
+        assert_eq!(names(to_fit(&kept, &held, u64::MAX, 0)), ["0000000b", "0000000d"]);
+        // Only those kept before the time given.
+        assert_eq!(names(to_fit(&kept, &held, t0 + 2 * day, 0)), ["0000000b"]);
         let removed = remove_older_than(&out, &kept, &held, t0 + 5 * day).unwrap();
         assert_eq!(removed.len(), 2, "{removed:?}");
         assert!(removed[0].starts_with("V-101 plan 0000000b (") && removed[1].starts_with("V-101 plan 0000000d ("));

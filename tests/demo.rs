@@ -541,6 +541,14 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
         before.len()
     );
     assert!(!liftplan(&["revisions", d, "--keep-last", "0"]).status.success());
+    // Under a size it is under already: nothing removed, said so.
+    let o = crate::util::ok(&["revisions", d, "--keep-under", "100000"]);
+    let said = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        said.starts_with("removed nothing: what is kept, ") && said.contains(" MB, is 100000 MB or under already\n"),
+        "{said}"
+    );
+    assert!(!liftplan(&["revisions", d, "--keep-under", "1", "--keep-last", "2"]).status.success());
     let after = listed(&["--remove-older-than", "0"]);
     let (left, removed) = (after["kept"].as_array().unwrap(), after["removed"].as_array().unwrap());
     assert_eq!(left.len() + removed.len(), before.len(), "{after}");
