@@ -891,9 +891,12 @@ fn inputs_that_differ(was: &serde_json::Value, now: &serde_json::Value, lift: &s
     let part = |n: &str| n.starts_with(LIFT_SETTINGS) || n == SETTINGS_BESIDES_LIFTS;
     let plan_stage: Vec<(String, &str)> =
         differing(&was["inputs"], &now["inputs"]).into_iter().filter(|(n, _)| !part(n)).collect();
-    let plan_settings = |d: InputDiffering, n: &str| match settings_differing(&was["inputs"], &now["inputs"], lift) {
-        Some(how) if n == "settings" => how.said_of(d),
-        _ => d,
+    let plan_settings = |d: InputDiffering, n: &str| {
+        let how = (n == "settings").then(|| settings_differing(&was["inputs"], &now["inputs"], lift)).flatten();
+        match how {
+            Some(how) => how.said_of(d),
+            None => d,
+        }
     };
     let (Some(a), Some(b)) = (was["stages"].as_object(), now["stages"].as_object()) else {
         return plan_stage.into_iter().map(|(n, _)| plan_settings(made_from(&n), &n)).collect();
@@ -910,7 +913,10 @@ fn inputs_that_differ(was: &serde_json::Value, now: &serde_json::Value, lift: &s
                 "code" => InputDiffering::new(format!("liftplan's {stage} stage"), &["its code"]),
                 "settings" => {
                     let d = InputDiffering::new(format!("the {stage} stage's settings"), &[]);
-                    settings_differing(x, y, lift).map_or(d.clone(), |how| how.said_of(d))
+                    match settings_differing(x, y, lift) {
+                        Some(how) => how.said_of(d),
+                        None => d,
+                    }
                 }
                 n if part(n) => continue,
                 n => match n.strip_prefix("file:") {

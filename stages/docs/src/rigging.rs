@@ -294,6 +294,7 @@ pub fn page(d: &mut Doc, mut y: f32, w: f32, slings: &Slings, load: &LoadShape, 
         8.5,
     );
     y += 2.0;
+    let labels = labels(&s, check);
     for (k, (axis, title)) in
         [(0usize, "Side: the load's x across, up"), (1usize, "End: the load's y across, up")].into_iter().enumerate()
     {
@@ -321,7 +322,7 @@ pub fn page(d: &mut Doc, mut y: f32, w: f32, slings: &Slings, load: &LoadShape, 
             d.text(px + 1.0 + 2.5 * shift, py + 3.2, &(n + 1).to_string(), 7.0, false, LEG);
         }
         let (hook_x, _) = at(s.hook);
-        for label in labels(&s, check).iter().filter(|l| l.view == axis) {
+        for label in labels.iter().filter(|l| l.view == axis) {
             let p = &s.pieces[label.pieces[0]];
             let ((x1, y1), (x2, y2)) = (at(p.from), at(p.to));
             let (mx, my) = ((x1 + x2) / 2.0, (y1 + y2) / 2.0);

@@ -11,11 +11,9 @@
 //! index of the points it was built from.
 
 pub struct KdTree {
-    /// The points as given.
-    pts: Vec<[f64; 3]>,
     /// The points in the tree's order: each node's points are contiguous.
     ordered: Vec<[f64; 3]>,
-    /// Each of `ordered`'s index in `pts`.
+    /// Each of `ordered`'s index in the points the tree was built from.
     ids: Vec<u32>,
     nodes: Vec<Node>,
 }
@@ -43,11 +41,7 @@ impl KdTree {
             build(pts, &mut idx, &mut nodes, 0);
         }
         let ordered = idx.iter().map(|&i| pts[i as usize]).collect();
-        KdTree { pts: pts.to_vec(), ordered, ids: idx, nodes }
-    }
-
-    pub fn points(&self) -> &[[f64; 3]] {
-        &self.pts
+        KdTree { ordered, ids: idx, nodes }
     }
 
     /// The nearest point within `max_radius`, as (index, squared distance); ties go
