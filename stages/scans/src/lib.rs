@@ -306,7 +306,7 @@ impl Summary {
     pub fn lines(&self) -> Vec<String> {
         self.scans
             .iter()
-            .map(|s| {
+            .flat_map(|s| {
                 let state = if s.registered {
                     format!("fitness {:.0} %, rmse {:.1} mm ({})", 100.0 * s.fitness, 1000.0 * s.rmse_m, s.method)
                 } else {
@@ -317,7 +317,11 @@ impl Summary {
                 } else {
                     format!("; coordinates in {}, converted to metres", s.unit)
                 };
-                format!("{}: {} points read, {} kept, {}{unit}", s.name, s.points_read, s.points_kept, state)
+                let line =
+                    format!("{}: {} points read, {} kept, {}{unit}", s.name, s.points_read, s.points_kept, state);
+                // A scan merged with something to check (registration's
+                // warning) says it on a line of its own.
+                std::iter::once(line).chain(s.warning.clone().filter(|_| s.registered))
             })
             .chain(self.fitness_line())
             .chain(self.unit_line())
