@@ -52,7 +52,7 @@
 //! overlaps the others by [`NARROW_LEAST_FIT`] or more may still be placed
 //! where no more than `max_violation` of its points lie where one of those
 //! scanners' rays passed within half the width of what the point lies on
-//! ([`Probe::of`]), and says so. The first rounds check a scan against one
+//! ([`half_widths_m`]), and says so. The first rounds check a scan against one
 //! or two others, where a wrong pose's evidence is thin, so once every scan
 //! is placed each is checked again against all the others
 //! ([`FINAL_VIOLATION_FACTOR`]): a scan that disagrees with them is not
@@ -830,7 +830,7 @@ pub const FINAL_VIOLATION_FACTOR: f64 = 4.0;
 /// `max_violation` of its points where a placed scanner saw through may
 /// still be placed, where no more than that share lies where a ray of that
 /// scanner passed within half the width of what the point lies on
-/// ([`Probe::of`]). Right alignments refused so overlapped the others by
+/// ([`half_widths_m`]). Right alignments refused so overlapped the others by
 /// 87.9 % (a lamp post a scanner 57 m off missed, nine stations over three
 /// quarters of the ellipse) and 91.4 % (24 stations all round); a wrong
 /// alignment of a scan a van stood beside overlapped them by 55 % and
@@ -946,8 +946,10 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
     let srcs: Vec<RegCloud> = inputs.iter().map(|i| sample(&i.fine, s.icp_source_points)).collect();
     let quick: Vec<RegCloud> = inputs.iter().map(|i| sample(&i.fine, s.icp_source_points / 4)).collect();
     let checks: Vec<RegCloud> = inputs.iter().map(|i| structure(&i.fine, s.icp_source_points / 4)).collect();
-    let probes: Vec<Probe> = quick.iter().map(Probe::any_ray).collect();
-    let narrow: Vec<Probe> = inputs.iter().zip(&quick).map(|(i, q)| Probe::of(q, &i.fine)).collect();
+    // The half widths of the quick points, worked out for a scan only where
+    // one of its alignments needs them (overlapping well, over the share).
+    let half_widths: Vec<std::sync::OnceLock<Vec<f64>>> = (0..n).map(|_| std::sync::OnceLock::new()).collect();
+    let half_widths_of = |j: usize| half_widths[j].get_or_init(|| half_widths_m(&quick[j], &inputs[j].fine)).as_slice();
     let images: Vec<Option<RangeImage>> =
         inputs.iter().map(|i| scanner_at_origin(&i.fine).then(|| RangeImage::new(&i.fine.pts, 0.5))).collect();
     let quick_levels = &s.icp_distances_m[..s.icp_distances_m.len().min(2)];
@@ -1039,7 +1041,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                         let guesses = plan_view_guesses(
                             &inputs[j].fine,
                             &checks[j],
-                            &probes[j],
+                            &quick[j],
                             model,
                             model_cloud,
                             &seen,
@@ -1057,7 +1059,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                         let guesses = plan_view_guesses(
                             &rotated(&inputs[j].fine, &up_scan),
                             &checks[j],
-                            &probes[j],
+                            &quick[j],
                             model,
                             plan_model,
                             &seen,
@@ -1079,7 +1081,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                     for (c, (init, method)) in candidates.into_iter().enumerate() {
                         let p = icp(&quick[j], model, init, quick_levels);
                         let (fit, _) = evaluate(&checks[j], model, &p, fit_d, fit_r);
-                        let viol = free_space_violations(&probes[j], &p, &seen);
+                        let viol = free_space_violations(&quick[j], &p, &seen);
                         // The station pose is the first candidate.
                         if c == 0 && held(j).is_some() {
                             trial.at_station = Some((fit, viol));
@@ -1092,7 +1094,8 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                         // steps went both sides of) are not held against it.
                         let passes = viol <= s.max_violation
                             || (fit >= NARROW_LEAST_FIT
-                                && free_space_violations(&narrow[j], &p, &seen) <= s.max_violation);
+                                && free_space_violations_within(&quick[j], half_widths_of(j), &p, &seen)
+                                    <= s.max_violation);
                         if fit >= s.min_fitness && passes {
                             // A guess that scores higher must not move a scan
                             // away from where its station was surveyed.
@@ -1137,7 +1140,8 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
             Some((j, p, trial_fit, viol, method)) => {
                 // Placed though the share is over: how much of it lies where a
                 // ray passed within half the width (the trial's pose).
-                let narrow_share = (viol > s.max_violation).then(|| free_space_violations(&narrow[j], &p, &seen));
+                let narrow_share = (viol > s.max_violation)
+                    .then(|| free_space_violations_within(&quick[j], half_widths_of(j), &p, &seen));
                 let mut key = state.clone();
                 key.update(b"place");
                 key.update(&scan_keys[j]);
@@ -1353,7 +1357,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
             .map(|&(j, p)| {
                 let seen: Vec<(&RangeImage, Pose)> =
                     (0..n).filter(|&i| i != j).filter_map(|i| Some((images[i].as_ref()?, final_poses[i]?))).collect();
-                free_space_violations(&probes[j], &p, &seen)
+                free_space_violations(&quick[j], &p, &seen)
             })
             .collect();
         let mut w = ByteWriter::new();
@@ -1377,7 +1381,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                 (1..n).filter_map(|i| Some((images[i].as_ref()?, final_poses[i]?))).collect();
             let scored = |p: &Pose| {
                 let fit = evaluate(&checks[0], &model, p, fit_d, fit_r).0;
-                let viol = free_space_violations(&probes[0], p, &seen);
+                let viol = free_space_violations(&quick[0], p, &seen);
                 [score(fit, viol), fit, viol]
             };
             let here = scored(&at);
@@ -1390,7 +1394,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                 subset(&inputs[0].fine, &idx, usize::MAX)
             });
             let plan_view = far.as_ref().unwrap_or(&inputs[0].fine);
-            let guesses = plan_view_guesses(plan_view, &checks[0], &probes[0], &model, &model_cloud, &seen, 4, |g| g);
+            let guesses = plan_view_guesses(plan_view, &checks[0], &quick[0], &model, &model_cloud, &seen, 4, |g| g);
             let elsewhere = guesses
                 .into_iter()
                 .map(|g| icp(&quick[0], &model, g, quick_levels))
@@ -1641,7 +1645,7 @@ impl ReferenceAgain {
 fn plan_view_guesses(
     plan_scan: &RegCloud,
     check: &RegCloud,
-    probe: &Probe,
+    quick: &RegCloud,
     model: &Target,
     plan_model: &RegCloud,
     seen: &[(&RangeImage, Pose)],
@@ -1652,7 +1656,7 @@ fn plan_view_guesses(
         crate::coarse2d::align(plan_scan, plan_model, 30_000).into_iter().map(|(g, s)| (to_pose(g), s)).collect();
     let scores: Vec<f64> = guesses
         .par_iter()
-        .map(|(p, _)| score(evaluate(check, model, p, 0.5, 0.25).0, free_space_violations(probe, p, seen)))
+        .map(|(p, _)| score(evaluate(check, model, p, 0.5, 0.25).0, free_space_violations(quick, p, seen)))
         .collect();
     let mut order: Vec<usize> = (0..guesses.len()).collect();
     order.sort_by(|&a, &b| scores[b].total_cmp(&scores[a]));
@@ -1846,62 +1850,56 @@ impl RangeImage {
 /// How far round each point the seen-through check looks for its width (m).
 pub const WIDTH_RADIUS_M: f64 = 0.5;
 
-/// A scan's points checked for seen-through space, each with how near
-/// (m) another scanner's ray must pass it to count as having seen through
-/// where it is: half the width across what it lies on.
-#[derive(Debug, Clone, Default)]
-pub struct Probe {
-    pub pts: Vec<[f64; 3]>,
-    pub reach_m: Vec<f64>,
-}
-
-impl Probe {
-    /// `checked`'s points, their widths from the points of `cloud` (the
-    /// same scan, in the same frame) within [`WIDTH_RADIUS_M`]: the spread
-    /// along their middle principal axis taken as a uniform width, √(12 λ₂).
-    /// A wire, a post or a pipe is narrow across its length, a wall or the
-    /// ground as wide as the radius allows. With fewer than five points
-    /// round a point its width is not known and any ray counts.
-    pub fn of(checked: &RegCloud, cloud: &RegCloud) -> Probe {
-        let grid = crate::grid::Grid::new(&cloud.pts, WIDTH_RADIUS_M);
-        let reach_m = checked
-            .pts
-            .par_iter()
-            .map(|p| {
-                let mut around: Vec<[f64; 3]> = Vec::new();
-                grid.for_each_within(p, WIDTH_RADIUS_M, |j, _| around.push(grid.points()[j as usize]));
-                if around.len() < 5 {
-                    return f64::INFINITY;
-                }
-                let n = around.len() as f64;
-                let mut mean = nalgebra::Vector3::zeros();
-                for q in &around {
-                    mean += nalgebra::Vector3::from(*q);
-                }
-                mean /= n;
-                let mut cov = nalgebra::Matrix3::zeros();
-                for q in &around {
-                    let d = nalgebra::Vector3::from(*q) - mean;
-                    cov += d * d.transpose();
-                }
-                let mut l: Vec<f64> = nalgebra::SymmetricEigen::new(cov / n).eigenvalues.iter().copied().collect();
-                l.sort_by(f64::total_cmp);
-                (12.0 * l[1].max(0.0)).sqrt() / 2.0
-            })
-            .collect();
-        Probe { pts: checked.pts.clone(), reach_m }
-    }
-
-    /// The points alone: every ray round a point's direction counts, how
-    /// far off it passed the point or not.
-    pub fn any_ray(checked: &RegCloud) -> Probe {
-        Probe { pts: checked.pts.clone(), reach_m: vec![f64::INFINITY; checked.pts.len()] }
-    }
+/// Half the width (m) across what each point of `checked` lies on: how
+/// near another scanner's ray must pass it to count as having seen through
+/// where it is ([`free_space_violations_within`]). From the points of
+/// `cloud` (the same scan, in the same frame) within [`WIDTH_RADIUS_M`]:
+/// the spread along their middle principal axis taken as a uniform width,
+/// √(12 λ₂). A wire, a post or a pipe is narrow across its length, a wall
+/// or the ground as wide as the radius allows. With fewer than five points
+/// round a point its width is not known (infinite: any ray counts).
+pub fn half_widths_m(checked: &RegCloud, cloud: &RegCloud) -> Vec<f64> {
+    let grid = crate::grid::Grid::new(&cloud.pts, WIDTH_RADIUS_M);
+    checked
+        .pts
+        .par_iter()
+        .map(|p| {
+            let mut around: Vec<[f64; 3]> = Vec::new();
+            grid.for_each_within(p, WIDTH_RADIUS_M, |j, _| around.push(grid.points()[j as usize]));
+            if around.len() < 5 {
+                return f64::INFINITY;
+            }
+            let n = around.len() as f64;
+            let mut mean = nalgebra::Vector3::zeros();
+            for q in &around {
+                mean += nalgebra::Vector3::from(*q);
+            }
+            mean /= n;
+            let mut cov = nalgebra::Matrix3::zeros();
+            for q in &around {
+                let d = nalgebra::Vector3::from(*q) - mean;
+                cov += d * d.transpose();
+            }
+            let mut l: Vec<f64> = nalgebra::SymmetricEigen::new(cov / n).eigenvalues.iter().copied().collect();
+            l.sort_by(f64::total_cmp);
+            (12.0 * l[1].max(0.0)).sqrt() / 2.0
+        })
+        .collect()
 }
 
 /// Share of `src` points (placed by `pose`) that some scan in `seen` (its range
 /// image and its pose) saw straight through.
-pub fn free_space_violations(src: &Probe, pose: &Pose, seen: &[(&RangeImage, Pose)]) -> f64 {
+pub fn free_space_violations(src: &RegCloud, pose: &Pose, seen: &[(&RangeImage, Pose)]) -> f64 {
+    seen_through_share(src, None, pose, seen)
+}
+
+/// [`free_space_violations`], counting point `k` only where a ray of that
+/// scanner passed within `reach_m[k]` of it ([`half_widths_m`]).
+pub fn free_space_violations_within(src: &RegCloud, reach_m: &[f64], pose: &Pose, seen: &[(&RangeImage, Pose)]) -> f64 {
+    seen_through_share(src, Some(reach_m), pose, seen)
+}
+
+fn seen_through_share(src: &RegCloud, reach_m: Option<&[f64]>, pose: &Pose, seen: &[(&RangeImage, Pose)]) -> f64 {
     if src.pts.is_empty() || seen.is_empty() {
         return 0.0;
     }
@@ -1912,7 +1910,8 @@ pub fn free_space_violations(src: &Probe, pose: &Pose, seen: &[(&RangeImage, Pos
             let mut n = 0;
             for k in b * BLOCK..((b + 1) * BLOCK).min(src.pts.len()) {
                 let q = tf(pose, &src.pts[k]);
-                if inv.iter().any(|(im, pi)| im.sees_through(&tf(pi, &q), src.reach_m[k])) {
+                let reach = reach_m.map_or(f64::INFINITY, |r| r[k]);
+                if inv.iter().any(|(im, pi)| im.sees_through(&tf(pi, &q), reach)) {
                     n += 1;
                 }
             }
@@ -2220,13 +2219,21 @@ mod tests {
         }
         cloud.pts.push([30.0, 0.0, 0.0]);
         cloud.normals = vec![[0.0; 3]; cloud.pts.len()];
-        let probe = Probe::of(
+        let reach_m = half_widths_m(
             &RegCloud { pts: vec![[10.0, 0.0, 1.0], [20.0, 1.0, 1.0], [30.0, 0.0, 0.0]], normals: vec![[0.0; 3]; 3] },
             &cloud,
         );
-        assert!((probe.reach_m[0] - 0.075).abs() < 0.02, "the post's half width: {}", probe.reach_m[0]);
-        assert!(probe.reach_m[1] > 0.35, "a wall's is the radius': {}", probe.reach_m[1]);
-        assert!(probe.reach_m[2].is_infinite(), "a point alone: not known, any ray counts");
-        assert!(Probe::any_ray(&cloud).reach_m.iter().all(|r| r.is_infinite()));
+        assert!((reach_m[0] - 0.075).abs() < 0.02, "the post's half width: {}", reach_m[0]);
+        assert!(reach_m[1] > 0.35, "a wall's is the radius': {}", reach_m[1]);
+        assert!(reach_m[2].is_infinite(), "a point alone: not known, any ray counts");
+
+        // The shares: any ray round a point counts, or only one within its
+        // reach; infinite reaches count as any ray does.
+        let checked = RegCloud { pts: vec![between, on_a_ray], normals: vec![[0.0; 3]; 2] };
+        let seen = [(&image, Pose::identity())];
+        let at = Pose::identity();
+        assert_eq!(free_space_violations(&checked, &at, &seen), 1.0);
+        assert_eq!(free_space_violations_within(&checked, &[f64::INFINITY; 2], &at, &seen), 1.0);
+        assert_eq!(free_space_violations_within(&checked, &[0.075, 0.075], &at, &seen), 0.5);
     }
 }
