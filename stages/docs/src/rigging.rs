@@ -425,6 +425,18 @@ mod tests {
         LoadShape { size_m, cog_m, rigging_height_m: 4.0 }
     }
 
+    /// Two legs to lift points 8 m apart on the load's top, 10 t each,
+    /// the points given by the lift or not.
+    fn two_legs(points_given: bool) -> Slings {
+        Slings {
+            lift_points_m: vec![[-4.0, 0.0, 1.5], [4.0, 0.0, 1.5]],
+            points_given,
+            ratings: Ratings::legs(10_000.0),
+            spreader: None,
+            pin_axes: None,
+        }
+    }
+
     /// Two legs 6 m apart hanging plumb from a 7 m spreader beam 3 m under
     /// the hook block, hung by two top legs, with `top_shackles`.
     fn spreader_beam(top_shackles: Option<liftplan_core::slings::TopShackles>) -> Slings {
@@ -452,13 +464,7 @@ mod tests {
     #[test]
     fn the_sketch_hangs_the_legs_where_the_check_does() {
         let l = load([8.0, 3.0, 3.0], [0.2, 0.0, -0.1]);
-        let two = Slings {
-            lift_points_m: vec![[-4.0, 0.0, 1.5], [4.0, 0.0, 1.5]],
-            points_given: false,
-            ratings: Ratings::legs(10_000.0),
-            spreader: None,
-            pin_axes: None,
-        };
+        let two = two_legs(false);
         let c = check(&two, 12_000.0, l.size_m, l.cog_m, l.rigging_height_m).unwrap();
         let s = sketch(&two, &l, &c);
         assert_eq!(s.hook, [0.2, 0.0, 5.5]);
@@ -515,13 +521,7 @@ mod tests {
             let c = check(slings, 12_000.0, l.size_m, l.cog_m, l.rigging_height_m).unwrap();
             labels(&sketch(slings, l, &c), &c).into_iter().map(|x| (x.view, x.pieces, x.text)).collect()
         };
-        let two = Slings {
-            lift_points_m: vec![[-4.0, 0.0, 1.5], [4.0, 0.0, 1.5]],
-            points_given: true,
-            ratings: Ratings::legs(10_000.0),
-            spreader: None,
-            pin_axes: None,
-        };
+        let two = two_legs(true);
         // The demo's legs, by hand: 4.2 and 3.8 m across, 4 m up.
         let l = load([8.0, 3.0, 3.0], [0.2, 0.0, -0.1]);
         let want = |dx: f64| format!("{:.2} m, {:.1}°", dx.hypot(4.0), dx.atan2(4.0).to_degrees());
