@@ -291,7 +291,8 @@ pub struct Summary {
     pub register: RegisterMode,
     pub subsample: String,
     /// Registration's answers (trials, placements, refinement) found in the
-    /// memo of earlier runs, and those worked out in this one.
+    /// memo (of earlier runs, or of this one where a scan taken out and
+    /// placed again repeats a round), and those worked out in this one.
     pub registration_answers_reused: u64,
     pub registration_answers_worked_out: u64,
     /// What "fitness" means in the lines: a point overlaps the other scans
@@ -650,7 +651,7 @@ pub fn run(inputs: &[PathBuf], s: &Settings, opts: &RunOptions, out_dir: &Path) 
             // Logged, not one of the summary's lines: those go into the
             // PDF, which must not depend on what an earlier run left behind.
             tracing::info!(
-                "registration: {} of {} answers reused from earlier runs (the same as working them out)",
+                "registration: {} of {} answers reused (the same as working them out)",
                 memo.hits,
                 memo.hits + memo.misses
             );

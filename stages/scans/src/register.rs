@@ -64,6 +64,21 @@
 //! placed against a partial view of it (a van beside it), and none of them
 //! is merged either. Neither check moves a scan; both only refuse.
 //!
+//! **Order**: placed one after another, the scan placed first of two that
+//! cannot both be right is the one kept. Where no scan can be placed and a
+//! scan's alignment passes but for one placed scan (not the reference, nor
+//! one held by its station), that scan is taken out, with the scans placed
+//! after it, and placed again once no other scan can be; each scan is
+//! taken out once at most. Then: where the scan taken out cannot be placed
+//! again, none of the scans placed while it was out (the other among them)
+//! is merged; where it was placed again elsewhere
+//! ([`ELSEWHERE_M`], [`ELSEWHERE_DEG`]), the others do not pin it down and
+//! it is not merged (a van beside a scanner left its scan a view of the far
+//! side of a tank and the rack, which fitted the two scans placed first 30
+//! m off); where it was placed again where it was, and still stands in the
+//! other's way, neither is merged (where the other could not be placed
+//! even without it, the two stay as before).
+//!
 //! Every reduction is summed in fixed-size blocks in a fixed order, so the result
 //! does not depend on the number of threads.
 
@@ -776,6 +791,10 @@ struct Trial {
     /// The best-scoring candidate that passed but lies outside its station's
     /// tolerance: its (fitness, violation) and offset.
     held_back: Option<(f64, f64, StationOffset)>,
+    /// The candidates that overlap enough and lie within their station's
+    /// tolerance but put too many points where a placed scanner saw
+    /// through: (pose, fitness).
+    near_misses: Vec<(Pose, f64)>,
 }
 
 impl Trial {
@@ -792,6 +811,11 @@ impl Trial {
         }
         w.f64s(&self.at_station.map_or(vec![], |(fit, viol)| vec![fit, viol]));
         w.f64s(&self.held_back.map_or(vec![], |(fit, viol, o)| vec![fit, viol, o.plan_m, o.height_m, o.yaw_deg]));
+        w.u32(self.near_misses.len() as u32);
+        for (p, fit) in &self.near_misses {
+            write_pose(&mut w, p);
+            w.f64(*fit);
+        }
         w.buf
     }
 
@@ -813,7 +837,12 @@ impl Trial {
             &[fit, viol, plan_m, height_m, yaw_deg] => Some((fit, viol, StationOffset { plan_m, height_m, yaw_deg })),
             _ => return None,
         };
-        r.finish().is_ok().then_some(Trial { passing, closest, at_station, held_back })
+        let n = r.u32().ok()?;
+        let mut near_misses = Vec::new();
+        for _ in 0..n {
+            near_misses.push((read_pose(&mut r)?, r.f64().ok()?));
+        }
+        r.finish().is_ok().then_some(Trial { passing, closest, at_station, held_back, near_misses })
     }
 }
 
@@ -844,6 +873,63 @@ fn score(fit: f64, viol: f64) -> f64 {
     fit - 10.0 * viol
 }
 
+/// An alignment's seen-through check against the placed scanners: its
+/// share of points where one saw through (any ray), and where the
+/// alignment overlaps the others well enough for it to count, the share
+/// where a ray passed within half the width of what a point lies on.
+struct SeenCheck {
+    fit: f64,
+    any: f64,
+    narrow: Option<f64>,
+}
+
+impl SeenCheck {
+    /// Whether the alignment passes: its share within `max_violation`, or
+    /// where it overlaps the others by [`NARROW_LEAST_FIT`] or more, its
+    /// share with rays within half the width.
+    fn passes(&self, max_violation: f64) -> bool {
+        self.any <= max_violation || (self.fit >= NARROW_LEAST_FIT && self.narrow.is_some_and(|v| v <= max_violation))
+    }
+}
+
+/// The placed scans (other than `j`) whose scanners a check of scan `j`
+/// counts against, and their range images at their poses.
+fn scanners_but<'a>(
+    j: usize,
+    poses: &[Option<Pose>],
+    images: &'a [Option<RangeImage>],
+) -> (Vec<usize>, Vec<(&'a RangeImage, Pose)>) {
+    (0..poses.len()).filter(|&i| i != j).filter_map(|i| Some((i, (images[i].as_ref()?, poses[i]?)))).unzip()
+}
+
+/// The placed scans that alone keep scan `j` at `p` from passing the
+/// seen-through check (each, left out, lets it pass), among `eligible`.
+#[allow(clippy::too_many_arguments)]
+fn standing_in_the_way<'a>(
+    j: usize,
+    p: &Pose,
+    fit: f64,
+    eligible: &[usize],
+    poses: &[Option<Pose>],
+    quick: &[RegCloud],
+    images: &[Option<RangeImage>],
+    half_widths_of: &(impl Fn(usize) -> &'a [f64] + Sync),
+    max_violation: f64,
+) -> Vec<usize> {
+    let (by, seen) = scanners_but(j, poses, images);
+    let any = seen_through_counts(&quick[j], None, p, &seen);
+    let narrow = (fit >= NARROW_LEAST_FIT).then(|| seen_through_counts(&quick[j], Some(half_widths_of(j)), p, &seen));
+    eligible
+        .iter()
+        .copied()
+        .filter(|k| {
+            let Some(at) = by.iter().position(|i| i == k) else { return false };
+            any.share_without(Some(at)) <= max_violation
+                || narrow.as_ref().is_some_and(|c| c.share_without(Some(at)) <= max_violation)
+        })
+        .collect()
+}
+
 /// The model of the placed scans, built only when a round has a trial or a
 /// placement the memo does not hold.
 struct Round {
@@ -872,7 +958,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
     // the seed and the scans' places in the list (its RANSAC is seeded from
     // them).
     let mut context = blake3::Hasher::new();
-    context.update(b"liftplan registration v3\0");
+    context.update(b"liftplan registration v4\0");
     context.update(memo.build().as_bytes());
     context.update(b"\0");
     context.update(std::env::consts::ARCH.as_bytes());
@@ -961,6 +1047,16 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
     let mut order: Vec<usize> = Vec::new();
     // Held scans placed at their station as surveyed, with their overlap then.
     let mut surveyed_only: Vec<Option<f64>> = vec![None; n];
+    let names: Vec<&str> = inputs.iter().map(|i| i.name.as_str()).collect();
+    // Per scan, its last trial's near misses ([`Trial::near_misses`]).
+    let mut near_misses: Vec<Vec<(Pose, f64)>> = vec![vec![]; n];
+    // Scans taken out and placed again later, for standing in the way of
+    // another's alignment, and each such contest: (the scan whose
+    // alignment was kept from passing, the scan taken out, that
+    // alignment's overlap, where the scan taken out had been placed, and
+    // its place in `order`, from which the scans were placed without it).
+    let mut deferred = vec![false; n];
+    let mut contests: Vec<(usize, usize, f64, Pose, usize)> = Vec::new();
     loop {
         let pending: Vec<usize> = (0..n).filter(|&j| poses[j].is_none()).collect();
         if pending.is_empty() {
@@ -1077,11 +1173,23 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                         }
                     }
                     let t = std::time::Instant::now();
-                    let mut trial = Trial { passing: vec![], closest: (0.0, 1.0), at_station: None, held_back: None };
+                    let mut trial = Trial {
+                        passing: vec![],
+                        closest: (0.0, 1.0),
+                        at_station: None,
+                        held_back: None,
+                        near_misses: vec![],
+                    };
                     for (c, (init, method)) in candidates.into_iter().enumerate() {
                         let p = icp(&quick[j], model, init, quick_levels);
                         let (fit, _) = evaluate(&checks[j], model, &p, fit_d, fit_r);
                         let viol = free_space_violations(&quick[j], &p, &seen);
+                        let checked = SeenCheck {
+                            fit,
+                            any: viol,
+                            narrow: (fit >= NARROW_LEAST_FIT && viol > s.max_violation)
+                                .then(|| free_space_violations_within(&quick[j], half_widths_of(j), &p, &seen)),
+                        };
                         // The station pose is the first candidate.
                         if c == 0 && held(j).is_some() {
                             trial.at_station = Some((fit, viol));
@@ -1092,10 +1200,13 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                         // Where an alignment overlaps the others well, the
                         // points a scanner's rays passed beside (a post its
                         // steps went both sides of) are not held against it.
-                        let passes = viol <= s.max_violation
-                            || (fit >= NARROW_LEAST_FIT
-                                && free_space_violations_within(&quick[j], half_widths_of(j), &p, &seen)
-                                    <= s.max_violation);
+                        let passes = checked.passes(s.max_violation);
+                        if fit >= s.min_fitness
+                            && !passes
+                            && held(j).is_none_or(|(station, tol)| StationOffset::between(&station, &p).within(&tol))
+                        {
+                            trial.near_misses.push((p, fit));
+                        }
                         if fit >= s.min_fitness && passes {
                             // A guess that scores higher must not move a scan
                             // away from where its station was surveyed.
@@ -1124,10 +1235,13 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
             closest[j] = trial.closest;
             held_back[j] = trial.held_back;
             at_station[j] = trial.at_station;
+            near_misses[j] = trial.near_misses;
             // Scans held by a station go first: their place does not rest on
-            // the scans placed before them, and theirs pins the others'.
+            // the scans placed before them, and theirs pins the others'. A
+            // scan taken out for standing in another's way waits until no
+            // other scan can be placed.
             for (p, fit, viol, method) in trial.passing {
-                let rank = |j: usize, fit: f64, viol: f64| (held(j).is_some(), score(fit, viol));
+                let rank = |j: usize, fit: f64, viol: f64| (held(j).is_some(), !deferred[j], score(fit, viol));
                 if best
                     .as_ref()
                     .is_none_or(|b| rank(j, fit, viol).partial_cmp(&rank(b.0, b.2, b.3)).is_some_and(|o| o.is_gt()))
@@ -1202,6 +1316,52 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                     });
                     continue;
                 }
+                // A scan whose alignment passes but for one placed scan: that
+                // scan is taken out (with those placed after it, which were
+                // placed against it) and placed again once no other scan can
+                // be, so that the two are tried in the other order too. Each
+                // scan is taken out once at most. Where in the end only one
+                // of the two is merged, neither is (below).
+                let eligible: Vec<usize> =
+                    order.iter().rev().copied().filter(|&k| held(k).is_none() && !deferred[k]).collect();
+                let mut misses: Vec<(usize, Pose, f64)> =
+                    pending.iter().flat_map(|&j| near_misses[j].iter().map(move |&(p, fit)| (j, p, fit))).collect();
+                // Best overlap first; the scan placed last of those in the
+                // way (the fewest to place again).
+                misses.sort_by(|a, b| b.2.total_cmp(&a.2).then(a.0.cmp(&b.0)));
+                let contest = misses.iter().find_map(|&(j, p, fit)| {
+                    let by = standing_in_the_way(
+                        j,
+                        &p,
+                        fit,
+                        &eligible,
+                        &poses,
+                        &quick,
+                        &images,
+                        &half_widths_of,
+                        s.max_violation,
+                    );
+                    Some((j, *by.first()?, fit))
+                });
+                if let Some((j, k, fit)) = contest {
+                    tracing::info!(
+                        "registration: scan '{}' stands in the way of an alignment of scan '{}' (overlap {:.1} %); placing '{}' again after the others",
+                        names[k],
+                        names[j],
+                        100.0 * fit,
+                        names[k]
+                    );
+                    let first = poses[k].unwrap_or_else(Pose::identity);
+                    let from = order.iter().position(|&x| x == k).unwrap_or(order.len());
+                    for x in order.drain(from..) {
+                        poses[x] = None;
+                        results[x] = None;
+                        surveyed_only[x] = None;
+                    }
+                    deferred[k] = true;
+                    contests.push((j, k, fit, first, from));
+                    continue;
+                }
                 for &j in &pending {
                     let (fit, viol) = closest[j];
                     let warning = match (at_station[j], held(j)) {
@@ -1240,6 +1400,107 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                     });
                 }
                 break;
+            }
+        }
+    }
+    // Each contest settled: scan `k` stood in the way of an alignment of
+    // scan `j` and was placed again after the others.
+    // - Where `k` is not merged, the scans placed while it was out (`j`
+    //   among them) may be what it could not be placed beside: none of
+    //   them is merged.
+    // - Where `k` was placed again elsewhere, the scans do not pin it: where
+    //   it went rested on the order the scans were placed in (a van beside
+    //   a scanner left its scan a partial view of the tank's far side and
+    //   the rack, which fitted the two scans placed first turned 150
+    //   degrees, and the third scan, 25 degrees from that): it is not.
+    // - Where it was placed again where it was, `j`, if placed, is checked
+    //   against all the scans as placed; where `k` still stands in its way,
+    //   neither is merged. Where `j` could not be placed even without `k`,
+    //   the two stay as they were before `k` was taken out.
+    for &(j, k, fit, first, from) in &contests {
+        let merged = |x: usize| results[x].as_ref().filter(|r| r.registered).map(|r| r.pose);
+        let (unmerge, why): (Vec<usize>, String) = match (merged(j), merged(k)) {
+            (_, None) => {
+                // The scans placed while it was out, `j` among them, may be
+                // what it could not then be placed beside.
+                let without: Vec<usize> =
+                    order.iter().skip(from).copied().filter(|&x| x != k && merged(x).is_some()).collect();
+                if without.is_empty() {
+                    continue;
+                }
+                let listed = without.iter().map(|&x| format!("'{}'", names[x])).collect::<Vec<_>>().join(", ");
+                if let Some(r) = results[k].as_mut() {
+                    let said = r.warning.take().unwrap_or_else(|| format!("scan '{}' is not merged", names[k]));
+                    r.warning = Some(format!(
+                        "{said}; it had stood in the way of an alignment of scan '{}' and was taken out, and the scans placed while it was out ({listed}) are not merged either",
+                        names[j]
+                    ));
+                }
+                (
+                    without,
+                    format!(
+                        "it was placed while scan '{}' was taken out (that scan stood in the way of an alignment of '{}' overlapping the others by {:.1} %), and '{}' could not then be placed beside the scans placed so; which of them are right is not known",
+                        names[k],
+                        names[j],
+                        100.0 * fit,
+                        names[k]
+                    ),
+                )
+            }
+            (pj, Some(pk)) => {
+                let moved = StationOffset::between(&first, &pk);
+                if moved.plan_m.max(moved.height_m) > ELSEWHERE_M || moved.yaw_deg > ELSEWHERE_DEG {
+                    (
+                        vec![k],
+                        format!(
+                            "it stood in the way of an alignment of scan '{}' overlapping the others by {:.1} %; taken out and placed again after the others, it fitted them {:.2} m in plan, {:.2} m in height and {:.1} degrees in yaw from where it had been: the other scans do not pin it down, and where it goes rests on the order they are placed in (it may see little of what they saw)",
+                            names[j],
+                            100.0 * fit,
+                            moved.plan_m,
+                            moved.height_m,
+                            moved.yaw_deg
+                        ),
+                    )
+                } else {
+                    // Where `j` could not be placed even so, the two are as
+                    // they were before `k` was taken out.
+                    let Some(pj) = pj else { continue };
+                    let others = model_of(inputs, &poses, Some(j));
+                    let fit_now = evaluate(&checks[j], &others, &pj, fit_d, fit_r).0;
+                    let (_, seen) = scanners_but(j, &poses, &images);
+                    let any = free_space_violations(&quick[j], &pj, &seen);
+                    let now = SeenCheck {
+                        fit: fit_now,
+                        any,
+                        narrow: (fit_now >= NARROW_LEAST_FIT && any > s.max_violation)
+                            .then(|| free_space_violations_within(&quick[j], half_widths_of(j), &pj, &seen)),
+                    };
+                    if now.passes(s.max_violation) {
+                        continue;
+                    }
+                    (
+                        vec![j, k],
+                        format!(
+                            "scans '{}' and '{}' cannot both be placed: placed where it was first, '{}' still stands in the way of the alignment of '{}' ({:.1} % of points where a scanner saw through, at most {:.1} % allowed), and which of the two is right is not known",
+                            names[j],
+                            names[k],
+                            names[k],
+                            names[j],
+                            100.0 * now.any,
+                            100.0 * s.max_violation
+                        ),
+                    )
+                }
+            }
+        };
+        for x in unmerge {
+            poses[x] = None;
+            if let Some(r) = results[x].as_mut() {
+                r.registered = false;
+                r.warning = Some(format!(
+                    "scan '{}' is not merged: {why}; something beside a scanner (a vehicle, a skip) may have hidden part of its view: rescan that station with its view clear, or give the surveyed poses of the stations in the station file",
+                    names[x]
+                ));
             }
         }
     }
@@ -1596,9 +1857,11 @@ struct ReferenceAgain {
     elsewhere: Option<([f64; 3], StationOffset)>,
 }
 
-/// How far a pose must be from another to count as elsewhere.
-const ELSEWHERE_M: f64 = 0.5;
-const ELSEWHERE_DEG: f64 = 2.0;
+/// How far a pose must be from another to count as elsewhere (m in plan or
+/// height, degrees in yaw).
+pub const ELSEWHERE_M: f64 = 0.5;
+/// See [`ELSEWHERE_M`].
+pub const ELSEWHERE_DEG: f64 = 2.0;
 /// Points nearer their scanner than this in plan are left out of the plan
 /// view when the reference is placed again (m).
 const NEAR_SCANNER_M: f64 = 8.0;
@@ -1923,6 +2186,68 @@ fn seen_through_share(src: &RegCloud, reach_m: Option<&[f64]>, pose: &Pose, seen
     bad as f64 / src.pts.len() as f64
 }
 
+/// How many of a scan's points the scanners of a list saw through: in all,
+/// and, scanner by scanner, those no other scanner of the list saw through
+/// (so that the share without one scanner is known without counting again).
+#[derive(Debug, Clone, PartialEq)]
+pub struct SeenThrough {
+    pub points: usize,
+    pub any: usize,
+    /// Per scanner of the list: the points only it saw through.
+    pub only: Vec<usize>,
+}
+
+impl SeenThrough {
+    /// The share (0..1) of the points some scanner saw through.
+    pub fn share(&self) -> f64 {
+        if self.points == 0 { 0.0 } else { self.any as f64 / self.points as f64 }
+    }
+
+    /// The share some scanner saw through, scanner `left_out` of the list
+    /// left out.
+    pub fn share_without(&self, left_out: Option<usize>) -> f64 {
+        let any = self.any - left_out.map_or(0, |k| self.only[k]);
+        if self.points == 0 { 0.0 } else { any as f64 / self.points as f64 }
+    }
+}
+
+/// [`free_space_violations`] (infinite `reach_m`) or
+/// [`free_space_violations_within`], as counts per scanner of `seen`.
+pub fn seen_through_counts(
+    src: &RegCloud,
+    reach_m: Option<&[f64]>,
+    pose: &Pose,
+    seen: &[(&RangeImage, Pose)],
+) -> SeenThrough {
+    let inv: Vec<(&RangeImage, Pose)> = seen.iter().map(|(im, p)| (*im, p.inverse())).collect();
+    let blocks: Vec<(usize, Vec<usize>)> = (0..src.pts.len().div_ceil(BLOCK))
+        .into_par_iter()
+        .map(|b| {
+            let (mut any, mut only) = (0, vec![0; inv.len()]);
+            for k in b * BLOCK..((b + 1) * BLOCK).min(src.pts.len()) {
+                let q = tf(pose, &src.pts[k]);
+                let reach = reach_m.map_or(f64::INFINITY, |r| r[k]);
+                let mut by = inv.iter().enumerate().filter(|(_, (im, pi))| im.sees_through(&tf(pi, &q), reach));
+                if let Some((first, _)) = by.next() {
+                    any += 1;
+                    if by.next().is_none() {
+                        only[first] += 1;
+                    }
+                }
+            }
+            (any, only)
+        })
+        .collect();
+    let mut counts = SeenThrough { points: src.pts.len(), any: 0, only: vec![0; seen.len()] };
+    for (any, only) in blocks {
+        counts.any += any;
+        for (total, n) in counts.only.iter_mut().zip(only) {
+            *total += n;
+        }
+    }
+    counts
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -2235,5 +2560,37 @@ mod tests {
         assert_eq!(free_space_violations(&checked, &at, &seen), 1.0);
         assert_eq!(free_space_violations_within(&checked, &[f64::INFINITY; 2], &at, &seen), 1.0);
         assert_eq!(free_space_violations_within(&checked, &[0.075, 0.075], &at, &seen), 0.5);
+    }
+
+    /// The counts per scanner say what share is left with one scanner left
+    /// out: a point two scanners saw through stays counted without either.
+    #[test]
+    fn a_share_without_one_scanner_counts_the_points_only_it_saw_through() {
+        // Two scanners, 10 m apart along y, each seeing a wall 50 m off along
+        // x over +-16 degrees.
+        let wall = || {
+            let mut pts = Vec::new();
+            for i in -40..=40 {
+                for k in -20..=20 {
+                    let (az, el) = (f64::from(i) * 0.4f64.to_radians(), f64::from(k) * 0.4f64.to_radians());
+                    let r = 50.0 / (az.cos() * el.cos());
+                    pts.push([r * el.cos() * az.cos(), r * el.cos() * az.sin(), r * el.sin()]);
+                }
+            }
+            pts
+        };
+        let (a, b) = (RangeImage::new(&wall(), 0.5), RangeImage::new(&wall(), 0.5));
+        let seen = [(&a, Pose::identity()), (&b, liftplan_core::frame::pose_xyz_yaw(0.0, 10.0, 0.0, 0.0))];
+        // In the site frame: one point in front of both walls' views, one
+        // only scanner `a` sees past (outside `b`'s 16 degrees), one behind
+        // the wall, one off to the side neither saw.
+        let pts = vec![[40.0, 5.0, 0.0], [40.0, -8.0, 0.0], [55.0, 5.0, 0.0], [0.0, -40.0, 0.0]];
+        let cloud = RegCloud { normals: vec![[0.0; 3]; pts.len()], pts };
+        let counts = seen_through_counts(&cloud, None, &Pose::identity(), &seen);
+        assert_eq!(counts, SeenThrough { points: 4, any: 2, only: vec![1, 0] });
+        assert_eq!(counts.share(), free_space_violations(&cloud, &Pose::identity(), &seen));
+        assert_eq!(counts.share_without(None), 0.5);
+        assert_eq!(counts.share_without(Some(0)), 0.25, "the point both saw through stays");
+        assert_eq!(counts.share_without(Some(1)), 0.5);
     }
 }
