@@ -2562,6 +2562,27 @@ mod tests {
         assert_eq!(free_space_violations_within(&checked, &[0.075, 0.075], &at, &seen), 0.5);
     }
 
+    /// A trial kept in the memo reads back as written, its near misses
+    /// included; cut short anywhere, it reads as nothing (worked out again).
+    #[test]
+    fn a_trial_reads_back_as_written_and_not_at_all_when_cut_short() {
+        let at = liftplan_core::frame::pose_xyz_yaw(51.7, 10.2, 0.1, 77.3f64.to_radians());
+        let trial = Trial {
+            passing: vec![(at, 0.514, 0.0, "plan-view correlation + ICP".into())],
+            closest: (0.514, 0.0),
+            at_station: Some((0.2, 0.001)),
+            held_back: Some((0.3, 0.002, StationOffset { plan_m: 7.7, height_m: 0.1, yaw_deg: 61.0 })),
+            near_misses: vec![(at, 0.252), (Pose::identity(), 0.03)],
+        };
+        let bytes = trial.encode();
+        let back = Trial::decode(&bytes).expect("read back");
+        assert_eq!(back.encode(), bytes);
+        assert_eq!(back.near_misses.len(), 2);
+        for cut in 0..bytes.len() {
+            assert!(Trial::decode(&bytes[..cut]).is_none(), "cut at {cut}");
+        }
+    }
+
     /// The counts per scanner say what share is left with one scanner left
     /// out: a point two scanners saw through stays counted without either.
     #[test]
