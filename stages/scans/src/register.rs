@@ -930,6 +930,16 @@ fn standing_in_the_way<'a>(
         .collect()
 }
 
+/// Scan `j` has just been placed: noted for each scan taken out
+/// (`deferred`) and not placed again yet.
+fn note_placed_while_out(j: usize, poses: &[Option<Pose>], deferred: &[bool], placed_while_out: &mut [Vec<usize>]) {
+    for (k, while_out) in placed_while_out.iter_mut().enumerate() {
+        if deferred[k] && poses[k].is_none() && k != j {
+            while_out.push(j);
+        }
+    }
+}
+
 /// The model of the placed scans, built only when a round has a trial or a
 /// placement the memo does not hold.
 struct Round {
@@ -1053,10 +1063,11 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
     // Scans taken out and placed again later, for standing in the way of
     // another's alignment, and each such contest: (the scan whose
     // alignment was kept from passing, the scan taken out, that
-    // alignment's overlap, where the scan taken out had been placed, and
-    // its place in `order`, from which the scans were placed without it).
+    // alignment's overlap, and where the scan taken out had been placed).
     let mut deferred = vec![false; n];
-    let mut contests: Vec<(usize, usize, f64, Pose, usize)> = Vec::new();
+    let mut contests: Vec<(usize, usize, f64, Pose)> = Vec::new();
+    // Per scan taken out, the scans placed while it was out.
+    let mut placed_while_out: Vec<Vec<usize>> = vec![vec![]; n];
     loop {
         let pending: Vec<usize> = (0..n).filter(|&j| poses[j].is_none()).collect();
         if pending.is_empty() {
@@ -1271,6 +1282,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                 });
                 poses[j] = Some(p);
                 order.push(j);
+                note_placed_while_out(j, &poses, &deferred, &mut placed_while_out);
                 let warning = narrow_share.map(|narrow_share| {
                     format!(
                         "scan '{}' was placed though {:.1} % of its points lie where another scanner saw through (at most {:.1} % allowed): there, but for {:.2} % of its points, that scanner's rays passed farther off than half the width of what the point lies on (a post or a wire its steps went both sides of), and its alignment overlaps the others by {:.1} % ({:.0} % or more needed to place it so); check the thin structure it shows where another scan shows nothing",
@@ -1305,6 +1317,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                     let (fit, rmse) = evaluate(&checks[j], model, &station, fit_d, fit_r);
                     poses[j] = Some(station);
                     order.push(j);
+                    note_placed_while_out(j, &poses, &deferred, &mut placed_while_out);
                     surveyed_only[j] = Some(fit);
                     results[j] = Some(RegResult {
                         pose: station,
@@ -1320,8 +1333,8 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                 // scan is taken out (with those placed after it, which were
                 // placed against it) and placed again once no other scan can
                 // be, so that the two are tried in the other order too. Each
-                // scan is taken out once at most. Where in the end only one
-                // of the two is merged, neither is (below).
+                // scan is taken out once at most. How it ends is settled once
+                // every scan is placed or refused (below).
                 let eligible: Vec<usize> =
                     order.iter().rev().copied().filter(|&k| held(k).is_none() && !deferred[k]).collect();
                 let mut misses: Vec<(usize, Pose, f64)> =
@@ -1359,7 +1372,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                         surveyed_only[x] = None;
                     }
                     deferred[k] = true;
-                    contests.push((j, k, fit, first, from));
+                    contests.push((j, k, fit, first));
                     continue;
                 }
                 for &j in &pending {
@@ -1411,20 +1424,23 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
     // - Where `k` was placed again elsewhere, the scans do not pin it: where
     //   it went rested on the order the scans were placed in (a van beside
     //   a scanner left its scan a partial view of the tank's far side and
-    //   the rack, which fitted the two scans placed first turned 150
-    //   degrees, and the third scan, 25 degrees from that): it is not.
+    //   the rack, which fitted the two scans placed first turned 154
+    //   degrees; placed again after the fourth, it fitted 1.6 m and 6
+    //   degrees from there): it is not.
     // - Where it was placed again where it was, `j`, if placed, is checked
     //   against all the scans as placed; where `k` still stands in its way,
     //   neither is merged. Where `j` could not be placed even without `k`,
     //   the two stay as they were before `k` was taken out.
-    for &(j, k, fit, first, from) in &contests {
+    for &(j, k, fit, first) in &contests {
         let merged = |x: usize| results[x].as_ref().filter(|r| r.registered).map(|r| r.pose);
         let (unmerge, why): (Vec<usize>, String) = match (merged(j), merged(k)) {
             (_, None) => {
                 // The scans placed while it was out, `j` among them, may be
                 // what it could not then be placed beside.
-                let without: Vec<usize> =
-                    order.iter().skip(from).copied().filter(|&x| x != k && merged(x).is_some()).collect();
+                let mut without: Vec<usize> =
+                    placed_while_out[k].iter().copied().filter(|&x| merged(x).is_some()).collect();
+                without.sort_unstable();
+                without.dedup();
                 if without.is_empty() {
                     continue;
                 }
