@@ -390,22 +390,29 @@ pub fn icp(src: &RegCloud, target: &Target, init: Pose, distances: &[f64]) -> Po
         }
         None => Vec3::zeros(),
     };
+    // Each source point's nearest model point at the last step: the next
+    // step's search starts from it (the same answer, found sooner).
+    let mut last: Vec<u32> = vec![u32::MAX; src.pts.len()];
     for &d in distances {
         let grid = &target.grid;
         let huber = (d / 20.0).max(0.01);
         for _ in 0..50 {
             let m = pivot(&pose);
-            let blocks: Vec<(na::Matrix6<f64>, na::Vector6<f64>, usize)> = (0..src.pts.len().div_ceil(BLOCK))
-                .into_par_iter()
-                .map(|b| {
+            let blocks: Vec<(na::Matrix6<f64>, na::Vector6<f64>, usize)> = last
+                .par_chunks_mut(BLOCK)
+                .enumerate()
+                .map(|(b, last)| {
                     let mut h = na::Matrix6::zeros();
                     let mut g = na::Vector6::zeros();
                     let mut n = 0;
-                    for k in b * BLOCK..((b + 1) * BLOCK).min(src.pts.len()) {
+                    for (k, last) in (b * BLOCK..).zip(last.iter_mut()) {
                         let p = tf(&pose, &src.pts[k]);
-                        let Some((j, _)) = grid.nearest(&p, d) else {
+                        let hint = (*last != u32::MAX)
+                            .then(|| (*last, crate::kdtree::distance2(&target.pts[*last as usize], &p)));
+                        let Some((j, _)) = grid.nearest_from(&p, d, hint) else {
                             continue;
                         };
+                        *last = j;
                         let nq = target.normals[j as usize];
                         if nq == [0.0; 3] || !compatible(&pose, &src.normals[k], &nq) {
                             continue;
