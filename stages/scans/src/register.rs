@@ -451,9 +451,9 @@ pub fn icp(src: &RegCloud, target: &Target, init: Pose, distances: &[f64]) -> Po
             let t = m - rot * m + Vec3::new(x[3], x[4], x[5]);
             let step = Pose::from_parts(na::Translation3::from(t), rot);
             pose = step * pose;
-            // Converged: a step under a 50th of a millimetre per metre of the
-            // level's distance (0.2 mm at 0.1 m, and turning a point 50 m
-            // off by as much). Measured: a third of the levels never came
+            // Converged: a step that moves under a 500th of the level's
+            // distance (0.2 mm at 0.1 m) and turns a point 50 m off by no
+            // more. Measured: a third of the levels never came
             // under the tight limit that stood alone before (0.1 µrad, 1 µm),
             // the correspondences flipping back and forth at steps of a
             // millimetre, and spent 50 steps each, two thirds of all ICP
