@@ -554,6 +554,12 @@ pub struct StationOffset {
 }
 
 impl StationOffset {
+    /// Whether the two poses are far enough apart to count as elsewhere
+    /// ([`ELSEWHERE_M`], [`ELSEWHERE_DEG`]).
+    fn is_elsewhere(&self) -> bool {
+        self.plan_m.max(self.height_m) > ELSEWHERE_M || self.yaw_deg > ELSEWHERE_DEG
+    }
+
     /// `placed` (scanner to site) against the surveyed `station` pose.
     pub fn between(station: &Pose, placed: &Pose) -> StationOffset {
         let d = placed.translation.vector - station.translation.vector;
@@ -899,6 +905,23 @@ struct SeenCheck {
 }
 
 impl SeenCheck {
+    /// The check of scan `src` at `p` (overlapping the others by `fit`)
+    /// against the scanners `seen`; its share counted within half the width
+    /// (`reach_m`, [`half_widths_m`]) only where that can pass it.
+    fn of<'a>(
+        src: &RegCloud,
+        reach_m: impl FnOnce() -> &'a [f64],
+        p: &Pose,
+        fit: f64,
+        seen: &[(&RangeImage, Pose)],
+        max_violation: f64,
+    ) -> SeenCheck {
+        let any = free_space_violations(src, p, seen);
+        let narrow = (fit >= NARROW_LEAST_FIT && any > max_violation)
+            .then(|| free_space_violations_within(src, reach_m(), p, seen));
+        SeenCheck { fit, any, narrow }
+    }
+
     /// Whether the alignment passes: its share within `max_violation`, or
     /// where it overlaps the others by [`NARROW_LEAST_FIT`] or more, its
     /// share with rays within half the width.
@@ -1209,13 +1232,8 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                     for (c, (init, method)) in candidates.into_iter().enumerate() {
                         let p = icp(&quick[j], model, init, quick_levels);
                         let (fit, _) = evaluate(&checks[j], model, &p, fit_d, fit_r);
-                        let viol = free_space_violations(&quick[j], &p, &seen);
-                        let checked = SeenCheck {
-                            fit,
-                            any: viol,
-                            narrow: (fit >= NARROW_LEAST_FIT && viol > s.max_violation)
-                                .then(|| free_space_violations_within(&quick[j], half_widths_of(j), &p, &seen)),
-                        };
+                        let checked = SeenCheck::of(&quick[j], || half_widths_of(j), &p, fit, &seen, s.max_violation);
+                        let viol = checked.any;
                         // The station pose is the first candidate.
                         if c == 0 && held(j).is_some() {
                             trial.at_station = Some((fit, viol));
@@ -1480,7 +1498,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
             }
             (pj, Some(pk)) => {
                 let moved = StationOffset::between(&first, &pk);
-                if moved.plan_m.max(moved.height_m) > ELSEWHERE_M || moved.yaw_deg > ELSEWHERE_DEG {
+                if moved.is_elsewhere() {
                     (
                         vec![k],
                         format!(
@@ -1499,13 +1517,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                     let others = model_of(inputs, &poses, Some(j));
                     let fit_now = evaluate(&checks[j], &others, &pj, fit_d, fit_r).0;
                     let (_, seen) = scanners_but(j, &poses, &images);
-                    let any = free_space_violations(&quick[j], &pj, &seen);
-                    let now = SeenCheck {
-                        fit: fit_now,
-                        any,
-                        narrow: (fit_now >= NARROW_LEAST_FIT && any > s.max_violation)
-                            .then(|| free_space_violations_within(&quick[j], half_widths_of(j), &pj, &seen)),
-                    };
+                    let now = SeenCheck::of(&quick[j], || half_widths_of(j), &pj, fit_now, &seen, s.max_violation);
                     if now.passes(s.max_violation) {
                         continue;
                     }
@@ -1691,7 +1703,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                 .into_iter()
                 .map(|g| icp(&quick[0], &model, g, quick_levels))
                 .map(|p| (scored(&p), StationOffset::between(&at, &p)))
-                .filter(|(_, o)| o.plan_m.max(o.height_m) > ELSEWHERE_M || o.yaw_deg > ELSEWHERE_DEG)
+                .filter(|(_, o)| o.is_elsewhere())
                 .max_by(|a, b| a.0[0].total_cmp(&b.0[0]));
             let again = ReferenceAgain { here, elsewhere };
             memo.put(key, again.encode());
