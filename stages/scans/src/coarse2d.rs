@@ -47,20 +47,30 @@ impl Fft2 {
         Fft2 { n, fwd: p.plan_fft_forward(n), inv: p.plan_fft_inverse(n) }
     }
 
+    /// The 2-D transform of the `n` x `n` image `data` (row-major): every
+    /// row, then every column as a row of the transposed image, with one
+    /// scratch buffer for all (each column gathered and scattered on its own
+    /// was a cache miss a value, and each transform allocated its scratch).
     fn run(&self, data: &mut [Complex32], inverse: bool) {
         let f = if inverse { &self.inv } else { &self.fwd };
-        let n = self.n;
-        for row in data.chunks_mut(n) {
-            f.process(row);
-        }
-        let mut col = vec![Complex32::new(0.0, 0.0); n];
-        for x in 0..n {
-            for y in 0..n {
-                col[y] = data[y * n + x];
-            }
-            f.process(&mut col);
-            for y in 0..n {
-                data[y * n + x] = col[y];
+        let mut scratch = vec![Complex32::new(0.0, 0.0); f.get_inplace_scratch_len()];
+        f.process_with_scratch(data, &mut scratch);
+        transpose(data, self.n);
+        f.process_with_scratch(data, &mut scratch);
+        transpose(data, self.n);
+    }
+}
+
+/// Transposes the `n` x `n` row-major image in place, in tiles that stay in
+/// cache.
+fn transpose(data: &mut [Complex32], n: usize) {
+    const TILE: usize = 32;
+    for bi in (0..n).step_by(TILE) {
+        for bj in (bi..n).step_by(TILE) {
+            for i in bi..(bi + TILE).min(n) {
+                for j in bj.max(i + 1)..(bj + TILE).min(n) {
+                    data.swap(i * n + j, j * n + i);
+                }
             }
         }
     }
@@ -232,7 +242,7 @@ fn align_within(
     let mut f2 = None;
     let fine = plan_for(&tgt, r_c, 0.4, fine_side, &mut f2);
     let f2 = f2.unwrap_or_else(|| Fft2::new(fine.n));
-    let mut out: Vec<(Pose, f32)> = peaks
+    let out: Vec<(Pose, f32)> = peaks
         .par_iter()
         .flat_map_iter(|p| {
             // Best yaw near the peak, then several shifts at that yaw: periodic
@@ -258,30 +268,57 @@ fn align_within(
                 })
                 .collect::<Vec<_>>()
         })
-        .map(|(p, sc)| (with_height(source, target, p), sc))
         .collect();
+    let lowest = LowestPerCell::of(target);
+    let mut out: Vec<(Pose, f32)> = out.into_par_iter().map(|(p, sc)| (with_height(source, &lowest, p), sc)).collect();
     out.sort_by(|a, b| b.1.total_cmp(&a.1));
     out
 }
 
+/// Plan cells (m) over which [`with_height`] compares the lowest points.
+const HEIGHT_CELL_M: f64 = 1.0;
+
+fn height_cell(x: f64, y: f64) -> (i64, i64) {
+    ((x / HEIGHT_CELL_M).floor() as i64, (y / HEIGHT_CELL_M).floor() as i64)
+}
+
+/// The target's lowest point per plan cell, worked out once for all the
+/// guesses of an alignment (each guess used to hash the whole target again).
+struct LowestPerCell {
+    index: rustc_hash::FxHashMap<(i64, i64), u32>,
+    low: Vec<f64>,
+}
+
+impl LowestPerCell {
+    fn of(target: &RegCloud) -> LowestPerCell {
+        let mut index: rustc_hash::FxHashMap<(i64, i64), u32> = rustc_hash::FxHashMap::default();
+        let mut low: Vec<f64> = Vec::new();
+        for p in &target.pts {
+            let next = low.len() as u32;
+            let i = *index.entry(height_cell(p[0], p[1])).or_insert(next) as usize;
+            if i == low.len() {
+                low.push(f64::INFINITY);
+            }
+            low[i] = low[i].min(p[2]);
+        }
+        LowestPerCell { index, low }
+    }
+}
+
 /// Adds the vertical offset: the median, over plan cells both scans see, of the
 /// difference between their lowest points.
-fn with_height(source: &RegCloud, target: &RegCloud, pose: Pose) -> Pose {
-    let cell = 1.0;
-    let mut low: rustc_hash::FxHashMap<(i64, i64), f64> = rustc_hash::FxHashMap::default();
-    for p in &target.pts {
-        let k = ((p[0] / cell).floor() as i64, (p[1] / cell).floor() as i64);
-        let e = low.entry(k).or_insert(f64::INFINITY);
-        *e = e.min(p[2]);
-    }
-    let mut slow: rustc_hash::FxHashMap<(i64, i64), f64> = rustc_hash::FxHashMap::default();
+fn with_height(source: &RegCloud, target: &LowestPerCell, pose: Pose) -> Pose {
+    // Only the cells the target has count, so the source's lowest is kept
+    // for those alone, by the target's index.
+    let mut slow: Vec<Option<f64>> = vec![None; target.low.len()];
     for p in &source.pts {
         let q = pose * na::Point3::new(p[0], p[1], p[2]);
-        let k = ((q.x / cell).floor() as i64, (q.y / cell).floor() as i64);
-        let e = slow.entry(k).or_insert(f64::INFINITY);
-        *e = e.min(q.z);
+        if let Some(&i) = target.index.get(&height_cell(q.x, q.y)) {
+            let e = &mut slow[i as usize];
+            *e = Some(e.unwrap_or(f64::INFINITY).min(q.z));
+        }
     }
-    let mut d: Vec<f64> = slow.iter().filter_map(|(k, z)| low.get(k).map(|t| t - z)).collect();
+    let mut d: Vec<f64> = slow.iter().zip(&target.low).filter_map(|(z, t)| Some(t - (*z)?)).collect();
     if d.is_empty() {
         return pose;
     }
@@ -296,6 +333,36 @@ fn with_height(source: &RegCloud, target: &RegCloud, pose: Pose) -> Pose {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The 2-D transform is each row's then each column's 1-D transform,
+    /// value for value, at sides that fill the transpose's tiles and that
+    /// do not.
+    #[test]
+    fn the_image_transform_is_the_rows_then_the_columns() {
+        for n in [1, 5, 32, 48, 80] {
+            let f = Fft2::new(n);
+            let image: Vec<Complex32> =
+                (0..n * n).map(|k| Complex32::new(((k * 7919) % 13) as f32 - 6.0, ((k * 31) % 5) as f32)).collect();
+            for inverse in [false, true] {
+                let mut want = image.clone();
+                let one = if inverse { &f.inv } else { &f.fwd };
+                for row in want.chunks_mut(n) {
+                    one.process(row);
+                }
+                for x in 0..n {
+                    let mut col: Vec<Complex32> = (0..n).map(|y| want[y * n + x]).collect();
+                    one.process(&mut col);
+                    for (y, v) in col.into_iter().enumerate() {
+                        want[y * n + x] = v;
+                    }
+                }
+                let mut got = image.clone();
+                f.run(&mut got, inverse);
+                let bits = |v: &[Complex32]| v.iter().map(|c| (c.re.to_bits(), c.im.to_bits())).collect::<Vec<_>>();
+                assert_eq!(bits(&got), bits(&want), "side {n}, inverse {inverse}");
+            }
+        }
+    }
 
     /// Walls of a few buildings (points with level normals), 5 m tall, on an
     /// 80 m plot, and, if `far_m` is given, one more wall that far away.
