@@ -248,18 +248,21 @@ fn align_within(
             // Best yaw near the peak, then several shifts at that yaw: periodic
             // structures (rack bays) give several plausible shifts, which the
             // caller tells apart in 3D.
-            let mut best = (p.0, f32::NEG_INFINITY);
+            // Each yaw's five peaks are kept: the best yaw's are the shifts
+            // (the first peak is the image's highest, whatever the count).
+            let mut best = (p.0, f32::NEG_INFINITY, Vec::new());
             for k in -3..=3 {
                 let y = p.0 + (k as f64 * 0.5).to_radians();
-                let s = correlate(&fine, &f2, &rotate(&src_c, y), 1).first().map(|x| x.1).unwrap_or(0.0);
+                let peaks = correlate(&fine, &f2, &rotate(&src_c, y), 5);
+                let s = peaks.first().map(|x| x.1).unwrap_or(0.0);
                 if s > best.1 {
-                    best = (y, s);
+                    best = (y, s, peaks);
                 }
             }
-            let yaw = best.0;
+            let (yaw, _, shifts) = best;
             let rot = na::UnitQuaternion::from_axis_angle(&Vec3::z_axis(), yaw);
             let rc = rot * Vec3::new(c[0], c[1], 0.0);
-            correlate(&fine, &f2, &rotate(&src_c, yaw), 5)
+            shifts
                 .into_iter()
                 .map(move |(shift, score)| {
                     // First subtract the centroid, rotate, then shift.
@@ -411,6 +414,28 @@ mod tests {
     /// A wall 800 m away widens the plan past the images' sides: the cells
     /// grow (here about 4 and 2 m) instead of the images, and the first guess
     /// still lands within a few cells of the true pose.
+    /// The fine stage takes a yaw's score from its five strongest peaks:
+    /// the first of them is the image's highest, as the one peak asked for
+    /// alone is, at every yaw tried.
+    #[test]
+    fn the_first_of_five_peaks_is_the_highest() {
+        let site = walls(None);
+        let tgt = vertical_structure(&site, 30_000);
+        let src: Vec<[f64; 2]> = tgt.iter().filter(|p| p[0] < 40.0).map(|p| [p[0] - 3.0, p[1] + 2.0]).collect();
+        let mut f = None;
+        let plan = plan_for(&tgt, 40.0, 0.4, FINE_SIDE, &mut f);
+        let f = f.unwrap();
+        for k in -6..=6 {
+            let turned = rotate(&src, (k as f64 * 0.5).to_radians());
+            let one = correlate(&plan, &f, &turned, 1);
+            let five = correlate(&plan, &f, &turned, 5);
+            assert_eq!(one.len(), 1);
+            assert!(five.len() > 1, "yaw step {k}: {five:?}");
+            assert_eq!(five[0].1.to_bits(), one[0].1.to_bits(), "yaw step {k}");
+            assert!(five.windows(2).all(|w| w[0].1 >= w[1].1), "yaw step {k}: {five:?}");
+        }
+    }
+
     #[test]
     fn a_far_wall_grows_the_cells_not_the_images() {
         let truth = Pose::from_parts(
