@@ -251,6 +251,11 @@ fn checks_before_signing(
     if sm.power_lines.iter().any(|l| l.contains(liftplan_plan::SUPPORT_NOT_SEEN)) {
         v.push("where a power line runs: the scans do not show a support it gives (inputs page)".to_string());
     }
+    match sm.other_cranes.len() {
+        0 => {}
+        1 => v.push("the other lift's crane within this one's reach: not checked against it".to_string()),
+        n => v.push(format!("the {n} other lifts' cranes within this one's reach: not checked against them")),
+    }
     match sm.obstacles.len() {
         0 => {}
         1 => v.push("the obstacle placed by hand, where it stands".to_string()),
@@ -1509,6 +1514,10 @@ pub fn document(
         );
     }
     if let Some(said) = plan.summary.other_loads_said() {
+        y += 4.0;
+        y = sign_off_paragraph(&mut d, y, w, &sentence(&said));
+    }
+    if let Some(said) = plan.summary.other_cranes_said() {
         y += 4.0;
         y = sign_off_paragraph(&mut d, y, w, &sentence(&said));
     }

@@ -994,6 +994,7 @@ impl RunSummary {
                     .chain(s.not_critical_line())
                     .chain(s.under_pads_line())
                     .chain(s.other_loads_line())
+                    .chain(s.other_cranes_line())
                     .chain(s.obstacles_line())
                     .chain(s.power_lines_line())
                     .chain(s.line_like_line())
@@ -1096,6 +1097,51 @@ pub fn power_line_boxes(lines: &[PowerLine], task: &LiftTask, s: &Settings, cell
     }
     Ok(out)
 }
+
+/// The other lifts' cranes that lift `k`'s crane could meet, in words:
+/// those set up elsewhere (another place, heading, boom or model than lift
+/// `k`'s) whose slewing axis stands nearer lift `k`'s than the two cranes'
+/// reach together: what of lift `k`'s crane swings and its load's plan
+/// half-diagonal, its clearance, and what of the other crane swings
+/// ([`liftplan_core::crane::CraneSetup::swinging_reach_m`], an upper bound at
+/// any swing, which the other crane's carrier and outriggers, a few metres
+/// from its axis, lie within for any boom or jib). No lift
+/// is planned against another's crane (they may not stand on site at
+/// once): the plan says so, and the engineer settles it.
+pub fn other_cranes(tasks: &[LiftTask], k: usize) -> Vec<String> {
+    let this = &tasks[k];
+    let at = |t: &LiftTask| [t.crane.placement.x_m, t.crane.placement.y_m];
+    let half_diagonal = |t: &LiftTask| 0.5 * t.load.size_m[0].hypot(t.load.size_m[1]);
+    let own_reach = this.crane.swinging_reach_m() + half_diagonal(this) + this.clearance_m;
+    let same_crane = |t: &LiftTask| {
+        let (a, b) = (&t.crane.placement, &this.crane.placement);
+        t.crane.model.name == this.crane.model.name
+            && (a.x_m - b.x_m).hypot(a.y_m - b.y_m) < SAME_PLACE_M
+            && (a.z_m - b.z_m).abs() < SAME_PLACE_M
+            && (a.heading_rad - b.heading_rad).abs() < 1e-9
+            && (a.boom_length_m - b.boom_length_m).abs() < 1e-9
+    };
+    tasks
+        .iter()
+        .enumerate()
+        .filter(|&(j, t)| j != k && !same_crane(t))
+        .filter_map(|(_, t)| {
+            let [x, y] = at(t);
+            let apart = (x - at(this)[0]).hypot(y - at(this)[1]);
+            let together = own_reach + t.crane.swinging_reach_m();
+            (apart < together).then(|| {
+                format!(
+                    "lift {}'s {} at ({x:.2}, {y:.2}) m, {apart:.1} m from this lift's crane (the two reach {together:.1} m together)",
+                    t.id, t.crane.model.name
+                )
+            })
+        })
+        .collect()
+}
+
+/// Two lifts' cranes of one model set up within this of each other (m), at
+/// the same heading and boom, are taken for the same crane.
+const SAME_PLACE_M: f64 = 0.5;
 
 /// How far round its crane (m, in plan) a lift looks for a line no one gave
 /// ([`wires`]): the farthest its hook reaches, and the clearance and
@@ -1321,6 +1367,7 @@ pub fn run(
             on.cog_tolerance_m = task.cog_tolerance_m;
         }
         plan.summary.other_loads = world.others[..lifts_loads].iter().map(|(_, name)| name.clone()).collect();
+        plan.summary.other_cranes = other_cranes(tasks, k);
         plan.summary.obstacles = obstacles.iter().filter(|o| o.during(&task.id)).map(|o| o.said()).collect();
         plan.summary.power_lines = power_lines
             .iter()
@@ -1405,6 +1452,43 @@ pub(crate) fn test_config(task: &LiftTask, at: [f64; 4], rope_span_m: f64) -> li
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Another lift's crane is named where it is set up elsewhere within the
+    /// two cranes' reach, and only then: not the same crane set up again
+    /// for the next lift, nor one too far off to meet, whichever is listed
+    /// first.
+    #[test]
+    fn other_lifts_cranes_within_reach_are_named() {
+        let at = |id: &str, model: &str, x: f64, boom_m: f64| {
+            let mut t = test_lift(model);
+            t.id = id.into();
+            t.crane.placement.x_m = x;
+            t.crane.placement.boom_length_m = boom_m;
+            t
+        };
+        let a = at("A", "ac-700", 0.0, 40.0);
+        let same = at("B", "ac-700", 0.2, 40.0);
+        let reach = a.crane.swinging_reach_m();
+        let half_diagonal = 0.5 * 6.0f64.hypot(3.0);
+        assert!(reach > 40.0 && reach < 60.0, "{reach}");
+        let together = 2.0 * reach + half_diagonal + a.clearance_m;
+        let near = at("C", "ac-700", together - 0.5, 40.0);
+        let far = at("D", "ac-700", together + 0.5, 40.0);
+        let longer_boom = at("E", "ac-700", 0.0, 50.0);
+        let tasks = [a.clone(), same, near, far, longer_boom];
+        let named = other_cranes(&tasks, 0);
+        assert_eq!(named.len(), 2, "{named:?}");
+        let model = &a.crane.model.name;
+        assert!(named[0].starts_with(&format!("lift C's {model} at (")), "{}", named[0]);
+        assert!(named[0].contains(&format!("{:.1} m from this lift's crane", together - 0.5)), "{}", named[0]);
+        assert!(named[1].starts_with(&format!("lift E's {model} at (0.00, 0.00) m, 0.0 m from")), "{}", named[1]);
+        // As D's crane sees it, C's is near and A's too far.
+        let from_far = other_cranes(&tasks, 3);
+        assert_eq!(from_far.len(), 2, "{from_far:?}");
+        assert!(from_far[0].starts_with("lift C's"), "{from_far:?}");
+        assert!(from_far[1].starts_with("lift E's"), "{from_far:?}");
+        assert!(other_cranes(&tasks[..2], 0).is_empty());
+    }
 
     /// Lifts are made in the order listed: during B, A (before it) stands
     /// where A sets it and C (after it) where C picks it up; a lift that

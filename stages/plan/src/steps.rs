@@ -293,6 +293,11 @@ pub struct Summary {
     /// ([`crate::other_loads`]).
     #[serde(default)]
     pub other_loads: Vec<String>,
+    /// The other lifts' cranes, set up elsewhere, that stand within this
+    /// lift's crane's reach ([`crate::other_cranes`]): not checked against
+    /// it. Each in words.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub other_cranes: Vec<String>,
     /// The obstacles placed by hand this lift was planned and checked
     /// against, each in words ([`liftplan_core::obstacle::Obstacle::said`]).
     #[serde(default)]
@@ -437,6 +442,21 @@ impl Summary {
                 self.other_loads.join("; ")
             )
         })
+    }
+
+    /// [`Summary::other_cranes`] said, if there are any.
+    pub fn other_cranes_said(&self) -> Option<String> {
+        (!self.other_cranes.is_empty()).then(|| {
+            format!(
+                "NOT CHECKED AGAINST THE OTHER LIFTS' CRANES, set up where this lift's could meet them: {}; each lift is planned with its own crane alone, so where such a crane stands on site during this lift, keep the two apart (a lift plan of both, the crews' own rules) or move it",
+                self.other_cranes.join("; ")
+            )
+        })
+    }
+
+    /// [`Summary::other_cranes_said`] for the run's output.
+    pub fn other_cranes_line(&self) -> Option<String> {
+        self.other_cranes_said().map(|said| format!("lift {}: {said}", self.lift))
     }
 
     /// [`Summary::obstacles`] said, if there are any.
@@ -661,6 +681,7 @@ pub fn summary(task: &LiftTask, steps: &[Step], verdict: &Verdict) -> Summary {
         coverage: None,
         load_as_scanned: None,
         other_loads: Vec::new(),
+        other_cranes: Vec::new(),
         obstacles: Vec::new(),
         against_model: Vec::new(),
         passes_left_out: Vec::new(),
