@@ -1513,11 +1513,7 @@ pub fn document(
             ),
         );
     }
-    if let Some(said) = plan.summary.other_loads_said() {
-        y += 4.0;
-        y = sign_off_paragraph(&mut d, y, w, &sentence(&said));
-    }
-    if let Some(said) = plan.summary.other_cranes_said() {
+    for said in [plan.summary.other_loads_said(), plan.summary.other_cranes_said()].into_iter().flatten() {
         y += 4.0;
         y = sign_off_paragraph(&mut d, y, w, &sentence(&said));
     }

@@ -1110,24 +1110,24 @@ pub fn power_line_boxes(lines: &[PowerLine], task: &LiftTask, s: &Settings, cell
 /// once): the plan says so, and the engineer settles it.
 pub fn other_cranes(tasks: &[LiftTask], k: usize) -> Vec<String> {
     let this = &tasks[k];
-    let at = |t: &LiftTask| [t.crane.placement.x_m, t.crane.placement.y_m];
-    let half_diagonal = |t: &LiftTask| 0.5 * t.load.size_m[0].hypot(t.load.size_m[1]);
-    let own_reach = this.crane.swinging_reach_m() + half_diagonal(this) + this.clearance_m;
+    let own = &this.crane.placement;
+    let own_reach =
+        this.crane.swinging_reach_m() + 0.5 * this.load.size_m[0].hypot(this.load.size_m[1]) + this.clearance_m;
     let same_crane = |t: &LiftTask| {
-        let (a, b) = (&t.crane.placement, &this.crane.placement);
+        let a = &t.crane.placement;
         t.crane.model.name == this.crane.model.name
-            && (a.x_m - b.x_m).hypot(a.y_m - b.y_m) < SAME_PLACE_M
-            && (a.z_m - b.z_m).abs() < SAME_PLACE_M
-            && (a.heading_rad - b.heading_rad).abs() < 1e-9
-            && (a.boom_length_m - b.boom_length_m).abs() < 1e-9
+            && (a.x_m - own.x_m).hypot(a.y_m - own.y_m) < SAME_PLACE_M
+            && (a.z_m - own.z_m).abs() < SAME_PLACE_M
+            && (a.heading_rad - own.heading_rad).abs() < 1e-9
+            && (a.boom_length_m - own.boom_length_m).abs() < 1e-9
     };
     tasks
         .iter()
         .enumerate()
         .filter(|&(j, t)| j != k && !same_crane(t))
         .filter_map(|(_, t)| {
-            let [x, y] = at(t);
-            let apart = (x - at(this)[0]).hypot(y - at(this)[1]);
+            let (x, y) = (t.crane.placement.x_m, t.crane.placement.y_m);
+            let apart = (x - own.x_m).hypot(y - own.y_m);
             let together = own_reach + t.crane.swinging_reach_m();
             (apart < together).then(|| {
                 format!(
