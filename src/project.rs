@@ -558,7 +558,9 @@ keep = 3                  # runs' outputs each stage keeps in .liftplan/cache (t
 #                              # lifted in (mobile cranes); area_m2: its area facing the
 #                              # wind, else its box's largest side; the plan keeps its
 #                              # clearance with the load swung as far as a gust at that
-#                              # speed can swing it (plan_for_swing = false: plumb)
+#                              # speed can swing it (plan_for_swing = false: plumb), the
+#                              # wind on the hoist rope's falls too where the crane file
+#                              # gives [hook] rope_diameter_mm (or rope_kg_per_m)
 # not_over = [{ name = "control room", corners_m = [[40.0, -10.0], [52.0, -10.0], [52.0, 4.0], [40.0, 4.0]] },
 #             { name = "railway", corners_m = [[-20.0, -30.0], [-14.0, -30.0], [-14.0, 30.0], [-20.0, 30.0]], crane_too = true }]
 #                              # areas the load must never be over (their corners in

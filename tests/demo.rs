@@ -81,7 +81,8 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     let want = 8.0 / liftplan_core::wind::gust_factor(head_m);
     assert!(head_m > 20.0 && head_m < 45.0 && (mean_ms - want).abs() < 0.06, "{head_m} m, {mean_ms} m/s: {cover}");
     // How far the wind at that speed pushes the load off plumb where it
-    // hangs longest: ρ v² A_W / (2 m_H g) per metre, twice that for a
+    // hangs longest: ρ v² (A_W + A_R / 2) / (2 m_H g) per metre, the hoist
+    // rope's 6 falls of 28 mm up to 35 m catching A_R, twice that for a
     // sudden gust, within the demo's 1.0 m clearance.
     let number_after = |text: &str, lead: &str, unit: &str| -> f64 {
         let at = &text[text.find(lead).unwrap_or_else(|| panic!("{lead}: {text}")) + lead.len()..];
@@ -91,7 +92,9 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     let hang_m = number_after(&cover, "m off plumb where it hangs longest in this lift, ", " m below the boom head");
     let swing_m = number_after(&cover, "and a sudden gust can swing it ", " m (tan θ");
     let v_ms = 9.8 * (1.2f64 * 16.0 / 28.8).sqrt();
-    let per_m = 0.5 * 1.25 * v_ms * v_ms * 28.8 / (16_000.0 * 9.80665);
+    let rope_m2 = 6.0 * 0.028 * 35.0 * 1.2;
+    assert!(cover.contains("; the hoist rope's 6 falls of 28 mm, up to 35.0 m below the boom head, catch A_R = 7.1 m² at cW 1.2; at that speed"), "{cover}");
+    let per_m = 0.5 * 1.25 * v_ms * v_ms * (28.8 + rope_m2 / 2.0) / (16_000.0 * 9.80665);
     assert!((off_m - hang_m * per_m).abs() < 0.006 && (swing_m - 2.0 * hang_m * per_m).abs() < 0.006, "{cover}");
     assert!(hang_m > 20.0 && hang_m < head_m && swing_m < 1.0 && !cover.contains("A GUST CAN SWING"), "{cover}");
     // The plan keeps its clearance with the load so swung (the lift gives

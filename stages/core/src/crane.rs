@@ -119,6 +119,12 @@ pub struct HookBlock {
     /// not counted, and said so.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rope_kg_per_m: Option<f64>,
+    /// The hoist rope's diameter (mm), as its data sheet gives it: its falls
+    /// catch the wind ([`crate::wind::RopeInWind`]); none: worked out from
+    /// [`Self::rope_kg_per_m`] at its widest, or, without that, not counted,
+    /// and said so.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rope_diameter_mm: Option<f64>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -398,6 +404,9 @@ impl CraneModel {
         }
         if let Some(w) = self.hook.rope_kg_per_m.filter(|w| !(w.is_finite() && *w > 0.0 && *w <= 100.0)) {
             return Err(format!("hook.rope_kg_per_m must be more than 0 and at most 100 kg/m, found {w}"));
+        }
+        if let Some(d) = self.hook.rope_diameter_mm.filter(|d| !(d.is_finite() && *d > 0.0 && *d <= 200.0)) {
+            return Err(format!("hook.rope_diameter_mm must be more than 0 and at most 200 mm, found {d}"));
         }
         match (self.hook.rope_m, self.hook.rope_lead_m, &self.kind) {
             (Some(_), None, CraneKind::Tower(_)) => {
@@ -1209,6 +1218,12 @@ mod tests {
             let weighed = text.replace("rope_kg_per_m = 3.9", &format!("rope_kg_per_m = {bad}"));
             let e = CraneModel::from_toml(Path::new("c.toml"), &weighed).unwrap_err().to_string();
             assert!(e.contains("hook.rope_kg_per_m must be more than 0 and at most 100 kg/m"), "{bad}: {e}");
+        }
+        assert_eq!(ac.hook.rope_diameter_mm, Some(28.0));
+        for bad in ["0.0", "-28.0", "inf", "201.0"] {
+            let wide = text.replace("rope_diameter_mm = 28.0", &format!("rope_diameter_mm = {bad}"));
+            let e = CraneModel::from_toml(Path::new("c.toml"), &wide).unwrap_err().to_string();
+            assert!(e.contains("hook.rope_diameter_mm must be more than 0 and at most 200 mm"), "{bad}: {e}");
         }
         let tower = builtin_text("tower-hh-60").unwrap();
         let hook_end = tower.find("[hook]").map(|k| k + "[hook]\n".len()).unwrap();

@@ -688,7 +688,36 @@ impl LiftTask {
         // is to be checked only where it is none of them.
         let stated_too = stated.iter().any(|s| (s.value - chart_ms).abs() <= 0.05);
         let other = if stated_too { Vec::new() } else { stated.to_vec() };
-        Ok((crate::wind::PermissibleWind::of(chart_ms, cell, spec, self.load.size_m, self.least_hanging_kg()), other))
+        let w = crate::wind::PermissibleWind::of(chart_ms, cell, spec, self.load.size_m, self.least_hanging_kg());
+        Ok((w.with_rope(self.rope_in_wind()), other))
+    }
+
+    /// The hoist rope's falls in the wind ([`crate::wind::RopeInWind`]): the
+    /// lift's falls, or where it gives none the most the hook block takes;
+    /// the crane file's diameter, or where it gives none the widest a rope
+    /// of its mass per metre is; at the longest rope the lift is planned
+    /// with, whatever the path. Err: why it is not counted, naming what to
+    /// give.
+    pub fn rope_in_wind(&self) -> Result<crate::wind::RopeInWind, String> {
+        let hook = &self.crane.model.hook;
+        let (falls, falls_given) = match (self.falls, hook.max_falls) {
+            (Some(n), _) => (n, true),
+            (None, Some(most)) => (most, false),
+            (None, None) => {
+                return Err("the lift gives no falls (crane falls) and the crane file no most falls (hook.max_falls)"
+                    .to_string());
+            }
+        };
+        let (diameter_mm, diameter_given) = match (hook.rope_diameter_mm, hook.rope_kg_per_m) {
+            (Some(d), _) => (d, true),
+            (None, Some(kg_per_m)) => (crate::wind::RopeInWind::widest_diameter_mm(kg_per_m), false),
+            (None, None) => {
+                return Err(
+                    "the crane file gives neither the rope's diameter nor its mass per metre (hook.rope_diameter_mm, hook.rope_kg_per_m)".to_string()
+                );
+            }
+        };
+        Ok(crate::wind::RopeInWind::new(falls, falls_given, diameter_mm, diameter_given, hook.max_rope_m))
     }
 
     /// Sets [`Self::gust_swing_per_m`] from the lift's `wind`, with the
@@ -2673,6 +2702,48 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         sp.crane.boom_m = None;
         let e = sp.resolve(crate::crane::builtin("tower-hh-60").unwrap()).unwrap_err();
         assert!(e.contains("is a tower crane: its manufacturer's in-service wind rules apply"), "{e}");
+    }
+
+    /// The hoist rope's falls in the wind: the lift's falls or the block's
+    /// most, the crane file's diameter or the widest for its mass, at the
+    /// longest rope the lift is planned with; the swing planned for grows by
+    /// half their area; not counted, and why, where the crane file cannot
+    /// say how wide the rope is or the falls are not known.
+    #[test]
+    fn the_hoist_rope_s_falls_catch_the_wind_too() {
+        let windy = |falls: Option<u32>, diameter_mm: Option<f64>, kg_per_m: Option<f64>, max_falls: Option<u32>| {
+            let mut s = spec();
+            s.crane.falls = falls;
+            s.crane.longest_rope_m = Some(35.0);
+            s.wind = Some(crate::wind::WindSpec { chart_ms: Some(9.8), cw: 1.2, area_m2: None, plan_for_swing: true });
+            let mut model = crate::crane::builtin("ac-700").unwrap();
+            (model.hook.rope_diameter_mm, model.hook.rope_kg_per_m, model.hook.max_falls) =
+                (diameter_mm, kg_per_m, max_falls);
+            s.resolve(model).unwrap()
+        };
+        let t = windy(Some(6), Some(28.0), Some(3.9), Some(10));
+        let r = t.rope_in_wind().unwrap();
+        assert_eq!((r.falls, r.falls_given, r.diameter_mm, r.diameter_given, r.longest_m), (6, true, 28.0, true, 35.0));
+        let (w, _) = t.permissible_wind(&[]).unwrap();
+        assert_eq!(w.rope, Some(r.clone()));
+        assert_eq!(t.gust_swing_per_m, w.gust_swing_per_m());
+        let bare = windy(Some(6), None, None, Some(10));
+        let (plain, _) = bare.permissible_wind(&[]).unwrap();
+        assert_eq!(plain.rope, None);
+        let grown = t.gust_swing_per_m / bare.gust_swing_per_m;
+        assert!((grown - (plain.wind_area_m2 + r.wind_area_m2 / 2.0) / plain.wind_area_m2).abs() < 1e-12, "{grown}");
+        assert!(grown > 1.1, "{grown}");
+        assert_eq!(
+            plain.rope_not_counted.as_deref(),
+            Some(
+                "the crane file gives neither the rope's diameter nor its mass per metre (hook.rope_diameter_mm, hook.rope_kg_per_m)"
+            )
+        );
+        let guessed = windy(None, None, Some(3.9), Some(10)).rope_in_wind().unwrap();
+        assert_eq!((guessed.falls, guessed.falls_given, guessed.diameter_given), (10, false, false));
+        assert!((guessed.diameter_mm - crate::wind::RopeInWind::widest_diameter_mm(3.9)).abs() < 1e-12);
+        let e = windy(None, Some(28.0), None, None).rope_in_wind().unwrap_err();
+        assert_eq!(e, "the lift gives no falls (crane falls) and the crane file no most falls (hook.max_falls)");
     }
 
     /// A lift that gives its wind is planned for the load's swing in a gust:

@@ -41,6 +41,20 @@
 //! chart holds for, `tan θ` is the same for every load: the reduction keeps
 //! `v² A_W / m_H` at the chart's.
 //!
+//! The wind pushes on the hoist rope's falls too ([`RopeInWind`]): `n`
+//! falls of diameter `d` hanging up to `ℓ` below the boom head catch
+//! `A_R = n · d · ℓ · c_R` (a wire rope's drag coefficient [`ROPE_CW`]).
+//! Pushed evenly along its length, a rope of length `r` hanging from the
+//! head leans out at its end by what half that push at the end would give,
+//! so anything hanging `s ≥ r` below the head lies at most
+//! `(F s + f r² / 2) / (m_H g)` off plumb (`f` the push per metre of rope),
+//! and `tan θ = ρ v² (A_W + A_R / 2) / (2 m_H g)` per metre bounds it for
+//! every rope up to `ℓ`: the rope itself, leaning out most at its end, is
+//! covered by its end's. The rope's weight, which steadies it, is left out
+//! of `m_H`, the worse for it; the permissible speed is the manufacturer's
+//! rule's, which counts the load's area alone (the rope is the crane's, in
+//! its chart's own wind calculation).
+//!
 //! This module only works out those speeds. It must not decide whether a lift
 //! may go ahead: the wind on site on the day is the crane driver's to read,
 //! and the manufacturer's wind rules govern.
@@ -54,6 +68,82 @@ pub const CHART_AREA_PER_TONNE_M2: f64 = 1.2;
 
 /// EN 13000's air density for the wind's pressure (kg/m³).
 pub const AIR_DENSITY_KG_M3: f64 = 1.25;
+
+/// A wire rope's drag coefficient (EN 13001-2's and ISO 4302's for ropes).
+pub const ROPE_CW: f64 = 1.2;
+
+/// The least mass per metre a steel wire rope has for its diameter
+/// squared (kg/m per mm²): about 0.0036 for a six-strand rope on a fibre
+/// core, 0.0040 on a steel core, 0.0045 to 0.0052 for the compacted and
+/// rotation-resistant ropes of mobile cranes. Where the crane file gives
+/// the rope's mass per metre and not its diameter, the diameter is worked
+/// out at this, the widest a rope of that mass may be, so its wind is not
+/// under-counted.
+pub const LIGHTEST_ROPE_KG_PER_M_MM2: f64 = 0.0034;
+
+/// The hoist rope's falls in the wind (the module's doc).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RopeInWind {
+    /// The falls counted: the lift's (`crane falls`), or where it gives
+    /// none, the most the hook block's sheaves take (`[hook] max_falls`).
+    pub falls: u32,
+    pub falls_given: bool,
+    /// The rope's diameter (mm).
+    pub diameter_mm: f64,
+    /// Whether the crane file gives it (`[hook] rope_diameter_mm`), or it is
+    /// worked out from the rope's mass per metre
+    /// ([`LIGHTEST_ROPE_KG_PER_M_MM2`]).
+    pub diameter_given: bool,
+    /// The longest rope below the boom head the lift is planned with (m).
+    pub longest_m: f64,
+    /// `falls · diameter · longest_m · ROPE_CW` (m²).
+    pub wind_area_m2: f64,
+}
+
+impl RopeInWind {
+    /// `falls` falls of `diameter_mm` hanging up to `longest_m`.
+    pub fn new(falls: u32, falls_given: bool, diameter_mm: f64, diameter_given: bool, longest_m: f64) -> RopeInWind {
+        RopeInWind {
+            falls,
+            falls_given,
+            diameter_mm,
+            diameter_given,
+            longest_m,
+            wind_area_m2: f64::from(falls) * diameter_mm / 1000.0 * longest_m * ROPE_CW,
+        }
+    }
+
+    /// The diameter of a steel wire rope of `kg_per_m`, at its widest
+    /// ([`LIGHTEST_ROPE_KG_PER_M_MM2`]), in mm.
+    pub fn widest_diameter_mm(kg_per_m: f64) -> f64 {
+        (kg_per_m / LIGHTEST_ROPE_KG_PER_M_MM2).sqrt()
+    }
+
+    /// In words: "the hoist rope's 6 falls of 28 mm, up to 35.0 m below the
+    /// boom head, catch A_R = 7.1 m² at cW 1.2".
+    pub fn said(&self) -> String {
+        let falls = if self.falls_given {
+            format!("{} fall{}", self.falls, if self.falls == 1 { "" } else { "s" })
+        } else {
+            format!(
+                "{} falls (the most the hook block takes, hook.max_falls; the lift gives no crane falls)",
+                self.falls
+            )
+        };
+        let diameter = if self.diameter_given {
+            format!("{:.0} mm", self.diameter_mm)
+        } else {
+            format!(
+                "{:.0} mm (the widest a steel wire rope of its mass per metre is, hook.rope_kg_per_m; the crane file gives no hook.rope_diameter_mm)",
+                self.diameter_mm
+            )
+        };
+        format!(
+            "the hoist rope's {falls} of {diameter}, up to {:.1} m below the boom head, catch A_R = {:.1} m² at cW {ROPE_CW}",
+            self.longest_m, self.wind_area_m2
+        )
+    }
+}
 
 /// EN 13000's 3-second gust at `height_m` above the ground over the
 /// 10-minute mean wind speed at 10 m: (z / 10 m)^0.14 + 0.4, heights under
@@ -144,6 +234,12 @@ pub struct PermissibleWind {
     /// sheave to the load's underside (m), where the plan is known.
     #[serde(default)]
     pub longest_hang_m: Option<f64>,
+    /// The hoist rope's falls in the wind, where counted.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rope: Option<RopeInWind>,
+    /// Why the rope's wind is not counted, where it is not and that was asked.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rope_not_counted: Option<String>,
 }
 
 impl PermissibleWind {
@@ -175,13 +271,28 @@ impl PermissibleWind {
             permissible_ms: reduced.min(chart_ms),
             boom_head_m: None,
             longest_hang_m: None,
+            rope: None,
+            rope_not_counted: None,
         }
     }
 
+    /// This with the hoist rope's falls in the wind, or why they are not
+    /// counted.
+    pub fn with_rope(self, rope: Result<RopeInWind, String>) -> PermissibleWind {
+        let (rope, rope_not_counted) = match rope {
+            Ok(r) => (Some(r), None),
+            Err(why) => (None, Some(why)),
+        };
+        PermissibleWind { rope, rope_not_counted, ..self }
+    }
+
     /// How far off plumb the permissible wind holds the load steadily, per
-    /// metre it hangs below the boom head: `tan θ = ρ v² A_W / (2 m_H g)`.
+    /// metre it hangs below the boom head: `tan θ = ρ v² A_W / (2 m_H g)`,
+    /// with half the hoist rope's area added to `A_W` where it is counted
+    /// (the module's doc).
     pub fn off_plumb_per_m(&self) -> f64 {
-        0.5 * AIR_DENSITY_KG_M3 * self.permissible_ms.powi(2) * self.wind_area_m2 / (self.hook_load_kg * G_M_S2)
+        let area_m2 = self.wind_area_m2 + self.rope.as_ref().map_or(0.0, |r| r.wind_area_m2 / 2.0);
+        0.5 * AIR_DENSITY_KG_M3 * self.permissible_ms.powi(2) * area_m2 / (self.hook_load_kg * G_M_S2)
     }
 
     /// How far a sudden gust at the permissible wind can swing what hangs,
@@ -232,15 +343,21 @@ impl PermissibleWind {
             ),
             _ => String::new(),
         };
+        let rope = match (&self.rope, &self.rope_not_counted) {
+            (Some(r), _) => format!("; {}", r.said()),
+            (None, Some(why)) => format!("; the wind on the hoist rope is not counted: {why}"),
+            (None, None) => String::new(),
+        };
+        let formula = if self.rope.is_some() { "ρ v² (A_W + A_R / 2) / (2 m_H g)" } else { "ρ v² A_W / (2 m_H g)" };
         let off_plumb = match (self.longest_hang_m, self.off_plumb_m()) {
             (Some(l), Some(x)) => format!(
-                "; at that speed the wind holds the load {x:.2} m off plumb where it hangs longest in this lift, {l:.1} m below the boom head, and a sudden gust can swing it {:.2} m (tan θ = ρ v² A_W / (2 m_H g), ρ = {AIR_DENSITY_KG_M3} kg/m³)",
+                "; at that speed the wind holds the load {x:.2} m off plumb where it hangs longest in this lift, {l:.1} m below the boom head, and a sudden gust can swing it {:.2} m (tan θ = {formula}, ρ = {AIR_DENSITY_KG_M3} kg/m³)",
                 2.0 * x
             ),
             _ => String::new(),
         };
         format!(
-            "{}: the chart's {:.1} m/s{from} holds for up to {CHART_AREA_PER_TONNE_M2:.1} m² of wind area per tonne of hook load; this load catches {:.1} m² ({area} at cW {:.2}) on {:.1} t, {per_tonne:.2} m² per tonne (v = v_chart · √(1.2 m²/t · m_H / A_W)){at_height}{off_plumb}{also}; the crane manufacturer's wind rules govern",
+            "{}: the chart's {:.1} m/s{from} holds for up to {CHART_AREA_PER_TONNE_M2:.1} m² of wind area per tonne of hook load; this load catches {:.1} m² ({area} at cW {:.2}) on {:.1} t, {per_tonne:.2} m² per tonne (v = v_chart · √(1.2 m²/t · m_H / A_W)){at_height}{rope}{off_plumb}{also}; the crane manufacturer's wind rules govern",
             if self.reduced() {
                 format!("AT MOST {:.1} m/s FOR THIS LOAD, less than the chart's", self.permissible_ms)
             } else {
@@ -347,6 +464,66 @@ mod tests {
             vessel.said().contains(&format!("; at that speed the wind holds the load {x:.2} m off plumb where it hangs longest in this lift, 30.0 m below the boom head, and a sudden gust can swing it {:.2} m (tan θ = ρ v² A_W / (2 m_H g), ρ = 1.25 kg/m³); the crane manufacturer's", 2.0 * x)),
             "{}",
             vessel.said()
+        );
+    }
+
+    /// The hoist rope's falls add half their area to what pushes the load
+    /// off plumb, and that bounds, worked out step by step down a rope
+    /// pushed along its length (its weight in it or not), how far the rope,
+    /// the hook and what hangs below lie off plumb, for every rope up to the
+    /// longest: met at the end of the longest rope with its weight left out.
+    #[test]
+    fn the_hoist_rope_s_wind_is_half_its_area_at_the_load() {
+        let spec = WindSpec { chart_ms: Some(9.8), cw: 1.2, area_m2: Some(10.0), plan_for_swing: true };
+        let plain = PermissibleWind::of(9.8, None, &spec, [3.0, 3.0, 3.0], 20_000.0);
+        let rope = RopeInWind::new(6, true, 28.0, true, 35.0);
+        assert!((rope.wind_area_m2 - 6.0 * 0.028 * 35.0 * 1.2).abs() < 1e-12);
+        let roped = plain.clone().with_rope(Ok(rope.clone()));
+        let ratio = roped.off_plumb_per_m() / plain.off_plumb_per_m();
+        assert!((ratio - (12.0 + rope.wind_area_m2 / 2.0) / 12.0).abs() < 1e-12, "{ratio}");
+        assert_eq!(roped.permissible_ms, plain.permissible_ms);
+        // Down the rope: the push per metre of rope and at its end, the
+        // weight at its end and (or not) the rope's own, 3.9 kg/m a fall.
+        let q = 0.5 * AIR_DENSITY_KG_M3 * roped.permissible_ms.powi(2);
+        let (f_per_m, end_n, weight_n) = (q * rope.wind_area_m2 / 35.0, q * 12.0, 20_000.0 * G_M_S2);
+        let per_m = roped.off_plumb_per_m();
+        for rope_m in [2.0, 10.0, 20.0, 35.0] {
+            for rope_kg_per_m in [0.0, 6.0 * 3.9] {
+                let (steps, mut off_m) = (20_000, 0.0);
+                let ds = rope_m / steps as f64;
+                for k in 0..steps {
+                    let below_m = rope_m - (k as f64 + 0.5) * ds;
+                    let across = end_n + f_per_m * below_m;
+                    let down = weight_n + rope_kg_per_m * G_M_S2 * below_m;
+                    off_m += across / down * ds;
+                    // Along the rope: within its end's bound.
+                    assert!(off_m <= per_m * rope_m + 1e-9, "{rope_m} m: {off_m} at {k}");
+                }
+                // The hook, and 5 m below it, the load's underside.
+                for hang_m in [rope_m, rope_m + 5.0] {
+                    let at_m = off_m + (hang_m - rope_m) * end_n / weight_n;
+                    assert!(at_m <= per_m * hang_m + 1e-9, "{rope_m} m, {hang_m} m: {at_m}");
+                    if rope_m == 35.0 && hang_m == rope_m && rope_kg_per_m == 0.0 {
+                        assert!((at_m - per_m * hang_m).abs() < 1e-9 * hang_m, "{at_m} {}", per_m * hang_m);
+                    }
+                }
+            }
+        }
+        // In words, with the formula it is worked out by.
+        let mut w = roped.clone();
+        w.longest_hang_m = Some(40.0);
+        let said = w.said();
+        assert!(said.contains("; the hoist rope's 6 falls of 28 mm, up to 35.0 m below the boom head, catch A_R = 7.1 m² at cW 1.2; at that speed the wind holds the load"), "{said}");
+        assert!(said.contains("(tan θ = ρ v² (A_W + A_R / 2) / (2 m_H g), ρ = 1.25 kg/m³)"), "{said}");
+        let guessed = RopeInWind::new(10, false, RopeInWind::widest_diameter_mm(3.9), false, 35.0);
+        assert!((guessed.diameter_mm - 33.87).abs() < 0.01, "{}", guessed.diameter_mm);
+        assert!(guessed.said().starts_with("the hoist rope's 10 falls (the most the hook block takes, hook.max_falls; the lift gives no crane falls) of 34 mm (the widest a steel wire rope of its mass per metre is"), "{}", guessed.said());
+        let unknown = plain.clone().with_rope(Err("the crane file gives neither".into()));
+        assert_eq!(unknown.off_plumb_per_m(), plain.off_plumb_per_m());
+        assert!(
+            unknown.said().contains("; the wind on the hoist rope is not counted: the crane file gives neither"),
+            "{}",
+            unknown.said()
         );
     }
 

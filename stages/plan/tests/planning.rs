@@ -28,12 +28,13 @@ liftoff_m = 0.5
     toml::from_str(&text).unwrap()
 }
 
-/// The built-in all-terrain crane with its hoist rope not weighed: these
-/// tests set their gross loads by hand (the skid, its rigging and the block,
-/// 8.7 t), and the rope's weight has a test of its own.
+/// The built-in all-terrain crane with its hoist rope neither weighed nor
+/// in the wind: these tests set their gross loads and swings by hand (the
+/// skid, its rigging and the block, 8.7 t), and the rope's weight and wind
+/// have tests of their own.
 fn ac700() -> liftplan_core::crane::CraneModel {
     let mut model = builtin("ac-700").unwrap();
-    model.hook.rope_kg_per_m = None;
+    (model.hook.rope_kg_per_m, model.hook.rope_diameter_mm) = (None, None);
     model
 }
 
