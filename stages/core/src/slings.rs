@@ -634,7 +634,7 @@ impl SlingCheck {
             (None, _) => String::new(),
         };
         format!(
-            "; the worst with the centre of gravity within {:.2} m along x and y (load cog_tolerance_m, searched over that square; {worst}), the lengths for it as given{tilt}",
+            "; the worst with the centre of gravity within {:.2} m along x and y (load cog_tolerance_m, the worst over that square worked out; {worst}), the lengths for it as given{tilt}",
             self.cog_tolerance_m
         )
     }
@@ -842,24 +842,57 @@ pub fn check(
 /// corners and edges among them.
 pub const COG_SAMPLES: usize = 9;
 
-/// How many times [`check_within`] halves its step about each of the worst
-/// places it found, looking for a worse one nearby.
-const COG_REFINE_STEPS: usize = 24;
-
 /// [`check`] with the centre of gravity anywhere within `cog_tolerance_m`
 /// of `cog_m` along the load's x and y (a square in plan): the check at
 /// `cog_m` (the legs' lengths, where the hook or the lug hangs: what the
 /// rigging is made for), with the most on a leg, the steepest leg and the
-/// spreader's top legs the worst found over the square, each place worked
-/// out as [`check`] does, with the hook over it (the legs' pulls follow the
-/// centre of gravity; the small tilt of a load rigged for another is not
-/// modelled). The places: [`COG_SAMPLES`] x [`COG_SAMPLES`] across the
-/// square, and where its edges cross the line through two lift points (four
-/// legs, one slack, pull hardest where the centre of gravity lies on such a
-/// line: the two legs there carry it all); then about the worst of them a
-/// search that halves its step [`COG_REFINE_STEPS`] times, for the worst
-/// between the places (the most on a leg is not always at a corner). Refused
-/// where the legs cannot carry the load at one of them, saying where.
+/// spreader's top legs the worst over the square, each place worked out as
+/// [`check`] does, with the hook over it (the legs' pulls follow the centre
+/// of gravity; the small tilt of a load rigged for another is not
+/// modelled). Refused where the legs cannot carry the load at one of the
+/// places, saying where.
+///
+/// The worst is worked out, not searched for: it lies at one of the places
+/// [`worst_places`] lists, where the check is made, besides
+/// [`COG_SAMPLES`] x [`COG_SAMPLES`] places across the square (its corners
+/// among them). Why those places hold it:
+///
+/// - A leg's pull, where a set of legs meets at one hook `H` high over
+///   `h` in plan (over the centre of gravity; over a spreader's and the
+///   load's together, on a beam's line: affine in the centre of gravity's
+///   place either way) and carries `W`: the pulls balance the load, so the legs'
+///   pulls over their lengths, `t_k = T_k / L_k`, weigh their lift points'
+///   places in plan to `h` (barycentric weights `μ_k`, affine in `h`, along
+///   the line for two legs) and `t_k = W μ_k / D` with `D = H - Σ μ_k z_k`
+///   (affine, above zero where they carry it), so `T_k = W μ_k L_k / D`,
+///   and `L_k`, the leg's length, is convex in `h`. Along a line on which
+///   `μ_k` stays the same, `L_k / D` is quasi-convex (its sublevel sets,
+///   `L_k ≤ c D`, are convex), so the pull is most at the line's ends: over
+///   a convex region, on its edge.
+/// - The regions: the whole square, where all legs carry (one leg, two,
+///   three, a beam's top legs; where they cannot all carry at some place of
+///   the square, they cannot at one of its corners, the grid's, since the
+///   places where they can are convex); four legs, one slack: each three
+///   carry within their triangle, whose edges are lines through two lift
+///   points, so a leg's most over the square lies on the square's edges or
+///   on those lines within it.
+/// - On each such segment the pull is `μ(s) √q(s) / D(s)` (μ, D affine, q
+///   quadratic in `s`): most at the segment's ends (the square's corners,
+///   where a line crosses its edges, a lift point within it) or where its
+///   derivative is zero, a root of a cubic. The pull across a spreader's
+///   top leg (what presses the spreader) is alike, `q` without the height.
+/// - Plumb legs from a frame's pins share the load by their triangle's
+///   barycentric weights, affine: most at a corner of the region, the
+///   square's, where a line through two lift points crosses its edges, a
+///   lift point within it. A beam's two plumb legs by the lever rule,
+///   affine: at a corner.
+/// - A leg's angle from the vertical grows with its run in plan, convex in
+///   the hook's place, affine in the centre of gravity's: most at a corner.
+///
+/// So the worst is found to the rounding of the roots and of the check
+/// itself; the test `no_place_finds_more_than_the_worst_worked_out` checks
+/// it against 101 x 101 places over the square and 2001 along each edge, on
+/// random riggings.
 pub fn check_within(
     slings: &Slings,
     load_kg: f64,
@@ -885,75 +918,284 @@ pub fn check_within(
             )
         })
     };
-    let within = |[x, y]: [f64; 2]| [x.clamp(cog_m[0] - tol, cog_m[0] + tol), y.clamp(cog_m[1] - tol, cog_m[1] + tol)];
-    // The grid, and where the square's edges cross a line through two lift points.
+    // The grid first: its corners show where the legs cannot carry it.
     let across = |k: usize| -tol + 2.0 * tol * k as f64 / (COG_SAMPLES - 1) as f64;
-    let mut places: Vec<[f64; 2]> = (0..COG_SAMPLES * COG_SAMPLES)
-        .map(|k| [cog_m[0] + across(k % COG_SAMPLES), cog_m[1] + across(k / COG_SAMPLES)])
-        .collect();
-    let pts = &slings.lift_points_m;
-    for (i, a) in pts.iter().enumerate() {
-        for b in &pts[i + 1..] {
-            places.extend(edge_crossings([a[0], a[1]], [b[0], b[1]], [cog_m[0], cog_m[1]], tol));
-        }
-    }
-    // What is searched for, by number: the most on a leg, on a spreader's
-    // top leg, then on each leg (for its shackle, whose rating may differ
-    // by how far its leg pulls out of line) and each top leg (the rigging
-    // page gives each one's most).
-    let legs = pts.len();
-    let top_legs = if slings.spreader.as_ref().is_some_and(|s| s.top_leg_wll_kg.is_some()) { legs } else { 0 };
-    let objectives = 2 + legs + top_legs;
-    let objective = |c: &SlingCheck, o: usize| -> f64 {
-        let top = c.spreader.as_ref().and_then(|s| s.top.as_ref());
-        match o {
-            0 => c.max_leg_kg,
-            1 => top.map_or(0.0, |t| t.max_leg_kg),
-            k if k < 2 + legs => c.leg_most_kg.get(k - 2).copied().unwrap_or(0.0),
-            k => top.and_then(|t| t.leg_most_kg.get(k - 2 - legs)).copied().unwrap_or(0.0),
-        }
-    };
-    let mut found: Vec<([f64; 2], Vec<f64>)> = Vec::with_capacity(places.len());
-    for p in places {
-        let c = at(p)?;
-        found.push((p, (0..objectives).map(|o| objective(&c, o)).collect()));
-        worst_of(&mut worst, &c, p);
-    }
-    // About the worst few of each, a search for worse between the places.
-    let first_step = 2.0 * tol / (COG_SAMPLES - 1) as f64;
-    for o in 0..objectives {
-        found.sort_by(|a, b| b.1[o].total_cmp(&a.1[o]));
-        for (start, kg) in found.iter().take(4) {
-            let (mut best, mut best_kg, mut step) = (*start, kg[o], first_step);
-            if best_kg == 0.0 {
-                break;
-            }
-            for _ in 0..COG_REFINE_STEPS {
-                let mut moved = false;
-                for [dx, dy] in [
-                    [1.0, 0.0],
-                    [-1.0, 0.0],
-                    [0.0, 1.0],
-                    [0.0, -1.0],
-                    [1.0, 1.0],
-                    [1.0, -1.0],
-                    [-1.0, 1.0],
-                    [-1.0, -1.0],
-                ] {
-                    let p = within([best[0] + dx * step, best[1] + dy * step]);
-                    let c = at(p)?;
-                    worst_of(&mut worst, &c, p);
-                    if objective(&c, o) > best_kg {
-                        (best, best_kg, moved) = (p, objective(&c, o), true);
-                    }
-                }
-                if !moved {
-                    step /= 2.0;
-                }
-            }
-        }
+    let grid = (0..COG_SAMPLES * COG_SAMPLES)
+        .map(|k| [cog_m[0] + across(k % COG_SAMPLES), cog_m[1] + across(k / COG_SAMPLES)]);
+    for p in grid.chain(worst_places(slings, load_kg, size_m, cog_m, tol, rigging_height_m)) {
+        worst_of(&mut worst, &at(p)?, p);
     }
     Ok(worst)
+}
+
+/// Legs meeting at one hook, for [`worst_places`]: the load's own legs, or
+/// a spreader's top legs.
+struct LegsToOneHook {
+    /// Where they take hold, in the load's frame (m).
+    points: Vec<[f64; 3]>,
+    /// The hook's height in that frame (m).
+    hook_z: f64,
+    /// The load's share of what the legs carry (1 without a spreader) and
+    /// the spreader's centre of gravity in plan: the hook hangs over their
+    /// joint centre of gravity,
+    load_share: f64,
+    own_centre: [f64; 2],
+    /// and a beam's over its line (a point on it, its unit direction).
+    onto_line: Option<([f64; 2], [f64; 2])>,
+    /// Whether the pull across (what a spreader's top legs press it with)
+    /// is worked out too.
+    across: bool,
+}
+
+impl LegsToOneHook {
+    /// The hook's place in plan for the centre of gravity at `cog`.
+    fn hook(&self, cog: [f64; 2]) -> [f64; 2] {
+        let joint = [0, 1].map(|a| self.load_share * cog[a] + (1.0 - self.load_share) * self.own_centre[a]);
+        match self.onto_line {
+            Some((a, dir)) => {
+                let along = (joint[0] - a[0]) * dir[0] + (joint[1] - a[1]) * dir[1];
+                [a[0] + dir[0] * along, a[1] + dir[1] * along]
+            }
+            None => joint,
+        }
+    }
+
+    /// The centre of gravity's place for which the hook hangs at `hook`
+    /// (not for a beam, whose hook keeps to its line).
+    fn cog_for(&self, hook: [f64; 2]) -> [f64; 2] {
+        [0, 1].map(|a| (hook[a] - (1.0 - self.load_share) * self.own_centre[a]) / self.load_share)
+    }
+}
+
+/// The places of the centre of gravity within `tol` of `cog_m` (plan) at
+/// which the most on each leg of `slings`, on each of a spreader's top legs
+/// and across them, may lie, besides the square's corners
+/// ([`check_within`] says why): on the square's edges and on the lines
+/// through two lift points where four legs meet (or hang plumb from a
+/// frame), their ends and where the pull's derivative along them is zero;
+/// and the lift points within the square.
+fn worst_places(
+    slings: &Slings,
+    load_kg: f64,
+    size_m: [f64; 3],
+    cog_m: [f64; 3],
+    tol: f64,
+    rigging_height_m: f64,
+) -> Vec<[f64; 2]> {
+    let pts = &slings.lift_points_m;
+    let hook_z = size_m[2] / 2.0 + rigging_height_m;
+    let plan = |p: &[f64; 3]| [p[0], p[1]];
+    let mut sets = Vec::new();
+    let mut places: Vec<[f64; 2]> = Vec::new();
+    match &slings.spreader {
+        None if pts.len() >= 2 => sets.push(LegsToOneHook {
+            points: pts.clone(),
+            hook_z,
+            load_share: 1.0,
+            own_centre: [0.0; 2],
+            onto_line: None,
+            across: false,
+        }),
+        None => {}
+        Some(s) => {
+            let pins_z = hook_z - s.below_hook_m;
+            let load_share = load_kg / (load_kg + s.mass_kg);
+            let pins: Vec<[f64; 3]> = pts.iter().map(|p| [p[0], p[1], pins_z]).collect();
+            let n = pts.len() as f64;
+            let centre = [pts.iter().map(|p| p[0]).sum::<f64>() / n, pts.iter().map(|p| p[1]).sum::<f64>() / n];
+            // A frame's plumb legs share by their triangles: the lift
+            // points within the square are corners of them.
+            places.extend(pts.iter().map(plan));
+            if s.top_leg_wll_kg.is_some() && pts.len() >= 2 {
+                let onto_line = (s.width_m.is_none()).then(|| {
+                    let along = [pts[1][0] - pts[0][0], pts[1][1] - pts[0][1]];
+                    let n = along[0].hypot(along[1]).max(1e-12);
+                    (plan(&pts[0]), [along[0] / n, along[1] / n])
+                });
+                sets.push(LegsToOneHook {
+                    points: pins,
+                    hook_z,
+                    load_share,
+                    own_centre: centre,
+                    onto_line,
+                    across: true,
+                });
+            }
+        }
+    }
+    let [cx, cy] = [cog_m[0], cog_m[1]];
+    // Where the square's edges cross a line through two lift points: a
+    // corner of the region where three of four legs carry, or three of a
+    // frame's plumb legs.
+    for (i, a) in pts.iter().enumerate() {
+        for b in &pts[i + 1..] {
+            places.extend(edge_crossings(plan(a), plan(b), [cx, cy], tol));
+        }
+    }
+    let corners = [[cx - tol, cy - tol], [cx + tol, cy - tol], [cx + tol, cy + tol], [cx - tol, cy + tol]];
+    for set in &sets {
+        let mut segments: Vec<[[f64; 2]; 2]> = (0..4).map(|k| [corners[k], corners[(k + 1) % 4]]).collect();
+        if set.points.len() == 4 && set.onto_line.is_none() && set.load_share > 0.0 {
+            for (i, a) in set.points.iter().enumerate() {
+                places.push(set.cog_for(plan(a)));
+                for b in &set.points[i + 1..] {
+                    let ends = edge_crossings(set.cog_for(plan(a)), set.cog_for(plan(b)), [cx, cy], tol);
+                    if let (Some(first), Some(last)) = (ends.first(), ends.last()) {
+                        // The crossings lie on one line: its farthest two.
+                        let far = ends.iter().fold(*last, |far, p| {
+                            let d = |q: &[f64; 2]| (q[0] - first[0]).hypot(q[1] - first[1]);
+                            if d(p) > d(&far) { *p } else { far }
+                        });
+                        places.extend([*first, far]);
+                        segments.push([*first, far]);
+                    }
+                }
+            }
+        }
+        for [h0, h1] in segments {
+            for s in pull_turning_points(set, set.hook(h0), set.hook(h1)) {
+                places.push([h0[0] + s * (h1[0] - h0[0]), h0[1] + s * (h1[1] - h0[1])]);
+            }
+        }
+    }
+    // Those on the square's edges kept there, not lost to the rounding;
+    // lift points and the like outside it dropped.
+    let slack = 1e-9 * tol.max(1.0);
+    places.retain(|p| (p[0] - cx).abs() <= tol + slack && (p[1] - cy).abs() <= tol + slack);
+    for p in &mut places {
+        *p = [p[0].clamp(cx - tol, cx + tol), p[1].clamp(cy - tol, cy + tol)];
+    }
+    places
+}
+
+/// Where between 0 and 1 along the hook's path from `hook0` to `hook1`
+/// (plan) the pull on one of `set`'s legs, or across it, has a zero
+/// derivative, for each way its legs may carry (two, three, or any three of
+/// four) ([`check_within`]: the roots of a cubic).
+fn pull_turning_points(set: &LegsToOneHook, hook0: [f64; 2], hook1: [f64; 2]) -> Vec<f64> {
+    let pts = &set.points;
+    let ways: Vec<Vec<usize>> = match pts.len() {
+        2 => vec![vec![0, 1]],
+        3 => vec![vec![0, 1, 2]],
+        4 => vec![vec![1, 2, 3], vec![0, 2, 3], vec![0, 1, 3], vec![0, 1, 2]],
+        _ => Vec::new(),
+    };
+    let mut out = Vec::new();
+    for way in ways {
+        let xy: Vec<[f64; 2]> = way.iter().map(|&k| [pts[k][0], pts[k][1]]).collect();
+        let (Some(w0), Some(w1)) = (plan_weights(&xy, hook0), plan_weights(&xy, hook1)) else { continue };
+        let depth = |w: &[f64]| set.hook_z - way.iter().zip(w).map(|(&k, m)| m * pts[k][2]).sum::<f64>();
+        let d = [depth(&w0), depth(&w1) - depth(&w0)];
+        let step = [hook1[0] - hook0[0], hook1[1] - hook0[1]];
+        for (j, &k) in way.iter().enumerate() {
+            let mu = [w0[j], w1[j] - w0[j]];
+            let from = [hook0[0] - pts[k][0], hook0[1] - pts[k][1]];
+            let drop_m = set.hook_z - pts[k][2];
+            for height in if set.across { vec![drop_m, 0.0] } else { vec![drop_m] } {
+                let q = [
+                    from[0] * from[0] + from[1] * from[1] + height * height,
+                    2.0 * (from[0] * step[0] + from[1] * step[1]),
+                    step[0] * step[0] + step[1] * step[1],
+                ];
+                // d/ds of μ √q / D is zero where 2 μ' q D + μ q' D - 2 μ q D' is.
+                let q_d = poly_mul(&q, &d);
+                let dq = [q[1], 2.0 * q[2]];
+                let mut cubic = [0.0; 4];
+                for (c, v) in cubic.iter_mut().zip(q_d.iter().map(|v| 2.0 * mu[1] * v)) {
+                    *c += v;
+                }
+                for (c, v) in cubic.iter_mut().zip(poly_mul(&poly_mul(&mu, &dq), &d)) {
+                    *c += v;
+                }
+                for (c, v) in cubic.iter_mut().zip(poly_mul(&mu, &q)) {
+                    *c -= 2.0 * d[1] * v;
+                }
+                out.extend(roots_within_0_1(&cubic));
+            }
+        }
+    }
+    out
+}
+
+/// The barycentric weights of `p` among the points `xy` in plan (two: along
+/// the line through them), whatever their sign; `None` where the points
+/// coincide or lie in a line.
+fn plan_weights(xy: &[[f64; 2]], p: [f64; 2]) -> Option<Vec<f64>> {
+    match xy {
+        [a, b] => {
+            let along = [b[0] - a[0], b[1] - a[1]];
+            let n2 = along[0] * along[0] + along[1] * along[1];
+            (n2 > 1e-18).then(|| {
+                let t = ((p[0] - a[0]) * along[0] + (p[1] - a[1]) * along[1]) / n2;
+                vec![1.0 - t, t]
+            })
+        }
+        [a, b, c] => {
+            let det = (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]);
+            (det.abs() > 1e-9).then(|| {
+                let wb = ((p[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (p[1] - a[1])) / det;
+                let wc = ((b[0] - a[0]) * (p[1] - a[1]) - (p[0] - a[0]) * (b[1] - a[1])) / det;
+                vec![1.0 - wb - wc, wb, wc]
+            })
+        }
+        _ => None,
+    }
+}
+
+/// The product of two polynomials (coefficients from the constant up).
+fn poly_mul(a: &[f64], b: &[f64]) -> Vec<f64> {
+    let mut out = vec![0.0; a.len() + b.len() - 1];
+    for (i, x) in a.iter().enumerate() {
+        for (j, y) in b.iter().enumerate() {
+            out[i + j] += x * y;
+        }
+    }
+    out
+}
+
+/// The real roots strictly between 0 and 1 of the cubic `c` (coefficients
+/// from the constant up): its sign changes over 64 equal steps and at its
+/// own turning points, each narrowed by halving to the rounding; a root it
+/// touches without crossing is not one of a turning point of the pull.
+fn roots_within_0_1(c: &[f64; 4]) -> Vec<f64> {
+    let scale = c.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    if !(scale > 0.0 && scale.is_finite()) {
+        return Vec::new();
+    }
+    let p = |s: f64| ((c[3] * s + c[2]) * s + c[1]) * s + c[0];
+    let mut cuts: Vec<f64> = (0..=64).map(|k| k as f64 / 64.0).collect();
+    // The cubic's turning points: 3 c3 s² + 2 c2 s + c1 = 0.
+    let (a, b, k) = (3.0 * c[3], 2.0 * c[2], c[1]);
+    if a.abs() > 1e-12 * scale {
+        let disc = b * b - 4.0 * a * k;
+        if disc >= 0.0 {
+            let r = disc.sqrt();
+            cuts.extend([(-b - r) / (2.0 * a), (-b + r) / (2.0 * a)]);
+        }
+    } else if b.abs() > 0.0 {
+        cuts.push(-k / b);
+    }
+    cuts.retain(|s| (0.0..=1.0).contains(s));
+    cuts.sort_by(f64::total_cmp);
+    let mut roots = Vec::new();
+    for w in cuts.windows(2) {
+        let (mut lo, mut hi) = (w[0], w[1]);
+        let (plo, phi) = (p(lo), p(hi));
+        if plo == 0.0 && lo > 0.0 {
+            roots.push(lo);
+        }
+        if plo.signum() * phi.signum() < 0.0 {
+            for _ in 0..80 {
+                let mid = 0.5 * (lo + hi);
+                if mid <= lo || mid >= hi {
+                    break;
+                }
+                if p(mid).signum() == plo.signum() { lo = mid } else { hi = mid }
+            }
+            roots.push(0.5 * (lo + hi));
+        }
+    }
+    roots
 }
 
 /// How far off level a load hangs on one or two legs (a spreader beam's
@@ -1970,7 +2212,7 @@ mod tests {
             .map(|cog| check(&legs, 12_000.0, size, cog, 3.0).unwrap())
             .fold(0.0f64, |m, c| m.max(c.max_leg_kg));
         assert!(finest <= c.max_leg_kg + 1e-9, "{finest} {}", c.max_leg_kg);
-        assert!(c.said().contains("the worst with the centre of gravity within 1.00 m along x and y (load cog_tolerance_m, searched over that square; the most on a leg with it at ("), "{}", c.said());
+        assert!(c.said().contains("the worst with the centre of gravity within 1.00 m along x and y (load cog_tolerance_m, the worst over that square worked out; the most on a leg with it at ("), "{}", c.said());
         // Lift points 2 m apart with the centre of gravity 0.9 m along: known
         // to 0.2 m, it may lie beyond them.
         let close =
@@ -2019,6 +2261,167 @@ mod tests {
         // The tilt's bound over the hook's height on four legs.
         let four = check_within(&at(-0.5, 4), 12_000.0, size, [0.0; 3], 0.2, 4.0).unwrap();
         assert!((four.tilt_deg.unwrap() - (0.2 * 2.0f64.sqrt()).atan2(5.0).to_degrees()).abs() < 1e-9);
+    }
+
+    /// The turning points of a leg's pull along a line: two legs 10 m apart
+    /// at one height, the hook 3 m above them and 0.5 m off their line, the
+    /// near leg's pull W (n - s) √(s² + k²) / (n v) (s along the line from
+    /// it, k² = 0.5² + 3²) is most at s = (n + √(n² - 8k²)) / 4 and least
+    /// at (n - √(n² - 8k²)) / 4, by hand; both found, to the rounding.
+    #[test]
+    fn a_leg_s_pull_turns_where_its_cubic_says() {
+        let set = LegsToOneHook {
+            points: vec![[-5.0, 0.0, 1.0], [5.0, 0.0, 1.0]],
+            hook_z: 4.0,
+            load_share: 1.0,
+            own_centre: [0.0; 2],
+            onto_line: None,
+            across: false,
+        };
+        let (n, k2) = (10.0f64, 0.25 + 9.0);
+        let (most, least) = ((n + (n * n - 8.0 * k2).sqrt()) / 4.0, (n - (n * n - 8.0 * k2).sqrt()) / 4.0);
+        // Along the line 0.5 m off, from 0.5 m to 9.5 m from the first point.
+        let found: Vec<f64> =
+            pull_turning_points(&set, [-4.5, 0.5], [4.5, 0.5]).into_iter().map(|s| 0.5 + 9.0 * s).collect();
+        for want in [most, least, n - most, n - least] {
+            assert!(found.iter().any(|s| (s - want).abs() < 1e-9), "{want}: {found:?}");
+        }
+        let pull = |s: f64| (n - s) * (s * s + k2).sqrt();
+        assert!(pull(most) > pull(most - 1e-3) && pull(most) > pull(most + 1e-3));
+        // A cubic's roots within 0 and 1, and none of one that only touches 0.
+        let roots = roots_within_0_1(&[-0.042, 0.41, -1.2, 1.0]);
+        assert_eq!(roots.len(), 3, "{roots:?}");
+        for (r, want) in roots.iter().zip([0.2, 0.3, 0.7]) {
+            assert!((r - want).abs() < 1e-12, "{roots:?}");
+        }
+        assert!(roots_within_0_1(&[0.3, -1.0, 1.0, 0.0]).is_empty());
+        assert!(roots_within_0_1(&[0.0; 4]).is_empty());
+    }
+
+    /// Over random riggings (two, three and four legs to the hook, their
+    /// lift points at different heights; spreader beams and frames with top
+    /// legs), no place of a 101 x 101 grid over the tolerance's square, nor
+    /// of 2001 along each of its edges, finds more on a leg, on a top leg,
+    /// across the top legs, or a steeper leg, than [`check_within`] does;
+    /// and where the legs cannot carry the load at a place of the grid, it
+    /// refuses.
+    #[test]
+    fn no_place_finds_more_than_the_worst_worked_out() {
+        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        let mut unit = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut checked = [0usize; 5];
+        for case in 0..60 {
+            let kind = case % 5;
+            let (cx, cy) = (unit() - 0.5, unit() - 0.5);
+            let size = [12.0, 8.0, 3.0];
+            let tol = 0.05 + 0.45 * unit();
+            let h = 2.0 + 4.0 * unit();
+            let around = |k: usize, n: usize, turn: f64, r: f64, z: f64| {
+                let a = turn + std::f64::consts::TAU * k as f64 / n as f64;
+                [cx + r * a.cos(), cy + r * a.sin(), z]
+            };
+            let turn = std::f64::consts::TAU * unit();
+            let (points, spreader) = match kind {
+                // Either side of the centre of gravity on a line through it.
+                0 => (
+                    vec![
+                        around(0, 2, turn, 1.0 + 3.0 * unit(), 0.3 + unit()),
+                        around(1, 2, turn, 1.0 + 3.0 * unit(), 0.3 + unit()),
+                    ],
+                    None,
+                ),
+                1 | 2 => {
+                    let n = kind + 2;
+                    (
+                        (0..n)
+                            .map(|k| around(k, n, turn + 0.5 * (unit() - 0.5), 1.0 + 3.0 * unit(), 1.5 * unit() - 0.2))
+                            .collect(),
+                        None,
+                    )
+                }
+                3 => {
+                    let half = 1.0 + 2.0 * unit();
+                    let pts = vec![[cx - half, cy, 0.5 + unit()], [cx + half, cy, 0.5 + unit()]];
+                    let beam = Spreader {
+                        length_m: 2.0 * half + 0.2,
+                        below_hook_m: 1.0 + unit(),
+                        wll_kg: 50_000.0,
+                        mass_kg: 2000.0 * unit(),
+                        top_leg_wll_kg: Some(50_000.0),
+                        width_m: None,
+                        top_shackles: None,
+                    };
+                    (pts, Some(beam))
+                }
+                _ => {
+                    let (l, w) = (2.0 + 2.0 * unit(), 1.5 + unit());
+                    let pts: Vec<[f64; 3]> = [[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]]
+                        .iter()
+                        .map(|[sx, sy]| [cx + sx * (l / 2.0 - 0.3 * unit()), cy + sy * (w / 2.0 - 0.3 * unit()), 1.0])
+                        .collect();
+                    let frame = Spreader {
+                        length_m: l + 1.0,
+                        below_hook_m: 1.0 + unit(),
+                        wll_kg: 50_000.0,
+                        mass_kg: 2000.0 * unit(),
+                        top_leg_wll_kg: Some(50_000.0),
+                        width_m: Some(w + 1.0),
+                        top_shackles: None,
+                    };
+                    (pts, Some(frame))
+                }
+            };
+            let legs = Slings {
+                lift_points_m: points,
+                points_given: true,
+                ratings: Ratings::legs(50_000.0),
+                spreader,
+                pin_axes: None,
+            };
+            let (load_kg, cog) = (10_000.0, [cx, cy, -0.5]);
+            let found = check_within(&legs, load_kg, size, cog, tol, h);
+            let n = 101;
+            let across = |k: usize, n: usize| -tol + 2.0 * tol * k as f64 / (n - 1) as f64;
+            let grid = (0..n * n).map(|k| [cx + across(k % n, n), cy + across(k / n, n)]);
+            let edges = (0..4 * 2001).map(|k| {
+                let t = across(k % 2001, 2001);
+                [[cx + t, cy - tol], [cx + t, cy + tol], [cx - tol, cy + t], [cx + tol, cy + t]][k / 2001]
+            });
+            let places: Vec<[f64; 2]> = grid.chain(edges).collect();
+            let Ok(c) = found else {
+                continue;
+            };
+            checked[kind] += 1;
+            let eps = 1e-9 * load_kg;
+            let top = |c: &SlingCheck| c.spreader.as_ref().and_then(|s| s.top.clone());
+            for [x, y] in places {
+                let at = check(&legs, load_kg, size, [x, y, cog[2]], h)
+                    .unwrap_or_else(|e| panic!("case {case}: ({x}, {y}) refused, the check was not: {e}"));
+                let what = || format!("case {case} at ({x}, {y}): {at:?} against {c:?}");
+                assert!(
+                    at.max_leg_kg <= c.max_leg_kg + eps && at.max_angle_deg <= c.max_angle_deg + 1e-9,
+                    "{}",
+                    what()
+                );
+                for (kg, most) in at.leg_most_kg.iter().zip(&c.leg_most_kg) {
+                    assert!(*kg <= most + eps, "{}", what());
+                }
+                if let (Some(t), Some(worst)) = (top(&at), top(&c)) {
+                    assert!(t.max_leg_kg <= worst.max_leg_kg + eps, "{}", what());
+                    assert!(t.compression_kg <= worst.compression_kg + eps, "{}", what());
+                    assert!(t.max_angle_deg <= worst.max_angle_deg + 1e-9, "{}", what());
+                    for (kg, most) in t.leg_most_kg.iter().zip(&worst.leg_most_kg) {
+                        assert!(*kg <= most + eps, "{}", what());
+                    }
+                }
+            }
+        }
+        assert!(checked.iter().all(|&n| n >= 6), "riggings checked of each kind: {checked:?}");
     }
 
     /// On four legs with one slack, the most on a leg is not at a corner of
