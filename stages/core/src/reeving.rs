@@ -96,6 +96,16 @@ pub struct RopeWeight {
     pub trolley: bool,
 }
 
+/// The falls the rope is counted on, in words: "6 falls", or where the
+/// lift gives none (`given` false), the hook block's most and why.
+pub fn falls_counted_said(falls: u32, given: bool) -> String {
+    if given {
+        format!("{falls} fall{}", if falls == 1 { "" } else { "s" })
+    } else {
+        format!("{falls} falls (the most the hook block takes: the lift gives no crane falls)")
+    }
+}
+
 /// What sets the longest rope a lift is planned with.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 pub enum LongestRope {
@@ -130,11 +140,7 @@ impl RopeWeight {
     /// up to 40.00 m below the boom head (crane longest_rope_m) at 3.90
     /// kg/m".
     pub fn said(&self) -> String {
-        let falls = if self.falls_given {
-            format!("{} fall{}", self.falls, if self.falls == 1 { "" } else { "s" })
-        } else {
-            format!("{} falls (the most the hook block takes: the lift gives no crane falls)", self.falls)
-        };
+        let falls = falls_counted_said(self.falls, self.falls_given);
         let longest = match self.longest_from {
             LongestRope::Lift => "crane longest_rope_m",
             LongestRope::Travel => "the hook's travel: give crane longest_rope_m to count less",

@@ -122,14 +122,7 @@ impl RopeInWind {
     /// In words: "the hoist rope's 6 falls of 28 mm, up to 35.0 m below the
     /// boom head, catch A_R = 7.1 m² at cW 1.2".
     pub fn said(&self) -> String {
-        let falls = if self.falls_given {
-            format!("{} fall{}", self.falls, if self.falls == 1 { "" } else { "s" })
-        } else {
-            format!(
-                "{} falls (the most the hook block takes, hook.max_falls; the lift gives no crane falls)",
-                self.falls
-            )
-        };
+        let falls = crate::reeving::falls_counted_said(self.falls, self.falls_given);
         let diameter = if self.diameter_given {
             format!("{:.0} mm", self.diameter_mm)
         } else {
@@ -517,7 +510,7 @@ mod tests {
         assert!(said.contains("(tan θ = ρ v² (A_W + A_R / 2) / (2 m_H g), ρ = 1.25 kg/m³)"), "{said}");
         let guessed = RopeInWind::new(10, false, RopeInWind::widest_diameter_mm(3.9), false, 35.0);
         assert!((guessed.diameter_mm - 33.87).abs() < 0.01, "{}", guessed.diameter_mm);
-        assert!(guessed.said().starts_with("the hoist rope's 10 falls (the most the hook block takes, hook.max_falls; the lift gives no crane falls) of 34 mm (the widest a steel wire rope of its mass per metre is"), "{}", guessed.said());
+        assert!(guessed.said().starts_with("the hoist rope's 10 falls (the most the hook block takes: the lift gives no crane falls) of 34 mm (the widest a steel wire rope of its mass per metre is"), "{}", guessed.said());
         let unknown = plain.clone().with_rope(Err("the crane file gives neither".into()));
         assert_eq!(unknown.off_plumb_per_m(), plain.off_plumb_per_m());
         assert!(
