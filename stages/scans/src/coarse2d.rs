@@ -242,7 +242,8 @@ fn align_within(
     let mut f2 = None;
     let fine = plan_for(&tgt, r_c, 0.4, fine_side, &mut f2);
     let f2 = f2.unwrap_or_else(|| Fft2::new(fine.n));
-    let out: Vec<(Pose, f32)> = peaks
+    let lowest = LowestPerCell::of(target);
+    let mut out: Vec<(Pose, f32)> = peaks
         .par_iter()
         .flat_map_iter(|p| {
             // Best yaw near the peak, then several shifts at that yaw: periodic
@@ -271,9 +272,8 @@ fn align_within(
                 })
                 .collect::<Vec<_>>()
         })
+        .map(|(p, sc)| (with_height(source, &lowest, p), sc))
         .collect();
-    let lowest = LowestPerCell::of(target);
-    let mut out: Vec<(Pose, f32)> = out.into_par_iter().map(|(p, sc)| (with_height(source, &lowest, p), sc)).collect();
     out.sort_by(|a, b| b.1.total_cmp(&a.1));
     out
 }
@@ -411,9 +411,6 @@ mod tests {
         RegCloud { pts: site.pts.iter().map(moved).collect(), normals: site.normals.iter().map(turned).collect() }
     }
 
-    /// A wall 800 m away widens the plan past the images' sides: the cells
-    /// grow (here about 4 and 2 m) instead of the images, and the first guess
-    /// still lands within a few cells of the true pose.
     /// The fine stage takes a yaw's score from its five strongest peaks:
     /// the first of them is the image's highest, as the one peak asked for
     /// alone is, at every yaw tried.
@@ -436,6 +433,9 @@ mod tests {
         }
     }
 
+    /// A wall 800 m away widens the plan past the images' sides: the cells
+    /// grow (here about 4 and 2 m) instead of the images, and the first guess
+    /// still lands within a few cells of the true pose.
     #[test]
     fn a_far_wall_grows_the_cells_not_the_images() {
         let truth = Pose::from_parts(
