@@ -534,9 +534,8 @@ pub struct PlanHold {
     /// Structure pairs counted.
     pub pairs: usize,
     /// The mean square plane distance (m²) a move of one metre in plan
-    /// gives those pairs, least over all moves, and most.
+    /// gives those pairs, least over all moves.
     pub least: f64,
-    pub most: f64,
     /// The least's move: (turn, east, north), a turn in metres where the
     /// pairs lie.
     pub weakest: [f64; 3],
@@ -585,7 +584,7 @@ pub fn plan_hold(src: &RegCloud, target: &Target, pose: &Pose, d: f64, max_resid
         }
     }
     if pairs.len() < 3 {
-        return PlanHold { pairs: pairs.len(), least: 0.0, most: 0.0, weakest: [0.0, 1.0, 0.0] };
+        return PlanHold { pairs: pairs.len(), least: 0.0, weakest: [0.0, 1.0, 0.0] };
     }
     let n = pairs.len() as f64;
     let (cx, cy) = pairs.iter().fold((0.0, 0.0), |(x, y), (p, _)| (x + p[0] / n, y + p[1] / n));
@@ -597,22 +596,9 @@ pub fn plan_hold(src: &RegCloud, target: &Target, pose: &Pose, d: f64, max_resid
         h += row * row.transpose();
     }
     let e = na::SymmetricEigen::new(h / n);
-    let (mut lo, mut hi) = (0, 0);
-    for i in 1..3 {
-        if e.eigenvalues[i] < e.eigenvalues[lo] {
-            lo = i;
-        }
-        if e.eigenvalues[i] > e.eigenvalues[hi] {
-            hi = i;
-        }
-    }
+    let lo = e.eigenvalues.imin();
     let v = e.eigenvectors.column(lo);
-    PlanHold {
-        pairs: pairs.len(),
-        least: e.eigenvalues[lo].max(0.0),
-        most: e.eigenvalues[hi].max(0.0),
-        weakest: [v[0], v[1], v[2]],
-    }
+    PlanHold { pairs: pairs.len(), least: e.eigenvalues[lo].max(0.0), weakest: [v[0], v[1], v[2]] }
 }
 
 /// Whether a source normal (rotated by `pose`) and a target normal agree.
