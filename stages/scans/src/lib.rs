@@ -272,6 +272,9 @@ pub struct ScanReport {
     pub method: String,
     pub registered: bool,
     pub warning: Option<String>,
+    /// How firmly what it shares with the scans placed before it held it
+    /// in plan ([`register::RegResult::hold_m`], m).
+    pub hold_m: Option<f64>,
     /// The unit its coordinates were read in, and where that came from.
     pub unit: String,
     /// Metres per coordinate unit of x, y and z ([`ScanInfo::to_m`]).
@@ -693,6 +696,7 @@ pub fn run(inputs: &[PathBuf], s: &Settings, opts: &RunOptions, out_dir: &Path) 
             method: r.method.clone(),
             registered: r.registered,
             warning: r.warning.clone(),
+            hold_m: r.hold_m,
             unit: info.read_in.clone(),
             to_m: info.to_m,
             date: info.date,
@@ -761,7 +765,15 @@ pub fn run(inputs: &[PathBuf], s: &Settings, opts: &RunOptions, out_dir: &Path) 
 }
 
 fn plain_result(pose: Pose, method: &str) -> register::RegResult {
-    register::RegResult { pose, fitness: 1.0, rmse_m: 0.0, method: method.into(), registered: true, warning: None }
+    register::RegResult {
+        pose,
+        fitness: 1.0,
+        rmse_m: 0.0,
+        method: method.into(),
+        registered: true,
+        warning: None,
+        hold_m: None,
+    }
 }
 
 fn write_json(path: &Path, v: &serde_json::Value) -> Result<()> {
@@ -1130,6 +1142,7 @@ mod tests {
             method: String::new(),
             registered: true,
             warning: None,
+            hold_m: None,
             unit: String::new(),
             to_m: [1.0; 3],
             date,

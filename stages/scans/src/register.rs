@@ -212,6 +212,13 @@ pub struct RegResult {
     pub method: String,
     pub registered: bool,
     pub warning: Option<String>,
+    /// How far (m) its alignment, as tried against the scans placed before
+    /// it, moves in plan its weakest way before what they share lies 1 cm
+    /// RMS further off ([`PlanHold::slide_per_cm_m`]; over
+    /// [`LOOSE_HOLD_SLIDE_M`] a scan without a station is not merged). None
+    /// for the reference, a scan not merged, and one placed at its station
+    /// as surveyed.
+    pub hold_m: Option<f64>,
 }
 
 fn ser_pose<S: serde::Serializer>(p: &Pose, s: S) -> Result<S::Ok, S::Error> {
@@ -1243,6 +1250,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
         rmse_m: 0.0,
         method: reference_method,
         registered: true,
+        hold_m: None,
         warning: None,
     });
     let srcs: Vec<RegCloud> = inputs.iter().map(|i| sample(&i.fine, s.icp_source_points)).collect();
@@ -1495,6 +1503,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                 rmse_m: 0.0,
                 method: "none".into(),
                 registered: false,
+                hold_m: None,
                 warning: Some(format!(
                     "scan '{}' is not merged: where it fits the scans placed so far best (overlapping them by {:.1} %), the walls, columns and tanks it shares with them hold it loosely in plan: moved {:.2} m its weakest way ({}), they lie only 1 cm RMS further off each other (at most {:.2} m allowed): the other scans do not pin it down (what they share may turn onto itself, as one tank's side, or slide along itself, as parallel walls); give the surveyed poses of the stations in the station file, or rescan from where more of the site is in view",
                     names[j],
@@ -1515,6 +1524,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                 rmse_m: 0.0,
                 method: "none".into(),
                 registered: false,
+                hold_m: None,
                 warning: Some(format!(
                     "scan '{}' is not merged: it fits the scans placed so far at two places {:.2} m in plan, {:.2} m in height and {:.1} degrees in yaw apart, overlapping them by {:.1} % at one and {:.1} % at the other (a second place at {:.0} % of the first's overlap or more refuses it): the other scans do not pin it down (it may see little of what they saw: like parts repeated, as tanks in a row or the bays of a rack, or a view hidden in part by something beside its scanner); give the surveyed poses of the stations in the station file, or rescan from where more of the site is in view",
                     names[j],
@@ -1528,8 +1538,8 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
             });
             continue;
         }
-        match best.map(|(j, c)| (j, c.pose, c.fit, c.viol, c.method)) {
-            Some((j, p, trial_fit, viol, method)) => {
+        match best.map(|(j, c)| (j, c.pose, c.fit, c.viol, c.method, c.slide_m)) {
+            Some((j, p, trial_fit, viol, method, hold_m)) => {
                 // Placed though the share is over: how much of it lies where a
                 // ray passed within half the width (the trial's pose).
                 let narrow_share = (viol > s.max_violation)
@@ -1561,7 +1571,15 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                         100.0 * NARROW_LEAST_FIT
                     )
                 });
-                results[j] = Some(RegResult { pose: p, fitness: fit, rmse_m: rmse, method, registered: true, warning });
+                results[j] = Some(RegResult {
+                    pose: p,
+                    fitness: fit,
+                    rmse_m: rmse,
+                    method,
+                    registered: true,
+                    warning,
+                    hold_m: Some(hold_m),
+                });
             }
             None => {
                 // No scan fits those placed so far well enough to be placed
@@ -1592,6 +1610,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                         rmse_m: rmse,
                         method: "station pose (overlap too small to align by) + refinement".into(),
                         registered: true,
+                        hold_m: None,
                         warning: None,
                     });
                     continue;
@@ -1676,6 +1695,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                         rmse_m: 0.0,
                         method: "none".into(),
                         registered: false,
+                        hold_m: None,
                         warning: Some(warning),
                     });
                 }
@@ -2006,6 +2026,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                 rmse_m: 0.0,
                 method: "none".into(),
                 registered: false,
+                hold_m: None,
                 warning: None,
             })
         })
@@ -2580,6 +2601,7 @@ mod tests {
                 rmse_m: 0.0,
                 method: "m".into(),
                 registered,
+                hold_m: None,
                 warning: None,
             })
         };
