@@ -216,8 +216,8 @@ pub struct RegResult {
     /// it, moves in plan its weakest way before what they share lies 1 cm
     /// RMS further off ([`PlanHold::slide_per_cm_m`]; over
     /// [`LOOSE_HOLD_SLIDE_M`] a scan without a station is not merged). None
-    /// for the reference, a scan not merged, and one placed at its station
-    /// as surveyed.
+    /// for the reference, a scan placed at its station as surveyed, and one
+    /// never placed; kept for a scan placed and refused by a later check.
     pub hold_m: Option<f64>,
 }
 
