@@ -700,13 +700,10 @@ impl LiftTask {
     /// give.
     pub fn rope_in_wind(&self) -> Result<crate::wind::RopeInWind, String> {
         let hook = &self.crane.model.hook;
-        let (falls, falls_given) = match (self.falls, hook.max_falls) {
-            (Some(n), _) => (n, true),
-            (None, Some(most)) => (most, false),
-            (None, None) => {
-                return Err("the lift gives no falls (crane falls) and the crane file no most falls (hook.max_falls)"
-                    .to_string());
-            }
+        let Some((falls, falls_given)) = crate::reeving::falls_counted(self.falls, hook.max_falls) else {
+            return Err(
+                "the lift gives no falls (crane falls) and the crane file no most falls (hook.max_falls)".to_string()
+            );
         };
         let (diameter_mm, diameter_given) = match (hook.rope_diameter_mm, hook.rope_kg_per_m) {
             (Some(d), _) => (d, true),
@@ -1244,17 +1241,14 @@ impl LiftSpec {
             model.hook.max_rope_m = m;
             longest_from = crate::reeving::LongestRope::Lift;
         }
-        let rope_weight = match (model.hook.rope_kg_per_m, self.crane.falls, model.hook.max_falls) {
-            (None, _, _) => None,
-            (Some(w), Some(falls), _) => Some(crate::reeving::RopeWeight {
+        let counted = crate::reeving::falls_counted(self.crane.falls, model.hook.max_falls);
+        let rope_weight = match (model.hook.rope_kg_per_m, counted) {
+            (None, _) => None,
+            (Some(w), Some((falls, given))) => Some(crate::reeving::RopeWeight {
                 trolley: model.is_tower(),
-                ..crate::reeving::RopeWeight::new(w, falls, true, model.hook.max_rope_m, longest_from)
+                ..crate::reeving::RopeWeight::new(w, falls, given, model.hook.max_rope_m, longest_from)
             }),
-            (Some(w), None, Some(most)) => Some(crate::reeving::RopeWeight {
-                trolley: model.is_tower(),
-                ..crate::reeving::RopeWeight::new(w, most, false, model.hook.max_rope_m, longest_from)
-            }),
-            (Some(_), None, None) => {
+            (Some(_), None) => {
                 return Err(format!(
                     "lift '{id}': the crane file weighs its hoist rope (hook.rope_kg_per_m), but the lift gives no falls (crane falls) and the file no most falls (hook.max_falls) to count it on: give crane falls"
                 ));

@@ -96,6 +96,16 @@ pub struct RopeWeight {
     pub trolley: bool,
 }
 
+/// The falls the hoist rope is counted on (its weight, its wind): the
+/// lift's (`crane.falls`, given: true), else the most the hook block takes
+/// (`hook.max_falls`, given: false); none where neither is known.
+pub fn falls_counted(lift_falls: Option<u32>, max_falls: Option<u32>) -> Option<(u32, bool)> {
+    match (lift_falls, max_falls) {
+        (Some(n), _) => Some((n, true)),
+        (None, most) => most.map(|m| (m, false)),
+    }
+}
+
 /// The falls the rope is counted on, in words: "6 falls", or where the
 /// lift gives none (`given` false), the hook block's most and why.
 pub fn falls_counted_said(falls: u32, given: bool) -> String {
