@@ -501,29 +501,15 @@ pub fn evaluate(src: &RegCloud, target: &Target, pose: &Pose, d: f64, max_residu
     if src.pts.is_empty() {
         return (0.0, 0.0);
     }
-    let grid = &target.grid;
     let blocks: Vec<(usize, f64)> = (0..src.pts.len().div_ceil(BLOCK))
         .into_par_iter()
         .map(|b| {
             let mut n = 0;
             let mut s2 = 0.0;
             for k in b * BLOCK..((b + 1) * BLOCK).min(src.pts.len()) {
-                let p = tf(pose, &src.pts[k]);
-                if let Some((j, d2)) = grid.nearest(&p, d) {
-                    let nq = target.normals[j as usize];
-                    if nq != [0.0; 3] && !compatible(pose, &src.normals[k], &nq) {
-                        continue;
-                    }
-                    let q = target.pts[j as usize];
-                    let r = if nq == [0.0; 3] {
-                        d2.sqrt()
-                    } else {
-                        (p[0] - q[0]) * nq[0] + (p[1] - q[1]) * nq[1] + (p[2] - q[2]) * nq[2]
-                    };
-                    if r.abs() <= max_residual {
-                        n += 1;
-                        s2 += r * r;
-                    }
+                if let Some((_, _, r)) = overlapping(target, pose, &src.pts[k], &src.normals[k], d, max_residual) {
+                    n += 1;
+                    s2 += r * r;
                 }
             }
             (n, s2)
@@ -578,16 +564,9 @@ pub fn plan_hold(src: &RegCloud, target: &Target, pose: &Pose, d: f64, max_resid
         if near_vertical(ns) {
             continue;
         }
-        let p = tf(pose, x);
-        let Some((j, _)) = target.grid.nearest(&p, d) else { continue };
-        let nq = target.normals[j as usize];
-        if near_vertical(&nq) || !compatible(pose, ns, &nq) {
-            continue;
-        }
-        let q = target.pts[j as usize];
-        let r = (p[0] - q[0]) * nq[0] + (p[1] - q[1]) * nq[1] + (p[2] - q[2]) * nq[2];
-        if r.abs() <= max_residual {
-            pairs.push((p, nq));
+        let Some((p, j, _)) = overlapping(target, pose, x, ns, d, max_residual) else { continue };
+        if !near_vertical(&target.normals[j]) {
+            pairs.push((p, target.normals[j]));
         }
     }
     if pairs.len() < 3 {
@@ -606,6 +585,32 @@ pub fn plan_hold(src: &RegCloud, target: &Target, pose: &Pose, d: f64, max_resid
     let lo = e.eigenvalues.imin();
     let v = e.eigenvectors.column(lo);
     PlanHold { pairs: pairs.len(), least: e.eigenvalues[lo].max(0.0), weakest: [v[0], v[1], v[2]] }
+}
+
+/// Where the source point `x` (normal `ns`) at `pose` overlaps the model,
+/// as [`evaluate`] counts it: its nearest model point within `d`, normals
+/// agreeing, and its distance to that point's plane (to the point, where
+/// the model point has no normal) within `max_residual`. Gives the point
+/// placed, the model point's index and that distance.
+fn overlapping(
+    target: &Target,
+    pose: &Pose,
+    x: &[f64; 3],
+    ns: &[f64; 3],
+    d: f64,
+    max_residual: f64,
+) -> Option<([f64; 3], usize, f64)> {
+    let p = tf(pose, x);
+    let (j, d2) = target.grid.nearest(&p, d)?;
+    let j = j as usize;
+    let nq = target.normals[j];
+    if nq != [0.0; 3] && !compatible(pose, ns, &nq) {
+        return None;
+    }
+    let q = target.pts[j];
+    let r =
+        if nq == [0.0; 3] { d2.sqrt() } else { (p[0] - q[0]) * nq[0] + (p[1] - q[1]) * nq[1] + (p[2] - q[2]) * nq[2] };
+    (r.abs() <= max_residual).then_some((p, j, r))
 }
 
 /// Whether a source normal (rotated by `pose`) and a target normal agree.
@@ -1492,42 +1497,15 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                 }
             }
         }
-        // The best scan the others do not pin down: none that they do can
-        // be placed. It is not merged; the next round tries the rest.
-        if let Some((j, c)) = best.as_ref().filter(|(j, c)| two_places[*j].is_none() && loosely_held(*j, c)) {
-            let j = *j;
-            not_pinned[j] = true;
-            results[j] = Some(RegResult {
-                pose: inputs[j].initial.unwrap_or_else(Pose::identity),
-                fitness: c.fit,
-                rmse_m: 0.0,
-                method: "none".into(),
-                registered: false,
-                hold_m: None,
-                warning: Some(format!(
-                    "scan '{}' is not merged: where it fits the scans placed so far best (overlapping them by {:.1} %), the walls, columns and tanks it shares with them hold it loosely in plan: moved {:.2} m its weakest way ({}), they lie only 1 cm RMS further off each other (at most {:.2} m allowed): the other scans do not pin it down (what they share may turn onto itself, as one tank's side, or slide along itself, as parallel walls); give the surveyed poses of the stations in the station file, or rescan from where more of the site is in view",
-                    names[j],
-                    100.0 * c.fit,
-                    c.slide_m,
-                    weakest_way_said(c),
-                    LOOSE_HOLD_SLIDE_M
-                )),
-            });
-            continue;
-        }
-        if let Some(two) = best.as_ref().and_then(|b| two_places[b.0].as_ref()) {
-            let j = best.as_ref().map_or(0, |b| b.0);
-            not_pinned[j] = true;
-            results[j] = Some(RegResult {
-                pose: inputs[j].initial.unwrap_or_else(Pose::identity),
-                fitness: two.fit[0],
-                rmse_m: 0.0,
-                method: "none".into(),
-                registered: false,
-                hold_m: None,
-                warning: Some(format!(
+        // The best scan the others do not pin down (it fits them at two
+        // places, or what it shares with them holds it loosely): none that
+        // they do can be placed. It is not merged; the next round tries the
+        // rest.
+        let unpinned = best.as_ref().and_then(|(j, c)| {
+            let (fitness, why) = match (&two_places[*j], loosely_held(*j, c)) {
+                (Some(two), _) => (two.fit[0], format!(
                     "scan '{}' is not merged: it fits the scans placed so far at two places {:.2} m in plan, {:.2} m in height and {:.1} degrees in yaw apart, overlapping them by {:.1} % at one and {:.1} % at the other (a second place at {:.0} % of the first's overlap or more refuses it): the other scans do not pin it down (it may see little of what they saw: like parts repeated, as tanks in a row or the bays of a rack, or a view hidden in part by something beside its scanner); give the surveyed poses of the stations in the station file, or rescan from where more of the site is in view",
-                    names[j],
+                    names[*j],
                     two.apart.plan_m,
                     two.apart.height_m,
                     two.apart.yaw_deg,
@@ -1535,6 +1513,28 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                     100.0 * two.fit[1],
                     100.0 * AMBIGUOUS_FIT_SHARE
                 )),
+                (None, true) => (c.fit, format!(
+                    "scan '{}' is not merged: where it fits the scans placed so far best (overlapping them by {:.1} %), the walls, columns and tanks it shares with them hold it loosely in plan: moved {:.2} m its weakest way ({}), they lie only 1 cm RMS further off each other (at most {:.2} m allowed): the other scans do not pin it down (what they share may turn onto itself, as one tank's side, or slide along itself, as parallel walls); give the surveyed poses of the stations in the station file, or rescan from where more of the site is in view",
+                    names[*j],
+                    100.0 * c.fit,
+                    c.slide_m,
+                    weakest_way_said(c),
+                    LOOSE_HOLD_SLIDE_M
+                )),
+                (None, false) => return None,
+            };
+            Some((*j, fitness, why))
+        });
+        if let Some((j, fitness, why)) = unpinned {
+            not_pinned[j] = true;
+            results[j] = Some(RegResult {
+                pose: inputs[j].initial.unwrap_or_else(Pose::identity),
+                fitness,
+                rmse_m: 0.0,
+                method: "none".into(),
+                registered: false,
+                hold_m: None,
+                warning: Some(why),
             });
             continue;
         }
