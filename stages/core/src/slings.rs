@@ -1130,14 +1130,7 @@ fn plan_weights(xy: &[[f64; 2]], p: [f64; 2]) -> Option<Vec<f64>> {
                 vec![1.0 - t, t]
             })
         }
-        [a, b, c] => {
-            let det = (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]);
-            (det.abs() > 1e-9).then(|| {
-                let wb = ((p[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (p[1] - a[1])) / det;
-                let wc = ((b[0] - a[0]) * (p[1] - a[1]) - (p[0] - a[0]) * (b[1] - a[1])) / det;
-                vec![1.0 - wb - wc, wb, wc]
-            })
-        }
+        [a, b, c] => barycentric([*a, *b, *c], p).map(Vec::from),
         _ => None,
     }
 }
@@ -1747,15 +1740,21 @@ fn most_on_one(pulls: &[(usize, f64)]) -> (usize, f64) {
 /// triangle; `None` where it lies outside it (one share below zero) or the
 /// three lie in a line.
 fn plan_shares(pts: [[f64; 2]; 3], cog: [f64; 2]) -> Option<[f64; 3]> {
+    let shares = barycentric(pts, cog)?;
+    shares.iter().all(|&w| w >= -1e-9).then(|| shares.map(|w| w.max(0.0)))
+}
+
+/// The barycentric coordinates of `p` in the triangle `pts` (plan),
+/// whatever their sign; `None` where the three lie in a line.
+fn barycentric(pts: [[f64; 2]; 3], p: [f64; 2]) -> Option<[f64; 3]> {
     let [a, b, c] = pts;
     let det = (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]);
     if det.abs() < 1e-9 {
         return None;
     }
-    let wb = ((cog[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (cog[1] - a[1])) / det;
-    let wc = ((b[0] - a[0]) * (cog[1] - a[1]) - (cog[0] - a[0]) * (b[1] - a[1])) / det;
-    let shares = [1.0 - wb - wc, wb, wc];
-    shares.iter().all(|&w| w >= -1e-9).then(|| shares.map(|w| w.max(0.0)))
+    let wb = ((p[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (p[1] - a[1])) / det;
+    let wc = ((b[0] - a[0]) * (p[1] - a[1]) - (p[0] - a[0]) * (b[1] - a[1])) / det;
+    Some([1.0 - wb - wc, wb, wc])
 }
 
 /// Legs from their points up to a hook ([`legs_to`]).
