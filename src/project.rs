@@ -363,7 +363,10 @@ every_nth = 9             # keep every Nth point for subsample = "nth"
 #                              # registration keeps each scan within tolerance_m (plan and height,
 #                              # default 0.5) and yaw_tolerance_deg (default 3) of its station,
 #                              # set per station or, at the top of the file, for all; the first
-#                              # scan with a station is the reference (the station file's frame)
+#                              # scan with a station is the reference (the station file's frame);
+#                              # give the survey's real tolerance: where what a scan shares with
+#                              # the others holds it loosely (a corridor), only a station within
+#                              # 0.18 m pins it down
 on_unregistered = "fail"  # fail | exclude
 # [scans.registration]
 # leveled = true          # false for scanners that did not level themselves (no compensator):

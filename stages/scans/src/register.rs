@@ -89,14 +89,22 @@
 //! **Loose hold**: ground overlaps under any plan move, and a scan whose
 //! walls, columns and tanks share with the others only what turns or
 //! slides onto itself (one tank's side, parallel walls) is held by them no
-//! better: ICP drifts along that way. A scan without a station whose
-//! alignment moves more than [`LOOSE_HOLD_SLIDE_M`] its weakest way before
-//! its shared structure lies 1 cm RMS further off ([`plan_hold`]) is not
-//! pinned down either: it waits as above, and is not merged if it is still
-//! held so when no other scan can be placed. Of one scan's alignments, a
-//! firmly held one ranks above a loosely held one that scores higher (the
-//! first scan placed against a reference a van stood beside fitted it 61
-//! degrees turned, loosely, and where it stood, firmly).
+//! better: ICP drifts along that way. A scan whose alignment moves more
+//! than [`LOOSE_HOLD_SLIDE_M`] its weakest way before its shared structure
+//! lies 1 cm RMS further off ([`plan_hold`]) is not pinned down either: it
+//! waits as above, and is not merged if it is still held so when no other
+//! scan can be placed. A station pins that way down only where its
+//! tolerance lets the scan lie no farther off it than that
+//! ([`PlanHold::within_station_m`]): ICP, which holds nothing that way,
+//! leaves a held scan where its station puts it, so with the default 0.5 m
+//! a scan in a corridor whose station was 0.3 m off along it was merged
+//! 0.3 m wrong with no word. A held scan so pinned is placed, and its
+//! warning says its place that way is its station's. Of one scan's
+//! alignments, a firmly held one ranks above a loosely held one that
+//! scores higher (the first scan placed against a reference a van stood
+//! beside fitted it 61 degrees turned, loosely, and where it stood,
+//! firmly); a held scan held loosely ranks with the scans without a
+//! station.
 //!
 //! Every reduction is summed in fixed-size blocks in a fixed order, so the result
 //! does not depend on the number of threads.
@@ -215,7 +223,8 @@ pub struct RegResult {
     /// How far (m) its alignment, as tried against the scans placed before
     /// it, moves in plan its weakest way before what they share lies 1 cm
     /// RMS further off ([`PlanHold::slide_per_cm_m`]; over
-    /// [`LOOSE_HOLD_SLIDE_M`] a scan without a station is not merged). None
+    /// [`LOOSE_HOLD_SLIDE_M`] a scan is not merged, but where its station's
+    /// tolerance pins that way down ([`PlanHold::within_station_m`])). None
     /// for the reference, a scan placed at its station as surveyed, and one
     /// never placed; kept for a scan placed and refused by a later check.
     pub hold_m: Option<f64>,
@@ -532,6 +541,10 @@ pub struct PlanHold {
     /// The least's move: (turn, east, north), a turn in metres where the
     /// pairs lie.
     pub weakest: [f64; 3],
+    /// The pairs' middle in plan (site frame, m), which the turn is about.
+    pub middle: [f64; 2],
+    /// Their RMS distance from it in plan (m), which scales the turn.
+    pub spread_m: f64,
 }
 
 impl PlanHold {
@@ -540,6 +553,23 @@ impl PlanHold {
     /// infinite where nothing holds it.
     pub fn slide_per_cm_m(&self) -> f64 {
         if self.least > 0.0 { 0.01 / self.least.sqrt() } else { f64::INFINITY }
+    }
+
+    /// How far (m) the alignment `pose` may move its weakest way with its
+    /// scanner (the scan frame's origin) staying within a station's
+    /// `tolerance` of where it is: a shift moves the scanner, and a turn
+    /// about the pairs' middle moves it as well as turning it. Infinite
+    /// where the station does not bound that way (a turn about the scanner
+    /// itself, with no yaw surveyed).
+    pub fn within_station_m(&self, pose: &Pose, tolerance: &StationTolerance) -> f64 {
+        let [turn, east, north] = self.weakest;
+        let rad_per_m = turn / self.spread_m.max(1e-9);
+        let (sx, sy) = (pose.translation.x - self.middle[0], pose.translation.y - self.middle[1]);
+        // The scanner's move in plan per metre along the weakest way.
+        let (dx, dy) = (east - rad_per_m * sy, north + rad_per_m * sx);
+        let by_plan = tolerance.plan_m / dx.hypot(dy);
+        let by_yaw = tolerance.yaw_deg.map_or(f64::INFINITY, |deg| deg.to_radians() / rad_per_m.abs());
+        by_plan.min(by_yaw)
     }
 }
 
@@ -570,7 +600,7 @@ pub fn plan_hold(src: &RegCloud, target: &Target, pose: &Pose, d: f64, max_resid
         }
     }
     if pairs.len() < 3 {
-        return PlanHold { pairs: pairs.len(), least: 0.0, weakest: [0.0, 1.0, 0.0] };
+        return PlanHold { pairs: pairs.len(), least: 0.0, weakest: [0.0, 1.0, 0.0], middle: [0.0; 2], spread_m: 0.0 };
     }
     let n = pairs.len() as f64;
     let (cx, cy) = pairs.iter().fold((0.0, 0.0), |(x, y), (p, _)| (x + p[0] / n, y + p[1] / n));
@@ -584,7 +614,13 @@ pub fn plan_hold(src: &RegCloud, target: &Target, pose: &Pose, d: f64, max_resid
     let e = na::SymmetricEigen::new(h / n);
     let lo = e.eigenvalues.imin();
     let v = e.eigenvectors.column(lo);
-    PlanHold { pairs: pairs.len(), least: e.eigenvalues[lo].max(0.0), weakest: [v[0], v[1], v[2]] }
+    PlanHold {
+        pairs: pairs.len(),
+        least: e.eigenvalues[lo].max(0.0),
+        weakest: [v[0], v[1], v[2]],
+        middle: [cx, cy],
+        spread_m: spread,
+    }
 }
 
 /// Where the source point `x` (normal `ns`) at `pose` overlaps the model,
@@ -930,9 +966,8 @@ struct Passed {
     fit: f64,
     viol: f64,
     method: String,
-    /// Its [`PlanHold::slide_per_cm_m`] and [`PlanHold::weakest`].
-    slide_m: f64,
-    weakest: [f64; 3],
+    /// How firmly what it shares with the scans placed holds it ([`plan_hold`]).
+    hold: PlanHold,
 }
 
 impl Trial {
@@ -946,8 +981,11 @@ impl Trial {
             w.f64(c.fit);
             w.f64(c.viol);
             w.str(&c.method);
-            w.f64(c.slide_m);
-            w.f64s(&c.weakest);
+            w.u64(c.hold.pairs as u64);
+            w.f64(c.hold.least);
+            w.f64s(&c.hold.weakest);
+            w.f64s(&c.hold.middle);
+            w.f64(c.hold.spread_m);
         }
         w.f64s(&self.at_station.map_or(vec![], |(fit, viol)| vec![fit, viol]));
         w.f64s(&self.held_back.map_or(vec![], |(fit, viol, o)| vec![fit, viol, o.plan_m, o.height_m, o.yaw_deg]));
@@ -966,9 +1004,14 @@ impl Trial {
         let mut passing = Vec::new();
         for _ in 0..n {
             let (pose, fit, viol, method) = (read_pose(&mut r)?, r.f64().ok()?, r.f64().ok()?, r.str().ok()?);
-            let slide_m = r.f64().ok()?;
-            let weakest = r.f64s().ok()?.try_into().ok()?;
-            passing.push(Passed { pose, fit, viol, method, slide_m, weakest });
+            let hold = PlanHold {
+                pairs: usize::try_from(r.u64().ok()?).ok()?,
+                least: r.f64().ok()?,
+                weakest: r.f64s().ok()?.try_into().ok()?,
+                middle: r.f64s().ok()?.try_into().ok()?,
+                spread_m: r.f64().ok()?,
+            };
+            passing.push(Passed { pose, fit, viol, method, hold });
         }
         let at_station = match r.f64s().ok()?.as_slice() {
             [] => None,
@@ -1014,11 +1057,13 @@ impl TwoPlaces {
     }
 }
 
-/// The farthest (m) an alignment of a scan without a station may move in
-/// plan, its weakest way, before the walls, columns and tanks it shares
-/// with the scans placed so far lie 1 cm RMS further off each other
+/// The farthest (m) an alignment of a scan may move in plan, its weakest
+/// way, before the walls, columns and tanks it shares with the scans
+/// placed so far lie 1 cm RMS further off each other
 /// ([`PlanHold::slide_per_cm_m`]); one held more loosely is not pinned
-/// down by them. Measured over 98 right placements (8, 16 and 24 stations
+/// down by them, and a station pins it down only where its tolerance lets
+/// the scan lie no farther off that way than this
+/// ([`PlanHold::within_station_m`]). Measured over 98 right placements (8, 16 and 24 stations
 /// all round, 9 and 12 over three quarters, 6 over a half, the demo's 4
 /// with and without a person beside a scanner, 8 all round with a person
 /// beside the reference, 8 and 10 with a van beside it): at most 0.114 m
@@ -1031,10 +1076,23 @@ impl TwoPlaces {
 /// refusing them). See reports/scans.md.
 pub const LOOSE_HOLD_SLIDE_M: f64 = 0.18;
 
+/// How loosely an alignment is held ([`PlanHold::slide_per_cm_m`]), in
+/// words: "moved 0.25 m its weakest way (...), they lie only 1 cm RMS
+/// further off each other".
+fn loose_hold_said(c: &Passed) -> String {
+    let slide_m = c.hold.slide_per_cm_m();
+    let way = weakest_way_said(c);
+    if slide_m.is_finite() {
+        format!("moved {slide_m:.2} m its weakest way ({way}), they lie only 1 cm RMS further off each other")
+    } else {
+        format!("moved any distance its weakest way ({way}), they lie no further off each other")
+    }
+}
+
 /// A loose hold's weakest way in words: how much of it is a turn, and
 /// along which bearing the rest shifts.
 fn weakest_way_said(c: &Passed) -> String {
-    let [turn, east, north] = c.weakest;
+    let [turn, east, north] = c.hold.weakest;
     let bearing = east.atan2(north).to_degrees().rem_euclid(180.0);
     format!(
         "{:.0} % a turn about the shared structure's middle, the rest a shift along bearing {:.0}/{:.0} degrees",
@@ -1183,7 +1241,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
     // the seed and the scans' places in the list (its RANSAC is seeded from
     // them).
     let mut context = blake3::Hasher::new();
-    context.update(b"liftplan registration v6\0");
+    context.update(b"liftplan registration v7\0");
     context.update(memo.build().as_bytes());
     context.update(b"\0");
     context.update(std::env::consts::ARCH.as_bytes());
@@ -1217,9 +1275,14 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
         inputs[0].held?;
         Some((inputs[j].initial?, inputs[j].held?))
     };
-    // A station bounds where its scan may be placed; one without is
-    // placed by what it shares with the others alone.
-    let loosely_held = |j: usize, c: &Passed| held(j).is_none() && c.slide_m > LOOSE_HOLD_SLIDE_M;
+    // What the others share with a scan holds its alignment loosely where
+    // it moves more than LOOSE_HOLD_SLIDE_M its weakest way for 1 cm; a
+    // station pins that way down where its tolerance lets the scan lie no
+    // farther off it than that.
+    let loosely_held = |j: usize, c: &Passed| {
+        c.hold.slide_per_cm_m() > LOOSE_HOLD_SLIDE_M
+            && held(j).is_none_or(|(_, tol)| c.hold.within_station_m(&c.pose, &tol) > LOOSE_HOLD_SLIDE_M)
+    };
     let mut poses: Vec<Option<Pose>> = vec![None; n];
     let mut results: Vec<Option<RegResult>> = vec![None; n];
     let fit_d = s.fit_distance_m;
@@ -1446,14 +1509,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                                 }
                                 None => {
                                     let hold = plan_hold(&checks[j], model, &p, fit_d, fit_r);
-                                    trial.passing.push(Passed {
-                                        pose: p,
-                                        fit,
-                                        viol,
-                                        method,
-                                        slide_m: hold.slide_per_cm_m(),
-                                        weakest: hold.weakest,
-                                    });
+                                    trial.passing.push(Passed { pose: p, fit, viol, method, hold });
                                 }
                             }
                         }
@@ -1477,7 +1533,10 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
             near_misses[j] = trial.near_misses;
             two_places[j] = TwoPlaces::of(&trial.passing);
             // Scans held by a station go first: their place does not rest on
-            // the scans placed before them, and theirs pins the others'. A
+            // the scans placed before them, and theirs pins the others'
+            // (not where what they share holds them loosely, and their
+            // station does not pin that way down: they wait as a scan
+            // without a station does). A
             // scan taken out for standing in another's way waits until no
             // other scan can be placed, and one the others do not pin down
             // until no other can be placed by them, as does an alignment
@@ -1485,7 +1544,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
             for c in trial.passing {
                 let rank = |j: usize, c: &Passed| {
                     (
-                        held(j).is_some(),
+                        held(j).is_some() && !loosely_held(j, c),
                         !deferred[j],
                         two_places[j].is_none(),
                         !loosely_held(j, c),
@@ -1513,14 +1572,28 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                     100.0 * two.fit[1],
                     100.0 * AMBIGUOUS_FIT_SHARE
                 )),
-                (None, true) => (c.fit, format!(
-                    "scan '{}' is not merged: where it fits the scans placed so far best (overlapping them by {:.1} %), the walls, columns and tanks it shares with them hold it loosely in plan: moved {:.2} m its weakest way ({}), they lie only 1 cm RMS further off each other (at most {:.2} m allowed): the other scans do not pin it down (what they share may turn onto itself, as one tank's side, or slide along itself, as parallel walls); give the surveyed poses of the stations in the station file, or rescan from where more of the site is in view",
-                    names[*j],
-                    100.0 * c.fit,
-                    c.slide_m,
-                    weakest_way_said(c),
-                    LOOSE_HOLD_SLIDE_M
-                )),
+                (None, true) => {
+                    let station = held(*j).map_or(String::new(), |(_, tol)| {
+                        format!(
+                            ", and its station's tolerance (tolerance_m = {}{}) lets it lie up to {:.2} m off that way",
+                            tol.plan_m,
+                            tol.yaw_deg.map_or(String::new(), |deg| format!(", yaw_tolerance_deg = {deg}")),
+                            c.hold.within_station_m(&c.pose, &tol)
+                        )
+                    });
+                    let remedy = if held(*j).is_some() {
+                        "neither pins it down (what it shares may turn onto itself, as one tank's side, or slide along itself, as parallel walls); where its station was surveyed more closely than that, give its tolerance in the station file; or rescan from where more of the site is in view"
+                    } else {
+                        "the other scans do not pin it down (what they share may turn onto itself, as one tank's side, or slide along itself, as parallel walls); give the surveyed poses of the stations in the station file, or rescan from where more of the site is in view"
+                    };
+                    (c.fit, format!(
+                        "scan '{}' is not merged: where it fits the scans placed so far best (overlapping them by {:.1} %), the walls, columns and tanks it shares with them hold it loosely in plan: {} (at most {:.2} m allowed){station}: {remedy}",
+                        names[*j],
+                        100.0 * c.fit,
+                        loose_hold_said(c),
+                        LOOSE_HOLD_SLIDE_M
+                    ))
+                }
                 (None, false) => return None,
             };
             Some((*j, fitness, why))
@@ -1538,8 +1611,14 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
             });
             continue;
         }
-        match best.map(|(j, c)| (j, c.pose, c.fit, c.viol, c.method, c.slide_m)) {
-            Some((j, p, trial_fit, viol, method, hold_m)) => {
+        match best {
+            Some((j, c)) => {
+                let (p, trial_fit, viol) = (c.pose, c.fit, c.viol);
+                // A held scan its shared structure holds loosely, its station
+                // pinning that way down (else it is refused above).
+                let station_pins = (c.hold.slide_per_cm_m() > LOOSE_HOLD_SLIDE_M)
+                    .then(|| held(j).map(|(_, tol)| c.hold.within_station_m(&c.pose, &tol)))
+                    .flatten();
                 // Placed though the share is over: how much of it lies where a
                 // ray passed within half the width (the trial's pose).
                 let narrow_share = (viol > s.max_violation)
@@ -1560,7 +1639,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                 poses[j] = Some(p);
                 order.push(j);
                 note_placed_while_out(j, &poses, &deferred, &mut placed_while_out);
-                let warning = narrow_share.map(|narrow_share| {
+                let narrow = narrow_share.map(|narrow_share| {
                     format!(
                         "scan '{}' was placed though {:.1} % of its points lie where another scanner saw through (at most {:.1} % allowed): there, but for {:.2} % of its points, that scanner's rays passed farther off than half the width of what the point lies on (a post or a wire its steps went both sides of), and its alignment overlaps the others by {:.1} % ({:.0} % or more needed to place it so); check the thin structure it shows where another scan shows nothing",
                         inputs[j].name,
@@ -1571,14 +1650,24 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                         100.0 * NARROW_LEAST_FIT
                     )
                 });
+                let by_station = station_pins.map(|within_m| {
+                    format!(
+                        "scan '{}' was placed with its station's help: the walls, columns and tanks it shares with the scans placed before it hold it loosely in plan (at most {:.2} m allowed: {}), so that way its place is its station's, within {:.2} m; check that station's survey",
+                        inputs[j].name,
+                        LOOSE_HOLD_SLIDE_M,
+                        loose_hold_said(&c),
+                        within_m
+                    )
+                });
+                let warning = [narrow, by_station].into_iter().flatten().reduce(|a, b| a + "; " + &b);
                 results[j] = Some(RegResult {
                     pose: p,
                     fitness: fit,
                     rmse_m: rmse,
-                    method,
+                    method: c.method,
                     registered: true,
                     warning,
-                    hold_m: Some(hold_m),
+                    hold_m: Some(c.hold.slide_per_cm_m()),
                 });
             }
             None => {
@@ -2889,8 +2978,13 @@ mod tests {
                 fit: 0.514,
                 viol: 0.0,
                 method: "plan-view correlation + ICP".into(),
-                slide_m: 0.061,
-                weakest: [0.6, -0.8, 0.0],
+                hold: PlanHold {
+                    pairs: 4321,
+                    least: 0.027,
+                    weakest: [0.6, -0.8, 0.0],
+                    middle: [50.2, 12.0],
+                    spread_m: 7.5,
+                },
             }],
             closest: (0.514, 0.0),
             at_station: Some((0.2, 0.001)),
@@ -3024,5 +3118,83 @@ mod tests {
         let flat = hold(&ground(10.0));
         assert_eq!(flat.pairs, 0);
         assert!(flat.slide_per_cm_m().is_infinite());
+    }
+
+    /// A station pins down the way what a scan shares holds loosely only
+    /// as closely as its tolerance: a shift moves the scanner, and a turn
+    /// about the shared structure's middle both moves and turns it.
+    #[test]
+    fn a_station_pins_a_loose_way_down_to_its_tolerance() {
+        let tolerance = |plan_m, yaw_deg| StationTolerance { plan_m, height_m: None, yaw_deg };
+        let slide_east = PlanHold { pairs: 100, least: 0.0, weakest: [0.0, 1.0, 0.0], middle: [0.0; 2], spread_m: 5.0 };
+        let at = |x: f64, y: f64| liftplan_core::frame::pose_xyz_yaw(x, y, 0.0, 0.0);
+        assert!((slide_east.within_station_m(&at(10.0, 0.0), &tolerance(0.5, Some(2.0))) - 0.5).abs() < 1e-12);
+        // A turn, 0.2 rad a metre where the pairs lie 5 m from their middle.
+        let turn = PlanHold { weakest: [1.0, 0.0, 0.0], ..slide_east };
+        let rad = 2f64.to_radians();
+        // A scanner 10 m off the middle moves 2 m a metre: 0.25 m; the yaw
+        // surveyed to 2 degrees gives 0.175 m.
+        assert!((turn.within_station_m(&at(10.0, 0.0), &tolerance(0.5, None)) - 0.25).abs() < 1e-12);
+        assert!((turn.within_station_m(&at(10.0, 0.0), &tolerance(0.5, Some(2.0))) - rad / 0.2).abs() < 1e-12);
+        // At the middle it does not move: only a surveyed yaw bounds the turn.
+        assert!((turn.within_station_m(&at(0.0, 0.0), &tolerance(0.5, Some(2.0))) - rad / 0.2).abs() < 1e-12);
+        assert!(turn.within_station_m(&at(0.0, 0.0), &tolerance(0.5, None)).is_infinite());
+    }
+
+    /// Two scans of a corridor, both held by stations, the second's 0.3 m
+    /// off along it: what they share holds nothing along the corridor, so
+    /// ICP leaves the second where its station put it. With the default
+    /// tolerance (0.5 m) that is not pinned down and it is not merged
+    /// (it was merged 0.3 m off, with no word, before); surveyed to 0.1 m,
+    /// it is merged where its station is, and said to be.
+    #[test]
+    fn a_held_scan_its_station_alone_pins_along_a_corridor() {
+        // Two walls along x at y = -5 and 5, 4 m high, and the ground.
+        let corridor = |x0: f64, x1: f64, phase: f64| {
+            joined(&[
+                box_faces([x0, -5.2, 0.0], [x1, -5.0, 4.0], &[(1, 1.0)], phase),
+                box_faces([x0, 5.0, 0.0], [x1, 5.2, 4.0], &[(1, -1.0)], phase),
+                box_faces([x0, -5.0, -0.1], [x1, 5.0, 0.0], &[(2, 1.0)], phase),
+            ])
+        };
+        let clouds = [corridor(-20.0, 20.0, 0.0), corridor(-15.0, 15.0, 0.05)];
+        let register = |plan_m: f64, off_m: f64| {
+            let tolerance = StationTolerance { plan_m, height_m: None, yaw_deg: Some(2.0) };
+            let stations = [Pose::identity(), liftplan_core::frame::pose_xyz_yaw(off_m, 0.0, 0.0, 0.0)];
+            let inputs: Vec<RegInput> = clouds
+                .iter()
+                .zip(stations)
+                .enumerate()
+                .map(|(k, (c, st))| RegInput {
+                    name: format!("s{k}"),
+                    fine: c.clone(),
+                    coarse: FeatureCloud::default(),
+                    initial: Some(st),
+                    held: Some(tolerance),
+                })
+                .collect();
+            register_all(&inputs, &RegistrationSettings::default(), 7).remove(1)
+        };
+        let refused = register(0.5, 0.3);
+        let why = refused.warning.as_deref().unwrap_or_default();
+        assert!(!refused.registered, "{refused:?}");
+        assert!(
+            why.starts_with("scan 's1' is not merged: where it fits the scans placed so far best")
+                && why.contains("moved any distance its weakest way (0 % a turn about the shared structure's middle, the rest a shift along bearing 90/270 degrees), they lie no further off each other (at most 0.18 m allowed), and its station's tolerance (tolerance_m = 0.5, yaw_tolerance_deg = 2) lets it lie up to 0.50 m off that way"),
+            "{why}"
+        );
+        let placed = register(0.1, 0.05);
+        assert!(placed.registered, "{placed:?}");
+        assert!(
+            (placed.pose.translation.x - 0.05).abs() < 1e-3 && placed.pose.translation.y.abs() < 1e-3,
+            "{placed:?}"
+        );
+        assert!(placed.hold_m.is_some_and(|m| m > LOOSE_HOLD_SLIDE_M), "{placed:?}");
+        let said = placed.warning.as_deref().unwrap_or_default();
+        assert!(
+            said.starts_with("scan 's1' was placed with its station's help")
+                && said.ends_with("so that way its place is its station's, within 0.10 m; check that station's survey"),
+            "{said}"
+        );
     }
 }
