@@ -392,6 +392,7 @@ fn run_docs(ctx: &Ctx) -> Result<Produced> {
             .collect();
     }
     let site_level_unconfirmed = registration.as_ref().and_then(site_level_unconfirmed);
+    let scans_warned = registration.as_ref().map(scans_warned).unwrap_or_default();
     // Lifts on a chart of one column: which boom it is for, the chart does not say.
     let mut one_column_charts = Vec::new();
     if let Some(r) = ctx.upstream_json("charts", "lifts.json")? {
@@ -426,6 +427,7 @@ fn run_docs(ctx: &Ctx) -> Result<Produced> {
         input_lines,
         input_hashes,
         scans_left_out,
+        scans_warned,
         site_level_unconfirmed,
         one_column_charts,
         chart_warnings,
@@ -459,9 +461,37 @@ fn site_level_unconfirmed(registration: &serde_json::Value) -> Option<(String, S
         .then(|| (reference["name"].as_str().unwrap_or("?").to_string(), method.to_string()))
 }
 
+/// The scans merged with a warning from registration (placed with their
+/// station's help along a way what they share holds loosely, or though
+/// points lie where another scanner saw through), by name, from the scans
+/// stage's registration.json.
+fn scans_warned(registration: &serde_json::Value) -> Vec<String> {
+    registration["scans"]
+        .as_array()
+        .into_iter()
+        .flatten()
+        .filter(|s| s["registered"] == true && s["warning"].as_str().is_some_and(|w| !w.is_empty()))
+        .map(|s| s["name"].as_str().unwrap_or("?").to_string())
+        .collect()
+}
+
 #[cfg(test)]
 mod site_level_tests {
-    use super::site_level_unconfirmed;
+    use super::{scans_warned, site_level_unconfirmed};
+
+    /// Only merged scans with a warning are named: a scan left out is
+    /// named as left out, not as warned of.
+    #[test]
+    fn scans_merged_with_a_warning_are_named() {
+        let registration = serde_json::json!({ "scans": [
+            { "name": "scan-1", "registered": true, "warning": null },
+            { "name": "scan-2", "registered": true, "warning": "scan 'scan-2' was placed with its station's help: ..." },
+            { "name": "scan-3", "registered": false, "warning": "scan 'scan-3' is not merged: ..." },
+            { "name": "scan-4", "registered": true },
+        ] });
+        assert_eq!(scans_warned(&registration), ["scan-2"]);
+        assert!(scans_warned(&serde_json::json!({})).is_empty());
+    }
 
     #[test]
     fn a_reference_levelled_by_its_ground_or_not_at_all_is_named() {

@@ -78,6 +78,9 @@ pub struct Inputs {
     /// (`[scans] on_unregistered = "exclude"`), by name, and how many scans
     /// there were in all.
     pub scans_left_out: (Vec<String>, usize),
+    /// Scans merged with a warning from registration (their lines on the
+    /// inputs page say what to check), by name.
+    pub scans_warned: Vec<String>,
     /// Where the scanner did not level itself (`[scans.registration]
     /// leveled = false`) and the reference scan was levelled by its ground
     /// or not at all: its name and how its line says it was levelled.

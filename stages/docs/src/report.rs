@@ -219,6 +219,19 @@ fn model_unchecked(inp: &Inputs, plan: &LiftPlan) -> bool {
     inp.mesh.is_some() && inp.cloud.is_some() && plan.model_vs_scans.is_none()
 }
 
+/// The check before signing of the scans registration merged with a
+/// warning ([`Inputs::scans_warned`]): their lines on the inputs page say
+/// what it is (a station that alone places a scan along a corridor, a
+/// post only one scan shows).
+fn scans_warned_said(names: &[String]) -> Option<String> {
+    let count = match names {
+        [] => return None,
+        [_] => "one scan".to_string(),
+        many => format!("{} scans", many.len()),
+    };
+    Some(format!("what registration warned of {count} merged ({}; inputs page)", names.join(", ")))
+}
+
 /// `warned_read`: [`warned_cells_read`], where the chart was read.
 fn checks_before_signing(
     inp: &Inputs,
@@ -267,6 +280,7 @@ fn checks_before_signing(
     if !inp.scans_left_out.0.is_empty() {
         v.push(format!("{} scans left out unregistered", inp.scans_left_out.0.len()));
     }
+    v.extend(scans_warned_said(&inp.scans_warned));
     if inp.site_level_unconfirmed.is_some() {
         v.push("the site's level (the scanner did not level itself)".to_string());
     }
@@ -1580,6 +1594,19 @@ pub fn document(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn scans_merged_with_a_warning_are_a_check_before_signing() {
+        assert_eq!(scans_warned_said(&[]), None);
+        assert_eq!(
+            scans_warned_said(&["scan-2".into()]).as_deref(),
+            Some("what registration warned of one scan merged (scan-2; inputs page)")
+        );
+        assert_eq!(
+            scans_warned_said(&["s1".into(), "s4".into()]).as_deref(),
+            Some("what registration warned of 2 scans merged (s1, s4; inputs page)")
+        );
+    }
 
     #[test]
     fn step_numbers_are_said_as_runs() {
