@@ -940,6 +940,17 @@ fn decode_placed(bytes: &[u8], count: usize) -> Option<Vec<(Pose, f64, f64)>> {
     r.finish().is_ok().then_some(placed)
 }
 
+/// Reads `bytes` as each kind of answer the memo keeps: a trial, the
+/// placement of `count` scans (one placed, or the refinement of them all),
+/// the reference placed again; whether each read. For the fuzz target
+/// `registration_memo`: an answer damaged inside a sound memo file must
+/// read as nothing (worked out again), with no panic and no allocation its
+/// bytes do not pay for.
+#[doc(hidden)]
+pub fn read_memo_answers(bytes: &[u8], count: usize) -> [bool; 3] {
+    [Trial::decode(bytes).is_some(), decode_placed(bytes, count).is_some(), ReferenceAgain::decode(bytes).is_some()]
+}
+
 /// A trial of one scan in one round: what each candidate pose gave after ICP,
 /// in the order they were tried.
 struct Trial {
