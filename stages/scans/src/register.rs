@@ -98,8 +98,9 @@
 //! ([`PlanHold::within_station_m`]): ICP, which holds nothing that way,
 //! leaves a held scan where its station puts it, so with the default 0.5 m
 //! a scan in a corridor whose station was 0.3 m off along it was merged
-//! 0.3 m wrong with no word. A held scan so pinned is placed, and its
-//! warning says its place that way is its station's. Of one scan's
+//! 0.3 m wrong with no word. A held scan so pinned waits too, but is
+//! placed before the scans nothing pins down, with a warning that its place
+//! that way is its station's. Of one scan's
 //! alignments, a firmly held one ranks above a loosely held one that
 //! scores higher (the first scan placed against a reference a van stood
 //! beside fitted it 61 degrees turned, loosely, and where it stood,
@@ -1292,11 +1293,13 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
         Some((inputs[j].initial?, inputs[j].held?))
     };
     // What the others share with a scan holds its alignment loosely where
-    // it moves more than LOOSE_HOLD_SLIDE_M its weakest way for 1 cm; a
-    // station pins that way down where its tolerance lets the scan lie no
-    // farther off it than that.
+    // it moves more than LOOSE_HOLD_SLIDE_M its weakest way for 1 cm
+    // (`held_loosely_by_overlap`); a station pins that way down where its
+    // tolerance lets the scan lie no farther off it than that. Not pinned
+    // down either way: `loosely_held`.
+    let held_loosely_by_overlap = |c: &Passed| c.hold.slide_per_cm_m() > LOOSE_HOLD_SLIDE_M;
     let loosely_held = |j: usize, c: &Passed| {
-        c.hold.slide_per_cm_m() > LOOSE_HOLD_SLIDE_M
+        held_loosely_by_overlap(c)
             && held(j).is_none_or(|(_, tol)| c.hold.within_station_m(&c.pose, &tol) > LOOSE_HOLD_SLIDE_M)
     };
     let mut poses: Vec<Option<Pose>> = vec![None; n];
@@ -1550,20 +1553,24 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
             two_places[j] = TwoPlaces::of(&trial.passing);
             // Scans held by a station go first: their place does not rest on
             // the scans placed before them, and theirs pins the others'
-            // (not where what they share holds them loosely, and their
-            // station does not pin that way down: they wait as a scan
-            // without a station does). A
-            // scan taken out for standing in another's way waits until no
-            // other scan can be placed, and one the others do not pin down
-            // until no other can be placed by them, as does an alignment
-            // its shared structure holds loosely ([`LOOSE_HOLD_SLIDE_M`]).
+            // (not where what they share holds them loosely: then they wait
+            // as a scan without a station does). A scan taken out for
+            // standing in another's way waits until no other scan can be
+            // placed, and one the others do not pin down until no other can
+            // be placed by them, as does an alignment its shared structure
+            // holds loosely ([`LOOSE_HOLD_SLIDE_M`]); of those, one its
+            // station pins down goes first (it is placed, with a warning),
+            // and one that nothing pins down last (it is refused). So a
+            // held scan placed with its station's help is one whose shared
+            // structure stayed loose while every scan held firmly was placed.
             for c in trial.passing {
                 let rank = |j: usize, c: &Passed| {
                     (
-                        held(j).is_some() && !loosely_held(j, c),
+                        held(j).is_some() && !held_loosely_by_overlap(c),
                         !deferred[j],
                         two_places[j].is_none(),
                         !loosely_held(j, c),
+                        !held_loosely_by_overlap(c),
                         score(c.fit, c.viol),
                     )
                 };
