@@ -1639,7 +1639,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                 let (p, trial_fit, viol) = (c.pose, c.fit, c.viol);
                 // A held scan its shared structure holds loosely, its station
                 // pinning that way down (else it is refused above).
-                let station_pins = (c.hold.slide_per_cm_m() > LOOSE_HOLD_SLIDE_M)
+                let station_pins = held_loosely_by_overlap(&c)
                     .then(|| held(j).map(|(_, tol)| c.hold.within_station_m(&c.pose, &tol)))
                     .flatten();
                 // Placed though the share is over: how much of it lies where a
