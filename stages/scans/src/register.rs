@@ -1596,18 +1596,20 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                     100.0 * AMBIGUOUS_FIT_SHARE
                 )),
                 (None, true) => {
-                    let station = held(*j).map_or(String::new(), |(_, tol)| {
-                        format!(
-                            ", and its station's tolerance (tolerance_m = {}{}) lets it lie up to {:.2} m off that way",
-                            tol.plan_m,
-                            tol.yaw_deg.map_or(String::new(), |deg| format!(", yaw_tolerance_deg = {deg}")),
-                            c.hold.within_station_m(&c.pose, &tol)
-                        )
-                    });
-                    let remedy = if held(*j).is_some() {
-                        "neither pins it down (what it shares may turn onto itself, as one tank's side, or slide along itself, as parallel walls); where its station was surveyed more closely than that, give its tolerance in the station file; or rescan from where more of the site is in view"
-                    } else {
-                        "the other scans do not pin it down (what they share may turn onto itself, as one tank's side, or slide along itself, as parallel walls); give the surveyed poses of the stations in the station file, or rescan from where more of the site is in view"
+                    let (station, remedy) = match held(*j) {
+                        Some((_, tol)) => (
+                            format!(
+                                ", and its station's tolerance (tolerance_m = {}{}) lets it lie up to {:.2} m off that way",
+                                tol.plan_m,
+                                tol.yaw_deg.map_or(String::new(), |deg| format!(", yaw_tolerance_deg = {deg}")),
+                                c.hold.within_station_m(&c.pose, &tol)
+                            ),
+                            "neither pins it down (what it shares may turn onto itself, as one tank's side, or slide along itself, as parallel walls); where its station was surveyed more closely than that, give its tolerance in the station file; or rescan from where more of the site is in view",
+                        ),
+                        None => (
+                            String::new(),
+                            "the other scans do not pin it down (what they share may turn onto itself, as one tank's side, or slide along itself, as parallel walls); give the surveyed poses of the stations in the station file, or rescan from where more of the site is in view",
+                        ),
                     };
                     (c.fit, format!(
                         "scan '{}' is not merged: where it fits the scans placed so far best (overlapping them by {:.1} %), the walls, columns and tanks it shares with them hold it loosely in plan: {} (at most {:.2} m allowed){station}: {remedy}",
@@ -1639,9 +1641,9 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                 let (p, trial_fit, viol) = (c.pose, c.fit, c.viol);
                 // A held scan its shared structure holds loosely, its station
                 // pinning that way down (else it is refused above).
-                let station_pins = held_loosely_by_overlap(&c)
-                    .then(|| held(j).map(|(_, tol)| c.hold.within_station_m(&c.pose, &tol)))
-                    .flatten();
+                let station_pins = held(j)
+                    .filter(|_| held_loosely_by_overlap(&c))
+                    .map(|(_, tol)| c.hold.within_station_m(&c.pose, &tol));
                 // Placed though the share is over: how much of it lies where a
                 // ray passed within half the width (the trial's pose).
                 let narrow_share = (viol > s.max_violation)
