@@ -463,15 +463,18 @@ fn site_level_unconfirmed(registration: &serde_json::Value) -> Option<(String, S
 
 /// The scans merged with a warning from registration (placed with their
 /// station's help along a way what they share holds loosely, or though
-/// points lie where another scanner saw through), by name, from the scans
-/// stage's registration.json.
-fn scans_warned(registration: &serde_json::Value) -> Vec<String> {
+/// points lie where another scanner saw through): each one's name and the
+/// warning, from the scans stage's registration.json.
+fn scans_warned(registration: &serde_json::Value) -> Vec<(String, String)> {
     registration["scans"]
         .as_array()
         .into_iter()
         .flatten()
-        .filter(|s| s["registered"] == true && s["warning"].as_str().is_some_and(|w| !w.is_empty()))
-        .map(|s| s["name"].as_str().unwrap_or("?").to_string())
+        .filter(|s| s["registered"] == true)
+        .filter_map(|s| {
+            let warning = s["warning"].as_str().filter(|w| !w.is_empty())?;
+            Some((s["name"].as_str().unwrap_or("?").to_string(), warning.to_string()))
+        })
         .collect()
 }
 
@@ -489,7 +492,10 @@ mod site_level_tests {
             { "name": "scan-3", "registered": false, "warning": "scan 'scan-3' is not merged: ..." },
             { "name": "scan-4", "registered": true },
         ] });
-        assert_eq!(scans_warned(&registration), ["scan-2"]);
+        assert_eq!(
+            scans_warned(&registration),
+            [("scan-2".to_string(), "scan 'scan-2' was placed with its station's help: ...".to_string())]
+        );
         assert!(scans_warned(&serde_json::json!({})).is_empty());
     }
 

@@ -1493,3 +1493,72 @@ fn a_wire_in_the_scans_that_no_power_line_gives_is_asked_about() {
     assert_eq!(plan["lifts"][0]["summary"]["line_like_kept_off_m"], 6.1, "{plan}");
     assert_eq!(plan["lifts"][0]["validator"]["ok"], true, "{plan}");
 }
+
+/// Nine scanners over three quarters of the demo site at 0.4 degrees (the
+/// registration fixture `a_post_a_far_scanner_stepped_past_does_not_refuse_a_right_alignment`):
+/// `s7` is merged with a warning (another scanner's rays passed both sides
+/// of the lamp post it sees). The whole run carries that warning from the
+/// scans stage's registration.json to the PDF: the cover's CHECK FIRST
+/// names `s7`, and the inputs page and the sign-off page give the warning.
+/// (As first built, the cover sent the reader to the sign-off page, which
+/// said nothing of it.)
+#[test]
+fn a_scan_merged_with_a_warning_is_named_on_the_cover_and_sign_off_page() {
+    use liftplan_fixtures::{demo, scanner, scene};
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("nine");
+    let options = demo::DemoOptions { scan_step_deg: 0.5, ..Default::default() };
+    demo::write_project(&dir, &options).unwrap();
+    let scans = dir.join("scans");
+    for k in 1..=4 {
+        std::fs::remove_file(scans.join(format!("scan-{k}.laz"))).unwrap();
+    }
+    let site = scene::demo_site(0);
+    let settings = scanner::ScanSettings { az_step_deg: 0.4, el_step_deg: 0.4, ..Default::default() };
+    let stations = scanner::ellipse_stations(&site, 9, 0.75);
+    for st in &stations {
+        liftplan_scans::write::write_las(
+            &scans.join(format!("{}.laz", st.name)),
+            &scanner::simulate(&site, st, &settings),
+        )
+        .unwrap();
+    }
+    let p0 = stations[0].pose();
+    std::fs::write(
+        scans.join("stations.toml"),
+        format!(
+            "[[station]]\nscan = \"s0\"\nx_m = {:.4}\ny_m = {:.4}\nz_m = {:.4}\nyaw_deg = {:.6}\n",
+            p0.translation.x,
+            p0.translation.y,
+            p0.translation.z,
+            p0.rotation.euler_angles().2.to_degrees()
+        ),
+    )
+    .unwrap();
+    let o = liftplan(&["run", dir.to_str().unwrap(), "-q"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let registration: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("out").join("registration.json")).unwrap()).unwrap();
+    let warned: Vec<&str> = registration["scans"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|s| s["registered"] == true && s["warning"].is_string())
+        .map(|s| s["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(warned, ["s7"], "{registration}");
+    let doc = lopdf::Document::load(dir.join("out").join("V-101.pdf")).unwrap();
+    let check = "what registration warned of one scan merged (s7; inputs page)";
+    let cover = cover_text(&doc);
+    assert!(cover.contains(check), "{cover}");
+    let pages: Vec<u32> = doc.get_pages().keys().copied().collect();
+    let text = doc.extract_text(&pages).unwrap().replace('\n', " ");
+    // The inputs page's line under s7's, then the sign-off page's paragraph.
+    assert_eq!(text.matches("scan 's7' was placed though").count(), 2, "{text}");
+    let sign_off = &text[text.find("Review and sign-off").unwrap()..];
+    assert!(
+        sign_off.contains("SCAN 's7' WAS MERGED WITH A WARNING from registration: scan 's7' was placed though")
+            && sign_off.contains("CHECK WHAT THE WARNING ASKS before signing"),
+        "{sign_off}"
+    );
+}

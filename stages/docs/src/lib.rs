@@ -78,9 +78,10 @@ pub struct Inputs {
     /// (`[scans] on_unregistered = "exclude"`), by name, and how many scans
     /// there were in all.
     pub scans_left_out: (Vec<String>, usize),
-    /// Scans merged with a warning from registration (their lines on the
-    /// inputs page say what to check), by name.
-    pub scans_warned: Vec<String>,
+    /// Scans merged with a warning from registration: each one's name and
+    /// the warning's words (its line on the inputs page and the sign-off
+    /// page give them).
+    pub scans_warned: Vec<(String, String)>,
     /// Where the scanner did not level itself (`[scans.registration]
     /// leveled = false`) and the reference scan was levelled by its ground
     /// or not at all: its name and how its line says it was levelled.

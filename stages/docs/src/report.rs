@@ -220,16 +220,33 @@ fn model_unchecked(inp: &Inputs, plan: &LiftPlan) -> bool {
 }
 
 /// The check before signing of the scans registration merged with a
-/// warning ([`Inputs::scans_warned`]): their lines on the inputs page say
-/// what it is (a station that alone places a scan along a corridor, a
-/// post only one scan shows).
-fn scans_warned_said(names: &[String]) -> Option<String> {
-    let count = match names {
+/// warning ([`Inputs::scans_warned`]): their lines on the inputs page and
+/// the sign-off page ([`scans_warned_paragraph`]) say what it is (a station
+/// that alone places a scan along a corridor, a post only one scan shows).
+fn scans_warned_said(warned: &[(String, String)]) -> Option<String> {
+    let count = match warned {
         [] => return None,
         [_] => "one scan".to_string(),
         many => format!("{} scans", many.len()),
     };
+    let names: Vec<&str> = warned.iter().map(|(name, _)| name.as_str()).collect();
     Some(format!("what registration warned of {count} merged ({}; inputs page)", names.join(", ")))
+}
+
+/// The sign-off page's paragraph on the scans registration merged with a
+/// warning: the warnings' own words, since the obstacles those scans show
+/// stand where the alignments the warnings doubt put them.
+fn scans_warned_paragraph(warned: &[(String, String)]) -> Option<String> {
+    let (head, they) = match warned {
+        [] => return None,
+        [(name, _)] => (format!("SCAN '{name}' WAS MERGED WITH A WARNING"), "it shows stands where it was"),
+        many => (format!("{} SCANS WERE MERGED WITH A WARNING", many.len()), "they show stands where they were"),
+    };
+    let words: Vec<&str> = warned.iter().map(|(_, w)| w.strip_suffix('.').unwrap_or(w)).collect();
+    Some(format!(
+        "{head} from registration: {}. Every obstacle {they} placed: CHECK WHAT THE WARNING ASKS before signing, or have the scans registered without it.",
+        words.join(". ")
+    ))
 }
 
 /// `warned_read`: [`warned_cells_read`], where the chart was read.
@@ -1515,6 +1532,10 @@ pub fn document(
             ),
         );
     }
+    if let Some(said) = scans_warned_paragraph(&inp.scans_warned) {
+        y += 4.0;
+        y = sign_off_paragraph(&mut d, y, w, &said);
+    }
     if let Some((reference, how)) = &inp.site_level_unconfirmed {
         y += 4.0;
         y = sign_off_paragraph(
@@ -1597,14 +1618,35 @@ mod tests {
 
     #[test]
     fn scans_merged_with_a_warning_are_a_check_before_signing() {
+        let warned = |names: &[&str]| -> Vec<(String, String)> {
+            names
+                .iter()
+                .map(|n| (n.to_string(), format!("scan '{n}' was placed with its station's help: ...")))
+                .collect()
+        };
         assert_eq!(scans_warned_said(&[]), None);
         assert_eq!(
-            scans_warned_said(&["scan-2".into()]).as_deref(),
+            scans_warned_said(&warned(&["scan-2"])).as_deref(),
             Some("what registration warned of one scan merged (scan-2; inputs page)")
         );
         assert_eq!(
-            scans_warned_said(&["s1".into(), "s4".into()]).as_deref(),
+            scans_warned_said(&warned(&["s1", "s4"])).as_deref(),
             Some("what registration warned of 2 scans merged (s1, s4; inputs page)")
+        );
+        // The sign-off page gives the warnings' words.
+        assert_eq!(scans_warned_paragraph(&[]), None);
+        assert_eq!(
+            scans_warned_paragraph(&warned(&["scan-2"])).as_deref(),
+            Some(
+                "SCAN 'scan-2' WAS MERGED WITH A WARNING from registration: scan 'scan-2' was placed with its station's help: ... Every obstacle it shows stands where it was placed: CHECK WHAT THE WARNING ASKS before signing, or have the scans registered without it."
+            )
+        );
+        let two = scans_warned_paragraph(&warned(&["s1", "s4"])).unwrap();
+        assert!(
+            two.starts_with("2 SCANS WERE MERGED WITH A WARNING from registration: scan 's1' was placed")
+                && two.contains("... scan 's4' was placed")
+                && two.contains("Every obstacle they show stands where they were placed"),
+            "{two}"
         );
     }
 
