@@ -275,6 +275,9 @@ pub struct ScanReport {
     /// How firmly what it shares with the scans placed before it held it
     /// in plan ([`register::RegResult::hold_m`], m).
     pub hold_m: Option<f64>,
+    /// How far its last alignment, against all the other scans, moved its
+    /// points ([`register::RegResult::refined_move_m`], m).
+    pub refined_move_m: Option<f64>,
     /// The unit its coordinates were read in, and where that came from.
     pub unit: String,
     /// Metres per coordinate unit of x, y and z ([`ScanInfo::to_m`]).
@@ -697,6 +700,7 @@ pub fn run(inputs: &[PathBuf], s: &Settings, opts: &RunOptions, out_dir: &Path) 
             registered: r.registered,
             warning: r.warning.clone(),
             hold_m: r.hold_m,
+            refined_move_m: r.refined_move_m,
             unit: info.read_in.clone(),
             to_m: info.to_m,
             date: info.date,
@@ -773,6 +777,7 @@ fn plain_result(pose: Pose, method: &str) -> register::RegResult {
         registered: true,
         warning: None,
         hold_m: None,
+        refined_move_m: None,
     }
 }
 
@@ -1143,6 +1148,7 @@ mod tests {
             registered: true,
             warning: None,
             hold_m: None,
+            refined_move_m: None,
             unit: String::new(),
             to_m: [1.0; 3],
             date,
