@@ -462,9 +462,10 @@ fn site_level_unconfirmed(registration: &serde_json::Value) -> Option<(String, S
 }
 
 /// The scans merged with a warning from registration (placed with their
-/// station's help along a way what they share holds loosely, or though
-/// points lie where another scanner saw through): each one's name and the
-/// warning, from the scans stage's registration.json.
+/// station's help along a way what they share holds loosely, though points
+/// lie where another scanner saw through, or moved by the last alignment
+/// against all the others): each one's name and the warning, from the scans
+/// stage's registration.json.
 fn scans_warned(registration: &serde_json::Value) -> Vec<(String, String)> {
     registration["scans"]
         .as_array()

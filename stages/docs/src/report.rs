@@ -222,7 +222,8 @@ fn model_unchecked(inp: &Inputs, plan: &LiftPlan) -> bool {
 /// The check before signing of the scans registration merged with a
 /// warning ([`Inputs::scans_warned`]): their lines on the inputs page and
 /// the sign-off page ([`scans_warned_paragraph`]) say what it is (a station
-/// that alone places a scan along a corridor, a post only one scan shows).
+/// that alone places a scan along a corridor, a post only one scan shows, a
+/// scan the last alignment against all the others moved).
 fn scans_warned_said(warned: &[(String, String)]) -> Option<String> {
     let count = match warned {
         [] => return None,
@@ -237,14 +238,20 @@ fn scans_warned_said(warned: &[(String, String)]) -> Option<String> {
 /// warning: the warnings' own words, since the obstacles those scans show
 /// stand where the alignments the warnings doubt put them.
 fn scans_warned_paragraph(warned: &[(String, String)]) -> Option<String> {
-    let (head, they) = match warned {
+    let (head, they, asks) = match warned {
         [] => return None,
-        [(name, _)] => (format!("SCAN '{name}' WAS MERGED WITH A WARNING"), "it shows stands where it was"),
-        many => (format!("{} SCANS WERE MERGED WITH A WARNING", many.len()), "they show stands where they were"),
+        [(name, _)] => {
+            (format!("SCAN '{name}' WAS MERGED WITH A WARNING"), "it shows stands where it was", "THE WARNING ASKS")
+        }
+        many => (
+            format!("{} SCANS WERE MERGED WITH A WARNING", many.len()),
+            "they show stands where they were",
+            "THE WARNINGS ASK",
+        ),
     };
     let words: Vec<&str> = warned.iter().map(|(_, w)| w.strip_suffix('.').unwrap_or(w)).collect();
     Some(format!(
-        "{head} from registration: {}. Every obstacle {they} placed: CHECK WHAT THE WARNING ASKS before signing, or have the scans registered without it.",
+        "{head} from registration: {}. Every obstacle {they} placed: CHECK WHAT {asks} before signing, or have the scans registered without it.",
         words.join(". ")
     ))
 }
@@ -1645,7 +1652,7 @@ mod tests {
         assert!(
             two.starts_with("2 SCANS WERE MERGED WITH A WARNING from registration: scan 's1' was placed")
                 && two.contains("... scan 's4' was placed")
-                && two.contains("Every obstacle they show stands where they were placed"),
+                && two.contains("Every obstacle they show stands where they were placed: CHECK WHAT THE WARNINGS ASK"),
             "{two}"
         );
     }

@@ -1152,11 +1152,17 @@ fn moved_up_to_m(c: &RegCloud, from: &Pose, to: &Pose) -> f64 {
 
 /// What the last alignment of scan `name` against all the others, moving
 /// its points up to `moved_m` (m), says of it: nothing, a warning
-/// (`Ok`), or why it is not merged (`Err`).
-fn refined_move_said(name: &str, moved_m: f64) -> Option<Result<String, String>> {
+/// (`Ok`), or why it is not merged (`Err`), the remedy as the scan is
+/// `held` by a station or not.
+fn refined_move_said(name: &str, moved_m: f64, held: bool) -> Option<Result<String, String>> {
     if moved_m > LOOSE_HOLD_SLIDE_M {
+        let remedy = if held {
+            "check its station's survey and the others', or rescan from where more of the site is in view"
+        } else {
+            "give the surveyed poses of the stations in the station file, or rescan from where more of the site is in view"
+        };
         Some(Err(format!(
-            "scan '{name}' is not merged: aligned against all the other scans at the end, it moved up to {moved_m:.2} m from where the scans placed before it put it (at most {LOOSE_HOLD_SLIDE_M:.2} m allowed): the scans do not agree where it lies; give the surveyed poses of the stations in the station file, or rescan from where more of the site is in view"
+            "scan '{name}' is not merged: aligned against all the other scans at the end, it moved up to {moved_m:.2} m from where the scans placed before it put it (at most {LOOSE_HOLD_SLIDE_M:.2} m allowed): the scans do not agree where it lies; {remedy}"
         )))
     } else if moved_m > REFINED_MOVE_WARN_M {
         Some(Ok(format!(
@@ -2018,7 +2024,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                 .filter(|_| surveyed_only[j].is_none() && r.registered)
                 .map(|from| moved_up_to_m(&inputs[j].fine, &from, &p));
             r.refined_move_m = moved_m;
-            let moved = moved_m.and_then(|m| refined_move_said(&inputs[j].name, m));
+            let moved = moved_m.and_then(|m| refined_move_said(&inputs[j].name, m, held(j).is_some()));
             r.pose = p;
             r.fitness = fit;
             r.rmse_m = rmse;
@@ -2931,18 +2937,25 @@ mod tests {
         };
         let off = |x: f64| liftplan_core::frame::pose_xyz_yaw(x, 0.0, 0.0, 0.0);
         let m = moved(off(0.01));
-        assert!((m - 0.01).abs() < 0.005 && refined_move_said("s1", m).is_none(), "{m}");
+        assert!((m - 0.01).abs() < 0.005 && refined_move_said("s1", m, false).is_none(), "{m}");
         let m = moved(off(0.08));
         assert!((m - 0.08).abs() < 0.005, "{m}");
-        let warned = refined_move_said("s1", m).unwrap().unwrap();
+        let warned = refined_move_said("s1", m, false).unwrap().unwrap();
         assert!(
             warned.starts_with("scan 's1' moved up to 0.08 m when aligned against all the other scans at the end"),
             "{warned}"
         );
         let m = moved(off(0.2));
         assert!((m - 0.2).abs() < 0.005, "{m}");
-        let refused = refined_move_said("s1", m).unwrap().unwrap_err();
-        assert!(refused.starts_with("scan 's1' is not merged: aligned against all the other scans at the end, it moved up to 0.20 m from where the scans placed before it put it (at most 0.18 m allowed)"), "{refused}");
+        let refused = refined_move_said("s1", m, false).unwrap().unwrap_err();
+        assert!(refused.starts_with("scan 's1' is not merged: aligned against all the other scans at the end, it moved up to 0.20 m from where the scans placed before it put it (at most 0.18 m allowed)") && refused.ends_with("give the surveyed poses of the stations in the station file, or rescan from where more of the site is in view"), "{refused}");
+        let held = refined_move_said("s1", m, true).unwrap().unwrap_err();
+        assert!(
+            held.ends_with(
+                "; check its station's survey and the others', or rescan from where more of the site is in view"
+            ),
+            "{held}"
+        );
         // A turn moves the points far from where it turns about the most.
         let turned = liftplan_core::frame::pose_xyz_yaw(0.0, 0.0, 0.0, 1f64.to_radians());
         let reach = clouds[1].pts.iter().map(|p| p[0].hypot(p[1])).fold(0.0, f64::max);
