@@ -2860,6 +2860,21 @@ mod tests {
         c
     }
 
+    /// Scans `s0`, `s1`... of `clouds`, none held by a station.
+    fn unheld_inputs(clouds: &[RegCloud]) -> Vec<RegInput> {
+        clouds
+            .iter()
+            .enumerate()
+            .map(|(k, c)| RegInput {
+                name: format!("s{k}"),
+                fine: c.clone(),
+                coarse: FeatureCloud::default(),
+                initial: None,
+                held: None,
+            })
+            .collect()
+    }
+
     #[test]
     fn scans_placed_before_a_survey_are_checked_as_one() {
         // Two scans placed before a scan placed by its survey, each seeing
@@ -2872,17 +2887,7 @@ mod tests {
             box_faces(shed.0, shed.1, &[(1, 1.0), (2, 1.0)], 0.0),
             box_faces(shed.0, shed.1, &all_faces, 0.05),
         ];
-        let inputs: Vec<RegInput> = clouds
-            .iter()
-            .enumerate()
-            .map(|(k, c)| RegInput {
-                name: format!("s{k}"),
-                fine: c.clone(),
-                coarse: FeatureCloud::default(),
-                initial: None,
-                held: None,
-            })
-            .collect();
+        let inputs = unheld_inputs(&clouds);
         let s = RegistrationSettings::default();
         let before = [Some(Pose::identity()), Some(Pose::identity()), None];
         let verdict = |survey_error: Pose| {
@@ -2916,17 +2921,7 @@ mod tests {
         let shed = ([0.0, 0.0, 0.0], [4.0, 3.0, 2.5]);
         let all_faces = [(0, -1.0), (0, 1.0), (1, -1.0), (1, 1.0), (2, 1.0)];
         let clouds = [box_faces(shed.0, shed.1, &all_faces, 0.0), box_faces(shed.0, shed.1, &all_faces, 0.05)];
-        let inputs: Vec<RegInput> = clouds
-            .iter()
-            .enumerate()
-            .map(|(k, c)| RegInput {
-                name: format!("s{k}"),
-                fine: c.clone(),
-                coarse: FeatureCloud::default(),
-                initial: None,
-                held: None,
-            })
-            .collect();
+        let inputs = unheld_inputs(&clouds);
         let s = RegistrationSettings::default();
         let moved = |off: Pose| {
             let mut poses = [Some(Pose::identity()), Some(off)];
