@@ -55,12 +55,17 @@
 //! overlaps the others by [`NARROW_LEAST_FIT`] or more may still be placed
 //! where no more than `max_violation` of its points lie where one of those
 //! scanners' rays passed within half the width of what the point lies on
-//! ([`half_widths_m`]), and says so. The first rounds check a scan against one
+//! ([`half_widths_m`]), and says so; or where no more than that share lie so
+//! beyond [`NEAR_SCANNER_M`] of its own scanner (a person or a van beside the
+//! scanner, there for that scan alone, fills a large share of its points),
+//! and says so. The first rounds check a scan against one
 //! or two others, where a wrong pose's evidence is thin, so once every scan
 //! is placed each is checked again against all the others
 //! ([`FINAL_VIOLATION_FACTOR`]): a scan that disagrees with them is not
-//! merged, and if the reference disagrees, none of the scans placed
-//! against it is. The reference is also placed
+//! merged (unless it overlaps them by [`NARROW_LEAST_FIT`] and no more than
+//! `max_violation` of its points lie so beyond [`NEAR_SCANNER_M`] of its
+//! scanner, any ray counting: merged with a warning), and if the reference
+//! disagrees, none of the scans placed against it is. The reference is also placed
 //! again against all the others, as a trial places a scan but with what
 //! stands beside its scanner left out of its plan view: if it fits them
 //! clearly better elsewhere ([`REFERENCE_ELSEWHERE_MARGIN`]), they were
@@ -1199,13 +1204,43 @@ fn weakest_way_said(c: &Passed) -> String {
     )
 }
 
+/// Why scan `name` was placed though `share` of its points lie where
+/// another scanner saw through (over `allowed[0]`): they lie within
+/// [`NEAR_SCANNER_M`] of its own scanner but for `beyond` of its points
+/// (within `allowed[1]`), its alignment overlapping the others by `fit`;
+/// with `every_scan_placed`, as the check against all the others found it.
+fn beside_scanner_said(
+    name: &str,
+    share: f64,
+    beyond: f64,
+    fit: f64,
+    allowed: [f64; 2],
+    every_scan_placed: bool,
+) -> String {
+    format!(
+        "scan '{name}' was placed though{} {:.1} % of its points lie where another scanner saw through (at most {:.1} % allowed): they lie within {:.0} m of its own scanner but for {:.2} % of its points (at most {:.1} % allowed beyond), something that stood beside it for this scan alone (a person, a vehicle) or was moved before the others were scanned; its alignment overlaps the others by {:.1} % ({:.0} % or more needed to place it so). What it shows there is kept as an obstacle: check whether it still stands there",
+        if every_scan_placed { ", with every scan placed," } else { "" },
+        100.0 * share,
+        100.0 * allowed[0],
+        NEAR_SCANNER_M,
+        100.0 * beyond,
+        100.0 * allowed[1],
+        100.0 * fit,
+        100.0 * NARROW_LEAST_FIT
+    )
+}
+
 /// With every scan placed, a scan may have at most this many times
 /// `max_violation` of its points where the other scanners saw through.
 /// Right poses measured at most 0.9 % against all other scans (a van or a
 /// person beside one scanner, a lamp post a far scanner missed); a wrong
 /// one at least 1.3 % as a candidate and 4.4 % in the case that made this
 /// check (reports/scans.md). A wrong result the others agree with (the
-/// same van with eight stations) passes it.
+/// same van with eight stations) passes it. A scan over it that overlaps
+/// the others by [`NARROW_LEAST_FIT`] or more, and puts no more than
+/// `max_violation` of its points so beyond [`NEAR_SCANNER_M`] of its own
+/// scanner, is merged with a warning (a person 4 m from a scanner put 3.0 %
+/// of its points there, nearly all within that reach).
 pub const FINAL_VIOLATION_FACTOR: f64 = 4.0;
 
 /// The least overlap (0..1) at which an alignment that puts more than
@@ -1228,37 +1263,53 @@ fn score(fit: f64, viol: f64) -> f64 {
 
 /// An alignment's seen-through check against the placed scanners: its
 /// share of points where one saw through (any ray), and where the
-/// alignment overlaps the others well enough for it to count, the share
-/// where a ray passed within half the width of what a point lies on.
+/// alignment overlaps the others well enough for them to count, the share
+/// where a ray passed within half the width of what a point lies on, and
+/// of that, the share beyond [`NEAR_SCANNER_M`] from its own scanner.
 struct SeenCheck {
     fit: f64,
     any: f64,
     narrow: Option<f64>,
+    beyond: Option<f64>,
 }
 
 impl SeenCheck {
     /// The check of scan `src` at `p` (overlapping the others by `fit`)
     /// against the scanners `seen`; its share counted within half the width
-    /// (`reach_m`, [`half_widths_m`]) only where that can pass it.
+    /// (`reach_m`, [`half_widths_m`]), and beyond [`NEAR_SCANNER_M`] where
+    /// its frame is its scanner's (`scanner_at_origin`), only where that can
+    /// pass it.
     fn of<'a>(
         src: &RegCloud,
         reach_m: impl FnOnce() -> &'a [f64],
+        scanner_at_origin: bool,
         p: &Pose,
         fit: f64,
         seen: &[(&RangeImage, Pose)],
         max_violation: f64,
     ) -> SeenCheck {
         let any = free_space_violations(src, p, seen);
-        let narrow = (fit >= NARROW_LEAST_FIT && any > max_violation)
-            .then(|| free_space_violations_within(src, reach_m(), p, seen));
-        SeenCheck { fit, any, narrow }
+        let mut check = SeenCheck { fit, any, narrow: None, beyond: None };
+        if fit >= NARROW_LEAST_FIT && any > max_violation {
+            let reach_m = reach_m();
+            let narrow = free_space_violations_within(src, reach_m, p, seen);
+            check.narrow = Some(narrow);
+            if narrow > max_violation && scanner_at_origin {
+                check.beyond = Some(free_space_violations_beyond(src, Some(reach_m), p, seen));
+            }
+        }
+        check
     }
 
     /// Whether the alignment passes: its share within `max_violation`, or
     /// where it overlaps the others by [`NARROW_LEAST_FIT`] or more, its
-    /// share with rays within half the width.
+    /// share with rays within half the width, or that share beyond
+    /// [`NEAR_SCANNER_M`] from its scanner (what stood beside the scanner
+    /// for that scan alone is not held against it).
     fn passes(&self, max_violation: f64) -> bool {
-        self.any <= max_violation || (self.fit >= NARROW_LEAST_FIT && self.narrow.is_some_and(|v| v <= max_violation))
+        self.any <= max_violation
+            || (self.fit >= NARROW_LEAST_FIT
+                && (self.narrow.is_some_and(|v| v <= max_violation) || self.beyond.is_some_and(|v| v <= max_violation)))
     }
 }
 
@@ -1439,6 +1490,9 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
     let mut order: Vec<usize> = Vec::new();
     // Held scans placed at their station as surveyed, with their overlap then.
     let mut surveyed_only: Vec<Option<f64>> = vec![None; n];
+    // Per placed scan, whether it was placed for what stood beside its
+    // scanner, and said so ([`beside_scanner_said`]).
+    let mut said_beside_scanner: Vec<bool> = vec![false; n];
     let names: Vec<&str> = inputs.iter().map(|i| i.name.as_str()).collect();
     // Per scan, its last trial's near misses ([`Trial::near_misses`]).
     let mut near_misses: Vec<Vec<(Pose, f64)>> = vec![vec![]; n];
@@ -1578,7 +1632,15 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                     for (c, (init, method)) in candidates.into_iter().enumerate() {
                         let p = icp(&quick[j], model, init, quick_levels);
                         let (fit, _) = evaluate(&checks[j], model, &p, fit_d, fit_r);
-                        let checked = SeenCheck::of(&quick[j], || half_widths_of(j), &p, fit, &seen, s.max_violation);
+                        let checked = SeenCheck::of(
+                            &quick[j],
+                            || half_widths_of(j),
+                            images[j].is_some(),
+                            &p,
+                            fit,
+                            &seen,
+                            s.max_violation,
+                        );
                         let viol = checked.any;
                         // The station pose is the first candidate.
                         if c == 0 && held(j).is_some() {
@@ -1730,6 +1792,11 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                 // ray passed within half the width (the trial's pose).
                 let narrow_share = (viol > s.max_violation)
                     .then(|| free_space_violations_within(&quick[j], half_widths_of(j), &p, &seen));
+                // Over it still: placed for how little of that lies beyond
+                // what stood beside its scanner.
+                let beyond_share = narrow_share
+                    .filter(|v| *v > s.max_violation && images[j].is_some())
+                    .map(|_| free_space_violations_beyond(&quick[j], Some(half_widths_of(j)), &p, &seen));
                 let mut key = state.clone();
                 key.update(b"place");
                 key.update(&scan_keys[j]);
@@ -1746,8 +1813,10 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                 poses[j] = Some(p);
                 order.push(j);
                 note_placed_while_out(j, &poses, &deferred, &mut placed_while_out);
-                let narrow = narrow_share.map(|narrow_share| {
-                    format!(
+                said_beside_scanner[j] = beyond_share.is_some();
+                let narrow = narrow_share.map(|narrow_share| match beyond_share {
+                    Some(beyond) => beside_scanner_said(&inputs[j].name, viol, beyond, trial_fit, [s.max_violation; 2], false),
+                    None => format!(
                         "scan '{}' was placed though {:.1} % of its points lie where another scanner saw through (at most {:.1} % allowed): there, but for {:.2} % of its points, that scanner's rays passed farther off than half the width of what the point lies on (a post or a wire its steps went both sides of), and its alignment overlaps the others by {:.1} % ({:.0} % or more needed to place it so); check the thin structure it shows where another scan shows nothing",
                         inputs[j].name,
                         100.0 * viol,
@@ -1755,7 +1824,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                         100.0 * narrow_share,
                         100.0 * trial_fit,
                         100.0 * NARROW_LEAST_FIT
-                    )
+                    ),
                 });
                 let by_station = station_pins.map(|within_m| {
                     format!(
@@ -1854,6 +1923,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                         poses[x] = None;
                         results[x] = None;
                         surveyed_only[x] = None;
+                        said_beside_scanner[x] = false;
                     }
                     deferred[k] = true;
                     contests.push((j, k, fit, first));
@@ -1976,7 +2046,15 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                     let others = model_of(inputs, &poses, Some(j));
                     let fit_now = evaluate(&checks[j], &others, &pj, fit_d, fit_r).0;
                     let (_, seen) = scanners_but(j, &poses, &images);
-                    let now = SeenCheck::of(&quick[j], || half_widths_of(j), &pj, fit_now, &seen, s.max_violation);
+                    let now = SeenCheck::of(
+                        &quick[j],
+                        || half_widths_of(j),
+                        images[j].is_some(),
+                        &pj,
+                        fit_now,
+                        &seen,
+                        s.max_violation,
+                    );
                     if now.passes(s.max_violation) {
                         continue;
                     }
@@ -2206,7 +2284,30 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
             }
         }
     } else {
-        for (&(j, _), &share) in registered.iter().zip(&shares) {
+        for (&(j, p), &share) in registered.iter().zip(&shares) {
+            // Over the limit for what stood beside its scanner alone (not
+            // the reference, whose overlap with the others is not its own).
+            let beside = (share > limit && j > 0 && images[j].is_some())
+                .then(|| results[j].as_ref().map_or(0.0, |r| r.fitness))
+                .filter(|fit| *fit >= NARROW_LEAST_FIT)
+                .and_then(|fit| {
+                    let seen: Vec<(&RangeImage, Pose)> = (0..n)
+                        .filter(|&i| i != j)
+                        .filter_map(|i| Some((images[i].as_ref()?, final_poses[i]?)))
+                        .collect();
+                    let beyond = free_space_violations_beyond(&quick[j], None, &p, &seen);
+                    (beyond <= s.max_violation).then_some((fit, beyond))
+                });
+            if let (Some((fit, beyond)), Some(r)) = (beside, results[j].as_mut()) {
+                if !said_beside_scanner[j] {
+                    let said = beside_scanner_said(&inputs[j].name, share, beyond, fit, [limit, s.max_violation], true);
+                    r.warning = Some(match r.warning.take() {
+                        Some(before) => format!("{before}; {said}"),
+                        None => said,
+                    });
+                }
+                continue;
+            }
             if let Some(r) = results[j].as_mut().filter(|_| share > limit) {
                 r.registered = false;
                 r.warning = Some(format!(
@@ -2380,9 +2481,15 @@ pub const AMBIGUOUS_FIT_SHARE: f64 = 0.5;
 pub const ELSEWHERE_M: f64 = 0.5;
 /// See [`ELSEWHERE_M`].
 pub const ELSEWHERE_DEG: f64 = 2.0;
-/// Points nearer their scanner than this in plan are left out of the plan
-/// view when the reference is placed again (m).
-const NEAR_SCANNER_M: f64 = 8.0;
+/// What stands nearer its scanner than this in plan (m) may have been there
+/// for that scan alone (a person, a van 4 m off): it is left out of the plan
+/// view when the reference is placed again, and out of the seen-through
+/// share of an alignment that overlaps the others by [`NARROW_LEAST_FIT`] or
+/// more ([`SeenCheck::passes`]). Right alignments of scans a person or a van
+/// stood beside put no more than 0.02 % of their points beyond it where
+/// another scanner saw through; wrong ones that overlap the others that well
+/// at least 1.79 % (within half the width; reports/scans.md).
+pub const NEAR_SCANNER_M: f64 = 8.0;
 /// By how much (fitness less 10 x seen-through share) the reference must fit
 /// the others better elsewhere for them to count as placed wrongly. In the
 /// van case it fitted them 0.25 better elsewhere; where the others were right
@@ -2671,16 +2778,37 @@ pub fn half_widths_m(checked: &RegCloud, cloud: &RegCloud) -> Vec<f64> {
 /// Share of `src` points (placed by `pose`) that some scan in `seen` (its range
 /// image and its pose) saw straight through.
 pub fn free_space_violations(src: &RegCloud, pose: &Pose, seen: &[(&RangeImage, Pose)]) -> f64 {
-    seen_through_share(src, None, pose, seen)
+    seen_through_share(src, None, 0.0, pose, seen)
 }
 
 /// [`free_space_violations`], counting point `k` only where a ray of that
 /// scanner passed within `reach_m[k]` of it ([`half_widths_m`]).
 pub fn free_space_violations_within(src: &RegCloud, reach_m: &[f64], pose: &Pose, seen: &[(&RangeImage, Pose)]) -> f64 {
-    seen_through_share(src, Some(reach_m), pose, seen)
+    seen_through_share(src, Some(reach_m), 0.0, pose, seen)
 }
 
-fn seen_through_share(src: &RegCloud, reach_m: Option<&[f64]>, pose: &Pose, seen: &[(&RangeImage, Pose)]) -> f64 {
+/// [`free_space_violations`] (`reach_m` `None`) or
+/// [`free_space_violations_within`], counting only the points farther than
+/// [`NEAR_SCANNER_M`] in plan from the scan's own scanner (its frame's
+/// origin: scans in scanner coordinates), as a share of all its points.
+pub fn free_space_violations_beyond(
+    src: &RegCloud,
+    reach_m: Option<&[f64]>,
+    pose: &Pose,
+    seen: &[(&RangeImage, Pose)],
+) -> f64 {
+    seen_through_share(src, reach_m, NEAR_SCANNER_M, pose, seen)
+}
+
+/// The share of `src`'s points some scanner of `seen` saw through, those
+/// within `beyond_m` in plan of `src`'s frame's origin not counted.
+fn seen_through_share(
+    src: &RegCloud,
+    reach_m: Option<&[f64]>,
+    beyond_m: f64,
+    pose: &Pose,
+    seen: &[(&RangeImage, Pose)],
+) -> f64 {
     if src.pts.is_empty() || seen.is_empty() {
         return 0.0;
     }
@@ -2690,6 +2818,9 @@ fn seen_through_share(src: &RegCloud, reach_m: Option<&[f64]>, pose: &Pose, seen
         .map(|b| {
             let mut n = 0;
             for k in b * BLOCK..((b + 1) * BLOCK).min(src.pts.len()) {
+                if beyond_m > 0.0 && src.pts[k][0].hypot(src.pts[k][1]) <= beyond_m {
+                    continue;
+                }
                 let q = tf(pose, &src.pts[k]);
                 let reach = reach_m.map_or(f64::INFINITY, |r| r[k]);
                 if inv.iter().any(|(im, pi)| im.sees_through(&tf(pi, &q), reach)) {
@@ -3195,6 +3326,56 @@ mod tests {
         assert_eq!(counts.share_without(None), 0.5);
         assert_eq!(counts.share_without(Some(0)), 0.25, "the point both saw through stays");
         assert_eq!(counts.share_without(Some(1)), 0.5);
+    }
+
+    #[test]
+    fn what_stood_beside_a_scanner_is_left_out_of_the_share_beyond_it() {
+        // Another scanner 30 m off along x looks back at a wall 5 m behind
+        // the checked scan's scanner (at x = -5): it saw through everything
+        // in front of the wall.
+        let mut wall = Vec::new();
+        for i in -40..=40 {
+            for k in -20..=20 {
+                let (az, el) = (f64::from(i) * 0.4f64.to_radians(), f64::from(k) * 0.4f64.to_radians());
+                let r = 35.0 / (az.cos() * el.cos());
+                wall.push([-r * el.cos() * az.cos(), -r * el.cos() * az.sin(), r * el.sin()]);
+            }
+        }
+        let image = RangeImage::new(&wall, 0.5);
+        let seen = [(&image, liftplan_core::frame::pose_xyz_yaw(30.0, 0.0, 0.0, 0.0))];
+        // The checked scan, in its own frame (its scanner at the origin): a
+        // person 4 m off, where the other scanner saw through; the wall
+        // behind it; a point 12 m off where the other saw through too.
+        let mut pts: Vec<[f64; 3]> = (0..18).map(|k| [4.0, 0.0, -1.5 + 0.1 * f64::from(k)]).collect();
+        pts.extend((0..80).map(|k| [-5.0, -4.0 + 0.1 * f64::from(k), 0.0]));
+        let person_only = RegCloud { normals: vec![[0.0; 3]; pts.len()], pts: pts.clone() };
+        let all = free_space_violations(&person_only, &Pose::identity(), &seen);
+        assert_eq!(all, 18.0 / 98.0, "the person is where the other scanner saw through");
+        assert_eq!(free_space_violations_beyond(&person_only, None, &Pose::identity(), &seen), 0.0);
+        pts.push([12.0, 0.0, 0.0]);
+        let also_far = RegCloud { normals: vec![[0.0; 3]; pts.len()], pts };
+        assert_eq!(free_space_violations_beyond(&also_far, None, &Pose::identity(), &seen), 1.0 / 99.0);
+        // Within half the width: the rays pass 0.01 m from a point 12 m off.
+        let reach = vec![0.01; also_far.pts.len()];
+        assert_eq!(free_space_violations_beyond(&also_far, Some(&reach), &Pose::identity(), &seen), 1.0 / 99.0);
+        // Placed elsewhere, the scan's points are counted where they lie,
+        // but which lie beyond is still measured from its own scanner.
+        let moved = liftplan_core::frame::pose_xyz_yaw(0.0, 0.0, 0.5, 0.0);
+        assert_eq!(free_space_violations_beyond(&person_only, None, &moved, &seen), 0.0);
+        // The check: over the share, overlapping well, nothing beyond: passes;
+        // overlapping less than NARROW_LEAST_FIT, or with its frame not its
+        // scanner's, it does not.
+        let check = |fit: f64, at_origin: bool| {
+            SeenCheck::of(&person_only, || &reach[..98], at_origin, &Pose::identity(), fit, &seen, 0.005)
+        };
+        let well = check(0.8, true);
+        assert_eq!((well.any, well.beyond), (18.0 / 98.0, Some(0.0)));
+        assert!(well.passes(0.005));
+        assert!(!check(0.5, true).passes(0.005));
+        assert!(!check(0.8, false).passes(0.005));
+        let far = SeenCheck::of(&also_far, || &reach, true, &Pose::identity(), 0.8, &seen, 0.005);
+        assert_eq!(far.beyond, Some(1.0 / 99.0));
+        assert!(!far.passes(0.005), "1 % beyond 8 m is over the 0.5 % allowed");
     }
 
     /// Points every 0.1 m over surfaces, with their normals: a wall from
