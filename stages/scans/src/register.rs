@@ -244,6 +244,17 @@ pub struct RegResult {
     pub refined_move_m: Option<f64>,
 }
 
+impl RegResult {
+    /// Adds `warning` to what the scan is merged with (after any it has,
+    /// joined by "; ").
+    fn warn_also(&mut self, warning: String) {
+        self.warning = Some(match self.warning.take() {
+            Some(before) => format!("{before}; {warning}"),
+            None => warning,
+        });
+    }
+}
+
 fn ser_pose<S: serde::Serializer>(p: &Pose, s: S) -> Result<S::Ok, S::Error> {
     use serde::Serialize;
     liftplan_core::frame::pose_to_rows(p).serialize(s)
@@ -1275,20 +1286,23 @@ struct SeenCheck {
 
 impl SeenCheck {
     /// The check of scan `src` at `p` (overlapping the others by `fit`)
-    /// against the scanners `seen`; its share counted within half the width
-    /// (`reach_m`, [`half_widths_m`]), and beyond [`NEAR_SCANNER_M`] where
-    /// its frame is its scanner's (`scanner_at_origin`), only where that can
-    /// pass it.
+    /// against the scanners `seen`, its share with any ray `any` (where it
+    /// is known already) or counted; its share counted within half the
+    /// width (`reach_m`, [`half_widths_m`]), and beyond [`NEAR_SCANNER_M`]
+    /// where its frame is its scanner's (`scanner_at_origin`), only where
+    /// that can pass it.
+    #[allow(clippy::too_many_arguments)]
     fn of<'a>(
         src: &RegCloud,
         reach_m: impl FnOnce() -> &'a [f64],
         scanner_at_origin: bool,
         p: &Pose,
         fit: f64,
+        any: Option<f64>,
         seen: &[(&RangeImage, Pose)],
         max_violation: f64,
     ) -> SeenCheck {
-        let any = free_space_violations(src, p, seen);
+        let any = any.unwrap_or_else(|| free_space_violations(src, p, seen));
         let mut check = SeenCheck { fit, any, narrow: None, beyond: None };
         if fit >= NARROW_LEAST_FIT && any > max_violation {
             let reach_m = reach_m();
@@ -1481,6 +1495,11 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
     let half_widths_of = |j: usize| half_widths[j].get_or_init(|| half_widths_m(&quick[j], &inputs[j].fine)).as_slice();
     let images: Vec<Option<RangeImage>> =
         inputs.iter().map(|i| scanner_at_origin(&i.fine).then(|| RangeImage::new(&i.fine.pts, 0.5))).collect();
+    // The seen-through check of scan `j` at `p`, overlapping the others by
+    // `fit`, against the scanners `seen` ([`SeenCheck::of`]).
+    let seen_check = |j: usize, p: &Pose, fit: f64, any: Option<f64>, seen: &[(&RangeImage, Pose)]| {
+        SeenCheck::of(&quick[j], || half_widths_of(j), images[j].is_some(), p, fit, any, seen, s.max_violation)
+    };
     let quick_levels = &s.icp_distances_m[..s.icp_distances_m.len().min(2)];
     // Pairwise coarse transforms (scan j's frame to scan i's frame) with their
     // RANSAC inlier counts, computed once per pair (scans that are not levelled).
@@ -1632,15 +1651,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                     for (c, (init, method)) in candidates.into_iter().enumerate() {
                         let p = icp(&quick[j], model, init, quick_levels);
                         let (fit, _) = evaluate(&checks[j], model, &p, fit_d, fit_r);
-                        let checked = SeenCheck::of(
-                            &quick[j],
-                            || half_widths_of(j),
-                            images[j].is_some(),
-                            &p,
-                            fit,
-                            &seen,
-                            s.max_violation,
-                        );
+                        let checked = seen_check(j, &p, fit, None, &seen);
                         let viol = checked.any;
                         // The station pose is the first candidate.
                         if c == 0 && held(j).is_some() {
@@ -1788,15 +1799,11 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                 let station_pins = held(j)
                     .filter(|_| held_loosely_by_overlap(&c))
                     .map(|(_, tol)| c.hold.within_station_m(&c.pose, &tol));
-                // Placed though the share is over: how much of it lies where a
-                // ray passed within half the width (the trial's pose).
-                let narrow_share = (viol > s.max_violation)
-                    .then(|| free_space_violations_within(&quick[j], half_widths_of(j), &p, &seen));
-                // Over it still: placed for how little of that lies beyond
-                // what stood beside its scanner.
-                let beyond_share = narrow_share
-                    .filter(|v| *v > s.max_violation && images[j].is_some())
-                    .map(|_| free_space_violations_beyond(&quick[j], Some(half_widths_of(j)), &p, &seen));
+                // Placed though the share is over (at the trial's pose, which
+                // passed): how much of it lies where a ray passed within half
+                // the width, and of that, beyond what stood beside its scanner.
+                let SeenCheck { narrow: narrow_share, beyond: beyond_share, .. } =
+                    seen_check(j, &p, trial_fit, Some(viol), &seen);
                 let mut key = state.clone();
                 key.update(b"place");
                 key.update(&scan_keys[j]);
@@ -2046,15 +2053,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                     let others = model_of(inputs, &poses, Some(j));
                     let fit_now = evaluate(&checks[j], &others, &pj, fit_d, fit_r).0;
                     let (_, seen) = scanners_but(j, &poses, &images);
-                    let now = SeenCheck::of(
-                        &quick[j],
-                        || half_widths_of(j),
-                        images[j].is_some(),
-                        &pj,
-                        fit_now,
-                        &seen,
-                        s.max_violation,
-                    );
+                    let now = seen_check(j, &pj, fit_now, None, &seen);
                     if now.passes(s.max_violation) {
                         continue;
                     }
@@ -2111,12 +2110,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                     r.registered = false;
                     r.warning = Some(why);
                 }
-                Some(Ok(warning)) => {
-                    r.warning = Some(match r.warning.take() {
-                        Some(before) => format!("{before}; {warning}"),
-                        None => warning,
-                    })
-                }
+                Some(Ok(warning)) => r.warn_also(warning),
                 None => {}
             }
         }
@@ -2199,8 +2193,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
         let shares: Vec<f64> = registered
             .iter()
             .map(|&(j, p)| {
-                let seen: Vec<(&RangeImage, Pose)> =
-                    (0..n).filter(|&i| i != j).filter_map(|i| Some((images[i].as_ref()?, final_poses[i]?))).collect();
+                let (_, seen) = scanners_but(j, &final_poses, &images);
                 free_space_violations(&quick[j], &p, &seen)
             })
             .collect();
@@ -2291,20 +2284,20 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                 .then(|| results[j].as_ref().map_or(0.0, |r| r.fitness))
                 .filter(|fit| *fit >= NARROW_LEAST_FIT)
                 .and_then(|fit| {
-                    let seen: Vec<(&RangeImage, Pose)> = (0..n)
-                        .filter(|&i| i != j)
-                        .filter_map(|i| Some((images[i].as_ref()?, final_poses[i]?)))
-                        .collect();
+                    let (_, seen) = scanners_but(j, &final_poses, &images);
                     let beyond = free_space_violations_beyond(&quick[j], None, &p, &seen);
                     (beyond <= s.max_violation).then_some((fit, beyond))
                 });
             if let (Some((fit, beyond)), Some(r)) = (beside, results[j].as_mut()) {
                 if !said_beside_scanner[j] {
-                    let said = beside_scanner_said(&inputs[j].name, share, beyond, fit, [limit, s.max_violation], true);
-                    r.warning = Some(match r.warning.take() {
-                        Some(before) => format!("{before}; {said}"),
-                        None => said,
-                    });
+                    r.warn_also(beside_scanner_said(
+                        &inputs[j].name,
+                        share,
+                        beyond,
+                        fit,
+                        [limit, s.max_violation],
+                        true,
+                    ));
                 }
                 continue;
             }
@@ -3366,14 +3359,14 @@ mod tests {
         // overlapping less than NARROW_LEAST_FIT, or with its frame not its
         // scanner's, it does not.
         let check = |fit: f64, at_origin: bool| {
-            SeenCheck::of(&person_only, || &reach[..98], at_origin, &Pose::identity(), fit, &seen, 0.005)
+            SeenCheck::of(&person_only, || &reach[..98], at_origin, &Pose::identity(), fit, None, &seen, 0.005)
         };
         let well = check(0.8, true);
         assert_eq!((well.any, well.beyond), (18.0 / 98.0, Some(0.0)));
         assert!(well.passes(0.005));
         assert!(!check(0.5, true).passes(0.005));
         assert!(!check(0.8, false).passes(0.005));
-        let far = SeenCheck::of(&also_far, || &reach, true, &Pose::identity(), 0.8, &seen, 0.005);
+        let far = SeenCheck::of(&also_far, || &reach, true, &Pose::identity(), 0.8, None, &seen, 0.005);
         assert_eq!(far.beyond, Some(1.0 / 99.0));
         assert!(!far.passes(0.005), "1 % beyond 8 m is over the 0.5 % allowed");
     }
