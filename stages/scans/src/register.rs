@@ -441,17 +441,6 @@ const BLOCK: usize = 4096;
 /// not be pulled together.
 pub fn icp(src: &RegCloud, target: &Target, init: Pose, distances: &[f64]) -> Pose {
     let mut pose = init;
-    // Rotations are linearised about a point of the scan where it stands, not
-    // about the site's origin: with survey coordinates (a northing of 5,000 km)
-    // a rotation about the origin is almost a translation, and the normal
-    // equations lose the difference.
-    let pivot = |pose: &Pose| match src.pts.first() {
-        Some(p) => {
-            let q = tf(pose, p);
-            Vec3::new(q[0].round(), q[1].round(), q[2].round())
-        }
-        None => Vec3::zeros(),
-    };
     // Each source point's nearest model point at the last step: the next
     // step's search starts from it (the same answer, found sooner).
     let mut last: Vec<u32> = vec![u32::MAX; src.pts.len()];
@@ -459,7 +448,7 @@ pub fn icp(src: &RegCloud, target: &Target, init: Pose, distances: &[f64]) -> Po
         let grid = &target.grid;
         let huber = (d / 20.0).max(0.01);
         for _ in 0..50 {
-            let m = pivot(&pose);
+            let m = pivot(src, &pose);
             let blocks: Vec<(na::Matrix6<f64>, na::Vector6<f64>, usize)> = last
                 .par_chunks_mut(BLOCK)
                 .enumerate()
@@ -513,20 +502,50 @@ pub fn icp(src: &RegCloud, target: &Target, init: Pose, distances: &[f64]) -> Po
             let t = m - rot * m + Vec3::new(x[3], x[4], x[5]);
             let step = Pose::from_parts(na::Translation3::from(t), rot);
             pose = step * pose;
-            // Converged: a step that moves under a 500th of the level's
-            // distance (0.2 mm at 0.1 m) and turns a point 50 m off by no
-            // more. Measured: a third of the levels never came
-            // under the tight limit that stood alone before (0.1 µrad, 1 µm),
-            // the correspondences flipping back and forth at steps of a
-            // millimetre, and spent 50 steps each, two thirds of all ICP
-            // steps (8 stations all round).
-            let (turn, shift) = (Vec3::new(x[0], x[1], x[2]).norm(), Vec3::new(x[3], x[4], x[5]).norm());
-            if (turn < 1e-7 && shift < 1e-6) || (turn < 4e-6 * (d / 0.1) && shift < 2e-4 * (d / 0.1)) {
+            if settled(&x, d) {
                 break;
             }
         }
     }
     pose
+}
+
+/// The point of `src` at `pose` that an ICP step turns it about, rounded to
+/// the metre. Rotations are linearised about a point of the scan where it
+/// stands, not about the site's origin: with survey coordinates (a
+/// northing of 5,000 km) a rotation about the origin is almost a
+/// translation, and the normal equations lose the difference.
+fn pivot(src: &RegCloud, pose: &Pose) -> Vec3 {
+    match src.pts.first() {
+        Some(p) => {
+            let q = tf(pose, p);
+            Vec3::new(q[0].round(), q[1].round(), q[2].round())
+        }
+        None => Vec3::zeros(),
+    }
+}
+
+/// Whether an ICP step `x` (turn in radians about the pivot, then shift in
+/// m) at correspondence distance `distance_m` ends the level: one that
+/// moves under a 500th of the distance (0.2 mm at 0.1 m) and turns a point
+/// 50 m off by no more. Measured: a third of the levels never came under
+/// the tight limit that stood alone before (0.1 µrad, 1 µm), the
+/// correspondences flipping back and forth at steps of a millimetre, and
+/// spent 50 steps each, two thirds of all ICP steps (8 stations all round).
+fn settled(x: &na::Vector6<f64>, distance_m: f64) -> bool {
+    let (turn, shift) = (Vec3::new(x[0], x[1], x[2]).norm(), Vec3::new(x[3], x[4], x[5]).norm());
+    let scale = distance_m / 0.1;
+    (turn < 1e-7 && shift < 1e-6) || (turn < 4e-6 * scale && shift < 2e-4 * scale)
+}
+
+/// The sums one scan's points add to the normal equations of its pairs with
+/// one other scan: the 12x12 matrix and the gradient over both scans' steps
+/// (the scan's own six first), and how many pairs.
+#[derive(Clone)]
+struct PairSums {
+    h: na::SMatrix<f64, 12, 12>,
+    g: na::SVector<f64, 12>,
+    pairs: usize,
 }
 
 /// Overlap and residual of a pose: the share of source points whose nearest
@@ -933,31 +952,20 @@ fn align_all_as_one(
         for _ in 0..50 {
             let at: Vec<Pose> = scans.iter().map(|&j| poses[j].unwrap_or_else(Pose::identity)).collect();
             let into: Vec<Pose> = at.iter().map(Pose::inverse).collect();
-            // Rotations linearised about a point where each scan stands (see `icp`).
-            let pivots: Vec<Vec3> = scans
-                .iter()
-                .zip(&at)
-                .map(|(&j, p)| match srcs[j].pts.first() {
-                    Some(x) => {
-                        let q = tf(p, x);
-                        Vec3::new(q[0].round(), q[1].round(), q[2].round())
-                    }
-                    None => Vec3::zeros(),
-                })
-                .collect();
+            let pivots: Vec<Vec3> = scans.iter().zip(&at).map(|(&j, p)| pivot(&srcs[j], p)).collect();
             let mut h = na::DMatrix::<f64>::zeros(size, size);
             let mut g = na::DVector::<f64>::zeros(size);
             let mut pairs = 0usize;
             for (a, last) in last.iter_mut().enumerate() {
                 let src = &srcs[scans[a]];
                 let ba = block(a);
-                // Per block of points: (the two scans' rows and columns, their
-                // 12x12 normal equations and gradient) summed by the other scan.
-                let sums: Vec<Vec<(usize, na::SMatrix<f64, 12, 12>, na::SVector<f64, 12>, usize)>> = last
+                // Per block of points, the sums of their pairs with each scan.
+                let zero = PairSums { h: na::SMatrix::zeros(), g: na::SVector::zeros(), pairs: 0 };
+                let sums: Vec<Vec<PairSums>> = last
                     .par_chunks_mut(BLOCK)
                     .enumerate()
                     .map(|(c, last)| {
-                        let mut by: Vec<(usize, na::SMatrix<f64, 12, 12>, na::SVector<f64, 12>, usize)> = Vec::new();
+                        let mut with = vec![zero.clone(); scans.len()];
                         for (k, last) in (c * BLOCK..).zip(last.iter_mut()) {
                             let w = tf(&at[a], &src.pts[k]);
                             // (distance², scan, point) of the nearest point of the others.
@@ -992,34 +1000,30 @@ fn align_all_as_one(
                             let row = na::SVector::<f64, 12>::from_column_slice(&[
                                 ca.x, ca.y, ca.z, nv.x, nv.y, nv.z, -cb.x, -cb.y, -cb.z, -nv.x, -nv.y, -nv.z,
                             ]);
-                            let e = match by.iter_mut().find(|e| e.0 == b) {
-                                Some(e) => e,
-                                None => {
-                                    by.push((b, na::SMatrix::zeros(), na::SVector::zeros(), 0));
-                                    by.last_mut().expect("just pushed")
-                                }
-                            };
-                            e.1 += wt * row * row.transpose();
-                            e.2 += wt * r * row;
-                            e.3 += 1;
+                            let e = &mut with[b];
+                            e.h += wt * row * row.transpose();
+                            e.g += wt * r * row;
+                            e.pairs += 1;
                         }
-                        by.sort_by_key(|e| e.0);
-                        by
+                        with
                     })
                     .collect();
-                for (b, hh, gg, n) in sums.into_iter().flatten() {
-                    pairs += n;
-                    let (ra, rb) = (ba.map(|x| 6 * x), block(b).map(|x| 6 * x));
-                    for (u, ru) in [(0, ra), (6, rb)] {
-                        let Some(ru) = ru else { continue };
-                        for i in 0..6 {
-                            g[ru + i] += gg[u + i];
-                        }
-                        for (v, rv) in [(0, ra), (6, rb)] {
-                            let Some(rv) = rv else { continue };
+                for with in sums {
+                    for (b, e) in with.iter().enumerate().filter(|(_, e)| e.pairs > 0) {
+                        pairs += e.pairs;
+                        // The two scans' rows and columns in the whole system.
+                        let (ra, rb) = (ba.map(|x| 6 * x), block(b).map(|x| 6 * x));
+                        for (u, ru) in [(0, ra), (6, rb)] {
+                            let Some(ru) = ru else { continue };
                             for i in 0..6 {
-                                for j in 0..6 {
-                                    h[(ru + i, rv + j)] += hh[(u + i, v + j)];
+                                g[ru + i] += e.g[u + i];
+                            }
+                            for (v, rv) in [(0, ra), (6, rb)] {
+                                let Some(rv) = rv else { continue };
+                                for i in 0..6 {
+                                    for j in 0..6 {
+                                        h[(ru + i, rv + j)] += e.h[(u + i, v + j)];
+                                    }
                                 }
                             }
                         }
@@ -1035,19 +1039,16 @@ fn align_all_as_one(
             let Some(x) = h.cholesky().map(|c| c.solve(&(-g))) else {
                 return;
             };
-            let mut settled = true;
+            let mut all_settled = true;
             for (a, &j) in scans.iter().enumerate() {
                 let Some(u) = block(a) else { continue };
-                let x = x.rows(6 * u, 6);
-                let (turn, shift) = (Vec3::new(x[0], x[1], x[2]), Vec3::new(x[3], x[4], x[5]));
-                let rot = na::UnitQuaternion::from_scaled_axis(turn);
-                let t = pivots[a] - rot * pivots[a] + shift;
+                let x: na::Vector6<f64> = x.fixed_rows::<6>(6 * u).into_owned();
+                let rot = na::UnitQuaternion::from_scaled_axis(Vec3::new(x[0], x[1], x[2]));
+                let t = pivots[a] - rot * pivots[a] + Vec3::new(x[3], x[4], x[5]);
                 poses[j] = Some(Pose::from_parts(na::Translation3::from(t), rot) * at[a]);
-                // Settled as `icp` judges a step, every scan's.
-                let (turn, shift) = (turn.norm(), shift.norm());
-                settled &= (turn < 1e-7 && shift < 1e-6) || (turn < 4e-6 * (d / 0.1) && shift < 2e-4 * (d / 0.1));
+                all_settled &= settled(&x, d);
             }
-            if settled {
+            if all_settled {
                 break;
             }
         }
