@@ -924,7 +924,8 @@ fn refine(
 /// (ties to the lower scan, then the lower point), as [`icp`] pairs it with
 /// the nearest point of the other scans put together, and counts only
 /// where the two normals agree. Each scan's tree is built once, in its own
-/// frame; a point is taken into each scan's frame to search it.
+/// frame; a point is taken into each scan's frame to search it. Where the
+/// reference is not placed, nothing holds the frame and no scan is moved.
 fn align_all_as_one(
     inputs: &[RegInput],
     srcs: &[RegCloud],
@@ -932,17 +933,22 @@ fn align_all_as_one(
     moving: &[usize],
     distances: &[f64],
 ) {
-    // The scans in the alignment: the reference first, then the moving ones
-    // (their unknowns in this order).
-    let scans: Vec<usize> = std::iter::once(0).chain(moving.iter().copied()).filter(|&j| poses[j].is_some()).collect();
-    let unknowns = scans.iter().filter(|&&j| j != 0).count();
-    if unknowns == 0 || scans.len() < 2 {
+    // The scans in the alignment: the reference first (it holds the frame:
+    // without it nothing is aligned), then the moving ones placed, their
+    // unknowns in this order.
+    if poses[0].is_none() {
+        return;
+    }
+    let scans: Vec<usize> =
+        std::iter::once(0).chain(moving.iter().copied().filter(|&j| j != 0 && poses[j].is_some())).collect();
+    let unknowns = scans.len() - 1;
+    if unknowns == 0 {
         return;
     }
     let trees: Vec<Target> =
         scans.iter().map(|&j| Target::new(inputs[j].fine.pts.clone(), inputs[j].fine.normals.clone())).collect();
     // Unknown block of scan `scans[a]` (None for the reference).
-    let block = |a: usize| (scans[a] != 0).then(|| a - usize::from(scans[0] == 0));
+    let block = |a: usize| a.checked_sub(1);
     // Each source point's last pair (scan in `scans`, point): where the next
     // step's search starts.
     let mut last: Vec<Vec<(u32, u32)>> = scans.iter().map(|&j| vec![(u32::MAX, u32::MAX); srcs[j].pts.len()]).collect();
@@ -2245,7 +2251,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
             }
         }
     }
-    // Global refinement: each scan against all the others.
+    // The last alignment: all placed scans as one, the reference held.
     let key: Key = *state_of(&poses, b"all aligned as one").finalize().as_bytes();
     // (pose, fitness, RMSE) of every placed scan after the first, in order.
     let placed: Vec<usize> = (1..n).filter(|&j| poses[j].is_some()).collect();
