@@ -2796,7 +2796,9 @@ pub struct RangeImage {
     bin_rad: f64,
     naz: usize,
     nel: usize,
-    near: Vec<f32>,
+    /// Per bin, the nearest range the scanner saw in it and its eight
+    /// neighbours (worked out once: each check asks it).
+    nearest_around: Vec<f32>,
     /// The unit directions of the scanner's points bin by bin: those of bin
     /// `k` are `rays[ray_start[k]..ray_start[k + 1]]`.
     ray_start: Vec<u32>,
@@ -2809,7 +2811,7 @@ impl RangeImage {
         let naz = (std::f64::consts::TAU / bin_rad).ceil() as usize;
         let nel = (std::f64::consts::PI / bin_rad).ceil() as usize + 1;
         let mut near = vec![f32::INFINITY; naz * nel];
-        let mut im = RangeImage { bin_rad, naz, nel, near: vec![], ray_start: vec![], rays: vec![] };
+        let mut im = RangeImage { bin_rad, naz, nel, nearest_around: vec![], ray_start: vec![], rays: vec![] };
         let binned: Vec<Option<(usize, f64)>> = pts.iter().map(|p| im.bin(p)).collect();
         let mut ray_start = vec![0u32; naz * nel + 1];
         for &(k, r) in binned.iter().flatten() {
@@ -2827,7 +2829,13 @@ impl RangeImage {
                 filled[k] += 1;
             }
         }
-        im.near = near;
+        im.nearest_around = (0..naz * nel)
+            .map(|k| {
+                let mut nearest = f32::INFINITY;
+                im.around(k, |b| nearest = nearest.min(near[b]));
+                nearest
+            })
+            .collect();
         im.ray_start = ray_start;
         im.rays = rays;
         im
@@ -2874,8 +2882,7 @@ impl RangeImage {
         let Some((k, r)) = self.bin(p) else {
             return false;
         };
-        let mut nearest = f32::INFINITY;
-        self.around(k, |b| nearest = nearest.min(self.near[b]));
+        let nearest = self.nearest_around[k];
         if !(nearest.is_finite() && (r as f32) < nearest - (0.3 + 0.02 * r as f32)) {
             return false;
         }
