@@ -453,8 +453,11 @@ pub fn icp(src: &RegCloud, target: &Target, init: Pose, distances: &[f64]) -> Po
                 .par_chunks_mut(BLOCK)
                 .enumerate()
                 .map(|(b, last)| {
-                    let mut h = na::Matrix6::zeros();
-                    let mut g = na::Vector6::zeros();
+                    // Plain arrays, summed as nalgebra's `w·j·jᵀ` and `w·r·j`
+                    // sum them, term for term (the same bits), without its
+                    // matrix built per pair.
+                    let mut h = [[0.0f64; 6]; 6];
+                    let mut g = [0.0f64; 6];
                     let mut n = 0;
                     for (k, last) in (b * BLOCK..).zip(last.iter_mut()) {
                         let p = tf(&pose, &src.pts[k]);
@@ -474,12 +477,17 @@ pub fn icp(src: &RegCloud, target: &Target, init: Pose, distances: &[f64]) -> Po
                         let r = (pv - Vec3::new(q[0], q[1], q[2])).dot(&nv);
                         let w = if r.abs() <= huber { 1.0 } else { huber / r.abs() };
                         let c = (pv - m).cross(&nv);
-                        let jrow = na::Vector6::new(c.x, c.y, c.z, nv.x, nv.y, nv.z);
-                        h += w * jrow * jrow.transpose();
-                        g += w * r * jrow;
+                        let jrow = [c.x, c.y, c.z, nv.x, nv.y, nv.z];
+                        let (wj, wr) = (jrow.map(|v| w * v), w * r);
+                        for i in 0..6 {
+                            for k in 0..6 {
+                                h[i][k] += wj[i] * jrow[k];
+                            }
+                            g[i] += wr * jrow[i];
+                        }
                         n += 1;
                     }
-                    (h, g, n)
+                    (na::Matrix6::from_fn(|i, k| h[i][k]), na::Vector6::from(g), n)
                 })
                 .collect();
             let (mut h, mut g, mut n) = (na::Matrix6::zeros(), na::Vector6::zeros(), 0usize);
