@@ -453,9 +453,9 @@ pub fn icp(src: &RegCloud, target: &Target, init: Pose, distances: &[f64]) -> Po
                 .par_chunks_mut(BLOCK)
                 .enumerate()
                 .map(|(b, last)| {
-                    // Plain arrays, summed as nalgebra's `w·j·jᵀ` and `w·r·j`
-                    // sum them, term for term (the same bits), without its
-                    // matrix built per pair.
+                    // Each pair's `w·j·jᵀ` and `w·r·j` summed in plain
+                    // arrays, term for term as nalgebra forms them (the same
+                    // bits), not a matrix built per pair.
                     let mut h = [[0.0f64; 6]; 6];
                     let mut g = [0.0f64; 6];
                     let mut n = 0;
