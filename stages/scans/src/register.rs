@@ -609,21 +609,63 @@ impl PlanHold {
         if self.least > 0.0 { 0.01 / self.least.sqrt() } else { f64::INFINITY }
     }
 
-    /// How far (m) the alignment `pose` may move its weakest way with its
-    /// scanner (the scan frame's origin) staying within a station's
-    /// `tolerance` of where it is: a shift moves the scanner, and a turn
-    /// about the pairs' middle moves it as well as turning it. Infinite
-    /// where the station does not bound that way (a turn about the scanner
-    /// itself, with no yaw surveyed).
-    pub fn within_station_m(&self, pose: &Pose, tolerance: &StationTolerance) -> f64 {
+    /// How far (m) the alignment `pose` may lie from where it is, its
+    /// weakest way, with its scanner (the scan frame's origin) within a
+    /// station's `tolerance` of the surveyed `station`: a shift moves the
+    /// scanner, and a turn about the pairs' middle moves it as well as
+    /// turning it. Counted from where the scan is placed, either way, as
+    /// far as the tolerance reaches that way: a scan placed 0.08 m off its
+    /// station along the way, with 0.1 m surveyed, may lie 0.18 m off the
+    /// other way, not 0.1 m. Infinite where the station does not bound
+    /// that way (a turn about the scanner itself, with no yaw surveyed), or
+    /// where the scan is placed outside the tolerance and no move that way
+    /// brings it in.
+    pub fn within_station_m(&self, pose: &Pose, station: &Pose, tolerance: &StationTolerance) -> f64 {
         let [turn, east, north] = self.weakest;
         let rad_per_m = turn / self.spread_m.max(1e-9);
         let (sx, sy) = (pose.translation.x - self.middle[0], pose.translation.y - self.middle[1]);
         // The scanner's move in plan per metre along the weakest way.
         let (dx, dy) = (east - rad_per_m * sy, north + rad_per_m * sx);
-        let by_plan = tolerance.plan_m / dx.hypot(dy);
-        let by_yaw = tolerance.yaw_deg.map_or(f64::INFINITY, |deg| deg.to_radians() / rad_per_m.abs());
-        by_plan.min(by_yaw)
+        // The moves `t` (m along the weakest way) that keep the scanner
+        // within `plan_m` of its station: |o + t·d| <= plan_m, with `o`
+        // where it stands off the station now.
+        let (ox, oy) = (pose.translation.x - station.translation.x, pose.translation.y - station.translation.y);
+        let (a, b, c) = (dx * dx + dy * dy, ox * dx + oy * dy, ox * ox + oy * oy - tolerance.plan_m * tolerance.plan_m);
+        let unbounded = (f64::NEG_INFINITY, f64::INFINITY);
+        let by_plan = if a > 0.0 {
+            let disc = b * b - a * c;
+            if disc < 0.0 {
+                return f64::INFINITY;
+            }
+            let root = disc.sqrt();
+            ((-b - root) / a, (-b + root) / a)
+        } else if c <= 0.0 {
+            unbounded
+        } else {
+            return f64::INFINITY;
+        };
+        // And its yaw within `yaw_deg` of the station's: |yaw + t·rad_per_m| <= limit.
+        let by_yaw = match tolerance.yaw_deg {
+            None => unbounded,
+            Some(deg) => {
+                let limit = deg.to_radians();
+                let x = (station.rotation.inverse() * pose.rotation) * Vec3::x();
+                let yaw = x.y.atan2(x.x);
+                if rad_per_m != 0.0 {
+                    let (t0, t1) = ((-limit - yaw) / rad_per_m, (limit - yaw) / rad_per_m);
+                    (t0.min(t1), t0.max(t1))
+                } else if yaw.abs() <= limit {
+                    unbounded
+                } else {
+                    return f64::INFINITY;
+                }
+            }
+        };
+        let (lo, hi) = (by_plan.0.max(by_yaw.0), by_plan.1.min(by_yaw.1));
+        if lo > hi {
+            return f64::INFINITY;
+        }
+        lo.abs().max(hi.abs())
     }
 }
 
@@ -1621,7 +1663,8 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
     let held_loosely_by_overlap = |c: &Passed| c.hold.slide_per_cm_m() > LOOSE_HOLD_SLIDE_M;
     let loosely_held = |j: usize, c: &Passed| {
         held_loosely_by_overlap(c)
-            && held(j).is_none_or(|(_, tol)| c.hold.within_station_m(&c.pose, &tol) > LOOSE_HOLD_SLIDE_M)
+            && held(j)
+                .is_none_or(|(station, tol)| c.hold.within_station_m(&c.pose, &station, &tol) > LOOSE_HOLD_SLIDE_M)
     };
     let mut poses: Vec<Option<Pose>> = vec![None; n];
     let mut results: Vec<Option<RegResult>> = vec![None; n];
@@ -1927,12 +1970,12 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                 )),
                 (None, true) => {
                     let (station, remedy) = match held(*j) {
-                        Some((_, tol)) => (
+                        Some((station, tol)) => (
                             format!(
                                 ", and its station's tolerance (tolerance_m = {}{}) lets it lie up to {:.2} m off that way",
                                 tol.plan_m,
                                 tol.yaw_deg.map_or(String::new(), |deg| format!(", yaw_tolerance_deg = {deg}")),
-                                c.hold.within_station_m(&c.pose, &tol)
+                                c.hold.within_station_m(&c.pose, &station, &tol)
                             ),
                             "neither pins it down (what it shares may turn onto itself, as one tank's side, or slide along itself, as parallel walls); where its station was surveyed more closely than that, give its tolerance in the station file; or rescan from where more of the site is in view",
                         ),
@@ -1974,7 +2017,7 @@ pub fn register_all_memo(inputs: &[RegInput], s: &RegistrationSettings, seed: u6
                 // pinning that way down (else it is refused above).
                 let station_pins = held(j)
                     .filter(|_| held_loosely_by_overlap(&c))
-                    .map(|(_, tol)| c.hold.within_station_m(&c.pose, &tol));
+                    .map(|(station, tol)| c.hold.within_station_m(&c.pose, &station, &tol));
                 // Placed though the share is over (at the trial's pose, which
                 // passed): how much of it lies where a ray passed within half
                 // the width, and of that, beyond what stood beside its scanner.
@@ -3680,23 +3723,45 @@ mod tests {
 
     /// A station pins down the way what a scan shares holds loosely only
     /// as closely as its tolerance: a shift moves the scanner, and a turn
-    /// about the shared structure's middle both moves and turns it.
+    /// about the shared structure's middle both moves and turns it. The
+    /// room is counted from where the scan is placed, either way.
     #[test]
     fn a_station_pins_a_loose_way_down_to_its_tolerance() {
         let tolerance = |plan_m, yaw_deg| StationTolerance { plan_m, height_m: None, yaw_deg };
         let slide_east = PlanHold { pairs: 100, least: 0.0, weakest: [0.0, 1.0, 0.0], middle: [0.0; 2], spread_m: 5.0 };
         let at = |x: f64, y: f64| liftplan_core::frame::pose_xyz_yaw(x, y, 0.0, 0.0);
-        assert!((slide_east.within_station_m(&at(10.0, 0.0), &tolerance(0.5, Some(2.0))) - 0.5).abs() < 1e-12);
+        let turned = |x: f64, y: f64, deg: f64| liftplan_core::frame::pose_xyz_yaw(x, y, 0.0, deg.to_radians());
+        let station = at(10.0, 0.0);
+        let room = |hold: &PlanHold, placed: &Pose, t: &StationTolerance| hold.within_station_m(placed, &station, t);
+        assert!((room(&slide_east, &at(10.0, 0.0), &tolerance(0.5, Some(2.0))) - 0.5).abs() < 1e-12);
+        // Placed 0.3 m east of its station: it may lie 0.8 m west of there.
+        assert!((room(&slide_east, &at(10.3, 0.0), &tolerance(0.5, Some(2.0))) - 0.8).abs() < 1e-12);
+        assert!((room(&slide_east, &at(9.7, 0.0), &tolerance(0.5, Some(2.0))) - 0.8).abs() < 1e-12);
+        // 0.3 m north of it: the chord east and west of there, 0.4 m each way.
+        assert!((room(&slide_east, &at(10.0, 0.3), &tolerance(0.5, Some(2.0))) - 0.4).abs() < 1e-12);
+        // As on the bench (`--station-error=0.08 --tolerance=0.1`): 0.08 m
+        // off along the way, surveyed to 0.1 m, it may lie 0.18 m off, not 0.1 m.
+        assert!((room(&slide_east, &at(10.08, 0.0), &tolerance(0.1, None)) - 0.18).abs() < 1e-12);
+        // Outside the tolerance, with no move that way bringing it in: not pinned.
+        assert!(room(&slide_east, &at(10.0, 0.6), &tolerance(0.5, None)).is_infinite());
         // A turn, 0.2 rad a metre where the pairs lie 5 m from their middle.
         let turn = PlanHold { weakest: [1.0, 0.0, 0.0], ..slide_east };
         let rad = 2f64.to_radians();
         // A scanner 10 m off the middle moves 2 m a metre: 0.25 m; the yaw
         // surveyed to 2 degrees gives 0.175 m.
-        assert!((turn.within_station_m(&at(10.0, 0.0), &tolerance(0.5, None)) - 0.25).abs() < 1e-12);
-        assert!((turn.within_station_m(&at(10.0, 0.0), &tolerance(0.5, Some(2.0))) - rad / 0.2).abs() < 1e-12);
+        assert!((room(&turn, &at(10.0, 0.0), &tolerance(0.5, None)) - 0.25).abs() < 1e-12);
+        assert!((room(&turn, &at(10.0, 0.0), &tolerance(0.5, Some(2.0))) - rad / 0.2).abs() < 1e-12);
+        // Turned 1 degree from its station already: 3 degrees the other way.
+        let three = 3f64.to_radians() / 0.2;
+        assert!((room(&turn, &turned(10.0, 0.0, 1.0), &tolerance(2.0, Some(2.0))) - three).abs() < 1e-12);
+        assert!((room(&turn, &turned(10.0, 0.0, -1.0), &tolerance(2.0, Some(2.0))) - three).abs() < 1e-12);
         // At the middle it does not move: only a surveyed yaw bounds the turn.
-        assert!((turn.within_station_m(&at(0.0, 0.0), &tolerance(0.5, Some(2.0))) - rad / 0.2).abs() < 1e-12);
-        assert!(turn.within_station_m(&at(0.0, 0.0), &tolerance(0.5, None)).is_infinite());
+        let middle = |t: &StationTolerance| turn.within_station_m(&at(0.0, 0.0), &at(0.0, 0.0), t);
+        assert!((middle(&tolerance(0.5, Some(2.0))) - rad / 0.2).abs() < 1e-12);
+        assert!(middle(&tolerance(0.5, None)).is_infinite());
+        // Outside the yaw surveyed where the turn cannot bring it in: not pinned.
+        let slide_turned = slide_east.within_station_m(&turned(10.0, 0.0, 3.0), &station, &tolerance(0.5, Some(2.0)));
+        assert!(slide_turned.is_infinite());
     }
 
     /// Two scans of a corridor, both held by stations, the second's 0.3 m
