@@ -254,5 +254,16 @@ files = [{"lifts": [kept_plan("0000000a", 16819.0, 30.0)]}, {"lifts": [kept_plan
          made_from("ecaa", "aa"), made_from("ecab", "a2"), {"lifts": [kept_plan("0000000b", 17319.0, 31.0)]}]
 seed("kept_plans", "two-plans", b"\xff".join(json.dumps(f).encode() for f in files))
 
+# capacity_csv: the charts stage's table as it writes it (two configurations,
+# a blank cell left out, a cell name quoted for its comma).
+seed("capacity_csv", "capacity.csv", b"""config,boom_m,radius_m,capacity_kg,cell
+Main boom 360,12.0,3.0,50000.0,chart.xlsx [Main!B2]
+Main boom 360,12.0,4.0,40000.0,chart.xlsx [Main!B3]
+Main boom 360,20.0,4.0,35000.0,chart.xlsx [Main!C3]
+Main boom 360,12.0,6.0,30000.0,chart.xlsx [Main!B4]
+Main boom 360,20.0,6.0,28000.0,chart.xlsx [Main!C4]
+Jib,0.0,10.0,6000.0,"tower.xlsx [Jib, 60 m!B2]"
+""")
+
 shutil.rmtree(tmp)
 print(f"seeds written under {corpus}")

@@ -700,6 +700,10 @@ fn real_main() -> Result<ExitCode> {
                 }
             };
             let table = liftplan_core::capacity::CapacityTable { configs };
+            if let Err(e) = table.check_grid_cells() {
+                eprintln!("error: {}: {e}", input.display());
+                return Ok(ExitCode::from(1));
+            }
             table.write_csv(&output).with_context(|| format!("writing {}", output.display()))?;
             let mut result = serde_json::json!({ "configs": reports, "rows": table.rows().len(), "output": output.display().to_string() });
             if let Some(q) = lookup {

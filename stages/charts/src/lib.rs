@@ -565,7 +565,7 @@ pub fn run(
 ) -> Result<Summary> {
     let mut table = CapacityTable::default();
     let mut reports = Vec::new();
-    for p in inputs {
+    for (k, p) in inputs.iter().enumerate() {
         let (configs, reps) = read_chart(p, s)?;
         for c in configs {
             if table.configs.iter().any(|o| o.name == c.name) {
@@ -579,6 +579,12 @@ pub fn run(
             }
             table.configs.push(c);
         }
+        // What capacity.csv could not be read back with (the plan and docs
+        // stages read it), refused here, naming the chart that went over.
+        table.check_grid_cells().map_err(|e| {
+            let with = if k > 0 { "with the charts before it, " } else { "" };
+            ChartError::Format(Location::file(p), format!("{with}{e}"))
+        })?;
         reports.extend(reps);
     }
     for m in &s.table {

@@ -19,6 +19,14 @@ use std::path::Path;
 
 const TOL_M: f64 = 1e-6;
 
+/// The most cells (booms x radii, blank cells included) a capacity table's
+/// grids may hold in all. A real crane's charts hold a few thousand, and a
+/// chart workbook no more than this (the charts stage's reader refuses more
+/// cells); the bound keeps a damaged or hostile `capacity.csv`, each of whose
+/// rows may bring a boom and a radius of its own, from asking for rows²
+/// cells when its grids are rebuilt.
+pub const MAX_GRID_CELLS: u64 = 2_000_000;
+
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ChartCell {
     pub capacity_kg: f64,
@@ -194,8 +202,9 @@ impl CapacityTable {
     /// configuration, and searching the booms and radii row by row, cost
     /// configurations x rows (2,000 configurations of 100 cells took 3.2 s,
     /// in the plan and docs stages each). The tests keep that as the
-    /// reference.
-    pub fn from_rows(rows: &[CapacityRow]) -> CapacityTable {
+    /// reference. Rows whose grids would hold more than [`MAX_GRID_CELLS`]
+    /// cells in all are refused before any grid is made.
+    pub fn from_rows(rows: &[CapacityRow]) -> Result<CapacityTable, String> {
         let mut t = CapacityTable::default();
         let mut index: std::collections::HashMap<&str, usize> = std::collections::HashMap::new();
         let mut by_config: Vec<Vec<&CapacityRow>> = Vec::new();
@@ -218,10 +227,15 @@ impl CapacityTable {
             let i = values.partition_point(|&x| x < v);
             if values.get(i) == Some(&v) { i } else { values.iter().position(|&x| x == v).unwrap_or(0) }
         }
-        for (c, mine) in t.configs.iter_mut().zip(by_config) {
-            (c.boom_lengths_m, c.radii_m, c.cells) = grid_of(&mine, index_of);
+        let axes: Vec<(Vec<f64>, Vec<f64>)> = by_config.iter().map(|mine| axes_of(mine)).collect();
+        too_many_cells(axes.iter().fold(0u64, |sum, (booms, radii)| {
+            sum.saturating_add((booms.len() as u64).saturating_mul(radii.len() as u64))
+        }))?;
+        for ((c, mine), (booms, radii)) in t.configs.iter_mut().zip(by_config).zip(axes) {
+            c.cells = cells_of(&mine, &booms, &radii, index_of);
+            (c.boom_lengths_m, c.radii_m) = (booms, radii);
         }
-        t
+        Ok(t)
     }
 
     pub fn write_csv(&self, path: &Path) -> std::io::Result<()> {
@@ -234,46 +248,84 @@ impl CapacityTable {
     }
 
     pub fn read_csv(path: &Path) -> Result<CapacityTable, String> {
-        let mut r = csv::Reader::from_path(path).map_err(|e| format!("{}: {e}", path.display()))?;
+        let bytes = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
+        Self::from_csv_bytes(path, &bytes)
+    }
+
+    /// [`CapacityTable::read_csv`] of the bytes read from `path` (which
+    /// names the file in errors): each row's numbers finite and not
+    /// negative, and the grids they make within [`MAX_GRID_CELLS`].
+    pub fn from_csv_bytes(path: &Path, bytes: &[u8]) -> Result<CapacityTable, String> {
+        let mut r = csv::Reader::from_reader(bytes);
+        let headers = r.headers().map_err(|e| format!("{}: {e}", path.display()))?.clone();
         let mut rows = Vec::new();
-        for (i, rec) in r.deserialize::<CapacityRow>().enumerate() {
-            let row = rec.map_err(|e| format!("{}:{}: {e}", path.display(), i + 2))?;
-            if !(row.capacity_kg.is_finite()
-                && row.capacity_kg >= 0.0
-                && row.radius_m.is_finite()
-                && row.boom_m.is_finite())
-            {
+        for rec in r.records() {
+            let rec = rec.map_err(|e| format!("{}: {e}", path.display()))?;
+            let line = rec.position().map_or(0, |p| p.line());
+            let row: CapacityRow =
+                rec.deserialize(Some(&headers)).map_err(|e| format!("{}:{line}: {e}", path.display()))?;
+            if ![row.capacity_kg, row.radius_m, row.boom_m].iter().all(|v| v.is_finite() && *v >= 0.0) {
                 return Err(format!(
-                    "{}:{}: capacity, radius and boom must be finite and non-negative",
-                    path.display(),
-                    i + 2
+                    "{}:{line}: capacity, radius and boom must be finite and non-negative",
+                    path.display()
                 ));
             }
             rows.push(row);
         }
-        Ok(CapacityTable::from_rows(&rows))
+        CapacityTable::from_rows(&rows).map_err(|e| format!("{}: {e}", path.display()))
+    }
+
+    /// The cells of every configuration's grid, booms x radii, blank cells
+    /// included (saturating).
+    pub fn grid_cells(&self) -> u64 {
+        self.configs.iter().fold(0u64, |sum, c| {
+            sum.saturating_add((c.boom_lengths_m.len() as u64).saturating_mul(c.radii_m.len() as u64))
+        })
+    }
+
+    /// Refuses a table whose grids hold more than [`MAX_GRID_CELLS`] cells
+    /// in all, which could not be read back from its `capacity.csv`.
+    pub fn check_grid_cells(&self) -> Result<(), String> {
+        too_many_cells(self.grid_cells())
     }
 }
 
-/// One configuration's booms and radii (sorted, each once) and its cells,
-/// radius-major, from its rows; `index_of` finds a value's place in the
-/// booms or radii. A later row of the same cell replaces an earlier one.
-fn grid_of(
-    rows: &[&CapacityRow],
-    index_of: impl Fn(&[f64], f64) -> usize,
-) -> (Vec<f64>, Vec<f64>, Vec<Option<ChartCell>>) {
+fn too_many_cells(cells: u64) -> Result<(), String> {
+    if cells > MAX_GRID_CELLS {
+        return Err(format!(
+            "its grids hold {cells} cells in all (booms x radii, blank cells included), more than the \
+             {MAX_GRID_CELLS} liftplan takes; a crane's load charts never hold so many"
+        ));
+    }
+    Ok(())
+}
+
+/// One configuration's booms and radii from its rows: sorted, each once.
+fn axes_of(rows: &[&CapacityRow]) -> (Vec<f64>, Vec<f64>) {
     let mut booms: Vec<f64> = rows.iter().map(|r| r.boom_m).collect();
     let mut radii: Vec<f64> = rows.iter().map(|r| r.radius_m).collect();
     booms.sort_by(f64::total_cmp);
     booms.dedup();
     radii.sort_by(f64::total_cmp);
     radii.dedup();
+    (booms, radii)
+}
+
+/// One configuration's cells, radius-major, from its rows over its
+/// [`axes_of`]; `index_of` finds a value's place in the booms or radii. A
+/// later row of the same cell replaces an earlier one.
+fn cells_of(
+    rows: &[&CapacityRow],
+    booms: &[f64],
+    radii: &[f64],
+    index_of: impl Fn(&[f64], f64) -> usize,
+) -> Vec<Option<ChartCell>> {
     let mut cells = vec![None; booms.len() * radii.len()];
     for r in rows {
-        let (bi, ri) = (index_of(&booms, r.boom_m), index_of(&radii, r.radius_m));
+        let (bi, ri) = (index_of(booms, r.boom_m), index_of(radii, r.radius_m));
         cells[ri * booms.len() + bi] = Some(ChartCell { capacity_kg: r.capacity_kg, cell: r.cell.clone() });
     }
-    (booms, radii, cells)
+    cells
 }
 
 #[cfg(test)]
@@ -297,8 +349,10 @@ mod tests {
         }
         for c in &mut t.configs {
             let mine: Vec<&CapacityRow> = rows.iter().filter(|r| r.config == c.name).collect();
-            (c.boom_lengths_m, c.radii_m, c.cells) =
-                grid_of(&mine, |values, v| values.iter().position(|&x| x == v).unwrap_or(0));
+            (c.boom_lengths_m, c.radii_m) = axes_of(&mine);
+            c.cells = cells_of(&mine, &c.boom_lengths_m, &c.radii_m, |values, v| {
+                values.iter().position(|&x| x == v).unwrap_or(0)
+            });
         }
         t
     }
@@ -323,7 +377,7 @@ mod tests {
                     cell: format!("S!B{kg}"),
                 })
                 .collect();
-            let (got, want) = (CapacityTable::from_rows(&rows), from_rows_by_search(&rows));
+            let (got, want) = (CapacityTable::from_rows(&rows).unwrap(), from_rows_by_search(&rows));
             // NaN != NaN: compare the tables' text.
             proptest::prop_assert_eq!(format!("{got:?}"), format!("{want:?}"));
         }
@@ -399,5 +453,51 @@ mod tests {
         t.write_csv(&p).unwrap();
         let back = CapacityTable::read_csv(&p).unwrap();
         assert_eq!(back, t);
+    }
+
+    fn csv_of(rows: impl Iterator<Item = (f64, f64)>) -> Vec<u8> {
+        let mut text = String::from("config,boom_m,radius_m,capacity_kg,cell\n");
+        for (boom, radius) in rows {
+            text.push_str(&format!("C,{boom},{radius},1000,S!B2\n"));
+        }
+        text.into_bytes()
+    }
+
+    /// Rows that each bring a boom or a radius of their own make grids of
+    /// rows² cells; past [`MAX_GRID_CELLS`] the file is refused before any
+    /// grid is made.
+    #[test]
+    fn a_capacity_csv_whose_grids_would_be_too_large_is_refused() {
+        let p = Path::new("out/capacity.csv");
+        // 1,000 booms x 2,000 radii: the bound, taken.
+        let at_bound = csv_of((0..2000).map(|i| ((i % 1000) as f64, i as f64)));
+        let t = CapacityTable::from_csv_bytes(p, &at_bound).unwrap();
+        assert_eq!(t.grid_cells(), MAX_GRID_CELLS);
+        assert!(t.check_grid_cells().is_ok());
+        // One radius more: 2,001,000 cells.
+        let over = csv_of((0..2001).map(|i| ((i % 1000) as f64, i as f64)));
+        let e = CapacityTable::from_csv_bytes(p, &over).unwrap_err();
+        assert!(e.starts_with("out/capacity.csv: its grids hold 2001000 cells"), "{e}");
+        // 100,000 rows, each its own boom and radius: 10^10 cells asked for
+        // without the bound.
+        let hostile = csv_of((0..100_000).map(|i| (i as f64, i as f64)));
+        let e = CapacityTable::from_csv_bytes(p, &hostile).unwrap_err();
+        assert!(e.contains("10000000000 cells"), "{e}");
+    }
+
+    /// A row's numbers are checked where the file has it, a cell's text
+    /// running over two lines counted.
+    #[test]
+    fn a_negative_radius_or_boom_is_refused_at_its_line() {
+        let p = Path::new("capacity.csv");
+        let text = "config,boom_m,radius_m,capacity_kg,cell\n\"C\",12,3,1000,\"S!B2\nnote\"\nC,12,-4,900,S!B3\n";
+        let e = CapacityTable::from_csv_bytes(p, text.as_bytes()).unwrap_err();
+        assert_eq!(e, "capacity.csv:4: capacity, radius and boom must be finite and non-negative");
+        let text = "config,boom_m,radius_m,capacity_kg,cell\nC,-12,3,1000,S!B2\n";
+        let e = CapacityTable::from_csv_bytes(p, text.as_bytes()).unwrap_err();
+        assert_eq!(e, "capacity.csv:2: capacity, radius and boom must be finite and non-negative");
+        let text = "config,boom_m,radius_m,capacity_kg,cell\nC,12,three,1000,S!B2\n";
+        let e = CapacityTable::from_csv_bytes(p, text.as_bytes()).unwrap_err();
+        assert!(e.starts_with("capacity.csv:2: "), "{e}");
     }
 }

@@ -932,7 +932,7 @@ fn chart_of(rows: &[(f64, f64)], sheet: &str) -> liftplan_core::capacity::Capaci
             cell: format!("test.xlsx [{sheet}!B{}]", i + 2),
         })
         .collect();
-    CapacityTable::from_rows(&rows)
+    CapacityTable::from_rows(&rows).unwrap()
 }
 
 /// A chart for the test crane's 40 m boom: ample capacity up to 28 m radius,
@@ -971,7 +971,7 @@ fn a_pick_over_capacity_says_what_would_carry_it() {
             rows.push(row("none", "test.xlsx", b, r, heavy));
         }
     }
-    let table = CapacityTable::from_rows(&rows);
+    let table = CapacityTable::from_rows(&rows).unwrap();
     let mesh = site();
     let m = map(&mesh);
     let world = World::new(&mesh, &[], &[]).unwrap();
@@ -992,7 +992,7 @@ fn a_pick_over_capacity_says_what_would_carry_it() {
     // Only a boom that cannot reach the pick carries it there.
     let short: Vec<CapacityRow> =
         rows.iter().filter(|r| r.config == "none" && [40.0, 20.0].contains(&r.boom_m)).cloned().collect();
-    let table = CapacityTable::from_rows(&short);
+    let table = CapacityTable::from_rows(&short).unwrap();
     let e = plan_lift(&t, &Site { map: &m, world: &world, charts: Some(&table) }, &quick(), 3).unwrap_err().to_string();
     assert!(
         e.contains("at 26.08 m no other boom length and no other configuration of its chart file carries it where the crane could hang it; the chart's 20.00 m boom carries it at 26.08 m"),
