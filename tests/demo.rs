@@ -230,6 +230,34 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     }
     std::fs::write(&toml_path, &t).unwrap();
 
+    // A C-space picture damaged in the plan stage's cache entry, which the
+    // docs stage reads it from, stops the docs stage with an error naming
+    // it (not a document left without it, unsaid), and the last good
+    // document is kept.
+    let cached_pictures: Vec<(std::path::PathBuf, Vec<u8>)> =
+        std::fs::read_dir(dir.join(".liftplan").join("cache").join("plan"))
+            .unwrap()
+            .flatten()
+            .map(|e| e.path().join("V-101.cspace.png"))
+            .filter(|p| p.is_file())
+            .map(|p| {
+                let good = std::fs::read(&p).unwrap();
+                (p, good)
+            })
+            .collect();
+    assert!(!cached_pictures.is_empty());
+    let good_pdf = std::fs::read(&pdf_path).unwrap();
+    for (p, good) in &cached_pictures {
+        std::fs::write(p, &good[..good.len() / 2]).unwrap();
+    }
+    let o = liftplan(&["run", d, "--force", "docs", "-q"]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && stderr.contains("V-101.cspace.png"), "{stderr}");
+    assert!(std::fs::read(&pdf_path).unwrap() == good_pdf, "the last good PDF is kept");
+    for (p, good) in &cached_pictures {
+        std::fs::write(p, good).unwrap();
+    }
+
     // A heavier load: charts, plan and docs rerun; scans, plant and the depth map do not.
     let plan_12t = plan["lifts"][0]["summary"]["revision"].as_str().unwrap().to_string();
     std::fs::write(&toml_path, t.replace("mass_t = 12.0", "mass_t = 13.0")).unwrap();

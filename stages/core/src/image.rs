@@ -16,6 +16,11 @@ pub struct Image {
 
 pub type Rgb = [u8; 3];
 
+/// The most bytes a PNG read back ([`Image::decode_png`]) may decode into:
+/// what the png crate itself allows a decoder by default; the C-space
+/// picture the docs stage reads back takes about 2 MB.
+pub const MAX_DECODED_BYTES: usize = 64 << 20;
+
 impl Image {
     pub fn new(width: u32, height: u32, bg: Rgb) -> Self {
         let mut data = Vec::with_capacity((width * height * 3) as usize);
@@ -62,6 +67,22 @@ impl Image {
         }
     }
 
+    /// The columns and rows of the pixels from `minx` to `maxx` and `miny`
+    /// to `maxy` (rounded outwards) that lie in the image: what a shape
+    /// drawn there may touch. A shape reaching far beyond the image (a
+    /// coordinate of 1e300 from a damaged plan) costs no more than the image.
+    fn pixels_within(
+        &self,
+        minx: f64,
+        maxx: f64,
+        miny: f64,
+        maxy: f64,
+    ) -> (std::ops::RangeInclusive<i64>, std::ops::RangeInclusive<i64>) {
+        let xs = (minx.floor() as i64).max(0)..=(maxx.ceil() as i64).min(self.width as i64 - 1);
+        let ys = (miny.floor() as i64).max(0)..=(maxy.ceil() as i64).min(self.height as i64 - 1);
+        (xs, ys)
+    }
+
     /// Anti-aliased line of width `w` pixels (distance-based coverage).
     pub fn line(&mut self, x0: f64, y0: f64, x1: f64, y1: f64, w: f64, c: Rgb) {
         let (minx, maxx) = (x0.min(x1) - w - 1.0, x0.max(x1) + w + 1.0);
@@ -69,8 +90,9 @@ impl Image {
         let dx = x1 - x0;
         let dy = y1 - y0;
         let len2 = dx * dx + dy * dy;
-        for y in (miny.floor() as i64)..=(maxy.ceil() as i64) {
-            for x in (minx.floor() as i64)..=(maxx.ceil() as i64) {
+        let (xs, ys) = self.pixels_within(minx, maxx, miny, maxy);
+        for y in ys {
+            for x in xs.clone() {
                 let (px, py) = (x as f64 + 0.5, y as f64 + 0.5);
                 let t = if len2 > 0.0 { (((px - x0) * dx + (py - y0) * dy) / len2).clamp(0.0, 1.0) } else { 0.0 };
                 let (qx, qy) = (x0 + t * dx, y0 + t * dy);
@@ -92,8 +114,9 @@ impl Image {
 
     /// Filled anti-aliased disc.
     pub fn disc(&mut self, cx: f64, cy: f64, r: f64, c: Rgb) {
-        for y in ((cy - r - 1.0).floor() as i64)..=((cy + r + 1.0).ceil() as i64) {
-            for x in ((cx - r - 1.0).floor() as i64)..=((cx + r + 1.0).ceil() as i64) {
+        let (xs, ys) = self.pixels_within(cx - r - 1.0, cx + r + 1.0, cy - r - 1.0, cy + r + 1.0);
+        for y in ys {
+            for x in xs.clone() {
                 let d = ((x as f64 + 0.5 - cx).powi(2) + (y as f64 + 0.5 - cy).powi(2)).sqrt();
                 let cov = (r + 0.5 - d).clamp(0.0, 1.0);
                 if cov > 0.0 {
@@ -148,11 +171,20 @@ impl Image {
         crate::artifact::write_atomic(path, &bytes)
     }
 
-    /// Decodes an 8-bit RGB or RGBA PNG (used by tests and the report tools).
+    /// A PNG of 8-bit RGB or RGBA samples, as liftplan writes its pictures,
+    /// read back (the C-space picture in the docs stage, and tests). A header that asks for more than [`MAX_DECODED_BYTES`] is
+    /// refused before anything is allocated for it.
     pub fn decode_png(bytes: &[u8]) -> Result<Image, String> {
         let dec = png::Decoder::new(std::io::Cursor::new(bytes));
         let mut r = dec.read_info().map_err(|e| e.to_string())?;
-        let size = r.output_buffer_size().ok_or("PNG too large")?;
+        let (width, height) = r.info().size();
+        let size = r.output_buffer_size().filter(|&s| s <= MAX_DECODED_BYTES).ok_or_else(|| {
+            format!("PNG of {width} x {height} pixels: more than the {MAX_DECODED_BYTES} bytes liftplan reads a picture into")
+        })?;
+        let (_, depth) = r.output_color_type();
+        if depth != png::BitDepth::Eight {
+            return Err(format!("PNG of {}-bit samples; liftplan's pictures have 8-bit samples", depth as u8));
+        }
         let mut buf = vec![0; size];
         let info = r.next_frame(&mut buf).map_err(|e| e.to_string())?;
         let (w, h) = (info.width, info.height);
@@ -277,6 +309,74 @@ mod tests {
         assert_eq!(im.get(1, 2), [255, 0, 0]);
         let back = Image::decode_png(&im.encode_png().unwrap()).unwrap();
         assert_eq!(back, im);
+    }
+
+    /// The CRC-32 of PNG chunks (ISO 3309), bit by bit.
+    fn crc32(bytes: &[u8]) -> u32 {
+        let mut c = !0u32;
+        for &b in bytes {
+            c ^= u32::from(b);
+            for _ in 0..8 {
+                c = if c & 1 != 0 { 0xEDB8_8320 ^ (c >> 1) } else { c >> 1 };
+            }
+        }
+        !c
+    }
+
+    /// A header asking for a picture far larger than any liftplan draws is
+    /// refused before a buffer is made for it; samples of other than 8 bits
+    /// are refused, not read as garbage.
+    #[test]
+    fn a_png_too_large_or_not_of_8_bit_samples_is_refused() {
+        let mut png = Image::new(1, 1, [1, 2, 3]).encode_png().unwrap();
+        // The IHDR chunk's width and height (after the signature, the
+        // chunk's length and type), and its CRC over type and data.
+        png[16..20].copy_from_slice(&60_000u32.to_be_bytes());
+        png[20..24].copy_from_slice(&60_000u32.to_be_bytes());
+        let crc = crc32(&png[12..29]);
+        png[29..33].copy_from_slice(&crc.to_be_bytes());
+        let e = Image::decode_png(&png).unwrap_err();
+        assert!(e.starts_with("PNG of 60000 x 60000 pixels: more than the 67108864 bytes"), "{e}");
+        let mut deep = Vec::new();
+        {
+            let mut enc = png::Encoder::new(&mut deep, 2, 2);
+            enc.set_color(png::ColorType::Rgb);
+            enc.set_depth(png::BitDepth::Sixteen);
+            enc.write_header().unwrap().write_image_data(&[7; 24]).unwrap();
+        }
+        assert_eq!(
+            Image::decode_png(&deep).unwrap_err(),
+            "PNG of 16-bit samples; liftplan's pictures have 8-bit samples"
+        );
+    }
+
+    /// Shapes reaching far beyond the picture draw what lies in it, in no
+    /// more time than the picture takes (over their whole extent, the line
+    /// below took 1.4 billion pixels' work and the disc 4e24).
+    #[test]
+    fn shapes_far_beyond_the_picture_draw_only_what_lies_in_it() {
+        let white = Image::new(30, 20, [255, 255, 255]);
+        let mut line = white.clone();
+        line.line(-1e8, 10.0, 1e8, 10.0, 3.0, [0, 0, 0]);
+        // The same by hand: 0.5 coverage of rows 8 and 11, full of 9 and 10.
+        let mut want = white.clone();
+        for (y, cov) in [(8, 0.5), (9, 1.0), (10, 1.0), (11, 0.5)] {
+            for x in 0..30 {
+                want.blend(x, y, [0, 0, 0], cov);
+            }
+        }
+        assert_eq!(line, want);
+        let mut disc = white.clone();
+        disc.disc(15.0, 10.0, 1e12, [255, 0, 0]);
+        assert_eq!(disc, Image::new(30, 20, [255, 0, 0]));
+        // These end at once and draw nothing: the disc lies wholly outside,
+        // one line starts at NaN, and the other's squared length overflows
+        // (as it did before its pixels were bounded).
+        let mut none = white.clone();
+        none.line(-1e300, 10.0, 1e300, 10.0, 3.0, [0, 0, 0]);
+        none.line(5.0, f64::NAN, 5.0, 1e18, 1.0, [0, 0, 255]);
+        none.disc(1e300, -1e300, 4.0, [0, 255, 0]);
+        assert_eq!(none, white);
     }
 
     #[test]

@@ -195,7 +195,13 @@ pub fn run(inp: &Inputs, s: &Settings, gpu_use: liftplan_core::gpu::GpuUse, out_
         };
         let chart = charts.as_ref().and_then(|c| c.config(&task.chart_config).ok());
         let cspace_png = inp.plan_dir.join(format!("{}.cspace.png", task.id));
-        let cspace = std::fs::read(&cspace_png).ok().and_then(|b| liftplan_core::image::Image::decode_png(&b).ok());
+        // No picture where the plan stage drew none; one it cannot read is
+        // an error naming it, not a page left without it unsaid.
+        let cspace = match std::fs::read(&cspace_png) {
+            Ok(b) => Some(liftplan_core::image::Image::decode_png(&b).map_err(|e| io(&cspace_png, e))?),
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => None,
+            Err(e) => return Err(io(&cspace_png, e)),
+        };
         let (bytes, pages, overview, chart_img) = report::document(inp, s, &site, task, plan, chart, cspace.as_ref())?;
         let name = format!("{}.pdf", task.id);
         liftplan_core::artifact::write_atomic(&out_dir.join(&name), &bytes).map_err(|e| io(&out_dir.join(&name), e))?;
