@@ -227,13 +227,12 @@ impl CapacityTable {
             let i = values.partition_point(|&x| x < v);
             if values.get(i) == Some(&v) { i } else { values.iter().position(|&x| x == v).unwrap_or(0) }
         }
-        let axes: Vec<(Vec<f64>, Vec<f64>)> = by_config.iter().map(|mine| axes_of(mine)).collect();
-        too_many_cells(axes.iter().fold(0u64, |sum, (booms, radii)| {
-            sum.saturating_add((booms.len() as u64).saturating_mul(radii.len() as u64))
-        }))?;
-        for ((c, mine), (booms, radii)) in t.configs.iter_mut().zip(by_config).zip(axes) {
-            c.cells = cells_of(&mine, &booms, &radii, index_of);
-            (c.boom_lengths_m, c.radii_m) = (booms, radii);
+        for (c, mine) in t.configs.iter_mut().zip(&by_config) {
+            (c.boom_lengths_m, c.radii_m) = axes_of(mine);
+        }
+        t.check_grid_cells()?;
+        for (c, mine) in t.configs.iter_mut().zip(by_config) {
+            c.cells = cells_of(&mine, &c.boom_lengths_m, &c.radii_m, index_of);
         }
         Ok(t)
     }
@@ -286,18 +285,15 @@ impl CapacityTable {
     /// Refuses a table whose grids hold more than [`MAX_GRID_CELLS`] cells
     /// in all, which could not be read back from its `capacity.csv`.
     pub fn check_grid_cells(&self) -> Result<(), String> {
-        too_many_cells(self.grid_cells())
+        let cells = self.grid_cells();
+        if cells > MAX_GRID_CELLS {
+            return Err(format!(
+                "its grids hold {cells} cells in all (booms x radii, blank cells included), more than the \
+                 {MAX_GRID_CELLS} liftplan takes; a crane's load charts never hold so many"
+            ));
+        }
+        Ok(())
     }
-}
-
-fn too_many_cells(cells: u64) -> Result<(), String> {
-    if cells > MAX_GRID_CELLS {
-        return Err(format!(
-            "its grids hold {cells} cells in all (booms x radii, blank cells included), more than the \
-             {MAX_GRID_CELLS} liftplan takes; a crane's load charts never hold so many"
-        ));
-    }
-    Ok(())
 }
 
 /// One configuration's booms and radii from its rows: sorted, each once.
