@@ -172,8 +172,9 @@ impl Image {
     }
 
     /// A PNG of 8-bit RGB or RGBA samples, as liftplan writes its pictures,
-    /// read back (the C-space picture in the docs stage, and tests). A header that asks for more than [`MAX_DECODED_BYTES`] is
-    /// refused before anything is allocated for it.
+    /// read back (the C-space picture in the docs stage, and tests). A
+    /// header that asks for more than [`MAX_DECODED_BYTES`] is refused
+    /// before anything is allocated for it.
     pub fn decode_png(bytes: &[u8]) -> Result<Image, String> {
         let dec = png::Decoder::new(std::io::Cursor::new(bytes));
         let mut r = dec.read_info().map_err(|e| e.to_string())?;
