@@ -687,6 +687,10 @@ mod tests {
     }
 
     proptest! {
+        #![proptest_config({
+            let cases = crate::testing::proptest_cases(256);
+            ProptestConfig { max_global_rejects: crate::testing::proptest_rejects(cases), ..ProptestConfig::with_cases(cases) }
+        })]
         /// The corners of an upright box, and points inside it, give the box
         /// back: its centre, its sizes (the longer first) and its long side's
         /// direction (a half turn is the same box).

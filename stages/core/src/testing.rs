@@ -44,6 +44,16 @@ pub fn proptest_cases(default: u32) -> u32 {
     }
 }
 
+/// How many cases a property test of `cases` cases may reject
+/// (`prop_assume!`) in all before proptest gives up on it: as many as it has
+/// cases, and proptest's own 1,024 at the least. At proptest's fixed 1,024 a
+/// soak's large [`proptest_cases`] aborted tests whose assumptions reject
+/// one case in a hundred ("Too many global rejects" after 96,534 cases
+/// passed), a failure that says nothing of the property.
+pub fn proptest_rejects(cases: u32) -> u32 {
+    cases.max(1024)
+}
+
 /// Copy `k` of a file's `bytes`, damaged in one of four ways by `k`: a few
 /// bits flipped; a 32-bit field (a length, a count, a float) overwritten
 /// with an extreme value; the file cut short; a run of it copied over

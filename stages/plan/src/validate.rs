@@ -2285,7 +2285,10 @@ mod tests {
     }
 
     proptest! {
-        #![proptest_config(ProptestConfig::with_cases(liftplan_core::testing::proptest_cases(500)))]
+        #![proptest_config({
+            let cases = liftplan_core::testing::proptest_cases(500);
+            ProptestConfig { max_global_rejects: liftplan_core::testing::proptest_rejects(cases), ..ProptestConfig::with_cases(cases) }
+        })]
         /// Moving the footprint's corners less than the zone margin never
         /// changes whether it is over a landing zone: star-shaped zones with
         /// notches, footprints in, out and across them.
@@ -2369,7 +2372,10 @@ mod tests {
     }
 
     proptest! {
-        #![proptest_config(ProptestConfig::with_cases(liftplan_core::testing::proptest_cases(300)))]
+        #![proptest_config({
+            let cases = liftplan_core::testing::proptest_cases(300);
+            ProptestConfig { max_global_rejects: liftplan_core::testing::proptest_rejects(cases), ..ProptestConfig::with_cases(cases) }
+        })]
         /// The planner's shortest rope per luff row keeps the load and its
         /// rigging off the boom by more than the validator asks, at any swing,
         /// load yaw and longer rope: the planner does not plan what the

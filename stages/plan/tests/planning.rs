@@ -1403,7 +1403,13 @@ fn spaced(clearance_m: f64, sample_m: f64) -> Rules {
 }
 
 proptest::proptest! {
-    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(liftplan_core::testing::proptest_cases(24)))]
+    #![proptest_config({
+        let cases = liftplan_core::testing::proptest_cases(24);
+        proptest::prelude::ProptestConfig {
+            max_global_rejects: liftplan_core::testing::proptest_rejects(cases),
+            ..proptest::prelude::ProptestConfig::with_cases(cases)
+        }
+    })]
     /// A move whose closest approach, found by samples 1 mm apart, falls
     /// short of the clearance by 3 mm or more is rejected at the validator's
     /// coarsest spacing (0.5 m of movement between samples): it may pass a
