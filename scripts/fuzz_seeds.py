@@ -265,5 +265,10 @@ Main boom 360,20.0,6.0,28000.0,chart.xlsx [Main!C4]
 Jib,0.0,10.0,6000.0,"tower.xlsx [Jib, 60 m!B2]"
 """)
 
+# plan_document: the demo's plan.json (kept in fuzz/seeds/, which the demo's
+# end-to-end test checks the docs stage still draws).
+for name in sorted(os.listdir(os.path.join(root, "fuzz", "seeds", "plan_document"))):
+    seed("plan_document", name, read(os.path.join(root, "fuzz", "seeds", "plan_document", name)))
+
 shutil.rmtree(tmp)
 print(f"seeds written under {corpus}")

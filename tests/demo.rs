@@ -258,6 +258,48 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
         std::fs::write(p, good).unwrap();
     }
 
+    // The plan.json the docs stage reads there: one whose steps are not one
+    // a move in order (step n is drawn with move n) stops it with an error
+    // naming the file, the last good document kept; the fuzz target
+    // `plan_document`'s seed, the demo's plan kept in fuzz/seeds/, is one
+    // it draws, so the fuzzer starts from a plan the stage takes.
+    let cached_plans: Vec<(std::path::PathBuf, Vec<u8>)> = cached_pictures
+        .iter()
+        .map(|(p, _)| p.with_file_name("plan.json"))
+        .map(|p| {
+            let good = std::fs::read(&p).unwrap();
+            (p, good)
+        })
+        .collect();
+    for (p, good) in &cached_plans {
+        let mut plans: serde_json::Value = serde_json::from_slice(good).unwrap();
+        plans["lifts"][0]["steps"][1]["n"] = 7.into();
+        std::fs::write(p, serde_json::to_vec(&plans).unwrap()).unwrap();
+    }
+    let o = liftplan(&["run", d, "--force", "docs", "-q"]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !o.status.success() && stderr.contains("plan.json") && stderr.contains("its step 2 is numbered 7"),
+        "{stderr}"
+    );
+    assert!(std::fs::read(&pdf_path).unwrap() == good_pdf, "the last good PDF is kept");
+    let seed = std::fs::read(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("fuzz/seeds/plan_document/demo-V-101.plan.json"),
+    )
+    .unwrap();
+    for (p, _) in &cached_plans {
+        std::fs::write(p, &seed).unwrap();
+    }
+    let o = liftplan(&["run", d, "--force", "docs", "-q"]);
+    assert!(o.status.success(), "the fuzz seed's plan is not drawn: {}", String::from_utf8_lossy(&o.stderr));
+    for (p, good) in &cached_plans {
+        std::fs::write(p, good).unwrap();
+    }
+    // The document of the demo's own plan again, in out/ and the docs
+    // stage's cache.
+    let o = liftplan(&["run", d, "--force", "docs", "-q"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+
     // A heavier load: charts, plan and docs rerun; scans, plant and the depth map do not.
     let plan_12t = plan["lifts"][0]["summary"]["revision"].as_str().unwrap().to_string();
     std::fs::write(&toml_path, t.replace("mass_t = 12.0", "mass_t = 13.0")).unwrap();

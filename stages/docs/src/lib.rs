@@ -187,6 +187,11 @@ pub fn run(inp: &Inputs, s: &Settings, gpu_use: liftplan_core::gpu::GpuUse, out_
     std::fs::create_dir_all(out_dir).map_err(|e| io(out_dir, e))?;
     let mut summary = Summary { documents: vec![], pages: vec![], seconds: 0.0, renderer: renderer_name };
     for plan in &plans.lifts {
+        // Step n is drawn with move n: a plan whose steps are not one a
+        // move in order is not drawn at all.
+        if let Some(problem) = plan.steps_not_as_written() {
+            return Err(io(&inp.plan_json, format!("lift '{}': {problem}; rerun the plan stage", plan.lift)));
+        }
         let Some(task) = inp.tasks.iter().find(|t| t.id == plan.lift) else {
             return Err(DocsError::Other(format!(
                 "plan.json has lift '{}' which the project no longer defines; rerun the plan stage",

@@ -632,6 +632,13 @@ fn footer(sheet_w_mm: f32, project: &str, id: &str, revision: &str, date: &str) 
     format!("{head}{project}{tail}")
 }
 
+/// A picture's size in pixels: as given, or a quarter of it each way when
+/// built for fuzzing (`cargo fuzz` sets `--cfg fuzzing`), where a document
+/// with its pictures at full size takes seconds a run; the same is drawn.
+fn px(n: u32) -> u32 {
+    if cfg!(fuzzing) { n / 4 } else { n }
+}
+
 pub fn document(
     inp: &Inputs,
     s: &Settings,
@@ -899,7 +906,7 @@ pub fn document(
     }
     let with_power_lines = others.len();
     others.extend(plan.summary.line_like.iter().map(|l| (l.obb(0.25), pictures::LINE_LIKE)));
-    let overview = pictures::overview(site, task, plan, &others, 1400, 1000);
+    let overview = pictures::overview(site, task, plan, &others, px(1400), px(1000));
     let tail = task.crane.tail_swing_m();
     let coverage = plan.summary.coverage.as_ref();
     let under_m2 =
@@ -1131,7 +1138,7 @@ pub fn document(
     y = inputs_room(&mut d, y, need_mm);
     y = key_values(&mut d, 15.0, y, &rows, 42.0);
     y += 3.0;
-    let chart_img = chart.map(|c| pictures::chart_plot(c, task, plan, 1200, 600));
+    let chart_img = chart.map(|c| pictures::chart_plot(c, task, plan, px(1200), px(600)));
     // The load chart keeps its place on this page where it can: the input
     // rows take the room left above it, and every input is on the last
     // pages when some are not here.
@@ -1328,7 +1335,7 @@ pub fn document(
                 .collect::<Vec<_>>(),
                 40.0,
             );
-            let img = pictures::step_view(site, task, plan, &others, st.n, 1300, 950);
+            let img = pictures::step_view(site, task, plan, &others, st.n, px(1300), px(950));
             d.image(&img, 15.0, y + 2.0, w);
         }
     }

@@ -301,6 +301,24 @@ pub struct LiftPlan {
     pub model_vs_scans: Option<validate::ModelScanAgreement>,
 }
 
+impl LiftPlan {
+    /// What is wrong with the steps of a plan read back (a plan.json cut
+    /// short, edited by hand, or not one liftplan wrote) where they are not
+    /// as [`run`] writes them: one a move, numbered from 1 in order. A
+    /// document draws step n with move n, so it reads none other.
+    pub fn steps_not_as_written(&self) -> Option<String> {
+        if self.steps.len() != self.moves.len() {
+            return Some(format!(
+                "{} steps for {} moves (the plan stage writes a step for each move)",
+                self.steps.len(),
+                self.moves.len()
+            ));
+        }
+        let (k, step) = self.steps.iter().enumerate().find(|(k, step)| step.n != k + 1)?;
+        Some(format!("its step {} is numbered {} (the plan stage numbers them from 1 in order)", k + 1, step.n))
+    }
+}
+
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct ValidatorReport {
     pub ok: bool,

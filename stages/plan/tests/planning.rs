@@ -106,6 +106,21 @@ fn plans_over_the_wall_and_the_validator_agrees() {
     for st in &plan.steps[1..plan.steps.len() - 1] {
         assert!(st.min_clearance_m >= st.required_clearance_m - 1e-3, "step {} too close: {:?}", st.n, st);
     }
+    // Its steps are as a document reads them back: one a move, in order;
+    // a step lost or numbered otherwise is said.
+    assert_eq!(plan.steps_not_as_written(), None);
+    let (mut short, mut renumbered) = (plan.clone(), plan.clone());
+    short.steps.pop();
+    let n = plan.moves.len();
+    assert_eq!(
+        short.steps_not_as_written().as_deref(),
+        Some(format!("{} steps for {n} moves (the plan stage writes a step for each move)", n - 1).as_str())
+    );
+    renumbered.steps[0].n = 0;
+    assert_eq!(
+        renumbered.steps_not_as_written().as_deref(),
+        Some("its step 1 is numbered 0 (the plan stage numbers them from 1 in order)")
+    );
 }
 
 #[test]
