@@ -80,7 +80,10 @@ for version, fmt, name in [("1.2", 0, "a12.las"), ("1.2", 3, "b12.las"), ("1.4",
     laz = name.endswith(".laz")
     las.write(path, laz_backend=laspy.LazBackend.Lazrs if laz else None)
     seed("scan_file", name, read(path), 1 if laz else 0)
+    # site_cloud: the same files as the stages after scans read site.laz.
+    seed("site_cloud", name, read(path))
 seed("scan_file", "variable-chunks.laz", read(os.path.join(root, "fixtures/scans/variable-chunks.laz")), 1)
+seed("site_cloud", "variable-chunks.laz", read(os.path.join(root, "fixtures/scans/variable-chunks.laz")))
 
 def ply_header(fmt, props):
     return (f"ply\nformat {fmt} 1.0\nelement vertex {n}\n" + "".join(f"property {p}\n" for p in props)

@@ -16,6 +16,7 @@
 //! | [`crane`] | crane model files, placement, forward and inverse kinematics |
 //! | [`outriggers`] | a mobile crane's pad loads and the pressure under its mats |
 //! | [`capacity`] | load-chart grids and the never-interpolate-upwards rule |
+//! | [`las_file`] | LAS/LAZ files' structure checked before the `las` and `laz` crates trust it |
 //! | [`lift`] | the lift request and its validated form |
 //! | [`obstacle`] | boxes placed by hand: what is on site that the scans and model do not hold |
 //! | [`wind`] | the wind speed up to which a mobile crane may lift a load |
@@ -42,6 +43,7 @@ pub mod frame;
 pub mod gpu;
 pub mod guard;
 pub mod image;
+pub mod las_file;
 pub mod lift;
 pub mod location;
 pub mod mesh;

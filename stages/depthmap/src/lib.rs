@@ -40,6 +40,16 @@ pub enum DepthError {
 
 pub type Result<T> = std::result::Result<T, DepthError>;
 
+impl From<liftplan_core::las_file::LasFileError> for DepthError {
+    fn from(e: liftplan_core::las_file::LasFileError) -> Self {
+        use liftplan_core::las_file::LasFileError;
+        match e {
+            LasFileError::Format(at, why) => DepthError::Input(at, why),
+            LasFileError::Io(at, e) => DepthError::Input(at, e.to_string()),
+        }
+    }
+}
+
 /// `[depthmap]` in `liftplan.toml`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -165,15 +175,39 @@ pub fn read_cloud_with(
     into: &mut Inputs,
     mut dropped: impl FnMut(usize, [f64; 3]),
 ) -> Result<()> {
-    let mut r = las::Reader::from_path(path).map_err(|e| DepthError::Input(Location::file(path), e.to_string()))?;
+    // The scans stage wrote it, but a file on disk proves nothing of what it
+    // asks for: it is read as a survey's scan is, its structure checked
+    // before the `las` and `laz` crates trust it (they panic, or allocate
+    // what a header field says, on a damaged file), each call into them
+    // guarded, every coordinate finite and every point the header declares
+    // there (a cloud cut short would leave obstacles out unsaid).
+    let declared = liftplan_core::las_file::precheck(path)?.points;
+    let mut r = guarded(Location::file(path), "the LAS/LAZ reader", || {
+        las::Reader::from_path(path)
+            .map_err(|e| DepthError::Input(Location::file(path), format!("cannot read LAS header: {e}")))
+    })?;
     let mut data = las::PointDataBuilder::new().for_header(r.header()).build();
+    let mut seen = 0u64;
     loop {
-        let n =
-            r.fill_points(1 << 20, &mut data).map_err(|e| DepthError::Input(Location::file(path), e.to_string()))?;
+        let place = || Location::item(path, format!("point {seen}"));
+        let n = guarded(place(), "the LAS/LAZ point reader", || {
+            r.fill_points(1 << 20, &mut data).map_err(|e| {
+                DepthError::Input(
+                    place(),
+                    format!("cannot decode points after {seen} of the {declared} the header declares: {e}"),
+                )
+            })
+        })?;
         if n == 0 {
             break;
         }
-        for ((x, y), (z, c)) in data.x().zip(data.y()).zip(data.z().zip(data.classification())) {
+        for (i, ((x, y), (z, c))) in data.x().zip(data.y()).zip(data.z().zip(data.classification())).enumerate() {
+            if !(x.is_finite() && y.is_finite() && z.is_finite()) {
+                return Err(DepthError::Input(
+                    Location::item(path, format!("point {}", seen + i as u64)),
+                    format!("coordinate is not a finite number: {:?}", [x, y, z]),
+                ));
+            }
             let p = liftplan_core::frame::Point3::new(x, y, z);
             if let Some(k) = exclude.iter().position(|b| b.contains(&p)) {
                 dropped(k, [x, y, z]);
@@ -182,8 +216,21 @@ pub fn read_cloud_with(
             into.points.push([x, y, z]);
             into.ground.push(c == class::GROUND);
         }
+        seen += n;
+    }
+    if seen < declared {
+        return Err(DepthError::Input(
+            Location::file(path),
+            format!("header declares {declared} points but the data ends after {seen} (truncated file)"),
+        ));
     }
     Ok(())
+}
+
+/// Runs a call into the `las` and `laz` crates through the guard: a panic
+/// inside them is an error at `place`.
+fn guarded<T>(place: Location, what: &str, read: impl FnOnce() -> Result<T>) -> Result<T> {
+    liftplan_core::guard::run_reader(what, read).unwrap_or_else(|why| Err(DepthError::Input(place, why)))
 }
 
 /// Builds the depth map on the CPU.

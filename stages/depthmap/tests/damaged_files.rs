@@ -1,5 +1,5 @@
-//! The pipeline's own files, a depth map (`site.mdm`) and a plant mesh
-//! (`plant.mesh`), on damaged copies ([`liftplan_core::testing::damaged`]):
+//! The pipeline's own files, a depth map (`site.mdm`), a plant mesh
+//! (`plant.mesh`) and the site cloud (`site.laz`), on damaged copies ([`liftplan_core::testing::damaged`]):
 //! as a disk or a copy may damage them (the checksum refuses the copy), and
 //! damaged inside a correct frame, as a bug in a writer would (the reader's
 //! own checks must refuse it). Each copy must read or give an error naming
@@ -74,4 +74,58 @@ fn damaged_plant_meshes_read_or_give_an_error() {
     let read = TriMesh::from_artifact_bytes;
     let (_, refused) = check("plant.mesh", &bytes, mesh::ARTIFACT_KIND, mesh::ARTIFACT_VERSION, read);
     assert!(refused > 0);
+}
+
+/// A site cloud as the scans stage writes it: LAS 1.4 point format 6,
+/// LAZ-compressed, millimetre scale, some points classed ground.
+fn site_laz(path: &Path, points: &[[f64; 3]]) {
+    let mut b = las::Builder::from((1, 4));
+    b.point_format = las::point::Format::new(6).unwrap();
+    b.point_format.is_compressed = true;
+    let mm = las::Transform { scale: 0.001, offset: 0.0 };
+    b.transforms = las::Vector { x: mm, y: mm, z: mm };
+    let mut w = las::Writer::from_path(path, b.into_header().unwrap()).unwrap();
+    for (k, p) in points.iter().enumerate() {
+        let classification =
+            if k % 7 == 0 { las::point::Classification::Unclassified } else { las::point::Classification::Ground };
+        let point = las::Point { x: p[0], y: p[1], z: p[2], classification, gps_time: Some(0.0), ..Default::default() };
+        w.write_point(point).unwrap();
+    }
+    w.close().unwrap();
+}
+
+/// The scans stage's `site.laz`, as the depth map, plan and docs stages read
+/// it back: damaged copies, and the LAZ files the scan fuzz target found
+/// making the `las` and `laz` crates panic (`fixtures/scans/damaged-*.laz`),
+/// read or give an error naming the file, never a panic.
+#[test]
+fn damaged_site_clouds_read_or_give_an_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let written = dir.path().join("written.laz");
+    let points = site().points;
+    site_laz(&written, &points);
+    let mut read = Inputs::default();
+    liftplan_depthmap::read_cloud(&written, &[], &mut read).unwrap();
+    assert_eq!(read.points.len(), points.len());
+    assert_eq!(read.ground.iter().filter(|&&g| g).count(), points.len() - points.len().div_ceil(7));
+    let bytes = std::fs::read(&written).unwrap();
+    let (mut ok, mut refused) = (0, 0);
+    let path = dir.path().join("site.laz");
+    for k in 0..u64::from(proptest_cases(300)) {
+        std::fs::write(&path, damaged(&bytes, k)).unwrap();
+        match liftplan_depthmap::read_cloud(&path, &[], &mut Inputs::default()) {
+            Ok(_) => ok += 1,
+            Err(e) => {
+                assert!(e.to_string().contains("site.laz"), "copy {k}: the error names the file: {e}");
+                refused += 1;
+            }
+        }
+    }
+    eprintln!("site.laz: {ok} read, {refused} refused");
+    assert!(refused > 0);
+    let fixtures = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/scans");
+    for name in ["damaged-chunk-table.laz", "damaged-decoder-panic.laz", "damaged-gps-recursion.laz"] {
+        let e = liftplan_depthmap::read_cloud(&fixtures.join(name), &[], &mut Inputs::default()).unwrap_err();
+        assert!(e.to_string().contains(name), "{name}: {e}");
+    }
 }

@@ -25,4 +25,14 @@ impl ScanError {
     }
 }
 
+impl From<liftplan_core::las_file::LasFileError> for ScanError {
+    fn from(e: liftplan_core::las_file::LasFileError) -> Self {
+        use liftplan_core::las_file::LasFileError;
+        match e {
+            LasFileError::Format(at, why) => ScanError::Format(at, why),
+            LasFileError::Io(at, e) => ScanError::Io(at, e),
+        }
+    }
+}
+
 pub type Result<T> = std::result::Result<T, ScanError>;
