@@ -3,27 +3,12 @@
 //! one liftplan wrote): laying out the lift's document from it must write
 //! the document or fail with an error, never panic, hang or allocate without
 //! bound. The input is the plan.json; the lift (the demo's V-101 on the
-//! built-in ac-700, with the rope's weight and wind) and its capacity table
-//! are fixed, the site empty. Every picture is drawn (step pictures on) by
+//! built-in ac-700, from the demo's project file) and a capacity table are
+//! fixed, the site empty. Every picture is drawn (step pictures on) by
 //! the CPU rasteriser.
 #![no_main]
 use libfuzzer_sys::fuzz_target;
 use std::sync::OnceLock;
-
-const LIFT: &str = r#"
-id = "V-101"
-description = "Vessel V-101 from the trailer over the pipe rack onto its foundation"
-load = { name = "vessel V-101", mass_t = 12.0, size_m = [8.0, 3.0, 3.0], cog_m = [0.2, 0.0, -0.1], cog_tolerance_m = 0.1 }
-rigging = { mass_t = 0.5, height_m = 4.0, legs = 2, leg_wll_t = 10.0, shackle_wll_t = 12.0 }
-crane = { model = "ac-700", position_m = [0.0, 0.0], ground_z_m = 0.0, heading_deg = 0.0, boom_m = 40.0, falls = 6, longest_rope_m = 35.0, chart_config = "Main boom 360" }
-pick = { x_m = 6.0, y_m = -16.0, z_m = 1.2, yaw_deg = 90.0 }
-set = { x_m = 30.0, y_m = 2.0, z_m = 1.2, yaw_deg = 0.0 }
-clearance_m = 1.0
-liftoff_m = 0.5
-critical_pct = 75.0
-ground = { mat_m = [2.5, 2.5], allowable_kpa = 200.0 }
-wind = { cw = 1.2 }
-"#;
 
 const CAPACITY: &str = "config,boom_m,radius_m,capacity_kg,cell
 Main boom 360,16.0,3.0,482600.0,chart.xlsx [Main boom 360!B7]
@@ -36,10 +21,11 @@ Main boom 360,40.0,36.0,14000.0,chart.xlsx [Main boom 360!C9]
 fn lift() -> &'static liftplan_core::lift::LiftTask {
     static TASK: OnceLock<liftplan_core::lift::LiftTask> = OnceLock::new();
     TASK.get_or_init(|| {
-        let spec: liftplan_core::lift::LiftSpec = toml::from_str(LIFT).expect("the fixed lift reads");
-        let mut model = liftplan_core::crane::builtin("ac-700").expect("a built-in crane");
-        model.hook.rope_kg_per_m = Some(3.9);
-        spec.resolve(model).expect("the fixed lift resolves")
+        let project: toml::Value =
+            toml::from_str(liftplan_fixtures::demo::PROJECT_TOML).expect("the demo project reads");
+        let spec: liftplan_core::lift::LiftSpec = project["lift"][0].clone().try_into().expect("the demo's lift reads");
+        spec.resolve(liftplan_core::crane::builtin("ac-700").expect("a built-in crane"))
+            .expect("the demo's lift resolves")
     })
 }
 
