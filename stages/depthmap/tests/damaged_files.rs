@@ -1,6 +1,6 @@
 //! The pipeline's own files, a depth map (`site.mdm`), a plant mesh
-//! (`plant.mesh`) and the site cloud (`site.laz`), on damaged copies ([`liftplan_core::testing::damaged`]):
-//! as a disk or a copy may damage them (the checksum refuses the copy), and
+//! (`plant.mesh`) and the site cloud (`site.laz`), on damaged copies
+//! ([`liftplan_core::testing::damaged`]): as a disk or a copy may damage them (the checksum refuses the copy), and
 //! damaged inside a correct frame, as a bug in a writer would (the reader's
 //! own checks must refuse it). Each copy must read or give an error naming
 //! the file, never panic. A few hundred deterministic copies on every test
@@ -76,22 +76,16 @@ fn damaged_plant_meshes_read_or_give_an_error() {
     assert!(refused > 0);
 }
 
-/// A site cloud as the scans stage writes it: LAS 1.4 point format 6,
-/// LAZ-compressed, millimetre scale, some points classed ground.
-fn site_laz(path: &Path, points: &[[f64; 3]]) {
-    let mut b = las::Builder::from((1, 4));
-    b.point_format = las::point::Format::new(6).unwrap();
-    b.point_format.is_compressed = true;
-    let mm = las::Transform { scale: 0.001, offset: 0.0 };
-    b.transforms = las::Vector { x: mm, y: mm, z: mm };
-    let mut w = las::Writer::from_path(path, b.into_header().unwrap()).unwrap();
-    for (k, p) in points.iter().enumerate() {
-        let classification =
-            if k % 7 == 0 { las::point::Classification::Unclassified } else { las::point::Classification::Ground };
-        let point = las::Point { x: p[0], y: p[1], z: p[2], classification, gps_time: Some(0.0), ..Default::default() };
-        w.write_point(point).unwrap();
-    }
-    w.close().unwrap();
+/// The site's points written as the scans stage writes `site.laz` (its own
+/// writer), those [`site`] does not class ground unclassified.
+fn site_laz(path: &Path, inp: &Inputs) {
+    use liftplan_core::cloud::{PointCloud, class};
+    let cloud = PointCloud {
+        xyz: inp.points.clone(),
+        class: inp.ground.iter().map(|&g| if g { class::GROUND } else { 1 }).collect(),
+        ..PointCloud::default()
+    };
+    liftplan_scans::write::write_las(path, &cloud).unwrap();
 }
 
 /// The scans stage's `site.laz`, as the depth map, plan and docs stages read
@@ -102,12 +96,12 @@ fn site_laz(path: &Path, points: &[[f64; 3]]) {
 fn damaged_site_clouds_read_or_give_an_error() {
     let dir = tempfile::tempdir().unwrap();
     let written = dir.path().join("written.laz");
-    let points = site().points;
-    site_laz(&written, &points);
+    let site = site();
+    site_laz(&written, &site);
     let mut read = Inputs::default();
     liftplan_depthmap::read_cloud(&written, &[], &mut read).unwrap();
-    assert_eq!(read.points.len(), points.len());
-    assert_eq!(read.ground.iter().filter(|&&g| g).count(), points.len() - points.len().div_ceil(7));
+    assert_eq!(read.points.len(), site.points.len());
+    assert_eq!(read.ground, site.ground);
     let bytes = std::fs::read(&written).unwrap();
     let (mut ok, mut refused) = (0, 0);
     let path = dir.path().join("site.laz");
