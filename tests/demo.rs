@@ -292,6 +292,27 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     }
     let o = liftplan(&["run", d, "--force", "docs", "-q"]);
     assert!(o.status.success(), "the fuzz seed's plan is not drawn: {}", String::from_utf8_lossy(&o.stderr));
+    // A step whose words run long (the numbers where its crane ends and its
+    // pad's load 1e300, which a damaged plan.json may hold) has its picture
+    // on the next page, whole (it was drawn past the footer, which debug
+    // builds caught as a panic).
+    for (p, _) in &cached_plans {
+        let mut plans: serde_json::Value = serde_json::from_slice(&seed).unwrap();
+        for joint in ["swing_rad", "radial", "hoist_m", "load_yaw_rad"] {
+            plans["lifts"][0]["steps"][0]["end"][joint] = 1e300.into();
+        }
+        plans["lifts"][0]["steps"][0]["pads"]["load_kg"] = 1e300.into();
+        std::fs::write(p, serde_json::to_vec(&plans).unwrap()).unwrap();
+    }
+    let o = liftplan(&["run", d, "--force", "docs", "-q"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let doc = lopdf::Document::load(&pdf_path).unwrap();
+    let step_pages: Vec<String> =
+        doc.get_pages().keys().map(|&n| doc.extract_text(&[n]).unwrap()).filter(|t| t.contains("Step 1 of ")).collect();
+    assert!(
+        step_pages.len() == 2 && step_pages[1].contains("(continued)") && !step_pages[1].contains("Crane at the end"),
+        "{step_pages:?}"
+    );
     for (p, good) in &cached_plans {
         std::fs::write(p, good).unwrap();
     }

@@ -1336,7 +1336,12 @@ pub fn document(
                 40.0,
             );
             let img = pictures::step_view(site, task, plan, &others, st.n, px(1300), px(950));
-            d.image(&img, 15.0, y + 2.0, w);
+            // Below the table where it fits, else on the next page: a
+            // step whose words run long (numbers of a plan.json damaged
+            // in the cache ran it past the footer) keeps its picture whole.
+            let img_h = w * img.height as f32 / img.width as f32;
+            let y = room_on_page(&mut d, y + 2.0, img_h, &format!("Step {} of {} (continued)", st.n, plan.steps.len()));
+            d.image(&img, 15.0, y, w);
         }
     }
 
