@@ -192,23 +192,12 @@ pub fn plan() -> StageDef {
     }
 }
 
-/// What each chart configuration's sheet states under `key` of chart.json
-/// (`wind_ms`, `counterweight_kg`), by configuration name, for those that
-/// state any (a chart.json written before it had them states none).
-fn chart_stated(
-    chart_json: &serde_json::Value,
-    key: &str,
-) -> Vec<(String, Vec<liftplan_core::capacity::StatedOnChart>)> {
-    chart_json["configs"]
-        .as_array()
-        .into_iter()
-        .flatten()
-        .filter_map(|c| {
-            let stated: Vec<liftplan_core::capacity::StatedOnChart> =
-                serde_json::from_value(c[key].clone()).unwrap_or_default();
-            Some((c["name"].as_str()?.to_string(), stated)).filter(|(_, s)| !s.is_empty())
-        })
-        .collect()
+/// The charts stage's chart.json, read and checked
+/// ([`liftplan_core::chart_json`]); `None` where it wrote none.
+fn chart_configs(ctx: &Ctx) -> Result<Option<Vec<liftplan_core::chart_json::ConfigStated>>> {
+    ctx.upstream_file("charts", "chart.json")
+        .map(|f| liftplan_core::chart_json::read(&f).map_err(anyhow::Error::msg))
+        .transpose()
 }
 
 fn run_plan(ctx: &Ctx) -> Result<Produced> {
@@ -216,8 +205,8 @@ fn run_plan(ctx: &Ctx) -> Result<Produced> {
     let mut tasks = p.lifts()?;
     // The counterweight each lift's chart configuration's sheet states,
     // where it states one.
-    if let Some(r) = ctx.upstream_json("charts", "chart.json")? {
-        for (name, stated) in chart_stated(&r, "counterweight_kg") {
+    if let Some(configs) = chart_configs(ctx)? {
+        for (name, stated) in liftplan_core::chart_json::stated(&configs, |c| &c.counterweight_kg) {
             if let [one] = &stated[..] {
                 for t in tasks.iter_mut().filter(|t| t.chart_config == name) {
                     t.chart_sheet_counterweight = Some(one.clone());
@@ -226,7 +215,7 @@ fn run_plan(ctx: &Ctx) -> Result<Produced> {
         }
         // The wind speed it states, for the load's swing in the wind.
         // (Without a chart no lift is planned, which the plan says first.)
-        let chart_wind = chart_stated(&r, "wind_ms");
+        let chart_wind = liftplan_core::chart_json::stated(&configs, |c| &c.wind_ms);
         for t in &mut tasks {
             let stated = chart_wind.iter().find(|(name, _)| *name == t.chart_config).map_or(&[][..], |(_, s)| &s[..]);
             t.plan_for_wind(stated).map_err(|e| anyhow::anyhow!(e))?;
@@ -405,15 +394,9 @@ fn run_docs(ctx: &Ctx) -> Result<Produced> {
     // What reading each chart configuration warned of, for the lifts on it.
     let mut chart_warnings = Vec::new();
     let mut chart_wind = Vec::new();
-    if let Some(r) = ctx.upstream_json("charts", "chart.json")? {
-        chart_wind = chart_stated(&r, "wind_ms");
-        for c in r["configs"].as_array().into_iter().flatten() {
-            let warnings: Vec<String> =
-                c["warnings"].as_array().into_iter().flatten().filter_map(|w| w.as_str().map(str::to_string)).collect();
-            if let (Some(name), false) = (c["name"].as_str(), warnings.is_empty()) {
-                chart_warnings.push((name.to_string(), warnings));
-            }
-        }
+    if let Some(configs) = chart_configs(ctx)? {
+        chart_wind = liftplan_core::chart_json::stated(&configs, |c| &c.wind_ms);
+        chart_warnings = configs.into_iter().filter(|c| !c.warnings.is_empty()).map(|c| (c.name, c.warnings)).collect();
     }
     let inputs = liftplan_docs::Inputs {
         project: p.raw.project.name.clone(),

@@ -321,6 +321,41 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     let o = liftplan(&["run", d, "--force", "docs", "-q"]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 
+    // The chart.json the plan and docs stages read from the charts stage's
+    // cache entry: a wind speed no sheet states (1e300 m/s swung the load to
+    // infinity and panicked building the C-space) stops the plan stage with
+    // an error naming the file and the value's place, the last good
+    // document kept.
+    let cached_charts: Vec<(std::path::PathBuf, Vec<u8>)> =
+        std::fs::read_dir(dir.join(".liftplan").join("cache").join("charts"))
+            .unwrap()
+            .flatten()
+            .map(|e| e.path().join("chart.json"))
+            .filter(|p| p.is_file())
+            .map(|p| {
+                let good = std::fs::read(&p).unwrap();
+                (p, good)
+            })
+            .collect();
+    assert!(!cached_charts.is_empty());
+    let good_pdf = std::fs::read(&pdf_path).unwrap();
+    for (p, good) in &cached_charts {
+        let mut chart: serde_json::Value = serde_json::from_slice(good).unwrap();
+        chart["configs"][0]["wind_ms"][0]["value"] = 1e300.into();
+        std::fs::write(p, serde_json::to_vec(&chart).unwrap()).unwrap();
+    }
+    let o = liftplan(&["run", d, "--force", "plan", "-q"]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !o.status.success()
+            && stderr.contains("chart.json: configs[0] ('Main boom 360'), wind_ms[0] (Main boom 360!A51): 1e300 m/s"),
+        "{stderr}"
+    );
+    assert!(std::fs::read(&pdf_path).unwrap() == good_pdf, "the last good PDF is kept");
+    for (p, good) in &cached_charts {
+        std::fs::write(p, good).unwrap();
+    }
+
     // A heavier load: charts, plan and docs rerun; scans, plant and the depth map do not.
     let plan_12t = plan["lifts"][0]["summary"]["revision"].as_str().unwrap().to_string();
     std::fs::write(&toml_path, t.replace("mass_t = 12.0", "mass_t = 13.0")).unwrap();

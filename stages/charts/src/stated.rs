@@ -41,7 +41,7 @@ pub fn wind_speeds_ms(text: &str) -> Vec<f64> {
             .find(|(unit, _)| after.starts_with(unit) && !after[unit.len()..].starts_with(char::is_alphanumeric));
         if let Some((_, f)) = per_s {
             let ms = v * f;
-            if ms.is_finite() && ms > 0.0 && ms <= 100.0 {
+            if ms.is_finite() && ms > 0.0 && ms <= liftplan_core::wind::MAX_CHART_WIND_MS {
                 out.push(ms);
             }
         }

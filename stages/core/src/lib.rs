@@ -16,6 +16,7 @@
 //! | [`crane`] | crane model files, placement, forward and inverse kinematics |
 //! | [`outriggers`] | a mobile crane's pad loads and the pressure under its mats |
 //! | [`capacity`] | load-chart grids and the never-interpolate-upwards rule |
+//! | [`chart_json`] | what each chart configuration's sheet states, read back from the charts stage's `chart.json` |
 //! | [`las_file`] | LAS/LAZ files' structure checked before the `las` and `laz` crates trust it |
 //! | [`lift`] | the lift request and its validated form |
 //! | [`obstacle`] | boxes placed by hand: what is on site that the scans and model do not hold |
@@ -36,6 +37,7 @@
 
 pub mod artifact;
 pub mod capacity;
+pub mod chart_json;
 pub mod cloud;
 pub mod crane;
 pub mod frame;

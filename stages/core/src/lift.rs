@@ -217,6 +217,12 @@ pub enum CounterweightFrom {
     CraneFile,
 }
 
+/// The heaviest counterweight a chart's configuration name or sheet is
+/// read to state (t): more than any crane carries, so a number beyond it
+/// is not one, and read back from `chart.json` it is refused
+/// ([`crate::chart_json`]).
+pub const MAX_COUNTERWEIGHT_T: f64 = 10_000.0;
+
 /// The counterweight a chart configuration's name states, in kg: "Main
 /// boom 360 CW 70t", "counterweight 42.5 t", "Ballast: 140 t",
 /// "Gegengewicht 70 t". `None` where it states none, or two that differ.
@@ -236,7 +242,7 @@ pub fn counterweight_named_kg(name: &str) -> Option<f64> {
             let after = rest[digits..].trim_start();
             let is_tonnes = after.starts_with('t') && !after[1..].starts_with(char::is_alphanumeric);
             let Ok(t) = rest[..digits].replace(',', ".").parse::<f64>() else { continue };
-            if !(is_tonnes && t.is_finite() && t > 0.0 && t <= 10_000.0) {
+            if !(is_tonnes && t.is_finite() && t > 0.0 && t <= MAX_COUNTERWEIGHT_T) {
                 continue;
             }
             match found {

@@ -66,6 +66,12 @@ use serde::{Deserialize, Serialize};
 /// for (m²/t).
 pub const CHART_AREA_PER_TONNE_M2: f64 = 1.2;
 
+/// The fastest wind speed a chart's sheet is read to state (m/s): a number
+/// with a speed's unit beyond it is not a permissible wind speed (a
+/// hurricane's is 33 m/s), and read back from `chart.json` it is refused
+/// ([`crate::chart_json`]).
+pub const MAX_CHART_WIND_MS: f64 = 100.0;
+
 /// EN 13000's air density for the wind's pressure (kg/m³).
 pub const AIR_DENSITY_KG_M3: f64 = 1.25;
 

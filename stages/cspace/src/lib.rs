@@ -461,10 +461,16 @@ impl CSpace {
             + task.clearance_m
             + motion_max
             + Self::gust_reach_m(task, crane.limits().hoist_m.1, motion_max);
-        // Cells within r of any point of the sheave's cell are within w cells of it.
-        let w = (r_max / spec.cell).ceil() as usize + 1;
-        let tops = map.pyramid.first().map(|l| l.2.as_slice()).unwrap_or(&[]);
         let (nx, ny) = (spec.nx as usize, spec.ny as usize);
+        // Cells within r of any point of the sheave's cell are within w cells
+        // of it; a window past the map's longer side covers all of it, as does
+        // a reach that is not finite (never narrower for it).
+        let w = match (r_max / spec.cell).ceil() {
+            cells if cells.is_finite() => (cells as usize).saturating_add(1),
+            _ => usize::MAX,
+        }
+        .min(nx.max(ny));
+        let tops = map.pyramid.first().map(|l| l.2.as_slice()).unwrap_or(&[]);
         let on_device = gpu.and_then(|g| g.window_max(tops, nx, ny, w).ok());
         self.timings.dilation_on_gpu = on_device.is_some();
         let dilated = on_device.unwrap_or_else(|| liftplan_depthmap::dilate::window_max(tops, nx, ny, w));

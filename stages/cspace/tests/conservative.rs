@@ -291,3 +291,31 @@ proptest! {
         prop_assert!(until.to_bits() == below.to_bits() || (until >= enough && until <= below), "{} of {}", until, below);
     }
 }
+
+/// What hangs swung further than any wind swings it (the C-space is built
+/// only from a lift whose numbers passed their checks, but its window must
+/// not depend on that): the C-space is built (the dilation's window, worked
+/// out from the reach, overflowed at 1e300 per metre and panicked) and
+/// passes no configuration with the load clear of the ground.
+#[test]
+fn a_swing_past_any_wind_passes_nothing() {
+    let map = scene(5, false);
+    for gust in [1e12, 1e300, f64::INFINITY] {
+        let mut t = task();
+        t.gust_swing_per_m = gust;
+        let s = Settings { swing_step_deg: 4.0, luff_step_deg: 4.0, ..Settings::default() };
+        let cs = CSpace::build(&Problem { task: &t, chart: None, map: &map }, &s);
+        let ck = Checker::new(&cs, &map, &t, vec![], s.sample_m);
+        let lim = t.crane.limits();
+        let mut u = liftplan_core::testing::unit_stream(3);
+        for _ in 0..50 {
+            let c = Config {
+                swing_rad: u() * std::f64::consts::TAU,
+                radial: lim.radial.0 + u() * (lim.radial.1 - lim.radial.0),
+                hoist_m: lim.hoist_m.0 + u() * 0.5 * (lim.hoist_m.1 - lim.hoist_m.0),
+                load_yaw_rad: u() * 3.0,
+            };
+            assert!(ck.config(&c).is_err(), "gust {gust} per m: passed {c:?}");
+        }
+    }
+}
