@@ -4,7 +4,10 @@
 # Installs what it needs (cargo-fuzz, a nightly toolchain, the Python writers
 # of the seed files), writes seeds into fuzz/corpus/ (scripts/fuzz_seeds.py),
 # then runs each target (default: all) for SECONDS (default 300) under
-# AddressSanitizer with a 2 GiB memory limit. It stops at the first crash,
+# AddressSanitizer with a 2 GiB memory limit, optimised but with overflow
+# checks and debug assertions on (`-O -a`: `-O` alone turns them off, and the
+# fuzzers then missed an arithmetic overflow and the PDF layout's own checks,
+# which a damaged plan.json and chart.json set off). It stops at the first crash,
 # out-of-memory or timeout; the input that caused it is in
 # fuzz/artifacts/<target>/, and `cargo +nightly fuzz run <target> <file>`
 # replays it. Not part of CI (nightly, and minutes per target); CI's clippy
@@ -23,5 +26,5 @@ python3 -m pip install --quiet laspy lazrs pye57 openpyxl odfpy numpy
 python3 scripts/fuzz_seeds.py fuzz/corpus
 for t in "${targets[@]}"; do
   echo "== fuzzing $t for ${seconds} s"
-  cargo +nightly fuzz run -O "$t" -- -max_total_time="$seconds" -rss_limit_mb=2048 -timeout=20
+  cargo +nightly fuzz run -O -a "$t" -- -max_total_time="$seconds" -rss_limit_mb=2048 -timeout=20
 done
