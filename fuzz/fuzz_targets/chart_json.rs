@@ -12,13 +12,7 @@ use std::sync::OnceLock;
 
 fn lift() -> &'static liftplan_core::lift::LiftTask {
     static TASK: OnceLock<liftplan_core::lift::LiftTask> = OnceLock::new();
-    TASK.get_or_init(|| {
-        let project: toml::Value =
-            toml::from_str(liftplan_fixtures::demo::PROJECT_TOML).expect("the demo project reads");
-        let spec: liftplan_core::lift::LiftSpec = project["lift"][0].clone().try_into().expect("the demo's lift reads");
-        spec.resolve(liftplan_core::crane::builtin("ac-700").expect("a built-in crane"))
-            .expect("the demo's lift resolves")
-    })
+    TASK.get_or_init(liftplan_fixtures::demo::lift)
 }
 
 fuzz_target!(|data: &[u8]| {
