@@ -234,18 +234,7 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     // docs stage reads it from, stops the docs stage with an error naming
     // it (not a document left without it, unsaid), and the last good
     // document is kept.
-    let cached_pictures: Vec<(std::path::PathBuf, Vec<u8>)> =
-        std::fs::read_dir(dir.join(".liftplan").join("cache").join("plan"))
-            .unwrap()
-            .flatten()
-            .map(|e| e.path().join("V-101.cspace.png"))
-            .filter(|p| p.is_file())
-            .map(|p| {
-                let good = std::fs::read(&p).unwrap();
-                (p, good)
-            })
-            .collect();
-    assert!(!cached_pictures.is_empty());
+    let cached_pictures = cached_files(&dir, "plan", "V-101.cspace.png");
     let good_pdf = std::fs::read(&pdf_path).unwrap();
     for (p, good) in &cached_pictures {
         std::fs::write(p, &good[..good.len() / 2]).unwrap();
@@ -326,18 +315,7 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     // infinity and panicked building the C-space) stops the plan stage with
     // an error naming the file and the value's place, the last good
     // document kept.
-    let cached_charts: Vec<(std::path::PathBuf, Vec<u8>)> =
-        std::fs::read_dir(dir.join(".liftplan").join("cache").join("charts"))
-            .unwrap()
-            .flatten()
-            .map(|e| e.path().join("chart.json"))
-            .filter(|p| p.is_file())
-            .map(|p| {
-                let good = std::fs::read(&p).unwrap();
-                (p, good)
-            })
-            .collect();
-    assert!(!cached_charts.is_empty());
+    let cached_charts = cached_files(&dir, "charts", "chart.json");
     let good_pdf = std::fs::read(&pdf_path).unwrap();
     for (p, good) in &cached_charts {
         let mut chart: serde_json::Value = serde_json::from_slice(good).unwrap();
@@ -1176,6 +1154,24 @@ liftoff_m = 0.5
     let stderr = refused_with(&dir, &t13, "planned without a load chart");
     assert!(stderr.contains("lift 'V-101': no load chart was read"), "{stderr}");
     assert!(stderr.contains("put the crane's load chart"), "{stderr}");
+}
+
+/// The file `name` in each of `stage`'s cache entries of the project in
+/// `dir`, with its bytes as written (to put back after damaging it); at
+/// least one.
+fn cached_files(dir: &std::path::Path, stage: &str, name: &str) -> Vec<(std::path::PathBuf, Vec<u8>)> {
+    let files: Vec<(std::path::PathBuf, Vec<u8>)> = std::fs::read_dir(dir.join(".liftplan").join("cache").join(stage))
+        .unwrap()
+        .flatten()
+        .map(|e| e.path().join(name))
+        .filter(|p| p.is_file())
+        .map(|p| {
+            let good = std::fs::read(&p).unwrap();
+            (p, good)
+        })
+        .collect();
+    assert!(!files.is_empty(), "no {name} in the {stage} stage's cache entries");
+    files
 }
 
 /// Where the demo's load, by the steps file's swings and step ends, comes
