@@ -911,12 +911,24 @@ pub const MAX_RADIUS_ALLOWANCE_M: f64 = 10.0;
 /// The widest fall zone round the ground under the load (m).
 pub const MAX_FALL_ZONE_M: f64 = 30.0;
 
+/// The most characters a lift's id may have (ASCII, so bytes too).
+pub const MAX_LIFT_ID_CHARS: usize = 100;
+
 impl LiftSpec {
     /// Checks the request against the crane model and solves pick and set.
     pub fn resolve(&self, model: CraneModel) -> Result<LiftTask, String> {
         let id = &self.id;
         if id.is_empty() || !id.chars().all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_') {
             return Err(format!("lift id '{id}' must be letters, digits, '-' or '_' (it names output files)"));
+        }
+        // Said on every page of its plan, and in what other lifts' plans
+        // come close to ("load of lift ..."), as obstacles' names are.
+        if id.len() > MAX_LIFT_ID_CHARS {
+            return Err(format!(
+                "lift id '{}...' is longer than {MAX_LIFT_ID_CHARS} characters ({}): give it a shorter one",
+                &id[..40],
+                id.len()
+            ));
         }
         let pos = |name: &str, v: f64| {
             if v.is_finite() && v > 0.0 {
@@ -1730,6 +1742,25 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
 
     fn spec() -> LiftSpec {
         toml::from_str(SPEC).unwrap()
+    }
+
+    /// A lift's id names its files and is said on its plan's pages: ASCII
+    /// letters, digits, '-' and '_', at most 100 of them.
+    #[test]
+    fn a_lift_id_is_a_short_file_name() {
+        let with_id = |id: &str| {
+            let mut s = spec();
+            s.id = id.into();
+            s.resolve(crate::crane::builtin("ac-700").unwrap()).map(|t| t.id)
+        };
+        let longest = "L".repeat(MAX_LIFT_ID_CHARS);
+        assert_eq!(with_id(&longest).unwrap(), longest);
+        assert_eq!(
+            with_id(&format!("{longest}1")).unwrap_err(),
+            format!("lift id '{}...' is longer than 100 characters (101): give it a shorter one", "L".repeat(40))
+        );
+        assert!(with_id("V/101").unwrap_err().contains("must be letters, digits, '-' or '_'"));
+        assert!(with_id("").is_err());
     }
 
     /// The falls a lift gives are within 1 to 64 and what the crane's hook

@@ -18,6 +18,22 @@ use std::path::Path;
 pub const ARTIFACT_KIND: &str = "PLANTMSH";
 pub const ARTIFACT_VERSION: u32 = 1;
 
+/// The most characters of a plant model's group name kept: a name is
+/// words on the plan's pages (what a crane part comes closest to, what is
+/// left out), and one of thousands of characters (a model's file can state
+/// any length) would fill them. PDMS and BIM names are far shorter.
+pub const MAX_GROUP_NAME_CHARS: usize = 200;
+
+/// A group's name as the plant stage keeps it: whole up to
+/// [`MAX_GROUP_NAME_CHARS`] characters, else its first that many and
+/// "..." (so at most 3 more).
+pub fn group_name_kept(name: &str) -> std::borrow::Cow<'_, str> {
+    match name.char_indices().nth(MAX_GROUP_NAME_CHARS) {
+        None => std::borrow::Cow::Borrowed(name),
+        Some((cut, _)) => std::borrow::Cow::Owned(format!("{}...", &name[..cut])),
+    }
+}
+
 /// The group ids of a mesh by name, for a reader that names many groups:
 /// [`TriMesh::group_id`] searches the names one by one, so naming G groups
 /// that way cost G squared (100,000 RVM groups took the plant stage 12 s).
@@ -438,6 +454,16 @@ mod tests {
         }
         m.add_part(g, true, &v, &t);
         m
+    }
+
+    #[test]
+    fn group_names_kept_to_their_first_200_characters() {
+        assert_eq!(group_name_kept("/PIPE-RACK-2"), "/PIPE-RACK-2");
+        let longest = "é".repeat(MAX_GROUP_NAME_CHARS);
+        assert_eq!(group_name_kept(&longest), longest);
+        let longer = format!("{longest}x");
+        assert_eq!(group_name_kept(&longer), format!("{longest}..."));
+        assert_eq!(group_name_kept(&"/A".repeat(50_000)).chars().count(), MAX_GROUP_NAME_CHARS + 3);
     }
 
     #[test]

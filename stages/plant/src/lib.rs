@@ -188,6 +188,11 @@ pub struct Summary {
     /// how many there were.
     pub meshes_read_as: Option<String>,
     pub unitless_mesh_files: usize,
+    /// Group names longer than [`liftplan_core::mesh::MAX_GROUP_NAME_CHARS`]
+    /// characters, kept as their first that many: of the mesh's groups and
+    /// of those left out.
+    #[serde(default)]
+    pub names_shortened: usize,
 }
 
 impl Summary {
@@ -230,6 +235,14 @@ impl Summary {
                 first_five(&self.not_surfaces)
             ));
         }
+        if self.names_shortened > 0 {
+            v.push(format!(
+                "{} group names longer than {} characters are kept as their first {} and \"...\" (the plan's pages name what a crane comes closest to by them)",
+                self.names_shortened,
+                liftplan_core::mesh::MAX_GROUP_NAME_CHARS,
+                liftplan_core::mesh::MAX_GROUP_NAME_CHARS
+            ));
+        }
         v
     }
 }
@@ -267,9 +280,23 @@ fn nearest_name<'a>(pattern: &str, names: &'a [String]) -> Option<&'a str> {
     best.map(|(_, n)| n)
 }
 
-/// The first five of `items`, and "..." when there are more.
+/// Each of `names` as the plant stage keeps it
+/// ([`liftplan_core::mesh::group_name_kept`]); how many were shortened.
+fn keep_group_names<'a>(names: impl IntoIterator<Item = &'a mut String>) -> usize {
+    let mut shortened = 0;
+    for name in names {
+        if let std::borrow::Cow::Owned(kept) = liftplan_core::mesh::group_name_kept(name) {
+            *name = kept;
+            shortened += 1;
+        }
+    }
+    shortened
+}
+
+/// The first five of `items`, and "..." when there are more; each of a
+/// model's names as the plant stage keeps it.
 fn first_five(items: &[String]) -> String {
-    let shown: Vec<&str> = items.iter().take(5).map(|s| s.as_str()).collect();
+    let shown: Vec<_> = items.iter().take(5).map(|s| liftplan_core::mesh::group_name_kept(s)).collect();
     format!("{}{}", shown.join(", "), if items.len() > 5 { ", ..." } else { "" })
 }
 
@@ -522,7 +549,7 @@ pub fn rvm_to_mesh(
                  have ({MAX_TRIANGLES}{before}); the largest primitive, a {} of group {} at byte {}, makes {most} \
                  alone. Raise [plant] tolerance, or leave groups out with [plant] exclude",
                 p.shape.kind().name(),
-                group_names[g],
+                liftplan_core::mesh::group_name_kept(&group_names[g]),
                 p.offset
             ),
         ));
@@ -821,7 +848,7 @@ pub fn run(
             .iter()
             .filter(|p| !summary.seen_groups.iter().any(|g| glob(p, g)))
             .map(|p| match nearest_name(p, &summary.seen_groups) {
-                Some(n) => format!("'{p}' (is it '{n}'?)"),
+                Some(n) => format!("'{p}' (is it '{}'?)", liftplan_core::mesh::group_name_kept(n)),
                 None => format!("'{p}'"),
             })
             .collect()
@@ -840,6 +867,11 @@ pub fn run(
     for rule in s.exclude_where.iter().filter(|r| !summary.exclude_where_matched.contains(*r)) {
         summary.exclude_unmatched.push(format!("exclude_where '{rule}'{no_attributes}"));
     }
+    // Names are matched above whole; kept, for the words of later stages,
+    // to their first MAX_GROUP_NAME_CHARS characters.
+    summary.names_shortened = keep_group_names(&mut mesh.groups) + keep_group_names(&mut summary.excluded_groups);
+    // The same names as excluded_groups', one entry per file.
+    keep_group_names(summary.excluded_points.iter_mut().map(|(name, ..)| name));
     let pose = liftplan_core::frame::pose_xyz_yaw(
         s.translate_m[0],
         s.translate_m[1],
@@ -1139,6 +1171,52 @@ mod tests {
         assert!(b.name == "SKID" && near(b.center_m, [1.5, 1.0, 0.5]) && near(b.half_m, [1.5, 1.0, 0.5]), "{b:?}");
         // Its vertices are no primitives: no parts, its own box.
         assert!(b.parts.is_empty() && b.boxes().len() == 1, "{b:?}");
+    }
+
+    /// A group name of thousands of characters (an RVM file can state any
+    /// length) is matched by the selection whole and kept, in the mesh and
+    /// among the groups left out, as its first 200 characters: the plan's
+    /// pages name what a crane comes closest to by it, and said so.
+    #[test]
+    fn long_group_names_are_kept_short() {
+        let d = tempfile::tempdir().unwrap();
+        let cube = Primitive {
+            role: Role::Primitive,
+            matrix: [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.5],
+            bbox_local: [-0.5, -0.5, -0.5, 0.5, 0.5, 0.5],
+            shape: Shape::Box { lengths: [1.0, 1.0, 1.0] },
+            offset: 0,
+        };
+        let (kept, left_out) = (format!("/RACK-{}", "A".repeat(5000)), format!("/SKID-{}", "B".repeat(300)));
+        let file = RvmFile {
+            groups: vec![
+                Group { name: kept.clone(), primitives: vec![cube.clone()], ..Default::default() },
+                Group { name: left_out.clone(), primitives: vec![cube], ..Default::default() },
+                Group { name: "/SHORT".into(), ..Default::default() },
+            ],
+            ..Default::default()
+        };
+        let path = d.path().join("plant.rvm");
+        std::fs::write(&path, rvm::write(&file)).unwrap();
+        // The pattern meets the name past its 200th character.
+        let s = Settings { exclude: vec![format!("*{}", "B".repeat(250))], ..Default::default() };
+        let summary = run(std::slice::from_ref(&path), &s, &d.path().join("out"), None, &|_, _, _| {}).unwrap();
+        let short = |n: &str| format!("{}...", n.chars().take(200).collect::<String>());
+        assert!(summary.exclude_unmatched.is_empty(), "{:?}", summary.exclude_unmatched);
+        assert_eq!(summary.excluded_groups, [short(&left_out)]);
+        assert_eq!(summary.excluded_boxes[0].name, short(&left_out));
+        let mesh = TriMesh::read_artifact(&d.path().join("out/plant.mesh")).unwrap();
+        assert_eq!(mesh.groups, [short(&kept)]);
+        assert_eq!(summary.names_shortened, 2);
+        assert!(
+            summary
+                .lines()
+                .iter()
+                .any(|l| l.starts_with("2 group names longer than 200 characters are kept as their first 200")),
+            "{:?}",
+            summary.lines()
+        );
+        assert!(summary.lines().iter().all(|l| l.chars().count() < 600), "{:?}", summary.lines());
     }
 
     /// An RVM group left out keeps its primitives' boxes as its parts (an
