@@ -302,6 +302,38 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
         step_pages.len() == 2 && step_pages[1].contains("(continued)") && !step_pages[1].contains("Crane at the end"),
         "{step_pages:?}"
     );
+    // A step's words edited to say another move stop it, naming the step.
+    for (p, _) in &cached_plans {
+        let mut plans: serde_json::Value = serde_json::from_slice(&seed).unwrap();
+        plans["lifts"][0]["steps"][2]["text"] = "swing +90.0° (counter-clockwise)".into();
+        std::fs::write(p, serde_json::to_vec(&plans).unwrap()).unwrap();
+    }
+    let o = liftplan(&["run", d, "--force", "docs", "-q"]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && stderr.contains("its step 3 is not in the words its move is said in"), "{stderr}");
+    // A move of 1e300 m in its own words heads its page on three lines and
+    // runs the steps' table long (the words under the table went past the
+    // footer), and what the steps name as long as the plan stage writes
+    // them: drawn within the pages (debug builds check).
+    for (p, _) in &cached_plans {
+        let mut plans: serde_json::Value = serde_json::from_slice(&seed).unwrap();
+        let lift = &mut plans["lifts"][0];
+        assert_eq!(
+            (lift["moves"][1]["joint"].as_str(), lift["steps"][1]["operation"].as_str()),
+            (Some("hoist"), Some("Hoist up"))
+        );
+        lift["moves"][1]["to"]["hoist_m"] = (-1e300).into();
+        lift["steps"][1]["amount"] = 1e300.into();
+        lift["steps"][1]["text"] = format!("hoist up {:.2} m", 1e300).into();
+        lift["steps"][2]["clearance_to"] = format!("/PIPE-{}", "A".repeat(994)).into();
+        lift["steps"][2]["chart_cell"] = "x".repeat(1000).into();
+        std::fs::write(p, serde_json::to_vec(&plans).unwrap()).unwrap();
+    }
+    let o = liftplan(&["run", d, "--force", "docs", "-q"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let doc = lopdf::Document::load(&pdf_path).unwrap();
+    let text: Vec<String> = doc.get_pages().keys().map(|&n| doc.extract_text(&[n]).unwrap()).collect();
+    assert!(text.iter().any(|t| t.contains("Step 2 of ") && t.contains("459400540160.00 m")), "{text:?}");
     for (p, good) in &cached_plans {
         std::fs::write(p, good).unwrap();
     }

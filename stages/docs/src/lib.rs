@@ -187,17 +187,18 @@ pub fn run(inp: &Inputs, s: &Settings, gpu_use: liftplan_core::gpu::GpuUse, out_
     std::fs::create_dir_all(out_dir).map_err(|e| io(out_dir, e))?;
     let mut summary = Summary { documents: vec![], pages: vec![], seconds: 0.0, renderer: renderer_name };
     for plan in &plans.lifts {
-        // Step n is drawn with move n: a plan whose steps are not one a
-        // move in order is not drawn at all.
-        if let Some(problem) = plan.steps_not_as_written() {
-            return Err(io(&inp.plan_json, format!("lift '{}': {problem}; rerun the plan stage", plan.lift)));
-        }
         let Some(task) = inp.tasks.iter().find(|t| t.id == plan.lift) else {
             return Err(DocsError::Other(format!(
                 "plan.json has lift '{}' which the project no longer defines; rerun the plan stage",
                 plan.lift
             )));
         };
+        // Step n is drawn with move n, under its words: a plan whose steps
+        // are not one a move in order, each in its move's words, is not
+        // drawn at all.
+        if let Some(problem) = plan.steps_not_as_written(task) {
+            return Err(io(&inp.plan_json, format!("lift '{}': {problem}; rerun the plan stage", plan.lift)));
+        }
         let chart = charts.as_ref().and_then(|c| c.config(&task.chart_config).ok());
         let cspace_png = inp.plan_dir.join(format!("{}.cspace.png", task.id));
         // No picture where the plan stage drew none; one it cannot read is

@@ -22,8 +22,17 @@ fn opt(v: Option<f64>, digits: usize) -> String {
 const INPUT_ROWS_HERE: usize = 16;
 const MIN_INPUT_ROWS_HERE: usize = 4;
 
-pub(crate) fn heading(d: &mut Doc, y: f32, s: &str) -> f32 {
-    d.text(15.0, y, s, 13.0, true, [25, 55, 110]);
+/// A page's heading at `y`, ruled under; wrapped where it is wider than
+/// the page (a step's words, from a move of hundreds of metres or degrees,
+/// ran off the sheet's edge). Returns where the page's text goes on.
+pub(crate) fn heading(d: &mut Doc, mut y: f32, s: &str) -> f32 {
+    let lines = crate::pdf::wrap_bold(s, d.size.w - 30.0, 13.0);
+    for (n, line) in lines.iter().enumerate() {
+        if n > 0 {
+            y += line_height_mm(13.0);
+        }
+        d.text(15.0, y, line, 13.0, true, [25, 55, 110]);
+    }
     d.line(15.0, y + 2.0, d.size.w - 15.0, y + 2.0, 0.6, [25, 55, 110]);
     y + 9.0
 }
@@ -1224,14 +1233,41 @@ pub fn document(
             y = heading(&mut d, 20.0, "Steps (continued)");
         }
     }
-    y += 4.0;
-    y = d.paragraph(
-        15.0,
-        y,
-        w,
-        &format!("{ends}Capacity is the chart value (before the reduction) at the largest radius of the step{allowance}; utilisation is the gross load over the reduced capacity; clearance is a distance that no crane part, rope, hook or load comes closer than to {against} at any moment of the step{swung}, between the validator's samples too: the smallest distance measured at samples no more than [plan] validator_sample_m of movement apart (0.05 m by default), less what the motion between two samples leaves room for (at most half that spacing), so the closest approach may be up to that much more than shown, never less. Wherever the motion between samples could take a part closer than its required clearance, the validator samples more finely, down to 2 mm of movement, so the required clearance holds along the whole motion, not only at the samples, to within 2 mm. Swing and load rotation angles are counter-clockwise positive seen from above. Swing is measured from {heading}, load yaw from the site's +X axis; each step's page also gives the {arm}'s grid bearing (clockwise from the site's north, +Y, as the overview is drawn).{pads}", heading = words.heading, arm = words.arm, pads = if plan.summary.highest_pad.is_some() { " Each step's page gives the most an outrigger pad carries during the step, an estimate from the crane file's masses: the weight of crane and load shared among the four pads as by a rigid frame (a quarter each, plus each pad's share of the moment about their centre; where that would pull a pad, it lifts and the other three carry it all), each mass at its part's centre and the gross load under the rope's sheave (where the chart deducts weights, with them there or without them, whichever weighs more on the pad), at both ends of the step and every half degree of swing and luff between; wind, the load swinging and dynamic factors are not in it, and the crane manufacturer's outrigger loads govern." } else { "" }, swung = hanging_swept_said(task, plan).map(|s| format!(" ({s})")).unwrap_or_default(), against = if !obstacles.is_empty() { "the plant model, the scanned points or the obstacles placed by hand" } else { "the plant model or the scanned points" }, ends = if task.resumes() { "The first step starts where the load hangs when the lift resumes (resume_from); the last is the vertical set-down. " } else { "The first and the last steps are the vertical lift-off and set-down. " }, allowance = if task.radius_allowance_m > 0.0 { format!(" plus the radius allowance ({:.2} m)", task.radius_allowance_m) } else { String::new() }),
-        8.5,
+    // Where the table ran long (a step's amounts of hundreds of digits,
+    // from a damaged plan.json), the words under it go on the next page.
+    let under_table = format!(
+        "{ends}Capacity is the chart value (before the reduction) at the largest radius of the step{allowance}; utilisation is the gross load over the reduced capacity; clearance is a distance that no crane part, rope, hook or load comes closer than to {against} at any moment of the step{swung}, between the validator's samples too: the smallest distance measured at samples no more than [plan] validator_sample_m of movement apart (0.05 m by default), less what the motion between two samples leaves room for (at most half that spacing), so the closest approach may be up to that much more than shown, never less. Wherever the motion between samples could take a part closer than its required clearance, the validator samples more finely, down to 2 mm of movement, so the required clearance holds along the whole motion, not only at the samples, to within 2 mm. Swing and load rotation angles are counter-clockwise positive seen from above. Swing is measured from {heading}, load yaw from the site's +X axis; each step's page also gives the {arm}'s grid bearing (clockwise from the site's north, +Y, as the overview is drawn).{pads}",
+        heading = words.heading,
+        arm = words.arm,
+        pads = if plan.summary.highest_pad.is_some() {
+            " Each step's page gives the most an outrigger pad carries during the step, an estimate from the crane file's masses: the weight of crane and load shared among the four pads as by a rigid frame (a quarter each, plus each pad's share of the moment about their centre; where that would pull a pad, it lifts and the other three carry it all), each mass at its part's centre and the gross load under the rope's sheave (where the chart deducts weights, with them there or without them, whichever weighs more on the pad), at both ends of the step and every half degree of swing and luff between; wind, the load swinging and dynamic factors are not in it, and the crane manufacturer's outrigger loads govern."
+        } else {
+            ""
+        },
+        swung = hanging_swept_said(task, plan).map(|s| format!(" ({s})")).unwrap_or_default(),
+        against = if !obstacles.is_empty() {
+            "the plant model, the scanned points or the obstacles placed by hand"
+        } else {
+            "the plant model or the scanned points"
+        },
+        ends = if task.resumes() {
+            "The first step starts where the load hangs when the lift resumes (resume_from); the last is the vertical set-down. "
+        } else {
+            "The first and the last steps are the vertical lift-off and set-down. "
+        },
+        allowance = if task.radius_allowance_m > 0.0 {
+            format!(" plus the radius allowance ({:.2} m)", task.radius_allowance_m)
+        } else {
+            String::new()
+        }
     );
+    y = room_on_page(
+        &mut d,
+        y + 4.0,
+        wrap(&under_table, w, 8.5).len() as f32 * line_height_mm(8.5),
+        "Steps (continued)",
+    );
+    y = d.paragraph(15.0, y, w, &under_table, 8.5);
     if let Some(cs) = cspace {
         y += 3.0;
         let img_w = w.min((size.h - 25.0 - y) * cs.width as f32 / cs.height as f32);

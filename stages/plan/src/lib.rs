@@ -304,9 +304,12 @@ pub struct LiftPlan {
 impl LiftPlan {
     /// What is wrong with the steps of a plan read back (a plan.json cut
     /// short, edited by hand, or not one liftplan wrote) where they are not
-    /// as [`run`] writes them: one a move, numbered from 1 in order. A
-    /// document draws step n with move n, so it reads none other.
-    pub fn steps_not_as_written(&self) -> Option<String> {
+    /// as [`run`] writes them for `task`: one a move, numbered from 1 in
+    /// order, each in the words its move is said in ([`steps::describe`]).
+    /// A document draws step n with move n, and heads its page with the
+    /// step's words, so it reads none other: words edited to say another
+    /// move, or run on past a page's width, are refused.
+    pub fn steps_not_as_written(&self, task: &LiftTask) -> Option<String> {
         if self.steps.len() != self.moves.len() {
             return Some(format!(
                 "{} steps for {} moves (the plan stage writes a step for each move)",
@@ -314,8 +317,64 @@ impl LiftPlan {
                 self.moves.len()
             ));
         }
-        let (k, step) = self.steps.iter().enumerate().find(|(k, step)| step.n != k + 1)?;
-        Some(format!("its step {} is numbered {} (the plan stage numbers them from 1 in order)", k + 1, step.n))
+        if let Some((k, step)) = self.steps.iter().enumerate().find(|(k, step)| step.n != k + 1) {
+            return Some(format!(
+                "its step {} is numbered {} (the plan stage numbers them from 1 in order)",
+                k + 1,
+                step.n
+            ));
+        }
+        let named = self.steps.iter().find_map(|step| {
+            [("clearance_part", &step.clearance_part), ("clearance_to", &step.clearance_to)]
+                .into_iter()
+                .chain(step.chart_cell.as_ref().map(|c| ("chart_cell", c)))
+                .find(|(_, said)| said.chars().count() > MAX_STEP_NAME_CHARS)
+                .map(|(key, said)| {
+                    format!(
+                        "its step {}'s {key} is {} characters long, longer than any the plan stage writes (at most {MAX_STEP_NAME_CHARS}): \"{}\"",
+                        step.n,
+                        said.chars().count(),
+                        shortened_said(said)
+                    )
+                })
+        });
+        if named.is_some() {
+            return named;
+        }
+        let tower = task.crane.model.is_tower();
+        self.steps.iter().zip(&self.moves).find_map(|(step, m)| {
+            let (operation, amount, unit, text) = steps::describe(tower, m);
+            let as_written = step.operation == operation
+                && step.amount.to_bits() == amount.to_bits()
+                && step.unit == unit
+                && step.text == text;
+            (!as_written).then(|| {
+                format!(
+                    "its step {} is not in the words its move is said in (\"{text}\", the plan stage's; \"{}\" read)",
+                    step.n,
+                    shortened_said(&step.text)
+                )
+            })
+        })
+    }
+}
+
+/// The most characters of what a step names (the crane part, what it comes
+/// closest to, the chart's cell) the plan stage writes: the names it is
+/// made of are bounded (plant groups' at
+/// [`liftplan_core::mesh::MAX_GROUP_NAME_CHARS`], obstacles' and power
+/// lines' at 100, lift ids at [`liftplan_core::lift::MAX_LIFT_ID_CHARS`]),
+/// and a page holds a step's row with this many.
+pub const MAX_STEP_NAME_CHARS: usize = 1000;
+
+/// Words read from a file, for an error saying them: whole up to 80
+/// characters, else their first 80 and how many there were (words run on
+/// for pages would bury the message).
+fn shortened_said(s: &str) -> String {
+    const SAID: usize = 80;
+    match s.char_indices().nth(SAID) {
+        None => s.to_string(),
+        Some((cut, _)) => format!("{}... ({} characters)", &s[..cut], s.chars().count()),
     }
 }
 

@@ -181,9 +181,10 @@ impl StepPads {
     }
 }
 
-fn describe(task: &LiftTask, m: &Move) -> (String, f64, String, String) {
+/// A move in words: its operation, signed amount, unit and the step's text
+/// (`tower`: the radial joint is a trolley, not a luff).
+pub fn describe(tower: bool, m: &Move) -> (String, f64, String, String) {
     let d = m.delta();
-    let tower = task.crane.model.is_tower();
     match m.joint {
         Joint::Swing => {
             let deg = d.to_degrees();
@@ -219,7 +220,7 @@ pub fn steps(task: &LiftTask, moves: &[Move], verdict: &Verdict) -> Vec<Step> {
         .iter()
         .enumerate()
         .map(|(i, m)| {
-            let (operation, amount, unit, text) = describe(task, m);
+            let (operation, amount, unit, text) = describe(task.crane.model.is_tower(), m);
             let check = verdict.moves.get(i);
             let tight = check.map(|c| &c.tightest);
             let util = check.map(|c| &c.max_utilisation);
@@ -797,7 +798,7 @@ mod tests {
             let mut to = c.to_array();
             to[joint.index()] += step;
             let m = Move { joint, from: c, to: Config::from_array(to) };
-            let (_, _, _, text) = describe(&task, &m);
+            let (_, _, _, text) = describe(task.crane.model.is_tower(), &m);
             // The boom's direction for a swing, the load's long axis for a rotation.
             let dir = |k: &Config| match joint {
                 Joint::Swing => task.crane.boom_dir(k.swing_rad),

@@ -108,18 +108,63 @@ fn plans_over_the_wall_and_the_validator_agrees() {
     }
     // Its steps are as a document reads them back: one a move, in order;
     // a step lost or numbered otherwise is said.
-    assert_eq!(plan.steps_not_as_written(), None);
+    assert_eq!(plan.steps_not_as_written(&t), None);
     let (mut short, mut renumbered) = (plan.clone(), plan.clone());
     short.steps.pop();
     let n = plan.moves.len();
     assert_eq!(
-        short.steps_not_as_written().as_deref(),
+        short.steps_not_as_written(&t).as_deref(),
         Some(format!("{} steps for {n} moves (the plan stage writes a step for each move)", n - 1).as_str())
     );
     renumbered.steps[0].n = 0;
     assert_eq!(
-        renumbered.steps_not_as_written().as_deref(),
+        renumbered.steps_not_as_written(&t).as_deref(),
         Some("its step 1 is numbered 0 (the plan stage numbers them from 1 in order)")
+    );
+    // A step's words edited to say another move, or its amount, or words
+    // run on past a page's width (their first 80 characters said).
+    let said = |p: &liftplan_plan::LiftPlan| p.steps_not_as_written(&t).unwrap_or_default();
+    let written = plan.steps[1].text.clone();
+    let mut other_words = plan.clone();
+    other_words.steps[1].text = "swing +90.0° (counter-clockwise)".into();
+    assert_eq!(
+        said(&other_words),
+        format!(
+            "its step 2 is not in the words its move is said in (\"{written}\", the plan stage's; \"swing +90.0° (counter-clockwise)\" read)"
+        )
+    );
+    let mut other_amount = plan.clone();
+    other_amount.steps[1].amount += 1e-9;
+    assert!(said(&other_amount).starts_with("its step 2 is not in the words"), "{}", said(&other_amount));
+    let mut other_operation = plan.clone();
+    other_operation.steps[2].operation = "Swing".into();
+    other_operation.steps[2].unit = "m".into();
+    assert!(said(&other_operation).starts_with("its step 3 is not in the words"), "{}", said(&other_operation));
+    let mut run_on = plan.clone();
+    run_on.steps[0].text = "é".repeat(400);
+    assert!(said(&run_on).ends_with(&format!("\"{}... (400 characters)\" read)", "é".repeat(80))), "{}", said(&run_on));
+    // What a step names, longer than the plan stage writes.
+    let mut long_name = plan.clone();
+    long_name.steps[1].clearance_to = "/PIPE-".to_string() + &"A".repeat(995);
+    assert_eq!(
+        said(&long_name),
+        format!(
+            "its step 2's clearance_to is 1001 characters long, longer than any the plan stage writes (at most 1000): \"/PIPE-{}... (1001 characters)\"",
+            "A".repeat(74)
+        )
+    );
+    long_name.steps[1].clearance_to.pop();
+    assert_eq!(long_name.steps_not_as_written(&t), None);
+    long_name.steps[3].chart_cell = Some("x".repeat(1001));
+    assert!(said(&long_name).starts_with("its step 4's chart_cell is 1001 characters long"), "{}", said(&long_name));
+    // A luff said of a tower crane (a trolley's move) is not in its words.
+    let luff = plan.moves.iter().position(|m| m.joint == liftplan_cspace::Joint::Radial).expect("a luff");
+    let mut tower = t.clone();
+    tower.crane.model = liftplan_core::crane::builtin("tower-hh-60").unwrap();
+    assert!(
+        plan.steps_not_as_written(&tower).unwrap_or_default().starts_with(&format!("its step {} is not", luff + 1)),
+        "{:?}",
+        plan.steps_not_as_written(&tower)
     );
 }
 
