@@ -82,9 +82,7 @@ fn sentence(clause: &str) -> String {
 /// not fit on this one (the more a site's checks have to say, the more the
 /// page holds); returns the y below it.
 fn sign_off_paragraph(d: &mut Doc, y: f32, w: f32, text: &str) -> f32 {
-    let need = crate::pdf::wrap(text, w, 9.5).len() as f32 * crate::pdf::line_height_mm(9.5);
-    let y = room_on_page(d, y, need, "Review and sign-off (continued)");
-    d.paragraph(15.0, y, w, text, 9.5)
+    paragraph_on_pages(d, y, w, text, 9.5, "Review and sign-off (continued)")
 }
 
 /// Space kept free at the foot of a page (mm).
@@ -98,8 +96,23 @@ const MIN_OVERVIEW_MM: f32 = 80.0;
 /// further pages where they do not fit; returns the y below the last.
 fn input_lines(d: &mut Doc, mut y: f32, lines: &[String], w: f32) -> f32 {
     for line in lines {
-        y = inputs_room(d, y, crate::pdf::wrap(line, w, 9.0).len() as f32 * crate::pdf::line_height_mm(9.0));
-        y = d.paragraph(15.0, y, w, line, 9.0);
+        y = paragraph_on_pages(d, y, w, line, 9.0, "Inputs (continued)");
+    }
+    y
+}
+
+/// A paragraph at `y`, `w` wide: on a further page, under `continued`,
+/// where it does not fit on this one, and run on over pages where it does
+/// not fit on one (the more a site has to say, the more it takes; a
+/// paragraph of many long names ran past the foot); returns the y below it.
+fn paragraph_on_pages(d: &mut Doc, y: f32, w: f32, text: &str, size: f32, continued: &str) -> f32 {
+    let lines = wrap(text, w, size);
+    let step = line_height_mm(size);
+    let mut y = room_on_page(d, y, lines.len() as f32 * step, continued);
+    for line in &lines {
+        y = room_on_page(d, y, step, continued);
+        d.text(15.0, y, line, size, false, [30, 30, 30]);
+        y += step;
     }
     y
 }
@@ -141,6 +154,26 @@ fn key_values_width(d: &Doc, x: f32, key_w: f32) -> f32 {
 /// page's right edge as the keys are from its left ([`key_values_width`]).
 fn key_values(d: &mut Doc, x: f32, y: f32, rows: &[(&str, String)], key_w: f32) -> f32 {
     key_values_at(d, x, y, rows, key_w, ROW_PT)
+}
+
+/// [`key_values`], going on under `continued` at the top of a further page
+/// where a row does not fit on this one, and running a row on over pages
+/// where it is longer than a page (forty power lines' words took more).
+fn key_values_on_pages(d: &mut Doc, x: f32, mut y: f32, rows: &[(&str, String)], key_w: f32, continued: &str) -> f32 {
+    let step = line_height_mm(ROW_PT);
+    for (k, v) in rows {
+        let lines = wrap(v, key_values_width(d, x, key_w), ROW_PT);
+        y = room_on_page(d, y, step * lines.len().saturating_sub(1) as f32 + row_step_mm(ROW_PT), continued);
+        d.text(x, y, k, ROW_PT, true, GREY);
+        for (n, line) in lines.iter().enumerate() {
+            if n > 0 {
+                y = room_on_page(d, y + step, 0.0, continued);
+            }
+            d.text(x + key_w, y, line, ROW_PT, false, INK);
+        }
+        y += row_step_mm(ROW_PT);
+    }
+    y
 }
 
 /// [`key_values`] in type of `size` pt.
@@ -1145,7 +1178,7 @@ pub fn document(
     }
     let need_mm = key_values_height(&d, 15.0, &rows, 42.0);
     y = inputs_room(&mut d, y, need_mm);
-    y = key_values(&mut d, 15.0, y, &rows, 42.0);
+    y = key_values_on_pages(&mut d, 15.0, y, &rows, 42.0, "Inputs (continued)");
     y += 3.0;
     let chart_img = chart.map(|c| pictures::chart_plot(c, task, plan, px(1200), px(600)));
     // The load chart keeps its place on this page where it can: the input
@@ -1878,5 +1911,52 @@ mod tests {
             assert!(all.contains(&format!("scan-{k}:")), "scan-{k}");
         }
         assert!(d.text[1].starts_with("Inputs (continued)"), "{}", d.text[1]);
+    }
+
+    /// A paragraph longer than a page (thirty of a plant model's longest
+    /// names where the load rests against its model copy) runs on over the
+    /// pages, each line once, none below the foot.
+    #[test]
+    fn a_paragraph_longer_than_a_page_runs_on() {
+        let mut d = Doc::new("t", A4).unwrap();
+        d.new_page();
+        let names: Vec<String> = (0..30).map(|k| format!("/P{k:02}-{}", "A".repeat(196))).collect();
+        let text = format!("The load agrees with {}.", names.join(", and with "));
+        let y = sign_off_paragraph(&mut d, 200.0, A4.w - 30.0, &text);
+        assert!(d.text.len() >= 3, "{} pages", d.text.len());
+        assert!(y <= A4.h - FOOT_MM, "{y}");
+        for (page, low) in d.lowest_mm.iter().enumerate() {
+            assert!(*low <= A4.h - FOOT_MM, "page {page}: text at {low} mm");
+        }
+        let all: String = d.text.concat();
+        for name in &names {
+            assert_eq!(all.matches(&name[..4]).count(), 1, "{name}");
+        }
+        assert!(d.text[2].starts_with("Review and sign-off (continued)"), "{}", d.text[2]);
+    }
+
+    /// The inputs page's rows likewise: a row that does not fit goes on
+    /// the next page, one longer than a page (forty power lines' words)
+    /// runs on over pages, and the rows after it follow.
+    #[test]
+    fn key_values_longer_than_a_page_run_on() {
+        let mut d = Doc::new("t", A4).unwrap();
+        d.new_page();
+        let lines: Vec<String> =
+            (0..40).map(|k| format!("line {k:02}: {}", "conductor kept off ".repeat(12))).collect();
+        let rows = [("Clearance", "1.00 m".to_string()), ("Power lines", lines.join("; ")), ("After", "them".into())];
+        let y = key_values_on_pages(&mut d, 15.0, 250.0, &rows, 42.0, "Inputs (continued)");
+        assert!(d.text.len() >= 3, "{} pages", d.text.len());
+        assert!(y <= A4.h - FOOT_MM + row_step_mm(ROW_PT), "{y}");
+        for (page, low) in d.lowest_mm.iter().enumerate() {
+            assert!(*low <= A4.h - FOOT_MM, "page {page}: text at {low} mm");
+        }
+        let all: String = d.text.concat();
+        for k in 0..40 {
+            assert_eq!(all.matches(&format!("line {k:02}:")).count(), 1, "line {k}");
+        }
+        assert!(d.text[0].contains("Clearance") && !d.text[0].contains("Power lines"), "{}", d.text[0]);
+        assert!(d.text[1].starts_with("Inputs (continued)\nPower lines"), "{}", d.text[1]);
+        assert!(d.text.last().unwrap().contains("After\nthem"), "{:?}", d.text.last());
     }
 }
