@@ -25,16 +25,20 @@ const MIN_INPUT_ROWS_HERE: usize = 4;
 /// A page's heading at `y`, ruled under; wrapped where it is wider than
 /// the page (a step's words, from a move of hundreds of metres or degrees,
 /// ran off the sheet's edge). Returns where the page's text goes on.
-pub(crate) fn heading(d: &mut Doc, mut y: f32, s: &str) -> f32 {
+pub(crate) fn heading(d: &mut Doc, y: f32, s: &str) -> f32 {
     let lines = crate::pdf::wrap_bold(s, d.size.w - 30.0, 13.0);
     for (n, line) in lines.iter().enumerate() {
-        if n > 0 {
-            y += line_height_mm(13.0);
-        }
-        d.text(15.0, y, line, 13.0, true, [25, 55, 110]);
+        d.text(15.0, y + line_height_mm(13.0) * n as f32, line, 13.0, true, [25, 55, 110]);
     }
-    d.line(15.0, y + 2.0, d.size.w - 15.0, y + 2.0, 0.6, [25, 55, 110]);
-    y + 9.0
+    let ruled = heading_below(d, y, s) - 7.0;
+    d.line(15.0, ruled, d.size.w - 15.0, ruled, 0.6, [25, 55, 110]);
+    heading_below(d, y, s)
+}
+
+/// Where the page's text goes on under [`heading`] `s` drawn at `y`.
+fn heading_below(d: &Doc, y: f32, s: &str) -> f32 {
+    let lines = crate::pdf::wrap_bold(s, d.size.w - 30.0, 13.0).len().max(1);
+    y + line_height_mm(13.0) * (lines - 1) as f32 + 9.0
 }
 
 /// Where the inputs page's next `need_mm` go: at `y`, or at the top of a
@@ -213,7 +217,25 @@ fn summary_box(d: &mut Doc, mut y: f32, rows: &[(&str, String)], (verdict, ok): 
         .into_iter()
         .find(|&pt| y + cover_top + key_values_height_at(d, key_x, rows, key_w, pt) + margin <= foot)
         .unwrap_or(ROW_PT);
-    let mut rest = rows;
+    // A row longer than a continued box holds (the warnings of a survey of
+    // many scans) goes on in rows of as many lines as one holds, keyed once.
+    const CONTINUED: &str = "Summary (continued from the cover)";
+    let continued_top = heading_below(d, 20.0, CONTINUED) + 7.0;
+    let lines_held =
+        ((foot - continued_top - margin - row_step_mm(size)) / line_height_mm(size)).floor().max(0.0) as usize;
+    let width = key_values_width(d, key_x, key_w);
+    let rows: Vec<(&str, String)> = rows
+        .iter()
+        .flat_map(|(key, value)| {
+            let lines = wrap(value, width, size);
+            if lines.len() <= lines_held + 1 {
+                return vec![(*key, value.clone())];
+            }
+            let keys = std::iter::once(*key).chain(std::iter::repeat(""));
+            keys.zip(lines.chunks(lines_held + 1).map(|c| c.join(" "))).collect()
+        })
+        .collect();
+    let mut rest = &rows[..];
     let mut first = true;
     loop {
         // The rows start under the verdict on the cover, at the box's top after.
@@ -222,7 +244,9 @@ fn summary_box(d: &mut Doc, mut y: f32, rows: &[(&str, String)], (verdict, ok): 
         let mut rows_h = 0.0;
         while fit < rest.len() {
             let h = key_values_height_at(d, key_x, &rest[fit..fit + 1], key_w, size);
-            if fit > 0 && y + top + rows_h + h + margin > foot {
+            // On the cover the verdict alone where the first row does not
+            // fit under it; on a further page at least one row.
+            if (fit > 0 || first) && y + top + rows_h + h + margin > foot {
                 break;
             }
             rows_h += h;
@@ -241,7 +265,7 @@ fn summary_box(d: &mut Doc, mut y: f32, rows: &[(&str, String)], (verdict, ok): 
             return y;
         }
         d.new_page();
-        y = heading(d, 20.0, "Summary (continued from the cover)");
+        y = heading(d, 20.0, CONTINUED);
         first = false;
     }
 }
@@ -1817,6 +1841,38 @@ mod tests {
             assert_eq!(d.text[0].matches(&format!("row {k:02}:")).count(), 1, "row {k}");
         }
         assert!(d.lowest_mm[0] < A4.h - FOOT_MM && y < A4.h, "{:?} {y}", d.lowest_mm);
+    }
+
+    /// A row longer than a page (what registration warned of, for a survey
+    /// of sixty scans) goes on over further pages' boxes, its key once; one
+    /// that does not fit under the verdict leaves the verdict alone on the
+    /// cover; no line below a page's foot.
+    #[test]
+    fn a_summary_row_longer_than_a_page_runs_on() {
+        let warnings: Vec<String> =
+            (0..60).map(|k| format!("scan-{k:02} was placed along a way that holds loosely; ")).collect();
+        let long = warnings.concat().repeat(3);
+        for (at, rows) in [
+            (40.0, vec![("Short", "one line".to_string()), ("CHECK FIRST", long.clone()), ("After", "it".into())]),
+            (200.0, vec![("CHECK FIRST", long.clone())]),
+        ] {
+            let mut d = Doc::new("t", A4).unwrap();
+            d.new_page();
+            summary_box(&mut d, at, &rows, ("VALIDATED", true));
+            assert!(d.text.len() >= 3, "{} pages", d.text.len());
+            for (page, low) in d.lowest_mm.iter().enumerate() {
+                assert!(*low <= A4.h - FOOT_MM, "page {page}: text at {low} mm");
+            }
+            let all: String = d.text.concat();
+            for k in 0..60 {
+                assert_eq!(all.matches(&format!("scan-{k:02}")).count(), 3, "scan-{k}");
+            }
+            assert_eq!(all.matches("CHECK FIRST").count(), 1);
+            assert!(d.text[0].contains("VALIDATED"));
+            if at == 200.0 {
+                assert!(!d.text[0].contains("CHECK FIRST"), "{}", d.text[0]);
+            }
+        }
     }
 
     /// Sign-off paragraphs that do not fit go on to a further page, none
