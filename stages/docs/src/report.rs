@@ -1375,7 +1375,8 @@ pub fn document(
                     ),
                 )
             });
-            y = key_values(
+            let continued = format!("Step {} of {} (continued)", st.n, plan.steps.len());
+            y = key_values_on_pages(
                 &mut d,
                 15.0,
                 y,
@@ -1427,13 +1428,14 @@ pub fn document(
                 .chain(chart_warning)
                 .collect::<Vec<_>>(),
                 40.0,
+                &continued,
             );
             let img = pictures::step_view(site, task, plan, &others, st.n, px(1300), px(950));
             // Below the table where it fits, else on the next page: a
             // step whose words run long (numbers of a plan.json damaged
             // in the cache ran it past the footer) keeps its picture whole.
             let img_h = w * img.height as f32 / img.width as f32;
-            let y = room_on_page(&mut d, y + 2.0, img_h, &format!("Step {} of {} (continued)", st.n, plan.steps.len()));
+            let y = room_on_page(&mut d, y + 2.0, img_h, &continued);
             d.image(&img, 15.0, y, w);
         }
     }
