@@ -203,6 +203,17 @@ impl Project {
                 ));
             }
         }
+        // On every page's foot and the cover, as a lift's names are bounded.
+        let name_chars = self.raw.project.name.chars().count();
+        if name_chars > liftplan_core::lift::MAX_NAME_CHARS {
+            return Err(err(
+                "[project]",
+                format!(
+                    "[project] name is longer than {} characters ({name_chars}): shorten it",
+                    liftplan_core::lift::MAX_NAME_CHARS
+                ),
+            ));
+        }
         self.raw.scans.check().map_err(|m| err("[scans]", format!("[scans] {m}")))?;
         self.raw.plant.check().map_err(|m| err("[plant]", format!("[plant] {m}")))?;
         self.raw.depthmap.check().map_err(|m| err("[depthmap]", format!("[depthmap] {m}")))?;

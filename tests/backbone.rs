@@ -199,6 +199,9 @@ fn bad_project_files_name_line_and_column() {
     assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
     std::fs::write(&f, "[scans]\nvoxel = -1.0\n").unwrap();
     expect_project_error(&dir, "voxel must be a positive", 1);
+    // A project named in more than 100 characters (on every page's foot).
+    std::fs::write(&f, format!("\n[project]\nname = \"{}\"\n", "n".repeat(101))).unwrap();
+    expect_project_error(&dir, "[project] name is longer than 100 characters (101)", 2);
     // Planner settings that would make a NaN fitness or unbounded work are
     // refused at their own table.
     std::fs::write(&f, "[plan]\nplanner = \"prm\"\n\n[plan.baselines]\nprm_samples = 1000000000000\n").unwrap();

@@ -914,6 +914,13 @@ pub const MAX_FALL_ZONE_M: f64 = 30.0;
 /// The most characters a lift's id may have (ASCII, so bytes too).
 pub const MAX_LIFT_ID_CHARS: usize = 100;
 
+/// The most characters of a name a lift gives (its load's), as of an
+/// obstacle's ([`crate::obstacle`]) and an area's ([`MAX_NOT_OVER_NAME`]).
+pub const MAX_NAME_CHARS: usize = 100;
+
+/// The most characters of a lift's description.
+pub const MAX_DESCRIPTION_CHARS: usize = 1000;
+
 impl LiftSpec {
     /// Checks the request against the crane model and solves pick and set.
     pub fn resolve(&self, model: CraneModel) -> Result<LiftTask, String> {
@@ -929,6 +936,20 @@ impl LiftSpec {
                 &id[..40],
                 id.len()
             ));
+        }
+        // Words on the plan's pages, bounded as obstacles' and areas' names
+        // are: a load named in thousands of characters ran the cover off
+        // its page.
+        let named =
+            [("load.name", &self.load.name, MAX_NAME_CHARS), ("description", &self.description, MAX_DESCRIPTION_CHARS)];
+        for (key, text, max) in named {
+            let chars = text.chars().count();
+            if chars > max {
+                let start: String = text.chars().take(40).collect();
+                return Err(format!(
+                    "lift '{id}': {key} '{start}...' is longer than {max} characters ({chars}): shorten it"
+                ));
+            }
         }
         let pos = |name: &str, v: f64| {
             if v.is_finite() && v > 0.0 {
@@ -1761,6 +1782,25 @@ set = { x_m = -10.0, y_m = 18.0, z_m = 2.0, yaw_deg = 90.0 }
         );
         assert!(with_id("V/101").unwrap_err().contains("must be letters, digits, '-' or '_'"));
         assert!(with_id("").is_err());
+    }
+
+    /// The names and words a lift gives for its plan's pages are bounded.
+    #[test]
+    fn a_lift_names_things_in_few_words() {
+        let resolve = |s: LiftSpec| s.resolve(crate::crane::builtin("ac-700").unwrap());
+        let mut s = spec();
+        s.load.name = "é".repeat(MAX_NAME_CHARS);
+        s.description = "d".repeat(MAX_DESCRIPTION_CHARS);
+        assert!(resolve(s.clone()).is_ok());
+        let mut long_name = s.clone();
+        long_name.load.name.push('x');
+        assert_eq!(
+            resolve(long_name).unwrap_err(),
+            format!("lift 'V-101': load.name '{}...' is longer than 100 characters (101): shorten it", "é".repeat(40))
+        );
+        let mut long_description = s;
+        long_description.description.push('x');
+        assert!(resolve(long_description).unwrap_err().contains("description 'dddd"));
     }
 
     /// The falls a lift gives are within 1 to 64 and what the crane's hook
