@@ -30,9 +30,9 @@ pub(crate) fn heading(d: &mut Doc, y: f32, s: &str) -> f32 {
     for (n, line) in lines.iter().enumerate() {
         d.text(15.0, y + line_height_mm(13.0) * n as f32, line, 13.0, true, [25, 55, 110]);
     }
-    let ruled = heading_below(d, y, s) - 7.0;
-    d.line(15.0, ruled, d.size.w - 15.0, ruled, 0.6, [25, 55, 110]);
-    heading_below(d, y, s)
+    let below = heading_below(d, y, s);
+    d.line(15.0, below - 7.0, d.size.w - 15.0, below - 7.0, 0.6, [25, 55, 110]);
+    below
 }
 
 /// Where the page's text goes on under [`heading`] `s` drawn at `y`.
@@ -163,31 +163,35 @@ fn key_values(d: &mut Doc, x: f32, y: f32, rows: &[(&str, String)], key_w: f32) 
 /// [`key_values`], going on under `continued` at the top of a further page
 /// where a row does not fit on this one, and running a row on over pages
 /// where it is longer than a page (forty power lines' words took more).
-fn key_values_on_pages(d: &mut Doc, x: f32, mut y: f32, rows: &[(&str, String)], key_w: f32, continued: &str) -> f32 {
-    let step = line_height_mm(ROW_PT);
-    for (k, v) in rows {
-        let lines = wrap(v, key_values_width(d, x, key_w), ROW_PT);
-        y = room_on_page(d, y, step * lines.len().saturating_sub(1) as f32 + row_step_mm(ROW_PT), continued);
-        d.text(x, y, k, ROW_PT, true, GREY);
-        for (n, line) in lines.iter().enumerate() {
-            if n > 0 {
-                y = room_on_page(d, y + step, 0.0, continued);
-            }
-            d.text(x + key_w, y, line, ROW_PT, false, INK);
-        }
-        y += row_step_mm(ROW_PT);
-    }
-    y
+fn key_values_on_pages(d: &mut Doc, x: f32, y: f32, rows: &[(&str, String)], key_w: f32, continued: &str) -> f32 {
+    key_values_in(d, x, y, rows, key_w, ROW_PT, Some(continued))
 }
 
 /// [`key_values`] in type of `size` pt.
-fn key_values_at(d: &mut Doc, x: f32, mut y: f32, rows: &[(&str, String)], key_w: f32, size: f32) -> f32 {
-    let width = key_values_width(d, x, key_w);
+fn key_values_at(d: &mut Doc, x: f32, y: f32, rows: &[(&str, String)], key_w: f32, size: f32) -> f32 {
+    key_values_in(d, x, y, rows, key_w, size, None)
+}
+
+/// [`key_values`] in type of `size` pt, going on under `continued` where
+/// one is given ([`key_values_on_pages`]), else where they fall.
+fn key_values_in(
+    d: &mut Doc,
+    x: f32,
+    mut y: f32,
+    rows: &[(&str, String)],
+    key_w: f32,
+    size: f32,
+    continued: Option<&str>,
+) -> f32 {
+    let step = line_height_mm(size);
+    let room = |d: &mut Doc, y: f32, need_mm: f32| continued.map_or(y, |c| room_on_page(d, y, need_mm, c));
     for (k, v) in rows {
+        let lines = wrap(v, key_values_width(d, x, key_w), size);
+        y = room(d, y, step * lines.len().saturating_sub(1) as f32 + row_step_mm(size));
         d.text(x, y, k, size, true, GREY);
-        for (n, line) in crate::pdf::wrap(v, width, size).iter().enumerate() {
+        for (n, line) in lines.iter().enumerate() {
             if n > 0 {
-                y += crate::pdf::line_height_mm(size);
+                y = room(d, y + step, 0.0);
             }
             d.text(x + key_w, y, line, size, false, INK);
         }
