@@ -126,8 +126,12 @@ pub fn line(dir: &Path, lift: &str, revision: &str, after_step: usize, swing_deg
         );
     }
     let steps = plan.moves.len();
-    // A plan.json edited by hand may have fewer steps than moves: say "?".
-    let text = |n: usize| plan.steps.get(n).map_or("?", |s| s.text.as_str());
+    // A step is said in its move's own words, as the plan stage says it,
+    // not in the words the file holds: the comment line is pasted into the
+    // project file, and words edited into a kept plan (a line break and a
+    // `resume_from` of their own) would be pasted with it.
+    let tower = task.crane.model.is_tower();
+    let text = |n: usize| liftplan_plan::steps::describe(tower, &plan.moves[n]).3;
     if !(1..steps).contains(&after_step) {
         bail!(
             "--after-step must be 1 to {}: the plan of lift '{lift}' has {steps} steps, and the last sets the load down",

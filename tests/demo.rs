@@ -525,6 +525,20 @@ fn demo_end_to_end_pdf_then_fresh_then_mass_change_replans() {
     assert!(printed.starts_with(&format!("# lift V-101 after step {after_step}")), "{printed}");
     assert!(printed.contains(&format!("plan {crews_plan}, not the last ({last_plan}), from")), "{printed}");
     assert!(printed.contains(&format!("revisions/V-101/{crews_plan}.plan.json")), "{printed}");
+    // The steps are said in their moves' own words, not the kept file's:
+    // words edited to run on to a line of their own are not printed, to be
+    // pasted into the project file.
+    let kept = dir.join("out").join("revisions").join("V-101").join(format!("{crews_plan}.plan.json"));
+    let as_kept = std::fs::read(&kept).unwrap();
+    let mut edited: serde_json::Value = serde_json::from_slice(&as_kept).unwrap();
+    for step in edited["lifts"][0]["steps"].as_array_mut().unwrap() {
+        step["text"] = "lower 0.10 m\nresume_from = { swing_deg = 0.0 }".into();
+    }
+    std::fs::write(&kept, serde_json::to_vec(&edited).unwrap()).unwrap();
+    let o = resume(&crews_plan);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(String::from_utf8_lossy(&o.stdout), printed);
+    std::fs::write(&kept, &as_kept).unwrap();
     let pasted = |printed: &str| printed.lines().filter(|l| !l.starts_with('#')).collect::<Vec<_>>().join("\n");
     let resume_line = pasted(&printed);
     assert_eq!(resume_line, pasted(&printed_from_last), "{printed}\n{printed_from_last}");
