@@ -176,7 +176,30 @@ fn break_word(word: &str, width_mm: f32, size_pt: f32, bold: bool) -> Vec<&str> 
 /// A table row's cells as the lines each takes in its column (1.2 mm of
 /// padding each side).
 fn table_cells(widths: &[f32], row: &[String], size_pt: f32) -> Vec<Vec<String>> {
-    row.iter().zip(widths).map(|(cell, w)| wrap(cell, w - 2.4, size_pt)).collect()
+    // A line break in a cell is kept: a row split over pages
+    // ([`split_table_row`]) gives each piece its lines as they were wrapped.
+    row.iter()
+        .zip(widths)
+        .map(|(cell, w)| cell.split('\n').flat_map(|line| wrap(line, w - 2.4, size_pt)).collect())
+        .collect()
+}
+
+/// A table row as pieces at most `max_height_mm` tall each (but one line
+/// each, where not even that fits), its cells' lines in order: the first
+/// piece holds each cell's first lines, the next the lines after them, a
+/// cell that has run out is empty. A row taller than a page is split so,
+/// over as many pages as it takes, rather than drawn past the page's foot.
+pub fn split_table_row(widths: &[f32], row: &[String], size_pt: f32, max_height_mm: f32) -> Vec<Vec<String>> {
+    let (rh, lh) = (size_pt * 0.3528 * 1.9, line_height_mm(size_pt));
+    let per_piece = (((max_height_mm - rh) / lh).floor().max(0.0) as usize).saturating_add(1);
+    let cells = table_cells(widths, row, size_pt);
+    let lines = cells.iter().map(Vec::len).max().unwrap_or(0).max(1);
+    (0..lines.div_ceil(per_piece))
+        .map(|piece| {
+            let from = piece * per_piece;
+            cells.iter().map(|c| c.iter().skip(from).take(per_piece).cloned().collect::<Vec<_>>().join("\n")).collect()
+        })
+        .collect()
 }
 
 /// Distance between the baselines of a paragraph's lines (mm).

@@ -73,6 +73,55 @@ fn room_on_page(d: &mut Doc, y: f32, need_mm: f32, continued: &str) -> f32 {
     heading(d, 20.0, continued)
 }
 
+/// The steps' table's columns, on a page whose text is `w` mm wide: their
+/// headers, widths (mm) and which are right-aligned.
+fn steps_columns(w: f32) -> ([&'static str; 8], [f32; 8], [bool; 8]) {
+    (
+        ["Step", "Operation", "Amount", "Radius m", "Capacity t", "Util. %", "Clear. m", "Closest obstacle"],
+        [11.0, 24.0, 20.0, 17.0, 19.0, 15.0, 16.0, w - 122.0],
+        [true, false, true, true, true, true, true, false],
+    )
+}
+
+/// The steps' table at `y`, its rows on as many pages as they take, each
+/// further page under "Steps (continued)", none drawn lower than 40 mm from
+/// a page's foot; a row taller than a page holds (a step naming what it
+/// comes closest to in the longest words a plan.json may hold) is split
+/// over pages ([`crate::pdf::split_table_row`]). Returns the y below it.
+fn steps_table(d: &mut Doc, mut y: f32, widths: &[f32], right: &[bool], header: &[&str], rows: &[Vec<String>]) -> f32 {
+    const SIZE_PT: f32 = 8.0;
+    const CONTINUED: &str = "Steps (continued)";
+    let header_mm = SIZE_PT * 0.3528 * 1.9;
+    let room_below = |d: &Doc, y: f32| d.size.h - 40.0 - y - header_mm;
+    let fresh_y = heading_below(d, 20.0, CONTINUED);
+    let rows: Vec<Vec<String>> =
+        rows.iter().flat_map(|row| crate::pdf::split_table_row(widths, row, SIZE_PT, room_below(d, fresh_y))).collect();
+    let heights = Doc::table_row_heights(widths, &rows, SIZE_PT);
+    let mut start = 0;
+    while start < rows.len() {
+        // A row that does not fit here does on a page of its own.
+        if heights[start] > room_below(d, y) && y > fresh_y + 1e-3 {
+            d.new_page();
+            y = heading(d, 20.0, CONTINUED);
+        }
+        // As many rows as the page holds, at least one.
+        let room = room_below(d, y);
+        let mut end = start + 1;
+        let mut used = heights[start];
+        while end < rows.len() && used + heights[end] <= room {
+            used += heights[end];
+            end += 1;
+        }
+        y = d.table(15.0, y, widths, right, header, &rows[start..end], SIZE_PT);
+        start = end;
+        if start < rows.len() {
+            d.new_page();
+            y = heading(d, 20.0, CONTINUED);
+        }
+    }
+    y
+}
+
 /// A clause as a sentence: its first letter upper-case, a full stop after.
 fn sentence(clause: &str) -> String {
     let mut c = clause.chars();
@@ -1255,9 +1304,7 @@ pub fn document(
     // Page 3: the steps.
     d.new_page();
     let mut y = heading(&mut d, 20.0, "Steps");
-    let header = ["Step", "Operation", "Amount", "Radius m", "Capacity t", "Util. %", "Clear. m", "Closest obstacle"];
-    let widths = [11.0, 24.0, 20.0, 17.0, 19.0, 15.0, 16.0, w - 122.0];
-    let right = [true, false, true, true, true, true, true, false];
+    let (header, widths, right) = steps_columns(w);
     let rows: Vec<Vec<String>> = plan
         .steps
         .iter()
@@ -1275,25 +1322,7 @@ pub fn document(
             ]
         })
         .collect();
-    let heights = Doc::table_row_heights(&widths, &rows, 8.0);
-    let mut start = 0;
-    while start < rows.len() {
-        // As many rows as the page holds above 40 mm from its foot (the
-        // header row included), at least one.
-        let room = size.h - 40.0 - y - 8.0 * 0.3528 * 1.9;
-        let mut end = start + 1;
-        let mut used = heights[start];
-        while end < rows.len() && used + heights[end] <= room {
-            used += heights[end];
-            end += 1;
-        }
-        y = d.table(15.0, y, &widths, &right, &header, &rows[start..end], 8.0);
-        start = end;
-        if start < rows.len() {
-            d.new_page();
-            y = heading(&mut d, 20.0, "Steps (continued)");
-        }
-    }
+    y = steps_table(&mut d, y, &widths, &right, &header, &rows);
     // Where the table ran long (a step's amounts of hundreds of digits,
     // from a damaged plan.json), the words under it go on the next page.
     let under_table = format!(
@@ -1925,6 +1954,47 @@ mod tests {
         assert!((below - y - 8.0 * 0.3528 * 1.9 - heights[0]).abs() < 1e-3);
         let text = d.text[0].replace('\n', "");
         assert_eq!(text.matches("/SITE/ZONE-A/PIPE-RACK-2/BEAM-17").count(), 10, "{text}");
+    }
+
+    /// A step's row taller than a page (what it comes closest to named in
+    /// the longest words a plan.json may hold, of the widest letter) is
+    /// split over pages, every letter of it drawn once and none lower than
+    /// the table's margin at the foot; the rows before and after it are
+    /// whole.
+    #[test]
+    fn a_steps_row_taller_than_a_page_is_split_over_pages() {
+        let mut d = Doc::new("t", A4).unwrap();
+        d.new_page();
+        let (header, widths, right) = steps_columns(A4.w - 30.0);
+        let name = "W".repeat(liftplan_plan::MAX_STEP_NAME_CHARS);
+        let row = |n: usize, closest: String| {
+            [
+                n.to_string(),
+                "Swing".into(),
+                "+12.0°".into(),
+                "20.00".into(),
+                "40.0".into(),
+                "30.0".into(),
+                "2.50".into(),
+                closest,
+            ]
+            .to_vec()
+        };
+        let rows =
+            vec![row(1, "boom – PIPE-RACK-2".into()), row(2, format!("{name} – {name}")), row(3, "load – V-1".into())];
+        let tallest = Doc::table_row_heights(&widths, &rows, 8.0)[1];
+        assert!(tallest > A4.h, "not a row taller than a page: {tallest} mm");
+        let y = steps_table(&mut d, 150.0, &widths, &right, &header, &rows);
+        assert!(d.text.len() >= 3, "{} pages", d.text.len());
+        assert!(y <= A4.h - 40.0 + 1e-3, "{y}");
+        for (page, low) in d.lowest_mm.iter().enumerate() {
+            assert!(*low <= A4.h - 40.0 + 1e-3, "page {page}: drawn at {low} mm");
+        }
+        let all = d.text.concat();
+        assert_eq!(all.matches('W').count(), 2 * liftplan_plan::MAX_STEP_NAME_CHARS);
+        assert!(all.contains("PIPE-RACK-2") && all.contains("V-1"), "{all}");
+        assert!(d.text[1].starts_with("Steps (continued)"), "{}", d.text[1]);
+        assert!(d.text.last().unwrap().contains("load – V-1"), "{:?}", d.text.last());
     }
 
     /// Text that would run past the sheet's right edge is refused (in

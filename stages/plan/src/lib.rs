@@ -363,8 +363,9 @@ impl LiftPlan {
 /// closest to, the chart's cell) the plan stage writes: the names it is
 /// made of are bounded (plant groups' at
 /// [`liftplan_core::mesh::MAX_GROUP_NAME_CHARS`], obstacles' and power
-/// lines' at 100, lift ids at [`liftplan_core::lift::MAX_LIFT_ID_CHARS`]),
-/// and a page holds a step's row with this many.
+/// lines' at 100, lift ids at [`liftplan_core::lift::MAX_LIFT_ID_CHARS`]);
+/// a step's row naming this many runs over pages of the document's steps
+/// table.
 pub const MAX_STEP_NAME_CHARS: usize = 1000;
 
 /// Words read from a file, for an error saying them: whole up to 80
