@@ -278,5 +278,10 @@ for name in sorted(os.listdir(os.path.join(root, "fuzz", "seeds", "plan_document
 for name in sorted(os.listdir(os.path.join(root, "fuzz", "seeds", "chart_json"))):
     seed("chart_json", name, read(os.path.join(root, "fuzz", "seeds", "chart_json", name)))
 
+# plant_json: the demo's plant.json (kept in fuzz/seeds/, which liftplan-core's
+# tests read, so the seed stays one the reader takes).
+for name in sorted(os.listdir(os.path.join(root, "fuzz", "seeds", "plant_json"))):
+    seed("plant_json", name, read(os.path.join(root, "fuzz", "seeds", "plant_json", name)))
+
 shutil.rmtree(tmp)
 print(f"seeds written under {corpus}")

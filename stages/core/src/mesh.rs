@@ -24,6 +24,12 @@ pub const ARTIFACT_VERSION: u32 = 1;
 /// any length) would fill them. PDMS and BIM names are far shorter.
 pub const MAX_GROUP_NAME_CHARS: usize = 200;
 
+/// The most parts' boxes the plant stage keeps (RVM primitives, a mesh's
+/// connected pieces) over all the groups it leaves out: past it a group
+/// keeps only its own box (a model left out whole would otherwise write a
+/// box per primitive).
+pub const MAX_MODEL_BOX_PARTS: usize = 20_000;
+
 /// A group's name as the plant stage keeps it: whole up to
 /// [`MAX_GROUP_NAME_CHARS`] characters, else its first that many and
 /// "..." (so at most 3 more).
@@ -420,6 +426,70 @@ impl ModelBox {
         })
     }
 
+    /// The boxes of the groups the plant stage left out, from its plant.json
+    /// (none in one written before it had them), as it writes them
+    /// ([`ModelBox::not_as_written`]); an error says where the file is not.
+    pub fn left_out_in_plant_json(bytes: &[u8]) -> Result<Vec<ModelBox>, String> {
+        #[derive(serde::Deserialize)]
+        struct PlantJson {
+            #[serde(default)]
+            excluded_boxes: Vec<ModelBox>,
+        }
+        let j: PlantJson =
+            serde_json::from_slice(bytes).map_err(|e| format!("line {}, column {}: {e}", e.line(), e.column()))?;
+        match ModelBox::not_as_written(&j.excluded_boxes) {
+            Some(problem) => Err(format!("{problem}; rerun the plant stage (liftplan run --force plant)")),
+            None => Ok(j.excluded_boxes),
+        }
+    }
+
+    /// What is wrong with `boxes` read back (the plant stage's plant.json,
+    /// edited or damaged) where they are not as the plant stage writes them:
+    /// a name longer than it keeps ([`group_name_kept`]), a negative size, a
+    /// long side shorter than the short one, a yaw past 90° either way, a
+    /// part with parts of its own, or more parts than
+    /// [`MAX_MODEL_BOX_PARTS`] all told; named by the box's place.
+    pub fn not_as_written(boxes: &[ModelBox]) -> Option<String> {
+        let parts: usize = boxes.iter().map(|b| b.parts.len()).sum();
+        if parts > MAX_MODEL_BOX_PARTS {
+            return Some(format!(
+                "{parts} parts' boxes, more than the plant stage keeps (at most {MAX_MODEL_BOX_PARTS} over all the groups it leaves out)"
+            ));
+        }
+        let one = |b: &ModelBox| -> Option<String> {
+            if group_name_kept(&b.name) != b.name {
+                return Some(format!(
+                    "its name is {} characters long, longer than the plant stage keeps (at most {MAX_GROUP_NAME_CHARS} and \"...\")",
+                    b.name.chars().count()
+                ));
+            }
+            let [long, short, height] = b.half_m;
+            if !(long >= short && short >= 0.0 && height >= 0.0) {
+                return Some(format!(
+                    "half_m {:?}: half sizes are not negative, the long side's first (as the plant stage writes them)",
+                    b.half_m
+                ));
+            }
+            if !(b.yaw_deg.abs() <= 90.0 + 1e-9) {
+                return Some(format!("yaw_deg {}: the plant stage writes a box's yaw in (-90, 90] degrees", b.yaw_deg));
+            }
+            None
+        };
+        boxes.iter().enumerate().find_map(|(k, b)| {
+            let said = |at: String, problem: String| {
+                format!("excluded_boxes[{k}]{at} ('{}'): {problem}", b.name.chars().take(80).collect::<String>())
+            };
+            if let Some(problem) = one(b) {
+                return Some(said(String::new(), problem));
+            }
+            b.parts.iter().enumerate().find_map(|(n, part)| {
+                let problem =
+                    if part.parts.is_empty() { one(part)? } else { "a part with parts of its own".to_string() };
+                Some(said(format!(".parts[{n}]"), problem))
+            })
+        })
+    }
+
     /// The boxes that hold it: its parts' where it has them, else itself.
     pub fn boxes(&self) -> &[ModelBox] {
         if self.parts.is_empty() { std::slice::from_ref(self) } else { &self.parts }
@@ -464,6 +534,49 @@ mod tests {
         let longer = format!("{longest}x");
         assert_eq!(group_name_kept(&longer), format!("{longest}..."));
         assert_eq!(group_name_kept(&"/A".repeat(50_000)).chars().count(), MAX_GROUP_NAME_CHARS + 3);
+    }
+
+    /// Boxes as the plant stage writes them (around points, with parts, a
+    /// name kept short) are taken; each thing it never writes is named with
+    /// the box's place.
+    #[test]
+    fn model_boxes_not_as_the_plant_stage_writes_them_are_named() {
+        let points = |x: f64| [[x, 0.0, 0.0], [x + 4.0, 1.0, 0.0], [x + 3.0, -2.0, 2.0], [x - 1.0, 0.5, 1.0]];
+        let name = group_name_kept(&"/V-101".repeat(100)).into_owned();
+        let mut group = ModelBox::around(&name, &[points(0.0), points(9.0)].concat()).unwrap();
+        group.parts = [0.0, 9.0].map(|x| ModelBox::around(&name, &points(x)).unwrap()).to_vec();
+        let written = vec![ModelBox::around("/P-1", &points(-20.0)).unwrap(), group];
+        assert_eq!(ModelBox::not_as_written(&written), None);
+        let wrong = |edit: &dyn Fn(&mut Vec<ModelBox>)| {
+            let mut boxes = written.clone();
+            edit(&mut boxes);
+            ModelBox::not_as_written(&boxes).unwrap_or_default()
+        };
+        let said = wrong(&|b| b[0].half_m[2] = -0.5);
+        assert!(said.starts_with("excluded_boxes[0] ('/P-1'): half_m [") && said.contains("-0.5]"), "{said}");
+        let said = wrong(&|b| b[1].parts[1].half_m.swap(0, 1));
+        assert!(said.starts_with("excluded_boxes[1].parts[1] ('/V-101/V-101"), "{said}");
+        assert!(wrong(&|b| b[0].yaw_deg = 90.5).contains("yaw_deg 90.5: the plant stage writes"));
+        let said = wrong(&|b| b[0].name = "/P".repeat(101));
+        assert!(said.contains("its name is 202 characters long"), "{said}");
+        let said = wrong(&|b| b[1].parts[0].parts = vec![b[0].clone()]);
+        assert!(
+            said.starts_with("excluded_boxes[1].parts[0]") && said.ends_with("a part with parts of its own"),
+            "{said}"
+        );
+        let said = wrong(&|b| b[0].parts = vec![b[0].clone(); MAX_MODEL_BOX_PARTS]);
+        assert!(said.starts_with(&format!("{} parts' boxes, more than", MAX_MODEL_BOX_PARTS + 2)), "{said}");
+    }
+
+    /// The demo's plant.json (the `plant_json` fuzz target's seed) is read:
+    /// its one box left out, the vessel the demo lifts.
+    #[test]
+    fn the_demos_plant_json_is_read() {
+        let demo = include_bytes!("../../../fuzz/seeds/plant_json/demo-plant.json");
+        let boxes = ModelBox::left_out_in_plant_json(demo).unwrap();
+        assert_eq!(boxes.iter().map(|b| b.name.as_str()).collect::<Vec<_>>(), ["/V-101"]);
+        let e = ModelBox::left_out_in_plant_json(&demo[..demo.len() / 2]).unwrap_err();
+        assert!(e.starts_with("line "), "{e}");
     }
 
     #[test]

@@ -1040,16 +1040,9 @@ pub fn read_points(path: &Path, exclude: &[Obb]) -> Result<(Vec<[f64; 3]>, Vec<b
 /// The groups the plant stage left out of the model, as plant.json has them
 /// (none in a plant.json written before it had them).
 fn excluded_boxes(path: &Path) -> Result<Vec<liftplan_core::mesh::ModelBox>> {
-    #[derive(serde::Deserialize)]
-    struct PlantJson {
-        #[serde(default)]
-        excluded_boxes: Vec<liftplan_core::mesh::ModelBox>,
-    }
     let bytes = std::fs::read(path).map_err(|e| PlanError::Input(Location::file(path), e.to_string()))?;
-    let j: PlantJson = serde_json::from_slice(&bytes).map_err(|e| {
-        PlanError::Input(Location::file(path), format!("line {}, column {}: {e}", e.line(), e.column()))
-    })?;
-    Ok(j.excluded_boxes)
+    liftplan_core::mesh::ModelBox::left_out_in_plant_json(&bytes)
+        .map_err(|problem| PlanError::Input(Location::file(path), problem))
 }
 
 /// What the stage reports.
@@ -1530,6 +1523,30 @@ pub(crate) fn test_config(task: &LiftTask, at: [f64; 4], rope_span_m: f64) -> li
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// plant.json's boxes of the groups left out are read as the plant stage
+    /// writes them; one it never writes (a negative size, edited or
+    /// damaged) is refused naming the file and the box.
+    #[test]
+    fn boxes_left_out_are_read_as_the_plant_stage_writes_them() {
+        let dir = tempfile::tempdir().unwrap();
+        let file = dir.path().join("plant.json");
+        let plant = |half: &str| {
+            format!(
+                r#"{{"files": [], "excluded_boxes": [{{"name": "/V-101", "center_m": [30.0, 2.0, 2.7], "half_m": {half}, "yaw_deg": -0.0}}]}}"#
+            )
+        };
+        std::fs::write(&file, plant("[4.0, 1.5, 1.5]")).unwrap();
+        let boxes = excluded_boxes(&file).unwrap();
+        assert_eq!((boxes.len(), boxes[0].name.as_str(), boxes[0].half_m), (1, "/V-101", [4.0, 1.5, 1.5]));
+        std::fs::write(&file, plant("[4.0, -1.5, 1.5]")).unwrap();
+        let e = excluded_boxes(&file).unwrap_err().to_string();
+        assert!(
+            e.starts_with(&format!("{}: excluded_boxes[0] ('/V-101'): half_m [4.0, -1.5, 1.5]", file.display())),
+            "{e}"
+        );
+        assert!(e.ends_with("rerun the plant stage (liftplan run --force plant)"), "{e}");
+    }
 
     /// Another lift's crane is named where it is set up elsewhere within the
     /// two cranes' reach, and only then: not the same crane set up again

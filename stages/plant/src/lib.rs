@@ -809,11 +809,6 @@ fn keep_groups(m: &TriMesh, keep: &[bool]) -> TriMesh {
     out
 }
 
-/// The most parts' boxes kept (RVM primitives, a mesh's connected pieces),
-/// over all groups left out: past it a group keeps only its own box (a model
-/// left out whole would otherwise write a box per primitive).
-const MAX_EXCLUDED_PARTS: usize = 20_000;
-
 /// Runs the stage on `inputs`, writing into `out_dir`; plant.json names the
 /// files relative to `root` (the project folder) where given.
 pub fn run(
@@ -891,7 +886,7 @@ pub fn run(
             [q.x, q.y, q.z]
         }));
     }
-    let mut parts_left = MAX_EXCLUDED_PARTS;
+    let mut parts_left = liftplan_core::mesh::MAX_MODEL_BOX_PARTS;
     summary.excluded_boxes = by_name
         .iter()
         .filter_map(|(name, (points, ends))| {
