@@ -865,8 +865,6 @@ pub fn run(
     // Names are matched above whole; kept, for the words of later stages,
     // to their first MAX_GROUP_NAME_CHARS characters.
     summary.names_shortened = keep_group_names(&mut mesh.groups) + keep_group_names(&mut summary.excluded_groups);
-    // The same names as excluded_groups', one entry per file.
-    keep_group_names(summary.excluded_points.iter_mut().map(|(name, ..)| name));
     let pose = liftplan_core::frame::pose_xyz_yaw(
         s.translate_m[0],
         s.translate_m[1],
@@ -875,7 +873,9 @@ pub fn run(
     );
     mesh.transform(&pose);
     // One box per name, over every file that has it, placed as the mesh is,
-    // with its parts' boxes while there are not too many.
+    // with its parts' boxes while there are not too many; grouped by the
+    // whole name (two groups whose names agree in their first
+    // MAX_GROUP_NAME_CHARS characters are two boxes), named as kept.
     let mut by_name: BTreeMap<String, (Vec<[f64; 3]>, Vec<usize>)> = BTreeMap::new();
     for (name, points, ends) in std::mem::take(&mut summary.excluded_points) {
         let (all, all_ends) = by_name.entry(name).or_default();
@@ -890,12 +890,13 @@ pub fn run(
     summary.excluded_boxes = by_name
         .iter()
         .filter_map(|(name, (points, ends))| {
-            let mut b = liftplan_core::mesh::ModelBox::around(name, points)?;
+            let name = liftplan_core::mesh::group_name_kept(name);
+            let mut b = liftplan_core::mesh::ModelBox::around(&name, points)?;
             if ends.len() > 1 && ends.len() <= parts_left {
                 let starts = std::iter::once(0).chain(ends.iter().copied());
                 b.parts = starts
                     .zip(ends)
-                    .filter_map(|(from, &to)| liftplan_core::mesh::ModelBox::around(name, &points[from..to]))
+                    .filter_map(|(from, &to)| liftplan_core::mesh::ModelBox::around(&name, &points[from..to]))
                     .collect();
                 parts_left -= ends.len();
             }
@@ -1183,10 +1184,16 @@ mod tests {
             offset: 0,
         };
         let (kept, left_out) = (format!("/RACK-{}", "A".repeat(5000)), format!("/SKID-{}", "B".repeat(300)));
+        // Another left out, 5 m along, whose name agrees with it in its
+        // first 200 characters: kept as the same words, boxed on its own.
+        let alike = format!("{left_out}B");
+        let mut along = cube.clone();
+        along.matrix[9] = 5.0;
         let file = RvmFile {
             groups: vec![
                 Group { name: kept.clone(), primitives: vec![cube.clone()], ..Default::default() },
                 Group { name: left_out.clone(), primitives: vec![cube], ..Default::default() },
+                Group { name: alike, primitives: vec![along], ..Default::default() },
                 Group { name: "/SHORT".into(), ..Default::default() },
             ],
             ..Default::default()
@@ -1198,16 +1205,17 @@ mod tests {
         let summary = run(std::slice::from_ref(&path), &s, &d.path().join("out"), None, &|_, _, _| {}).unwrap();
         let short = |n: &str| format!("{}...", n.chars().take(200).collect::<String>());
         assert!(summary.exclude_unmatched.is_empty(), "{:?}", summary.exclude_unmatched);
-        assert_eq!(summary.excluded_groups, [short(&left_out)]);
-        assert_eq!(summary.excluded_boxes[0].name, short(&left_out));
+        assert_eq!(summary.excluded_groups, [short(&left_out), short(&left_out)]);
+        let boxes: Vec<(&str, f64)> = summary.excluded_boxes.iter().map(|b| (b.name.as_str(), b.center_m[0])).collect();
+        assert_eq!(boxes, [(short(&left_out).as_str(), 0.0), (short(&left_out).as_str(), 5.0)]);
         let mesh = TriMesh::read_artifact(&d.path().join("out/plant.mesh")).unwrap();
         assert_eq!(mesh.groups, [short(&kept)]);
-        assert_eq!(summary.names_shortened, 2);
+        assert_eq!(summary.names_shortened, 3);
         assert!(
             summary
                 .lines()
                 .iter()
-                .any(|l| l.starts_with("2 group names longer than 200 characters are kept as their first 200")),
+                .any(|l| l.starts_with("3 group names longer than 200 characters are kept as their first 200")),
             "{:?}",
             summary.lines()
         );
