@@ -47,12 +47,23 @@ impl Ctx<'_> {
         m.outputs.contains_key(file).then(|| dir.join(file))
     }
 
-    /// An upstream stage's JSON output, read; `None` where that stage did
+    /// An upstream stage's JSON output read as `T`, its own parts of it, as
+    /// a user's file is read: one not of that shape is refused naming the
+    /// file, line and column (read as a JSON value, a file of another
+    /// shape reads as one that says nothing); `None` where that stage did
     /// not write it.
-    pub fn upstream_json(&self, stage: &str, file: &str) -> Result<Option<serde_json::Value>> {
+    pub fn upstream_typed<T: serde::de::DeserializeOwned>(&self, stage: &str, file: &str) -> Result<Option<T>> {
         let Some(f) = self.upstream_file(stage, file) else { return Ok(None) };
         let bytes = std::fs::read(&f).with_context(|| format!("reading {}", f.display()))?;
-        Ok(Some(serde_json::from_slice(&bytes).with_context(|| format!("reading {}", f.display()))?))
+        let read = serde_json::from_slice(&bytes).map_err(|e| {
+            anyhow::anyhow!(
+                "{}: line {}, column {}: {e}; rerun the {stage} stage (liftplan run --force {stage})",
+                f.display(),
+                e.line(),
+                e.column()
+            )
+        })?;
+        Ok(Some(read))
     }
 
     pub fn report(&self, stage: &str) -> impl Fn(&str, u64, u64) + Sync + '_ {
