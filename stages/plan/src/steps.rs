@@ -739,8 +739,16 @@ pub fn summary(task: &LiftTask, steps: &[Step], verdict: &Verdict) -> Summary {
     s
 }
 
+/// A text field of the steps' CSV as a spreadsheet opening the file is to
+/// show it: quoted where it holds a comma, a quote or a line break, and,
+/// where it starts as a formula does (`=`, `+`, `-`, `@`, a tab or a
+/// carriage return), with an apostrophe before it, so that it is shown as
+/// the words it is, not worked out (a plant model's group named
+/// `=HYPERLINK(...)`, as a model's file may name one, would be a link in the
+/// crew's spreadsheet, and `-2+3` a number).
 fn csv_field(s: &str) -> String {
-    if s.contains([',', '"', '\n']) { format!("\"{}\"", s.replace('"', "\"\"")) } else { s.to_string() }
+    let s = if s.starts_with(['=', '+', '-', '@', '\t', '\r']) { format!("'{s}") } else { s.to_string() };
+    if s.contains([',', '"', '\n', '\r']) { format!("\"{}\"", s.replace('"', "\"\"")) } else { s }
 }
 
 /// The steps as CSV, each with the crane's configuration at its end under
@@ -786,6 +794,30 @@ pub fn to_csv(steps: &[Step], tower: bool, revision: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A name in the steps' CSV reads back as one field, as written, where
+    /// it holds commas, quotes or line breaks, and a spreadsheet shows one
+    /// that starts as a formula does as words (an apostrophe before it).
+    #[test]
+    fn csv_fields_read_back_as_words() {
+        let names = [
+            ("/PIPE-RACK-2", "/PIPE-RACK-2"),
+            ("rack, \"north\"\r\nbay", "rack, \"north\"\r\nbay"),
+            ("=HYPERLINK(\"http://example.com\",\"x\")", "'=HYPERLINK(\"http://example.com\",\"x\")"),
+            ("+1", "'+1"),
+            ("-2+3", "'-2+3"),
+            ("@SUM(A1)", "'@SUM(A1)"),
+            ("\t=1", "'\t=1"),
+            ("\r=1", "'\r=1"),
+        ];
+        let line: Vec<String> = names.iter().map(|(name, _)| csv_field(name)).collect();
+        let csv = format!("{}\n", line.join(","));
+        let mut reader = csv::ReaderBuilder::new().has_headers(false).from_reader(csv.as_bytes());
+        let rows: Vec<csv::StringRecord> = reader.records().map(Result::unwrap).collect();
+        assert_eq!(rows.len(), 1, "{csv}");
+        let read: Vec<&str> = rows[0].iter().collect();
+        assert_eq!(read, names.iter().map(|(_, shown)| *shown).collect::<Vec<_>>(), "{csv}");
+    }
 
     /// The words "counter-clockwise" and "clockwise" say which way the boom
     /// and the load turn, seen from above, as the crane's kinematics turn
