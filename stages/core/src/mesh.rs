@@ -32,12 +32,20 @@ pub const MAX_MODEL_BOX_PARTS: usize = 20_000;
 
 /// A group's name as the plant stage keeps it: whole up to
 /// [`MAX_GROUP_NAME_CHARS`] characters, else its first that many and
-/// "..." (so at most 3 more).
+/// "..." (so at most 3 more); a control character in it (a line break, a
+/// terminal's escape: a damaged or hostile model's bytes) shown as U+FFFD,
+/// as the name is printed in the run's lines and drawn on the plan's pages.
 pub fn group_name_kept(name: &str) -> std::borrow::Cow<'_, str> {
-    match name.char_indices().nth(MAX_GROUP_NAME_CHARS) {
-        None => std::borrow::Cow::Borrowed(name),
-        Some((cut, _)) => std::borrow::Cow::Owned(format!("{}...", &name[..cut])),
+    let cut = name.char_indices().nth(MAX_GROUP_NAME_CHARS).map(|(at, _)| at);
+    let head = &name[..cut.unwrap_or(name.len())];
+    if cut.is_none() && !head.chars().any(char::is_control) {
+        return std::borrow::Cow::Borrowed(name);
     }
+    let mut kept: String = head.chars().map(|c| if c.is_control() { '\u{FFFD}' } else { c }).collect();
+    if cut.is_some() {
+        kept.push_str("...");
+    }
+    std::borrow::Cow::Owned(kept)
 }
 
 /// The group ids of a mesh by name, for a reader that names many groups:
@@ -534,6 +542,10 @@ mod tests {
         let longer = format!("{longest}x");
         assert_eq!(group_name_kept(&longer), format!("{longest}..."));
         assert_eq!(group_name_kept(&"/A".repeat(50_000)).chars().count(), MAX_GROUP_NAME_CHARS + 3);
+        assert_eq!(group_name_kept("/V-1\x1b[2J\n\0"), "/V-1\u{FFFD}[2J\u{FFFD}\u{FFFD}");
+        let kept = group_name_kept(&format!("{longer}\n")).into_owned();
+        assert_eq!(kept, format!("{longest}..."));
+        assert_eq!(group_name_kept(&kept), kept);
     }
 
     /// Boxes as the plant stage writes them (around points, with parts, a

@@ -281,13 +281,14 @@ fn nearest_name<'a>(pattern: &str, names: &'a [String]) -> Option<&'a str> {
 }
 
 /// Each of `names` as the plant stage keeps it
-/// ([`liftplan_core::mesh::group_name_kept`]); how many were shortened.
+/// ([`liftplan_core::mesh::group_name_kept`]); how many were shortened
+/// (not counting those only whose control characters were replaced).
 fn keep_group_names<'a>(names: impl IntoIterator<Item = &'a mut String>) -> usize {
     let mut shortened = 0;
     for name in names {
         if let std::borrow::Cow::Owned(kept) = liftplan_core::mesh::group_name_kept(name) {
+            shortened += usize::from(name.chars().nth(liftplan_core::mesh::MAX_GROUP_NAME_CHARS).is_some());
             *name = kept;
-            shortened += 1;
         }
     }
     shortened
@@ -1193,7 +1194,10 @@ mod tests {
             groups: vec![
                 Group { name: kept.clone(), primitives: vec![cube.clone()], ..Default::default() },
                 Group { name: left_out.clone(), primitives: vec![cube], ..Default::default() },
-                Group { name: alike, primitives: vec![along], ..Default::default() },
+                Group { name: alike, primitives: vec![along.clone()], ..Default::default() },
+                // A terminal's escapes in a name: shown as U+FFFD, not
+                // counted as shortened.
+                Group { name: "/TANK\x1b]0;x\x07\n".into(), primitives: vec![along], ..Default::default() },
                 Group { name: "/SHORT".into(), ..Default::default() },
             ],
             ..Default::default()
@@ -1209,7 +1213,7 @@ mod tests {
         let boxes: Vec<(&str, f64)> = summary.excluded_boxes.iter().map(|b| (b.name.as_str(), b.center_m[0])).collect();
         assert_eq!(boxes, [(short(&left_out).as_str(), 0.0), (short(&left_out).as_str(), 5.0)]);
         let mesh = TriMesh::read_artifact(&d.path().join("out/plant.mesh")).unwrap();
-        assert_eq!(mesh.groups, [short(&kept)]);
+        assert_eq!(mesh.groups, [short(&kept), "/TANK\u{FFFD}]0;x\u{FFFD}\u{FFFD}".to_string()]);
         assert_eq!(summary.names_shortened, 3);
         assert!(
             summary
