@@ -485,7 +485,8 @@ impl ModelBox {
         };
         boxes.iter().enumerate().find_map(|(k, b)| {
             let said = |at: String, problem: String| {
-                format!("excluded_boxes[{k}]{at} ('{}'): {problem}", b.name.chars().take(80).collect::<String>())
+                let name: String = b.name.chars().take(80).collect();
+                format!("excluded_boxes[{k}]{at} ('{}'): {problem}", group_name_kept(&name))
             };
             if let Some(problem) = one(b) {
                 return Some(said(String::new(), problem));
