@@ -282,7 +282,7 @@ fn not_a_project(dir: &Path) -> Option<ExitCode> {
 
 fn load(dir: &Path) -> Result<project::Project, ExitCode> {
     project::Project::load(dir).map_err(|e| {
-        eprintln!("error: {e}");
+        eprintln!("error: {}", progress::for_terminal(&e.to_string()));
         ExitCode::from(2)
     })
 }
@@ -302,7 +302,7 @@ fn print_report(rep: &pipeline::RunReport, json: bool, progress: &Progress) {
         progress.line(&format!("{:>9} {:<6} {:6.2}s{}", s.name, status, s.seconds, extra));
         // `-q` quiets progress, not failures: a run that fails says why.
         if let (true, Some(e)) = (progress.is_quiet(), &s.error) {
-            eprintln!("error: stage {} failed: {e}", s.name);
+            eprintln!("error: stage {} failed: {}", s.name, progress::for_terminal(e));
         }
         for l in &s.lines {
             progress.line(&format!("          {l}"));
@@ -313,7 +313,7 @@ fn print_report(rep: &pipeline::RunReport, json: bool, progress: &Progress) {
         if c.agrees {
             progress.line(&c.said);
         } else {
-            eprintln!("warning: {}", c.said);
+            eprintln!("warning: {}", progress::for_terminal(&c.said));
         }
     }
 }
@@ -352,7 +352,7 @@ fn real_main() -> Result<ExitCode> {
             let mut rep = match pipeline::run(&p, &RunOptions { until, force }, &progress) {
                 Ok(r) => r,
                 Err(e) => {
-                    eprintln!("error: {e:#}");
+                    eprintln!("error: {}", progress::for_terminal(&format!("{e:#}")));
                     return Ok(ExitCode::from(2));
                 }
             };
@@ -467,7 +467,7 @@ fn real_main() -> Result<ExitCode> {
             let v = match inspect::inspect(&file) {
                 Ok(v) => v,
                 Err(e) => {
-                    eprintln!("error: {e:#}");
+                    eprintln!("error: {}", progress::for_terminal(&format!("{e:#}")));
                     return Ok(ExitCode::from(1));
                 }
             };
@@ -528,14 +528,14 @@ fn real_main() -> Result<ExitCode> {
                 let c = match revisions::compare(&project::out_dir_of(&dir), lift.as_deref(), was, now) {
                     Ok(c) => c,
                     Err(e) => {
-                        eprintln!("error: {e:#}");
+                        eprintln!("error: {}", progress::for_terminal(&format!("{e:#}")));
                         return Ok(ExitCode::from(2));
                     }
                 };
                 if json {
                     println!("{}", serde_json::to_string_pretty(&c)?);
                 } else {
-                    println!("{}", c.said());
+                    println!("{}", progress::for_terminal(&c.said()));
                 }
                 return Ok(ExitCode::SUCCESS);
             }
@@ -692,7 +692,7 @@ fn real_main() -> Result<ExitCode> {
             let (configs, reports) = match liftplan_charts::read_chart(&input, &settings) {
                 Ok(x) => x,
                 Err(e) => {
-                    eprintln!("error: {e}");
+                    eprintln!("error: {}", progress::for_terminal(&e.to_string()));
                     if e.to_string().contains("unit found around the chart grid") {
                         eprintln!("(here: --length-unit and --capacity-unit)");
                     }
@@ -701,7 +701,7 @@ fn real_main() -> Result<ExitCode> {
             };
             let table = liftplan_core::capacity::CapacityTable { configs };
             if let Err(e) = table.check_grid_cells() {
-                eprintln!("error: {}: {e}", input.display());
+                eprintln!("error: {}", progress::for_terminal(&format!("{}: {e}", input.display())));
                 return Ok(ExitCode::from(1));
             }
             table.write_csv(&output).with_context(|| format!("writing {}", output.display()))?;
@@ -764,7 +764,9 @@ fn real_main() -> Result<ExitCode> {
                 }
             } else if !json {
                 for r in &reports {
-                    println!("'{}': {} x {} radii [{}!{}]", r.name, r.columns_said(), r.radii, r.sheet, r.range);
+                    let said =
+                        format!("'{}': {} x {} radii [{}!{}]", r.name, r.columns_said(), r.radii, r.sheet, r.range);
+                    println!("{}", progress::for_terminal(&said));
                 }
                 println!("wrote {} ({} rows)", output.display(), table.rows().len());
             }
@@ -794,14 +796,14 @@ fn real_main() -> Result<ExitCode> {
                         println!("{}", std::fs::read_to_string(tmp.join("plant.json"))?);
                     } else {
                         for l in sum.lines() {
-                            println!("{l}");
+                            println!("{}", progress::for_terminal(&l));
                         }
                         println!("wrote {}", output.display());
                     }
                     ExitCode::SUCCESS
                 }
                 Err(e) => {
-                    eprintln!("error: {e}");
+                    eprintln!("error: {}", progress::for_terminal(&e.to_string()));
                     ExitCode::from(1)
                 }
             };
@@ -837,14 +839,14 @@ fn real_main() -> Result<ExitCode> {
                         println!("{}", std::fs::read_to_string(tmp.join("registration.json"))?);
                     } else {
                         for l in sum.lines() {
-                            println!("{l}");
+                            println!("{}", progress::for_terminal(&l));
                         }
                         println!("wrote {} ({} points)", output.display(), sum.points_out);
                     }
                     ExitCode::SUCCESS
                 }
                 Err(e) => {
-                    eprintln!("error: {e}");
+                    eprintln!("error: {}", progress::for_terminal(&e.to_string()));
                     ExitCode::from(1)
                 }
             };
@@ -880,7 +882,7 @@ fn main() -> ExitCode {
     match real_main() {
         Ok(c) => c,
         Err(e) => {
-            eprintln!("error: {e:#}");
+            eprintln!("error: {}", progress::for_terminal(&format!("{e:#}")));
             ExitCode::from(1)
         }
     }

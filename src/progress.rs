@@ -88,10 +88,40 @@ impl Progress {
         if self.quiet {
             return;
         }
+        let text = for_terminal(text);
         if self.tty {
             let _ = self.multi.println(text);
         } else {
             eprintln!("{text}");
         }
+    }
+}
+
+/// `text` as it is safe to print: each control character but a line break
+/// and a tab shown as U+FFFD. The lines a run prints carry names and words
+/// read from files others made (a plant model's, a crane rental's chart, a
+/// damaged cache entry), and a terminal takes an escape or a carriage
+/// return in them as an order: a "\r" can print "validated" over what a
+/// line said before it, an escape hide text or set the window's title.
+pub fn for_terminal(text: &str) -> std::borrow::Cow<'_, str> {
+    let unsafe_char = |c: char| c.is_control() && c != '\n' && c != '\t';
+    if !text.chars().any(unsafe_char) {
+        return std::borrow::Cow::Borrowed(text);
+    }
+    std::borrow::Cow::Owned(text.chars().map(|c| if unsafe_char(c) { '\u{FFFD}' } else { c }).collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::for_terminal;
+
+    #[test]
+    fn control_characters_are_not_printed() {
+        assert_eq!(for_terminal("plan ran: 0.50 m to /FDN-V101\n\tnext"), "plan ran: 0.50 m to /FDN-V101\n\tnext");
+        assert_eq!(for_terminal("NOT VALIDATED\rvalidated"), "NOT VALIDATED\u{FFFD}validated");
+        assert_eq!(
+            for_terminal("\x1b]0;title\x07\x1b[8mhidden\u{9b}"),
+            "\u{FFFD}]0;title\u{FFFD}\u{FFFD}[8mhidden\u{FFFD}"
+        );
     }
 }
