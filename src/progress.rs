@@ -97,23 +97,53 @@ impl Progress {
     }
 }
 
+/// The most characters of one line [`for_terminal`] prints: an error can
+/// quote a file's words whole (serde quotes a string where a number
+/// belongs), megabytes of them from a damaged file, which would bury the
+/// terminal. The run's JSON (`--json`) keeps a stage's lines and errors
+/// whole.
+const MAX_LINE_CHARS: usize = 10_000;
+
 /// `text` as it is safe to print: each control character but a line break
-/// and a tab shown as U+FFFD. The lines a run prints carry names and words
-/// read from files others made (a plant model's, a crane rental's chart, a
-/// damaged cache entry), and a terminal takes an escape or a carriage
-/// return in them as an order: a "\r" can print "validated" over what a
-/// line said before it, an escape hide text or set the window's title.
+/// and a tab shown as U+FFFD, and each line longer than [`MAX_LINE_CHARS`]
+/// characters cut in its middle (its start and its end kept, where an
+/// error says what to do, with how many characters were left out). The lines a run prints carry
+/// names and words read from files others made (a plant model's, a crane
+/// rental's chart, a damaged cache entry), and a terminal takes an escape
+/// or a carriage return in them as an order: a "\r" can print "validated"
+/// over what a line said before it, an escape hide text or set the
+/// window's title.
 pub fn for_terminal(text: &str) -> std::borrow::Cow<'_, str> {
     let unsafe_char = |c: char| c.is_control() && c != '\n' && c != '\t';
-    if !text.chars().any(unsafe_char) {
+    let long = |line: &str| line.chars().nth(MAX_LINE_CHARS).is_some();
+    if !text.chars().any(unsafe_char) && !text.split('\n').any(long) {
         return std::borrow::Cow::Borrowed(text);
     }
-    std::borrow::Cow::Owned(text.chars().map(|c| if unsafe_char(c) { '\u{FFFD}' } else { c }).collect())
+    let lines: Vec<String> = text
+        .split('\n')
+        .map(|line| {
+            let shown = |chars: &mut dyn Iterator<Item = char>| -> String {
+                chars.map(|c| if unsafe_char(c) { '\u{FFFD}' } else { c }).collect()
+            };
+            let count = line.chars().count();
+            if count <= MAX_LINE_CHARS {
+                return shown(&mut line.chars());
+            }
+            let half = MAX_LINE_CHARS / 2;
+            format!(
+                "{} ... ({} characters left out) ... {}",
+                shown(&mut line.chars().take(half)),
+                count - 2 * half,
+                shown(&mut line.chars().skip(count - half))
+            )
+        })
+        .collect();
+    std::borrow::Cow::Owned(lines.join("\n"))
 }
 
 #[cfg(test)]
 mod tests {
-    use super::for_terminal;
+    use super::{MAX_LINE_CHARS, for_terminal};
 
     #[test]
     fn control_characters_are_not_printed() {
@@ -123,5 +153,23 @@ mod tests {
             for_terminal("\x1b]0;title\x07\x1b[8mhidden\u{9b}"),
             "\u{FFFD}]0;title\u{FFFD}\u{FFFD}[8mhidden\u{FFFD}"
         );
+    }
+
+    /// A line of megabytes (a damaged file's words quoted in an error) is
+    /// cut in its middle, saying how much was left out, its end (what to
+    /// do) kept; the lines around it are whole.
+    #[test]
+    fn a_line_too_long_to_read_is_cut() {
+        let fits = "é".repeat(MAX_LINE_CHARS);
+        assert_eq!(for_terminal(&fits), fits);
+        let said = format!("error: invalid type: string \"{}\", expected f64; rerun", "x".repeat(2_000_000));
+        let printed = for_terminal(&format!("first\n{said}\nlast")).into_owned();
+        let lines: Vec<&str> = printed.lines().collect();
+        assert_eq!(lines.len(), 3);
+        assert_eq!((lines[0], lines[2]), ("first", "last"));
+        let (half, left_out) = (MAX_LINE_CHARS / 2, said.len() - MAX_LINE_CHARS);
+        let (start, end) = (&said[..half], &said[said.len() - half..]);
+        assert_eq!(lines[1], format!("{start} ... ({left_out} characters left out) ... {end}"));
+        assert!(lines[1].ends_with("\", expected f64; rerun"), "{}", &lines[1][lines[1].len() - 80..]);
     }
 }
