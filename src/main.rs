@@ -593,10 +593,11 @@ fn real_main() -> Result<ExitCode> {
                 return Ok(ExitCode::SUCCESS);
             }
             if let Some(e) = &unread {
-                println!("note: {e}: the plans the project's lifts resume are not known here");
+                let note = format!("note: {e}: the plans the project's lifts resume are not known here");
+                println!("{}", progress::for_terminal(&note));
             }
             for r in &removed {
-                println!("removed {r}");
+                println!("removed {}", progress::for_terminal(r));
             }
             let total: u64 = left.iter().map(|k| k.bytes).sum();
             let under = keep_under.map(|mb| (mb, total <= mb.saturating_mul(1_000_000)));
@@ -633,12 +634,12 @@ fn real_main() -> Result<ExitCode> {
             for k in &left {
                 let why =
                     held.get(&(k.lift.clone(), k.revision.clone())).map_or(String::new(), |h| format!(" (held: {h})"));
-                println!("  {}{why}", k.said());
+                println!("  {}", progress::for_terminal(&format!("{}{why}", k.said())));
             }
             Ok(ExitCode::SUCCESS)
         }
         Command::Resume { dir, lift, plan, after_step, swing_deg } => {
-            println!("{}", resume::line(&dir, &lift, &plan, after_step, swing_deg)?);
+            println!("{}", progress::for_terminal(&resume::line(&dir, &lift, &plan, after_step, swing_deg)?));
             Ok(ExitCode::SUCCESS)
         }
         Command::Options { stage } => {
