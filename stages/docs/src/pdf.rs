@@ -190,7 +190,7 @@ fn table_cells(widths: &[f32], row: &[String], size_pt: f32) -> Vec<Vec<String>>
 /// cell that has run out is empty. A row taller than a page is split so,
 /// over as many pages as it takes, rather than drawn past the page's foot.
 pub fn split_table_row(widths: &[f32], row: &[String], size_pt: f32, max_height_mm: f32) -> Vec<Vec<String>> {
-    let (rh, lh) = (size_pt * 0.3528 * 1.9, line_height_mm(size_pt));
+    let (rh, lh) = (table_row_mm(size_pt), line_height_mm(size_pt));
     let per_piece = (((max_height_mm - rh) / lh).floor().max(0.0) as usize).saturating_add(1);
     let cells = table_cells(widths, row, size_pt);
     let lines = cells.iter().map(Vec::len).max().unwrap_or(0).max(1);
@@ -200,6 +200,11 @@ pub fn split_table_row(widths: &[f32], row: &[String], size_pt: f32, max_height_
             cells.iter().map(|c| c.iter().skip(from).take(per_piece).cloned().collect::<Vec<_>>().join("\n")).collect()
         })
         .collect()
+}
+
+/// The height of a table's row of one line, its header's too (mm).
+pub fn table_row_mm(size_pt: f32) -> f32 {
+    size_pt * 0.3528 * 1.9
 }
 
 /// Distance between the baselines of a paragraph's lines (mm).
@@ -339,7 +344,7 @@ impl Doc {
     /// Height of each of `rows` in a [`Doc::table`] of these `widths` (mm):
     /// a cell too wide for its column wraps onto more lines.
     pub fn table_row_heights(widths: &[f32], rows: &[Vec<String>], size_pt: f32) -> Vec<f32> {
-        let (rh, lh) = (size_pt * 0.3528 * 1.9, line_height_mm(size_pt));
+        let (rh, lh) = (table_row_mm(size_pt), line_height_mm(size_pt));
         rows.iter()
             .map(|row| {
                 rh + lh * (table_cells(widths, row, size_pt).iter().map(Vec::len).max().unwrap_or(1).max(1) - 1) as f32
@@ -360,7 +365,7 @@ impl Doc {
         rows: &[Vec<String>],
         size_pt: f32,
     ) -> f32 {
-        let rh = size_pt * 0.3528 * 1.9;
+        let rh = table_row_mm(size_pt);
         let lh = line_height_mm(size_pt);
         let total: f32 = widths.iter().sum();
         self.fill_rect(x, y, total, rh, [225, 232, 242]);

@@ -91,7 +91,7 @@ fn steps_columns(w: f32) -> ([&'static str; 8], [f32; 8], [bool; 8]) {
 fn steps_table(d: &mut Doc, mut y: f32, widths: &[f32], right: &[bool], header: &[&str], rows: &[Vec<String>]) -> f32 {
     const SIZE_PT: f32 = 8.0;
     const CONTINUED: &str = "Steps (continued)";
-    let header_mm = SIZE_PT * 0.3528 * 1.9;
+    let header_mm = crate::pdf::table_row_mm(SIZE_PT);
     let room_below = |d: &Doc, y: f32| d.size.h - 40.0 - y - header_mm;
     let fresh_y = heading_below(d, 20.0, CONTINUED);
     let rows: Vec<Vec<String>> =
@@ -1951,7 +1951,7 @@ mod tests {
         let heights = Doc::table_row_heights(&widths, &rows, 8.0);
         assert!(heights[0] > 3.0 * crate::pdf::line_height_mm(8.0), "{heights:?}");
         let below = d.table(15.0, y, &widths, &[true, false], &["Step", "Closest obstacle"], &rows, 8.0);
-        assert!((below - y - 8.0 * 0.3528 * 1.9 - heights[0]).abs() < 1e-3);
+        assert!((below - y - crate::pdf::table_row_mm(8.0) - heights[0]).abs() < 1e-3);
         let text = d.text[0].replace('\n', "");
         assert_eq!(text.matches("/SITE/ZONE-A/PIPE-RACK-2/BEAM-17").count(), 10, "{text}");
     }

@@ -354,7 +354,7 @@ pub fn page(d: &mut Doc, mut y: f32, w: f32, slings: &Slings, load: &LoadShape, 
     );
     // The top view, the rows and the words together, on the next page
     // where this one has no room left for them.
-    let rows_mm = Doc::table_row_heights(&widths, &rows, 8.0).iter().sum::<f32>() + 8.0 * 0.3528 * 1.9;
+    let rows_mm = Doc::table_row_heights(&widths, &rows, 8.0).iter().sum::<f32>() + crate::pdf::table_row_mm(8.0);
     let words_mm = crate::pdf::wrap(&words, w, 8.5).len() as f32 * crate::pdf::line_height_mm(8.5);
     let top_view_mm = 3.0 + (2.0 * end_half) as f32 * scale + 6.0;
     if y + top_view_mm + rows_mm + 4.0 + words_mm > d.size.h - BOTTOM_MM {
