@@ -464,8 +464,8 @@ fn one_column_booms(charted: LiftsCharted, tasks: &[liftplan_core::lift::LiftTas
     let mut booms = Vec::new();
     for (k, l) in charted.lifts.into_iter().enumerate() {
         let Some(boom) = l.one_column_for_boom_m else { continue };
-        // Said as read, short and without a terminal's escapes.
-        let id: String = l.id.chars().take(100).map(|c| if c.is_control() { '\u{FFFD}' } else { c }).collect();
+        // Said short (printed through for_terminal, as stages' errors are).
+        let id: String = l.id.chars().take(100).collect();
         let Some(task) = tasks.iter().find(|t| t.id == l.id) else {
             anyhow::bail!(
                 "lifts[{k}]: lift '{id}' is not one of the project's lifts; rerun the charts stage (liftplan run --force charts)"
