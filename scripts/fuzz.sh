@@ -18,7 +18,7 @@ seconds=${1:-300}
 shift || true
 targets=("$@")
 if [ ${#targets[@]} -eq 0 ]; then
-  targets=(rvm att plant_mesh scan_file chart_workbook crane_and_lift_toml project_toml artifacts registration_memo kept_plans capacity_csv plan_document site_cloud chart_json plant_json)
+  targets=(rvm att plant_mesh scan_file chart_workbook crane_and_lift_toml project_toml artifacts registration_memo kept_plans capacity_csv plan_document site_cloud chart_json plant_json stage_records)
 fi
 rustup toolchain list | grep -q '^nightly' || rustup toolchain install nightly --profile minimal
 command -v cargo-fuzz > /dev/null || cargo install cargo-fuzz --locked

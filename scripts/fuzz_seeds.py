@@ -283,5 +283,21 @@ for name in sorted(os.listdir(os.path.join(root, "fuzz", "seeds", "chart_json"))
 for name in sorted(os.listdir(os.path.join(root, "fuzz", "seeds", "plant_json"))):
     seed("plant_json", name, read(os.path.join(root, "fuzz", "seeds", "plant_json", name)))
 
+# stage_records: the demo's registration.json, a NUL, and its lifts.json (kept
+# in fuzz/seeds/, which the scans and charts crates' tests read); then the
+# same with a scan left out, one warned of, the reference levelled by its
+# ground and the lift on a chart of one column, so that each is drawn.
+import json
+records = os.path.join(root, "fuzz", "seeds", "stage_records")
+registration, lifts = read(os.path.join(records, "registration.json")), read(os.path.join(records, "lifts.json"))
+seed("stage_records", "demo", registration + b"\0" + lifts)
+said = json.loads(registration)
+said["scans"][0]["method"] = "reference, levelled by its ground (where that slopes, the site frame slopes with it)"
+said["scans"][1]["warning"] = "scan 'scan-2' was moved 0.06 m by the last alignment"
+said["scans"][2]["registered"] = False
+charted = json.loads(lifts)
+charted["lifts"][0]["one_column_for_boom_m"] = 40.0
+seed("stage_records", "demo-all-said", json.dumps(said).encode() + b"\0" + json.dumps(charted).encode())
+
 shutil.rmtree(tmp)
 print(f"seeds written under {corpus}")

@@ -47,21 +47,20 @@ impl Ctx<'_> {
         m.outputs.contains_key(file).then(|| dir.join(file))
     }
 
-    /// An upstream stage's JSON output read as `T`, its own parts of it, as
-    /// a user's file is read: one not of that shape is refused naming the
-    /// file, line and column (read as a JSON value, a file of another
-    /// shape reads as one that says nothing); `None` where that stage did
-    /// not write it.
-    pub fn upstream_typed<T: serde::de::DeserializeOwned>(&self, stage: &str, file: &str) -> Result<Option<T>> {
+    /// An upstream stage's output read by `read` (its crate's reader of
+    /// that file, which refuses one not of the shape the stage writes,
+    /// saying where); a refusal is said naming the file and the stage to
+    /// rerun; `None` where that stage did not write it.
+    pub fn upstream_read<T>(
+        &self,
+        stage: &str,
+        file: &str,
+        read: impl FnOnce(&[u8]) -> std::result::Result<T, String>,
+    ) -> Result<Option<T>> {
         let Some(f) = self.upstream_file(stage, file) else { return Ok(None) };
         let bytes = std::fs::read(&f).with_context(|| format!("reading {}", f.display()))?;
-        let read = serde_json::from_slice(&bytes).map_err(|e| {
-            anyhow::anyhow!(
-                "{}: line {}, column {}: {e}; rerun the {stage} stage (liftplan run --force {stage})",
-                f.display(),
-                e.line(),
-                e.column()
-            )
+        let read = read(&bytes).map_err(|e| {
+            anyhow::anyhow!("{}: {e}; rerun the {stage} stage (liftplan run --force {stage})", f.display())
         })?;
         Ok(Some(read))
     }

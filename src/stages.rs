@@ -369,20 +369,17 @@ fn run_docs(ctx: &Ctx) -> Result<Produced> {
     input_hashes.sort();
     input_hashes.dedup();
     // Scans left out unregistered: what only they saw is missing.
-    let mut scans_left_out = (Vec::new(), 0);
-    let registration: Option<Registration> = ctx.upstream_typed("scans", "registration.json")?;
-    if let Some(r) = &registration {
-        scans_left_out.1 = r.scans.len();
-        scans_left_out.0 = r.scans.iter().filter(|s| !s.registered).map(|s| s.name.clone()).collect();
-    }
-    let site_level_unconfirmed = registration.as_ref().and_then(site_level_unconfirmed);
-    let scans_warned = registration.as_ref().map(scans_warned).unwrap_or_default();
+    let registration =
+        ctx.upstream_read("scans", "registration.json", liftplan_scans::recorded::Registration::from_json)?;
+    let scans_left_out = registration.as_ref().map(|r| r.left_out()).unwrap_or_default();
+    let site_level_unconfirmed = registration.as_ref().and_then(|r| r.site_level_unconfirmed());
+    let scans_warned = registration.as_ref().map(|r| r.warned()).unwrap_or_default();
     // Lifts on a chart of one column: which boom it is for, the chart does not say.
-    let mut one_column_charts = Vec::new();
-    if let Some(r) = ctx.upstream_typed::<LiftsCharted>("charts", "lifts.json")? {
-        let file = ctx.upstream_file("charts", "lifts.json").unwrap_or_default();
-        one_column_charts = one_column_booms(r, &tasks).map_err(|e| anyhow::anyhow!("{}: {e}", file.display()))?;
-    }
+    let one_column_charts = ctx
+        .upstream_read("charts", "lifts.json", |bytes| {
+            liftplan_charts::recorded::LiftsCharted::from_json(bytes)?.one_column_booms(&tasks)
+        })?
+        .unwrap_or_default();
     // What reading each chart configuration warned of, for the lifts on it.
     let mut chart_warnings = Vec::new();
     let mut chart_wind = Vec::new();
@@ -421,177 +418,4 @@ fn run_docs(ctx: &Ctx) -> Result<Produced> {
         }
     }
     Ok(Produced { outputs, summary: serde_json::to_value(&summary)?, lines: summary.lines() })
-}
-
-/// What the docs stage reads of the scans stage's registration.json: each
-/// scan's name, whether it was merged, how (the reference's levelling) and
-/// what registration warned of. Read typed: a file of another shape is
-/// refused, not read as one of no scans (whose cover would then say
-/// nothing of scans left out).
-#[derive(Debug, serde::Deserialize)]
-struct Registration {
-    scans: Vec<ScanRegistered>,
-}
-
-#[derive(Debug, serde::Deserialize)]
-struct ScanRegistered {
-    name: String,
-    registered: bool,
-    method: String,
-    warning: Option<String>,
-}
-
-/// What the docs stage reads of the charts stage's lifts.json: which
-/// lifts are on a chart of one column, for the boom their crane is set up
-/// with.
-#[derive(Debug, serde::Deserialize)]
-struct LiftsCharted {
-    lifts: Vec<LiftCharted>,
-}
-
-#[derive(Debug, serde::Deserialize)]
-struct LiftCharted {
-    id: String,
-    one_column_for_boom_m: Option<f64>,
-}
-
-/// Each lift on a chart of one column and the boom it is said for, which
-/// the charts stage writes as the lift's own (the chart does not say
-/// which boom its column is for): a lift not among `tasks`, or a boom not
-/// its crane's, is refused (the cover would name a boom the crane is not
-/// set up with).
-fn one_column_booms(charted: LiftsCharted, tasks: &[liftplan_core::lift::LiftTask]) -> Result<Vec<(String, f64)>> {
-    let mut booms = Vec::new();
-    for (k, l) in charted.lifts.into_iter().enumerate() {
-        let Some(boom) = l.one_column_for_boom_m else { continue };
-        // Said short (printed through for_terminal, as stages' errors are).
-        let id: String = l.id.chars().take(100).collect();
-        let Some(task) = tasks.iter().find(|t| t.id == l.id) else {
-            anyhow::bail!(
-                "lifts[{k}]: lift '{id}' is not one of the project's lifts; rerun the charts stage (liftplan run --force charts)"
-            );
-        };
-        let own = task.crane.placement.boom_length_m;
-        if boom.to_bits() != own.to_bits() {
-            anyhow::bail!(
-                "lifts[{k}] ('{id}'): one_column_for_boom_m {boom} is not the {own} m boom its crane is set up with; rerun the charts stage (liftplan run --force charts)"
-            );
-        }
-        booms.push((l.id, boom));
-    }
-    Ok(booms)
-}
-
-/// The reference scan and how it was levelled, from the scans stage's
-/// registration.json, where its vertical rests on its ground or on nothing
-/// (a scanner that did not level itself): every height in the plan rests
-/// on that frame.
-fn site_level_unconfirmed(registration: &Registration) -> Option<(String, String)> {
-    use liftplan_scans::register::{LEVELLED_BY_GROUND, NOT_LEVELLED};
-    let reference = registration.scans.iter().find(|s| s.method.starts_with("reference"))?;
-    let method = &reference.method;
-    (method.contains(LEVELLED_BY_GROUND) || method.contains(NOT_LEVELLED))
-        .then(|| (reference.name.clone(), method.clone()))
-}
-
-/// The scans merged with a warning from registration (placed with their
-/// station's help along a way what they share holds loosely, though points
-/// lie where another scanner saw through, or moved by the last alignment
-/// against all the others): each one's name and the warning, from the scans
-/// stage's registration.json.
-fn scans_warned(registration: &Registration) -> Vec<(String, String)> {
-    registration
-        .scans
-        .iter()
-        .filter(|s| s.registered)
-        .filter_map(|s| {
-            let warning = s.warning.as_deref().filter(|w| !w.is_empty())?;
-            Some((s.name.clone(), warning.to_string()))
-        })
-        .collect()
-}
-
-#[cfg(test)]
-mod site_level_tests {
-    use super::{LiftsCharted, Registration, one_column_booms, scans_warned, site_level_unconfirmed};
-
-    fn registration(json: serde_json::Value) -> Registration {
-        serde_json::from_value(json).unwrap()
-    }
-
-    /// Only merged scans with a warning are named: a scan left out is
-    /// named as left out, not as warned of.
-    #[test]
-    fn scans_merged_with_a_warning_are_named() {
-        let method = "plan-view correlation + ICP";
-        let scans = registration(serde_json::json!({ "scans": [
-            { "name": "scan-1", "registered": true, "method": "reference", "warning": null },
-            { "name": "scan-2", "registered": true, "method": method, "warning": "scan 'scan-2' was placed with its station's help: ..." },
-            { "name": "scan-3", "registered": false, "method": "", "warning": "scan 'scan-3' is not merged: ..." },
-            { "name": "scan-4", "registered": true, "method": method },
-        ] }));
-        assert_eq!(
-            scans_warned(&scans),
-            [("scan-2".to_string(), "scan 'scan-2' was placed with its station's help: ...".to_string())]
-        );
-        assert!(scans_warned(&registration(serde_json::json!({ "scans": [] }))).is_empty());
-    }
-
-    /// A registration.json not of the shape the scans stage writes (no
-    /// scans, a name not a string, whether merged not said) is refused, not
-    /// read as one that says nothing of scans left out.
-    #[test]
-    fn a_registration_of_another_shape_is_refused() {
-        for wrong in [
-            serde_json::json!([1, 2, 3]),
-            serde_json::json!({}),
-            serde_json::json!({ "scans": [{ "name": 5, "registered": false, "method": "" }] }),
-            serde_json::json!({ "scans": [{ "name": "scan-3", "method": "" }] }),
-            serde_json::json!({ "scans": [{ "name": "scan-3", "registered": "no", "method": "" }] }),
-        ] {
-            assert!(serde_json::from_value::<Registration>(wrong.clone()).is_err(), "{wrong}");
-        }
-    }
-
-    /// A lift on a chart of one column is said with its crane's own boom;
-    /// lifts.json naming another boom, or a lift the project has not, is
-    /// refused naming the entry.
-    #[test]
-    fn a_one_column_charts_boom_is_the_lifts_own() {
-        let task = liftplan_fixtures::demo::lift();
-        let boom = task.crane.placement.boom_length_m;
-        let charted = |id: &str, boom: f64| -> LiftsCharted {
-            serde_json::from_value(serde_json::json!({ "lifts": [
-                { "id": "other", "one_column_for_boom_m": null },
-                { "id": id, "one_column_for_boom_m": boom },
-            ] }))
-            .unwrap()
-        };
-        let tasks = std::slice::from_ref(&task);
-        assert_eq!(one_column_booms(charted("V-101", boom), tasks).unwrap(), [("V-101".to_string(), boom)]);
-        let e = one_column_booms(charted("V-101", 1e300), tasks).unwrap_err().to_string();
-        assert!(e.starts_with("lifts[1] ('V-101'): one_column_for_boom_m 1000000"), "{e}");
-        assert!(e.contains(&format!("is not the {boom} m boom its crane is set up with")), "{e}");
-        let e = one_column_booms(charted("V-102", boom), tasks).unwrap_err().to_string();
-        assert!(e.starts_with("lifts[1]: lift 'V-102' is not one of the project's lifts"), "{e}");
-    }
-
-    #[test]
-    fn a_reference_levelled_by_its_ground_or_not_at_all_is_named() {
-        let with = |method: &str| {
-            registration(serde_json::json!({ "scans": [
-                { "name": "scan-2", "registered": true, "method": "levelled, plan-view correlation + ICP" },
-                { "name": "scan-1", "registered": true, "method": method },
-            ] }))
-        };
-        for unconfirmed in [
-            format!("reference, levelled by {}", liftplan_scans::register::LEVELLED_BY_GROUND),
-            "reference, NOT LEVELLED: too few walls".to_string(),
-        ] {
-            assert_eq!(site_level_unconfirmed(&with(&unconfirmed)), Some(("scan-1".into(), unconfirmed.clone())));
-        }
-        for confirmed in ["reference", "reference, levelled by its plumb surfaces (walls, columns, tanks)"] {
-            assert_eq!(site_level_unconfirmed(&with(confirmed)), None, "{confirmed}");
-        }
-    }
 }

@@ -8,7 +8,7 @@
 //! |---|---|
 //! | `capacity.csv` | config, boom_m, radius_m, capacity_kg, cell: every permitted chart cell in kg and m |
 //! | `chart.json` | per configuration: file, sheet, range, grid size, units found, warnings |
-//! | `lifts.json` | per lift: gross load, capacity and utilisation at pick and set, the radial ranges the chart permits, critical flag |
+//! | `lifts.json` | per lift: gross load, capacity and utilisation at pick and set, the radial ranges the chart permits, critical flag (read back by [`recorded`]) |
 //!
 //! Every value keeps the `sheet!cell` it came from, so the lift plan can quote the
 //! chart row it relied on. The capacity rule itself (never interpolate upwards)
@@ -21,6 +21,7 @@
 pub mod container;
 pub mod detect;
 pub mod error;
+pub mod recorded;
 pub mod sheet;
 pub mod stated;
 
@@ -424,6 +425,12 @@ fn show_unnamed(units: &mut detect::Units) {
     ));
 }
 
+/// `lifts.json`: every lift's report (read back by
+/// [`recorded::LiftsCharted`]).
+pub fn lifts_json(lifts: &[LiftReport]) -> serde_json::Value {
+    serde_json::json!({ "lifts": lifts })
+}
+
 /// A lift as the chart sees it, for `lifts.json`.
 #[derive(Debug, Clone, Serialize)]
 pub struct LiftReport {
@@ -612,7 +619,7 @@ pub fn run(
             .map_err(|e| ChartError::Io(Location::file(&p), e))
     };
     write("chart.json", serde_json::json!({ "files": summary.files, "configs": summary.configs }))?;
-    write("lifts.json", serde_json::json!({ "lifts": summary.lifts }))?;
+    write("lifts.json", lifts_json(&summary.lifts))?;
     Ok(summary)
 }
 

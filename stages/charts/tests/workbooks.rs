@@ -372,6 +372,10 @@ fn a_chart_of_one_column_and_a_chart_by_boom_length_meet_the_right_crane() {
     assert!(tower_on_jib.pick.is_some() && tower_on_jib.one_column_for_boom_m.is_none(), "{tower_on_jib:?}");
     let luffing_on_one = liftplan_charts::lift_report(&lift("ac-700", "Jib 60 m"), &table(&one)).unwrap();
     assert_eq!(luffing_on_one.one_column_for_boom_m, Some(40.0));
+    // What the docs stage reads back of lifts.json says the lift's boom.
+    let written = liftplan_charts::lifts_json(std::slice::from_ref(&luffing_on_one)).to_string();
+    let read = liftplan_charts::recorded::LiftsCharted::from_json(written.as_bytes()).unwrap();
+    assert_eq!(read.one_column_booms(&[lift("ac-700", "Jib 60 m")]).unwrap(), [("L".to_string(), 40.0)]);
     let s = liftplan_charts::Summary { files: vec![], configs: vec![], rows: 0, lifts: vec![luffing_on_one] };
     assert!(s.lines().iter().any(|l| l.contains("CHECK THAT IT IS THE CHART FOR THE 40.0 m BOOM")), "{:?}", s.lines());
     let tower_by_boom = liftplan_charts::lift_report(&lift("tower-hh-60", "Main boom 360"), &table(&by_boom)).unwrap();

@@ -9,7 +9,7 @@
 //! | file | what |
 //! |---|---|
 //! | `site.laz` | LAS 1.4, millimetre scale, class 2 = ground, scan id in `point_source_id` |
-//! | `registration.json` | per scan: 4x4 pose, fitness, inlier RMSE, method, warnings |
+//! | `registration.json` | per scan: 4x4 pose, fitness, inlier RMSE, method, warnings (read back by [`recorded`]) |
 //! | `scans.png` | top view coloured by scan |
 //! | `ground.asc` | ground-height grid (ESRI ASCII) |
 //!
@@ -41,6 +41,7 @@ pub mod kdtree;
 pub mod memo;
 pub mod picture;
 pub mod read;
+pub mod recorded;
 pub mod register;
 pub mod subsample;
 pub mod write;
@@ -255,6 +256,12 @@ impl Default for RunOptions<'_> {
     fn default() -> Self {
         RunOptions { seed: 0, progress: &|_, _, _| {}, root: None, memo: None }
     }
+}
+
+/// `registration.json`: the registration mode and every scan's report
+/// (read back by [`recorded::Registration`]).
+pub fn registration_json(register: RegisterMode, scans: &[ScanReport]) -> serde_json::Value {
+    serde_json::json!({ "register": register, "scans": scans })
 }
 
 /// One line of the run output per scan.
@@ -707,7 +714,7 @@ pub fn run(inputs: &[PathBuf], s: &Settings, opts: &RunOptions, out_dir: &Path) 
         })
         .collect();
     std::fs::create_dir_all(out_dir).map_err(|e| ScanError::Io(Location::file(out_dir), e))?;
-    write_json(&out_dir.join("registration.json"), &serde_json::json!({ "register": s.register, "scans": reports }))?;
+    write_json(&out_dir.join("registration.json"), &registration_json(s.register, &reports))?;
     if !unregistered.is_empty() && s.on_unregistered == OnUnregistered::Fail {
         return Err(ScanError::Registration(unregistered_error(&unregistered, &out_dir.join("registration.json"))));
     }
@@ -744,7 +751,7 @@ pub fn run(inputs: &[PathBuf], s: &Settings, opts: &RunOptions, out_dir: &Path) 
     picture::top_view(&cloud, &names, 1200)
         .write_png(&out_dir.join("scans.png"))
         .map_err(|e| ScanError::Io(Location::file(out_dir.join("scans.png")), e))?;
-    write_json(&out_dir.join("registration.json"), &serde_json::json!({ "register": s.register, "scans": reports }))?;
+    write_json(&out_dir.join("registration.json"), &registration_json(s.register, &reports))?;
     (opts.progress)("write site.laz", 1, 1);
     let bbox = cloud.bbox();
     Ok(Summary {
