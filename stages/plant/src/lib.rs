@@ -237,7 +237,7 @@ impl Summary {
         }
         if self.names_shortened > 0 {
             v.push(format!(
-                "{} group names longer than {} characters are kept as their first {} and \"...\" (the plan's pages name what a crane comes closest to by them)",
+                "{} group names longer than {} characters are kept as their first {}, \"... #\" and a tag of the whole name (the plan's pages name what a crane comes closest to by them)",
                 self.names_shortened,
                 liftplan_core::mesh::MAX_GROUP_NAME_CHARS,
                 liftplan_core::mesh::MAX_GROUP_NAME_CHARS
@@ -864,7 +864,7 @@ pub fn run(
         summary.exclude_unmatched.push(format!("exclude_where '{rule}'{no_attributes}"));
     }
     // Names are matched above whole; kept, for the words of later stages,
-    // to their first MAX_GROUP_NAME_CHARS characters.
+    // to their first MAX_GROUP_NAME_CHARS characters and a tag of the whole.
     summary.names_shortened = keep_group_names(&mut mesh.groups) + keep_group_names(&mut summary.excluded_groups);
     let pose = liftplan_core::frame::pose_xyz_yaw(
         s.translate_m[0],
@@ -1172,8 +1172,9 @@ mod tests {
 
     /// A group name of thousands of characters (an RVM file can state any
     /// length) is matched by the selection whole and kept, in the mesh and
-    /// among the groups left out, as its first 200 characters: the plan's
-    /// pages name what a crane comes closest to by it, and said so.
+    /// among the groups left out, as its first 200 characters and a tag of
+    /// the whole name (two agreeing in their first 200 read apart): the
+    /// plan's pages name what a crane comes closest to by it, and said so.
     #[test]
     fn long_group_names_are_kept_short() {
         let d = tempfile::tempdir().unwrap();
@@ -1186,7 +1187,7 @@ mod tests {
         };
         let (kept, left_out) = (format!("/RACK-{}", "A".repeat(5000)), format!("/SKID-{}", "B".repeat(300)));
         // Another left out, 5 m along, whose name agrees with it in its
-        // first 200 characters: kept as the same words, boxed on its own.
+        // first 200 characters: kept as other words, boxed on its own.
         let alike = format!("{left_out}B");
         let mut along = cube.clone();
         along.matrix[9] = 5.0;
@@ -1194,7 +1195,7 @@ mod tests {
             groups: vec![
                 Group { name: kept.clone(), primitives: vec![cube.clone()], ..Default::default() },
                 Group { name: left_out.clone(), primitives: vec![cube], ..Default::default() },
-                Group { name: alike, primitives: vec![along.clone()], ..Default::default() },
+                Group { name: alike.clone(), primitives: vec![along.clone()], ..Default::default() },
                 // A terminal's escapes in a name: shown as U+FFFD, not
                 // counted as shortened.
                 Group { name: "/TANK\x1b]0;x\x07\n".into(), primitives: vec![along], ..Default::default() },
@@ -1207,11 +1208,14 @@ mod tests {
         // The pattern meets the name past its 200th character.
         let s = Settings { exclude: vec![format!("*{}", "B".repeat(250))], ..Default::default() };
         let summary = run(std::slice::from_ref(&path), &s, &d.path().join("out"), None, &|_, _, _| {}).unwrap();
-        let short = |n: &str| format!("{}...", n.chars().take(200).collect::<String>());
+        let short = |n: &str| {
+            let tag = &blake3::hash(n.as_bytes()).to_hex()[..8];
+            format!("{}... #{tag}", n.chars().take(200).collect::<String>())
+        };
         assert!(summary.exclude_unmatched.is_empty(), "{:?}", summary.exclude_unmatched);
-        assert_eq!(summary.excluded_groups, [short(&left_out), short(&left_out)]);
+        assert_eq!(summary.excluded_groups, [short(&left_out), short(&alike)]);
         let boxes: Vec<(&str, f64)> = summary.excluded_boxes.iter().map(|b| (b.name.as_str(), b.center_m[0])).collect();
-        assert_eq!(boxes, [(short(&left_out).as_str(), 0.0), (short(&left_out).as_str(), 5.0)]);
+        assert_eq!(boxes, [(short(&left_out).as_str(), 0.0), (short(&alike).as_str(), 5.0)]);
         let mesh = TriMesh::read_artifact(&d.path().join("out/plant.mesh")).unwrap();
         assert_eq!(mesh.groups, [short(&kept), "/TANK\u{FFFD}]0;x\u{FFFD}\u{FFFD}".to_string()]);
         assert_eq!(summary.names_shortened, 3);
