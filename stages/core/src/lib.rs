@@ -13,6 +13,7 @@
 //! | [`obb`] | oriented boxes: crane parts and their exact footprint/height facts |
 //! | [`cloud`] | point clouds (columns) |
 //! | [`mesh`] | triangle meshes with part/group provenance |
+//! | [`names`] | names from others' files as liftplan keeps them: bounded, no control characters |
 //! | [`crane`] | crane model files, placement, forward and inverse kinematics |
 //! | [`outriggers`] | a mobile crane's pad loads and the pressure under its mats |
 //! | [`capacity`] | load-chart grids and the never-interpolate-upwards rule |
@@ -49,6 +50,7 @@ pub mod las_file;
 pub mod lift;
 pub mod location;
 pub mod mesh;
+pub mod names;
 pub mod obb;
 pub mod obstacle;
 pub mod outriggers;

@@ -30,44 +30,12 @@ pub const MAX_GROUP_NAME_CHARS: usize = 200;
 /// box per primitive).
 pub const MAX_MODEL_BOX_PARTS: usize = 20_000;
 
-/// A group's name as the plant stage keeps it: whole up to
-/// [`MAX_GROUP_NAME_CHARS`] characters, else its first that many, "... #"
-/// and the first eight hex digits of the whole name's BLAKE3 hash (so at
-/// most [`GROUP_NAME_TAG_CHARS`] more): two names that agree in their
-/// first characters still read apart on the plan's pages, where a crane
-/// part is said to come closest to one of them. A control character in it
-/// (a line break, a terminal's escape: a damaged or hostile model's bytes)
-/// is shown as U+FFFD, as the name is printed in the run's lines and drawn
-/// on the plan's pages. A name kept is kept again unchanged.
+/// A group's name as the plant stage keeps it
+/// ([`crate::names::kept`] to [`MAX_GROUP_NAME_CHARS`]): two names that
+/// agree in their first characters still read apart on the plan's pages,
+/// where a crane part is said to come closest to one of them.
 pub fn group_name_kept(name: &str) -> std::borrow::Cow<'_, str> {
-    use std::borrow::Cow;
-    let cut = name.char_indices().nth(MAX_GROUP_NAME_CHARS).map(|(at, _)| at);
-    let (head, tail) = match cut {
-        None => (name, Cow::Borrowed("")),
-        Some(at) if is_name_tag(&name[at..]) => (&name[..at], Cow::Borrowed(&name[at..])),
-        Some(at) => {
-            let hash = blake3::hash(name.as_bytes()).to_hex();
-            (&name[..at], Cow::Owned(format!("... #{}", &hash[..8])))
-        }
-    };
-    if matches!(tail, Cow::Borrowed(_)) && !head.chars().any(char::is_control) {
-        return Cow::Borrowed(name);
-    }
-    let mut kept: String = head.chars().map(|c| if c.is_control() { '\u{FFFD}' } else { c }).collect();
-    kept.push_str(&tail);
-    Cow::Owned(kept)
-}
-
-/// How many characters [`group_name_kept`] adds after a long name's first
-/// [`MAX_GROUP_NAME_CHARS`]: "... #" and eight hex digits.
-pub const GROUP_NAME_TAG_CHARS: usize = 13;
-
-/// Whether `tail` is what [`group_name_kept`] puts after a long name's
-/// first characters.
-fn is_name_tag(tail: &str) -> bool {
-    tail.len() == GROUP_NAME_TAG_CHARS
-        && tail.starts_with("... #")
-        && tail[5..].bytes().all(|b| b.is_ascii_digit() || (b'a'..=b'f').contains(&b))
+    crate::names::kept(name, MAX_GROUP_NAME_CHARS)
 }
 
 /// The group ids of a mesh by name, for a reader that names many groups:
@@ -563,28 +531,9 @@ mod tests {
     #[test]
     fn group_names_kept_to_their_first_200_characters() {
         assert_eq!(group_name_kept("/PIPE-RACK-2"), "/PIPE-RACK-2");
-        let longest = "é".repeat(MAX_GROUP_NAME_CHARS);
-        assert_eq!(group_name_kept(&longest), longest);
-        let longer = format!("{longest}x");
-        let tag = |name: &str| format!("... #{}", &blake3::hash(name.as_bytes()).to_hex()[..8]);
-        assert_eq!(group_name_kept(&longer), format!("{longest}{}", tag(&longer)));
-        let kept = group_name_kept(&"/A".repeat(50_000)).into_owned();
-        assert_eq!(kept.chars().count(), MAX_GROUP_NAME_CHARS + GROUP_NAME_TAG_CHARS);
-        assert_eq!(group_name_kept(&kept), kept);
-        assert_eq!(group_name_kept("/V-1\x1b[2J\n\0"), "/V-1\u{FFFD}[2J\u{FFFD}\u{FFFD}");
-        // Two names that agree in their first 200 characters read apart.
-        let (a, b) = (format!("{longer}\n"), format!("{longer}y"));
-        let (kept_a, kept_b) = (group_name_kept(&a).into_owned(), group_name_kept(&b).into_owned());
-        assert_eq!(kept_a, format!("{longest}{}", tag(&a)));
-        assert_ne!(kept_a, kept_b);
-        assert_eq!(group_name_kept(&kept_a), kept_a);
-        // A control character before the tag is replaced, the tag kept.
-        let rest: String = kept_a.chars().skip(1).collect();
-        assert_eq!(group_name_kept(&format!("\x1b{rest}")), format!("\u{FFFD}{rest}"));
-        // Words that only look like a tag past the 200th character, longer
-        // than one, get one of their own.
-        let not_a_tag = format!("{longest}... #0123456789");
-        assert_eq!(group_name_kept(&not_a_tag), format!("{longest}{}", tag(&not_a_tag)));
+        let longer = "/A".repeat(50_000);
+        assert_eq!(group_name_kept(&longer), crate::names::kept(&longer, MAX_GROUP_NAME_CHARS));
+        assert_eq!(group_name_kept(&longer).chars().count(), MAX_GROUP_NAME_CHARS + crate::names::TAG_CHARS);
     }
 
     /// Boxes as the plant stage writes them (around points, with parts, a

@@ -436,7 +436,7 @@ pub const DEFAULT_STATION_YAW_TOLERANCE_DEG: f64 = 3.0;
 /// station file that names the scan.
 #[derive(Debug)]
 pub struct SurveyedStation {
-    /// The scan's name.
+    /// The scan's name, as the scans' are kept ([`read::scan_name_kept`]).
     pub scan: String,
     /// Scanner frame to site frame.
     pub pose: Pose,
@@ -510,7 +510,8 @@ pub fn parse_stations(path: &Path, text: &str) -> Result<Vec<SurveyedStation>> {
                 st.z_m.as_ref().map_or(0.0, |v| *v.get_ref()),
                 st.yaw_deg.as_ref().map_or(0.0, |v| *v.get_ref()).to_radians(),
             ),
-            scan: st.scan.into_inner(),
+            // Kept as the scans' names are, which it is matched with.
+            scan: liftplan_core::names::kept(st.scan.get_ref(), read::MAX_SCAN_NAME_CHARS).into_owned(),
         });
     }
     Ok(out)
@@ -1127,6 +1128,24 @@ mod tests {
         let later = "[[station]]\nscan = \"scan-2\"\nx_m = 1.0\ny_m = 2.0\n\n[[station]]\nscan = \"scan-9\"\nx_m = 3.0\ny_m = 4.0\n";
         let (_d, p) = stations(later);
         check_stations(&p, &read_stations(&p).unwrap(), &scans).unwrap();
+    }
+
+    /// A scan's name, from its file's name, is kept without control
+    /// characters (a line break in a file's name printed a line of its own
+    /// in the run's output) and to its first 200 characters and a tag; a
+    /// station naming the scan as its file does still places it.
+    #[test]
+    fn scan_names_are_kept_without_control_characters_and_short() {
+        let name = read::stem(Path::new("scans/scan-3\nerror: evil\x1b[2J.laz"));
+        assert_eq!(name, "scan-3\u{FFFD}error: evil\u{FFFD}[2J");
+        let long = "s".repeat(300);
+        let name = read::stem(Path::new(&format!("scans/{long}.e57")));
+        assert_eq!(name, liftplan_core::names::kept(&long, read::MAX_SCAN_NAME_CHARS));
+        assert_eq!(name.chars().count(), 200 + liftplan_core::names::TAG_CHARS);
+        let (_d, p) = stations(&format!("[[station]]\nscan = \"{long}\"\nx_m = 1.0\ny_m = 2.0\n"));
+        let st = read_stations(&p).unwrap();
+        assert_eq!(st[0].scan, name);
+        check_stations(&p, &st, &[scan(&name), scan("scan-2")]).unwrap();
     }
 
     /// The scans' dates are said with where they come from: E57's

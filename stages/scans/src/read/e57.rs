@@ -79,7 +79,7 @@ pub(super) fn list(path: &Path) -> Result<Vec<ScanInfo>> {
                 path: path.to_path_buf(),
                 format: Format::E57,
                 index: i,
-                name: pc.name.clone().unwrap_or_else(|| format!("{stem}#{i}")),
+                name: pc.name.as_deref().map(super::scan_name_kept).unwrap_or_else(|| format!("{stem}#{i}")),
                 declared_points: Some(pc.records),
                 pose: pose_of(pc),
                 bbox,

@@ -240,7 +240,21 @@ pub(crate) fn check_finite(info: &ScanInfo, chunk: &PointCloud, first_index: u64
     Ok(())
 }
 
-/// Scan name from the file stem.
+/// Scan name from the file stem, as scans' names are kept.
 pub(crate) fn stem(path: &Path) -> String {
-    path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "scan".into())
+    path.file_stem().map(|s| scan_name_kept(&s.to_string_lossy())).unwrap_or_else(|| "scan".into())
+}
+
+/// The most characters of a scan's name kept: a name is words in the run's
+/// lines and on the plan's pages (scans left out, warned of), and an E57
+/// file can name a scan in any number.
+pub const MAX_SCAN_NAME_CHARS: usize = 200;
+
+/// A scan's name (its file's stem, or the name its E57 file gives it) as
+/// the scans stage keeps it ([`liftplan_core::names::kept`]): at most
+/// [`MAX_SCAN_NAME_CHARS`] characters and a tag, no control characters (a
+/// line break in a file's name printed a line of its own in the run's
+/// output).
+pub fn scan_name_kept(name: &str) -> String {
+    liftplan_core::names::kept(name, MAX_SCAN_NAME_CHARS).into_owned()
 }
