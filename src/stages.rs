@@ -338,7 +338,8 @@ fn run_docs(ctx: &Ctx) -> Result<Produced> {
                     "code" => format!("code of the {stage} stage"),
                     "settings" => format!("settings of the {stage} stage"),
                     _ if name.starts_with("setting:") || name.starts_with("upstream:") => continue,
-                    _ => name.clone(),
+                    // A file's name as words ("file:scans/...").
+                    _ => liftplan_core::names::without_controls(name).into_owned(),
                 };
                 input_hashes.push((shown, hash.chars().take(16).collect::<String>()));
             }

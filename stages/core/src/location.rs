@@ -13,7 +13,15 @@ use std::path::{Path, PathBuf};
 /// this way is the same however the project folder was named on the command
 /// line and wherever it lies, as its cache key is.
 pub fn shown(path: &Path, root: Option<&Path>) -> String {
-    root.and_then(|r| path.strip_prefix(r).ok()).unwrap_or(path).display().to_string()
+    in_words(root.and_then(|r| path.strip_prefix(r).ok()).unwrap_or(path))
+}
+
+/// A path as liftplan says it in its lines, errors and pages: each control
+/// character in it (a line break in a file's name, a terminal's escape)
+/// shown as U+FFFD, so that naming a file never prints a line it does not
+/// say.
+pub fn in_words(path: &Path) -> String {
+    crate::names::without_controls(&path.display().to_string()).into_owned()
 }
 
 /// A place inside a file.
@@ -66,7 +74,7 @@ impl Location {
 
 impl fmt::Display for Location {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let p = self.path.display();
+        let p = in_words(&self.path);
         match &self.place {
             Place::Whole => write!(f, "{p}"),
             Place::Byte(o) => write!(f, "{p} at byte {o}"),
@@ -108,6 +116,11 @@ mod tests {
         assert_eq!(shown(Path::new("site-a/scans/s1.laz"), Some(Path::new("site-a"))), "scans/s1.laz");
         assert_eq!(shown(Path::new("/elsewhere/s1.laz"), Some(root)), "/elsewhere/s1.laz");
         assert_eq!(shown(Path::new("/data/site-a/scans/s1.laz"), None), "/data/site-a/scans/s1.laz");
+        // A line break or an escape in a file's name is not said as one.
+        let odd = Path::new("/data/site-a/scans/s1\nerror: x\x1b[2J.laz");
+        assert_eq!(shown(odd, Some(root)), "scans/s1\u{FFFD}error: x\u{FFFD}[2J.laz");
+        let at = Location::line(odd, 3, Some(4)).to_string();
+        assert_eq!(at, "/data/site-a/scans/s1\u{FFFD}error: x\u{FFFD}[2J.laz:3:4");
     }
 
     #[test]

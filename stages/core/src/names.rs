@@ -31,12 +31,18 @@ pub fn kept(name: &str, max_chars: usize) -> Cow<'_, str> {
             (&name[..at], Cow::Owned(format!("... #{}", &hash[..8])))
         }
     };
-    if matches!(tail, Cow::Borrowed(_)) && !head.chars().any(char::is_control) {
-        return Cow::Borrowed(name);
+    match (without_controls(head), tail) {
+        (Cow::Borrowed(_), Cow::Borrowed(_)) => Cow::Borrowed(name),
+        (head, tail) => Cow::Owned(head.into_owned() + &tail),
     }
-    let mut kept: String = head.chars().map(|c| if c.is_control() { '\u{FFFD}' } else { c }).collect();
-    kept.push_str(&tail);
-    Cow::Owned(kept)
+}
+
+/// `words` with each control character shown as U+FFFD, whole.
+pub fn without_controls(words: &str) -> Cow<'_, str> {
+    if !words.chars().any(char::is_control) {
+        return Cow::Borrowed(words);
+    }
+    Cow::Owned(words.chars().map(|c| if c.is_control() { '\u{FFFD}' } else { c }).collect())
 }
 
 /// Whether `tail` is what [`kept`] puts after a long name's first
