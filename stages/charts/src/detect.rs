@@ -317,21 +317,30 @@ pub fn find_grids(sheet: &Sheet) -> Result<Vec<Grid>, (String, String)> {
     Ok(out)
 }
 
+/// The words above a grid that title it, which name its configuration
+/// ("sheet / title") where a sheet holds several: on one line (a cell's
+/// line breaks, Alt+Enter in Excel, as spaces: a lift names the
+/// configuration in one line of its project file, and the run prints it in
+/// one) and kept to [`MAX_TITLE_CHARS`] ([`liftplan_core::names::kept`]; a
+/// cell holds up to 32,767 characters).
 fn title_above(sheet: &Sheet, g: &Grid) -> String {
     let last = *g.value_cols.last().unwrap_or(&g.label_col);
     let lo = g.label_col.saturating_sub(1);
     for r in (g.header_row.saturating_sub(6)..g.header_row).rev() {
         for (_, v) in sheet.cells.range((r, lo)..=(r, last)) {
             if let Val::Text(t) = v {
-                let t = t.trim();
-                if t.len() >= 4 && !(says_boom(t) && t.len() < 30) && !(says_radius(t) && t.len() < 30) {
-                    return t.to_string();
+                let t = t.split_whitespace().collect::<Vec<_>>().join(" ");
+                if t.len() >= 4 && !(says_boom(&t) && t.len() < 30) && !(says_radius(&t) && t.len() < 30) {
+                    return liftplan_core::names::kept(&t, MAX_TITLE_CHARS).into_owned();
                 }
             }
         }
     }
     String::new()
 }
+
+/// The most characters of a grid's title kept in its configuration's name.
+pub const MAX_TITLE_CHARS: usize = 100;
 
 /// Units read from the words around a grid.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
@@ -1066,6 +1075,28 @@ mod tests {
         assert_eq!(c.lookup(20.0, 4.0).unwrap().capacity_kg, 35000.0);
         assert!(c.lookup(20.0, 3.0).is_err());
         assert!(c.lookup(20.0, 4.0).unwrap().cell.contains("Main!C6"));
+    }
+
+    /// A grid's title names its configuration in one line of words kept
+    /// short: a cell's line breaks as spaces, a cell of thousands of
+    /// characters kept to its first 100 and a tag.
+    #[test]
+    fn a_grids_title_is_one_line_kept_short() {
+        let titled = |title: &str| {
+            let s = sheet(&[
+                &[title, "", ""],
+                &["Radius m", "Boom m", ""],
+                &["", "12", "20"],
+                &["3", "50", "30"],
+                &["4", "45", "28"],
+            ]);
+            find_grids(&s).unwrap()[0].title.clone()
+        };
+        assert_eq!(titled("Main boom,\r\n\tcounterweight 140 t "), "Main boom, counterweight 140 t");
+        let long = "Counterweight 140 t ".repeat(500);
+        let title = titled(&long);
+        assert_eq!(title, liftplan_core::names::kept(long.trim(), MAX_TITLE_CHARS));
+        assert_eq!(title.chars().count(), MAX_TITLE_CHARS + liftplan_core::names::TAG_CHARS);
     }
 
     #[test]
