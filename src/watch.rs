@@ -20,7 +20,13 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
+/// Writes `msg` to the watch log and the terminal, through
+/// [`crate::progress::for_terminal`]: it names files others dropped in the
+/// folder (a scan's file name may hold a terminal's escape). Paths in it
+/// are said with [`liftplan_core::location::in_words`], so a line break in
+/// a file's name does not print a line of its own.
 fn log(dir: &Path, msg: &str) {
+    let msg = crate::progress::for_terminal(msg);
     let logdir = dir.join(".liftplan").join("log");
     let _ = std::fs::create_dir_all(&logdir);
     let t = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map(|d| d.as_secs_f64()).unwrap_or(0.0);
@@ -167,7 +173,7 @@ pub fn watch(dir: &Path, progress: &Progress, stop: Arc<AtomicBool>) -> Result<(
             if since.elapsed() < parse_wait {
                 if since.elapsed() < Duration::from_millis(200) {
                     for (p, e) in &not_ready {
-                        log(dir, &format!("waiting for {}: {e}", p.display()));
+                        log(dir, &format!("waiting for {}: {e}", liftplan_core::location::in_words(p)));
                     }
                 }
                 continue;
@@ -177,7 +183,7 @@ pub fn watch(dir: &Path, progress: &Progress, stop: Arc<AtomicBool>) -> Result<(
                     dir,
                     &format!(
                         "{} is still not readable after {:?}: {e}; running anyway so the problem is reported",
-                        p.display(),
+                        liftplan_core::location::in_words(p),
                         parse_wait
                     ),
                 );
@@ -185,7 +191,7 @@ pub fn watch(dir: &Path, progress: &Progress, stop: Arc<AtomicBool>) -> Result<(
         }
         waiting_since = None;
         let names: Vec<String> =
-            changed.iter().map(|p| p.strip_prefix(dir).unwrap_or(p).display().to_string()).collect();
+            changed.iter().map(|p| liftplan_core::location::in_words(p.strip_prefix(dir).unwrap_or(p))).collect();
         log(dir, &format!("changed: {}", names.join(", ")));
         changed.clear();
         run_once(dir, progress);
@@ -197,6 +203,17 @@ pub fn watch(dir: &Path, progress: &Progress, stop: Arc<AtomicBool>) -> Result<(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A file's name dropped in the folder is logged without its control
+    /// characters: an escape shown as U+FFFD, a line break in a path too.
+    #[test]
+    fn the_watch_log_says_names_without_control_characters() {
+        let d = tempfile::tempdir().unwrap();
+        let name = liftplan_core::location::in_words(Path::new("scans/s1\nerror: x\x1b]0;t\x07.laz"));
+        log(d.path(), &format!("changed: {name}"));
+        let logged = std::fs::read_to_string(d.path().join(".liftplan/log/watch.log")).unwrap();
+        assert!(logged.ends_with(" changed: scans/s1\u{FFFD}error: x\u{FFFD}]0;t\u{FFFD}.laz\n"), "{logged:?}");
+    }
 
     #[test]
     fn files_share_one_wait_and_each_is_judged() {
