@@ -371,7 +371,7 @@ fn real_main() -> Result<ExitCode> {
                 println!("{}", serde_json::to_string(&st)?);
             } else {
                 for s in &st {
-                    println!("{:>9} {:<7} {}", s.name, s.state, s.why.join("; "));
+                    println!("{:>9} {:<7} {}", s.name, s.state, progress::for_terminal(&s.why.join("; ")));
                 }
             }
             Ok(ExitCode::SUCCESS)

@@ -534,15 +534,17 @@ fn explain(
         if k == "settings" || k == "code" {
             continue;
         }
+        // A file's name in words: one line, whatever it holds.
+        let file = |k: &str| liftplan_core::names::without_controls(k.trim_start_matches("file:")).into_owned();
         match last.inputs.get(k) {
-            None => why.push(format!("{} added", k.trim_start_matches("file:"))),
-            Some(old) if old != v => why.push(format!("{} changed", k.trim_start_matches("file:"))),
+            None => why.push(format!("{} added", file(k))),
+            Some(old) if old != v => why.push(format!("{} changed", file(k))),
             _ => {}
         }
     }
     for k in last.inputs.keys() {
         if k != "settings" && k != "code" && !inputs.contains_key(k) {
-            why.push(format!("{} removed", k.trim_start_matches("file:")));
+            why.push(format!("{} removed", liftplan_core::names::without_controls(k.trim_start_matches("file:"))));
         }
     }
     diff_settings("", &last.settings, settings, &mut why);
