@@ -530,12 +530,12 @@ fn explain(
     if last.inputs.get("code") != inputs.get("code") {
         why.push("liftplan's code for this stage changed (a new build)".into());
     }
+    // An input file's name in words: one line, whatever it holds.
+    let file = |k: &str| liftplan_core::names::without_controls(k.trim_start_matches("file:")).into_owned();
     for (k, v) in inputs {
         if k == "settings" || k == "code" {
             continue;
         }
-        // A file's name in words: one line, whatever it holds.
-        let file = |k: &str| liftplan_core::names::without_controls(k.trim_start_matches("file:")).into_owned();
         match last.inputs.get(k) {
             None => why.push(format!("{} added", file(k))),
             Some(old) if old != v => why.push(format!("{} changed", file(k))),
@@ -544,7 +544,7 @@ fn explain(
     }
     for k in last.inputs.keys() {
         if k != "settings" && k != "code" && !inputs.contains_key(k) {
-            why.push(format!("{} removed", liftplan_core::names::without_controls(k.trim_start_matches("file:"))));
+            why.push(format!("{} removed", file(k)));
         }
     }
     diff_settings("", &last.settings, settings, &mut why);

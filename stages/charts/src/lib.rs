@@ -187,6 +187,21 @@ enum Unnamed {
 fn read_chart_with(path: &Path, s: &Settings, unnamed: Unnamed) -> Result<(Vec<ChartConfig>, Vec<ConfigReport>)> {
     let sheets = sheet::read_workbook(path)?;
     let file_name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    // A table naming a sheet the workbook does not have (a typo) would be
+    // passed by without a word, and the sheet it meant searched instead:
+    // the layout the engineer described, and its units, not taken.
+    if let Some(m) = s.table.iter().find(|t| t.file == file_name && !sheets.iter().any(|sh| sh.name == t.sheet)) {
+        let names: Vec<String> = sheets.iter().map(|sh| format!("'{}'", sh.name)).collect();
+        return Err(ChartError::Format(
+            Location::file(path),
+            format!(
+                "[[charts.table]] '{}' names sheet '{}', which this workbook does not have (its sheets: {})",
+                m.config,
+                m.sheet,
+                names.join(", ")
+            ),
+        ));
+    }
     let mut configs = Vec::new();
     let mut reports = Vec::new();
     let mut not_searched = Vec::new();

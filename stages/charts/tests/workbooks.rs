@@ -273,6 +273,17 @@ fn explicit_mapping_wins() {
     };
     let (c, _) = read_chart(&p, &s).unwrap();
     assert_eq!(c[0].name, "mapped");
+    // A table naming a sheet the workbook does not have is refused, not
+    // passed by while the sheet is searched without it.
+    let mut typo = s.clone();
+    typo.table[0].sheet = "s".into();
+    let e = read_chart(&p, &typo).unwrap_err().to_string();
+    assert!(
+        e.ends_with(
+            "odd.xlsx: [[charts.table]] 'mapped' names sheet 's', which this workbook does not have (its sheets: 'S')"
+        ),
+        "{e}"
+    );
     assert!((c[0].radii_m[0] - 10.0 * M_PER_FT).abs() < 1e-12);
     assert!(
         (c[0].lookup(50.0 * M_PER_FT, 10.0 * M_PER_FT).unwrap().capacity_kg - 100.0 * 1000.0 * KG_PER_LB).abs() < 1e-6
