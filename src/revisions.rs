@@ -920,7 +920,11 @@ fn inputs_that_differ(was: &serde_json::Value, now: &serde_json::Value, lift: &s
                 }
                 n if part(n) => continue,
                 n => match n.strip_prefix("file:") {
-                    Some(file) => InputDiffering::new(format!("{file} {how}"), &[]),
+                    // Said without control characters: the key keeps the
+                    // name as it is, which tells files apart.
+                    Some(file) => {
+                        InputDiffering::new(format!("{} {how}", liftplan_core::names::without_controls(file)), &[])
+                    }
                     // Another stage's output it read: said where that stage's inputs differ.
                     None if n.starts_with("upstream:") => continue,
                     None => InputDiffering::new(format!("the {stage} stage's input '{n}'"), &[how]),
@@ -1454,15 +1458,16 @@ mod tests {
                 .collect::<Vec<_>>(),
             ["scans/a.laz changed", "scans/b.laz removed", "scans/c.laz added", "the scans stage's settings"]
         );
-        // The run's line names each whole, brackets in a file's name too.
+        // The run's line names each whole, brackets in a file's name too,
+        // and a line break in one as U+FFFD, not as a line of its own.
         with_stages(
             "0000000b",
-            serde_json::json!({ "file:scans/a.laz": "aa", "file:scans/scan (1).laz": "dd" }),
+            serde_json::json!({ "file:scans/a.laz": "aa", "file:scans/scan (1).laz": "dd", "file:scans/s\n2.laz": "ee" }),
             "1f90",
         );
         let brief = compare(out, None, "0000000a", "0000000b").unwrap().briefly();
         assert!(
-            brief.contains("; what it was made from differs: scans/b.laz removed, scans/scan (1).laz added, the scans stage's settings ("),
+            brief.contains("; what it was made from differs: scans/b.laz removed, scans/s\u{FFFD}2.laz added, scans/scan (1).laz added, the scans stage's settings ("),
             "{brief}"
         );
         made_from("0000000a", "ecaa");
