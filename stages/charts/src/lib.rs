@@ -190,7 +190,8 @@ fn read_chart_with(path: &Path, s: &Settings, unnamed: Unnamed) -> Result<(Vec<C
     // A table naming a sheet the workbook does not have (a typo) would be
     // passed by without a word, and the sheet it meant searched instead:
     // the layout the engineer described, and its units, not taken.
-    if let Some(m) = s.table.iter().find(|t| t.file == file_name && !sheets.iter().any(|sh| sh.name == t.sheet)) {
+    let names_a_sheet = |t: &TableMapping| sheets.iter().any(|sh| sh.name == sheet::sheet_name_kept(&t.sheet));
+    if let Some(m) = s.table.iter().find(|t| t.file == file_name && !names_a_sheet(t)) {
         let names: Vec<String> = sheets.iter().map(|sh| format!("'{}'", sh.name)).collect();
         return Err(ChartError::Format(
             Location::file(path),
@@ -209,7 +210,8 @@ fn read_chart_with(path: &Path, s: &Settings, unnamed: Unnamed) -> Result<(Vec<C
     // on the sheets that hold none (a sheet of notes).
     let mut sheet_grids: Vec<Vec<(detect::Grid, Option<&TableMapping>)>> = Vec::with_capacity(sheets.len());
     for sh in &sheets {
-        let mapped: Vec<&TableMapping> = s.table.iter().filter(|t| t.file == file_name && t.sheet == sh.name).collect();
+        let mapped: Vec<&TableMapping> =
+            s.table.iter().filter(|t| t.file == file_name && sheet::sheet_name_kept(&t.sheet) == sh.name).collect();
         let mut grids: Vec<(detect::Grid, Option<&TableMapping>)> = Vec::new();
         if mapped.is_empty() && sh.cells.len() > detect::MAX_SEARCHED_CELLS {
             tracing::warn!(

@@ -100,8 +100,20 @@ pub fn read_workbook(path: &Path) -> Result<Vec<Sheet>> {
         .unwrap_or_else(|why| Err(ChartError::Format(Location::file(path), why)))
 }
 
+/// The most characters of a sheet's name kept: Excel allows 31, an ODS
+/// file any number.
+pub const MAX_SHEET_NAME_CHARS: usize = 100;
+
+/// A sheet's name as liftplan keeps it ([`liftplan_core::names::kept`]):
+/// it names the sheet's configuration in the run's lines and on the plan's
+/// pages, and an ODS file's may hold a line break. A `[[charts.table]]`'s
+/// sheet is matched kept the same way.
+pub fn sheet_name_kept(name: &str) -> String {
+    liftplan_core::names::kept(name, MAX_SHEET_NAME_CHARS).into_owned()
+}
+
 /// The sheets of the workbook at `path`, refused past `max_cells` cells in
-/// a sheet or in all.
+/// a sheet or in all; each named as kept ([`sheet_name_kept`]).
 fn read_sheets(path: &Path, max_cells: usize) -> Result<Vec<Sheet>> {
     let bad = |msg: String| ChartError::Format(Location::file(path), msg);
     let mut wb = calamine::open_workbook_auto(path).map_err(|e| bad(format!("cannot open the workbook: {e}")))?;
@@ -152,7 +164,7 @@ fn read_sheets(path: &Path, max_cells: usize) -> Result<Vec<Sheet>> {
             }
         }
         before += cells.len();
-        let sheet = Sheet { name: name.clone(), cells };
+        let sheet = Sheet { name: sheet_name_kept(&name), cells };
         out.push(sheet);
     }
     Ok(out)

@@ -416,6 +416,31 @@ mod tests {
         }
     }
 
+    /// A sheet's name holding a line break (XML's `&#10;`) is kept without
+    /// it: it names the sheet's configuration in the run's lines.
+    #[test]
+    fn a_sheet_name_with_a_line_break_is_kept_on_one_line() {
+        let d = tempfile::tempdir().unwrap();
+        let path = d.path().join("chart.ods");
+        ods_of(&path, &content(&libreoffice_chart()).replace(r#"table:name="Chart""#, r#"table:name="Main&#10;boom""#));
+        let sheets = crate::sheet::read_workbook(&path).unwrap();
+        assert_eq!(sheets[0].name, "Main\u{FFFD}boom");
+        // A table naming the sheet as the file does meets it.
+        let table = crate::TableMapping {
+            file: "chart.ods".into(),
+            sheet: "Main\nboom".into(),
+            config: "mapped".into(),
+            across: "B3:C3".into(),
+            down: "A4:A6".into(),
+            transposed: false,
+            length_unit: None,
+            capacity_unit: None,
+        };
+        let s = crate::Settings { table: vec![table], ..Default::default() };
+        let (configs, _) = crate::read_chart(&path, &s).unwrap();
+        assert_eq!(configs.iter().map(|c| c.name.as_str()).collect::<Vec<_>>(), ["mapped"]);
+    }
+
     /// Text is copied into every cell a repeat makes: a cell of a few hundred
     /// bytes over a million cells, or one run of four billion spaces
     /// (`text:s`), is refused.
