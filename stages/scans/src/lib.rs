@@ -511,7 +511,7 @@ pub fn parse_stations(path: &Path, text: &str) -> Result<Vec<SurveyedStation>> {
                 st.yaw_deg.as_ref().map_or(0.0, |v| *v.get_ref()).to_radians(),
             ),
             // Kept as the scans' names are, which it is matched with.
-            scan: liftplan_core::names::kept(st.scan.get_ref(), read::MAX_SCAN_NAME_CHARS).into_owned(),
+            scan: read::scan_name_kept(st.scan.get_ref()),
         });
     }
     Ok(out)
