@@ -329,7 +329,14 @@ fn real_main() -> Result<ExitCode> {
         (false, 1) => tracing::Level::INFO,
         _ => tracing::Level::DEBUG,
     };
-    tracing_subscriber::fmt().with_max_level(level).with_writer(std::io::stderr).with_target(false).init();
+    // Without colours: an event is printed as [`progress::log_event`] makes it,
+    // which shows each escape as U+FFFD, the colours' too.
+    tracing_subscriber::fmt()
+        .with_max_level(level)
+        .with_writer(progress::TerminalLog)
+        .with_ansi(false)
+        .with_target(false)
+        .init();
     let progress = Progress::new(cli.quiet);
     match cli.command {
         Command::Init { dir } => {

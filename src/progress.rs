@@ -78,12 +78,12 @@ impl Progress {
         }
     }
 
-    /// A line of stage output (not a progress update).
     /// Whether progress output is off (`-q`); errors are still printed.
     pub fn is_quiet(&self) -> bool {
         self.quiet
     }
 
+    /// A line of stage output (not a progress update).
     pub fn line(&self, text: &str) {
         if self.quiet {
             return;
@@ -141,9 +141,63 @@ pub fn for_terminal(text: &str) -> std::borrow::Cow<'_, str> {
     std::borrow::Cow::Owned(lines.join("\n"))
 }
 
+/// Where the run's log (`tracing`'s warnings, and more with `-v`) goes:
+/// stderr, each event as [`log_event`] makes it safe. The stages log the
+/// names of files others made (a survey's scan file, a plant model's
+/// block) as they are, and a name holding a line break printed a line of
+/// its own ("error: ..."), as the run's own lines did before they were
+/// printed through [`for_terminal`].
+pub struct TerminalLog;
+
+impl<'a> tracing_subscriber::fmt::MakeWriter<'a> for TerminalLog {
+    type Writer = LogEvent<std::io::Stderr>;
+
+    fn make_writer(&'a self) -> Self::Writer {
+        LogEvent { text: Vec::new(), out: std::io::stderr() }
+    }
+}
+
+/// One event's text, gathered and printed as [`log_event`] makes it when
+/// the logger is done with it (it may write an event in pieces).
+pub struct LogEvent<W: std::io::Write> {
+    text: Vec<u8>,
+    out: W,
+}
+
+impl<W: std::io::Write> std::io::Write for LogEvent<W> {
+    fn write(&mut self, bytes: &[u8]) -> std::io::Result<usize> {
+        self.text.extend_from_slice(bytes);
+        Ok(bytes.len())
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
+}
+
+impl<W: std::io::Write> Drop for LogEvent<W> {
+    fn drop(&mut self) {
+        if self.text.is_empty() {
+            return;
+        }
+        let text = String::from_utf8_lossy(&self.text);
+        // A log line that cannot be printed is not worth failing the run.
+        let _ = writeln!(self.out, "{}", log_event(&text));
+        let _ = self.out.flush();
+    }
+}
+
+/// A log event's text as it is safe to print: [`for_terminal`]'s, on one
+/// line's start: a line break inside it (from a name it quotes) is shown
+/// as the line going on, indented, so that nothing it quotes reads as a
+/// line of the run's own.
+pub fn log_event(text: &str) -> String {
+    for_terminal(text.strip_suffix('\n').unwrap_or(text)).replace('\n', "\n    ")
+}
+
 #[cfg(test)]
 mod tests {
-    use super::{MAX_LINE_CHARS, for_terminal};
+    use super::{LogEvent, MAX_LINE_CHARS, for_terminal, log_event};
 
     #[test]
     fn control_characters_are_not_printed() {
@@ -153,6 +207,27 @@ mod tests {
             for_terminal("\x1b]0;title\x07\x1b[8mhidden\u{9b}"),
             "\u{FFFD}]0;title\u{FFFD}\u{FFFD}[8mhidden\u{FFFD}"
         );
+    }
+
+    /// A scan file's name holding a line break and an escape, logged by a
+    /// stage as it is, prints on the event's line and an indented one; no
+    /// escape reaches the terminal.
+    #[test]
+    fn a_logged_name_does_not_print_a_line_of_its_own() {
+        assert_eq!(log_event("WARN scan.laz: fine\n"), "WARN scan.laz: fine");
+        let mut out = Vec::new();
+        {
+            use std::io::Write;
+            let mut event = LogEvent { text: Vec::new(), out: &mut out };
+            event.write_all(b" WARN scans/scan-3\nerror: evil\x1b[2J.xyz:").unwrap();
+            event.write_all(b"4: count line declares 9 points, 3 follow\n").unwrap();
+        }
+        let printed = String::from_utf8(out).unwrap();
+        assert_eq!(
+            printed,
+            " WARN scans/scan-3\n    error: evil\u{FFFD}[2J.xyz:4: count line declares 9 points, 3 follow\n"
+        );
+        assert!(printed.lines().skip(1).all(|l| l.starts_with("    ")), "{printed}");
     }
 
     /// A line of megabytes (a damaged file's words quoted in an error) is
