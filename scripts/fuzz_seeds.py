@@ -63,7 +63,7 @@ for name, path, const in [("init.toml", "src/project.rs", "TEMPLATE"), ("demo.to
 seed("crane_and_lift_toml", "stations.toml", b'[[station]]\nscan = "scan-1"\nx_m = 1.0\ny_m = 2.0\nz_m = 0.5\n'
      b'yaw_deg = 30.0\n\n[[station]]\nscan = "scan-2"\nx_m = -4.0\ny_m = 12.5\n')
 
-# scan_file: first byte 0 las, 1 laz, 2 ply, 3 e57, 4 pts, 5 xyz.
+# scan_file: first byte 0 las, 1 laz, 2 ply, 3 e57, 4 pts, 5 xyz; 252 and above ptx.
 import laspy
 
 rng = np.random.default_rng(1)
@@ -117,6 +117,18 @@ seed("scan_file", "a.pts", (f"{n}\n" + "".join(f"{a:.3f} {b:.3f} {c:.3f} -1200 1
                                               for a, b, c in zip(x, y, z))).encode(), 4)
 seed("scan_file", "a.xyz", "".join(f"{a:.3f} {b:.3f} {c:.3f}\n" for a, b, c in zip(x, y, z)).encode(), 5)
 seed("scan_file", "b.xyz", "".join(f"{a:.3f},{b:.3f},{c:.3f},200,100,50\n" for a, b, c in zip(x, y, z)).encode(), 5)
+# PTX: two scans of a 5 x 8 grid, the second turned 30 degrees and moved,
+# with colour, a cell of no return in each.
+def ptx_scan(turn_deg, move, colour):
+    c, s = np.cos(np.radians(turn_deg)), np.sin(np.radians(turn_deg))
+    rows = [(c, s, 0.0), (-s, c, 0.0), (0.0, 0.0, 1.0)]
+    head = "5\n8\n" + "{} {} {}\n".format(*move) + "".join("{} {} {}\n".format(*r) for r in rows)
+    head += "".join("{} {} {} 0\n".format(*r) for r in rows) + "{} {} {} 1\n".format(*move)
+    pts = "".join((f"{a:.3f} {b:.3f} {c_:.3f} 0.5" + (" 10 20 30" if colour else "") + "\n")
+                  if k else ("0 0 0 0.5" + (" 0 0 0" if colour else "") + "\n")
+                  for k, (a, b, c_) in enumerate(zip(x, y, z)))
+    return head + pts
+seed("scan_file", "a.ptx", (ptx_scan(0.0, (0.0, 0.0, 0.0), False) + ptx_scan(30.0, (12.5, -3.0, 0.25), True)).encode(), 252)
 
 # chart_workbook: first byte 0 xlsx, 1 xls, 2 xlsb, 3 ods.
 import openpyxl

@@ -8,7 +8,7 @@ use anyhow::Result;
 use liftplan_plan::resumed::Agreement;
 use std::path::PathBuf;
 
-pub const SCAN_EXTS: &[&str] = &["las", "laz", "ply", "e57", "pts", "xyz", "txt", "asc", "csv"];
+pub const SCAN_EXTS: &[&str] = &["las", "laz", "ply", "e57", "ptx", "pts", "xyz", "txt", "asc", "csv"];
 
 pub fn scans() -> StageDef {
     StageDef {

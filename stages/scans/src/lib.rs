@@ -1,7 +1,8 @@
 //! # liftplan-scans: stage 1, survey scans to one site cloud
 //!
 //! Reads every scan the survey team dropped in `scans/` (LAS 1.0–1.4, LAZ, PLY,
-//! E57 with several scans per file, PTS/XYZ text), places them in one frame
+//! E57 with several scans per file, Leica PTX (several per file, each with
+//! its registration's transform), PTS/XYZ text), places them in one frame
 //! ([`register`]), thins them ([`subsample`]), classifies the ground
 //! ([`ground`]) and writes, everything in metres (a file's coordinates in
 //! the unit its CRS states, else in `[scans] unit`: [`read::units`]):
@@ -630,9 +631,24 @@ pub fn run(inputs: &[PathBuf], s: &Settings, opts: &RunOptions, out_dir: &Path) 
     let mut memo_counts = (0, 0);
 
     let results: Vec<register::RegResult> = match s.register {
-        RegisterMode::None => {
-            scans.iter().map(|_| plain_result(Pose::identity(), "none (coordinates as given)")).collect()
-        }
+        RegisterMode::None => scans
+            .iter()
+            .map(|x| {
+                let mut r = plain_result(Pose::identity(), "none (coordinates as given)");
+                r.warning = x.pose.filter(|p| !pose_is_identity(p)).map(|p| {
+                    let t = p.translation.vector;
+                    format!(
+                        "its file gives it a pose ({:.3}, {:.3}, {:.3}) m, turned {:.2}°, which register = \"none\" does not apply: \
+                         its points are merged as the file holds them; register = \"poses\" (or \"auto\") applies it",
+                        t.x,
+                        t.y,
+                        t.z,
+                        p.rotation.angle().to_degrees()
+                    )
+                });
+                r
+            })
+            .collect(),
         RegisterMode::Poses => scans
             .iter()
             .map(|x| match initial(x) {
@@ -774,6 +790,12 @@ pub fn run(inputs: &[PathBuf], s: &Settings, opts: &RunOptions, out_dir: &Path) 
         min_fitness: s.registration.min_fitness,
         scans: reports,
     })
+}
+
+/// Whether a file's pose moves nothing (a PTX export already in the site's
+/// frame writes the identity).
+fn pose_is_identity(p: &Pose) -> bool {
+    p.translation.vector.norm() < 1e-9 && p.rotation.angle() < 1e-12
 }
 
 fn plain_result(pose: Pose, method: &str) -> register::RegResult {
@@ -978,6 +1000,7 @@ mod tests {
             date: None,
             to_m: [1.0; 3],
             read_in: String::new(),
+            points_at: None,
         }
     }
 

@@ -90,6 +90,7 @@ pub(super) fn list(path: &Path) -> Result<Vec<ScanInfo>> {
                 date: pc.acquisition_start.as_ref().and_then(|t| super::ScanDate::from_gps_seconds(t.gps_time)),
                 to_m: [1.0; 3],
                 read_in: String::new(),
+                points_at: None,
             }
         })
         .collect())

@@ -67,6 +67,7 @@ pub(super) fn list(path: &Path, format: Format) -> Result<Vec<ScanInfo>> {
         date: hdr.date().map(|date| super::ScanDate { date, acquired: false }),
         to_m: [1.0; 3],
         read_in: String::new(),
+        points_at: None,
     }])
 }
 

@@ -2,7 +2,7 @@
 //! ([`list_scans`], cheap, for `liftplan inspect`) and streams their points in
 //! chunks ([`stream`]) so no reader ever holds a whole survey in memory.
 //!
-//! Points come out in the file's own frame; a pose the file carries (E57) is
+//! Points come out in the file's own frame; a pose the file carries (E57, PTX) is
 //! returned in [`ScanInfo::pose`] and applied by registration, never silently.
 //! Readers refuse non-finite coordinates and counts the file cannot hold, naming
 //! the file and the place.
@@ -10,6 +10,7 @@
 mod e57;
 mod las;
 mod ply;
+mod ptx;
 mod text;
 pub mod units;
 
@@ -41,6 +42,7 @@ pub enum Format {
     E57,
     Pts,
     Xyz,
+    Ptx,
 }
 
 impl Format {
@@ -54,6 +56,7 @@ impl Format {
             "e57" => Format::E57,
             "pts" => Format::Pts,
             "xyz" | "txt" | "asc" | "csv" => Format::Xyz,
+            "ptx" => Format::Ptx,
             _ => return None,
         })
     }
@@ -66,6 +69,7 @@ impl Format {
             Format::E57 => "e57",
             Format::Pts => "pts",
             Format::Xyz => "xyz",
+            Format::Ptx => "ptx",
         }
     }
 }
@@ -134,12 +138,16 @@ pub struct ScanInfo {
     /// The unit `to_m` is for and where it came from, for the run's lines
     /// (set with it).
     pub read_in: String,
+    /// Where the scan's first point is in its file, as (byte offset, line),
+    /// for a format whose scans follow one another with nothing to find
+    /// them by but reading (PTX); `None` for the others.
+    pub points_at: Option<(u64, u64)>,
 }
 
 /// Lists the scans in a file from its header, reading no points.
 pub fn list_scans(path: &Path) -> Result<Vec<ScanInfo>> {
     let format = Format::from_path(path).ok_or_else(|| {
-        ScanError::format(Location::file(path), "not a scan file (expected .las, .laz, .ply, .e57, .pts or .xyz)")
+        ScanError::format(Location::file(path), "not a scan file (expected .las, .laz, .ply, .e57, .ptx, .pts or .xyz)")
     })?;
     let meta = std::fs::metadata(path).map_err(|e| ScanError::Io(Location::file(path), e))?;
     if meta.len() == 0 {
@@ -150,6 +158,7 @@ pub fn list_scans(path: &Path) -> Result<Vec<ScanInfo>> {
         Format::Ply => ply::list(path),
         Format::E57 => e57::list(path),
         Format::Pts | Format::Xyz => text::list(path, format),
+        Format::Ptx => ptx::list(path),
     }
 }
 
@@ -179,6 +188,7 @@ fn stream_as_read(info: &ScanInfo, f: &mut dyn FnMut(&PointCloud) -> Result<()>)
         Format::Ply => ply::stream(info, f),
         Format::E57 => e57::OpenE57::open(&info.path)?.stream(info, f),
         Format::Pts | Format::Xyz => text::stream(info, f),
+        Format::Ptx => ptx::stream(info, f),
     }
 }
 

@@ -129,6 +129,7 @@ pub(super) fn list(path: &Path) -> Result<Vec<ScanInfo>> {
         date: None,
         to_m: [1.0; 3],
         read_in: String::new(),
+        points_at: None,
     }])
 }
 

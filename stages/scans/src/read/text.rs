@@ -40,10 +40,11 @@ pub(super) fn list(path: &Path, format: Format) -> Result<Vec<ScanInfo>> {
         date: None,
         to_m: [1.0; 3],
         read_in: String::new(),
+        points_at: None,
     }])
 }
 
-trait TakeLine {
+pub(super) trait TakeLine {
     fn take_line(&mut self, s: &mut String, path: &Path) -> Result<usize>;
 }
 
