@@ -638,8 +638,9 @@ pub fn run(inputs: &[PathBuf], s: &Settings, opts: &RunOptions, out_dir: &Path) 
                 r.warning = x.pose.filter(|p| !pose_is_identity(p)).map(|p| {
                     let t = p.translation.vector;
                     format!(
-                        "its file gives it a pose ({:.3}, {:.3}, {:.3}) m, turned {:.2}°, which register = \"none\" does not apply: \
+                        "scan '{}': its file gives it a pose ({:.3}, {:.3}, {:.3}) m, turned {:.2}°, which register = \"none\" does not apply: \
                          its points are merged as the file holds them; register = \"poses\" (or \"auto\") applies it",
+                        x.name,
                         t.x,
                         t.y,
                         t.z,
