@@ -361,7 +361,9 @@ charts = "charts"         # *.xlsx *.xls *.xlsb *.ods load charts
 cranes = "cranes"         # crane geometry files (<name>.toml); built in: ltm-1100, ac-700, tower-hh-60
 
 [scans]
-register = "auto"         # auto | none | poses
+register = "auto"         # auto: register, from a file's or station's pose where given;
+                          # poses: take the poses E57 and PTX files or stations give;
+                          # none: coordinates as they are (a survey registered already)
 subsample = "voxel"       # voxel | spacing | nth | none
 voxel = 0.05              # voxel edge, m
 voxel_point = "centroid"  # centroid | nearest

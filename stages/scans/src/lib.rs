@@ -923,7 +923,12 @@ fn unregistered_error(reasons: &[(String, String)], report: &Path) -> String {
         text +=
             &format!("; and {unlisted} more scans do not register ({} gives every scan's fitness)", report.display());
     }
-    text + " (set [scans] on_unregistered = \"exclude\" to leave such scans out, knowing their obstacles will be missing)"
+    // Files already in one frame (a registered survey exported in tiles
+    // that barely overlap) fail to register against each other too, and
+    // leaving them out would lose what they hold.
+    text + " (where the files are already in one frame, a registered survey exported in parts, set [scans] \
+            register = \"none\" to take their coordinates as they are; otherwise set [scans] on_unregistered = \
+            \"exclude\" to leave such scans out, knowing their obstacles will be missing)"
 }
 
 /// A summary of a scan file for `liftplan inspect`, from headers where they
@@ -1030,7 +1035,7 @@ mod tests {
         let e = unregistered_error(&reasons[..2], report);
         assert!(
             e.starts_with(
-                "scan 's0' does not register (fitness 0 %); scan 's1' does not register (fitness 1 %) (set [scans]"
+                "scan 's0' does not register (fitness 0 %); scan 's1' does not register (fitness 1 %) (where the files are already in one frame, a registered survey exported in parts, set [scans] register = \"none\""
             ),
             "{e}"
         );
