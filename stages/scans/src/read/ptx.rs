@@ -47,6 +47,11 @@ use std::path::Path;
 /// header.
 const MOST_PER_SIDE: u64 = 1_000_000;
 
+/// The most scans one file may hold: the scans stage takes at most this many
+/// in all (a point's scan is a 16-bit number), and a survey has hundreds;
+/// each scan listed is kept in memory with its details.
+const MOST_SCANS: usize = u16::MAX as usize;
+
 /// How far the transform's 3 x 3 part may be from a rotation (largest
 /// entry of RᵀR - I): exporters print six decimals, which leave it 1e-6
 /// off; a scale or a shear (a coordinate system in millimetres) is further
@@ -229,6 +234,12 @@ pub(super) fn list(path: &Path) -> Result<Vec<ScanInfo>> {
     let mut lines = open(path)?;
     let mut found: Vec<(Header, u64, u64)> = Vec::new();
     while let Some(h) = lines.header()? {
+        if found.len() == MOST_SCANS {
+            return Err(ScanError::format(
+                Location::line(path, lines.lineno - 9, None),
+                format!("the file holds more than {MOST_SCANS} scans, more than liftplan takes"),
+            ));
+        }
         let first_line = lines.lineno + 1;
         let at = lines.offset;
         let count = h.columns * h.rows;
@@ -478,6 +489,11 @@ mod tests {
         let two = format!("1\n1\n{IDENTITY}1 1 1 0.5\n1\n2\n{IDENTITY}1 1 1 0.5\n");
         let e = err("two.ptx", &two);
         assert!(e.contains("two.ptx:12") && e.contains("ends after 1 of them"), "{e}");
+        // A file of more scans than the stage takes is refused at the first
+        // scan past them, before its listing grows further.
+        let one = format!("1\n1\n{IDENTITY}1 1 1 0.5\n");
+        let e = err("many.ptx", &one.repeat(65_536));
+        assert!(e.contains(&format!("many.ptx:{}", 65_535 * 11 + 1)) && e.contains("more than 65535 scans"), "{e}");
         // Windows line breaks read as well.
         assert_eq!(err("crlf.ptx", &format!("1\n1\n{IDENTITY}1 1 1 0.5\n").replace('\n', "\r\n")), "read 1 points");
     }
