@@ -719,8 +719,9 @@ fn real_main() -> Result<ExitCode> {
                 let mut radius = None;
                 for kv in q.split(',') {
                     match kv.split_once('=') {
-                        Some(("boom", v)) => boom = v.trim().parse::<f64>().ok(),
-                        Some(("radius", v)) => radius = v.trim().parse::<f64>().ok(),
+                        // "NaN" and "inf" parse as numbers: not lengths.
+                        Some(("boom", v)) => boom = v.trim().parse::<f64>().ok().filter(|v| v.is_finite()),
+                        Some(("radius", v)) => radius = v.trim().parse::<f64>().ok().filter(|v| v.is_finite()),
                         _ => {}
                     }
                 }

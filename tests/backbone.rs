@@ -394,7 +394,8 @@ fn options_list_every_stages_settings_as_a_project_file() {
 
 /// `liftplan chart --lookup` reads one capacity: boom and radius for a
 /// chart with boom columns, the radius alone for a tower crane's chart of
-/// one column (which it printed as "boom 0 m, column 0 m").
+/// one column (which it printed as "boom 0 m, column 0 m"); a length that
+/// is not a finite number is refused.
 #[test]
 fn chart_lookup_takes_the_radius_alone_for_a_chart_of_one_column() {
     let t = tempfile::tempdir().unwrap();
@@ -414,6 +415,13 @@ fn chart_lookup_takes_the_radius_alone_for_a_chart_of_one_column() {
         liftplan(&["chart", mobile.to_str().unwrap(), "-o", c, "--config", "Main boom 360", "--lookup", "radius=29"]);
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("expects boom=B,radius=R"));
+    // NaN and inf parse as numbers, but are no length (NaN was looked up
+    // and said to be "beyond the chart's largest radius").
+    for q in ["boom=40,radius=NaN", "boom=inf,radius=29"] {
+        let o = liftplan(&["chart", mobile.to_str().unwrap(), "-o", c, "--config", "Main boom 360", "--lookup", q]);
+        assert_eq!(o.status.code(), Some(2), "{q}");
+        assert!(String::from_utf8_lossy(&o.stderr).contains("expects boom=B,radius=R"), "{q}");
+    }
 }
 
 /// `liftplan inspect` reads the .toml inputs too: a crane model (its boxes,
