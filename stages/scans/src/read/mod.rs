@@ -1,5 +1,6 @@
 //! Scan readers. Each format lists the scans a file holds from its header alone
-//! ([`list_scans`], cheap, for `liftplan inspect`) and streams their points in
+//! ([`list_scans`], cheap, for `liftplan inspect`; a PTX file, whose scans
+//! follow one another with no index, by counting its lines) and streams their points in
 //! chunks ([`stream`]) so no reader ever holds a whole survey in memory.
 //!
 //! Points come out in the file's own frame; a pose the file carries (E57, PTX) is
