@@ -101,7 +101,8 @@ impl<R: BufRead> Lines<R> {
                 format!("the file ends inside a scan's header, where {what} belongs (truncated file)"),
             ));
         }
-        let text = self.line.trim();
+        // A byte order mark, where a Windows tool wrote one, starts the file.
+        let text = self.line.trim().trim_start_matches('\u{feff}');
         let shown: String = text.chars().take(60).collect();
         let vals: Vec<f64> = text.split_whitespace().map_while(|t| t.parse::<f64>().ok()).collect();
         if vals.len() != N || text.split_whitespace().count() != N || !vals.iter().all(|v| v.is_finite()) {
@@ -494,7 +495,8 @@ mod tests {
         let one = format!("1\n1\n{IDENTITY}1 1 1 0.5\n");
         let e = err("many.ptx", &one.repeat(65_536));
         assert!(e.contains(&format!("many.ptx:{}", 65_535 * 11 + 1)) && e.contains("more than 65535 scans"), "{e}");
-        // Windows line breaks read as well.
+        // Windows line breaks, and a byte order mark, read as well.
+        assert_eq!(err("bom.ptx", &format!("\u{feff}1\n1\n{IDENTITY}1 1 1 0.5\n")), "read 1 points");
         assert_eq!(err("crlf.ptx", &format!("1\n1\n{IDENTITY}1 1 1 0.5\n").replace('\n', "\r\n")), "read 1 points");
     }
 }

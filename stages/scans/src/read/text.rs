@@ -24,7 +24,7 @@ pub(super) fn list(path: &Path, format: Format) -> Result<Vec<ScanInfo>> {
     let f = std::fs::File::open(path).map_err(|e| ScanError::Io(Location::file(path), e))?;
     let mut first = String::new();
     BufReader::new(f).take_line(&mut first, path)?;
-    let declared = if format == Format::Pts { first.trim().parse::<u64>().ok() } else { None };
+    let declared = if format == Format::Pts { first.trim().trim_start_matches(BOM).parse::<u64>().ok() } else { None };
     let mut details = serde_json::Map::new();
     details.insert("first_line".into(), serde_json::json!(first.trim_end().chars().take(80).collect::<String>()));
     Ok(vec![ScanInfo {
@@ -67,6 +67,9 @@ impl<R: BufRead> TakeLine for R {
 }
 
 use std::io::Read as _;
+
+/// The byte order mark some Windows tools write at a text file's start.
+const BOM: char = '\u{feff}';
 
 /// The factor that takes an XYZ file's intensities to 0..65535, from the
 /// first chunk's: 0..1 (CloudCompare's and many exporters' floats), up to
@@ -115,7 +118,9 @@ pub(super) fn stream(info: &ScanInfo, f: &mut dyn FnMut(&PointCloud) -> Result<(
             break;
         }
         lineno += 1;
-        let t = line.trim();
+        // A byte order mark (a Windows tool's) starts the first line: the
+        // point or count there is read.
+        let t = line.trim().trim_start_matches(BOM);
         if t.is_empty() || t.starts_with('#') || t.starts_with("//") {
             continue;
         }
@@ -298,6 +303,15 @@ mod tests {
         // A count below what the file holds is a warning, not an error (one
         // above it is a file cut short: refused, below).
         assert_eq!(read("b.pts", "1\n0 0 0\n1 1 1\n").unwrap().len(), 2);
+    }
+
+    /// A byte order mark at the start (Windows' Notepad, Excel's "CSV UTF-8")
+    /// does not cost the first point, nor a PTS file its count.
+    #[test]
+    fn a_byte_order_mark_is_passed_over() {
+        assert_eq!(read("a.xyz", "\u{feff}1 2 3\n4 5 6\n").unwrap().xyz, [[1.0, 2.0, 3.0], [4.0, 5.0, 6.0]]);
+        let e = read("cut.pts", "\u{feff}3\n0 0 0 10\n1 0 0 10\n").unwrap_err();
+        assert!(e.contains("declares 3 points but the file ends after 2"), "{e}");
     }
 
     #[test]
