@@ -37,6 +37,7 @@
 //! ```
 
 pub mod artifact;
+pub mod byte_order_mark;
 pub mod capacity;
 pub mod chart_json;
 pub mod cloud;

@@ -31,6 +31,8 @@ impl Attributes {
 }
 
 pub fn parse(path: &Path, bytes: &[u8]) -> Result<Attributes> {
+    // A UTF-8 byte order mark, where a Windows tool saved the file with one.
+    let bytes = bytes.strip_prefix(b"\xef\xbb\xbf").unwrap_or(bytes);
     let text: String = bytes.iter().map(|&c| c as char).collect();
     let mut lines = text.lines().enumerate();
     let (_, first) = lines.next().ok_or_else(|| PlantError::at(Location::file(path), "the attribute file is empty"))?;
@@ -173,5 +175,14 @@ mod tests {
         assert_eq!(a.get("/B", "Type"), Some("ZONE"));
         let e = parse(Path::new("x.att"), b"CADC_Attributes_File v1.0\nEND\n").unwrap_err();
         assert!(e.to_string().contains("x.att:2:1"), "{e}");
+    }
+
+    /// A file saved with a UTF-8 byte order mark (it was refused for not
+    /// starting with `CADC_Attributes_File`) reads as without it.
+    #[test]
+    fn a_byte_order_mark_is_passed_over() {
+        let t = b"\xef\xbb\xbfCADC_Attributes_File v1.0 , start: NEW , end: END\nNEW /A\n Type:= SITE\nEND\n";
+        let a = parse(Path::new("x.att"), t).unwrap();
+        assert_eq!(a.get("/A", "Type"), Some("SITE"));
     }
 }

@@ -83,6 +83,7 @@ pub fn read_obj(path: &Path, imp: Import) -> Result<(TriMesh, usize)> {
     let file = std::fs::File::open(path).map_err(|e| PlantError::Io(Location::file(path), e))?;
     let mut counted = ElementsWithoutSurface { inner: file, line: LineStart::Blank, count: 0 };
     let mut r = std::io::BufReader::new(&mut counted);
+    liftplan_core::byte_order_mark::skip(&mut r).map_err(|e| PlantError::Io(Location::file(path), e))?;
     let (models, _) = third_party(path, "the OBJ reader", || {
         tobj::load_obj_buf(&mut r, &opts, |_| Err(tobj::LoadError::OpenFileFailed))
     })?
@@ -119,8 +120,19 @@ pub fn read_obj(path: &Path, imp: Import) -> Result<(TriMesh, usize)> {
 
 pub fn read_stl(path: &Path, imp: Import) -> Result<TriMesh> {
     let mut f = std::fs::File::open(path).map_err(|e| PlantError::Io(Location::file(path), e))?;
-    let mesh = third_party(path, "the STL reader", || stl_io::read_stl(&mut f))?
-        .map_err(|e| PlantError::at(Location::file(path), format!("cannot read STL: {e}")))?;
+    let mut head = [0u8; 3];
+    let marked = std::io::Read::read_exact(&mut f, &mut head).is_ok() && head == liftplan_core::byte_order_mark::BYTES;
+    // The STL reader seeks back to the file's start: a text file with a
+    // mark is read from memory past it (a binary file never has one).
+    let mesh = if marked {
+        let bytes = std::fs::read(path).map_err(|e| PlantError::Io(Location::file(path), e))?;
+        let mut text = std::io::Cursor::new(liftplan_core::byte_order_mark::strip(&bytes));
+        third_party(path, "the STL reader", || stl_io::read_stl(&mut text))?
+    } else {
+        std::io::Seek::rewind(&mut f).map_err(|e| PlantError::Io(Location::file(path), e))?;
+        third_party(path, "the STL reader", || stl_io::read_stl(&mut f))?
+    }
+    .map_err(|e| PlantError::at(Location::file(path), format!("cannot read STL: {e}")))?;
     let mut m = TriMesh::default();
     let g = m.group_id(&stem(path));
     let verts: Vec<[f64; 3]> =
@@ -199,6 +211,7 @@ fn read_ply_unguarded(path: &Path, imp: Import) -> Result<TriMesh> {
     use ply_rs::parser::Parser;
     let f = std::fs::File::open(path).map_err(|e| PlantError::Io(Location::file(path), e))?;
     let mut r = std::io::BufReader::new(f);
+    liftplan_core::byte_order_mark::skip(&mut r).map_err(|e| PlantError::Io(Location::file(path), e))?;
     let header = Parser::<ply_rs::ply::DefaultElement>::new()
         .read_header(&mut r)
         .map_err(|e| PlantError::at(Location::file(path), format!("cannot read PLY header: {e}")))?;
@@ -525,6 +538,33 @@ mod tests {
             while std::io::Read::read(&mut r, &mut buf).unwrap() > 0 {}
             assert_eq!(r.count, 3, "reads of {chunk} bytes");
         }
+    }
+
+    /// Text meshes saved with a UTF-8 byte order mark (a Windows tool's) read
+    /// as without it: the OBJ reader lost the first vertex to it (and
+    /// refused the face naming it), the PLY and STL readers refused the file.
+    #[test]
+    fn text_meshes_with_a_byte_order_mark_read() {
+        let d = tempfile::tempdir().unwrap();
+        let imp = Import { scale: 1.0, y_up: false };
+        let marked = |name: &str, text: &str| {
+            let path = d.path().join(name);
+            std::fs::write(&path, [&liftplan_core::byte_order_mark::BYTES[..], text.as_bytes()].concat()).unwrap();
+            path
+        };
+        let obj = marked("a.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+        assert_eq!(read_obj(&obj, imp).unwrap().0.triangles.len(), 1);
+        let ply = marked(
+            "a.ply",
+            "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n\
+             element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+        );
+        assert_eq!(read_ply(&ply, imp).unwrap().triangles.len(), 1);
+        let stl = marked(
+            "a.stl",
+            "solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid a\n",
+        );
+        assert_eq!(read_stl(&stl, imp).unwrap().triangles.len(), 1);
     }
 
     /// glTF nodes must form trees. A chain of nodes each naming the next one

@@ -59,6 +59,7 @@ impl PropertyAccess for Vertex {
 fn header(path: &Path) -> Result<(Header, BufReader<std::fs::File>)> {
     let f = std::fs::File::open(path).map_err(|e| ScanError::Io(Location::file(path), e))?;
     let mut r = BufReader::new(f);
+    liftplan_core::byte_order_mark::skip(&mut r).map_err(|e| ScanError::Io(Location::file(path), e))?;
     // ply-rs unwraps numbers in the header and panics on one too large for
     // 64 bits (found by the scan_file fuzz target).
     let h = guard_decoder(
@@ -185,6 +186,18 @@ pub(super) fn stream(info: &ScanInfo, f: &mut dyn FnMut(&PointCloud) -> Result<(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A PLY scan saved with a UTF-8 byte order mark reads (it was refused:
+    /// "Expected magic number 'ply'").
+    #[test]
+    fn a_byte_order_mark_is_passed_over() {
+        let d = tempfile::tempdir().unwrap();
+        let path = d.path().join("marked.ply");
+        let text = "\u{feff}ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\nend_header\n1 2 3\n4 5 6\n";
+        std::fs::write(&path, text).unwrap();
+        let scans = list(&path).unwrap();
+        assert_eq!(crate::read::read_all(&scans[0]).unwrap().xyz, [[1.0, 2.0, 3.0], [4.0, 5.0, 6.0]]);
+    }
 
     /// Found by the scan_file fuzz target: ply-rs unwraps the header's
     /// numbers and panicked on one too large for 64 bits.
