@@ -31,8 +31,8 @@ impl Attributes {
 }
 
 pub fn parse(path: &Path, bytes: &[u8]) -> Result<Attributes> {
-    // A UTF-8 byte order mark, where a Windows tool saved the file with one.
-    let bytes = bytes.strip_prefix(b"\xef\xbb\xbf").unwrap_or(bytes);
+    // Where a Windows tool saved the file with one.
+    let bytes = liftplan_core::byte_order_mark::strip(bytes);
     let text: String = bytes.iter().map(|&c| c as char).collect();
     let mut lines = text.lines().enumerate();
     let (_, first) = lines.next().ok_or_else(|| PlantError::at(Location::file(path), "the attribute file is empty"))?;
