@@ -61,7 +61,14 @@ impl<R: BufRead> TakeLine for R {
         if n == 65_536 && buf.last() != Some(&b'\n') {
             return Err(ScanError::format(Location::file(path), "a line is longer than 64 KiB: not a text point file"));
         }
-        *s = String::from_utf8(buf).map_err(|_| ScanError::format(Location::file(path), "not UTF-8 text"))?;
+        // Exporters write a header's words in the system's code page (a
+        // German "Intensität" in Windows-1252): read as words all the same.
+        // Numbers are ASCII, so a line of points is read whatever its bytes
+        // outside them, and binary data fails as numbers, at its line.
+        *s = match String::from_utf8(buf) {
+            Ok(text) => text,
+            Err(e) => String::from_utf8_lossy(e.as_bytes()).into_owned(),
+        };
         Ok(n)
     }
 }
@@ -303,6 +310,20 @@ mod tests {
         // A count below what the file holds is a warning, not an error (one
         // above it is a file cut short: refused, below).
         assert_eq!(read("b.pts", "1\n0 0 0\n1 1 1\n").unwrap().len(), 2);
+    }
+
+    /// A header line in Windows-1252 (not UTF-8) is a header all the same;
+    /// bytes that are not text on a line of points are refused at the line.
+    #[test]
+    fn a_header_in_another_code_page_is_passed_over() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("de.xyz");
+        std::fs::write(&path, b"X;Y;Z;Intensit\xe4t\n1;2;3;0.5\n").unwrap();
+        let c = read_all(&list_scans(&path).unwrap()[0]).unwrap();
+        assert_eq!(c.xyz, [[1.0, 2.0, 3.0]]);
+        std::fs::write(&path, b"1 2 3\n4 5 \xff\xfe\n").unwrap();
+        let e = read_all(&list_scans(&path).unwrap()[0]).unwrap_err().to_string();
+        assert!(e.contains("de.xyz:2") && e.contains("expected numbers"), "{e}");
     }
 
     /// A byte order mark at the start (Windows' Notepad, Excel's "CSV UTF-8")
