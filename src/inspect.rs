@@ -36,7 +36,10 @@ pub fn inspect(path: &Path) -> Result<serde_json::Value> {
 /// The .toml files liftplan reads besides the project file: crane models
 /// (`cranes/*.toml`) and scanner station files.
 fn inspect_toml(path: &Path) -> Result<serde_json::Value> {
-    let text = std::fs::read_to_string(path).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    let text = liftplan_core::location::read_text(path).map_err(|e| match e {
+        liftplan_core::location::TextReadError::Io(e) => anyhow::anyhow!("{}: {e}", path.display()),
+        liftplan_core::location::TextReadError::NotUtf8(at, why) => anyhow::anyhow!("{at}: {why}"),
+    })?;
     if path.file_name().is_some_and(|n| n == crate::project::FILE) {
         bail!(
             "{}: a project file; `liftplan status` shows what it asks for and `liftplan options` every setting",

@@ -147,13 +147,16 @@ pub struct Project {
 impl Project {
     pub fn load(dir: &Path) -> std::result::Result<Project, ProjectError> {
         let file = dir.join(FILE);
-        let text = std::fs::read_to_string(&file).map_err(|e| ProjectError {
-            location: Location::file(&file),
-            message: if e.kind() == std::io::ErrorKind::NotFound {
-                format!("no {FILE} here (run `liftplan init {}` to create a project)", dir.display())
-            } else {
-                e.to_string()
+        let text = liftplan_core::location::read_text(&file).map_err(|e| match e {
+            liftplan_core::location::TextReadError::Io(e) => ProjectError {
+                location: Location::file(&file),
+                message: if e.kind() == std::io::ErrorKind::NotFound {
+                    format!("no {FILE} here (run `liftplan init {}` to create a project)", dir.display())
+                } else {
+                    e.to_string()
+                },
             },
+            liftplan_core::location::TextReadError::NotUtf8(location, message) => ProjectError { location, message },
         })?;
         let raw: RawProject = toml::from_str(&text).map_err(|e| {
             let (location, message) = toml_error(&file, &text, &e);
@@ -645,6 +648,23 @@ mod tests {
         assert!(!task.not_over[0].crane_too && task.not_over[1].crane_too);
         assert_eq!(task.crane_stands_in[0].name, "hardstanding");
         assert_eq!(task.stands_outside_its_areas(), None);
+    }
+
+    /// A project file saved in the system's code page (Notepad's "ANSI") is
+    /// refused at its first byte that is not UTF-8 (it was refused as
+    /// "stream did not contain valid UTF-8", no place, nothing to do); one
+    /// in UTF-8 with a byte order mark loads.
+    #[test]
+    fn a_project_file_not_in_utf8_is_refused_where_it_is() {
+        let d = tempfile::tempdir().unwrap();
+        super::init(d.path()).unwrap();
+        let file = d.path().join(super::FILE);
+        let template = std::fs::read(&file).unwrap();
+        std::fs::write(&file, [&b"# Kranstellfl\xe4che S\xfcd\n"[..], &template].concat()).unwrap();
+        let e = super::Project::load(d.path()).unwrap_err().to_string();
+        assert!(e.contains("liftplan.toml:1:14: not UTF-8 text (byte 0xE4): save the file as UTF-8"), "{e}");
+        std::fs::write(&file, [&b"\xef\xbb\xbf# Kranstellfl\xc3\xa4che\n"[..], &template].concat()).unwrap();
+        assert!(super::Project::load(d.path()).is_ok());
     }
 
     /// The template's commented `[scans.registration]`, uncommented with

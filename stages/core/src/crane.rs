@@ -296,7 +296,10 @@ impl CraneModel {
     }
 
     pub fn from_file(path: &Path) -> Result<CraneModel, CraneError> {
-        let text = std::fs::read_to_string(path).map_err(|e| CraneError::File(Location::file(path), e.to_string()))?;
+        let text = crate::location::read_text(path).map_err(|e| match e {
+            crate::location::TextReadError::Io(e) => CraneError::File(Location::file(path), e.to_string()),
+            crate::location::TextReadError::NotUtf8(at, why) => CraneError::File(at, why),
+        })?;
         Self::from_toml(path, &text)
     }
 

@@ -142,6 +142,40 @@ mod tests {
     }
 }
 
+/// Why a text file people edit could not be read ([`read_text`]).
+#[derive(Debug)]
+pub enum TextReadError {
+    Io(std::io::Error),
+    /// Not UTF-8: the place of its first byte that is not, and what to do.
+    NotUtf8(Location, String),
+}
+
+/// Reads a text file people edit (a project, station or crane file), a
+/// UTF-8 byte order mark left out. One saved in the system's code page
+/// ("Kranstellfläche" in Windows-1252, as Notepad saved "ANSI") is refused
+/// at the line and column of its first byte that is not UTF-8, saying what
+/// to do: its words are names on the plan's pages and are not guessed at.
+pub fn read_text(path: impl AsRef<Path>) -> Result<String, TextReadError> {
+    let path = path.as_ref();
+    let bytes = std::fs::read(path).map_err(TextReadError::Io)?;
+    let bytes = crate::byte_order_mark::strip(&bytes);
+    match std::str::from_utf8(bytes) {
+        Ok(text) => Ok(text.to_string()),
+        Err(e) => {
+            let valid = e.valid_up_to();
+            let before = std::str::from_utf8(&bytes[..valid]).unwrap_or_default();
+            let (line, column) = line_col(before, valid);
+            Err(TextReadError::NotUtf8(
+                Location::line(path, line, Some(column)),
+                format!(
+                    "not UTF-8 text (byte 0x{:02X}): save the file as UTF-8 (in Notepad: Save as, Encoding UTF-8)",
+                    bytes[valid]
+                ),
+            ))
+        }
+    }
+}
+
 /// 1-based line and column of a byte offset in `text`.
 pub fn line_col(text: &str, offset: usize) -> (u64, u64) {
     let offset = offset.min(text.len());
@@ -171,5 +205,24 @@ mod line_tests {
         assert_eq!(line_col("ab\ncd\nef", 4), (2, 2));
         assert_eq!(line_col("ab", 0), (1, 1));
         assert_eq!(line_col("ab", 99), (1, 3));
+    }
+
+    /// A file in Windows-1252 is refused at its first byte that is not
+    /// UTF-8, by line and column; a byte order mark is left out.
+    #[test]
+    fn text_not_in_utf8_is_refused_where_it_is() {
+        let d = tempfile::tempdir().unwrap();
+        let path = d.path().join("liftplan.toml");
+        std::fs::write(&path, b"[project]\n# Kranstellfl\xe4che\n").unwrap();
+        match read_text(&path) {
+            Err(TextReadError::NotUtf8(at, why)) => {
+                assert!(at.to_string().ends_with("liftplan.toml:2:14"), "{at}");
+                assert!(why.starts_with("not UTF-8 text (byte 0xE4): save the file as UTF-8"), "{why}");
+            }
+            other => panic!("{other:?}"),
+        }
+        std::fs::write(&path, b"\xef\xbb\xbf[project]\n# Kranstellfl\xc3\xa4che\n").unwrap();
+        assert_eq!(read_text(&path).unwrap(), "[project]\n# Kranstellfläche\n");
+        assert!(matches!(read_text(d.path().join("none.toml")), Err(TextReadError::Io(_))));
     }
 }

@@ -449,7 +449,10 @@ pub struct SurveyedStation {
 
 /// Reads a station file (see [`parse_stations`]).
 fn read_stations(path: &Path) -> Result<Vec<SurveyedStation>> {
-    let text = std::fs::read_to_string(path).map_err(|e| ScanError::Io(Location::file(path), e))?;
+    let text = liftplan_core::location::read_text(path).map_err(|e| match e {
+        liftplan_core::location::TextReadError::Io(e) => ScanError::Io(Location::file(path), e),
+        liftplan_core::location::TextReadError::NotUtf8(at, why) => ScanError::format(at, why),
+    })?;
     parse_stations(path, &text)
 }
 
