@@ -117,6 +117,7 @@ seed("scan_file", "a.pts", (f"{n}\n" + "".join(f"{a:.3f} {b:.3f} {c:.3f} -1200 1
                                               for a, b, c in zip(x, y, z))).encode(), 4)
 seed("scan_file", "a.xyz", "".join(f"{a:.3f} {b:.3f} {c:.3f}\n" for a, b, c in zip(x, y, z)).encode(), 5)
 seed("scan_file", "b.xyz", "".join(f"{a:.3f},{b:.3f},{c:.3f},200,100,50\n" for a, b, c in zip(x, y, z)).encode(), 5)
+seed("scan_file", "bom-a.xyz", b"\xef\xbb\xbf" + read(os.path.join(corpus, "scan_file", "a.xyz"))[1:], 5)
 # PTX: two scans of a 5 x 8 grid, the second turned 30 degrees and moved,
 # with colour, a cell of no return in each.
 def ptx_scan(turn_deg, move, colour):
@@ -222,6 +223,10 @@ seed("plant_mesh", "tet.ply", (f"ply\nformat ascii 1.0\nelement vertex 4\nproper
 seed("plant_mesh", "tet-ascii.stl", ("solid tet\n" + "".join(
     "facet normal 0 0 0\nouter loop\n" + "".join(f"vertex {x} {y} {z}\n" for x, y, z in (tet_v[i] for i in f))
     + "endloop\nendfacet\n" for f in tet_f) + "endsolid tet\n").encode(), 2)
+# The text ones again as a Windows tool saves them, with a byte order mark.
+BOM = b"\xef\xbb\xbf"
+for name, sel in [("tet.obj", 0), ("tet.ply", 1), ("tet-ascii.stl", 2)]:
+    seed("plant_mesh", "bom-" + name, BOM + read(os.path.join(corpus, "plant_mesh", name))[1:], sel)
 seed("plant_mesh", "tet-binary.stl", b"\0" * 80 + struct.pack("<I", 4) + b"".join(
     struct.pack("<3f", 0, 0, 0) + b"".join(struct.pack("<3f", *tet_v[i]) for i in f) + b"\0\0" for f in tet_f), 2)
 positions = b"".join(struct.pack("<3f", *v) for v in tet_v)
