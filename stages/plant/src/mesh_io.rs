@@ -120,10 +120,15 @@ pub fn read_obj(path: &Path, imp: Import) -> Result<(TriMesh, usize)> {
 
 pub fn read_stl(path: &Path, imp: Import) -> Result<TriMesh> {
     let mut f = std::fs::File::open(path).map_err(|e| PlantError::Io(Location::file(path), e))?;
-    let mut head = [0u8; 3];
-    let marked = std::io::Read::read_exact(&mut f, &mut head).is_ok() && head == liftplan_core::byte_order_mark::BYTES;
-    // The STL reader seeks back to the file's start: a text file with a
-    // mark is read from memory past it (a binary file never has one).
+    // A text STL with a byte order mark: the mark and then "solid" (a
+    // binary file's 80-byte header may start with anything, the mark's
+    // bytes too, but is then not taken for one).
+    let mut head = [0u8; 8];
+    let marked = std::io::Read::read_exact(&mut f, &mut head).is_ok()
+        && head[..3] == liftplan_core::byte_order_mark::BYTES
+        && head[3..].eq_ignore_ascii_case(b"solid");
+    // The STL reader seeks back to the file's start: a marked file is read
+    // from memory past its mark.
     let mesh = if marked {
         let bytes = std::fs::read(path).map_err(|e| PlantError::Io(Location::file(path), e))?;
         let mut text = std::io::Cursor::new(liftplan_core::byte_order_mark::strip(&bytes));
