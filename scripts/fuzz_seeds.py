@@ -247,6 +247,7 @@ def gltf_json(uri):
                           {"bufferView": 1, "componentType": 5123, "count": 12, "type": "SCALAR"}]}
 uri = "data:application/octet-stream;base64," + base64.b64encode(binary).decode()
 seed("plant_mesh", "tet.gltf", json.dumps(gltf_json(uri)).encode(), 3)
+seed("plant_mesh", "bom-tet.gltf", BOM + json.dumps(gltf_json(uri)).encode(), 3)
 js = json.dumps(gltf_json(None)).encode()
 js += b" " * (-len(js) % 4)
 body = binary + b"\0" * (-len(binary) % 4)

@@ -365,7 +365,9 @@ fn third_party<T>(path: &Path, what: &str, parse: impl FnOnce() -> T) -> Result<
 
 fn read_gltf_unguarded(path: &Path, max_triangles: u64, skipped: &mut Vec<String>) -> Result<TriMesh> {
     let bytes = std::fs::read(path).map_err(|e| PlantError::Io(Location::file(path), e))?;
-    let g = gltf::Gltf::from_slice(&bytes)
+    // A .gltf is JSON text, which a Windows tool may save with a mark (a
+    // .glb starts with "glTF", never with one).
+    let g = gltf::Gltf::from_slice(liftplan_core::byte_order_mark::strip(&bytes))
         .map_err(|e| PlantError::at(Location::file(path), format!("cannot read glTF: {e}")))?;
     let buffers = load_buffers(path, &g.document, g.blob.clone())?;
     let imp = Import { scale: 1.0, y_up: true };
@@ -547,7 +549,8 @@ mod tests {
 
     /// Text meshes saved with a UTF-8 byte order mark (a Windows tool's) read
     /// as without it: the OBJ reader lost the first vertex to it (and
-    /// refused the face naming it), the PLY and STL readers refused the file.
+    /// refused the face naming it), the PLY, STL and glTF readers refused
+    /// the file.
     #[test]
     fn text_meshes_with_a_byte_order_mark_read() {
         let d = tempfile::tempdir().unwrap();
@@ -570,6 +573,10 @@ mod tests {
             "solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid a\n",
         );
         assert_eq!(read_stl(&stl, imp).unwrap().triangles.len(), 1);
+        let fixture = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/plant/damaged-accessor.gltf");
+        let tet = std::fs::read_to_string(&fixture).unwrap().replace("\"POSITION\": 5", "\"POSITION\": 0");
+        let gltf = marked("a.gltf", &tet);
+        assert!(!read_gltf(&gltf, crate::MAX_TRIANGLES).unwrap().triangles.is_empty());
     }
 
     /// glTF nodes must form trees. A chain of nodes each naming the next one
