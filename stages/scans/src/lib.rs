@@ -1059,7 +1059,7 @@ mod tests {
         reasons.insert(1, ("d".into(), "scan 'd' does not register".into()));
         let e = unregistered_error(&reasons, report);
         assert_eq!(
-            e.split(" (set [scans]").next().unwrap(),
+            e.split(" (where the files are already in one frame").next().unwrap(),
             format!("scan 'a' {why} (the same for scans 'b', 'c'); scan 'd' does not register")
         );
         assert_eq!(e.matches("do not agree").count(), 1, "{e}");

@@ -78,6 +78,59 @@ use std::io::Read as _;
 /// The byte order mark some Windows tools write at a text file's start.
 const BOM: char = '\u{feff}';
 
+/// How a text file's numbers are separated: decided by its first line of
+/// numbers ([`Separation::of`]) and held for the file. A spreadsheet or a
+/// scanner's software in a locale that writes decimal commas exports
+/// `12,345;6,789;1,234` (or with blanks between): split at every comma, as
+/// the reader did, that line read as six numbers, the point 12, 345, 6 with
+/// a colour, and the next line alike, without a word.
+#[derive(Clone, Copy, PartialEq, Debug)]
+enum Separation {
+    /// Commas (and blanks) between numbers: `1.5,2.5,3.5`, `1, 2, 3`.
+    Commas,
+    /// Semicolons between numbers, a comma in one its decimal comma.
+    Semicolons,
+    /// Blanks (spaces, tabs) between numbers, a comma in one its decimal comma.
+    Blanks,
+}
+
+impl Separation {
+    /// For a line of numbers: semicolons where it holds one; commas where
+    /// every piece between its commas is a number; else blanks.
+    fn of(t: &str) -> Separation {
+        if t.contains(';') {
+            Separation::Semicolons
+        } else if t.contains(',') && t.split(',').all(|p| p.trim().parse::<f64>().is_ok()) {
+            Separation::Commas
+        } else {
+            Separation::Blanks
+        }
+    }
+
+    /// The numbers of line `t` into `vals`; false where a field is not one
+    /// (a header's words, or a line that does not follow the file's way).
+    fn numbers(self, t: &str, vals: &mut Vec<f64>) -> bool {
+        vals.clear();
+        let split = |c: char| match self {
+            Separation::Commas => c.is_whitespace() || c == ',',
+            Separation::Semicolons => c == ';',
+            Separation::Blanks => c.is_whitespace(),
+        };
+        for field in t.split(split).map(str::trim).filter(|f| !f.is_empty()) {
+            let read = if self != Separation::Commas && field.contains(',') {
+                field.replace(',', ".").parse::<f64>()
+            } else {
+                field.parse::<f64>()
+            };
+            match read {
+                Ok(v) => vals.push(v),
+                Err(_) => return false,
+            }
+        }
+        true
+    }
+}
+
 /// The factor that takes an XYZ file's intensities to 0..65535, from the
 /// first chunk's: 0..1 (CloudCompare's and many exporters' floats), up to
 /// 4095 (12-bit, as PTS after its shift), else 16-bit. Decided once per file:
@@ -108,6 +161,7 @@ pub(super) fn stream(info: &ScanInfo, f: &mut dyn FnMut(&PointCloud) -> Result<(
     let mut block: Option<(u64, u64, u64)> = None;
     let pts = info.format == Format::Pts;
     let mut vals: Vec<f64> = Vec::with_capacity(8);
+    let mut separation: Option<Separation> = None;
     // Intensities as read, turned into 0..65535 when their chunk is handed on.
     let mut raw_intensity: Vec<f64> = Vec::new();
     let mut scale: Option<f64> = pts.then_some(16.0);
@@ -131,17 +185,19 @@ pub(super) fn stream(info: &ScanInfo, f: &mut dyn FnMut(&PointCloud) -> Result<(
         if t.is_empty() || t.starts_with('#') || t.starts_with("//") {
             continue;
         }
-        vals.clear();
-        let mut ok = true;
-        for tok in t.split(|c: char| c.is_whitespace() || c == ',' || c == ';').filter(|s| !s.is_empty()) {
-            match tok.parse::<f64>() {
-                Ok(v) => vals.push(v),
-                Err(_) => {
-                    ok = false;
-                    break;
+        let ok = match separation {
+            Some(s) => s.numbers(t, &mut vals),
+            None => {
+                // Decided by the first line of three numbers or more (a
+                // PTS count line holds one) and held for the file.
+                let s = Separation::of(t);
+                let ok = s.numbers(t, &mut vals);
+                if ok && vals.len() >= 3 {
+                    separation = Some(s);
                 }
+                ok
             }
-        }
+        };
         if !ok {
             if seen == 0 && columns.is_none() {
                 continue; // a header line of column names
@@ -324,6 +380,25 @@ mod tests {
         std::fs::write(&path, b"1 2 3\n4 5 \xff\xfe\n").unwrap();
         let e = read_all(&list_scans(&path).unwrap()[0]).unwrap_err().to_string();
         assert!(e.contains("de.xyz:2") && e.contains("expected numbers"), "{e}");
+    }
+
+    /// Decimal commas, with semicolons or blanks between the numbers, are
+    /// read as decimals (a German export's "12,345;6,789;1,234" was read as
+    /// the six numbers 12, 345, 6, 789, 1, 234: a point 12, 345, 6 with a
+    /// colour); commas between numbers with decimal points are separators,
+    /// as before; a line that does not follow the file's first is refused.
+    #[test]
+    fn decimal_commas_are_read_as_decimals() {
+        let want = [[12.345, 6.789, 1.234], [13.5, 7.25, 1.0]];
+        assert_eq!(read("a.xyz", "12,345;6,789;1,234\n13,5;7,25;1,0\n").unwrap().xyz, want);
+        assert_eq!(read("b.txt", "X;Y;Z\n12,345 ; 6,789 ; 1,234\n13,5;7,25;1\n").unwrap().xyz, want);
+        assert_eq!(read("c.xyz", "12,345 6,789 1,234\n13,5\t7,25\t1,0\n").unwrap().xyz, want);
+        let c = read("d.csv", "12.345,6.789,1.234\n13.5, 7.25, 1\n").unwrap();
+        assert_eq!(c.xyz, want);
+        let c = read("e.pts", "2\n12,345 6,789 1,234 100\n13,5 7,25 1,0 100\n").unwrap();
+        assert_eq!(c.xyz, want);
+        let e = read("f.xyz", "12,345;6,789;1,234\n13.5,7.25,1.0\n").unwrap_err();
+        assert!(e.contains("f.xyz:2") && e.contains("expected numbers"), "{e}");
     }
 
     /// A byte order mark at the start (Windows' Notepad, Excel's "CSV UTF-8")
