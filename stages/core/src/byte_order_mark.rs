@@ -12,6 +12,9 @@ use std::io::BufRead;
 /// The mark's bytes.
 pub const BYTES: [u8; 3] = [0xef, 0xbb, 0xbf];
 
+/// The mark as a character, where a reader has the file's text as UTF-8.
+pub const CHAR: char = '\u{feff}';
+
 /// `bytes` without a mark at their start.
 pub fn strip(bytes: &[u8]) -> &[u8] {
     bytes.strip_prefix(&BYTES).unwrap_or(bytes)

@@ -102,7 +102,7 @@ impl<R: BufRead> Lines<R> {
             ));
         }
         // A byte order mark, where a Windows tool wrote one, starts the file.
-        let text = self.line.trim().trim_start_matches('\u{feff}');
+        let text = self.line.trim().trim_start_matches(liftplan_core::byte_order_mark::CHAR);
         let shown: String = text.chars().take(60).collect();
         let vals: Vec<f64> = text.split_whitespace().map_while(|t| t.parse::<f64>().ok()).collect();
         if vals.len() != N || text.split_whitespace().count() != N || !vals.iter().all(|v| v.is_finite()) {
@@ -178,8 +178,8 @@ impl<R: BufRead> Lines<R> {
                 ),
             ));
         }
-        let rotation = na::UnitQuaternion::from_matrix(&r);
-        let pose = Pose::from_parts(na::Translation3::new(m[3][0], m[3][1], m[3][2]), rotation);
+        // The transform as a column vector takes it: the matrix transposed.
+        let pose = liftplan_core::frame::pose_from_rows(&std::array::from_fn(|i| std::array::from_fn(|j| m[j][i])));
         Ok(Some(Header { columns, rows, scanner, pose }))
     }
 

@@ -73,10 +73,8 @@ impl<R: BufRead> TakeLine for R {
     }
 }
 
+use liftplan_core::byte_order_mark::CHAR as BOM;
 use std::io::Read as _;
-
-/// The byte order mark some Windows tools write at a text file's start.
-const BOM: char = '\u{feff}';
 
 /// How a text file's numbers are separated: decided by its first line of
 /// numbers ([`Separation::of`]) and held for the file. A spreadsheet or a
