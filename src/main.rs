@@ -779,6 +779,16 @@ fn real_main() -> Result<ExitCode> {
                 }
                 println!("wrote {} ({} rows)", output.display(), table.rows().len());
             }
+            // What the reading found worth checking (a decimal comma, a
+            // footnote dropped, a broken column): on stderr, as a run
+            // shows it; in the JSON with each configuration.
+            if !json {
+                for r in &reports {
+                    for w in &r.warnings {
+                        eprintln!("warning: {}", progress::for_terminal(&format!("'{}': {w}", r.name)));
+                    }
+                }
+            }
             if json {
                 println!("{}", serde_json::to_string(&result)?);
             }

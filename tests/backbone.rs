@@ -395,7 +395,8 @@ fn options_list_every_stages_settings_as_a_project_file() {
 /// `liftplan chart --lookup` reads one capacity: boom and radius for a
 /// chart with boom columns, the radius alone for a tower crane's chart of
 /// one column (which it printed as "boom 0 m, column 0 m"); a length that
-/// is not a finite number is refused.
+/// is not a finite number is refused. `liftplan chart` says what reading
+/// the chart warned of.
 #[test]
 fn chart_lookup_takes_the_radius_alone_for_a_chart_of_one_column() {
     let t = tempfile::tempdir().unwrap();
@@ -422,6 +423,16 @@ fn chart_lookup_takes_the_radius_alone_for_a_chart_of_one_column() {
         assert_eq!(o.status.code(), Some(2), "{q}");
         assert!(String::from_utf8_lossy(&o.stderr).contains("expects boom=B,radius=R"), "{q}");
     }
+    // What reading the chart warned of is said (it was in the JSON only).
+    liftplan_fixtures::chart::write_demo_chart_with(&mobile, Some((21, 6, "41,5"))).unwrap();
+    let o = ok(&["chart", mobile.to_str().unwrap(), "-o", c]);
+    let said = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        said.contains(
+            "warning: 'Main boom 360': Main boom 360!H28: '41,5' written as text with a decimal comma, read as 41.5\n"
+        ),
+        "{said}"
+    );
 }
 
 /// `liftplan inspect` reads the .toml inputs too: a crane model (its boxes,

@@ -1145,7 +1145,10 @@ liftoff_m = 0.5
         text.contains("(a footnote may restrict the value it marks); THIS PLAN READS Main boom 360!H28 in step"),
         "{text}"
     );
-    assert!(cover.contains("the load chart cells read with a warning (1; the steps read 1 of them)"), "{cover}");
+    assert!(
+        cover.contains("the load chart cells read with a warning (1 warning; the steps read 1 cell it names)"),
+        "{cover}"
+    );
     // And the pages of those steps say so, quoting the warning.
     assert!(
         text.contains("Chart warning THIS STEP READS A CELL THE CHART WARNED OF: Main boom 360!H28: footnote mark dropped from '41.5 (1)'"),
@@ -1156,9 +1159,25 @@ liftoff_m = 0.5
     let at_11_m = format!("{}*", liftplan_fixtures::chart::demo_capacity_t(11.0, 41.8, 1.0).unwrap());
     liftplan_fixtures::chart::write_demo_chart_with(&chart_path, Some((10, 6, &at_11_m))).unwrap();
     let (cover, text) = planned_with(&dir, &t13);
-    assert!(cover.contains("the load chart cells read with a warning (1; no step reads them)"), "{cover}");
+    assert!(
+        cover.contains("the load chart cells read with a warning (1 warning; no step reads a cell it names)"),
+        "{cover}"
+    );
     assert!(
         text.contains(&format!("Main boom 360!H17: footnote mark dropped from '{at_11_m}'; no footnote marked '*' was found on sheet Main boom 360: read the chart's notes for it. The capacities this plan checks were read so: CHECK THOSE CELLS against the chart the crane's owner issued (a footnote may restrict the value it marks); no step of this plan reads a cell they name.")),
+        "{text}"
+    );
+    // The same cell typed as text with a decimal comma ("41,5", as a chart
+    // typed in a German Excel holds it): read as 41.5, said with the cell.
+    liftplan_fixtures::chart::write_demo_chart_with(&chart_path, Some((21, 6, "41,5"))).unwrap();
+    let (cover, text) = planned_with(&dir, &t13);
+    assert!(
+        cover.contains("the load chart cells read with a warning (1 warning; the steps read 1 cell it names)"),
+        "{cover}"
+    );
+    assert!(
+        text.contains("WARNED: Main boom 360!H28: '41,5' written as text with a decimal comma, read as 41.5.")
+            && text.contains("THIS PLAN READS Main boom 360!H28 in step"),
         "{text}"
     );
     liftplan_fixtures::chart::write_demo_chart(&chart_path).unwrap();

@@ -18,6 +18,7 @@
 //! refused otherwise; a grid whose capacity rises with radius is refused with the
 //! cell that rises.
 
+use crate::decimals::{self, GridMark, Reading};
 use crate::sheet::{Sheet, Val};
 use liftplan_core::capacity::{ChartCell, ChartConfig};
 use liftplan_core::location::cell_ref;
@@ -86,11 +87,11 @@ impl<'a> Column<'a> {
         }
         let mut rising = vec![0u32; rows.len()];
         for i in (0..rows.len()).rev() {
-            if let Val::Num(v) = *vals[i]
+            if let Some(v) = vals[i].number()
                 && v > 0.0
             {
                 let next_rises =
-                    i + 1 < rows.len() && rows[i + 1] == rows[i] + 1 && matches!(vals[i + 1], Val::Num(w) if *w > v);
+                    i + 1 < rows.len() && rows[i + 1] == rows[i] + 1 && vals[i + 1].number().is_some_and(|w| w > v);
                 rising[i] = if next_rises { 1 + rising[i + 1] } else { 1 };
             }
         }
@@ -118,7 +119,7 @@ impl<'a> Column<'a> {
     fn increasing_down(&self, start: u32) -> std::ops::Range<u32> {
         for r in (0..3).filter_map(|k| start.checked_add(k)) {
             match self.index(r) {
-                Some(i) if matches!(self.vals[i], Val::Num(_)) => return r..r + self.rising[i],
+                Some(i) if self.vals[i].number().is_some() => return r..r + self.rising[i],
                 _ => {}
             }
         }
@@ -204,7 +205,7 @@ pub fn find_grids(sheet: &Sheet) -> Result<Vec<Grid>, (String, String)> {
         let nums: Vec<(u32, f64)> = sheet
             .cells
             .range((row, 0)..=(row, u32::MAX))
-            .filter_map(|((_, c), v)| if let Val::Num(x) = v { Some((*c, *x)) } else { None })
+            .filter_map(|((_, c), v)| v.number().map(|x| (*c, x)))
             .collect();
         let mut i = 0;
         while i < nums.len() {
@@ -246,7 +247,7 @@ pub fn find_grids(sheet: &Sheet) -> Result<Vec<Grid>, (String, String)> {
             let len = labels.rising[i];
             if len < 3
                 || first == 0
-                || (i > 0 && labels.rows[i - 1] == first - 1 && matches!(labels.vals[i - 1], Val::Num(_)))
+                || (i > 0 && labels.rows[i - 1] == first - 1 && labels.vals[i - 1].number().is_some())
             {
                 continue;
             }
@@ -256,7 +257,7 @@ pub fn find_grids(sheet: &Sheet) -> Result<Vec<Grid>, (String, String)> {
             }
             let Some((vc, end)) = c.checked_add(1).zip(c.checked_add(2)) else { continue };
             let values = column(vc);
-            if matches!(values.and_then(|v| v.get(header_row)), Some(Val::Num(_))) {
+            if values.and_then(|v| v.get(header_row)).and_then(Val::number).is_some() {
                 continue;
             }
             let rows = first..first + len;
@@ -328,7 +329,9 @@ fn title_above(sheet: &Sheet, g: &Grid) -> String {
     let lo = g.label_col.saturating_sub(1);
     for r in (g.header_row.saturating_sub(6)..g.header_row).rev() {
         for (_, v) in sheet.cells.range((r, lo)..=(r, last)) {
-            if let Val::Text(t) = v {
+            if let Val::Text(t) = v
+                && v.number().is_none()
+            {
                 let t = t.split_whitespace().collect::<Vec<_>>().join(" ");
                 if t.len() >= 4 && !(says_boom(&t) && t.len() < 30) && !(says_radius(&t) && t.len() < 30) {
                     return liftplan_core::names::kept(&t, MAX_TITLE_CHARS).into_owned();
@@ -660,12 +663,120 @@ impl<'a> NoteSheets<'a> {
     }
 }
 
-/// A capacity cell's value: `Ok(None)` for "not permitted". A footnote mark
-/// after it is dropped with a warning that ends with what `footnote` says of
-/// the note it points at.
+/// The words a chart writes in a cell where no capacity is permitted.
+const NOT_PERMITTED: [&str; 10] = ["", "-", "–", "—", "*", "n/a", "na", "x", "/", "--"];
+
+/// A capacity written as text, taken apart: its number as written, blanks
+/// taken out; the unit after it; the footnote mark after that.
+struct CapacityText<'a> {
+    number: String,
+    unit: &'a str,
+    mark: Option<FootnoteMark>,
+}
+
+/// `None` for the words of "not permitted".
+fn capacity_text(t: &str) -> Option<CapacityText<'_>> {
+    let t = t.trim();
+    if NOT_PERMITTED.contains(&t.to_lowercase().as_str()) {
+        return None;
+    }
+    let (s, mark) = match FootnoteMark::split(t) {
+        Some((before, mark)) => (before, Some(mark)),
+        None => (t, None),
+    };
+    let num_end = s
+        .char_indices()
+        .find(|(_, c)| !(c.is_ascii_digit() || *c == '.' || *c == ',' || *c == ' ' || *c == '\u{a0}'))
+        .map(|(i, _)| i)
+        .unwrap_or(s.len());
+    let number = s[..num_end].chars().filter(|c| *c != ' ' && *c != '\u{a0}').collect();
+    Some(CapacityText { number, unit: s[num_end..].trim(), mark })
+}
+
+/// Numbers a grid holds as text that were read in a way worth saying, with
+/// their cells: said once for the grid ([`TextNumbers::said`]), not cell by
+/// cell (a chart typed in another locale has hundreds).
+#[derive(Default)]
+pub struct TextNumbers {
+    decimal_commas: Vec<TextNumber>,
+    guessed: Vec<TextNumber>,
+}
+
+/// A number written as text: its cell ("sheet!B6"), its text, its value.
+struct TextNumber(String, String, f64);
+
+impl TextNumbers {
+    fn note(&mut self, reading: Reading, cell: &str, text: &str, value: f64) {
+        let list = match reading {
+            Reading::Plain => return,
+            Reading::DecimalComma => &mut self.decimal_commas,
+            Reading::Guessed => &mut self.guessed,
+        };
+        list.push(TextNumber(cell.to_string(), text.trim().to_string(), value));
+    }
+
+    /// The warnings for a grid (`range`: where it is, on sheet `sheet`),
+    /// each opening with the cell, or the range of cells, it is about (as
+    /// the plan's pages find the cells a step reads in the warnings).
+    fn said(&self, sheet: &str, range: &str) -> Vec<String> {
+        // The rectangle the numbers' cells span, as "sheet!B6" or "sheet!B6:M44".
+        let span = |numbers: &[TextNumber]| {
+            let corners = numbers.iter().filter_map(|TextNumber(cell, _, _)| {
+                liftplan_core::location::parse_cell_range(cell.rsplit_once('!')?.1).map(|(first, _)| first)
+            });
+            let (mut lo, mut hi) = ((u32::MAX, u32::MAX), (0, 0));
+            for (r, c) in corners {
+                (lo, hi) = ((lo.0.min(r), lo.1.min(c)), (hi.0.max(r), hi.1.max(c)));
+            }
+            if lo == hi {
+                format!("{sheet}!{}", cell_ref(lo.0, lo.1))
+            } else {
+                format!("{sheet}!{}:{}", cell_ref(lo.0, lo.1), cell_ref(hi.0, hi.1))
+            }
+        };
+        let mut out = Vec::new();
+        if let [TextNumber(cell, text, v), rest @ ..] = &self.decimal_commas[..] {
+            out.push(if rest.is_empty() {
+                format!("{cell}: '{text}' written as text with a decimal comma, read as {v}")
+            } else {
+                format!(
+                    "{}: {} numbers written as text with decimal commas, read as decimals ({cell} '{text}' as {v})",
+                    span(&self.decimal_commas),
+                    rest.len() + 1
+                )
+            });
+        }
+        if let [TextNumber(cell, text, v), rest @ ..] = &self.guessed[..] {
+            let how = if text.contains(',') { "the comma separating thousands" } else { "the point marking decimals" };
+            let unsure = format!(
+                "as no number written as text in the grid {sheet}!{range} shows whether it writes decimals with a \
+                 point or a comma"
+            );
+            out.push(if rest.is_empty() {
+                format!("{cell}: '{text}' written as text read as {v}, {how}, {unsure}: CHECK it against the chart")
+            } else {
+                format!(
+                    "{}: {} numbers written as text read the common way, {unsure} ({cell} '{text}' as {v}, {how}): \
+                     CHECK them against the chart",
+                    span(&self.guessed),
+                    rest.len() + 1
+                )
+            });
+        }
+        out
+    }
+}
+
+/// A capacity cell's value: `Ok(None)` for "not permitted". A number
+/// written as text is read with the grid's decimal mark where it shows none
+/// of its own ([`GridMark::for_number`]) and noted in `read` where worth
+/// saying. A footnote mark after it is dropped with a warning that ends
+/// with what `footnote` says of the note it points at.
 pub fn parse_capacity(
     v: Option<&Val>,
     unit: MassUnit,
+    decimals: &GridMark,
+    read: &mut TextNumbers,
     warnings: &mut Vec<String>,
     at: &str,
     footnote: &mut dyn FnMut(FootnoteMark) -> String,
@@ -683,26 +794,12 @@ pub fn parse_capacity(
         }
         Some(Val::Text(t)) => t.trim(),
     };
-    const NOT_PERMITTED: [&str; 10] = ["", "-", "–", "—", "*", "n/a", "na", "x", "/", "--"];
-    if NOT_PERMITTED.contains(&t.to_lowercase().as_str()) {
-        return Ok(None);
+    let Some(parts) = capacity_text(t) else { return Ok(None) };
+    if let Some(mark) = parts.mark {
+        warnings.push(format!("{at}: footnote mark dropped from '{t}'{}", footnote(mark)));
     }
-    let s = match FootnoteMark::split(t) {
-        Some((before, mark)) => {
-            warnings.push(format!("{at}: footnote mark dropped from '{t}'{}", footnote(mark)));
-            before.to_string()
-        }
-        None => t.to_string(),
-    };
-    // Split a trailing unit.
-    let num_end = s
-        .char_indices()
-        .find(|(_, c)| !(c.is_ascii_digit() || *c == '.' || *c == ',' || *c == ' ' || *c == '\u{a0}'))
-        .map(|(i, _)| i)
-        .unwrap_or(s.len());
-    let (num, suffix) = (s[..num_end].trim(), s[num_end..].trim());
-    if !suffix.is_empty() {
-        let units = mass_in(suffix);
+    if !parts.unit.is_empty() {
+        let units = mass_in(parts.unit);
         match units.first() {
             Some(u) if *u == unit => {}
             Some(u) => {
@@ -711,21 +808,46 @@ pub fn parse_capacity(
             None => return Err(format!("cannot read '{t}' as a capacity (expected a number in {})", unit.name())),
         }
     }
-    let clean: String = num.chars().filter(|c| *c != ' ' && *c != '\u{a0}').collect();
-    let value = if clean.matches(',').count() == 1
-        && !clean.contains('.')
-        && clean.split(',').nth(1).is_some_and(|d| d.len() != 3)
-    {
-        warnings.push(format!("{at}: read '{t}' as {}", clean.replace(',', ".")));
-        clean.replace(',', ".").parse::<f64>()
-    } else {
-        clean.replace(',', "").parse::<f64>()
+    let Some((value, reading)) = decimals::read(&parts.number, decimals.for_number(&parts.number)?) else {
+        return Err(format!("cannot read '{t}' as a capacity (expected a number in {})", unit.name()));
     };
-    match value {
-        Ok(x) if x > 0.0 && x.is_finite() => Ok(Some(x)),
-        Ok(_) => Ok(None),
-        Err(_) => Err(format!("cannot read '{t}' as a capacity (expected a number in {})", unit.name())),
+    read.note(reading, at, &parts.number, value);
+    if value > 0.0 { Ok(Some(value)) } else { Ok(None) }
+}
+
+/// The numbers of a grid's radii or boom lengths (`what`), in its `cells`:
+/// a cell holding none is refused, naming it and what it holds. Numbers
+/// written as text are read with the grid's decimal mark (`decimals`) and
+/// noted in `read` where worth saying.
+fn axis_values(
+    sheet: &Sheet,
+    cells: &[(u32, u32)],
+    what: &str,
+    decimals: &GridMark,
+    read: &mut TextNumbers,
+) -> Result<Vec<f64>, (String, String)> {
+    let at = |(r, c): (u32, u32)| format!("{}!{}", sheet.name, cell_ref(r, c));
+    let mut values = Vec::with_capacity(cells.len());
+    for &(r, c) in cells {
+        let v = match sheet.get(r, c) {
+            Some(Val::Num(v)) => *v,
+            Some(Val::Text(t)) => {
+                match decimals::read(t.trim(), decimals.for_number(t.trim()).map_err(|why| (at((r, c)), why))?) {
+                    Some((v, reading)) => {
+                        read.note(reading, &at((r, c)), t, v);
+                        v
+                    }
+                    None => {
+                        let t = liftplan_core::names::kept(t.trim(), 40);
+                        return Err((at((r, c)), format!("expected a {what} (a number), found '{t}'")));
+                    }
+                }
+            }
+            None => return Err((at((r, c)), format!("expected a {what} (a number), found an empty cell"))),
+        };
+        values.push(v);
     }
+    Ok(values)
 }
 
 /// What a capacity's warning says of the note its mark points at: the note
@@ -775,12 +897,22 @@ pub fn read_grid(
 ) -> Result<ChartConfig, (String, String)> {
     let at = |r: u32, c: u32| format!("{}!{}", sheet.name, cell_ref(r, c));
     // Values across the header and down the label column.
-    let across: Vec<f64> = if g.boom_independent {
-        vec![0.0]
-    } else {
-        g.value_cols.iter().map(|&c| sheet.num(g.header_row, c).unwrap_or(f64::NAN)).collect()
-    };
-    let down: Vec<f64> = g.rows.iter().map(|&r| sheet.num(r, g.label_col).unwrap_or(f64::NAN)).collect();
+    let (across_is, down_is) = if g.transposed { ("radius", "boom length") } else { ("boom length", "radius") };
+    let across_cells: Vec<(u32, u32)> = g.value_cols.iter().map(|&c| (g.header_row, c)).collect();
+    let down_cells: Vec<(u32, u32)> = g.rows.iter().map(|&r| (r, g.label_col)).collect();
+    let across_cells = if g.boom_independent { &[][..] } else { &across_cells[..] };
+    let capacity_cells = || g.rows.iter().flat_map(|&r| g.value_cols.iter().map(move |&c| (r, c)));
+    let texts =
+        across_cells.iter().chain(&down_cells).map(|&(r, c)| (r, c, sheet.text(r, c).map(|t| t.trim().to_string())));
+    let texts = texts.chain(
+        capacity_cells().map(|(r, c)| (r, c, sheet.text(r, c).and_then(capacity_text).map(|parts| parts.number))),
+    );
+    let texts: Vec<(String, String)> = texts.filter_map(|(r, c, t)| Some((at(r, c), t?))).collect();
+    let decimals = GridMark::of(texts.iter().map(|(cell, t)| (cell.clone(), t.as_str())));
+    let mut read = TextNumbers::default();
+    let across: Vec<f64> =
+        if g.boom_independent { vec![0.0] } else { axis_values(sheet, across_cells, across_is, &decimals, &mut read)? };
+    let down: Vec<f64> = axis_values(sheet, &down_cells, down_is, &decimals, &mut read)?;
     if !g.boom_independent && !strictly_increasing(&across) {
         return Err((at(g.header_row, g.value_cols[0]), "header values must increase from left to right".into()));
     }
@@ -809,12 +941,14 @@ pub fn read_grid(
         for (bi, _) in booms_m.iter().enumerate() {
             let (row, col) = cell_of(ri, bi);
             let here = at(row, col);
-            let v = parse_capacity(sheet.get(row, col), u.capacity, warnings, &here, &mut footnote)
-                .map_err(|m| (here.clone(), m))?;
+            let v =
+                parse_capacity(sheet.get(row, col), u.capacity, &decimals, &mut read, warnings, &here, &mut footnote)
+                    .map_err(|m| (here.clone(), m))?;
             cells[ri * booms_m.len() + bi] =
                 v.map(|x| ChartCell { capacity_kg: x * u.capacity.to_kg(), cell: format!("{file_label} [{here}]") });
         }
     }
+    warnings.extend(read.said(&sheet.name, &g.range()));
     // Capacity must not rise with radius; a column broken by a cell with
     // none (a blank or '-' between two capacities) is read as not
     // permitted there, which is safe but rarely what the chart means.
@@ -893,12 +1027,12 @@ mod tests {
         let increasing_down = |col: u32, start: u32| {
             let (mut rows, mut r, mut skipped, mut last) = (Vec::new(), start, 0, f64::NEG_INFINITY);
             loop {
-                match sheet.get(r, col) {
-                    Some(Val::Num(v)) if *v > 0.0 && *v > last => {
+                match sheet.get(r, col).map(|v| (v, v.number())) {
+                    Some((_, Some(v))) if v > 0.0 && v > last => {
                         rows.push(r);
-                        last = *v;
+                        last = v;
                     }
-                    Some(Val::Text(_)) | None if rows.is_empty() && skipped < 2 => skipped += 1,
+                    Some((_, None)) | None if rows.is_empty() && skipped < 2 => skipped += 1,
                     _ => break,
                 }
                 r += 1;
@@ -971,13 +1105,16 @@ mod tests {
     /// A random sheet of up to 14 rows and 9 columns, most of whose numbers
     /// follow a slope down and across (so that rising runs both ways, and
     /// grids, are common), with stray numbers (zero and negative ones too),
-    /// numbers as text, words and empty cells among them.
+    /// numbers as text (plain ones, which count as numbers, and ones with
+    /// a unit, which do not), words and empty cells among them.
     fn random_sheet() -> impl Strategy<Value = Sheet> {
         let cell = prop_oneof![
             3 => Just(None),
             6 => (-2i32..3).prop_map(|d| Some((true, d))),
             2 => (-1i32..12).prop_map(|v| Some((false, v))),
             1 => (0i32..9).prop_map(|v| Some((false, 100 + v))),
+            1 => (0i32..12).prop_map(|v| Some((false, 300 + v))),
+            1 => (0i32..12).prop_map(|v| Some((false, 400 + v))),
             1 => Just(Some((false, 200))),
         ];
         (1usize..15, 1usize..10, 0i32..3, 0i32..3).prop_flat_map(move |(rows, cols, down, across)| {
@@ -990,6 +1127,8 @@ mod tests {
                         let v = match v? {
                             (true, d) => Val::Num((down * r + across * c + d) as f64),
                             (false, t @ 100..200) => Val::Text(format!("{} t", t - 100)),
+                            (false, t @ 300..400) => Val::Text(format!("{},5", t - 300)),
+                            (false, t @ 400..500) => Val::Text(format!(" {} ", t - 400)),
                             (false, 200) => Val::Text("Radius".into()),
                             (false, v) => Val::Num(v as f64),
                         };
@@ -1142,33 +1281,36 @@ mod tests {
     #[test]
     fn typos_read_or_refused_with_the_cell() {
         let mut w = vec![];
+        let mut read = TextNumbers::default();
         let mut no_note = |_| String::new();
+        let mut parse = |t: &str, unit: MassUnit, decimals: GridMark, at: &str| {
+            parse_capacity(Some(&Val::Text(t.into())), unit, &decimals, &mut read, &mut w, at, &mut no_note)
+        };
+        assert_eq!(parse("12,5", MassUnit::T, GridMark::Neither, "S!C3").unwrap(), Some(12.5));
+        assert_eq!(parse("12.5t", MassUnit::T, GridMark::Neither, "S!C4").unwrap(), Some(12.5));
+        assert!(parse("12.5kg", MassUnit::T, GridMark::Neither, "S!C5").unwrap_err().contains("kg"));
+        assert!(parse("heavy", MassUnit::T, GridMark::Neither, "S!C6").is_err());
+        assert_eq!(parse("—", MassUnit::T, GridMark::Neither, "S!C7").unwrap(), None);
+        assert_eq!(parse("8.4*", MassUnit::T, GridMark::Neither, "S!C8").unwrap(), Some(8.4));
+        assert_eq!(parse("12,500", MassUnit::Lb, GridMark::Neither, "S!C9").unwrap(), Some(12500.0));
         assert_eq!(
-            parse_capacity(Some(&Val::Text("12,5".into())), MassUnit::T, &mut w, "S!C3", &mut no_note).unwrap(),
+            parse("12,500", MassUnit::T, GridMark::One(crate::decimals::DecimalMark::Comma), "S!C10").unwrap(),
             Some(12.5)
         );
-        assert!(w[0].contains("S!C3"));
+        assert_eq!(parse("1 250,5 kg", MassUnit::Kg, GridMark::Neither, "S!C11").unwrap(), Some(1250.5));
+        assert_eq!(parse("1.250,5", MassUnit::Kg, GridMark::Neither, "S!C12").unwrap(), Some(1250.5));
+        let both = GridMark::Both { comma: ("S!C3".into(), "12,5".into()), point: ("S!C8".into(), "8.4".into()) };
+        assert!(parse("12.500", MassUnit::T, both, "S!C13").unwrap_err().contains("may be 12500 or 12.5"));
+        assert!(parse("1,25,000", MassUnit::Lb, GridMark::Neither, "S!C14").is_err());
+        assert_eq!(w.len(), 1, "{w:?}");
+        let said = read.said("S", "B2:C14");
         assert_eq!(
-            parse_capacity(Some(&Val::Text("12.5t".into())), MassUnit::T, &mut w, "S!C4", &mut no_note).unwrap(),
-            Some(12.5)
+            said[0],
+            "S!C3:C12: 4 numbers written as text with decimal commas, read as decimals (S!C3 '12,5' as 12.5)"
         );
         assert!(
-            parse_capacity(Some(&Val::Text("12.5kg".into())), MassUnit::T, &mut w, "S!C5", &mut no_note)
-                .unwrap_err()
-                .contains("kg")
-        );
-        assert!(parse_capacity(Some(&Val::Text("heavy".into())), MassUnit::T, &mut w, "S!C6", &mut no_note).is_err());
-        assert_eq!(
-            parse_capacity(Some(&Val::Text("—".into())), MassUnit::T, &mut w, "S!C7", &mut no_note).unwrap(),
-            None
-        );
-        assert_eq!(
-            parse_capacity(Some(&Val::Text("8.4*".into())), MassUnit::T, &mut w, "S!C8", &mut no_note).unwrap(),
-            Some(8.4)
-        );
-        assert_eq!(
-            parse_capacity(Some(&Val::Text("12,500".into())), MassUnit::Lb, &mut w, "S!C9", &mut no_note).unwrap(),
-            Some(12500.0)
+            said[1].starts_with("S!C9: '12,500' written as text read as 12500, the comma separating thousands, as no number written as text in the grid S!B2:C14 shows"),
+            "{said:?}"
         );
     }
 

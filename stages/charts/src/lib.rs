@@ -10,8 +10,9 @@
 //! | `chart.json` | per configuration: file, sheet, range, grid size, units found, warnings |
 //! | `lifts.json` | per lift: gross load, capacity and utilisation at pick and set, the radial ranges the chart permits, critical flag (read back by [`recorded`]) |
 //!
-//! Every value keeps the `sheet!cell` it came from, so the lift plan can quote the
-//! chart row it relied on. The capacity rule itself (never interpolate upwards)
+//! Numbers a chart holds as text are read with the decimal mark their grid
+//! shows ([`decimals`]). Every value keeps the `sheet!cell` it came from, so
+//! the lift plan can quote the chart row it relied on. The capacity rule itself (never interpolate upwards)
 //! lives in `liftplan_core::capacity`.
 //!
 //! `capacity.csv` depends only on the charts; `lifts.json` also on the lifts, so
@@ -19,6 +20,7 @@
 //! capacity table fresh.
 
 pub mod container;
+pub mod decimals;
 pub mod detect;
 pub mod error;
 pub mod recorded;
@@ -73,26 +75,7 @@ pub struct Settings {
 }
 
 /// Parses "C6:P6" into ((row0, col0), (row1, col1)).
-pub fn parse_range(s: &str) -> Option<((u32, u32), (u32, u32))> {
-    fn cell(c: &str) -> Option<(u32, u32)> {
-        let c = c.trim().trim_start_matches('$');
-        let split = c.find(|ch: char| ch.is_ascii_digit())?;
-        let (letters, digits) = c.split_at(split);
-        let letters = letters.trim_end_matches('$');
-        if letters.is_empty() || !letters.chars().all(|ch| ch.is_ascii_alphabetic()) {
-            return None;
-        }
-        let mut col: u32 = 0;
-        for ch in letters.to_ascii_uppercase().chars() {
-            col = col.checked_mul(26)?.checked_add(ch as u32 - 'A' as u32 + 1)?;
-        }
-        let row: u32 = digits.parse().ok()?;
-        (row >= 1 && col >= 1).then(|| (row - 1, col - 1))
-    }
-    let (a, b) = s.split_once(':').unwrap_or((s, s));
-    let (a, b) = (cell(a)?, cell(b)?);
-    Some(((a.0.min(b.0), a.1.min(b.1)), (a.0.max(b.0), a.1.max(b.1))))
-}
+pub use liftplan_core::location::parse_cell_range as parse_range;
 
 /// One configuration found, for `chart.json`.
 #[derive(Debug, Clone, Serialize)]

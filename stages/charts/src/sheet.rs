@@ -22,6 +22,19 @@ pub enum Val {
     Text(String),
 }
 
+impl Val {
+    /// The cell's number: a number cell's value, or a text cell holding a
+    /// plain number ([`crate::decimals::plain_number`]), as charts pasted
+    /// from a PDF or typed in another locale hold their radii and boom
+    /// lengths ("12.5", "12,5"; Excel's "number stored as text").
+    pub fn number(&self) -> Option<f64> {
+        match self {
+            Val::Num(v) => Some(*v),
+            Val::Text(t) => crate::decimals::plain_number(t).map(|(v, _)| v),
+        }
+    }
+}
+
 #[derive(Debug, Clone, Default)]
 pub struct Sheet {
     pub name: String,
@@ -34,11 +47,10 @@ impl Sheet {
         self.cells.get(&(r, c))
     }
 
+    /// The cell's number ([`Val::number`]: a text cell holding a plain
+    /// number counts).
     pub fn num(&self, r: u32, c: u32) -> Option<f64> {
-        match self.get(r, c) {
-            Some(Val::Num(v)) => Some(*v),
-            _ => None,
-        }
+        self.get(r, c).and_then(Val::number)
     }
 
     pub fn text(&self, r: u32, c: u32) -> Option<&str> {

@@ -146,6 +146,122 @@ fn transposed_layout_is_recognised() {
     assert!((c[0].lookup(30.0, 5.0).unwrap().capacity_kg - cap_t(6.0, 30.0).unwrap() * 1000.0).abs() < 1e-6);
 }
 
+/// The demo chart with every number written as text, as a chart pasted
+/// from a PDF or typed into an Excel set to another locale holds them:
+/// radii, boom lengths and capacities, with decimal points and with decimal
+/// commas, capacities to three decimals ("482,600": read alone, twelve
+/// thousand or twelve; the grid's "3,5" m radius says which). Each reads as
+/// the chart of numbers does; decimal commas are said once a grid.
+#[test]
+fn numbers_written_as_text_read_as_the_numbers() {
+    let d = tempfile::tempdir().unwrap();
+    let p = d.path().join("ac700.xlsx");
+    liftplan_fixtures::chart::write_demo_chart(&p).unwrap();
+    let (numbers, _) = read_chart(&p, &Settings::default()).unwrap();
+    let sheets = liftplan_charts::sheet::read_workbook(&p).unwrap();
+    for (mark, capacities) in [('.', false), ('.', true), (',', false), (',', true)] {
+        let mut wb = Workbook::new();
+        for sheet in &sheets {
+            let ws = wb.add_worksheet().set_name(&sheet.name).unwrap();
+            for (&(r, c), v) in &sheet.cells {
+                let text = match v {
+                    // Booms and radii are in the first column and row 5
+                    // (0-based): capacities below and right of them.
+                    liftplan_charts::sheet::Val::Num(x) if capacities && r > 5 && c > 0 => format!("{x:.3}"),
+                    liftplan_charts::sheet::Val::Num(x) => format!("{x}"),
+                    liftplan_charts::sheet::Val::Text(t) => t.clone(),
+                };
+                let text = if matches!(v, liftplan_charts::sheet::Val::Num(_)) {
+                    text.replace('.', &mark.to_string())
+                } else {
+                    text
+                };
+                ws.write_string(r, c as u16, &text).unwrap();
+            }
+        }
+        let q = d.path().join("as-text.xlsx");
+        wb.save(&q).unwrap();
+        let (configs, reports) = read_chart(&q, &Settings::default()).unwrap();
+        for (a, b) in configs.iter().zip(&numbers) {
+            assert_eq!((&a.boom_lengths_m, &a.radii_m), (&b.boom_lengths_m, &b.radii_m), "{mark} {capacities}");
+            let capacities_kg = |c: &liftplan_core::capacity::ChartConfig| {
+                c.cells.iter().map(|x| x.as_ref().map(|x| x.capacity_kg)).collect::<Vec<_>>()
+            };
+            assert_eq!(capacities_kg(a), capacities_kg(b), "{mark} {capacities}");
+        }
+        assert_eq!(configs.len(), numbers.len());
+        for r in &reports {
+            if mark == ',' {
+                assert_eq!(r.warnings.len(), 1, "{:?}", r.warnings);
+                assert!(
+                    r.warnings[0].starts_with(&format!("{}!A6:M44: ", r.sheet))
+                        && r.warnings[0].contains("numbers written as text with decimal commas, read as decimals"),
+                    "{:?}",
+                    r.warnings
+                );
+            } else {
+                assert!(r.warnings.is_empty(), "{:?}", r.warnings);
+            }
+        }
+    }
+}
+
+/// Numbers written as text that show no decimal mark of their own
+/// ("12,500") are read with their grid's: read the common way and said,
+/// cell by cell, where the grid shows none; refused where it shows both.
+#[test]
+fn a_number_that_reads_two_ways_is_said_or_refused() {
+    let d = tempfile::tempdir().unwrap();
+    let p = d.path().join("lb.xlsx");
+    let lb = |r: f64, b: f64| cap_t(r, b).map(|t| ((t * 1000.0 / KG_PER_LB / 100.0).round() * 100.0).max(1000.0));
+    let thousands = |v: f64| {
+        let v = v as u64;
+        if v >= 1000 { format!("{},{:03}", v / 1000, v % 1000) } else { v.to_string() }
+    };
+    write_grid(
+        &p,
+        "Capacities in lb",
+        "Radius (ft)",
+        &[60.0, 90.0],
+        &[10.0, 20.0, 30.0],
+        |r, b| Some(thousands(lb(r * M_PER_FT, b * M_PER_FT)?)),
+        false,
+    );
+    let (c, rep) = read_chart(&p, &Settings::default()).unwrap();
+    let cell = c[0].lookup(60.0 * M_PER_FT, 10.0 * M_PER_FT).unwrap();
+    assert!((cell.capacity_kg - lb(10.0 * M_PER_FT, 60.0 * M_PER_FT).unwrap() * KG_PER_LB).abs() < 1e-6, "{cell:?}");
+    assert_eq!(rep[0].warnings.len(), 1, "{:?}", rep[0].warnings);
+    assert!(
+        rep[0].warnings[0].starts_with("Chart!B5:C7: 6 numbers written as text read the common way, as no number written as text in the grid Chart!A4:C7 shows whether it writes decimals with a point or a comma (Chart!B5 '")
+            && rep[0].warnings[0].ends_with(", the comma separating thousands): CHECK them against the chart"),
+        "{:?}",
+        rep[0].warnings
+    );
+
+    let p = d.path().join("both.xlsx");
+    write_grid(
+        &p,
+        "Capacities in t",
+        "Radius (m)",
+        &[20.0, 30.0],
+        &[4.0, 6.0, 10.0],
+        |r, b| {
+            Some(match (r, b) {
+                (4.0, 20.0) => "66,7".to_string(),
+                (4.0, 30.0) => "44.4".to_string(),
+                (6.0, 20.0) => "50,000".to_string(),
+                _ => format!("{:.1}", cap_t(r, b)?),
+            })
+        },
+        false,
+    );
+    let e = read_chart(&p, &Settings::default()).unwrap_err().to_string();
+    assert!(
+        e.contains("[Chart!B6]") && e.contains("'50,000' may be 50 or 50000, and the grid writes decimals with a comma (Chart!B5 '66,7') and with a point (Chart!C5 '44.4')"),
+        "{e}"
+    );
+}
+
 #[test]
 fn bad_cells_are_refused_with_sheet_and_cell() {
     let d = tempfile::tempdir().unwrap();

@@ -105,6 +105,30 @@ pub fn cell_ref(row: u32, col: u32) -> String {
     format!("{}{}", column_letters(col), row + 1)
 }
 
+/// Parses an `A1`-style cell ("C6", "$C$6") or range ("C6:P6") into its
+/// 0-based corners ((first row, first column), (last row, last column)), a
+/// cell being a range of one.
+pub fn parse_cell_range(s: &str) -> Option<((u32, u32), (u32, u32))> {
+    fn cell(c: &str) -> Option<(u32, u32)> {
+        let c = c.trim().trim_start_matches('$');
+        let split = c.find(|ch: char| ch.is_ascii_digit())?;
+        let (letters, digits) = c.split_at(split);
+        let letters = letters.trim_end_matches('$');
+        if letters.is_empty() || !letters.chars().all(|ch| ch.is_ascii_alphabetic()) {
+            return None;
+        }
+        let mut col: u32 = 0;
+        for ch in letters.to_ascii_uppercase().chars() {
+            col = col.checked_mul(26)?.checked_add(ch as u32 - 'A' as u32 + 1)?;
+        }
+        let row: u32 = digits.parse().ok()?;
+        (row >= 1 && col >= 1).then(|| (row - 1, col - 1))
+    }
+    let (a, b) = s.split_once(':').unwrap_or((s, s));
+    let (a, b) = (cell(a)?, cell(b)?);
+    Some(((a.0.min(b.0), a.1.min(b.1)), (a.0.max(b.0), a.1.max(b.1))))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -132,6 +156,12 @@ mod tests {
         assert_eq!(column_letters(27), "AB");
         assert_eq!(column_letters(701), "ZZ");
         assert_eq!(column_letters(702), "AAA");
+        assert_eq!(parse_cell_range("C6:P6"), Some(((5, 2), (5, 15))));
+        assert_eq!(parse_cell_range("$B$7"), Some(((6, 1), (6, 1))));
+        assert_eq!(parse_cell_range("M44:A6"), Some(((5, 0), (43, 12))));
+        for not in ["", "6C", "C0", "C", "C6:", "Ç6"] {
+            assert_eq!(parse_cell_range(not), None, "{not}");
+        }
     }
 
     #[test]

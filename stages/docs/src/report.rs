@@ -6,6 +6,7 @@ use crate::{DocsError, Inputs, Paper, Result, Settings};
 use liftplan_core::capacity::ChartConfig;
 use liftplan_core::image::{Image, Rgb};
 use liftplan_core::lift::LiftTask;
+use liftplan_core::location::parse_cell_range;
 use liftplan_core::obb::Obb;
 use liftplan_plan::LiftPlan;
 use liftplan_plan::steps::SetDown;
@@ -429,12 +430,17 @@ fn checks_before_signing(
     }
     if let Some(w) = chart_warnings(inp, task) {
         let read = warned_read.map(<[_]>::len);
+        let (warnings, name) = if w.len() == 1 {
+            ("1 warning".to_string(), "it names")
+        } else {
+            (format!("{} warnings", w.len()), "they name")
+        };
         v.push(format!(
-            "the load chart cells read with a warning ({}{})",
-            w.len(),
+            "the load chart cells read with a warning ({warnings}{})",
             match read {
-                Some(0) => "; no step reads them".to_string(),
-                Some(n) => format!("; the steps read {n} of them"),
+                Some(0) => format!("; no step reads a cell {name}"),
+                Some(1) => format!("; the steps read 1 cell {name}"),
+                Some(n) => format!("; the steps read {n} cells {name}"),
                 None => String::new(),
             }
         ));
@@ -609,7 +615,7 @@ fn warned_cells_read(
         for cell in task.chart_cells_between(chart, from_m, step.radius_m) {
             // "file [sheet!cell]": the cell as the warnings name it.
             let Some(at) = cell.rsplit_once(" [").map(|(_, c)| c.trim_end_matches(']').to_string()) else { continue };
-            if !warned.iter().any(|w| warned_cell(w) == at) {
+            if !warned.iter().any(|w| warning_names(w, &at)) {
                 continue;
             }
             match read.iter_mut().find(|(c, _)| *c == at) {
@@ -623,9 +629,19 @@ fn warned_cells_read(
     read
 }
 
-/// The cell a chart warning names ("Main boom 360!H28: footnote mark ...").
-fn warned_cell(warning: &str) -> &str {
-    warning.split(": ").next().unwrap_or_default()
+/// Whether a chart warning names the cell `at` ("sheet!cell"): a warning
+/// opens with the cell it is about ("Main boom 360!H28: footnote mark
+/// ...") or the range of cells ("Main boom 360!A6:M44: 281 numbers written
+/// as text ...").
+fn warning_names(warning: &str, at: &str) -> bool {
+    let named = warning.split(": ").next().unwrap_or_default();
+    let (Some((sheet, range)), Some((at_sheet, cell))) = (named.rsplit_once('!'), at.rsplit_once('!')) else {
+        return false;
+    };
+    let (Some((first, last)), Some((cell, _))) = (parse_cell_range(range), parse_cell_range(cell)) else {
+        return false;
+    };
+    sheet == at_sheet && (first.0..=last.0).contains(&cell.0) && (first.1..=last.1).contains(&cell.1)
 }
 
 /// [`warned_cells_read`] as a clause of the sign-off page's sentence.
@@ -1392,11 +1408,17 @@ pub fn document(
         for st in &plan.steps {
             d.new_page();
             let mut y = heading(&mut d, 20.0, &format!("Step {} of {}: {}", st.n, plan.steps.len(), st.text));
-            let chart_warned: Vec<&str> = warned_read
+            // Each warning once, however many of the cells it names the
+            // step reads.
+            let read_here: Vec<&str> = warned_read
                 .iter()
                 .flatten()
                 .filter(|(_, steps)| steps.contains(&st.n))
-                .flat_map(|(cell, _)| warned.iter().filter(move |w| warned_cell(w) == cell))
+                .map(|(cell, _)| cell.as_str())
+                .collect();
+            let chart_warned: Vec<&str> = warned
+                .iter()
+                .filter(|w| read_here.iter().any(|cell| warning_names(w, cell)))
                 .map(String::as_str)
                 .collect();
             let chart_warning = (!chart_warned.is_empty()).then(|| {
@@ -1762,6 +1784,22 @@ pub fn document(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A chart warning names the cell it opens with, or every cell of the
+    /// range it opens with, on its own sheet only.
+    #[test]
+    fn a_chart_warning_names_its_cell_or_range() {
+        let one = "Main boom 360!H28: footnote mark dropped from '41.5 (1)'";
+        assert!(warning_names(one, "Main boom 360!H28"));
+        assert!(!warning_names(one, "Main boom 360!H29"));
+        let range = "Main boom 360!A6:M44: 281 numbers written as text with decimal commas, read as decimals";
+        for inside in ["A6", "M44", "H28", "B44"] {
+            assert!(warning_names(range, &format!("Main boom 360!{inside}")), "{inside}");
+        }
+        for outside in ["Main boom 360!N28", "Main boom 360!H45", "Main boom 360 CW 70t!H28", "H28"] {
+            assert!(!warning_names(range, outside), "{outside}");
+        }
+    }
 
     #[test]
     fn scans_merged_with_a_warning_are_a_check_before_signing() {
