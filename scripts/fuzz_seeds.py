@@ -153,6 +153,17 @@ for row in [["Capacities in lb"], [], ["Radius (ft)", "Boom length (ft)"], [None
 path = os.path.join(tmp, "chart.xlsx")
 wb.save(path)
 seed("chart_workbook", "chart.xlsx", read(path), 0)
+# The same chart with its numbers as text, with decimal commas and one
+# that shows no mark of its own ("12,500"), as typed in a German Excel.
+as_text = openpyxl.Workbook()
+ws = as_text.active
+ws.title = "Main boom 360"
+for row in rows:
+    ws.append([str(v).replace(".", ",") if isinstance(v, float) else v for v in row])
+ws["C6"] = "12,500"
+path = os.path.join(tmp, "chart-text.xlsx")
+as_text.save(path)
+seed("chart_workbook", "chart-text.xlsx", read(path), 0)
 doc = OpenDocumentSpreadsheet()
 table = Table(name="Main boom 360")
 for row in rows:
