@@ -37,6 +37,20 @@ pub fn kept(name: &str, max_chars: usize) -> Cow<'_, str> {
     }
 }
 
+/// Text from a file of no stated encoding (an RVM file's names, an ATT
+/// file's lines): as UTF-8 where the bytes are UTF-8, which AVEVA E3D and
+/// other tools of today write; else as Latin-1, one character a byte, as
+/// PDMS wrote them. Latin-1 text other than ASCII is almost never valid
+/// UTF-8 (a lone accented letter is not), so the two are told apart
+/// without a setting; the same bytes always give the same text, so names
+/// matched across files (an RVM group and its ATT block) still match.
+pub fn utf8_or_latin1(bytes: &[u8]) -> Cow<'_, str> {
+    match std::str::from_utf8(bytes) {
+        Ok(text) => Cow::Borrowed(text),
+        Err(_) => Cow::Owned(bytes.iter().map(|&b| b as char).collect()),
+    }
+}
+
 /// `words` with each control character shown as U+FFFD, whole.
 pub fn without_controls(words: &str) -> Cow<'_, str> {
     if !words.chars().any(char::is_control) {
@@ -55,7 +69,14 @@ fn is_tag(tail: &str) -> bool {
 
 #[cfg(test)]
 mod tests {
-    use super::{TAG_CHARS, kept};
+    use super::{TAG_CHARS, kept, utf8_or_latin1};
+
+    #[test]
+    fn text_is_utf8_where_it_is_else_latin1() {
+        assert_eq!(utf8_or_latin1(b"/PIPE-RACK-2"), "/PIPE-RACK-2");
+        assert_eq!(utf8_or_latin1("/BEHÄLTER-Ø2".as_bytes()), "/BEHÄLTER-Ø2");
+        assert_eq!(utf8_or_latin1(b"/BEH\xc4LTER-\xd82"), "/BEHÄLTER-Ø2");
+    }
 
     #[test]
     fn names_kept_bounded_without_control_characters_and_apart() {

@@ -11,7 +11,9 @@
 //! ```
 //!
 //! The first line names the keywords; blocks nest like the RVM groups and are
-//! matched to them by name. Text is Latin-1 (bytes map one to one to chars).
+//! matched to them by name. Each line is read as UTF-8 where it is, else as
+//! Latin-1 ([`liftplan_core::names::utf8_or_latin1`]), as the RVM file's
+//! names are, so that a name matches its group either way.
 
 use crate::error::{PlantError, Result};
 use liftplan_core::Location;
@@ -33,7 +35,11 @@ impl Attributes {
 pub fn parse(path: &Path, bytes: &[u8]) -> Result<Attributes> {
     // Where a Windows tool saved the file with one.
     let bytes = liftplan_core::byte_order_mark::strip(bytes);
-    let text: String = bytes.iter().map(|&c| c as char).collect();
+    // Line by line: a file may hold both (an E3D export's names with a
+    // description typed elsewhere).
+    let lines_read: Vec<std::borrow::Cow<str>> =
+        bytes.split(|&b| b == b'\n').map(liftplan_core::names::utf8_or_latin1).collect();
+    let text = lines_read.join("\n");
     let mut lines = text.lines().enumerate();
     let (_, first) = lines.next().ok_or_else(|| PlantError::at(Location::file(path), "the attribute file is empty"))?;
     if !first.starts_with("CADC_Attributes_File") {
@@ -184,5 +190,17 @@ mod tests {
         let t = b"\xef\xbb\xbfCADC_Attributes_File v1.0 , start: NEW , end: END\nNEW /A\n Type:= SITE\nEND\n";
         let a = parse(Path::new("x.att"), t).unwrap();
         assert_eq!(a.get("/A", "Type"), Some("SITE"));
+    }
+
+    /// A line in UTF-8 (as AVEVA E3D writes) reads as UTF-8, one in Latin-1
+    /// (as PDMS wrote) as Latin-1, in the same file, as the RVM file's names
+    /// are read: a UTF-8 "/BEHÄLTER" read as "/BEHÃ\u{84}LTER" before, on the
+    /// plan's pages too.
+    #[test]
+    fn lines_in_utf8_or_latin1_read_as_their_text() {
+        let t = b"CADC_Attributes_File v1.0 , start: NEW , end: END\nNEW /BEH\xc3\x84LTER\n Description:= Beh\xe4lter \xd8 2 m\nEND\nNEW /STRA\xdfE\nEND\n";
+        let a = parse(Path::new("x.att"), t).unwrap();
+        assert_eq!(a.get("/BEHÄLTER", "Description"), Some("Behälter Ø 2 m"));
+        assert!(a.by_group.contains_key("/STRAßE"));
     }
 }

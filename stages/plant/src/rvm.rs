@@ -320,8 +320,8 @@ impl<'a> Reader<'a> {
         let raw = &self.b[self.pos..self.pos + n];
         self.pos += n;
         let end = raw.iter().position(|&c| c == 0).unwrap_or(raw.len());
-        // PDMS writes Latin-1; map bytes to chars one to one.
-        Ok(raw[..end].iter().map(|&c| c as char).collect())
+        // PDMS wrote Latin-1, E3D writes UTF-8.
+        Ok(liftplan_core::names::utf8_or_latin1(&raw[..end]).into_owned())
     }
 
     /// A chunk header: (id, declared end offset, header offset).
@@ -564,7 +564,8 @@ pub fn write(f: &RvmFile) -> Vec<u8> {
             self.b.extend_from_slice(&v.to_bits().to_be_bytes());
         }
         fn string(&mut self, s: &str) {
-            let bytes: Vec<u8> = s.chars().map(|c| if (c as u32) < 256 { c as u8 } else { b'?' }).collect();
+            // As E3D writes: UTF-8, which reads back as itself.
+            let bytes = s.as_bytes().to_vec();
             let words = bytes.len() / 4 + 1;
             self.u32(words as u32);
             let mut padded = bytes;
@@ -717,7 +718,7 @@ mod tests {
             groups: vec![Group {
                 name: "/SITE".into(),
                 children: vec![Group {
-                    name: "/RACK-1".into(),
+                    name: "/RACK-1 Ø2 Behälter".into(),
                     primitives: vec![
                         p(Shape::Box { lengths: [1.0, 2.0, 3.0] }),
                         p(Shape::FacetGroup { polygons: vec![poly] }),
@@ -745,6 +746,14 @@ mod tests {
         back.groups.iter_mut().for_each(clear);
         assert_eq!(back.groups, f.groups);
         assert_eq!(back.group_count(), 2);
+        // A name in Latin-1, as PDMS wrote it, reads as the same name
+        // (its two bytes fewer are padding).
+        let utf8 = "Ø2 Behälter".as_bytes();
+        let at = bytes.windows(utf8.len()).position(|w| w == utf8).unwrap();
+        let mut latin1 = bytes.clone();
+        latin1.splice(at..at + utf8.len(), b"\xd82 Beh\xe4lter\0\0".iter().copied());
+        let back = parse(Path::new("x.rvm"), &latin1).unwrap();
+        assert_eq!(back.groups[0].children[0].name, "/RACK-1 Ø2 Behälter");
     }
 
     #[test]
