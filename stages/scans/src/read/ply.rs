@@ -1,13 +1,15 @@
 //! PLY point clouds (ascii and binary) through `ply-rs`: x, y, z with optional
 //! intensity (`intensity`, `scalar_intensity`, `reflectance`) and colour
-//! (`red`/`green`/`blue`, 8 or 16 bit). Normals are accepted and ignored.
+//! (`red`/`green`/`blue`, 8 or 16 bit), their names in any case (`X`,
+//! `scalar_Intensity`, as tools write them). Normals are accepted and
+//! ignored.
 
 use super::{CHUNK_POINTS, Format, ScanInfo, check_finite, guard_decoder, stem};
 use crate::error::{Result, ScanError};
 use liftplan_core::Location;
 use liftplan_core::cloud::PointCloud;
 use ply_rs::parser::Parser;
-use ply_rs::ply::{DefaultElement, Header, Property, PropertyAccess, PropertyType, ScalarType};
+use ply_rs::ply::{DefaultElement, Header, Property, PropertyAccess, PropertyDef, PropertyType, ScalarType};
 use serde_json::json;
 use std::io::BufReader;
 use std::path::Path;
@@ -33,6 +35,34 @@ fn scalar(p: &Property) -> Option<f64> {
     })
 }
 
+/// What a vertex property is, by its name in any case.
+#[derive(Clone, Copy, PartialEq)]
+enum Role {
+    Axis(usize),
+    Intensity,
+    Colour(usize),
+}
+
+const INTENSITY_NAMES: [&str; 3] = ["intensity", "scalar_intensity", "reflectance"];
+const COLOUR_NAMES: [[&str; 3]; 3] =
+    [["red", "r", "diffuse_red"], ["green", "g", "diffuse_green"], ["blue", "b", "diffuse_blue"]];
+
+fn role(key: &str) -> Option<Role> {
+    let is = |names: &[&str]| names.iter().any(|n| key.eq_ignore_ascii_case(n));
+    if let Some(axis) = ["x", "y", "z"].iter().position(|a| key.eq_ignore_ascii_case(a)) {
+        return Some(Role::Axis(axis));
+    }
+    if is(&INTENSITY_NAMES) {
+        return Some(Role::Intensity);
+    }
+    COLOUR_NAMES.iter().position(|names| is(names)).map(Role::Colour)
+}
+
+/// The vertex property in `role`: the first so named in the header.
+fn property_in(properties: &ply_rs::ply::KeyMap<PropertyDef>, wanted: Role) -> Option<(&String, &PropertyDef)> {
+    properties.iter().find(|(name, _)| role(name) == Some(wanted))
+}
+
 impl PropertyAccess for Vertex {
     fn new() -> Self {
         Vertex::default()
@@ -43,15 +73,11 @@ impl PropertyAccess for Vertex {
         let colour = |v: f64| {
             if eight_bit { (v.clamp(0.0, 255.0) * 257.0) as u16 } else { v.clamp(0.0, 65535.0) as u16 }
         };
-        match key.as_str() {
-            "x" => self.xyz[0] = v,
-            "y" => self.xyz[1] = v,
-            "z" => self.xyz[2] = v,
-            "intensity" | "scalar_intensity" | "reflectance" | "scalar_Intensity" => self.intensity = v,
-            "red" | "r" | "diffuse_red" => self.rgb[0] = colour(v),
-            "green" | "g" | "diffuse_green" => self.rgb[1] = colour(v),
-            "blue" | "b" | "diffuse_blue" => self.rgb[2] = colour(v),
-            _ => {}
+        match role(&key) {
+            Some(Role::Axis(i)) => self.xyz[i] = v,
+            Some(Role::Intensity) => self.intensity = v,
+            Some(Role::Colour(i)) => self.rgb[i] = colour(v),
+            None => {}
         }
     }
 }
@@ -84,10 +110,10 @@ fn layout(path: &Path, h: &Header) -> Result<Layout> {
     let Some(v) = h.elements.get("vertex") else {
         return Err(ScanError::format(Location::file(path), "PLY has no 'vertex' element"));
     };
-    for axis in ["x", "y", "z"] {
-        match v.properties.get(axis) {
-            Some(p) if matches!(p.data_type, PropertyType::Scalar(_)) => {}
-            Some(_) => {
+    for (i, axis) in ["x", "y", "z"].into_iter().enumerate() {
+        match property_in(&v.properties, Role::Axis(i)) {
+            Some((_, p)) if matches!(p.data_type, PropertyType::Scalar(_)) => {}
+            Some((axis, _)) => {
                 return Err(ScanError::format(
                     Location::file(path),
                     format!("PLY property '{axis}' of element 'vertex' is a list, expected a number"),
@@ -101,9 +127,8 @@ fn layout(path: &Path, h: &Header) -> Result<Layout> {
             }
         }
     }
-    let intensity =
-        ["intensity", "scalar_intensity", "reflectance", "scalar_Intensity"].iter().find_map(|k| v.properties.get(*k));
-    let has_rgb = ["red", "r", "diffuse_red"].iter().any(|k| v.properties.contains_key(*k));
+    let intensity = property_in(&v.properties, Role::Intensity).map(|(_, p)| p);
+    let has_rgb = property_in(&v.properties, Role::Colour(0)).is_some();
     let intensity_is_float =
         matches!(intensity.map(|p| &p.data_type), Some(PropertyType::Scalar(ScalarType::Float | ScalarType::Double)));
     Ok(Layout { has_intensity: intensity.is_some(), has_rgb, intensity_is_float })
@@ -197,6 +222,22 @@ mod tests {
         std::fs::write(&path, text).unwrap();
         let scans = list(&path).unwrap();
         assert_eq!(crate::read::read_all(&scans[0]).unwrap().xyz, [[1.0, 2.0, 3.0], [4.0, 5.0, 6.0]]);
+    }
+
+    /// Property names in capitals, as some tools write them, read as
+    /// lower-case ones (a scan with `X`, `Y`, `Z` was refused: "no property
+    /// 'x'"); intensity and colour too.
+    #[test]
+    fn property_names_in_any_case() {
+        let d = tempfile::tempdir().unwrap();
+        let path = d.path().join("capitals.ply");
+        let text = "ply\nformat ascii 1.0\nelement vertex 2\nproperty double X\nproperty double Y\nproperty double Z\nproperty float Intensity\nproperty uchar Red\nproperty uchar Green\nproperty uchar Blue\nend_header\n1 2 3 0.5 255 0 0\n4 5 6 0.25 0 255 0\n";
+        std::fs::write(&path, text).unwrap();
+        let scans = list(&path).unwrap();
+        let cloud = crate::read::read_all(&scans[0]).unwrap();
+        assert_eq!(cloud.xyz, [[1.0, 2.0, 3.0], [4.0, 5.0, 6.0]]);
+        assert!(cloud.intensity.len() == 2 && cloud.intensity[0] > cloud.intensity[1], "{:?}", cloud.intensity);
+        assert_eq!(cloud.rgb, [[65535, 0, 0], [0, 65535, 0]]);
     }
 
     /// Found by the scan_file fuzz target: ply-rs unwraps the header's
