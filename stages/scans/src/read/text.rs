@@ -7,7 +7,10 @@
 //!   refused.
 //! * XYZ/TXT/CSV: `x y z [r g b]` or `x y z intensity [r g b]`, separated by spaces,
 //!   tabs, commas or semicolons; lines starting with `#` or `//` and a header line
-//!   of words are skipped. Exporters write intensity as 0..1, 12-bit or 16-bit
+//!   of words are skipped. Where the last of them names the columns (`Point,
+//!   Easting, Northing, Height`; CloudCompare's `//X,Y,Z,R,G,B`), the columns
+//!   are read as it names them ([`Columns::named`]); one naming coordinates
+//!   that cannot be followed is refused. Exporters write intensity as 0..1, 12-bit or 16-bit
 //!   values, and the file does not say which: the range of the first chunk's
 //!   intensities decides, once for the whole file ([`intensity_scale`]).
 //!
@@ -129,6 +132,128 @@ impl Separation {
     }
 }
 
+/// Which column holds what: by the header line's names where it names x, y
+/// and z ([`Columns::named`]), else by the count of numbers on a line
+/// ([`Columns::by_count`]).
+#[derive(Clone, Copy, PartialEq, Debug)]
+struct Columns {
+    xyz: [usize; 3],
+    intensity: Option<usize>,
+    rgb: Option<[usize; 3]>,
+}
+
+/// What a header's column name says the column holds.
+#[derive(Clone, Copy, PartialEq, Debug)]
+enum Named {
+    Axis(usize),
+    Intensity,
+    Colour(usize),
+}
+
+impl Columns {
+    /// By count: 4 = intensity, 6 = rgb, 7 = intensity + rgb.
+    fn by_count(count: usize) -> Columns {
+        Columns {
+            xyz: [0, 1, 2],
+            intensity: matches!(count, 4 | 7).then_some(3),
+            rgb: match count {
+                6 => Some([3, 4, 5]),
+                7 => Some([4, 5, 6]),
+                _ => None,
+            },
+        }
+    }
+
+    /// What a header's column name says: "X", "Easting", "E [m]",
+    /// "Northing", "Elevation", "Intensity", "R", "scalar_Intensity", in any
+    /// case; `None` for others (a point's number or name, normals, a class).
+    fn name_says(name: &str) -> Option<Named> {
+        let name = name.trim().trim_matches(['"', '\'']);
+        // "X [m]", "E(m)": the name before its unit.
+        let name = name.split(['[', '(']).next().unwrap_or_default().trim();
+        let name = name.to_lowercase();
+        let name = name.strip_prefix("scalar_").unwrap_or(&name);
+        Some(match name {
+            "x" | "e" | "east" | "easting" | "eastings" | "rechtswert" => Named::Axis(0),
+            "y" | "n" | "north" | "northing" | "northings" | "hochwert" => Named::Axis(1),
+            "z" | "h" | "height" | "elevation" | "elev" | "alt" | "altitude" | "höhe" | "hoehe" | "rl" => {
+                Named::Axis(2)
+            }
+            "i" | "intensity" | "reflectance" => Named::Intensity,
+            "r" | "red" => Named::Colour(0),
+            "g" | "green" => Named::Colour(1),
+            "b" | "blue" => Named::Colour(2),
+            _ => return None,
+        })
+    }
+
+    /// By the header line `header`, split as the file's lines of numbers
+    /// are, where it names each of x, y and z once: where a survey's export
+    /// puts its columns otherwise than x y z first ("Point, Easting,
+    /// Northing, Height"; "Northing Easting Elevation"), read by count its
+    /// points would be placed wrong, mirrored or shifted, without a word.
+    /// Where it names more or fewer columns than the lines hold (`count`),
+    /// it is followed only if it puts x, y and z first, as the count does.
+    fn named(header: &str, separation: Separation, count: usize) -> HeaderSays {
+        let header = header.trim_start_matches(['/', '#']).trim();
+        let names: Vec<&str> = header
+            .split(|c: char| match separation {
+                Separation::Commas => c == ',',
+                Separation::Semicolons => c == ';',
+                Separation::Blanks => c.is_whitespace(),
+            })
+            .map(str::trim)
+            .filter(|n| !n.is_empty())
+            .collect();
+        let said: Vec<Option<Named>> = names.iter().map(|n| Columns::name_says(n)).collect();
+        let position = |what: Named| {
+            let mut at = said.iter().enumerate().filter(|(_, s)| **s == Some(what)).map(|(i, _)| i);
+            match (at.next(), at.next()) {
+                (Some(i), None) => Ok(Some(i)),
+                (None, _) => Ok(None),
+                (Some(_), Some(_)) => Err(()),
+            }
+        };
+        let axes = [0, 1, 2].map(|a| position(Named::Axis(a)));
+        if axes.iter().all(|a| matches!(a, Ok(None))) {
+            return HeaderSays::Nothing;
+        }
+        let quoted = format!("'{}'", header.chars().take(80).collect::<String>());
+        let [Ok(Some(x)), Ok(Some(y)), Ok(Some(z))] = axes else {
+            return HeaderSays::NotEachAxis(format!("its header {quoted} does not name each of x, y and z once"));
+        };
+        if names.len() != count {
+            return if [x, y, z] == [0, 1, 2] {
+                HeaderSays::Columns(Columns::by_count(count))
+            } else {
+                HeaderSays::Mismatch(format!(
+                    "its header {quoted} names {} columns, x, y and z not first, and its lines hold {count} numbers",
+                    names.len()
+                ))
+            };
+        }
+        let intensity = position(Named::Intensity).ok().flatten();
+        let rgb = match [0, 1, 2].map(|c| position(Named::Colour(c)).ok().flatten()) {
+            [Some(r), Some(g), Some(b)] => Some([r, g, b]),
+            _ => None,
+        };
+        HeaderSays::Columns(Columns { xyz: [x, y, z], intensity, rgb })
+    }
+}
+
+/// What a header line says of the columns ([`Columns::named`]).
+#[derive(Debug, PartialEq)]
+enum HeaderSays {
+    /// It names no coordinate: not a header of columns, or none to follow.
+    Nothing,
+    Columns(Columns),
+    /// It names some coordinates, but not each of x, y and z once.
+    NotEachAxis(String),
+    /// It names x, y and z, not first, over another count of columns than
+    /// the lines hold.
+    Mismatch(String),
+}
+
 /// The factor that takes an XYZ file's intensities to 0..65535, from the
 /// first chunk's: 0..1 (CloudCompare's and many exporters' floats), up to
 /// 4095 (12-bit, as PTS after its shift), else 16-bit. Decided once per file:
@@ -160,6 +285,11 @@ pub(super) fn stream(info: &ScanInfo, f: &mut dyn FnMut(&PointCloud) -> Result<(
     let pts = info.format == Format::Pts;
     let mut vals: Vec<f64> = Vec::with_capacity(8);
     let mut separation: Option<Separation> = None;
+    // The last line before the first line of points that was not one (a
+    // header of column names, as a line of words or a `//` comment), and
+    // what the columns hold, once the first line of points is read.
+    let mut header: Option<(String, u64)> = None;
+    let mut layout: Option<Columns> = None;
     // Intensities as read, turned into 0..65535 when their chunk is handed on.
     let mut raw_intensity: Vec<f64> = Vec::new();
     let mut scale: Option<f64> = pts.then_some(16.0);
@@ -180,7 +310,13 @@ pub(super) fn stream(info: &ScanInfo, f: &mut dyn FnMut(&PointCloud) -> Result<(
         // A byte order mark (a Windows tool's) starts the first line: the
         // point or count there is read.
         let t = line.trim().trim_start_matches(BOM);
-        if t.is_empty() || t.starts_with('#') || t.starts_with("//") {
+        if t.is_empty() {
+            continue;
+        }
+        if t.starts_with('#') || t.starts_with("//") {
+            if columns.is_none() {
+                header = Some((t.to_string(), lineno));
+            }
             continue;
         }
         let ok = match separation {
@@ -198,7 +334,9 @@ pub(super) fn stream(info: &ScanInfo, f: &mut dyn FnMut(&PointCloud) -> Result<(
         };
         if !ok {
             if seen == 0 && columns.is_none() {
-                continue; // a header line of column names
+                // A header line of column names.
+                header = Some((t.to_string(), lineno));
+                continue;
             }
             return Err(ScanError::format(
                 Location::line(path, lineno, None),
@@ -225,7 +363,46 @@ pub(super) fn stream(info: &ScanInfo, f: &mut dyn FnMut(&PointCloud) -> Result<(
             ));
         }
         match columns {
-            None => columns = Some(vals.len()),
+            None => {
+                columns = Some(vals.len());
+                // A comment line naming no column of each coordinate is a
+                // comment ("# scanned 2026-03-02, heights above datum");
+                // a line of words doing so, or any line naming them over
+                // another count of columns, is a header that cannot be
+                // followed.
+                let says = match (&header, separation) {
+                    (Some((h, _)), Some(s)) => Columns::named(h, s, vals.len()),
+                    _ => HeaderSays::Nothing,
+                };
+                let header_line = header.as_ref().map_or(0, |h| h.1);
+                let commented = header.as_ref().is_some_and(|h| h.0.starts_with(['#', '/']));
+                layout = Some(match says {
+                    HeaderSays::Columns(named) => {
+                        if named.xyz != [0, 1, 2] {
+                            tracing::warn!(
+                                "{}: x, y and z read from columns {}, {} and {} as its header (line {header_line}) names them",
+                                path.display(),
+                                named.xyz[0] + 1,
+                                named.xyz[1] + 1,
+                                named.xyz[2] + 1,
+                            );
+                        }
+                        named
+                    }
+                    HeaderSays::Nothing => Columns::by_count(vals.len()),
+                    HeaderSays::NotEachAxis(_) if commented => Columns::by_count(vals.len()),
+                    HeaderSays::NotEachAxis(why) | HeaderSays::Mismatch(why) => {
+                        return Err(ScanError::format(
+                            Location::line(path, header_line, None),
+                            format!(
+                                "{why}: which columns hold x, y and z cannot be told (a survey's export may put a point's \
+                                 number first, or northing before easting); name them in the header (x, y, z or \
+                                 easting, northing, height; one name a column) or leave the header out for x y z first"
+                            ),
+                        ));
+                    }
+                });
+            }
             Some(c) if c != vals.len() => {
                 return Err(ScanError::format(
                     Location::line(path, lineno, None),
@@ -234,24 +411,19 @@ pub(super) fn stream(info: &ScanInfo, f: &mut dyn FnMut(&PointCloud) -> Result<(
             }
             _ => {}
         }
-        if !vals[..3].iter().all(|v| v.is_finite()) {
+        if !layout.is_some_and(|l| l.xyz.iter().all(|&i| vals[i].is_finite())) {
             return Err(ScanError::format(
                 Location::line(path, lineno, None),
                 format!("coordinate is not a finite number: '{}'", t.chars().take(60).collect::<String>()),
             ));
         }
-        let c = vals.len();
-        chunk.xyz.push([vals[0], vals[1], vals[2]]);
-        // Column meaning by count: 4 = intensity, 6 = rgb, 7 = intensity + rgb.
-        match c {
-            4 | 7 => {
-                raw_intensity.push(if pts { vals[3] + 2048.0 } else { vals[3] });
-                if c == 7 {
-                    chunk.rgb.push([(vals[4] * 257.0) as u16, (vals[5] * 257.0) as u16, (vals[6] * 257.0) as u16]);
-                }
-            }
-            6 => chunk.rgb.push([(vals[3] * 257.0) as u16, (vals[4] * 257.0) as u16, (vals[5] * 257.0) as u16]),
-            _ => {}
+        let Some(Columns { xyz: [x, y, z], intensity, rgb }) = layout else { continue };
+        chunk.xyz.push([vals[x], vals[y], vals[z]]);
+        if let Some(i) = intensity {
+            raw_intensity.push(if pts { vals[i] + 2048.0 } else { vals[i] });
+        }
+        if let Some([r, g, b]) = rgb {
+            chunk.rgb.push([(vals[r] * 257.0) as u16, (vals[g] * 257.0) as u16, (vals[b] * 257.0) as u16]);
         }
         if chunk.len() >= CHUNK_POINTS {
             seen += chunk.len() as u64;
@@ -306,6 +478,55 @@ mod tests {
         std::fs::write(&path, text).unwrap();
         let scans = list_scans(&path).map_err(|e| e.to_string())?;
         read_all(&scans[0]).map_err(|e| e.to_string())
+    }
+
+    /// A header naming the columns is followed: a survey's export with a
+    /// point's number first, or northing before easting, was read by count
+    /// (x the point's number, or the site mirrored) without a word. A
+    /// header that names some coordinates but not each once, or names
+    /// them, not first, over another count of columns, is refused at its
+    /// line; comments and headers naming no coordinate change nothing.
+    #[test]
+    fn columns_are_read_as_the_header_names_them() {
+        let xyz = |c: &liftplan_core::cloud::PointCloud| c.xyz.clone();
+        let p = read(
+            "survey.csv",
+            "Point,Easting,Northing,Height\n1,500010.5,5700020.25,101.5\n2,500011.5,5700021.25,102.5\n",
+        )
+        .unwrap();
+        assert_eq!(xyz(&p), [[500010.5, 5700020.25, 101.5], [500011.5, 5700021.25, 102.5]]);
+        let p = read("ne.txt", "N E H\n5700020.25 500010.5 101.5\n").unwrap();
+        assert_eq!(xyz(&p), [[500010.5, 5700020.25, 101.5]]);
+        // CloudCompare's header, as a comment; its colours and intensity
+        // where it puts them; names in capitals, with units, quoted.
+        let p = read("cc.txt", "//X,Y,Z,R,G,B,Intensity\n1,2,3,255,0,0,0.5\n").unwrap();
+        assert_eq!(
+            (xyz(&p), p.rgb.clone(), p.intensity.clone()),
+            (vec![[1.0, 2.0, 3.0]], vec![[65535, 0, 0]], vec![32767])
+        );
+        let p = read("units.csv", "\"Y [m]\";\"X [m]\";\"Z [m]\"\n2,0;1,0;3,0\n").unwrap();
+        assert_eq!(xyz(&p), [[1.0, 2.0, 3.0]]);
+        // x y z first over another count of columns: read by count.
+        let p = read("more.xyz", "X Y Z\n1 2 3 0.5\n").unwrap();
+        assert_eq!((xyz(&p), p.intensity.len()), (vec![[1.0, 2.0, 3.0]], 1));
+        // Comments and words naming no coordinate.
+        for text in ["# exported 2026-03-02 by scanner B, heights above datum\n1 2 3\n", "# scan 7\nA B C\n1 2 3\n"] {
+            assert_eq!(xyz(&read("c.xyz", text).unwrap()), [[1.0, 2.0, 3.0]], "{text}");
+        }
+        for (text, why) in [
+            ("Latitude Longitude Height\n52.1 13.2 40\n", "does not name each of x, y and z once"),
+            ("x y z x\n1 2 3 4\n", "does not name each of x, y and z once"),
+            (
+                "Point ID Easting Northing Height\n1 500010.5 5700020.25 101.5\n",
+                "names 5 columns, x, y and z not first, and its lines hold 4 numbers",
+            ),
+        ] {
+            let e = read("h.xyz", text).unwrap_err();
+            assert!(
+                e.contains("h.xyz:1") && e.contains(why) && e.contains("which columns hold x, y and z cannot be told"),
+                "{text}: {e}"
+            );
+        }
     }
 
     /// A PTS file that ends before the points its first line declares is
