@@ -116,6 +116,9 @@ seed("scan_file", "crc-two-scans.e57", read(os.path.join(root, "fixtures/scans/t
 seed("scan_file", "a.pts", (f"{n}\n" + "".join(f"{a:.3f} {b:.3f} {c:.3f} -1200 100 120 140\n"
                                               for a, b, c in zip(x, y, z))).encode(), 4)
 seed("scan_file", "a.xyz", "".join(f"{a:.3f} {b:.3f} {c:.3f}\n" for a, b, c in zip(x, y, z)).encode(), 5)
+# A survey's export whose header names its columns, a point's number first.
+seed("scan_file", "survey.csv", ("Point,Easting,Northing,Height\n" + "".join(
+    f"{k},{a:.3f},{b:.3f},{c:.3f}\n" for k, (a, b, c) in enumerate(zip(x, y, z)))).encode(), 5)
 seed("scan_file", "b.xyz", "".join(f"{a:.3f},{b:.3f},{c:.3f},200,100,50\n" for a, b, c in zip(x, y, z)).encode(), 5)
 seed("scan_file", "bom-a.xyz", b"\xef\xbb\xbf" + read(os.path.join(corpus, "scan_file", "a.xyz"))[1:], 5)
 # PTX: two scans of a 5 x 8 grid, the second turned 30 degrees and moved,
