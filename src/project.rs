@@ -193,7 +193,7 @@ impl Project {
             if !full.is_dir() {
                 return Err(err(
                     &format!("{key} ="),
-                    format!("[paths] {key}: folder {} does not exist", full.display()),
+                    format!("[paths] {key}: folder {} does not exist{}", full.display(), windows_separators(path)),
                 ));
             }
         }
@@ -202,7 +202,11 @@ impl Project {
             if !self.dir.join(st).is_file() {
                 return Err(err(
                     "stations",
-                    format!("[scans] stations: file {} does not exist", self.dir.join(st).display()),
+                    format!(
+                        "[scans] stations: file {} does not exist{}",
+                        self.dir.join(st).display(),
+                        windows_separators(st)
+                    ),
                 ));
             }
         }
@@ -610,6 +614,16 @@ pub fn init(dir: &Path) -> Result<()> {
         liftplan_core::artifact::write_atomic(&example, text.as_bytes())?;
     }
     Ok(())
+}
+
+/// What to add to "does not exist" for a path written with Windows'
+/// separators, which are none here.
+fn windows_separators(path: &Path) -> &'static str {
+    if cfg!(windows) || !path.to_string_lossy().contains('\\') {
+        ""
+    } else {
+        " ('\\' separates no folders here: write the path with '/', which serves on Windows too)"
+    }
 }
 
 #[cfg(test)]

@@ -192,6 +192,12 @@ fn bad_project_files_name_line_and_column() {
     expect_project_error(&dir, "invalid type", 2);
     std::fs::write(&f, "[paths]\nscans = \"surveys\"\n").unwrap();
     expect_project_error(&dir, "does not exist", 2);
+    // A Windows path: an escape to TOML in double quotes, a file of that
+    // name in single quotes; each says to write it with '/'.
+    std::fs::write(&f, "[scans]\nstations = \"scans\\stations.toml\"\n").unwrap();
+    expect_project_error(&dir, "starts an escape: write a path with '/'", 2);
+    std::fs::write(&f, "[scans]\nstations = 'scans\\stations.toml'\n").unwrap();
+    expect_project_error(&dir, "does not exist ('\\' separates no folders here: write the path with '/'", 2);
     std::fs::write(&f, "[paths]\nscans = \"../elsewhere\"\n").unwrap();
     expect_project_error(&dir, "leaves the project folder", 2);
     std::fs::write(&f, "[paths]\nallow_outside = true\nscans = \"../bad/scans\"\n").unwrap();

@@ -218,17 +218,50 @@ pub fn line_col(text: &str, offset: usize) -> (u64, u64) {
 
 /// Location and message of a TOML parse or schema error, e.g.
 /// `site/liftplan.toml:12:1: unknown field 'voxl', expected one of ...`.
+///
+/// A backslash in a double-quoted string (a Windows path,
+/// `"scans\stations.toml"`) is an escape to TOML, refused as "missing
+/// escaped value": the message then says how to write the path.
 pub fn toml_error(path: impl AsRef<Path>, text: &str, err: &toml::de::Error) -> (Location, String) {
     let loc = match err.span() {
         Some(span) => Location::in_text(path, text, span.start),
         None => Location::file(path),
     };
-    (loc, err.message().trim().to_string())
+    let message = err.message().trim();
+    let at_backslash = err.span().is_some_and(|s| {
+        text[..s.start.min(text.len())].ends_with('\\') || text.get(s.start..).is_some_and(|t| t.starts_with('\\'))
+    });
+    if at_backslash && message.contains("escape") {
+        return (
+            loc,
+            format!(
+                "{message}; a backslash in a \"...\" string starts an escape: write a path with '/' \
+                 (\"scans/stations.toml\"), which serves on Windows too"
+            ),
+        );
+    }
+    (loc, message.to_string())
 }
 
 #[cfg(test)]
 mod line_tests {
     use super::*;
+
+    /// A Windows path in a double-quoted string is refused where its
+    /// backslash is, saying how to write it.
+    #[test]
+    fn a_windows_path_is_refused_saying_how_to_write_it() {
+        #[derive(serde::Deserialize, Debug)]
+        #[allow(dead_code)]
+        struct Paths {
+            stations: String,
+        }
+        let text = "stations = \"scans\\stations.toml\"\n";
+        let err = toml::from_str::<Paths>(text).unwrap_err();
+        let (at, why) = toml_error("liftplan.toml", text, &err);
+        assert!(at.to_string().starts_with("liftplan.toml:1:"), "{at}");
+        assert!(why.contains("write a path with '/'"), "{why}");
+    }
 
     #[test]
     fn line_col_counts() {
