@@ -149,16 +149,16 @@ pub enum GridMark {
 impl GridMark {
     /// The grid's mark, from each number written as text and the cell it
     /// is in, in the grid's order.
-    pub fn of<'a>(numbers: impl IntoIterator<Item = (String, &'a str)>) -> GridMark {
+    pub fn of(numbers: impl IntoIterator<Item = (String, String)>) -> GridMark {
         let (mut comma, mut point) = (None, None);
         for (cell, number) in numbers {
-            let first = match shown_by(number) {
+            let first = match shown_by(&number) {
                 Some(DecimalMark::Comma) => &mut comma,
                 Some(DecimalMark::Point) => &mut point,
                 None => continue,
             };
             if first.is_none() {
-                *first = Some((cell, number.to_string()));
+                *first = Some((cell, number));
             }
             if comma.is_some() && point.is_some() {
                 break;
@@ -274,7 +274,9 @@ mod tests {
 
     #[test]
     fn a_grids_mark_reads_the_numbers_that_show_none() {
-        let grid = |ns: &[&'static str]| GridMark::of(ns.iter().enumerate().map(|(i, n)| (format!("B{}", i + 1), *n)));
+        let grid = |ns: &[&'static str]| {
+            GridMark::of(ns.iter().enumerate().map(|(i, n)| (format!("B{}", i + 1), n.to_string())))
+        };
         assert_eq!(grid(&["125", "12,500", "12,5"]), GridMark::One(Comma));
         assert_eq!(grid(&["125", "12,500"]), GridMark::Neither);
         let both = grid(&["12,5", "12", "8.4", "12,500"]);

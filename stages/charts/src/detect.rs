@@ -901,14 +901,15 @@ pub fn read_grid(
     let across_cells: Vec<(u32, u32)> = g.value_cols.iter().map(|&c| (g.header_row, c)).collect();
     let down_cells: Vec<(u32, u32)> = g.rows.iter().map(|&r| (r, g.label_col)).collect();
     let across_cells = if g.boom_independent { &[][..] } else { &across_cells[..] };
-    let capacity_cells = || g.rows.iter().flat_map(|&r| g.value_cols.iter().map(move |&c| (r, c)));
-    let texts =
-        across_cells.iter().chain(&down_cells).map(|&(r, c)| (r, c, sheet.text(r, c).map(|t| t.trim().to_string())));
-    let texts = texts.chain(
-        capacity_cells().map(|(r, c)| (r, c, sheet.text(r, c).and_then(capacity_text).map(|parts| parts.number))),
-    );
-    let texts: Vec<(String, String)> = texts.filter_map(|(r, c, t)| Some((at(r, c), t?))).collect();
-    let decimals = GridMark::of(texts.iter().map(|(cell, t)| (cell.clone(), t.as_str())));
+    // The numbers the grid holds as text, with their cells: what they show
+    // decides how those that show nothing are read.
+    let axis_texts = across_cells
+        .iter()
+        .chain(&down_cells)
+        .filter_map(|&(r, c)| Some((at(r, c), sheet.text(r, c)?.trim().to_string())));
+    let capacity_texts = g.rows.iter().flat_map(|&r| g.value_cols.iter().map(move |&c| (r, c)));
+    let capacity_texts = capacity_texts.filter_map(|(r, c)| Some((at(r, c), capacity_text(sheet.text(r, c)?)?.number)));
+    let decimals = GridMark::of(axis_texts.chain(capacity_texts));
     let mut read = TextNumbers::default();
     let across: Vec<f64> =
         if g.boom_independent { vec![0.0] } else { axis_values(sheet, across_cells, across_is, &decimals, &mut read)? };
