@@ -938,6 +938,10 @@ fn unregistered_error(reasons: &[(String, String)], report: &Path) -> String {
 /// suffice and by streaming the points where they do not.
 pub fn inspect(path: &Path) -> Result<serde_json::Value> {
     let scans = read::list_scans(path)?;
+    // A text file of another kind, which a run passes by.
+    if scans.is_empty() {
+        return Err(ScanError::format(Location::file(path), "holds no scan (no line of numbers x y z ...)"));
+    }
     let mut total = 0u64;
     let mut bbox = Aabb::empty();
     let mut per = Vec::new();

@@ -145,13 +145,20 @@ pub struct ScanInfo {
     pub points_at: Option<(u64, u64)>,
 }
 
-/// Lists the scans in a file from its header, reading no points.
+/// Lists the scans in a file from its header, reading no points. A text
+/// file whose extension other files share (`.txt`, `.csv`, `.asc`: a
+/// survey's report or notes dropped among the scans) that holds no line of
+/// numbers is no scan: it lists none, with a warning.
 pub fn list_scans(path: &Path) -> Result<Vec<ScanInfo>> {
     let format = Format::from_path(path).ok_or_else(|| {
         ScanError::format(Location::file(path), "not a scan file (expected .las, .laz, .ply, .e57, .ptx, .pts or .xyz)")
     })?;
     let meta = std::fs::metadata(path).map_err(|e| ScanError::Io(Location::file(path), e))?;
     if meta.len() == 0 {
+        if text::may_be_other_text(path) {
+            tracing::warn!("{}: empty: not a scan, passed by", path.display());
+            return Ok(Vec::new());
+        }
         return Err(ScanError::format(Location::file(path), "the file is empty"));
     }
     match format {

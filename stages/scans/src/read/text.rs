@@ -23,10 +23,45 @@ use liftplan_core::cloud::PointCloud;
 use std::io::{BufRead, BufReader};
 use std::path::Path;
 
+/// Whether a file's extension is one that text other than points shares
+/// (a report's `.txt`, a table's `.csv`, an `.asc` grid).
+pub(super) fn may_be_other_text(path: &Path) -> bool {
+    let ext = path.extension().and_then(|e| e.to_str()).unwrap_or_default().to_ascii_lowercase();
+    matches!(ext.as_str(), "txt" | "csv" | "asc")
+}
+
+/// Whether a text file holds a line of three numbers or more (x y z), read
+/// up to the first; lines of more than 64 KiB are no text point file's.
+fn holds_a_line_of_numbers(path: &Path) -> Result<bool> {
+    let f = std::fs::File::open(path).map_err(|e| ScanError::Io(Location::file(path), e))?;
+    let mut r = BufReader::new(f);
+    let (mut line, mut vals) = (String::new(), Vec::new());
+    while r.take_line(&mut line, path)? > 0 {
+        let t = line.trim().trim_start_matches(BOM);
+        if Separation::of(t).numbers(t, &mut vals) && vals.len() >= 3 {
+            return Ok(true);
+        }
+    }
+    Ok(false)
+}
+
 pub(super) fn list(path: &Path, format: Format) -> Result<Vec<ScanInfo>> {
     let f = std::fs::File::open(path).map_err(|e| ScanError::Io(Location::file(path), e))?;
     let mut first = String::new();
     BufReader::new(f).take_line(&mut first, path)?;
+    // An ESRI ASCII grid (a terrain model's `.asc`, as this program writes
+    // its ground): its rows read as lines of points, each a wild point.
+    if first.trim_start_matches(BOM).trim_start().get(..5).is_some_and(|w| w.eq_ignore_ascii_case("ncols")) {
+        return Err(ScanError::format(
+            Location::line(path, 1, None),
+            "an ESRI ASCII grid (its first line 'ncols ...'), not a file of points: give the scanned points (the \
+             ground is found from them)",
+        ));
+    }
+    if format == Format::Xyz && may_be_other_text(path) && !holds_a_line_of_numbers(path)? {
+        tracing::warn!("{}: holds no line of numbers (x y z ...): not a scan, passed by", path.display());
+        return Ok(Vec::new());
+    }
     let declared = if format == Format::Pts { first.trim().trim_start_matches(BOM).parse::<u64>().ok() } else { None };
     let mut details = serde_json::Map::new();
     details.insert("first_line".into(), serde_json::json!(first.trim_end().chars().take(80).collect::<String>()));
@@ -478,6 +513,30 @@ mod tests {
         std::fs::write(&path, text).unwrap();
         let scans = list_scans(&path).map_err(|e| e.to_string())?;
         read_all(&scans[0]).map_err(|e| e.to_string())
+    }
+
+    /// A survey's report or notes dropped among the scans (`.txt`, `.csv`,
+    /// `.asc`: no line of numbers, or empty) is no scan: it lists none (the
+    /// run failed: "no points found"). An `.xyz` or `.pts` file is a scan
+    /// and is refused so; an ESRI ASCII grid is refused at its first line.
+    #[test]
+    fn text_that_holds_no_points_is_passed_by_where_its_extension_is_shared() {
+        let d = tempfile::tempdir().unwrap();
+        let report = "Survey of site A, 2 March 2026\nScanner: RTC360, 12 stations\nRegistered, RMS 3 mm\n";
+        for (name, text) in [("readme.txt", report), ("notes.csv", "Station;Note\nS1;by the gate\n"), ("empty.txt", "")]
+        {
+            let path = d.path().join(name);
+            std::fs::write(&path, text).unwrap();
+            assert!(list_scans(&path).unwrap().is_empty(), "{name}");
+        }
+        let path = d.path().join("readme.xyz");
+        std::fs::write(&path, report).unwrap();
+        let e = read_all(&list_scans(&path).unwrap()[0]).unwrap_err().to_string();
+        assert!(e.contains("no points found"), "{e}");
+        let path = d.path().join("ground.asc");
+        std::fs::write(&path, "ncols 3\nnrows 1\nxllcorner 0\nyllcorner 0\ncellsize 1\n1.0 2.0 3.0\n").unwrap();
+        let e = list_scans(&path).unwrap_err().to_string();
+        assert!(e.contains("ground.asc:1") && e.contains("an ESRI ASCII grid"), "{e}");
     }
 
     /// A header naming the columns is followed: a survey's export with a
