@@ -61,6 +61,16 @@ fn run_scans(ctx: &Ctx) -> Result<Produced> {
     Ok(Produced { outputs, summary: serde_json::to_value(&summary)?, lines })
 }
 
+/// The extensions of the files the plant stage takes as an RVM file's
+/// attributes, not as models.
+const PLANT_ATTRIBUTE_EXTS: [&str; 2] = ["att", "txt"];
+
+fn is_plant_attributes(f: &std::path::Path) -> bool {
+    f.extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| PLANT_ATTRIBUTE_EXTS.iter().any(|a| e.eq_ignore_ascii_case(a)))
+}
+
 pub fn plant() -> StageDef {
     StageDef {
         name: liftplan_plant::NAME,
@@ -68,20 +78,21 @@ pub fn plant() -> StageDef {
         code: env!("LIFTPLAN_CODE_PLANT"),
         about: "tessellate PDMS/E3D RVM exports and read BIM meshes into one plant mesh",
         inputs: |p: &Project| {
+            // Attribute files are read beside their RVM files (.att, or a
+            // .txt opening as one), and are inputs so that a change reruns.
             let mut exts: Vec<&str> = liftplan_plant::EXTS.to_vec();
-            exts.push("att");
+            exts.extend(PLANT_ATTRIBUTE_EXTS);
             p.files(&p.raw.paths.plant, &exts)
         },
         settings: |p: &Project| serde_json::json!({ "plant": p.raw.plant }),
         reads: &[],
-        applicable: |_, files, _| files.iter().any(|f| !f.extension().is_some_and(|e| e.eq_ignore_ascii_case("att"))),
+        applicable: |_, files, _| files.iter().any(|f| !is_plant_attributes(f)),
         run: run_plant,
     }
 }
 
 fn run_plant(ctx: &Ctx) -> Result<Produced> {
-    let files: Vec<PathBuf> =
-        ctx.inputs.iter().filter(|f| !f.extension().is_some_and(|e| e.eq_ignore_ascii_case("att"))).cloned().collect();
+    let files: Vec<PathBuf> = ctx.inputs.iter().filter(|f| !is_plant_attributes(f)).cloned().collect();
     let report = ctx.report("plant");
     let summary = liftplan_plant::run(&files, &ctx.project.raw.plant, ctx.out, Some(&ctx.project.dir), &report)?;
     Ok(Produced {

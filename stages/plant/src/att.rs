@@ -111,6 +111,32 @@ pub fn parse(path: &Path, bytes: &[u8]) -> Result<Attributes> {
     Ok(Attributes { by_group: groups.into_iter().collect() })
 }
 
+/// The attribute file beside an RVM file: the file of its name with the
+/// extension `.att` in any case (`MODEL.ATT`), else `.txt` where it opens as
+/// an attribute file (exports are delivered with their attributes renamed
+/// so, to open in a text editor). `None` where there is neither.
+pub fn beside(rvm: &Path) -> Option<std::path::PathBuf> {
+    let dir = rvm.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let stem = rvm.file_stem()?;
+    let mut candidates: Vec<std::path::PathBuf> = std::fs::read_dir(dir)
+        .ok()?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.file_stem() == Some(stem) && p.is_file())
+        .collect();
+    candidates.sort();
+    let with = |ext: &'static str| {
+        candidates
+            .iter()
+            .filter(move |p| p.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case(ext)))
+    };
+    let opens_as_attributes = |p: &&std::path::PathBuf| {
+        let mut head = [0u8; 24];
+        let n = std::fs::File::open(p).and_then(|mut f| std::io::Read::read(&mut f, &mut head)).unwrap_or(0);
+        liftplan_core::byte_order_mark::strip(&head[..n]).starts_with(b"CADC_Attributes_File")
+    };
+    with("att").next().or_else(|| with("txt").find(opens_as_attributes)).cloned()
+}
+
 pub fn read(path: &Path) -> Result<Attributes> {
     let bytes = std::fs::read(path).map_err(|e| PlantError::Io(Location::file(path), e))?;
     parse(path, &bytes)

@@ -622,19 +622,21 @@ fn read_model(path: &Path, s: &Settings, summary: &mut Summary, room: u64) -> Re
     let m = match ext.as_str() {
         "rvm" => {
             let f = rvm::read(path)?;
-            let att_path = path.with_extension("att");
-            let attrs = if att_path.exists() {
-                summary.attribute_files += 1;
-                Some(att::read(&att_path)?)
-            } else {
-                if !s.exclude_where.is_empty() {
-                    tracing::warn!(
-                        "{}: no attribute file {} beside it; exclude_where cannot apply",
-                        path.display(),
-                        att_path.display()
-                    );
+            let attrs = match att::beside(path) {
+                Some(att_path) => {
+                    summary.attribute_files += 1;
+                    Some(att::read(&att_path)?)
                 }
-                None
+                None => {
+                    if !s.exclude_where.is_empty() {
+                        tracing::warn!(
+                            "{}: no attribute file {} beside it; exclude_where cannot apply",
+                            path.display(),
+                            path.with_extension("att").display()
+                        );
+                    }
+                    None
+                }
             };
             rvm_to_mesh(path, &f, attrs.as_ref(), s, summary, room)?
         }
@@ -949,7 +951,7 @@ pub fn inspect(path: &Path, s: &Settings) -> Result<serde_json::Value> {
         v["model"] = serde_json::json!(f.model);
         v["project"] = serde_json::json!(f.project);
         v["info"] = serde_json::json!(f.info);
-        v["attributes_file"] = serde_json::json!(path.with_extension("att").exists());
+        v["attributes_file"] = serde_json::json!(att::beside(path).map(|p| p.display().to_string()));
     }
     Ok(v)
 }
@@ -1097,6 +1099,22 @@ mod tests {
         // Met by a group an exclude pattern left out first: met all the same.
         let both = run_with(&["/ELBOWS"], &["Purpose=TEMP*"]);
         assert!(both.exclude_unmatched.is_empty(), "{both:?}");
+        // The attribute file as exports are delivered: its extension in
+        // capitals, or renamed .txt (a .txt that is no attribute file is
+        // not taken for one).
+        let att = std::fs::read(path.with_extension("att")).unwrap();
+        std::fs::remove_file(path.with_extension("att")).unwrap();
+        std::fs::write(path.with_extension("txt"), "Model delivered 2026-03-02\n").unwrap();
+        assert_eq!(run_with(&[], &["Purpose=TEMP*"]).attribute_files, 0);
+        for renamed in ["ATT", "txt"] {
+            std::fs::write(path.with_extension(renamed), &att).unwrap();
+            let left_out = run_with(&[], &["Purpose=TEMP*"]);
+            assert!(
+                left_out.excluded_groups == ["/ELBOWS"] && left_out.attribute_files == 1,
+                "{renamed}: {left_out:?}"
+            );
+            std::fs::remove_file(path.with_extension(renamed)).unwrap();
+        }
     }
 
     /// A group left out of the model is kept as the box around it, placed as
