@@ -619,6 +619,20 @@ pub fn run(inputs: &[PathBuf], s: &Settings, opts: &RunOptions, out_dir: &Path) 
     if scans.is_empty() {
         return Err(ScanError::Settings("no scan files given".into()));
     }
+    // A tiled delivery's empty tile: nothing to place or merge (registering
+    // it failed the run as a scan that overlaps nothing).
+    let (empty, scans): (Vec<ScanInfo>, Vec<ScanInfo>) =
+        scans.into_iter().partition(|info| info.declared_points == Some(0));
+    for info in &empty {
+        tracing::warn!(
+            "{}: scan '{}' holds no points (its header declares none): passed by",
+            liftplan_core::location::shown(&info.path, opts.root),
+            info.name
+        );
+    }
+    if scans.is_empty() {
+        return Err(ScanError::Settings("every scan file given holds no points".into()));
+    }
     let stations = match &s.stations {
         Some(p) => {
             let stations = read_stations(p)?;
@@ -1032,6 +1046,25 @@ mod tests {
             let counts: Vec<(u64, u64)> = summary.scans.iter().map(|r| (r.points_read, r.points_kept)).collect();
             assert_eq!(counts, [(30, 30), (20, 20)]);
         }
+    }
+
+    /// A scan whose header declares no points (a tiled delivery's empty
+    /// tile) is passed by: registering it failed the run, as a scan that
+    /// overlaps nothing. Scans all empty are refused.
+    #[test]
+    fn a_scan_of_no_points_is_passed_by() {
+        let d = tempfile::tempdir().unwrap();
+        let empty = d.path().join("tile-empty.las");
+        las::Writer::from_path(&empty, las::Header::default()).unwrap().close().unwrap();
+        let e57 = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/scans/two-scans.e57");
+        let s = Settings { register: RegisterMode::None, ..Default::default() };
+        let out = tempfile::tempdir().unwrap();
+        let summary = run(&[empty.clone(), e57], &s, &RunOptions::default(), out.path()).unwrap();
+        let names: Vec<&str> = summary.scans.iter().map(|r| r.name.as_str()).collect();
+        assert_eq!(names.len(), 2, "{names:?}");
+        assert!(!names.contains(&"tile-empty"), "{names:?}");
+        let e = run(&[empty], &s, &RunOptions::default(), out.path()).unwrap_err().to_string();
+        assert!(e.contains("every scan file given holds no points"), "{e}");
     }
 
     #[test]
