@@ -320,7 +320,11 @@ impl Project {
             let e = e?;
             let p = e.path();
             let name = e.file_name().to_string_lossy().into_owned();
-            if name.starts_with('.') || !p.is_file() {
+            // Hidden files, and the owner file Microsoft Office keeps beside
+            // a workbook while it is open ("~$chart.xlsx", a few bytes, no
+            // workbook): read as a chart it failed the run while the chart
+            // was open in Excel.
+            if name.starts_with('.') || name.starts_with("~$") || !p.is_file() {
                 continue;
             }
             let ext = p.extension().and_then(|x| x.to_str()).unwrap_or("").to_ascii_lowercase();
@@ -662,6 +666,23 @@ mod tests {
         assert!(!task.not_over[0].crane_too && task.not_over[1].crane_too);
         assert_eq!(task.crane_stands_in[0].name, "hardstanding");
         assert_eq!(task.stands_outside_its_areas(), None);
+    }
+
+    /// A project folder's files leave out hidden files and the owner file
+    /// Excel keeps beside a workbook while it is open ("~$chart.xlsx"): read
+    /// as a chart, it failed the run ("invalid Zip archive") while the
+    /// chart was open.
+    #[test]
+    fn office_owner_files_are_no_inputs() {
+        let d = tempfile::tempdir().unwrap();
+        super::init(d.path()).unwrap();
+        let p = super::Project::load(d.path()).unwrap();
+        let charts = d.path().join(&p.raw.paths.charts);
+        for name in ["ac700.xlsx", "~$ac700.xlsx", ".~lock.ac700.xlsx#", ".hidden.xlsx"] {
+            std::fs::write(charts.join(name), b"x").unwrap();
+        }
+        let files = p.files(&p.raw.paths.charts, &["xlsx"]).unwrap();
+        assert_eq!(files, [charts.join("ac700.xlsx")]);
     }
 
     /// A project file saved in the system's code page (Notepad's "ANSI") is
