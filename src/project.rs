@@ -366,9 +366,9 @@ seed = 1                  # seed of every random stream: same inputs + seed = sa
 
 [paths]
 allow_outside = false     # allow paths outside this folder (absolute, or with ..)
-scans = "scans"           # *.las *.laz *.ply *.e57 *.ptx *.pts *.xyz from the survey team
-plant = "plant"           # *.rvm (+ .att) plant exports, *.obj *.ply *.stl *.gltf *.glb meshes
-charts = "charts"         # *.xlsx *.xls *.xlsb *.ods load charts
+scans = "scans"           # *.las *.laz *.ply *.e57 *.ptx *.pts *.xyz *.txt *.csv from the survey team
+plant = "plant"           # *.rvm (+ .att) plant exports, *.ifc, *.obj *.ply *.stl *.gltf *.glb meshes
+charts = "charts"         # *.xlsx *.xlsm *.xls *.xlsb *.ods load charts
 cranes = "cranes"         # crane geometry files (<name>.toml); built in: ltm-1100, ac-700, tower-hh-60
 
 [scans]

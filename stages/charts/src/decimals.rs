@@ -39,14 +39,6 @@ impl DecimalMark {
             DecimalMark::Comma => '.',
         }
     }
-
-    /// The mark in words, for messages.
-    pub fn said(self) -> &'static str {
-        match self {
-            DecimalMark::Point => "a decimal point",
-            DecimalMark::Comma => "a decimal comma",
-        }
-    }
 }
 
 /// How a number was read, for the grid's warnings.
