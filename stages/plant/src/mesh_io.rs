@@ -171,11 +171,9 @@ impl ply_rs::ply::PropertyAccess for PlyVertex {
             P::UChar(v) => v as f64,
             _ => return,
         };
-        match key.as_str() {
-            "x" => self.p[0] = v,
-            "y" => self.p[1] = v,
-            "z" => self.p[2] = v,
-            _ => {}
+        // In any case: some tools write X, Y, Z.
+        if let Some(axis) = ["x", "y", "z"].iter().position(|a| key.eq_ignore_ascii_case(a)) {
+            self.p[axis] = v;
         }
     }
 }
@@ -227,7 +225,7 @@ fn read_ply_unguarded(path: &Path, imp: Import) -> Result<TriMesh> {
         match name.as_str() {
             "vertex" => {
                 for axis in ["x", "y", "z"] {
-                    if !def.properties.contains_key(axis) {
+                    if !def.properties.keys().any(|k| k.eq_ignore_ascii_case(axis)) {
                         return Err(PlantError::at(loc(), format!("no property '{axis}' (expected x, y and z)")));
                     }
                 }
@@ -628,6 +626,20 @@ mod tests {
         assert_eq!(read_gltf(&path, 20).unwrap().triangles.len(), 20);
         let e = read_gltf(&path, 19).unwrap_err().to_string();
         assert!(e.contains("scene.gltf") && e.contains("make more than 19 triangles"), "{e}");
+    }
+
+    /// A PLY mesh whose vertices' properties are named in capitals (`X`,
+    /// `Y`, `Z`) reads as one in lower case (it was refused: "no property
+    /// 'x'").
+    #[test]
+    fn a_ply_meshs_axes_in_capitals_read() {
+        let d = tempfile::tempdir().unwrap();
+        let path = d.path().join("capitals.ply");
+        let text = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float X\nproperty float Y\nproperty float Z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 2\n3 0 1 2\n";
+        std::fs::write(&path, text).unwrap();
+        let m = read_ply(&path, Import { scale: 1.0, y_up: false }).unwrap();
+        assert_eq!(m.triangles.len(), 1);
+        assert_eq!(m.vertices[2], [0.0, 1.0, 2.0]);
     }
 
     /// Found by the plant_mesh fuzz target: ply-rs unwraps the header's
