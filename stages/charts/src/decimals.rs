@@ -14,7 +14,9 @@
 //! ([`Reading::Guessed`]), never taken silently.
 //!
 //! This module reads digits and separators only: blanks, units and
-//! footnote marks are the caller's to take off first.
+//! footnote marks are the caller's to take off first, and what a unit
+//! tells (no capacity in kg or lb has three decimal places) the caller's to
+//! apply.
 
 /// How a grid's numbers written as text mark their decimals.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -808,7 +808,18 @@ pub fn parse_capacity(
             None => return Err(format!("cannot read '{t}' as a capacity (expected a number in {})", unit.name())),
         }
     }
-    let Some((value, reading)) = decimals::read(&parts.number, decimals.for_number(&parts.number)?) else {
+    // In kilograms or pounds no chart gives three decimal places: there a
+    // separator before three digits ("12,500 lb", "12.500 kg") separates
+    // thousands, whichever it is and however the grid writes decimals.
+    let thousands = matches!(unit, MassUnit::Kg | MassUnit::Lb)
+        && decimals::shown_by(&parts.number).is_none()
+        && parts.number.contains([',', '.']);
+    let mark = match thousands {
+        true if parts.number.contains(',') => Some(decimals::DecimalMark::Point),
+        true => Some(decimals::DecimalMark::Comma),
+        false => decimals.for_number(&parts.number)?,
+    };
+    let Some((value, reading)) = decimals::read(&parts.number, mark) else {
         return Err(format!("cannot read '{t}' as a capacity (expected a number in {})", unit.name()));
     };
     read.note(reading, at, &parts.number, value);
@@ -1293,7 +1304,13 @@ mod tests {
         assert!(parse("heavy", MassUnit::T, GridMark::Neither, "S!C6").is_err());
         assert_eq!(parse("—", MassUnit::T, GridMark::Neither, "S!C7").unwrap(), None);
         assert_eq!(parse("8.4*", MassUnit::T, GridMark::Neither, "S!C8").unwrap(), Some(8.4));
-        assert_eq!(parse("12,500", MassUnit::Lb, GridMark::Neither, "S!C9").unwrap(), Some(12500.0));
+        assert_eq!(parse("12,500", MassUnit::T, GridMark::Neither, "S!C9").unwrap(), Some(12500.0));
+        // In kg or lb, thousands whichever the separator, without a word.
+        assert_eq!(parse("12,500", MassUnit::Lb, GridMark::Neither, "S!D9").unwrap(), Some(12500.0));
+        assert_eq!(
+            parse("12.500", MassUnit::Kg, GridMark::One(crate::decimals::DecimalMark::Point), "S!E9").unwrap(),
+            Some(12500.0)
+        );
         assert_eq!(
             parse("12,500", MassUnit::T, GridMark::One(crate::decimals::DecimalMark::Comma), "S!C10").unwrap(),
             Some(12.5)

@@ -227,9 +227,25 @@ fn a_number_that_reads_two_ways_is_said_or_refused() {
         |r, b| Some(thousands(lb(r * M_PER_FT, b * M_PER_FT)?)),
         false,
     );
+    // In pounds (or kilograms) no chart gives three decimal places: read
+    // as thousands without a word.
     let (c, rep) = read_chart(&p, &Settings::default()).unwrap();
     let cell = c[0].lookup(60.0 * M_PER_FT, 10.0 * M_PER_FT).unwrap();
     assert!((cell.capacity_kg - lb(10.0 * M_PER_FT, 60.0 * M_PER_FT).unwrap() * KG_PER_LB).abs() < 1e-6, "{cell:?}");
+    assert!(rep[0].warnings.is_empty(), "{:?}", rep[0].warnings);
+    // The same numbers in tonnes: read the common way, and said.
+    write_grid(
+        &p,
+        "Capacities in t",
+        "Radius (ft)",
+        &[60.0, 90.0],
+        &[10.0, 20.0, 30.0],
+        |r, b| Some(thousands(lb(r * M_PER_FT, b * M_PER_FT)?)),
+        false,
+    );
+    let (c, rep) = read_chart(&p, &Settings::default()).unwrap();
+    let cell = c[0].lookup(60.0 * M_PER_FT, 10.0 * M_PER_FT).unwrap();
+    assert!((cell.capacity_kg - lb(10.0 * M_PER_FT, 60.0 * M_PER_FT).unwrap() * 1000.0).abs() < 1e-6, "{cell:?}");
     assert_eq!(rep[0].warnings.len(), 1, "{:?}", rep[0].warnings);
     assert!(
         rep[0].warnings[0].starts_with("Chart!B5:C7: 6 numbers written as text read the common way, as no number written as text in the grid Chart!A4:C7 shows whether it writes decimals with a point or a comma (Chart!B5 '")
