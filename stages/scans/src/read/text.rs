@@ -31,21 +31,31 @@ pub(super) fn may_be_other_text(path: &Path) -> bool {
 }
 
 /// Whether a text file holds a line of three numbers or more (x y z), read
-/// up to the first; lines of more than 64 KiB are no text point file's.
+/// up to the first; a line of more than 64 KiB before it (no text point
+/// file's) says it holds none.
 fn holds_a_line_of_numbers(path: &Path) -> Result<bool> {
     let f = std::fs::File::open(path).map_err(|e| ScanError::Io(Location::file(path), e))?;
     let mut r = BufReader::new(f);
     let (mut line, mut vals) = (String::new(), Vec::new());
-    while r.take_line(&mut line, path)? > 0 {
+    loop {
+        match r.take_line(&mut line, path) {
+            Ok(0) => return Ok(false),
+            Ok(_) => {}
+            Err(ScanError::Format(..)) => return Ok(false),
+            Err(e) => return Err(e),
+        }
         let t = line.trim().trim_start_matches(BOM);
         if Separation::of(t).numbers(t, &mut vals) && vals.len() >= 3 {
             return Ok(true);
         }
     }
-    Ok(false)
 }
 
 pub(super) fn list(path: &Path, format: Format) -> Result<Vec<ScanInfo>> {
+    if format == Format::Xyz && may_be_other_text(path) && !holds_a_line_of_numbers(path)? {
+        tracing::warn!("{}: holds no line of numbers (x y z ...): not a scan, passed by", path.display());
+        return Ok(Vec::new());
+    }
     let f = std::fs::File::open(path).map_err(|e| ScanError::Io(Location::file(path), e))?;
     let mut first = String::new();
     BufReader::new(f).take_line(&mut first, path)?;
@@ -57,10 +67,6 @@ pub(super) fn list(path: &Path, format: Format) -> Result<Vec<ScanInfo>> {
             "an ESRI ASCII grid (its first line 'ncols ...'), not a file of points: give the scanned points (the \
              ground is found from them)",
         ));
-    }
-    if format == Format::Xyz && may_be_other_text(path) && !holds_a_line_of_numbers(path)? {
-        tracing::warn!("{}: holds no line of numbers (x y z ...): not a scan, passed by", path.display());
-        return Ok(Vec::new());
     }
     let declared = if format == Format::Pts { first.trim().trim_start_matches(BOM).parse::<u64>().ok() } else { None };
     let mut details = serde_json::Map::new();
@@ -523,8 +529,13 @@ mod tests {
     fn text_that_holds_no_points_is_passed_by_where_its_extension_is_shared() {
         let d = tempfile::tempdir().unwrap();
         let report = "Survey of site A, 2 March 2026\nScanner: RTC360, 12 stations\nRegistered, RMS 3 mm\n";
-        for (name, text) in [("readme.txt", report), ("notes.csv", "Station;Note\nS1;by the gate\n"), ("empty.txt", "")]
-        {
+        let long_line = "x".repeat(70_000);
+        for (name, text) in [
+            ("readme.txt", report),
+            ("notes.csv", "Station;Note\nS1;by the gate\n"),
+            ("empty.txt", ""),
+            ("one-line.txt", long_line.as_str()),
+        ] {
             let path = d.path().join(name);
             std::fs::write(&path, text).unwrap();
             assert!(list_scans(&path).unwrap().is_empty(), "{name}");
