@@ -218,41 +218,35 @@ fn a_number_that_reads_two_ways_is_said_or_refused() {
         let v = v as u64;
         if v >= 1000 { format!("{},{:03}", v / 1000, v % 1000) } else { v.to_string() }
     };
-    write_grid(
-        &p,
-        "Capacities in lb",
-        "Radius (ft)",
-        &[60.0, 90.0],
-        &[10.0, 20.0, 30.0],
-        |r, b| Some(thousands(lb(r * M_PER_FT, b * M_PER_FT)?)),
-        false,
-    );
     // In pounds (or kilograms) no chart gives three decimal places: read
-    // as thousands without a word.
-    let (c, rep) = read_chart(&p, &Settings::default()).unwrap();
-    let cell = c[0].lookup(60.0 * M_PER_FT, 10.0 * M_PER_FT).unwrap();
-    assert!((cell.capacity_kg - lb(10.0 * M_PER_FT, 60.0 * M_PER_FT).unwrap() * KG_PER_LB).abs() < 1e-6, "{cell:?}");
-    assert!(rep[0].warnings.is_empty(), "{:?}", rep[0].warnings);
-    // The same numbers in tonnes: read the common way, and said.
-    write_grid(
-        &p,
-        "Capacities in t",
-        "Radius (ft)",
-        &[60.0, 90.0],
-        &[10.0, 20.0, 30.0],
-        |r, b| Some(thousands(lb(r * M_PER_FT, b * M_PER_FT)?)),
-        false,
-    );
-    let (c, rep) = read_chart(&p, &Settings::default()).unwrap();
-    let cell = c[0].lookup(60.0 * M_PER_FT, 10.0 * M_PER_FT).unwrap();
-    assert!((cell.capacity_kg - lb(10.0 * M_PER_FT, 60.0 * M_PER_FT).unwrap() * 1000.0).abs() < 1e-6, "{cell:?}");
-    assert_eq!(rep[0].warnings.len(), 1, "{:?}", rep[0].warnings);
-    assert!(
-        rep[0].warnings[0].starts_with("Chart!B5:C7: 6 numbers written as text read the common way, as no number written as text in the grid Chart!A4:C7 shows whether it writes decimals with a point or a comma (Chart!B5 '")
-            && rep[0].warnings[0].ends_with(", the comma separating thousands): CHECK them against the chart"),
-        "{:?}",
-        rep[0].warnings
-    );
+    // as thousands without a word. The same numbers in tonnes: read the
+    // common way, and said.
+    for (unit, kg_per_unit) in [("lb", KG_PER_LB), ("t", 1000.0)] {
+        write_grid(
+            &p,
+            &format!("Capacities in {unit}"),
+            "Radius (ft)",
+            &[60.0, 90.0],
+            &[10.0, 20.0, 30.0],
+            |r, b| Some(thousands(lb(r * M_PER_FT, b * M_PER_FT)?)),
+            false,
+        );
+        let (c, rep) = read_chart(&p, &Settings::default()).unwrap();
+        let cell = c[0].lookup(60.0 * M_PER_FT, 10.0 * M_PER_FT).unwrap();
+        let written = lb(10.0 * M_PER_FT, 60.0 * M_PER_FT).unwrap();
+        assert!((cell.capacity_kg - written * kg_per_unit).abs() < 1e-6, "{unit}: {cell:?}");
+        if unit == "lb" {
+            assert!(rep[0].warnings.is_empty(), "{:?}", rep[0].warnings);
+            continue;
+        }
+        assert_eq!(rep[0].warnings.len(), 1, "{:?}", rep[0].warnings);
+        assert!(
+            rep[0].warnings[0].starts_with("Chart!B5:C7: 6 numbers written as text read the common way, as no number written as text in the grid Chart!A4:C7 shows whether it writes decimals with a point or a comma (Chart!B5 '")
+                && rep[0].warnings[0].ends_with(", the comma separating thousands): CHECK them against the chart"),
+            "{:?}",
+            rep[0].warnings
+        );
+    }
 
     let p = d.path().join("both.xlsx");
     write_grid(
