@@ -386,6 +386,7 @@ fn run_docs(ctx: &Ctx) -> Result<Produced> {
     let scans_left_out = registration.as_ref().map(|r| r.left_out()).unwrap_or_default();
     let site_level_unconfirmed = registration.as_ref().and_then(|r| r.site_level_unconfirmed());
     let scans_warned = registration.as_ref().map(|r| r.warned()).unwrap_or_default();
+    let scans_passed_by = registration.as_ref().map(|r| r.passed_by()).unwrap_or_default();
     // Lifts on a chart of one column: which boom it is for, the chart does not say.
     let one_column_charts = ctx
         .upstream_read("charts", "lifts.json", |bytes| {
@@ -412,6 +413,7 @@ fn run_docs(ctx: &Ctx) -> Result<Produced> {
         input_hashes,
         scans_left_out,
         scans_warned,
+        scans_passed_by,
         site_level_unconfirmed,
         one_column_charts,
         chart_warnings,

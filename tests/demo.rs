@@ -1529,6 +1529,9 @@ fn scans_left_out_unregistered_are_named_on_the_sign_off_page() {
     let t = std::fs::read_to_string(&toml_path).unwrap();
     std::fs::write(&toml_path, t.replace("register = \"auto\"", "register = \"auto\"\non_unregistered = \"exclude\""))
         .unwrap();
+    // And the survey's report among the scans: passed by as holding no
+    // scan (it failed the run), and named, as it may be a failed export.
+    std::fs::write(dir.join("scans").join("readme.txt"), "Survey of the demo site\nScanner: simulated\n").unwrap();
     let o = liftplan(&["run", d, "-q"]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let doc = lopdf::Document::load(dir.join("out").join("V-101.pdf")).unwrap();
@@ -1536,7 +1539,14 @@ fn scans_left_out_unregistered_are_named_on_the_sign_off_page() {
     let text = doc.extract_text(&pages).unwrap().replace('\n', " ");
     assert!(text.contains("3 of the 4 scans DID NOT REGISTER AND WERE LEFT OUT"), "{text}");
     assert!(text.contains("scan-2, scan-3, scan-4"), "{text}");
-    assert!(text.contains("3 scans left out unregistered; ground under the load that no scan saw"), "{text}");
+    assert!(
+        text.contains("3 scans left out unregistered; the file among the scans passed by as holding no scan: is it none?; ground under the load that no scan saw"),
+        "{text}"
+    );
+    assert!(
+        text.contains("FILES AMONG THE SCANS WERE PASSED BY AS HOLDING NO SCAN: scans/readme.txt (holds no scan: no line of numbers x y z, or empty)"),
+        "{text}"
+    );
 }
 
 /// A scanner that does not level itself (`leveled = false`) and a reference

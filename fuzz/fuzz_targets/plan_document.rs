@@ -42,6 +42,7 @@ fuzz_target!(|data: &[u8]| {
         input_hashes: vec![],
         scans_left_out: (vec![], 0),
         scans_warned: vec![],
+        scans_passed_by: vec![],
         site_level_unconfirmed: None,
         one_column_charts: vec![],
         chart_warnings: vec![],

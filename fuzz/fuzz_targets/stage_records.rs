@@ -55,6 +55,7 @@ fuzz_target!(|data: &[u8]| {
         input_hashes: vec![],
         scans_left_out: registration.left_out(),
         scans_warned: registration.warned(),
+        scans_passed_by: registration.passed_by(),
         site_level_unconfirmed: registration.site_level_unconfirmed(),
         one_column_charts,
         chart_warnings: vec![],

@@ -82,6 +82,10 @@ pub struct Inputs {
     /// the warning's words (its line on the inputs page and the sign-off
     /// page give them).
     pub scans_warned: Vec<(String, String)>,
+    /// Files among the scans (or scans in them) passed by as holding no
+    /// scan, each with why, as the scans stage's `registration.json` lists
+    /// them.
+    pub scans_passed_by: Vec<String>,
     /// Where the scanner did not level itself (`[scans.registration]
     /// leveled = false`) and the reference scan was levelled by its ground
     /// or not at all: its name and how its line says it was levelled.

@@ -424,6 +424,11 @@ fn checks_before_signing(
     if !inp.scans_left_out.0.is_empty() {
         v.push(format!("{} scans left out unregistered", inp.scans_left_out.0.len()));
     }
+    match inp.scans_passed_by.len() {
+        0 => {}
+        1 => v.push("the file among the scans passed by as holding no scan: is it none?".to_string()),
+        n => v.push(format!("the {n} files among the scans passed by as holding no scan: is none a scan?")),
+    }
     v.extend(scans_warned_said(&inp.scans_warned));
     if inp.site_level_unconfirmed.is_some() {
         v.push("the site's level (the scanner did not level itself)".to_string());
@@ -1704,6 +1709,18 @@ pub fn document(
     if let Some(said) = scans_warned_paragraph(&inp.scans_warned) {
         y += 4.0;
         y = sign_off_paragraph(&mut d, y, w, &said);
+    }
+    if !inp.scans_passed_by.is_empty() {
+        y += 4.0;
+        y = sign_off_paragraph(
+            &mut d,
+            y,
+            w,
+            &format!(
+                "FILES AMONG THE SCANS WERE PASSED BY AS HOLDING NO SCAN: {}. Where one is a scan whose export failed, whatever only it saw is not an obstacle in this plan: CHECK that none is, or have it exported again.",
+                inp.scans_passed_by.join("; ")
+            ),
+        );
     }
     if let Some((reference, how)) = &inp.site_level_unconfirmed {
         y += 4.0;

@@ -261,8 +261,19 @@ impl Default for RunOptions<'_> {
 
 /// `registration.json`: the registration mode and every scan's report
 /// (read back by [`recorded::Registration`]).
-pub fn registration_json(register: RegisterMode, scans: &[ScanReport]) -> serde_json::Value {
-    serde_json::json!({ "register": register, "scans": scans })
+pub fn registration_json(register: RegisterMode, scans: &[ScanReport], passed_by: &[PassedBy]) -> serde_json::Value {
+    serde_json::json!({ "register": register, "scans": scans, "passed_by": passed_by })
+}
+
+/// A file among the scans, or a scan in one, that the stage passed by as
+/// holding no scan: a survey's report (`readme.txt`), an empty tile. It may
+/// as well be a scan whose export failed, so the plan's pages name it.
+#[derive(Debug, Clone, Serialize)]
+pub struct PassedBy {
+    /// The file as shown ([`liftplan_core::location::shown`]), with `#` and
+    /// the scan's name for a scan in a file of several.
+    pub file: String,
+    pub why: String,
 }
 
 /// One line of the run output per scan.
@@ -298,6 +309,8 @@ pub struct ScanReport {
 #[derive(Debug, Clone, Serialize)]
 pub struct Summary {
     pub scans: Vec<ScanReport>,
+    /// What was passed by as holding no scan ([`PassedBy`]).
+    pub passed_by: Vec<PassedBy>,
     pub points_read: u64,
     pub points_out: u64,
     pub ground_points: u64,
@@ -338,6 +351,7 @@ impl Summary {
                 // warning) says it on a line of its own.
                 std::iter::once(line).chain(s.warning.clone().filter(|_| s.registered))
             })
+            .chain(self.passed_by.iter().map(|p| format!("passed by: {}: {}", p.file, p.why)))
             .chain(self.fitness_line())
             .chain(self.unit_line())
             .chain(std::iter::once(self.date_line()))
@@ -619,16 +633,25 @@ pub fn run(inputs: &[PathBuf], s: &Settings, opts: &RunOptions, out_dir: &Path) 
     if scans.is_empty() {
         return Err(ScanError::Settings("no scan files given".into()));
     }
-    // A tiled delivery's empty tile: nothing to place or merge (registering
-    // it failed the run as a scan that overlaps nothing).
+    // Files listing no scan (a report among the scans, read::list_scans
+    // says why in the log), and a tiled delivery's empty tile: nothing to
+    // place or merge (registering the tile failed the run as a scan that
+    // overlaps nothing).
+    let mut passed_by: Vec<PassedBy> = inputs
+        .iter()
+        .filter(|p| !scans.iter().any(|info| &info.path == *p))
+        .map(|p| PassedBy {
+            file: liftplan_core::location::shown(p, opts.root),
+            why: "holds no scan: no line of numbers x y z, or empty".into(),
+        })
+        .collect();
     let (empty, scans): (Vec<ScanInfo>, Vec<ScanInfo>) =
         scans.into_iter().partition(|info| info.declared_points == Some(0));
     for info in &empty {
-        tracing::warn!(
-            "{}: scan '{}' holds no points (its header declares none): passed by",
-            liftplan_core::location::shown(&info.path, opts.root),
-            info.name
-        );
+        let file = liftplan_core::location::shown(&info.path, opts.root);
+        tracing::warn!("{file}: scan '{}' holds no points (its header declares none): passed by", info.name);
+        let file = if info.name == read::stem(&info.path) { file } else { format!("{file}#{}", info.name) };
+        passed_by.push(PassedBy { file, why: "its header declares no points".into() });
     }
     if scans.is_empty() {
         return Err(ScanError::Settings("every scan file given holds no points".into()));
@@ -749,7 +772,7 @@ pub fn run(inputs: &[PathBuf], s: &Settings, opts: &RunOptions, out_dir: &Path) 
         })
         .collect();
     std::fs::create_dir_all(out_dir).map_err(|e| ScanError::Io(Location::file(out_dir), e))?;
-    write_json(&out_dir.join("registration.json"), &registration_json(s.register, &reports))?;
+    write_json(&out_dir.join("registration.json"), &registration_json(s.register, &reports, &passed_by))?;
     if !unregistered.is_empty() && s.on_unregistered == OnUnregistered::Fail {
         return Err(ScanError::Registration(unregistered_error(&unregistered, &out_dir.join("registration.json"))));
     }
@@ -786,7 +809,7 @@ pub fn run(inputs: &[PathBuf], s: &Settings, opts: &RunOptions, out_dir: &Path) 
     picture::top_view(&cloud, &names, 1200)
         .write_png(&out_dir.join("scans.png"))
         .map_err(|e| ScanError::Io(Location::file(out_dir.join("scans.png")), e))?;
-    write_json(&out_dir.join("registration.json"), &registration_json(s.register, &reports))?;
+    write_json(&out_dir.join("registration.json"), &registration_json(s.register, &reports, &passed_by))?;
     (opts.progress)("write site.laz", 1, 1);
     let bbox = cloud.bbox();
     Ok(Summary {
@@ -807,6 +830,7 @@ pub fn run(inputs: &[PathBuf], s: &Settings, opts: &RunOptions, out_dir: &Path) 
         fit_residual_m: s.registration.fit_residual_m,
         min_fitness: s.registration.min_fitness,
         scans: reports,
+        passed_by,
     })
 }
 
@@ -1059,10 +1083,26 @@ mod tests {
         let e57 = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/scans/two-scans.e57");
         let s = Settings { register: RegisterMode::None, ..Default::default() };
         let out = tempfile::tempdir().unwrap();
-        let summary = run(&[empty.clone(), e57], &s, &RunOptions::default(), out.path()).unwrap();
+        let readme = d.path().join("readme.txt");
+        std::fs::write(&readme, "Survey of site A\n").unwrap();
+        let summary = run(&[empty.clone(), e57, readme], &s, &RunOptions::default(), out.path()).unwrap();
         let names: Vec<&str> = summary.scans.iter().map(|r| r.name.as_str()).collect();
         assert_eq!(names.len(), 2, "{names:?}");
         assert!(!names.contains(&"tile-empty"), "{names:?}");
+        // Both named in the run's lines and registration.json, for the
+        // plan's pages (either may be a scan whose export failed).
+        let passed: Vec<String> = summary.passed_by.iter().map(|p| format!("{}: {}", p.file, p.why)).collect();
+        assert_eq!(passed.len(), 2, "{passed:?}");
+        assert!(passed[0].ends_with("readme.txt: holds no scan: no line of numbers x y z, or empty"), "{passed:?}");
+        assert!(passed[1].ends_with("tile-empty.las: its header declares no points"), "{passed:?}");
+        assert!(
+            summary
+                .lines()
+                .iter()
+                .any(|l| l.starts_with("passed by: ") && l.ends_with("its header declares no points"))
+        );
+        let recorded = std::fs::read(out.path().join("registration.json")).unwrap();
+        assert_eq!(recorded::Registration::from_json(&recorded).unwrap().passed_by().len(), 2);
         let e = run(&[empty], &s, &RunOptions::default(), out.path()).unwrap_err().to_string();
         assert!(e.contains("every scan file given holds no points"), "{e}");
     }
@@ -1250,6 +1290,7 @@ mod tests {
         };
         let summary = |dates: Vec<Option<read::ScanDate>>| Summary {
             scans: dates.into_iter().map(report).collect(),
+            passed_by: Vec::new(),
             points_read: 0,
             points_out: 0,
             ground_points: 0,

@@ -15,6 +15,17 @@ use serde::Deserialize;
 #[derive(Debug, Clone, Deserialize)]
 pub struct Registration {
     pub scans: Vec<ScanRegistered>,
+    /// What was passed by as holding no scan ([`crate::PassedBy`]); none
+    /// in a file written before the stage passed files by.
+    #[serde(default)]
+    pub passed_by: Vec<PassedByRecorded>,
+}
+
+/// One file passed by, as [`crate::PassedBy`] writes it.
+#[derive(Debug, Clone, Deserialize)]
+pub struct PassedByRecorded {
+    pub file: String,
+    pub why: String,
 }
 
 /// One scan's entry, as [`crate::ScanReport`] writes it.
@@ -44,6 +55,13 @@ impl Registration {
         if read.scans.len() > Self::MAX_SCANS {
             return Err(format!("{} scans, more than the {} liftplan reads", read.scans.len(), Self::MAX_SCANS));
         }
+        if read.passed_by.len() > Self::MAX_SCANS {
+            return Err(format!(
+                "{} files passed by, more than the {} liftplan reads",
+                read.passed_by.len(),
+                Self::MAX_SCANS
+            ));
+        }
         Ok(read)
     }
 
@@ -51,6 +69,12 @@ impl Registration {
     /// missing from the site), and how many scans there were in all.
     pub fn left_out(&self) -> (Vec<String>, usize) {
         (self.scans.iter().filter(|s| !s.registered).map(|s| s.name.clone()).collect(), self.scans.len())
+    }
+
+    /// The files (or scans in them) passed by as holding no scan, each
+    /// with why: "scans/readme.txt (holds no scan ...)".
+    pub fn passed_by(&self) -> Vec<String> {
+        self.passed_by.iter().map(|p| format!("{} ({})", p.file, p.why)).collect()
     }
 
     /// The reference scan and how it was levelled, where its vertical
@@ -153,9 +177,11 @@ mod tests {
             date: None,
         };
         let left_out = crate::ScanReport { name: "south".into(), registered: false, warning: None, ..report.clone() };
-        let written = crate::registration_json(crate::RegisterMode::None, &[report, left_out]).to_string();
+        let passed = crate::PassedBy { file: "scans/readme.txt".into(), why: "holds no scan".into() };
+        let written = crate::registration_json(crate::RegisterMode::None, &[report, left_out], &[passed]).to_string();
         let read = Registration::from_json(written.as_bytes()).unwrap();
         assert_eq!(read.left_out(), (vec!["south".to_string()], 2));
+        assert_eq!(read.passed_by(), ["scans/readme.txt (holds no scan)"]);
         assert_eq!(read.warned(), [("north".to_string(), "moved 0.04 m by the last alignment".to_string())]);
         assert_eq!(read.scans[0].method, "plan-view correlation + ICP");
     }
@@ -168,6 +194,8 @@ mod tests {
         let read = Registration::from_json(demo).unwrap();
         assert_eq!(read.left_out(), (vec![], 4));
         assert!(read.warned().is_empty() && read.site_level_unconfirmed().is_none());
+        // Written before files were passed by: none.
+        assert!(read.passed_by().is_empty());
         let e = Registration::from_json(&demo[..demo.len() / 2]).unwrap_err();
         assert!(e.contains(" at line "), "{e}");
     }
