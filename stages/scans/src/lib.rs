@@ -10,7 +10,7 @@
 //! | file | what |
 //! |---|---|
 //! | `site.laz` | LAS 1.4, millimetre scale, class 2 = ground, scan id in `point_source_id` |
-//! | `registration.json` | per scan: 4x4 pose, fitness, inlier RMSE, method, warnings (read back by [`recorded`]) |
+//! | `registration.json` | per scan: 4x4 pose, fitness, inlier RMSE, method, warnings; the files passed by as holding no scan (read back by [`recorded`]) |
 //! | `scans.png` | top view coloured by scan |
 //! | `ground.asc` | ground-height grid (ESRI ASCII) |
 //!
@@ -259,8 +259,8 @@ impl Default for RunOptions<'_> {
     }
 }
 
-/// `registration.json`: the registration mode and every scan's report
-/// (read back by [`recorded::Registration`]).
+/// `registration.json`: the registration mode, every scan's report and the
+/// files passed by (read back by [`recorded::Registration`]).
 pub fn registration_json(register: RegisterMode, scans: &[ScanReport], passed_by: &[PassedBy]) -> serde_json::Value {
     serde_json::json!({ "register": register, "scans": scans, "passed_by": passed_by })
 }
