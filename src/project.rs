@@ -320,11 +320,7 @@ impl Project {
             let e = e?;
             let p = e.path();
             let name = e.file_name().to_string_lossy().into_owned();
-            // Hidden files, and the owner file Microsoft Office keeps beside
-            // a workbook while it is open ("~$chart.xlsx", a few bytes, no
-            // workbook): read as a chart it failed the run while the chart
-            // was open in Excel.
-            if name.starts_with('.') || name.starts_with("~$") || !p.is_file() {
+            if is_hidden_or_office_owner(&name) || !p.is_file() {
                 continue;
             }
             let ext = p.extension().and_then(|x| x.to_str()).unwrap_or("").to_ascii_lowercase();
@@ -618,6 +614,14 @@ pub fn init(dir: &Path) -> Result<()> {
         liftplan_core::artifact::write_atomic(&example, text.as_bytes())?;
     }
     Ok(())
+}
+
+/// Whether a file in a project folder is hidden, or the owner file
+/// Microsoft Office keeps beside a workbook while it is open ("~$chart.xlsx",
+/// a few bytes, no workbook: read as a chart it failed the run while the
+/// chart was open in Excel). Neither is an input.
+pub fn is_hidden_or_office_owner(name: &str) -> bool {
+    name.starts_with('.') || name.starts_with("~$")
 }
 
 /// What to add to "does not exist" for a path written with Windows'

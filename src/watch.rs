@@ -45,9 +45,9 @@ fn relevant(dir: &Path, p: &Path) -> bool {
         return false;
     }
     let name = p.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
-    // As the project's folders are listed ([`Project::files`]): not hidden
-    // files, editors' backups, nor Office's owner files ("~$chart.xlsx").
-    !name.starts_with('.') && !name.ends_with('~') && !name.starts_with("~$")
+    // As the project's folders are listed ([`Project::files`]), and not
+    // editors' backups.
+    !crate::project::is_hidden_or_office_owner(&name) && !name.ends_with('~')
 }
 
 fn run_once(dir: &Path, progress: &Progress) {
