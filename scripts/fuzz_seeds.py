@@ -167,6 +167,12 @@ ws["C6"] = "12,500"
 path = os.path.join(tmp, "chart-text.xlsx")
 as_text.save(path)
 seed("chart_workbook", "chart-text.xlsx", read(path), 0)
+# Radii and boom lengths pasted from a PDF with their unit in the cell,
+# one cell in feet among metres.
+ws["A5"], ws["B4"], ws["C4"], ws["A8"] = "3,0 m", "20 m", "30m", "12 ft"
+path = os.path.join(tmp, "chart-units.xlsx")
+as_text.save(path)
+seed("chart_workbook", "chart-units.xlsx", read(path), 0)
 doc = OpenDocumentSpreadsheet()
 table = Table(name="Main boom 360")
 for row in rows:

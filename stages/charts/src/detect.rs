@@ -19,7 +19,7 @@
 //! cell that rises.
 
 use crate::decimals::{self, GridMark, Reading};
-use crate::sheet::{Sheet, Val};
+use crate::sheet::{Sheet, Val, length_and_unit};
 use liftplan_core::capacity::{ChartCell, ChartConfig};
 use liftplan_core::location::cell_ref;
 use liftplan_core::units::{LengthUnit, MassUnit};
@@ -158,7 +158,7 @@ pub fn says_boom(text: &str) -> bool {
 
 /// The most cells a sheet may have to be searched for grids. Manufacturers'
 /// chart sheets hold hundreds to a few thousand cells. The search asks
-/// questions of rows and columns through an index ([`Column`]), so its cost
+/// questions of rows and columns through an index (`Column`), so its cost
 /// grows with the number of cells, not with the sheet's side cubed as the
 /// first search's did (35 s for 1.96 M cells made from an 813-byte ODS file;
 /// 41 s for 16,384 words on a diagonal): 200,000 cells on a diagonal take
@@ -400,6 +400,24 @@ fn mass_in(text: &str) -> Vec<MassUnit> {
     v
 }
 
+/// The cells of a grid's axes: across its header row (none where the grid
+/// is one column of capacities by radius) and down its label column.
+fn axis_cells(g: &Grid) -> (Vec<(u32, u32)>, Vec<(u32, u32)>) {
+    let across = match g.boom_independent {
+        true => Vec::new(),
+        false => g.value_cols.iter().map(|&c| (g.header_row, c)).collect(),
+    };
+    (across, g.rows.iter().map(|&r| (r, g.label_col)).collect())
+}
+
+/// The length unit the `cells` write after their numbers, where they write
+/// one and all the same.
+fn written_with(sheet: &Sheet, cells: &[(u32, u32)]) -> Option<LengthUnit> {
+    let mut units = cells.iter().filter_map(|&(r, c)| length_and_unit(sheet.text(r, c)?).1);
+    let first = units.next()?;
+    units.all(|u| u == first).then_some(first)
+}
+
 /// Reads the units around `g`. Errors (cell, message) on mixed mass units.
 pub fn units(sheet: &Sheet, g: &Grid) -> Result<Units, (String, String)> {
     let last = *g.value_cols.last().unwrap_or(&g.label_col);
@@ -438,19 +456,25 @@ pub fn units(sheet: &Sheet, g: &Grid) -> Result<Units, (String, String)> {
         ));
     }
     let all_len = length_in(&window);
-    let pick_len = |label: &str| -> Option<LengthUnit> {
+    // An axis' unit: its label's, else the one its cells write after their
+    // numbers ("3,0 m"), else the one the labels around the grid name.
+    let pick_len = |label: &str, cells: &[(u32, u32)]| -> Option<LengthUnit> {
         let l = length_in(label);
         if l.len() == 1 {
             Some(l[0])
+        } else if let Some(written) = written_with(sheet, cells) {
+            Some(written)
         } else if all_len.len() == 1 {
             Some(all_len[0])
         } else {
             None
         }
     };
+    let (across, down) = axis_cells(g);
     let (radius_label, boom_label) = if g.transposed { (&row_label, &col_label) } else { (&col_label, &row_label) };
-    let radius = pick_len(radius_label);
-    let boom = pick_len(boom_label);
+    let (radius_cells, boom_cells) = if g.transposed { (&across, &down) } else { (&down, &across) };
+    let radius = pick_len(radius_label, radius_cells);
+    let boom = pick_len(boom_label, boom_cells);
     if let Some(m) = masses.first() {
         found.push(format!("capacity in {}", m.name()));
     }
@@ -694,7 +718,7 @@ fn capacity_text(t: &str) -> Option<CapacityText<'_>> {
 }
 
 /// Numbers a grid holds as text that were read in a way worth saying, with
-/// their cells: said once for the grid ([`TextNumbers::said`]), not cell by
+/// their cells: said once for the grid (`TextNumbers::said`), not cell by
 /// cell (a chart typed in another locale has hundreds).
 #[derive(Default)]
 pub struct TextNumbers {
@@ -826,14 +850,15 @@ pub fn parse_capacity(
     if value > 0.0 { Ok(Some(value)) } else { Ok(None) }
 }
 
-/// The numbers of a grid's radii or boom lengths (`what`), in its `cells`:
-/// a cell holding none is refused, naming it and what it holds. Numbers
+/// The numbers of a grid's radii or boom lengths (`what`), in its `cells`,
+/// in `unit`: a cell holding none is refused, naming it and what it holds,
+/// and so is one written with another unit after its number. Numbers
 /// written as text are read with the grid's decimal mark (`decimals`) and
 /// noted in `read` where worth saying.
 fn axis_values(
     sheet: &Sheet,
     cells: &[(u32, u32)],
-    what: &str,
+    (what, unit): (&str, LengthUnit),
     decimals: &GridMark,
     read: &mut TextNumbers,
 ) -> Result<Vec<f64>, (String, String)> {
@@ -843,7 +868,19 @@ fn axis_values(
         let v = match sheet.get(r, c) {
             Some(Val::Num(v)) => *v,
             Some(Val::Text(t)) => {
-                match decimals::read(t.trim(), decimals.for_number(t.trim()).map_err(|why| (at((r, c)), why))?) {
+                let (number, written) = length_and_unit(t);
+                if let Some(written) = written.filter(|&w| w != unit) {
+                    let t = liftplan_core::names::kept(t.trim(), 40);
+                    let (what, w, unit) = (plural(what), written.name(), unit.name());
+                    return Err((
+                        at((r, c)),
+                        format!(
+                            "'{t}' is in {w}, but the grid's {what} are in {unit} (as its labels, its other cells or \
+                             the project's [charts] say): a chart gives an axis in one unit; correct the cell"
+                        ),
+                    ));
+                }
+                match decimals::read(number, decimals.for_number(number).map_err(|why| (at((r, c)), why))?) {
                     Some((v, reading)) => {
                         read.note(reading, &at((r, c)), t, v);
                         v
@@ -859,6 +896,13 @@ fn axis_values(
         values.push(v);
     }
     Ok(values)
+}
+
+fn plural(what: &str) -> String {
+    match what {
+        "radius" => "radii".to_string(),
+        _ => format!("{what}s"),
+    }
 }
 
 /// What a capacity's warning says of the note its mark points at: the note
@@ -909,22 +953,23 @@ pub fn read_grid(
     let at = |r: u32, c: u32| format!("{}!{}", sheet.name, cell_ref(r, c));
     // Values across the header and down the label column.
     let (across_is, down_is) = if g.transposed { ("radius", "boom length") } else { ("boom length", "radius") };
-    let across_cells: Vec<(u32, u32)> = g.value_cols.iter().map(|&c| (g.header_row, c)).collect();
-    let down_cells: Vec<(u32, u32)> = g.rows.iter().map(|&r| (r, g.label_col)).collect();
-    let across_cells = if g.boom_independent { &[][..] } else { &across_cells[..] };
+    let (across_unit, down_unit) = if g.transposed { (u.radius, u.boom) } else { (u.boom, u.radius) };
+    let (across_cells, down_cells) = axis_cells(g);
     // The numbers the grid holds as text, with their cells: what they show
     // decides how those that show nothing are read.
     let axis_texts = across_cells
         .iter()
         .chain(&down_cells)
-        .filter_map(|&(r, c)| Some((at(r, c), sheet.text(r, c)?.trim().to_string())));
+        .filter_map(|&(r, c)| Some((at(r, c), length_and_unit(sheet.text(r, c)?).0.to_string())));
     let capacity_texts = g.rows.iter().flat_map(|&r| g.value_cols.iter().map(move |&c| (r, c)));
     let capacity_texts = capacity_texts.filter_map(|(r, c)| Some((at(r, c), capacity_text(sheet.text(r, c)?)?.number)));
     let decimals = GridMark::of(axis_texts.chain(capacity_texts));
     let mut read = TextNumbers::default();
-    let across: Vec<f64> =
-        if g.boom_independent { vec![0.0] } else { axis_values(sheet, across_cells, across_is, &decimals, &mut read)? };
-    let down: Vec<f64> = axis_values(sheet, &down_cells, down_is, &decimals, &mut read)?;
+    let across: Vec<f64> = match g.boom_independent {
+        true => vec![0.0],
+        false => axis_values(sheet, &across_cells, (across_is, across_unit), &decimals, &mut read)?,
+    };
+    let down: Vec<f64> = axis_values(sheet, &down_cells, (down_is, down_unit), &decimals, &mut read)?;
     if !g.boom_independent && !strictly_increasing(&across) {
         return Err((at(g.header_row, g.value_cols[0]), "header values must increase from left to right".into()));
     }
@@ -1413,6 +1458,60 @@ mod tests {
         ]);
         let g2 = &find_grids(&s2).unwrap()[0];
         assert!(units(&s2, g2).is_err());
+    }
+
+    /// Radii and boom lengths pasted from a PDF with their unit in the
+    /// cell: the grid is found, the unit is the cells' where the labels
+    /// name none, and a cell in another unit than its axis is refused.
+    #[test]
+    fn lengths_written_with_their_unit_in_the_cell() {
+        let chart = |radius_label: &str, boom: [&str; 2], radii: [&str; 2]| {
+            sheet(&[
+                &["Capacities in t", "", ""],
+                &[radius_label, "Main boom", ""],
+                &["", boom[0], boom[1]],
+                &[radii[0], "50", "30"],
+                &[radii[1], "45,5", "28"],
+            ])
+        };
+        let read = |s: &Sheet| {
+            let g = &find_grids(s).map_err(|e| e.1)?[..];
+            let [g] = g else { return Err(format!("{} grids", g.len())) };
+            let u = units(s, g).map_err(|e| e.1)?;
+            let mut w = vec![];
+            let notes = (&LazyNotes::new(s), &NoteSheets::default());
+            read_grid(s, g, &u, "c.xlsx", "x", notes, &mut w)
+                .map(|c| (u, c, w))
+                .map_err(|(cell, m)| format!("{cell}: {m}"))
+        };
+        let (u, c, w) = read(&chart("Radius", ["30,5 m", "40,0 m"], ["3,0 m", "4,0 m"])).unwrap();
+        assert!(u.length_named && u.radius == LengthUnit::M && u.boom == LengthUnit::M, "{u:?}");
+        assert_eq!((c.boom_lengths_m, c.radii_m), (vec![30.5, 40.0], vec![3.0, 4.0]));
+        assert_eq!(c.cells[2].as_ref().unwrap().capacity_kg, 45500.0);
+        assert_eq!(w.len(), 1, "{w:?}");
+        assert!(w[0].starts_with("Main!A3:C5: 5 numbers written as text with decimal commas"), "{w:?}");
+        // Feet in the cells, written every way; no blank before the unit.
+        let (u, c, _) = read(&chart("Radius", ["100ft", "120 ft."], ["10'", "15 feet"])).unwrap();
+        assert!(u.length_named && u.radius == LengthUnit::Ft && u.boom == LengthUnit::Ft, "{u:?}");
+        assert!((c.radii_m[0] - 3.048).abs() < 1e-9, "{:?}", c.radii_m);
+        // The label's unit rules the axis: a cell in another is refused.
+        let e = read(&chart("Radius [m]", ["30 m", "40 m"], ["3 m", "13 ft"])).unwrap_err();
+        assert_eq!(
+            e,
+            "Main!A5: '13 ft' is in ft, but the grid's radii are in m (as its labels, its other cells or the \
+             project's [charts] say): a chart gives an axis in one unit; correct the cell"
+        );
+        // Cells of two units with no label naming one: the unit is not
+        // taken from them, and the cell unlike the project's is refused.
+        let s = chart("Radius", ["30 m", "40 m"], ["3 ft", "4 m"]);
+        let g = &find_grids(&s).unwrap()[0];
+        let u = units(&s, g).unwrap();
+        assert!(!u.length_named || u.radius == LengthUnit::M, "{u:?}");
+        assert!(read(&s).unwrap_err().starts_with("Main!A4: '3 ft' is in ft, but the grid's radii are in m"));
+        // What is no length after a number stays text.
+        for t in ["3 mm", "m", "3 m 4", "-3 m", "3 t"] {
+            assert_eq!(length_and_unit(t), (t, None), "{t}");
+        }
     }
 
     #[test]

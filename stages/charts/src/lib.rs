@@ -11,7 +11,9 @@
 //! | `lifts.json` | per lift: gross load, capacity and utilisation at pick and set, the radial ranges the chart permits, critical flag (read back by [`recorded`]) |
 //!
 //! Numbers a chart holds as text are read with the decimal mark their grid
-//! shows ([`decimals`]). Every value keeps the `sheet!cell` it came from, so
+//! shows ([`decimals`]); a radius or boom length may carry its unit in the
+//! cell ("3,0 m", [`sheet::length_and_unit`]), which names the axis' unit
+//! where the labels do not and must agree with it where they do. Every value keeps the `sheet!cell` it came from, so
 //! the lift plan can quote the chart row it relied on. The capacity rule itself (never interpolate upwards)
 //! lives in `liftplan_core::capacity`.
 //!

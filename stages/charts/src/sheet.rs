@@ -11,6 +11,7 @@
 use crate::error::{ChartError, Result};
 use calamine::{Data, DataRef, Reader};
 use liftplan_core::Location;
+use liftplan_core::units::LengthUnit;
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -26,13 +27,33 @@ impl Val {
     /// The cell's number: a number cell's value, or a text cell holding a
     /// plain number ([`crate::decimals::plain_number`]), as charts pasted
     /// from a PDF or typed in another locale hold their radii and boom
-    /// lengths ("12.5", "12,5"; Excel's "number stored as text").
+    /// lengths ("12.5", "12,5"; Excel's "number stored as text"), with or
+    /// without a length unit after it ([`length_and_unit`]: "3,0 m").
     pub fn number(&self) -> Option<f64> {
         match self {
             Val::Num(v) => Some(*v),
-            Val::Text(t) => crate::decimals::plain_number(t).map(|(v, _)| v),
+            Val::Text(t) => crate::decimals::plain_number(length_and_unit(t).0).map(|(v, _)| v),
         }
     }
+}
+
+/// A radius or boom length written as text with its unit after it, as
+/// charts pasted from a PDF hold them ("3,0 m", "12.5m", "40 ft", "40'"):
+/// the number's text and the unit. Text with no length unit after a number
+/// comes back whole (trimmed), with none: what the number is, is the
+/// caller's to read.
+pub fn length_and_unit(text: &str) -> (&str, Option<LengthUnit>) {
+    let t = text.trim_matches(|c: char| c.is_whitespace() || c == '\u{a0}');
+    let number_end =
+        t.find(|c: char| !(c.is_ascii_digit() || matches!(c, '.' | ',' | ' ' | '\u{a0}'))).unwrap_or(t.len());
+    let (number, unit) = t.split_at(number_end);
+    let number = number.trim_end_matches([' ', '\u{a0}']);
+    let unit = match unit.to_lowercase().as_str() {
+        "m" | "meter" | "meters" | "metre" | "metres" => LengthUnit::M,
+        "ft" | "ft." | "feet" | "foot" | "'" | "\u{2032}" => LengthUnit::Ft,
+        _ => return (t, None),
+    };
+    if number.is_empty() { (t, None) } else { (number, Some(unit)) }
 }
 
 #[derive(Debug, Clone, Default)]

@@ -151,7 +151,9 @@ fn transposed_layout_is_recognised() {
 /// radii, boom lengths and capacities, with decimal points and with decimal
 /// commas, capacities to three decimals ("482,600": read alone, twelve
 /// thousand or twelve; the grid's "3,5" m radius says which). Each reads as
-/// the chart of numbers does; decimal commas are said once a grid.
+/// the chart of numbers does; decimal commas are said once a grid. Radii
+/// and boom lengths pasted with their unit in the cell ("3,5 m") read as
+/// well.
 #[test]
 fn numbers_written_as_text_read_as_the_numbers() {
     let d = tempfile::tempdir().unwrap();
@@ -159,7 +161,14 @@ fn numbers_written_as_text_read_as_the_numbers() {
     liftplan_fixtures::chart::write_demo_chart(&p).unwrap();
     let (numbers, _) = read_chart(&p, &Settings::default()).unwrap();
     let sheets = liftplan_charts::sheet::read_workbook(&p).unwrap();
-    for (mark, capacities) in [('.', false), ('.', true), (',', false), (',', true)] {
+    for (mark, capacities, unit_in_axis) in [
+        ('.', false, false),
+        ('.', true, false),
+        (',', false, false),
+        (',', true, false),
+        ('.', false, true),
+        (',', true, true),
+    ] {
         let mut wb = Workbook::new();
         for sheet in &sheets {
             let ws = wb.add_worksheet().set_name(&sheet.name).unwrap();
@@ -175,6 +184,11 @@ fn numbers_written_as_text_read_as_the_numbers() {
                     text.replace('.', &mark.to_string())
                 } else {
                     text
+                };
+                let on_axis = (r == 5 && c > 0) || (r > 5 && c == 0);
+                let text = match unit_in_axis && on_axis && matches!(v, liftplan_charts::sheet::Val::Num(_)) {
+                    true => format!("{text} m"),
+                    false => text,
                 };
                 ws.write_string(r, c as u16, &text).unwrap();
             }
