@@ -210,7 +210,11 @@ enum Command {
         #[arg(long, value_name = "m|ft", value_parser = ["m", "ft"])]
         length_unit: Option<String>,
         /// Capacity unit of grids whose labels name none (as `[charts] capacity_unit`).
-        #[arg(long, value_name = "t|kg|lb|kips|shortton", value_parser = ["t", "kg", "lb", "kips", "shortton"])]
+        #[arg(
+            long,
+            value_name = "t|kg|lb|kips|shortton|kN|daN",
+            value_parser = ["t", "kg", "lb", "kips", "shortton", "kN", "daN"]
+        )]
         capacity_unit: Option<String>,
         #[arg(long)]
         json: bool,

@@ -417,7 +417,7 @@ rotate_z_deg = 0.0
 
 [charts]
 # length_unit = "m"         # unit of chart grids whose labels name none: m | ft
-# capacity_unit = "t"       # t | kg | lb | kips | shortton; such a grid is refused unless these say
+# capacity_unit = "t"       # t | kg | lb | kips | shortton | kN | daN (a weight's); such a grid is refused unless these say
 
 # [[charts.table]]         # describe a chart grid that detection gets wrong
 # file = "chart.xlsx"

@@ -10,8 +10,11 @@
 //! capacity column under a text header is a chart that does not depend on boom
 //! length (tower crane jibs).
 //!
-//! Units come from the words around the grid (m/ft, t/kg/lb/kips); where none is
-//! found, the project must say (`[charts] length_unit`, `capacity_unit`, or the
+//! Units come from the words around the grid (m/ft, t/kg/lb/kips, and kN/daN
+//! where the chart rates its capacities as weights, read as the mass they
+//! weigh; a force named beside a mass unit is another figure's, such as an
+//! outrigger's load) or from the radii's and boom lengths' cells ("3,0 m");
+//! where none is found, the project must say (`[charts] length_unit`, `capacity_unit`, or the
 //! grid's `[[charts.table]]` mapping): a chart in pounds and feet read as
 //! tonnes and metres would be thousands of times too strong. Values like
 //! `12,5` are read with a warning; `12.5t` is read if `t` is the grid's unit and
@@ -391,6 +394,8 @@ fn mass_in(text: &str) -> Vec<MassUnit> {
             "lb" | "lbs" | "pound" | "pounds" => MassUnit::Lb,
             "kip" | "kips" => MassUnit::Kips,
             "ton" | "tons" => MassUnit::ShortTon,
+            "kn" | "kilonewton" | "kilonewtons" => MassUnit::KiloNewton,
+            "dan" | "decanewton" | "decanewtons" => MassUnit::DecaNewton,
             _ => continue,
         };
         if !v.contains(&u) {
@@ -446,6 +451,13 @@ pub fn units(sheet: &Sheet, g: &Grid) -> Result<Units, (String, String)> {
     } else {
         masses
     };
+    // A force named beside a mass is another figure's (an outrigger's
+    // load, "Stützkraft 450 kN"); named alone, the chart rates its
+    // capacities as weights.
+    let masses: Vec<MassUnit> = match masses.iter().all(|m| m.is_force()) {
+        true => masses,
+        false => masses.into_iter().filter(|m| !m.is_force()).collect(),
+    };
     if masses.len() > 1 {
         return Err((
             corner,
@@ -475,8 +487,15 @@ pub fn units(sheet: &Sheet, g: &Grid) -> Result<Units, (String, String)> {
     let (radius_cells, boom_cells) = if g.transposed { (&across, &down) } else { (&down, &across) };
     let radius = pick_len(radius_label, radius_cells);
     let boom = pick_len(boom_label, boom_cells);
-    if let Some(m) = masses.first() {
-        found.push(format!("capacity in {}", m.name()));
+    match masses.first() {
+        Some(m) if m.is_force() => found.push(format!(
+            "capacity in {} of weight, read as the mass it weighs (1 {} = {:.4} kg)",
+            m.name(),
+            m.name(),
+            m.to_kg()
+        )),
+        Some(m) => found.push(format!("capacity in {}", m.name())),
+        None => {}
     }
     if let Some(r) = radius {
         found.push(format!("radius in {}", r.name()));
@@ -832,10 +851,10 @@ pub fn parse_capacity(
             None => return Err(format!("cannot read '{t}' as a capacity (expected a number in {})", unit.name())),
         }
     }
-    // In kilograms or pounds no chart gives three decimal places: there a
-    // separator before three digits ("12,500 lb", "12.500 kg") separates
+    // In kilograms, pounds or decanewtons no chart gives three decimal
+    // places: there a separator before three digits ("12,500 lb", "12.500 kg") separates
     // thousands, whichever it is and however the grid writes decimals.
-    let thousands = matches!(unit, MassUnit::Kg | MassUnit::Lb)
+    let thousands = matches!(unit, MassUnit::Kg | MassUnit::Lb | MassUnit::DecaNewton)
         && decimals::shown_by(&parts.number).is_none()
         && parts.number.contains([',', '.']);
     let mark = match thousands {
@@ -1458,6 +1477,47 @@ mod tests {
         ]);
         let g2 = &find_grids(&s2).unwrap()[0];
         assert!(units(&s2, g2).is_err());
+    }
+
+    /// A chart rating its capacities as weights (kN, daN) is read as the
+    /// mass they weigh; a force named beside a mass unit is another
+    /// figure's, and the mass unit is the chart's.
+    #[test]
+    fn capacities_given_as_weights() {
+        let chart = |title: &str, capacity: &str| {
+            sheet(&[
+                &[title, "", ""],
+                &["Radius m", "Boom m", ""],
+                &["", "20", "30"],
+                &["3", capacity, "392"],
+                &["5", "348", "294"],
+            ])
+        };
+        let read = |s: &Sheet| {
+            let g = &find_grids(s).unwrap()[0];
+            let u = units(s, g).map_err(|e| e.1)?;
+            let notes = (&LazyNotes::new(s), &NoteSheets::default());
+            let c = read_grid(s, g, &u, "c.xlsx", "x", notes, &mut vec![]).map_err(|e| e.1)?;
+            Ok::<_, String>((u, c.cells[0].as_ref().unwrap().capacity_kg))
+        };
+        let (u, kg) = read(&chart("Rated capacities in kN", "490")).unwrap();
+        assert_eq!(u.capacity, MassUnit::KiloNewton);
+        assert!(u.capacity_named, "{u:?}");
+        assert!((kg - 490_000.0 / 9.806_65).abs() < 1e-6, "{kg}");
+        assert_eq!(u.found[0], "capacity in kN of weight, read as the mass it weighs (1 kN = 101.9716 kg)");
+        let (u, kg) = read(&chart("Charges en daN", "49 000")).unwrap();
+        assert_eq!(u.capacity, MassUnit::DecaNewton);
+        assert!((kg - 490_000.0 / 9.806_65).abs() < 1e-6, "{kg}");
+        // In daN, as in kg, no chart writes three decimals: '49.000 daN'
+        // is forty-nine thousand.
+        assert!((read(&chart("Charges en daN", "49.000 daN")).unwrap().1 - 490_000.0 / 9.806_65).abs() < 1e-6);
+        let (u, kg) = read(&chart("Tragkräfte in t, Stützkraft max. 450 kN", "490")).unwrap();
+        assert_eq!((u.capacity, kg), (MassUnit::T, 490_000.0));
+        let e = read(&chart("Capacities in t", "490 kN")).unwrap_err();
+        assert_eq!(e, "'490 kN' is in kN, but the chart's capacities are in t");
+        assert!(
+            read(&chart("Capacities in kN and daN", "490")).unwrap_err().contains("more than one mass unit (kN, daN)")
+        );
     }
 
     /// Radii and boom lengths pasted from a PDF with their unit in the

@@ -272,7 +272,7 @@ fn read_chart_with(path: &Path, s: &Settings, unnamed: Unnamed) -> Result<(Vec<C
                             if what == "length" {
                                 "length_unit = \"m\" (or \"ft\")"
                             } else {
-                                "capacity_unit = \"t\" (or \"kg\", \"lb\", \"kips\", \"shortton\")"
+                                "capacity_unit = \"t\" (or \"kg\", \"lb\", \"kips\", \"shortton\", \"kN\", \"daN\")"
                             }
                         ),
                     )

@@ -58,7 +58,10 @@ impl LengthUnit {
     }
 }
 
-/// A mass unit found in a load chart.
+/// A mass unit found in a load chart, or the force unit of a chart that
+/// rates its capacities as the weight they may be (kilonewtons, as some
+/// European charts do; decanewtons, as French ones do): read as the mass
+/// of that weight under standard gravity ([`G_M_S2`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum MassUnit {
@@ -69,6 +72,12 @@ pub enum MassUnit {
     Kips,
     /// US short ton.
     ShortTon,
+    /// A weight of one kilonewton: 101.97 kg.
+    #[serde(rename = "kN", alias = "kn")]
+    KiloNewton,
+    /// A weight of one decanewton: 1.0197 kg.
+    #[serde(rename = "daN", alias = "dan")]
+    DecaNewton,
 }
 
 impl MassUnit {
@@ -79,7 +88,13 @@ impl MassUnit {
             MassUnit::Lb => KG_PER_LB,
             MassUnit::Kips => KG_PER_KIP,
             MassUnit::ShortTon => KG_PER_SHORT_TON,
+            MassUnit::KiloNewton => 1000.0 / G_M_S2,
+            MassUnit::DecaNewton => 10.0 / G_M_S2,
         }
+    }
+    /// Whether the unit is a weight's (a force's), not a mass's.
+    pub fn is_force(self) -> bool {
+        matches!(self, MassUnit::KiloNewton | MassUnit::DecaNewton)
     }
     pub fn name(self) -> &'static str {
         match self {
@@ -88,6 +103,8 @@ impl MassUnit {
             MassUnit::Lb => "lb",
             MassUnit::Kips => "kips",
             MassUnit::ShortTon => "short ton",
+            MassUnit::KiloNewton => "kN",
+            MassUnit::DecaNewton => "daN",
         }
     }
 }
@@ -121,5 +138,17 @@ mod tests {
         assert!((LengthUnit::Ft.to_m() - 0.3048).abs() < 1e-12);
         assert!((wrap_pi(3.0 * std::f64::consts::PI) - std::f64::consts::PI).abs() < 1e-12);
         assert!((wrap_pi(-0.5) + 0.5).abs() < 1e-12);
+        // A tonne weighs 9.80665 kN; a kilogram about a decanewton.
+        assert!((MassUnit::KiloNewton.to_kg() * 9.806_65 - 1000.0).abs() < 1e-9);
+        assert!((MassUnit::DecaNewton.to_kg() * 9.806_65 - 10.0).abs() < 1e-12);
+        #[derive(serde::Deserialize)]
+        struct Said {
+            unit: MassUnit,
+        }
+        for (text, unit) in [("kN", MassUnit::KiloNewton), ("kn", MassUnit::KiloNewton), ("daN", MassUnit::DecaNewton)]
+        {
+            let said: Said = toml::from_str(&format!("unit = '{text}'")).unwrap();
+            assert_eq!(said.unit, unit, "{text}");
+        }
     }
 }
