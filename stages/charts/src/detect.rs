@@ -386,9 +386,12 @@ fn mass_in(text: &str) -> Vec<MassUnit> {
     if lower.contains("1000 lb") || lower.contains("1,000 lb") || lower.contains("1000lb") {
         v.push(MassUnit::Kips);
     }
+    if says_to_as_tonne(text) {
+        v.push(MassUnit::T);
+    }
     for w in words(text) {
         let u = match w.as_str() {
-            "t" | "to" | "tonne" | "tonnes" | "mt" => MassUnit::T,
+            "t" | "tonne" | "tonnes" | "mt" => MassUnit::T,
             "kg" | "kilogram" | "kilograms" => MassUnit::Kg,
             "lb" | "lbs" | "pound" | "pounds" if v.contains(&MassUnit::Kips) => continue,
             "lb" | "lbs" | "pound" | "pounds" => MassUnit::Lb,
@@ -421,6 +424,33 @@ fn written_with(sheet: &Sheet, cells: &[(u32, u32)]) -> Option<LengthUnit> {
     let mut units = cells.iter().filter_map(|&(r, c)| length_and_unit(sheet.text(r, c)?).1);
     let first = units.next()?;
     units.all(|u| u == first).then_some(first)
+}
+
+/// Whether `text` writes "to", German charts' tonne, as a unit: in
+/// brackets ("(to)", "[to]"), or closing its line or phrase after a number
+/// or "in" ("25 to", "Tragkraft in to"). Elsewhere "to" is an English word
+/// ("radius from the axis of rotation to the hook"), and read as a tonne it
+/// made a chart in pounds one of two mass units.
+fn says_to_as_tonne(text: &str) -> bool {
+    let lower = text.to_lowercase();
+    let closes = |after: &str| after.is_empty() || after.starts_with([')', ']', ',', ';', ':', '.', '\n']);
+    lower.match_indices("to").any(|(at, _)| {
+        let (before, after) = (&lower[..at], &lower[at + 2..]);
+        let word_ends = |s: &str, last: bool| {
+            let c = if last { s.chars().next_back() } else { s.chars().next() };
+            !c.is_some_and(char::is_alphanumeric)
+        };
+        if !word_ends(before, true) || !word_ends(after, false) {
+            return false;
+        }
+        let (before, after) =
+            (before.trim_end_matches([' ', '\u{a0}', '\t']), after.trim_start_matches([' ', '\u{a0}', '\t']));
+        let bracketed =
+            (before.ends_with('(') && after.starts_with(')')) || (before.ends_with('[') && after.starts_with(']'));
+        let after_number_or_in = before.ends_with(|c: char| c.is_ascii_digit())
+            || (before.ends_with("in") && word_ends(&before[..before.len() - 2], true));
+        bracketed || (after_number_or_in && closes(after))
+    })
 }
 
 /// Reads the units around `g`. Errors (cell, message) on mixed mass units.
@@ -1477,6 +1507,40 @@ mod tests {
         ]);
         let g2 = &find_grids(&s2).unwrap()[0];
         assert!(units(&s2, g2).is_err());
+    }
+
+    /// "to" is a German chart's tonne where written as a unit, and an
+    /// English word elsewhere: a chart in pounds whose note says "radius
+    /// from the axis of rotation to the hook" is one of pounds.
+    #[test]
+    fn to_is_a_tonne_only_where_written_as_a_unit() {
+        for t in [
+            "Tragkraft in to",
+            "Tragkräfte (to)",
+            "Last [to]",
+            "Tragkraft in to:",
+            "max. 25 to",
+            "25 TO",
+            "in to\nRadius",
+        ] {
+            assert!(says_to_as_tonne(t), "{t}");
+            assert_eq!(mass_in(t), vec![MassUnit::T], "{t}");
+        }
+        for t in
+            ["radius from the axis of rotation to the hook", "3 to 12 m", "in total", "into", "Tonto", "go to", "logo"]
+        {
+            assert!(!says_to_as_tonne(t), "{t}");
+        }
+        let s = sheet(&[
+            &["Capacities in pounds", "", ""],
+            &["Radius from the axis of rotation to the hook", "", ""],
+            &["Radius ft", "Boom ft", ""],
+            &["", "40", "60"],
+            &["10", "49000", "39200"],
+            &["15", "34800", "29400"],
+        ]);
+        let g = &find_grids(&s).unwrap()[0];
+        assert_eq!(units(&s, g).unwrap().capacity, MassUnit::Lb);
     }
 
     /// A chart rating its capacities as weights (kN, daN) is read as the

@@ -81,7 +81,8 @@ impl Sheet {
         }
     }
 
-    /// All text in the rectangle, joined with spaces (for unit and label search).
+    /// All text in the rectangle, a cell a line (for unit and label search:
+    /// where one cell's words end is kept).
     pub fn text_in(&self, r0: u32, r1: u32, c0: u32, c1: u32) -> String {
         let mut out = String::new();
         for ((_, c), v) in self.cells.range((r0, 0)..=(r1, u32::MAX)) {
@@ -90,7 +91,7 @@ impl Sheet {
                 && let Val::Text(t) = v
             {
                 out.push_str(t);
-                out.push(' ');
+                out.push('\n');
             }
         }
         out
