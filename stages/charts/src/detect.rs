@@ -369,7 +369,7 @@ fn length_in(text: &str) -> Vec<LengthUnit> {
     let mut v = Vec::new();
     for w in words(text) {
         let u = match w.as_str() {
-            "m" | "meter" | "meters" | "metre" | "metres" => LengthUnit::M,
+            "m" | "meter" | "meters" | "metre" | "metres" | "mètre" | "mètres" | "metros" | "metri" => LengthUnit::M,
             "ft" | "feet" | "foot" => LengthUnit::Ft,
             _ => continue,
         };
@@ -391,7 +391,7 @@ fn mass_in(text: &str) -> Vec<MassUnit> {
     }
     for w in words(text) {
         let u = match w.as_str() {
-            "t" | "tonne" | "tonnes" | "mt" => MassUnit::T,
+            "t" | "tonne" | "tonnes" | "mt" | "tonnen" | "toneladas" | "tonnellate" => MassUnit::T,
             "kg" | "kilogram" | "kilograms" => MassUnit::Kg,
             "lb" | "lbs" | "pound" | "pounds" if v.contains(&MassUnit::Kips) => continue,
             "lb" | "lbs" | "pound" | "pounds" => MassUnit::Lb,
@@ -1525,6 +1525,13 @@ mod tests {
         ] {
             assert!(says_to_as_tonne(t), "{t}");
             assert_eq!(mass_in(t), vec![MassUnit::T], "{t}");
+        }
+        // The words of other languages' charts.
+        for t in ["Tragkraft in Tonnen", "Portata in tonnellate", "Capacidad en toneladas"] {
+            assert_eq!(mass_in(t), vec![MassUnit::T], "{t}");
+        }
+        for t in ["Ausladung in Meter", "Portée en mètres", "Radio en metros", "Raggio in metri"] {
+            assert_eq!(length_in(t), vec![LengthUnit::M], "{t}");
         }
         for t in
             ["radius from the axis of rotation to the hook", "3 to 12 m", "in total", "into", "Tonto", "go to", "logo"]
