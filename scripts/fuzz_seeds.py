@@ -173,6 +173,11 @@ ws["A5"], ws["B4"], ws["C4"], ws["A8"] = "3,0 m", "20 m", "30m", "12 ft"
 path = os.path.join(tmp, "chart-units.xlsx")
 as_text.save(path)
 seed("chart_workbook", "chart-units.xlsx", read(path), 0)
+# Formulas openpyxl stores without their values.
+ws["B6"], ws["D4"] = "=B7*1.5", "=C4+10"
+path = os.path.join(tmp, "chart-formulas.xlsx")
+as_text.save(path)
+seed("chart_workbook", "chart-formulas.xlsx", read(path), 0)
 doc = OpenDocumentSpreadsheet()
 table = Table(name="Main boom 360")
 for row in rows:

@@ -133,7 +133,7 @@ impl<R: Read> Read for Counted<R> {
 /// A zip file of `parts` (name, text), deflated, for the tests here and in
 /// [`ods`].
 #[cfg(test)]
-fn zip_file(path: &Path, parts: &[(&str, &str)]) {
+pub(crate) fn zip_file(path: &Path, parts: &[(&str, &str)]) {
     use std::io::Write;
     let mut w = zip::ZipWriter::new(std::fs::File::create(path).unwrap());
     for (name, text) in parts {

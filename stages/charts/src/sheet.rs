@@ -123,6 +123,18 @@ fn from_ref(d: &DataRef) -> Option<Val> {
     }
 }
 
+/// A formula's text as a cell's refusal quotes it (one line, kept short),
+/// where the file gives it on the cell (a cell sharing another's formula
+/// gives only the share).
+fn formula_text(formula: &calamine::XlsxFormulaMetadata) -> Option<String> {
+    match formula {
+        calamine::XlsxFormulaMetadata::Normal { formula } | calamine::XlsxFormulaMetadata::Shared { formula, .. } => {
+            Some(liftplan_core::names::kept(formula, 60).into_owned())
+        }
+        _ => None,
+    }
+}
+
 /// Reads every sheet of a workbook.
 pub fn read_workbook(path: &Path) -> Result<Vec<Sheet>> {
     crate::container::check(path)?;
@@ -183,7 +195,44 @@ fn read_sheets(path: &Path, max_cells: usize) -> Result<Vec<Sheet>> {
             }};
         }
         match &mut wb {
-            calamine::Sheets::Xlsx(x) => stream_cells!(x),
+            calamine::Sheets::Xlsx(x) => {
+                // With each cell's formula: a formula whose value the file
+                // does not store reads as an empty cell, and a capacity or
+                // a boom length so lost is a chart changed without a word.
+                let mut r = x.worksheet_cells_reader(&name).map_err(|e| bad(format!("sheet '{name}': {e}")))?;
+                let mut uncomputed: Option<((u32, u32), Option<String>)> = None;
+                let mut uncomputed_cells = 0usize;
+                while let Some(cell) =
+                    r.next_cell_with_formula_metadata().map_err(|e| bad(format!("sheet '{name}': {e}")))?
+                {
+                    if let Some(v) = from_ref(&cell.value) {
+                        put(cell.pos, v)?;
+                    } else if let Some(formula) = cell.formula.as_ref().filter(|_| matches!(cell.value, DataRef::Empty))
+                    {
+                        uncomputed_cells += 1;
+                        uncomputed.get_or_insert_with(|| (cell.pos, formula_text(formula)));
+                    }
+                }
+                if let Some(((row, col), formula)) = uncomputed {
+                    let kept = sheet_name_kept(&name);
+                    let cell = liftplan_core::location::cell_ref(row, col);
+                    let formula = formula.map(|f| format!(" ('={f}')")).unwrap_or_default();
+                    let others = match uncomputed_cells {
+                        1 => String::new(),
+                        2 => ", as does one more cell on the sheet".to_string(),
+                        n => format!(", as do {} more cells on the sheet", n - 1),
+                    };
+                    return Err(ChartError::Format(
+                        Location::cell(path, &kept, &cell),
+                        format!(
+                            "the cell holds a formula{formula} whose value the workbook does not store{others}: it \
+                             was written by a program that computes no formulas, and what the cell shows in Excel \
+                             cannot be read from the file. Open the workbook in Excel or LibreOffice and save it, \
+                             so that its values are stored"
+                        ),
+                    ));
+                }
+            }
             calamine::Sheets::Xlsb(x) => stream_cells!(x),
             other => {
                 let range = other.worksheet_range(&name).map_err(|e| bad(format!("sheet '{name}': {e}")))?;
@@ -207,6 +256,45 @@ fn read_sheets(path: &Path, max_cells: usize) -> Result<Vec<Sheet>> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A workbook as a program that computes no formulas writes it (as
+    /// openpyxl does): formulas with no stored value. Read, the cells were
+    /// empty, and a boom length so lost dropped its configuration from the
+    /// chart without a word; refused at the first such cell. A formula with
+    /// its value stored is read as the value.
+    #[test]
+    fn formulas_whose_values_are_not_stored_are_refused() {
+        let write = |cells: &str| {
+            let d = tempfile::tempdir().unwrap();
+            let path = d.path().join("chart.xlsx");
+            let workbook = r#"<workbook xmlns="http://schemas.openxmlformats.org/spreadsheetml/2006/main" xmlns:r="http://schemas.openxmlformats.org/officeDocument/2006/relationships"><sheets><sheet name="Main" sheetId="1" r:id="rId1"/></sheets></workbook>"#;
+            let package = r#"<Relationships xmlns="http://schemas.openxmlformats.org/package/2006/relationships"><Relationship Id="rId1" Type="http://schemas.openxmlformats.org/officeDocument/2006/relationships/officeDocument" Target="xl/workbook.xml"/></Relationships>"#;
+            let rels = r#"<Relationships xmlns="http://schemas.openxmlformats.org/package/2006/relationships"><Relationship Id="rId1" Type="http://schemas.openxmlformats.org/officeDocument/2006/relationships/worksheet" Target="worksheets/sheet1.xml"/></Relationships>"#;
+            let sheet = format!(
+                r#"<worksheet xmlns="http://schemas.openxmlformats.org/spreadsheetml/2006/main"><sheetData><row r="1">{cells}</row></sheetData></worksheet>"#
+            );
+            crate::container::zip_file(
+                &path,
+                &[
+                    ("[Content_Types].xml", "<Types/>"),
+                    ("_rels/.rels", package),
+                    ("xl/workbook.xml", workbook),
+                    ("xl/_rels/workbook.xml.rels", rels),
+                    ("xl/worksheets/sheet1.xml", &sheet),
+                ],
+            );
+            (d, path)
+        };
+        let (_d, path) = write(r#"<c r="A1"><v>20</v></c><c r="B1"><f>A1+10</f><v>30</v></c>"#);
+        let sheets = read_workbook(&path).unwrap();
+        assert_eq!((sheets[0].num(0, 0), sheets[0].num(0, 1)), (Some(20.0), Some(30.0)));
+        let (_d, path) = write(r#"<c r="A1"><v>20</v></c><c r="B1"><f>A1+10</f></c><c r="C1"><f>B1+10</f></c>"#);
+        let e = read_workbook(&path).unwrap_err().to_string();
+        assert!(
+            e.contains("[Main!B1]: the cell holds a formula ('=A1+10') whose value the workbook does not store, as does one more cell on the sheet: it was written by a program that computes no formulas"),
+            "{e}"
+        );
+    }
 
     /// A workbook's sheets are held together, so they share the cell bound:
     /// two sheets of six cells pass a bound of ten one by one, not together.
