@@ -19,7 +19,11 @@
 //! tonnes and metres would be thousands of times too strong. Values like
 //! `12,5` are read with a warning; `12.5t` is read if `t` is the grid's unit and
 //! refused otherwise; a grid whose capacity rises with radius is refused with the
-//! cell that rises.
+//! cell that rises. A footnote mark after a capacity, a boom length or a radius
+//! is taken off and said with the note it points at (for a boom length or a
+//! radius, as a warning on its whole column or row); a cell just past the last
+//! boom length or radius that begins like a number but is none is said, as
+//! its column or row is no part of the chart.
 
 use crate::decimals::{self, GridMark, Reading};
 use crate::sheet::{Sheet, Val, length_and_unit};
@@ -553,6 +557,15 @@ pub enum FootnoteMark {
 impl FootnoteMark {
     /// Splits a trailing mark off a cell's text: the text before it and the
     /// mark, or `None` where the text ends in none.
+    /// `t` trimmed, with the mark after it taken off, and the mark.
+    pub fn split_off(t: &str) -> (&str, Option<FootnoteMark>) {
+        let t = t.trim();
+        match FootnoteMark::split(t) {
+            Some((before, mark)) => (before, Some(mark)),
+            None => (t, None),
+        }
+    }
+
     pub fn split(t: &str) -> Option<(&str, FootnoteMark)> {
         if t.ends_with(')')
             && let Some(i) = t.rfind('(')
@@ -899,25 +912,35 @@ pub fn parse_capacity(
     if value > 0.0 { Ok(Some(value)) } else { Ok(None) }
 }
 
+/// A radius or boom length written with a footnote mark after it ("40*"):
+/// its place among the axis' values, the mark, the cell's text.
+struct MarkedAxisValue(usize, FootnoteMark, String);
+
 /// The numbers of a grid's radii or boom lengths (`what`), in its `cells`,
-/// in `unit`: a cell holding none is refused, naming it and what it holds,
-/// and so is one written with another unit after its number. Numbers
-/// written as text are read with the grid's decimal mark (`decimals`) and
-/// noted in `read` where worth saying.
+/// in `unit`, and those written with a footnote mark after them: a cell
+/// holding none is refused, naming it and what it holds, and so is one
+/// written with another unit after its number. Numbers written as text are
+/// read with the grid's decimal mark (`decimals`) and noted in `read` where
+/// worth saying.
 fn axis_values(
     sheet: &Sheet,
     cells: &[(u32, u32)],
     (what, unit): (&str, LengthUnit),
     decimals: &GridMark,
     read: &mut TextNumbers,
-) -> Result<Vec<f64>, (String, String)> {
+) -> Result<(Vec<f64>, Vec<MarkedAxisValue>), (String, String)> {
     let at = |(r, c): (u32, u32)| format!("{}!{}", sheet.name, cell_ref(r, c));
     let mut values = Vec::with_capacity(cells.len());
-    for &(r, c) in cells {
+    let mut marked = Vec::new();
+    for (k, &(r, c)) in cells.iter().enumerate() {
         let v = match sheet.get(r, c) {
             Some(Val::Num(v)) => *v,
             Some(Val::Text(t)) => {
-                let (number, written) = length_and_unit(t);
+                let (unmarked, mark) = FootnoteMark::split_off(t);
+                if let Some(mark) = mark {
+                    marked.push(MarkedAxisValue(k, mark, t.trim().to_string()));
+                }
+                let (number, written) = length_and_unit(unmarked);
                 if let Some(written) = written.filter(|&w| w != unit) {
                     let t = liftplan_core::names::kept(t.trim(), 40);
                     let (what, w, unit) = (plural(what), written.name(), unit.name());
@@ -944,7 +967,42 @@ fn axis_values(
         };
         values.push(v);
     }
-    Ok(values)
+    Ok((values, marked))
+}
+
+/// A cell just past a grid's last boom length or radius that begins like a
+/// number but is not read as one ("40 boom", "12 see note"): its column or
+/// row is then no part of the chart, a configuration or radius lost
+/// without a word. The warning names it.
+fn beside_the_grid(sheet: &Sheet, g: &Grid, (across_is, down_is): (&str, &str)) -> Vec<String> {
+    let mut out = Vec::new();
+    let mut look = |(r, c): (u32, u32), what: &str, line: &str| {
+        if let Some(v @ Val::Text(t)) = sheet.get(r, c)
+            && reads_as_number(v)
+            && v.number().is_none()
+        {
+            let t = liftplan_core::names::kept(t.trim(), 40);
+            out.push(format!(
+                "{}!{}: '{t}', next to the grid's {}, is not read as one, so its {line} is no part of the chart \
+                 {}!{}: write it as a number (a unit and a footnote mark after it are read), or describe the grid \
+                 with [[charts.table]]",
+                sheet.name,
+                cell_ref(r, c),
+                plural(what),
+                sheet.name,
+                g.range()
+            ));
+        }
+    };
+    if !g.boom_independent
+        && let Some(next) = g.value_cols.last().and_then(|c| c.checked_add(1))
+    {
+        look((g.header_row, next), across_is, "column");
+    }
+    if let Some(next) = g.rows.last().and_then(|r| r.checked_add(1)) {
+        look((next, g.label_col), down_is, "row");
+    }
+    out
 }
 
 fn plural(what: &str) -> String {
@@ -1014,11 +1072,11 @@ pub fn read_grid(
     let capacity_texts = capacity_texts.filter_map(|(r, c)| Some((at(r, c), capacity_text(sheet.text(r, c)?)?.number)));
     let decimals = GridMark::of(axis_texts.chain(capacity_texts));
     let mut read = TextNumbers::default();
-    let across: Vec<f64> = match g.boom_independent {
-        true => vec![0.0],
+    let (across, across_marked) = match g.boom_independent {
+        true => (vec![0.0], Vec::new()),
         false => axis_values(sheet, &across_cells, (across_is, across_unit), &decimals, &mut read)?,
     };
-    let down: Vec<f64> = axis_values(sheet, &down_cells, (down_is, down_unit), &decimals, &mut read)?;
+    let (down, down_marked) = axis_values(sheet, &down_cells, (down_is, down_unit), &decimals, &mut read)?;
     if !g.boom_independent && !strictly_increasing(&across) {
         return Err((at(g.header_row, g.value_cols[0]), "header values must increase from left to right".into()));
     }
@@ -1036,6 +1094,28 @@ pub fn read_grid(
     let mut footnote = |mark: FootnoteMark| {
         said.entry(mark).or_insert_with(|| footnote_said(sheet, g, notes, note_sheets, mark)).clone()
     };
+    // A mark on a boom length or radius points at a note on its whole
+    // column or row: the warning opens with that range, so that a step
+    // reading a capacity there is matched to it.
+    let last_row = *g.rows.last().unwrap_or(&g.header_row);
+    let last_col = *g.value_cols.last().unwrap_or(&g.label_col);
+    for MarkedAxisValue(k, mark, t) in &across_marked {
+        let col = g.value_cols[*k];
+        let range = format!("{}!{}:{}", sheet.name, cell_ref(g.header_row, col), cell_ref(last_row, col));
+        warnings.push(format!(
+            "{range}: footnote mark dropped from the {across_is} '{t}' heading the column{}",
+            footnote(*mark)
+        ));
+    }
+    for MarkedAxisValue(k, mark, t) in &down_marked {
+        let row = g.rows[*k];
+        let range = format!("{}!{}:{}", sheet.name, cell_ref(row, g.label_col), cell_ref(row, last_col));
+        warnings.push(format!(
+            "{range}: footnote mark dropped from the {down_is} '{t}' heading the row{}",
+            footnote(*mark)
+        ));
+    }
+    warnings.extend(beside_the_grid(sheet, g, (across_is, down_is)));
     let cell_of = |ri: usize, bi: usize| {
         if g.transposed {
             (g.rows[bi], g.value_cols[ri])
@@ -1548,6 +1628,55 @@ mod tests {
         ]);
         let g = &find_grids(&s).unwrap()[0];
         assert_eq!(units(&s, g).unwrap().capacity, MassUnit::Lb);
+    }
+
+    /// A boom length or radius with a footnote mark is read, the warning
+    /// opening with its whole column or row and quoting the note; one
+    /// next to the grid that is no number is said, as its column or row is
+    /// then no part of the chart. Before, either dropped its column or row
+    /// (a configuration, a radius) without a word.
+    #[test]
+    fn marks_on_boom_lengths_and_radii() {
+        let read = |boom: &str, radius: &str| {
+            let s = sheet(&[
+                &["Capacities in t", "", "", ""],
+                &["Radius m", "Boom m", "", ""],
+                &["", "20", "30", boom],
+                &["3", "49", "39.2", ""],
+                &["5", "34.8", "29.4", "24.5"],
+                &[radius, "19.6", "18.1", "15.7"],
+                &["* With the jib stowed", "", "", ""],
+            ]);
+            let g = &find_grids(&s).unwrap()[0];
+            let u = units(&s, g).unwrap();
+            let mut w = vec![];
+            let c = read_grid(&s, g, &u, "c.xlsx", "x", (&LazyNotes::new(&s), &NoteSheets::default()), &mut w).unwrap();
+            (c, w)
+        };
+        let (c, w) = read("40*", "8");
+        assert_eq!((c.boom_lengths_m, c.radii_m), (vec![20.0, 30.0, 40.0], vec![3.0, 5.0, 8.0]));
+        assert_eq!(
+            w,
+            [
+                "Main!D3:D6: footnote mark dropped from the boom length '40*' heading the column; its footnote, Main!A7, reads: \"With the jib stowed\""
+            ]
+        );
+        let (c, w) = read("40", "8 (1)");
+        assert_eq!(c.radii_m, vec![3.0, 5.0, 8.0]);
+        assert!(
+            w[0].starts_with(
+                "Main!A6:D6: footnote mark dropped from the radius '8 (1)' heading the row; no footnote marked '(1)'"
+            ),
+            "{w:?}"
+        );
+        let (c, w) = read("40 boom", "8");
+        assert_eq!(c.boom_lengths_m, vec![20.0, 30.0]);
+        assert_eq!(
+            w,
+            [
+                "Main!D3: '40 boom', next to the grid's boom lengths, is not read as one, so its column is no part of the chart Main!A3:C6: write it as a number (a unit and a footnote mark after it are read), or describe the grid with [[charts.table]]"
+            ]
+        );
     }
 
     /// A chart rating its capacities as weights (kN, daN) is read as the

@@ -28,11 +28,15 @@ impl Val {
     /// plain number ([`crate::decimals::plain_number`]), as charts pasted
     /// from a PDF or typed in another locale hold their radii and boom
     /// lengths ("12.5", "12,5"; Excel's "number stored as text"), with or
-    /// without a length unit after it ([`length_and_unit`]: "3,0 m").
+    /// without a length unit after it ([`length_and_unit`]: "3,0 m") and a
+    /// footnote mark after that ("40*", "40 m¹").
     pub fn number(&self) -> Option<f64> {
         match self {
             Val::Num(v) => Some(*v),
-            Val::Text(t) => crate::decimals::plain_number(length_and_unit(t).0).map(|(v, _)| v),
+            Val::Text(t) => {
+                let (unmarked, _) = crate::detect::FootnoteMark::split_off(t);
+                crate::decimals::plain_number(length_and_unit(unmarked).0).map(|(v, _)| v)
+            }
         }
     }
 }
