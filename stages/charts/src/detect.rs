@@ -26,7 +26,7 @@
 //! its column or row is no part of the chart.
 
 use crate::decimals::{self, GridMark, Reading};
-use crate::sheet::{Sheet, Val, length_and_unit};
+use crate::sheet::{Sheet, Val, length_and_unit, shows_an_error};
 use liftplan_core::capacity::{ChartCell, ChartConfig};
 use liftplan_core::location::cell_ref;
 use liftplan_core::units::{LengthUnit, MassUnit};
@@ -880,6 +880,11 @@ pub fn parse_capacity(
         }
         Some(Val::Text(t)) => t.trim(),
     };
+    if shows_an_error(t) {
+        return Err(format!(
+            "the cell shows an error ('{t}'), not a capacity: its formula in the workbook is broken; correct it there"
+        ));
+    }
     let Some(parts) = capacity_text(t) else { return Ok(None) };
     if let Some(mark) = parts.mark {
         warnings.push(format!("{at}: footnote mark dropped from '{t}'{}", footnote(mark)));
@@ -971,15 +976,15 @@ fn axis_values(
 }
 
 /// A cell just past a grid's last boom length or radius that begins like a
-/// number but is not read as one ("40 boom", "12 see note"): its column or
-/// row is then no part of the chart, a configuration or radius lost
-/// without a word. The warning names it.
+/// number but is not read as one ("40 boom", "12 see note"), or shows a
+/// broken formula's error ("#REF!"): its column or row is then no part of
+/// the chart, a configuration or radius lost without a word. The warning
+/// names it.
 fn beside_the_grid(sheet: &Sheet, g: &Grid, (across_is, down_is): (&str, &str)) -> Vec<String> {
     let mut out = Vec::new();
     let mut look = |(r, c): (u32, u32), what: &str, line: &str| {
         if let Some(v @ Val::Text(t)) = sheet.get(r, c)
-            && reads_as_number(v)
-            && v.number().is_none()
+            && ((reads_as_number(v) && v.number().is_none()) || shows_an_error(t))
         {
             let t = liftplan_core::names::kept(t.trim(), 40);
             out.push(format!(
@@ -1494,6 +1499,11 @@ mod tests {
         let both = GridMark::Both { comma: ("S!C3".into(), "12,5".into()), point: ("S!C8".into(), "8.4".into()) };
         assert!(parse("12.500", MassUnit::T, both, "S!C13").unwrap_err().contains("may be 12500 or 12.5"));
         assert!(parse("1,25,000", MassUnit::Lb, GridMark::Neither, "S!C14").is_err());
+        assert!(
+            parse("#N/A", MassUnit::T, GridMark::Neither, "S!C15")
+                .unwrap_err()
+                .starts_with("the cell shows an error ('#N/A'), not a capacity")
+        );
         assert_eq!(w.len(), 1, "{w:?}");
         let said = read.said("S", "B2:C14");
         assert_eq!(
@@ -1669,6 +1679,9 @@ mod tests {
             ),
             "{w:?}"
         );
+        let (c, w) = read("#REF!", "8");
+        assert_eq!(c.boom_lengths_m, vec![20.0, 30.0]);
+        assert!(w[0].starts_with("Main!D3: '#REF!', next to the grid's boom lengths, is not read as one"), "{w:?}");
         let (c, w) = read("40 boom", "8");
         assert_eq!(c.boom_lengths_m, vec![20.0, 30.0]);
         assert_eq!(

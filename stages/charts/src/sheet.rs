@@ -41,6 +41,12 @@ impl Val {
     }
 }
 
+/// Whether a cell's text is a spreadsheet's error value ("#REF!", "#N/A"),
+/// as a broken formula shows.
+pub fn shows_an_error(text: &str) -> bool {
+    ["#DIV/0!", "#N/A", "#NAME?", "#NULL!", "#NUM!", "#REF!", "#VALUE!", "#DATA!"].contains(&text.trim())
+}
+
 /// A radius or boom length written as text with its unit after it, as
 /// charts pasted from a PDF hold them ("3,0 m", "12.5m", "40 ft", "40'"):
 /// the number's text and the unit. Text with no length unit after a number
@@ -107,11 +113,14 @@ fn from_data(d: &Data) -> Option<Val> {
         Data::Int(i) => Some(Val::Num(*i as f64)),
         Data::Float(f) => Some(Val::Num(*f)),
         Data::String(s) if !s.trim().is_empty() => Some(Val::Text(s.clone())),
+        // What the cell shows ("#REF!"): in a chart's grid it is refused as
+        // no number; read as an empty cell it was a capacity not permitted,
+        // or a boom length's configuration lost, without a word.
+        Data::Error(e) => Some(Val::Text(e.to_string())),
         Data::Bool(_)
         | Data::DateTime(_)
         | Data::DateTimeIso(_)
         | Data::DurationIso(_)
-        | Data::Error(_)
         | Data::String(_)
         | Data::Empty => None,
     }
@@ -123,6 +132,7 @@ fn from_ref(d: &DataRef) -> Option<Val> {
         DataRef::Float(f) => Some(Val::Num(*f)),
         DataRef::String(s) if !s.trim().is_empty() => Some(Val::Text(s.clone())),
         DataRef::SharedString(s) if !s.trim().is_empty() => Some(Val::Text(s.to_string())),
+        DataRef::Error(e) => Some(Val::Text(e.to_string())),
         _ => None,
     }
 }
@@ -289,9 +299,13 @@ mod tests {
             );
             (d, path)
         };
-        let (_d, path) = write(r#"<c r="A1"><v>20</v></c><c r="B1"><f>A1+10</f><v>30</v></c>"#);
+        let (_d, path) = write(
+            r#"<c r="A1"><v>20</v></c><c r="B1"><f>A1+10</f><v>30</v></c><c r="C1" t="e"><f>#REF!+10</f><v>#REF!</v></c>"#,
+        );
         let sheets = read_workbook(&path).unwrap();
         assert_eq!((sheets[0].num(0, 0), sheets[0].num(0, 1)), (Some(20.0), Some(30.0)));
+        // A broken formula's error is what the cell shows.
+        assert_eq!(sheets[0].text(0, 2), Some("#REF!"));
         let (_d, path) = write(r#"<c r="A1"><v>20</v></c><c r="B1"><f>A1+10</f></c><c r="C1"><f>B1+10</f></c>"#);
         let e = read_workbook(&path).unwrap_err().to_string();
         assert!(
