@@ -65,23 +65,34 @@ pub const MAX_UNPACKED_BYTES: u64 = 256 << 20;
 /// ods) or a compound file; other files pass unchecked. A compound file is
 /// checked whatever its name: calamine opens one named xlsx or xlsb too, to
 /// see whether it is an encrypted workbook (found by the fuzz target).
-pub fn check(path: &Path) -> Result<()> {
+pub fn check(path: &Path) -> Result<Checked> {
     let mut head = [0u8; 8];
     let compound =
         std::fs::File::open(path).and_then(|mut f| f.read_exact(&mut head)).is_ok() && head == cfb::SIGNATURE;
     if compound {
         let bytes = std::fs::read(path).map_err(|e| ChartError::Io(Location::file(path), e))?;
-        return cfb::check(&bytes).map_err(|m| ChartError::Format(Location::file(path), m));
+        cfb::check(&bytes).map_err(|m| ChartError::Format(Location::file(path), m))?;
+        return Ok(Checked::default());
     }
     check_within(path, MAX_UNPACKED_BYTES)
 }
 
-fn check_within(path: &Path, max_unpacked_bytes: u64) -> Result<()> {
+/// What the check saw of a workbook that its reader must know.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Checked {
+    /// The xlsx workbook asks for its formulas to be calculated when it is
+    /// opened: the values it stores for them are not to be trusted
+    /// ([`xlsx::asks_full_calculation_on_open`]).
+    pub calculated_on_open: bool,
+}
+
+fn check_within(path: &Path, max_unpacked_bytes: u64) -> Result<Checked> {
     let bad = |msg: String| ChartError::Format(Location::file(path), msg);
     let ods = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("ods"));
-    let Ok(file) = std::fs::File::open(path) else { return Ok(()) };
-    let Ok(mut zip) = zip::ZipArchive::new(BufReader::new(file)) else { return Ok(()) };
+    let Ok(file) = std::fs::File::open(path) else { return Ok(Checked::default()) };
+    let Ok(mut zip) = zip::ZipArchive::new(BufReader::new(file)) else { return Ok(Checked::default()) };
     let mut unpacked = 0u64;
+    let mut seen = Checked::default();
     for i in 0..zip.len() {
         let Ok(part) = zip.by_index(i) else { continue };
         let name = part.name().map(|n| n.into_owned()).unwrap_or_default();
@@ -91,6 +102,11 @@ fn check_within(path: &Path, max_unpacked_bytes: u64) -> Result<()> {
             ods::check_content(&mut BufReader::new(&mut counted))
         } else if !ods && xlsx::is_shared_strings(&name) {
             xlsx::check_shared_strings(&mut BufReader::new(&mut counted))
+        } else if !ods && xlsx::is_workbook(&name) {
+            xlsx::asks_full_calculation_on_open(&mut BufReader::new(&mut counted)).map(|asks| {
+                seen.calculated_on_open = asks;
+                Ok(())
+            })
         } else {
             Ok(Ok(()))
         };
@@ -110,10 +126,10 @@ fn check_within(path: &Path, max_unpacked_bytes: u64) -> Result<()> {
             Ok(Ok(())) => {}
             Ok(Err(refusal)) => return Err(bad(refusal)),
             // A part that does not unpack is calamine's to report.
-            Err(()) => return Ok(()),
+            Err(()) => return Ok(seen),
         }
     }
-    Ok(())
+    Ok(seen)
 }
 
 /// Counts the bytes read through it.

@@ -151,12 +151,12 @@ fn formula_text(formula: &calamine::XlsxFormulaMetadata) -> Option<String> {
 
 /// Reads every sheet of a workbook.
 pub fn read_workbook(path: &Path) -> Result<Vec<Sheet>> {
-    crate::container::check(path)?;
+    let checked = crate::container::check(path)?;
     // calamine panics on some damaged files (a compound file cut short inside
     // a sector, found by the chart_workbook fuzz target); the guard turns
     // that into an error naming the file. What would hang it or exhaust
     // memory is refused by the container check above, as no guard can.
-    liftplan_core::guard::run_reader("the workbook reader (calamine)", || read_sheets(path, MAX_CELLS))
+    liftplan_core::guard::run_reader("the workbook reader (calamine)", || read_sheets(path, MAX_CELLS, checked))
         .unwrap_or_else(|why| Err(ChartError::Format(Location::file(path), why)))
 }
 
@@ -173,8 +173,10 @@ pub fn sheet_name_kept(name: &str) -> String {
 }
 
 /// The sheets of the workbook at `path`, refused past `max_cells` cells in
-/// a sheet or in all; each named as kept ([`sheet_name_kept`]).
-fn read_sheets(path: &Path, max_cells: usize) -> Result<Vec<Sheet>> {
+/// a sheet or in all; each named as kept ([`sheet_name_kept`]). An xlsx
+/// sheet holding a formula whose value is not known (none stored, or the
+/// workbook asking to be calculated when opened: `checked`) is refused.
+fn read_sheets(path: &Path, max_cells: usize, checked: crate::container::Checked) -> Result<Vec<Sheet>> {
     let bad = |msg: String| ChartError::Format(Location::file(path), msg);
     let mut wb = calamine::open_workbook_auto(path).map_err(|e| bad(format!("cannot open the workbook: {e}")))?;
     let names = wb.sheet_names().to_vec();
@@ -212,37 +214,52 @@ fn read_sheets(path: &Path, max_cells: usize) -> Result<Vec<Sheet>> {
             calamine::Sheets::Xlsx(x) => {
                 // With each cell's formula: a formula whose value the file
                 // does not store reads as an empty cell, and a capacity or
-                // a boom length so lost is a chart changed without a word.
+                // a boom length so lost is a chart changed without a word;
+                // the 0 a program that calculates nothing stores for one
+                // reads as "not permitted", or breaks the boom lengths.
                 let mut r = x.worksheet_cells_reader(&name).map_err(|e| bad(format!("sheet '{name}': {e}")))?;
-                let mut uncomputed: Option<((u32, u32), Option<String>)> = None;
+                let mut uncomputed: Option<((u32, u32), Option<String>, bool)> = None;
                 let mut uncomputed_cells = 0usize;
                 while let Some(cell) =
                     r.next_cell_with_formula_metadata().map_err(|e| bad(format!("sheet '{name}': {e}")))?
                 {
-                    if let Some(v) = from_ref(&cell.value) {
-                        put(cell.pos, v)?;
-                    } else if let Some(formula) = cell.formula.as_ref().filter(|_| matches!(cell.value, DataRef::Empty))
+                    let stored = from_ref(&cell.value);
+                    let none_stored = matches!(cell.value, DataRef::Empty);
+                    if let Some(formula) = cell.formula.as_ref()
+                        && (checked.calculated_on_open || none_stored)
                     {
                         uncomputed_cells += 1;
-                        uncomputed.get_or_insert_with(|| (cell.pos, formula_text(formula)));
+                        uncomputed.get_or_insert_with(|| (cell.pos, formula_text(formula), none_stored));
+                    } else if let Some(v) = stored {
+                        put(cell.pos, v)?;
                     }
                 }
-                if let Some(((row, col), formula)) = uncomputed {
+                if let Some(((row, col), formula, none_stored)) = uncomputed {
                     let kept = sheet_name_kept(&name);
                     let cell = liftplan_core::location::cell_ref(row, col);
                     let formula = formula.map(|f| format!(" ('={f}')")).unwrap_or_default();
                     let others = match uncomputed_cells {
                         1 => String::new(),
-                        2 => ", as does one more cell on the sheet".to_string(),
-                        n => format!(", as do {} more cells on the sheet", n - 1),
+                        2 => " (as does one more cell on the sheet)".to_string(),
+                        n => format!(" (as do {} more cells on the sheet)", n - 1),
+                    };
+                    let why = match !none_stored {
+                        true => format!(
+                            "the cell holds a formula{formula}{others}, and the workbook asks for its formulas to be \
+                             calculated when it is opened, as programs that write workbooks without calculating \
+                             them do: the value it stores (they store 0, or none) may not be what the cell shows in \
+                             Excel"
+                        ),
+                        false => format!(
+                            "the cell holds a formula{formula} whose value the workbook does not store{others}: it \
+                             was written by a program that calculates no formulas, and what the cell shows in Excel \
+                             cannot be read from the file"
+                        ),
                     };
                     return Err(ChartError::Format(
                         Location::cell(path, &kept, &cell),
                         format!(
-                            "the cell holds a formula{formula} whose value the workbook does not store{others}: it \
-                             was written by a program that computes no formulas, and what the cell shows in Excel \
-                             cannot be read from the file. Open the workbook in Excel or LibreOffice and save it, \
-                             so that its values are stored"
+                            "{why}. Open the workbook in Excel or LibreOffice and save it, so that its values are stored"
                         ),
                     ));
                 }
@@ -278,10 +295,12 @@ mod tests {
     /// its value stored is read as the value.
     #[test]
     fn formulas_whose_values_are_not_stored_are_refused() {
-        let write = |cells: &str| {
+        let write_calculated = |cells: &str, calculation: &str| {
             let d = tempfile::tempdir().unwrap();
             let path = d.path().join("chart.xlsx");
-            let workbook = r#"<workbook xmlns="http://schemas.openxmlformats.org/spreadsheetml/2006/main" xmlns:r="http://schemas.openxmlformats.org/officeDocument/2006/relationships"><sheets><sheet name="Main" sheetId="1" r:id="rId1"/></sheets></workbook>"#;
+            let workbook = &format!(
+                r#"<workbook xmlns="http://schemas.openxmlformats.org/spreadsheetml/2006/main" xmlns:r="http://schemas.openxmlformats.org/officeDocument/2006/relationships"><sheets><sheet name="Main" sheetId="1" r:id="rId1"/></sheets>{calculation}</workbook>"#
+            );
             let package = r#"<Relationships xmlns="http://schemas.openxmlformats.org/package/2006/relationships"><Relationship Id="rId1" Type="http://schemas.openxmlformats.org/officeDocument/2006/relationships/officeDocument" Target="xl/workbook.xml"/></Relationships>"#;
             let rels = r#"<Relationships xmlns="http://schemas.openxmlformats.org/package/2006/relationships"><Relationship Id="rId1" Type="http://schemas.openxmlformats.org/officeDocument/2006/relationships/worksheet" Target="worksheets/sheet1.xml"/></Relationships>"#;
             let sheet = format!(
@@ -299,6 +318,7 @@ mod tests {
             );
             (d, path)
         };
+        let write = |cells: &str| write_calculated(cells, "");
         let (_d, path) = write(
             r#"<c r="A1"><v>20</v></c><c r="B1"><f>A1+10</f><v>30</v></c><c r="C1" t="e"><f>#REF!+10</f><v>#REF!</v></c>"#,
         );
@@ -309,9 +329,21 @@ mod tests {
         let (_d, path) = write(r#"<c r="A1"><v>20</v></c><c r="B1"><f>A1+10</f></c><c r="C1"><f>B1+10</f></c>"#);
         let e = read_workbook(&path).unwrap_err().to_string();
         assert!(
-            e.contains("[Main!B1]: the cell holds a formula ('=A1+10') whose value the workbook does not store, as does one more cell on the sheet: it was written by a program that computes no formulas"),
+            e.contains("[Main!B1]: the cell holds a formula ('=A1+10') whose value the workbook does not store (as does one more cell on the sheet): it was written by a program that calculates no formulas"),
             "{e}"
         );
+        // XlsxWriter's way: 0 stored for every formula, and the workbook
+        // asking to be calculated when opened. Without formulas such a
+        // workbook reads (the demo's chart is one).
+        let asks = r#"<calcPr calcId="124519" fullCalcOnLoad="1"/>"#;
+        let (_d, path) = write_calculated(r#"<c r="A1"><v>20</v></c><c r="B1"><f>A1+10</f><v>0</v></c>"#, asks);
+        let e = read_workbook(&path).unwrap_err().to_string();
+        assert!(
+            e.contains("[Main!B1]: the cell holds a formula ('=A1+10'), and the workbook asks for its formulas to be calculated when it is opened"),
+            "{e}"
+        );
+        let (_d, path) = write_calculated(r#"<c r="A1"><v>20</v></c><c r="B1"><v>30</v></c>"#, asks);
+        assert_eq!(read_workbook(&path).unwrap()[0].num(0, 1), Some(30.0));
     }
 
     /// A workbook's sheets are held together, so they share the cell bound:
@@ -328,10 +360,10 @@ mod tests {
             }
         }
         wb.save(&path).unwrap();
-        assert_eq!(read_sheets(&path, 12).unwrap().len(), 2);
-        let e = read_sheets(&path, 10).unwrap_err().to_string();
+        assert_eq!(read_sheets(&path, 12, Default::default()).unwrap().len(), 2);
+        let e = read_sheets(&path, 10, Default::default()).unwrap_err().to_string();
         assert!(e.contains("two.xlsx: its sheets up to 'Boom B' have more than 10 cells in all"), "{e}");
-        let e = read_sheets(&path, 5).unwrap_err().to_string();
+        let e = read_sheets(&path, 5, Default::default()).unwrap_err().to_string();
         assert!(e.contains("two.xlsx: sheet 'Boom A' has more than 5 cells"), "{e}");
     }
 }

@@ -1,6 +1,8 @@
 //! An xlsx workbook's shared strings table (`xl/sharedStrings.xml`),
 //! checked before calamine reads it: the number of strings it says it holds
-//! must be one it could hold (see [the container module](super)).
+//! must be one it could hold (see [the container module](super)); and its
+//! workbook part (`xl/workbook.xml`), for whether it asks to be recalculated
+//! when opened.
 
 use crate::sheet::MAX_CELLS;
 use quick_xml::events::Event;
@@ -58,6 +60,36 @@ pub(super) fn check_shared_strings(
     Ok(Ok(()))
 }
 
+/// Whether a part is the workbook part calamine reads (`xl/workbook.xml`).
+pub(super) fn is_workbook(name: &str) -> bool {
+    name.eq_ignore_ascii_case("xl/workbook.xml")
+}
+
+/// Whether the workbook part asks for every formula to be calculated again
+/// when the workbook is opened (`<calcPr fullCalcOnLoad="1"/>`): programs
+/// that write workbooks without calculating them (XlsxWriter,
+/// rust_xlsxwriter, openpyxl) ask so and store 0, or nothing, as each
+/// formula's value; Excel, saving a workbook, does not. `Err(())` where the
+/// part cannot be read.
+pub(super) fn asks_full_calculation_on_open(xml: &mut impl std::io::BufRead) -> std::result::Result<bool, ()> {
+    let mut reader = quick_xml::Reader::from_reader(xml);
+    let mut buf = Vec::new();
+    loop {
+        match reader.read_event_into(&mut buf) {
+            Ok(Event::Start(e) | Event::Empty(e)) if e.local_name().into_inner() == "calcPr" => {
+                return Ok(e.attributes().flatten().any(|a| {
+                    a.key.local_name().into_inner() == "fullCalcOnLoad" && matches!(a.value.as_ref(), "1" | "true")
+                }));
+            }
+            Ok(Event::Eof) => return Ok(false),
+            Ok(_) => {}
+            Err(quick_xml::Error::Io(_)) => return Err(()),
+            Err(_) => return Ok(false),
+        }
+        buf.clear();
+    }
+}
+
 /// A count as calamine reads one: decimal digits only (leading zeros
 /// allowed), within `usize`; `None` for anything else, which calamine
 /// ignores.
@@ -97,6 +129,16 @@ mod tests {
         assert!(verdict("<sst uniqueCount=\"2000001\"><si><t>cut short").is_err());
         // Counts past u64 are not numbers to calamine either.
         assert_eq!(verdict(&table("99999999999999999999999", 1)), Ok(()));
+    }
+
+    #[test]
+    fn a_workbook_asking_to_be_calculated_on_open_is_told() {
+        let asks = |xml: &str| asks_full_calculation_on_open(&mut xml.as_bytes()).unwrap();
+        assert!(asks(r#"<workbook><sheets/><calcPr calcId="124519" fullCalcOnLoad="1"/></workbook>"#));
+        assert!(asks(r#"<x:workbook xmlns:x="s"><x:calcPr fullCalcOnLoad="true"></x:calcPr></x:workbook>"#));
+        assert!(!asks(r#"<workbook><calcPr calcId="191029"/></workbook>"#));
+        assert!(!asks(r#"<workbook><sheets/></workbook>"#));
+        assert!(!asks("<workbook><calcPr fullCalcOnLoad="));
     }
 
     #[test]
