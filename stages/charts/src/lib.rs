@@ -13,7 +13,12 @@
 //! Numbers a chart holds as text are read with the decimal mark their grid
 //! shows ([`decimals`]); a radius or boom length may carry its unit in the
 //! cell ("3,0 m", [`sheet::length_and_unit`]), which names the axis' unit
-//! where the labels do not and must agree with it where they do. Every value keeps the `sheet!cell` it came from, so
+//! where the labels do not and must agree with it where they do. A cell
+//! whose value the workbook does not truly hold is refused, not read as
+//! empty: an xlsx formula with no value stored, or any formula of a workbook
+//! that asks to be calculated when opened (programs that write workbooks
+//! without calculating them store 0); a capacity showing a broken formula's
+//! error (`#REF!`). Every value keeps the `sheet!cell` it came from, so
 //! the lift plan can quote the chart row it relied on. The capacity rule itself (never interpolate upwards)
 //! lives in `liftplan_core::capacity`.
 //!
