@@ -82,7 +82,7 @@ pub fn check(path: &Path) -> Result<Checked> {
 pub struct Checked {
     /// The xlsx workbook asks for its formulas to be calculated when it is
     /// opened: the values it stores for them are not to be trusted
-    /// ([`xlsx::asks_full_calculation_on_open`]).
+    /// (`xlsx::asks_full_calculation_on_open`).
     pub calculated_on_open: bool,
 }
 
