@@ -155,6 +155,9 @@ pub struct RunReport {
     /// Lifts resumed part way: whether each `resume_from` is the pose of the
     /// plan it names (`resume::check_resumed`, before the run).
     pub resume_checks: Vec<crate::resume::ResumeCheck>,
+    /// Files in the input folders that no stage reads, with why
+    /// ([`crate::stages::inputs_not_read`]).
+    pub inputs_not_read: Vec<String>,
 }
 
 pub struct RunOptions {
@@ -206,7 +209,9 @@ fn key_inputs(
 
 /// Runs the stages in order; see the module docs.
 pub fn run(project: &Project, opts: &RunOptions, progress: &Progress) -> Result<RunReport> {
-    run_stages(project, &stages(), opts, progress)
+    let mut report = run_stages(project, &stages(), opts, progress)?;
+    report.inputs_not_read = crate::stages::inputs_not_read(project);
+    Ok(report)
 }
 
 fn run_stages(project: &Project, defs: &[StageDef], opts: &RunOptions, progress: &Progress) -> Result<RunReport> {
@@ -385,7 +390,7 @@ fn run_stages(project: &Project, defs: &[StageDef], opts: &RunOptions, progress:
             }
         }
     }
-    let report = RunReport { ok: !failed, stages: reports, resume_checks: Vec::new() };
+    let report = RunReport { ok: !failed, stages: reports, resume_checks: Vec::new(), inputs_not_read: Vec::new() };
     cache.record_run(&serde_json::json!({
         "liftplan": env!("CARGO_PKG_VERSION"),
         "finished_unix": std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map(|d| d.as_secs()).unwrap_or(0),

@@ -10,6 +10,97 @@ use std::path::PathBuf;
 
 pub const SCAN_EXTS: &[&str] = &["las", "laz", "ply", "e57", "ptx", "pts", "xyz", "txt", "asc", "csv"];
 
+/// The most files not read that are named one by one
+/// ([`inputs_not_read`]); past it, how many more there are.
+const NOT_READ_NAMED: usize = 10;
+
+/// The files in the scans, plant and charts folders that no stage reads,
+/// each as "folder/name (why)", sorted, the first [`NOT_READ_NAMED`] named
+/// and the rest counted: a scan in a scanner's own format (FARO's `.fls`),
+/// a plant model in a CAD tool's (`.dwg`, `.nwd`) or a load chart as a PDF
+/// was passed over without a word, and a plan made without it (a plan
+/// without the chart is refused, saying the folder held no chart file). The
+/// run warns of them, and the plan's cover and sign-off page name them.
+pub fn inputs_not_read(p: &Project) -> Vec<String> {
+    let mut plant_exts: Vec<&str> = liftplan_plant::EXTS.to_vec();
+    plant_exts.extend(PLANT_ATTRIBUTE_EXTS);
+    let folders = [
+        (p.path(&p.raw.paths.scans), SCAN_EXTS),
+        (p.path(&p.raw.paths.plant), &plant_exts[..]),
+        (p.path(&p.raw.paths.charts), liftplan_charts::EXTS),
+    ];
+    let read_by_name: Vec<PathBuf> = [Some(crate::project::FILE.into()), p.raw.scans.stations.clone()]
+        .into_iter()
+        .flatten()
+        .map(|f: PathBuf| p.path(&f))
+        .collect();
+    let mut not_read = std::collections::BTreeMap::new();
+    for (folder, _) in &folders {
+        // Each folder once, with what every stage reading it takes.
+        let read: Vec<&str> =
+            folders.iter().filter(|(f, _)| f == folder).flat_map(|(_, exts)| exts.iter().copied()).collect();
+        let Ok(entries) = std::fs::read_dir(folder) else { continue };
+        for e in entries.flatten() {
+            let path = e.path();
+            let name = e.file_name().to_string_lossy().into_owned();
+            if crate::project::is_hidden_or_office_owner(&name) || !path.is_file() || read_by_name.contains(&path) {
+                continue;
+            }
+            let ext = path.extension().and_then(|x| x.to_str()).unwrap_or("").to_ascii_lowercase();
+            if read.contains(&ext.as_str()) {
+                continue;
+            }
+            let shown = liftplan_core::location::shown(&path, Some(&p.dir));
+            not_read.insert(shown.clone(), format!("{shown} ({})", why_not_read(&ext, &read)));
+        }
+    }
+    let mut said: Vec<String> = not_read.into_values().collect();
+    if said.len() > NOT_READ_NAMED {
+        let more = said.len() - NOT_READ_NAMED;
+        said.truncate(NOT_READ_NAMED);
+        said.push(format!("and {more} more"));
+    }
+    said
+}
+
+/// Why a file of extension `ext` in a folder whose stages read `read` is
+/// not read, and what to do: the formats' owners, where known.
+fn why_not_read(ext: &str, read: &[&str]) -> String {
+    let export = |whose: &str, to: &str| format!("{whose} own format, not read: export it as {to}");
+    let scan = "E57, PTX or LAS";
+    let model = "RVM, glTF (.glb), OBJ, PLY or STL";
+    match ext {
+        "fls" | "lsproj" | "fws" => export("FARO Scene's", scan),
+        "zfs" | "zfprj" => export("Z+F's", scan),
+        "rxp" | "rdbx" | "rdb" | "rsp" => export("RIEGL's", scan),
+        "tzf" | "tdx" | "rwcx" | "rwp" => export("Trimble's", scan),
+        "bk2" | "blk" | "imp" | "lgs" => export("Leica's", scan),
+        "rcp" | "rcs" => export("Autodesk ReCap's", scan),
+        "pod" => export("Bentley Pointools'", scan),
+        "dwg" | "dxf" => export("AutoCAD's", model),
+        "nwd" | "nwc" | "nwf" => export("Navisworks'", model),
+        "dgn" => export("MicroStation's", model),
+        "rvt" | "rfa" => export("Revit's", model),
+        "rev" => export("AVEVA Review's", model),
+        "skp" => export("SketchUp's", model),
+        "step" | "stp" | "iges" | "igs" | "fbx" | "3ds" | "dae" | "ifczip" | "ifcxml" => {
+            format!("not read: export the model as {model}")
+        }
+        "pdf" | "png" | "jpg" | "jpeg" | "tif" | "tiff" if read.contains(&"xlsx") => {
+            "a load chart as a document or picture is not read: type or paste it into a workbook (.xlsx) and check it \
+             cell by cell against the chart"
+                .to_string()
+        }
+        "csv" | "txt" if read.contains(&"xlsx") => {
+            "a load chart as text is not read: open it in Excel or LibreOffice and save it as .xlsx".to_string()
+        }
+        "numbers" => "Apple Numbers' own format, not read: export it as .xlsx".to_string(),
+        "toml" if read.contains(&"e57") => "a stations file is read only where [scans] stations names it".to_string(),
+        "" => format!("a file without an extension is not read; this folder's files read are .{}", read.join(", .")),
+        _ => format!("no .{ext} file is read; this folder's files read are .{}", read.join(", .")),
+    }
+}
+
 pub fn scans() -> StageDef {
     StageDef {
         name: liftplan_scans::NAME,
@@ -266,7 +357,8 @@ pub fn docs() -> StageDef {
         inputs: |p: &Project| Ok(p.crane_files().into_iter().chain(resumed_plan_files(p)).collect()),
         // The GPU setting is part of the key: the GPU twin's pictures agree with the
         // CPU's within a tolerance, not bit for bit.
-        settings: |p: &Project| serde_json::json!({ "docs": p.raw.docs, "lifts": p.raw.lift, "project": p.raw.project.name, "gpu": p.raw.gpu.use_, "obstacles": p.raw.obstacle, "power_lines": p.raw.power_line }),
+        // The files in the input folders not read are named on the cover.
+        settings: |p: &Project| serde_json::json!({ "docs": p.raw.docs, "lifts": p.raw.lift, "project": p.raw.project.name, "gpu": p.raw.gpu.use_, "obstacles": p.raw.obstacle, "power_lines": p.raw.power_line, "inputs_not_read": inputs_not_read(p) }),
         reads: &[
             ("plan", "*"),
             ("scans", "site.laz"),
@@ -414,6 +506,7 @@ fn run_docs(ctx: &Ctx) -> Result<Produced> {
         scans_left_out,
         scans_warned,
         scans_passed_by,
+        inputs_not_read: inputs_not_read(p),
         site_level_unconfirmed,
         one_column_charts,
         chart_warnings,
@@ -432,4 +525,62 @@ fn run_docs(ctx: &Ctx) -> Result<Produced> {
         }
     }
     Ok(Produced { outputs, summary: serde_json::to_value(&summary)?, lines: summary.lines() })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A scan, a model and a chart in formats not read, and other files,
+    /// are named with why; the files read, the project file, a stations
+    /// file the project names and hidden files are not; past ten, counted.
+    #[test]
+    fn files_in_the_input_folders_not_read_are_named() {
+        let t = tempfile::tempdir().unwrap();
+        crate::project::init(t.path()).unwrap();
+        let put = |name: &str| std::fs::write(t.path().join(name), b"x").unwrap();
+        for name in [
+            "scans/a.laz",
+            "scans/site.fls",
+            "scans/.DS_Store",
+            "scans/~$notes.xlsx",
+            "plant/model.rvm",
+            "plant/model.att",
+            "plant/model.nwd",
+            "charts/chart.xlsx",
+            "charts/chart.pdf",
+            "charts/chart.csv",
+        ] {
+            put(name);
+        }
+        let project = Project::load(t.path()).unwrap();
+        assert_eq!(
+            inputs_not_read(&project),
+            [
+                "charts/chart.csv (a load chart as text is not read: open it in Excel or LibreOffice and save it as .xlsx)",
+                "charts/chart.pdf (a load chart as a document or picture is not read: type or paste it into a workbook (.xlsx) and check it cell by cell against the chart)",
+                "plant/model.nwd (Navisworks' own format, not read: export it as RVM, glTF (.glb), OBJ, PLY or STL)",
+                "scans/site.fls (FARO Scene's own format, not read: export it as E57, PTX or LAS)",
+            ]
+        );
+        // A stations file is read where the project names it, else said.
+        put("scans/stations.toml");
+        assert!(
+            inputs_not_read(&project)
+                .iter()
+                .any(|f| f.starts_with("scans/stations.toml (a stations file is read only where"))
+        );
+        let toml = t.path().join(crate::project::FILE);
+        let text = std::fs::read_to_string(&toml).unwrap();
+        std::fs::write(&toml, text.replace("[scans]", "[scans]\nstations = \"scans/stations.toml\"")).unwrap();
+        let project = Project::load(t.path()).unwrap();
+        assert!(!inputs_not_read(&project).iter().any(|f| f.contains("stations")));
+        for k in 0..9 {
+            put(&format!("scans/photo-{k}.jpg"));
+        }
+        let said = inputs_not_read(&project);
+        assert_eq!(said.len(), NOT_READ_NAMED + 1);
+        assert_eq!(said.last().unwrap(), "and 3 more");
+        assert!(said.iter().any(|f| f == "scans/photo-0.jpg (no .jpg file is read; this folder's files read are .las, .laz, .ply, .e57, .ptx, .pts, .xyz, .txt, .asc, .csv)"), "{said:?}");
+    }
 }

@@ -1532,19 +1532,33 @@ fn scans_left_out_unregistered_are_named_on_the_sign_off_page() {
     // And the survey's report among the scans: passed by as holding no
     // scan (it failed the run), and named, as it may be a failed export.
     std::fs::write(dir.join("scans").join("readme.txt"), "Survey of the demo site\nScanner: simulated\n").unwrap();
+    // And a scan in the scanner's own format, not read: said in the run
+    // even when quiet, and on the cover and sign-off page.
+    std::fs::write(dir.join("scans").join("scan-5.fls"), b"FARO").unwrap();
     let o = liftplan(&["run", d, "-q"]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        stderr.contains(
+            "warning: not read: scans/scan-5.fls (FARO Scene's own format, not read: export it as E57, PTX or LAS)"
+        ),
+        "{stderr}"
+    );
     let doc = lopdf::Document::load(dir.join("out").join("V-101.pdf")).unwrap();
     let pages: Vec<u32> = doc.get_pages().keys().copied().collect();
     let text = doc.extract_text(&pages).unwrap().replace('\n', " ");
     assert!(text.contains("3 of the 4 scans DID NOT REGISTER AND WERE LEFT OUT"), "{text}");
     assert!(text.contains("scan-2, scan-3, scan-4"), "{text}");
     assert!(
-        text.contains("3 scans left out unregistered; the file among the scans passed by as holding no scan: is it none?; ground under the load that no scan saw"),
+        text.contains("3 scans left out unregistered; the file among the scans passed by as holding no scan: is it none?; the file in the input folders not read: is it no scan, model or chart of this lift?; ground under the load that no scan saw"),
         "{text}"
     );
     assert!(
         text.contains("FILES AMONG THE SCANS WERE PASSED BY AS HOLDING NO SCAN: scans/readme.txt (holds no scan: no line of numbers x y z, or empty)"),
+        "{text}"
+    );
+    assert!(
+        text.contains("FILES IN THE INPUT FOLDERS WERE NOT READ: scans/scan-5.fls (FARO Scene's own format, not read: export it as E57, PTX or LAS). Whatever only a scan or plant model among them shows is not an obstacle in this plan"),
         "{text}"
     );
 }

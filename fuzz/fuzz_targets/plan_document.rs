@@ -43,6 +43,7 @@ fuzz_target!(|data: &[u8]| {
         scans_left_out: (vec![], 0),
         scans_warned: vec![],
         scans_passed_by: vec![],
+        inputs_not_read: vec![],
         site_level_unconfirmed: None,
         one_column_charts: vec![],
         chart_warnings: vec![],

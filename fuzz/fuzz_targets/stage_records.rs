@@ -56,6 +56,7 @@ fuzz_target!(|data: &[u8]| {
         scans_left_out: registration.left_out(),
         scans_warned: registration.warned(),
         scans_passed_by: registration.passed_by(),
+        inputs_not_read: vec![],
         site_level_unconfirmed: registration.site_level_unconfirmed(),
         one_column_charts,
         chart_warnings: vec![],

@@ -86,6 +86,10 @@ pub struct Inputs {
     /// scan, each with why, as the scans stage's `registration.json` lists
     /// them.
     pub scans_passed_by: Vec<String>,
+    /// Files in the scans, plant and charts folders that no stage reads,
+    /// each with why (a scan or a model in a format not read, a chart as a
+    /// PDF); the last may count those not named ("and 4 more").
+    pub inputs_not_read: Vec<String>,
     /// Where the scanner did not level itself (`[scans.registration]
     /// leveled = false`) and the reference scan was levelled by its ground
     /// or not at all: its name and how its line says it was levelled.

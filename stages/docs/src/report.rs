@@ -429,6 +429,13 @@ fn checks_before_signing(
         1 => v.push("the file among the scans passed by as holding no scan: is it none?".to_string()),
         n => v.push(format!("the {n} files among the scans passed by as holding no scan: is none a scan?")),
     }
+    match inp.inputs_not_read.len() {
+        0 => {}
+        1 => v.push("the file in the input folders not read: is it no scan, model or chart of this lift?".to_string()),
+        _ => {
+            v.push("the files in the input folders not read: is none a scan, model or chart of this lift?".to_string())
+        }
+    }
     v.extend(scans_warned_said(&inp.scans_warned));
     if inp.site_level_unconfirmed.is_some() {
         v.push("the site's level (the scanner did not level itself)".to_string());
@@ -1719,6 +1726,18 @@ pub fn document(
             &format!(
                 "FILES AMONG THE SCANS WERE PASSED BY AS HOLDING NO SCAN: {}. Where one is a scan whose export failed, whatever only it saw is not an obstacle in this plan: CHECK that none is, or have it exported again.",
                 inp.scans_passed_by.join("; ")
+            ),
+        );
+    }
+    if !inp.inputs_not_read.is_empty() {
+        y += 4.0;
+        y = sign_off_paragraph(
+            &mut d,
+            y,
+            w,
+            &format!(
+                "FILES IN THE INPUT FOLDERS WERE NOT READ: {}. Whatever only a scan or plant model among them shows is not an obstacle in this plan: CHECK that none is one, or have it exported in a format liftplan reads.",
+                inp.inputs_not_read.join("; ")
             ),
         );
     }

@@ -1333,7 +1333,7 @@ pub fn run(
     let Some(capacity_csv) = capacity_csv else {
         return Err(PlanError::Lift {
             lift: tasks.first().map(|t| t.id.clone()).unwrap_or_default(),
-            message: "no load chart was read (the charts folder holds no chart file), so the crane's capacity cannot be checked and no plan is made: put the crane's load chart (.xlsx, .xlsm, .xlsb, .xls or .ods) in the charts folder and name its configuration in chart_config".into(),
+            message: "no load chart was read (the charts folder holds no workbook liftplan reads), so the crane's capacity cannot be checked and no plan is made: put the crane's load chart (.xlsx, .xlsm, .xlsb, .xls or .ods) in the charts folder and name its configuration in chart_config".into(),
         });
     };
     let charts =
