@@ -781,8 +781,18 @@ fn real_main() -> Result<ExitCode> {
                 }
             } else if !json {
                 for r in &reports {
-                    let said =
-                        format!("'{}': {} x {} radii [{}!{}]", r.name, r.columns_said(), r.radii, r.sheet, r.range);
+                    // With the units read, as a run's line says them: what
+                    // the engineer checks first.
+                    let said = format!(
+                        "'{}': {} x {} radii [{}!{}] ({}){}",
+                        r.name,
+                        r.columns_said(),
+                        r.radii,
+                        r.sheet,
+                        r.range,
+                        r.units.found.join(", "),
+                        r.stated_said()
+                    );
                     println!("{}", progress::for_terminal(&said));
                 }
                 println!("wrote {} ({} rows)", output.display(), table.rows().len());

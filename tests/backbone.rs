@@ -432,6 +432,9 @@ fn chart_lookup_takes_the_radius_alone_for_a_chart_of_one_column() {
     // What reading the chart warned of is said (it was in the JSON only).
     liftplan_fixtures::chart::write_demo_chart_with(&mobile, Some((21, 6, "41,5"))).unwrap();
     let o = ok(&["chart", mobile.to_str().unwrap(), "-o", c]);
+    // Each configuration's line says the units read, as a run's does.
+    let lines = String::from_utf8_lossy(&o.stdout);
+    assert!(lines.contains("'Main boom 360': ") && lines.contains("(capacity in t, radius in m"), "{lines}");
     let said = String::from_utf8_lossy(&o.stderr);
     assert!(
         said.contains(
