@@ -43,7 +43,26 @@ pub fn inputs_not_read(p: &Project) -> Vec<String> {
         for e in entries.flatten() {
             let path = e.path();
             let name = e.file_name().to_string_lossy().into_owned();
-            if crate::project::is_hidden_or_office_owner(&name) || !path.is_file() || read_by_name.contains(&path) {
+            if crate::project::is_hidden_or_office_owner(&name) || read_by_name.contains(&path) {
+                continue;
+            }
+            // A folder's files are not read (a delivery of scans in one
+            // folder a day, say), unless it is another input folder, the
+            // cranes' or the outputs'.
+            if path.is_dir() {
+                let known = folders.iter().any(|(f, _)| *f == path)
+                    || path == p.out_dir()
+                    || path == p.path(&p.raw.paths.cranes);
+                if !known {
+                    let shown = liftplan_core::location::shown(&path, Some(&p.dir));
+                    not_read.insert(
+                        shown.clone(),
+                        format!("{shown}/ (a folder: the files in it are not read; put them beside it)"),
+                    );
+                }
+                continue;
+            }
+            if !path.is_file() {
                 continue;
             }
             let ext = path.extension().and_then(|x| x.to_str()).unwrap_or("").to_ascii_lowercase();
@@ -575,7 +594,14 @@ mod tests {
         std::fs::write(&toml, text.replace("[scans]", "[scans]\nstations = \"scans/stations.toml\"")).unwrap();
         let project = Project::load(t.path()).unwrap();
         assert!(!inputs_not_read(&project).iter().any(|f| f.contains("stations")));
-        for k in 0..9 {
+        // A folder's files are not read: said of the folder.
+        std::fs::create_dir(t.path().join("scans").join("day-2")).unwrap();
+        put("scans/day-2/b.laz");
+        assert!(
+            inputs_not_read(&project)
+                .contains(&"scans/day-2/ (a folder: the files in it are not read; put them beside it)".to_string())
+        );
+        for k in 0..8 {
             put(&format!("scans/photo-{k}.jpg"));
         }
         let said = inputs_not_read(&project);

@@ -1069,10 +1069,10 @@ pub fn read_grid(
     let (across_cells, down_cells) = axis_cells(g);
     // The numbers the grid holds as text, with their cells: what they show
     // decides how those that show nothing are read.
-    let axis_texts = across_cells
-        .iter()
-        .chain(&down_cells)
-        .filter_map(|&(r, c)| Some((at(r, c), length_and_unit(sheet.text(r, c)?).0.to_string())));
+    let axis_texts = across_cells.iter().chain(&down_cells).filter_map(|&(r, c)| {
+        let (unmarked, _) = FootnoteMark::split_off(sheet.text(r, c)?);
+        Some((at(r, c), length_and_unit(unmarked).0.to_string()))
+    });
     let capacity_texts = g.rows.iter().flat_map(|&r| g.value_cols.iter().map(move |&c| (r, c)));
     let capacity_texts = capacity_texts.filter_map(|(r, c)| Some((at(r, c), capacity_text(sheet.text(r, c)?)?.number)));
     let decimals = GridMark::of(axis_texts.chain(capacity_texts));
@@ -1671,6 +1671,10 @@ mod tests {
                 "Main!D3:D6: footnote mark dropped from the boom length '40*' heading the column; its footnote, Main!A7, reads: \"With the jib stowed\""
             ]
         );
+        // The mark is no part of the number whose decimal comma the grid
+        // shows.
+        let (c, _) = read("40,5*", "8");
+        assert_eq!(c.boom_lengths_m, vec![20.0, 30.0, 40.5]);
         let (c, w) = read("40", "8 (1)");
         assert_eq!(c.radii_m, vec![3.0, 5.0, 8.0]);
         assert!(
