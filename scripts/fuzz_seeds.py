@@ -173,6 +173,9 @@ ws["A5"], ws["B4"], ws["C4"], ws["A8"] = "3,0 m", "20 m", "30m", "12 ft"
 path = os.path.join(tmp, "chart-units.xlsx")
 as_text.save(path)
 seed("chart_workbook", "chart-units.xlsx", read(path), 0)
+# Text saved with a workbook's name, as web portals export "xls" files.
+seed("chart_workbook", "csv-as-xlsx", b"Radius;20;30\r\n3;49;39\r\n5;34,8;29,4\r\n", 0)
+seed("chart_workbook", "html-as-xls", b"<html><body><table><tr><td>Radius</td><td>20</td></tr></table></body></html>", 1)
 # Formulas openpyxl stores without their values.
 ws["B6"], ws["D4"] = "=B7*1.5", "=C4+10"
 path = os.path.join(tmp, "chart-formulas.xlsx")

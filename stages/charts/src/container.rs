@@ -40,7 +40,10 @@
 //! to an end inside the file, its sheets must not overlap, and their used
 //! ranges and the span of their cells must stay within bounds; an xlsx
 //! file's shared strings table must not claim more strings than it could
-//! hold. All before calamine opens the file. This module does not read
+//! hold. All before calamine opens the file. A file that is text (a CSV,
+//! a web page or an Excel 2003 XML sheet saved with a workbook's name, as
+//! web portals export "xls" files) is refused saying so, not as a damaged
+//! archive. This module does not read
 //! values or judge whether a file is a valid workbook: an archive or part it
 //! cannot unpack is left to calamine, which reports it.
 //!
@@ -74,7 +77,48 @@ pub fn check(path: &Path) -> Result<Checked> {
         cfb::check(&bytes).map_err(|m| ChartError::Format(Location::file(path), m))?;
         return Ok(Checked::default());
     }
+    if let Some(what) = text_not_workbook(path) {
+        return Err(ChartError::Format(Location::file(path), what));
+    }
     check_within(path, MAX_UNPACKED_BYTES)
+}
+
+/// How much of a file is looked at to tell text from a workbook.
+const TEXT_LOOKED_AT: usize = 4096;
+
+/// Where the file at `path` is text, not a workbook (no zip archive, no
+/// compound file, and its first bytes are UTF-8 text without control
+/// characters but line ends and tabs), what it seems to be and what to do.
+fn text_not_workbook(path: &Path) -> Option<String> {
+    let mut head = Vec::with_capacity(TEXT_LOOKED_AT);
+    std::fs::File::open(path).ok()?.take(TEXT_LOOKED_AT as u64).read_to_end(&mut head).ok()?;
+    if head.is_empty() || head.starts_with(b"PK") || head.starts_with(&cfb::SIGNATURE) {
+        return None;
+    }
+    let head = liftplan_core::byte_order_mark::strip(&head);
+    // A character cut at the end of what was looked at is still text.
+    let text = match std::str::from_utf8(head) {
+        Ok(t) => t,
+        Err(e) if e.error_len().is_none() => std::str::from_utf8(&head[..e.valid_up_to()]).ok()?,
+        Err(_) => return None,
+    };
+    if text.chars().any(|c| c.is_control() && !matches!(c, '\n' | '\r' | '\t')) {
+        return None;
+    }
+    let first_line = text.lines().find(|l| !l.trim().is_empty()).unwrap_or("").trim();
+    let kind = if first_line.starts_with('<') {
+        "markup (a web page, or an Excel 2003 XML spreadsheet)"
+    } else if first_line.contains([',', ';', '\t']) {
+        "text in columns (a CSV or tab-separated file)"
+    } else {
+        "text"
+    };
+    let begins: String = first_line.chars().take(40).collect();
+    let cut = if begins.len() < first_line.len() { "..." } else { "" };
+    Some(format!(
+        "is not a workbook but {kind} saved with a workbook's name (it begins '{begins}{cut}'): open it in Excel or \
+         LibreOffice and save it as a workbook (.xlsx), then check the chart it shows against the maker's"
+    ))
 }
 
 /// What the check saw of a workbook that its reader must know.
@@ -164,6 +208,32 @@ pub(crate) fn zip_file(path: &Path, parts: &[(&str, &str)]) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A CSV, a web page or an XML sheet saved as a workbook is refused as
+    /// text, saying what it seems to be; a damaged archive or binary data
+    /// is left to the readers.
+    #[test]
+    fn text_saved_as_a_workbook_is_refused_as_such() {
+        let d = tempfile::tempdir().unwrap();
+        let said = |name: &str, bytes: &[u8]| {
+            let path = d.path().join(name);
+            std::fs::write(&path, bytes).unwrap();
+            text_not_workbook(&path)
+        };
+        let csv = said("chart.xlsx", b"\xef\xbb\xbfRadius;20;30\r\n3;49;39\r\n").unwrap();
+        assert!(
+            csv.starts_with("is not a workbook but text in columns (a CSV or tab-separated file) saved with a workbook's name (it begins 'Radius;20;30')"),
+            "{csv}"
+        );
+        let html = said("page.xls", b"\n<html><body><table><tr><td>Radius</td></tr></table></body></html>").unwrap();
+        assert!(html.contains("markup (a web page, or an Excel 2003 XML spreadsheet)"), "{html}");
+        assert!(said("chart.xlsx", b"PK\x03\x04 damaged").is_none());
+        assert!(said("chart.xls", &[0xd0, 0xcf, 0x11, 0xe0, 0xa1, 0xb1, 0x1a, 0xe1, 0, 0]).is_none());
+        assert!(said("chart.xlsx", b"Radius\x00\x01\x02").is_none());
+        assert!(said("chart.xlsx", b"").is_none());
+        let e = check(&d.path().join("page.xls")).unwrap_err().to_string();
+        assert!(e.contains("page.xls: is not a workbook but markup"), "{e}");
+    }
 
     /// A part that unpacks past the limit is refused before calamine reads it.
     #[test]
