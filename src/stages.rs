@@ -114,6 +114,9 @@ fn why_not_read(ext: &str, read: &[&str]) -> String {
             "a load chart as text is not read: open it in Excel or LibreOffice and save it as .xlsx".to_string()
         }
         "numbers" => "Apple Numbers' own format, not read: export it as .xlsx".to_string(),
+        "zip" | "7z" | "rar" | "tar" | "gz" | "tgz" => {
+            "an archive, not read: unpack its files into this folder".to_string()
+        }
         "toml" if read.contains(&"e57") => "a stations file is read only where [scans] stations names it".to_string(),
         "" => format!("a file without an extension is not read; this folder's files read are .{}", read.join(", .")),
         _ => format!("no .{ext} file is read; this folder's files read are .{}", read.join(", .")),
@@ -569,6 +572,7 @@ mod tests {
             "charts/chart.xlsx",
             "charts/chart.pdf",
             "charts/chart.csv",
+            "plant/delivery.zip",
         ] {
             put(name);
         }
@@ -578,6 +582,7 @@ mod tests {
             [
                 "charts/chart.csv (a load chart as text is not read: open it in Excel or LibreOffice and save it as .xlsx)",
                 "charts/chart.pdf (a load chart as a document or picture is not read: type or paste it into a workbook (.xlsx) and check it cell by cell against the chart)",
+                "plant/delivery.zip (an archive, not read: unpack its files into this folder)",
                 "plant/model.nwd (Navisworks' own format, not read: export it as RVM, glTF (.glb), OBJ, PLY or STL)",
                 "scans/site.fls (FARO Scene's own format, not read: export it as E57, PTX or LAS)",
             ]
@@ -601,7 +606,7 @@ mod tests {
             inputs_not_read(&project)
                 .contains(&"scans/day-2/ (a folder: the files in it are not read; put them beside it)".to_string())
         );
-        for k in 0..8 {
+        for k in 0..7 {
             put(&format!("scans/photo-{k}.jpg"));
         }
         let said = inputs_not_read(&project);
