@@ -616,12 +616,17 @@ pub fn init(dir: &Path) -> Result<()> {
     Ok(())
 }
 
-/// Whether a file in a project folder is hidden, or the owner file
-/// Microsoft Office keeps beside a workbook while it is open ("~$chart.xlsx",
-/// a few bytes, no workbook: read as a chart it failed the run while the
-/// chart was open in Excel). Neither is an input.
+/// Whether a file in a project folder is hidden (a dot file, or the files
+/// Windows keeps hidden in a folder it has shown: `Thumbs.db`,
+/// `desktop.ini`), or the owner file Microsoft Office keeps beside a
+/// workbook while it is open ("~$chart.xlsx", a few bytes, no workbook: read
+/// as a chart it failed the run while the chart was open in Excel). None is
+/// an input, nor a file not read worth naming.
 pub fn is_hidden_or_office_owner(name: &str) -> bool {
-    name.starts_with('.') || name.starts_with("~$")
+    name.starts_with('.')
+        || name.starts_with("~$")
+        || name.eq_ignore_ascii_case("thumbs.db")
+        || name.eq_ignore_ascii_case("desktop.ini")
 }
 
 /// What to add to "does not exist" for a path written with Windows'

@@ -565,6 +565,8 @@ mod tests {
             "scans/a.laz",
             "scans/site.fls",
             "scans/.DS_Store",
+            "scans/Thumbs.db",
+            "charts/desktop.ini",
             "scans/~$notes.xlsx",
             "plant/model.rvm",
             "plant/model.att",
