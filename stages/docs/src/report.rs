@@ -1717,29 +1717,21 @@ pub fn document(
         y += 4.0;
         y = sign_off_paragraph(&mut d, y, w, &said);
     }
-    if !inp.scans_passed_by.is_empty() {
+    // Files that may hold what the plan lacks: passed by as no scan, or
+    // not read at all.
+    let files_said = [
+        (!inp.scans_passed_by.is_empty()).then(|| format!(
+            "FILES AMONG THE SCANS WERE PASSED BY AS HOLDING NO SCAN: {}. Where one is a scan whose export failed, whatever only it saw is not an obstacle in this plan: CHECK that none is, or have it exported again.",
+            inp.scans_passed_by.join("; ")
+        )),
+        (!inp.inputs_not_read.is_empty()).then(|| format!(
+            "FILES IN THE INPUT FOLDERS WERE NOT READ: {}. Whatever only a scan or plant model among them shows is not an obstacle in this plan: CHECK that none is one, or have it exported in a format liftplan reads.",
+            inp.inputs_not_read.join("; ")
+        )),
+    ];
+    for said in files_said.into_iter().flatten() {
         y += 4.0;
-        y = sign_off_paragraph(
-            &mut d,
-            y,
-            w,
-            &format!(
-                "FILES AMONG THE SCANS WERE PASSED BY AS HOLDING NO SCAN: {}. Where one is a scan whose export failed, whatever only it saw is not an obstacle in this plan: CHECK that none is, or have it exported again.",
-                inp.scans_passed_by.join("; ")
-            ),
-        );
-    }
-    if !inp.inputs_not_read.is_empty() {
-        y += 4.0;
-        y = sign_off_paragraph(
-            &mut d,
-            y,
-            w,
-            &format!(
-                "FILES IN THE INPUT FOLDERS WERE NOT READ: {}. Whatever only a scan or plant model among them shows is not an obstacle in this plan: CHECK that none is one, or have it exported in a format liftplan reads.",
-                inp.inputs_not_read.join("; ")
-            ),
-        );
+        y = sign_off_paragraph(&mut d, y, w, &said);
     }
     if let Some((reference, how)) = &inp.site_level_unconfirmed {
         y += 4.0;
