@@ -17,10 +17,10 @@ const NOT_READ_NAMED: usize = 10;
 /// The files in the scans, plant and charts folders that no stage reads,
 /// each as "folder/name (why)", sorted, the first [`NOT_READ_NAMED`] named
 /// and the rest counted: a scan in a scanner's own format (FARO's `.fls`),
-/// a plant model in a CAD tool's (`.dwg`, `.nwd`) or a load chart as a PDF
-/// was passed over without a word, and a plan made without it (a plan
-/// without the chart is refused, saying the folder held no chart file). The
-/// run warns of them, and the plan's cover and sign-off page name them.
+/// a plant model in a CAD tool's (`.dwg`, `.nwd`), a load chart as a PDF or
+/// a folder of scans was passed over without a word, and a plan made
+/// without what it holds. The run warns of them, and the plan's cover and
+/// sign-off page name them.
 pub fn inputs_not_read(p: &Project) -> Vec<String> {
     let mut plant_exts: Vec<&str> = liftplan_plant::EXTS.to_vec();
     plant_exts.extend(PLANT_ATTRIBUTE_EXTS);
