@@ -145,8 +145,25 @@ fn columns(sheet: &Sheet) -> std::collections::BTreeMap<u32, Column<'_>> {
     cells.into_iter().map(|(c, (rows, vals))| (c, Column::new(rows, vals))).collect()
 }
 
+/// The words of `text`, lower case, an English contraction's ending left
+/// out: "don't" is "don", not "don" and "t" (a tonne: a US chart's note
+/// "don't exceed" made a chart in pounds one of two mass units).
 fn words(text: &str) -> Vec<String> {
-    text.to_lowercase().split(|c: char| !c.is_alphanumeric()).filter(|w| !w.is_empty()).map(String::from).collect()
+    let mut kept = String::with_capacity(text.len());
+    let mut chars = text.chars().peekable();
+    let mut after_letter = false;
+    while let Some(c) = chars.next() {
+        if matches!(c, '\'' | '\u{2019}') && after_letter && chars.peek().is_some_and(|n| n.is_alphabetic()) {
+            while chars.peek().is_some_and(|n| n.is_alphabetic()) {
+                chars.next();
+            }
+            after_letter = false;
+            continue;
+        }
+        after_letter = c.is_alphabetic();
+        kept.push(c);
+    }
+    kept.to_lowercase().split(|c: char| !c.is_alphanumeric()).filter(|w| !w.is_empty()).map(String::from).collect()
 }
 
 pub fn says_radius(text: &str) -> bool {
@@ -1628,6 +1645,11 @@ mod tests {
         {
             assert!(!says_to_as_tonne(t), "{t}");
         }
+        // Nor is the end of an English contraction a tonne or a metre;
+        // a foot mark after a number is not a contraction.
+        assert_eq!(mass_in("Capacities in lb. Don't exceed; it isn't rated, won’t be"), vec![MassUnit::Lb]);
+        assert!(length_in("I'm sure").is_empty());
+        assert_eq!(words("40' boom, 'to' here"), ["40", "boom", "to", "here"]);
         let s = sheet(&[
             &["Capacities in pounds", "", ""],
             &["Radius from the axis of rotation to the hook", "", ""],
