@@ -1024,6 +1024,70 @@ fn beside_the_grid(sheet: &Sheet, g: &Grid, (across_is, down_is): (&str, &str)) 
     if let Some(next) = g.rows.last().and_then(|r| r.checked_add(1)) {
         look((next, g.label_col), down_is, "row");
     }
+    out.extend(going_on_past_a_break(sheet, g, (across_is, down_is)));
+    out
+}
+
+/// The most rows or columns that may break a grid's radii or boom lengths
+/// and still be said when the numbers go on past them.
+const BREAK_LOOKED_PAST: u32 = 2;
+
+/// Where a grid's radii go on rising below it past a row or two that
+/// breaks them (a blank row, or a header repeated where a chart pasted from
+/// a PDF turned its page), with capacities beside them, or its boom
+/// lengths to the right past a column: what follows the break is no part of
+/// the chart, radii or configurations lost without a word. The warnings
+/// name where the numbers go on and what breaks them.
+fn going_on_past_a_break(sheet: &Sheet, g: &Grid, (across_is, down_is): (&str, &str)) -> Vec<String> {
+    let num = |r: u32, c: u32| sheet.num(r, c);
+    let said = |(r, c): (u32, u32)| match sheet.get(r, c) {
+        Some(Val::Text(t)) => format!("'{}'", liftplan_core::names::kept(t.trim(), 40)),
+        Some(Val::Num(v)) => format!("{v}"),
+        None => "empty".to_string(),
+    };
+    let mut out = Vec::new();
+    let mut warn = |first: (u32, u32), broken_at: (u32, u32), what: &str, line: &str| {
+        out.push(format!(
+            "{}!{}: the grid's {} go on here, past the {line} at {} ({}) that breaks them, but what follows is no \
+             part of the grid {}!{} (where it makes a grid of its own, that is another configuration): take the \
+             break out (a page break of a chart pasted from a PDF?), or describe the grid with [[charts.table]]",
+            sheet.name,
+            cell_ref(first.0, first.1),
+            plural(what),
+            cell_ref(broken_at.0, broken_at.1),
+            said(broken_at),
+            sheet.name,
+            g.range()
+        ));
+    };
+    let (Some(&last_row), Some(&last_col)) = (g.rows.last(), g.value_cols.last()) else { return out };
+    // Down: a rising radius past the break, with a capacity beside it.
+    if let Some(last) = num(last_row, g.label_col) {
+        for gap in 1..=BREAK_LOOKED_PAST {
+            let Some(r) = last_row.checked_add(gap + 1) else { break };
+            let breaks = (last_row + 1..r).all(|b| num(b, g.label_col).is_none());
+            if breaks
+                && num(r, g.label_col).is_some_and(|v| v > last)
+                && g.value_cols.iter().any(|&c| num(r, c).is_some())
+            {
+                warn((r, g.label_col), (last_row + 1, g.label_col), down_is, "row");
+                break;
+            }
+        }
+    }
+    // Across: a rising boom length past the break, with a capacity under it.
+    if !g.boom_independent
+        && let Some(last) = num(g.header_row, last_col)
+    {
+        for gap in 1..=BREAK_LOOKED_PAST {
+            let Some(c) = last_col.checked_add(gap + 1) else { break };
+            let breaks = (last_col + 1..c).all(|b| num(g.header_row, b).is_none());
+            if breaks && num(g.header_row, c).is_some_and(|v| v > last) && g.rows.iter().any(|&r| num(r, c).is_some()) {
+                warn((g.header_row, c), (g.header_row, last_col + 1), across_is, "column");
+                break;
+            }
+        }
+    }
     out
 }
 
@@ -1715,6 +1779,49 @@ mod tests {
             [
                 "Main!D3: '40 boom', next to the grid's boom lengths, is not read as one, so its column is no part of the chart Main!A3:C6: write it as a number (a unit and a footnote mark after it are read), or describe the grid with [[charts.table]]"
             ]
+        );
+    }
+
+    /// Radii that go on rising past a blank row or a repeated header (a
+    /// chart pasted from a PDF across a page break), or boom lengths past a
+    /// blank column, are said: what follows the break is no part of the
+    /// grid. A second grid below, its radii starting again, is not.
+    #[test]
+    fn numbers_going_on_past_a_break_are_said() {
+        let read = |rows: &[&[&str]]| {
+            let s = sheet(rows);
+            let g = &find_grids(&s).unwrap()[0];
+            let u = units(&s, g).unwrap();
+            let mut w = vec![];
+            read_grid(&s, g, &u, "c.xlsx", "x", (&LazyNotes::new(&s), &NoteSheets::default()), &mut w).unwrap();
+            w
+        };
+        let head: [&[&str]; 3] =
+            [&["Capacities in t", "", "", "", ""], &["Radius m", "Boom m", "", "", ""], &["", "20", "30", "", ""]];
+        let radii: [&[&str]; 3] = [&["3", "49", "39", "", ""], &["4", "40", "35", "", ""], &["5", "34", "29", "", ""]];
+        let mut rows: Vec<&[&str]> = head.iter().chain(&radii).copied().collect();
+        rows.extend_from_slice(&[&["", "", "", "", ""], &["6", "30", "25", "", ""], &["8", "22", "19", "", ""]]);
+        assert_eq!(
+            read(&rows),
+            [
+                "Main!A8: the grid's radii go on here, past the row at A7 (empty) that breaks them, but what follows is no part of the grid Main!A3:C6 (where it makes a grid of its own, that is another configuration): take the break out (a page break of a chart pasted from a PDF?), or describe the grid with [[charts.table]]"
+            ]
+        );
+        rows[6] = &["Radius m", "20", "30", "", ""];
+        assert!(read(&rows)[0].starts_with("Main!A8: the grid's radii go on here, past the row at A7 ('Radius m')"));
+        // A second grid below: its radii start again.
+        rows[7] = &["3", "30", "25", "", ""];
+        assert!(read(&rows).is_empty());
+        // Boom lengths past a blank column.
+        let rows: Vec<&[&str]> = vec![
+            &["Capacities in t", "", "", "", ""],
+            &["Radius m", "Boom m", "", "", ""],
+            &["", "20", "30", "", "40"],
+            &["3", "49", "39", "", "30"],
+            &["4", "40", "35", "", "28"],
+        ];
+        assert!(
+            read(&rows)[0].starts_with("Main!E3: the grid's boom lengths go on here, past the column at D3 (empty)")
         );
     }
 
