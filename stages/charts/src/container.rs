@@ -96,11 +96,14 @@ fn text_not_workbook(path: &Path) -> Option<String> {
         return None;
     }
     let head = liftplan_core::byte_order_mark::strip(&head);
-    // A character cut at the end of what was looked at is still text.
+    // Text in UTF-8 (a character cut at the end of what was looked at is
+    // still text) or in a Windows code page, as a CSV saved on Windows is.
     let text = match std::str::from_utf8(head) {
-        Ok(t) => t,
-        Err(e) if e.error_len().is_none() => std::str::from_utf8(&head[..e.valid_up_to()]).ok()?,
-        Err(_) => return None,
+        Ok(t) => std::borrow::Cow::Borrowed(t),
+        Err(e) if e.error_len().is_none() => {
+            std::borrow::Cow::Borrowed(std::str::from_utf8(&head[..e.valid_up_to()]).ok()?)
+        }
+        Err(_) => liftplan_core::names::utf8_or_latin1(head),
     };
     if text.chars().any(|c| c.is_control() && !matches!(c, '\n' | '\r' | '\t')) {
         return None;
@@ -227,6 +230,9 @@ mod tests {
         );
         let html = said("page.xls", b"\n<html><body><table><tr><td>Radius</td></tr></table></body></html>").unwrap();
         assert!(html.contains("markup (a web page, or an Excel 2003 XML spreadsheet)"), "{html}");
+        // Saved on Windows: a Latin-1 'ä'.
+        let latin1 = said("latin1.xls", b"Ausladung\tL\xe4nge 20\r\n3\t49\r\n").unwrap();
+        assert!(latin1.contains("(it begins 'Ausladung\tLänge 20')"), "{latin1}");
         assert!(said("chart.xlsx", b"PK\x03\x04 damaged").is_none());
         assert!(said("chart.xls", &[0xd0, 0xcf, 0x11, 0xe0, 0xa1, 0xb1, 0x1a, 0xe1, 0, 0]).is_none());
         assert!(said("chart.xlsx", b"Radius\x00\x01\x02").is_none());
