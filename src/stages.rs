@@ -77,7 +77,10 @@ pub fn inputs_not_read(p: &Project) -> Vec<String> {
     if said.len() > NOT_READ_NAMED {
         let more = said.len() - NOT_READ_NAMED;
         said.truncate(NOT_READ_NAMED);
-        said.push(format!("and {more} more"));
+        said.push(match more {
+            1 => "and 1 more file".to_string(),
+            n => format!("and {n} more files"),
+        });
     }
     said
 }
@@ -613,7 +616,7 @@ mod tests {
         }
         let said = inputs_not_read(&project);
         assert_eq!(said.len(), NOT_READ_NAMED + 1);
-        assert_eq!(said.last().unwrap(), "and 3 more");
+        assert_eq!(said.last().unwrap(), "and 3 more files");
         assert!(said.iter().any(|f| f == "scans/photo-0.jpg (no .jpg file is read; this folder's files read are .las, .laz, .ply, .e57, .ptx, .pts, .xyz, .txt, .asc, .csv)"), "{said:?}");
     }
 }

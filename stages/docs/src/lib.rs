@@ -88,7 +88,7 @@ pub struct Inputs {
     pub scans_passed_by: Vec<String>,
     /// Files in the scans, plant and charts folders that no stage reads,
     /// each with why (a scan or a model in a format not read, a chart as a
-    /// PDF); the last may count those not named ("and 4 more").
+    /// PDF); the last may count those not named ("and 4 more files").
     pub inputs_not_read: Vec<String>,
     /// Where the scanner did not level itself (`[scans.registration]
     /// leveled = false`) and the reference scan was levelled by its ground
