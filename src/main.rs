@@ -314,7 +314,7 @@ fn print_report(rep: &pipeline::RunReport, json: bool, progress: &Progress) {
     }
     // Said even when quiet: what only such a file holds is in no plan.
     for f in &rep.inputs_not_read {
-        eprintln!("warning: not read: {}", progress::for_terminal(f));
+        eprintln!("warning: {}", progress::for_terminal(&stages::not_read_said(f)));
     }
     // A resumed lift's pose that is not its plan's is said even when quiet.
     for c in &rep.resume_checks {

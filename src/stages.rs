@@ -85,6 +85,15 @@ pub fn inputs_not_read(p: &Project) -> Vec<String> {
     said
 }
 
+/// An item of [`inputs_not_read`] as a warning line says it: "not read:
+/// scans/a.fls (...)", or "and 2 more files not read".
+pub fn not_read_said(item: &str) -> String {
+    match item.starts_with("and ") {
+        true => format!("{item} not read"),
+        false => format!("not read: {item}"),
+    }
+}
+
 /// Why a file of extension `ext` in a folder whose stages read `read` is
 /// not read, and what to do: the formats' owners, where known.
 fn why_not_read(ext: &str, read: &[&str]) -> String {
@@ -617,6 +626,8 @@ mod tests {
         let said = inputs_not_read(&project);
         assert_eq!(said.len(), NOT_READ_NAMED + 1);
         assert_eq!(said.last().unwrap(), "and 3 more files");
+        assert_eq!(not_read_said(said.last().unwrap()), "and 3 more files not read");
+        assert!(not_read_said(&said[0]).starts_with("not read: charts/chart.csv ("));
         assert!(said.iter().any(|f| f == "scans/photo-0.jpg (no .jpg file is read; this folder's files read are .las, .laz, .ply, .e57, .ptx, .pts, .xyz, .txt, .asc, .csv)"), "{said:?}");
     }
 }

@@ -65,7 +65,7 @@ fn run_once(dir: &Path, progress: &Progress) {
     match pipeline::run(&project, &RunOptions { until: None, force: vec![] }, progress) {
         Ok(rep) => {
             for f in &rep.inputs_not_read {
-                log(dir, &format!("warning: not read: {f}"));
+                log(dir, &format!("warning: {}", crate::stages::not_read_said(f)));
             }
             let s: Vec<String> =
                 rep.stages.iter().map(|s| format!("{}={:?}", s.name, s.status).to_lowercase()).collect();
