@@ -193,6 +193,20 @@ impl<R: Read> Read for Counted<R> {
     }
 }
 
+/// An ODS workbook of `content` (its `content.xml`), for tests.
+#[cfg(test)]
+pub(crate) fn ods_of(path: &Path, content: &str) {
+    let manifest = r#"<?xml version="1.0" encoding="UTF-8"?><manifest:manifest xmlns:manifest="urn:oasis:names:tc:opendocument:xmlns:manifest:1.0" manifest:version="1.2"><manifest:file-entry manifest:full-path="/" manifest:media-type="application/vnd.oasis.opendocument.spreadsheet"/><manifest:file-entry manifest:full-path="content.xml" manifest:media-type="text/xml"/></manifest:manifest>"#;
+    zip_file(
+        path,
+        &[
+            ("mimetype", "application/vnd.oasis.opendocument.spreadsheet"),
+            ("META-INF/manifest.xml", manifest),
+            ("content.xml", content),
+        ],
+    );
+}
+
 /// A zip file of `parts` (name, text), deflated, for the tests here and in
 /// [`ods`].
 #[cfg(test)]

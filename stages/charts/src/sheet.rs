@@ -137,6 +137,52 @@ fn from_ref(d: &DataRef) -> Option<Val> {
     }
 }
 
+/// The formula cells of a sheet whose values are not known: the first, and
+/// how many.
+#[derive(Default)]
+struct Uncomputed {
+    /// The first: its cell, its formula's text where known, whether the
+    /// file stores no value for it (else the workbook asks to be
+    /// calculated when opened).
+    first: Option<((u32, u32), Option<String>, bool)>,
+    cells: usize,
+}
+
+impl Uncomputed {
+    fn note(&mut self, at: (u32, u32), formula: impl FnOnce() -> Option<String>, none_stored: bool) {
+        self.cells += 1;
+        self.first.get_or_insert_with(|| (at, formula(), none_stored));
+    }
+
+    /// The sheet's refusal at its first such cell, where it has one.
+    fn refuse(&self, path: &Path, sheet: &str) -> Result<()> {
+        let Some(((row, col), formula, none_stored)) = &self.first else { return Ok(()) };
+        let cell = liftplan_core::location::cell_ref(*row, *col);
+        let formula = formula.as_ref().map(|f| format!(" ('={f}')")).unwrap_or_default();
+        let others = match self.cells {
+            1 => String::new(),
+            2 => " (as does one more cell on the sheet)".to_string(),
+            n => format!(" (as do {} more cells on the sheet)", n - 1),
+        };
+        let why = match none_stored {
+            false => format!(
+                "the cell holds a formula{formula}{others}, and the workbook asks for its formulas to be calculated \
+                 when it is opened, as programs that write workbooks without calculating them do: the value it \
+                 stores (they store 0, or none) may not be what the cell shows in Excel"
+            ),
+            true => format!(
+                "the cell holds a formula{formula} whose value the workbook does not store{others}: it was written \
+                 by a program that calculates no formulas, and what the cell shows in Excel cannot be read from the \
+                 file"
+            ),
+        };
+        Err(ChartError::Format(
+            Location::cell(path, &sheet_name_kept(sheet), &cell),
+            format!("{why}. Open the workbook in Excel or LibreOffice and save it, so that its values are stored"),
+        ))
+    }
+}
+
 /// A formula's text as a cell's refusal quotes it (one line, kept short),
 /// where the file gives it on the cell (a cell sharing another's formula
 /// gives only the share).
@@ -218,8 +264,7 @@ fn read_sheets(path: &Path, max_cells: usize, checked: crate::container::Checked
                 // the 0 a program that calculates nothing stores for one
                 // reads as "not permitted", or breaks the boom lengths.
                 let mut r = x.worksheet_cells_reader(&name).map_err(|e| bad(format!("sheet '{name}': {e}")))?;
-                let mut uncomputed: Option<((u32, u32), Option<String>, bool)> = None;
-                let mut uncomputed_cells = 0usize;
+                let mut uncomputed = Uncomputed::default();
                 while let Some(cell) =
                     r.next_cell_with_formula_metadata().map_err(|e| bad(format!("sheet '{name}': {e}")))?
                 {
@@ -228,41 +273,12 @@ fn read_sheets(path: &Path, max_cells: usize, checked: crate::container::Checked
                     if let Some(formula) = cell.formula.as_ref()
                         && (checked.calculated_on_open || none_stored)
                     {
-                        uncomputed_cells += 1;
-                        uncomputed.get_or_insert_with(|| (cell.pos, formula_text(formula), none_stored));
+                        uncomputed.note(cell.pos, || formula_text(formula), none_stored);
                     } else if let Some(v) = stored {
                         put(cell.pos, v)?;
                     }
                 }
-                if let Some(((row, col), formula, none_stored)) = uncomputed {
-                    let kept = sheet_name_kept(&name);
-                    let cell = liftplan_core::location::cell_ref(row, col);
-                    let formula = formula.map(|f| format!(" ('={f}')")).unwrap_or_default();
-                    let others = match uncomputed_cells {
-                        1 => String::new(),
-                        2 => " (as does one more cell on the sheet)".to_string(),
-                        n => format!(" (as do {} more cells on the sheet)", n - 1),
-                    };
-                    let why = match !none_stored {
-                        true => format!(
-                            "the cell holds a formula{formula}{others}, and the workbook asks for its formulas to be \
-                             calculated when it is opened, as programs that write workbooks without calculating \
-                             them do: the value it stores (they store 0, or none) may not be what the cell shows in \
-                             Excel"
-                        ),
-                        false => format!(
-                            "the cell holds a formula{formula} whose value the workbook does not store{others}: it \
-                             was written by a program that calculates no formulas, and what the cell shows in Excel \
-                             cannot be read from the file"
-                        ),
-                    };
-                    return Err(ChartError::Format(
-                        Location::cell(path, &kept, &cell),
-                        format!(
-                            "{why}. Open the workbook in Excel or LibreOffice and save it, so that its values are stored"
-                        ),
-                    ));
-                }
+                uncomputed.refuse(path, &name)?;
             }
             calamine::Sheets::Xlsb(x) => stream_cells!(x),
             other => {
@@ -274,6 +290,25 @@ fn read_sheets(path: &Path, max_cells: usize, checked: crate::container::Checked
                             put((r0 + r as u32, c0 + c as u32), v)?;
                         }
                     }
+                }
+                // An ods file written by a program that calculates nothing
+                // (odfpy) holds formulas with no value: an empty cell, as
+                // in xlsx above. (An xls file stores each formula's value.)
+                if let calamine::Sheets::Ods(ods) = other {
+                    let formulas = ods.worksheet_formula(&name).map_err(|e| bad(format!("sheet '{name}': {e}")))?;
+                    let (f0, g0) = formulas.start().unwrap_or((0, 0));
+                    let mut uncomputed = Uncomputed::default();
+                    for (r, c, formula) in formulas.used_cells() {
+                        let at = (f0 + r as u32, g0 + c as u32);
+                        let none_stored = matches!(range.get_value(at), None | Some(Data::Empty));
+                        if !formula.is_empty() && none_stored {
+                            // OpenFormula's namespace and '=' are no part of
+                            // the formula as LibreOffice shows it.
+                            let shown = formula.trim_start_matches("of:").trim_start_matches('=');
+                            uncomputed.note(at, || Some(liftplan_core::names::kept(shown, 60).into_owned()), true);
+                        }
+                    }
+                    uncomputed.refuse(path, &name)?;
                 }
             }
         }
@@ -344,6 +379,28 @@ mod tests {
         );
         let (_d, path) = write_calculated(r#"<c r="A1"><v>20</v></c><c r="B1"><v>30</v></c>"#, asks);
         assert_eq!(read_workbook(&path).unwrap()[0].num(0, 1), Some(30.0));
+        // An ods file: LibreOffice stores each formula's value (read); odfpy
+        // writes none (refused), also where the cell lies past every value.
+        let ods = |cells: &str| {
+            let d = tempfile::tempdir().unwrap();
+            let path = d.path().join("chart.ods");
+            crate::container::ods_of(
+                &path,
+                &format!(
+                    r#"<?xml version="1.0" encoding="UTF-8"?><office:document-content xmlns:office="urn:oasis:names:tc:opendocument:xmlns:office:1.0" xmlns:table="urn:oasis:names:tc:opendocument:xmlns:table:1.0" xmlns:text="urn:oasis:names:tc:opendocument:xmlns:text:1.0" office:version="1.2"><office:body><office:spreadsheet><table:table table:name="Main"><table:table-row><table:table-cell office:value-type="float" office:value="20"/>{cells}</table:table-row></table:table></office:spreadsheet></office:body></office:document-content>"#
+                ),
+            );
+            (d, path)
+        };
+        let (_d, path) =
+            ods(r#"<table:table-cell table:formula="of:=[.A1]+10" office:value-type="float" office:value="30"/>"#);
+        assert_eq!(read_workbook(&path).unwrap()[0].num(0, 1), Some(30.0));
+        let (_d, path) = ods(r#"<table:table-cell table:formula="of:=[.A1]+10"/>"#);
+        let e = read_workbook(&path).unwrap_err().to_string();
+        assert!(
+            e.contains("[Main!B1]: the cell holds a formula ('=[.A1]+10') whose value the workbook does not store"),
+            "{e}"
+        );
     }
 
     /// A workbook's sheets are held together, so they share the cell bound:

@@ -242,7 +242,7 @@ fn count_attr(e: &BytesStart, key: &str) -> u64 {
 
 #[cfg(test)]
 mod tests {
-    use super::super::zip_file;
+    use super::super::ods_of;
     use std::path::Path;
 
     /// `content.xml` of one sheet "Chart" whose rows are `rows` (XML).
@@ -251,19 +251,6 @@ mod tests {
             r#"<?xml version="1.0" encoding="UTF-8"?>
 <office:document-content xmlns:office="urn:oasis:names:tc:opendocument:xmlns:office:1.0" xmlns:table="urn:oasis:names:tc:opendocument:xmlns:table:1.0" xmlns:text="urn:oasis:names:tc:opendocument:xmlns:text:1.0" office:version="1.2"><office:body><office:spreadsheet><table:table table:name="Chart">{rows}</table:table></office:spreadsheet></office:body></office:document-content>"#
         )
-    }
-
-    /// An ODS workbook of `content` (its `content.xml`).
-    fn ods_of(path: &Path, content: &str) {
-        let manifest = r#"<?xml version="1.0" encoding="UTF-8"?><manifest:manifest xmlns:manifest="urn:oasis:names:tc:opendocument:xmlns:manifest:1.0" manifest:version="1.2"><manifest:file-entry manifest:full-path="/" manifest:media-type="application/vnd.oasis.opendocument.spreadsheet"/><manifest:file-entry manifest:full-path="content.xml" manifest:media-type="text/xml"/></manifest:manifest>"#;
-        zip_file(
-            path,
-            &[
-                ("mimetype", "application/vnd.oasis.opendocument.spreadsheet"),
-                ("META-INF/manifest.xml", manifest),
-                ("content.xml", content),
-            ],
-        );
     }
 
     /// An ODS workbook with one sheet "Chart" whose rows are `rows` (XML).
