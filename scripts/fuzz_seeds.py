@@ -197,6 +197,23 @@ doc.spreadsheet.addElement(table)
 path = os.path.join(tmp, "chart.ods")
 doc.save(path)
 seed("chart_workbook", "chart.ods", read(path), 3)
+# A formula odfpy stores without its value.
+doc = OpenDocumentSpreadsheet()
+table = Table(name="Main boom 360")
+for k, row in enumerate(rows):
+    tr = TableRow()
+    for v in row:
+        if v is None:
+            cell = TableCell(formula="of:=[.B5]*1.5") if k == 4 else TableCell()
+        else:
+            cell = TableCell(valuetype="float", value=v) if isinstance(v, float) else TableCell(valuetype="string")
+            cell.addElement(P(text=str(v)))
+        tr.addElement(cell)
+    table.addElement(tr)
+doc.spreadsheet.addElement(table)
+path = os.path.join(tmp, "chart-formula.ods")
+doc.save(path)
+seed("chart_workbook", "chart-formula.ods", read(path), 3)
 # The xls and xlsb fixtures (xlwt's BIFF8 in a compound file; BIFF12 records
 # written by make_chart_xlsb.py).
 seed("chart_workbook", "chart.xls", read(os.path.join(root, "fixtures/charts/chart.xls")), 1)
