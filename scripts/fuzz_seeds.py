@@ -181,39 +181,29 @@ ws["B6"], ws["D4"] = "=B7*1.5", "=C4+10"
 path = os.path.join(tmp, "chart-formulas.xlsx")
 as_text.save(path)
 seed("chart_workbook", "chart-formulas.xlsx", read(path), 0)
-doc = OpenDocumentSpreadsheet()
-table = Table(name="Main boom 360")
-for row in rows:
-    tr = TableRow()
-    for v in row:
-        if v is None:
-            cell = TableCell()
-        else:
-            cell = TableCell(valuetype="float", value=v) if isinstance(v, float) else TableCell(valuetype="string")
-            cell.addElement(P(text=str(v)))
-        tr.addElement(cell)
-    table.addElement(tr)
-doc.spreadsheet.addElement(table)
-path = os.path.join(tmp, "chart.ods")
-doc.save(path)
-seed("chart_workbook", "chart.ods", read(path), 3)
-# A formula odfpy stores without its value.
-doc = OpenDocumentSpreadsheet()
-table = Table(name="Main boom 360")
-for k, row in enumerate(rows):
-    tr = TableRow()
-    for v in row:
-        if v is None:
-            cell = TableCell(formula="of:=[.B5]*1.5") if k == 4 else TableCell()
-        else:
-            cell = TableCell(valuetype="float", value=v) if isinstance(v, float) else TableCell(valuetype="string")
-            cell.addElement(P(text=str(v)))
-        tr.addElement(cell)
-    table.addElement(tr)
-doc.spreadsheet.addElement(table)
-path = os.path.join(tmp, "chart-formula.ods")
-doc.save(path)
-seed("chart_workbook", "chart-formula.ods", read(path), 3)
+def ods_seed(name, formula_row=None):
+    """The chart as an ods seed; in row `formula_row`, its empty cells hold a
+    formula odfpy stores without its value."""
+    doc = OpenDocumentSpreadsheet()
+    table = Table(name="Main boom 360")
+    for k, row in enumerate(rows):
+        tr = TableRow()
+        for v in row:
+            if v is None:
+                cell = TableCell(formula="of:=[.B5]*1.5") if k == formula_row else TableCell()
+            else:
+                cell = TableCell(valuetype="float", value=v) if isinstance(v, float) else TableCell(valuetype="string")
+                cell.addElement(P(text=str(v)))
+            tr.addElement(cell)
+        table.addElement(tr)
+    doc.spreadsheet.addElement(table)
+    path = os.path.join(tmp, name)
+    doc.save(path)
+    seed("chart_workbook", name, read(path), 3)
+
+
+ods_seed("chart.ods")
+ods_seed("chart-formula.ods", formula_row=4)
 # The xls and xlsb fixtures (xlwt's BIFF8 in a compound file; BIFF12 records
 # written by make_chart_xlsb.py).
 seed("chart_workbook", "chart.xls", read(os.path.join(root, "fixtures/charts/chart.xls")), 1)
@@ -221,7 +211,7 @@ xlsb = os.path.join(root, "fixtures/charts/chart.xlsb")
 seed("chart_workbook", "chart.xlsb", read(xlsb), 2)
 # Selectors 4 to 7: one part, zipped by the target into a workbook.
 import zipfile
-with zipfile.ZipFile(path) as z:
+with zipfile.ZipFile(os.path.join(tmp, "chart.ods")) as z:
     seed("chart_workbook", "content.xml", z.read("content.xml"), 4)
 with zipfile.ZipFile(os.path.join(tmp, "chart.xlsx")) as z:
     seed("chart_workbook", "sheet1.xml", z.read("xl/worksheets/sheet1.xml"), 5)
