@@ -74,6 +74,12 @@ fn write_grid(
     wb.save(path).unwrap();
 }
 
+/// The small chart most tests here write: in t and m, booms 20 and 30 m
+/// across, radii 4, 6 and 10 m down, each capacity as `value` writes it.
+fn write_metric_grid(path: &Path, value: impl Fn(f64, f64) -> Option<String>) {
+    write_grid(path, "Capacities in t", "Radius (m)", &[20.0, 30.0], &[4.0, 6.0, 10.0], value, false);
+}
+
 fn cap_t(r_m: f64, b_m: f64) -> Option<f64> {
     (r_m < b_m - 2.0).then(|| 400.0 / (r_m + 2.0) * (30.0 / b_m))
 }
@@ -263,22 +269,14 @@ fn a_number_that_reads_two_ways_is_said_or_refused() {
     }
 
     let p = d.path().join("both.xlsx");
-    write_grid(
-        &p,
-        "Capacities in t",
-        "Radius (m)",
-        &[20.0, 30.0],
-        &[4.0, 6.0, 10.0],
-        |r, b| {
-            Some(match (r, b) {
-                (4.0, 20.0) => "66,7".to_string(),
-                (4.0, 30.0) => "44.4".to_string(),
-                (6.0, 20.0) => "50,000".to_string(),
-                _ => format!("{:.1}", cap_t(r, b)?),
-            })
-        },
-        false,
-    );
+    write_metric_grid(&p, |r, b| {
+        Some(match (r, b) {
+            (4.0, 20.0) => "66,7".to_string(),
+            (4.0, 30.0) => "44.4".to_string(),
+            (6.0, 20.0) => "50,000".to_string(),
+            _ => format!("{:.1}", cap_t(r, b)?),
+        })
+    });
     let e = read_chart(&p, &Settings::default()).unwrap_err().to_string();
     assert!(
         e.contains("[Chart!B6]") && e.contains("'50,000' may be 50 or 50000, and the grid writes decimals with a comma (Chart!B5 '66,7') and with a point (Chart!C5 '44.4')"),
@@ -290,50 +288,28 @@ fn a_number_that_reads_two_ways_is_said_or_refused() {
 fn bad_cells_are_refused_with_sheet_and_cell() {
     let d = tempfile::tempdir().unwrap();
     let p = d.path().join("bad.xlsx");
-    write_grid(
-        &p,
-        "Capacities in t",
-        "Radius (m)",
-        &[20.0, 30.0],
-        &[4.0, 6.0, 10.0],
-        |r, b| Some(if (r, b) == (6.0, 30.0) { "heavy".into() } else { format!("{}", cap_t(r, b)?) }),
-        false,
-    );
+    write_metric_grid(&p, |r, b| {
+        Some(if (r, b) == (6.0, 30.0) { "heavy".into() } else { format!("{}", cap_t(r, b)?) })
+    });
     let e = read_chart(&p, &Settings::default()).unwrap_err().to_string();
     assert!(e.contains("bad.xlsx [Chart!C6]") && e.contains("heavy"), "{e}");
 
     let p = d.path().join("rise.xlsx");
-    write_grid(
-        &p,
-        "Capacities in t",
-        "Radius (m)",
-        &[20.0, 30.0],
-        &[4.0, 6.0, 10.0],
-        |r, b| Some(if (r, b) == (10.0, 20.0) { "99".into() } else { format!("{}", cap_t(r, b)?) }),
-        false,
-    );
+    write_metric_grid(&p, |r, b| Some(if (r, b) == (10.0, 20.0) { "99".into() } else { format!("{}", cap_t(r, b)?) }));
     let e = read_chart(&p, &Settings::default()).unwrap_err().to_string();
     assert!(e.contains("[Chart!B7]") && e.contains("rises with radius"), "{e}");
 
     let p = d.path().join("typo.xlsx");
-    write_grid(
-        &p,
-        "Capacities in t",
-        "Radius (m)",
-        &[20.0, 30.0],
-        &[4.0, 6.0, 10.0],
-        |r, b| {
-            let c = cap_t(r, b)?;
-            Some(if (r, b) == (6.0, 20.0) {
-                format!("{c:.1}").replace('.', ",")
-            } else if (r, b) == (4.0, 30.0) {
-                format!("{c:.1}t")
-            } else {
-                format!("{c:.1}")
-            })
-        },
-        false,
-    );
+    write_metric_grid(&p, |r, b| {
+        let c = cap_t(r, b)?;
+        Some(if (r, b) == (6.0, 20.0) {
+            format!("{c:.1}").replace('.', ",")
+        } else if (r, b) == (4.0, 30.0) {
+            format!("{c:.1}t")
+        } else {
+            format!("{c:.1}")
+        })
+    });
     let (c, rep) = read_chart(&p, &Settings::default()).unwrap();
     assert!(rep[0].warnings.iter().any(|w| w.contains("Chart!B6")), "{:?}", rep[0].warnings);
     assert!(
@@ -341,18 +317,10 @@ fn bad_cells_are_refused_with_sheet_and_cell() {
     );
 
     let p = d.path().join("kg.xlsx");
-    write_grid(
-        &p,
-        "Capacities in t",
-        "Radius (m)",
-        &[20.0, 30.0],
-        &[4.0, 6.0, 10.0],
-        |r, b| {
-            let c = cap_t(r, b)?;
-            Some(if (r, b) == (6.0, 30.0) { format!("{} kg", c * 1000.0) } else { format!("{c}") })
-        },
-        false,
-    );
+    write_metric_grid(&p, |r, b| {
+        let c = cap_t(r, b)?;
+        Some(if (r, b) == (6.0, 30.0) { format!("{} kg", c * 1000.0) } else { format!("{c}") })
+    });
     let e = read_chart(&p, &Settings::default()).unwrap_err().to_string();
     assert!(e.contains("[Chart!C6]") && e.contains("kg"), "{e}");
 }
