@@ -58,12 +58,16 @@ pub fn length_and_unit(text: &str) -> (&str, Option<LengthUnit>) {
         t.find(|c: char| !(c.is_ascii_digit() || matches!(c, '.' | ',' | ' ' | '\u{a0}'))).unwrap_or(t.len());
     let (number, unit) = t.split_at(number_end);
     let number = number.trim_end_matches([' ', '\u{a0}']);
-    let unit = match unit.to_lowercase().as_str() {
-        "m" | "meter" | "meters" | "metre" | "metres" => LengthUnit::M,
-        "ft" | "ft." | "feet" | "foot" | "'" | "\u{2032}" => LengthUnit::Ft,
-        _ => return (t, None),
-    };
-    if number.is_empty() { (t, None) } else { (number, Some(unit)) }
+    // Words ("Radius") are passed by before anything is made of them: the
+    // grid search asks this of every text cell of a sheet.
+    if number.is_empty() || unit.len() > "metres".len() {
+        return (t, None);
+    }
+    match unit.to_lowercase().as_str() {
+        "m" | "meter" | "meters" | "metre" | "metres" => (number, Some(LengthUnit::M)),
+        "ft" | "ft." | "feet" | "foot" | "'" | "\u{2032}" => (number, Some(LengthUnit::Ft)),
+        _ => (t, None),
+    }
 }
 
 #[derive(Debug, Clone, Default)]
