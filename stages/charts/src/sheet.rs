@@ -248,18 +248,7 @@ fn read_sheets(path: &Path, max_cells: usize, checked: crate::container::Checked
                 Ok(())
             }
         };
-        // xlsx and xlsb stream cell by cell (their readers are different types
-        // with the same methods); the other formats come as a range.
-        macro_rules! stream_cells {
-            ($book:expr) => {{
-                let mut r = $book.worksheet_cells_reader(&name).map_err(|e| bad(format!("sheet '{name}': {e}")))?;
-                while let Some(cell) = r.next_cell().map_err(|e| bad(format!("sheet '{name}': {e}")))? {
-                    if let Some(v) = from_ref(cell.get_value()) {
-                        put(cell.get_position(), v)?;
-                    }
-                }
-            }};
-        }
+        // xlsx and xlsb stream cell by cell; the other formats come as a range.
         match &mut wb {
             calamine::Sheets::Xlsx(x) => {
                 // With each cell's formula: a formula whose value the file
@@ -284,7 +273,14 @@ fn read_sheets(path: &Path, max_cells: usize, checked: crate::container::Checked
                 }
                 uncomputed.refuse(path, &name)?;
             }
-            calamine::Sheets::Xlsb(x) => stream_cells!(x),
+            calamine::Sheets::Xlsb(x) => {
+                let mut r = x.worksheet_cells_reader(&name).map_err(|e| bad(format!("sheet '{name}': {e}")))?;
+                while let Some(cell) = r.next_cell().map_err(|e| bad(format!("sheet '{name}': {e}")))? {
+                    if let Some(v) = from_ref(cell.get_value()) {
+                        put(cell.get_position(), v)?;
+                    }
+                }
+            }
             other => {
                 let range = other.worksheet_range(&name).map_err(|e| bad(format!("sheet '{name}': {e}")))?;
                 let (r0, c0) = range.start().unwrap_or((0, 0));
